@@ -1,0 +1,62 @@
+"""Errors raised by mechkit. Every error carries the data that explains it; none is printed."""
+
+from __future__ import annotations
+
+
+class MechkitError(Exception):
+    """Base class of every error mechkit raises on purpose."""
+
+
+class InvalidParameters(MechkitError):
+    """A parameter value is unknown, out of range, or makes the linkage impossible.
+
+    Attributes:
+        name: the parameter's name.
+        value: the offending value.
+        why: the reason, in words.
+    """
+
+    def __init__(self, name: str, value: object, why: str):
+        self.name, self.value, self.why = name, value, why
+        super().__init__(f"parameter {name!r} = {value!r}: {why}")
+
+
+class MalformedDescription(MechkitError):
+    """A URDF / xacro / loop declaration is invalid.
+
+    Attributes:
+        where: the element, frame or file at fault.
+        why: the reason, in words.
+    """
+
+    def __init__(self, where: str, why: str):
+        self.where, self.why = where, why
+        super().__init__(f"{where}: {why}")
+
+
+class ClosureNotConverged(MechkitError):
+    """The loop-closure solve did not reach its tolerance (the linkage may not assemble).
+
+    Attributes:
+        residual: final closure residual norm (m, rad mixed as declared rows).
+        tol: requested tolerance.
+        iters: iterations performed.
+    """
+
+    def __init__(self, residual: float, tol: float, iters: int, detail: str = ""):
+        self.residual, self.tol, self.iters = residual, tol, iters
+        msg = f"loop closure did not converge: residual {residual:.3e} > tol {tol:.1e} after {iters} iterations"
+        super().__init__(msg + (f" ({detail})" if detail else ""))
+
+
+class SingularConfiguration(MechkitError):
+    """A linear system of the kinematics or dynamics is singular at this configuration.
+
+    Attributes:
+        cond: condition number (inf when exactly singular).
+        what: which system was singular.
+    """
+
+    def __init__(self, cond: float, what: str):
+        self.cond, self.what = cond, what
+        super().__init__(f"singular configuration: {what} (condition number {cond:.3e})")
