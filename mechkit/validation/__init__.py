@@ -1,0 +1,1 @@
+"""Independent validators written with numpy/scipy only (no Pinocchio dynamics)."""
