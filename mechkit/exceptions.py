@@ -60,3 +60,16 @@ class SingularConfiguration(MechkitError):
     def __init__(self, cond: float, what: str):
         self.cond, self.what = cond, what
         super().__init__(f"singular configuration: {what} (condition number {cond:.3e})")
+
+
+class MethodUnavailable(MechkitError):
+    """A method cannot handle this mechanism (say which and why; another method can).
+
+    Attributes:
+        method: the method's name.
+        why: the reason, in words.
+    """
+
+    def __init__(self, method: str, why: str):
+        self.method, self.why = method, why
+        super().__init__(f"{method} unavailable: {why}")

@@ -1,0 +1,25 @@
+"""mechkit: closed-loop mechanisms on Pinocchio, from parameters to joint reactions."""
+
+from mechkit.exceptions import (
+    ClosureNotConverged,
+    InvalidParameters,
+    MalformedDescription,
+    MechkitError,
+    MethodUnavailable,
+    SingularConfiguration,
+)
+from mechkit.mechanism import Mechanism, load
+from mechkit.registry import get_spec, specs
+
+__all__ = [
+    "ClosureNotConverged",
+    "InvalidParameters",
+    "MalformedDescription",
+    "Mechanism",
+    "MechkitError",
+    "MethodUnavailable",
+    "SingularConfiguration",
+    "get_spec",
+    "load",
+    "specs",
+]

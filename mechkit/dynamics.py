@@ -1,0 +1,238 @@
+"""Constrained dynamics of closed-loop mechanisms: forward (constrained ABA) and inverse (constrained RNEA).
+
+Equation of motion: M a + nle = tau + J^T lambda, J the closure Jacobian (rows of `ClosureRows`),
+J a + gamma = 0. Forward dynamics two ways: Pinocchio's proximal `constraintDynamics` on the
+equivalent `RigidConstraintModel`s, and a dense KKT solve on the independent rows. Inverse
+dynamics: [S, J^T] [u; lambda] = rnea(q, v, a) - J_ext^T f_ext, then one more RNEA with the closure
+wrenches applied as external forces gives every tree joint's transmitted wrench.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import pinocchio as pin
+import scipy.linalg
+
+from mechkit.closures import ClosureRows
+from mechkit.exceptions import SingularConfiguration
+from mechkit.kinematics import numerical_rank
+
+#: Relative threshold under which a reaction component's null-space variation counts as zero.
+DETERMINACY_TOL = 1e-8
+
+
+@dataclass(frozen=True)
+class ForwardDynamicsResult:
+    """Accelerations (nv,) and generalised constraint force J^T lambda (nv,)."""
+
+    a: np.ndarray
+    constraint_force: np.ndarray
+
+
+@dataclass(frozen=True)
+class JointReaction:
+    """The wrench [f (N), m (N m)] the parent side exerts on the child side of a joint.
+
+    World frame, moment about the joint origin. `determinate[i]` is False for components that
+    static equilibrium does not fix (redundant constraints); their value is the minimum-norm
+    convention. `support` is True for joints to the ground.
+    """
+
+    wrench: np.ndarray
+    determinate: np.ndarray
+    support: bool
+
+
+@dataclass(frozen=True)
+class InverseDynamicsResult:
+    """Efforts by actuated joint (N m or N) and reactions by joint name (tree and cut joints)."""
+
+    efforts: dict[str, float]
+    reactions: dict[str, JointReaction]
+    multipliers: np.ndarray
+    condition: float
+
+
+def independent_rows(J: np.ndarray) -> np.ndarray:
+    """Indices of a maximal set of linearly independent rows (pivoted QR of J^T)."""
+    if J.shape[0] == 0:
+        return np.zeros(0, dtype=int)
+    _, r, piv = scipy.linalg.qr(J.T, mode="economic", pivoting=True)
+    d = np.abs(np.diag(r))
+    return np.sort(piv[: numerical_rank(d)])
+
+
+def kkt_forward(model: pin.Model, data: pin.Data, q, v, tau, J: np.ndarray, gamma: np.ndarray) -> ForwardDynamicsResult:
+    """Dense KKT solve on the independent rows of J (needs J, gamma at (q, v))."""
+    rows = independent_rows(J)
+    Ji, gi = J[rows], gamma[rows]
+    M = pin.crba(model, data, q)
+    M = np.triu(M) + np.triu(M, 1).T
+    nle = pin.nonLinearEffects(model, data, q, v)
+    n, m = model.nv, len(rows)
+    K = np.zeros((n + m, n + m))
+    K[:n, :n], K[:n, n:], K[n:, :n] = M, -Ji.T, Ji
+    rhs = np.concatenate([tau - nle, -gi])
+    try:
+        lu = scipy.linalg.lu_factor(K, check_finite=True)
+    except (ValueError, np.linalg.LinAlgError) as err:
+        raise SingularConfiguration(float("inf"), f"KKT matrix: {err}") from None
+    if np.min(np.abs(np.diag(lu[0]))) < 1e-14 * np.max(np.abs(np.diag(lu[0]))):
+        raise SingularConfiguration(float(np.linalg.cond(K)), "KKT matrix (singular mass matrix or constraint rows)")
+    x = scipy.linalg.lu_solve(lu, rhs)
+    a, lam = x[:n], x[n:]
+    return ForwardDynamicsResult(a, Ji.T @ lam)
+
+
+def wrench_world_at(point: np.ndarray, force: np.ndarray, moment: np.ndarray) -> pin.Force:
+    """A world wrench given at a point, as a Pinocchio Force about the world origin."""
+    return pin.Force(force, moment + np.cross(point, force))
+
+
+def closure_fext(model: pin.Model, data: pin.Data, rows: ClosureRows, lam: np.ndarray, fext=None):
+    """External forces per joint (local frames) that reproduce J^T lam, plus any given `fext`.
+
+    Returns (fext vector, per-cut wrenches (f, m, point) world).
+    """
+    forces = [pin.Force.Zero() for _ in range(model.njoints)] if fext is None else [pin.Force(f) for f in fext]
+    wrenches = rows.wrenches(data, lam)
+    for cut, (f, m, p) in zip(rows.cuts, wrenches):
+        world = wrench_world_at(p, f, m)
+        jb = model.frames[cut.frame_b].parentJoint
+        ja = model.frames[cut.frame_a].parentJoint
+        if jb:
+            forces[jb] += data.oMi[jb].actInv(world)
+        if ja:
+            forces[ja] -= data.oMi[ja].actInv(world)
+    return pin.StdVec_Force(forces), wrenches
+
+
+def joint_wrenches_world(model: pin.Model, data: pin.Data) -> np.ndarray:
+    """(njoints, 6): data.f rotated to world axes, moment about each joint origin."""
+    out = np.zeros((model.njoints, 6))
+    for i in range(1, model.njoints):
+        R = data.oMi[i].rotation
+        out[i, :3] = R @ data.f[i].linear
+        out[i, 3:] = R @ data.f[i].angular
+    return out
+
+
+@dataclass
+class InverseDynamicsProblem:
+    """What constrained RNEA needs besides (q, v, a): built once per mechanism.
+
+    Attributes:
+        model, data: the Pinocchio model and a scratch data.
+        rows: the closure rows the scene solves with.
+        full_rows: the closures' full spatial rows (the physical joints), for the determinacy test.
+        actuated_v: velocity indices of the actuated joints, in effort order.
+        actuated_names: their joint names.
+        cut_names: names of the cut joints, in `rows.cuts` order.
+    """
+
+    model: pin.Model
+    data: pin.Data
+    rows: ClosureRows
+    full_rows: ClosureRows
+    actuated_v: np.ndarray
+    actuated_names: tuple[str, ...]
+
+    def __post_init__(self) -> None:
+        self.static_model = self.model.copy()
+        self.static_model.gravity = pin.Motion.Zero()
+        self.static_data = self.static_model.createData()
+        self.cut_names = tuple(c.closure.name for c in self.rows.cuts)
+        self.tree_names = tuple(self.model.names[1:])
+        parents = self.model.parents
+        self.tree_support = tuple(parents[i] == 0 for i in range(1, self.model.njoints))
+        self.cut_support = tuple(self.model.frames[c.frame_a].parentJoint == 0
+                                 or self.model.frames[c.frame_b].parentJoint == 0 for c in self.rows.cuts)
+
+
+def inverse_dynamics(p: InverseDynamicsProblem, q, v, a, fext=None, determinacy: bool = True) -> InverseDynamicsResult:
+    """Actuator efforts and every joint's reaction for a motion (q, v, a) that satisfies the closures.
+
+    Args:
+        p: the problem (model, rows, actuators).
+        q, v, a: configuration, velocity, acceleration (a must satisfy J a + gamma = 0).
+        fext: optional external forces per joint (Pinocchio local frames), e.g. thrust.
+        determinacy: run the rank test that flags indeterminate components (one SVD and one static
+            RNEA per null-space direction); without it every component is flagged determinate=True
+            only when the system is square and regular.
+
+    Raises:
+        SingularConfiguration: [S, J^T] has lost rank where it must not (efforts undetermined).
+    """
+    model, data, rows = p.model, p.data, p.rows
+    pin.computeJointJacobians(model, data, q)
+    pin.updateFramePlacements(model, data)
+    J = rows.jacobian(data)
+    b = pin.rnea(model, data, q, v, a) if fext is None else pin.rnea(model, data, q, v, a, fext)
+    na, nv = len(p.actuated_v), model.nv
+    A = np.zeros((nv, na + rows.size))
+    A[p.actuated_v, np.arange(na)] = 1.0
+    A[:, na:] = J.T
+    cond = np.nan
+    square = A.shape[0] == A.shape[1]
+    if square and not determinacy:
+        lu, piv = scipy.linalg.lu_factor(A, check_finite=False)
+        diag = np.abs(np.diag(lu))
+        if diag.min() <= 1e-13 * diag.max():
+            raise SingularConfiguration(float(diag.max() / max(diag.min(), 1e-300)), "[S, J^T]: efforts and multipliers undetermined")
+        x = scipy.linalg.lu_solve((lu, piv), b, check_finite=False)
+    else:
+        U, s, Vt = np.linalg.svd(A, full_matrices=True)
+        r = numerical_rank(s)
+        if r < nv and np.linalg.norm(U[:, r:].T @ b) > 1e-9 * max(np.linalg.norm(b), 1.0):
+            raise SingularConfiguration(float(s[0] / s[-1]) if s[-1] > 0 else float("inf"),
+                                        "[S, J^T] does not span the required generalised force: the actuators cannot hold this motion")
+        x = Vt[:r].T @ ((U[:, :r].T @ b) / s[:r])
+        cond = float(s[0] / s[r - 1])
+    u, lam = x[:na], x[na:]
+    forces, cut_wrenches = closure_fext(model, data, rows, lam, fext)
+    pin.rnea(model, data, q, v, a, forces)
+    tree = joint_wrenches_world(model, data)
+    reactions_raw = {name: tree[i + 1] for i, name in enumerate(p.tree_names)}
+    for name, (f, m, _) in zip(p.cut_names, cut_wrenches):
+        reactions_raw[name] = np.concatenate([f, m])
+    flags = _determinate_flags(p, q) if determinacy else None
+    if flags is None:
+        everywhere = square
+        flags = {name: np.full(6, everywhere) for name in reactions_raw}
+    support = dict(zip(p.tree_names, p.tree_support)) | dict(zip(p.cut_names, p.cut_support))
+    reactions = {name: JointReaction(w, flags[name], support[name]) for name, w in reactions_raw.items()}
+    efforts = {name: float(val) for name, val in zip(p.actuated_names, u)}
+    return InverseDynamicsResult(efforts, reactions, lam, cond)
+
+
+def _determinate_flags(p: InverseDynamicsProblem, q) -> dict[str, np.ndarray]:
+    """Which reaction components static equilibrium fixes, tested on the full spatial rows.
+
+    A component is determinate when it does not change along the null space of [S, J_full^T]
+    (Wojtyra and Fraczek 2013). Frames must be current at q.
+    """
+    model, data = p.model, p.data
+    Jf = p.full_rows.jacobian(data)
+    na = len(p.actuated_v)
+    A = np.zeros((model.nv, na + p.full_rows.size))
+    A[p.actuated_v, np.arange(na)] = 1.0
+    A[:, na:] = Jf.T
+    _, s, Vt = np.linalg.svd(A, full_matrices=True)
+    r = numerical_rank(s)
+    null = Vt[r:]
+    names = list(p.tree_names) + list(p.cut_names)
+    variation = {name: np.zeros(6) for name in names}
+    zero = np.zeros(model.nv)
+    for x in null:
+        forces, cut_wrenches = closure_fext(model, data, p.full_rows, x[na:])
+        pin.rnea(p.static_model, p.static_data, q, zero, zero, forces)
+        tree = joint_wrenches_world(p.static_model, p.static_data)
+        for i, name in enumerate(p.tree_names):
+            variation[name] = np.maximum(variation[name], np.abs(tree[i + 1]))
+        # the cut of the solving rows may differ in name from the full rows only by rows, not by joint
+        for name, (f, m, _) in zip(p.cut_names, cut_wrenches):
+            variation[name] = np.maximum(variation[name], np.abs(np.concatenate([f, m])))
+    scale = max((v.max() for v in variation.values()), default=0.0)
+    return {name: variation[name] <= DETERMINACY_TOL * max(scale, 1e-300) for name in names}

@@ -1,0 +1,150 @@
+"""Closed-loop kinematics: closure solve, velocity and acceleration projection, mobility, singularity.
+
+All functions work on a `ClosureRows` set over a Pinocchio model. "Inputs" are the joint
+coordinates that are given (actuated joints, or any chosen set); the others are solved for.
+Only one-coordinate joints (revolute, prismatic) can be inputs.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import pinocchio as pin
+
+from mechkit.closures import ClosureRows
+from mechkit.exceptions import ClosureNotConverged, SingularConfiguration
+
+#: Relative singular-value threshold for numerical rank decisions.
+RANK_TOL = 1e-9
+#: Condition number of the passive block above which velocities are refused.
+SINGULAR_COND = 1e10
+
+
+@dataclass(frozen=True)
+class Mobility:
+    """Numerical mobility at a configuration.
+
+    Attributes:
+        dof: nv - rank(J): degrees of freedom.
+        rows: number of closure rows kept.
+        rank: rank of the closure Jacobian.
+        redundant: rows - rank: redundant constraints.
+        singular_values: of the closure Jacobian, descending.
+    """
+
+    dof: int
+    rows: int
+    rank: int
+    redundant: int
+    singular_values: np.ndarray
+
+
+def update_kinematics(model: pin.Model, data: pin.Data, q: np.ndarray) -> None:
+    """Joint placements, frame placements and joint Jacobians at q."""
+    pin.computeJointJacobians(model, data, q)
+    pin.updateFramePlacements(model, data)
+
+
+def numerical_rank(s: np.ndarray) -> int:
+    """Rank from descending singular values, relative to the largest."""
+    return int(np.sum(s > RANK_TOL * max(s[0], 1e-300))) if s.size else 0
+
+
+def mobility(rows: ClosureRows, data: pin.Data, q: np.ndarray) -> Mobility:
+    """Degrees of freedom and redundant constraints from the rank of the closure Jacobian at q."""
+    update_kinematics(rows.model, data, q)
+    J = rows.jacobian(data)
+    s = np.linalg.svd(J, compute_uv=False) if J.size else np.zeros(0)
+    r = numerical_rank(s)
+    return Mobility(rows.model.nv - r, rows.size, r, rows.size - r, s)
+
+
+def solve_closure(rows: ClosureRows, data: pin.Data, q0: np.ndarray, free_v: np.ndarray, *,
+                  tol: float = 1e-12, max_iter: int = 60, method: str = "newton") -> tuple[np.ndarray, int]:
+    """Solve the closure for the velocity directions `free_v`, keeping the others fixed.
+
+    Gauss-Newton with a minimum-norm step (lstsq: redundant rows allowed) or Levenberg-Marquardt,
+    both with a backtracking line search on |e|.
+
+    Args:
+        rows: the closure rows.
+        data: Pinocchio data (scratch).
+        q0: starting configuration; its fixed coordinates are the inputs.
+        free_v: indices (into v) of the coordinates to solve for.
+        tol: residual norm to reach.
+        max_iter: iteration cap.
+        method: "newton" or "lm".
+
+    Returns:
+        (q, iterations).
+
+    Raises:
+        ClosureNotConverged: the residual did not reach tol (the linkage may not assemble there).
+    """
+    model = rows.model
+    q = q0.copy()
+    update_kinematics(model, data, q)
+    e = rows.residual(data)
+    norm = np.linalg.norm(e)
+    damping = 1e-3
+    for it in range(max_iter):
+        if norm <= tol:
+            return q, it
+        J = rows.jacobian(data)[:, free_v]
+        if method == "lm":
+            step_free = -np.linalg.solve(J.T @ J + damping * np.eye(J.shape[1]), J.T @ e)
+        else:
+            step_free = -np.linalg.lstsq(J, e, rcond=None)[0]
+        step = np.zeros(model.nv)
+        step[free_v] = step_free
+        alpha = 1.0
+        while True:
+            trial = pin.integrate(model, q, alpha * step)
+            update_kinematics(model, data, trial)
+            e_trial = rows.residual(data)
+            n_trial = np.linalg.norm(e_trial)
+            if n_trial < norm or alpha < 1e-6:
+                break
+            alpha *= 0.5
+        if not np.isfinite(n_trial):
+            break
+        if method == "lm":
+            damping = damping * 0.3 if n_trial < norm else damping * 10.0
+        q, e, norm = trial, e_trial, n_trial
+        if alpha < 1e-6 and norm > tol:
+            break
+    update_kinematics(model, data, q)
+    if norm <= tol:
+        return q, max_iter
+    raise ClosureNotConverged(float(norm), tol, max_iter, "the loop cannot close from this guess, or at all, for these inputs")
+
+
+def passive_condition(J: np.ndarray, free_v: np.ndarray, independent_rows: int) -> float:
+    """Condition number of the passive block restricted to the generic rank (inf when singular)."""
+    s = np.linalg.svd(J[:, free_v], compute_uv=False)
+    k = min(independent_rows, s.size)
+    if k == 0:
+        return 1.0
+    return float(s[0] / s[k - 1]) if s[k - 1] > 0 else float("inf")
+
+
+def project_velocity(J: np.ndarray, v_inputs: np.ndarray, input_v: np.ndarray, free_v: np.ndarray,
+                     independent_rows: int, rhs: np.ndarray | None = None) -> np.ndarray:
+    """Solve J_free x_free = -(J_in x_in + rhs) for the free coordinates; returns the full vector.
+
+    Used for velocities (rhs = 0) and accelerations (rhs = gamma).
+
+    Raises:
+        SingularConfiguration: the passive block is singular (the inputs do not determine the motion).
+    """
+    cond = passive_condition(J, free_v, independent_rows)
+    if cond > SINGULAR_COND:
+        raise SingularConfiguration(cond, "passive block of the closure Jacobian: inputs do not determine the motion")
+    b = J[:, input_v] @ v_inputs
+    if rhs is not None:
+        b = b + rhs
+    x = np.zeros(J.shape[1])
+    x[input_v] = v_inputs
+    x[free_v] = -np.linalg.lstsq(J[:, free_v], b, rcond=None)[0]
+    return x

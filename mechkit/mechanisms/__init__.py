@@ -1,0 +1,1 @@
+"""One module per mechanism; each defines `SPEC` (a `mechkit.registry.MechanismSpec`)."""
