@@ -6,10 +6,19 @@ import numpy as np
 import pytest
 
 from mechkit.exceptions import InvalidParameters, SingularConfiguration
+from mechkit.validation.planar_linkages import (
+    AXIS,
+    Bar,
+    LinkageState,
+    LinkState,
+    five_bar,
+    four_bar,
+    newton_euler,
+    to_world,
+)
 from mechkit.validation.soc import BodyLoad, SKCInstant, WrenchSite, classic_virtual_work, solve_soc
 
 G = np.array([0.0, 0.0, -9.81])
-AXIS = np.array([0.0, -1.0, 0.0])  # revolute axis: a positive angle turns +x towards +z
 
 
 def _pendulum(theta: float, rate: float, acc: float, free_pivot: bool) -> tuple[SKCInstant, float, float]:
@@ -59,6 +68,19 @@ def test_pendulum_torque_by_hand(theta: float, free_pivot: bool) -> None:
         assert np.all(result.reactions["pin"][[1, 3, 4, 5]] == 0.0)
 
 
+def test_spinning_body_needs_newton_euler_wrench() -> None:
+    """A 3D body held at its COM by one 6-component joint: reaction = (m (a - g), I alpha + w x I w)."""
+    rng = np.random.default_rng(7)
+    half = rng.normal(size=(3, 3))
+    inertia = half @ half.T + np.eye(3)  # non-diagonal: the gyroscopic term is nonzero
+    mass, acc, omega, alpha = 2.5, rng.normal(size=3), rng.normal(size=3), rng.normal(size=3)
+    eye = np.eye(6)
+    body = BodyLoad("body", mass, inertia, acc, omega, alpha, eye[:3], eye[3:])
+    skc = SKCInstant("free body", 6, (body,), released=(WrenchSite("holder", eye, +1.0),))
+    expected = np.concatenate([mass * (acc - G), inertia @ alpha + np.cross(omega, inertia @ omega)])
+    np.testing.assert_allclose(solve_soc([skc], G).reactions["holder"], expected, rtol=1e-13, atol=1e-13)
+
+
 def test_rank_deficient_raises() -> None:
     skc, _, _ = _pendulum(0.3, 0.0, 0.0, True)
     parallel = (("u1", np.array([0, 0, 1.0])), ("u2", np.array([0, 0, 2.0])))  # same direction twice
@@ -72,3 +94,170 @@ def test_known_joint_must_be_released_first() -> None:
     orphan = SKCInstant("orphan", skc.n, skc.bodies, skc.actuators, known=skc.released)
     with pytest.raises(InvalidParameters, match="pin"):
         solve_soc([orphan], G)
+
+
+# --- Four-bar and five-bar: SOC against the planar Newton-Euler reference ------------------------
+# Jacobians come from the linkages' own planar geometry. A body's "chain" lists, per virtual
+# coordinate of its SKC, None (does not move it), "x" / "z" (translation) or a planar pivot
+# (x, z) (rotation about -y about that pivot).
+
+Chain = tuple[object, ...]
+
+
+def _jacobian(point: np.ndarray, chain: Chain) -> np.ndarray:
+    """(6, n) virtual displacement (rows 0-2) and rotation (rows 3-5) of a body point, world."""
+    jac = np.zeros((6, len(chain)))
+    for j, pivot in enumerate(chain):
+        if isinstance(pivot, str):
+            jac["xz".index(pivot) * 2, j] = 1.0
+        elif pivot is not None:
+            d = point - pivot
+            jac[:3, j] = to_world(np.array([-d[1], d[0]]))
+            jac[3:, j] = AXIS
+    return jac
+
+
+def _body(link: LinkState, chain: Chain) -> BodyLoad:
+    jac = _jacobian(link.com, chain)
+    inertia = link.bar.inertia_world(link.angle)
+    acc = to_world(link.com_acceleration)
+    omega, alpha = link.omega * AXIS, link.alpha * AXIS
+    return BodyLoad(link.name, link.bar.mass, inertia, acc, omega, alpha, jac[:3], jac[3:])
+
+
+def _pin(joint: str, point: np.ndarray, chain: Chain, sign: float) -> WrenchSite:
+    return WrenchSite(joint, _jacobian(point, chain), sign, (0, 2))
+
+
+def _motor(joint: str, chain: Chain) -> tuple[str, np.ndarray]:
+    """Unit motor torque about -y from the ground on the body of ``chain``."""
+    return joint, _jacobian(np.zeros(2), chain)[3:].T @ AXIS
+
+
+def _free(pivot: np.ndarray) -> Chain:
+    return ("x", "z", pivot)
+
+
+def _four_bar_skcs(links: dict[str, LinkState]) -> list[SKCInstant]:
+    """SKC1 rocker + coupler ("coupler" pin released); then crank, coupler, rocker as free bodies."""
+    crank, coupler, rocker = links["crank"], links["coupler"], links["rocker"]
+    a, b, c, d = crank.origin, coupler.origin, coupler.tip, rocker.origin
+    dyad = (d, c)
+    return [
+        SKCInstant(
+            "rocker+coupler", 2, (_body(rocker, (d, None)), _body(coupler, dyad)),
+            released=(_pin("coupler", b, dyad, +1.0),),
+        ),
+        SKCInstant(
+            "crank", 3, (_body(crank, _free(a)),), (_motor("crank", _free(a)),),
+            released=(_pin("crank", a, _free(a), +1.0),), known=(_pin("coupler", b, _free(a), -1.0),),
+        ),
+        SKCInstant(
+            "coupler", 3, (_body(coupler, _free(b)),),
+            released=(_pin("C", c, _free(b), -1.0),), known=(_pin("coupler", b, _free(b), +1.0),),
+        ),
+        SKCInstant(
+            "rocker", 3, (_body(rocker, _free(d)),),
+            released=(_pin("rocker", d, _free(d), +1.0),), known=(_pin("C", c, _free(d), +1.0),),
+        ),
+    ]
+
+
+def _five_bar_skcs(links: dict[str, LinkState]) -> list[SKCInstant]:
+    """SKC1 the free distal dyad (pins "dist1", "dist2" released); then prox1, prox2, dist1 alone."""
+    prox1, dist1, prox2, dist2 = (links[n] for n in ("prox1", "dist1", "prox2", "dist2"))
+    b1, b2, c = dist1.origin, dist2.origin, dist1.tip
+    left, right = ("x", "z", b1, None), ("x", "z", b1, c)
+    skcs = [
+        SKCInstant(
+            "distal dyad", 4, (_body(dist1, left), _body(dist2, right)),
+            released=(_pin("dist1", b1, left, +1.0), _pin("dist2", b2, right, +1.0)),
+        )
+    ]
+    for prox, distal in ((prox1, "dist1"), (prox2, "dist2")):
+        a, chain = prox.origin, _free(prox.origin)
+        skcs.append(
+            SKCInstant(
+                prox.name, 3, (_body(prox, chain),), (_motor(prox.name, chain),),
+                released=(_pin(prox.name, a, chain, +1.0),), known=(_pin(distal, prox.tip, chain, -1.0),),
+            )
+        )
+    skcs.append(
+        SKCInstant(
+            "dist1", 3, (_body(dist1, _free(b1)),),
+            released=(_pin("C", c, _free(b1), -1.0),), known=(_pin("dist1", b1, _free(b1), +1.0),),
+        )
+    )
+    return skcs
+
+
+def _subtree(state: LinkageState, link: str) -> list[str]:
+    """``link`` and every link hinged after it in the tree (the loop cut "C" excluded)."""
+    children = [j.child for j in state.joints if j.parent == link and j.name != "C"]
+    return [link] + [d for child in children for d in _subtree(state, child)]
+
+
+def _whole(state: LinkageState) -> SKCInstant:
+    """Classic virtual work: the whole linkage over its URDF coordinates q, the cut "C" as loop rows."""
+    n = len(state.coordinates)
+    chains: dict[str, list[object]] = {name: [None] * n for name in state.links}
+    for j, name in enumerate(state.coordinates):
+        joint = state.joint(name)
+        for link in _subtree(state, joint.child):
+            chains[link][j] = joint.point
+    cut = state.joint("C")
+    parent_side, child_side = (_jacobian(cut.point, tuple(chains[s])) for s in (cut.parent, cut.child))
+    loop = (parent_side - child_side)[[0, 2]]
+    bodies = tuple(_body(link, tuple(chains[name])) for name, link in state.links.items())
+    motors = tuple((j.name, np.eye(n)[state.coordinates.index(j.name)]) for j in state.joints if j.actuated)
+    return SKCInstant("whole", n, bodies, motors, loop_jacobian=loop)
+
+
+def _four_bar_motion(t: float) -> LinkageState:
+    w = 2.0 * np.pi
+    theta = 0.2 + w * t + 0.5 * np.sin(w * t)
+    return four_bar(theta, w + 0.5 * w * np.cos(w * t), -0.5 * w**2 * np.sin(w * t))
+
+
+def _five_bar_motion(t: float) -> LinkageState:
+    w = 2.0 * np.pi
+    thetas = (1.7 + 0.4 * np.sin(w * t), 1.1 + 0.35 * np.cos(w * t))
+    rates = (0.4 * w * np.cos(w * t), -0.35 * w * np.sin(w * t))
+    return five_bar(thetas, rates, (-0.4 * w**2 * np.sin(w * t), -0.35 * w**2 * np.cos(w * t)))
+
+
+CASES = [(_four_bar_motion, _four_bar_skcs), (_five_bar_motion, _five_bar_skcs)]
+
+
+@pytest.mark.parametrize(("motion", "decompose"), CASES, ids=["four_bar", "five_bar"])
+def test_soc_matches_newton_euler(motion, decompose) -> None:
+    for t in np.linspace(0.0, 1.0, 13)[:-1]:
+        state = motion(t)
+        reference = newton_euler(state, G)
+        soc = solve_soc(decompose(state.links), G)
+        assert set(soc.reactions) == set(reference.reactions)
+        scale = max(np.max(np.abs(w)) for w in reference.reactions.values())
+        for name, wrench in reference.reactions.items():
+            planar = wrench.copy()
+            planar[4] = 0.0  # the motor torque is an effort in SOC, not a reaction unknown
+            np.testing.assert_allclose(soc.reactions[name], planar, rtol=0, atol=1e-9 * scale)
+        for name, u in reference.efforts.items():
+            assert soc.efforts[name] == pytest.approx(u, rel=0, abs=1e-9 * scale)
+        assert max(soc.consistency.values()) < 1e-9  # the over-determined single-body SKCs agree
+        classic = classic_virtual_work(_whole(state), G)
+        assert classic == pytest.approx(reference.efforts, rel=0, abs=1e-9 * scale)
+
+
+def test_skc_at_singular_pose_raises() -> None:
+    """Rocker and coupler collinear: the "coupler" pin force along them does no virtual work."""
+    bar, d = Bar(0.22), np.array([0.30, 0.0])
+    angle = 1.2
+    rocker = LinkState("rocker", bar, d, angle, 0.5, 0.1, np.zeros(2), np.zeros(2))
+    b = rocker.tip - 0.28 * np.array([np.cos(angle), np.sin(angle)])
+    coupler = LinkState("coupler", Bar(0.28), b, angle, 0.5, 0.1, np.zeros(2), np.zeros(2))
+    still = np.zeros(2)
+    crank = LinkState("crank", Bar(np.hypot(*b)), still, np.arctan2(b[1], b[0]), 0.0, 0.0, still, still)
+    skcs = _four_bar_skcs({"crank": crank, "coupler": coupler, "rocker": rocker})
+    with pytest.raises(SingularConfiguration, match="rocker\\+coupler") as err:
+        solve_soc(skcs, G)
+    assert err.value.cond > 1e10
