@@ -81,6 +81,19 @@ def test_spinning_body_needs_newton_euler_wrench() -> None:
     np.testing.assert_allclose(solve_soc([skc], G).reactions["holder"], expected, rtol=1e-13, atol=1e-13)
 
 
+def test_released_basis_equals_components() -> None:
+    """Unknowns along a rotated in-plane basis (along / across the bar) give the same reaction."""
+    theta = 0.8
+    skc, _, _ = _pendulum(theta, 1.1, 0.4, True)
+    along = [np.cos(theta), 0.0, np.sin(theta), 0.0, 0.0, 0.0]
+    across = [-np.sin(theta), 0.0, np.cos(theta), 0.0, 0.0, 0.0]
+    site = WrenchSite("pin", skc.released[0].jacobian, 1.0, basis=np.column_stack([along, across]))
+    rotated = SKCInstant(skc.name, skc.n, skc.bodies, skc.actuators, (site,))
+    np.testing.assert_allclose(
+        solve_soc([rotated], G).reactions["pin"], solve_soc([skc], G).reactions["pin"], rtol=1e-13, atol=1e-13
+    )
+
+
 def test_rank_deficient_raises() -> None:
     skc, _, _ = _pendulum(0.3, 0.0, 0.0, True)
     parallel = (("u1", np.array([0, 0, 1.0])), ("u2", np.array([0, 0, 2.0])))  # same direction twice

@@ -76,12 +76,16 @@ class WrenchSite:
         components: for a released joint, which of the six world components (fx fy fz mx my mz)
             are unknowns; the others are zero by convention (e.g. (0, 2) for a pin of an x-z
             planar linkage). Ignored for a known joint (its full stored wrench is applied).
+        basis: for a released joint whose unknowns are not world components, (6, k) world wrench
+            directions of its k unknowns (reaction = basis @ x); when given, ``components`` is
+            ignored. E.g. the constraint moment of a Hooke joint along the turning a1 x a2.
     """
 
     joint: str
     jacobian: np.ndarray
     sign: float
     components: tuple[int, ...] = _ALL_COMPONENTS
+    basis: np.ndarray | None = None
 
 
 @dataclass(frozen=True)
@@ -164,16 +168,27 @@ def _known_forces(skc: SKCInstant, gravity: np.ndarray, reactions: dict[str, np.
     return q
 
 
-def _unknown_columns(skc: SKCInstant) -> np.ndarray:
-    """Generalized-force columns (n, k) of the unknowns: actuator efforts, then released components."""
+def _directions(skc: SKCInstant, site: WrenchSite) -> np.ndarray:
+    """(6, k) world wrench directions of a released site's k unknowns."""
+    where = f"SKC {skc.name!r} released {site.joint!r}"
+    if site.basis is not None:
+        basis = np.asarray(site.basis, dtype=float)
+        k = basis.shape[1] if basis.ndim == 2 else 0
+        if k == 0:
+            raise InvalidParameters(f"{where} basis", basis.shape, "expected shape (6, k), k >= 1")
+        return _array(basis, (6, k), f"{where} basis")
+    if not site.components or not set(site.components) <= set(_ALL_COMPONENTS):
+        raise InvalidParameters(f"{where} components", site.components, "must be a non-empty subset of 0..5")
+    return np.eye(6)[:, list(site.components)]
+
+
+def _unknown_columns(skc: SKCInstant, directions: Sequence[np.ndarray]) -> np.ndarray:
+    """Generalized-force columns (n, k) of the unknowns: actuator efforts, then released reactions."""
     n = skc.n
     cols = [_array(d, (n,), f"SKC {skc.name!r} actuator {a!r}") for a, d in skc.actuators]
-    for site in skc.released:
+    for site, basis in zip(skc.released, directions, strict=True):
         jac = _array(site.jacobian, (6, n), f"SKC {skc.name!r} released {site.joint!r} jacobian")
-        if not site.components or not set(site.components) <= set(_ALL_COMPONENTS):
-            where = f"SKC {skc.name!r} released {site.joint!r} components"
-            raise InvalidParameters(where, site.components, "must be a non-empty subset of 0..5")
-        cols.extend(site.sign * jac[c] for c in site.components)
+        cols.extend((site.sign * jac.T @ basis).T)
     return np.column_stack(cols) if cols else np.zeros((n, 0))
 
 
@@ -182,16 +197,17 @@ def solve_soc(skcs: Sequence[SKCInstant], gravity: np.ndarray = np.array([0.0, 0
 
     Per SKC, in order: Q = sum_bodies jv^T (m g - m a_c) + jw^T (-I alpha - omega x I omega)
     + sum_known J^T (sign w) + sum_external J^T w + sum_actuators d u
-    + sum_released J[comps]^T (sign R); the virtual work N^T Q = 0 (N spans the null space of the
-    SKC's loop Jacobian) is solved for (u, R) by least squares.
+    + sum_released J^T B (sign R) (B: the site's unknown wrench directions); the virtual work
+    N^T Q = 0 (N spans the null space of the SKC's loop Jacobian) is solved for (u, R) by least
+    squares.
 
     Args:
         skcs: the SKCs in solving order; a joint released by one SKC may be known in later ones.
         gravity: (3,) m/s^2, world.
 
     Returns:
-        Efforts, reactions (parent on child, world, at the joint point; components not declared
-        unknown are zero), and per SKC the consistency residual and condition number.
+        Efforts, reactions (parent on child, world, at the joint point; zero outside the declared
+        components / basis), and per SKC the consistency residual and condition number.
 
     Raises:
         SingularConfiguration: an SKC's system does not determine its unknowns (relative smallest
@@ -211,9 +227,10 @@ def solve_soc(skcs: Sequence[SKCInstant], gravity: np.ndarray = np.array([0.0, 0
                 why = "reaction already solved by an earlier SKC"
                 raise InvalidParameters(f"SKC {skc.name!r} released", site.joint, why)
 
-        basis = _virtual_basis(skc)
-        rhs = -basis.T @ _known_forces(skc, gravity, result.reactions)
-        matrix = basis.T @ _unknown_columns(skc)
+        null = _virtual_basis(skc)
+        rhs = -null.T @ _known_forces(skc, gravity, result.reactions)
+        directions = [_directions(skc, site) for site in skc.released]
+        matrix = null.T @ _unknown_columns(skc, directions)
         x, cond = _solve_determinate(matrix, rhs, skc.name)
         result.condition[skc.name] = cond
         residual = np.linalg.norm(matrix @ x - rhs)
@@ -222,11 +239,10 @@ def solve_soc(skcs: Sequence[SKCInstant], gravity: np.ndarray = np.array([0.0, 0
         for (name, _), u in zip(skc.actuators, x[: len(skc.actuators)], strict=True):
             result.efforts[name] = float(u)
         i = len(skc.actuators)
-        for site in skc.released:
-            wrench = np.zeros(6)
-            wrench[list(site.components)] = x[i : i + len(site.components)]
-            result.reactions[site.joint] = wrench
-            i += len(site.components)
+        for site, site_directions in zip(skc.released, directions, strict=True):
+            k = site_directions.shape[1]
+            result.reactions[site.joint] = site_directions @ x[i : i + k]
+            i += k
     return result
 
 
