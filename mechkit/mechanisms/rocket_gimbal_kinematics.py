@@ -1,0 +1,186 @@
+"""Analytic kinematics of the two-way swinging engine gimbal (Qian et al., reference 004), numpy only.
+
+Frames (the paper's): O-xyz fixed to the gimbal frame, origin at the swing centre O, z along the
+nozzle, xOy horizontal; O-x1y1z1 is O-xyz turned by +45 deg about z. The bracket turns by alpha about
+Ox1, the engine by beta about the bracket's y axis (Oy2), so the engine's attitude in O-xyz is
+``R = Rz(g) Rx(alpha) Ry(beta) Rz(-g)``, g = 45 deg. Actuator A runs from the frame pivot O_A to the
+engine pivot A (in the plane xOz), actuator B from O_B to B (in the plane yOz); the inputs are the
+strokes ``dl = |A - O_A| - l0``. Everything here is SI (m, rad) in the paper frame O-xyz; this module
+knows nothing about URDF or Pinocchio.
+
+Pitch and yaw (the angles the attitude control uses) are the turns of the nozzle axis
+``n = R e_z`` about Ox and Oy: ``theta_x = atan2(-n_y, n_z)``, ``theta_y = atan2(n_x, n_z)``.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from mechkit.exceptions import ClosureNotConverged, InvalidParameters, SingularConfiguration
+
+__all__ = [
+    "GIMBAL_ANGLE",
+    "GimbalGeometry",
+    "rot_x",
+    "rot_y",
+    "rot_z",
+    "attitude",
+    "hinge_axes",
+    "actuator_lengths",
+    "strokes",
+    "length_jacobian",
+    "fk_newton",
+    "pitch_yaw",
+    "linear_rule",
+]
+
+GIMBAL_ANGLE = np.pi / 4
+"""Angle (rad) from Ox to the bracket hinge Ox1, about Oz (the paper's 45 deg)."""
+
+
+def rot_x(t: float) -> np.ndarray:
+    """Rotation matrix about x by t (rad)."""
+    c, s = np.cos(t), np.sin(t)
+    return np.array([[1.0, 0.0, 0.0], [0.0, c, -s], [0.0, s, c]])
+
+
+def rot_y(t: float) -> np.ndarray:
+    """Rotation matrix about y by t (rad)."""
+    c, s = np.cos(t), np.sin(t)
+    return np.array([[c, 0.0, s], [0.0, 1.0, 0.0], [-s, 0.0, c]])
+
+
+def rot_z(t: float) -> np.ndarray:
+    """Rotation matrix about z by t (rad)."""
+    c, s = np.cos(t), np.sin(t)
+    return np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
+
+
+@dataclass(frozen=True)
+class GimbalGeometry:
+    """Pivot coordinates of the two actuators, paper frame O-xyz, at the null pose (alpha = beta = 0).
+
+    Attributes:
+        engine_pivots: (2, 3) m, rows A and B (points of the engine).
+        frame_pivots: (2, 3) m, rows O_A and O_B (points of the gimbal frame).
+        nominal_lengths: (2,) m, lA0 and lB0 (actuator lengths at zero stroke).
+    """
+
+    engine_pivots: np.ndarray
+    frame_pivots: np.ndarray
+    nominal_lengths: np.ndarray
+
+    @classmethod
+    def reconstruction(cls, pivot_radius: float, pivot_offset: float, length_a: float,
+                       length_b: float) -> GimbalGeometry:
+        """The reconstructed geometry (MECHANISMS.md section 5): actuators parallel to the nozzle axis.
+
+        A = (r, 0, h), B = (0, r, h), O_A = (r, 0, h - lA0), O_B = (0, r, h - lB0).
+
+        Args:
+            pivot_radius: r, m, distance of the actuator lines from the nozzle axis.
+            pivot_offset: h, m, height of the engine pivots along the nozzle axis from O.
+            length_a: lA0, m. length_b: lB0, m.
+        """
+        for name, value in (("pivot_radius", pivot_radius), ("pivot_offset", pivot_offset),
+                            ("length_a", length_a), ("length_b", length_b)):
+            if not np.isfinite(value) or value <= 0:
+                raise InvalidParameters(name, value, "must be a finite length > 0 (m)")
+        r, h = pivot_radius, pivot_offset
+        return cls(engine_pivots=np.array([[r, 0.0, h], [0.0, r, h]]),
+                   frame_pivots=np.array([[r, 0.0, h - length_a], [0.0, r, h - length_b]]),
+                   nominal_lengths=np.array([length_a, length_b]))
+
+
+def attitude(alpha: float, beta: float) -> np.ndarray:
+    """Engine attitude R (3, 3) in O-xyz: about Ox1 by alpha, then about the new y by beta (rad)."""
+    return rot_z(GIMBAL_ANGLE) @ rot_x(alpha) @ rot_y(beta) @ rot_z(-GIMBAL_ANGLE)
+
+
+def hinge_axes(alpha: float) -> tuple[np.ndarray, np.ndarray]:
+    """Unit axes (O-xyz) of the bracket hinge Ox1 (fixed) and the engine hinge Oy2 (turns with alpha)."""
+    frame = rot_z(GIMBAL_ANGLE)
+    return frame[:, 0].copy(), frame @ rot_x(alpha)[:, 1]
+
+
+def actuator_lengths(geo: GimbalGeometry, alpha: float, beta: float) -> np.ndarray:
+    """Closed-form inverse kinematics: lengths (L_A, L_B) in m of the actuators at (alpha, beta) rad."""
+    moved = geo.engine_pivots @ attitude(alpha, beta).T
+    return np.linalg.norm(moved - geo.frame_pivots, axis=1)
+
+
+def strokes(geo: GimbalGeometry, alpha: float, beta: float) -> np.ndarray:
+    """Inverse kinematics as strokes (dlA, dlB) = (L_A - lA0, L_B - lB0), m."""
+    return actuator_lengths(geo, alpha, beta) - geo.nominal_lengths
+
+
+def length_jacobian(geo: GimbalGeometry, alpha: float, beta: float) -> np.ndarray:
+    """d(L_A, L_B)/d(alpha, beta), (2, 2) m/rad, analytic (rows: actuators; columns: alpha, beta)."""
+    moved = geo.engine_pivots @ attitude(alpha, beta).T
+    legs = moved - geo.frame_pivots
+    units = legs / np.linalg.norm(legs, axis=1)[:, None]
+    axes = hinge_axes(alpha)
+    return np.array([[u @ np.cross(axis, p) for axis in axes] for u, p in zip(units, moved)])
+
+
+def fk_newton(geo: GimbalGeometry, stroke: np.ndarray, guess: tuple[float, float] = (0.0, 0.0),
+              tol: float = 1e-14, max_iter: int = 50) -> np.ndarray:
+    """Forward kinematics by Newton's method on the two length equations.
+
+    Args:
+        geo: the geometry.
+        stroke: (dlA, dlB), m.
+        guess: initial (alpha, beta), rad; the default (null pose) finds the nozzle-down branch.
+        tol: stop when the Newton step is below tol (rad).
+        max_iter: iteration cap.
+
+    Returns:
+        (alpha, beta), rad.
+
+    Raises:
+        ClosureNotConverged: no convergence within max_iter.
+        SingularConfiguration: the length Jacobian is singular on the way.
+    """
+    target = geo.nominal_lengths + np.asarray(stroke, dtype=float)
+    if target.shape != (2,) or not np.all(np.isfinite(target)) or np.any(target <= 0):
+        raise InvalidParameters("stroke", stroke, "need two finite strokes with lA0 + dl > 0 (m)")
+    x = np.array(guess, dtype=float)
+    for it in range(1, max_iter + 1):
+        jac = length_jacobian(geo, *x)
+        cond = np.linalg.cond(jac)
+        if not np.isfinite(cond) or cond > 1e12:
+            raise SingularConfiguration(cond, "actuator-length Jacobian d(L_A, L_B)/d(alpha, beta)")
+        step = np.linalg.solve(jac, target - actuator_lengths(geo, *x))
+        x += step
+        if np.max(np.abs(step)) < tol:
+            return x
+    residual = float(np.max(np.abs(actuator_lengths(geo, *x) - target)))
+    raise ClosureNotConverged(residual, tol, it, "rocket gimbal Newton FK")
+
+
+def pitch_yaw(alpha: float, beta: float) -> np.ndarray:
+    """(theta_x, theta_y) rad: turns of the nozzle axis n = R e_z about Ox (pitch) and Oy (yaw)."""
+    n = attitude(alpha, beta)[:, 2]
+    return np.array([np.arctan2(-n[1], n[2]), np.arctan2(n[0], n[2])])
+
+
+def linear_rule(stroke: np.ndarray, stroke_max: float = 0.110,
+                angle_max: float = np.radians(6.5)) -> np.ndarray:
+    """The proportional rule used in practice: |stroke| = stroke_max <-> |angle| = angle_max.
+
+    Actuator B (in the yOz plane) sets pitch theta_x, actuator A (xOz plane) sets yaw theta_y; the
+    signs are those of the true small-stroke response (extending A turns the nozzle to -theta_y,
+    extending B to +theta_x).
+
+    Args:
+        stroke: (..., 2) strokes (dlA, dlB), m.
+        stroke_max: m. angle_max: rad.
+
+    Returns:
+        (..., 2) (theta_x, theta_y) rad.
+    """
+    s = np.asarray(stroke, dtype=float)
+    k = angle_max / stroke_max
+    return np.stack([k * s[..., 1], -k * s[..., 0]], axis=-1)
