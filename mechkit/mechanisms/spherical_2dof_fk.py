@@ -1,0 +1,110 @@
+"""Forward kinematics of the 2-DOF spherical platform three ways, and where each one fails.
+
+Methods, all from a start attitude phi0 and the motor angles theta_d:
+``paper`` (`kin.fk_paper`: Newton on the closed-form IK), ``newton`` (`kin.fk_newton`: Newton on the
+constraints (7)), ``closure`` (the core's closure solver on the Pinocchio tree, started from the tree
+pose nearest to phi0 with the motors at theta_d).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from mechkit import kinematics
+from mechkit.exceptions import ClosureNotConverged, InvalidParameters
+from mechkit.mechanisms import spherical_2dof_kinematics as kin
+from mechkit.mechanisms.spherical_2dof import BRANCHES, tree_configuration
+
+if TYPE_CHECKING:
+    from mechkit.mechanism import Mechanism
+
+__all__ = ["METHODS", "fk_closure", "solve_fk", "BasinRow", "basin_study"]
+
+METHODS = ("paper", "newton", "closure")
+
+
+def fk_closure(mech: Mechanism, theta_d: Sequence[float], phi0: Sequence[float], tol: float = 1e-13,
+               max_iter: int = 50) -> kin.FKResult:
+    """Forward kinematics by the core's closure solver (Gauss-Newton with line search, 4 rows).
+
+    The start is the tree pose with the Hooke joint at phi0, the motors at theta_d, and each middle
+    joint turned so that link i2's distal axis is the closest to v_i(phi0) (`kin.limb_angles`).
+
+    Raises:
+        ClosureNotConverged: the closure solver failed.
+    """
+    q0 = mech.neutral()
+    for joint, value in tree_configuration(mech.params, np.asarray(phi0, float), np.asarray(theta_d, float)).items():
+        q0[mech.q_index(joint)] = value
+    free_v = np.setdiff1d(np.arange(mech.model.nv), [mech.v_index(j) for j in mech.actuated])
+    q, iters = kinematics.solve_closure(mech.rows, mech.data, q0, free_v, tol=tol, max_iter=max_iter)
+    phi = np.array([q[mech.q_index("hooke_roll")], q[mech.q_index("hooke_pitch")]])
+    return kin.FKResult(phi, iters, float(np.linalg.norm(mech.closure_residual(q))))
+
+
+def solve_fk(mech: Mechanism, method: str, theta_d: Sequence[float], phi0: Sequence[float]) -> kin.FKResult:
+    """One forward-kinematics solve by ``method`` (one of `METHODS`)."""
+    if method == "paper":
+        return kin.fk_paper(mech.params, theta_d, phi0, BRANCHES)
+    if method == "newton":
+        return kin.fk_newton(mech.params, theta_d, phi0)
+    if method == "closure":
+        return fk_closure(mech, theta_d, phi0)
+    raise InvalidParameters("method", method, f"one of {METHODS}")
+
+
+@dataclass(frozen=True)
+class BasinRow:
+    """Outcome of one method over the starts at one distance from the answer.
+
+    Attributes:
+        method: a name of `METHODS`.
+        radius: distance of the starts from the answer in (roll, pitch), rad.
+        found: fraction of starts that converged to the answer (within 1e-10 rad).
+        elsewhere: fraction that converged to another assembly.
+        failed: fraction that did not converge.
+        iterations: mean iterations of the starts that found the answer (nan if none).
+    """
+
+    method: str
+    radius: float
+    found: float
+    elsewhere: float
+    failed: float
+    iterations: float
+
+
+def basin_study(mech: Mechanism, phi_star: Sequence[float], radii: Sequence[float], directions: int = 16,
+                methods: Sequence[str] = METHODS) -> list[BasinRow]:
+    """Convergence of each FK method from starts on circles of growing radius about ``phi_star``.
+
+    The motor angles are the paper's IK of phi_star (branch `BRANCHES`); starts are
+    ``phi_star + r (cos a, sin a)`` for ``directions`` equally spaced angles a.
+    """
+    phi_star = np.asarray(phi_star, dtype=float)
+    theta_d = kin.inverse_kinematics(mech.params, phi_star, BRANCHES)
+    angles = np.linspace(0.0, 2 * np.pi, directions, endpoint=False)
+    rows = []
+    for method in methods:
+        for r in radii:
+            found, elsewhere, iters = 0, 0, []
+            for a in angles:
+                phi0 = phi_star + r * np.array([np.cos(a), np.sin(a)])
+                try:
+                    res = solve_fk(mech, method, theta_d, phi0)
+                except ClosureNotConverged:
+                    continue
+                error = np.abs((res.phi - phi_star + np.pi) % (2 * np.pi) - np.pi).max()
+                if error < 1e-10:
+                    found += 1
+                    iters.append(res.iterations)
+                else:
+                    elsewhere += 1
+            n = len(angles)
+            rows.append(BasinRow(method, float(r), found / n, elsewhere / n, (n - found - elsewhere) / n,
+                                 float(np.mean(iters)) if iters else float("nan")))
+    return rows
