@@ -215,9 +215,14 @@ class PlanarDynamics:
     condition: float
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, kw_only=True)
 class _BarsGeometry:
-    """Cross-section and material shared by all bars; every field must be positive and finite."""
+    """Cross-section (m) and material (kg/m^3) shared by all bars; every field must be positive, finite."""
+
+    # ours (not in the sources): an aluminium bar section, the same as the project's URDFs
+    width: float = 0.02
+    thickness: float = 0.01
+    density: float = 2700.0
 
     def __post_init__(self) -> None:
         for f in fields(self):
@@ -229,7 +234,7 @@ class _BarsGeometry:
         return Bar(length, self.width, self.thickness, self.density)
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, kw_only=True)
 class FourBarGeometry(_BarsGeometry):
     """Four-bar lengths (m) and bar section; pivots A = (0, 0) and D = (ground, 0)."""
 
@@ -237,12 +242,9 @@ class FourBarGeometry(_BarsGeometry):
     crank: float = 0.10
     coupler: float = 0.28
     rocker: float = 0.22
-    width: float = 0.02
-    thickness: float = 0.01
-    density: float = 2700.0
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, kw_only=True)
 class FiveBarGeometry(_BarsGeometry):
     """Five-bar lengths (m) and bar section; pivots A1 = (0, 0) and A2 = (ground, 0)."""
 
@@ -251,9 +253,6 @@ class FiveBarGeometry(_BarsGeometry):
     dist1: float = 0.22
     prox2: float = 0.12
     dist2: float = 0.22
-    width: float = 0.02
-    thickness: float = 0.01
-    density: float = 2700.0
 
 
 def _finite(name: str, value: float) -> float:
