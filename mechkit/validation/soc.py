@@ -145,7 +145,7 @@ def _array(value: object, shape: tuple[int, ...], name: str) -> np.ndarray:
 def _known_forces(skc: SKCInstant, gravity: np.ndarray, reactions: dict[str, np.ndarray]) -> np.ndarray:
     """Generalized forces (n,) of everything known on ``skc``: gravity, inertia, known joints, loads."""
     n = skc.n
-    q = np.zeros(n)
+    forces = np.zeros(n)
     for b in skc.bodies:
         where = f"SKC {skc.name!r} body {b.name!r}"
         if not (np.isfinite(b.mass) and b.mass >= 0.0):
@@ -154,18 +154,16 @@ def _known_forces(skc: SKCInstant, gravity: np.ndarray, reactions: dict[str, np.
         omega = _array(b.omega, (3,), f"{where} omega")
         force = b.mass * (gravity - _array(b.com_acceleration, (3,), f"{where} com_acceleration"))
         moment = -inertia @ _array(b.alpha, (3,), f"{where} alpha") - np.cross(omega, inertia @ omega)
-        q += _array(b.jv, (3, n), f"{where} jv").T @ force + _array(b.jw, (3, n), f"{where} jw").T @ moment
+        forces += _array(b.jv, (3, n), f"{where} jv").T @ force + _array(b.jw, (3, n), f"{where} jw").T @ moment
     for site in skc.known:
         if site.joint not in reactions:
-            raise InvalidParameters(
-                f"SKC {skc.name!r} known", site.joint, "no earlier SKC released this joint"
-            )
+            raise InvalidParameters(f"SKC {skc.name!r} known", site.joint, "no earlier SKC released this joint")
         jac = _array(site.jacobian, (6, n), f"SKC {skc.name!r} known {site.joint!r} jacobian")
-        q += jac.T @ (site.sign * reactions[site.joint])
+        forces += jac.T @ (site.sign * reactions[site.joint])
     for i, (wrench, jacobian) in enumerate(skc.external):
         where = f"SKC {skc.name!r} external[{i}]"
-        q += _array(jacobian, (6, n), f"{where} jacobian").T @ _array(wrench, (6,), f"{where} wrench")
-    return q
+        forces += _array(jacobian, (6, n), f"{where} jacobian").T @ _array(wrench, (6,), f"{where} wrench")
+    return forces
 
 
 def _directions(skc: SKCInstant, site: WrenchSite) -> np.ndarray:
