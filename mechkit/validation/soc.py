@@ -154,10 +154,12 @@ def _known_forces(skc: SKCInstant, gravity: np.ndarray, reactions: dict[str, np.
         omega = _array(b.omega, (3,), f"{where} omega")
         force = b.mass * (gravity - _array(b.com_acceleration, (3,), f"{where} com_acceleration"))
         moment = -inertia @ _array(b.alpha, (3,), f"{where} alpha") - np.cross(omega, inertia @ omega)
-        forces += _array(b.jv, (3, n), f"{where} jv").T @ force + _array(b.jw, (3, n), f"{where} jw").T @ moment
+        forces += _array(b.jv, (3, n), f"{where} jv").T @ force
+        forces += _array(b.jw, (3, n), f"{where} jw").T @ moment
     for site in skc.known:
         if site.joint not in reactions:
-            raise InvalidParameters(f"SKC {skc.name!r} known", site.joint, "no earlier SKC released this joint")
+            why = "no earlier SKC released this joint"
+            raise InvalidParameters(f"SKC {skc.name!r} known", site.joint, why)
         jac = _array(site.jacobian, (6, n), f"SKC {skc.name!r} known {site.joint!r} jacobian")
         forces += jac.T @ (site.sign * reactions[site.joint])
     for i, (wrench, jacobian) in enumerate(skc.external):
