@@ -1,0 +1,179 @@
+"""2-DOF spherical platform: the paper's kinematics, the Pinocchio model and SOC dynamics agree."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from mechkit.exceptions import ClosureNotConverged, InvalidParameters
+from mechkit.mechanism import load
+from mechkit.mechanisms import spherical_2dof as sph
+from mechkit.mechanisms import spherical_2dof_checks as checks
+from mechkit.mechanisms import spherical_2dof_kinematics as kin
+from mechkit.mechanisms import spherical_2dof_soc as soc
+from mechkit.mechanisms.spherical_2dof_fk import basin_study
+
+P = sph.Spherical2DofParams()
+#: A pose 0.4 deg from the forward singularity det B = 0 (pitch 25.4 deg at roll 12 deg); cond(B) ~ 70.
+NEAR_SINGULAR = np.radians([12.0, 25.0])
+
+
+@pytest.fixture(scope="module")
+def mech():
+    return load("spherical_2dof")
+
+
+def test_defaults_are_the_papers_values():
+    deg = {k: math.degrees(getattr(P, k)) for k in ("alpha1", "alpha2", "beta", "eta11", "eta12", "eta21", "eta22")}
+    assert deg == pytest.approx({"alpha1": 25, "alpha2": 30, "beta": 53.13, "eta11": 0, "eta12": 90, "eta21": 0,
+                                 "eta22": 90}, abs=1e-12)
+
+
+@pytest.mark.parametrize("change, name", [({"beta_platform": P.beta}, "beta_platform"),
+                                          ({"beta_platform": math.radians(150)}, "beta_platform"),
+                                          ({"alpha1": 0.0}, "alpha1")])
+def test_bad_parameters_are_named(change, name):
+    with pytest.raises(InvalidParameters) as err:
+        P.replace(**change)
+    assert err.value.name == name
+
+
+def test_middle_axis_is_eq4_as_printed():
+    """w_i of our chain equals the third column (a13, a23, a33) printed in eq. (4)."""
+    s, c = np.sin, np.cos
+    a1, b = P.alpha1, P.beta
+    for i, eta in ((1, P.eta11), (2, P.eta12)):
+        for th in np.linspace(-3, 3, 7):
+            printed = [-s(a1) * c(eta) * s(th) + s(a1) * s(eta) * c(b) * c(th) + s(eta) * s(b) * c(a1),
+                       -s(a1) * s(eta) * s(th) - s(a1) * c(eta) * c(b) * c(th) - c(a1) * c(eta) * s(b),
+                       s(b) * c(th) * s(a1) - c(b) * c(a1)]
+            np.testing.assert_allclose(kin.middle_axis(P, i, th), printed, atol=1e-15)
+
+
+def test_ik_both_branches_close_eq7_and_differ():
+    for phi in sph.cone_attitude(checks.cone_times(9))[0]:
+        plus, minus = (kin.inverse_kinematics(P, phi, (k, k)) for k in (1, -1))
+        assert np.abs(kin.constraint(P, plus, phi)).max() < 1e-14
+        assert np.abs(kin.constraint(P, minus, phi)).max() < 1e-14
+        assert np.abs(plus - minus).min() > 0.5
+
+
+def test_unreachable_attitude_raises():
+    with pytest.raises(InvalidParameters) as err:
+        kin.inverse_kinematics(P, np.radians([-40.0, 0.0]))
+    assert err.value.name == "phi"
+
+
+def test_cone_scene_derivatives_and_angle():
+    t, h = np.linspace(0, 2, 11), 1e-5
+    phi, phi_d, phi_dd = sph.cone_attitude(t)
+    np.testing.assert_allclose(np.degrees(np.arccos(sph.platform_normal(phi)[:, 2])), 15.0, atol=1e-12)
+    fd = (sph.cone_attitude(t + h)[0] - sph.cone_attitude(t - h)[0]) / (2 * h)
+    np.testing.assert_allclose(phi_d, fd, atol=1e-8)
+    fd2 = (sph.cone_attitude(t + h)[1] - sph.cone_attitude(t - h)[1]) / (2 * h)
+    np.testing.assert_allclose(phi_dd, fd2, atol=1e-7)
+
+
+def test_cone_round_trip_ik_then_paper_fk():
+    """IK gives the motor curves; the paper's FK of those curves returns the planned path."""
+    attitude, marker = checks.cone_round_trip(P, 72)
+    assert attitude < 1e-10 and marker < 1e-10
+
+
+def test_jacobian_against_finite_differences():
+    assert checks.jacobian_fd_error(P, 12) < 1e-7
+
+
+def test_jacobian_against_pinocchio_velocity_projection(mech):
+    """Hooke rates from the core's closure Jacobian equal J theta' (J = -B^-1 A)."""
+    for phi in sph.cone_attitude(checks.cone_times(6))[0]:
+        theta = kin.inverse_kinematics(P, phi, sph.BRANCHES)
+        q, _, _ = sph.state(mech, phi, np.zeros(2), np.zeros(2))
+        for rates in np.eye(2):
+            v = mech.velocities(q, rates)
+            hooke = v[[mech.v_index("hooke_roll"), mech.v_index("hooke_pitch")]]
+            np.testing.assert_allclose(hooke, kin.jacobian(P, theta, phi) @ rates, atol=1e-12)
+
+
+def test_printed_fk_step_does_not_converge():
+    """The step as printed, -J^-1 (theta_d - theta_k), wanders off; J (theta_d - theta_k) converges."""
+    target = sph.cone_attitude(0.3)[0]
+    theta_d = kin.inverse_kinematics(P, target, sph.BRANCHES)
+    phi = target + 0.02
+    for _ in range(30):
+        try:
+            theta = kin.inverse_kinematics(P, phi, sph.BRANCHES)
+        except InvalidParameters:
+            break
+        phi = phi - np.linalg.solve(kin.jacobian(P, theta, phi), theta_d - theta)
+    assert np.abs(phi - target).max() > 1e-3
+    assert np.abs(kin.fk_paper(P, theta_d, target + 0.02).phi - target).max() < 1e-12
+
+
+def test_home_assembles_with_two_dof(mech):
+    assert np.abs(mech.closure_residual(mech.home_q)).max() < 1e-12
+    mob = mech.mobility()
+    assert mob.dof == 2 == sph.SPEC.gruebler_dof and mob.redundant == 0
+
+
+def test_analytic_state_satisfies_pinocchio_closure(mech):
+    t = checks.cone_times(8)
+    for phi, phi_d, phi_dd in zip(*sph.cone_attitude(t)):
+        q, v, a = sph.state(mech, phi, phi_d, phi_dd)
+        assert np.abs(mech.closure_residual(q)).max() < 1e-13
+        assert np.abs(mech.closure_jacobian(q) @ v).max() < 1e-12
+        assert np.abs(mech.closure_jacobian(q) @ a + mech.closure_drift(q, v)).max() < 1e-11
+
+
+def test_fk_methods_agree(mech):
+    assert checks.fk_agreement(mech, 12) < 1e-10
+
+
+def test_closure_fk_from_a_hopeless_start_raises(mech):
+    theta_d = kin.inverse_kinematics(P, np.zeros(2))
+    with pytest.raises(ClosureNotConverged):
+        kin.fk_newton(P, theta_d, np.radians([170.0, 80.0]), max_iter=5)
+
+
+def test_basin_study():
+    """Regular pose: every method finds the answer from 1 and 5 deg away; at 20 deg the paper's
+    method loses starts (its iterates leave the workspace, where InvKin is undefined) that Newton
+    keeps. 0.4 deg from the forward singularity the other assembly mode (the mirror root across
+    det B = 0) captures starts 1 deg away, from every method."""
+    mech = load("spherical_2dof")
+    regular = basin_study(mech, sph.cone_attitude(0.25)[0], np.radians([1.0, 5.0, 20.0]), 12)
+    table = {(r.method, round(math.degrees(r.radius))): r for r in regular}
+    for method in ("paper", "newton", "closure"):
+        assert table[method, 1].found == table[method, 5].found == 1.0
+    assert table["paper", 20].failed > 0.0 and table["newton", 20].found > table["paper", 20].found
+    near = basin_study(mech, NEAR_SINGULAR, np.radians([0.1, 1.0]), 12)
+    for r in near:
+        assert (r.found == 1.0) if r.radius < 0.01 else (r.elsewhere > 0.0)
+
+
+def test_soc_inertias_match_the_urdf(mech):
+    """The SOC's body inertias (re-derived from the sizes) equal Pinocchio's parse of the xacro."""
+    for name, (m, com, inertia) in soc.body_inertias(P).items():
+        frame = mech.model.getFrameId(name)
+        body = mech.model.inertias[mech.model.frames[frame].parentJoint]
+        assert body.mass == pytest.approx(m, rel=1e-12)
+        np.testing.assert_allclose(body.lever, com, atol=1e-15)
+        np.testing.assert_allclose(body.inertia, inertia, atol=1e-15)
+
+
+def test_dynamics_pinocchio_vs_soc(mech):
+    efforts, support = checks.dynamics_agreement(mech, 24)
+    assert efforts < 1e-8 and support < 1e-8
+
+
+def test_support_determinacy(mech):
+    """Every body turns about O: forces at O are indeterminate, moments (about O) determinate."""
+    phi, phi_d, phi_dd = (x[0] for x in sph.cone_attitude(np.array([0.4])))
+    q, v, a = sph.state(mech, phi, phi_d, phi_dd)
+    result = mech.inverse_dynamics(q, v, a)
+    for name, reaction in result.reactions.items():
+        assert not reaction.determinate[:3].any(), name
+        assert reaction.determinate[3:].all(), name
+    assert abs(result.reactions["hooke_roll"].wrench[3]) < 1e-12  # the roll axis X0 is free
