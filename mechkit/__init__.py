@@ -8,7 +8,7 @@ from mechkit.exceptions import (
     MethodUnavailable,
     SingularConfiguration,
 )
-from mechkit.mechanism import Mechanism, load
+from mechkit.mechanism import Mechanism, from_urdf, load
 from mechkit.registry import get_spec, specs
 
 __all__ = [
@@ -16,6 +16,7 @@ __all__ = [
     "InvalidParameters",
     "MalformedDescription",
     "Mechanism",
+    "from_urdf",
     "MechkitError",
     "MethodUnavailable",
     "SingularConfiguration",

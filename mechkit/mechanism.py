@@ -48,7 +48,7 @@ class Mechanism:
             np.array([self.v_index(j) for j in self.actuated], dtype=int), self.actuated)
         self._pin_constraints: tuple | None = None
         self.independent_rows = self.rows.size
-        self.home_q = self.assemble(spec.home(params), guess=spec.guess(params) if spec.guess else None)
+        self.home_q = self.assemble(spec.home(params))
         self.independent_rows = kinematics.mobility(self.rows, self.data, self.home_q).rank
 
     # ---------------------------------------------------------------- indices
@@ -90,7 +90,8 @@ class Mechanism:
 
         Args:
             inputs: joint name -> value (rad or m), or values in `actuated` order.
-            guess: full q, or joint name -> value, picking the assembly branch (default: neutral).
+            guess: full q, or joint name -> value, picking the assembly branch (default: the
+                spec's guess, else the neutral configuration).
             tol: closure residual to reach (m for position rows).
             method: "newton" (minimum-norm Gauss-Newton) or "lm" (Levenberg-Marquardt).
 
@@ -98,6 +99,8 @@ class Mechanism:
             ClosureNotConverged: no assembly found near the guess.
         """
         given = self._inputs(inputs, self.actuated)
+        if guess is None and self.spec.guess is not None:
+            guess = self.spec.guess(self.params)
         if isinstance(guess, np.ndarray) and guess.shape == (self.model.nq,):
             q0 = guess.astype(float).copy()
         else:
@@ -227,3 +230,18 @@ def load(name: str, **params: Any) -> Mechanism:
 def from_params(spec: MechanismSpec, params: MechanismParams) -> Mechanism:
     """Build a mechanism from a parameter instance."""
     return Mechanism(spec, params, render_urdf(spec.xacro_path, params.xacro_args()))
+
+
+def from_urdf(urdf: str, actuated: Sequence[str] | None = None, name: str = "urdf") -> Mechanism:
+    """Wrap any URDF text (a tree, or with `<mechkit:loop>` closures) as a Mechanism.
+
+    Args:
+        urdf: URDF text.
+        actuated: actuated joint names (default: every joint of the tree).
+        name: a name for reports.
+    """
+    model = build_model(urdf)
+    joints = tuple(actuated) if actuated is not None else tuple(model.names[1:])
+    spec = MechanismSpec(name=name, params=MechanismParams, xacro="", actuated=joints,
+                         gruebler_dof=model.nv, home=lambda p: {}, summary=f"loaded from URDF ({name})")
+    return Mechanism(spec, MechanismParams(), urdf)

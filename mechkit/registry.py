@@ -55,6 +55,12 @@ class MechanismSpec:
     def xacro_path(self) -> Path:
         return XACRO_DIR / self.xacro
 
+    def default_urdf(self) -> str:
+        """The URDF generated at the default parameters (what `urdf/<name>.urdf` must hold)."""
+        from mechkit.description import render_urdf
+
+        return render_urdf(self.xacro_path, self.params().xacro_args())
+
 
 @cache
 def specs() -> dict[str, MechanismSpec]:
