@@ -164,8 +164,10 @@ def test_soc_inertias_match_the_urdf(mech):
 
 
 def test_dynamics_pinocchio_vs_soc(mech):
-    efforts, support = checks.dynamics_agreement(mech, 24)
-    assert efforts < 1e-8 and support < 1e-8
+    """Motor torques, the support moment and every joint's moment about O (the determinate parts)."""
+    errors = checks.dynamics_agreement(mech, 24)
+    assert errors["efforts"] < 1e-8 and errors["support"] < 1e-8 and errors["joints"] < 1e-8
+    assert errors["consistency"] < 1e-10
 
 
 def test_support_determinacy(mech):

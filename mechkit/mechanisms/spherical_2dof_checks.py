@@ -19,9 +19,9 @@ if TYPE_CHECKING:
 
 __all__ = ["cone_times", "cone_round_trip", "jacobian_fd_error", "fk_agreement", "dynamics_agreement", "self_checks"]
 
-#: Compared components of the support reaction hooke_roll: the moments about world y and z at O
-#: (the forces at O are statically indeterminate; the moment about X0 is zero, the roll being free).
-SUPPORT_COMPONENTS = (4, 5)
+#: Compared components of every reaction: the moments about O (world x, y, z). The forces at O
+#: are statically indeterminate (the tests check that Pinocchio flags them so).
+MOMENTS = [3, 4, 5]
 
 
 def cone_times(samples: int) -> np.ndarray:
@@ -69,46 +69,58 @@ def fk_agreement(mech: Mechanism, samples: int = 12, offset: float = 0.05) -> fl
     return worst
 
 
-def dynamics_agreement(mech: Mechanism, samples: int = 24) -> tuple[float, float]:
-    """Motor torques and the determinate support moments, Pinocchio vs SOC, along the cone.
+def dynamics_agreement(mech: Mechanism, samples: int = 24) -> dict[str, float]:
+    """Motor torques and joint moments about O, Pinocchio (constrained RNEA) vs SOC, along the cone.
+
+    The moment that a motor joint transmits includes the motor torque: SOC's r{i}1 reaction (the
+    constraint part) plus ``effort * u_i``.
 
     Returns:
-        (efforts, support) relative errors: worst |difference| over the scene / the scene's peak
-        |value|. The support error is inf if Pinocchio flags a compared component indeterminate
-        (the comparison would then be of a convention, not of physics).
+        Relative errors, worst |difference| over the scene / the scene's peak |value|:
+        "efforts", "support" (hooke_roll), "joints" (every joint, worst); "consistency": the worst
+        consistency residual of the over-determined SKCs. An error is inf if Pinocchio flags a
+        compared component indeterminate (that would compare a convention, not physics).
     """
     t = cone_times(samples)
     phi, phi_d, phi_dd = cone_attitude(t)
-    pin_u, soc_u, pin_m, soc_m = [], [], [], []
-    determinate = True
+    pin_u, soc_u = [], []
+    pin_m, soc_m = {}, {}
+    determinate, consistency = True, 0.0
     for k in range(samples):
         q, v, a = state(mech, phi[k], phi_d[k], phi_dd[k])
         ref = mech.inverse_dynamics(q, v, a)
         ours = soc.solve(mech.params, phi[k], phi_d[k], phi_dd[k], BRANCHES)
+        consistency = max(consistency, *ours.consistency.values())
         pin_u.append([ref.efforts[j] for j in mech.actuated])
         soc_u.append([ours.efforts[j] for j in mech.actuated])
-        support = ref.reactions["hooke_roll"]
-        determinate &= bool(support.determinate[list(SUPPORT_COMPONENTS)].all())
-        pin_m.append(support.wrench[list(SUPPORT_COMPONENTS)])
-        soc_m.append(ours.reactions["hooke_roll"][list(SUPPORT_COMPONENTS)])
+        for joint, reaction in ref.reactions.items():
+            determinate &= bool(reaction.determinate[MOMENTS].all())
+            moment = ours.reactions[joint][MOMENTS]
+            if joint in mech.actuated:
+                moment = moment + ours.efforts[joint] * kin.base_axis(mech.params, int(joint[1]))
+            pin_m.setdefault(joint, []).append(reaction.wrench[MOMENTS])
+            soc_m.setdefault(joint, []).append(moment)
 
     def rel(x: list, y: list) -> float:
         x, y = np.asarray(x), np.asarray(y)
-        return float(np.abs(x - y).max() / np.abs(x).max())
+        return float(np.abs(x - y).max() / np.abs(x).max()) if determinate else float("inf")
 
-    return rel(pin_u, soc_u), rel(pin_m, soc_m) if determinate else float("inf")
+    return {"efforts": rel(pin_u, soc_u), "support": rel(pin_m["hooke_roll"], soc_m["hooke_roll"]),
+            "joints": max(rel(pin_m[j], soc_m[j]) for j in pin_m), "consistency": consistency}
 
 
 def self_checks(mech: Mechanism) -> dict[str, float]:
     """`mechkit report` rows: worst errors of the paper's kinematics and of the dynamics."""
     p = mech.params
     trip, normal = cone_round_trip(p, 36)
-    efforts, support = dynamics_agreement(mech, 12)
+    dyn = dynamics_agreement(mech, 12)
     return {
         "cone IK -> paper FK round trip (rad)": trip,
         "cone marker point, FK vs plan (-)": normal,
         "J = -B^-1 A vs finite differences (rad/rad)": jacobian_fd_error(p, 6),
         "FK paper vs Newton vs closure solver (rad)": fk_agreement(mech, 6),
-        "motor torques Pinocchio vs SOC (rel)": efforts,
-        "support moment (y, z) Pinocchio vs SOC (rel)": support,
+        "motor torques Pinocchio vs SOC (rel)": dyn["efforts"],
+        "support moment about O Pinocchio vs SOC (rel)": dyn["support"],
+        "every joint moment about O Pinocchio vs SOC (rel)": dyn["joints"],
+        "SOC consistency residual (rel)": dyn["consistency"],
     }

@@ -1,31 +1,38 @@
 """SOC virtual-work inverse dynamics of the 2-DOF spherical platform (numpy only, no Pinocchio).
 
-Decomposition: one SKC holding the platform, the Hooke cross and both limbs, with the support joint
-hooke_roll (strut -> cross) released. Its virtual coordinates (n = 8): the cross's free rotation
-about O (3, world), the pitch hooke_pitch, then theta_11, theta_12, theta_21, theta_22; the two
-limbs close on the platform at r13, r23 (2 rotation rows each normal to v_i: the internal loop
-Jacobian), leaving 4 virtual displacements. Unknowns: the two motor torques and the support moment
-about world y and z (4): square. Every body turns about O, so the forces at O do no virtual work:
-they are the statically indeterminate part of every reaction (the loops carry any self-balanced
-force through O), and the support moment about X0 is zero (the roll axis is free).
+Every body turns about O, so the forces at O do no virtual work: they are the statically
+indeterminate part of every reaction (the two loops carry any self-balanced force through O), and
+only the moments about O are solved. The SKCs, in order (virtual coordinates in brackets):
 
-Bodies, inertias and motion come from the parameters and the paper's kinematics
-(`spherical_2dof_kinematics`): the inertias are re-derived here from the same sizes as the xacro.
+1. ``mechanism``: platform, cross and both limbs with the support hooke_roll released
+   [cross rotation about O (3), hooke_pitch, theta_11, theta_12, theta_21, theta_22]; the limbs close
+   on the platform at r13, r23 (2 rotation rows each, normal to v_i: the internal loop Jacobian),
+   leaving 4 virtual displacements for 4 unknowns: the motor torques r11, r21 and the support
+   moment about world y and z (the roll axis X0 is free). The two loops share the platform, so the
+   efforts need this whole-mechanism SKC.
+2. ``cross`` [its rotation (3)]: hooke_roll known, hooke_pitch released (2 moments normal to the
+   pitch axis): one equation to spare, reported as the consistency residual.
+3. ``limb i`` [rotation of link i1 (3), theta_i2]: the motor torque applied as known, r{i}1 (2
+   moments normal to u_i) and r{i}3 (2 normal to v_i) released: square.
+4. ``link i2`` [its rotation (3)]: r{i}3 known, r{i}2 released (2 normal to w_i): one to spare.
+
+Reactions: parent on child, world, at O; the motor joints' reactions exclude the motor torque
+(add ``effort * u_i`` for the wrench the joint transmits). Bodies, inertias and motion come from
+the parameters and the paper's kinematics (`spherical_2dof_kinematics`); the inertias are
+re-derived here from the same sizes as the xacro.
 """
 
 from __future__ import annotations
 
 from collections.abc import Sequence
+from dataclasses import dataclass
 
 import numpy as np
 
 from mechkit.mechanisms import spherical_2dof_kinematics as kin
 from mechkit.validation.soc import BodyLoad, SKCInstant, SOCResult, WrenchSite, solve_soc
 
-__all__ = ["body_inertias", "skc", "solve"]
-
-N = 8
-_CROSS, _PITCH, _THETA = slice(0, 3), 3, {(1, 1): 4, (1, 2): 5, (2, 1): 6, (2, 2): 7}
+__all__ = ["body_inertias", "skcs", "solve"]
 
 
 def _skew(c: np.ndarray) -> np.ndarray:
@@ -48,8 +55,7 @@ def body_inertias(p: kin.Geometry) -> dict[str, tuple[float, np.ndarray, np.ndar
             turn = kin.rot_x(-alpha / 2)
             com = p.radius * np.cos(alpha / 2) * turn[:, 2]
             axial, transverse = m * w * w / 6, m * (length**2 + w * w) / 12
-            inertia = turn @ np.diag([transverse, axial, transverse]) @ turn.T
-            out[f"link{i}{j}"] = (m, com, inertia)
+            out[f"link{i}{j}"] = (m, com, turn @ np.diag([transverse, axial, transverse]) @ turn.T)
     mp, rp, tp = p.platform_mass, p.platform_radius, p.platform_thickness
     side = mp * (3 * rp**2 + tp**2) / 12
     out["platform"] = (mp, np.array([0.0, 0.0, p.platform_height]), np.diag([side, side, mp * rp**2 / 2]))
@@ -58,56 +64,116 @@ def body_inertias(p: kin.Geometry) -> dict[str, tuple[float, np.ndarray, np.ndar
     return out
 
 
-def _body(name: str, props: tuple[float, np.ndarray, np.ndarray], rot: np.ndarray, omega: np.ndarray,
-          alpha: np.ndarray, jw: np.ndarray) -> BodyLoad:
-    """A body turning about O with world rotation ``rot`` and virtual rotation columns ``jw``."""
-    m, com_local, inertia_local = props
-    c = rot @ com_local
-    acc = np.cross(alpha, c) + np.cross(omega, np.cross(omega, c))
-    return BodyLoad(name, m, rot @ inertia_local @ rot.T, acc, omega, alpha, -_skew(c) @ jw, jw)
+@dataclass(frozen=True)
+class _Motion:
+    """A body turning about O: mass, world inertia about the COM, COM (m), omega, alpha, COM accel."""
+
+    mass: float
+    inertia: np.ndarray
+    com: np.ndarray
+    omega: np.ndarray
+    alpha: np.ndarray
+
+    def load(self, name: str, jw: np.ndarray) -> BodyLoad:
+        """The body in an SKC whose virtual rotation of this body is ``jw`` (3, n)."""
+        c = self.com
+        acc = np.cross(self.alpha, c) + np.cross(self.omega, np.cross(self.omega, c))
+        return BodyLoad(name, self.mass, self.inertia, acc, self.omega, self.alpha, -_skew(c) @ jw, jw)
 
 
-def skc(p: kin.Geometry, phi: Sequence[float], phi_d: Sequence[float], phi_dd: Sequence[float],
-        branches: Sequence[int] = (1, 1)) -> SKCInstant:
-    """The single SKC (support released) at one instant of a platform motion (rad, rad/s, rad/s^2)."""
+def _motion(props: tuple[float, np.ndarray, np.ndarray], rot: np.ndarray, omega: np.ndarray,
+            alpha: np.ndarray) -> _Motion:
+    m, com, inertia = props
+    return _Motion(m, rot @ inertia @ rot.T, rot @ com, omega, alpha)
+
+
+def _moments_normal_to(axis: np.ndarray) -> np.ndarray:
+    """(6, 2) wrench basis: pure moments along two unit directions normal to ``axis``."""
+    basis = np.zeros((6, 2))
+    basis[3:] = np.linalg.svd(axis.reshape(1, 3))[2][1:].T
+    return basis
+
+
+def _site(joint: str, jw: np.ndarray, sign: float, axis: np.ndarray | None = None) -> WrenchSite:
+    """A joint at O on a body of virtual rotation ``jw``; released along moments normal to ``axis``."""
+    jacobian = np.vstack([np.zeros_like(jw), jw])
+    return WrenchSite(joint, jacobian, sign, basis=None if axis is None else _moments_normal_to(axis))
+
+
+def _columns(n: int, cols: dict[int, np.ndarray]) -> np.ndarray:
+    """(3, n) matrix with the given columns, zeros elsewhere."""
+    out = np.zeros((3, n))
+    for j, col in cols.items():
+        out[:, j] = col
+    return out
+
+
+def skcs(p: kin.Geometry, phi: Sequence[float], phi_d: Sequence[float], phi_dd: Sequence[float],
+         efforts: dict[str, float] | None = None, branches: Sequence[int] = (1, 1)) -> list[SKCInstant]:
+    """The SKCs at one instant of a platform motion (rad, rad/s, rad/s^2), in solving order.
+
+    Args:
+        efforts: motor torques (N m) solved by the first SKC; without them only the first SKC
+            (which solves them) is returned.
+    """
     props = body_inertias(p)
     theta = kin.inverse_kinematics(p, phi, branches)
     omega_p, alpha_p = kin.hooke_rates(phi, phi_d, phi_dd)
-    jw_cross = np.zeros((3, N))
-    jw_cross[:, _CROSS] = np.eye(3)
-    jw_platform = jw_cross.copy()
-    jw_platform[:, _PITCH] = kin.rot_x(phi[0])[:, 1]
-    ex = np.array([1.0, 0.0, 0.0])
-    bodies = [
-        _body("cross", props["cross"], kin.rot_x(phi[0]), phi_d[0] * ex, phi_dd[0] * ex, jw_cross),
-        _body("platform", props["platform"], kin.platform_rotation(phi), omega_p, alpha_p, jw_platform),
-    ]
-    loop_rows = []
-    actuators = []
+    ex, pitch = np.eye(3)[0], kin.rot_x(phi[0])[:, 1]
+    body = {
+        "cross": _motion(props["cross"], kin.rot_x(phi[0]), phi_d[0] * ex, phi_dd[0] * ex),
+        "platform": _motion(props["platform"], kin.platform_rotation(phi), omega_p, alpha_p),
+    }
+    axes = {}
     for k, i in enumerate((1, 2)):
         u, w, v = kin.base_axis(p, i), kin.middle_axis(p, i, theta[k]), kin.platform_axis(p, i, phi)
+        axes[i] = (u, w, v)
         rate, acc = kin.limb_rates(p, i, theta[k], phi, omega_p, alpha_p)
         frame1 = kin.base_frame(p, i) @ kin.rot_z(theta[k])
         frame2 = frame1 @ kin.rot_x(-p.alpha1) @ kin.rot_z(kin.limb_angles(p, i, theta[k], phi)[0])
-        jw1, jw2 = np.zeros((3, N)), np.zeros((3, N))
-        jw1[:, _THETA[i, 1]] = jw2[:, _THETA[i, 1]] = u
-        jw2[:, _THETA[i, 2]] = w
         w1 = rate[0] * u
-        bodies.append(_body(f"link{i}1", props[f"link{i}1"], frame1, w1, acc[0] * u, jw1))
-        bodies.append(_body(f"link{i}2", props[f"link{i}2"], frame2, w1 + rate[1] * w,
-                            acc[0] * u + acc[1] * w + np.cross(w1, rate[1] * w), jw2))
-        # r{i}3 closed: platform and link i2 turn alike except about v_i.
-        normal = np.linalg.svd(v.reshape(1, 3))[2][1:]
-        loop_rows.append(normal @ (jw_platform - jw2))
-        direction = np.zeros(N)
-        direction[_THETA[i, 1]] = 1.0
-        actuators.append((f"r{i}1", direction))
-    support = WrenchSite("hooke_roll", np.vstack([np.zeros((3, N)), jw_cross]), sign=1.0, components=(4, 5))
-    return SKCInstant("platform+limbs (support released)", N, bodies, actuators, released=(support,),
-                      loop_jacobian=np.vstack(loop_rows))
+        body[f"link{i}1"] = _motion(props[f"link{i}1"], frame1, w1, acc[0] * u)
+        body[f"link{i}2"] = _motion(props[f"link{i}2"], frame2, w1 + rate[1] * w,
+                                    acc[0] * u + acc[1] * w + np.cross(w1, rate[1] * w))
+
+    # 1. the whole mechanism, support released: [cross (3), pitch, th11, th12, th21, th22]
+    n = 8
+    jw = {"cross": _columns(n, {0: ex, 1: np.eye(3)[1], 2: np.eye(3)[2]})}
+    jw["platform"] = jw["cross"] + _columns(n, {3: pitch})
+    loop, actuators = [], []
+    for i, first in ((1, 4), (2, 6)):
+        u, w, v = axes[i]
+        jw[f"link{i}1"] = _columns(n, {first: u})
+        jw[f"link{i}2"] = _columns(n, {first: u, first + 1: w})
+        loop.append(_moments_normal_to(v)[3:].T @ (jw["platform"] - jw[f"link{i}2"]))
+        actuators.append((f"r{i}1", np.eye(n)[first]))
+    whole = SKCInstant("mechanism", n, [body[b].load(b, jw[b]) for b in body], actuators,
+                       released=(WrenchSite("hooke_roll", np.vstack([np.zeros((3, n)), jw["cross"]]), 1.0,
+                                            components=(4, 5)),),
+                       loop_jacobian=np.vstack(loop))
+    if efforts is None:
+        return [whole]
+
+    free = np.eye(3)
+    out = [whole, SKCInstant("cross", 3, [body["cross"].load("cross", free)],
+                             known=(_site("hooke_roll", free, 1.0),),
+                             released=(_site("hooke_pitch", free, -1.0, pitch),))]
+    for i in (1, 2):
+        u, w, v = axes[i]
+        j1, j2 = np.hstack([free, np.zeros((3, 1))]), np.hstack([free, w.reshape(3, 1)])
+        torque = np.concatenate([np.zeros(3), efforts[f"r{i}1"] * u])
+        out.append(SKCInstant(f"limb {i}", 4, [body[f"link{i}1"].load(f"link{i}1", j1),
+                                                body[f"link{i}2"].load(f"link{i}2", j2)],
+                              released=(_site(f"r{i}1", j1, 1.0, u), _site(f"r{i}3", j2, -1.0, v)),
+                              external=((torque, np.vstack([np.zeros((3, 4)), j1])),)))
+        out.append(SKCInstant(f"link {i}2", 3, [body[f"link{i}2"].load(f"link{i}2", free)],
+                              known=(_site(f"r{i}3", free, -1.0),),
+                              released=(_site(f"r{i}2", free, 1.0, w),)))
+    return out
 
 
 def solve(p: kin.Geometry, phi: Sequence[float], phi_d: Sequence[float], phi_dd: Sequence[float],
           branches: Sequence[int] = (1, 1), gravity: np.ndarray = np.array([0.0, 0.0, -9.81])) -> SOCResult:
-    """Motor torques r11, r21 (N m) and the support moment at hooke_roll (strut on cross, world, at O)."""
-    return solve_soc([skc(p, phi, phi_d, phi_dd, branches)], gravity)
+    """Motor torques r11, r21 (N m) and the moment about O of every joint's reaction (see module doc)."""
+    first = solve_soc(skcs(p, phi, phi_d, phi_dd, None, branches), gravity)
+    return solve_soc(skcs(p, phi, phi_d, phi_dd, first.efforts, branches), gravity)
