@@ -14,13 +14,19 @@ printed numbers), every mass and inertia, the actuator dimensions.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from mechkit.exceptions import InvalidParameters
 from mechkit.mechanisms.rocket_gimbal_kinematics import GimbalGeometry, rot_x
+from mechkit.mechanisms.rocket_gimbal_motion import GimbalMotion, gimbal_motion
+from mechkit.mechanisms.rocket_gimbal_soc import BodySpec, gimbal_skcs
 from mechkit.params import MechanismParams, param
 from mechkit.registry import MechanismSpec
+
+if TYPE_CHECKING:
+    from mechkit.mechanism import Mechanism
 
 #: Rotation from the paper frame O-xyz to the world frame (nozzle down, world z up).
 PAPER_TO_WORLD = rot_x(np.pi)
@@ -77,3 +83,84 @@ SPEC = MechanismSpec(
     home=lambda p: {"a_stroke": 0.0, "b_stroke": 0.0},
     summary="launcher engine gimbal: frame-bracket-engine hinges at 45 deg, two U-P-S servo actuators",
 )
+
+
+def body_inertias(p: RocketGimbalParams) -> BodySpec:
+    """Mass (kg) and transverse / axial moments of inertia about the COM (kg m^2) of each moving body.
+
+    Every body is axisymmetric: the engine and the servo parts are uniform solid cylinders about their
+    axes, the bracket a thin ring about its normal. The xacro computes the same from the same numbers.
+    """
+    def cylinder(mass: float, length: float, radius: float) -> tuple[float, float, float]:
+        return mass, mass * (3.0 * radius**2 + length**2) / 12.0, mass * radius**2 / 2.0
+
+    ring = p.bracket_mass * p.bracket_radius**2
+    out = {"engine": cylinder(p.engine_mass, p.engine_length, p.engine_radius),
+           "bracket": (p.bracket_mass, ring / 2.0, ring)}
+    for name in "ab":
+        out[f"{name}_cylinder"] = cylinder(p.cylinder_mass, p.cylinder_length, p.actuator_radius)
+        out[f"{name}_rod"] = cylinder(p.rod_mass, p.rod_length, p.actuator_radius / 2.0)
+    return out
+
+
+@dataclass(frozen=True)
+class SwingScene:
+    """A conical swing manoeuvre in flight: alpha = A sin(w t), beta = B sin(w t + phase), under thrust.
+
+    All values are ours: a YF-100-class sea-level thrust and a swing of a few degrees at 1 Hz
+    (about 25 deg/s, the order of a launcher's thrust-vector slew rate).
+    """
+
+    amplitude_alpha: float = np.radians(4.0)   # rad
+    amplitude_beta: float = np.radians(4.0)    # rad
+    frequency: float = 1.0                     # Hz
+    phase: float = np.pi / 2                   # rad
+    thrust: float = 1.2e6                      # N, against the nozzle axis
+    thrust_point: float = 1.5                  # m from O along the nozzle axis (the throat)
+
+    def angles(self, t: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """(alpha, beta) rad, their rates rad/s and accelerations rad/s^2 at time t (s)."""
+        w = 2.0 * np.pi * self.frequency
+        amp = np.array([self.amplitude_alpha, self.amplitude_beta])
+        arg = w * t + np.array([0.0, self.phase])
+        return amp * np.sin(arg), amp * w * np.cos(arg), -amp * w**2 * np.sin(arg)
+
+    def motion(self, p: RocketGimbalParams, t: float) -> GimbalMotion:
+        """The analytic motion of every body at time t."""
+        return gimbal_motion(geometry(p), *self.angles(t))
+
+
+def joint_state(mech: Mechanism, motion: GimbalMotion) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(q, v, a) of the URDF tree from the analytic motion (no closure solve)."""
+    p = mech.params
+    values = {"bracket_hinge": (motion.angles[0], motion.rates[0], motion.accs[0]),
+              "engine_hinge": (motion.angles[1], motion.rates[1], motion.accs[1])}
+    for name, leg, l0 in zip("ab", motion.legs, (p.length_a, p.length_b)):
+        for i in range(2):
+            values[f"{name}_swing_{i + 1}"] = (leg.hooke[i], leg.hooke_rate[i], leg.hooke_acc[i])
+        values[f"{name}_stroke"] = (leg.length - l0, leg.length_rate, leg.length_acc)
+    q, v, a = mech.neutral(), np.zeros(mech.model.nv), np.zeros(mech.model.nv)
+    for joint, (x, xd, xdd) in values.items():
+        q[mech.q_index(joint)], v[mech.v_index(joint)], a[mech.v_index(joint)] = x, xd, xdd
+    return q, v, a
+
+
+def thrust_fext(mech: Mechanism, q: np.ndarray, scene: SwingScene) -> list:
+    """Pinocchio external forces (per joint, local frames): the thrust on the engine at q."""
+    import pinocchio as pin
+
+    pin.forwardKinematics(mech.model, mech.data, q)
+    engine = mech.model.getJointId("engine_hinge")
+    oMi = mech.data.oMi[engine]
+    n = oMi.rotation[:, 2]  # the engine frame's z is the nozzle axis
+    force = -scene.thrust * n
+    point = oMi.translation + scene.thrust_point * n
+    fext = [pin.Force.Zero() for _ in range(mech.model.njoints)]
+    fext[engine] = oMi.actInv(pin.Force(force, np.cross(point, force)))
+    return fext
+
+
+def soc_skcs(p: RocketGimbalParams, motion: GimbalMotion, scene: SwingScene) -> list:
+    """The SKCs of `rocket_gimbal_soc.gimbal_skcs` for these parameters (world frame)."""
+    return gimbal_skcs(motion, geometry(p).frame_pivots, body_inertias(p), p.engine_com, p.cylinder_length,
+                       p.rod_length, PAPER_TO_WORLD, (scene.thrust, scene.thrust_point))

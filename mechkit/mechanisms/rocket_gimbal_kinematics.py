@@ -34,6 +34,8 @@ __all__ = [
     "fk_newton",
     "pitch_yaw",
     "linear_rule",
+    "LinearRuleErrors",
+    "linear_rule_errors",
 ]
 
 GIMBAL_ANGLE = np.pi / 4
@@ -184,3 +186,49 @@ def linear_rule(stroke: np.ndarray, stroke_max: float = 0.110,
     s = np.asarray(stroke, dtype=float)
     k = angle_max / stroke_max
     return np.stack([k * s[..., 1], -k * s[..., 0]], axis=-1)
+
+
+@dataclass(frozen=True)
+class LinearRuleErrors:
+    """The linear rule against the exact kinematics over a stroke grid.
+
+    Attributes:
+        stroke_a, stroke_b: (n,) grid axes, m.
+        exact: (n, n, 2) exact (theta_x, theta_y), rad, indexed [i_a, i_b].
+        linear: (n, n, 2) the rule's (theta_x, theta_y), rad.
+        worst: largest |exact - linear| over the grid and both angles, rad.
+        worst_at: (dlA, dlB) m where it occurs.
+        cross_talk: largest |theta_x| with B at rest and |theta_y| with A at rest (the angle the
+            rule says is zero), rad.
+    """
+
+    stroke_a: np.ndarray
+    stroke_b: np.ndarray
+    exact: np.ndarray
+    linear: np.ndarray
+    worst: float
+    worst_at: tuple[float, float]
+    cross_talk: float
+
+
+def linear_rule_errors(geo: GimbalGeometry, stroke_max: float = 0.110, angle_max: float = np.radians(6.5),
+                       n: int = 45) -> LinearRuleErrors:
+    """Error map of the linear rule over the square [-stroke_max, stroke_max]^2 (n x n strokes, n odd)."""
+    if n < 3 or n % 2 == 0:
+        raise InvalidParameters("n", n, "need an odd grid size >= 3 (the grid must contain 0)")
+    axis = np.linspace(-stroke_max, stroke_max, n)
+    exact = np.empty((n, n, 2))
+    for i, sa in enumerate(axis):
+        guess = (0.0, 0.0)
+        for j, sb in enumerate(axis):
+            angles = fk_newton(geo, (sa, sb), guess=guess)
+            exact[i, j] = pitch_yaw(*angles)
+            guess = tuple(angles)
+    grid = np.stack(np.meshgrid(axis, axis, indexing="ij"), axis=-1)
+    linear = linear_rule(grid, stroke_max, angle_max)
+    err = np.abs(exact - linear).max(axis=-1)
+    i, j = np.unravel_index(np.argmax(err), err.shape)
+    mid = n // 2
+    cross = max(np.abs(exact[:, mid, 0]).max(), np.abs(exact[mid, :, 1]).max())
+    return LinearRuleErrors(axis, axis, exact, linear, float(err[i, j]), (float(axis[i]), float(axis[j])),
+                            float(cross))

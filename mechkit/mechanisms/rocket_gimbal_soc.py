@@ -1,0 +1,192 @@
+"""The engine gimbal's SKC decomposition for the SOC virtual-work solver (numpy only).
+
+Topology: gimbal frame -> bracket (hinge Ox1) -> engine (hinge Oy2); two U-P-S servo actuators from
+the frame to the engine. In SOC terms the chain frame-bracket-engine closed by servo A is a loop of
+constraint degree +1 and servo B one of -1: they form ONE SKC of coupling degree 1, which cannot be
+split. Order of solution (world frame, the wrench parent-on-child at the joint point):
+
+1. ``servo_loops``: the eight tree coordinates (alpha, beta, and per servo t1, t2, stroke) with the
+   two ball joints cut: 8 equations, unknowns the two efforts and the two ball forces (3 each).
+2. ``engine`` (free body, 6): known ball forces and the thrust; unknown the engine hinge reaction
+   (3 forces + 2 moments normal to Oy2): 6 equations, 5 unknowns; the sixth is the engine's
+   equation of motion about its hinge (a consistency check).
+3. ``bracket`` (free body): known the engine hinge; unknown the bracket hinge (support of the frame).
+4. per servo, ``*_rod`` (free body): known its ball force; unknown the stroke joint's wrench (6, its
+   axial force is the effort again), then ``*_cylinder`` (free body): known the stroke joint;
+   unknown the frame pivot's Hooke reaction (3 forces + the moment along e1 x e2; the cross is
+   massless): 6 equations, 4 unknowns.
+
+Body motions come from `rocket_gimbal_motion` (the paper's geometry), never from Pinocchio.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from mechkit.mechanisms.rocket_gimbal_motion import GimbalMotion
+from mechkit.validation.soc import BodyLoad, SKCInstant, WrenchSite
+
+__all__ = ["BodySpec", "gimbal_skcs"]
+
+BodySpec = dict[str, tuple[float, float, float]]
+"""Body name -> (mass kg, transverse and axial moments of inertia about the COM, kg m^2)."""
+
+_FORCES = np.vstack([np.eye(3), np.zeros((3, 3))])
+
+
+def _skew(p: np.ndarray) -> np.ndarray:
+    return np.array([[0.0, -p[2], p[1]], [p[2], 0.0, -p[0]], [-p[1], p[0], 0.0]])
+
+
+def _rigid(point: np.ndarray, ref: np.ndarray) -> np.ndarray:
+    """(6, 6) virtual displacement of a point (rows 0-2) and rotation (rows 3-5) of a free body.
+
+    Virtual coordinates: the displacement of the reference point and the rotation, world.
+    """
+    jac = np.zeros((6, 6))
+    jac[:3, :3] = np.eye(3)
+    jac[:3, 3:] = -_skew(point - ref)
+    jac[3:, 3:] = np.eye(3)
+    return jac
+
+
+def _axisymmetric(mass_inertia: tuple[float, float, float], axis: np.ndarray) -> np.ndarray:
+    """World inertia (3, 3) of a body symmetric about a unit axis."""
+    _, transverse, axial = mass_inertia
+    outer = np.outer(axis, axis)
+    return transverse * (np.eye(3) - outer) + axial * outer
+
+
+def _wrench_basis(*moment_axes: np.ndarray) -> np.ndarray:
+    """(6, 3 + k) wrench directions: the three world forces, then moments along the given unit vectors."""
+    return np.column_stack([_FORCES, *(np.concatenate([np.zeros(3), m]) for m in moment_axes)])
+
+
+def _perpendicular(axis: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    helper = np.eye(3)[int(np.argmin(np.abs(axis)))]
+    t1 = np.cross(axis, helper)
+    t1 /= np.linalg.norm(t1)
+    return t1, np.cross(axis, t1)
+
+
+def gimbal_skcs(motion: GimbalMotion, geo_frame_pivots: np.ndarray, bodies: BodySpec, engine_com: float,
+                cylinder_length: float, rod_length: float, to_world: np.ndarray,
+                thrust: tuple[float, float] = (0.0, 0.0)) -> list[SKCInstant]:
+    """The ordered SKCs of the gimbal at one instant.
+
+    Args:
+        motion: the analytic motion (paper frame).
+        geo_frame_pivots: (2, 3) frame pivots O_A, O_B, paper frame, m.
+        bodies: mass and inertias of "bracket", "engine", "a_cylinder", "a_rod", "b_cylinder", "b_rod".
+        engine_com: distance of the engine COM from O along the nozzle axis, m.
+        cylinder_length, rod_length: m (COMs at half length from the frame pivot / the ball).
+        to_world: (3, 3) rotation paper frame -> world.
+        thrust: (force N, distance m from O along the nozzle axis of its point of application); the
+            force acts on the engine against the nozzle axis (the exhaust leaves along +n).
+
+    Returns:
+        The SKCs in solving order; actuator names "a_stroke", "b_stroke"; joints named as in the URDF.
+    """
+    W = to_world
+    x1, y2 = (W @ motion.hinge_axes[:, k] for k in range(2))
+    n = W @ motion.rotation[:, 2]
+    omega, alpha = W @ motion.omega, W @ motion.alpha
+    com = engine_com * n
+    com_acc = np.cross(alpha, com) + np.cross(omega, np.cross(omega, com))
+    engine = BodyLoad("engine", bodies["engine"][0], _axisymmetric(bodies["engine"], n), com_acc, omega, alpha,
+                      np.column_stack([np.cross(x1, com), np.cross(y2, com)]), np.column_stack([x1, y2]))
+    bracket = BodyLoad("bracket", bodies["bracket"][0],
+                       _axisymmetric(bodies["bracket"], W @ np.cross(motion.hinge_axes[:, 0], motion.hinge_axes[:, 1])),
+                       np.zeros(3), W @ motion.bracket_omega, W @ motion.bracket_alpha,
+                       np.zeros((3, 2)), np.column_stack([x1, np.zeros(3)]))
+    thrust_force = -thrust[0] * n
+    thrust_point = thrust[1] * n
+
+    size = 8
+    loop_bodies = [_pad(bracket, 0, size), _pad(engine, 0, size)]
+    actuators, balls, free_skcs = [], [], []
+    for k, name in enumerate("ab"):
+        leg = motion.legs[k]
+        base = 2 + 3 * k
+        pivot = W @ geo_frame_pivots[k]
+        u = W @ leg.axis
+        e = [W @ leg.hooke_axes[:, i] for i in range(2)]
+        tip = pivot + leg.length * u
+        ball = W @ motion.engine_pivots[k]
+        c_cyl = pivot + 0.5 * cylinder_length * u
+        c_rod = tip - 0.5 * rod_length * u
+        w_leg, a_leg = W @ leg.omega, W @ leg.alpha
+        u_rate, u_acc = W @ leg.axis_rate, W @ leg.axis_acc
+        acc_cyl = 0.5 * cylinder_length * u_acc
+        arm = leg.length - 0.5 * rod_length
+        acc_rod = leg.length_acc * u + 2.0 * leg.length_rate * u_rate + arm * u_acc
+        loads = {}
+        for body, c, acc in ((f"{name}_cylinder", c_cyl, acc_cyl), (f"{name}_rod", c_rod, acc_rod)):
+            jv = np.zeros((3, size))
+            jw = np.zeros((3, size))
+            jw[:, base:base + 2] = np.column_stack(e)
+            jv[:, base:base + 2] = np.column_stack([np.cross(ei, c - pivot) for ei in e])
+            if body.endswith("rod"):
+                jv[:, base + 2] = u
+            loads[body] = BodyLoad(body, bodies[body][0], _axisymmetric(bodies[body], u), acc, w_leg, a_leg, jv, jw)
+        loop_bodies += loads.values()
+        actuators.append((f"{name}_stroke", np.eye(size)[base + 2]))
+        # ball joint: engine (parent, frame_a) on rod (child); relative virtual displacement rod - engine
+        rel = np.zeros((6, size))
+        rel[:3, base:base + 2] = np.column_stack([np.cross(ei, tip - pivot) for ei in e])
+        rel[:3, base + 2] = u
+        rel[3:, base:base + 2] = np.column_stack(e)
+        rel[:3, :2] -= np.column_stack([np.cross(x1, ball), np.cross(y2, ball)])
+        rel[3:, :2] -= np.column_stack([x1, y2])
+        balls.append(WrenchSite(f"{name}_ball_joint", rel, +1.0, components=(0, 1, 2)))
+
+        # free rod: known ball (child side), released stroke joint (cylinder parent on rod), at the tip
+        rod_free = _free(loads[f"{name}_rod"], c_rod, pivot)
+        cyl_free = _free(loads[f"{name}_cylinder"], c_cyl, pivot)
+        stroke_site = _rigid(tip, pivot)
+        free_skcs.append(SKCInstant(f"{name}_rod", 6, [rod_free],
+                                    released=[WrenchSite(f"{name}_stroke", stroke_site, +1.0)],
+                                    known=[WrenchSite(f"{name}_ball_joint", _rigid(tip, pivot), +1.0)]))
+        hooke_normal = np.cross(e[0], e[1])
+        free_skcs.append(SKCInstant(
+            f"{name}_cylinder", 6, [cyl_free],
+            released=[WrenchSite(f"{name}_swing_1", _rigid(pivot, pivot), +1.0,
+                                 basis=_wrench_basis(hooke_normal / np.linalg.norm(hooke_normal)))],
+            known=[WrenchSite(f"{name}_stroke", stroke_site, -1.0)]))
+
+    thrust_wrench = np.concatenate([thrust_force, np.zeros(3)])
+    thrust_site = np.zeros((6, size))
+    thrust_site[:3, :2] = np.column_stack([np.cross(x1, thrust_point), np.cross(y2, thrust_point)])
+    thrust_site[3:, :2] = np.column_stack([x1, y2])
+    loop_external = [(thrust_wrench, thrust_site)]
+    servo_loops = SKCInstant("servo_loops", size, loop_bodies, actuators=actuators, released=balls,
+                             external=loop_external)
+    origin = np.zeros(3)
+    engine_free = _free(engine, com, origin)
+    known_balls = [WrenchSite(f"{name}_ball_joint", _rigid(W @ motion.engine_pivots[k], origin), -1.0)
+                   for k, name in enumerate("ab")]
+    engine_skc = SKCInstant(
+        "engine", 6, [engine_free],
+        released=[WrenchSite("engine_hinge", np.eye(6), +1.0, basis=_wrench_basis(*_perpendicular(y2)))],
+        known=known_balls,
+        external=[(thrust_wrench, _rigid(thrust_point, origin))])
+    bracket_skc = SKCInstant(
+        "bracket", 6, [_free(bracket, origin, origin)],
+        released=[WrenchSite("bracket_hinge", np.eye(6), +1.0, basis=_wrench_basis(*_perpendicular(x1)))],
+        known=[WrenchSite("engine_hinge", np.eye(6), -1.0)])
+    return [servo_loops, engine_skc, bracket_skc, *free_skcs]
+
+
+def _pad(body: BodyLoad, start: int, size: int) -> BodyLoad:
+    """The body with its Jacobian columns placed from `start` in an SKC of `size` coordinates."""
+    jv, jw = np.zeros((3, size)), np.zeros((3, size))
+    k = body.jv.shape[1]
+    jv[:, start:start + k], jw[:, start:start + k] = body.jv, body.jw
+    return BodyLoad(body.name, body.mass, body.inertia_com, body.com_acceleration, body.omega, body.alpha, jv, jw)
+
+
+def _free(body: BodyLoad, com: np.ndarray, ref: np.ndarray) -> BodyLoad:
+    """The body as a free rigid body (virtual coordinates: displacement of `ref`, rotation)."""
+    jac = _rigid(com, ref)
+    return BodyLoad(body.name, body.mass, body.inertia_com, body.com_acceleration, body.omega, body.alpha,
+                    jac[:3], jac[3:])
