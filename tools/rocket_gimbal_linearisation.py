@@ -55,7 +55,7 @@ def main(n: int = 45, out: Path = OUT) -> dict[str, float]:
     fig.savefig(out, dpi=90)
     plt.close(fig)
     return {"worst_deg": float(deg(e.worst)), "worst_percent": float(100 * e.worst / RULE_ANGLE),
-            "worst_at_mm": tuple(1e3 * np.array(e.worst_at)), "cross_talk_deg": float(deg(e.cross_talk)),
+            "worst_at_mm": tuple(float(1e3 * x) for x in e.worst_at), "cross_talk_deg": float(deg(e.cross_talk)),
             "table1_lines_worst_deg": float(deg(table_worst))}
 
 

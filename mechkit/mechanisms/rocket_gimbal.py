@@ -55,6 +55,8 @@ class RocketGimbalParams(MechanismParams):
     rod_mass: float = param(15.0, "kg", "servo piston rod (engine side)", ours=True)
     rod_length: float = param(1.1, "m", "piston rod length back from the engine pivot", ours=True)
     actuator_radius: float = param(0.06, "m", "servo cylinder radius (rod: half)", ours=True)
+    cross_mass: float = param(2.0, "kg", "Hooke cross at a frame pivot (COM at the pivot)", ours=True)
+    cross_inertia: float = param(0.004, "kg m^2", "Hooke cross moment of inertia (isotropic)", ours=True)
 
     def validate(self) -> None:
         shortest = min(self.length_a, self.length_b) - RULE_STROKE
@@ -74,6 +76,12 @@ def geometry(p: RocketGimbalParams) -> GimbalGeometry:
     return GimbalGeometry.reconstruction(p.pivot_radius, p.pivot_offset, p.length_a, p.length_b)
 
 
+def _self_checks(mech: Mechanism) -> dict[str, float]:
+    from mechkit.mechanisms.rocket_gimbal_checks import self_checks
+
+    return self_checks(mech)
+
+
 SPEC = MechanismSpec(
     name="rocket_gimbal",
     params=RocketGimbalParams,
@@ -82,6 +90,7 @@ SPEC = MechanismSpec(
     gruebler_dof=2,
     home=lambda p: {"a_stroke": 0.0, "b_stroke": 0.0},
     summary="launcher engine gimbal: frame-bracket-engine hinges at 45 deg, two U-P-S servo actuators",
+    self_checks=_self_checks,
 )
 
 
@@ -89,7 +98,7 @@ def body_inertias(p: RocketGimbalParams) -> BodySpec:
     """Mass (kg) and transverse / axial moments of inertia about the COM (kg m^2) of each moving body.
 
     Every body is axisymmetric: the engine and the servo parts are uniform solid cylinders about their
-    axes, the bracket a thin ring about its normal. The xacro computes the same from the same numbers.
+    axes, the bracket a thin ring about its normal, the Hooke crosses isotropic. The xacro computes the same from the same numbers.
     """
     def cylinder(mass: float, length: float, radius: float) -> tuple[float, float, float]:
         return mass, mass * (3.0 * radius**2 + length**2) / 12.0, mass * radius**2 / 2.0
@@ -100,6 +109,7 @@ def body_inertias(p: RocketGimbalParams) -> BodySpec:
     for name in "ab":
         out[f"{name}_cylinder"] = cylinder(p.cylinder_mass, p.cylinder_length, p.actuator_radius)
         out[f"{name}_rod"] = cylinder(p.rod_mass, p.rod_length, p.actuator_radius / 2.0)
+        out[f"{name}_cross"] = (p.cross_mass, p.cross_inertia, p.cross_inertia)
     return out
 
 

@@ -12,9 +12,9 @@ split. Order of solution (world frame, the wrench parent-on-child at the joint p
    equation of motion about its hinge (a consistency check).
 3. ``bracket`` (free body): known the engine hinge; unknown the bracket hinge (support of the frame).
 4. per servo, ``*_rod`` (free body): known its ball force; unknown the stroke joint's wrench (6, its
-   axial force is the effort again), then ``*_cylinder`` (free body): known the stroke joint;
-   unknown the frame pivot's Hooke reaction (3 forces + the moment along e1 x e2; the cross is
-   massless): 6 equations, 4 unknowns.
+   axial force is the effort again); ``*_cylinder`` (free body): known the stroke joint, unknown the
+   Hooke's second revolute (3 forces + 2 moments normal to e2); ``*_cross`` (free body): known that,
+   unknown the first revolute, the frame pivot's support (3 forces + 2 moments normal to e1).
 
 Body motions come from `rocket_gimbal_motion` (the paper's geometry), never from Pinocchio.
 """
@@ -77,7 +77,8 @@ def gimbal_skcs(motion: GimbalMotion, geo_frame_pivots: np.ndarray, bodies: Body
     Args:
         motion: the analytic motion (paper frame).
         geo_frame_pivots: (2, 3) frame pivots O_A, O_B, paper frame, m.
-        bodies: mass and inertias of "bracket", "engine", "a_cylinder", "a_rod", "b_cylinder", "b_rod".
+        bodies: mass and inertias of "bracket", "engine" and, per servo "a" / "b", "*_cross",
+            "*_cylinder", "*_rod".
         engine_com: distance of the engine COM from O along the nozzle axis, m.
         cylinder_length, rod_length: m (COMs at half length from the frame pivot / the ball).
         to_world: (3, 3) rotation paper frame -> world.
@@ -147,12 +148,19 @@ def gimbal_skcs(motion: GimbalMotion, geo_frame_pivots: np.ndarray, bodies: Body
         free_skcs.append(SKCInstant(f"{name}_rod", 6, [rod_free],
                                     released=[WrenchSite(f"{name}_stroke", stroke_site, +1.0)],
                                     known=[WrenchSite(f"{name}_ball_joint", _rigid(tip, pivot), +1.0)]))
-        hooke_normal = np.cross(e[0], e[1])
         free_skcs.append(SKCInstant(
             f"{name}_cylinder", 6, [cyl_free],
-            released=[WrenchSite(f"{name}_swing_1", _rigid(pivot, pivot), +1.0,
-                                 basis=_wrench_basis(hooke_normal / np.linalg.norm(hooke_normal)))],
+            released=[WrenchSite(f"{name}_swing_2", _rigid(pivot, pivot), +1.0, basis=_wrench_basis(*_perpendicular(e[1])))],
             known=[WrenchSite(f"{name}_stroke", stroke_site, -1.0)]))
+        # the cross: COM at the pivot, turning about e1 only
+        cross_load = BodyLoad(f"{name}_cross", bodies[f"{name}_cross"][0], _axisymmetric(bodies[f"{name}_cross"], e[0]),
+                              np.zeros(3), leg.hooke_rate[0] * e[0], leg.hooke_acc[0] * e[0], np.zeros((3, size)),
+                              np.outer(e[0], np.eye(size)[base]))
+        loop_bodies.append(cross_load)
+        free_skcs.append(SKCInstant(
+            f"{name}_cross", 6, [_free(cross_load, pivot, pivot)],
+            released=[WrenchSite(f"{name}_swing_1", _rigid(pivot, pivot), +1.0, basis=_wrench_basis(*_perpendicular(e[0])))],
+            known=[WrenchSite(f"{name}_swing_2", _rigid(pivot, pivot), -1.0)]))
 
     thrust_wrench = np.concatenate([thrust_force, np.zeros(3)])
     thrust_site = np.zeros((6, size))

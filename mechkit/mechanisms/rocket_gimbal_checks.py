@@ -1,0 +1,134 @@
+"""Cross-checks of the engine gimbal: FK three ways, IK round trips, Pinocchio vs SOC inverse dynamics.
+
+Used by the tests, by `mechkit report rocket_gimbal` (`self_checks`) and by the benchmark tool.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from mechkit.mechanism import Mechanism
+from mechkit.mechanisms.rocket_gimbal import (
+    RULE_STROKE,
+    SwingScene,
+    geometry,
+    joint_state,
+    soc_skcs,
+    thrust_fext,
+)
+from mechkit.mechanisms.rocket_gimbal_kinematics import actuator_lengths, fk_newton, strokes
+from mechkit.mechanisms.rocket_gimbal_resultant import fk_resultant, pick_in_range
+from mechkit.validation.soc import solve_soc
+
+__all__ = ["fk_closure", "FKAgreement", "fk_agreement", "DynamicsAgreement", "dynamics_agreement",
+           "self_checks", "PAPER_EXAMPLE"]
+
+#: The paper's worked example: strokes (m), its FK answer (rad), its IK lengths of that answer (m).
+PAPER_EXAMPLE = {"strokes": np.array([-0.060, 0.105]), "angles": np.radians([6.6336, -2.0624]),
+                 "lengths": np.array([1.7828855, 1.9479909])}
+
+
+def fk_closure(mech: Mechanism, stroke: np.ndarray, guess: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
+    """FK by the closure solver (`Mechanism.assemble`, the strokes as inputs): ((alpha, beta) rad, q)."""
+    q = mech.assemble({"a_stroke": stroke[0], "b_stroke": stroke[1]}, guess=guess)
+    return np.array([q[mech.q_index("bracket_hinge")], q[mech.q_index("engine_hinge")]]), q
+
+
+@dataclass(frozen=True)
+class FKAgreement:
+    """Worst disagreements over a stroke grid.
+
+    Attributes:
+        polynomial_newton, polynomial_closure, newton_closure: max |d alpha|, |d beta| (rad).
+        ik_round_trip: max |IK(FK(s)) - s| over the three methods (m).
+        worst_condition: largest condition number of the in-range resultant root off the diagonal.
+    """
+
+    polynomial_newton: float
+    polynomial_closure: float
+    newton_closure: float
+    ik_round_trip: float
+    worst_condition: float
+
+
+def fk_agreement(mech: Mechanism, n: int = 5, stroke_max: float = RULE_STROKE) -> FKAgreement:
+    """FK by the resultant, by Newton and by the closure solver over an n x n grid of strokes."""
+    geo = geometry(mech.params)
+    axis = np.linspace(-stroke_max, stroke_max, n)
+    worst = np.zeros(5)
+    for sa in axis:
+        for sb in axis:
+            s = np.array([sa, sb])
+            mode = pick_in_range(fk_resultant(geo, s))
+            poly = np.array([mode.alpha, mode.beta])
+            newton = fk_newton(geo, s)
+            closure, _ = fk_closure(mech, s)
+            trips = [np.abs(strokes(geo, *x) - s).max() for x in (poly, newton, closure)]
+            cond = mode.condition if sa != sb else 0.0
+            worst = np.maximum(worst, [np.abs(poly - newton).max(), np.abs(poly - closure).max(),
+                                       np.abs(newton - closure).max(), max(trips), cond])
+    return FKAgreement(*map(float, worst))
+
+
+@dataclass(frozen=True)
+class DynamicsAgreement:
+    """Pinocchio constrained RNEA vs SOC over a swing.
+
+    Attributes:
+        efforts: max relative difference of the actuator forces.
+        reactions: max over joints of |w_pin - w_soc|_inf / |w_pin|_inf.
+        indeterminate: number of reaction components Pinocchio flags indeterminate (expected 0).
+        consistency: max SOC consistency residual (over-determined SKCs).
+        missing: joints Pinocchio reports that the SOC decomposition does not.
+    """
+
+    efforts: float
+    reactions: float
+    indeterminate: int
+    consistency: float
+    missing: tuple[str, ...]
+
+
+def dynamics_agreement(mech: Mechanism, scene: SwingScene | None = None,
+                       times: np.ndarray | None = None) -> DynamicsAgreement:
+    """Inverse dynamics of the swing by Pinocchio (thrust as fext) and by SOC, compared at `times` (s)."""
+    scene = scene or SwingScene()
+    times = np.linspace(0.0, 1.0 / scene.frequency, 7, endpoint=False) if times is None else times
+    eff = rea = cons = 0.0
+    indeterminate = 0
+    missing: set[str] = set()
+    for t in times:
+        motion = scene.motion(mech.params, t)
+        q, v, a = joint_state(mech, motion)
+        pin_result = mech.inverse_dynamics(q, v, a, fext=thrust_fext(mech, q, scene))
+        soc = solve_soc(soc_skcs(mech.params, motion, scene))
+        for name, u in pin_result.efforts.items():
+            eff = max(eff, abs(u - soc.efforts[name]) / abs(u))
+        for joint, reaction in pin_result.reactions.items():
+            indeterminate += int(np.count_nonzero(~reaction.determinate))
+            if joint not in soc.reactions:
+                missing.add(joint)
+                continue
+            scale = np.abs(reaction.wrench).max()
+            rea = max(rea, np.abs(reaction.wrench - soc.reactions[joint]).max() / scale)
+        cons = max(cons, *soc.consistency.values())
+    return DynamicsAgreement(eff, rea, indeterminate, cons, tuple(sorted(missing)))
+
+
+def self_checks(mech: Mechanism) -> dict[str, float]:
+    """Rows of `mechkit report rocket_gimbal` (worst error of each check; smaller is better)."""
+    geo = geometry(mech.params)
+    fk = fk_agreement(mech, n=3)
+    dyn = dynamics_agreement(mech, times=np.array([0.1, 0.35]))
+    lengths = actuator_lengths(geo, *PAPER_EXAMPLE["angles"])
+    return {
+        "paper IK example vs printed lengths (m)": float(np.abs(lengths - PAPER_EXAMPLE["lengths"]).max()),
+        "FK resultant vs Newton (rad)": fk.polynomial_newton,
+        "FK resultant vs closure solver (rad)": fk.polynomial_closure,
+        "IK of FK round trip (m)": fk.ik_round_trip,
+        "efforts Pinocchio vs SOC (relative)": dyn.efforts,
+        "reactions Pinocchio vs SOC (relative)": dyn.reactions,
+        "SOC consistency residual (relative)": dyn.consistency,
+    }

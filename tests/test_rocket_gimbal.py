@@ -1,0 +1,99 @@
+"""The engine gimbal as a mechkit Mechanism: FK three ways, analytic motion vs Pinocchio, dynamics vs SOC."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from mechkit.mechanisms.rocket_gimbal import SwingScene, body_inertias, geometry, joint_state, soc_skcs, thrust_fext
+from mechkit.mechanisms.rocket_gimbal_checks import dynamics_agreement, fk_agreement, fk_closure
+from mechkit.mechanisms.rocket_gimbal_kinematics import strokes
+from mechkit.validation.soc import solve_soc
+
+
+@pytest.fixture(scope="module")
+def mech(load_cached):
+    return load_cached("rocket_gimbal")
+
+
+def test_fk_polynomial_newton_and_closure_solver_agree_over_the_stroke_square(mech):
+    # 7 x 7 strokes over +-110 mm, diagonal (double root of the resultant) included
+    fk = fk_agreement(mech, n=7)
+    assert fk.polynomial_newton < 1e-9 and fk.polynomial_closure < 1e-9 and fk.newton_closure < 1e-9
+    assert fk.ik_round_trip < 1e-9
+    assert fk.worst_condition < 1e3
+
+
+def test_closure_solver_reaches_the_flipped_mode_from_its_guess(mech):
+    from mechkit.mechanisms.rocket_gimbal_resultant import fk_resultant
+
+    geo = geometry(mech.params)
+    stroke = np.array([-0.06, 0.105])
+    flipped = [m for m in fk_resultant(geo, stroke) if m.nozzle_z < 0]
+    target = min(flipped, key=lambda m: abs(m.alpha) + abs(m.beta))
+    guess = {"bracket_hinge": target.alpha + 0.02, "engine_hinge": target.beta - 0.02}
+    angles, q = fk_closure(mech, stroke, guess=guess)
+    assert np.allclose(angles, [target.alpha, target.beta], atol=1e-9)
+    assert np.allclose(strokes(geo, *angles), stroke, atol=1e-9)
+
+
+def test_urdf_inertias_are_the_python_body_inertias(mech):
+    model = mech.model
+    for body, (mass, transverse, axial) in body_inertias(mech.params).items():
+        frame = model.frames[model.getFrameId(body)]
+        inertia = model.inertias[frame.parentJoint]
+        assert np.isclose(inertia.mass, mass, rtol=1e-12)
+        assert np.allclose(np.sort(np.linalg.eigvalsh(inertia.inertia)), np.sort([transverse, transverse, axial]),
+                           rtol=1e-12)
+
+
+@pytest.mark.parametrize("t", [0.05, 0.3, 0.77])
+def test_analytic_motion_satisfies_pinocchios_closure_rows(mech, t):
+    scene = SwingScene()
+    q, v, a = joint_state(mech, scene.motion(mech.params, t))
+    J = mech.closure_jacobian(q)
+    assert np.abs(mech.closure_residual(q)).max() < 1e-12
+    assert np.abs(J @ v).max() < 1e-12
+    assert np.abs(J @ a + mech.closure_drift(q, v)).max() < 1e-11
+    # Pinocchio's velocity / acceleration projection from the stroke rates gives the same motion
+    rates = {j: v[mech.v_index(j)] for j in mech.actuated}
+    accs = {j: a[mech.v_index(j)] for j in mech.actuated}
+    assert np.allclose(mech.velocities(q, rates), v, atol=1e-12)
+    assert np.allclose(mech.accelerations(q, v, accs), a, atol=1e-10)
+
+
+def test_inverse_dynamics_pinocchio_vs_soc_over_a_swing(mech):
+    agreement = dynamics_agreement(mech)
+    assert agreement.missing == ()  # every joint's reaction is compared
+    assert agreement.indeterminate == 0  # spherical cuts with 3 rows: everything determinate
+    assert agreement.efforts < 1e-8 and agreement.reactions < 1e-8
+    assert agreement.consistency < 1e-10
+
+
+def test_thrust_through_the_swing_centre_loads_the_bearings_not_the_servos(mech):
+    scene, idle = SwingScene(), SwingScene(thrust=0.0)
+    motion = scene.motion(mech.params, 0.2)
+    q, v, a = joint_state(mech, motion)
+    loaded = mech.inverse_dynamics(q, v, a, fext=thrust_fext(mech, q, scene))
+    free = mech.inverse_dynamics(q, v, a, fext=thrust_fext(mech, q, idle))
+    for name in mech.actuated:
+        assert np.isclose(loaded.efforts[name], free.efforts[name], rtol=1e-9)
+    nozzle = mech.data.oMi[mech.model.getJointId("engine_hinge")].rotation[:, 2]
+    thrust = -scene.thrust * nozzle
+    for joint in ("bracket_hinge", "engine_hinge"):
+        change = loaded.reactions[joint].wrench - free.reactions[joint].wrench
+        assert np.allclose(change[:3], -thrust, rtol=0, atol=1e-6 * scene.thrust)
+        assert np.allclose(change[3:], 0.0, atol=1e-6 * scene.thrust)
+
+
+def test_supports_carry_the_whole_weight_at_rest(mech):
+    # Global balance: at rest (null pose, no thrust) the three supports hold exactly the weight.
+    scene = SwingScene(amplitude_alpha=0.0, amplitude_beta=0.0, thrust=0.0)
+    motion = scene.motion(mech.params, 0.0)
+    rest = solve_soc(soc_skcs(mech.params, motion, scene))
+    q, v, a = joint_state(mech, motion)
+    pin_rest = mech.inverse_dynamics(q, v, a)
+    weight = 9.81 * sum(m for m, _, _ in body_inertias(mech.params).values())
+    supports = ("bracket_hinge", "a_swing_1", "b_swing_1")
+    assert np.isclose(sum(rest.reactions[j][2] for j in supports), weight, rtol=1e-12)
+    assert np.isclose(sum(pin_rest.reactions[j].wrench[2] for j in supports), weight, rtol=1e-12)
