@@ -13,11 +13,9 @@ from mechkit.mechanisms import spherical_2dof as sph
 from mechkit.mechanisms import spherical_2dof_checks as checks
 from mechkit.mechanisms import spherical_2dof_kinematics as kin
 from mechkit.mechanisms import spherical_2dof_soc as soc
-from mechkit.mechanisms.spherical_2dof_fk import basin_study
+from mechkit.mechanisms.spherical_2dof_fk import NEAR_SINGULAR, REGULAR, basin_study
 
 P = sph.Spherical2DofParams()
-#: A pose 0.4 deg from the forward singularity det B = 0 (pitch 25.4 deg at roll 12 deg); cond(B) ~ 70.
-NEAR_SINGULAR = np.radians([12.0, 25.0])
 
 
 @pytest.fixture(scope="module")
@@ -143,7 +141,7 @@ def test_basin_study():
     keeps. 0.4 deg from the forward singularity the other assembly mode (the mirror root across
     det B = 0) captures starts 1 deg away, from every method."""
     mech = load("spherical_2dof")
-    regular = basin_study(mech, sph.cone_attitude(0.25)[0], np.radians([1.0, 5.0, 20.0]), 12)
+    regular = basin_study(mech, REGULAR, np.radians([1.0, 5.0, 20.0]), 12)
     table = {(r.method, round(math.degrees(r.radius))): r for r in regular}
     for method in ("paper", "newton", "closure"):
         assert table[method, 1].found == table[method, 5].found == 1.0
@@ -179,3 +177,18 @@ def test_support_determinacy(mech):
         assert not reaction.determinate[:3].any(), name
         assert reaction.determinate[3:].all(), name
     assert abs(result.reactions["hooke_roll"].wrench[3]) < 1e-12  # the roll axis X0 is free
+
+
+def test_tools_run(tmp_path):
+    """Smoke test of the basin and benchmark tools on tiny runs."""
+    import importlib.util
+    from pathlib import Path
+
+    tools = Path(__file__).resolve().parent.parent / "tools"
+    for name, kwargs in (("spherical_2dof_basin", {"directions": 2}), ("spherical_2dof_bench", {"repeat": 8})):
+        spec = importlib.util.spec_from_file_location(name, tools / f"{name}.py")
+        module = importlib.util.module_from_spec(spec)
+        spec.loader.exec_module(module)
+        out = tmp_path / f"{name}.png"
+        module.main(out=out, **kwargs)
+        assert out.stat().st_size > 10_000

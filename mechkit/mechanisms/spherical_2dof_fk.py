@@ -17,14 +17,18 @@ import numpy as np
 from mechkit import kinematics
 from mechkit.exceptions import ClosureNotConverged, InvalidParameters
 from mechkit.mechanisms import spherical_2dof_kinematics as kin
-from mechkit.mechanisms.spherical_2dof import BRANCHES, tree_configuration
+from mechkit.mechanisms.spherical_2dof import BRANCHES, cone_attitude, tree_configuration
 
 if TYPE_CHECKING:
     from mechkit.mechanism import Mechanism
 
-__all__ = ["METHODS", "fk_closure", "solve_fk", "BasinRow", "basin_study"]
+__all__ = ["METHODS", "REGULAR", "NEAR_SINGULAR", "fk_closure", "solve_fk", "BasinRow", "basin_study"]
 
 METHODS = ("paper", "newton", "closure")
+#: A regular pose of the cone scene (t = 0.25 s; cond(B) ~ 2), rad.
+REGULAR = cone_attitude(0.25)[0]
+#: A pose 0.4 deg from the forward singularity det B = 0 (at pitch 25.4 deg for roll 12 deg); cond(B) ~ 70.
+NEAR_SINGULAR = np.radians([12.0, 25.0])
 
 
 def fk_closure(mech: Mechanism, theta_d: Sequence[float], phi0: Sequence[float], tol: float = 1e-13,

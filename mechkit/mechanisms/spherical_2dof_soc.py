@@ -77,7 +77,7 @@ class _Motion:
     def load(self, name: str, jw: np.ndarray) -> BodyLoad:
         """The body in an SKC whose virtual rotation of this body is ``jw`` (3, n)."""
         c = self.com
-        acc = np.cross(self.alpha, c) + np.cross(self.omega, np.cross(self.omega, c))
+        acc = kin.cross(self.alpha, c) + kin.cross(self.omega, kin.cross(self.omega, c))
         return BodyLoad(name, self.mass, self.inertia, acc, self.omega, self.alpha, -_skew(c) @ jw, jw)
 
 
@@ -134,7 +134,7 @@ def skcs(p: kin.Geometry, phi: Sequence[float], phi_d: Sequence[float], phi_dd: 
         w1 = rate[0] * u
         body[f"link{i}1"] = _motion(props[f"link{i}1"], frame1, w1, acc[0] * u)
         body[f"link{i}2"] = _motion(props[f"link{i}2"], frame2, w1 + rate[1] * w,
-                                    acc[0] * u + acc[1] * w + np.cross(w1, rate[1] * w))
+                                    acc[0] * u + acc[1] * w + kin.cross(w1, rate[1] * w))
 
     # 1. the whole mechanism, support released: [cross (3), pitch, th11, th12, th21, th22]
     n = 8
