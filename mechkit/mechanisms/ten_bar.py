@@ -159,6 +159,24 @@ def lagrange_coordinates(p: TenBarParams, pose: geo.Pose) -> np.ndarray:
     return q
 
 
+def lagrange_from_joints(p: TenBarParams, angles: dict[str, float], rates: dict[str, float]) -> tuple[np.ndarray, np.ndarray]:
+    """Reference-point coordinates and rates from tree-joint angles and rates (numpy forward kinematics)."""
+    props = geo.mass_properties(p)
+    E = np.array([[0.0, -1.0], [1.0, 0.0]])
+    frame = {None: (np.zeros(2), np.zeros(2), 0.0, 0.0)}  # body -> origin, origin rate, angle, angular rate
+    for h in geo.hinges(p)[:len(geo.TREE_JOINTS)]:
+        o, od, phi, w = frame[h.parent]
+        arm = geo.rot(phi) @ h.parent_point
+        frame[h.child] = (o + arm, od + E @ arm * w, phi + angles[h.name], w + rates[h.name])
+    q, qd = np.empty(3 * len(geo.BODIES)), np.empty(3 * len(geo.BODIES))
+    for i, body in enumerate(geo.BODIES):
+        o, od, phi, w = frame[body]
+        com = geo.rot(phi) @ props[body][1]
+        q[3 * i:3 * i + 3] = [*(o + com), phi]
+        qd[3 * i:3 * i + 3] = [*(od + E @ com * w), w]
+    return q, qd
+
+
 def joint_angles_from_lagrange(q: np.ndarray) -> dict[str, float]:
     """URDF tree-joint values from reference-point coordinates (relative absolute angles, rad)."""
     a = {b: q[3 * i + 2] for i, b in enumerate(geo.BODIES)}

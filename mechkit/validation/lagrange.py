@@ -1,4 +1,4 @@
-"""Lagrange equations of the first kind for planar pin-jointed linkages, numpy only.
+"""Lagrange equations of the first kind for planar pin-jointed linkages, numpy and scipy only.
 
 The method of patent CN105975733 (ten-bar solar-array linkage): every moving link i has the
 coordinates (x_i, z_i, phi_i), its centre of mass in the world x-z plane and its absolute angle
@@ -25,6 +25,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass, field
 
 import numpy as np
+import scipy.linalg
 
 from mechkit.exceptions import ClosureNotConverged, InvalidParameters, SingularConfiguration
 
@@ -79,7 +80,7 @@ class Solution:
     qdd: np.ndarray
     forces: dict[str, np.ndarray]
     efforts: dict[str, float]
-    condition: float
+    condition: float  # ratio of the largest to the smallest LU pivot of A
 
 
 @dataclass
@@ -204,10 +205,12 @@ class Linkage:
         A[n:n + m, :n] = Cq
         A[n + m:, :n] = self.S
         P = np.concatenate([self.applied(q, qd), self.gamma(q, qd), np.asarray(motor_acc, dtype=float)])
-        cond = np.linalg.cond(A)
+        lu, piv = scipy.linalg.lu_factor(A, check_finite=False)
+        pivots = np.abs(np.diag(lu))
+        cond = float(pivots.max() / max(pivots.min(), 1e-300))  # pivot ratio: a cheap conditioning estimate
         if not np.isfinite(cond) or cond > 1e12:
-            raise SingularConfiguration(float(cond), "Lagrange first-kind matrix A")
-        f = np.linalg.solve(A, P)
+            raise SingularConfiguration(cond, "Lagrange first-kind matrix A (pivot ratio)")
+        f = scipy.linalg.lu_solve((lu, piv), P, check_finite=False)
         lam = f[n:n + m].reshape(-1, 2)
         return Solution(f[:n], {p.name: lam[k] for k, p in enumerate(self.pins)},
                         {name: float(u) for name, u in zip(self.motors, f[n + m:])}, float(cond))
@@ -222,9 +225,9 @@ class Linkage:
         """
         q = q.copy()
         target = np.asarray(motor_pos, dtype=float)
-        for it in range(max_iter):
+        for it in range(max_iter):  # at least two Gauss-Newton steps: land on the manifold, not near it
             e = np.concatenate([self.constraints(q), self.S @ q - target])
-            if np.linalg.norm(e) <= tol:
+            if it >= 2 and np.linalg.norm(e) <= tol:
                 break
             G = np.vstack([self.jacobian(q), self.S])
             q -= np.linalg.lstsq(G, e, rcond=None)[0]

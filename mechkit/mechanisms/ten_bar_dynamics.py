@@ -1,0 +1,313 @@
+"""Ten-bar deployment dynamics: prescribed motors, free passive DOF, RK4 with constraint stabilisation.
+
+Motors R1 and R3 are ideal servos on the cycloidal laws of `ten_bar.motor_law`; the passive DOF
+(R5) moves under the spring-damper, gravity and the linkage's inertia. Two independent models of
+the same motion share one integrator:
+
+- `PinocchioDeployment`: Pinocchio's constrained ABA (`Mechanism.forward_dynamics`,
+  `pin.constraintDynamics`) in joint coordinates. It is affine in the joint torques, so three
+  calls give the accelerations and the two motor torques that realise the prescribed motor
+  accelerations.
+- `LagrangeDeployment`: the patent's Lagrange equations of the first kind
+  (`mechkit.validation.lagrange`) in reference-point coordinates, A f = P with the motor torques
+  among the unknowns.
+
+`integrate` is a fixed-step RK4 on (q, v, W) (W the work of motors minus damper); after each step
+the state is projected back onto the constraint manifold (closures and motor laws), or, when
+projection is off, left to drift (optionally with Baumgarte terms in the accelerations).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Protocol
+
+import numpy as np
+import pinocchio as pin
+
+from mechkit.exceptions import ClosureNotConverged
+from mechkit.mechanisms import ten_bar as tb
+from mechkit.validation import lagrange
+
+
+class DeploymentSystem(Protocol):
+    """What `integrate` needs from a model of the deployment."""
+
+    def rhs(self, t: float, q: np.ndarray, v: np.ndarray) -> tuple[np.ndarray, np.ndarray, float]:
+        """(accelerations, motor torques (R1, R3) N m, net external power W)."""
+
+    def project(self, t: float, q: np.ndarray, v: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """(q, v) on the constraint manifold at t."""
+
+    def residual(self, t: float, q: np.ndarray) -> float:
+        """Largest closure residual (m)."""
+
+    def energy(self, q: np.ndarray, v: np.ndarray) -> float:
+        """Kinetic + gravity + spring energy (J)."""
+
+    def joint_angles(self, q: np.ndarray) -> np.ndarray:
+        """The 9 tree-joint angles in `JOINT_ORDER` (rad)."""
+
+
+JOINT_ORDER = ("R1", "R2", "R3", "R4", "R8", "R5", "R6", "R7b", "R9")
+
+
+class PinocchioDeployment:
+    """Deployment dynamics through the core (constrained ABA, closure rows).
+
+    Args:
+        mechanism: `mechkit.load("ten_bar", ...)`.
+        baumgarte: (Kp 1/s^2, Kd 1/s) closure stabilisation in the accelerations, or None.
+        method: forward-dynamics method of the core ("proximal" = pin.constraintDynamics, or "kkt").
+    """
+
+    def __init__(self, mechanism, baumgarte: tuple[float, float] | None = None, method: str = "proximal"):
+        self.m, self.baumgarte, self.method = mechanism, baumgarte, method
+        self.p = mechanism.params
+        self.spring = tb.spring_from_urdf(mechanism.urdf)
+        self.motor_v = np.array([mechanism.v_index(j) for j in tb.MOTORS])
+        self.spring_v = mechanism.v_index(self.spring.pin)
+        self.order = np.array([mechanism.q_index(j) for j in JOINT_ORDER])
+        self.data = mechanism.model.createData()
+
+    def spring_torque(self, q: np.ndarray, v: np.ndarray) -> float:
+        s = self.spring
+        return s.stiffness * (s.free_angle - q[self.spring_v]) - s.damping * v[self.spring_v]
+
+    def _fd(self, q, v, tau):
+        return self.m.forward_dynamics(q, v, tau, method=self.method, baumgarte=self.baumgarte).a
+
+    def rhs(self, t, q, v):
+        _, _, acc = tb.motor_law(self.p, t)
+        tau = np.zeros(self.m.model.nv)
+        tau[self.spring_v] = self.spring_torque(q, v)
+        a0 = self._fd(q, v, tau)
+        G = np.empty((len(a0), 2))
+        for k, iv in enumerate(self.motor_v):
+            unit = tau.copy()
+            unit[iv] += 1.0
+            G[:, k] = self._fd(q, v, unit) - a0
+        u = np.linalg.solve(G[self.motor_v], acc - a0[self.motor_v])
+        power = float(u @ v[self.motor_v]) - self.spring.damping * v[self.spring_v] ** 2
+        return a0 + G @ u, u, power
+
+    def _rows(self, t, q):
+        pos, _, _ = tb.motor_law(self.p, t)
+        e = np.concatenate([self.m.closure_residual(q), q[self.motor_v] - pos])
+        G = np.vstack([self.m.closure_jacobian(q), np.eye(self.m.model.nv)[self.motor_v]])
+        return e, G
+
+    def project(self, t, q, v, tol: float = 1e-13, max_iter: int = 20):
+        q = q.copy()
+        for it in range(max_iter):  # at least two Gauss-Newton steps: land on the manifold, not near it
+            e, G = self._rows(t, q)
+            if it >= 2 and np.linalg.norm(e) <= tol:
+                break
+            q -= np.linalg.lstsq(G, e, rcond=None)[0]
+        else:
+            raise ClosureNotConverged(float(np.linalg.norm(e)), tol, max_iter, "ten-bar projection (Pinocchio)")
+        _, rate, _ = tb.motor_law(self.p, t)
+        err = G @ v - np.concatenate([np.zeros(G.shape[0] - 2), rate])
+        return q, v - np.linalg.lstsq(G, err, rcond=None)[0]
+
+    def residual(self, t, q):
+        return float(np.max(np.abs(self.m.closure_residual(q))))
+
+    def energy(self, q, v):
+        model, data = self.m.model, self.data
+        kinetic = pin.computeKineticEnergy(model, data, q, v)
+        gravity = pin.computePotentialEnergy(model, data, q)
+        s = self.spring
+        return float(kinetic + gravity + 0.5 * s.stiffness * (q[self.spring_v] - s.free_angle) ** 2)
+
+    def joint_angles(self, q):
+        return q[self.order]
+
+
+class LagrangeDeployment:
+    """Deployment dynamics by the patent's Lagrange first-kind method (numpy only)."""
+
+    def __init__(self, params: tb.TenBarParams):
+        self.p = params
+        self.L = tb.lagrange_linkage(params)
+
+    def rhs(self, t, q, v):
+        _, _, acc = tb.motor_law(self.p, t)
+        sol = self.L.solve(q, v, acc)
+        u = np.array([sol.efforts[m] for m in tb.MOTORS])
+        power = self.L.power(q, v, sol.efforts)
+        return sol.qdd, u, power["motor"] - power["damper"]
+
+    def project(self, t, q, v):
+        pos, rate, _ = tb.motor_law(self.p, t)
+        return self.L.project(q, v, pos, rate)
+
+    def residual(self, t, q):
+        return float(np.max(np.abs(self.L.constraints(q))))
+
+    def energy(self, q, v):
+        return float(sum(self.L.energy(q, v).values()))
+
+    def joint_angles(self, q):
+        angles = tb.joint_angles_from_lagrange(q)
+        return np.array([angles[j] for j in JOINT_ORDER])
+
+
+class LagrangeJointDeployment:
+    """The same Lagrange first-kind dynamics with the state in tree-joint coordinates (`JOINT_ORDER`).
+
+    Each evaluation maps the joint state to reference-point coordinates by numpy forward
+    kinematics, solves A f = P, and returns the joint accelerations (differences of the links'
+    absolute angular accelerations). Integrated by `integrate` in the same coordinates as
+    `PinocchioDeployment`, the two discrete trajectories differ only by the solvers' round-off,
+    not by the integrator's truncation error.
+    """
+
+    def __init__(self, params: tb.TenBarParams):
+        self.p = params
+        self.inner = LagrangeDeployment(params)
+        self.L = self.inner.L
+        hinges = tb.geo.hinges(params)[:len(JOINT_ORDER)]
+        index = {b: i for i, b in enumerate(tb.geo.BODIES)}
+        self.joint_rows = np.zeros((len(JOINT_ORDER), self.L.n))  # joint angle = row . q_L
+        for h in hinges:
+            k = JOINT_ORDER.index(h.name)
+            self.joint_rows[k, 3 * index[h.child] + 2] = 1.0
+            if h.parent is not None:
+                self.joint_rows[k, 3 * index[h.parent] + 2] = -1.0
+        self.motor_rows = np.array([JOINT_ORDER.index(m) for m in tb.MOTORS])
+
+    def _state(self, q, v):
+        return tb.lagrange_from_joints(self.p, dict(zip(JOINT_ORDER, q)), dict(zip(JOINT_ORDER, v)))
+
+    def _map(self, q):
+        """(q_L, T) with T = d q_L / d q (the forward kinematics is linear in the rates)."""
+        angles = dict(zip(JOINT_ORDER, q))
+        qL, _ = tb.lagrange_from_joints(self.p, angles, dict.fromkeys(JOINT_ORDER, 0.0))
+        T = np.column_stack([tb.lagrange_from_joints(self.p, angles, dict(zip(JOINT_ORDER, e)))[1]
+                             for e in np.eye(len(JOINT_ORDER))])
+        return qL, T
+
+    def rhs(self, t, q, v):
+        qL, vL = self._state(q, v)
+        qdd, u, power = self.inner.rhs(t, qL, vL)
+        return self.joint_rows @ qdd, u, power
+
+    def project(self, t, q, v, tol: float = 1e-13, max_iter: int = 20):
+        pos, rate, _ = tb.motor_law(self.p, t)
+        q = q.copy()
+        for it in range(max_iter):
+            qL, T = self._map(q)
+            e = np.concatenate([self.L.constraints(qL), q[self.motor_rows] - pos])
+            G = np.vstack([self.L.jacobian(qL) @ T, np.eye(len(q))[self.motor_rows]])
+            if it >= 2 and np.linalg.norm(e) <= tol:
+                break
+            q -= np.linalg.lstsq(G, e, rcond=None)[0]
+        else:
+            raise ClosureNotConverged(float(np.linalg.norm(e)), tol, max_iter, "ten-bar projection (Lagrange, joints)")
+        err = G @ v - np.concatenate([np.zeros(G.shape[0] - 2), rate])
+        return q, v - np.linalg.lstsq(G, err, rcond=None)[0]
+
+    def residual(self, t, q):
+        return self.inner.residual(t, self._state(q, 0 * q)[0])
+
+    def energy(self, q, v):
+        return self.inner.energy(*self._state(q, v))
+
+    def joint_angles(self, q):
+        return q.copy()
+
+
+@dataclass(frozen=True)
+class Trajectory:
+    """Samples at every step: time (s), joint angles (rad, `JOINT_ORDER`), motor torques (N m, at the
+    step's start state), closure residual (m), energy E (J) and net external work W (J).
+
+    E - W is constant for exact dynamics: `energy_error` is its largest drift.
+    """
+
+    t: np.ndarray
+    q: np.ndarray
+    v: np.ndarray
+    angles: np.ndarray
+    torques: np.ndarray
+    residual: np.ndarray
+    energy: np.ndarray
+    work: np.ndarray
+
+    @property
+    def energy_error(self) -> float:
+        balance = self.energy - self.work
+        return float(np.max(np.abs(balance - balance[0])))
+
+
+def integrate(system: DeploymentSystem, q0: np.ndarray, v0: np.ndarray, t_end: float, dt: float,
+              project: bool = True, t0: float = 0.0) -> Trajectory:
+    """Fixed-step RK4 of (q, v, W) from t0 to t_end, projecting after each step when `project`.
+
+    Args:
+        system: the dynamics model.
+        q0, v0: initial state on the constraint manifold.
+        t_end, dt: end time and step (s).
+        project: project (q, v) onto the closures and motor laws after every step.
+    """
+    steps = int(round((t_end - t0) / dt))
+    q, v, w = q0.copy(), v0.copy(), 0.0
+    rows = {k: [] for k in ("t", "q", "v", "angles", "torques", "residual", "energy", "work")}
+
+    def record(t, a_u):
+        rows["t"].append(t)
+        rows["q"].append(q.copy())
+        rows["v"].append(v.copy())
+        rows["angles"].append(system.joint_angles(q))
+        rows["torques"].append(a_u)
+        rows["residual"].append(system.residual(t, q))
+        rows["energy"].append(system.energy(q, v))
+        rows["work"].append(w)
+
+    for n in range(steps):
+        t = t0 + n * dt
+        a1, u1, p1 = system.rhs(t, q, v)
+        record(t, u1)
+        q2, v2 = q + dt / 2 * v, v + dt / 2 * a1
+        a2, _, p2 = system.rhs(t + dt / 2, q2, v2)
+        q3, v3 = q + dt / 2 * v2, v + dt / 2 * a2
+        a3, _, p3 = system.rhs(t + dt / 2, q3, v3)
+        q4, v4 = q + dt * v3, v + dt * a3
+        a4, _, p4 = system.rhs(t + dt, q4, v4)
+        q = q + dt / 6 * (v + 2 * v2 + 2 * v3 + v4)
+        v = v + dt / 6 * (a1 + 2 * a2 + 2 * a3 + a4)
+        w = w + dt / 6 * (p1 + 2 * p2 + 2 * p3 + p4)
+        if project:
+            q, v = system.project(t + dt, q, v)
+    _, u_end, _ = system.rhs(t0 + steps * dt, q, v)
+    record(t0 + steps * dt, u_end)
+    return Trajectory(**{k: np.array(val) for k, val in rows.items()})
+
+
+def stowed_state(mechanism) -> np.ndarray:
+    """Pinocchio q of the stowed pose (motors at their stowed angles, rocker at `stowed_rocker`)."""
+    return mechanism.home_q.copy()
+
+
+def lagrange_state(params: tb.TenBarParams, q_pin: np.ndarray, v_pin: np.ndarray, mechanism) -> tuple[np.ndarray, np.ndarray]:
+    """Reference-point coordinates and rates of a Pinocchio state (numpy forward kinematics)."""
+    angles = {j: float(q_pin[mechanism.q_index(j)]) for j in JOINT_ORDER}
+    rates = {j: float(v_pin[mechanism.v_index(j)]) for j in JOINT_ORDER}
+    return tb.lagrange_from_joints(params, angles, rates)
+
+
+def deploy(system: DeploymentSystem, q0: np.ndarray, dt: float, t_end: float | None = None, **kw) -> Trajectory:
+    """Integrate from rest at q0 over the deployment (default: t in [0, deploy_time])."""
+    p = system.p if hasattr(system, "p") else None
+    end = t_end if t_end is not None else p.deploy_time
+    return integrate(system, q0, np.zeros_like(q0), end, dt, **kw)
+
+
+def lagrange_start(params: tb.TenBarParams) -> np.ndarray:
+    """Reference-point coordinates of the stowed pose (closed form)."""
+    return tb.lagrange_coordinates(params, tb.stowed_pose(params))
+
+
+__all__ = ["JOINT_ORDER", "PinocchioDeployment", "LagrangeDeployment", "Trajectory", "integrate", "deploy",
+           "stowed_state", "lagrange_state", "lagrange_start", "lagrange"]
