@@ -138,6 +138,9 @@ def project_velocity(J: np.ndarray, v_inputs: np.ndarray, input_v: np.ndarray, f
     Raises:
         SingularConfiguration: the passive block is singular (the inputs do not determine the motion).
     """
+    if free_v.size > independent_rows:
+        raise SingularConfiguration(float("inf"), f"{free_v.size} free coordinates but only {independent_rows} independent "
+                                    "closure rows: the inputs do not determine the motion (give more inputs)")
     cond = passive_condition(J, free_v, independent_rows)
     if cond > SINGULAR_COND:
         raise SingularConfiguration(cond, "passive block of the closure Jacobian: inputs do not determine the motion")
