@@ -40,10 +40,10 @@ class Spherical2DofParams(MechanismParams):
     beta_platform: float = param(math.radians(90.0), "rad",
                                  "angle of the platform axes v_i from -Z (absent from the paper; 90 deg: in the platform plane)",
                                  ours=True)
-    eta11: float = param(0.0, "rad", "base azimuth of u_1 from u_1 (0 by definition of X0)")
-    eta12: float = param(math.radians(90.0), "rad", "base azimuth of u_2 from u_1")
-    eta21: float = param(0.0, "rad", "platform azimuth of v_1 from v_1 (0 by definition of X)")
-    eta22: float = param(math.radians(90.0), "rad", "platform azimuth of v_2 from v_1")
+    eta11: float = param(0.0, "rad", "base azimuth of limb 1's motor axis u_1 (the reference: 0 by definition of X0)")
+    eta12: float = param(math.radians(90.0), "rad", "base azimuth of limb 2's motor axis u_2 from u_1")
+    eta21: float = param(0.0, "rad", "platform azimuth of limb 1's platform axis v_1 (the reference: 0 by definition of X)")
+    eta22: float = param(math.radians(90.0), "rad", "platform azimuth of limb 2's platform axis v_2 from v_1")
     radius: float = param(0.12, "m", "sphere radius of the limb links (joint points)", ours=True)
     link_width: float = param(0.02, "m", "square section side of the limb links", ours=True)
     density: float = param(2700.0, "kg/m^3", "aluminium limb links", ours=True)
