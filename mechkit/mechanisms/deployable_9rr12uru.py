@@ -1,0 +1,127 @@
+"""The 9RR-12URU deployable composite element (Xu et al. 2017, references/003, Fig. 1).
+
+Three 3RR-3URU units H-ABE, J-AFC, I-ADG (`tetra_3rr3uru`) share the fixed node A, turned by 0,
+-120 and +120 deg about z (eq. 8), joined by the URU constraint chains EC, DF, BG: 43 bodies of the
+paper plus 24 Hooke crosses, 66 tree coordinates, 12 cuts of 5 rows = 60 rows, rank 59: 7 DOF with
+one redundant constraint (eq. 5). Drives (section 3.2): fold at H, J, I (web rods AH, AJ, AI),
+attitude at B, F, G (web rods BH, FJ, GI) and web rod EH at H (see `ACTUATED`);
+`tetra_3rr3uru.web_joint_motion` gives their joint laws.
+
+Scenes: `fold` (the 200 s fold, closure solved along it with a warm start) and `fold_dynamics`
+(constrained inverse dynamics along it).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import TYPE_CHECKING
+
+import numpy as np
+import pinocchio as pin
+
+from mechkit.exceptions import InvalidParameters
+from mechkit.mechanisms.tetra_3rr3uru import TetraParams, drive_inputs
+from mechkit.mechanisms.truss_geometry import FOLD_DURATION, drive_state
+from mechkit.params import param
+from mechkit.registry import MechanismSpec
+
+if TYPE_CHECKING:
+    from mechkit.mechanism import Mechanism
+
+#: Fold at H, J, I and attitude at B, F, G as in the paper; rod EH at H in place of the attitude drive
+#: at E (B and E attitudes are tied to first order in this model, see `tetra_3rr3uru.ACTUATED`).
+ACTUATED = ("AH_H", "AJ_J", "AI_I", "BH_B", "FJ_F", "GI_G", "EH_H")
+NODES = ("A", "B", "C", "D", "E", "F", "G", "H", "I", "J")
+
+
+@dataclass(frozen=True)
+class DeployableParams(TetraParams):
+    l3: float = param(0.250, "m", "each link of the constraint chains EC, DF, BG (paper silent; = l2)", ours=True)
+
+    def validate(self) -> None:
+        super().validate()
+        nodes = self.geometry().node_positions(self.alpha_ref, self.gamma_ref)
+        for chain in ("EC", "DF", "BG"):
+            chord = float(np.linalg.norm(nodes[chain[1]] - nodes[chain[0]]))
+            if chord >= 2.0 * self.l3:
+                raise InvalidParameters("l3", self.l3, f"chain {chain} cannot reach: chord {chord:.4f} m >= 2 l3")
+
+
+@dataclass(frozen=True)
+class FoldSample:
+    """One instant of the fold: time (s), q, v, a, and the solver iterations it took."""
+
+    t: float
+    q: np.ndarray
+    v: np.ndarray
+    a: np.ndarray
+    iterations: int
+
+
+def apexes(mech: Mechanism) -> tuple[str, ...]:
+    """Unit apexes present in the model (H for the unit; H, J, I for the composite)."""
+    return tuple(a for a in ("H", "J", "I") if mech.model.existJointName(f"A{a}_{a}"))
+
+
+def fold(mech: Mechanism, times: np.ndarray, tol: float = 1e-12) -> list[FoldSample]:
+    """The paper's fold: drive laws alpha(t), gamma(t) on every drive, closure solved at each time.
+
+    Warm start: each solve starts from the previous q advanced by v dt (first-order predictor).
+    Velocities and accelerations are the closure projections of the drive rates and accelerations.
+
+    Args:
+        mech: `tetra_3rr3uru` or `deployable_9rr12uru`.
+        times: increasing times in [0, 200] s.
+        tol: closure residual to reach (m / dimensionless).
+    """
+    from mechkit import kinematics
+
+    times = np.asarray(times, dtype=float)
+    if times.ndim != 1 or np.any(np.diff(times) <= 0):
+        raise InvalidParameters("times", times, "must be a strictly increasing 1-D array")
+    units = apexes(mech)
+    out: list[FoldSample] = []
+    q, v, t_prev = mech.home_q.copy(), np.zeros(mech.model.nv), None
+    for t in times:
+        s = drive_state(t)
+        angles, rates, accs = drive_inputs(mech.params, s, mech.actuated, units)
+        guess = q if t_prev is None else pin.integrate(mech.model, q, v * (t - t_prev))
+        for joint, value in angles.items():
+            guess[mech.q_index(joint)] = value
+        free = np.setdiff1d(np.arange(mech.model.nv), [mech.v_index(j) for j in angles])
+        q, iterations = kinematics.solve_closure(mech.rows, mech.data, guess, free, tol=tol)
+        v = mech.velocities(q, rates, list(rates))
+        a = mech.accelerations(q, v, accs, list(accs))
+        out.append(FoldSample(float(t), q, v, a, iterations))
+        t_prev = t
+    return out
+
+
+def node_positions(mech: Mechanism, q: np.ndarray) -> dict[str, np.ndarray]:
+    """World positions (m) of the node centres in the model at q (Pinocchio forward kinematics)."""
+    pin.forwardKinematics(mech.model, mech.data, q)
+    pin.updateFramePlacements(mech.model, mech.data)
+    out = {}
+    for node in NODES:
+        name = f"node_{node}"
+        if mech.model.existFrame(name):
+            out[node] = mech.data.oMf[mech.model.getFrameId(name)].translation.copy()
+    return out
+
+
+def fold_times(step: float = 1.0) -> np.ndarray:
+    """Sample times of the 200 s fold, s."""
+    if not 0.0 < step <= FOLD_DURATION:
+        raise InvalidParameters("step", step, f"must lie in (0, {FOLD_DURATION}] s")
+    return np.linspace(0.0, FOLD_DURATION, int(round(FOLD_DURATION / step)) + 1)
+
+
+SPEC = MechanismSpec(
+    name="deployable_9rr12uru",
+    params=DeployableParams,
+    xacro="deployable_9rr12uru.urdf.xacro",
+    actuated=ACTUATED,
+    gruebler_dof=7,
+    home=lambda p: {joint: 0.0 for joint in ACTUATED},
+    summary="9RR-12URU deployable composite element of a truss antenna (3 tetrahedral units + 3 URU chains)",
+)

@@ -1,0 +1,222 @@
+"""The paper's analytic kinematics of the 3RR-3URU unit and the 9RR-12URU composite (numpy only).
+
+Xu et al., Journal of Deep Space Exploration 4(4) 2017 (references/003), eq. (6)-(13) and the
+drive laws of section 3.2. Frames: A-xyz at the fixed node A, z up; O1-x1y1z1 at the circumcentre
+O1 of triangle ABE, z1 along O1H, x1 along O1A. Units SI and radians.
+
+Stated reading of what the text leaves open (see docs/mechanisms/deployable_9rr12uru.md):
+
+- Sign of gamma. ``acos`` in the printed law gives |gamma|; the text's initial value
+  gamma0 = -3.571 deg (the angle from x to x1 about y, eq. 7) is what the law gives at t = 0 with
+  the minus sign, so gamma(t) = -acos(...) here (it stays negative over the 200 s).
+- Node orientation (eq. 9). Each outer node turns relative to O1 about its web-rod joint axis
+  (the tangent t = z1 x r of the circumcircle at the node) by -(gamma - gamma0), the same sense as
+  the fixed node A turns relative to O1 (Rot(y1, -(gamma - gamma0))). For B, t = S4, so
+  R_B = R_O1 Rot(S4, -(gamma - gamma0)) R_B0; for E, t = -S6, so R_E = R_O1 Rot(S6, gamma - gamma0) R_E0.
+  Eq. (9) as printed uses +(gamma - gamma0) about both S4 and S6, which cannot both hold in a
+  motion symmetric about the plane x1-z1; our multibody model realises the reading above.
+- Euler convention of R_B0, R_E0: "Rot(x1, a)(y1, b)(z1, c)" is the product Rx(a) Ry(b) Rz(c)
+  (successive rotations about the moving axes).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from mechkit.exceptions import InvalidParameters
+
+DEG = np.pi / 180.0
+
+# Drive laws of section 3.2 (printed constants).
+XI0, XI_RATE = 23.171 * DEG, 0.25 * DEG  # rad, rad/s
+ZETA0, ZETA_RATE = 21.574 * DEG, 0.15 * DEG  # rad, rad/s
+ALPHA_GAIN = 0.490
+GAMMA_A, GAMMA_B, GAMMA_C, GAMMA_D, GAMMA_E = 0.267, 0.172, 0.718, 0.413, 1.392
+FOLD_DURATION = 200.0  # s, "200 s of simulation fold it fully"
+
+# Initial node orientations relative to O1 (section 3.2), Rx(a) Ry(b) Rz(c).
+GAMMA0 = -3.571 * DEG
+R_B0_ANGLES = (-92.12 * DEG, 29.56 * DEG, -92.03 * DEG)
+R_E0_ANGLES = (-87.09 * DEG, -24.42 * DEG, -91.59 * DEG)
+
+#: Unit yaw about z of the three units (H-ABE, J-AFC, I-ADG), rad, eq. (8).
+UNIT_YAW = {"H": 0.0, "J": -2.0 * np.pi / 3.0, "I": 2.0 * np.pi / 3.0}
+#: Node letters of each unit: apex, "B-like" node, "E-like" node (images of H, B, E under eq. 8).
+UNIT_NODES = {"H": ("H", "B", "E"), "J": ("J", "C", "F"), "I": ("I", "D", "G")}
+
+
+def rot_x(a: float) -> np.ndarray:
+    c, s = np.cos(a), np.sin(a)
+    return np.array([[1.0, 0, 0], [0, c, -s], [0, s, c]])
+
+
+def rot_y(a: float) -> np.ndarray:
+    c, s = np.cos(a), np.sin(a)
+    return np.array([[c, 0, s], [0, 1.0, 0], [-s, 0, c]])
+
+
+def rot_z(a: float) -> np.ndarray:
+    c, s = np.cos(a), np.sin(a)
+    return np.array([[c, -s, 0], [s, c, 0], [0, 0, 1.0]])
+
+
+def rot_axis(k: np.ndarray, angle: float) -> np.ndarray:
+    """Eq. (10): rotation by `angle` (rad) about the unit axis k (Rodrigues)."""
+    k = np.asarray(k, dtype=float)
+    K = np.array([[0, -k[2], k[1]], [k[2], 0, -k[0]], [-k[1], k[0], 0]])
+    return np.eye(3) + np.sin(angle) * K + (1.0 - np.cos(angle)) * (K @ K)
+
+
+def euler_xyz(angles: tuple[float, float, float]) -> np.ndarray:
+    """Rx(a) Ry(b) Rz(c): the reading of the paper's "Rot(x1, a)(y1, b)(z1, c)"."""
+    return rot_x(angles[0]) @ rot_y(angles[1]) @ rot_z(angles[2])
+
+
+def rpy_angles(R: np.ndarray) -> np.ndarray:
+    """Eq. (13): (gamma_x, gamma_y, gamma_z) with R = Rot(z, gz) Rot(y, gy) Rot(x, gx), rad."""
+    return np.array([np.arctan2(R[2, 1], R[2, 2]),
+                     np.arctan2(-R[2, 0], np.hypot(R[0, 0], R[1, 0])),
+                     np.arctan2(R[1, 0], R[0, 0])])
+
+
+def half_angle_beta(l1: float, l2: float) -> float:
+    """beta = asin(l2 / (2 l1)) (eq. 6): half the angle B-A-E of the base triangle, rad."""
+    if not (0.0 < l2 < 2.0 * l1):
+        raise InvalidParameters("l2", l2, f"needs 0 < l2 < 2 l1 = {2 * l1} m for beta = asin(l2/(2 l1))")
+    return float(np.arcsin(l2 / (2.0 * l1)))
+
+
+# ----------------------------------------------------------------------------------------- drives
+def _alpha_law(t):
+    xi = XI0 + XI_RATE * t
+    return np.arcsin(ALPHA_GAIN * np.cos(xi))
+
+
+def _alpha_rate_law(t):
+    xi = XI0 + XI_RATE * t
+    c = ALPHA_GAIN * np.cos(xi)
+    return -ALPHA_GAIN * np.sin(xi) * XI_RATE / np.sqrt(1.0 - c * c)
+
+
+def _gamma_cos(t):
+    cx, cz = np.cos(XI0 + XI_RATE * t), np.cos(ZETA0 + ZETA_RATE * t)
+    return GAMMA_A * cx * cz + np.sqrt((GAMMA_B * cx**2 - GAMMA_C) * (GAMMA_D * cz**2 - GAMMA_E))
+
+
+def _gamma_law(t):
+    return -np.arccos(_gamma_cos(t))
+
+
+def _gamma_rate_law(t):
+    xi, ze = XI0 + XI_RATE * t, ZETA0 + ZETA_RATE * t
+    cx, sx, cz, sz = np.cos(xi), np.sin(xi), np.cos(ze), np.sin(ze)
+    p, q = GAMMA_B * cx**2 - GAMMA_C, GAMMA_D * cz**2 - GAMMA_E
+    dp, dq = -2.0 * GAMMA_B * cx * sx * XI_RATE, -2.0 * GAMMA_D * cz * sz * ZETA_RATE
+    dc = GAMMA_A * (-sx * XI_RATE * cz - cx * sz * ZETA_RATE) + (dp * q + p * dq) / (2.0 * np.sqrt(p * q))
+    c = _gamma_cos(t)
+    return dc / np.sqrt(1.0 - c * c)  # d/dt(-acos c) = +c' / sqrt(1 - c^2)
+
+
+def _complex_step(f, t: float) -> float:
+    h = 1e-30
+    return float(np.imag(f(t + 1j * h)) / h)
+
+
+@dataclass(frozen=True)
+class DriveState:
+    """The paper's drive angles at one instant: fold alpha and attitude gamma (rad, rad/s, rad/s^2)."""
+
+    t: float
+    alpha: float
+    gamma: float
+    alpha_rate: float
+    gamma_rate: float
+    alpha_acc: float
+    gamma_acc: float
+
+
+def drive_state(t: float) -> DriveState:
+    """alpha(t) = asin(0.490 cos xi), gamma(t) = -acos(...) (our sign reading), with derivatives.
+
+    First derivatives are analytic; second derivatives by complex step of the analytic first ones
+    (exact to rounding).
+    """
+    t = float(t)
+    if not np.isfinite(t) or t < 0.0 or t > FOLD_DURATION:
+        raise InvalidParameters("t", t, f"the paper's drive laws are stated for 0 <= t <= {FOLD_DURATION} s")
+    return DriveState(t, float(_alpha_law(t)), float(_gamma_law(t)), float(_alpha_rate_law(t)),
+                      float(_gamma_rate_law(t)), _complex_step(_alpha_rate_law, t), _complex_step(_gamma_rate_law, t))
+
+
+# ----------------------------------------------------------------------------------------- nodes
+@dataclass(frozen=True)
+class TrussGeometry:
+    """Dimensions of the composite: web rod L, folding links l1 (to A) and l2 (B-E type), m."""
+
+    L: float
+    l1: float
+    l2: float
+
+    @property
+    def beta(self) -> float:
+        return half_angle_beta(self.l1, self.l2)
+
+    def radial(self, which: str) -> np.ndarray:
+        """Unit vector from O1 to node A, B or E in O1-x1y1z1 (eq. 6 divided by L sin alpha)."""
+        b2 = 2.0 * self.beta
+        return {"A": np.array([1.0, 0, 0]), "B": np.array([-np.cos(b2), -np.sin(b2), 0]),
+                "E": np.array([-np.cos(b2), np.sin(b2), 0])}[which]
+
+    def tangent(self, which: str) -> np.ndarray:
+        """z1 x r at node A, B or E (O1 frame): the axis of its web-rod joints; = y1, S4, -S6."""
+        return np.cross([0.0, 0.0, 1.0], self.radial(which))
+
+    def unit_local(self, alpha: float) -> dict[str, np.ndarray]:
+        """Eq. (6) shifted to the origin A: positions of A, B, E, H relative to A in O1 axes, m."""
+        R = self.L * np.sin(alpha)
+        o1 = np.array([-R, 0.0, 0.0])  # O1 relative to A, O1 axes
+        return {"A": np.zeros(3), "B": o1 + R * self.radial("B"), "E": o1 + R * self.radial("E"),
+                "H": o1 + np.array([0.0, 0.0, self.L * np.cos(alpha)])}
+
+    def unit_local_rate(self, alpha: float) -> dict[str, np.ndarray]:
+        """d/d alpha of `unit_local`, m/rad."""
+        dR = self.L * np.cos(alpha)
+        d_o1 = np.array([-dR, 0.0, 0.0])
+        return {"A": np.zeros(3), "B": d_o1 + dR * self.radial("B"), "E": d_o1 + dR * self.radial("E"),
+                "H": d_o1 + np.array([0.0, 0.0, -self.L * np.sin(alpha)])}
+
+    def node_positions(self, alpha: float, gamma: float) -> dict[str, np.ndarray]:
+        """Eq. (6)-(8): every node A..J in A-xyz, m."""
+        local = self.unit_local(alpha)
+        out = {"A": np.zeros(3)}
+        for apex, (h, b, e) in UNIT_NODES.items():
+            T = rot_z(UNIT_YAW[apex]) @ rot_y(gamma)
+            out.update({h: T @ local["H"], b: T @ local["B"], e: T @ local["E"]})
+        return out
+
+    def node_velocities(self, alpha: float, gamma: float, alpha_rate: float, gamma_rate: float) -> dict[str, np.ndarray]:
+        """Time derivative of eq. (7)-(8), m/s."""
+        local, dlocal = self.unit_local(alpha), self.unit_local_rate(alpha)
+        dRy = np.array([[-np.sin(gamma), 0, np.cos(gamma)], [0, 0, 0], [-np.cos(gamma), 0, -np.sin(gamma)]])
+        out = {"A": np.zeros(3)}
+        for apex, (h, b, e) in UNIT_NODES.items():
+            Rz = rot_z(UNIT_YAW[apex])
+            for node, key in ((h, "H"), (b, "B"), (e, "E")):
+                out[node] = Rz @ (dRy @ local[key] * gamma_rate + rot_y(gamma) @ dlocal[key] * alpha_rate)
+        return out
+
+    def node_rotation(self, node: str, gamma: float, gamma0: float = GAMMA0) -> np.ndarray:
+        """Eq. (9) under our reading: orientation of node B or E (unit H-ABE) in A-xyz.
+
+        R = Rot(y, gamma) Rot(t, -(gamma - gamma0)) R_0 with t = S4 (B) or -S6 (E).
+        """
+        if node not in ("B", "E"):
+            raise InvalidParameters("node", node, "eq. (9) gives the orientations of B and E")
+        r0 = euler_xyz(R_B0_ANGLES if node == "B" else R_E0_ANGLES)
+        return rot_y(gamma) @ rot_axis(self.tangent(node), -(gamma - gamma0)) @ r0
+
+    def node_rpy(self, node: str, gamma: float, gamma0: float = GAMMA0) -> np.ndarray:
+        """Eq. (11)-(13): RPY angles (gamma_x, gamma_y, gamma_z) of node B or E, rad."""
+        return rpy_angles(self.node_rotation(node, gamma, gamma0))
