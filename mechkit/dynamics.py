@@ -15,7 +15,7 @@ import numpy as np
 import pinocchio as pin
 import scipy.linalg
 
-from mechkit.closures import ClosureRows
+from mechkit.closures import ClosureRows, cross
 from mechkit.exceptions import SingularConfiguration
 from mechkit.kinematics import numerical_rank
 
@@ -88,7 +88,7 @@ def kkt_forward(model: pin.Model, data: pin.Data, q, v, tau, J: np.ndarray, gamm
 
 def wrench_world_at(point: np.ndarray, force: np.ndarray, moment: np.ndarray) -> pin.Force:
     """A world wrench given at a point, as a Pinocchio Force about the world origin."""
-    return pin.Force(force, moment + np.cross(point, force))
+    return pin.Force(force, moment + cross(point, force))
 
 
 def closure_fext(model: pin.Model, data: pin.Data, rows: ClosureRows, lam: np.ndarray, fext=None):
@@ -111,12 +111,9 @@ def closure_fext(model: pin.Model, data: pin.Data, rows: ClosureRows, lam: np.nd
 
 def joint_wrenches_world(model: pin.Model, data: pin.Data) -> np.ndarray:
     """(njoints, 6): data.f rotated to world axes, moment about each joint origin."""
-    out = np.zeros((model.njoints, 6))
-    for i in range(1, model.njoints):
-        R = data.oMi[i].rotation
-        out[i, :3] = R @ data.f[i].linear
-        out[i, 3:] = R @ data.f[i].angular
-    return out
+    f = np.array([w.vector for w in data.f]).reshape(-1, 2, 3)
+    R = np.array([M.rotation for M in data.oMi])
+    return np.einsum("jab,jkb->jka", R, f).reshape(-1, 6)
 
 
 @dataclass
@@ -177,11 +174,12 @@ def inverse_dynamics(p: InverseDynamicsProblem, q, v, a, fext=None, determinacy:
     cond = np.nan
     square = A.shape[0] == A.shape[1]
     if square and not determinacy:
-        lu, piv = scipy.linalg.lu_factor(A, check_finite=False)
-        diag = np.abs(np.diag(lu))
-        if diag.min() <= 1e-13 * diag.max():
-            raise SingularConfiguration(float(diag.max() / max(diag.min(), 1e-300)), "[S, J^T]: efforts and multipliers undetermined")
-        x = scipy.linalg.lu_solve((lu, piv), b, check_finite=False)
+        try:
+            x = np.linalg.solve(A, b)
+        except np.linalg.LinAlgError:
+            raise SingularConfiguration(float("inf"), "[S, J^T]: efforts and multipliers undetermined") from None
+        if not np.all(np.isfinite(x)):
+            raise SingularConfiguration(float("inf"), "[S, J^T]: efforts and multipliers undetermined")
     else:
         U, s, Vt = np.linalg.svd(A, full_matrices=True)
         r = numerical_rank(s)
