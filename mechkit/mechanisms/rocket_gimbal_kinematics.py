@@ -118,13 +118,24 @@ def strokes(geo: GimbalGeometry, alpha: float, beta: float) -> np.ndarray:
     return actuator_lengths(geo, alpha, beta) - geo.nominal_lengths
 
 
+def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """Cross product of two 3-vectors (np.cross costs ~10x more on small arrays)."""
+    return np.array([a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]])
+
+
+def _lengths_and_jacobian(geo: GimbalGeometry, alpha: float, beta: float) -> tuple[np.ndarray, np.ndarray]:
+    """(L_A, L_B) m and d(L_A, L_B)/d(alpha, beta) (2, 2) m/rad at one pose."""
+    moved = geo.engine_pivots @ attitude(alpha, beta).T
+    lengths = np.linalg.norm(moved - geo.frame_pivots, axis=1)
+    axes = np.array(hinge_axes(alpha))
+    # dL/d(angle) = u . (axis x p) = axis . (p x u) = axis . (o x p) / L
+    moments = np.array([_cross(o, p) for o, p in zip(geo.frame_pivots, moved)]) / lengths[:, None]
+    return lengths, moments @ axes.T
+
+
 def length_jacobian(geo: GimbalGeometry, alpha: float, beta: float) -> np.ndarray:
     """d(L_A, L_B)/d(alpha, beta), (2, 2) m/rad, analytic (rows: actuators; columns: alpha, beta)."""
-    moved = geo.engine_pivots @ attitude(alpha, beta).T
-    legs = moved - geo.frame_pivots
-    units = legs / np.linalg.norm(legs, axis=1)[:, None]
-    axes = hinge_axes(alpha)
-    return np.array([[u @ np.cross(axis, p) for axis in axes] for u, p in zip(units, moved)])
+    return _lengths_and_jacobian(geo, alpha, beta)[1]
 
 
 def fk_newton(geo: GimbalGeometry, stroke: np.ndarray, guess: tuple[float, float] = (0.0, 0.0),
@@ -150,11 +161,11 @@ def fk_newton(geo: GimbalGeometry, stroke: np.ndarray, guess: tuple[float, float
         raise InvalidParameters("stroke", stroke, "need two finite strokes with lA0 + dl > 0 (m)")
     x = np.array(guess, dtype=float)
     for it in range(1, max_iter + 1):
-        jac = length_jacobian(geo, *x)
-        cond = np.linalg.cond(jac)
-        if not np.isfinite(cond) or cond > 1e12:
-            raise SingularConfiguration(cond, "actuator-length Jacobian d(L_A, L_B)/d(alpha, beta)")
-        step = np.linalg.solve(jac, target - actuator_lengths(geo, *x))
+        lengths, jac = _lengths_and_jacobian(geo, *x)
+        det = jac[0, 0] * jac[1, 1] - jac[0, 1] * jac[1, 0]
+        if not abs(det) > 1e-12 * np.abs(jac).max() ** 2:
+            raise SingularConfiguration(float(np.linalg.cond(jac)), "actuator-length Jacobian d(L_A, L_B)/d(alpha, beta)")
+        step = np.linalg.solve(jac, target - lengths)
         x += step
         if np.max(np.abs(step)) < tol:
             return x

@@ -115,16 +115,18 @@ def degree16_polynomial(eqs: np.ndarray) -> Polynomial:
 
 
 def root_condition(poly: Polynomial, root: complex) -> float:
-    """Condition number of a root x of p: sum_k |c_k| |x|^k / (max(1, |x|) |p'(x)|).
+    """Normwise condition number of a root x of p: |c|_2 |(1, x, ..., x^n)|_2 / (max(1, |x|) |p'(x)|).
 
-    A relative perturbation eps of every coefficient moves the root by about cond * eps, measured
-    relative to max(1, |x|) (absolute near 0, where a = tan(alpha/2) ~ alpha/2): log10(cond) digits
-    are lost. Infinite at a multiple root.
+    A perturbation of the coefficient vector of relative 2-norm eps (what a backward-stable root
+    finder such as the companion-matrix eigenvalues of `Polynomial.roots` commits) moves the root by
+    about cond * eps, measured relative to max(1, |x|) (absolute near 0, where a = tan(alpha/2) ~
+    alpha/2): log10(cond) digits are lost. Infinite at a multiple root.
     """
     x = complex(root)
-    mags = np.abs(poly.coef) * np.abs(x) ** np.arange(poly.coef.size)
+    powers = np.abs(x) ** np.arange(poly.coef.size)
     slope = max(1.0, abs(x)) * abs(poly.deriv()(x))
-    return float(np.sum(mags) / slope) if slope > 0 else float("inf")
+    scale = np.linalg.norm(poly.coef) * np.linalg.norm(powers)
+    return float(scale / slope) if slope > 0 else float("inf")
 
 
 @dataclass(frozen=True)
