@@ -168,6 +168,28 @@ def test_dynamics_pinocchio_vs_soc(mech):
     assert errors["consistency"] < 1e-10
 
 
+def test_motor_power_equals_rate_of_energy(mech):
+    """sum tau_i theta_i1' = dE/dt (kinetic + gravity), E from the body motions, by central differences."""
+    g, h = 9.81, 1e-4
+
+    def energy(t: float) -> float:
+        total = 0.0
+        for b in soc.body_motions(P, *(x for x in sph.cone_attitude(t))).values():
+            v = kin.cross(b.omega, b.com)
+            total += 0.5 * b.mass * v @ v + 0.5 * b.omega @ b.inertia @ b.omega + b.mass * g * b.com[2]
+        return total
+
+    for t in checks.cone_times(6):
+        phi, phi_d, phi_dd = sph.cone_attitude(t)
+        q, v, a = sph.state(mech, phi, phi_d, phi_dd)
+        rates = v[[mech.v_index(j) for j in mech.actuated]]
+        reference = (energy(t + h) - energy(t - h)) / (2 * h)
+        pin_power = rates @ [mech.inverse_dynamics(q, v, a).efforts[j] for j in mech.actuated]
+        soc_power = rates @ [soc.solve(P, phi, phi_d, phi_dd).efforts[j] for j in mech.actuated]
+        assert pin_power == pytest.approx(reference, abs=1e-8)
+        assert soc_power == pytest.approx(reference, abs=1e-8)
+
+
 def test_support_determinacy(mech):
     """Every body turns about O: forces at O are indeterminate, moments (about O) determinate."""
     phi, phi_d, phi_dd = (x[0] for x in sph.cone_attitude(np.array([0.4])))
@@ -180,12 +202,14 @@ def test_support_determinacy(mech):
 
 
 def test_tools_run(tmp_path):
-    """Smoke test of the basin and benchmark tools on tiny runs."""
+    """Smoke test of the basin, benchmark and cone-scene tools on tiny runs."""
     import importlib.util
     from pathlib import Path
 
     tools = Path(__file__).resolve().parent.parent / "tools"
-    for name, kwargs in (("spherical_2dof_basin", {"directions": 2}), ("spherical_2dof_bench", {"repeat": 8})):
+    runs = (("spherical_2dof_basin", {"directions": 2}), ("spherical_2dof_bench", {"repeat": 8}),
+            ("spherical_2dof_cone", {"samples": 6}))
+    for name, kwargs in runs:
         spec = importlib.util.spec_from_file_location(name, tools / f"{name}.py")
         module = importlib.util.module_from_spec(spec)
         spec.loader.exec_module(module)

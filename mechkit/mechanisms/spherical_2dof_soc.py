@@ -32,7 +32,7 @@ import numpy as np
 from mechkit.mechanisms import spherical_2dof_kinematics as kin
 from mechkit.validation.soc import BodyLoad, SKCInstant, SOCResult, WrenchSite, solve_soc
 
-__all__ = ["body_inertias", "skcs", "solve"]
+__all__ = ["body_inertias", "BodyMotion", "body_motions", "skcs", "solve"]
 
 
 def _skew(c: np.ndarray) -> np.ndarray:
@@ -65,8 +65,9 @@ def body_inertias(p: kin.Geometry) -> dict[str, tuple[float, np.ndarray, np.ndar
 
 
 @dataclass(frozen=True)
-class _Motion:
-    """A body turning about O: mass, world inertia about the COM, COM (m), omega, alpha, COM accel."""
+class BodyMotion:
+    """A body turning about O at one instant (world): mass (kg), inertia about the COM (kg m^2),
+    COM (m), angular velocity (rad/s) and acceleration (rad/s^2)."""
 
     mass: float
     inertia: np.ndarray
@@ -82,9 +83,9 @@ class _Motion:
 
 
 def _motion(props: tuple[float, np.ndarray, np.ndarray], rot: np.ndarray, omega: np.ndarray,
-            alpha: np.ndarray) -> _Motion:
+            alpha: np.ndarray) -> BodyMotion:
     m, com, inertia = props
-    return _Motion(m, rot @ inertia @ rot.T, rot @ com, omega, alpha)
+    return BodyMotion(m, rot @ inertia @ rot.T, rot @ com, omega, alpha)
 
 
 def _moments_normal_to(axis: np.ndarray) -> np.ndarray:
@@ -108,18 +109,13 @@ def _columns(n: int, cols: dict[int, np.ndarray]) -> np.ndarray:
     return out
 
 
-def skcs(p: kin.Geometry, phi: Sequence[float], phi_d: Sequence[float], phi_dd: Sequence[float],
-         efforts: dict[str, float] | None = None, branches: Sequence[int] = (1, 1)) -> list[SKCInstant]:
-    """The SKCs at one instant of a platform motion (rad, rad/s, rad/s^2), in solving order.
-
-    Args:
-        efforts: motor torques (N m) solved by the first SKC; without them only the first SKC
-            (which solves them) is returned.
-    """
+def _bodies(p: kin.Geometry, phi: Sequence[float], phi_d: Sequence[float], phi_dd: Sequence[float],
+            branches: Sequence[int]) -> tuple[dict[str, BodyMotion], dict[int, tuple[np.ndarray, ...]]]:
+    """Every body's motion, and per limb its axes (u_i, w_i, v_i), from the paper's kinematics."""
     props = body_inertias(p)
     theta = kin.inverse_kinematics(p, phi, branches)
     omega_p, alpha_p = kin.hooke_rates(phi, phi_d, phi_dd)
-    ex, pitch = np.eye(3)[0], kin.rot_x(phi[0])[:, 1]
+    ex = np.eye(3)[0]
     body = {
         "cross": _motion(props["cross"], kin.rot_x(phi[0]), phi_d[0] * ex, phi_dd[0] * ex),
         "platform": _motion(props["platform"], kin.platform_rotation(phi), omega_p, alpha_p),
@@ -135,6 +131,25 @@ def skcs(p: kin.Geometry, phi: Sequence[float], phi_d: Sequence[float], phi_dd: 
         body[f"link{i}1"] = _motion(props[f"link{i}1"], frame1, w1, acc[0] * u)
         body[f"link{i}2"] = _motion(props[f"link{i}2"], frame2, w1 + rate[1] * w,
                                     acc[0] * u + acc[1] * w + kin.cross(w1, rate[1] * w))
+    return body, axes
+
+
+def body_motions(p: kin.Geometry, phi: Sequence[float], phi_d: Sequence[float], phi_dd: Sequence[float],
+                 branches: Sequence[int] = (1, 1)) -> dict[str, BodyMotion]:
+    """Motion of every moving body (cross, platform, link11, link12, link21, link22) at one instant."""
+    return _bodies(p, phi, phi_d, phi_dd, branches)[0]
+
+
+def skcs(p: kin.Geometry, phi: Sequence[float], phi_d: Sequence[float], phi_dd: Sequence[float],
+         efforts: dict[str, float] | None = None, branches: Sequence[int] = (1, 1)) -> list[SKCInstant]:
+    """The SKCs at one instant of a platform motion (rad, rad/s, rad/s^2), in solving order.
+
+    Args:
+        efforts: motor torques (N m) solved by the first SKC; without them only the first SKC
+            (which solves them) is returned.
+    """
+    body, axes = _bodies(p, phi, phi_d, phi_dd, branches)
+    ex, pitch = np.eye(3)[0], kin.rot_x(phi[0])[:, 1]
 
     # 1. the whole mechanism, support released: [cross (3), pitch, th11, th12, th21, th22]
     n = 8
