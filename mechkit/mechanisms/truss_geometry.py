@@ -89,7 +89,8 @@ def half_angle_beta(l1: float, l2: float) -> float:
 
 
 # ----------------------------------------------------------------------------------------- drives
-def _alpha_law(t):
+def alpha_law(t):
+    """alpha(t) = asin(0.490 cos xi), xi = 0.25 deg/s t + 23.171 deg (rad); complex-safe in t."""
     xi = XI0 + XI_RATE * t
     return np.arcsin(ALPHA_GAIN * np.cos(xi))
 
@@ -105,7 +106,8 @@ def _gamma_cos(t):
     return GAMMA_A * cx * cz + np.sqrt((GAMMA_B * cx**2 - GAMMA_C) * (GAMMA_D * cz**2 - GAMMA_E))
 
 
-def _gamma_law(t):
+def gamma_law(t):
+    """gamma(t) = -acos(...) (rad; our sign reading, see the module docstring); complex-safe in t."""
     return -np.arccos(_gamma_cos(t))
 
 
@@ -146,7 +148,7 @@ def drive_state(t: float) -> DriveState:
     t = float(t)
     if not np.isfinite(t) or t < 0.0 or t > FOLD_DURATION:
         raise InvalidParameters("t", t, f"the paper's drive laws are stated for 0 <= t <= {FOLD_DURATION} s")
-    return DriveState(t, float(_alpha_law(t)), float(_gamma_law(t)), float(_alpha_rate_law(t)),
+    return DriveState(t, float(alpha_law(t)), float(gamma_law(t)), float(_alpha_rate_law(t)),
                       float(_gamma_rate_law(t)), _complex_step(_alpha_rate_law, t), _complex_step(_gamma_rate_law, t))
 
 
