@@ -25,7 +25,7 @@ if TYPE_CHECKING:
 __all__ = ["METHODS", "REGULAR", "NEAR_SINGULAR", "fk_closure", "solve_fk", "BasinRow", "basin_study"]
 
 METHODS = ("paper", "newton", "closure")
-#: A regular pose of the cone scene (t = 0.25 s; cond(B) ~ 2), rad.
+#: A regular pose of the cone scene (t = 0.25 s; cond(B) = 1.2), rad.
 REGULAR = cone_attitude(0.25)[0]
 #: A pose 0.4 deg from the forward singularity det B = 0 (at pitch 25.4 deg for roll 12 deg); cond(B) ~ 70.
 NEAR_SINGULAR = np.radians([12.0, 25.0])
