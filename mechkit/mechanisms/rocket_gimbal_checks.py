@@ -114,7 +114,7 @@ def dynamics_agreement(mech: Mechanism, scene: SwingScene | None = None,
             scale = np.abs(reaction.wrench).max()
             rea = max(rea, np.abs(reaction.wrench - soc.reactions[joint]).max() / scale)
         cons = max(cons, *soc.consistency.values())
-    return DynamicsAgreement(eff, rea, indeterminate, cons, tuple(sorted(missing)))
+    return DynamicsAgreement(float(eff), float(rea), indeterminate, float(cons), tuple(sorted(missing)))
 
 
 def self_checks(mech: Mechanism) -> dict[str, float]:

@@ -23,7 +23,6 @@ from dataclasses import dataclass
 
 import numpy as np
 from numpy.polynomial import Polynomial
-from numpy.polynomial import polynomial as npoly
 
 from mechkit.exceptions import InvalidParameters
 from mechkit.mechanisms.rocket_gimbal_kinematics import (
@@ -157,7 +156,8 @@ def _common_b(eqs: np.ndarray, a: float, gap_tol: float) -> list[tuple[float, fl
     (gap, b) per common root, b being the root of the first equation. On the diagonal dlA = dlB
     the two equations coincide at a = 0 and both roots are common.
     """
-    (g0, g1, g2), (h0, h1, h2) = ([p(a) for p in _b_coefficients(e)] for e in eqs)
+    powers = np.array([1.0, a, a * a])
+    (g0, g1, g2), (h0, h1, h2) = (powers @ e for e in eqs)
     roots_g, roots_h = np.roots([g2, g1, g0]), np.roots([h2, h1, h0])
     common = []
     for x in roots_g:
@@ -171,13 +171,14 @@ def _common_b(eqs: np.ndarray, a: float, gap_tol: float) -> list[tuple[float, fl
 
 def _polish(eqs: np.ndarray, a: float, b: float, steps: int = 3) -> tuple[float, float]:
     """Newton steps on the two half-angle equations in (a, b) (a simple root of the pair)."""
-    da = [npoly.polyder(e, axis=0) for e in eqs]
-    db = [npoly.polyder(e, axis=1) for e in eqs]
     x = np.array([a, b])
     for _ in range(steps):
-        f = np.array([npoly.polyval2d(x[0], x[1], e) for e in eqs])
-        jac = np.array([[npoly.polyval2d(x[0], x[1], d) for d in pair] for pair in zip(da, db)])
-        if not np.all(np.isfinite(jac)) or abs(np.linalg.det(jac)) < 1e-300:
+        pa, pb = np.array([1.0, x[0], x[0] ** 2]), np.array([1.0, x[1], x[1] ** 2])
+        da, db = np.array([0.0, 1.0, 2.0 * x[0]]), np.array([0.0, 1.0, 2.0 * x[1]])
+        f = np.array([pa @ e @ pb for e in eqs])
+        jac = np.array([[da @ e @ pb, pa @ e @ db] for e in eqs])
+        det = jac[0, 0] * jac[1, 1] - jac[0, 1] * jac[1, 0]
+        if not np.isfinite(det) or det == 0.0:
             break
         x = x - np.linalg.solve(jac, f)
     return float(x[0]), float(x[1])
