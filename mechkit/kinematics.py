@@ -88,6 +88,7 @@ def solve_closure(rows: ClosureRows, data: pin.Data, q0: np.ndarray, free_v: np.
     e = rows.residual(data)
     norm = np.linalg.norm(e)
     damping = 1e-3
+    it = 0
     for it in range(max_iter):
         if norm <= tol:
             return q, it
@@ -116,8 +117,8 @@ def solve_closure(rows: ClosureRows, data: pin.Data, q0: np.ndarray, free_v: np.
             break
     update_kinematics(model, data, q)
     if norm <= tol:
-        return q, max_iter
-    raise ClosureNotConverged(float(norm), tol, max_iter, "the loop cannot close from this guess, or at all, for these inputs")
+        return q, it + 1
+    raise ClosureNotConverged(float(norm), tol, it + 1, "the loop cannot close from this guess, or at all, for these inputs")
 
 
 def passive_condition(J: np.ndarray, free_v: np.ndarray, independent_rows: int) -> float:

@@ -47,6 +47,7 @@ class Mechanism:
             self.model, self.model.createData(), self.rows, self.full_rows,
             np.array([self.v_index(j) for j in self.actuated], dtype=int), self.actuated)
         self._pin_constraints: tuple | None = None
+        self._pin_baumgarte = (0.0, 0.0)
         self.independent_rows = self.rows.size
         self.home_q = self.assemble(spec.home(params))
         self.independent_rows = kinematics.mobility(self.rows, self.data, self.home_q).rank
@@ -186,13 +187,19 @@ class Mechanism:
             method: "proximal" (`pin.constraintDynamics`, proximal settings mu/accuracy/max_iter) or
                 "kkt" (dense KKT on the independent rows).
             baumgarte: (Kp (1/s^2), Kd (1/s)) closure stabilisation, J a + gamma + Kd J v + Kp e = 0.
+
+        The two methods agree on the closure manifold (e = 0, J v = 0). Off it they differ: each
+        method measures the closure error its own way (Pinocchio: point anchors in frame_a's local
+        frame; KKT: the rows of `mechkit.closures`), so drift is corrected along different paths.
         """
         tau = np.asarray(tau, dtype=float)
         if method == "proximal":
             cms, cds = self.pin_constraints()
-            if baumgarte is not None:
+            gains = (0.0, 0.0) if baumgarte is None else tuple(baumgarte)
+            if gains != self._pin_baumgarte:
                 for cm in cms:
-                    cm.setBaumgarteCorrectorParameters(pin.BaumgarteCorrectorParameters(*baumgarte))
+                    cm.setBaumgarteCorrectorParameters(pin.BaumgarteCorrectorParameters(*gains))
+                self._pin_baumgarte = gains
             prox = pin.ProximalSettings(accuracy, mu, max_iter)
             data = self._pin_data
             a = pin.constraintDynamics(self.model, data, q, v, tau, cms, cds, prox).copy()
