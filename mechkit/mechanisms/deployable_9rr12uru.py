@@ -109,6 +109,78 @@ def node_positions(mech: Mechanism, q: np.ndarray) -> dict[str, np.ndarray]:
     return out
 
 
+def node_velocity(mech: Mechanism, q: np.ndarray, v: np.ndarray, node: str) -> np.ndarray:
+    """World velocity (m/s) of a node centre in the model at (q, v)."""
+    frame = f"node_{node}"
+    if not mech.model.existFrame(frame):
+        raise InvalidParameters("node", node, f"no node {node} in {mech.spec.name}")
+    pin.forwardKinematics(mech.model, mech.data, q, v)
+    velocity = pin.getFrameVelocity(mech.model, mech.data, mech.model.getFrameId(frame), pin.ReferenceFrame.LOCAL_WORLD_ALIGNED)
+    return velocity.linear.copy()
+
+
+COMPONENTS = ("fx", "fy", "fz", "mx", "my", "mz")
+
+
+def indeterminate_reactions(result) -> dict[str, tuple[str, ...]]:
+    """Joint -> world reaction components that statics leaves undetermined (from the determinacy
+    flags of `Mechanism.inverse_dynamics`); joints whose reaction is fully determinate are absent."""
+    return {joint: tuple(c for c, ok in zip(COMPONENTS, r.determinate) if not ok)
+            for joint, r in result.reactions.items() if not r.determinate.all()}
+
+
+@dataclass(frozen=True)
+class Redundancy:
+    """The redundant constraint of the composite at one configuration.
+
+    Attributes:
+        singular_values: of the closure Jacobian (descending).
+        self_stress: cut name -> (force (N), moment (N m)) world, at the middle hinge, of the unit
+            left null vector y of the closure Jacobian (J^T y = 0): the constraint forces that
+            balance among themselves, i.e. the direction in which the reactions are indeterminate.
+            Each share is a force along the cut's middle hinge (plus, once folding has started, a
+            moment normal to it).
+        hinge_axes: cut name -> unit middle-hinge axis (world).
+    """
+
+    singular_values: np.ndarray
+    self_stress: dict[str, tuple[np.ndarray, np.ndarray]]
+    hinge_axes: dict[str, np.ndarray]
+
+
+def redundancy(mech: Mechanism, q: np.ndarray) -> Redundancy:
+    """Self-stress of the composite at q: the redundant combination of closure rows."""
+    J = mech.closure_jacobian(q)
+    U, s, _ = np.linalg.svd(J)
+    y = U[:, -1] * np.sign(U[np.argmax(np.abs(U[:, -1])), -1])
+    stress, axes = {}, {}
+    for cut, (f, m, _) in zip(mech.rows.cuts, mech.rows.wrenches(mech.data, y)):
+        stress[cut.closure.name] = (f, m)
+        axes[cut.closure.name] = mech.data.oMf[cut.frame_a].rotation @ cut.closure.axis
+    return Redundancy(s, stress, axes)
+
+
+def chain_joints(chain: str) -> tuple[str, ...]:
+    """Tree joints of a URU rod or chain (e.g. "BG": BG_B1, BG_B2, BG_G1, BG_G2)."""
+    return tuple(f"{chain}_{node}{k}" for node in chain for k in (1, 2))
+
+
+def mobility_without(mech: Mechanism, q: np.ndarray, chains: tuple[str, ...]) -> tuple[int, int]:
+    """(DOF, redundant rows) of the composite at q with the given URU chains removed."""
+    from mechkit.kinematics import numerical_rank
+
+    J = mech.closure_jacobian(q)
+    drop_cols = [mech.v_index(j) for c in chains for j in chain_joints(c)]
+    keep_rows, i = [], 0
+    for cut in mech.rows.cuts:
+        if cut.closure.name[:-2] not in chains:
+            keep_rows += list(range(i, i + cut.size))
+        i += cut.size
+    sub = np.delete(J[keep_rows], drop_cols, axis=1)
+    rank = numerical_rank(np.linalg.svd(sub, compute_uv=False))
+    return sub.shape[1] - rank, sub.shape[0] - rank
+
+
 def fold_times(step: float = 1.0) -> np.ndarray:
     """Sample times of the 200 s fold, s."""
     if not 0.0 < step <= FOLD_DURATION:

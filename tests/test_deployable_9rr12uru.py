@@ -1,0 +1,106 @@
+"""9RR-12URU composite: mobility and the redundant constraint, the 200 s fold against eq. (6)-(8),
+and inverse dynamics with its indeterminate part."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from mechkit.mechanisms import deployable_9rr12uru as dep
+from mechkit.mechanisms.truss_geometry import drive_state
+
+COARSE = dep.fold_times(25.0)
+
+
+@pytest.fixture(scope="module")
+def mech(load_cached):
+    return load_cached("deployable_9rr12uru")
+
+
+@pytest.fixture(scope="module")
+def coarse_fold(mech):
+    return dep.fold(mech, COARSE)
+
+
+def test_model_size(mech):
+    assert mech.model.nv == 66 and mech.rows.size == 60 and len(mech.closures) == 12
+    assert len(mech.actuated) == 7
+
+
+def test_mobility_7_with_one_redundant_row_along_the_fold(mech, coarse_fold):
+    for sample in coarse_fold:
+        mob = mech.mobility(sample.q)
+        assert (mob.dof, mob.redundant, mob.rank) == (7, 1, 59)
+        assert mob.singular_values[-1] < 1e-12 * mob.singular_values[0] < mob.singular_values[-2]
+
+
+def test_the_third_chain_is_the_redundant_one(mech):
+    q = mech.home_q
+    assert dep.mobility_without(mech, q, ("EC", "DF", "BG")) == (9, 0)  # three 3-DOF units
+    assert dep.mobility_without(mech, q, ("EC", "DF")) == (8, 0)
+    for chain in ("EC", "DF", "BG"):  # each chain is redundant given the two others (eq. 5)
+        assert dep.mobility_without(mech, q, (chain,)) == (7, 0)
+
+
+def test_self_stress_is_forces_along_the_middle_hinges(mech, coarse_fold):
+    """At t = 0 each URU's share is a pure force along its middle hinge (the paper's eq. 2); later
+    the Hooke axes leave the links and moments normal to the hinge join in."""
+    for sample in coarse_fold:
+        r = dep.redundancy(mech, sample.q)
+        for cut, (force, moment) in r.self_stress.items():
+            assert abs(force @ r.hinge_axes[cut]) == pytest.approx(np.linalg.norm(force), rel=1e-9)
+            assert np.linalg.norm(force) > 1e-4  # every rod and chain carries it
+            assert abs(moment @ r.hinge_axes[cut]) < 1e-12
+            if sample.t == 0.0:
+                assert np.linalg.norm(moment) < 1e-12
+
+
+def test_fold_matches_eq6_to_eq8_closes_and_reaches_the_folded_end(mech, coarse_fold):
+    g = mech.params.geometry()
+    for sample in coarse_fold:
+        s = drive_state(sample.t)
+        expected = g.node_positions(s.alpha, s.gamma)
+        positions = dep.node_positions(mech, sample.q)
+        assert set(positions) == set(expected)
+        for node, pos in positions.items():
+            np.testing.assert_allclose(pos, expected[node], atol=1e-9, err_msg=f"{node} at t={sample.t}")
+        assert np.abs(mech.closure_residual(sample.q)).max() < 1e-10
+        velocities = g.node_velocities(s.alpha, s.gamma, s.alpha_rate, s.gamma_rate)
+        speed_i = dep.node_velocity(mech, sample.q, sample.v, "I")
+        np.testing.assert_allclose(speed_i, velocities["I"], atol=1e-12)
+    assert coarse_fold[-1].t == 200.0
+    end = drive_state(200.0)
+    assert np.degrees(end.alpha) == pytest.approx(8.1557, abs=1e-4)
+
+
+def test_inverse_dynamics_support_balance_and_indeterminate_set(mech, coarse_fold):
+    import pinocchio as pin
+
+    sample = coarse_fold[2]
+    result = mech.inverse_dynamics(sample.q, sample.v, sample.a)
+    # global balance: the supports at A carry the weight and inertia of everything (determinate sum)
+    pin.centerOfMass(mech.model, mech.data, sample.q, sample.v, sample.a)
+    total = sum(i.mass for i in mech.model.inertias[1:])  # node A is the ground
+    g = mech.model.gravity.linear
+    support = sum(r.wrench[:3] for r in result.reactions.values() if r.support)
+    np.testing.assert_allclose(support, total * (mech.data.acom[0] - g), atol=1e-9 * total * 9.81)
+    summary = dep.indeterminate_reactions(result)
+    # the efforts are determinate; some reaction components are not (one redundant constraint)
+    assert summary and all(np.isfinite(r.wrench).all() for r in result.reactions.values())
+    for joint in ("EC_M", "DF_M", "BG_M", "AB_M"):
+        assert joint in summary
+
+
+@pytest.mark.slow
+def test_full_fold_with_dynamics(mech):
+    samples = dep.fold(mech, dep.fold_times(1.0))
+    g = mech.params.geometry()
+    worst_pos = worst_res = 0.0
+    for sample in samples:
+        s = drive_state(sample.t)
+        expected = g.node_positions(s.alpha, s.gamma)
+        worst_pos = max(worst_pos, max(np.abs(p - expected[n]).max() for n, p in dep.node_positions(mech, sample.q).items()))
+        worst_res = max(worst_res, np.abs(mech.closure_residual(sample.q)).max())
+        result = mech.inverse_dynamics(sample.q, sample.v, sample.a)
+        assert all(np.isfinite(u) for u in result.efforts.values())
+    assert worst_pos < 1e-9 and worst_res < 1e-10
