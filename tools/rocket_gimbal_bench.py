@@ -6,13 +6,12 @@ from neutral). Dynamics over the swing scene: actuator forces and every joint's 
 Pinocchio's constrained RNEA (`Mechanism.inverse_dynamics`, thrust as fext, with and without the
 determinacy test) and by SOC virtual work (analytic motion + SKCs + solve). Writes
 docs/figures/rocket_gimbal_bench.png and prints the table.
-Usage: python tools/rocket_gimbal_bench.py [--repeat 100]
+Usage: python tools/rocket_gimbal_bench.py [--budget 1.0]
 """
 
 from __future__ import annotations
 
 import argparse
-import time
 from collections.abc import Callable
 from pathlib import Path
 
@@ -22,6 +21,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
+from mechkit.bench import time_per_call  # noqa: E402
 from mechkit.mechanism import load  # noqa: E402
 from mechkit.mechanisms.rocket_gimbal import SwingScene, geometry, joint_state, soc_skcs, thrust_fext  # noqa: E402
 from mechkit.mechanisms.rocket_gimbal_checks import fk_closure  # noqa: E402
@@ -32,18 +32,12 @@ from mechkit.validation.soc import solve_soc  # noqa: E402
 OUT = Path(__file__).resolve().parent.parent / "docs" / "figures" / "rocket_gimbal_bench.png"
 
 
-def _time(calls: list[Callable[[], object]], repeat: int) -> float:
-    """Median over 5 rounds of the mean time (us) of one call, cycling through ``calls``."""
-    rounds = []
-    for _ in range(5):
-        start = time.perf_counter()
-        for k in range(repeat):
-            calls[k % len(calls)]()
-        rounds.append((time.perf_counter() - start) / repeat * 1e6)
-    return float(np.median(rounds))
+def _time(calls: list[Callable[[], object]], budget_s: float) -> float:
+    """Median time (us) of one call over 5 repeats, cycling through ``calls`` (`mechkit.bench` timer)."""
+    return float(np.median(time_per_call(lambda call: call(), calls, budget_s, 5)) * 1e6)
 
 
-def main(repeat: int = 100, out: Path = OUT) -> dict[str, float]:
+def main(budget_s: float = 1.0, out: Path = OUT) -> dict[str, float]:
     mech = load("rocket_gimbal")
     p, geo, scene = mech.params, geometry(mech.params), SwingScene()
     rng = np.random.default_rng(0)
@@ -54,16 +48,16 @@ def main(repeat: int = 100, out: Path = OUT) -> dict[str, float]:
     fexts = [thrust_fext(mech, q, scene) for _, q, _, _ in states]
 
     timings = {
-        "IK closed form": _time([lambda x=x: actuator_lengths(geo, *x) for x in angle_set], repeat),
-        "FK resultant (paper)": _time([lambda s=s: pick_in_range(fk_resultant(geo, s)) for s in stroke_set], repeat),
-        "FK Newton": _time([lambda s=s: fk_newton(geo, s) for s in stroke_set], repeat),
-        "FK closure solver": _time([lambda s=s: fk_closure(mech, s) for s in stroke_set], max(repeat // 4, 8)),
+        "IK closed form": _time([lambda x=x: actuator_lengths(geo, *x) for x in angle_set], budget_s),
+        "FK resultant (paper)": _time([lambda s=s: pick_in_range(fk_resultant(geo, s)) for s in stroke_set], budget_s),
+        "FK Newton": _time([lambda s=s: fk_newton(geo, s) for s in stroke_set], budget_s),
+        "FK closure solver": _time([lambda s=s: fk_closure(mech, s) for s in stroke_set], budget_s),
         "ID Pinocchio (+determinacy)": _time([lambda s=s, f=f: mech.inverse_dynamics(*s[1:], fext=f)
-                                              for s, f in zip(states, fexts)], max(repeat // 4, 8)),
+                                              for s, f in zip(states, fexts)], budget_s),
         "ID Pinocchio (no determinacy)": _time([lambda s=s, f=f: mech.inverse_dynamics(*s[1:], fext=f, determinacy=False)
-                                                for s, f in zip(states, fexts)], repeat),
+                                                for s, f in zip(states, fexts)], budget_s),
         "ID SOC (motion + SKCs + solve)": _time([lambda t=t: solve_soc(soc_skcs(p, scene.motion(p, t), scene))
-                                                 for t in times], repeat),
+                                                 for t in times], budget_s),
     }
     ratios = {
         "FK resultant / Newton": timings["FK resultant (paper)"] / timings["FK Newton"],
@@ -87,8 +81,8 @@ def main(repeat: int = 100, out: Path = OUT) -> dict[str, float]:
 
 if __name__ == "__main__":
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--repeat", type=int, default=100, help="calls per timing round")
+    parser.add_argument("--budget", type=float, default=1.0, help="seconds of timing per method")
     parser.add_argument("--out", type=Path, default=OUT)
     args = parser.parse_args()
-    for key, value in main(args.repeat, args.out).items():
+    for key, value in main(args.budget, args.out).items():
         print(f"{key:45s} {value:10.2f}")

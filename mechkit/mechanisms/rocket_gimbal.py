@@ -76,6 +76,58 @@ def geometry(p: RocketGimbalParams) -> GimbalGeometry:
     return GimbalGeometry.reconstruction(p.pivot_radius, p.pivot_offset, p.length_a, p.length_b)
 
 
+def _hinges(mech: Mechanism, x: np.ndarray, index: str = "v") -> np.ndarray:
+    """(alpha, beta) entries of a joint vector (q with index="q", v or a with "v")."""
+    pick = mech.q_index if index == "q" else mech.v_index
+    return np.array([x[pick("bracket_hinge")], x[pick("engine_hinge")]])
+
+
+def _bench_fk(method: str):
+    """`mechkit bench` assembly by the paper's FK: (alpha, beta) by the resultant or Newton, then the
+    servos' Hooke angles and strokes in closed form."""
+    def assemble(mech: Mechanism, sample) -> np.ndarray:
+        from mechkit.mechanisms.rocket_gimbal_kinematics import fk_newton
+        from mechkit.mechanisms.rocket_gimbal_resultant import fk_resultant, pick_in_range
+
+        geo, stroke = geometry(mech.params), np.asarray(sample.inputs, dtype=float)
+        if method == "resultant":
+            mode = pick_in_range(fk_resultant(geo, stroke))
+            angles = np.array([mode.alpha, mode.beta])
+        else:
+            angles = fk_newton(geo, stroke)
+        return joint_state(mech, gimbal_motion(geo, angles, np.zeros(2), np.zeros(2)))[0]
+
+    return assemble
+
+
+def _bench_soc(mech: Mechanism, sample):
+    """SOC virtual work (numpy) with the analytic motion of (alpha, beta); no thrust (as the bench)."""
+    from mechkit.validation.soc import solve_soc
+
+    motion = gimbal_motion(geometry(mech.params), _hinges(mech, sample.q, "q"), _hinges(mech, sample.v),
+                           _hinges(mech, sample.a))
+    return solve_soc(soc_skcs(mech.params, motion, SwingScene(thrust=0.0)))
+
+
+#: `mechkit bench` methods (protocol in `mechkit.bench`); the SOC is also the independent reference.
+BENCH_METHODS = {
+    "assembly": [("paper FK: resultant + closed-form servos", _bench_fk("resultant")),
+                 ("Newton FK on the lengths + closed-form servos", _bench_fk("newton"))],
+    "inverse_dynamics": [("SOC (numpy)", _bench_soc)],
+}
+BENCH_REFERENCE = {"inverse_dynamics": _bench_soc}
+
+
+def _swing_scene(mech: Mechanism) -> list[np.ndarray]:
+    """One period of the swing scene as assembled configurations (for animated snapshots)."""
+    scene = SwingScene()
+    return [joint_state(mech, scene.motion(mech.params, t))[0] for t in np.linspace(0.0, 1.0 / scene.frequency, 120)]
+
+
+#: Animated scenes for `mechkit snapshot rocket_gimbal --scene swing`.
+SCENES = {"swing": _swing_scene}
+
+
 def _self_checks(mech: Mechanism) -> dict[str, float]:
     from mechkit.mechanisms.rocket_gimbal_checks import self_checks
 

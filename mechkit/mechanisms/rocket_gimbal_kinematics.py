@@ -145,7 +145,7 @@ def fk_newton(geo: GimbalGeometry, stroke: np.ndarray, guess: tuple[float, float
     Args:
         geo: the geometry.
         stroke: (dlA, dlB), m.
-        guess: initial (alpha, beta), rad; the default (null pose) finds the nozzle-down branch.
+        guess: initial (alpha, beta), rad; the default (null pose) finds the as-built, in-range mode.
         tol: stop when the Newton step is below tol (rad).
         max_iter: iteration cap.
 

@@ -75,11 +75,6 @@ class GimbalMotion:
     engine_pivots: np.ndarray
     legs: tuple[LegMotion, LegMotion]
 
-    def point_kinematics(self, p: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """Velocity and acceleration (3,) of an engine point at current position p (m, relative to O)."""
-        v = np.cross(self.omega, p)
-        return v, np.cross(self.alpha, p) + np.cross(self.omega, v)
-
 
 def _leg(frame_pivot: np.ndarray, point: np.ndarray, velocity: np.ndarray, acc: np.ndarray) -> LegMotion:
     d = point - frame_pivot

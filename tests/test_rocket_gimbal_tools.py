@@ -1,0 +1,44 @@
+"""Smoke tests of the engine gimbal's tools (small grids; figures written to a temporary folder)."""
+
+from __future__ import annotations
+
+import importlib.util
+from pathlib import Path
+
+import numpy as np
+
+TOOLS = Path(__file__).resolve().parent.parent / "tools"
+
+
+def _tool(name: str):
+    spec = importlib.util.spec_from_file_location(name, TOOLS / f"{name}.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+def test_linearisation_tool_writes_its_figure_and_reports_the_worst_error(tmp_path):
+    out = tmp_path / "lin.png"
+    result = _tool("rocket_gimbal_linearisation").main(n=5, out=out)
+    assert out.stat().st_size > 10_000
+    # on a 5 x 5 grid the corners are included: the worst error sits at a corner
+    assert 0.4 < result["worst_deg"] < 0.6 and abs(result["worst_at_mm"][0]) == 110.0
+    assert np.isclose(result["worst_percent"], 100 * result["worst_deg"] / 6.5)
+
+
+def test_resultant_tool_runs(tmp_path, capsys):
+    tool = _tool("rocket_gimbal_resultant")
+    from mechkit.mechanisms.rocket_gimbal import RocketGimbalParams, geometry
+
+    geo = geometry(RocketGimbalParams())
+    tool.example(geo)
+    tool.grid_map(geo, 5, tmp_path / "cond.png")
+    text = capsys.readouterr().out
+    assert "in-range pick" in text and "double root" in text
+    assert (tmp_path / "cond.png").stat().st_size > 10_000
+
+
+def test_bench_tool_runs(tmp_path):
+    result = _tool("rocket_gimbal_bench").main(budget_s=0.05, out=tmp_path / "bench.png")
+    assert all(np.isfinite(v) and v > 0 for v in result.values())
+    assert (tmp_path / "bench.png").stat().st_size > 5_000
