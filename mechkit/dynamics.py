@@ -3,8 +3,8 @@
 Equation of motion: M a + nle = tau + J^T lambda, J the closure Jacobian (rows of `ClosureRows`),
 J a + gamma = 0. Forward dynamics two ways: Pinocchio's proximal `constraintDynamics` on the
 equivalent `RigidConstraintModel`s, and a dense KKT solve on the independent rows. Inverse
-dynamics: [S, J^T] [u; lambda] = rnea(q, v, a) - J_ext^T f_ext, then one more RNEA with the closure
-wrenches applied as external forces gives every tree joint's transmitted wrench.
+dynamics: [S, J^T] [u; lambda] = rnea(q, v, a) - J_ext^T f_ext; every tree joint's transmitted
+wrench is then the RNEA's minus the cut wrenches that act on its subtree.
 """
 
 from __future__ import annotations
@@ -86,34 +86,45 @@ def kkt_forward(model: pin.Model, data: pin.Data, q, v, tau, J: np.ndarray, gamm
     return ForwardDynamicsResult(a, Ji.T @ lam)
 
 
-def wrench_world_at(point: np.ndarray, force: np.ndarray, moment: np.ndarray) -> pin.Force:
-    """A world wrench given at a point, as a Pinocchio Force about the world origin."""
-    return pin.Force(force, moment + cross(point, force))
-
-
-def closure_fext(model: pin.Model, data: pin.Data, rows: ClosureRows, lam: np.ndarray, fext=None):
-    """External forces per joint (local frames) that reproduce J^T lam, plus any given `fext`.
-
-    Returns (fext vector, per-cut wrenches (f, m, point) world).
-    """
-    forces = [pin.Force.Zero() for _ in range(model.njoints)] if fext is None else [pin.Force(f) for f in fext]
-    wrenches = rows.wrenches(data, lam)
-    for cut, (f, m, p) in zip(rows.cuts, wrenches):
-        world = wrench_world_at(p, f, m)
-        jb = model.frames[cut.frame_b].parentJoint
-        ja = model.frames[cut.frame_a].parentJoint
-        if jb:
-            forces[jb] += data.oMi[jb].actInv(world)
-        if ja:
-            forces[ja] -= data.oMi[ja].actInv(world)
-    return pin.StdVec_Force(forces), wrenches
-
-
 def joint_wrenches_world(model: pin.Model, data: pin.Data) -> np.ndarray:
-    """(njoints, 6): data.f rotated to world axes, moment about each joint origin."""
+    """(njoints, 6): data.f rotated to world axes, moment about each joint origin (row 0 unused)."""
     f = np.array([w.vector for w in data.f]).reshape(-1, 2, 3)
     R = np.array([M.rotation for M in data.oMi])
     return np.einsum("jab,jkb->jka", R, f).reshape(-1, 6)
+
+
+def subtree_incidence(model: pin.Model, rows: ClosureRows) -> np.ndarray:
+    """(njoints, cuts): +1 where joint i carries frame_b's body of a cut in its subtree, -1 for frame_a's."""
+    G = np.zeros((model.njoints, len(rows.cuts)))
+    for c, cut in enumerate(rows.cuts):
+        for sign, frame in ((1.0, cut.frame_b), (-1.0, cut.frame_a)):
+            j = model.frames[frame].parentJoint
+            while j > 0:
+                G[j, c] += sign
+                j = model.parents[j]
+    return G
+
+
+def cut_wrench_arrays(data: pin.Data, rows: ClosureRows, lam: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """(cuts, 6) cut wrenches [f, m about p_b] and (cuts, 3) points p_b, world, from the row multipliers."""
+    wrenches = rows.wrenches(data, lam)
+    W = np.array([np.concatenate([f, m]) for f, m, _ in wrenches]).reshape(-1, 6)
+    P = np.array([p for _, _, p in wrenches]).reshape(-1, 3)
+    return W, P
+
+
+def subtract_cut_wrenches(tree: np.ndarray, origins: np.ndarray, G: np.ndarray, W: np.ndarray, P: np.ndarray) -> np.ndarray:
+    """Tree joint wrenches once the cut wrenches act as external loads on their bodies.
+
+    Each joint transmits what its subtree needs minus what the cut wrenches give it:
+    f_i -= sum_c G_ic f_c, m_i -= sum_c G_ic (m_c + (p_c - o_i) x f_c), world axes, about o_i.
+    """
+    F = G @ W[:, :3]
+    Mo = G @ (W[:, 3:] + np.cross(P, W[:, :3]))
+    out = tree.copy()
+    out[:, :3] -= F
+    out[:, 3:] -= Mo - np.cross(origins, F)
+    return out
 
 
 @dataclass
@@ -137,9 +148,7 @@ class InverseDynamicsProblem:
     actuated_names: tuple[str, ...]
 
     def __post_init__(self) -> None:
-        self.static_model = self.model.copy()
-        self.static_model.gravity = pin.Motion.Zero()
-        self.static_data = self.static_model.createData()
+        self.incidence = subtree_incidence(self.model, self.rows)
         self.cut_names = tuple(c.closure.name for c in self.rows.cuts)
         self.tree_names = tuple(self.model.names[1:])
         parents = self.model.parents
@@ -189,12 +198,11 @@ def inverse_dynamics(p: InverseDynamicsProblem, q, v, a, fext=None, determinacy:
         x = Vt[:r].T @ ((U[:, :r].T @ b) / s[:r])
         cond = float(s[0] / s[r - 1])
     u, lam = x[:na], x[na:]
-    forces, cut_wrenches = closure_fext(model, data, rows, lam, fext)
-    pin.rnea(model, data, q, v, a, forces)
-    tree = joint_wrenches_world(model, data)
+    W, P = cut_wrench_arrays(data, rows, lam)
+    origins = np.array([M.translation for M in data.oMi])
+    tree = subtract_cut_wrenches(joint_wrenches_world(model, data), origins, p.incidence, W, P)
     reactions_raw = {name: tree[i + 1] for i, name in enumerate(p.tree_names)}
-    for name, (f, m, _) in zip(p.cut_names, cut_wrenches):
-        reactions_raw[name] = np.concatenate([f, m])
+    reactions_raw.update(zip(p.cut_names, W))
     flags = _determinate_flags(p, q) if determinacy else None
     if flags is None:
         everywhere = square
@@ -209,7 +217,8 @@ def _determinate_flags(p: InverseDynamicsProblem, q) -> dict[str, np.ndarray]:
     """Which reaction components static equilibrium fixes, tested on the full spatial rows.
 
     A component is determinate when it does not change along the null space of [S, J_full^T]
-    (Wojtyra and Fraczek 2013). Frames must be current at q.
+    (Wojtyra and Fraczek 2013): such a null vector is a self-stress (cut forces, and actuator
+    efforts, in equilibrium with no load). Frames must be current at q.
     """
     model, data = p.model, p.data
     Jf = p.full_rows.jacobian(data)
@@ -220,17 +229,14 @@ def _determinate_flags(p: InverseDynamicsProblem, q) -> dict[str, np.ndarray]:
     _, s, Vt = np.linalg.svd(A, full_matrices=True)
     r = numerical_rank(s)
     null = Vt[r:]
-    names = list(p.tree_names) + list(p.cut_names)
-    variation = {name: np.zeros(6) for name in names}
-    zero = np.zeros(model.nv)
+    origins = np.array([M.translation for M in data.oMi])
+    variation = np.zeros((model.njoints - 1 + len(p.cut_names), 6))
+    zero_tree = np.zeros((model.njoints, 6))
     for x in null:
-        forces, cut_wrenches = closure_fext(model, data, p.full_rows, x[na:])
-        pin.rnea(p.static_model, p.static_data, q, zero, zero, forces)
-        tree = joint_wrenches_world(p.static_model, p.static_data)
-        for i, name in enumerate(p.tree_names):
-            variation[name] = np.maximum(variation[name], np.abs(tree[i + 1]))
-        # the cut of the solving rows may differ in name from the full rows only by rows, not by joint
-        for name, (f, m, _) in zip(p.cut_names, cut_wrenches):
-            variation[name] = np.maximum(variation[name], np.abs(np.concatenate([f, m])))
-    scale = max((v.max() for v in variation.values()), default=0.0)
-    return {name: variation[name] <= DETERMINACY_TOL * max(scale, 1e-300) for name in names}
+        # a self-stress: cut wrenches with no load; the tree joints carry what the cuts push in
+        W, P = cut_wrench_arrays(data, p.full_rows, x[na:])
+        tree = subtract_cut_wrenches(zero_tree, origins, p.incidence, W, P)
+        variation = np.maximum(variation, np.abs(np.vstack([tree[1:], W])))
+    scale = variation.max(initial=0.0)
+    flags = variation <= DETERMINACY_TOL * max(scale, 1e-300)
+    return dict(zip(list(p.tree_names) + list(p.cut_names), flags))
