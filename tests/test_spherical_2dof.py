@@ -207,7 +207,7 @@ def test_tools_run(tmp_path):
     from pathlib import Path
 
     tools = Path(__file__).resolve().parent.parent / "tools"
-    runs = (("spherical_2dof_basin", {"directions": 2}), ("spherical_2dof_bench", {"repeat": 8}),
+    runs = (("spherical_2dof_basin", {"directions": 2, "grid_points": 11}), ("spherical_2dof_bench", {"budget": 0.01}),
             ("spherical_2dof_cone", {"samples": 6}))
     for name, kwargs in runs:
         spec = importlib.util.spec_from_file_location(name, tools / f"{name}.py")

@@ -41,14 +41,14 @@ def _det_b_map(p, grid: np.ndarray) -> np.ndarray:
     return out
 
 
-def main(directions: int = 24, out: Path = OUT) -> dict[str, list]:
+def main(directions: int = 24, grid_points: int = 91, out: Path = OUT) -> dict[str, list]:
     mech = load("spherical_2dof")
     radii = np.radians(RADII_DEG)
     poses = {"regular": REGULAR, "near singular": NEAR_SINGULAR}
     table = {name: basin_study(mech, pose, radii, directions) for name, pose in poses.items()}
 
     fig, axes = plt.subplots(1, 3, figsize=(16, 4.8))
-    grid = np.radians(np.linspace(-30, 60, 91))
+    grid = np.radians(np.linspace(-30, 60, grid_points))
     det = _det_b_map(mech.params, grid)
     lim = np.nanmax(np.abs(det))
     im = axes[0].pcolormesh(np.degrees(grid), np.degrees(grid), det.T, cmap="RdBu_r", vmin=-lim, vmax=lim,

@@ -6,13 +6,12 @@ the answer). Dynamics: motor torques and reactions by Pinocchio's constrained RN
 (`Mechanism.inverse_dynamics`, with and without the determinacy test) and by SOC virtual work
 (efforts only: the first SKC; every joint: all SKCs). Poses: the cone scene. Writes
 docs/figures/spherical_2dof_bench.png and prints the table.
-Usage: python tools/spherical_2dof_bench.py [--repeat 200]
+Usage: python tools/spherical_2dof_bench.py [--budget 1.0]
 """
 
 from __future__ import annotations
 
 import argparse
-import time
 from collections.abc import Callable
 from pathlib import Path
 
@@ -22,6 +21,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
+from mechkit.bench import time_per_call  # noqa: E402
 from mechkit.mechanism import load  # noqa: E402
 from mechkit.mechanisms import spherical_2dof_kinematics as kin  # noqa: E402
 from mechkit.mechanisms import spherical_2dof_soc as soc  # noqa: E402
@@ -33,18 +33,12 @@ from mechkit.validation.soc import solve_soc  # noqa: E402
 OUT = Path(__file__).resolve().parent.parent / "docs" / "figures" / "spherical_2dof_bench.png"
 
 
-def _time(calls: list[Callable[[], object]], repeat: int) -> float:
-    """Median over 5 rounds of the mean time (us) of one call, cycling through ``calls``."""
-    rounds = []
-    for _ in range(5):
-        start = time.perf_counter()
-        for k in range(repeat):
-            calls[k % len(calls)]()
-        rounds.append((time.perf_counter() - start) / repeat * 1e6)
-    return float(np.median(rounds))
+def _time(calls: list[Callable[[], object]], budget: float) -> float:
+    """Median time (us) of one call over 5 repeats lasting ``budget`` s in all, cycling through ``calls``."""
+    return float(np.median(time_per_call(lambda call: call(), calls, budget_s=budget, repeats=5)) * 1e6)
 
 
-def main(repeat: int = 200, out: Path = OUT) -> dict[str, float]:
+def main(budget: float = 1.0, out: Path = OUT) -> dict[str, float]:
     mech = load("spherical_2dof")
     p = mech.params
     t = cone_times(8)
@@ -67,8 +61,7 @@ def main(repeat: int = 200, out: Path = OUT) -> dict[str, float]:
     }
     fk_cases = [k for k in cases if k.startswith("FK")]
     id_cases = [k for k in cases if k.startswith("ID")]
-    us = {name: _time(calls, max(repeat // (10 if name in fk_cases + id_cases else 1), 8))
-          for name, calls in cases.items()}
+    us = {name: _time(calls, budget) for name, calls in cases.items()}
 
     reference = {name: ref for group, ref in ((["IK eq. (8)", "J = -B^-1 A"], "IK eq. (8)"), (fk_cases, "FK paper"),
                                               (id_cases, "ID Pinocchio")) for name in group}
@@ -83,7 +76,7 @@ def main(repeat: int = 200, out: Path = OUT) -> dict[str, float]:
         ref = reference[name]
         ax.text(us[name], k, f" {us[name]:.0f} us ({us[name] / us[ref]:.2f} x {ref})", va="center", fontsize=8)
     ax.set_xscale("log")
-    ax.set(xlabel="time per call (us, median of 5 rounds, one run; 2 shared cores)",
+    ax.set(xlabel="time per call (us, median of 5 rounds, one run, gc off; 2 shared cores)",
            title="spherical_2dof: kinematics and inverse dynamics, per method")
     ax.invert_yaxis()
     fig.tight_layout()
@@ -94,5 +87,5 @@ def main(repeat: int = 200, out: Path = OUT) -> dict[str, float]:
 
 if __name__ == "__main__":
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--repeat", type=int, default=200)
-    main(parser.parse_args().repeat)
+    parser.add_argument("--budget", type=float, default=1.0, help="seconds of timing per method")
+    main(parser.parse_args().budget)

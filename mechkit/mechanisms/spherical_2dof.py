@@ -145,6 +145,37 @@ def state(mech: Mechanism, phi: np.ndarray, phi_d: np.ndarray, phi_dd: np.ndarra
     return q, v, a
 
 
+def _bench_fk(method: str):
+    """`mechkit bench` assembly method: FK (``kin.fk_paper`` or ``kin.fk_newton``) from home, then the tree."""
+    solve = kin.fk_paper if method == "paper" else kin.fk_newton
+
+    def run(mech: Mechanism, sample) -> np.ndarray:
+        phi = solve(mech.params, sample.inputs, np.zeros(2)).phi
+        q = mech.neutral()
+        for joint, value in tree_configuration(mech.params, phi, sample.inputs).items():
+            q[mech.q_index(joint)] = value
+        return q
+
+    return run
+
+
+def _bench_soc(mech: Mechanism, sample):
+    """SOC virtual work (numpy), every joint's moment about O."""
+    from mechkit.mechanisms.spherical_2dof_soc import solve
+
+    hooke = [mech.v_index("hooke_roll"), mech.v_index("hooke_pitch")]
+    phi = [sample.q[mech.q_index("hooke_roll")], sample.q[mech.q_index("hooke_pitch")]]
+    return solve(mech.params, phi, sample.v[hooke], sample.a[hooke], BRANCHES)
+
+
+#: `mechkit bench` methods (protocol in `mechkit.bench`); the SOC is also the independent reference.
+BENCH_METHODS = {
+    "assembly": [("paper FK (Newton on IK eq. 8)", _bench_fk("paper")), ("Newton FK on eq. (7)", _bench_fk("newton"))],
+    "inverse_dynamics": [("SOC (numpy)", _bench_soc)],
+}
+BENCH_REFERENCE = {"inverse_dynamics": _bench_soc}
+
+
 def _self_checks(mech: Mechanism) -> dict[str, float]:
     from mechkit.mechanisms.spherical_2dof_checks import self_checks
 

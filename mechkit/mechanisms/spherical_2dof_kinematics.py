@@ -21,7 +21,7 @@ eq. 4, term by term); link i2 is ``F_i0 Rz(theta_i1) Rx(-alpha1) Rz(theta_i2)`` 
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from typing import Protocol
 
@@ -295,22 +295,12 @@ def fk_paper(
             workspace (InvKin undefined) or meets a singular B.
     """
     theta_d = np.asarray(theta_d, dtype=float)
-    phi = np.array(phi0, dtype=float)
-    step = np.inf
-    for k in range(1, max_iter + 1):
-        try:
-            theta = inverse_kinematics(p, phi, branches)
-            delta = (theta_d - theta + np.pi) % (2 * np.pi) - np.pi
-            s = jacobian(p, theta, phi) @ delta
-        except (InvalidParameters, SingularConfiguration) as err:
-            raise ClosureNotConverged(step, tol, k - 1, f"paper FK: {err}") from None
-        phi += s
-        step = float(np.linalg.norm(s))
-        if not np.isfinite(step):
-            break
-        if step <= tol:
-            return FKResult(phi, k, step)
-    raise ClosureNotConverged(step, tol, max_iter, "paper FK")
+
+    def step(phi: np.ndarray) -> np.ndarray:
+        theta = inverse_kinematics(p, phi, branches)
+        return jacobian(p, theta, phi) @ ((theta_d - theta + np.pi) % (2 * np.pi) - np.pi)
+
+    return _iterate(step, phi0, tol, max_iter, "paper FK")
 
 
 def fk_newton(
@@ -324,18 +314,30 @@ def fk_newton(
     Raises:
         ClosureNotConverged: no convergence within ``max_iter`` steps or a singular B.
     """
-    phi = np.array(phi0, dtype=float)
-    step = np.inf
-    for k in range(1, max_iter + 1):
+    def step(phi: np.ndarray) -> np.ndarray:
         _, b = constraint_jacobians(p, theta_d, phi)
         cond = _cond(b)
         if cond > 1e12:
-            raise ClosureNotConverged(step, tol, k - 1, f"Newton FK: singular B (cond {cond:.1e})")
-        s = -np.linalg.solve(b, constraint(p, theta_d, phi))
+            raise SingularConfiguration(cond, "matrix B of eq. (10)")
+        return -np.linalg.solve(b, constraint(p, theta_d, phi))
+
+    return _iterate(step, phi0, tol, max_iter, "Newton FK")
+
+
+def _iterate(step: Callable[[np.ndarray], np.ndarray], phi0: Sequence[float], tol: float, max_iter: int,
+             name: str) -> FKResult:
+    """``phi += step(phi)`` until ``|step| <= tol``; failures of ``step`` end it as non-converged."""
+    phi = np.array(phi0, dtype=float)
+    size = np.inf
+    for k in range(1, max_iter + 1):
+        try:
+            s = step(phi)
+        except (InvalidParameters, SingularConfiguration) as err:
+            raise ClosureNotConverged(size, tol, k - 1, f"{name}: {err}") from None
         phi += s
-        step = float(np.linalg.norm(s))
-        if not np.isfinite(step):
+        size = float(np.linalg.norm(s))
+        if not np.isfinite(size):
             break
-        if step <= tol:
-            return FKResult(phi, k, step)
-    raise ClosureNotConverged(step, tol, max_iter, "Newton FK")
+        if size <= tol:
+            return FKResult(phi, k, size)
+    raise ClosureNotConverged(size, tol, max_iter, name)
