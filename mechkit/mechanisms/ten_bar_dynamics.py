@@ -27,11 +27,12 @@ import pinocchio as pin
 
 from mechkit.exceptions import ClosureNotConverged
 from mechkit.mechanisms import ten_bar as tb
-from mechkit.validation import lagrange
 
 
 class DeploymentSystem(Protocol):
-    """What `integrate` needs from a model of the deployment."""
+    """What `integrate` needs from a model of the deployment (`p`: the parameters)."""
+
+    p: tb.TenBarParams
 
     def rhs(self, t: float, q: np.ndarray, v: np.ndarray) -> tuple[np.ndarray, np.ndarray, float]:
         """(accelerations, motor torques (R1, R3) N m, net external power W)."""
@@ -49,7 +50,7 @@ class DeploymentSystem(Protocol):
         """The 9 tree-joint angles in `JOINT_ORDER` (rad)."""
 
 
-JOINT_ORDER = ("R1", "R2", "R3", "R4", "R8", "R5", "R6", "R7b", "R9")
+JOINT_ORDER = tb.geo.TREE_JOINTS
 
 
 class PinocchioDeployment:
@@ -62,7 +63,8 @@ class PinocchioDeployment:
     """
 
     def __init__(self, mechanism, baumgarte: tuple[float, float] | None = None, method: str = "proximal"):
-        self.m, self.baumgarte, self.method = mechanism, baumgarte, method
+        # (0, 0) rather than None: the core keeps the last Baumgarte gains set on its constraint models
+        self.m, self.baumgarte, self.method = mechanism, baumgarte or (0.0, 0.0), method
         self.p = mechanism.params
         self.spring = tb.spring_from_urdf(mechanism.urdf)
         self.motor_v = np.array([mechanism.v_index(j) for j in tb.MOTORS])
@@ -176,17 +178,14 @@ class LagrangeJointDeployment:
             if h.parent is not None:
                 self.joint_rows[k, 3 * index[h.parent] + 2] = -1.0
         self.motor_rows = np.array([JOINT_ORDER.index(m) for m in tb.MOTORS])
+        self.fk = tb.TreeKinematics(params)
 
     def _state(self, q, v):
-        return tb.lagrange_from_joints(self.p, dict(zip(JOINT_ORDER, q)), dict(zip(JOINT_ORDER, v)))
+        return self.fk(q, v)
 
     def _map(self, q):
         """(q_L, T) with T = d q_L / d q (the forward kinematics is linear in the rates)."""
-        angles = dict(zip(JOINT_ORDER, q))
-        qL, _ = tb.lagrange_from_joints(self.p, angles, dict.fromkeys(JOINT_ORDER, 0.0))
-        T = np.column_stack([tb.lagrange_from_joints(self.p, angles, dict(zip(JOINT_ORDER, e)))[1]
-                             for e in np.eye(len(JOINT_ORDER))])
-        return qL, T
+        return self.fk(q, np.eye(len(q)))
 
     def rhs(self, t, q, v):
         qL, vL = self._state(q, v)
@@ -285,11 +284,6 @@ def integrate(system: DeploymentSystem, q0: np.ndarray, v0: np.ndarray, t_end: f
     return Trajectory(**{k: np.array(val) for k, val in rows.items()})
 
 
-def stowed_state(mechanism) -> np.ndarray:
-    """Pinocchio q of the stowed pose (motors at their stowed angles, rocker at `stowed_rocker`)."""
-    return mechanism.home_q.copy()
-
-
 def lagrange_state(params: tb.TenBarParams, q_pin: np.ndarray, v_pin: np.ndarray, mechanism) -> tuple[np.ndarray, np.ndarray]:
     """Reference-point coordinates and rates of a Pinocchio state (numpy forward kinematics)."""
     angles = {j: float(q_pin[mechanism.q_index(j)]) for j in JOINT_ORDER}
@@ -297,17 +291,8 @@ def lagrange_state(params: tb.TenBarParams, q_pin: np.ndarray, v_pin: np.ndarray
     return tb.lagrange_from_joints(params, angles, rates)
 
 
-def deploy(system: DeploymentSystem, q0: np.ndarray, dt: float, t_end: float | None = None, **kw) -> Trajectory:
-    """Integrate from rest at q0 over the deployment (default: t in [0, deploy_time])."""
-    p = system.p if hasattr(system, "p") else None
-    end = t_end if t_end is not None else p.deploy_time
-    return integrate(system, q0, np.zeros_like(q0), end, dt, **kw)
-
-
-def lagrange_start(params: tb.TenBarParams) -> np.ndarray:
-    """Reference-point coordinates of the stowed pose (closed form)."""
-    return tb.lagrange_coordinates(params, tb.stowed_pose(params))
-
-
-__all__ = ["JOINT_ORDER", "PinocchioDeployment", "LagrangeDeployment", "Trajectory", "integrate", "deploy",
-           "stowed_state", "lagrange_state", "lagrange_start", "lagrange"]
+def deploy(system: DeploymentSystem, q0: np.ndarray, dt: float, t_end: float | None = None,
+           project: bool = True) -> Trajectory:
+    """Integrate from rest at q0 (stowed) to t_end (default: the end of the motor laws)."""
+    end = system.p.deploy_time if t_end is None else t_end
+    return integrate(system, q0, np.zeros_like(q0), end, dt, project=project)

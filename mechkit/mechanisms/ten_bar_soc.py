@@ -106,7 +106,7 @@ def solve(L: lagrange.Linkage, q: np.ndarray, qd: np.ndarray, qdd: np.ndarray) -
     The R3 motor torque is the axis moment of the R3 reaction: u3 = -my.
     """
     result = solve_soc(skc_instants(L, q, qd, qdd), gravity=np.array([L.gravity[0], 0.0, L.gravity[1]]))
-    efforts = {"R1": result.efforts["R1"], "R3": -result.reactions["R3"][4]}
+    efforts = {"R1": result.efforts["R1"], "R3": -float(result.reactions["R3"][4])}
     forces = {j: result.reactions[j][[0, 2]] for j in geo.PAIRS}
     return efforts, forces, result
 
