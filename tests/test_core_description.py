@@ -2,8 +2,10 @@
 
 from __future__ import annotations
 
+import os
 import shutil
 import subprocess
+import sys
 
 import numpy as np
 import pytest
@@ -25,7 +27,8 @@ def test_committed_urdf_matches_the_xacro_template(name):
 
 @pytest.mark.parametrize("name", NAMES)
 def test_urdfdom_accepts(name, tmp_path):
-    exe = shutil.which("check_urdf")
+    # the venv's bin (where pip puts urdfdom's check_urdf) may not be on PATH
+    exe = shutil.which("check_urdf", path=os.pathsep.join([os.path.dirname(sys.executable), os.environ.get("PATH", "")]))
     if exe is None:
         pytest.skip("check_urdf (urdfdom) not on PATH")
     out = subprocess.run([exe, str(URDF_DIR / f"{name}.urdf")], capture_output=True, text=True)
