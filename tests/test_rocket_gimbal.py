@@ -97,3 +97,10 @@ def test_supports_carry_the_whole_weight_at_rest(mech):
     supports = ("bracket_hinge", "a_swing_1", "b_swing_1")
     assert np.isclose(sum(rest.reactions[j][2] for j in supports), weight, rtol=1e-12)
     assert np.isclose(sum(pin_rest.reactions[j].wrench[2] for j in supports), weight, rtol=1e-12)
+
+
+@pytest.mark.slow
+def test_fk_three_ways_on_a_dense_grid(mech):
+    fk = fk_agreement(mech, n=21)
+    assert max(fk.polynomial_newton, fk.polynomial_closure, fk.newton_closure) < 1e-9
+    assert fk.ik_round_trip < 1e-9

@@ -7,7 +7,7 @@ import pytest
 from numpy.polynomial import Polynomial
 
 from mechkit.exceptions import InvalidParameters
-from mechkit.mechanisms.rocket_gimbal import RULE_ANGLE, RULE_STROKE, RocketGimbalParams, geometry
+from mechkit.mechanisms.rocket_gimbal import PAPER_EXAMPLE, RULE_ANGLE, RULE_STROKE, RocketGimbalParams, geometry
 from mechkit.mechanisms.rocket_gimbal_kinematics import (
     actuator_lengths,
     attitude,
@@ -29,16 +29,15 @@ from mechkit.mechanisms.rocket_gimbal_resultant import (
 GEO = geometry(RocketGimbalParams())
 MM = 1e-3
 GRID = [np.array([x, y]) * MM for x in np.linspace(-110, 110, 5) for y in np.linspace(-110, 110, 5)]
-# The paper's example: strokes {-60, 105} mm; its FK answer (deg); its IK of that answer (mm).
-PAPER_STROKES = np.array([-60.0, 105.0]) * MM
-PAPER_ANGLES = np.radians([6.6336, -2.0624])
+# The paper's example: strokes {-60, 105} mm, its FK answer, and its IK of that answer as strokes.
+PAPER_STROKES, PAPER_ANGLES = PAPER_EXAMPLE["strokes"], PAPER_EXAMPLE["angles"]
 PAPER_IK = np.array([-60.1145, 104.9909]) * MM
 
 
 def test_ik_reproduces_the_papers_printed_lengths():
     lengths = actuator_lengths(GEO, *PAPER_ANGLES)
     # printed to 0.1 um: L_A = 1782.8855 mm, L_B = 1947.9909 mm
-    assert np.allclose(lengths, np.array([1782.8855, 1947.9909]) * MM, atol=0.06e-6)
+    assert np.allclose(lengths, PAPER_EXAMPLE["lengths"], atol=0.06e-6)
     assert np.allclose(strokes(GEO, *PAPER_ANGLES), PAPER_IK, atol=0.06e-6)
 
 

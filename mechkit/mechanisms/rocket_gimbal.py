@@ -30,10 +30,11 @@ if TYPE_CHECKING:
 
 #: Rotation from the paper frame O-xyz to the world frame (nozzle down, world z up).
 PAPER_TO_WORLD = rot_x(np.pi)
-#: The paper's in-range limit on alpha and beta (rad).
-SWING_LIMIT = np.radians(10.0)
 #: The paper's linear rule: stroke 110 mm <-> 6.5 deg.
 RULE_STROKE, RULE_ANGLE = 0.110, np.radians(6.5)
+#: The paper's worked example: strokes (m), its FK answer (rad), its IK lengths of that answer (m).
+PAPER_EXAMPLE = {"strokes": np.array([-0.060, 0.105]), "angles": np.radians([6.6336, -2.0624]),
+                 "lengths": np.array([1.7828855, 1.9479909])}
 
 
 @dataclass(frozen=True)

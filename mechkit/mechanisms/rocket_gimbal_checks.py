@@ -11,6 +11,7 @@ import numpy as np
 
 from mechkit.mechanism import Mechanism
 from mechkit.mechanisms.rocket_gimbal import (
+    PAPER_EXAMPLE,
     RULE_STROKE,
     SwingScene,
     geometry,
@@ -23,12 +24,7 @@ from mechkit.mechanisms.rocket_gimbal_resultant import fk_resultant, pick_in_ran
 from mechkit.validation.soc import solve_soc
 
 __all__ = ["fk_closure", "FKAgreement", "fk_agreement", "DynamicsAgreement", "dynamics_agreement",
-           "self_checks", "PAPER_EXAMPLE"]
-
-#: The paper's worked example: strokes (m), its FK answer (rad), its IK lengths of that answer (m).
-PAPER_EXAMPLE = {"strokes": np.array([-0.060, 0.105]), "angles": np.radians([6.6336, -2.0624]),
-                 "lengths": np.array([1.7828855, 1.9479909])}
-
+           "self_checks"]
 
 def fk_closure(mech: Mechanism, stroke: np.ndarray, guess: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
     """FK by the closure solver (`Mechanism.assemble`, the strokes as inputs): ((alpha, beta) rad, q)."""

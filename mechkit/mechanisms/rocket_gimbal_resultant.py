@@ -43,6 +43,8 @@ __all__ = [
     "pick_in_range",
 ]
 
+SWING_LIMIT = np.radians(10.0)
+"""The paper's operating range: |alpha|, |beta| < 10 deg (rad)."""
 DUPLICATE = 1e-7
 """Modes closer than this (rad, |d alpha| + |d beta|) are one mode."""
 A_MAX = 1e6
@@ -217,7 +219,7 @@ def fk_resultant(geo: GimbalGeometry, stroke: np.ndarray, imag_tol: float = 1e-7
     return sorted(modes, key=lambda m: abs(m.alpha) + abs(m.beta))
 
 
-def pick_in_range(modes: list[AssemblyMode], limit: float = np.radians(10.0)) -> AssemblyMode:
+def pick_in_range(modes: list[AssemblyMode], limit: float = SWING_LIMIT) -> AssemblyMode:
     """The mode with |alpha|, |beta| < limit (the paper's in-range pick).
 
     Raises:
