@@ -22,11 +22,11 @@ from mechkit.mechanisms import parallel_2t1r_kinematics as kin
 from mechkit.params import MechanismParams, param
 from mechkit.registry import MechanismSpec
 
-#: The assembled branch: index into `forward_kinematics` (C1 below the chord B1B2, first alpha
-#: root) and into `follower_angles` (theta_4 = 0 at the motion law's start). Tables 1-2 of the paper
-#: are lost; this is the branch that carries the whole motion law with limb III reachable and
-#: starts with every limb at theta_d = 0 (the other FK branch that does, index 1, is its mirror).
-ASSEMBLED = (2, 0)
+#: The assembled branch: (C1 root, alpha root) of `forward_kinematics` (C1 below the chord B1B2,
+#: first alpha root) and the root of `follower_angles` (theta_4 = 0 at the motion law's start).
+#: Tables 1-2 of the paper are lost; this branch carries the whole motion law with limb III
+#: reachable and starts with every limb at theta_d = 0 (so does its mirror, branch (0, 1)).
+ASSEMBLED = ((1, 0), 0)
 #: The paper's example inputs theta_1..theta_3 (rad): 10, 20, 30 deg.
 EXAMPLE_INPUTS = np.radians([10.0, 20.0, 30.0])
 #: Motion law rates (rad/s): theta_1 = pi t/18, theta_2 = pi t/15, theta_3 = pi t/10, t in [0, 5] s.
@@ -99,9 +99,11 @@ def assembled_pose(p: Parallel2T1RParams, theta: np.ndarray) -> tuple[kin.Pose, 
         InvalidParameters: the inputs cannot be assembled (a limb out of reach).
     """
     d = p.dims
-    pose, disc = kin.forward_kinematics(d, theta)[ASSEMBLED[0]]
-    roots, _ = kin.follower_angles(d, pose)
-    return pose, roots[ASSEMBLED[1]], disc
+    found = [s for s in kin.forward_kinematics(d, theta) if s.branch == ASSEMBLED[0]]
+    if not found:
+        raise InvalidParameters("theta", theta, f"no pose on the assembled branch {ASSEMBLED[0]}")
+    roots, _ = kin.follower_angles(d, found[0].pose)
+    return found[0].pose, roots[ASSEMBLED[1]], found[0].discriminant
 
 
 def state_at(p: Parallel2T1RParams, theta, theta_dot, theta_ddot) -> kin.State:
@@ -152,18 +154,26 @@ def _home(p: Parallel2T1RParams) -> dict[str, float]:
     return home
 
 
+INPUTS = ("R11", "R21", "R31")
 #: Compared quantities: efforts (N m) and the in-plane (determinate) reaction forces (N), world.
 QUANTITIES = ("M1", "M2", "M3", "R23_fx", "R23_fz", "R43_fx", "R43_fz")
-_EFFORT_JOINT = {"M1": "R11", "M2": "R21", "M3": "R31"}
+_EFFORT_JOINT = {"M1": "R11", "M2": "R21", "M3": "R31", "M4": "R41"}
+METHODS = ("pinocchio", "soc", "classic")
 
 
-def _row(efforts: dict[str, float], reactions: dict[str, np.ndarray]) -> np.ndarray:
-    """Values of `QUANTITIES` from efforts by joint and reaction wrenches (6,) by joint."""
-    return np.array([efforts[_EFFORT_JOINT[q]] if q in _EFFORT_JOINT
-                     else reactions[q[:3]][0 if q.endswith("fx") else 2] for q in QUANTITIES])
+def pinocchio_motion(mech, theta: np.ndarray, rates: np.ndarray, acc: np.ndarray, guess) -> tuple[np.ndarray, ...]:
+    """Pinocchio's own motion for the inputs: closure solve from ``guess``, then v and a (SI).
+
+    Raises:
+        ClosureNotConverged, SingularConfiguration: from `Mechanism.assemble` / `velocities`.
+    """
+    q = mech.assemble(dict(zip(INPUTS, theta)), guess=guess)
+    v = mech.velocities(q, rates, inputs=INPUTS)
+    return q, v, mech.accelerations(q, v, acc, inputs=INPUTS)
 
 
-def pinocchio_inverse_dynamics(mech, q: np.ndarray, v: np.ndarray, a: np.ndarray, m4: float | None = None):
+def pinocchio_inverse_dynamics(mech, q: np.ndarray, v: np.ndarray, a: np.ndarray, m4: float | None = None,
+                               determinacy: bool = True):
     """`Mechanism.inverse_dynamics` of a non-redundant model, with R41's motor torque m4 (N m) as a
     known external torque on link41 when given (the redundant variant with a chosen distribution)."""
     import pinocchio as pin
@@ -172,87 +182,230 @@ def pinocchio_inverse_dynamics(mech, q: np.ndarray, v: np.ndarray, a: np.ndarray
     if m4 is not None:
         fext = [pin.Force.Zero() for _ in range(mech.model.njoints)]
         fext[mech.model.getJointId("R41")] = pin.Force(np.zeros(3), np.array([0.0, m4, 0.0]))
-    return mech.inverse_dynamics(q, v, a, fext=fext)
+    return mech.inverse_dynamics(q, v, a, fext=fext, determinacy=determinacy)
+
+
+def evaluate(mech, s: kin.State, motion: tuple[np.ndarray, ...] | None, redundant: bool = False,
+             determinacy: bool = False) -> tuple[dict[str, float], dict[str, str], dict[str, np.ndarray]]:
+    """Every method at one instant: values named "<method>:<quantity>", failures by method, and the
+    determinacy flags (6,) of Pinocchio's R13, R23, R43 reactions (empty without ``determinacy``).
+
+    Quantities: M1..M3 (M4 when ``redundant``, minimum-norm by classic virtual work and handed to
+    the others), R23/R43 fx, fz (SOC, Pinocchio), R13 fx, fz (Pinocchio: the five-bar's compound
+    hinge, inside SKC1 for SOC) and each method's condition number ("<method>:cond"). A method that
+    raises a `MechkitError` (e.g. `SingularConfiguration`) gives no values and its message.
+
+    Args:
+        s: the analytic state (for SOC and classic virtual work).
+        motion: Pinocchio's (q, v, a), or None to skip Pinocchio.
+        determinacy: run the core's determinacy rank test (and get Pinocchio's condition number).
+    """
+    from mechkit.exceptions import MechkitError
+    from mechkit.mechanisms.parallel_2t1r_soc import classic_torques, soc_inverse_dynamics
+
+    p = mech.params
+    out: dict[str, float] = {}
+    failed: dict[str, str] = {}
+    flags: dict[str, np.ndarray] = {}
+    m4 = None
+    try:
+        efforts, cond = classic_torques(p, s, INPUTS + (("R41",) if redundant else ()))
+        out |= {f"classic:{k}": efforts[j] for k, j in _EFFORT_JOINT.items() if j in efforts}
+        out["classic:cond"] = cond
+        m4 = efforts.get("R41")
+    except MechkitError as err:
+        failed["classic"] = str(err)
+    runs = [("soc", lambda: soc_inverse_dynamics(p, s, m4))]
+    if motion is not None:
+        runs.append(("pinocchio", lambda: pinocchio_inverse_dynamics(mech, *motion, m4, determinacy)))
+    for method, run in runs:
+        if redundant and m4 is None:
+            failed[method] = "no R41 torque: the minimum-norm distribution failed"
+            continue
+        try:
+            result = run()
+        except MechkitError as err:
+            failed[method] = str(err)
+            continue
+        wrenches = {j: getattr(w, "wrench", w) for j, w in result.reactions.items()}
+        out |= {f"{method}:{k}": result.efforts[j] for k, j in _EFFORT_JOINT.items() if j in result.efforts}
+        for joint in ("R13", "R23", "R43"):
+            if joint in wrenches:
+                out[f"{method}:{joint}_fx"], out[f"{method}:{joint}_fz"] = wrenches[joint][[0, 2]]
+        if method == "soc":
+            out["soc:cond"] = max(result.condition.values())
+        else:
+            out["pinocchio:cond"] = result.condition
+            if determinacy:
+                flags = {j: result.reactions[j].determinate for j in ("R13", "R23", "R43")}
+                out |= {f"pinocchio:{j}_inplane_determinate": float(f[0] and f[2]) for j, f in flags.items()}
+    return out, failed, flags
 
 
 @dataclass(frozen=True)
 class Comparison:
-    """Along a motion: `QUANTITIES` by the three methods, (n, 7) arrays (classic: efforts only, NaN
-    columns for the reactions it does not give), and the Pinocchio-vs-analytic joint error (n,) rad."""
+    """`QUANTITIES` (n, 7) by each method along a motion (classic: NaN for the reactions it does not
+    give), the Pinocchio-vs-analytic joint error (n,) rad, and the determinacy flags (6,) of the
+    Pinocchio reactions at R23 and R43 (first sample)."""
 
     times: np.ndarray
-    pinocchio: np.ndarray
-    soc: np.ndarray
-    classic: np.ndarray
+    values: dict[str, np.ndarray]
     kinematics_error: np.ndarray
     determinate: dict[str, np.ndarray]
-    m4: np.ndarray | None = None
 
-    def relative_error(self, other: str) -> np.ndarray:
+    def relative_error(self, method: str) -> np.ndarray:
         """Max |method - Pinocchio| / max |Pinocchio| per quantity (7,) (NaN where not given)."""
-        values = getattr(self, other)
-        scale = np.max(np.abs(self.pinocchio), axis=0)
-        return np.max(np.abs(values - self.pinocchio), axis=0) / scale
+        ref = self.values["pinocchio"]
+        return np.max(np.abs(self.values[method] - ref), axis=0) / np.max(np.abs(ref), axis=0)
 
 
 def compare_along(mech, times: np.ndarray, redundant: bool = False) -> Comparison:
     """Pinocchio (closure solve + constrained RNEA), SOC and classic virtual work along the motion law.
 
     Pinocchio's motion is its own: `assemble` from a Taylor step of its previous sample (the first
-    from the analytic state), `velocities`, `accelerations`; the analytic state only seeds the
-    first guess and is compared joint by joint. ``redundant``: R41 driven too, torques distributed by minimum norm
-    (`classic_torques`), the same m4 given to SOC and to Pinocchio.
+    from the analytic state), `velocities`, `accelerations`; the analytic state seeds only the first
+    guess and is compared joint by joint. ``redundant``: R41 driven too, torques distributed by
+    minimum norm (`classic_torques`), the same M4 handed to SOC and Pinocchio.
 
     Raises:
         SingularConfiguration: a sample is singular for one of the methods (e.g. t = 0).
     """
-    from mechkit.mechanisms.parallel_2t1r_soc import classic_torques, soc_inverse_dynamics
+    from mechkit.exceptions import SingularConfiguration
 
     p = mech.params
-    states = motion_law_states(p, times)
-    pin_rows, soc_rows, cls_rows, kin_err, m4s = [], [], [], [], []
+    rows: dict[str, list] = {m: [] for m in METHODS}
+    kin_err = []
     q = v = a = None
     flags: dict[str, np.ndarray] = {}
-    previous = None
-    for t, s in zip(times, states):
+    previous = 0.0
+    for t in np.asarray(times, dtype=float):
+        theta, rates, acc = motion_law(t)
+        s = state_at(p, theta, rates, acc)
         coords = joint_coordinates(p, s)
-        if q is None:
-            guess = {j: c[0] for j, c in coords.items()}
-        else:  # Taylor predictor from Pinocchio's own previous sample
-            dt = float(t - previous)
-            guess = q + v * dt + 0.5 * a * dt * dt
+        dt = t - previous
+        guess = {j: c[0] for j, c in coords.items()} if q is None else q + v * dt + 0.5 * a * dt * dt
         previous = t
-        theta, rates, acc = motion_law(float(t))
-        q = mech.assemble(dict(zip(("R11", "R21", "R31"), theta)), guess=guess)
-        v = mech.velocities(q, rates, inputs=("R11", "R21", "R31"))
-        a = mech.accelerations(q, v, acc, inputs=("R11", "R21", "R31"))
+        q, v, a = pinocchio_motion(mech, theta, rates, acc, guess)
         kin_err.append(max(abs(np.angle(np.exp(1j * (q[mech.q_index(j)] - c[0])))) for j, c in coords.items()))
-        actuators = ("R11", "R21", "R31", "R41") if redundant else ("R11", "R21", "R31")
-        efforts, _ = classic_torques(p, s, actuators)
-        m4 = efforts.get("R41")
-        m4s.append(m4)
-        result = pinocchio_inverse_dynamics(mech, q, v, a, m4)
-        if not flags:
-            flags = {j: result.reactions[j].determinate for j in ("R23", "R43")}
-        pin_rows.append(_row(result.efforts, {j: r.wrench for j, r in result.reactions.items()}))
-        soc = soc_inverse_dynamics(p, s, m4)
-        soc_rows.append(_row(soc.efforts, soc.reactions))
-        cls_rows.append([efforts[_EFFORT_JOINT[k]] if k in _EFFORT_JOINT else np.nan for k in QUANTITIES])
-    return Comparison(np.asarray(times), np.array(pin_rows), np.array(soc_rows), np.array(cls_rows),
-                      np.array(kin_err), flags, np.array(m4s) if redundant else None)
+        values, failed, determinate = evaluate(mech, s, (q, v, a), redundant, determinacy=not flags)
+        if failed:
+            method, why = next(iter(failed.items()))
+            raise SingularConfiguration(np.inf, f"t = {t} s, {method}: {why}")
+        flags = flags or determinate
+        for m in METHODS:
+            rows[m].append([values.get(f"{m}:{k}", np.nan) for k in QUANTITIES])
+    return Comparison(np.asarray(times, dtype=float), {m: np.array(r) for m, r in rows.items()},
+                      np.array(kin_err), flags)
+
+
+#: Singular-approach study: theta_2, theta_3 held at the example's 20 and 30 deg while theta_1 is
+#: driven up to theta_2: at theta_1 = theta_2 the chord B1B2 equals A1A2 = l1 = 2 l2, the
+#: five-bar's distal links are collinear (C1 a double root of eq. (7)).
+SINGULAR_HELD = EXAMPLE_INPUTS[1:]
+
+
+@dataclass(frozen=True)
+class Study:
+    """Series along an approach parameter x (n,): values by series name (n,), NaN where the method
+    raised, and the failures by series name: (x, error message) of every sample where it raised."""
+
+    x: np.ndarray
+    values: dict[str, np.ndarray]
+    failures: dict[str, list[tuple[float, str]]]
+
+
+def _study(x: np.ndarray, samples) -> Study:
+    """Collect `evaluate`-style (values, failures) per sample into a `Study`."""
+    collected: list[tuple[dict[str, float], dict[str, str]]] = list(samples)
+    names = sorted({k for values, _ in collected for k in values})
+    values = {k: np.array([v.get(k, np.nan) for v, _ in collected], dtype=float) for k in names}
+    failures: dict[str, list[tuple[float, str]]] = {}
+    for xi, (_, failed) in zip(x, collected):
+        for method, why in failed.items():
+            failures.setdefault(method, []).append((float(xi), why))
+    return Study(np.asarray(x, dtype=float), values, failures)
+
+
+def _guess_from(p: Parallel2T1RParams, s: kin.State) -> dict[str, float]:
+    return {j: c[0] for j, c in joint_coordinates(p, s).items()}
+
+
+def singular_approach(mech, deltas: np.ndarray) -> Study:
+    """At rest under gravity, theta_1 = theta_2 - delta (rad) with `SINGULAR_HELD`: both variants.
+
+    Series: "<method>:<quantity>" as in `evaluate` for the paper's three motors, the same prefixed
+    "redundant/" for R41 driven too (minimum-norm torques), and "cond_Jp" (analytic J_p). Pinocchio
+    assembles from the analytic configuration and is evaluated at rest.
+    """
+    p = mech.params
+
+    def sample(delta: float):
+        theta = np.array([SINGULAR_HELD[0] - delta, *SINGULAR_HELD])
+        pose, theta4, _ = assembled_pose(p, theta)
+        s = kin.State(pose, np.zeros(3), np.zeros(3), np.append(theta, theta4), np.zeros(4), np.zeros(4))
+        values, failed = {"cond_Jp": float(np.linalg.cond(kin.jacobians(p.dims, s.theta, pose)[0]))}, {}
+        from mechkit.exceptions import MechkitError
+
+        try:
+            q = mech.assemble(dict(zip(INPUTS, theta)), guess=_guess_from(p, s))
+            motion = (q, np.zeros(mech.model.nv), np.zeros(mech.model.nv))
+        except MechkitError as err:
+            motion, failed["pinocchio"] = None, str(err)
+        for redundant, prefix in ((False, ""), (True, "redundant/")):
+            v, f, _ = evaluate(mech, s, motion, redundant, determinacy=True)
+            values |= {prefix + k: x for k, x in v.items()}
+            failed |= {prefix + k: x for k, x in f.items()}
+        return values, failed
+
+    return _study(deltas, (sample(float(d)) for d in deltas))
+
+
+def start_of_motion(mech, times: np.ndarray) -> Study:
+    """The motion law near its singular start (t -> 0+): three motors, Pinocchio's own motion.
+
+    Series as in `evaluate` plus "cond_Jp" and "analytic:x_ddot" (|platform acceleration| of eq.
+    (15)); a sample whose analytic state or Pinocchio motion raises is recorded as a failure.
+    """
+    from mechkit.exceptions import MechkitError
+
+    p = mech.params
+
+    def sample(t: float):
+        theta, rates, acc = motion_law(t)
+        pose, theta4, disc = assembled_pose(p, theta)
+        values = {"fk_discriminant": disc,
+                  "cond_Jp": float(np.linalg.cond(kin.jacobians(p.dims, np.append(theta, theta4), pose)[0]))}
+        failed = {}
+        try:
+            s = state_at(p, theta, rates, acc)
+        except MechkitError as err:
+            failed["analytic"] = str(err)
+            s = kin.State(pose, np.zeros(3), np.zeros(3), np.append(theta, theta4), np.zeros(4), np.zeros(4))
+        values["analytic:x_ddot"] = float(np.linalg.norm(s.x_ddot)) if "analytic" not in failed else np.nan
+        try:
+            motion = pinocchio_motion(mech, theta, rates, acc, _guess_from(p, s))
+        except MechkitError as err:
+            motion, failed["pinocchio"] = None, str(err)
+        v, f, _ = evaluate(mech, s, motion, determinacy=True)
+        if "analytic" in failed:  # SOC and classic ran on the state at rest: not the motion's values
+            v = {k: x for k, x in v.items() if k.startswith("pinocchio")}
+            f |= {m: "no analytic motion state" for m in ("soc", "classic") if m not in f}
+        return values | v, failed | f
+
+    return _study(times, (sample(float(t)) for t in times))
 
 
 def self_checks(mech) -> dict[str, float]:
     """`mechkit report` rows: FK/IK of the paper's example and SOC / classic vs Pinocchio (26 samples)."""
     d = mech.params.dims
     worst_residual, worst_trip = 0.0, 0.0
-    for pose, _ in kin.forward_kinematics(d, EXAMPLE_INPUTS):
+    for pose in (s.pose for s in kin.forward_kinematics(d, EXAMPLE_INPUTS)):
         for sol in kin.inverse_kinematics(d, pose):
             worst_residual = max(worst_residual, np.max(np.abs(kin.loop_residuals(d, np.append(sol, 0.0), pose)[:3])))
         trip = np.min(np.abs(np.angle(np.exp(1j * (kin.inverse_kinematics(d, pose) - EXAMPLE_INPUTS)))).max(axis=1))
         worst_trip = max(worst_trip, float(trip))
     cmp = compare_along(mech, np.linspace(0.2, MOTION_DURATION, 25))
-    rel = lambda m: float(np.nanmax(cmp.relative_error(m)))  # noqa: E731
+    rel = lambda m: float(np.nanmax(cmp.relative_error(m)))
     return {"analytic IK closure residual, paper example (m)": worst_residual,
             "FK -> IK round trip, paper example (rad)": worst_trip,
             "analytic vs Pinocchio joint angles, motion law (rad)": float(cmp.kinematics_error.max()),

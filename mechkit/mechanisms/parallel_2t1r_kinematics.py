@@ -35,11 +35,14 @@ __all__ = [
     "BODIES",
     "BodyMotion",
     "Dims",
+    "FKSolution",
     "Pose",
     "State",
+    "alpha_discriminant",
     "base_points",
     "distal_angles",
     "elbow_points",
+    "five_bar_discriminant",
     "follower_angles",
     "follower_rate",
     "forward_kinematics",
@@ -150,17 +153,25 @@ def _proximal_roots(d: Dims, a: np.ndarray, c: np.ndarray, name: str) -> tuple[t
     return solve_trig(-2.0 * d.l2 * dz, 2.0 * d.l2 * dx, dx * dx + dz * dz, name)
 
 
-def forward_kinematics(d: Dims, theta: np.ndarray) -> list[tuple[Pose, float]]:
-    """All platform poses for the inputs theta_1..theta_3 (rad): eqs. (7)-(8).
+@dataclass(frozen=True)
+class FKSolution:
+    """One forward-kinematics solution: pose, branch (C1 root, alpha root) in {0, 1}^2, and the
+    smaller relative discriminant of its two root pairs (below ``DOUBLE_ROOT``: a singular pose)."""
 
-    Returns:
-        4 pairs (pose, relative discriminant of the smaller of its two root pairs), ordered
-        (C1 branch +, alpha branch +), (+, -), (-, +), (-, -). The C1 branch + puts C1 on the
-        side of B1B2 reached by turning B1->B2 by -90 deg about y (above the base when B2 is at
-        -x of B1). A discriminant below ``DOUBLE_ROOT`` flags a singular pose (a double root).
+    pose: Pose
+    branch: tuple[int, int]
+    discriminant: float
+
+
+def forward_kinematics(d: Dims, theta: np.ndarray) -> list[FKSolution]:
+    """All real platform poses for the inputs theta_1..theta_3 (rad): eqs. (7)-(8), up to 4.
+
+    C1 root 0 puts C1 on the side of B1B2 reached by turning B1->B2 by -90 deg about y (above the
+    chord when B2 lies at -x of B1), root 1 on the other side; alpha roots as in `solve_trig`.
+    A C1 for which limb II cannot reach C3 contributes no pose.
 
     Raises:
-        InvalidParameters: a limb cannot reach (no real root).
+        InvalidParameters: no pose at all (limb I cannot close, or limb II reaches no C3).
     """
     theta = np.asarray(theta, dtype=float)
     if theta.shape != (3,) or not np.all(np.isfinite(theta)):
@@ -168,19 +179,45 @@ def forward_kinematics(d: Dims, theta: np.ndarray) -> list[tuple[Pose, float]]:
     b = elbow_points(d, np.append(theta, 0.0))
     chord = b[1] - b[0]
     dist2 = float(chord @ chord)
-    disc1 = (d.l2**2 - dist2 / 4.0) / d.l2**2
+    disc1 = five_bar_discriminant(d, theta)
     if disc1 < -DOUBLE_ROOT:
         raise InvalidParameters("theta", theta, f"B1B2 = {np.sqrt(dist2):.6g} m > 2 l2: limb I cannot close")
     normal = np.array([chord[2], 0.0, -chord[0]]) / np.sqrt(dist2)
     height = d.l2 * np.sqrt(max(disc1, 0.0))
     poses = []
-    for s in (1.0, -1.0):
+    for i, s in enumerate((1.0, -1.0)):
         c1 = 0.5 * (b[0] + b[1]) + s * height * normal
-        r = c1[0] + d.l1 / 2.0 + d.l2 * np.cos(theta[2])  # eq. (8): R, S
-        sz = c1[2] - d.l2 * np.sin(theta[2])
-        roots, disc2 = solve_trig(sz, -r, (r * r + sz * sz + d.l3**2 / 4.0 - d.l2**2) / d.l3, "theta3")
-        poses += [(Pose(float(c1[0]), float(c1[2]), alpha), min(disc1, disc2)) for alpha in roots]
+        try:
+            roots, disc2 = solve_trig(*_alpha_coefficients(d, c1, theta[2]), "theta3")
+        except InvalidParameters:
+            continue
+        poses += [FKSolution(Pose(float(c1[0]), float(c1[2]), alpha), (i, j), min(disc1, disc2))
+                  for j, alpha in enumerate(roots)]
+    if not poses:
+        raise InvalidParameters("theta", theta, "limb II cannot reach the platform for either C1")
     return poses
+
+
+def five_bar_discriminant(d: Dims, theta: np.ndarray) -> float:
+    """1 - (B1B2 / 2 l2)^2 for the inputs theta_1, theta_2: zero when the five-bar's distal links are
+    collinear (C1 a double root of eq. (7), a parallel singularity), negative when it cannot close."""
+    b = elbow_points(d, np.append(np.asarray(theta, dtype=float)[:2], 0.0))[:2]
+    chord = b[1] - b[0]
+    return float(1.0 - (chord @ chord) / (4.0 * d.l2**2))
+
+
+def _alpha_coefficients(d: Dims, c1: np.ndarray, theta3: float) -> tuple[float, float, float]:
+    """A, B, C of eq. (8), A sin alpha + B cos alpha + C = 0 (scaled by l3), for C1 and theta_3."""
+    r = c1[0] + d.l1 / 2.0 + d.l2 * np.cos(theta3)
+    sz = c1[2] - d.l2 * np.sin(theta3)
+    return sz, -r, (r * r + sz * sz + d.l3**2 / 4.0 - d.l2**2) / d.l3
+
+
+def alpha_discriminant(d: Dims, theta: np.ndarray, pose: Pose) -> float:
+    """Relative discriminant of eq. (8) at the inputs theta and the C1 of ``pose``: zero when limb II's
+    distal link B3C3 points at the platform centre p (a parallel singularity), negative beyond."""
+    a, b, c = _alpha_coefficients(d, np.array([pose.x, 0.0, pose.z]), float(theta[2]))
+    return float((a * a + b * b - c * c) / (a * a + b * b))
 
 
 def follower_angles(d: Dims, pose: Pose) -> tuple[tuple[float, float], float]:
@@ -350,7 +387,7 @@ def link_motion(d: Dims, s: State) -> dict[str, BodyMotion]:
     out: dict[str, BodyMotion] = {}
     vc, ac = _end_motion(d, s.pose, s.x_dot, s.x_ddot)
     phi2 = distal_angles(d, s.theta, s.pose)
-    to3 = lambda v2: np.array([v2[0], 0.0, v2[1]])  # noqa: E731
+    to3 = lambda v2: np.array([v2[0], 0.0, v2[1]])
     for i in range(4):
         c1 = d.l2 * direction(np.pi + s.theta[i])
         w1, e1 = s.theta_dot[i] * EY, s.theta_ddot[i] * EY

@@ -28,7 +28,7 @@ from mechkit.mechanisms import parallel_2t1r_kinematics as kin
 from mechkit.mechanisms.parallel_2t1r import Parallel2T1RParams, mass_properties
 from mechkit.validation.soc import RANK_TOL, BodyLoad, SKCInstant, SOCResult, WrenchSite, solve_soc
 
-__all__ = ["GRAVITY", "Points", "classic_torques", "soc_inverse_dynamics", "skcs"]
+__all__ = ["GRAVITY", "Points", "classic_torques", "skcs", "soc_inverse_dynamics"]
 
 GRAVITY = np.array([0.0, 0.0, -9.81])
 PIN = (0, 2)  # unknown world components of a released pin: fx, fz

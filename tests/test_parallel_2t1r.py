@@ -1,0 +1,170 @@
+"""The 2T1R through the Pinocchio pipeline against the paper's kinematics, SOC and classic virtual work."""
+
+from __future__ import annotations
+
+import xml.etree.ElementTree as ET
+
+import numpy as np
+import pytest
+
+import mechkit
+from mechkit.description import render_urdf
+from mechkit.exceptions import ClosureNotConverged, InvalidParameters, SingularConfiguration
+from mechkit.mechanisms import parallel_2t1r as m2
+from mechkit.mechanisms import parallel_2t1r_kinematics as kin
+from mechkit.mechanisms.parallel_2t1r_soc import classic_torques, skcs, soc_inverse_dynamics
+from mechkit.registry import URDF_DIR
+
+REGULAR = np.arange(1, 501) * 0.01  # the 501-sample law without its singular start t = 0
+
+
+@pytest.fixture(scope="module")
+def mech():
+    return mechkit.load("parallel_2t1r")
+
+
+@pytest.fixture(scope="module")
+def comparison(mech):
+    return m2.compare_along(mech, REGULAR)
+
+
+def test_urdf_file_is_the_template_at_defaults():
+    spec, p = m2.SPEC, m2.Parallel2T1RParams()
+    assert (URDF_DIR / "parallel_2t1r.urdf").read_text() == render_urdf(spec.xacro_path, p.xacro_args())
+
+
+def test_urdf_inertias_are_the_validators_inertias():
+    p = m2.Parallel2T1RParams(payload_mass=3.0, bar_width=0.03)
+    root = ET.fromstring(render_urdf(m2.SPEC.xacro_path, p.xacro_args()))
+    for name, (mass, com, inertia) in m2.mass_properties(p).items():
+        inertial = root.find(f"link[@name='{name}']/inertial")
+        assert float(inertial.find("mass").get("value")) == pytest.approx(mass, rel=1e-14)
+        np.testing.assert_allclose([float(x) for x in inertial.find("origin").get("xyz").split()], com, atol=1e-15)
+        tensor = inertial.find("inertia")
+        np.testing.assert_allclose([float(tensor.get(k)) for k in ("ixx", "iyy", "izz")], np.diag(inertia), rtol=1e-14)
+
+
+def test_mobility_and_redundant_variant():
+    plain, redundant = mechkit.load("parallel_2t1r"), mechkit.load("parallel_2t1r", redundant_actuation=True)
+    assert plain.mobility().dof == 3 and plain.mobility().redundant == 0
+    assert plain.actuated == ("R11", "R21", "R31") and redundant.actuated == ("R11", "R21", "R31", "R41")
+    np.testing.assert_allclose(redundant.home_q, plain.home_q, atol=1e-12)
+
+
+def _analytic_q(mech, pose: kin.Pose, theta4: float) -> np.ndarray:
+    s = kin.State(pose, np.zeros(3), np.zeros(3), np.append(m2.EXAMPLE_INPUTS, theta4), np.zeros(4), np.zeros(4))
+    q = mech.neutral()
+    for joint, (value, _, _) in m2.joint_coordinates(mech.params, s).items():
+        q[mech.q_index(joint)] = value
+    return q
+
+
+def test_example_assembles_into_every_forward_solution(mech):
+    """Each FK pose with each theta_4 root: Pinocchio's closure solve from a guess 0.05 rad away
+    lands on the analytic configuration. The one pose limb III cannot reach does not assemble."""
+    rng = np.random.default_rng(3)
+    assembled = 0
+    for sol in kin.forward_kinematics(mech.params.dims, m2.EXAMPLE_INPUTS):
+        try:
+            roots, _ = kin.follower_angles(mech.params.dims, sol.pose)
+        except InvalidParameters:
+            with pytest.raises(ClosureNotConverged):
+                q0 = _analytic_q(mech, sol.pose, 0.0)
+                mech.assemble(m2.EXAMPLE_INPUTS, guess=q0 + rng.uniform(-0.05, 0.05, q0.size), max_iter=40)
+            continue
+        for theta4 in roots:
+            exact = _analytic_q(mech, sol.pose, theta4)
+            q = mech.assemble(m2.EXAMPLE_INPUTS, guess=exact + rng.uniform(-0.05, 0.05, exact.size))
+            assert np.max(np.abs(mech.closure_residual(q))) < 1e-12
+            np.testing.assert_allclose(np.angle(np.exp(1j * (q - exact))), 0.0, atol=1e-10)
+            assembled += 1
+    assert assembled == 6
+
+
+def test_soc_and_classic_agree_with_pinocchio_along_the_motion_law(comparison):
+    """The 500 regular samples: torques and determinate reactions within 1e-8 of the largest value."""
+    assert comparison.kinematics_error.max() < 1e-10
+    assert np.all(comparison.relative_error("soc") < 1e-8)
+    assert np.all(comparison.relative_error("classic")[:3] < 1e-8)
+    assert np.all(np.abs(comparison.values["pinocchio"]).max(axis=0)[[0, 1, 3, 4, 5, 6]] > 0.5)  # not trivial
+
+
+def test_in_plane_forces_are_the_determinate_components(comparison):
+    """All axes parallel: fx, fz (and my of a free pin) are fixed by statics; fy, mx, mz are not."""
+    for joint in ("R23", "R43"):
+        np.testing.assert_array_equal(comparison.determinate[joint], [True, False, True, False, True, False])
+
+
+def test_soc_equals_classic_virtual_work_at_one_instant():
+    """Two virtual-work routes on the same loads: SKC by SKC, and the whole mechanism at once."""
+    p = m2.Parallel2T1RParams()
+    s = m2.state_at(p, *m2.motion_law(2.2))
+    soc = soc_inverse_dynamics(p, s)
+    ours, _ = classic_torques(p, s)
+    assert soc.consistency["SKC1"] < 1e-12
+    for joint in ("R11", "R21", "R31"):
+        assert soc.efforts[joint] == pytest.approx(ours[joint], rel=1e-10)
+
+
+def test_redundant_minimum_norm_distribution_agrees_everywhere(mech):
+    cmp = m2.compare_along(mech, REGULAR[::25], redundant=True)
+    assert np.all(cmp.relative_error("soc") < 1e-8)
+    assert np.all(cmp.relative_error("classic")[:3] < 1e-8)
+
+
+def test_start_of_motion_law(mech):
+    """t -> 0+: torques tend to finite limits, cond(J_p) and the five-bar's R13 force grow as 1/t;
+    at t = 0 every method raises SingularConfiguration (none returns NaN)."""
+    times = np.array([1e-1, 1e-2, 1e-3, 1e-4, 0.0])
+    study = m2.start_of_motion(mech, times)
+    v = study.values
+    for key in ("cond_Jp", "pinocchio:R13_fx"):
+        slope = np.polyfit(np.log(times[:4]), np.log(np.abs(v[key][:4])), 1)[0]
+        assert slope == pytest.approx(-1.0, abs=0.01)
+    for method in ("classic", "soc", "pinocchio"):
+        m1 = v[f"{method}:M1"][:4]
+        assert np.ptp(m1) < 1e-3 * np.abs(m1).max()
+    assert {m for m, fails in study.failures.items() if [x for x, _ in fails] == [0.0]} == {
+        "analytic", "classic", "soc", "pinocchio"}
+
+
+def test_singular_approach_blows_up_only_without_redundant_actuation(mech):
+    deltas = np.array([1e-1, 1e-2, 1e-3, 1e-4, 1e-5, 1e-6, 0.0])
+    study = m2.singular_approach(mech, deltas)
+    v, x = study.values, deltas[:-1]
+    for key in ("cond_Jp", "classic:cond", "soc:M1", "pinocchio:M1", "pinocchio:M2", "pinocchio:R13_fx"):
+        slope = np.polyfit(np.log(x[2:]), np.log(np.abs(v[key][2:-1])), 1)[0]
+        assert slope == pytest.approx(-0.5, abs=0.02), key
+        assert np.abs(v[key][3:-1]).max() / np.abs(v[key][:3]).max() > 20.0, key
+    for key in ("redundant/classic:M1", "redundant/classic:M2", "redundant/classic:M3", "redundant/classic:M4",
+                "redundant/classic:cond", "redundant/pinocchio:R13_fx", "redundant/soc:R23_fx"):
+        growth = np.abs(v[key][3:-1]).max() / np.abs(v[key][:3]).max()  # 31.6 for delta^-1/2
+        assert growth < 1.5, key
+    for q in ("M1", "M2", "M3", "M4"):  # converging like delta^1/2 to the value at the singular pose
+        gap = np.abs(v[f"redundant/classic:{q}"][3:-1] - v[f"redundant/classic:{q}"][-1])
+        assert gap[2] < 0.2 * gap[0], q
+    for method in ("classic", "soc", "pinocchio"):  # the plain variant: a clear error at delta = 0
+        assert [x for x, _ in study.failures[method]] == [0.0]
+    for q in ("M1", "M2", "M3"):  # SOC and Pinocchio, handed M4, reproduce the minimum-norm torques
+        ref = v[f"redundant/classic:{q}"][:-1]
+        for method in ("soc", "pinocchio"):
+            np.testing.assert_allclose(v[f"redundant/{method}:{q}"][:-1], ref, rtol=0, atol=1e-7 * np.abs(ref).max())
+    for q in ("R23_fx", "R23_fz", "R43_fx", "R43_fz"):
+        ref = v[f"redundant/pinocchio:{q}"][:-1]
+        np.testing.assert_allclose(v[f"redundant/soc:{q}"][:-1], ref, rtol=0, atol=1e-7 * np.abs(ref).max())
+
+
+def test_self_checks_report(mech):
+    checks = m2.SPEC.self_checks(mech)
+    assert checks and all(np.isfinite(x) and x < 1e-8 for x in checks.values())
+
+
+def test_skc_order_and_unknowns():
+    p = m2.Parallel2T1RParams()
+    s = m2.state_at(p, *m2.motion_law(1.0))
+    names = [(k.name, [a for a, _ in k.actuators], [r.joint for r in k.released], [r.joint for r in k.known])
+             for k in skcs(p, s)]
+    assert names == [("SKC3", [], ["R43"], []), ("SKC2", ["R31"], ["R23"], ["R43"]),
+                     ("SKC1", ["R11", "R21"], [], ["R23"])]
+    with pytest.raises(SingularConfiguration):
+        classic_torques(p, s, ("R11", "R21"))  # two motors cannot hold three DOF
