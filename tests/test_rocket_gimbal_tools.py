@@ -42,3 +42,10 @@ def test_bench_tool_runs(tmp_path):
     result = _tool("rocket_gimbal_bench").main(budget_s=0.05, out=tmp_path / "bench.png")
     assert all(np.isfinite(v) and v > 0 for v in result.values())
     assert (tmp_path / "bench.png").stat().st_size > 5_000
+
+
+def test_swing_tool_compares_pinocchio_and_soc(tmp_path):
+    result = _tool("rocket_gimbal_swing").main(n=6, out=tmp_path / "swing.png")
+    assert result["worst relative difference Pinocchio vs SOC"] < 1e-8
+    assert 1.1 < result["bearing force max (MN)"] < 1.3  # the 1.2 MN thrust plus weight and inertia
+    assert (tmp_path / "swing.png").stat().st_size > 10_000
