@@ -146,6 +146,15 @@ def test_bad_strokes_raise_named_errors():
         pick_in_range(fk_resultant(GEO, [0.6, -0.6]))
     with pytest.raises(InvalidParameters, match="pivot_offset"):
         RocketGimbalParams(pivot_offset=1.843)
+    from mechkit.mechanisms.rocket_gimbal import SwingScene
+    from mechkit.mechanisms.rocket_gimbal_motion import gimbal_motion
+
+    with pytest.raises(InvalidParameters, match="rates"):
+        gimbal_motion(GEO, [0.0, 0.0], [np.inf, 0.0], [0.0, 0.0])
+    with pytest.raises(InvalidParameters, match="frequency"):
+        SwingScene(frequency=0.0)
+    with pytest.raises(InvalidParameters, match="stroke_max"):
+        linear_rule([0.0, 0.0], stroke_max=0.0)
 
 
 def test_analytic_motion_matches_finite_differences_of_the_geometry():

@@ -181,6 +181,13 @@ class SwingScene:
     thrust: float = 1.2e6                      # N, against the nozzle axis
     thrust_point: float = 1.5                  # m from O along the nozzle axis (the throat)
 
+    def __post_init__(self) -> None:
+        for name, value in vars(self).items():
+            if not np.isfinite(value):
+                raise InvalidParameters(name, value, "must be finite")
+        if self.frequency <= 0 or self.thrust < 0:
+            raise InvalidParameters("frequency/thrust", (self.frequency, self.thrust), "need frequency > 0, thrust >= 0")
+
     def angles(self, t: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """(alpha, beta) rad, their rates rad/s and accelerations rad/s^2 at time t (s)."""
         w = 2.0 * np.pi * self.frequency

@@ -194,6 +194,8 @@ def linear_rule(stroke: np.ndarray, stroke_max: float = 0.110,
     Returns:
         (..., 2) (theta_x, theta_y) rad.
     """
+    if not (np.isfinite(stroke_max) and stroke_max > 0):
+        raise InvalidParameters("stroke_max", stroke_max, "must be a finite stroke > 0 (m)")
     s = np.asarray(stroke, dtype=float)
     k = angle_max / stroke_max
     return np.stack([k * s[..., 1], -k * s[..., 0]], axis=-1)

@@ -14,7 +14,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from mechkit.exceptions import SingularConfiguration
+from mechkit.exceptions import InvalidParameters, SingularConfiguration
 from mechkit.mechanisms.rocket_gimbal_kinematics import GimbalGeometry, attitude, hinge_axes, rot_x
 
 __all__ = ["LegMotion", "GimbalMotion", "gimbal_motion"]
@@ -103,6 +103,9 @@ def _leg(frame_pivot: np.ndarray, point: np.ndarray, velocity: np.ndarray, acc: 
 def gimbal_motion(geo: GimbalGeometry, angles: np.ndarray, rates: np.ndarray, accs: np.ndarray) -> GimbalMotion:
     """Every body's motion from (alpha, beta) and their derivatives (rad, rad/s, rad/s^2)."""
     angles, rates, accs = (np.asarray(x, dtype=float) for x in (angles, rates, accs))
+    for name, x in (("angles", angles), ("rates", rates), ("accs", accs)):
+        if x.shape != (2,) or not np.all(np.isfinite(x)):
+            raise InvalidParameters(name, x, "need two finite values (alpha, beta) in rad, rad/s or rad/s^2")
     rotation = attitude(*angles)
     x1, y2 = hinge_axes(angles[0])
     omega = rates[0] * x1 + rates[1] * y2

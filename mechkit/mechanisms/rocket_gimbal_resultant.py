@@ -9,10 +9,10 @@ b is the common root of the two quadratics in b (the paper's common-root test).
 
 Degree. The exact eliminant of two bidegree-(2, 2) equations has degree 8 (a 4x4 Sylvester matrix
 with entries of degree 2 in a), the number of assembly modes over the complex numbers. The paper
-prints a degree-16 polynomial (coefficients k1..k17, not printed) with real roots that fail the
-common-root test, so its equations carried extra factors. `degree16_polynomial` gives the 16-degree
-form one obtains by clearing the alpha terms with (1 + a^2)^2 (as an unsimplified expansion of
-|l|^2 does): it equals ``(1 + a^2)^4`` times the eliminant, whose four-fold roots at +-i are where a
+states a degree-16 polynomial (its coefficients k1..k17 are not printed) with a real root that fails
+the common-root test, so its equations carried extra factors. `degree16_polynomial` gives one
+16-degree form: each equation keeps an extra factor (1 + a^2) (its alpha terms cleared with
+(1 + a^2)^2): it equals ``(1 + a^2)^4`` times the eliminant, whose four-fold roots at +-i are where a
 degree-16 root finder loses three quarters of its digits. Numpy only; coefficients are computed by
 exact polynomial arithmetic on the geometry's numbers (no fitting).
 """
