@@ -37,11 +37,12 @@ class JointReaction:
 
     World frame, moment about the joint origin. `determinate[i]` is False for components that
     static equilibrium does not fix (redundant constraints); their value is the minimum-norm
-    convention. `support` is True for joints to the ground.
+    convention; `determinate` is None when the test was not run. `support` is True for joints to
+    the ground.
     """
 
     wrench: np.ndarray
-    determinate: np.ndarray
+    determinate: np.ndarray | None
     support: bool
 
 
@@ -113,17 +114,27 @@ def cut_wrench_arrays(data: pin.Data, rows: ClosureRows, lam: np.ndarray) -> tup
     return W, P
 
 
-def subtract_cut_wrenches(tree: np.ndarray, origins: np.ndarray, G: np.ndarray, W: np.ndarray, P: np.ndarray) -> np.ndarray:
+def cross_rows(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """Row-wise cross products of two (n, 3) arrays."""
+    return np.column_stack((a[:, 1] * b[:, 2] - a[:, 2] * b[:, 1], a[:, 2] * b[:, 0] - a[:, 0] * b[:, 2],
+                            a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0]))
+
+
+def subtract_cut_wrenches(tree: np.ndarray, data: pin.Data, affected: np.ndarray, G: np.ndarray, W: np.ndarray,
+                          P: np.ndarray) -> np.ndarray:
     """Tree joint wrenches once the cut wrenches act as external loads on their bodies.
 
     Each joint transmits what its subtree needs minus what the cut wrenches give it:
     f_i -= sum_c G_ic f_c, m_i -= sum_c G_ic (m_c + (p_c - o_i) x f_c), world axes, about o_i.
+    Only the `affected` joints (non-zero rows of G) change; joint origins o_i are read from data.oMi.
     """
-    F = G @ W[:, :3]
-    Mo = G @ (W[:, 3:] + np.cross(P, W[:, :3]))
+    Ga = G[affected]
+    F = Ga @ W[:, :3]
+    Mo = Ga @ (W[:, 3:] + cross_rows(P, W[:, :3]))
+    origins = np.array([data.oMi[int(j)].translation for j in affected]).reshape(-1, 3)
     out = tree.copy()
-    out[:, :3] -= F
-    out[:, 3:] -= Mo - np.cross(origins, F)
+    out[affected, :3] -= F
+    out[affected, 3:] -= Mo - cross_rows(origins, F)
     return out
 
 
@@ -149,12 +160,15 @@ class InverseDynamicsProblem:
 
     def __post_init__(self) -> None:
         self.incidence = subtree_incidence(self.model, self.rows)
+        self.affected = np.flatnonzero(np.any(self.incidence != 0, axis=1))
         self.cut_names = tuple(c.closure.name for c in self.rows.cuts)
         self.tree_names = tuple(self.model.names[1:])
+        self.joint_names = self.tree_names + self.cut_names
         parents = self.model.parents
-        self.tree_support = tuple(parents[i] == 0 for i in range(1, self.model.njoints))
-        self.cut_support = tuple(self.model.frames[c.frame_a].parentJoint == 0
-                                 or self.model.frames[c.frame_b].parentJoint == 0 for c in self.rows.cuts)
+        self.supports = tuple(parents[i] == 0 for i in range(1, self.model.njoints)) + tuple(
+            self.model.frames[c.frame_a].parentJoint == 0 or self.model.frames[c.frame_b].parentJoint == 0
+            for c in self.rows.cuts)
+        self.untested = (None,) * len(self.joint_names)
 
 
 def inverse_dynamics(p: InverseDynamicsProblem, q, v, a, fext=None, determinacy: bool = True) -> InverseDynamicsResult:
@@ -164,9 +178,8 @@ def inverse_dynamics(p: InverseDynamicsProblem, q, v, a, fext=None, determinacy:
         p: the problem (model, rows, actuators).
         q, v, a: configuration, velocity, acceleration (a must satisfy J a + gamma = 0).
         fext: optional external forces per joint (Pinocchio local frames), e.g. thrust.
-        determinacy: run the rank test that flags indeterminate components (one SVD and one static
-            RNEA per null-space direction); without it every component is flagged determinate=True
-            only when the system is square and regular.
+        determinacy: run the rank test that flags indeterminate components (one SVD of the full
+            spatial rows); without it `JointReaction.determinate` is None (not tested).
 
     Raises:
         SingularConfiguration: [S, J^T] has lost rank where it must not (efforts undetermined).
@@ -199,21 +212,15 @@ def inverse_dynamics(p: InverseDynamicsProblem, q, v, a, fext=None, determinacy:
         cond = float(s[0] / s[r - 1])
     u, lam = x[:na], x[na:]
     W, P = cut_wrench_arrays(data, rows, lam)
-    origins = np.array([M.translation for M in data.oMi])
-    tree = subtract_cut_wrenches(joint_wrenches_world(model, data), origins, p.incidence, W, P)
-    reactions_raw = {name: tree[i + 1] for i, name in enumerate(p.tree_names)}
-    reactions_raw.update(zip(p.cut_names, W))
-    flags = _determinate_flags(p, q) if determinacy else None
-    if flags is None:
-        everywhere = square
-        flags = {name: np.full(6, everywhere) for name in reactions_raw}
-    support = dict(zip(p.tree_names, p.tree_support)) | dict(zip(p.cut_names, p.cut_support))
-    reactions = {name: JointReaction(w, flags[name], support[name]) for name, w in reactions_raw.items()}
-    efforts = {name: float(val) for name, val in zip(p.actuated_names, u)}
+    tree = subtract_cut_wrenches(joint_wrenches_world(model, data), data, p.affected, p.incidence, W, P)
+    wrenches = np.vstack([tree[1:], W])
+    flags = _determinate_flags(p, q) if determinacy else p.untested
+    reactions = {name: JointReaction(w, f, s) for name, w, f, s in zip(p.joint_names, wrenches, flags, p.supports)}
+    efforts = dict(zip(p.actuated_names, u.tolist()))
     return InverseDynamicsResult(efforts, reactions, lam, cond)
 
 
-def _determinate_flags(p: InverseDynamicsProblem, q) -> dict[str, np.ndarray]:
+def _determinate_flags(p: InverseDynamicsProblem, q) -> np.ndarray:
     """Which reaction components static equilibrium fixes, tested on the full spatial rows.
 
     A component is determinate when it does not change along the null space of [S, J_full^T]
@@ -229,14 +236,12 @@ def _determinate_flags(p: InverseDynamicsProblem, q) -> dict[str, np.ndarray]:
     _, s, Vt = np.linalg.svd(A, full_matrices=True)
     r = numerical_rank(s)
     null = Vt[r:]
-    origins = np.array([M.translation for M in data.oMi])
-    variation = np.zeros((model.njoints - 1 + len(p.cut_names), 6))
+    variation = np.zeros((len(p.joint_names), 6))
     zero_tree = np.zeros((model.njoints, 6))
     for x in null:
         # a self-stress: cut wrenches with no load; the tree joints carry what the cuts push in
         W, P = cut_wrench_arrays(data, p.full_rows, x[na:])
-        tree = subtract_cut_wrenches(zero_tree, origins, p.incidence, W, P)
+        tree = subtract_cut_wrenches(zero_tree, data, p.affected, p.incidence, W, P)
         variation = np.maximum(variation, np.abs(np.vstack([tree[1:], W])))
     scale = variation.max(initial=0.0)
-    flags = variation <= DETERMINACY_TOL * max(scale, 1e-300)
-    return dict(zip(list(p.tree_names) + list(p.cut_names), flags))
+    return variation <= DETERMINACY_TOL * max(scale, 1e-300)
