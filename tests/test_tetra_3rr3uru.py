@@ -92,13 +92,13 @@ def test_eq9_reading_starts_at_the_printed_initial_orientation():
     np.testing.assert_allclose(R, rot_y(GAMMA0) @ euler_xyz(R_B0_ANGLES), atol=1e-15)
 
 
-@pytest.mark.parametrize("bad", [dict(t=-1.0), dict(t=201.0), dict(t=float("nan"))])
+@pytest.mark.parametrize("bad", [{"t": -1.0}, {"t": 201.0}, {"t": float("nan")}])
 def test_drive_laws_refuse_times_outside_the_fold(bad):
     with pytest.raises(InvalidParameters, match="t"):
         drive_state(**bad)
 
 
-@pytest.mark.parametrize("bad", [dict(l2=0.6), dict(alpha_ref=2.0), dict(L=2.0)])
+@pytest.mark.parametrize("bad", [{"l2": 0.6}, {"alpha_ref": 2.0}, {"L": 2.0}])
 def test_params_refuse_impossible_geometry(bad):
     with pytest.raises(InvalidParameters):
         TetraParams(**bad)

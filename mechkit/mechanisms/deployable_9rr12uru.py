@@ -185,7 +185,7 @@ def fold_times(step: float = 1.0) -> np.ndarray:
     """Sample times of the 200 s fold, s."""
     if not 0.0 < step <= FOLD_DURATION:
         raise InvalidParameters("step", step, f"must lie in (0, {FOLD_DURATION}] s")
-    return np.linspace(0.0, FOLD_DURATION, int(round(FOLD_DURATION / step)) + 1)
+    return np.linspace(0.0, FOLD_DURATION, round(FOLD_DURATION / step) + 1)
 
 
 SPEC = MechanismSpec(

@@ -17,7 +17,13 @@ from dataclasses import dataclass
 import numpy as np
 
 from mechkit.exceptions import InvalidParameters
-from mechkit.mechanisms.truss_geometry import UNIT_NODES, DriveState, TrussGeometry, drive_state, half_angle_beta
+from mechkit.mechanisms.truss_geometry import (
+    UNIT_NODES,
+    DriveState,
+    TrussGeometry,
+    drive_state,
+    half_angle_beta,
+)
 from mechkit.params import MechanismParams, param
 from mechkit.registry import MechanismSpec
 
