@@ -24,14 +24,24 @@ def mech():
 
 
 def test_defaults_are_the_papers_values():
-    deg = {k: math.degrees(getattr(P, k)) for k in ("alpha1", "alpha2", "beta", "eta11", "eta12", "eta21", "eta22")}
-    assert deg == pytest.approx({"alpha1": 25, "alpha2": 30, "beta": 53.13, "eta11": 0, "eta12": 90, "eta21": 0,
-                                 "eta22": 90}, abs=1e-12)
+    deg = {
+        k: math.degrees(getattr(P, k))
+        for k in ("alpha1", "alpha2", "beta", "eta11", "eta12", "eta21", "eta22")
+    }
+    assert deg == pytest.approx(
+        {"alpha1": 25, "alpha2": 30, "beta": 53.13, "eta11": 0, "eta12": 90, "eta21": 0, "eta22": 90},
+        abs=1e-12,
+    )
 
 
-@pytest.mark.parametrize("change, name", [({"beta_platform": P.beta}, "beta_platform"),
-                                          ({"beta_platform": math.radians(150)}, "beta_platform"),
-                                          ({"alpha1": 0.0}, "alpha1")])
+@pytest.mark.parametrize(
+    "change, name",
+    [
+        ({"beta_platform": P.beta}, "beta_platform"),
+        ({"beta_platform": math.radians(150)}, "beta_platform"),
+        ({"alpha1": 0.0}, "alpha1"),
+    ],
+)
 def test_bad_parameters_are_named(change, name):
     with pytest.raises(InvalidParameters) as err:
         P.replace(**change)
@@ -44,9 +54,11 @@ def test_middle_axis_is_eq4_as_printed():
     a1, b = P.alpha1, P.beta
     for i, eta in ((1, P.eta11), (2, P.eta12)):
         for th in np.linspace(-3, 3, 7):
-            printed = [-s(a1) * c(eta) * s(th) + s(a1) * s(eta) * c(b) * c(th) + s(eta) * s(b) * c(a1),
-                       -s(a1) * s(eta) * s(th) - s(a1) * c(eta) * c(b) * c(th) - c(a1) * c(eta) * s(b),
-                       s(b) * c(th) * s(a1) - c(b) * c(a1)]
+            printed = [
+                -s(a1) * c(eta) * s(th) + s(a1) * s(eta) * c(b) * c(th) + s(eta) * s(b) * c(a1),
+                -s(a1) * s(eta) * s(th) - s(a1) * c(eta) * c(b) * c(th) - c(a1) * c(eta) * s(b),
+                s(b) * c(th) * s(a1) - c(b) * c(a1),
+            ]
             np.testing.assert_allclose(kin.middle_axis(P, i, th), printed, atol=1e-15)
 
 
@@ -207,8 +219,11 @@ def test_tools_run(tmp_path):
     from pathlib import Path
 
     tools = Path(__file__).resolve().parent.parent / "tools"
-    runs = (("spherical_2dof_basin", {"directions": 2, "grid_points": 11}), ("spherical_2dof_bench", {"budget": 0.01}),
-            ("spherical_2dof_cone", {"samples": 6}))
+    runs = (
+        ("spherical_2dof_basin", {"directions": 2, "grid_points": 11}),
+        ("spherical_2dof_bench", {"budget": 0.01}),
+        ("spherical_2dof_cone", {"samples": 6}),
+    )
     for name, kwargs in runs:
         spec = importlib.util.spec_from_file_location(name, tools / f"{name}.py")
         module = importlib.util.module_from_spec(spec)

@@ -15,14 +15,14 @@ from pathlib import Path
 import matplotlib
 
 matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
+import matplotlib.pyplot as plt
+import numpy as np
 
-from mechkit.exceptions import InvalidParameters  # noqa: E402
-from mechkit.mechanism import load  # noqa: E402
-from mechkit.mechanisms import spherical_2dof_kinematics as kin  # noqa: E402
-from mechkit.mechanisms.spherical_2dof import BRANCHES, cone_attitude  # noqa: E402
-from mechkit.mechanisms.spherical_2dof_fk import METHODS, NEAR_SINGULAR, REGULAR, basin_study  # noqa: E402
+from mechkit.exceptions import InvalidParameters
+from mechkit.mechanism import load
+from mechkit.mechanisms import spherical_2dof_kinematics as kin
+from mechkit.mechanisms.spherical_2dof import BRANCHES, cone_attitude
+from mechkit.mechanisms.spherical_2dof_fk import METHODS, NEAR_SINGULAR, REGULAR, basin_study
 
 OUT = Path(__file__).resolve().parent.parent / "docs" / "figures" / "spherical_2dof_basin.png"
 RADII_DEG = (0.1, 0.3, 1.0, 2.0, 5.0, 10.0, 20.0, 30.0, 45.0, 60.0)
@@ -51,40 +51,68 @@ def main(directions: int = 24, grid_points: int = 91, out: Path = OUT) -> dict[s
     grid = np.radians(np.linspace(-30, 60, grid_points))
     det = _det_b_map(mech.params, grid)
     lim = np.nanmax(np.abs(det))
-    im = axes[0].pcolormesh(np.degrees(grid), np.degrees(grid), det.T, cmap="RdBu_r", vmin=-lim, vmax=lim,
-                            shading="auto")
+    im = axes[0].pcolormesh(
+        np.degrees(grid), np.degrees(grid), det.T, cmap="RdBu_r", vmin=-lim, vmax=lim, shading="auto"
+    )
     axes[0].contour(np.degrees(grid), np.degrees(grid), det.T, levels=[0.0], colors="k", linewidths=1.0)
     cone = np.degrees(cone_attitude(np.linspace(0, 2, 200))[0])
     axes[0].plot(cone[:, 0], cone[:, 1], "k--", lw=1, label="cone scene (half angle 15 deg)")
     for (name, pose), marker in zip(poses.items(), ("o", "x")):
         axes[0].plot(*np.degrees(pose), marker, color="k", ms=8, label=f"{name} target")
-    axes[0].set(xlabel="roll phi_x (deg)", ylabel="pitch phi_y (deg)",
-                title="det B (black: det B = 0; blank: IK undefined)")
+    axes[0].set(
+        xlabel="roll phi_x (deg)",
+        ylabel="pitch phi_y (deg)",
+        title="det B (black: det B = 0; blank: IK undefined)",
+    )
     axes[0].legend(fontsize=7, loc="lower right")
     fig.colorbar(im, ax=axes[0])
     styles = {"paper": "C0", "newton": "C1", "closure": "C2"}
     for name, ls in (("regular", "-"), ("near singular", ":")):
         for method in METHODS:
             rows = [r for r in table[name] if r.method == method]
-            axes[1].semilogx(RADII_DEG, [r.found for r in rows], ls, color=styles[method], marker="o", ms=3,
-                             label=f"{method}, {name}")
-            axes[2].semilogx(RADII_DEG, [r.iterations for r in rows], ls, color=styles[method], marker="o", ms=3,
-                             label=f"{method}, {name}")
-    axes[1].set(xlabel="start distance from the answer (deg)", ylabel="fraction of starts finding the answer",
-                title=f"FK convergence basin ({directions} directions per radius)")
-    axes[2].set(xlabel="start distance from the answer (deg)", ylabel="mean iterations (successful starts)",
-                title="iterations to |step| (closure: |residual|) <= 1e-13")
+            axes[1].semilogx(
+                RADII_DEG,
+                [r.found for r in rows],
+                ls,
+                color=styles[method],
+                marker="o",
+                ms=3,
+                label=f"{method}, {name}",
+            )
+            axes[2].semilogx(
+                RADII_DEG,
+                [r.iterations for r in rows],
+                ls,
+                color=styles[method],
+                marker="o",
+                ms=3,
+                label=f"{method}, {name}",
+            )
+    axes[1].set(
+        xlabel="start distance from the answer (deg)",
+        ylabel="fraction of starts finding the answer",
+        title=f"FK convergence basin ({directions} directions per radius)",
+    )
+    axes[2].set(
+        xlabel="start distance from the answer (deg)",
+        ylabel="mean iterations (successful starts)",
+        title="iterations to |step| (closure: |residual|) <= 1e-13",
+    )
     axes[1].legend(fontsize=7)
     for ax in axes[1:]:
         ax.grid(True, which="both", alpha=0.3)
     fig.tight_layout()
     fig.savefig(out, dpi=90)
 
-    print(f"{'pose':14s} {'method':8s} {'r (deg)':>8s} {'found':>6s} {'other':>6s} {'failed':>6s} {'iters':>6s}")
+    print(
+        f"{'pose':14s} {'method':8s} {'r (deg)':>8s} {'found':>6s} {'other':>6s} {'failed':>6s} {'iters':>6s}"
+    )
     for name, rows in table.items():
         for r in rows:
-            print(f"{name:14s} {r.method:8s} {np.degrees(r.radius):8.1f} {r.found:6.2f} {r.elsewhere:6.2f} "
-                  f"{r.failed:6.2f} {r.iterations:6.2f}")
+            print(
+                f"{name:14s} {r.method:8s} {np.degrees(r.radius):8.1f} {r.found:6.2f} {r.elsewhere:6.2f} "
+                f"{r.failed:6.2f} {r.iterations:6.2f}"
+            )
     print(f"wrote {out}")
     return {name: [r.__dict__ for r in rows] for name, rows in table.items()}
 

@@ -18,17 +18,17 @@ from pathlib import Path
 import matplotlib
 
 matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
+import matplotlib.pyplot as plt
+import numpy as np
 
-from mechkit.bench import time_per_call  # noqa: E402
-from mechkit.mechanism import load  # noqa: E402
-from mechkit.mechanisms import spherical_2dof_kinematics as kin  # noqa: E402
-from mechkit.mechanisms import spherical_2dof_soc as soc  # noqa: E402
-from mechkit.mechanisms.spherical_2dof import BRANCHES, cone_attitude, state  # noqa: E402
-from mechkit.mechanisms.spherical_2dof_checks import cone_times  # noqa: E402
-from mechkit.mechanisms.spherical_2dof_fk import solve_fk  # noqa: E402
-from mechkit.validation.soc import solve_soc  # noqa: E402
+from mechkit.bench import time_per_call
+from mechkit.mechanism import load
+from mechkit.mechanisms import spherical_2dof_kinematics as kin
+from mechkit.mechanisms import spherical_2dof_soc as soc
+from mechkit.mechanisms.spherical_2dof import BRANCHES, cone_attitude, state
+from mechkit.mechanisms.spherical_2dof_checks import cone_times
+from mechkit.mechanisms.spherical_2dof_fk import solve_fk
+from mechkit.validation.soc import solve_soc
 
 OUT = Path(__file__).resolve().parent.parent / "docs" / "figures" / "spherical_2dof_bench.png"
 
@@ -49,22 +49,36 @@ def main(budget: float = 1.0, out: Path = OUT) -> dict[str, float]:
     cases = {
         "IK eq. (8)": [lambda phi=phi: kin.inverse_kinematics(p, phi, BRANCHES) for phi in phis],
         "J = -B^-1 A": [lambda th=th, phi=phi: kin.jacobian(p, th, phi) for th, phi in zip(thetas, phis)],
-        "FK paper": [lambda th=th, phi=phi: solve_fk(mech, "paper", th, phi + 0.05) for th, phi in zip(thetas, phis)],
-        "FK Newton": [lambda th=th, phi=phi: solve_fk(mech, "newton", th, phi + 0.05) for th, phi in zip(thetas, phis)],
-        "FK closure solver": [lambda th=th, phi=phi: solve_fk(mech, "closure", th, phi + 0.05)
-                              for th, phi in zip(thetas, phis)],
+        "FK paper": [
+            lambda th=th, phi=phi: solve_fk(mech, "paper", th, phi + 0.05) for th, phi in zip(thetas, phis)
+        ],
+        "FK Newton": [
+            lambda th=th, phi=phi: solve_fk(mech, "newton", th, phi + 0.05) for th, phi in zip(thetas, phis)
+        ],
+        "FK closure solver": [
+            lambda th=th, phi=phi: solve_fk(mech, "closure", th, phi + 0.05) for th, phi in zip(thetas, phis)
+        ],
         "ID Pinocchio": [lambda s=s: mech.inverse_dynamics(*s, determinacy=False) for s in states],
         "ID Pinocchio + determinacy": [lambda s=s: mech.inverse_dynamics(*s) for s in states],
         "ID SOC efforts+support": [lambda x=x: solve_soc(soc.skcs(p, *x)) for x in zip(phis, rates, accs)],
-        "ID SOC every joint": [lambda x=x, u=u: solve_soc(soc.skcs(p, *x, efforts=u))
-                               for x, u in zip(zip(phis, rates, accs), efforts)],
+        "ID SOC every joint": [
+            lambda x=x, u=u: solve_soc(soc.skcs(p, *x, efforts=u))
+            for x, u in zip(zip(phis, rates, accs), efforts)
+        ],
     }
     fk_cases = [k for k in cases if k.startswith("FK")]
     id_cases = [k for k in cases if k.startswith("ID")]
     us = {name: _time(calls, budget) for name, calls in cases.items()}
 
-    reference = {name: ref for group, ref in ((["IK eq. (8)", "J = -B^-1 A"], "IK eq. (8)"), (fk_cases, "FK paper"),
-                                              (id_cases, "ID Pinocchio")) for name in group}
+    reference = {
+        name: ref
+        for group, ref in (
+            (["IK eq. (8)", "J = -B^-1 A"], "IK eq. (8)"),
+            (fk_cases, "FK paper"),
+            (id_cases, "ID Pinocchio"),
+        )
+        for name in group
+    }
     print(f"{'method':28s} {'us/call':>9s}  ratio")
     for name, ref in reference.items():
         print(f"{name:28s} {us[name]:9.1f}  {us[name] / us[ref]:5.2f} x {ref}")
@@ -74,10 +88,14 @@ def main(budget: float = 1.0, out: Path = OUT) -> dict[str, float]:
     ax.barh(names, [us[n] for n in names], color=["C0"] * 2 + ["C1"] * len(fk_cases) + ["C2"] * len(id_cases))
     for k, name in enumerate(names):
         ref = reference[name]
-        ax.text(us[name], k, f" {us[name]:.0f} us ({us[name] / us[ref]:.2f} x {ref})", va="center", fontsize=8)
+        ax.text(
+            us[name], k, f" {us[name]:.0f} us ({us[name] / us[ref]:.2f} x {ref})", va="center", fontsize=8
+        )
     ax.set_xscale("log")
-    ax.set(xlabel="time per call (us, median of 5 rounds, one run, gc off; 2 shared cores)",
-           title="spherical_2dof: kinematics and inverse dynamics, per method")
+    ax.set(
+        xlabel="time per call (us, median of 5 rounds, one run, gc off; 2 shared cores)",
+        title="spherical_2dof: kinematics and inverse dynamics, per method",
+    )
     ax.invert_yaxis()
     fig.tight_layout()
     fig.savefig(out, dpi=90)

@@ -16,14 +16,14 @@ from pathlib import Path
 import matplotlib
 
 matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
+import matplotlib.pyplot as plt
+import numpy as np
 
-from mechkit.mechanism import load  # noqa: E402
-from mechkit.mechanisms import spherical_2dof_kinematics as kin  # noqa: E402
-from mechkit.mechanisms import spherical_2dof_soc as soc  # noqa: E402
-from mechkit.mechanisms.spherical_2dof import BRANCHES, cone_attitude, platform_normal, state  # noqa: E402
-from mechkit.mechanisms.spherical_2dof_checks import cone_times  # noqa: E402
+from mechkit.mechanism import load
+from mechkit.mechanisms import spherical_2dof_kinematics as kin
+from mechkit.mechanisms import spherical_2dof_soc as soc
+from mechkit.mechanisms.spherical_2dof import BRANCHES, cone_attitude, platform_normal, state
+from mechkit.mechanisms.spherical_2dof_checks import cone_times
 
 OUT = Path(__file__).resolve().parent.parent / "docs" / "figures" / "spherical_2dof_cone.png"
 
@@ -53,7 +53,9 @@ def main(samples: int = 72, out: Path = OUT) -> dict[str, float]:
     deg = np.degrees
     for k, name in enumerate(("theta_11 (r11)", "theta_21 (r21)")):
         ax[0].plot(t, deg(theta[:, k]), label=name)
-    ax[0].set(xlabel="time (s)", ylabel="motor angle (deg)", title="motor curves by IK eq. (8) (paper Fig. 5)")
+    ax[0].set(
+        xlabel="time (s)", ylabel="motor angle (deg)", title="motor curves by IK eq. (8) (paper Fig. 5)"
+    )
     for k, name in enumerate(("roll phi_x", "pitch phi_y")):
         ax[1].plot(t, deg(phi[:, k]), "--", color=f"C{k}", label=f"{name}, plan")
         ax[1].plot(t, deg(fk[:, k]), "*", color=f"C{k}", ms=4, label=f"{name}, paper FK")
@@ -61,8 +63,12 @@ def main(samples: int = 72, out: Path = OUT) -> dict[str, float]:
     n_plan, n_fk = platform_normal(phi), platform_normal(fk)
     ax[2].plot(n_plan[:, 0], n_plan[:, 1], "--", label="planned")
     ax[2].plot(n_fk[:, 0], n_fk[:, 1], "*", ms=4, label="from paper FK")
-    ax[2].set(xlabel="marker x (unit normal tip, -)", ylabel="marker y (-)", aspect="equal",
-              title="marker point, top view (paper Fig. 7)")
+    ax[2].set(
+        xlabel="marker x (unit normal tip, -)",
+        ylabel="marker y (-)",
+        aspect="equal",
+        title="marker point, top view (paper Fig. 7)",
+    )
     for k, name in enumerate(mech.actuated):
         ax[3].plot(t, pin_u[:, k], color=f"C{k}", label=f"torque {name}, Pinocchio")
         ax[3].plot(t, soc_u[:, k], "x", color=f"C{k}", ms=4, label=f"torque {name}, SOC")

@@ -35,14 +35,23 @@ BRANCHES = (1, 1)
 @dataclass(frozen=True)
 class Spherical2DofParams(MechanismParams):
     alpha1: float = param(math.radians(25.0), "rad", "arc between the motor axis u_i and the middle axis w_i")
-    alpha2: float = param(math.radians(30.0), "rad", "arc between the middle axis w_i and the platform axis v_i")
+    alpha2: float = param(
+        math.radians(30.0), "rad", "arc between the middle axis w_i and the platform axis v_i"
+    )
     beta: float = param(math.radians(53.13), "rad", "angle of the motor axes u_i from -Z0 (eq. 5)")
-    beta_platform: float = param(math.radians(90.0), "rad",
-                                 "angle of the platform axes v_i from -Z (absent from the paper; 90 deg: in the platform plane)",
-                                 ours=True)
-    eta11: float = param(0.0, "rad", "base azimuth of limb 1's motor axis u_1 (the reference: 0 by definition of X0)")
+    beta_platform: float = param(
+        math.radians(90.0),
+        "rad",
+        "angle of the platform axes v_i from -Z (absent from the paper; 90 deg: in the platform plane)",
+        ours=True,
+    )
+    eta11: float = param(
+        0.0, "rad", "base azimuth of limb 1's motor axis u_1 (the reference: 0 by definition of X0)"
+    )
     eta12: float = param(math.radians(90.0), "rad", "base azimuth of limb 2's motor axis u_2 from u_1")
-    eta21: float = param(0.0, "rad", "platform azimuth of limb 1's platform axis v_1 (the reference: 0 by definition of X)")
+    eta21: float = param(
+        0.0, "rad", "platform azimuth of limb 1's platform axis v_1 (the reference: 0 by definition of X)"
+    )
     eta22: float = param(math.radians(90.0), "rad", "platform azimuth of limb 2's platform axis v_2 from v_1")
     radius: float = param(0.12, "m", "sphere radius of the limb links (joint points)", ours=True)
     link_width: float = param(0.02, "m", "square section side of the limb links", ours=True)
@@ -60,10 +69,14 @@ class Spherical2DofParams(MechanismParams):
                 raise InvalidParameters(name, getattr(self, name), "a link arc must lie in (0, 90) deg")
         lo, hi = abs(self.alpha1 - self.alpha2), self.alpha1 + self.alpha2
         for i in (1, 2):
-            arc = math.acos(float(np.clip(kin.base_axis(self, i) @ kin.platform_axis(self, i, (0.0, 0.0)), -1, 1)))
+            arc = math.acos(
+                float(np.clip(kin.base_axis(self, i) @ kin.platform_axis(self, i, (0.0, 0.0)), -1, 1))
+            )
             if not lo < arc < hi:
-                why = (f"limb {i} cannot assemble at home: the u-v arc {math.degrees(arc):.2f} deg is outside "
-                       f"(|alpha1 - alpha2|, alpha1 + alpha2) = ({math.degrees(lo):.2f}, {math.degrees(hi):.2f}) deg")
+                why = (
+                    f"limb {i} cannot assemble at home: the u-v arc {math.degrees(arc):.2f} deg is outside "
+                    f"(|alpha1 - alpha2|, alpha1 + alpha2) = ({math.degrees(lo):.2f}, {math.degrees(hi):.2f}) deg"
+                )
                 raise InvalidParameters("beta_platform", self.beta_platform, why)
 
 
@@ -85,8 +98,9 @@ def _guess(p: Spherical2DofParams) -> dict[str, float]:
     return tree_configuration(p, np.zeros(2), kin.inverse_kinematics(p, (0.0, 0.0), BRANCHES))
 
 
-def cone_attitude(t: np.ndarray | float, half_angle: float = CONE_HALF_ANGLE,
-                  period: float = CONE_PERIOD) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def cone_attitude(
+    t: np.ndarray | float, half_angle: float = CONE_HALF_ANGLE, period: float = CONE_PERIOD
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Cone scene: the platform normal n = [s(g) c(psi), s(g) s(psi), c(g)], psi = 2 pi t / period.
 
     With n = Rx(phi_x) Ry(phi_y) e_z: phi_y = asin(s(g) c(psi)), phi_x = atan(-tan(g) s(psi)).
@@ -123,8 +137,13 @@ def platform_normal(phi: np.ndarray) -> np.ndarray:
     return np.stack([np.sin(py), -np.sin(px) * np.cos(py), np.cos(px) * np.cos(py)], axis=-1)
 
 
-def state(mech: Mechanism, phi: np.ndarray, phi_d: np.ndarray, phi_dd: np.ndarray,
-          branches: tuple[int, int] = BRANCHES) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def state(
+    mech: Mechanism,
+    phi: np.ndarray,
+    phi_d: np.ndarray,
+    phi_dd: np.ndarray,
+    branches: tuple[int, int] = BRANCHES,
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Pinocchio (q, v, a) of a platform motion, from the paper's kinematics alone (no closure solve).
 
     Motor angles by eq. (8); joint rates and accelerations by the limb velocity loops
@@ -143,6 +162,16 @@ def state(mech: Mechanism, phi: np.ndarray, phi_d: np.ndarray, phi_dd: np.ndarra
         for j in range(2):
             v[mech.v_index(f"r{i}{j + 1}")], a[mech.v_index(f"r{i}{j + 1}")] = rate[j], acc[j]
     return q, v, a
+
+
+def _cone_scene(mech: Mechanism) -> list[np.ndarray]:
+    """One turn of the cone scene as assembled configurations (for animated snapshots)."""
+    phi, phi_d, phi_dd = cone_attitude(np.linspace(0.0, CONE_PERIOD, 73))
+    return [state(mech, *x)[0] for x in zip(phi, phi_d, phi_dd, strict=True)]
+
+
+#: Animated scenes for `mechkit snapshot spherical_2dof --scene cone`.
+SCENES = {"cone": _cone_scene}
 
 
 def _bench_fk(method: str):
@@ -170,7 +199,10 @@ def _bench_soc(mech: Mechanism, sample):
 
 #: `mechkit bench` methods (protocol in `mechkit.bench`); the SOC is also the independent reference.
 BENCH_METHODS = {
-    "assembly": [("paper FK (Newton on IK eq. 8)", _bench_fk("paper")), ("Newton FK on eq. (7)", _bench_fk("newton"))],
+    "assembly": [
+        ("paper FK (Newton on IK eq. 8)", _bench_fk("paper")),
+        ("Newton FK on eq. (7)", _bench_fk("newton")),
+    ],
     "inverse_dynamics": [("SOC (numpy)", _bench_soc)],
 }
 BENCH_REFERENCE = {"inverse_dynamics": _bench_soc}

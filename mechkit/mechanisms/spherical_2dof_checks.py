@@ -17,7 +17,14 @@ from mechkit.mechanisms.spherical_2dof_fk import METHODS, solve_fk
 if TYPE_CHECKING:
     from mechkit.mechanism import Mechanism
 
-__all__ = ["cone_times", "cone_round_trip", "jacobian_fd_error", "fk_agreement", "dynamics_agreement", "self_checks"]
+__all__ = [
+    "cone_round_trip",
+    "cone_times",
+    "dynamics_agreement",
+    "fk_agreement",
+    "jacobian_fd_error",
+    "self_checks",
+]
 
 #: Compared components of every reaction: the moments about O (world x, y, z). The forces at O
 #: are statically indeterminate (the tests check that Pinocchio flags them so).
@@ -51,10 +58,13 @@ def jacobian_fd_error(p: kin.Geometry, samples: int = 12, h: float = 1e-5) -> fl
     worst = 0.0
     for target in cone_attitude(cone_times(samples))[0]:
         theta = kin.inverse_kinematics(p, target, BRANCHES)
-        fd = np.column_stack([
-            (kin.fk_newton(p, theta + h * e, target).phi - kin.fk_newton(p, theta - h * e, target).phi) / (2 * h)
-            for e in np.eye(2)
-        ])
+        fd = np.column_stack(
+            [
+                (kin.fk_newton(p, theta + h * e, target).phi - kin.fk_newton(p, theta - h * e, target).phi)
+                / (2 * h)
+                for e in np.eye(2)
+            ]
+        )
         worst = max(worst, float(np.abs(kin.jacobian(p, theta, target) - fd).max()))
     return worst
 
@@ -105,8 +115,12 @@ def dynamics_agreement(mech: Mechanism, samples: int = 24) -> dict[str, float]:
         x, y = np.asarray(x), np.asarray(y)
         return float(np.abs(x - y).max() / np.abs(x).max()) if determinate else float("inf")
 
-    return {"efforts": rel(pin_u, soc_u), "support": rel(pin_m["hooke_roll"], soc_m["hooke_roll"]),
-            "joints": max(rel(pin_m[j], soc_m[j]) for j in pin_m), "consistency": consistency}
+    return {
+        "efforts": rel(pin_u, soc_u),
+        "support": rel(pin_m["hooke_roll"], soc_m["hooke_roll"]),
+        "joints": max(rel(pin_m[j], soc_m[j]) for j in pin_m),
+        "consistency": consistency,
+    }
 
 
 def self_checks(mech: Mechanism) -> dict[str, float]:

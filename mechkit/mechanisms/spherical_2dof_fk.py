@@ -22,7 +22,7 @@ from mechkit.mechanisms.spherical_2dof import BRANCHES, cone_attitude, tree_conf
 if TYPE_CHECKING:
     from mechkit.mechanism import Mechanism
 
-__all__ = ["METHODS", "REGULAR", "NEAR_SINGULAR", "fk_closure", "solve_fk", "BasinRow", "basin_study"]
+__all__ = ["METHODS", "NEAR_SINGULAR", "REGULAR", "BasinRow", "basin_study", "fk_closure", "solve_fk"]
 
 METHODS = ("paper", "newton", "closure")
 #: A regular pose of the cone scene (t = 0.25 s; cond(B) = 1.2), rad.
@@ -31,8 +31,9 @@ REGULAR = cone_attitude(0.25)[0]
 NEAR_SINGULAR = np.radians([12.0, 25.0])
 
 
-def fk_closure(mech: Mechanism, theta_d: Sequence[float], phi0: Sequence[float], tol: float = 1e-13,
-               max_iter: int = 50) -> kin.FKResult:
+def fk_closure(
+    mech: Mechanism, theta_d: Sequence[float], phi0: Sequence[float], tol: float = 1e-13, max_iter: int = 50
+) -> kin.FKResult:
     """Forward kinematics by the core's closure solver (Gauss-Newton with line search, 4 rows).
 
     The start is the tree pose with the Hooke joint at phi0, the motors at theta_d, and each middle
@@ -42,7 +43,9 @@ def fk_closure(mech: Mechanism, theta_d: Sequence[float], phi0: Sequence[float],
         ClosureNotConverged: the closure solver failed.
     """
     q0 = mech.neutral()
-    for joint, value in tree_configuration(mech.params, np.asarray(phi0, float), np.asarray(theta_d, float)).items():
+    for joint, value in tree_configuration(
+        mech.params, np.asarray(phi0, float), np.asarray(theta_d, float)
+    ).items():
         q0[mech.q_index(joint)] = value
     free_v = np.setdiff1d(np.arange(mech.model.nv), [mech.v_index(j) for j in mech.actuated])
     q, iters = kinematics.solve_closure(mech.rows, mech.data, q0, free_v, tol=tol, max_iter=max_iter)
@@ -82,8 +85,13 @@ class BasinRow:
     iterations: float
 
 
-def basin_study(mech: Mechanism, phi_star: Sequence[float], radii: Sequence[float], directions: int = 16,
-                methods: Sequence[str] = METHODS) -> list[BasinRow]:
+def basin_study(
+    mech: Mechanism,
+    phi_star: Sequence[float],
+    radii: Sequence[float],
+    directions: int = 16,
+    methods: Sequence[str] = METHODS,
+) -> list[BasinRow]:
     """Convergence of each FK method from starts on circles of growing radius about ``phi_star``.
 
     The motor angles are the paper's IK of phi_star (branch `BRANCHES`); starts are
@@ -109,6 +117,14 @@ def basin_study(mech: Mechanism, phi_star: Sequence[float], radii: Sequence[floa
                 else:
                     elsewhere += 1
             n = len(angles)
-            rows.append(BasinRow(method, float(r), found / n, elsewhere / n, (n - found - elsewhere) / n,
-                                 float(np.mean(iters)) if iters else float("nan")))
+            rows.append(
+                BasinRow(
+                    method,
+                    float(r),
+                    found / n,
+                    elsewhere / n,
+                    (n - found - elsewhere) / n,
+                    float(np.mean(iters)) if iters else float("nan"),
+                )
+            )
     return rows

@@ -30,27 +30,27 @@ import numpy as np
 from mechkit.exceptions import ClosureNotConverged, InvalidParameters, SingularConfiguration
 
 __all__ = [
-    "Geometry",
     "FKResult",
-    "cross",
-    "rot_x",
-    "rot_y",
-    "rot_z",
-    "platform_rotation",
-    "base_frame",
+    "Geometry",
     "base_axis",
-    "platform_axis",
-    "middle_axis",
-    "ik_coefficients",
-    "inverse_kinematics",
+    "base_frame",
     "constraint",
     "constraint_jacobians",
+    "cross",
+    "fk_newton",
+    "fk_paper",
+    "hooke_rates",
+    "ik_coefficients",
+    "inverse_kinematics",
     "jacobian",
     "limb_angles",
     "limb_rates",
-    "fk_paper",
-    "fk_newton",
-    "hooke_rates",
+    "middle_axis",
+    "platform_axis",
+    "platform_rotation",
+    "rot_x",
+    "rot_y",
+    "rot_z",
 ]
 
 
@@ -170,7 +170,10 @@ def inverse_kinematics(p: Geometry, phi: Sequence[float], branches: Sequence[int
 def constraint(p: Geometry, theta: Sequence[float], phi: Sequence[float]) -> np.ndarray:
     """Residuals ``w_i . v_i - cos(alpha2)`` (2,) of eq. (7)."""
     return np.array(
-        [middle_axis(p, i, theta[k]) @ platform_axis(p, i, phi) - np.cos(p.alpha2) for k, i in enumerate((1, 2))]
+        [
+            middle_axis(p, i, theta[k]) @ platform_axis(p, i, phi) - np.cos(p.alpha2)
+            for k, i in enumerate((1, 2))
+        ]
     )
 
 
@@ -179,7 +182,9 @@ def _hooke_axes(phi: Sequence[float]) -> np.ndarray:
     return np.column_stack([[1.0, 0.0, 0.0], rot_x(phi[0])[:, 1]])
 
 
-def constraint_jacobians(p: Geometry, theta: Sequence[float], phi: Sequence[float]) -> tuple[np.ndarray, np.ndarray]:
+def constraint_jacobians(
+    p: Geometry, theta: Sequence[float], phi: Sequence[float]
+) -> tuple[np.ndarray, np.ndarray]:
     """The matrices of eq. (10), ``A theta' + B phi' = 0``.
 
     Returns:
@@ -228,7 +233,9 @@ def limb_angles(p: Geometry, i: int, theta1: float, phi: Sequence[float]) -> tup
     return theta2, float(np.arctan2(rel[1, 0], rel[0, 0]))
 
 
-def hooke_rates(phi: Sequence[float], phi_dot: Sequence[float], phi_ddot: Sequence[float]) -> tuple[np.ndarray, np.ndarray]:
+def hooke_rates(
+    phi: Sequence[float], phi_dot: Sequence[float], phi_ddot: Sequence[float]
+) -> tuple[np.ndarray, np.ndarray]:
     """Platform angular velocity and acceleration (rad/s, rad/s^2, base frame) from roll/pitch rates."""
     h = _hooke_axes(phi)
     omega = h @ np.asarray(phi_dot, dtype=float)
@@ -314,6 +321,7 @@ def fk_newton(
     Raises:
         ClosureNotConverged: no convergence within ``max_iter`` steps or a singular B.
     """
+
     def step(phi: np.ndarray) -> np.ndarray:
         _, b = constraint_jacobians(p, theta_d, phi)
         cond = _cond(b)
@@ -324,8 +332,9 @@ def fk_newton(
     return _iterate(step, phi0, tol, max_iter, "Newton FK")
 
 
-def _iterate(step: Callable[[np.ndarray], np.ndarray], phi0: Sequence[float], tol: float, max_iter: int,
-             name: str) -> FKResult:
+def _iterate(
+    step: Callable[[np.ndarray], np.ndarray], phi0: Sequence[float], tol: float, max_iter: int, name: str
+) -> FKResult:
     """``phi += step(phi)`` until ``|step| <= tol``; failures of ``step`` end it as non-converged."""
     phi = np.array(phi0, dtype=float)
     size = np.inf

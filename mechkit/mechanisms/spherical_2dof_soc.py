@@ -32,7 +32,7 @@ import numpy as np
 from mechkit.mechanisms import spherical_2dof_kinematics as kin
 from mechkit.validation.soc import BodyLoad, SKCInstant, SOCResult, WrenchSite, solve_soc
 
-__all__ = ["body_inertias", "BodyMotion", "body_motions", "skcs", "solve"]
+__all__ = ["BodyMotion", "body_inertias", "body_motions", "skcs", "solve"]
 
 
 def _skew(c: np.ndarray) -> np.ndarray:
@@ -82,8 +82,9 @@ class BodyMotion:
         return BodyLoad(name, self.mass, self.inertia, acc, self.omega, self.alpha, -_skew(c) @ jw, jw)
 
 
-def _motion(props: tuple[float, np.ndarray, np.ndarray], rot: np.ndarray, omega: np.ndarray,
-            alpha: np.ndarray) -> BodyMotion:
+def _motion(
+    props: tuple[float, np.ndarray, np.ndarray], rot: np.ndarray, omega: np.ndarray, alpha: np.ndarray
+) -> BodyMotion:
     m, com, inertia = props
     return BodyMotion(m, rot @ inertia @ rot.T, rot @ com, omega, alpha)
 
@@ -109,8 +110,13 @@ def _columns(n: int, cols: dict[int, np.ndarray]) -> np.ndarray:
     return out
 
 
-def _bodies(p: kin.Geometry, phi: Sequence[float], phi_d: Sequence[float], phi_dd: Sequence[float],
-            branches: Sequence[int]) -> tuple[dict[str, BodyMotion], dict[int, tuple[np.ndarray, ...]]]:
+def _bodies(
+    p: kin.Geometry,
+    phi: Sequence[float],
+    phi_d: Sequence[float],
+    phi_dd: Sequence[float],
+    branches: Sequence[int],
+) -> tuple[dict[str, BodyMotion], dict[int, tuple[np.ndarray, ...]]]:
     """Every body's motion, and per limb its axes (u_i, w_i, v_i), from the paper's kinematics."""
     props = body_inertias(p)
     theta = kin.inverse_kinematics(p, phi, branches)
@@ -129,19 +135,31 @@ def _bodies(p: kin.Geometry, phi: Sequence[float], phi_d: Sequence[float], phi_d
         frame2 = frame1 @ kin.rot_x(-p.alpha1) @ kin.rot_z(kin.limb_angles(p, i, theta[k], phi)[0])
         w1 = rate[0] * u
         body[f"link{i}1"] = _motion(props[f"link{i}1"], frame1, w1, acc[0] * u)
-        body[f"link{i}2"] = _motion(props[f"link{i}2"], frame2, w1 + rate[1] * w,
-                                    acc[0] * u + acc[1] * w + kin.cross(w1, rate[1] * w))
+        body[f"link{i}2"] = _motion(
+            props[f"link{i}2"], frame2, w1 + rate[1] * w, acc[0] * u + acc[1] * w + kin.cross(w1, rate[1] * w)
+        )
     return body, axes
 
 
-def body_motions(p: kin.Geometry, phi: Sequence[float], phi_d: Sequence[float], phi_dd: Sequence[float],
-                 branches: Sequence[int] = (1, 1)) -> dict[str, BodyMotion]:
+def body_motions(
+    p: kin.Geometry,
+    phi: Sequence[float],
+    phi_d: Sequence[float],
+    phi_dd: Sequence[float],
+    branches: Sequence[int] = (1, 1),
+) -> dict[str, BodyMotion]:
     """Motion of every moving body (cross, platform, link11, link12, link21, link22) at one instant."""
     return _bodies(p, phi, phi_d, phi_dd, branches)[0]
 
 
-def skcs(p: kin.Geometry, phi: Sequence[float], phi_d: Sequence[float], phi_dd: Sequence[float],
-         efforts: dict[str, float] | None = None, branches: Sequence[int] = (1, 1)) -> list[SKCInstant]:
+def skcs(
+    p: kin.Geometry,
+    phi: Sequence[float],
+    phi_d: Sequence[float],
+    phi_dd: Sequence[float],
+    efforts: dict[str, float] | None = None,
+    branches: Sequence[int] = (1, 1),
+) -> list[SKCInstant]:
     """The SKCs at one instant of a platform motion (rad, rad/s, rad/s^2), in solving order.
 
     Args:
@@ -162,33 +180,67 @@ def skcs(p: kin.Geometry, phi: Sequence[float], phi_d: Sequence[float], phi_dd: 
         jw[f"link{i}2"] = _columns(n, {first: u, first + 1: w})
         loop.append(_moments_normal_to(v)[3:].T @ (jw["platform"] - jw[f"link{i}2"]))
         actuators.append((f"r{i}1", np.eye(n)[first]))
-    whole = SKCInstant("mechanism", n, [body[b].load(b, jw[b]) for b in body], actuators,
-                       released=(WrenchSite("hooke_roll", np.vstack([np.zeros((3, n)), jw["cross"]]), 1.0,
-                                            components=(4, 5)),),
-                       loop_jacobian=np.vstack(loop))
+    whole = SKCInstant(
+        "mechanism",
+        n,
+        [body[b].load(b, jw[b]) for b in body],
+        actuators,
+        released=(
+            WrenchSite("hooke_roll", np.vstack([np.zeros((3, n)), jw["cross"]]), 1.0, components=(4, 5)),
+        ),
+        loop_jacobian=np.vstack(loop),
+    )
     if efforts is None:
         return [whole]
 
     free = np.eye(3)
-    out = [whole, SKCInstant("cross", 3, [body["cross"].load("cross", free)],
-                             known=(_site("hooke_roll", free, 1.0),),
-                             released=(_site("hooke_pitch", free, -1.0, pitch),))]
+    out = [
+        whole,
+        SKCInstant(
+            "cross",
+            3,
+            [body["cross"].load("cross", free)],
+            known=(_site("hooke_roll", free, 1.0),),
+            released=(_site("hooke_pitch", free, -1.0, pitch),),
+        ),
+    ]
     for i in (1, 2):
         u, w, v = axes[i]
         j1, j2 = np.hstack([free, np.zeros((3, 1))]), np.hstack([free, w.reshape(3, 1)])
         torque = np.concatenate([np.zeros(3), efforts[f"r{i}1"] * u])
-        out.append(SKCInstant(f"limb {i}", 4, [body[f"link{i}1"].load(f"link{i}1", j1),
-                                                body[f"link{i}2"].load(f"link{i}2", j2)],
-                              released=(_site(f"r{i}1", j1, 1.0, u), _site(f"r{i}3", j2, -1.0, v)),
-                              external=((torque, np.vstack([np.zeros((3, 4)), j1])),)))
-        out.append(SKCInstant(f"link {i}2", 3, [body[f"link{i}2"].load(f"link{i}2", free)],
-                              known=(_site(f"r{i}3", free, -1.0),),
-                              released=(_site(f"r{i}2", free, 1.0, w),)))
+        out.append(
+            SKCInstant(
+                f"limb {i}",
+                4,
+                [body[f"link{i}1"].load(f"link{i}1", j1), body[f"link{i}2"].load(f"link{i}2", j2)],
+                released=(_site(f"r{i}1", j1, 1.0, u), _site(f"r{i}3", j2, -1.0, v)),
+                external=((torque, np.vstack([np.zeros((3, 4)), j1])),),
+            )
+        )
+        out.append(
+            SKCInstant(
+                f"link {i}2",
+                3,
+                [body[f"link{i}2"].load(f"link{i}2", free)],
+                known=(_site(f"r{i}3", free, -1.0),),
+                released=(_site(f"r{i}2", free, 1.0, w),),
+            )
+        )
     return out
 
 
-def solve(p: kin.Geometry, phi: Sequence[float], phi_d: Sequence[float], phi_dd: Sequence[float],
-          branches: Sequence[int] = (1, 1), gravity: np.ndarray = np.array([0.0, 0.0, -9.81])) -> SOCResult:
-    """Motor torques r11, r21 (N m) and the moment about O of every joint's reaction (see module doc)."""
+def solve(
+    p: kin.Geometry,
+    phi: Sequence[float],
+    phi_d: Sequence[float],
+    phi_dd: Sequence[float],
+    branches: Sequence[int] = (1, 1),
+    gravity: Sequence[float] = (0.0, 0.0, -9.81),
+) -> SOCResult:
+    """Motor torques r11, r21 (N m) and the moment about O of every joint's reaction (see module doc).
+
+    ``gravity`` (m/s^2, world) defaults to 9.81 along -Z0.
+    """
+    gravity = np.asarray(gravity, dtype=float)
     first = solve_soc(skcs(p, phi, phi_d, phi_dd, None, branches), gravity)
     return solve_soc(skcs(p, phi, phi_d, phi_dd, first.efforts, branches), gravity)
