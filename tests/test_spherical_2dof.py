@@ -141,6 +141,15 @@ def test_fk_methods_agree(mech):
     assert checks.fk_agreement(mech, 12) < 1e-10
 
 
+def test_mechanism_assemble_is_the_forward_kinematics(mech):
+    """`Mechanism.assemble` from the motor angles (home guess) returns the planned attitude."""
+    for phi in sph.cone_attitude(checks.cone_times(6))[0]:
+        theta = kin.inverse_kinematics(P, phi, sph.BRANCHES)
+        q = mech.assemble(theta, guess=mech.home_q, tol=1e-13)
+        found = q[[mech.q_index("hooke_roll"), mech.q_index("hooke_pitch")]]
+        assert np.abs(found - phi).max() < 1e-10
+
+
 def test_closure_fk_from_a_hopeless_start_raises(mech):
     theta_d = kin.inverse_kinematics(P, np.zeros(2))
     with pytest.raises(ClosureNotConverged):
