@@ -22,7 +22,7 @@ The patent gives no dimension. The design below is ours (geometry in `ten_bar_ge
   0.917, |l910 - l79| = 0.13 < 0.417); the dyad l48-l87 (0.9 + 0.9) spans every distance R4-R7
   can take (0.75..1.65 m). The passive DOF, which only the dynamics decides, can therefore never
   jam the linkage, and no loop meets a dead-centre pose: `Pose.margins` (sine of the angle at the
-  closing hinge) stays >= 0.56 over a passive swing of +-60 degrees.
+  closing hinge) stays >= 0.47 for every motor and rocker angle, >= 0.66 over the deployment.
 - Branches: the three circle intersections take the side that keeps every hinge outside the wall
   (x > 0) over the deployment.
 - Links: aluminium bars 25 mm x 10 mm (0.675 kg/m). The spring at R5 (stiffness, preload at the

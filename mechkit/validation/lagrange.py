@@ -21,6 +21,7 @@ the pin, world x-z; u is a torque (N m) from +x towards +z, i.e. about -y of the
 
 from __future__ import annotations
 
+import warnings
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 
@@ -205,7 +206,9 @@ class Linkage:
         A[n:n + m, :n] = Cq
         A[n + m:, :n] = self.S
         P = np.concatenate([self.applied(q, qd), self.gamma(q, qd), np.asarray(motor_acc, dtype=float)])
-        lu, piv = scipy.linalg.lu_factor(A, check_finite=False)
+        with warnings.catch_warnings():  # a zero pivot is reported below, with the matrix named
+            warnings.simplefilter("ignore", scipy.linalg.LinAlgWarning)
+            lu, piv = scipy.linalg.lu_factor(A, check_finite=False)
         pivots = np.abs(np.diag(lu))
         cond = float(pivots.max() / max(pivots.min(), 1e-300))  # pivot ratio: a cheap conditioning estimate
         if not np.isfinite(cond) or cond > 1e12:
