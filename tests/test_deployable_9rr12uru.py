@@ -91,6 +91,18 @@ def test_inverse_dynamics_support_balance_and_indeterminate_set(mech, coarse_fol
         assert joint in summary
 
 
+def test_indeterminate_direction_is_the_one_the_core_flags(mech, coarse_fold):
+    sample = coarse_fold[1]
+    result = mech.inverse_dynamics(sample.q, sample.v, sample.a)
+    pattern = dep.indeterminate_direction(mech, sample.q)
+    assert set(pattern) == set(result.reactions)
+    for joint, reaction in result.reactions.items():
+        np.testing.assert_array_equal(np.abs(pattern[joint]) < 1e-8, reaction.determinate, err_msg=joint)
+    # the self-stress closes through the ground: the three web rods at A push along their hinge axes
+    support = sum(pattern[j][:3] for j in ("AH_A", "AJ_A", "AI_A"))
+    assert np.linalg.norm(support) < 1e-9 < np.linalg.norm(pattern["AH_A"][:3])
+
+
 @pytest.mark.slow
 def test_full_fold_with_dynamics(mech):
     samples = dep.fold(mech, dep.fold_times(1.0))

@@ -148,16 +148,43 @@ class Redundancy:
     hinge_axes: dict[str, np.ndarray]
 
 
+def _self_stress(mech: Mechanism, q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Singular values of the closure Jacobian at q and its last left singular vector y (J^T y = 0),
+    signed so that its largest entry is positive. Leaves mech.data at q."""
+    U, s, _ = np.linalg.svd(mech.closure_jacobian(q))
+    y = U[:, -1]
+    return s, y * np.sign(y[np.argmax(np.abs(y))])
+
+
 def redundancy(mech: Mechanism, q: np.ndarray) -> Redundancy:
     """Self-stress of the composite at q: the redundant combination of closure rows."""
-    J = mech.closure_jacobian(q)
-    U, s, _ = np.linalg.svd(J)
-    y = U[:, -1] * np.sign(U[np.argmax(np.abs(U[:, -1])), -1])
+    s, y = _self_stress(mech, q)
     stress, axes = {}, {}
     for cut, (f, m, _) in zip(mech.rows.cuts, mech.rows.wrenches(mech.data, y)):
         stress[cut.closure.name] = (f, m)
         axes[cut.closure.name] = mech.data.oMf[cut.frame_a].rotation @ cut.closure.axis
     return Redundancy(s, stress, axes)
+
+
+def indeterminate_direction(mech: Mechanism, q: np.ndarray) -> dict[str, np.ndarray]:
+    """The one-dimensional indeterminate part of the reactions at q, made explicit.
+
+    Every reaction is R = R_0 + s P with s undetermined by statics: P (joint -> (6,) world wrench,
+    parent on child, at the joint point) is the set of reactions that the self-stress alone
+    produces (its closure forces applied to the tree, no gravity, no motion), scaled so that
+    max |P| = 1. Components where P vanishes are the determinate ones.
+    """
+    from mechkit.dynamics import cut_wrench_arrays, subtract_cut_wrenches, subtree_incidence
+
+    _, y = _self_stress(mech, q)
+    model = mech.model
+    G = subtree_incidence(model, mech.rows)
+    W, P = cut_wrench_arrays(mech.data, mech.rows, y)
+    tree = subtract_cut_wrenches(np.zeros((model.njoints, 6)), mech.data, np.flatnonzero(np.any(G != 0, axis=1)), G, W, P)
+    pattern = {model.names[i]: tree[i] for i in range(1, model.njoints)}
+    pattern |= {c.closure.name: w for c, w in zip(mech.rows.cuts, W)}
+    scale = max(np.abs(v).max() for v in pattern.values())
+    return {joint: v / scale for joint, v in pattern.items()}
 
 
 def chain_joints(chain: str) -> tuple[str, ...]:
