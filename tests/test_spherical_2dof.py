@@ -240,3 +240,20 @@ def test_tools_run(tmp_path):
         out = tmp_path / f"{name}.png"
         module.main(out=out, **kwargs)
         assert out.stat().st_size > 10_000
+
+
+def test_cut_joint_angle_matches_pinocchio_frames(mech):
+    """The cut frames of r{i}3 differ by Rz(theta_i3) of `kin.limb_angles` (xacro = our chain)."""
+    import pinocchio as pin
+
+    for phi in sph.cone_attitude(checks.cone_times(4))[0]:
+        theta = kin.inverse_kinematics(P, phi, sph.BRANCHES)
+        q, _, _ = sph.state(mech, phi, np.zeros(2), np.zeros(2))
+        pin.framesForwardKinematics(mech.model, mech.data, q)
+        for k, i in enumerate((1, 2)):
+            rot = [
+                mech.data.oMf[mech.model.getFrameId(f)].rotation for f in (f"link{i}2_C", f"platform_C{i}")
+            ]
+            np.testing.assert_allclose(
+                rot[0].T @ rot[1], kin.rot_z(kin.limb_angles(P, i, theta[k], phi)[1]), atol=1e-14
+            )
