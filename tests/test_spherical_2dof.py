@@ -257,3 +257,16 @@ def test_cut_joint_angle_matches_pinocchio_frames(mech):
             np.testing.assert_allclose(
                 rot[0].T @ rot[1], kin.rot_z(kin.limb_angles(P, i, theta[k], phi)[1]), atol=1e-14
             )
+
+
+def test_other_branch_closes_and_dynamics_agree(mech):
+    """The other IK branch (-1, -1) is an assembly too; Pinocchio and SOC agree on it."""
+    branches = (-1, -1)
+    for phi, phi_d, phi_dd in zip(*sph.cone_attitude(checks.cone_times(4)), strict=True):
+        q, v, a = sph.state(mech, phi, phi_d, phi_dd, branches)
+        assert np.abs(mech.closure_residual(q)).max() < 1e-13
+        assert np.abs(mech.closure_jacobian(q) @ a + mech.closure_drift(q, v)).max() < 1e-11
+        ref = mech.inverse_dynamics(q, v, a).efforts
+        ours = soc.solve(P, phi, phi_d, phi_dd, branches).efforts
+        for joint in mech.actuated:
+            assert ours[joint] == pytest.approx(ref[joint], rel=1e-9, abs=1e-12)
