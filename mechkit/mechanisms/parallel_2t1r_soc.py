@@ -57,7 +57,7 @@ class Points:
 
 def _point_jacobian(point: np.ndarray, pivots: list[np.ndarray | None]) -> np.ndarray:
     """(3, n) dP/dq for a planar chain of revolutes about +y; None marks a coordinate not upstream."""
-    return np.column_stack([np.zeros(3) if j is None else np.cross(kin.EY, point - j) for j in pivots])
+    return np.column_stack([np.zeros(3) if j is None else kin.cross(kin.EY, point - j) for j in pivots])
 
 
 def _site(point: np.ndarray, pivots: list[np.ndarray | None]) -> np.ndarray:
@@ -181,7 +181,7 @@ def classic_torques(p: Parallel2T1RParams, s: kin.State, actuated: tuple[str, ..
     q_x = np.zeros(3)
     for name, (mass, inertia, m) in _loads(p, s, pts).items():
         force = mass * (GRAVITY - m.a_com)
-        moment = -inertia @ m.alpha - np.cross(m.omega, inertia @ m.omega)
+        moment = -inertia @ m.alpha - kin.cross(m.omega, inertia @ m.omega)
         q_x += jac[name][:3].T @ force + jac[name][3:].T @ moment
     rows = [int(j[1]) - 1 for j in actuated]
     ja = dtheta[rows]
