@@ -63,10 +63,35 @@ def apexes(mech: Mechanism) -> tuple[str, ...]:
     return tuple(a for a in ("H", "J", "I") if mech.model.existJointName(f"A{a}_{a}"))
 
 
+def _fold_step(mech: Mechanism, q: np.ndarray, v: np.ndarray, t_prev: float, t: float, tol: float,
+               depth: int = 0) -> FoldSample:
+    """Closure solve at t from the state (q, v) at t_prev: predictor q + v dt, then Newton on the
+    passive coordinates; the interval is halved (up to 8 times) when Newton does not converge."""
+    from mechkit import kinematics
+    from mechkit.exceptions import ClosureNotConverged
+
+    s = drive_state(t)
+    angles, rates, accs = drive_inputs(mech.params, s, mech.actuated, apexes(mech))
+    guess = pin.integrate(mech.model, q, v * (t - t_prev))
+    for joint, value in angles.items():
+        guess[mech.q_index(joint)] = value
+    free = np.setdiff1d(np.arange(mech.model.nv), [mech.v_index(j) for j in angles])
+    try:
+        q_new, iterations = kinematics.solve_closure(mech.rows, mech.data, guess, free, tol=tol)
+    except ClosureNotConverged:
+        if depth >= 8:
+            raise
+        half = _fold_step(mech, q, v, t_prev, 0.5 * (t_prev + t), tol, depth + 1)
+        return _fold_step(mech, half.q, half.v, half.t, t, tol, depth + 1)
+    v_new = mech.velocities(q_new, rates, list(rates))
+    return FoldSample(float(t), q_new, v_new, mech.accelerations(q_new, v_new, accs, list(accs)), iterations)
+
+
 def fold(mech: Mechanism, times: np.ndarray, tol: float = 1e-12) -> list[FoldSample]:
     """The paper's fold: drive laws alpha(t), gamma(t) on every drive, closure solved at each time.
 
-    Warm start: each solve starts from the previous q advanced by v dt (first-order predictor).
+    Continuation from the reference configuration (t = 0): each solve starts from the previous
+    state advanced by v dt (first-order predictor), with interval halving when a step is too long.
     Velocities and accelerations are the closure projections of the drive rates and accelerations.
 
     Args:
@@ -74,26 +99,14 @@ def fold(mech: Mechanism, times: np.ndarray, tol: float = 1e-12) -> list[FoldSam
         times: increasing times in [0, 200] s.
         tol: closure residual to reach (m / dimensionless).
     """
-    from mechkit import kinematics
-
     times = np.asarray(times, dtype=float)
-    if times.ndim != 1 or np.any(np.diff(times) <= 0):
-        raise InvalidParameters("times", times, "must be a strictly increasing 1-D array")
-    units = apexes(mech)
+    if times.ndim != 1 or times.size == 0 or np.any(np.diff(times) <= 0):
+        raise InvalidParameters("times", times, "must be a non-empty, strictly increasing 1-D array")
     out: list[FoldSample] = []
-    q, v, t_prev = mech.home_q.copy(), np.zeros(mech.model.nv), None
+    state = _fold_step(mech, mech.home_q, np.zeros(mech.model.nv), 0.0, 0.0, tol)
     for t in times:
-        s = drive_state(t)
-        angles, rates, accs = drive_inputs(mech.params, s, mech.actuated, units)
-        guess = q if t_prev is None else pin.integrate(mech.model, q, v * (t - t_prev))
-        for joint, value in angles.items():
-            guess[mech.q_index(joint)] = value
-        free = np.setdiff1d(np.arange(mech.model.nv), [mech.v_index(j) for j in angles])
-        q, iterations = kinematics.solve_closure(mech.rows, mech.data, guess, free, tol=tol)
-        v = mech.velocities(q, rates, list(rates))
-        a = mech.accelerations(q, v, accs, list(accs))
-        out.append(FoldSample(float(t), q, v, a, iterations))
-        t_prev = t
+        state = _fold_step(mech, state.q, state.v, state.t, float(t), tol)
+        out.append(state)
     return out
 
 
