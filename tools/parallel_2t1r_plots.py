@@ -13,11 +13,11 @@ from pathlib import Path
 import matplotlib
 
 matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
+import matplotlib.pyplot as plt
+import numpy as np
 
-import mechkit  # noqa: E402
-from mechkit.mechanisms import parallel_2t1r as m2  # noqa: E402
+import mechkit
+from mechkit.mechanisms import parallel_2t1r as m2
 
 FIGURES = Path(__file__).resolve().parent.parent / "docs" / "figures"
 GROUPS = (("driving torques", "N m", ("M1", "M2", "M3")),
