@@ -7,7 +7,6 @@ import xml.etree.ElementTree as ET
 import numpy as np
 import pytest
 
-import mechkit
 from mechkit.description import render_urdf
 from mechkit.exceptions import ClosureNotConverged, InvalidParameters, SingularConfiguration
 from mechkit.mechanisms import parallel_2t1r as m2
@@ -19,8 +18,8 @@ REGULAR = np.arange(1, 501) * 0.01  # the 501-sample law without its singular st
 
 
 @pytest.fixture(scope="module")
-def mech():
-    return mechkit.load("parallel_2t1r")
+def mech(load_cached):
+    return load_cached("parallel_2t1r")
 
 
 @pytest.fixture(scope="module")
@@ -44,8 +43,8 @@ def test_urdf_inertias_are_the_validators_inertias():
         np.testing.assert_allclose([float(tensor.get(k)) for k in ("ixx", "iyy", "izz")], np.diag(inertia), rtol=1e-14)
 
 
-def test_mobility_and_redundant_variant():
-    plain, redundant = mechkit.load("parallel_2t1r"), mechkit.load("parallel_2t1r", redundant_actuation=True)
+def test_mobility_and_redundant_variant(load_cached):
+    plain, redundant = load_cached("parallel_2t1r"), load_cached("parallel_2t1r", redundant_actuation=True)
     assert plain.mobility().dof == 3 and plain.mobility().redundant == 0
     assert plain.actuated == ("R11", "R21", "R31") and redundant.actuated == ("R11", "R21", "R31", "R41")
     np.testing.assert_allclose(redundant.home_q, plain.home_q, atol=1e-12)
