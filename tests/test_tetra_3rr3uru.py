@@ -150,6 +150,14 @@ def test_unit_fold_matches_eq6_eq7_and_closes(unit, unit_fold):
             assert sample.a[k] == pytest.approx(accs[joint], abs=1e-12)
 
 
+def test_fold_continuation_takes_the_whole_fold_in_one_requested_step(unit):
+    (end,) = dep.fold(unit, np.array([200.0]))
+    s = drive_state(200.0)
+    expected = unit.params.geometry().node_positions(s.alpha, s.gamma)
+    for node, pos in dep.node_positions(unit, end.q).items():
+        np.testing.assert_allclose(pos, expected[node], atol=1e-9)
+
+
 @pytest.mark.parametrize("i", range(len(TIMES)))
 def test_soc_agrees_with_constrained_rnea(unit, unit_fold, i):
     sample = unit_fold[i]
