@@ -26,6 +26,7 @@ __all__ = [
     "rot_x",
     "rot_y",
     "rot_z",
+    "cross",
     "attitude",
     "hinge_axes",
     "actuator_lengths",
@@ -118,7 +119,7 @@ def strokes(geo: GimbalGeometry, alpha: float, beta: float) -> np.ndarray:
     return actuator_lengths(geo, alpha, beta) - geo.nominal_lengths
 
 
-def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+def cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     """Cross product of two 3-vectors (np.cross costs ~10x more on small arrays)."""
     return np.array([a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]])
 
@@ -129,7 +130,7 @@ def _lengths_and_jacobian(geo: GimbalGeometry, alpha: float, beta: float) -> tup
     lengths = np.linalg.norm(moved - geo.frame_pivots, axis=1)
     axes = np.array(hinge_axes(alpha))
     # dL/d(angle) = u . (axis x p) = axis . (p x u) = axis . (o x p) / L
-    moments = np.array([_cross(o, p) for o, p in zip(geo.frame_pivots, moved)]) / lengths[:, None]
+    moments = np.array([cross(o, p) for o, p in zip(geo.frame_pivots, moved)]) / lengths[:, None]
     return lengths, moments @ axes.T
 
 
@@ -242,6 +243,6 @@ def linear_rule_errors(geo: GimbalGeometry, stroke_max: float = 0.110, angle_max
     err = np.abs(exact - linear).max(axis=-1)
     i, j = np.unravel_index(np.argmax(err), err.shape)
     mid = n // 2
-    cross = max(np.abs(exact[:, mid, 0]).max(), np.abs(exact[mid, :, 1]).max())
+    talk = max(np.abs(exact[:, mid, 0]).max(), np.abs(exact[mid, :, 1]).max())
     return LinearRuleErrors(axis, axis, exact, linear, float(err[i, j]), (float(axis[i]), float(axis[j])),
-                            float(cross))
+                            float(talk))

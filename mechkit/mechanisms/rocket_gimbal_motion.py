@@ -15,7 +15,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from mechkit.exceptions import InvalidParameters, SingularConfiguration
-from mechkit.mechanisms.rocket_gimbal_kinematics import GimbalGeometry, attitude, hinge_axes, rot_x
+from mechkit.mechanisms.rocket_gimbal_kinematics import GimbalGeometry, attitude, cross, hinge_axes, rot_x
 
 __all__ = ["LegMotion", "GimbalMotion", "gimbal_motion"]
 
@@ -87,13 +87,13 @@ def _leg(frame_pivot: np.ndarray, point: np.ndarray, velocity: np.ndarray, acc: 
     t2 = float(np.arcsin(np.clip(u[0], -1.0, 1.0)))
     t1 = float(np.arctan2(-u[1], u[2]))
     e1, e2 = _EX, rot_x(t1) @ _EY
-    basis = np.column_stack([np.cross(e1, u), np.cross(e2, u)])
+    basis = np.column_stack([cross(e1, u), cross(e2, u)])
     if np.linalg.svd(basis, compute_uv=False)[-1] < 1e-9:
         raise SingularConfiguration(float("inf"), "actuator Hooke joint at its gimbal lock (t2 = +-90 deg)")
     rate = np.linalg.lstsq(basis, u_rate, rcond=None)[0]
     omega = rate[0] * e1 + rate[1] * e2
-    twist = rate[0] * rate[1] * np.cross(e1, e2)  # d(e2)/dt = t1_rate e1 x e2
-    rhs = u_acc - np.cross(omega, np.cross(omega, u)) - np.cross(twist, u)
+    twist = rate[0] * rate[1] * cross(e1, e2)  # d(e2)/dt = t1_rate e1 x e2
+    rhs = u_acc - cross(omega, cross(omega, u)) - cross(twist, u)
     acc2 = np.linalg.lstsq(basis, rhs, rcond=None)[0]
     alpha = acc2[0] * e1 + acc2[1] * e2 + twist
     return LegMotion(length, length_rate, length_acc, np.array([t1, t2]), rate, acc2, u,
@@ -109,12 +109,12 @@ def gimbal_motion(geo: GimbalGeometry, angles: np.ndarray, rates: np.ndarray, ac
     rotation = attitude(*angles)
     x1, y2 = hinge_axes(angles[0])
     omega = rates[0] * x1 + rates[1] * y2
-    alpha = accs[0] * x1 + accs[1] * y2 + rates[0] * rates[1] * np.cross(x1, y2)
+    alpha = accs[0] * x1 + accs[1] * y2 + rates[0] * rates[1] * cross(x1, y2)
     pivots = geo.engine_pivots @ rotation.T
     legs = []
     for frame_pivot, p in zip(geo.frame_pivots, pivots):
-        v = np.cross(omega, p)
-        a = np.cross(alpha, p) + np.cross(omega, v)
+        v = cross(omega, p)
+        a = cross(alpha, p) + cross(omega, v)
         legs.append(_leg(frame_pivot, p, v, a))
     return GimbalMotion(angles, rates, accs, rotation, np.column_stack([x1, y2]), omega, alpha,
                         rates[0] * x1, accs[0] * x1, pivots, (legs[0], legs[1]))

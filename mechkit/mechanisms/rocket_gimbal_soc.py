@@ -23,6 +23,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from mechkit.mechanisms.rocket_gimbal_kinematics import cross
 from mechkit.mechanisms.rocket_gimbal_motion import GimbalMotion
 from mechkit.validation.soc import BodyLoad, SKCInstant, WrenchSite
 
@@ -64,9 +65,9 @@ def _wrench_basis(*moment_axes: np.ndarray) -> np.ndarray:
 
 def _perpendicular(axis: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     helper = np.eye(3)[int(np.argmin(np.abs(axis)))]
-    t1 = np.cross(axis, helper)
+    t1 = cross(axis, helper)
     t1 /= np.linalg.norm(t1)
-    return t1, np.cross(axis, t1)
+    return t1, cross(axis, t1)
 
 
 def gimbal_skcs(motion: GimbalMotion, geo_frame_pivots: np.ndarray, bodies: BodySpec, engine_com: float,
@@ -93,11 +94,11 @@ def gimbal_skcs(motion: GimbalMotion, geo_frame_pivots: np.ndarray, bodies: Body
     n = W @ motion.rotation[:, 2]
     omega, alpha = W @ motion.omega, W @ motion.alpha
     com = engine_com * n
-    com_acc = np.cross(alpha, com) + np.cross(omega, np.cross(omega, com))
+    com_acc = cross(alpha, com) + cross(omega, cross(omega, com))
     engine = BodyLoad("engine", bodies["engine"][0], _axisymmetric(bodies["engine"], n), com_acc, omega, alpha,
-                      np.column_stack([np.cross(x1, com), np.cross(y2, com)]), np.column_stack([x1, y2]))
+                      np.column_stack([cross(x1, com), cross(y2, com)]), np.column_stack([x1, y2]))
     bracket = BodyLoad("bracket", bodies["bracket"][0],
-                       _axisymmetric(bodies["bracket"], W @ np.cross(motion.hinge_axes[:, 0], motion.hinge_axes[:, 1])),
+                       _axisymmetric(bodies["bracket"], W @ cross(motion.hinge_axes[:, 0], motion.hinge_axes[:, 1])),
                        np.zeros(3), W @ motion.bracket_omega, W @ motion.bracket_alpha,
                        np.zeros((3, 2)), np.column_stack([x1, np.zeros(3)]))
     thrust_force = -thrust[0] * n
@@ -126,7 +127,7 @@ def gimbal_skcs(motion: GimbalMotion, geo_frame_pivots: np.ndarray, bodies: Body
             jv = np.zeros((3, size))
             jw = np.zeros((3, size))
             jw[:, base:base + 2] = np.column_stack(e)
-            jv[:, base:base + 2] = np.column_stack([np.cross(ei, c - pivot) for ei in e])
+            jv[:, base:base + 2] = np.column_stack([cross(ei, c - pivot) for ei in e])
             if body.endswith("rod"):
                 jv[:, base + 2] = u
             loads[body] = BodyLoad(body, bodies[body][0], _axisymmetric(bodies[body], u), acc, w_leg, a_leg, jv, jw)
@@ -134,10 +135,10 @@ def gimbal_skcs(motion: GimbalMotion, geo_frame_pivots: np.ndarray, bodies: Body
         actuators.append((f"{name}_stroke", np.eye(size)[base + 2]))
         # ball joint: engine (parent, frame_a) on rod (child); relative virtual displacement rod - engine
         rel = np.zeros((6, size))
-        rel[:3, base:base + 2] = np.column_stack([np.cross(ei, tip - pivot) for ei in e])
+        rel[:3, base:base + 2] = np.column_stack([cross(ei, tip - pivot) for ei in e])
         rel[:3, base + 2] = u
         rel[3:, base:base + 2] = np.column_stack(e)
-        rel[:3, :2] -= np.column_stack([np.cross(x1, ball), np.cross(y2, ball)])
+        rel[:3, :2] -= np.column_stack([cross(x1, ball), cross(y2, ball)])
         rel[3:, :2] -= np.column_stack([x1, y2])
         balls.append(WrenchSite(f"{name}_ball_joint", rel, +1.0, components=(0, 1, 2)))
 
@@ -164,7 +165,7 @@ def gimbal_skcs(motion: GimbalMotion, geo_frame_pivots: np.ndarray, bodies: Body
 
     thrust_wrench = np.concatenate([thrust_force, np.zeros(3)])
     thrust_site = np.zeros((6, size))
-    thrust_site[:3, :2] = np.column_stack([np.cross(x1, thrust_point), np.cross(y2, thrust_point)])
+    thrust_site[:3, :2] = np.column_stack([cross(x1, thrust_point), cross(y2, thrust_point)])
     thrust_site[3:, :2] = np.column_stack([x1, y2])
     loop_external = [(thrust_wrench, thrust_site)]
     servo_loops = SKCInstant("servo_loops", size, loop_bodies, actuators=actuators, released=balls,
