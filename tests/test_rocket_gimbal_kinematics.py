@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 from numpy.polynomial import Polynomial
 
 from mechkit.exceptions import InvalidParameters
@@ -178,3 +180,12 @@ def test_analytic_motion_matches_finite_differences_of_the_geometry():
     # engine angular acceleration: d(omega)/dt by finite differences
     alpha_fd = (motions[2].omega - motions[0].omega) / (2 * h)
     assert np.allclose(motions[1].alpha, alpha_fd, rtol=1e-6, atol=1e-8)
+
+
+@settings(max_examples=25, deadline=None)
+@given(st.floats(-0.11, 0.11), st.floats(-0.11, 0.11))
+def test_any_stroke_pair_in_range_has_one_in_range_mode_that_newton_and_ik_confirm(sa, sb):
+    stroke = np.array([sa, sb])
+    mode = pick_in_range(fk_resultant(GEO, stroke))
+    assert np.allclose([mode.alpha, mode.beta], fk_newton(GEO, stroke), atol=1e-9, rtol=0)
+    assert np.allclose(strokes(GEO, mode.alpha, mode.beta), stroke, atol=1e-9, rtol=0)
