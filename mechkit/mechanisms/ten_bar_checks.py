@@ -62,6 +62,16 @@ def reactions_three_ways(mechanism, t: float, q: np.ndarray, v: np.ndarray) -> d
     return out
 
 
+def reactions_along(mechanism, trajectory: td.Trajectory, every: int) -> tuple[np.ndarray, dict[str, list[Reactions]]]:
+    """`reactions_three_ways` at every `every`-th sample of a Pinocchio-route trajectory: (times, per method)."""
+    idx = np.arange(0, len(trajectory.t), every)
+    out: dict[str, list[Reactions]] = {}
+    for k in idx:
+        for method, r in reactions_three_ways(mechanism, trajectory.t[k], trajectory.q[k], trajectory.v[k]).items():
+            out.setdefault(method, []).append(r)
+    return trajectory.t[idx], out
+
+
 def reaction_disagreement(results: dict[str, Reactions]) -> float:
     """Largest difference between any two methods, relative to the largest value (all 26 numbers)."""
     vectors = [r.vector() for r in results.values()]
