@@ -51,7 +51,7 @@ def test_mobility_and_redundant_variant(load_cached):
 
 
 def _analytic_q(mech, pose: kin.Pose, theta4: float) -> np.ndarray:
-    s = kin.State(pose, np.zeros(3), np.zeros(3), np.append(m2.EXAMPLE_INPUTS, theta4), np.zeros(4), np.zeros(4))
+    s = m2.at_rest(pose, m2.EXAMPLE_INPUTS, theta4)
     q = mech.neutral()
     for joint, (value, _, _) in m2.joint_coordinates(mech.params, s).items():
         q[mech.q_index(joint)] = value

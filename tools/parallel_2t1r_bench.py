@@ -44,7 +44,7 @@ def main(argv: list[str] | None = None) -> int:
     p = mech.params
     times = np.linspace(m2.MOTION_DURATION / args.samples, m2.MOTION_DURATION, args.samples)
     states = m2.motion_law_states(p, times)
-    motions = [m2.pinocchio_motion(mech, *m2.motion_law(t), m2._guess_from(p, s)) for t, s in zip(times, states)]
+    motions = [m2.pinocchio_motion(mech, *m2.motion_law(t), m2.joint_positions(p, s)) for t, s in zip(times, states)]
     guesses = [(m2.motion_law(t), q) for t, (q, _, _) in zip(times, motions)]
 
     rows = {

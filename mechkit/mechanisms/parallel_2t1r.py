@@ -17,7 +17,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from mechkit.exceptions import InvalidParameters
+from mechkit.exceptions import InvalidParameters, MechkitError, SingularConfiguration
 from mechkit.mechanisms import parallel_2t1r_kinematics as kin
 from mechkit.params import MechanismParams, param
 from mechkit.registry import MechanismSpec
@@ -116,6 +116,11 @@ def state_at(p: Parallel2T1RParams, theta, theta_dot, theta_ddot) -> kin.State:
     return kin.motion_state(p.dims, theta, theta_dot, theta_ddot, pose, theta4)
 
 
+def at_rest(pose: kin.Pose, theta: np.ndarray, theta4: float) -> kin.State:
+    """The state of a configuration at rest (every rate and acceleration zero)."""
+    return kin.State(pose, np.zeros(3), np.zeros(3), np.append(theta, theta4), np.zeros(4), np.zeros(4))
+
+
 def motion_law_states(p: Parallel2T1RParams, times: np.ndarray) -> list[kin.State]:
     """States along the motion law at ``times`` (s)."""
     return [state_at(p, *motion_law(float(t))) for t in times]
@@ -140,11 +145,14 @@ def joint_coordinates(p: Parallel2T1RParams, s: kin.State) -> dict[str, tuple[fl
     return out
 
 
+def joint_positions(p: Parallel2T1RParams, s: kin.State) -> dict[str, float]:
+    """URDF tree joints -> position (rad) of an analytic state: a closure-solve guess."""
+    return {joint: c[0] for joint, c in joint_coordinates(p, s).items()}
+
+
 def _guess(p: Parallel2T1RParams) -> dict[str, float]:
-    theta = EXAMPLE_INPUTS
-    pose, theta4, _ = assembled_pose(p, theta)
-    state = kin.State(pose, np.zeros(3), np.zeros(3), np.append(theta, theta4), np.zeros(4), np.zeros(4))
-    return {joint: value[0] for joint, value in joint_coordinates(p, state).items()}
+    pose, theta4, _ = assembled_pose(p, EXAMPLE_INPUTS)
+    return joint_positions(p, at_rest(pose, EXAMPLE_INPUTS, theta4))
 
 
 def _home(p: Parallel2T1RParams) -> dict[str, float]:
@@ -200,7 +208,6 @@ def evaluate(mech, s: kin.State, motion: tuple[np.ndarray, ...] | None, redundan
         motion: Pinocchio's (q, v, a), or None to skip Pinocchio.
         determinacy: run the core's determinacy rank test (and get Pinocchio's condition number).
     """
-    from mechkit.exceptions import MechkitError
     from mechkit.mechanisms.parallel_2t1r_soc import classic_torques, soc_inverse_dynamics
 
     p = mech.params
@@ -270,8 +277,6 @@ def compare_along(mech, times: np.ndarray, redundant: bool = False) -> Compariso
     Raises:
         SingularConfiguration: a sample is singular for one of the methods (e.g. t = 0).
     """
-    from mechkit.exceptions import SingularConfiguration
-
     p = mech.params
     rows: dict[str, list] = {m: [] for m in METHODS}
     kin_err = []
@@ -283,7 +288,7 @@ def compare_along(mech, times: np.ndarray, redundant: bool = False) -> Compariso
         s = state_at(p, theta, rates, acc)
         coords = joint_coordinates(p, s)
         dt = t - previous
-        guess = {j: c[0] for j, c in coords.items()} if q is None else q + v * dt + 0.5 * a * dt * dt
+        guess = joint_positions(p, s) if q is None else q + v * dt + 0.5 * a * dt * dt
         previous = t
         q, v, a = pinocchio_motion(mech, theta, rates, acc, guess)
         kin_err.append(max(abs(np.angle(np.exp(1j * (q[mech.q_index(j)] - c[0])))) for j, c in coords.items()))
@@ -326,10 +331,6 @@ def _study(x: np.ndarray, samples) -> Study:
     return Study(np.asarray(x, dtype=float), values, failures)
 
 
-def _guess_from(p: Parallel2T1RParams, s: kin.State) -> dict[str, float]:
-    return {j: c[0] for j, c in joint_coordinates(p, s).items()}
-
-
 def singular_approach(mech, deltas: np.ndarray) -> Study:
     """At rest under gravity, theta_1 = theta_2 - delta (rad) with `SINGULAR_HELD`: both variants.
 
@@ -342,12 +343,10 @@ def singular_approach(mech, deltas: np.ndarray) -> Study:
     def sample(delta: float):
         theta = np.array([SINGULAR_HELD[0] - delta, *SINGULAR_HELD])
         pose, theta4, _ = assembled_pose(p, theta)
-        s = kin.State(pose, np.zeros(3), np.zeros(3), np.append(theta, theta4), np.zeros(4), np.zeros(4))
+        s = at_rest(pose, theta, theta4)
         values, failed = {"cond_Jp": float(np.linalg.cond(kin.jacobians(p.dims, s.theta, pose)[0]))}, {}
-        from mechkit.exceptions import MechkitError
-
         try:
-            q = mech.assemble(dict(zip(INPUTS, theta)), guess=_guess_from(p, s))
+            q = mech.assemble(dict(zip(INPUTS, theta)), guess=joint_positions(p, s))
             motion = (q, np.zeros(mech.model.nv), np.zeros(mech.model.nv))
         except MechkitError as err:
             motion, failed["pinocchio"] = None, str(err)
@@ -366,8 +365,6 @@ def start_of_motion(mech, times: np.ndarray) -> Study:
     Series as in `evaluate` plus "cond_Jp" and "analytic:x_ddot" (|platform acceleration| of eq.
     (15)); a sample whose analytic state or Pinocchio motion raises is recorded as a failure.
     """
-    from mechkit.exceptions import MechkitError
-
     p = mech.params
 
     def sample(t: float):
@@ -380,10 +377,10 @@ def start_of_motion(mech, times: np.ndarray) -> Study:
             s = state_at(p, theta, rates, acc)
         except MechkitError as err:
             failed["analytic"] = str(err)
-            s = kin.State(pose, np.zeros(3), np.zeros(3), np.append(theta, theta4), np.zeros(4), np.zeros(4))
+            s = at_rest(pose, theta, theta4)
         values["analytic:x_ddot"] = float(np.linalg.norm(s.x_ddot)) if "analytic" not in failed else np.nan
         try:
-            motion = pinocchio_motion(mech, theta, rates, acc, _guess_from(p, s))
+            motion = pinocchio_motion(mech, theta, rates, acc, joint_positions(p, s))
         except MechkitError as err:
             motion, failed["pinocchio"] = None, str(err)
         v, f, _ = evaluate(mech, s, motion, determinacy=True)
