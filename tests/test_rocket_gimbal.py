@@ -5,7 +5,14 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from mechkit.mechanisms.rocket_gimbal import SwingScene, body_inertias, geometry, joint_state, soc_skcs, thrust_fext
+from mechkit.mechanisms.rocket_gimbal import (
+    SwingScene,
+    body_inertias,
+    geometry,
+    joint_state,
+    soc_skcs,
+    thrust_fext,
+)
 from mechkit.mechanisms.rocket_gimbal_checks import dynamics_agreement, fk_agreement, fk_closure
 from mechkit.mechanisms.rocket_gimbal_kinematics import strokes
 from mechkit.validation.soc import solve_soc
@@ -32,7 +39,7 @@ def test_closure_solver_reaches_the_flipped_mode_from_its_guess(mech):
     flipped = [m for m in fk_resultant(geo, stroke) if m.nozzle_z < 0]
     target = min(flipped, key=lambda m: abs(m.alpha) + abs(m.beta))
     guess = {"bracket_hinge": target.alpha + 0.02, "engine_hinge": target.beta - 0.02}
-    angles, q = fk_closure(mech, stroke, guess=guess)
+    angles, _ = fk_closure(mech, stroke, guess=guess)
     assert np.allclose(angles, [target.alpha, target.beta], atol=1e-9)
     assert np.allclose(strokes(geo, *angles), stroke, atol=1e-9)
 
@@ -43,8 +50,9 @@ def test_urdf_inertias_are_the_python_body_inertias(mech):
         frame = model.frames[model.getFrameId(body)]
         inertia = model.inertias[frame.parentJoint]
         assert np.isclose(inertia.mass, mass, rtol=1e-12)
-        assert np.allclose(np.sort(np.linalg.eigvalsh(inertia.inertia)), np.sort([transverse, transverse, axial]),
-                           rtol=1e-12)
+        assert np.allclose(
+            np.sort(np.linalg.eigvalsh(inertia.inertia)), np.sort([transverse, transverse, axial]), rtol=1e-12
+        )
 
 
 @pytest.mark.parametrize("t", [0.05, 0.3, 0.77])

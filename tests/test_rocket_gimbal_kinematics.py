@@ -9,7 +9,13 @@ from hypothesis import strategies as st
 from numpy.polynomial import Polynomial
 
 from mechkit.exceptions import InvalidParameters
-from mechkit.mechanisms.rocket_gimbal import PAPER_EXAMPLE, RULE_ANGLE, RULE_STROKE, RocketGimbalParams, geometry
+from mechkit.mechanisms.rocket_gimbal import (
+    PAPER_EXAMPLE,
+    RULE_ANGLE,
+    RULE_STROKE,
+    RocketGimbalParams,
+    geometry,
+)
 from mechkit.mechanisms.rocket_gimbal_kinematics import (
     actuator_lengths,
     attitude,
@@ -54,8 +60,12 @@ def test_attitude_is_a_rotation_about_the_two_hinges():
 
 def test_length_jacobian_matches_finite_differences():
     x, h = np.array([0.07, -0.05]), 1e-6
-    fd = np.column_stack([(actuator_lengths(GEO, *(x + h * e)) - actuator_lengths(GEO, *(x - h * e))) / (2 * h)
-                          for e in np.eye(2)])
+    fd = np.column_stack(
+        [
+            (actuator_lengths(GEO, *(x + h * e)) - actuator_lengths(GEO, *(x - h * e))) / (2 * h)
+            for e in np.eye(2)
+        ]
+    )
     assert np.allclose(length_jacobian(GEO, *x), fd, atol=1e-9)
 
 

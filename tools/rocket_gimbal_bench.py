@@ -18,16 +18,16 @@ from pathlib import Path
 import matplotlib
 
 matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
+import matplotlib.pyplot as plt
+import numpy as np
 
-from mechkit.bench import time_per_call  # noqa: E402
-from mechkit.mechanism import load  # noqa: E402
-from mechkit.mechanisms.rocket_gimbal import SwingScene, geometry, joint_state, soc_skcs, thrust_fext  # noqa: E402
-from mechkit.mechanisms.rocket_gimbal_checks import fk_closure  # noqa: E402
-from mechkit.mechanisms.rocket_gimbal_kinematics import actuator_lengths, fk_newton  # noqa: E402
-from mechkit.mechanisms.rocket_gimbal_resultant import fk_resultant, pick_in_range  # noqa: E402
-from mechkit.validation.soc import solve_soc  # noqa: E402
+from mechkit.bench import time_per_call
+from mechkit.mechanism import load
+from mechkit.mechanisms.rocket_gimbal import SwingScene, geometry, joint_state, soc_skcs, thrust_fext
+from mechkit.mechanisms.rocket_gimbal_checks import fk_closure
+from mechkit.mechanisms.rocket_gimbal_kinematics import actuator_lengths, fk_newton
+from mechkit.mechanisms.rocket_gimbal_resultant import fk_resultant, pick_in_range
+from mechkit.validation.soc import solve_soc
 
 OUT = Path(__file__).resolve().parent.parent / "docs" / "figures" / "rocket_gimbal_bench.png"
 
@@ -49,21 +49,32 @@ def main(budget_s: float = 1.0, out: Path = OUT) -> dict[str, float]:
 
     timings = {
         "IK closed form": _time([lambda x=x: actuator_lengths(geo, *x) for x in angle_set], budget_s),
-        "FK resultant (paper)": _time([lambda s=s: pick_in_range(fk_resultant(geo, s)) for s in stroke_set], budget_s),
+        "FK resultant (paper)": _time(
+            [lambda s=s: pick_in_range(fk_resultant(geo, s)) for s in stroke_set], budget_s
+        ),
         "FK Newton": _time([lambda s=s: fk_newton(geo, s) for s in stroke_set], budget_s),
         "FK closure solver": _time([lambda s=s: fk_closure(mech, s) for s in stroke_set], budget_s),
-        "ID Pinocchio (+determinacy)": _time([lambda s=s, f=f: mech.inverse_dynamics(*s[1:], fext=f)
-                                              for s, f in zip(states, fexts)], budget_s),
-        "ID Pinocchio (no determinacy)": _time([lambda s=s, f=f: mech.inverse_dynamics(*s[1:], fext=f, determinacy=False)
-                                                for s, f in zip(states, fexts)], budget_s),
-        "ID SOC (motion + SKCs + solve)": _time([lambda t=t: solve_soc(soc_skcs(p, scene.motion(p, t), scene))
-                                                 for t in times], budget_s),
+        "ID Pinocchio (+determinacy)": _time(
+            [lambda s=s, f=f: mech.inverse_dynamics(*s[1:], fext=f) for s, f in zip(states, fexts)], budget_s
+        ),
+        "ID Pinocchio (no determinacy)": _time(
+            [
+                lambda s=s, f=f: mech.inverse_dynamics(*s[1:], fext=f, determinacy=False)
+                for s, f in zip(states, fexts)
+            ],
+            budget_s,
+        ),
+        "ID SOC (motion + SKCs + solve)": _time(
+            [lambda t=t: solve_soc(soc_skcs(p, scene.motion(p, t), scene)) for t in times], budget_s
+        ),
     }
     ratios = {
         "FK resultant / Newton": timings["FK resultant (paper)"] / timings["FK Newton"],
         "FK closure solver / Newton": timings["FK closure solver"] / timings["FK Newton"],
-        "ID SOC / Pinocchio (no determinacy)": timings["ID SOC (motion + SKCs + solve)"] / timings["ID Pinocchio (no determinacy)"],
-        "ID Pinocchio determinacy / without": timings["ID Pinocchio (+determinacy)"] / timings["ID Pinocchio (no determinacy)"],
+        "ID SOC / Pinocchio (no determinacy)": timings["ID SOC (motion + SKCs + solve)"]
+        / timings["ID Pinocchio (no determinacy)"],
+        "ID Pinocchio determinacy / without": timings["ID Pinocchio (+determinacy)"]
+        / timings["ID Pinocchio (no determinacy)"],
     }
     fig, ax = plt.subplots(figsize=(9, 4))
     names = list(timings)

@@ -15,12 +15,12 @@ from pathlib import Path
 import matplotlib
 
 matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
+import matplotlib.pyplot as plt
+import numpy as np
 
-from mechkit.mechanisms.rocket_gimbal import RULE_STROKE, RocketGimbalParams, geometry  # noqa: E402
-from mechkit.mechanisms.rocket_gimbal_kinematics import fk_newton  # noqa: E402
-from mechkit.mechanisms.rocket_gimbal_resultant import (  # noqa: E402
+from mechkit.mechanisms.rocket_gimbal import RULE_STROKE, RocketGimbalParams, geometry
+from mechkit.mechanisms.rocket_gimbal_kinematics import fk_newton
+from mechkit.mechanisms.rocket_gimbal_resultant import (
     degree16_polynomial,
     fk_resultant,
     half_angle_equations,
@@ -41,19 +41,28 @@ def example(geo) -> None:
     print(f"  coefficient range max/min |c|: {np.abs(p8.coef).max() / np.abs(p8.coef).min():.3g}")
     for m in fk_resultant(geo, stroke):
         side = "nozzle +z (as built)" if m.nozzle_z > 0.5 else ("flipped" if m.nozzle_z < 0 else "sideways")
-        print(f"  a = {m.a:+.10f}  alpha = {np.degrees(m.alpha):+11.6f} deg  beta = {np.degrees(m.beta):+11.6f} deg"
-              f"  cond8 = {m.condition:6.2f}  cond16 = {root_condition(p16, m.a):6.2f}  {side}")
+        print(
+            f"  a = {m.a:+.10f}  alpha = {np.degrees(m.alpha):+11.6f} deg"
+            f"  beta = {np.degrees(m.beta):+11.6f} deg"
+            f"  cond8 = {m.condition:6.2f}  cond16 = {root_condition(p16, m.a):6.2f}  {side}"
+        )
     pick = pick_in_range(fk_resultant(geo, stroke))
-    print(f"  in-range pick: alpha, beta = {np.degrees(pick.alpha):.6f}, {np.degrees(pick.beta):.6f} deg"
-          " (paper: 6.6336, -2.0624 deg)")
+    print(
+        f"  in-range pick: alpha, beta = {np.degrees(pick.alpha):.6f}, {np.degrees(pick.beta):.6f} deg"
+        " (paper: 6.6336, -2.0624 deg)"
+    )
     roots16 = p16.roots()
     spurious = roots16[np.abs(np.abs(roots16.imag) - 1.0) < 1e-2]
     scatter = np.abs(spurious - 1j * np.sign(spurious.imag)).max()
-    print(f"  degree-16 form: {spurious.size} roots near +-i (4-fold), scattered by {scatter:.2e}"
-          f" (eps^(1/4) = {np.finfo(float).eps ** 0.25:.1e}): {-np.log10(scatter):.1f} of 16 digits left")
+    print(
+        f"  degree-16 form: {spurious.size} roots near +-i (4-fold), scattered by {scatter:.2e}"
+        f" (eps^(1/4) = {np.finfo(float).eps ** 0.25:.1e}): {-np.log10(scatter):.1f} of 16 digits left"
+    )
     real16 = np.sort(roots16[np.abs(roots16.imag) < 1e-7].real)
     real8 = np.sort([m.a for m in fk_resultant(geo, stroke, polish=False)])
-    print(f"  real roots, degree 16 vs degree 8: max relative difference {np.abs(real16 / real8 - 1).max():.1e}")
+    print(
+        f"  real roots, degree 16 vs degree 8: max relative difference {np.abs(real16 / real8 - 1).max():.1e}"
+    )
 
 
 def grid_map(geo, n: int, out: Path) -> None:
@@ -64,7 +73,9 @@ def grid_map(geo, n: int, out: Path) -> None:
         for j, sb in enumerate(axis):
             s = np.array([sa, sb])
             newton = fk_newton(geo, s)
-            modes = [m for m in fk_resultant(geo, s, polish=False) if abs(m.alpha) < 0.2 and abs(m.beta) < 0.2]
+            modes = [
+                m for m in fk_resultant(geo, s, polish=False) if abs(m.alpha) < 0.2 and abs(m.beta) < 0.2
+            ]
             if not modes:
                 continue
             best = min(modes, key=lambda m: abs(m.alpha - newton[0]) + abs(m.beta - newton[1]))
@@ -72,18 +83,30 @@ def grid_map(geo, n: int, out: Path) -> None:
             raw_err[i, j] = max(abs(best.alpha - newton[0]), abs(best.beta - newton[1]))
     off = ~np.eye(n, dtype=bool)
     print(f"stroke square +-{1e3 * RULE_STROKE:.0f} mm, {n} x {n}:")
-    print(f"  in-range root condition number: median {np.nanmedian(cond):.2f}, max off the diagonal"
-          f" {np.nanmax(cond[off]):.3g}, on the diagonal dlA = dlB: {np.nanmax(cond[~off]):.3g} (double root)")
-    print(f"  raw (unpolished) root vs Newton FK: max {np.nanmax(raw_err):.2e} rad off-diagonal"
-          f" {np.nanmax(raw_err[off]):.2e} rad; polished: see the tests (< 1e-9 rad)")
+    print(
+        f"  in-range root condition number: median {np.nanmedian(cond):.2f}, max off the diagonal"
+        f" {np.nanmax(cond[off]):.3g}, on the diagonal dlA = dlB: {np.nanmax(cond[~off]):.3g} (double root)"
+    )
+    print(
+        f"  raw (unpolished) root vs Newton FK: max {np.nanmax(raw_err):.2e} rad off-diagonal"
+        f" {np.nanmax(raw_err[off]):.2e} rad; polished: see the tests (< 1e-9 rad)"
+    )
     mm = 1e3 * axis
     fig, axes = plt.subplots(1, 2, figsize=(11, 5.0))
-    for ax, data, title in ((axes[0], np.log10(np.where(np.isfinite(cond), cond, np.nan)), "log10 condition of the in-range root"),
-                            (axes[1], np.log10(np.maximum(raw_err, 1e-17)), "log10 |raw root - Newton FK| (rad)")):
+    for ax, data, title in (
+        (
+            axes[0],
+            np.log10(np.where(np.isfinite(cond), cond, np.nan)),
+            "log10 condition of the in-range root",
+        ),
+        (axes[1], np.log10(np.maximum(raw_err, 1e-17)), "log10 |raw root - Newton FK| (rad)"),
+    ):
         im = ax.pcolormesh(mm, mm, data.T, shading="auto", cmap="viridis")
         ax.set(xlabel="stroke dlA (mm)", ylabel="stroke dlB (mm)", title=title, aspect="equal")
         fig.colorbar(im, ax=ax)
-    fig.suptitle("resultant FK: digits are lost near dlA = dlB, where the in-range root meets a flipped mode's")
+    fig.suptitle(
+        "resultant FK: digits are lost near dlA = dlB, where the in-range root meets a flipped mode's"
+    )
     fig.tight_layout()
     out.parent.mkdir(parents=True, exist_ok=True)
     fig.savefig(out, dpi=90)

@@ -13,12 +13,12 @@ from pathlib import Path
 import matplotlib
 
 matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
+import matplotlib.pyplot as plt
+import numpy as np
 
-from mechkit.mechanism import load  # noqa: E402
-from mechkit.mechanisms.rocket_gimbal import SwingScene, joint_state, soc_skcs, thrust_fext  # noqa: E402
-from mechkit.validation.soc import solve_soc  # noqa: E402
+from mechkit.mechanism import load
+from mechkit.mechanisms.rocket_gimbal import SwingScene, joint_state, soc_skcs, thrust_fext
+from mechkit.validation.soc import solve_soc
 
 OUT = Path(__file__).resolve().parent.parent / "docs" / "figures" / "rocket_gimbal_swing.png"
 SUPPORTS = ("bracket_hinge", "a_swing_1", "b_swing_1")
@@ -39,8 +39,10 @@ def main(n: int = 101, out: Path = OUT) -> dict[str, float]:
         pin_f.append([r.reactions[j].wrench for j in SUPPORTS])
         soc_f.append([s.reactions[j] for j in SUPPORTS])
         diffs = [abs(r.efforts[j] - s.efforts[j]) / abs(r.efforts[j]) for j in mech.actuated]
-        diffs += [np.abs(r.reactions[j].wrench - s.reactions[j]).max() / np.abs(r.reactions[j].wrench).max()
-                  for j in r.reactions]
+        diffs += [
+            np.abs(r.reactions[j].wrench - s.reactions[j]).max() / np.abs(r.reactions[j].wrench).max()
+            for j in r.reactions
+        ]
         rel.append(max(diffs))
     pin_u, soc_u, pin_f, soc_f = map(np.array, (pin_u, soc_u, pin_f, soc_f))
 
@@ -48,17 +50,26 @@ def main(n: int = 101, out: Path = OUT) -> dict[str, float]:
     for k, name in enumerate(mech.actuated):
         axes[0].plot(times, pin_u[:, k] / 1e3, f"C{k}-", label=f"{name} Pinocchio")
         axes[0].plot(times[::5], soc_u[::5, k] / 1e3, f"C{k}o", ms=4, label=f"{name} SOC")
-    axes[0].set(xlabel="time (s)", ylabel="servo force (kN)", title="servo forces (conical swing, 1 Hz, +-4 deg)")
+    axes[0].set(
+        xlabel="time (s)", ylabel="servo force (kN)", title="servo forces (conical swing, 1 Hz, +-4 deg)"
+    )
     for k, name in enumerate(SUPPORTS):
         norm_pin = np.linalg.norm(pin_f[:, k, :3], axis=1)
         norm_soc = np.linalg.norm(soc_f[:, k, :3], axis=1)
         scale = 1e6 if name == "bracket_hinge" else 1e3
-        axes[1].plot(times, norm_pin / scale, f"C{k}-", label=f"{name} Pinocchio ({'MN' if scale == 1e6 else 'kN'})")
+        axes[1].plot(
+            times, norm_pin / scale, f"C{k}-", label=f"{name} Pinocchio ({'MN' if scale == 1e6 else 'kN'})"
+        )
         axes[1].plot(times[::5], norm_soc[::5] / scale, f"C{k}o", ms=4, label=f"{name} SOC")
-    axes[1].set(xlabel="time (s)", ylabel="|support force| (MN bearings, kN servo pivots)",
-                title="support reactions on the gimbal frame side")
+    axes[1].set(
+        xlabel="time (s)",
+        ylabel="|support force| (MN bearings, kN servo pivots)",
+        title="support reactions on the gimbal frame side",
+    )
     axes[2].semilogy(times, np.maximum(rel, 1e-17), "k-")
-    axes[2].set(xlabel="time (s)", ylabel="max relative difference", title="Pinocchio vs SOC, every effort and joint")
+    axes[2].set(
+        xlabel="time (s)", ylabel="max relative difference", title="Pinocchio vs SOC, every effort and joint"
+    )
     for ax in axes:
         ax.grid(True, alpha=0.3)
     for ax in axes[:2]:
@@ -67,11 +78,13 @@ def main(n: int = 101, out: Path = OUT) -> dict[str, float]:
     out.parent.mkdir(parents=True, exist_ok=True)
     fig.savefig(out, dpi=90)
     plt.close(fig)
-    return {"peak servo force (kN)": float(np.abs(pin_u).max() / 1e3),
-            "bearing force min (MN)": float(np.linalg.norm(pin_f[:, 0, :3], axis=1).min() / 1e6),
-            "bearing force max (MN)": float(np.linalg.norm(pin_f[:, 0, :3], axis=1).max() / 1e6),
-            "peak servo pivot force (kN)": float(np.linalg.norm(pin_f[:, 1:, :3], axis=2).max() / 1e3),
-            "worst relative difference Pinocchio vs SOC": float(max(rel))}
+    return {
+        "peak servo force (kN)": float(np.abs(pin_u).max() / 1e3),
+        "bearing force min (MN)": float(np.linalg.norm(pin_f[:, 0, :3], axis=1).min() / 1e6),
+        "bearing force max (MN)": float(np.linalg.norm(pin_f[:, 0, :3], axis=1).max() / 1e6),
+        "peak servo pivot force (kN)": float(np.linalg.norm(pin_f[:, 1:, :3], axis=2).max() / 1e3),
+        "worst relative difference Pinocchio vs SOC": float(max(rel)),
+    }
 
 
 if __name__ == "__main__":

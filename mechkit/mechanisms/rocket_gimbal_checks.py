@@ -23,10 +23,19 @@ from mechkit.mechanisms.rocket_gimbal_kinematics import actuator_lengths, fk_new
 from mechkit.mechanisms.rocket_gimbal_resultant import fk_resultant, pick_in_range
 from mechkit.validation.soc import solve_soc
 
-__all__ = ["fk_closure", "FKAgreement", "fk_agreement", "DynamicsAgreement", "dynamics_agreement",
-           "self_checks"]
+__all__ = [
+    "DynamicsAgreement",
+    "FKAgreement",
+    "dynamics_agreement",
+    "fk_agreement",
+    "fk_closure",
+    "self_checks",
+]
 
-def fk_closure(mech: Mechanism, stroke: np.ndarray, guess: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
+
+def fk_closure(
+    mech: Mechanism, stroke: np.ndarray, guess: np.ndarray | None = None
+) -> tuple[np.ndarray, np.ndarray]:
     """FK by the closure solver (`Mechanism.assemble`, the strokes as inputs): ((alpha, beta) rad, q)."""
     q = mech.assemble({"a_stroke": stroke[0], "b_stroke": stroke[1]}, guess=guess)
     return np.array([q[mech.q_index("bracket_hinge")], q[mech.q_index("engine_hinge")]]), q
@@ -63,8 +72,16 @@ def fk_agreement(mech: Mechanism, n: int = 5, stroke_max: float = RULE_STROKE) -
             closure, _ = fk_closure(mech, s)
             trips = [np.abs(strokes(geo, *x) - s).max() for x in (poly, newton, closure)]
             cond = mode.condition if sa != sb else 0.0
-            worst = np.maximum(worst, [np.abs(poly - newton).max(), np.abs(poly - closure).max(),
-                                       np.abs(newton - closure).max(), max(trips), cond])
+            worst = np.maximum(
+                worst,
+                [
+                    np.abs(poly - newton).max(),
+                    np.abs(poly - closure).max(),
+                    np.abs(newton - closure).max(),
+                    max(trips),
+                    cond,
+                ],
+            )
     return FKAgreement(*map(float, worst))
 
 
@@ -87,8 +104,9 @@ class DynamicsAgreement:
     missing: tuple[str, ...]
 
 
-def dynamics_agreement(mech: Mechanism, scene: SwingScene | None = None,
-                       times: np.ndarray | None = None) -> DynamicsAgreement:
+def dynamics_agreement(
+    mech: Mechanism, scene: SwingScene | None = None, times: np.ndarray | None = None
+) -> DynamicsAgreement:
     """Inverse dynamics of the swing by Pinocchio (thrust as fext) and by SOC, compared at `times` (s)."""
     scene = scene or SwingScene()
     times = np.linspace(0.0, 1.0 / scene.frequency, 7, endpoint=False) if times is None else times

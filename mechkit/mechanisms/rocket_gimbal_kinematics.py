@@ -23,20 +23,20 @@ from mechkit.exceptions import ClosureNotConverged, InvalidParameters, SingularC
 __all__ = [
     "GIMBAL_ANGLE",
     "GimbalGeometry",
+    "LinearRuleErrors",
+    "actuator_lengths",
+    "attitude",
+    "cross",
+    "fk_newton",
+    "hinge_axes",
+    "length_jacobian",
+    "linear_rule",
+    "linear_rule_errors",
+    "pitch_yaw",
     "rot_x",
     "rot_y",
     "rot_z",
-    "cross",
-    "attitude",
-    "hinge_axes",
-    "actuator_lengths",
     "strokes",
-    "length_jacobian",
-    "fk_newton",
-    "pitch_yaw",
-    "linear_rule",
-    "LinearRuleErrors",
-    "linear_rule_errors",
 ]
 
 GIMBAL_ANGLE = np.pi / 4
@@ -76,8 +76,9 @@ class GimbalGeometry:
     nominal_lengths: np.ndarray
 
     @classmethod
-    def reconstruction(cls, pivot_radius: float, pivot_offset: float, length_a: float,
-                       length_b: float) -> GimbalGeometry:
+    def reconstruction(
+        cls, pivot_radius: float, pivot_offset: float, length_a: float, length_b: float
+    ) -> GimbalGeometry:
         """The reconstructed geometry (MECHANISMS.md section 5): actuators parallel to the nozzle axis.
 
         A = (r, 0, h), B = (0, r, h), O_A = (r, 0, h - lA0), O_B = (0, r, h - lB0).
@@ -87,14 +88,20 @@ class GimbalGeometry:
             pivot_offset: h, m, height of the engine pivots along the nozzle axis from O.
             length_a: lA0, m. length_b: lB0, m.
         """
-        for name, value in (("pivot_radius", pivot_radius), ("pivot_offset", pivot_offset),
-                            ("length_a", length_a), ("length_b", length_b)):
+        for name, value in (
+            ("pivot_radius", pivot_radius),
+            ("pivot_offset", pivot_offset),
+            ("length_a", length_a),
+            ("length_b", length_b),
+        ):
             if not np.isfinite(value) or value <= 0:
                 raise InvalidParameters(name, value, "must be a finite length > 0 (m)")
         r, h = pivot_radius, pivot_offset
-        return cls(engine_pivots=np.array([[r, 0.0, h], [0.0, r, h]]),
-                   frame_pivots=np.array([[r, 0.0, h - length_a], [0.0, r, h - length_b]]),
-                   nominal_lengths=np.array([length_a, length_b]))
+        return cls(
+            engine_pivots=np.array([[r, 0.0, h], [0.0, r, h]]),
+            frame_pivots=np.array([[r, 0.0, h - length_a], [0.0, r, h - length_b]]),
+            nominal_lengths=np.array([length_a, length_b]),
+        )
 
 
 def attitude(alpha: float, beta: float) -> np.ndarray:
@@ -139,8 +146,13 @@ def length_jacobian(geo: GimbalGeometry, alpha: float, beta: float) -> np.ndarra
     return _lengths_and_jacobian(geo, alpha, beta)[1]
 
 
-def fk_newton(geo: GimbalGeometry, stroke: np.ndarray, guess: tuple[float, float] = (0.0, 0.0),
-              tol: float = 1e-14, max_iter: int = 50) -> np.ndarray:
+def fk_newton(
+    geo: GimbalGeometry,
+    stroke: np.ndarray,
+    guess: tuple[float, float] = (0.0, 0.0),
+    tol: float = 1e-14,
+    max_iter: int = 50,
+) -> np.ndarray:
     """Forward kinematics by Newton's method on the two length equations.
 
     Args:
@@ -165,7 +177,9 @@ def fk_newton(geo: GimbalGeometry, stroke: np.ndarray, guess: tuple[float, float
         lengths, jac = _lengths_and_jacobian(geo, *x)
         det = jac[0, 0] * jac[1, 1] - jac[0, 1] * jac[1, 0]
         if not abs(det) > 1e-12 * np.abs(jac).max() ** 2:
-            raise SingularConfiguration(float(np.linalg.cond(jac)), "actuator-length Jacobian d(L_A, L_B)/d(alpha, beta)")
+            raise SingularConfiguration(
+                float(np.linalg.cond(jac)), "actuator-length Jacobian d(L_A, L_B)/d(alpha, beta)"
+            )
         step = np.linalg.solve(jac, target - lengths)
         x += step
         if np.max(np.abs(step)) < tol:
@@ -180,8 +194,9 @@ def pitch_yaw(alpha: float, beta: float) -> np.ndarray:
     return np.array([np.arctan2(-n[1], n[2]), np.arctan2(n[0], n[2])])
 
 
-def linear_rule(stroke: np.ndarray, stroke_max: float = 0.110,
-                angle_max: float = np.radians(6.5)) -> np.ndarray:
+def linear_rule(
+    stroke: np.ndarray, stroke_max: float = 0.110, angle_max: float = np.radians(6.5)
+) -> np.ndarray:
     """The proportional rule used in practice: |stroke| = stroke_max <-> |angle| = angle_max.
 
     Actuator B (in the yOz plane) sets pitch theta_x, actuator A (xOz plane) sets yaw theta_y; the
@@ -225,8 +240,9 @@ class LinearRuleErrors:
     cross_talk: float
 
 
-def linear_rule_errors(geo: GimbalGeometry, stroke_max: float = 0.110, angle_max: float = np.radians(6.5),
-                       n: int = 45) -> LinearRuleErrors:
+def linear_rule_errors(
+    geo: GimbalGeometry, stroke_max: float = 0.110, angle_max: float = np.radians(6.5), n: int = 45
+) -> LinearRuleErrors:
     """Error map of the linear rule over the square [-stroke_max, stroke_max]^2 (n x n strokes, n odd)."""
     if n < 3 or n % 2 == 0:
         raise InvalidParameters("n", n, "need an odd grid size >= 3 (the grid must contain 0)")
@@ -244,5 +260,6 @@ def linear_rule_errors(geo: GimbalGeometry, stroke_max: float = 0.110, angle_max
     i, j = np.unravel_index(np.argmax(err), err.shape)
     mid = n // 2
     talk = max(np.abs(exact[:, mid, 0]).max(), np.abs(exact[mid, :, 1]).max())
-    return LinearRuleErrors(axis, axis, exact, linear, float(err[i, j]), (float(axis[i]), float(axis[j])),
-                            float(talk))
+    return LinearRuleErrors(
+        axis, axis, exact, linear, float(err[i, j]), (float(axis[i]), float(axis[j])), float(talk)
+    )

@@ -17,7 +17,7 @@ import numpy as np
 from mechkit.exceptions import InvalidParameters, SingularConfiguration
 from mechkit.mechanisms.rocket_gimbal_kinematics import GimbalGeometry, attitude, cross, hinge_axes, rot_x
 
-__all__ = ["LegMotion", "GimbalMotion", "gimbal_motion"]
+__all__ = ["GimbalMotion", "LegMotion", "gimbal_motion"]
 
 _EX, _EY, _EZ = np.eye(3)
 
@@ -96,11 +96,25 @@ def _leg(frame_pivot: np.ndarray, point: np.ndarray, velocity: np.ndarray, acc: 
     rhs = u_acc - cross(omega, cross(omega, u)) - cross(twist, u)
     acc2 = np.linalg.lstsq(basis, rhs, rcond=None)[0]
     alpha = acc2[0] * e1 + acc2[1] * e2 + twist
-    return LegMotion(length, length_rate, length_acc, np.array([t1, t2]), rate, acc2, u,
-                     np.column_stack([e1, e2]), omega, alpha, u_rate, u_acc)
+    return LegMotion(
+        length,
+        length_rate,
+        length_acc,
+        np.array([t1, t2]),
+        rate,
+        acc2,
+        u,
+        np.column_stack([e1, e2]),
+        omega,
+        alpha,
+        u_rate,
+        u_acc,
+    )
 
 
-def gimbal_motion(geo: GimbalGeometry, angles: np.ndarray, rates: np.ndarray, accs: np.ndarray) -> GimbalMotion:
+def gimbal_motion(
+    geo: GimbalGeometry, angles: np.ndarray, rates: np.ndarray, accs: np.ndarray
+) -> GimbalMotion:
     """Every body's motion from (alpha, beta) and their derivatives (rad, rad/s, rad/s^2)."""
     angles, rates, accs = (np.asarray(x, dtype=float) for x in (angles, rates, accs))
     for name, x in (("angles", angles), ("rates", rates), ("accs", accs)):
@@ -116,5 +130,16 @@ def gimbal_motion(geo: GimbalGeometry, angles: np.ndarray, rates: np.ndarray, ac
         v = cross(omega, p)
         a = cross(alpha, p) + cross(omega, v)
         legs.append(_leg(frame_pivot, p, v, a))
-    return GimbalMotion(angles, rates, accs, rotation, np.column_stack([x1, y2]), omega, alpha,
-                        rates[0] * x1, accs[0] * x1, pivots, (legs[0], legs[1]))
+    return GimbalMotion(
+        angles,
+        rates,
+        accs,
+        rotation,
+        np.column_stack([x1, y2]),
+        omega,
+        alpha,
+        rates[0] * x1,
+        accs[0] * x1,
+        pivots,
+        (legs[0], legs[1]),
+    )

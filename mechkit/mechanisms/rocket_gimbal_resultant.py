@@ -33,14 +33,14 @@ from mechkit.mechanisms.rocket_gimbal_kinematics import (
 )
 
 __all__ = [
-    "half_angle_equations",
-    "sylvester_resultant",
-    "sylvester_matrix",
-    "degree16_polynomial",
-    "root_condition",
     "AssemblyMode",
+    "degree16_polynomial",
     "fk_resultant",
+    "half_angle_equations",
     "pick_in_range",
+    "root_condition",
+    "sylvester_matrix",
+    "sylvester_resultant",
 ]
 
 SWING_LIMIT = np.radians(10.0)
@@ -50,10 +50,16 @@ DUPLICATE = 1e-7
 A_MAX = 1e6
 """Roots with |a| above this are taken as alpha = +-pi, where the half-angle chart fails (skipped)."""
 # Rx(t) = _X[0] + cos t _X[1] + sin t _X[2], likewise Ry.
-_X = (np.diag([1.0, 0.0, 0.0]), np.diag([0.0, 1.0, 1.0]),
-      np.array([[0.0, 0.0, 0.0], [0.0, 0.0, -1.0], [0.0, 1.0, 0.0]]))
-_Y = (np.diag([0.0, 1.0, 0.0]), np.diag([1.0, 0.0, 1.0]),
-      np.array([[0.0, 0.0, 1.0], [0.0, 0.0, 0.0], [-1.0, 0.0, 0.0]]))
+_X = (
+    np.diag([1.0, 0.0, 0.0]),
+    np.diag([0.0, 1.0, 1.0]),
+    np.array([[0.0, 0.0, 0.0], [0.0, 0.0, -1.0], [0.0, 1.0, 0.0]]),
+)
+_Y = (
+    np.diag([0.0, 1.0, 0.0]),
+    np.diag([1.0, 0.0, 1.0]),
+    np.array([[0.0, 0.0, 1.0], [0.0, 0.0, 0.0], [-1.0, 0.0, 0.0]]),
+)
 # (1 + t^2) * (1, cos, sin) in t = tan(angle/2), ascending coefficients.
 _HALF = (np.array([1.0, 0.0, 1.0]), np.array([1.0, 0.0, -1.0]), np.array([0.0, 2.0, 0.0]))
 
@@ -186,8 +192,13 @@ def _polish(eqs: np.ndarray, a: float, b: float, steps: int = 3) -> tuple[float,
     return float(x[0]), float(x[1])
 
 
-def fk_resultant(geo: GimbalGeometry, stroke: np.ndarray, imag_tol: float = 1e-7,
-                 gap_tol: float = 1e-6, polish: bool = True) -> list[AssemblyMode]:
+def fk_resultant(
+    geo: GimbalGeometry,
+    stroke: np.ndarray,
+    imag_tol: float = 1e-7,
+    gap_tol: float = 1e-6,
+    polish: bool = True,
+) -> list[AssemblyMode]:
     """All real assembly modes for the strokes, by the resultant and the common-root test.
 
     Args:
@@ -214,8 +225,11 @@ def fk_resultant(geo: GimbalGeometry, stroke: np.ndarray, imag_tol: float = 1e-7
             alpha, beta = 2.0 * np.arctan(a), 2.0 * np.arctan(b)
             if any(abs(alpha - m.alpha) + abs(beta - m.beta) < DUPLICATE for m in modes):
                 continue  # a double root of the resultant (two modes sharing alpha) seen twice
-            modes.append(AssemblyMode(alpha, beta, a, b, gap, root_condition(poly, a),
-                                      float(attitude(alpha, beta)[2, 2])))
+            modes.append(
+                AssemblyMode(
+                    alpha, beta, a, b, gap, root_condition(poly, a), float(attitude(alpha, beta)[2, 2])
+                )
+            )
     return sorted(modes, key=lambda m: abs(m.alpha) + abs(m.beta))
 
 
@@ -227,6 +241,9 @@ def pick_in_range(modes: list[AssemblyMode], limit: float = SWING_LIMIT) -> Asse
     """
     inside = [m for m in modes if abs(m.alpha) < limit and abs(m.beta) < limit]
     if len(inside) != 1:
-        raise InvalidParameters("stroke", [(m.alpha, m.beta) for m in modes],
-                                f"{len(inside)} assembly modes within +-{np.degrees(limit):.1f} deg")
+        raise InvalidParameters(
+            "stroke",
+            [(m.alpha, m.beta) for m in modes],
+            f"{len(inside)} assembly modes within +-{np.degrees(limit):.1f} deg",
+        )
     return inside[0]

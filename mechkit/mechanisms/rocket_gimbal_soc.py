@@ -70,9 +70,16 @@ def _perpendicular(axis: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return t1, cross(axis, t1)
 
 
-def gimbal_skcs(motion: GimbalMotion, geo_frame_pivots: np.ndarray, bodies: BodySpec, engine_com: float,
-                cylinder_length: float, rod_length: float, to_world: np.ndarray,
-                thrust: tuple[float, float] = (0.0, 0.0)) -> list[SKCInstant]:
+def gimbal_skcs(
+    motion: GimbalMotion,
+    geo_frame_pivots: np.ndarray,
+    bodies: BodySpec,
+    engine_com: float,
+    cylinder_length: float,
+    rod_length: float,
+    to_world: np.ndarray,
+    thrust: tuple[float, float] = (0.0, 0.0),
+) -> list[SKCInstant]:
     """The ordered SKCs of the gimbal at one instant.
 
     Args:
@@ -95,12 +102,26 @@ def gimbal_skcs(motion: GimbalMotion, geo_frame_pivots: np.ndarray, bodies: Body
     omega, alpha = W @ motion.omega, W @ motion.alpha
     com = engine_com * n
     com_acc = cross(alpha, com) + cross(omega, cross(omega, com))
-    engine = BodyLoad("engine", bodies["engine"][0], _axisymmetric(bodies["engine"], n), com_acc, omega, alpha,
-                      np.column_stack([cross(x1, com), cross(y2, com)]), np.column_stack([x1, y2]))
-    bracket = BodyLoad("bracket", bodies["bracket"][0],
-                       _axisymmetric(bodies["bracket"], W @ cross(motion.hinge_axes[:, 0], motion.hinge_axes[:, 1])),
-                       np.zeros(3), W @ motion.bracket_omega, W @ motion.bracket_alpha,
-                       np.zeros((3, 2)), np.column_stack([x1, np.zeros(3)]))
+    engine = BodyLoad(
+        "engine",
+        bodies["engine"][0],
+        _axisymmetric(bodies["engine"], n),
+        com_acc,
+        omega,
+        alpha,
+        np.column_stack([cross(x1, com), cross(y2, com)]),
+        np.column_stack([x1, y2]),
+    )
+    bracket = BodyLoad(
+        "bracket",
+        bodies["bracket"][0],
+        _axisymmetric(bodies["bracket"], W @ cross(motion.hinge_axes[:, 0], motion.hinge_axes[:, 1])),
+        np.zeros(3),
+        W @ motion.bracket_omega,
+        W @ motion.bracket_alpha,
+        np.zeros((3, 2)),
+        np.column_stack([x1, np.zeros(3)]),
+    )
     thrust_force = -thrust[0] * n
     thrust_point = thrust[1] * n
 
@@ -126,18 +147,20 @@ def gimbal_skcs(motion: GimbalMotion, geo_frame_pivots: np.ndarray, bodies: Body
         for body, c, acc in ((f"{name}_cylinder", c_cyl, acc_cyl), (f"{name}_rod", c_rod, acc_rod)):
             jv = np.zeros((3, size))
             jw = np.zeros((3, size))
-            jw[:, base:base + 2] = np.column_stack(e)
-            jv[:, base:base + 2] = np.column_stack([cross(ei, c - pivot) for ei in e])
+            jw[:, base : base + 2] = np.column_stack(e)
+            jv[:, base : base + 2] = np.column_stack([cross(ei, c - pivot) for ei in e])
             if body.endswith("rod"):
                 jv[:, base + 2] = u
-            loads[body] = BodyLoad(body, bodies[body][0], _axisymmetric(bodies[body], u), acc, w_leg, a_leg, jv, jw)
+            loads[body] = BodyLoad(
+                body, bodies[body][0], _axisymmetric(bodies[body], u), acc, w_leg, a_leg, jv, jw
+            )
         loop_bodies += loads.values()
         actuators.append((f"{name}_stroke", np.eye(size)[base + 2]))
         # ball joint: engine (parent, frame_a) on rod (child); relative virtual displacement rod - engine
         rel = np.zeros((6, size))
-        rel[:3, base:base + 2] = np.column_stack([cross(ei, tip - pivot) for ei in e])
+        rel[:3, base : base + 2] = np.column_stack([cross(ei, tip - pivot) for ei in e])
         rel[:3, base + 2] = u
-        rel[3:, base:base + 2] = np.column_stack(e)
+        rel[3:, base : base + 2] = np.column_stack(e)
         rel[:3, :2] -= np.column_stack([cross(x1, ball), cross(y2, ball)])
         rel[3:, :2] -= np.column_stack([x1, y2])
         balls.append(WrenchSite(f"{name}_ball_joint", rel, +1.0, components=(0, 1, 2)))
@@ -146,43 +169,89 @@ def gimbal_skcs(motion: GimbalMotion, geo_frame_pivots: np.ndarray, bodies: Body
         rod_free = _free(loads[f"{name}_rod"], c_rod, pivot)
         cyl_free = _free(loads[f"{name}_cylinder"], c_cyl, pivot)
         stroke_site = _rigid(tip, pivot)
-        free_skcs.append(SKCInstant(f"{name}_rod", 6, [rod_free],
-                                    released=[WrenchSite(f"{name}_stroke", stroke_site, +1.0)],
-                                    known=[WrenchSite(f"{name}_ball_joint", _rigid(tip, pivot), +1.0)]))
-        free_skcs.append(SKCInstant(
-            f"{name}_cylinder", 6, [cyl_free],
-            released=[WrenchSite(f"{name}_swing_2", _rigid(pivot, pivot), +1.0, basis=_wrench_basis(*_perpendicular(e[1])))],
-            known=[WrenchSite(f"{name}_stroke", stroke_site, -1.0)]))
+        free_skcs.append(
+            SKCInstant(
+                f"{name}_rod",
+                6,
+                [rod_free],
+                released=[WrenchSite(f"{name}_stroke", stroke_site, +1.0)],
+                known=[WrenchSite(f"{name}_ball_joint", _rigid(tip, pivot), +1.0)],
+            )
+        )
+        free_skcs.append(
+            SKCInstant(
+                f"{name}_cylinder",
+                6,
+                [cyl_free],
+                released=[
+                    WrenchSite(
+                        f"{name}_swing_2",
+                        _rigid(pivot, pivot),
+                        +1.0,
+                        basis=_wrench_basis(*_perpendicular(e[1])),
+                    )
+                ],
+                known=[WrenchSite(f"{name}_stroke", stroke_site, -1.0)],
+            )
+        )
         # the cross: COM at the pivot, turning about e1 only
-        cross_load = BodyLoad(f"{name}_cross", bodies[f"{name}_cross"][0], _axisymmetric(bodies[f"{name}_cross"], e[0]),
-                              np.zeros(3), leg.hooke_rate[0] * e[0], leg.hooke_acc[0] * e[0], np.zeros((3, size)),
-                              np.outer(e[0], np.eye(size)[base]))
+        cross_load = BodyLoad(
+            f"{name}_cross",
+            bodies[f"{name}_cross"][0],
+            _axisymmetric(bodies[f"{name}_cross"], e[0]),
+            np.zeros(3),
+            leg.hooke_rate[0] * e[0],
+            leg.hooke_acc[0] * e[0],
+            np.zeros((3, size)),
+            np.outer(e[0], np.eye(size)[base]),
+        )
         loop_bodies.append(cross_load)
-        free_skcs.append(SKCInstant(
-            f"{name}_cross", 6, [_free(cross_load, pivot, pivot)],
-            released=[WrenchSite(f"{name}_swing_1", _rigid(pivot, pivot), +1.0, basis=_wrench_basis(*_perpendicular(e[0])))],
-            known=[WrenchSite(f"{name}_swing_2", _rigid(pivot, pivot), -1.0)]))
+        free_skcs.append(
+            SKCInstant(
+                f"{name}_cross",
+                6,
+                [_free(cross_load, pivot, pivot)],
+                released=[
+                    WrenchSite(
+                        f"{name}_swing_1",
+                        _rigid(pivot, pivot),
+                        +1.0,
+                        basis=_wrench_basis(*_perpendicular(e[0])),
+                    )
+                ],
+                known=[WrenchSite(f"{name}_swing_2", _rigid(pivot, pivot), -1.0)],
+            )
+        )
 
     thrust_wrench = np.concatenate([thrust_force, np.zeros(3)])
     thrust_site = np.zeros((6, size))
     thrust_site[:3, :2] = np.column_stack([cross(x1, thrust_point), cross(y2, thrust_point)])
     thrust_site[3:, :2] = np.column_stack([x1, y2])
     loop_external = [(thrust_wrench, thrust_site)]
-    servo_loops = SKCInstant("servo_loops", size, loop_bodies, actuators=actuators, released=balls,
-                             external=loop_external)
+    servo_loops = SKCInstant(
+        "servo_loops", size, loop_bodies, actuators=actuators, released=balls, external=loop_external
+    )
     origin = np.zeros(3)
     engine_free = _free(engine, com, origin)
-    known_balls = [WrenchSite(f"{name}_ball_joint", _rigid(W @ motion.engine_pivots[k], origin), -1.0)
-                   for k, name in enumerate("ab")]
+    known_balls = [
+        WrenchSite(f"{name}_ball_joint", _rigid(W @ motion.engine_pivots[k], origin), -1.0)
+        for k, name in enumerate("ab")
+    ]
     engine_skc = SKCInstant(
-        "engine", 6, [engine_free],
+        "engine",
+        6,
+        [engine_free],
         released=[WrenchSite("engine_hinge", np.eye(6), +1.0, basis=_wrench_basis(*_perpendicular(y2)))],
         known=known_balls,
-        external=[(thrust_wrench, _rigid(thrust_point, origin))])
+        external=[(thrust_wrench, _rigid(thrust_point, origin))],
+    )
     bracket_skc = SKCInstant(
-        "bracket", 6, [_free(bracket, origin, origin)],
+        "bracket",
+        6,
+        [_free(bracket, origin, origin)],
         released=[WrenchSite("bracket_hinge", np.eye(6), +1.0, basis=_wrench_basis(*_perpendicular(x1)))],
-        known=[WrenchSite("engine_hinge", np.eye(6), -1.0)])
+        known=[WrenchSite("engine_hinge", np.eye(6), -1.0)],
+    )
     return [servo_loops, engine_skc, bracket_skc, *free_skcs]
 
 
@@ -190,12 +259,22 @@ def _pad(body: BodyLoad, start: int, size: int) -> BodyLoad:
     """The body with its Jacobian columns placed from `start` in an SKC of `size` coordinates."""
     jv, jw = np.zeros((3, size)), np.zeros((3, size))
     k = body.jv.shape[1]
-    jv[:, start:start + k], jw[:, start:start + k] = body.jv, body.jw
-    return BodyLoad(body.name, body.mass, body.inertia_com, body.com_acceleration, body.omega, body.alpha, jv, jw)
+    jv[:, start : start + k], jw[:, start : start + k] = body.jv, body.jw
+    return BodyLoad(
+        body.name, body.mass, body.inertia_com, body.com_acceleration, body.omega, body.alpha, jv, jw
+    )
 
 
 def _free(body: BodyLoad, com: np.ndarray, ref: np.ndarray) -> BodyLoad:
     """The body as a free rigid body (virtual coordinates: displacement of `ref`, rotation)."""
     jac = _rigid(com, ref)
-    return BodyLoad(body.name, body.mass, body.inertia_com, body.com_acceleration, body.omega, body.alpha,
-                    jac[:3], jac[3:])
+    return BodyLoad(
+        body.name,
+        body.mass,
+        body.inertia_com,
+        body.com_acceleration,
+        body.omega,
+        body.alpha,
+        jac[:3],
+        jac[3:],
+    )
