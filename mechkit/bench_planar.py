@@ -1,0 +1,166 @@
+"""Built-in bench methods and references for the calibration linkages four_bar and five_bar.
+
+The core's four_bar / five_bar modules carry no `BENCH_METHODS`; their independent methods live in
+`mechkit.validation` (numpy only) and are wired here in the `mechkit.bench` protocol:
+
+- reference: closed-form kinematics and planar Newton-Euler (`validation.planar_linkages`);
+- assembly: the closed form (circle intersection);
+- inverse dynamics: planar Newton-Euler, classic virtual work over the URDF coordinates
+  (`validation.soc.classic_virtual_work`, efforts only) and Lagrange's equations of the first kind
+  in reference-point coordinates (`validation.lagrange`, the ten-bar patent's A f = P).
+
+The numpy methods start from the link motion (the closed-form `LinkageState` of the sample, cached
+in `sample.extra`), not from (q, v, a): their times exclude that conversion.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+from mechkit.validation import lagrange
+from mechkit.validation import planar_linkages as ref
+from mechkit.validation.soc import BodyLoad, SKCInstant, classic_virtual_work
+
+PLANAR = ("four_bar", "five_bar")
+
+
+def geometry(mech) -> ref.FourBarGeometry | ref.FiveBarGeometry:
+    """The reference geometry from the mechanism's parameters."""
+    p = mech.params
+    cls = ref.FourBarGeometry if mech.spec.name == "four_bar" else ref.FiveBarGeometry
+    names = [n for n in cls.__dataclass_fields__]
+    return cls(**{n: getattr(p, n) for n in names})
+
+
+def state(mech, sample) -> ref.LinkageState:
+    """Closed-form motion at the sample's inputs, rates and accelerations (cached in sample.extra)."""
+    if "planar_state" not in sample.extra:
+        g = geometry(mech)
+        if mech.spec.name == "four_bar":
+            st = ref.four_bar(sample.inputs[0], sample.rates[0], sample.accelerations[0], g)
+        else:
+            st = ref.five_bar(tuple(sample.inputs), tuple(sample.rates), tuple(sample.accelerations), g)
+        sample.extra["planar_state"] = st
+    return sample.extra["planar_state"]
+
+
+def _joint_vector(mech, st: ref.LinkageState, values: np.ndarray) -> np.ndarray:
+    out = np.zeros(mech.model.nv)
+    out[[mech.v_index(j) for j in st.coordinates]] = values
+    return out
+
+
+def closed_form_q(mech, sample) -> np.ndarray:
+    """Assembly by circle intersection, as a mechkit q."""
+    g = geometry(mech)
+    if mech.spec.name == "four_bar":
+        st = ref.four_bar(sample.inputs[0], 0.0, 0.0, g)
+    else:
+        st = ref.five_bar(tuple(sample.inputs), geometry=g)
+    return _joint_vector(mech, st, st.q)
+
+
+def closed_form_a(mech, sample) -> np.ndarray:
+    return _joint_vector(mech, state(mech, sample), state(mech, sample).qdd)
+
+
+def newton_euler(mech, sample) -> ref.PlanarDynamics:
+    return ref.newton_euler(state(mech, sample))
+
+
+# ---------------------------------------------------------------- classic virtual work
+def _subtree(st: ref.LinkageState, link: str) -> list[str]:
+    children = [j.child for j in st.joints if j.parent == link and j.name != "C"]
+    return [link] + [d for child in children for d in _subtree(st, child)]
+
+
+def _point_jacobian(point: np.ndarray, pivots: list[np.ndarray | None]) -> np.ndarray:
+    """(6, n): virtual displacement and rotation of a body point for unit rotations about the pivots (about -y)."""
+    jac = np.zeros((6, len(pivots)))
+    for j, pivot in enumerate(pivots):
+        if pivot is not None:
+            d = point - pivot
+            jac[:3, j] = ref.to_world(np.array([-d[1], d[0]]))
+            jac[3:, j] = ref.AXIS
+    return jac
+
+
+def whole_skc(st: ref.LinkageState) -> SKCInstant:
+    """The whole linkage over its URDF coordinates, the cut "C" as loop rows (classic virtual work)."""
+    n = len(st.coordinates)
+    pivots: dict[str, list[Any]] = {name: [None] * n for name in st.links}
+    for j, name in enumerate(st.coordinates):
+        joint = st.joint(name)
+        for link in _subtree(st, joint.child):
+            pivots[link][j] = joint.point
+    cut = st.joint("C")
+    loop = (_point_jacobian(cut.point, pivots[cut.parent]) - _point_jacobian(cut.point, pivots[cut.child]))[[0, 2]]
+    bodies = []
+    for name, link in st.links.items():
+        jac = _point_jacobian(link.com, pivots[name])
+        bodies.append(BodyLoad(name, link.bar.mass, link.bar.inertia_world(link.angle), ref.to_world(link.com_acceleration),
+                               link.omega * ref.AXIS, link.alpha * ref.AXIS, jac[:3], jac[3:]))
+    motors = tuple((j.name, np.eye(n)[st.coordinates.index(j.name)]) for j in st.joints if j.actuated)
+    return SKCInstant("whole", n, tuple(bodies), motors, loop_jacobian=loop)
+
+
+def classic(mech, sample) -> dict[str, Any]:
+    return {"efforts": classic_virtual_work(whole_skc(state(mech, sample)))}
+
+
+# ---------------------------------------------------------------- Lagrange first kind
+def lagrange_problem(mech, sample) -> tuple[lagrange.Linkage, np.ndarray, np.ndarray, list[float]]:
+    """The linkage in reference-point coordinates (x, z, phi of each COM) and its state; cached."""
+    if "lagrange" not in sample.extra:
+        st = state(mech, sample)
+        names = list(st.links)
+        bodies = [lagrange.Body(n, st.links[n].bar.mass, st.links[n].bar.inertia_planar,
+                                np.array([st.links[n].bar.length / 2.0, 0.0])) for n in names]
+        pins = []
+        for j in st.joints:
+            b = names.index(j.child)
+            point_b = (st.links[j.child].bar.length if j.name == "C" else 0.0) * np.array([1.0, 0.0])
+            if j.parent is None:
+                pins.append(lagrange.Pin(j.name, None, j.point, b, point_b))
+            else:
+                pins.append(lagrange.Pin(j.name, names.index(j.parent), np.array([st.links[j.parent].bar.length, 0.0]), b, point_b))
+        motors = [j.name for j in st.joints if j.actuated]
+        linkage = lagrange.Linkage(bodies, pins, motors)
+        q = np.concatenate([[*st.links[n].com, st.links[n].angle] for n in names])
+        qd = np.concatenate([[*st.links[n].com_velocity, st.links[n].omega] for n in names])
+        acc = [st.links[m].alpha for m in motors]  # grounded motors: relative = absolute
+        sample.extra["lagrange"] = (linkage, q, qd, acc)
+    return sample.extra["lagrange"]
+
+
+def lagrange_first_kind(mech, sample) -> dict[str, Any]:
+    """Efforts and pin forces (in-plane) from the patent's A f = P."""
+    linkage, q, qd, acc = lagrange_problem(mech, sample)
+    sol = linkage.solve(q, qd, acc)
+    reactions = {}
+    for name, f in sol.forces.items():
+        reactions[name] = np.array([f[0], 0.0, f[1], 0.0, 0.0, 0.0])
+    return {"efforts": sol.efforts, "reactions": reactions}
+
+
+def extras(mech) -> dict[str, Any]:
+    """Methods and references for the bench protocol (empty for other mechanisms)."""
+    if mech.spec.name not in PLANAR:
+        return {}
+    return {
+        "reference": {
+            "assembly": ("closed form (circle intersection)", closed_form_q),
+            "forward_dynamics": ("closed-form a, tau from planar Newton-Euler", closed_form_a),
+            "inverse_dynamics": ("planar Newton-Euler (numpy)", newton_euler),
+        },
+        "methods": {
+            "assembly": [("closed form (circle intersection, numpy)", closed_form_q)],
+            "inverse_dynamics": [
+                ("planar Newton-Euler (numpy, from link motion)", newton_euler),
+                ("classic virtual work (numpy, from link motion)", classic),
+                ("Lagrange first kind (numpy, from link motion)", lagrange_first_kind),
+            ],
+        },
+    }
