@@ -128,6 +128,7 @@ def test_link_motion_matches_finite_differences(t: float):
 
     names = ["platform"] + [f"link{i}{e}" for i in range(1, 5) for e in (1, 2)]
     motion = kin.link_motion(D, st(t))
+    np.testing.assert_allclose(coms(t), [motion[n].com for n in names], atol=1e-15)
     v = np.array([motion[n].v_com for n in names])
     np.testing.assert_allclose(_fd(coms, t), v, atol=1e-8)
     vel = lambda u: np.array([kin.link_motion(D, st(u))[n].v_com for n in names])

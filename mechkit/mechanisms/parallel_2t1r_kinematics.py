@@ -380,10 +380,11 @@ def follower_rate(d: Dims, theta: np.ndarray, pose: Pose, x_dot: np.ndarray) -> 
 
 @dataclass(frozen=True)
 class BodyMotion:
-    """Rigid-body motion at one instant, base frame: COM velocity / acceleration (3,) m/s, m/s^2,
-    angular velocity / acceleration (3,) rad/s, rad/s^2, absolute angle about +y (rad)."""
+    """Rigid-body state at one instant, base frame: absolute angle about +y (rad), COM position (3,) m,
+    COM velocity / acceleration (3,) m/s, m/s^2, angular velocity / acceleration (3,) rad/s, rad/s^2."""
 
     angle: float
+    com: np.ndarray
     v_com: np.ndarray
     a_com: np.ndarray
     omega: np.ndarray
@@ -391,23 +392,25 @@ class BodyMotion:
 
 
 def link_motion(d: Dims, s: State) -> dict[str, BodyMotion]:
-    """Velocity and acceleration of every body's COM (bars: mid-point; platform: p): eqs. (16)-(29)."""
+    """Every body's COM (bars: mid-point; platform: p), its velocity and acceleration: eqs. (16)-(29)."""
     out: dict[str, BodyMotion] = {}
     vc, ac = _end_motion(d, s.pose, s.x_dot, s.x_ddot)
     phi2 = distal_angles(d, s.theta, s.pose)
+    base = base_points(d)
     to3 = lambda v2: np.array([v2[0], 0.0, v2[1]])
     for i in range(4):
         c1 = d.l2 * direction(np.pi + s.theta[i])
         w1, e1 = s.theta_dot[i] * EY, s.theta_ddot[i] * EY
         vb = cross(w1, c1)  # (16)
         ab = cross(e1, c1) + cross(w1, cross(w1, c1))  # (17)
-        out[f"link{i + 1}1"] = BodyMotion(float(np.pi + s.theta[i]), vb / 2.0, ab / 2.0, w1, e1)  # (18)-(19)
+        out[f"link{i + 1}1"] = BodyMotion(float(np.pi + s.theta[i]), base[i] + c1 / 2.0, vb / 2.0, ab / 2.0,
+                                          w1, e1)  # (18)-(19)
         c2 = direction(phi2[i])
         v_c, a_c = to3(vc[i]), to3(ac[i])
         w2 = cross(c2, v_c - vb) / d.l2  # (21), (28)
         e2 = cross(c2, a_c - ab) / d.l2  # (23), (29)
-        out[f"link{i + 1}2"] = BodyMotion(float(phi2[i]), (vb + v_c) / 2.0, (ab + a_c) / 2.0, w2, e2)  # (26)-(27)
-    out["platform"] = BodyMotion(
-        s.pose.alpha, to3(s.x_dot[:2]), to3(s.x_ddot[:2]), s.x_dot[2] * EY, s.x_ddot[2] * EY
-    )
+        out[f"link{i + 1}2"] = BodyMotion(float(phi2[i]), base[i] + c1 + d.l2 / 2.0 * c2, (vb + v_c) / 2.0,
+                                          (ab + a_c) / 2.0, w2, e2)  # (26)-(27)
+    out["platform"] = BodyMotion(s.pose.alpha, platform_points(d, s.pose)["p"], to3(s.x_dot[:2]),
+                                 to3(s.x_ddot[:2]), s.x_dot[2] * EY, s.x_ddot[2] * EY)
     return out

@@ -66,7 +66,7 @@ def _site(point: np.ndarray, pivots: list[np.ndarray | None]) -> np.ndarray:
     return np.vstack([_point_jacobian(point, pivots), rot])
 
 
-def _loads(p: Parallel2T1RParams, s: kin.State, pts: Points) -> dict[str, tuple[float, np.ndarray, kin.BodyMotion]]:
+def _loads(p: Parallel2T1RParams, s: kin.State) -> dict[str, tuple[float, np.ndarray, kin.BodyMotion]]:
     """Per body: mass, world inertia about the COM, motion (eqs. (16)-(29))."""
     motion = kin.link_motion(p.dims, s)
     out = {}
@@ -74,20 +74,6 @@ def _loads(p: Parallel2T1RParams, s: kin.State, pts: Points) -> dict[str, tuple[
         r = _rot_y(motion[name].angle)
         out[name] = (mass, r @ inertia @ r.T, motion[name])
     return out
-
-
-def _com(p: Parallel2T1RParams, name: str, pts: Points, angle: float) -> np.ndarray:
-    if name == "platform":
-        return pts.p
-    d = int(name[4]) - 1
-    start = pts.a[d] if name[5] == "1" else pts.b[d]
-    return start + 0.5 * p.l2 * kin.direction(angle)
-
-
-def _body(name: str, load, com: np.ndarray, pivots: list[np.ndarray | None]) -> BodyLoad:
-    mass, inertia, m = load
-    site = _site(com, pivots)
-    return BodyLoad(name, mass, inertia, m.a_com, m.omega, m.alpha, site[:3], site[3:])
 
 
 def skcs(p: Parallel2T1RParams, s: kin.State, m4: float | None = None) -> list[SKCInstant]:
@@ -98,11 +84,13 @@ def skcs(p: Parallel2T1RParams, s: kin.State, m4: float | None = None) -> list[S
             (e.g. from `classic_torques`' minimum-norm distribution); None for a passive limb III.
     """
     pts = Points.of(p.dims, s)
-    loads = _loads(p, s, pts)
+    loads = _loads(p, s)
     a, b, c = pts.a, pts.b, pts.c
 
     def body(name: str, pivots: list[np.ndarray | None]) -> BodyLoad:
-        return _body(name, loads[name], _com(p, name, pts, loads[name][2].angle), pivots)
+        mass, inertia, m = loads[name]
+        site = _site(m.com, pivots)
+        return BodyLoad(name, mass, inertia, m.a_com, m.omega, m.alpha, site[:3], site[3:])
 
     ext3 = () if m4 is None else ((np.array([0, 0, 0, 0, m4, 0.0]), _site(a[3], [a[3], None])),)
     skc3 = SKCInstant(
@@ -177,9 +165,8 @@ def classic_torques(p: Parallel2T1RParams, s: kin.State, actuated: tuple[str, ..
         SingularConfiguration: J_a loses rank (cond > max_cond): the motors cannot hold the platform.
     """
     jac, dtheta = _whole_jacobians(p, s)
-    pts = Points.of(p.dims, s)
     q_x = np.zeros(3)
-    for name, (mass, inertia, m) in _loads(p, s, pts).items():
+    for name, (mass, inertia, m) in _loads(p, s).items():
         force = mass * (GRAVITY - m.a_com)
         moment = -inertia @ m.alpha - kin.cross(m.omega, inertia @ m.omega)
         q_x += jac[name][:3].T @ force + jac[name][3:].T @ moment
