@@ -221,6 +221,33 @@ def mobility_without(mech: Mechanism, q: np.ndarray, chains: tuple[str, ...]) ->
     return sub.shape[1] - rank, sub.shape[0] - rank
 
 
+#: Instants of the fold sampled by `fold_checks`, s.
+CHECK_TIMES = (0.0, 100.0, 200.0)
+
+
+def fold_checks(mech: Mechanism, times: tuple[float, ...] = CHECK_TIMES) -> dict[str, float]:
+    """Worst deviations along the fold (rows of `mechkit report`): node positions against eq. (6)-(8)
+    (m), closure residual, and, for the unit, SOC against the constrained RNEA (relative)."""
+    g = mech.params.geometry()
+    worst = {"fold: node positions vs eq. (6)-(8) (m)": 0.0, "fold: closure residual": 0.0}
+    for sample in fold(mech, np.asarray(times)):
+        s = drive_state(sample.t)
+        expected = g.node_positions(s.alpha, s.gamma)
+        error = max(np.abs(p - expected[n]).max() for n, p in node_positions(mech, sample.q).items())
+        worst["fold: node positions vs eq. (6)-(8) (m)"] = max(worst["fold: node positions vs eq. (6)-(8) (m)"], error)
+        worst["fold: closure residual"] = max(worst["fold: closure residual"], np.abs(mech.closure_residual(sample.q)).max())
+        if mech.spec.name == "tetra_3rr3uru":
+            from mechkit.mechanisms import tetra_3rr3uru_soc
+
+            reference = mech.inverse_dynamics(sample.q, sample.v, sample.a)
+            result = tetra_3rr3uru_soc.solve(mech, sample.t)
+            scale = max(np.abs(r.wrench).max() for r in reference.reactions.values())
+            error = max(np.abs(result.reactions[j] - r.wrench).max() for j, r in reference.reactions.items()) / scale
+            key = "SOC vs constrained RNEA, reactions (rel)"
+            worst[key] = max(worst.get(key, 0.0), error)
+    return worst
+
+
 def fold_times(step: float = 1.0) -> np.ndarray:
     """Sample times of the 200 s fold, s."""
     if not 0.0 < step <= FOLD_DURATION:
@@ -236,4 +263,5 @@ SPEC = MechanismSpec(
     gruebler_dof=7,
     home=lambda p: {joint: 0.0 for joint in ACTUATED},
     summary="9RR-12URU deployable composite element of a truss antenna (3 tetrahedral units + 3 URU chains)",
+    self_checks=fold_checks,
 )

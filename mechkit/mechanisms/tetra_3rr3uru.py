@@ -91,6 +91,12 @@ def drive_inputs(p: TetraParams, s: DriveState, actuated: tuple[str, ...], apexe
     return tuple({joint: values[joint] for joint in actuated} for values in motion)
 
 
+def _self_checks(mech):
+    from mechkit.mechanisms.deployable_9rr12uru import fold_checks
+
+    return fold_checks(mech)
+
+
 SPEC = MechanismSpec(
     name="tetra_3rr3uru",
     params=TetraParams,
@@ -99,4 +105,5 @@ SPEC = MechanismSpec(
     gruebler_dof=3,
     home=lambda p: {joint: 0.0 for joint in ACTUATED},
     summary="3RR-3URU tetrahedral deployable unit H-ABE of a truss antenna, node A fixed",
+    self_checks=_self_checks,
 )
