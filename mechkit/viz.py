@@ -14,11 +14,11 @@ Scenes (animations) protocol: a mechanism module `mechkit.mechanisms.<name>` may
 
 scene name -> function returning the configurations q (full, assembled) along the motion, in order.
 Every module also gets a generic "sweep" (unless it defines its own): each actuated input in turn
-swings about its home value and back while the others stay at home, assembled with warm starts; the
-sweep stops at the first pose that does not assemble, with a `SweepStopped` warning saying where and
-why. A module may also define `VIEW = (x, y, z)`, the world direction from the mechanism to the camera.
-Animations play the poses at an even pace, ping-pong, 4 to 12 s per pass whatever the scene's own
-duration (meshcat's controls change the speed).
+swings about its home value and back while the others stay at home, assembled with warm starts; an
+excursion stops at its first pose that does not assemble, with a `SweepStopped` warning saying where
+and why, and the sweep goes on with the next one. A module may also define `VIEW = (x, y, z)`, the world direction from the mechanism to the camera.
+Animations play the poses at an even pace (at most MAX_FRAMES of them, evenly picked), ping-pong,
+4 to 12 s per pass whatever the scene's own duration (meshcat's controls change the speed).
 
 Nothing here prints or opens a window; screenshots (`--png`) are an explicit call to `mechkit.browser`.
 """
@@ -59,6 +59,7 @@ FOV_DEG = 30.0  # vertical field of view of the camera
 ASPECT = 4 / 3  # narrowest width/height the framing allows for
 MARGIN = 0.08  # fraction of the view kept free around the mechanism
 CLOSURE_TOL = 1e-6  # largest closure residual accepted in a scene's pose (m, or rad-like rows)
+MAX_FRAMES = 240  # poses kept in an animation (the page grows with frames x parts)
 SWEEP_FRAMES = 40  # frames per swept input
 SWEEP_ANGLE = 0.3  # rad, swing of a revolute input
 SWEEP_STROKE = 0.05  # fraction of the mechanism's size, swing of a prismatic input
@@ -71,9 +72,8 @@ class SweepStopped(UserWarning):
 
 def _meshcat():
     try:
-        import meshcat.geometry as geometry
         import umsgpack
-        from meshcat import animation, commands
+        from meshcat import animation, commands, geometry
         from meshcat.path import Path as MeshcatPath
     except ImportError:
         raise MechkitError("snapshots need meshcat: pip install 'mechkit[viz]'") from None
@@ -81,7 +81,7 @@ def _meshcat():
 
 
 def _hex(rgba: Sequence[float]) -> int:
-    r, g, b = (int(round(255 * float(c))) for c in rgba[:3])
+    r, g, b = (round(255 * float(c)) for c in rgba[:3])
     return (r << 16) + (g << 8) + b
 
 
@@ -463,41 +463,48 @@ def scene_poses(mechanism: Mechanism, name: str) -> list[np.ndarray]:
 
 def sweep(mechanism: Mechanism, frames: int = SWEEP_FRAMES, angle: float = SWEEP_ANGLE,
           stroke: float = SWEEP_STROKE) -> list[np.ndarray]:
-    """Generic scene: each actuated input in turn goes home -> +A -> -A -> home (one sine period) while the
-    others stay at home; each pose assembled from the previous one.
+    """Generic scene: each actuated input in turn goes home -> +A -> home -> -A -> home (one sine period,
+    sampled at `frames` poses) while the others stay at home.
+
+    Each excursion is assembled outwards from home, each pose from the previous one, and comes back
+    through the same poses. An excursion stops at its first pose that does not assemble (a dead point,
+    a singularity, the edge of the workspace): a `SweepStopped` warning says which and why, and the
+    scene goes on with the next excursion.
 
     Args:
-        frames: poses per input.
+        frames: poses per input (a multiple of 4).
         angle: amplitude A of a revolute input (rad).
         stroke: amplitude of a prismatic input, as a fraction of the mechanism's joint extent.
         Both amplitudes are capped at 90 % of the distance from home to the joint's limits.
-
-    Returns:
-        The poses up to the first that does not assemble (a `SweepStopped` warning then says which).
     """
     model, home = mechanism.model, mechanism.home_q
     size = _joint_extent(model, model.createData(), home)
     names = list(mechanism.actuated)
     start = np.array([home[mechanism.q_index(n)] for n in names])
-    poses, q = [home.copy()], home.copy()
+    quarter = max(frames // 4, 1)
+    poses = [home.copy()]
     for i, name in enumerate(names):
-        j = model.getJointId(name)
         k = mechanism.q_index(name)
-        prismatic = model.joints[j].shortname().startswith("JointModelP")
+        prismatic = model.joints[model.getJointId(name)].shortname().startswith("JointModelP")
         amplitude = stroke * size if prismatic else angle
         room = min(model.upperPositionLimit[k] - home[k], home[k] - model.lowerPositionLimit[k])
         amplitude = min(amplitude, 0.9 * room) if np.isfinite(room) else amplitude
-        for t in np.arange(1, frames + 1) / frames:
-            inputs = start.copy()
-            inputs[i] += amplitude * math.sin(2 * math.pi * t)
-            try:
-                q = mechanism.assemble(inputs, guess=q)
-            except (MechkitError, FloatingPointError) as err:
-                warnings.warn(SweepStopped(
-                    f"{mechanism.spec.name} sweep stops at pose {len(poses)}: inputs "
-                    f"{dict(zip(names, np.round(inputs, 6).tolist()))} do not assemble ({err})"), stacklevel=2)
-                return poses
-            poses.append(q)
+        for sign in (1.0, -1.0):
+            out, q = [], home
+            for step in range(1, quarter + 1):
+                inputs = start.copy()
+                inputs[i] += sign * amplitude * math.sin(math.pi / 2 * step / quarter)
+                try:
+                    q = mechanism.assemble(inputs, guess=q)
+                except (MechkitError, FloatingPointError) as err:
+                    warnings.warn(SweepStopped(
+                        f"{mechanism.spec.name} sweep of {name} stops at {inputs[i]:.6g} (home {start[i]:.6g}): "
+                        f"inputs {dict(zip(names, np.round(inputs, 6).tolist()))} do not assemble ({err})"),
+                        stacklevel=2)
+                    break
+                out.append(q)
+            if out:
+                poses.extend([*out, *out[-2::-1], home.copy()])
     return poses
 
 
@@ -509,7 +516,7 @@ def _page(mechanism: Mechanism, poses: Sequence[np.ndarray], *, animate: bool = 
     scene = StaticScene()
     scene.set_background()
     if animate:
-        shown = list(poses)
+        shown = [poses[int(i)] for i in np.linspace(0, len(poses) - 1, min(len(poses), MAX_FRAMES)).round()]
     else:  # ghosts evenly spread from the first pose, then the last pose (periodic scenes: no ghost on it)
         picks = [poses[int(i)] for i in np.linspace(0, len(poses) - 1, ghosts + 1).round()] if ghosts else []
         shown = [q for q in picks[:-1] if np.max(np.abs(q - poses[-1])) > 1e-9] + [poses[-1]]

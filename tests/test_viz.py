@@ -100,6 +100,7 @@ def test_animation_tracks_follow_each_pose(load_cached):
     elbow = m.model.names[2]  # a joint that moves (the one at a support only turns about its fixed axis)
     visual = pin.buildGeomFromUrdfString(m.model, m.urdf, pin.GeometryType.VISUAL)
     k = next(i for i, g in enumerate(visual.geometryObjects) if g.parentJoint == 1)
+    assert type(visual.geometryObjects[k].geometry).__name__ == "Box"  # drawn without a local rotation
     clip = clips[f"/mechanism/pose/links/{visual.geometryObjects[k].name}"]
     tracks = {t["name"]: t["keys"] for t in clip["tracks"]}
     assert len(tracks[".position"]) == len(poses) and 4 <= len(poses) / clip["fps"] <= 12
@@ -108,6 +109,8 @@ def test_animation_tracks_follow_each_pose(load_cached):
         pin.updateGeometryPlacements(m.model, m.model.createData(), visual, vdata, poses[i])
         assert tracks[".position"][i]["time"] == i
         assert np.allclose(tracks[".position"][i]["value"], vdata.oMg[k].translation, atol=1e-12)
+        x, y, z, w = tracks[".quaternion"][i]["value"]  # three.js order
+        assert np.allclose(pin.Quaternion(w, x, y, z).toRotationMatrix(), vdata.oMg[k].rotation, atol=1e-12)
     assert f"/mechanism/pose/joints/{elbow}" in clips  # markers move too
     assert not [p for p in clips if "/ground/" in p]  # the ground does not
 
@@ -131,10 +134,11 @@ def test_sweep_moves_each_input_in_turn_and_stays_assembled(load_cached):
 
 def test_sweep_stops_at_the_first_pose_that_does_not_assemble(load_cached):
     m = load_cached("five_bar")
-    with pytest.warns(viz.SweepStopped, match=r"sweep stops at pose \d+: inputs .*do not assemble"):
+    with pytest.warns(viz.SweepStopped, match=r"sweep of prox1 stops at .* do not assemble"):
         poses = viz.sweep(m, frames=24, angle=3.0)
     assert 2 <= len(poses) < 1 + 24 * 2
     assert all(np.max(np.abs(m.closure_residual(q))) < 1e-10 for q in poses)
+    assert np.allclose(poses[-1], m.home_q)  # each excursion comes back home
 
 
 def test_scene_protocol(load_cached, monkeypatch):

@@ -19,10 +19,10 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 
-import mechkit  # noqa: E402
-from mechkit import viz  # noqa: E402
-from mechkit.atomic import write_text  # noqa: E402
-from mechkit.browser import coverage, screenshot  # noqa: E402
+import mechkit
+from mechkit import viz
+from mechkit.atomic import write_text
+from mechkit.browser import coverage, screenshot
 
 GALLERY = ROOT / "docs" / "gallery"
 TABLE = ROOT / "docs" / "gallery.md"
@@ -67,13 +67,15 @@ def picture(mechanism: mechkit.Mechanism, png: Path) -> str:
 
 
 def _inputs(mechanism: mechkit.Mechanism) -> str:
-    """The home input values, in degrees or millimetres."""
+    """The home input values, in degrees or millimetres (one value when they are all equal)."""
     out = []
     for joint in mechanism.actuated:
         value = float(mechanism.home_q[mechanism.q_index(joint)])
         prismatic = mechanism.model.joints[mechanism.model.getJointId(joint)].shortname().startswith("JointModelP")
-        out.append(f"{joint} = {value * 1000:.0f} mm" if prismatic else f"{joint} = {math.degrees(value):.1f} deg")
-    return ", ".join(out)
+        out.append((joint, f"{value * 1000:.0f} mm" if prismatic else f"{math.degrees(value):.1f} deg"))
+    if len(out) > 3 and len({value for _, value in out}) == 1:
+        return f"its {len(out)} inputs at {out[0][1]}"
+    return ", ".join(f"{joint} = {value}" for joint, value in out)
 
 
 def main(argv: list[str] | None = None) -> int:
