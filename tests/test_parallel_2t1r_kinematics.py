@@ -167,3 +167,5 @@ def test_bad_inputs_raise_named_errors():
         kin.inverse_kinematics(D, kin.Pose(0.5, 0.3, 0.0))  # out of limb I's reach
     with pytest.raises(InvalidParameters, match="l3"):
         Parallel2T1RParams(l3=2.0)
+    with pytest.raises(InvalidParameters, match="l1, l2, l3"):
+        Parallel2T1RParams(l1=0.42)  # the example's five-bar no longer closes

@@ -53,6 +53,11 @@ class Parallel2T1RParams(MechanismParams):
             raise InvalidParameters("l3", self.l3, "platform wider than the limbs can hold")
         if self.l2 <= self.bar_width:
             raise InvalidParameters("bar_width", self.bar_width, "must be smaller than the link length l2")
+        try:  # the home assembly: the paper's example inputs on the assembled branch
+            assembled_pose(self, EXAMPLE_INPUTS)
+        except InvalidParameters as err:
+            why = f"the example inputs (10, 20, 30 deg) do not assemble: {err.why}"
+            raise InvalidParameters("l1, l2, l3", (self.l1, self.l2, self.l3), why) from None
 
     @property
     def dims(self) -> kin.Dims:
