@@ -167,3 +167,11 @@ def test_skc_order_and_unknowns():
                      ("SKC1", ["R11", "R21"], [], ["R23"])]
     with pytest.raises(SingularConfiguration):
         classic_torques(p, s, ("R11", "R21"))  # two motors cannot hold three DOF
+
+
+def test_motion_law_scene_closes_every_loop(mech):
+    from mechkit import viz
+
+    poses = viz.scene_poses(mech, "motion_law")  # checks sizes, finiteness and closure
+    assert len(poses) == 101
+    np.testing.assert_allclose([q[mech.q_index("R21")] for q in poses], np.pi / 15 * np.linspace(0, 5, 101), atol=1e-15)

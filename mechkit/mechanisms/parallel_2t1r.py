@@ -415,6 +415,23 @@ def self_checks(mech) -> dict[str, float]:
             "classic virtual work vs Pinocchio, torques (rel.)": rel("classic")}
 
 
+def _motion_law_scene(mech) -> list[np.ndarray]:
+    """Configurations q along the paper's motion law, t = 0..5 s every 0.05 s (analytic positions)."""
+    poses = []
+    for t in np.linspace(0.0, MOTION_DURATION, 101):
+        theta = motion_law(float(t))[0]
+        pose, theta4, _ = assembled_pose(mech.params, theta)
+        q = mech.neutral()
+        for joint, value in joint_positions(mech.params, at_rest(pose, theta, theta4)).items():
+            q[mech.q_index(joint)] = value
+        poses.append(q)
+    return poses
+
+
+#: Animated scenes for `mechkit.viz` and the camera direction (the motion is in the x-z plane).
+SCENES = {"motion_law": _motion_law_scene}
+VIEW = (0.35, -1.0, 0.45)
+
 SPEC = MechanismSpec(
     name="parallel_2t1r",
     params=Parallel2T1RParams,
