@@ -24,12 +24,17 @@ def pendulum_state(phi: float, rate: float) -> tuple[np.ndarray, np.ndarray]:
 
 def four_bar() -> Linkage:
     """Crank 0.1, coupler 0.28, rocker 0.22, ground 0.3 (a Grashof crank-rocker), rods of 1 kg/m."""
+
     def rod(name, length):
         return Body(name, length, length**3 / 12, np.array([length / 2, 0.0]))
 
     bodies = [rod("crank", 0.1), rod("coupler", 0.28), rod("rocker", 0.22)]
-    pins = [Pin("A", None, np.zeros(2), 0, np.zeros(2)), Pin("B", 0, np.array([0.1, 0.0]), 1, np.zeros(2)),
-            Pin("D", None, np.array([0.3, 0.0]), 2, np.zeros(2)), Pin("C", 1, np.array([0.28, 0.0]), 2, np.array([0.22, 0.0]))]
+    pins = [
+        Pin("A", None, np.zeros(2), 0, np.zeros(2)),
+        Pin("B", 0, np.array([0.1, 0.0]), 1, np.zeros(2)),
+        Pin("D", None, np.array([0.3, 0.0]), 2, np.zeros(2)),
+        Pin("C", 1, np.array([0.28, 0.0]), 2, np.array([0.22, 0.0])),
+    ]
     return Linkage(bodies, pins)
 
 
@@ -44,7 +49,7 @@ def four_bar_state(L: Linkage, crank: float) -> np.ndarray:
     q = np.empty(9)
     for i, (start, end) in enumerate([(np.zeros(2), B), (B, C), (D, C)]):
         phi = np.arctan2(*(end - start)[::-1])
-        q[3 * i:3 * i + 3] = [*(start + (end - start) / 2), phi]
+        q[3 * i : 3 * i + 3] = [*(start + (end - start) / 2), phi]
     assert np.max(np.abs(L.constraints(q))) < 1e-14
     return q
 
@@ -78,7 +83,9 @@ def test_spring_damper_torque_enters_like_a_motor():
     q, qd = pendulum_state(0.7, 1.5)
     torque = k * (free - 0.7) - c * 1.5
     inertia_pivot = 2.0 * 0.8**2 / 3
-    assert L.solve(q, qd).qdd[2] == pytest.approx((torque - 2.0 * G * 0.4 * np.cos(0.7)) / inertia_pivot, rel=1e-12)
+    assert L.solve(q, qd).qdd[2] == pytest.approx(
+        (torque - 2.0 * G * 0.4 * np.cos(0.7)) / inertia_pivot, rel=1e-12
+    )
     assert L.power(q, qd, {})["damper"] == pytest.approx(c * 1.5**2)
     assert L.energy(q, qd)["spring"] == pytest.approx(0.5 * k * (0.7 - free) ** 2)
 
@@ -89,7 +96,9 @@ def test_jacobian_and_gamma_are_the_derivatives_of_the_constraints():
     rng = np.random.default_rng(1)
     qd = rng.normal(size=9)
     eps = 1e-6
-    numeric = np.column_stack([(L.constraints(q + eps * e) - L.constraints(q - eps * e)) / (2 * eps) for e in np.eye(9)])
+    numeric = np.column_stack(
+        [(L.constraints(q + eps * e) - L.constraints(q - eps * e)) / (2 * eps) for e in np.eye(9)]
+    )
     assert np.max(np.abs(numeric - L.jacobian(q))) < 1e-9
     # gamma = -(d C_q / dt) qd
     dJ = (L.jacobian(q + eps * qd) - L.jacobian(q - eps * qd)) / (2 * eps)

@@ -1,4 +1,4 @@
-"""Ten-bar (patent CN105975733): design, mobility, kinematics two ways, dynamics two ways, reactions three ways."""
+"""Ten-bar (patent CN105975733): design, mobility, kinematics and dynamics two ways, reactions three ways."""
 
 from __future__ import annotations
 
@@ -8,6 +8,7 @@ import numpy as np
 import pytest
 
 from mechkit.exceptions import InvalidParameters, SingularConfiguration
+from mechkit.kinematics import update_kinematics
 from mechkit.mechanisms import ten_bar as tb
 from mechkit.mechanisms import ten_bar_checks as tc
 from mechkit.mechanisms import ten_bar_dynamics as td
@@ -40,8 +41,10 @@ def mid_state(mech, rates=(0.05, -0.1, 0.2)):
 
 
 # ------------------------------------------------------------------ design and description
-@pytest.mark.parametrize("change, name", [({"l27": 0.1}, "l27/l67"), ({"spring_damping": -1.0}, "spring_damping"),
-                                          ({"l48": -0.9}, "l48")])
+@pytest.mark.parametrize(
+    "change, name",
+    [({"l27": 0.1}, "l27/l67"), ({"spring_damping": -1.0}, "spring_damping"), ({"l48": -0.9}, "l48")],
+)
 def test_bad_parameters_are_named(change, name):
     with pytest.raises(InvalidParameters, match=name):
         tb.TenBarParams(**change)
@@ -63,8 +66,6 @@ def test_each_unit_has_the_patents_mobility(mech):
     reduction = tk.DimensionReduction(mech)
     dof = {}
     for unit in reduction.units:
-        from mechkit.kinematics import update_kinematics
-
         q = np.array([mech.home_q[mech.q_index(j)] for j in unit.model.names[1:]])
         update_kinematics(unit.model, unit.data, q)
         dof[unit.unit.name] = unit.model.nv - np.linalg.matrix_rank(unit.rows.jacobian(unit.data))
@@ -98,7 +99,9 @@ def test_every_loop_closes_for_every_input():
 def test_stowed_and_deployed_poses_and_the_wall():
     p = tb.TenBarParams()
     stowed = tb.stowed_pose(p)
-    assert np.allclose(geo.unit(stowed.angles["l123"]), [0, 1]) and np.allclose(geo.unit(stowed.angles["l34"]), [0, -1])
+    assert np.allclose(geo.unit(stowed.angles["l123"]), [0, 1]) and np.allclose(
+        geo.unit(stowed.angles["l34"]), [0, -1]
+    )
     deployed = geo.pose(p, tb.DEPLOYED["R1"], tb.DEPLOYED["R3"], 0.0)
     R2, R3, R4 = (deployed.points[k] for k in ("R2", "R3", "R4"))
     cross = (R3 - R2)[0] * (R4 - R3)[1] - (R3 - R2)[1] * (R4 - R3)[0]
@@ -133,8 +136,11 @@ def test_constrained_aba_equals_the_lagrange_first_kind(mech, rates):
     t, q, v = mid_state(mech, rates)
     a, u, power = td.PinocchioDeployment(mech).rhs(t, q, v)
     lag = td.LagrangeJointDeployment(mech.params)
-    aL, uL, powerL = lag.rhs(t, lag.joint_angles(q[[mech.q_index(j) for j in td.JOINT_ORDER]]),
-                             v[[mech.v_index(j) for j in td.JOINT_ORDER]])
+    aL, uL, powerL = lag.rhs(
+        t,
+        lag.joint_angles(q[[mech.q_index(j) for j in td.JOINT_ORDER]]),
+        v[[mech.v_index(j) for j in td.JOINT_ORDER]],
+    )
     order = [mech.v_index(j) for j in td.JOINT_ORDER]
     assert np.max(np.abs(a[order] - aL)) < 1e-9 * max(1.0, np.max(np.abs(aL)))
     assert np.allclose(u, uL, rtol=1e-10, atol=1e-10) and power == pytest.approx(powerL, rel=1e-10, abs=1e-12)
@@ -144,8 +150,12 @@ def test_reactions_three_ways(mech):
     t, q, v = mid_state(mech)
     results = tc.reactions_three_ways(mech, t, q, v)
     assert tc.reaction_disagreement(results) < 1e-8
-    inv = mech.inverse_dynamics(q, v, td.PinocchioDeployment(mech).rhs(t, q, v)[0],
-                                tc.spring_fext(mech, td.PinocchioDeployment(mech), q, v))
+    inv = mech.inverse_dynamics(
+        q,
+        v,
+        td.PinocchioDeployment(mech).rhs(t, q, v)[0],
+        tc.spring_fext(mech, td.PinocchioDeployment(mech), q, v),
+    )
     for motor in tb.MOTORS:  # the motor torque is the reaction moment about the axis (-y)
         assert inv.reactions[motor].wrench[4] == pytest.approx(-inv.efforts[motor], rel=1e-10)
     for pair in geo.PAIRS:  # planar pins: in-plane forces and the axis moment are determinate

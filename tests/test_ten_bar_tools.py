@@ -23,7 +23,13 @@ def run_tool(name: str, *args: str) -> None:
 def test_bench_prints_every_route(capsys):
     run_tool("ten_bar_bench.py", "--repeat", "1")
     out = capsys.readouterr().out
-    for row in ("pin.constraintDynamics", "Lagrange first kind", "SOC virtual work", "dimension reduction", "closed form"):
+    for row in (
+        "pin.constraintDynamics",
+        "Lagrange first kind",
+        "SOC virtual work",
+        "dimension reduction",
+        "closed form",
+    ):
         assert row in out
 
 

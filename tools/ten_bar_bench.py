@@ -63,43 +63,75 @@ def main() -> None:
     L = lag_own.L
     acc = tb.motor_law(p, t)[2]
 
-    table("Dynamics: one evaluation at a state", {
-        "pin.constraintDynamics (raw call)": per_call(lambda: pin.constraintDynamics(m.model, data, q, v, tau, cms, cds, prox), n),
-        "Mechanism.forward_dynamics proximal (1 call)": per_call(lambda: m.forward_dynamics(q, v, tau), n),
-        "Mechanism.forward_dynamics kkt (1 call)": per_call(lambda: m.forward_dynamics(q, v, tau, method="kkt"), n),
-        "Pinocchio rhs, prescribed motors (3 constrained ABA)": per_call(lambda: pin_run.rhs(t, q, v), n),
-        "Pinocchio rhs, prescribed motors (3 dense KKT)": per_call(lambda: pin_kkt.rhs(t, q, v), n),
-        "Lagrange first kind A f = P (numpy, own coordinates)": per_call(lambda: L.solve(qL, vL, acc), n),
-        "Lagrange rhs in joint coordinates (FK + A f = P)": per_call(lambda: lag_joint.rhs(t, qj, vj), n),
-    }, "pin.constraintDynamics (raw call)")
+    table(
+        "Dynamics: one evaluation at a state",
+        {
+            "pin.constraintDynamics (raw call)": per_call(
+                lambda: pin.constraintDynamics(m.model, data, q, v, tau, cms, cds, prox), n
+            ),
+            "Mechanism.forward_dynamics proximal (1 call)": per_call(
+                lambda: m.forward_dynamics(q, v, tau), n
+            ),
+            "Mechanism.forward_dynamics kkt (1 call)": per_call(
+                lambda: m.forward_dynamics(q, v, tau, method="kkt"), n
+            ),
+            "Pinocchio rhs, prescribed motors (3 constrained ABA)": per_call(lambda: pin_run.rhs(t, q, v), n),
+            "Pinocchio rhs, prescribed motors (3 dense KKT)": per_call(lambda: pin_kkt.rhs(t, q, v), n),
+            "Lagrange first kind A f = P (numpy, own coordinates)": per_call(lambda: L.solve(qL, vL, acc), n),
+            "Lagrange rhs in joint coordinates (FK + A f = P)": per_call(lambda: lag_joint.rhs(t, qj, vj), n),
+        },
+        "pin.constraintDynamics (raw call)",
+    )
 
     def step(system, q0, v0, dt=0.005):
         return lambda: td.integrate(system, q0, v0, t + dt, dt, t0=t)
 
-    table("Dynamics: one RK4 step with projection (dt = 5 ms, incl. recording)", {
-        "Pinocchio constrained ABA": per_call(step(pin_run, q, v), max(1, n // 4)),
-        "Lagrange, own coordinates": per_call(step(lag_own, qL, vL), max(1, n // 4)),
-        "Lagrange, joint coordinates": per_call(step(lag_joint, qj, vj), max(1, n // 4)),
-    }, "Pinocchio constrained ABA")
+    table(
+        "Dynamics: one RK4 step with projection (dt = 5 ms, incl. recording)",
+        {
+            "Pinocchio constrained ABA": per_call(step(pin_run, q, v), max(1, n // 4)),
+            "Lagrange, own coordinates": per_call(step(lag_own, qL, vL), max(1, n // 4)),
+            "Lagrange, joint coordinates": per_call(step(lag_joint, qj, vj), max(1, n // 4)),
+        },
+        "Pinocchio constrained ABA",
+    )
 
     a, _, _ = pin_run.rhs(t, q, v)
     fext = tc.spring_fext(m, pin_run, q, v)
     sol = L.solve(qL, vL, acc)
-    table("Inverse dynamics: motor torques and all 12 pair reactions", {
-        "Mechanism.inverse_dynamics (constrained RNEA, determinacy)": per_call(lambda: m.inverse_dynamics(q, v, a, fext), n),
-        "Mechanism.inverse_dynamics (no determinacy test)": per_call(lambda: m.inverse_dynamics(q, v, a, fext, determinacy=False), n),
-        "Lagrange multipliers (A f = P)": per_call(lambda: L.solve(qL, vL, acc), n),
-        "SOC virtual work (9 SKCs)": per_call(lambda: ts.solve(L, qL, vL, sol.qdd), n),
-    }, "Mechanism.inverse_dynamics (no determinacy test)")
+    table(
+        "Inverse dynamics: motor torques and all 12 pair reactions",
+        {
+            "Mechanism.inverse_dynamics (constrained RNEA, determinacy)": per_call(
+                lambda: m.inverse_dynamics(q, v, a, fext), n
+            ),
+            "Mechanism.inverse_dynamics (no determinacy test)": per_call(
+                lambda: m.inverse_dynamics(q, v, a, fext, determinacy=False), n
+            ),
+            "Lagrange multipliers (A f = P)": per_call(lambda: L.solve(qL, vL, acc), n),
+            "SOC virtual work (9 SKCs)": per_call(lambda: ts.solve(L, qL, vL, sol.qdd), n),
+        },
+        "Mechanism.inverse_dynamics (no determinacy test)",
+    )
 
     reduction = tk.DimensionReduction(m)
     guess = {j: q[m.q_index(j)] for j in td.JOINT_ORDER}
     nudged = {"R1": 0.7 + 1e-3, "R3": -1.2 + 1e-3, "R5": -0.3 + 1e-3}  # the next instant of a tracked path
-    table("Kinematics: one position solve, from the previous instant", {
-        "full closure (core Gauss-Newton, 6 rows, 6 unknowns)": per_call(lambda: tk.full_solve(m, nudged, q), n),
-        "dimension reduction (3 reduced Pinocchio units)": per_call(lambda: reduction.solve(nudged, guess), n),
-        "closed form (circle intersections, numpy)": per_call(lambda: geo.pose(p, nudged["R1"], nudged["R3"], nudged["R5"]), n),
-    }, "full closure (core Gauss-Newton, 6 rows, 6 unknowns)")
+    table(
+        "Kinematics: one position solve, from the previous instant",
+        {
+            "full closure (core Gauss-Newton, 6 rows, 6 unknowns)": per_call(
+                lambda: tk.full_solve(m, nudged, q), n
+            ),
+            "dimension reduction (3 reduced Pinocchio units)": per_call(
+                lambda: reduction.solve(nudged, guess), n
+            ),
+            "closed form (circle intersections, numpy)": per_call(
+                lambda: geo.pose(p, nudged["R1"], nudged["R3"], nudged["R5"]), n
+            ),
+        },
+        "full closure (core Gauss-Newton, 6 rows, 6 unknowns)",
+    )
 
 
 if __name__ == "__main__":

@@ -24,7 +24,12 @@ from mechkit.mechanisms import ten_bar_soc as ts
 
 @dataclass(frozen=True)
 class Reactions:
-    """One method's answer at one instant: motor torques (N m) and pin forces (N, (fx, fz), parent on child, world)."""
+    """One method's answer at one instant.
+
+    Attributes:
+        efforts: motor torques (N m, +x towards +z).
+        forces: pin forces (N, (fx, fz)), parent on child, world.
+    """
 
     efforts: dict[str, float]
     forces: dict[str, np.ndarray]
@@ -33,7 +38,9 @@ class Reactions:
         return np.concatenate([[self.efforts[m] for m in tb.MOTORS], *[self.forces[j] for j in geo.PAIRS]])
 
 
-def spring_fext(mechanism, deployment: td.PinocchioDeployment, q: np.ndarray, v: np.ndarray) -> pin.StdVec_Force:
+def spring_fext(
+    mechanism, deployment: td.PinocchioDeployment, q: np.ndarray, v: np.ndarray
+) -> pin.StdVec_Force:
     """The R5 spring-damper torque as an external moment on l56 (joint-local frame, about -y)."""
     fext = pin.StdVec_Force([pin.Force.Zero() for _ in range(mechanism.model.njoints)])
     torque = deployment.spring_torque(q, v)
@@ -62,12 +69,20 @@ def reactions_three_ways(mechanism, t: float, q: np.ndarray, v: np.ndarray) -> d
     return out
 
 
-def reactions_along(mechanism, trajectory: td.Trajectory, every: int) -> tuple[np.ndarray, dict[str, list[Reactions]]]:
-    """`reactions_three_ways` at every `every`-th sample of a Pinocchio-route trajectory: (times, per method)."""
+def reactions_along(
+    mechanism, trajectory: td.Trajectory, every: int
+) -> tuple[np.ndarray, dict[str, list[Reactions]]]:
+    """`reactions_three_ways` at every `every`-th sample of a Pinocchio-route trajectory.
+
+    Returns:
+        (sample times (s), method -> list of `Reactions`).
+    """
     idx = np.arange(0, len(trajectory.t), every)
     out: dict[str, list[Reactions]] = {}
     for k in idx:
-        for method, r in reactions_three_ways(mechanism, trajectory.t[k], trajectory.q[k], trajectory.v[k]).items():
+        for method, r in reactions_three_ways(
+            mechanism, trajectory.t[k], trajectory.q[k], trajectory.v[k]
+        ).items():
             out.setdefault(method, []).append(r)
     return trajectory.t[idx], out
 
@@ -95,9 +110,13 @@ def kinematics_disagreement(mechanism, inputs_list: list[dict[str, float]]) -> d
         seq = reduction.solve(inputs, guess)
         closed = geo.pose(mechanism.params, inputs["R1"], inputs["R3"], inputs["R5"]).joint_angles()
         full = {j: q[mechanism.q_index(j)] for j in names}
-        worst["full_vs_reduction"] = max(worst["full_vs_reduction"], max(abs(full[j] - seq[j]) for j in names))
-        worst["full_vs_closed_form"] = max(worst["full_vs_closed_form"],
-                                           max(abs(np.angle(np.exp(1j * (full[j] - closed[j])))) for j in names))
+        worst["full_vs_reduction"] = max(
+            worst["full_vs_reduction"], max(abs(full[j] - seq[j]) for j in names)
+        )
+        worst["full_vs_closed_form"] = max(
+            worst["full_vs_closed_form"],
+            max(abs(np.angle(np.exp(1j * (full[j] - closed[j])))) for j in names),
+        )
         guess = seq
     return worst
 
@@ -119,7 +138,7 @@ def self_checks(mechanism) -> dict[str, float]:
     lag_run = td.LagrangeJointDeployment(p)
     q0 = mechanism.home_q
     qj = pin_run.joint_angles(q0)
-    stretch = dict(t_end=0.05, dt=0.01)
+    stretch = {"t_end": 0.05, "dt": 0.01}
     a = td.integrate(pin_run, q0, np.zeros_like(q0), **stretch)
     b = td.integrate(lag_run, qj, np.zeros_like(qj), **stretch)
     t_mid = 0.5 * p.deploy_time
@@ -129,7 +148,9 @@ def self_checks(mechanism) -> dict[str, float]:
         "ten_bar stowed closure residual (m)": float(np.max(np.abs(mechanism.closure_residual(q0)))),
         "ten_bar full closure vs closed form (rad)": kin["full_vs_closed_form"],
         "ten_bar full closure vs dimension reduction (rad)": kin["full_vs_reduction"],
-        "ten_bar reactions Pinocchio/Lagrange/SOC (rel)": reaction_disagreement(reactions_three_ways(mechanism, t_mid, q_mid, v_mid)),
+        "ten_bar reactions Pinocchio/Lagrange/SOC (rel)": reaction_disagreement(
+            reactions_three_ways(mechanism, t_mid, q_mid, v_mid)
+        ),
         "ten_bar deployment 0.05 s Pinocchio vs Lagrange (rad)": float(np.max(np.abs(a.angles - b.angles))),
         "ten_bar deployment closure drift (m)": float(max(a.residual.max(), b.residual.max())),
     }

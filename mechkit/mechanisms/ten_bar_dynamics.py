@@ -99,18 +99,9 @@ class PinocchioDeployment:
         G = np.vstack([self.m.closure_jacobian(q), np.eye(self.m.model.nv)[self.motor_v]])
         return e, G
 
-    def project(self, t, q, v, tol: float = 1e-13, max_iter: int = 20):
-        q = q.copy()
-        for it in range(max_iter):  # at least two Gauss-Newton steps: land on the manifold, not near it
-            e, G = self._rows(t, q)
-            if it >= 2 and np.linalg.norm(e) <= tol:
-                break
-            q -= np.linalg.lstsq(G, e, rcond=None)[0]
-        else:
-            raise ClosureNotConverged(float(np.linalg.norm(e)), tol, max_iter, "ten-bar projection (Pinocchio)")
+    def project(self, t, q, v):
         _, rate, _ = tb.motor_law(self.p, t)
-        err = G @ v - np.concatenate([np.zeros(G.shape[0] - 2), rate])
-        return q, v - np.linalg.lstsq(G, err, rcond=None)[0]
+        return project(lambda x: self._rows(t, x), q, v, rate, "ten-bar projection (Pinocchio)")
 
     def residual(self, t, q):
         return float(np.max(np.abs(self.m.closure_residual(q))))
@@ -169,7 +160,7 @@ class LagrangeJointDeployment:
         self.p = params
         self.inner = LagrangeDeployment(params)
         self.L = self.inner.L
-        hinges = tb.geo.hinges(params)[:len(JOINT_ORDER)]
+        hinges = tb.geo.hinges(params)[: len(JOINT_ORDER)]
         index = {b: i for i, b in enumerate(tb.geo.BODIES)}
         self.joint_rows = np.zeros((len(JOINT_ORDER), self.L.n))  # joint angle = row . q_L
         for h in hinges:
@@ -192,20 +183,15 @@ class LagrangeJointDeployment:
         qdd, u, power = self.inner.rhs(t, qL, vL)
         return self.joint_rows @ qdd, u, power
 
-    def project(self, t, q, v, tol: float = 1e-13, max_iter: int = 20):
-        pos, rate, _ = tb.motor_law(self.p, t)
-        q = q.copy()
-        for it in range(max_iter):
-            qL, T = self._map(q)
-            e = np.concatenate([self.L.constraints(qL), q[self.motor_rows] - pos])
-            G = np.vstack([self.L.jacobian(qL) @ T, np.eye(len(q))[self.motor_rows]])
-            if it >= 2 and np.linalg.norm(e) <= tol:
-                break
-            q -= np.linalg.lstsq(G, e, rcond=None)[0]
-        else:
-            raise ClosureNotConverged(float(np.linalg.norm(e)), tol, max_iter, "ten-bar projection (Lagrange, joints)")
-        err = G @ v - np.concatenate([np.zeros(G.shape[0] - 2), rate])
-        return q, v - np.linalg.lstsq(G, err, rcond=None)[0]
+    def _rows(self, t, q):
+        pos, _, _ = tb.motor_law(self.p, t)
+        qL, T = self._map(q)
+        e = np.concatenate([self.L.constraints(qL), q[self.motor_rows] - pos])
+        return e, np.vstack([self.L.jacobian(qL) @ T, np.eye(len(q))[self.motor_rows]])
+
+    def project(self, t, q, v):
+        _, rate, _ = tb.motor_law(self.p, t)
+        return project(lambda x: self._rows(t, x), q, v, rate, "ten-bar projection (Lagrange, joints)")
 
     def residual(self, t, q):
         return self.inner.residual(t, self._state(q, 0 * q)[0])
@@ -215,6 +201,29 @@ class LagrangeJointDeployment:
 
     def joint_angles(self, q):
         return q.copy()
+
+
+def project(rows, q: np.ndarray, v: np.ndarray, motor_rates: np.ndarray, what: str, tol: float = 1e-13,
+            max_iter: int = 20) -> tuple[np.ndarray, np.ndarray]:
+    """Minimum-norm Gauss-Newton projection of q onto e(q) = 0, then of v onto G v = (0, motor rates).
+
+    Args:
+        rows: q -> (e, G): residuals (closure rows, then the 2 motor-law rows) and their Jacobian.
+        what: names the system in the error.
+
+    Raises:
+        ClosureNotConverged: the residual does not reach tol.
+    """
+    q = q.copy()
+    for it in range(max_iter):  # at least two steps: land on the manifold, not near it
+        e, G = rows(q)
+        if it >= 2 and np.linalg.norm(e) <= tol:
+            break
+        q -= np.linalg.lstsq(G, e, rcond=None)[0]
+    else:
+        raise ClosureNotConverged(float(np.linalg.norm(e)), tol, max_iter, what)
+    err = G @ v - np.concatenate([np.zeros(G.shape[0] - len(motor_rates)), motor_rates])
+    return q, v - np.linalg.lstsq(G, err, rcond=None)[0]
 
 
 @dataclass(frozen=True)
@@ -240,8 +249,15 @@ class Trajectory:
         return float(np.max(np.abs(balance - balance[0])))
 
 
-def integrate(system: DeploymentSystem, q0: np.ndarray, v0: np.ndarray, t_end: float, dt: float,
-              project: bool = True, t0: float = 0.0) -> Trajectory:
+def integrate(
+    system: DeploymentSystem,
+    q0: np.ndarray,
+    v0: np.ndarray,
+    t_end: float,
+    dt: float,
+    project: bool = True,
+    t0: float = 0.0,
+) -> Trajectory:
     """Fixed-step RK4 of (q, v, W) from t0 to t_end, projecting after each step when `project`.
 
     Args:
@@ -250,7 +266,7 @@ def integrate(system: DeploymentSystem, q0: np.ndarray, v0: np.ndarray, t_end: f
         t_end, dt: end time and step (s).
         project: project (q, v) onto the closures and motor laws after every step.
     """
-    steps = int(round((t_end - t0) / dt))
+    steps = round((t_end - t0) / dt)
     q, v, w = q0.copy(), v0.copy(), 0.0
     rows = {k: [] for k in ("t", "q", "v", "angles", "torques", "residual", "energy", "work")}
 
@@ -284,15 +300,18 @@ def integrate(system: DeploymentSystem, q0: np.ndarray, v0: np.ndarray, t_end: f
     return Trajectory(**{k: np.array(val) for k, val in rows.items()})
 
 
-def lagrange_state(params: tb.TenBarParams, q_pin: np.ndarray, v_pin: np.ndarray, mechanism) -> tuple[np.ndarray, np.ndarray]:
+def lagrange_state(
+    params: tb.TenBarParams, q_pin: np.ndarray, v_pin: np.ndarray, mechanism
+) -> tuple[np.ndarray, np.ndarray]:
     """Reference-point coordinates and rates of a Pinocchio state (numpy forward kinematics)."""
     angles = {j: float(q_pin[mechanism.q_index(j)]) for j in JOINT_ORDER}
     rates = {j: float(v_pin[mechanism.v_index(j)]) for j in JOINT_ORDER}
     return tb.lagrange_from_joints(params, angles, rates)
 
 
-def deploy(system: DeploymentSystem, q0: np.ndarray, dt: float, t_end: float | None = None,
-           project: bool = True) -> Trajectory:
+def deploy(
+    system: DeploymentSystem, q0: np.ndarray, dt: float, t_end: float | None = None, project: bool = True
+) -> Trajectory:
     """Integrate from rest at q0 (stowed) to t_end (default: the end of the motor laws)."""
     end = system.p.deploy_time if t_end is None else t_end
     return integrate(system, q0, np.zeros_like(q0), end, dt, project=project)

@@ -35,6 +35,22 @@ CUT_JOINTS = ("R7a", "R7c", "R10")
 PAIRS = TREE_JOINTS + CUT_JOINTS
 """The 12 revolute pairs: tree joints of the URDF, then the loop cuts."""
 
+PAIR_LINKS = {
+    "R1": ("wall", "l123", "R1"),
+    "R2": ("l123", "l27", "R2"),
+    "R3": ("l123", "l34", "R3"),
+    "R4": ("l34", "l48", "R4"),
+    "R8": ("l48", "l87", "R8"),
+    "R5": ("wall", "l56", "R5"),
+    "R6": ("l56", "l67", "R6"),
+    "R7b": ("l27", "l79", "R7"),
+    "R9": ("l79", "l910", "R9"),
+    "R7a": ("l27", "l67", "R7"),
+    "R7c": ("l27", "l87", "R7"),
+    "R10": ("l123", "l910", "R10"),
+}
+"""Each pair: (parent link or "wall", child link, hinge point)."""
+
 BRANCH = {"R7": 1.0, "R9": -1.0, "R8": 1.0}
 """Assembly branch of each circle intersection (side of the line from the first to the second
 centre, +1 = to the left); the branch that keeps every hinge outside the wall (x > 0)."""
@@ -82,8 +98,12 @@ def hinge_points(p) -> dict[str, dict[str, np.ndarray]]:
     r2 = np.array([p.r2_along, p.r2_normal])
     return {
         "wall": {"R1": np.zeros(2), "R5": np.array([0.0, -p.wall_gap])},
-        "l123": {"R1": np.zeros(2), "R2": r2, "R3": r2 + [p.panel1, 0.0],
-                 "R10": r2 + [p.r10_along, p.r10_normal]},
+        "l123": {
+            "R1": np.zeros(2),
+            "R2": r2,
+            "R3": r2 + [p.panel1, 0.0],
+            "R10": r2 + [p.r10_along, p.r10_normal],
+        },
         "l27": {"R2": np.zeros(2), "R7": np.array([p.l27, 0.0])},
         "l34": {"R3": np.zeros(2), "R4": np.array([p.l34, 0.0])},
         "l48": {"R4": np.zeros(2), "R8": np.array([p.l48, 0.0])},
@@ -98,16 +118,12 @@ def hinge_points(p) -> dict[str, dict[str, np.ndarray]]:
 def hinges(p) -> tuple[Hinge, ...]:
     """The 12 revolute pairs in `PAIRS` order (parent side first; R7a/R7c/R10 are the cuts)."""
     h = hinge_points(p)
-    spec = {
-        "R1": ("wall", "l123", "R1"), "R2": ("l123", "l27", "R2"), "R3": ("l123", "l34", "R3"),
-        "R4": ("l34", "l48", "R4"), "R8": ("l48", "l87", "R8"), "R5": ("wall", "l56", "R5"),
-        "R6": ("l56", "l67", "R6"), "R7b": ("l27", "l79", "R7"), "R9": ("l79", "l910", "R9"),
-        "R7a": ("l27", "l67", "R7"), "R7c": ("l27", "l87", "R7"), "R10": ("l123", "l910", "R10"),
-    }
     out = []
     for name in PAIRS:
-        parent, child, point = spec[name]
-        out.append(Hinge(name, None if parent == "wall" else parent, h[parent][point], child, h[child][point]))
+        parent, child, point = PAIR_LINKS[name]
+        out.append(
+            Hinge(name, None if parent == "wall" else parent, h[parent][point], child, h[child][point])
+        )
     return tuple(out)
 
 
@@ -123,17 +139,24 @@ def pieces(p) -> dict[str, tuple[Piece, ...]]:
     plate1 = p.panel_areal_density * p.panel_width * p.panel1
     plate2 = p.panel_areal_density * p.panel_width * p.panel2
     return {
-        "l123": (bar("l123", "R1", "R2"), bar("l123", "R2", "R10"),
-                 Piece(h["l123"]["R2"], h["l123"]["R3"], plate1, p.panel_thickness)),
+        "l123": (
+            bar("l123", "R1", "R2"),
+            bar("l123", "R2", "R10"),
+            Piece(h["l123"]["R2"], h["l123"]["R3"], plate1, p.panel_thickness),
+        ),
         "l34": (Piece(np.zeros(2), np.array([p.panel2, 0.0]), plate2, p.panel_thickness),),
-        "l27": (bar("l27", "R2", "R7"),), "l48": (bar("l48", "R4", "R8"),), "l87": (bar("l87", "R8", "R7"),),
-        "l56": (bar("l56", "R5", "R6"),), "l67": (bar("l67", "R6", "R7"),), "l79": (bar("l79", "R7", "R9"),),
+        "l27": (bar("l27", "R2", "R7"),),
+        "l48": (bar("l48", "R4", "R8"),),
+        "l87": (bar("l87", "R8", "R7"),),
+        "l56": (bar("l56", "R5", "R6"),),
+        "l67": (bar("l67", "R6", "R7"),),
+        "l79": (bar("l79", "R7", "R9"),),
         "l910": (bar("l910", "R9", "R10"),),
     }
 
 
 def mass_properties(p) -> dict[str, tuple[float, np.ndarray, float]]:
-    """Per link: mass (kg), centre of mass (body frame, m), inertia about the COM normal to the plane (kg m^2)."""
+    """Per link: mass (kg), COM (body frame, m), inertia about the COM normal to the plane (kg m^2)."""
     out = {}
     for body, parts in pieces(p).items():
         m = sum(x.mass for x in parts)
@@ -147,8 +170,14 @@ def mass_properties(p) -> dict[str, tuple[float, np.ndarray, float]]:
     return out
 
 
-def circle_intersection(c1: np.ndarray, r1: float, c2: np.ndarray, r2: float, branch: float,
-                        what: str) -> tuple[np.ndarray, float]:
+def relative_angles(angles: dict[str, float]) -> dict[str, float]:
+    """Tree-joint values (rad) from absolute link angles: child's minus parent's (the wall's is 0)."""
+    return {j: angles[PAIR_LINKS[j][1]] - angles.get(PAIR_LINKS[j][0], 0.0) for j in TREE_JOINTS}
+
+
+def circle_intersection(
+    c1: np.ndarray, r1: float, c2: np.ndarray, r2: float, branch: float, what: str
+) -> tuple[np.ndarray, float]:
     """The point at distance r1 from c1 and r2 from c2, left of c1 -> c2 for branch +1.
 
     Returns (point, sin of the angle at the point between the two radii): the unit's distance from
@@ -162,7 +191,9 @@ def circle_intersection(c1: np.ndarray, r1: float, c2: np.ndarray, r2: float, br
     along = (r1**2 - r2**2 + dist**2) / (2 * dist)
     h2 = r1**2 - along**2
     if h2 < 0:
-        raise ClosureNotConverged(float(-h2), 0.0, 0, f"{what}: circles of radii {r1}, {r2} at distance {dist:.4f} m do not meet")
+        raise ClosureNotConverged(
+            float(-h2), 0.0, 0, f"{what}: circles of radii {r1}, {r2} at distance {dist:.4f} m do not meet"
+        )
     u = d / dist
     point = c1 + along * u + branch * np.sqrt(h2) * np.array([-u[1], u[0]])
     a, b = c1 - point, c2 - point
@@ -180,10 +211,7 @@ class Pose:
 
     def joint_angles(self) -> dict[str, float]:
         """URDF tree-joint values: child's absolute angle minus parent's (rad), in (-pi, pi] except R3."""
-        a = self.angles
-        rel = {"R1": a["l123"], "R2": a["l27"] - a["l123"], "R3": a["l34"] - a["l123"],
-               "R4": a["l48"] - a["l34"], "R8": a["l87"] - a["l48"], "R5": a["l56"], "R6": a["l67"] - a["l56"],
-               "R7b": a["l79"] - a["l27"], "R9": a["l910"] - a["l79"]}
+        rel = relative_angles(self.angles)
         return {k: v if k == "R3" else float(np.angle(np.exp(1j * v))) for k, v in rel.items()}
 
 
@@ -214,6 +242,15 @@ def pose(p, phi1: float, psi3: float, phi5: float) -> Pose:
         d = P[b] - P[a]
         return float(np.arctan2(d[1], d[0]))
 
-    angles = {"l123": phi1, "l34": phi1 + psi3, "l56": phi5, "l27": ang("R2", "R7"), "l67": ang("R6", "R7"),
-              "l79": ang("R7", "R9"), "l910": ang("R9", "R10"), "l48": ang("R4", "R8"), "l87": ang("R8", "R7")}
+    angles = {
+        "l123": phi1,
+        "l34": phi1 + psi3,
+        "l56": phi5,
+        "l27": ang("R2", "R7"),
+        "l67": ang("R6", "R7"),
+        "l79": ang("R7", "R9"),
+        "l910": ang("R9", "R10"),
+        "l48": ang("R4", "R8"),
+        "l87": ang("R8", "R7"),
+    }
     return Pose(angles, P, {"five_bar": m5, "four_bar": m4, "six_bar": m6})

@@ -15,6 +15,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.linalg import null_space
 
+from mechkit.kinematics import update_kinematics
 from mechkit.mechanisms import ten_bar as tb
 from mechkit.mechanisms import ten_bar_dynamics as td
 from mechkit.mechanisms import ten_bar_geometry as geo
@@ -46,8 +47,6 @@ def kinematic_split(mechanism, q: np.ndarray) -> KinematicSplit:
     direction[free] = null[:, 0]
     unit = tk.DimensionReduction(mechanism).units[0]
     five_q = np.array([q[mechanism.q_index(j)] for j in unit.model.names[1:]])
-    from mechkit.kinematics import update_kinematics
-
     update_kinematics(unit.model, unit.data, five_q)
     Ju = unit.rows.jacobian(unit.data)
     r1 = unit.model.joints[unit.model.getJointId("R1")].idx_v
@@ -55,7 +54,17 @@ def kinematic_split(mechanism, q: np.ndarray) -> KinematicSplit:
     return KinematicSplit(null.shape[1], direction, null_space(Ju[:, five_free]).shape[1])
 
 
-def drift(mechanism, t_end: float, dt: float, baumgarte: tuple[float, float] | None, project: bool) -> td.Trajectory:
+STABILISATIONS = (
+    ("no stabilisation", None, False),
+    ("Baumgarte Kp = 100, Kd = 20", (100.0, 20.0), False),
+    ("projection", None, True),
+)
+"""(label, Baumgarte gains (1/s^2, 1/s) or None, project after each step) compared by `drift`."""
+
+
+def drift(
+    mechanism, t_end: float, dt: float, baumgarte: tuple[float, float] | None, project: bool
+) -> td.Trajectory:
     """A stretch of the deployment from stowed with a chosen stabilisation (Pinocchio route)."""
     system = td.PinocchioDeployment(mechanism, baumgarte=baumgarte)
     return td.deploy(system, mechanism.home_q, dt, t_end, project=project)

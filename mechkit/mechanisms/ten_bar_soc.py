@@ -52,13 +52,29 @@ def _to3(v2: np.ndarray) -> np.ndarray:
     return np.array([v2[0], 0.0, v2[1]])
 
 
+def _site(
+    L: lagrange.Linkage, q: np.ndarray, slot: dict[int, int], pin_name: str, components=FORCE
+) -> WrenchSite:
+    """A pin seen from the SKC whose links are `slot` (link index -> position in the SKC)."""
+    pin = L.pins[L.pin_index[pin_name]]
+    here, point, sign = (pin.b, pin.point_b, 1.0) if pin.b in slot else (pin.a, pin.point_a, -1.0)
+    k = slot[here]
+    arm = geo.rot(q[3 * here + 2]) @ (point - L.bodies[here].com)
+    jac = np.zeros((6, 3 * len(slot)))
+    jac[0, 3 * k], jac[2, 3 * k + 1] = 1.0, 1.0
+    jac[[0, 2], 3 * k + 2] = [-arm[1], arm[0]]
+    jac[3:, 3 * k + 2] = _Y
+    return WrenchSite(pin_name, jac, sign, components)
+
+
 def skc_instants(L: lagrange.Linkage, q: np.ndarray, qd: np.ndarray, qdd: np.ndarray) -> list[SKCInstant]:
-    """The five SKCs at one instant of a Lagrange solution (q, qd, qdd in reference-point coordinates)."""
+    """The nine SKCs at one instant of a Lagrange solution (q, qd, qdd in reference-point coordinates)."""
     index = {b.name: i for i, b in enumerate(L.bodies)}
     Cq = L.jacobian(q)
     spring = L.springs[0]
-    torque = spring.stiffness * (spring.free_angle - L.relative_angle(q, spring.pin)) \
-        - spring.damping * L.relative_angle(qd, spring.pin)
+    torque = spring.stiffness * (
+        spring.free_angle - L.relative_angle(q, spring.pin)
+    ) - spring.damping * L.relative_angle(qd, spring.pin)
     out = []
     for name, links, released, known, motors in SKCS:
         bodies = [index[b] for b in links]
@@ -70,38 +86,49 @@ def skc_instants(L: lagrange.Linkage, q: np.ndarray, qd: np.ndarray, qdd: np.nda
             b, k = L.bodies[i], slot[i]
             jv, jw = np.zeros((3, n)), np.zeros((3, n))
             jv[0, 3 * k], jv[2, 3 * k + 1], jw[:, 3 * k + 2] = 1.0, 1.0, _Y
-            loads.append(BodyLoad(b.name, b.mass, b.inertia * np.eye(3), _to3(qdd[3 * i:3 * i + 2]),
-                                  _Y * qd[3 * i + 2], _Y * qdd[3 * i + 2], jv, jw))
-
-        def site(pin_name: str, components=FORCE) -> WrenchSite:
-            pin = L.pins[L.pin_index[pin_name]]
-            here, point, sign = (pin.b, pin.point_b, 1.0) if pin.b in slot else (pin.a, pin.point_a, -1.0)
-            k = slot[here]
-            arm = geo.rot(q[3 * here + 2]) @ (point - L.bodies[here].com)
-            jac = np.zeros((6, n))
-            jac[0, 3 * k], jac[2, 3 * k + 1] = 1.0, 1.0
-            jac[[0, 2], 3 * k + 2] = [-arm[1], arm[0]]
-            jac[3:, 3 * k + 2] = _Y
-            return WrenchSite(pin_name, jac, sign, components)
+            loads.append(
+                BodyLoad(
+                    b.name,
+                    b.mass,
+                    b.inertia * np.eye(3),
+                    _to3(qdd[3 * i : 3 * i + 2]),
+                    _Y * qd[3 * i + 2],
+                    _Y * qdd[3 * i + 2],
+                    jv,
+                    jw,
+                )
+            )
 
         internal = [k for k, p in enumerate(L.pins) if p.b in slot and p.a in slot]
         loop = Cq[np.concatenate([[2 * k, 2 * k + 1] for k in internal])][:, cols] if internal else None
         external = []
         if index["l56"] in slot:
             moment = np.concatenate([np.zeros(3), _Y * torque])
-            external.append((moment, site(spring.pin).jacobian))
+            external.append((moment, _site(L, q, slot, spring.pin).jacobian))
         actuators = []
         for motor in motors:
             direction = np.zeros(n)
             direction[3 * slot[L.pins[L.pin_index[motor]].b] + 2] = 1.0
             actuators.append((motor, direction))
-        out.append(SKCInstant(name, n, loads, actuators,
-                              [site(j, c) for j, c in released.items()], [site(j) for j in known], external, loop))
+        out.append(
+            SKCInstant(
+                name,
+                n,
+                loads,
+                actuators,
+                [_site(L, q, slot, j, c) for j, c in released.items()],
+                [_site(L, q, slot, j) for j in known],
+                external,
+                loop,
+            )
+        )
     return out
 
 
-def solve(L: lagrange.Linkage, q: np.ndarray, qd: np.ndarray, qdd: np.ndarray) -> tuple[dict[str, float], dict[str, np.ndarray], SOCResult]:
-    """SOC efforts (N m, +x towards +z) and in-plane pin forces (N, (fx, fz), parent on child) of the 12 pairs.
+def solve(
+    L: lagrange.Linkage, q: np.ndarray, qd: np.ndarray, qdd: np.ndarray
+) -> tuple[dict[str, float], dict[str, np.ndarray], SOCResult]:
+    """SOC efforts (N m, +x towards +z) and the 12 pairs' in-plane forces (N, (fx, fz), parent on child).
 
     The R3 motor torque is the axis moment of the R3 reaction: u3 = -my.
     """

@@ -30,7 +30,7 @@ import scipy.linalg
 
 from mechkit.exceptions import ClosureNotConverged, InvalidParameters, SingularConfiguration
 
-__all__ = ["Body", "Pin", "Spring", "Linkage", "Solution"]
+__all__ = ["Body", "Linkage", "Pin", "Solution", "Spring"]
 
 _E = np.array([[0.0, -1.0], [1.0, 0.0]])  # d R(phi)/d phi = E R(phi)
 
@@ -112,7 +112,9 @@ class Linkage:
         if np.any(masses <= 0):
             raise InvalidParameters("bodies", masses.tolist(), "masses and inertias must be > 0")
         self.mass_diag = masses
-        self.S = np.array([self._relative_row(self.pins[self.pin_index[m]]) for m in self.motors]).reshape(-1, self.n)
+        self.S = np.array([self._relative_row(self.pins[self.pin_index[m]]) for m in self.motors]).reshape(
+            -1, self.n
+        )
 
     # ------------------------------------------------------------ geometry
     def _relative_row(self, pin: Pin) -> np.ndarray:
@@ -133,14 +135,14 @@ class Linkage:
 
     def point(self, q: np.ndarray, body: int, point: np.ndarray) -> np.ndarray:
         """World position (m) of a body-frame point."""
-        return q[3 * body:3 * body + 2] + self._arm(q, body, point)
+        return q[3 * body : 3 * body + 2] + self._arm(q, body, point)
 
     def constraints(self, q: np.ndarray) -> np.ndarray:
         """Pin residuals C(q), (2 * pins,) m."""
         out = np.empty(2 * len(self.pins))
         for k, p in enumerate(self.pins):
             pa = p.point_a if p.a is None else self.point(q, p.a, p.point_a)
-            out[2 * k:2 * k + 2] = pa - self.point(q, p.b, p.point_b)
+            out[2 * k : 2 * k + 2] = pa - self.point(q, p.b, p.point_b)
         return out
 
     def jacobian(self, q: np.ndarray) -> np.ndarray:
@@ -149,9 +151,9 @@ class Linkage:
         for k, p in enumerate(self.pins):
             rows = slice(2 * k, 2 * k + 2)
             if p.a is not None:
-                Cq[rows, 3 * p.a:3 * p.a + 2] = np.eye(2)
+                Cq[rows, 3 * p.a : 3 * p.a + 2] = np.eye(2)
                 Cq[rows, 3 * p.a + 2] = _E @ self._arm(q, p.a, p.point_a)
-            Cq[rows, 3 * p.b:3 * p.b + 2] = -np.eye(2)
+            Cq[rows, 3 * p.b : 3 * p.b + 2] = -np.eye(2)
             Cq[rows, 3 * p.b + 2] = -_E @ self._arm(q, p.b, p.point_b)
         return Cq
 
@@ -162,7 +164,7 @@ class Linkage:
             g = -self._arm(q, p.b, p.point_b) * qd[3 * p.b + 2] ** 2
             if p.a is not None:
                 g = g + self._arm(q, p.a, p.point_a) * qd[3 * p.a + 2] ** 2
-            out[2 * k:2 * k + 2] = g
+            out[2 * k : 2 * k + 2] = g
         return out
 
     # ------------------------------------------------------------ forces and energy
@@ -170,7 +172,7 @@ class Linkage:
         """Generalised applied forces Q: gravity and springs (N, N m)."""
         Q = np.zeros(self.n)
         for i, b in enumerate(self.bodies):
-            Q[3 * i:3 * i + 2] = b.mass * self.gravity
+            Q[3 * i : 3 * i + 2] = b.mass * self.gravity
         for s in self.springs:
             row = self._relative_row(self.pins[self.pin_index[s.pin]])
             Q += row * (s.stiffness * (s.free_angle - row @ q) - s.damping * (row @ qd))
@@ -179,8 +181,10 @@ class Linkage:
     def energy(self, q: np.ndarray, qd: np.ndarray) -> dict[str, float]:
         """Kinetic, gravity and spring energy (J)."""
         kinetic = 0.5 * float(qd @ (self.mass_diag * qd))
-        gravity = -sum(b.mass * float(self.gravity @ q[3 * i:3 * i + 2]) for i, b in enumerate(self.bodies))
-        spring = sum(0.5 * s.stiffness * (self.relative_angle(q, s.pin) - s.free_angle) ** 2 for s in self.springs)
+        gravity = -sum(b.mass * float(self.gravity @ q[3 * i : 3 * i + 2]) for i, b in enumerate(self.bodies))
+        spring = sum(
+            0.5 * s.stiffness * (self.relative_angle(q, s.pin) - s.free_angle) ** 2 for s in self.springs
+        )
         return {"kinetic": kinetic, "gravity": gravity, "spring": spring}
 
     def power(self, q: np.ndarray, qd: np.ndarray, efforts: dict[str, float]) -> dict[str, float]:
@@ -201,10 +205,10 @@ class Linkage:
         Cq = self.jacobian(q)
         A = np.zeros((n + m + d, n + m + d))
         A[:n, :n] = np.diag(self.mass_diag)
-        A[:n, n:n + m] = Cq.T
-        A[:n, n + m:] = -self.S.T
-        A[n:n + m, :n] = Cq
-        A[n + m:, :n] = self.S
+        A[:n, n : n + m] = Cq.T
+        A[:n, n + m :] = -self.S.T
+        A[n : n + m, :n] = Cq
+        A[n + m :, :n] = self.S
         P = np.concatenate([self.applied(q, qd), self.gamma(q, qd), np.asarray(motor_acc, dtype=float)])
         with warnings.catch_warnings():  # a zero pivot is reported below, with the matrix named
             warnings.simplefilter("ignore", scipy.linalg.LinAlgWarning)
@@ -214,14 +218,25 @@ class Linkage:
         if not np.isfinite(cond) or cond > 1e12:
             raise SingularConfiguration(cond, "Lagrange first-kind matrix A (pivot ratio)")
         f = scipy.linalg.lu_solve((lu, piv), P, check_finite=False)
-        lam = f[n:n + m].reshape(-1, 2)
-        return Solution(f[:n], {p.name: lam[k] for k, p in enumerate(self.pins)},
-                        {name: float(u) for name, u in zip(self.motors, f[n + m:])}, float(cond))
+        lam = f[n : n + m].reshape(-1, 2)
+        return Solution(
+            f[:n],
+            {p.name: lam[k] for k, p in enumerate(self.pins)},
+            {name: float(u) for name, u in zip(self.motors, f[n + m :])},
+            float(cond),
+        )
 
     # ------------------------------------------------------------ the constraint manifold
-    def project(self, q: np.ndarray, qd: np.ndarray, motor_pos: Sequence[float] = (), motor_vel: Sequence[float] = (),
-                tol: float = 1e-13, max_iter: int = 20) -> tuple[np.ndarray, np.ndarray]:
-        """Minimum-norm projection of (q, qd) onto C = 0, S q = psi (Gauss-Newton) and C_q qd = 0, S qd = psi_dot.
+    def project(
+        self,
+        q: np.ndarray,
+        qd: np.ndarray,
+        motor_pos: Sequence[float] = (),
+        motor_vel: Sequence[float] = (),
+        tol: float = 1e-13,
+        max_iter: int = 20,
+    ) -> tuple[np.ndarray, np.ndarray]:
+        """Minimum-norm projection onto C = 0, S q = psi (Gauss-Newton), then C_q qd = 0, S qd = psi_dot.
 
         Raises:
             ClosureNotConverged: the position projection does not reach tol.
@@ -235,7 +250,9 @@ class Linkage:
             G = np.vstack([self.jacobian(q), self.S])
             q -= np.linalg.lstsq(G, e, rcond=None)[0]
         else:
-            raise ClosureNotConverged(float(np.linalg.norm(e)), tol, max_iter, "Lagrange coordinates projection")
+            raise ClosureNotConverged(
+                float(np.linalg.norm(e)), tol, max_iter, "Lagrange coordinates projection"
+            )
         G = np.vstack([self.jacobian(q), self.S])
         err = G @ qd - np.concatenate([np.zeros(2 * len(self.pins)), np.asarray(motor_vel, dtype=float)])
         return q, qd - np.linalg.lstsq(G, err, rcond=None)[0]
