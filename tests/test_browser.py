@@ -33,9 +33,11 @@ def assert_shows_a_mechanism(png) -> float:
 
 @pytest.mark.parametrize("name", list(mechkit.specs()))
 def test_snapshot_png_shows_the_mechanism(name, tmp_path):
-    html, png = tmp_path / f"{name}.html", tmp_path / f"{name}.png"
-    assert main(["snapshot", name, "-o", str(html), "--png", str(png)]) == 0
+    """`mechkit snapshot NAME --png out.png`, offline."""
+    png = tmp_path / f"{name}.png"
+    assert main(["snapshot", name, "--png", str(png)]) == 0
     assert_shows_a_mechanism(png)
+    assert [p.name for p in tmp_path.iterdir()] == [png.name]  # its temporary page is gone
 
 
 def test_animation_plays(load_cached, tmp_path):

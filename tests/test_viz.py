@@ -180,6 +180,9 @@ def test_snapshot_command_errors(load_cached, tmp_path, monkeypatch):
     with pytest.raises(MethodUnavailable, match="Chromium browser, not found.*apt-get install chromium"):
         viz.snapshot_command(m, html=str(tmp_path / "a.html"), png=str(tmp_path / "a.png"))
     assert not list(tmp_path.iterdir())  # nothing written
+    monkeypatch.setenv("MECHKIT_CHROMIUM", str(tmp_path / "my-chromium"))
+    with pytest.raises(MethodUnavailable, match="MECHKIT_CHROMIUM=.*my-chromium.* is not an executable"):
+        viz.snapshot_command(m, png=str(tmp_path / "a.png"))
 
 
 def test_pose_from_the_command_line(load_cached, tmp_path, capsys):
