@@ -269,10 +269,9 @@ STUDIES = {"singularity": singularity, "proximal_mu": proximal_mu, "far_starts":
 # ---------------------------------------------------------------------------- figures and summary
 def draw(study: str, cases: list[Case], folder: Path) -> list[Path]:
     """One figure per study (PNG and SVG): error vs condition per method; exceptions marked with x."""
-    import matplotlib
+    from mechkit.bench import pyplot, save_figure
 
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    plt = pyplot()
 
     fig, ax = plt.subplots(figsize=(8, 5))
     methods = list(dict.fromkeys(c.method for c in cases))
@@ -318,15 +317,7 @@ def draw(study: str, cases: list[Case], folder: Path) -> list[Path]:
         ax.set_xlabel(xlabel)
         ax.set_ylabel(ylabel, fontsize=8)
     ax.set_title(f"failure atlas: {study.replace('_', ' ')} (x: raised, at the bottom)", fontsize=9)
-    ax.grid(True, which="both", alpha=0.3)
-    ax.legend(fontsize=6)
-    fig.tight_layout()
-    folder.mkdir(parents=True, exist_ok=True)
-    paths = [folder / f"bench_atlas_{study}.{ext}" for ext in ("png", "svg")]
-    for p in paths:
-        fig.savefig(p, dpi=90)
-    plt.close(fig)
-    return paths
+    return save_figure(fig, ax, folder, f"bench_atlas_{study}")
 
 
 def summary_lines(folder: Path, quick: bool = True) -> list[str]:

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import importlib
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -101,3 +102,16 @@ def test_full_bench_measures_every_registered_mechanism():
         by = {r.method.name: r for r in b.rows}
         for name in bench.BASELINES.values():
             assert by[name].outcome == "ok" or by[name].outcome.startswith("raises"), (b.name, name)
+
+
+def test_bench_core_tool_prints_ratios(capsys):
+    """tools/bench_core.py: every row has a time, and the core calls carry their ratio to raw Pinocchio."""
+    import runpy
+
+    tool = runpy.run_path(str(Path(__file__).resolve().parent.parent / "tools" / "bench_core.py"))
+    tool["main"](["four_bar", "--budget", "0.005"])
+    out = capsys.readouterr().out
+    assert "raw: pin.constraintDynamics" in out
+    for line in out.splitlines()[1:]:
+        assert " us" in line
+    assert out.count("ratio to raw constraintDynamics") == 4

@@ -1,0 +1,17 @@
+"""Regenerate docs/benchmarks.md and docs/figures/bench_*.{png,svg}: `mechkit bench` over every mechanism.
+
+Usage: python tools/bench_all.py [--quick] [NAME ...]
+(Drake rows appear when `pydrake` is importable: `pip install drake`.)
+"""
+
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+
+from mechkit.cli import main
+
+DOCS = Path(__file__).resolve().parent.parent / "docs"
+
+if __name__ == "__main__":
+    sys.exit(main(["bench", *sys.argv[1:], "--charts", str(DOCS / "figures"), "--markdown", str(DOCS / "benchmarks.md")]))
