@@ -560,9 +560,11 @@ def snapshot(mechanism: Mechanism, q: np.ndarray | None = None, path: str | os.P
     return html
 
 
-def animation(mechanism: Mechanism, scene: str, path: str | os.PathLike | None = None) -> str:
-    """Self-contained HTML animating one of the mechanism's scenes; written to `path` if given."""
-    poses = scene_poses(mechanism, scene)
+def animation(mechanism: Mechanism, scene: str, path: str | os.PathLike | None = None, *,
+              poses: Sequence[np.ndarray] | None = None) -> str:
+    """Self-contained HTML animating one of the mechanism's scenes; written to `path` if given.
+    `poses`: the scene's poses when already computed (by `scene_poses`)."""
+    poses = scene_poses(mechanism, scene) if poses is None else poses
     html = _page(mechanism, poses, animate=True, caption=f"{mechanism.spec.name}, scene {scene!r}: "
                                                           f"{len(poses)} poses")
     if path is not None:
@@ -570,10 +572,11 @@ def animation(mechanism: Mechanism, scene: str, path: str | os.PathLike | None =
     return html
 
 
-def overlay(mechanism: Mechanism, scene: str, ghosts: int = 3, path: str | os.PathLike | None = None) -> str:
+def overlay(mechanism: Mechanism, scene: str, ghosts: int = 3, path: str | os.PathLike | None = None, *,
+            poses: Sequence[np.ndarray] | None = None) -> str:
     """Self-contained HTML of a scene as one picture: its last pose, and `ghosts` earlier poses (evenly
-    spread from the first) faded; written to `path` if given."""
-    poses = scene_poses(mechanism, scene)
+    spread from the first) faded; written to `path` if given. `poses`: as for `animation`."""
+    poses = scene_poses(mechanism, scene) if poses is None else poses
     html = _page(mechanism, poses, ghosts=ghosts, caption=f"{mechanism.spec.name}, scene {scene!r}")
     if path is not None:
         write_text(path, html)
@@ -595,10 +598,11 @@ def snapshot_command(mechanism: Mechanism, q: str | None = None, scene: str | No
         find_chromium()  # fail before any work when there is no browser
     written: list[Path] = []
     if scene is not None:
+        poses = scene_poses(mechanism, scene)
         if html is not None:
-            animation(mechanism, scene, html)
+            animation(mechanism, scene, html, poses=poses)
             written.append(Path(html))
-        page = overlay(mechanism, scene) if png is not None else None
+        page = overlay(mechanism, scene, poses=poses) if png is not None else None
     else:
         pose = None if q is None else mechanism.assemble(_parse_inputs(q), guess=mechanism.home_q)
         page = snapshot(mechanism, pose, html)
