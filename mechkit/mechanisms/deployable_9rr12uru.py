@@ -138,6 +138,8 @@ COMPONENTS = ("fx", "fy", "fz", "mx", "my", "mz")
 def indeterminate_reactions(result) -> dict[str, tuple[str, ...]]:
     """Joint -> world reaction components that statics leaves undetermined (from the determinacy
     flags of `Mechanism.inverse_dynamics`); joints whose reaction is fully determinate are absent."""
+    if any(r.determinate is None for r in result.reactions.values()):
+        raise InvalidParameters("result", "determinacy=False", "run Mechanism.inverse_dynamics with determinacy=True")
     return {joint: tuple(c for c, ok in zip(COMPONENTS, r.determinate) if not ok)
             for joint, r in result.reactions.items() if not r.determinate.all()}
 
