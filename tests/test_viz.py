@@ -205,3 +205,12 @@ def test_gallery_has_the_mechanism(name):
     assert png.is_file() and png.stat().st_size < 200_000
     rows = [line for line in (ROOT / "docs" / "gallery.md").read_text().splitlines() if line.startswith(f"| `{name}` |")]
     assert len(rows) == 1 and f"(docs/gallery/{name}.png)" in rows[0] and "not drawn yet" not in rows[0]
+
+
+def test_mechanism_scene_box_holds_every_joint(load_cached):
+    m = load_cached("ten_bar")
+    _, lo, hi = viz.mechanism_scene(m, m.home_q)
+    data = m.model.createData()
+    pin.forwardKinematics(m.model, data, m.home_q)
+    origins = np.array([data.oMi[j].translation for j in range(1, m.model.njoints)])
+    assert np.all(origins >= lo) and np.all(origins <= hi)
