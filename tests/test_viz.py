@@ -214,3 +214,14 @@ def test_mechanism_scene_box_holds_every_joint(load_cached):
     pin.forwardKinematics(m.model, data, m.home_q)
     origins = np.array([data.oMi[j].translation for j in range(1, m.model.njoints)])
     assert np.all(origins >= lo) and np.all(origins <= hi)
+
+
+def test_one_colour_per_limb_when_the_urdf_gives_none(load_cached):
+    m = load_cached("five_bar")
+    visual = pin.buildGeomFromUrdfString(m.model, m.urdf, pin.GeometryType.VISUAL)
+    for obj in visual.geometryObjects:
+        obj.meshColor = np.array([0.9, 0.9, 0.9, 1.0])
+    colours = dict(zip((m.model.names[g.parentJoint] for g in visual.geometryObjects),
+                       viz._link_colours(m.model, visual)))
+    # five-bar limbs: prox1 -> dist1 and prox2 -> dist2, cut at C
+    assert colours["prox1"] == colours["dist1"] != colours["prox2"] == colours["dist2"]
