@@ -48,12 +48,18 @@ class JointReaction:
 
 @dataclass(frozen=True)
 class InverseDynamicsResult:
-    """Efforts by actuated joint (N m or N) and reactions by joint name (tree and cut joints)."""
+    """Efforts by actuated joint (N m or N) and reactions by joint name (tree and cut joints).
+
+    `efforts_determinate[name]` is False when redundant actuation leaves that effort to the chosen
+    distribution (None when the determinacy test was not run); `condition` is that of [S, J^T]
+    (nan on the fast square path).
+    """
 
     efforts: dict[str, float]
     reactions: dict[str, JointReaction]
     multipliers: np.ndarray
     condition: float
+    efforts_determinate: dict[str, bool] | None = None
 
 
 def independent_rows(J: np.ndarray) -> np.ndarray:
@@ -65,9 +71,15 @@ def independent_rows(J: np.ndarray) -> np.ndarray:
     return np.sort(piv[: numerical_rank(d)])
 
 
-def kkt_forward(model: pin.Model, data: pin.Data, q, v, tau, J: np.ndarray, gamma: np.ndarray) -> ForwardDynamicsResult:
-    """Dense KKT solve on the independent rows of J (needs J, gamma at (q, v))."""
-    rows = independent_rows(J)
+def kkt_forward(model: pin.Model, data: pin.Data, q, v, tau, J: np.ndarray, gamma: np.ndarray,
+                rows: np.ndarray | None = None) -> ForwardDynamicsResult:
+    """Dense KKT solve on independent rows of J (needs J, gamma at (q, v)).
+
+    Args:
+        rows: a set of independent rows to use (e.g. cached from a regular configuration); chosen
+            by pivoted QR when None.
+    """
+    rows = independent_rows(J) if rows is None else rows
     Ji, gi = J[rows], gamma[rows]
     M = pin.crba(model, data, q)
     M = np.triu(M) + np.triu(M, 1).T
@@ -171,7 +183,8 @@ class InverseDynamicsProblem:
         self.untested = (None,) * len(self.joint_names)
 
 
-def inverse_dynamics(p: InverseDynamicsProblem, q, v, a, fext=None, determinacy: bool = True) -> InverseDynamicsResult:
+def inverse_dynamics(p: InverseDynamicsProblem, q, v, a, fext=None, determinacy: bool = True,
+                     distribution: str = "min_norm") -> InverseDynamicsResult:
     """Actuator efforts and every joint's reaction for a motion (q, v, a) that satisfies the closures.
 
     Args:
@@ -180,6 +193,8 @@ def inverse_dynamics(p: InverseDynamicsProblem, q, v, a, fext=None, determinacy:
         fext: optional external forces per joint (Pinocchio local frames), e.g. thrust.
         determinacy: run the rank test that flags indeterminate components (one SVD of the full
             spatial rows); without it `JointReaction.determinate` is None (not tested).
+        distribution: where [S, J^T] has a null space (redundant actuation or rows), which solution:
+            "min_norm" (smallest |[u; lambda]|) or "min_effort" (smallest |u|, then smallest |lambda|).
 
     Raises:
         SingularConfiguration: [S, J^T] has lost rank where it must not (efforts undetermined).
@@ -210,22 +225,37 @@ def inverse_dynamics(p: InverseDynamicsProblem, q, v, a, fext=None, determinacy:
                                         "[S, J^T] does not span the required generalised force: the actuators cannot hold this motion")
         x = Vt[:r].T @ ((U[:, :r].T @ b) / s[:r])
         cond = float(s[0] / s[r - 1])
+        if distribution == "min_effort" and r < A.shape[1]:
+            x = _least_effort(x, Vt[r:].T, na)
+        elif distribution not in ("min_norm", "min_effort"):
+            raise ValueError(f"distribution {distribution!r}: expected 'min_norm' or 'min_effort'")
     u, lam = x[:na], x[na:]
     W, P = cut_wrench_arrays(data, rows, lam)
     tree = subtract_cut_wrenches(joint_wrenches_world(model, data), data, p.affected, p.incidence, W, P)
     wrenches = np.vstack([tree[1:], W])
-    flags = _determinate_flags(p, q) if determinacy else p.untested
+    flags, effort_flags = _determinate_flags(p, q) if determinacy else (p.untested, None)
     reactions = {name: JointReaction(w, f, s) for name, w, f, s in zip(p.joint_names, wrenches, flags, p.supports)}
     efforts = dict(zip(p.actuated_names, u.tolist()))
-    return InverseDynamicsResult(efforts, reactions, lam, cond)
+    return InverseDynamicsResult(efforts, reactions, lam, cond, effort_flags)
 
 
-def _determinate_flags(p: InverseDynamicsProblem, q) -> np.ndarray:
+def _least_effort(x: np.ndarray, N: np.ndarray, na: int) -> np.ndarray:
+    """Move x along the null space N to the smallest efforts |u|, then the smallest multipliers."""
+    z = -np.linalg.lstsq(N[:na], x[:na], rcond=None)[0]
+    x = x + N @ z
+    keep = N @ scipy.linalg.null_space(N[:na]) if na else N
+    if keep.size:
+        x = x - keep @ np.linalg.lstsq(keep[na:], x[na:], rcond=None)[0]
+    return x
+
+
+def _determinate_flags(p: InverseDynamicsProblem, q) -> tuple[np.ndarray, dict[str, bool]]:
     """Which reaction components static equilibrium fixes, tested on the full spatial rows.
 
     A component is determinate when it does not change along the null space of [S, J_full^T]
     (Wojtyra and Fraczek 2013): such a null vector is a self-stress (cut forces, and actuator
-    efforts, in equilibrium with no load). Frames must be current at q.
+    efforts, in equilibrium with no load). Frames must be current at q. Returns the (joints, 6)
+    reaction flags and the effort flags by actuated joint.
     """
     model, data = p.model, p.data
     Jf = p.full_rows.jacobian(data)
@@ -237,11 +267,13 @@ def _determinate_flags(p: InverseDynamicsProblem, q) -> np.ndarray:
     r = numerical_rank(s)
     null = Vt[r:]
     variation = np.zeros((len(p.joint_names), 6))
+    effort_variation = np.abs(null[:, :na]).max(axis=0, initial=0.0) if na else np.zeros(0)
     zero_tree = np.zeros((model.njoints, 6))
     for x in null:
         # a self-stress: cut wrenches with no load; the tree joints carry what the cuts push in
         W, P = cut_wrench_arrays(data, p.full_rows, x[na:])
         tree = subtract_cut_wrenches(zero_tree, data, p.affected, p.incidence, W, P)
         variation = np.maximum(variation, np.abs(np.vstack([tree[1:], W])))
-    scale = variation.max(initial=0.0)
-    return variation <= DETERMINACY_TOL * max(scale, 1e-300)
+    scale = max(variation.max(initial=0.0), effort_variation.max(initial=0.0), 1e-300)
+    effort_flags = {name: bool(d <= DETERMINACY_TOL * scale) for name, d in zip(p.actuated_names, effort_variation)}
+    return variation <= DETERMINACY_TOL * scale, effort_flags

@@ -48,6 +48,7 @@ class Mechanism:
             np.array([self.v_index(j) for j in self.actuated], dtype=int), self.actuated)
         self._pin_constraints: tuple | None = None
         self._pin_baumgarte = (0.0, 0.0)
+        self._kkt_rows: np.ndarray | None = None
         self.independent_rows = self.rows.size
         self.home_q = self.assemble(spec.home(params))
         self.independent_rows = kinematics.mobility(self.rows, self.data, self.home_q).rank
@@ -212,19 +213,25 @@ class Mechanism:
             if baumgarte is not None:
                 kp, kd = baumgarte
                 gamma = gamma + kd * (J @ v) + kp * self.rows.residual(self.data)
-            result = dynamics.kkt_forward(self.model, self.data, q, v, tau, J, gamma)
+            if self._kkt_rows is None:
+                self._kkt_rows = dynamics.independent_rows(self.closure_jacobian(self.home_q))
+            try:
+                result = dynamics.kkt_forward(self.model, self.data, q, v, tau, J, gamma, self._kkt_rows)
+            except SingularConfiguration:  # the cached rows lost rank here: choose rows at this q
+                result = dynamics.kkt_forward(self.model, self.data, q, v, tau, J, gamma)
         else:
             raise MethodUnavailable(method, "forward_dynamics methods are 'proximal' and 'kkt'")
         return result
 
     def inverse_dynamics(self, q: np.ndarray, v: np.ndarray, a: np.ndarray, fext=None,
-                         determinacy: bool = True) -> dynamics.InverseDynamicsResult:
+                         determinacy: bool = True, distribution: str = "min_norm") -> dynamics.InverseDynamicsResult:
         """Constrained RNEA: actuator efforts and the reaction of every joint (tree and cut).
 
         Reactions: the wrench parent side -> child side at the joint origin, world frame; see
-        `dynamics.JointReaction` for the determinacy flags.
+        `dynamics.JointReaction` for the determinacy flags and `dynamics.inverse_dynamics` for
+        `fext` (Pinocchio local-frame forces per joint) and `distribution` (redundant actuation).
         """
-        return dynamics.inverse_dynamics(self._id_problem, q, v, a, fext, determinacy)
+        return dynamics.inverse_dynamics(self._id_problem, q, v, a, fext, determinacy, distribution)
 
 
 def load(name: str, **params: Any) -> Mechanism:
@@ -239,16 +246,20 @@ def from_params(spec: MechanismSpec, params: MechanismParams) -> Mechanism:
     return Mechanism(spec, params, render_urdf(spec.xacro_path, params.xacro_args()))
 
 
-def from_urdf(urdf: str, actuated: Sequence[str] | None = None, name: str = "urdf") -> Mechanism:
+def from_urdf(urdf: str, actuated: Sequence[str] | None = None, name: str = "urdf",
+              guess: Mapping[str, float] | None = None) -> Mechanism:
     """Wrap any URDF text (a tree, or with `<mechkit:loop>` closures) as a Mechanism.
 
     Args:
         urdf: URDF text.
         actuated: actuated joint names (default: every joint of the tree).
         name: a name for reports.
+        guess: joint name -> value near which the loops are closed for the home configuration
+            (default: the neutral configuration).
     """
     model = build_model(urdf)
     joints = tuple(actuated) if actuated is not None else tuple(model.names[1:])
     spec = MechanismSpec(name=name, params=MechanismParams, xacro="", actuated=joints,
-                         gruebler_dof=model.nv, home=lambda p: {}, summary=f"loaded from URDF ({name})")
+                         gruebler_dof=model.nv, home=lambda p: {}, guess=(lambda p: guess) if guess else None,
+                         summary=f"loaded from URDF ({name})")
     return Mechanism(spec, MechanismParams(), urdf)

@@ -162,3 +162,21 @@ def test_reactions_equal_pinocchio_rnea_forces_on_a_third_party_tree(robot):
         assert r.determinate.all()
     for joint, effort in got.efforts.items():
         assert abs(effort - tau[m.v_index(joint)]) < 1e-10 * max(1.0, abs(effort))
+
+
+def test_redundant_actuation_flags_efforts_and_offers_least_effort(load_cached):
+    """Five-bar with all four joints driven (2 DOF, 4 motors): efforts are a choice, not a fact of statics."""
+    five = load_cached("five_bar")
+    guess = {j: five.home_q[five.q_index(j)] for j in five.model.names[1:]}
+    m = mechkit.from_urdf(five.urdf, name="five_bar_all_driven", guess=guess)
+    q, v, a = _moving_state(five)
+    results = {d: m.inverse_dynamics(q, v, a, distribution=d) for d in ("min_norm", "min_effort")}
+    for res in results.values():
+        assert not any(res.efforts_determinate.values())
+        tau = np.array([res.efforts[j] for j in m.model.names[1:]])
+        back = m.forward_dynamics(q, v, tau, "kkt").a  # either distribution produces the motion
+        assert np.max(np.abs(back - a)) < 1e-9 * max(1.0, np.max(np.abs(a)))
+    norm = {d: np.linalg.norm(list(r.efforts.values())) for d, r in results.items()}
+    assert norm["min_effort"] < norm["min_norm"]
+    # the non-redundant five-bar's efforts are fixed by statics
+    assert all(five.inverse_dynamics(q, v, a).efforts_determinate.values())

@@ -2,28 +2,16 @@
 
 from __future__ import annotations
 
-import importlib.util
-from pathlib import Path
 
-TOOLS = Path(__file__).resolve().parent.parent / "tools"
-
-
-def _tool(name: str):
-    spec = importlib.util.spec_from_file_location(name, TOOLS / f"{name}.py")
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
-
-
-def test_plots_write_both_figures(tmp_path):
-    assert _tool("parallel_2t1r_plots").main(["--samples", "10", "--out", str(tmp_path)]) == 0
+def test_plots_write_both_figures(tmp_path, load_tool):
+    assert load_tool("parallel_2t1r_plots").main(["--samples", "10", "--out", str(tmp_path)]) == 0
     for name in ("comparison", "singular"):
         png = tmp_path / f"parallel_2t1r_{name}.png"
         assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n" and png.stat().st_size > 20_000
 
 
-def test_bench_prints_every_method(capsys):
-    assert _tool("parallel_2t1r_bench").main(["--samples", "3", "--repeat", "1"]) == 0
+def test_bench_prints_every_method(capsys, load_tool):
+    assert load_tool("parallel_2t1r_bench").main(["--samples", "3", "--repeat", "1"]) == 0
     out = capsys.readouterr().out
     for row in ("Pinocchio constrained RNEA", "SOC", "classic virtual work", "analytic motion state"):
         assert row in out
