@@ -27,11 +27,11 @@ The patent gives no dimension. The design below is ours (geometry in `ten_bar_ge
   (x > 0) over the deployment.
 - Links: aluminium bars 25 mm x 10 mm (0.675 kg/m). The spring at R5 (4 N m/rad, 5.4 N m preload
   at the stowed angle, free angle +17.4 degrees, and a viscous damper as real deployment hinges
-  carry) swings the rocker l56 from -60 degrees (stowed) within 0.3 s to about 0 degrees, where it
-  balances the linkage's weight (about 1.2 N m on R5); it then follows the slowly changing
-  balance (-4..+9 degrees) while the motors deploy the panels over 20 s. Its natural frequency
-  (about 20 rad/s) sits well above the motor laws' and the damper (ratio about 0.7) keeps it
-  from ringing.
+  carry) swings the rocker l56 from -60 degrees (stowed) within 0.2 s to about +2 degrees, where
+  it balances the linkage's weight (about 1.2 N m on R5); it then follows the slowly changing
+  balance (-4..+9 degrees) while the motors deploy the panels over 20 s. With 0.008-0.009 kg m^2
+  of effective inertia on R5 its natural frequency (about 21 rad/s) sits well above the motor
+  laws' and the damper (ratio about 0.8) keeps it from ringing.
 """
 
 from __future__ import annotations
