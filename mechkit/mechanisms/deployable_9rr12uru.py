@@ -257,6 +257,14 @@ def fold_times(step: float = 1.0) -> np.ndarray:
     return np.linspace(0.0, FOLD_DURATION, round(FOLD_DURATION / step) + 1)
 
 
+def fold_poses(mech: Mechanism) -> list[np.ndarray]:
+    """The 200 s fold sampled every 1 s: 201 assembled configurations (the "fold" scene)."""
+    return [s.q for s in fold(mech, fold_times(1.0))]
+
+
+#: Animated scenes for `mechkit snapshot --scene` (scene name -> poses).
+SCENES = {"fold": fold_poses}
+
 SPEC = MechanismSpec(
     name="deployable_9rr12uru",
     params=DeployableParams,

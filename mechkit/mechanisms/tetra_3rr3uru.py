@@ -91,6 +91,16 @@ def drive_inputs(p: TetraParams, s: DriveState, actuated: tuple[str, ...], apexe
     return tuple({joint: values[joint] for joint in actuated} for values in motion)
 
 
+def _fold_poses(mech) -> list[np.ndarray]:
+    from mechkit.mechanisms.deployable_9rr12uru import fold_poses
+
+    return fold_poses(mech)
+
+
+#: Animated scenes for `mechkit snapshot --scene` (scene name -> poses): the paper's 200 s fold.
+SCENES = {"fold": _fold_poses}
+
+
 def _self_checks(mech):
     from mechkit.mechanisms.deployable_9rr12uru import fold_checks
 
