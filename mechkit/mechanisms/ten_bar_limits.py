@@ -16,6 +16,7 @@ import numpy as np
 from scipy.linalg import null_space
 
 from mechkit.kinematics import update_kinematics
+from mechkit.mechanism import from_params
 from mechkit.mechanisms import ten_bar as tb
 from mechkit.mechanisms import ten_bar_dynamics as td
 from mechkit.mechanisms import ten_bar_geometry as geo
@@ -65,9 +66,14 @@ STABILISATIONS = (
 def drift(
     mechanism, t_end: float, dt: float, baumgarte: tuple[float, float] | None, project: bool
 ) -> td.Trajectory:
-    """A stretch of the deployment from stowed with a chosen stabilisation (Pinocchio route)."""
-    system = td.PinocchioDeployment(mechanism, baumgarte=baumgarte)
-    return td.deploy(system, mechanism.home_q, dt, t_end, project=project)
+    """A stretch of the deployment from stowed with a chosen stabilisation (Pinocchio route).
+
+    Baumgarte gains stay set on the core's constraint models (see docs/core_requests.md), so a
+    stabilised run uses its own copy of the mechanism and leaves the caller's untouched.
+    """
+    own = mechanism if baumgarte is None else from_params(mechanism.spec, mechanism.params)
+    system = td.PinocchioDeployment(own, baumgarte=baumgarte)
+    return td.deploy(system, own.home_q, dt, t_end, project=project)
 
 
 def loop_margins(params: tb.TenBarParams, angles: np.ndarray) -> dict[str, np.ndarray]:
