@@ -42,6 +42,21 @@ def test_the_third_chain_is_the_redundant_one(mech):
         assert dep.mobility_without(mech, q, (chain,)) == (7, 0)
 
 
+@pytest.mark.parametrize("i", [0, 4])
+def test_the_seventh_dof_is_instantaneous_off_the_symmetric_motions(mech, coarse_fold, i):
+    """Second order: on the 7-dim kernel of J, Q(d) = y^T e''[d, d] has 2 positive, 2 negative and
+    3 zero eigenvalues; only motions with Q(d) = 0 continue, the paper's fold among them."""
+    sample = coarse_fold[i]
+    Q, basis = dep.second_order_form(mech, sample.q)
+    w = np.linalg.eigvalsh(Q)
+    big = np.abs(w).max()
+    assert w[1] < -0.5 * big and w[5] > 0.5 * big
+    assert np.abs(w[2:5]).max() < 1e-3 * big
+    c = basis.T @ sample.v
+    assert np.linalg.norm(basis @ c - sample.v) < 1e-9 * np.linalg.norm(sample.v)  # the fold is a first-order motion
+    assert abs(c @ Q @ c) < 1e-3 * big * (c @ c)
+
+
 def test_self_stress_is_forces_along_the_middle_hinges(mech, coarse_fold):
     """At t = 0 each URU's share is a pure force along its middle hinge (the paper's eq. 2); later
     the Hooke axes leave the links and moments normal to the hinge join in."""

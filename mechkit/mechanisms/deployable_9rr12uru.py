@@ -202,6 +202,33 @@ def indeterminate_direction(mech: Mechanism, q: np.ndarray) -> dict[str, np.ndar
     return {joint: v / scale for joint, v in pattern.items()}
 
 
+def second_order_form(mech: Mechanism, q: np.ndarray, h: float = 1e-3) -> tuple[np.ndarray, np.ndarray]:
+    """Second-order test of the redundant configuration q: Q(d) = y^T e''(q)[d, d] on ker J.
+
+    y is the self-stress (J^T y = 0), e the closure residual. A first-order motion d (J d = 0)
+    continues to a motion only if Q(d) = 0, so the instantaneous DOF count holds for finite motions
+    only along the zero set of Q. Central differences with step h (rad, m) on the residual.
+
+    Returns:
+        ((k, k) matrix of Q, (nv, k) orthonormal basis of ker J in which it is written).
+    """
+    from scipy.linalg import null_space
+
+    _, y = _self_stress(mech, q)
+    basis = null_space(mech.closure_jacobian(q), rcond=1e-9)
+
+    def along(d: np.ndarray) -> float:
+        return float(y @ mech.closure_residual(pin.integrate(mech.model, q, d)))
+
+    k = basis.shape[1]
+    Q = np.zeros((k, k))
+    for i in range(k):
+        for j in range(i, k):
+            a, b = h * basis[:, i], h * basis[:, j]
+            Q[i, j] = Q[j, i] = (along(a + b) - along(a - b) - along(b - a) + along(-a - b)) / (4.0 * h * h)
+    return Q, basis
+
+
 def chain_joints(chain: str) -> tuple[str, ...]:
     """Tree joints of a URU rod or chain (e.g. "BG": BG_B1, BG_B2, BG_G1, BG_G2)."""
     return tuple(f"{chain}_{node}{k}" for node in chain for k in (1, 2))
