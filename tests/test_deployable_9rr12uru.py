@@ -131,3 +131,20 @@ def test_full_fold_with_dynamics(mech):
         result = mech.inverse_dynamics(sample.q, sample.v, sample.a)
         assert all(np.isfinite(u) for u in result.efforts.values())
     assert worst_pos < 1e-9 and worst_res < 1e-10
+
+
+def test_bad_inputs_raise_named_errors(mech):
+    from mechkit.exceptions import InvalidParameters
+    from mechkit.mechanisms.deployable_9rr12uru import DeployableParams
+
+    with pytest.raises(InvalidParameters, match="l3"):
+        DeployableParams(l3=0.1)
+    with pytest.raises(InvalidParameters, match="times"):
+        dep.fold(mech, np.array([5.0, 3.0]))
+    with pytest.raises(InvalidParameters, match="step"):
+        dep.fold_times(0.0)
+    with pytest.raises(InvalidParameters, match="node"):
+        dep.node_velocity(mech, mech.home_q, np.zeros(mech.model.nv), "Z")
+    untested = mech.inverse_dynamics(mech.home_q, np.zeros(mech.model.nv), np.zeros(mech.model.nv), determinacy=False)
+    with pytest.raises(InvalidParameters, match="result"):
+        dep.indeterminate_reactions(untested)
