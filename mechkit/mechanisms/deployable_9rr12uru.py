@@ -2,13 +2,16 @@
 
 Three 3RR-3URU units H-ABE, J-AFC, I-ADG (`tetra_3rr3uru`) share the fixed node A, turned by 0,
 -120 and +120 deg about z (eq. 8), joined by the URU constraint chains EC, DF, BG: 43 bodies of the
-paper plus 24 Hooke crosses, 66 tree coordinates, 12 cuts of 5 rows = 60 rows, rank 59: 7 DOF with
-one redundant constraint (eq. 5). Drives (section 3.2): fold at H, J, I (web rods AH, AJ, AI),
+paper plus 24 Hooke crosses, 66 tree coordinates, 12 cuts of 5 rows = 60 rows, rank 59 along the
+paper's (three-fold symmetric) motions: 7 DOF with one redundant constraint (eq. 5); to second order
+the seventh DOF holds only along those motions (`second_order_form`). Drives (section 3.2): fold at H, J, I (web rods AH, AJ, AI),
 attitude at B, F, G (web rods BH, FJ, GI) and web rod EH at H (see `ACTUATED`);
 `tetra_3rr3uru.web_joint_motion` gives their joint laws.
 
-Scenes: `fold` (the 200 s fold, closure solved along it with a warm start) and `fold_dynamics`
-(constrained inverse dynamics along it).
+Scene: `fold` (the 200 s fold, closure solved along it by continuation; `SCENES` for snapshots).
+Analysis: `redundancy` (the self-stress), `mobility_without` (chains removed),
+`indeterminate_direction` (the indeterminate part of the reactions), `second_order_form`,
+`fold_checks` (rows of `mechkit report`).
 """
 
 from __future__ import annotations
