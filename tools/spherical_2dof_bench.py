@@ -101,6 +101,7 @@ def main(budget: float = 1.0, out: Path = OUT) -> dict[str, float]:
             us[name], k, f" {us[name]:.0f} us ({us[name] / us[ref]:.2f} x {ref})", va="center", fontsize=8
         )
     ax.set_xscale("log")
+    ax.set_xlim(right=10 * max(us.values()))
     ax.set(
         xlabel="time per call (us, median of 7 interleaved rounds, one run, gc off; 2 shared cores)",
         title="spherical_2dof: kinematics and inverse dynamics, per method",
