@@ -70,24 +70,16 @@ def main(directions: int = 24, grid_points: int = 91, out: Path = OUT) -> dict[s
     for name, ls in (("regular", "-"), ("near singular", ":")):
         for method in METHODS:
             rows = [r for r in table[name] if r.method == method]
-            axes[1].semilogx(
-                RADII_DEG,
-                [r.found for r in rows],
-                ls,
-                color=styles[method],
-                marker="o",
-                ms=3,
-                label=f"{method}, {name}",
-            )
-            axes[2].semilogx(
-                RADII_DEG,
-                [r.iterations for r in rows],
-                ls,
-                color=styles[method],
-                marker="o",
-                ms=3,
-                label=f"{method}, {name}",
-            )
+            for ax, field in ((axes[1], "found"), (axes[2], "iterations")):
+                ax.semilogx(
+                    RADII_DEG,
+                    [getattr(r, field) for r in rows],
+                    ls,
+                    color=styles[method],
+                    marker="o",
+                    ms=3,
+                    label=f"{method}, {name}",
+                )
     axes[1].set(
         xlabel="start distance from the answer (deg)",
         ylabel="fraction of starts finding the answer",
