@@ -172,12 +172,12 @@ class ClosureRows:
             d = oMb.translation - oMa.translation
             dv = vb.linear - va.linear
             wa, wb = va.angular, vb.angular
-            for t_local in cut.positions.T:
-                t = oMa.rotation @ t_local
-                tdot = cross(wa, t)
-                out[i] = (t @ (ab.linear - aa.linear) + tdot @ dv + cross(t, d) @ aa.angular
-                          + wa @ (cross(tdot, d) + cross(t, dv)))
-                i += 1
+            k = cut.positions.shape[1]
+            if k:
+                # d2/dt2 of t.d with t fixed in frame_a: t.(da + d x alpha_a + dv x w_a + (dv + d x w_a) x w_a)
+                g = (ab.linear - aa.linear + cross(d, aa.angular) + cross(dv, wa) + cross(dv + cross(d, wa), wa))
+                out[i:i + k] = (oMa.rotation @ cut.positions).T @ g
+                i += k
             for u_local, w_local in cut.alignments:
                 u, w = oMa.rotation @ u_local, oMb.rotation @ w_local
                 n = cross(w, u)
