@@ -73,6 +73,22 @@ EQUAL_ACCURACY_FLOOR = 1e-12
 INPUT_SPREAD = 0.05
 #: Error shown on log charts for an exact result.
 CHART_FLOOR = 1e-17
+#: How to read the peers' rows (docs/benchmarks.md).
+PEER_NOTES = """\
+- MuJoCo runs the MJCF of `mechkit export NAME --format mjcf` (same tree, `equality` connect/weld at
+  the cuts). Its equality constraints are soft: at the default solref/solimp the closure gives way
+  and the accelerations are off by O(1); "stiff" (impedance 0.9999, time constant 2 ms) narrows it.
+  `mj_forward` is timed with the efforts as `qfrc_applied`. Its inverse dynamics row is
+  `mj_inverse` plus our least-squares split of M a + c on MuJoCo's constraint Jacobian (MuJoCo has no
+  such split): it is exact because the split is, and reports efforts only.
+- Drake (when installed: `pip install drake`) runs a discrete `MultibodyPlant` (SAP, dt = 1 ms) with
+  ball constraints at the cuts; the row is (v_next - v) / dt of one step. SAP imposes the closure on
+  the next velocity at the current configuration, so one step misses the velocity-product term of
+  the closure acceleration (J a = -J'v): its error does not shrink with dt at states with velocity.
+  It exposes no constraint force (no reactions).
+- The core's inverse-dynamics rows give every joint's reaction; the numpy methods of four_bar and
+  five_bar start from the link motion of the closed form (their times exclude that conversion).
+"""
 
 
 # ---------------------------------------------------------------------------- data
@@ -624,11 +640,13 @@ def machine() -> dict[str, str]:
     info = {"python": platform.python_version(), "platform": platform.platform(), "processor": _cpu(),
             "cores": str(os.cpu_count()), "pinocchio": pinocchio.__version__, "numpy": numpy.__version__,
             "scipy": scipy.__version__}
-    for mod in ("mujoco", "pydrake"):
+    from importlib import metadata
+
+    for dist in ("mujoco", "drake", "matplotlib"):
         try:
-            info[mod] = getattr(importlib.import_module(mod), "__version__", "installed")
-        except ImportError:
-            info[mod] = "not installed"
+            info[dist] = metadata.version(dist)
+        except metadata.PackageNotFoundError:
+            info[dist] = "not installed"
     return info
 
 
@@ -793,7 +811,7 @@ def markdown_report(results: list[MechanismBench], quick: bool, charts: list[Pat
              "process on a shared machine: compare within a table, not across runs.", "", "## Machine", ""]
     lines += [f"- {k}: {v}" for k, v in machine().items()]
     lines += ["", "## Goals", ""] + [f"- {g}" for g in goals(results)]
-    lines += ["", "## Columns", "",
+    lines += ["", "## Peers and methods", "", PEER_NOTES, "## Columns", "",
               (f"error: per quantity, {'; '.join(f'{q}: {e}' for q, e in ERROR_LABELS.items())}. "
                f"x fastest: time / fastest method of equal or better accuracy (error within 10x, or both <= "
                f"{EQUAL_ACCURACY_FLOOR:g}). x base: time / the baseline ({'; '.join(f'{q}: {m}' for q, m in BASELINES.items())})."),

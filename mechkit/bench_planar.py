@@ -5,6 +5,8 @@ The core's four_bar / five_bar modules carry no `BENCH_METHODS`; their independe
 
 - reference: closed-form kinematics and planar Newton-Euler (`validation.planar_linkages`);
 - assembly: the closed form (circle intersection);
+- forward dynamics: Lagrange's equations of the first kind in reference-point coordinates
+  (`validation.lagrange.Linkage`: M, C_q, gamma, Q), the efforts on the motor pins;
 - inverse dynamics: planar Newton-Euler, classic virtual work over the URDF coordinates
   (`validation.soc.classic_virtual_work`, efforts only) and Lagrange's equations of the first kind
   in reference-point coordinates (`validation.lagrange`, the ten-bar patent's A f = P).
@@ -145,6 +147,27 @@ def lagrange_first_kind(mech, sample) -> dict[str, Any]:
     return {"efforts": sol.efforts, "reactions": reactions}
 
 
+def lagrange_forward(mech, sample) -> np.ndarray:
+    """Forward dynamics in reference-point coordinates: [M, C_q^T; C_q, 0] [qdd; lambda] = [Q + S^T u; gamma].
+
+    The efforts u are the sample's tau on the motor pins (torques about -y); returns the joint
+    accelerations of mechkit's q (relative angle rates of each URDF joint).
+    """
+    linkage, q, qd, _ = lagrange_problem(mech, sample)
+    st = state(mech, sample)
+    n, m = linkage.n, 2 * len(linkage.pins)
+    u = np.array([sample.tau[mech.v_index(j)] for j in linkage.motors])
+    K = np.zeros((n + m, n + m))
+    K[:n, :n] = np.diag(linkage.mass_diag)
+    K[:n, n:] = linkage.jacobian(q).T
+    K[n:, :n] = linkage.jacobian(q)
+    x = np.linalg.solve(K, np.concatenate([linkage.applied(q, qd) + linkage.S.T @ u, linkage.gamma(q, qd)]))
+    names = list(st.links)
+    alpha = {name: x[3 * i + 2] for i, name in enumerate(names)}
+    joint_acc = [alpha[j.child] - (alpha[j.parent] if j.parent else 0.0) for j in (st.joint(c) for c in st.coordinates)]
+    return _joint_vector(mech, st, np.array(joint_acc))
+
+
 def extras(mech) -> dict[str, Any]:
     """Methods and references for the bench protocol (empty for other mechanisms)."""
     if mech.spec.name not in PLANAR:
@@ -157,6 +180,7 @@ def extras(mech) -> dict[str, Any]:
         },
         "methods": {
             "assembly": [("closed form (circle intersection, numpy)", closed_form_q)],
+            "forward_dynamics": [("Lagrange first kind, forward (numpy, from link motion)", lagrange_forward)],
             "inverse_dynamics": [
                 ("planar Newton-Euler (numpy, from link motion)", newton_euler),
                 ("classic virtual work (numpy, from link motion)", classic),
