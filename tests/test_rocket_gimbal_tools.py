@@ -2,32 +2,19 @@
 
 from __future__ import annotations
 
-import importlib.util
-from pathlib import Path
-
 import numpy as np
 
-TOOLS = Path(__file__).resolve().parent.parent / "tools"
-
-
-def _tool(name: str):
-    spec = importlib.util.spec_from_file_location(name, TOOLS / f"{name}.py")
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
-
-
-def test_linearisation_tool_writes_its_figure_and_reports_the_worst_error(tmp_path):
+def test_linearisation_tool_writes_its_figure_and_reports_the_worst_error(tmp_path, load_tool):
     out = tmp_path / "lin.png"
-    result = _tool("rocket_gimbal_linearisation").main(n=5, out=out)
+    result = load_tool("rocket_gimbal_linearisation").main(n=5, out=out)
     assert out.stat().st_size > 10_000
     # on a 5 x 5 grid the corners are included: the worst error sits at a corner
     assert 0.4 < result["worst_deg"] < 0.6 and abs(result["worst_at_mm"][0]) == 110.0
     assert np.isclose(result["worst_percent"], 100 * result["worst_deg"] / 6.5)
 
 
-def test_resultant_tool_runs(tmp_path, capsys):
-    tool = _tool("rocket_gimbal_resultant")
+def test_resultant_tool_runs(tmp_path, capsys, load_tool):
+    tool = load_tool("rocket_gimbal_resultant")
     from mechkit.mechanisms.rocket_gimbal import RocketGimbalParams, geometry
 
     geo = geometry(RocketGimbalParams())
@@ -38,14 +25,14 @@ def test_resultant_tool_runs(tmp_path, capsys):
     assert (tmp_path / "cond.png").stat().st_size > 10_000
 
 
-def test_bench_tool_runs(tmp_path):
-    result = _tool("rocket_gimbal_bench").main(budget_s=0.05, out=tmp_path / "bench.png")
+def test_bench_tool_runs(tmp_path, load_tool):
+    result = load_tool("rocket_gimbal_bench").main(budget_s=0.05, out=tmp_path / "bench.png")
     assert all(np.isfinite(v) and v > 0 for v in result.values())
     assert (tmp_path / "bench.png").stat().st_size > 5_000
 
 
-def test_swing_tool_compares_pinocchio_and_soc(tmp_path):
-    result = _tool("rocket_gimbal_swing").main(n=6, out=tmp_path / "swing.png")
+def test_swing_tool_compares_pinocchio_and_soc(tmp_path, load_tool):
+    result = load_tool("rocket_gimbal_swing").main(n=6, out=tmp_path / "swing.png")
     assert result["worst relative difference Pinocchio vs SOC"] < 1e-8
     assert 1.1 < result["bearing force max (MN)"] < 1.3  # the 1.2 MN thrust plus weight and inertia
     assert (tmp_path / "swing.png").stat().st_size > 10_000
