@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
+
 def test_linearisation_tool_writes_its_figure_and_reports_the_worst_error(tmp_path, load_tool):
     out = tmp_path / "lin.png"
     result = load_tool("rocket_gimbal_linearisation").main(n=5, out=out)
