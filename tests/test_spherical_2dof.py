@@ -40,6 +40,7 @@ def test_defaults_are_the_papers_values():
         ({"beta_platform": P.beta}, "beta_platform"),
         ({"beta_platform": math.radians(150)}, "beta_platform"),
         ({"alpha1": 0.0}, "alpha1"),
+        ({"rows": "planar"}, "rows"),
     ],
 )
 def test_bad_parameters_are_named(change, name):
@@ -126,6 +127,13 @@ def test_home_assembles_with_two_dof(mech):
     assert np.abs(mech.closure_residual(mech.home_q)).max() < 1e-12
     mob = mech.mobility()
     assert mob.dof == 2 == sph.SPEC.gruebler_dof and mob.redundant == 0
+
+
+def test_spatial_rows_are_six_redundant_constraints():
+    """With 5 spatial rows per cut the mobility stays 2 and 6 rows are redundant: the spatial
+    Kutzbach-Gruebler count 6 (6 - 7 - 1) + 8 = -4 = 2 - 6 (the common constraints of a spherical linkage)."""
+    mob = load("spherical_2dof", rows="spatial").mobility()
+    assert (mob.dof, mob.redundant, mob.rows) == (2, 6, 10)
 
 
 def test_analytic_state_satisfies_pinocchio_closure(mech):

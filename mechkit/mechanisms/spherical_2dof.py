@@ -62,8 +62,15 @@ class Spherical2DofParams(MechanismParams):
     platform_height: float = param(0.05, "m", "platform centre of mass above O along its normal", ours=True)
     cross_mass: float = param(0.1, "kg", "Hooke-joint cross (a cube at O)", ours=True)
     cross_size: float = param(0.03, "m", "Hooke-joint cross cube side", ours=True)
+    rows: str = param(
+        "spherical",
+        "-",
+        "closure rows per cut: spherical (2 rotation rows) or spatial (5, 3 of them redundant)",
+    )
 
     def validate(self) -> None:
+        if self.rows not in ("spherical", "spatial"):
+            raise InvalidParameters("rows", self.rows, "one of 'spherical', 'spatial'")
         for name in ("alpha1", "alpha2"):
             if not 0.0 < getattr(self, name) < math.pi / 2:
                 raise InvalidParameters(name, getattr(self, name), "a link arc must lie in (0, 90) deg")
