@@ -47,7 +47,10 @@ def measure(name: str, budget: float) -> list[tuple[str, float, str]]:
     t_cd = row("raw: pin.constraintDynamics (mu=1e-9, 20 it)", lambda: pin.constraintDynamics(model, raw_data, q, v, tau, cms, cds, prox))
     t_rnea = row("raw: pin.rnea", lambda: pin.rnea(model, data, q, v, a))
     t_aba = row("raw: pin.aba (tree, no loop)", lambda: pin.aba(model, data, q, v, tau))
-    _, iters = mechkit.kinematics.solve_closure(m.rows, data, start, m._split(list(inputs))[1])
+    q0 = start.copy()
+    for joint, value in inputs.items():
+        q0[m.q_index(joint)] = value
+    _, iters = mechkit.kinematics.solve_closure(m.rows, data, q0, m._split(list(inputs))[1])
     for label, fn, base, comment in [
         ("assemble (closure Newton, from home)", lambda: m.assemble(inputs, guess=start), t_kin,
          f"{iters} iterations; ratio to one kinematics update"),
