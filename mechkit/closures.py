@@ -20,20 +20,11 @@ import pinocchio as pin
 
 from mechkit.description import LoopClosure
 from mechkit.exceptions import MalformedDescription, MethodUnavailable
+from mechkit.spatial import cross, skew
 
 LWA = pin.ReferenceFrame.LOCAL_WORLD_ALIGNED
 #: Offset (m) along a revolute axis of the second point anchor that Pinocchio's 3D constraints use.
 AXIS_ANCHOR_OFFSET = 0.1
-
-
-def cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """a x b for 3-vectors (np.cross is an order of magnitude slower on single vectors)."""
-    return np.array([a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]])
-
-
-def skew(d: np.ndarray) -> np.ndarray:
-    """[d]x, so that skew(d) @ b = d x b."""
-    return np.array([[0.0, -d[2], d[1]], [d[2], 0.0, -d[0]], [-d[1], d[0], 0.0]])
 
 
 def _perpendicular_pair(n: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

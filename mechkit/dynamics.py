@@ -15,9 +15,10 @@ import numpy as np
 import pinocchio as pin
 import scipy.linalg
 
-from mechkit.closures import ClosureRows, cross
+from mechkit.closures import ClosureRows
 from mechkit.exceptions import SingularConfiguration
 from mechkit.kinematics import numerical_rank
+from mechkit.spatial import cross_rows
 
 #: Relative threshold under which a reaction component's null-space variation counts as zero.
 DETERMINACY_TOL = 1e-8
@@ -124,12 +125,6 @@ def cut_wrench_arrays(data: pin.Data, rows: ClosureRows, lam: np.ndarray) -> tup
     W = np.array([np.concatenate([f, m]) for f, m, _ in wrenches]).reshape(-1, 6)
     P = np.array([p for _, _, p in wrenches]).reshape(-1, 3)
     return W, P
-
-
-def cross_rows(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """Row-wise cross products of two (n, 3) arrays."""
-    return np.column_stack((a[:, 1] * b[:, 2] - a[:, 2] * b[:, 1], a[:, 2] * b[:, 0] - a[:, 0] * b[:, 2],
-                            a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0]))
 
 
 def subtract_cut_wrenches(tree: np.ndarray, data: pin.Data, affected: np.ndarray, G: np.ndarray, W: np.ndarray,

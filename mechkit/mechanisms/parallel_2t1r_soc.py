@@ -26,6 +26,7 @@ import numpy as np
 from mechkit.exceptions import SingularConfiguration
 from mechkit.mechanisms import parallel_2t1r_kinematics as kin
 from mechkit.mechanisms.parallel_2t1r import Parallel2T1RParams, mass_properties
+from mechkit.spatial import cross
 from mechkit.validation.soc import RANK_TOL, BodyLoad, SKCInstant, SOCResult, WrenchSite, solve_soc
 
 __all__ = ["GRAVITY", "Points", "classic_torques", "skcs", "soc_inverse_dynamics"]
@@ -57,7 +58,7 @@ class Points:
 
 def _point_jacobian(point: np.ndarray, pivots: list[np.ndarray | None]) -> np.ndarray:
     """(3, n) dP/dq for a planar chain of revolutes about +y; None marks a coordinate not upstream."""
-    return np.column_stack([np.zeros(3) if j is None else kin.cross(kin.EY, point - j) for j in pivots])
+    return np.column_stack([np.zeros(3) if j is None else cross(kin.EY, point - j) for j in pivots])
 
 
 def _site(point: np.ndarray, pivots: list[np.ndarray | None]) -> np.ndarray:
@@ -168,7 +169,7 @@ def classic_torques(p: Parallel2T1RParams, s: kin.State, actuated: tuple[str, ..
     q_x = np.zeros(3)
     for name, (mass, inertia, m) in _loads(p, s).items():
         force = mass * (GRAVITY - m.a_com)
-        moment = -inertia @ m.alpha - kin.cross(m.omega, inertia @ m.omega)
+        moment = -inertia @ m.alpha - cross(m.omega, inertia @ m.omega)
         q_x += jac[name][:3].T @ force + jac[name][3:].T @ moment
     rows = [int(j[1]) - 1 for j in actuated]
     ja = dtheta[rows]

@@ -24,7 +24,8 @@ import numpy as np
 
 from mechkit.exceptions import InvalidParameters
 from mechkit.mechanisms.tetra_3rr3uru import ACTUATED, TetraParams
-from mechkit.mechanisms.truss_geometry import alpha_law, gamma_law, rot_axis, rot_y
+from mechkit.mechanisms.truss_geometry import alpha_law, gamma_law, rot_axis
+from mechkit.spatial import rot_y
 from mechkit.validation.soc import BodyLoad, SKCInstant, SOCResult, WrenchSite, solve_soc
 
 if TYPE_CHECKING:

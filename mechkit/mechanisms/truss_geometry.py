@@ -26,6 +26,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from mechkit.exceptions import InvalidParameters
+from mechkit.spatial import rot_x, rot_y, rot_z
 
 DEG = np.pi / 180.0
 
@@ -45,21 +46,6 @@ R_E0_ANGLES = (-87.09 * DEG, -24.42 * DEG, -91.59 * DEG)
 UNIT_YAW = {"H": 0.0, "J": -2.0 * np.pi / 3.0, "I": 2.0 * np.pi / 3.0}
 #: Node letters of each unit: apex, "B-like" node, "E-like" node (images of H, B, E under eq. 8).
 UNIT_NODES = {"H": ("H", "B", "E"), "J": ("J", "C", "F"), "I": ("I", "D", "G")}
-
-
-def rot_x(a: float) -> np.ndarray:
-    c, s = np.cos(a), np.sin(a)
-    return np.array([[1.0, 0, 0], [0, c, -s], [0, s, c]])
-
-
-def rot_y(a: float) -> np.ndarray:
-    c, s = np.cos(a), np.sin(a)
-    return np.array([[c, 0, s], [0, 1.0, 0], [-s, 0, c]])
-
-
-def rot_z(a: float) -> np.ndarray:
-    c, s = np.cos(a), np.sin(a)
-    return np.array([[c, -s, 0], [s, c, 0], [0, 0, 1.0]])
 
 
 def rot_axis(k: np.ndarray, angle: float) -> np.ndarray:
