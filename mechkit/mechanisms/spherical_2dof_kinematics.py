@@ -28,6 +28,7 @@ from typing import Protocol
 import numpy as np
 
 from mechkit.exceptions import ClosureNotConverged, InvalidParameters, SingularConfiguration
+from mechkit.spatial import cross, rot_x, rot_y, rot_z
 
 __all__ = [
     "FKResult",
@@ -65,29 +66,6 @@ class Geometry(Protocol):
     eta12: float
     eta21: float
     eta22: float
-
-
-def cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """Cross product of two 3-vectors (np.cross costs ~10x more on 3-vectors)."""
-    return np.array([a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]])
-
-
-def rot_x(t: float) -> np.ndarray:
-    """Rotation matrix (3, 3) about x by ``t`` rad."""
-    c, s = np.cos(t), np.sin(t)
-    return np.array([[1.0, 0.0, 0.0], [0.0, c, -s], [0.0, s, c]])
-
-
-def rot_y(t: float) -> np.ndarray:
-    """Rotation matrix (3, 3) about y by ``t`` rad."""
-    c, s = np.cos(t), np.sin(t)
-    return np.array([[c, 0.0, s], [0.0, 1.0, 0.0], [-s, 0.0, c]])
-
-
-def rot_z(t: float) -> np.ndarray:
-    """Rotation matrix (3, 3) about z by ``t`` rad."""
-    c, s = np.cos(t), np.sin(t)
-    return np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
 
 
 def _etas(p: Geometry, i: int) -> tuple[float, float]:

@@ -21,6 +21,7 @@ import numpy as np
 from scipy.linalg import null_space
 
 from mechkit.exceptions import InvalidParameters, SingularConfiguration
+from mechkit.spatial import cross
 
 __all__ = [
     "BodyLoad",
@@ -153,7 +154,7 @@ def _known_forces(skc: SKCInstant, gravity: np.ndarray, reactions: dict[str, np.
         inertia = _array(b.inertia_com, (3, 3), f"{where} inertia_com")
         omega = _array(b.omega, (3,), f"{where} omega")
         force = b.mass * (gravity - _array(b.com_acceleration, (3,), f"{where} com_acceleration"))
-        moment = -inertia @ _array(b.alpha, (3,), f"{where} alpha") - np.cross(omega, inertia @ omega)
+        moment = -inertia @ _array(b.alpha, (3,), f"{where} alpha") - cross(omega, inertia @ omega)
         forces += _array(b.jv, (3, n), f"{where} jv").T @ force
         forces += _array(b.jw, (3, n), f"{where} jw").T @ moment
     for site in skc.known:
