@@ -548,8 +548,13 @@ def _ratios(rows: list[Row]) -> None:
                 r.x_base = r.median_s / base[0].median_s
 
 
-def bench_mechanism(name: str, quick: bool = True, with_peers: bool = True, progress: Progress | None = None) -> MechanismBench:
-    """Every method on one mechanism, measured in this process."""
+def bench_mechanism(name: str, quick: bool = True, with_peers: bool = True, progress: bool | None = None) -> MechanismBench:
+    """Every method on one mechanism, measured in this process.
+
+    Args:
+        progress: show a progress bar over the methods on stderr (None: only on a terminal or with
+            MECHKIT_PROGRESS=1).
+    """
     import mechkit
 
     mech = mechkit.load(name)
@@ -566,10 +571,10 @@ def bench_mechanism(name: str, quick: bool = True, with_peers: bool = True, prog
         methods += peer
     budget, repeats = (0.03, 5) if quick else (0.3, 15)
     rows = []
+    bar = Progress(len(methods), name, progress)
     for method in methods:
         rows.append(measure(mech, method, samples, refs, budget, repeats))
-        if progress:
-            progress.step(f"{name}: {method.name}")
+        bar.step(method.name)
     _ratios(rows)
     paired = _paired(mech, rows, samples, budget * 4, max(repeats, 7))
     labels = dict(refs.labels)
@@ -843,16 +848,14 @@ def run(names: Sequence[str] | None = None, quick: bool = True, with_peers: bool
     from mechkit.registry import specs
 
     names = list(names or specs())
-    bar = Progress(len(names), "bench", progress)
     results, skipped = [], {}
     for name in names:
         try:
-            results.append(bench_mechanism(name, quick, with_peers))
+            results.append(bench_mechanism(name, quick, with_peers, progress))
         except MechkitError as err:
             skipped[name] = str(err)
         except Exception as err:  # noqa: BLE001 - a broken mechanism module must not stop the others' bench: say what broke
             skipped[name] = f"{type(err).__name__}: {err}"
-        bar.step(name)
     return results, skipped
 
 

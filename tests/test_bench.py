@@ -115,3 +115,15 @@ def test_bench_core_tool_prints_ratios(capsys):
     for line in out.splitlines()[1:]:
         assert " us" in line
     assert out.count("ratio to raw constraintDynamics") == 4
+
+
+def test_progress_bar_only_when_asked(capsys):
+    bar = bench.Progress(2, "x", enabled=False)
+    bar.step("a")
+    bar.step("b")
+    assert capsys.readouterr().err == ""
+    bar = bench.Progress(2, "x", enabled=True)
+    bar.step("a")
+    bar.step("b")
+    err = capsys.readouterr().err
+    assert "2/2" in err and err.endswith("\n")
