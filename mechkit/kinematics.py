@@ -123,7 +123,10 @@ def solve_closure(rows: ClosureRows, data: pin.Data, q0: np.ndarray, free_v: np.
 
 def passive_condition(J: np.ndarray, free_v: np.ndarray, independent_rows: int) -> float:
     """Condition number of the passive block restricted to the generic rank (inf when singular)."""
-    s = np.linalg.svd(J[:, free_v], compute_uv=False)
+    return _condition(np.linalg.svd(J[:, free_v], compute_uv=False), independent_rows)
+
+
+def _condition(s: np.ndarray, independent_rows: int) -> float:
     k = min(independent_rows, s.size)
     if k == 0:
         return 1.0
@@ -142,7 +145,8 @@ def project_velocity(J: np.ndarray, v_inputs: np.ndarray, input_v: np.ndarray, f
     if free_v.size > independent_rows:
         raise SingularConfiguration(float("inf"), f"{free_v.size} free coordinates but only {independent_rows} independent "
                                     "closure rows: the inputs do not determine the motion (give more inputs)")
-    cond = passive_condition(J, free_v, independent_rows)
+    U, s, Vt = np.linalg.svd(J[:, free_v], full_matrices=False)
+    cond = _condition(s, independent_rows)
     if cond > SINGULAR_COND:
         raise SingularConfiguration(cond, "passive block of the closure Jacobian: inputs do not determine the motion")
     b = J[:, input_v] @ v_inputs
@@ -150,5 +154,8 @@ def project_velocity(J: np.ndarray, v_inputs: np.ndarray, input_v: np.ndarray, f
         b = b + rhs
     x = np.zeros(J.shape[1])
     x[input_v] = v_inputs
-    x[free_v] = -np.linalg.lstsq(J[:, free_v], b, rcond=None)[0]
+    # truncated to the generic rank: a row redundant at a regular pose stays redundant here, even
+    # when rounding leaves it a singular value just above any fixed threshold
+    k = min(independent_rows, s.size)
+    x[free_v] = -Vt[:k].T @ ((U[:, :k].T @ b) / s[:k])
     return x
