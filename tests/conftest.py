@@ -40,3 +40,17 @@ def load_tool():
         return module
 
     return load
+
+
+def support_balance_error(m: mechkit.Mechanism, q, v, a) -> float:
+    """Relative error of Newton's second law for the whole mechanism, from the support reactions:
+    sum of ground reactions = total mass x (COM acceleration - gravity)."""
+    import numpy as np
+    import pinocchio as pin
+
+    inv = m.inverse_dynamics(q, v, a)
+    data = m.model.createData()
+    pin.centerOfMass(m.model, data, q, v, a)
+    supports = sum(r.wrench[:3] for r in inv.reactions.values() if r.support)
+    expected = data.mass[0] * (data.acom[0] - m.model.gravity.linear)
+    return float(np.max(np.abs(supports - expected)) / max(1.0, np.max(np.abs(expected))))

@@ -8,6 +8,7 @@ from pathlib import Path
 import numpy as np
 import pinocchio as pin
 import pytest
+from conftest import support_balance_error
 
 import mechkit
 from mechkit.exceptions import SingularConfiguration
@@ -57,14 +58,7 @@ def test_inverse_then_forward_returns_the_acceleration(name, load_cached):
 def test_supports_balance_gravity_and_inertia(name, rows, load_cached):
     """Sum of ground reactions + total weight = total mass x COM acceleration (Newton's second law)."""
     m = load_cached(name, rows=rows)
-    q, v, a = _moving_state(m)
-    inv = m.inverse_dynamics(q, v, a)
-    data = m.model.createData()
-    pin.centerOfMass(m.model, data, q, v, a)
-    mass = data.mass[0]
-    supports = sum(r.wrench[:3] for r in inv.reactions.values() if r.support)
-    expected = mass * data.acom[0] - mass * m.model.gravity.linear
-    assert np.max(np.abs(supports - expected)) < 1e-10 * max(1.0, np.max(np.abs(expected)))
+    assert support_balance_error(m, *_moving_state(m)) < 1e-10
 
 
 @pytest.mark.parametrize("name", CALIBRATION)
