@@ -55,6 +55,35 @@ def test_animation_plays(load_cached, tmp_path):
         assert sum(changed.getdata()) / (a.width * a.height) > 0.002
 
 
+def same_picture(a, b) -> bool:
+    """Pixel by pixel, within 12 levels, on all but 0.1 % of the pixels."""
+    import numpy as np
+    from PIL import Image
+
+    with Image.open(a) as x, Image.open(b) as y:
+        if x.size != y.size:
+            return False
+        diff = np.abs(np.asarray(x.convert("RGB"), dtype=int) - np.asarray(y.convert("RGB"), dtype=int))
+    return float(np.mean(diff.max(axis=2) > 12)) < 1e-3
+
+
+def gallery_is_reproduced(name, tmp_path, load_tool) -> None:
+    gallery = load_tool("gallery")
+    png = tmp_path / f"{name}.png"
+    gallery.picture(mechkit.load(name), png)
+    assert same_picture(png, gallery.GALLERY / f"{name}.png"), f"regenerate with: python tools/gallery.py {name}"
+
+
+def test_gallery_picture_is_reproduced(tmp_path, load_tool):
+    gallery_is_reproduced("four_bar", tmp_path, load_tool)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("name", list(mechkit.specs()))
+def test_every_gallery_picture_is_reproduced(name, tmp_path, load_tool):
+    gallery_is_reproduced(name, tmp_path, load_tool)
+
+
 @pytest.mark.slow
 @pytest.mark.parametrize("name", list(mechkit.specs()))
 def test_every_scene_picture_shows_the_mechanism(name, tmp_path):

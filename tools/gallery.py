@@ -46,7 +46,7 @@ LEGEND = ("Red: actuated joints; dark: passive joints; yellow spheres: loop cuts
 
 
 def picture(mechanism: mechkit.Mechanism, png: Path) -> str:
-    """Write the mechanism's picture; returns its caption."""
+    """Write the mechanism's picture (checked: under MAX_BYTES, covering MIN_COVERAGE); returns its caption."""
     name = mechanism.spec.name
     own = list(viz.own_scenes(mechanism))
     with tempfile.TemporaryDirectory(prefix="mechkit-gallery-") as tmp:
@@ -62,7 +62,6 @@ def picture(mechanism: mechkit.Mechanism, png: Path) -> str:
     size, (_, covered) = png.stat().st_size, coverage(png)
     if size > MAX_BYTES or covered < MIN_COVERAGE:
         raise SystemExit(f"{png}: {size} bytes, mechanism covers {covered:.1%} of the frame")
-    print(f"{png.relative_to(ROOT)}: {size / 1000:.0f} kB, mechanism covers {covered:.1%} of the frame")
     return f"{WHAT.get(name, mechanism.spec.summary)}; {shown}."
 
 
@@ -85,7 +84,9 @@ def main(argv: list[str] | None = None) -> int:
     GALLERY.mkdir(parents=True, exist_ok=True)
     captions = _read_captions()
     for name in names:
-        captions[name] = picture(mechkit.load(name), GALLERY / f"{name}.png")
+        png = GALLERY / f"{name}.png"
+        captions[name] = picture(mechkit.load(name), png)
+        print(f"{png.relative_to(ROOT)}: {png.stat().st_size / 1000:.0f} kB")
     rows = [f"| `{name}` | ![{name}](docs/gallery/{name}.png) | {captions.get(name, '(not drawn yet)')} |"
             for name in mechkit.specs()]
     write_text(TABLE, "\n".join(["## Gallery", "", LEGEND, "", "| mechanism | picture | what it shows |",
