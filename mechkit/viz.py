@@ -16,8 +16,9 @@ scene name -> function returning the configurations q (full, assembled) along th
 Every module also gets a generic "sweep" (unless it defines its own): each actuated input in turn
 swings about its home value and back while the others stay at home, assembled with warm starts; an
 excursion stops at its first pose that does not assemble, with a `SweepStopped` warning saying where
-and why, and the sweep goes on with the next one. A module may also define `VIEW = (x, y, z)`, the world direction from the mechanism to the camera.
-Animations play the poses at an even pace (at most MAX_FRAMES of them, evenly picked), ping-pong,
+and why, and the sweep goes on with the next one. A module may also define `VIEW = (x, y, z)`, the
+world direction from the mechanism to the camera (default: along the thin axis of a flat mechanism,
+else oblique). Animations play the poses at an even pace (at most MAX_FRAMES of them, evenly picked), ping-pong,
 4 to 12 s per pass whatever the scene's own duration (meshcat's controls change the speed).
 
 Nothing here prints or opens a window; screenshots (`--png`) are an explicit call to `mechkit.browser`.
@@ -517,12 +518,13 @@ def _page(mechanism: Mechanism, poses: Sequence[np.ndarray], *, animate: bool = 
     scene.set_background()
     if animate:
         shown = [poses[int(i)] for i in np.linspace(0, len(poses) - 1, min(len(poses), MAX_FRAMES)).round()]
+        drawing.draw(scene, shown[0], "/mechanism/pose")
     else:  # ghosts evenly spread from the first pose, then the last pose (periodic scenes: no ghost on it)
         picks = [poses[int(i)] for i in np.linspace(0, len(poses) - 1, ghosts + 1).round()] if ghosts else []
         shown = [q for q in picks[:-1] if np.max(np.abs(q - poses[-1])) > 1e-9] + [poses[-1]]
         for i, q in enumerate(shown[:-1]):
             drawing.draw(scene, q, f"/mechanism/ghost{i}", ghost=True)
-    drawing.draw(scene, shown[-1] if not animate else shown[0], "/mechanism/pose")
+        drawing.draw(scene, shown[-1], "/mechanism/pose")
     points = np.vstack([drawing.corners(q) for q in shown])
     scene.frame_camera(points, "/mechanism", drawing.view())
     if animate:
