@@ -70,6 +70,9 @@ def test_bench_methods_protocol_measures_a_wrong_method_and_a_raising_one(monkey
     assert by[bench.BASELINES["inverse_dynamics"]].error < 1e-9
     assert by["dense KKT (independent rows)"].error < 1e-9
     assert by["Lagrange first kind (numpy, from link motion)"].error < 1e-9
+    assert by["Lagrange first kind, forward (numpy, from link motion)"].error < 1e-9
+    soc = by["sequential SOC virtual work (numpy, from link motion)"]
+    assert soc.error < 1e-9 and soc.note == ""  # every pin's in-plane force compared
     assert by["constraintDynamics mu=0.001 it=1"].error > 1e-4  # one proximal iteration at a large mu is biased
 
 
