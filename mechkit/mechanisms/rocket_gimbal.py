@@ -19,11 +19,12 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from mechkit.exceptions import InvalidParameters
-from mechkit.mechanisms.rocket_gimbal_kinematics import GimbalGeometry, rot_x
+from mechkit.mechanisms.rocket_gimbal_kinematics import GimbalGeometry
 from mechkit.mechanisms.rocket_gimbal_motion import GimbalMotion, gimbal_motion
 from mechkit.mechanisms.rocket_gimbal_soc import BodySpec, gimbal_skcs
 from mechkit.params import MechanismParams, param
 from mechkit.registry import MechanismSpec
+from mechkit.spatial import rot_x
 
 if TYPE_CHECKING:
     from mechkit.mechanism import Mechanism

@@ -19,6 +19,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from mechkit.exceptions import ClosureNotConverged, InvalidParameters, SingularConfiguration
+from mechkit.spatial import cross, rot_x, rot_y, rot_z
 
 __all__ = [
     "GIMBAL_ANGLE",
@@ -26,39 +27,17 @@ __all__ = [
     "LinearRuleErrors",
     "actuator_lengths",
     "attitude",
-    "cross",
     "fk_newton",
     "hinge_axes",
     "length_jacobian",
     "linear_rule",
     "linear_rule_errors",
     "pitch_yaw",
-    "rot_x",
-    "rot_y",
-    "rot_z",
     "strokes",
 ]
 
 GIMBAL_ANGLE = np.pi / 4
 """Angle (rad) from Ox to the bracket hinge Ox1, about Oz (the paper's 45 deg)."""
-
-
-def rot_x(t: float) -> np.ndarray:
-    """Rotation matrix about x by t (rad)."""
-    c, s = np.cos(t), np.sin(t)
-    return np.array([[1.0, 0.0, 0.0], [0.0, c, -s], [0.0, s, c]])
-
-
-def rot_y(t: float) -> np.ndarray:
-    """Rotation matrix about y by t (rad)."""
-    c, s = np.cos(t), np.sin(t)
-    return np.array([[c, 0.0, s], [0.0, 1.0, 0.0], [-s, 0.0, c]])
-
-
-def rot_z(t: float) -> np.ndarray:
-    """Rotation matrix about z by t (rad)."""
-    c, s = np.cos(t), np.sin(t)
-    return np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
 
 
 @dataclass(frozen=True)
@@ -124,11 +103,6 @@ def actuator_lengths(geo: GimbalGeometry, alpha: float, beta: float) -> np.ndarr
 def strokes(geo: GimbalGeometry, alpha: float, beta: float) -> np.ndarray:
     """Inverse kinematics as strokes (dlA, dlB) = (L_A - lA0, L_B - lB0), m."""
     return actuator_lengths(geo, alpha, beta) - geo.nominal_lengths
-
-
-def cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """Cross product of two 3-vectors (np.cross costs ~10x more on small arrays)."""
-    return np.array([a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]])
 
 
 def _lengths_and_jacobian(geo: GimbalGeometry, alpha: float, beta: float) -> tuple[np.ndarray, np.ndarray]:

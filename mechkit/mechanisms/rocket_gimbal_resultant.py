@@ -25,12 +25,8 @@ import numpy as np
 from numpy.polynomial import Polynomial
 
 from mechkit.exceptions import InvalidParameters
-from mechkit.mechanisms.rocket_gimbal_kinematics import (
-    GIMBAL_ANGLE,
-    GimbalGeometry,
-    attitude,
-    rot_z,
-)
+from mechkit.mechanisms.rocket_gimbal_kinematics import GIMBAL_ANGLE, GimbalGeometry, attitude
+from mechkit.spatial import rot_z
 
 __all__ = [
     "AssemblyMode",

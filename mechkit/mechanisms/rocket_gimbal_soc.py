@@ -23,8 +23,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from mechkit.mechanisms.rocket_gimbal_kinematics import cross
 from mechkit.mechanisms.rocket_gimbal_motion import GimbalMotion
+from mechkit.spatial import cross, skew
 from mechkit.validation.soc import BodyLoad, SKCInstant, WrenchSite
 
 __all__ = ["BodySpec", "gimbal_skcs"]
@@ -35,10 +35,6 @@ BodySpec = dict[str, tuple[float, float, float]]
 _FORCES = np.vstack([np.eye(3), np.zeros((3, 3))])
 
 
-def _skew(p: np.ndarray) -> np.ndarray:
-    return np.array([[0.0, -p[2], p[1]], [p[2], 0.0, -p[0]], [-p[1], p[0], 0.0]])
-
-
 def _rigid(point: np.ndarray, ref: np.ndarray) -> np.ndarray:
     """(6, 6) virtual displacement of a point (rows 0-2) and rotation (rows 3-5) of a free body.
 
@@ -46,7 +42,7 @@ def _rigid(point: np.ndarray, ref: np.ndarray) -> np.ndarray:
     """
     jac = np.zeros((6, 6))
     jac[:3, :3] = np.eye(3)
-    jac[:3, 3:] = -_skew(point - ref)
+    jac[:3, 3:] = -skew(point - ref)
     jac[3:, 3:] = np.eye(3)
     return jac
 
