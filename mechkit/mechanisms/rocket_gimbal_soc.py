@@ -54,16 +54,17 @@ def _axisymmetric(mass_inertia: tuple[float, float, float], axis: np.ndarray) ->
     return transverse * (np.eye(3) - outer) + axial * outer
 
 
-def _wrench_basis(*moment_axes: np.ndarray) -> np.ndarray:
-    """(6, 3 + k) wrench directions: the three world forces, then moments along the given unit vectors."""
-    return np.column_stack([_FORCES, *(np.concatenate([np.zeros(3), m]) for m in moment_axes)])
-
-
 def _perpendicular(axis: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     helper = np.eye(3)[int(np.argmin(np.abs(axis)))]
     t1 = cross(axis, helper)
     t1 /= np.linalg.norm(t1)
     return t1, cross(axis, t1)
+
+
+def _revolute_released(joint: str, jacobian: np.ndarray, axis: np.ndarray) -> WrenchSite:
+    """A released revolute on its child side: 3 world forces + 2 moments normal to the unit axis."""
+    moments = [np.concatenate([np.zeros(3), m]) for m in _perpendicular(axis)]
+    return WrenchSite(joint, jacobian, +1.0, basis=np.column_stack([_FORCES, *moments]))
 
 
 def gimbal_skcs(
@@ -179,14 +180,7 @@ def gimbal_skcs(
                 f"{name}_cylinder",
                 6,
                 [cyl_free],
-                released=[
-                    WrenchSite(
-                        f"{name}_swing_2",
-                        _rigid(pivot, pivot),
-                        +1.0,
-                        basis=_wrench_basis(*_perpendicular(e[1])),
-                    )
-                ],
+                released=[_revolute_released(f"{name}_swing_2", _rigid(pivot, pivot), e[1])],
                 known=[WrenchSite(f"{name}_stroke", stroke_site, -1.0)],
             )
         )
@@ -207,14 +201,7 @@ def gimbal_skcs(
                 f"{name}_cross",
                 6,
                 [_free(cross_load, pivot, pivot)],
-                released=[
-                    WrenchSite(
-                        f"{name}_swing_1",
-                        _rigid(pivot, pivot),
-                        +1.0,
-                        basis=_wrench_basis(*_perpendicular(e[0])),
-                    )
-                ],
+                released=[_revolute_released(f"{name}_swing_1", _rigid(pivot, pivot), e[0])],
                 known=[WrenchSite(f"{name}_swing_2", _rigid(pivot, pivot), -1.0)],
             )
         )
@@ -237,7 +224,7 @@ def gimbal_skcs(
         "engine",
         6,
         [engine_free],
-        released=[WrenchSite("engine_hinge", np.eye(6), +1.0, basis=_wrench_basis(*_perpendicular(y2)))],
+        released=[_revolute_released("engine_hinge", np.eye(6), y2)],
         known=known_balls,
         external=[(thrust_wrench, _rigid(thrust_point, origin))],
     )
@@ -245,7 +232,7 @@ def gimbal_skcs(
         "bracket",
         6,
         [_free(bracket, origin, origin)],
-        released=[WrenchSite("bracket_hinge", np.eye(6), +1.0, basis=_wrench_basis(*_perpendicular(x1)))],
+        released=[_revolute_released("bracket_hinge", np.eye(6), x1)],
         known=[WrenchSite("engine_hinge", np.eye(6), -1.0)],
     )
     return [servo_loops, engine_skc, bracket_skc, *free_skcs]
