@@ -30,6 +30,14 @@ def test_ratio_to_fastest_of_equal_or_better_accuracy():
     assert by["slow exact"].x_base == pytest.approx(2.5)
 
 
+def test_efforts_only_is_no_yardstick_for_reactions():
+    full = _row("with reactions", "inverse_dynamics", 10e-6, 1e-15)
+    cheap = _row("efforts only", "inverse_dynamics", 1e-6, 1e-15)
+    cheap.note = "efforts only"
+    bench._ratios([full, cheap])
+    assert full.x_fastest == pytest.approx(1.0) and cheap.x_fastest == pytest.approx(1.0)
+
+
 def test_inverse_error_compares_determinate_components_only():
     ref = bench.IDReference({"m1": 2.0}, {"j": np.array([1.0, 5.0, 0, 0, 0, 0]), "m1": np.array([0, 0, 1.0, 0, -2.0, 0])},
                             {"j": np.array([True, False, True, True, True, True]), "m1": np.ones(6, bool)})
