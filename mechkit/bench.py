@@ -734,7 +734,7 @@ def goal_summary(results: list[MechanismBench]) -> str:
             f"one raw pin.constraintDynamics): met on {idr}/{n}. Where speed is missed, the cost is Python-level work around "
             f"the Pinocchio calls (see tools/bench_core.py --profile and docs/core_requests.md), except where the raw "
             f"pin.constraintDynamics call is itself slower than mj_forward ({n - raw}/{n}: Pinocchio's legacy proximal "
-            f"path, whose cost grows as nv^1.4 in the scale fit).")
+            f"path: see its exponent in the scale fit).")
 
 
 def scale_fits(results: list[MechanismBench], budget_s: float = 0.02, rounds: int = 7
