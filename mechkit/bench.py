@@ -309,16 +309,16 @@ def input_joints(mech) -> tuple[str, ...]:
     return tuple(names)
 
 
-def _assemble_tight(mech, inputs: dict[str, float]) -> np.ndarray:
-    """Closure Newton from home at the tightest of 1e-14, 1e-12, 1e-10, 1e-9 that the line search reaches."""
-    from mechkit.exceptions import ClosureNotConverged
+def _scene_configurations(mech, count: int) -> list[tuple[np.ndarray, np.ndarray]]:
+    """Up to `count` (configuration, the scene's previous configuration) pairs spread along the first
+    scene the module defines; the previous one is the assembly's warm start."""
+    from mechkit.viz import own_scenes
 
-    for tol in (1e-14, 1e-12, 1e-10):
-        try:
-            return mech.assemble(inputs, guess=mech.home_q, tol=tol)
-        except ClosureNotConverged:
-            continue
-    return mech.assemble(inputs, guess=mech.home_q, tol=1e-9)
+    for scene in own_scenes(mech).values():
+        poses = [np.asarray(q, dtype=float) for q in scene(mech)]
+        picks = np.linspace(1, len(poses) - 1, min(count, len(poses) - 1)).round().astype(int)
+        return [(poses[i], poses[i - 1]) for i in picks]
+    return []
 
 
 def _closes(mech, q: np.ndarray, v: np.ndarray, a: np.ndarray) -> bool:
@@ -330,9 +330,10 @@ def _closes(mech, q: np.ndarray, v: np.ndarray, a: np.ndarray) -> bool:
 
 
 def make_samples(mech, count: int, seed: int = 7) -> list[Sample]:
-    """`count` assembled states near home.
+    """`count` assembled states near home (closure tolerance 1e-12).
 
-    Inputs within INPUT_SPREAD of home (halved until the linkage assembles), input rates ~ N(0, 0.5).
+    Inputs within INPUT_SPREAD of home (divided by 5 until the linkage assembles), then, if too few
+    assemble, configurations along the module's first scene; input rates ~ N(0, 0.5).
     Fully actuated: input accelerations ~ N(0, 1) and a from the closure kinematics (tau is set by
     `references`). Under-actuated, or where that a does not satisfy J a + gamma = 0 to 1e-9 (a rank
     change near home): efforts ~ N(0, generalised gravity scale) on the actuators and a from the
@@ -348,32 +349,45 @@ def make_samples(mech, count: int, seed: int = 7) -> list[Sample]:
     out: list[Sample] = []
     why = ""
     data = mech.model.createData()
+    def add(q: np.ndarray, guess: np.ndarray) -> None:
+        """Moving state at q: random input rates; accelerations from the closure, else from the dynamics.
+        `guess` is where the assembly methods start from."""
+        inputs = np.array([q[mech.q_index(j)] for j in names])
+        rates = rng.normal(0.0, 0.5, home.size)
+        accs = rng.normal(0.0, 1.0, home.size)
+        v = mech.velocities(q, rates, inputs=names)
+        tau = np.zeros(mech.model.nv)
+        a = None if under else mech.accelerations(q, v, accs, inputs=names)
+        if a is not None and not _closes(mech, q, v, a):
+            a = None  # the projection is inconsistent here (second-order mobility): use the dynamics
+        if a is None:
+            scale = max(float(np.max(np.abs(pin.computeGeneralizedGravity(mech.model, data, q)[act_v]))), 1e-3)
+            tau[act_v] = rng.normal(0.0, scale, len(act_v))
+            a = mech.forward_dynamics(q, v, tau, "kkt").a
+            accs = a[[mech.v_index(j) for j in names]]
+        sample = Sample(inputs, rates, accs, q, v, a, tau, tuple(names))
+        if tau.any():
+            sample.extra["efforts"] = {j: float(tau[i]) for j, i in zip(mech.actuated, act_v)}
+        sample.extra["guess"] = guess
+        out.append(sample)
+
     for spread in (INPUT_SPREAD, INPUT_SPREAD / 5, INPUT_SPREAD / 25):
         for _ in range(count * 2):
             if len(out) == count:
                 break
-            inputs = home + rng.uniform(-spread, spread, home.size)
             try:
-                q = _assemble_tight(mech, dict(zip(names, inputs)))
-                rates = rng.normal(0.0, 0.5, home.size)
-                accs = rng.normal(0.0, 1.0, home.size)
-                v = mech.velocities(q, rates, inputs=names)
-                tau = np.zeros(mech.model.nv)
-                a = None if under else mech.accelerations(q, v, accs, inputs=names)
-                if a is not None and not _closes(mech, q, v, a):
-                    a = None  # the projection is inconsistent here (rank change near home): use the dynamics
-                if a is None:
-                    scale = max(float(np.max(np.abs(pin.computeGeneralizedGravity(mech.model, data, q)[act_v]))), 1e-3)
-                    tau[act_v] = rng.normal(0.0, scale, len(act_v))
-                    a = mech.forward_dynamics(q, v, tau, "kkt").a
-                    accs = a[[mech.v_index(j) for j in names]]
+                q = mech.assemble(dict(zip(names, home + rng.uniform(-spread, spread, home.size))), guess=mech.home_q)
+                add(q, mech.home_q)
             except MechkitError as err:
                 why = str(err)
-                continue
-            sample = Sample(inputs, rates, accs, q, v, a, tau, tuple(names))
-            if tau.any():
-                sample.extra["efforts"] = {j: float(tau[i]) for j, i in zip(mech.actuated, act_v)}
-            out.append(sample)
+    if len(out) < count:
+        # some linkages do not assemble for arbitrary inputs near home (the deployable's seventh DOF
+        # exists only along symmetric folds): take states along the module's own scene instead
+        for q, previous in _scene_configurations(mech, count - len(out)):
+            try:
+                add(q, previous)
+            except MechkitError as err:
+                why = str(err)
     if not out:
         raise MethodUnavailable("bench samples", f"no state near home of {mech.spec.name}: {why}")
     return out
@@ -429,7 +443,7 @@ def core_methods(mech, quick: bool) -> list[Method]:
     for algo, label in (("newton", "closure Newton"), ("lm", "closure LM")):
         for tol in tols:
             methods.append(Method(f"{label} tol={tol:g}", "assembly",
-                                  lambda m, s, algo=algo, tol=tol: m.assemble(dict(zip(s.input_names, s.inputs)), guess=m.home_q,
+                                  lambda m, s, algo=algo, tol=tol: m.assemble(dict(zip(s.input_names, s.inputs)), guess=s.extra["guess"],
                                                                               tol=tol, method=algo),
                                   family=label, knob=f"tol={tol:g}"))
     mus = (1e-9, 1e-3) if quick else (1e-12, 1e-9, 1e-6, 1e-3)
