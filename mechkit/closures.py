@@ -131,8 +131,8 @@ class ClosureRows:
         out = np.empty((self.size, self.model.nv))
         i = 0
         for cut in self.cuts:
-            Ja = pin.getFrameJacobian(self.model, data, cut.frame_a, LWA)
-            Jb = pin.getFrameJacobian(self.model, data, cut.frame_b, LWA)
+            Ja = pin.getFrameJacobian(self.model, data, cut.frame_a, LWA).reshape(6, -1)  # (6,) when nv = 1
+            Jb = pin.getFrameJacobian(self.model, data, cut.frame_b, LWA).reshape(6, -1)
             oMa, oMb = data.oMf[cut.frame_a], data.oMf[cut.frame_b]
             d = oMb.translation - oMa.translation
             T = oMa.rotation @ cut.positions
