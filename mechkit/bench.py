@@ -714,8 +714,8 @@ def goals(results: list[MechanismBench]) -> list[str]:
             err = f" (error {idr.error:.1e})" if idr else ""
             out.append(f"{b.name}: inverse dynamics with every reaction / one raw pin.constraintDynamics: "
                        f"{p['id/raw']:.1f}x{err}{det}: "
-                       + ("MET (goal 5x)" if p["id/raw"] <= 5 else "MISSED (goal 5x): small numpy calls dominate (np.cross, "
-                          "per-joint dicts), see docs/core_requests.md"))
+                       + ("MET (goal 5x)" if p["id/raw"] <= 5 else "MISSED (goal 5x): Python-level numpy work around the "
+                          "Pinocchio calls dominates, see tools/bench_core.py --profile"))
     return out
 
 
@@ -746,7 +746,7 @@ def goal_summary(results: list[MechanismBench]) -> str:
             f"wrapper met on {fd}/{n} (the raw pin.constraintDynamics call on {raw}/{n}); inverse dynamics with every "
             f"reaction as fast as mj_forward on {idm}/{n}. Goal 2 (inverse dynamics with every reaction within 5x of "
             f"one raw pin.constraintDynamics): met on {idr}/{n}. Where speed is missed, the cost is Python-level work around "
-            f"the Pinocchio calls (see tools/bench_core.py --profile and docs/core_requests.md), except where the raw "
+            f"the Pinocchio calls (see tools/bench_core.py --profile), except where the raw "
             f"pin.constraintDynamics call is itself slower than mj_forward ({n - raw}/{n}: Pinocchio's legacy proximal "
             f"path: see its exponent in the scale fit).")
 
