@@ -268,3 +268,16 @@ SPEC = MechanismSpec(
     summary="Radarsat-2 solar-array ten-bar (patent CN105975733): 9 links, 12 pairs, 2 motors + 1 spring DOF",
     self_checks=_self_checks,
 )
+
+
+def deployment_poses(mechanism, frames: int = 120, dt: float = 0.02) -> list[np.ndarray]:
+    """Stowed to deployed: the constrained-ABA deployment (RK4 with projection, step dt in s) sampled
+    at `frames` poses, for animations."""
+    from mechkit.mechanisms import ten_bar_dynamics as td
+
+    trajectory = td.deploy(td.PinocchioDeployment(mechanism), mechanism.home_q, dt)
+    picks = np.linspace(0, len(trajectory.q) - 1, frames).round().astype(int)
+    return [trajectory.q[i] for i in picks]
+
+
+SCENES = {"deploy": deployment_poses}
