@@ -328,14 +328,17 @@ class Drawing:
             scene.add(f"{prefix}/{part.path}", part.shape, rgba, placement)
 
     def view(self) -> tuple[float, float, float]:
-        """The camera direction: the module's VIEW, else along the thin axis of a flat mechanism, else oblique."""
+        """The camera direction: the module's VIEW, else nearly face-on to a planar linkage (its joint origins
+        at home span a thin slab), else oblique."""
         module = _module(self.mechanism)
         if module is not None and getattr(module, "VIEW", None) is not None:
             return tuple(float(c) for c in module.VIEW)
-        extent = np.ptp(self.corners(self.mechanism.home_q), axis=0)
+        model, data = self.model, self.data
+        pin.forwardKinematics(model, data, self.mechanism.home_q)
+        extent = np.ptp([data.oMi[j].translation for j in range(1, model.njoints)], axis=0)
         thin = int(np.argmin(extent))
         if extent[thin] < 0.3 * extent.max():
-            return ((1.0, 0.35, 0.35), (0.35, -1.0, 0.35), (0.3, -0.5, 1.0))[thin]
+            return ((1.0, 0.2, 0.12), (0.2, -1.0, 0.12), (0.2, -0.3, 1.0))[thin]  # nearly face-on
         return (1.0, -1.6, 0.9)
 
 
