@@ -41,6 +41,15 @@ WHAT = {
     "tetra_3rr3uru": "Tetrahedral 3RR-3URU deployable unit",
     "deployable_9rr12uru": "9RR-12URU deployable mast of tetrahedral units",
 }
+# what each scene shows (default: its name)
+SCENE_WHAT = {
+    ("deployable_9rr12uru", "fold"): "the 200 s fold, deployed (faded) to folded (solid)",
+    ("tetra_3rr3uru", "fold"): "the 200 s fold, deployed (faded) to folded (solid)",
+    ("parallel_2t1r", "motion_law"): "the paper's 5 s motion law, start (faded) to end (solid)",
+    ("rocket_gimbal", "swing"): "one period of the engine swing (solid: its start, faded: later phases)",
+    ("spherical_2dof", "cone"): "one turn of the platform's cone (solid: its start, faded: later phases)",
+    ("ten_bar", "deploy"): "the deployment, stowed (faded) to deployed (solid)",
+}
 LEGEND = ("Red: actuated joints; dark: passive joints; yellow spheres: loop cuts; dark grey: ground. "
           "Regenerate with `python tools/gallery.py`.")
 
@@ -54,7 +63,8 @@ def picture(mechanism: mechkit.Mechanism, png: Path) -> str:
         if own:
             scene = own[0]
             write_text(page, viz.overlay(mechanism, scene))
-            shown = f"scene `{scene}` (`mechkit snapshot {name} --scene {scene}`): last pose solid, earlier ones faded"
+            what = SCENE_WHAT.get((name, scene), "last pose solid, earlier ones faded")
+            shown = f"{what} (`mechkit snapshot {name} --scene {scene}`)"
         else:
             write_text(page, viz.snapshot(mechanism))
             shown = f"home assembly ({_inputs(mechanism)})"
