@@ -7,8 +7,8 @@ The core's four_bar / five_bar modules carry no `BENCH_METHODS`; their independe
 - assembly: the closed form (circle intersection);
 - forward dynamics: Lagrange's equations of the first kind in reference-point coordinates
   (`validation.lagrange.Linkage`: M, C_q, gamma, Q), the efforts on the motor pins;
-- inverse dynamics: planar Newton-Euler, sequential SOC virtual work (`soc_skcs`: the dyad at the
-  cut first, then single links), classic virtual work over the URDF coordinates
+- inverse dynamics: planar Newton-Euler, sequential SOC virtual work (`validation.planar_soc.soc_skcs`:
+  the dyad at the cut first, then single links), classic virtual work over the URDF coordinates
   (`validation.soc.classic_virtual_work`, efforts only) and Lagrange's equations of the first kind
   in reference-point coordinates (`validation.lagrange`, the ten-bar patent's A f = P).
 
@@ -24,7 +24,8 @@ import numpy as np
 
 from mechkit.validation import lagrange
 from mechkit.validation import planar_linkages as ref
-from mechkit.validation.soc import BodyLoad, SKCInstant, WrenchSite, classic_virtual_work, solve_soc
+from mechkit.validation.planar_soc import soc_skcs, whole_skc
+from mechkit.validation.soc import classic_virtual_work, solve_soc
 
 PLANAR = ("four_bar", "five_bar")
 
@@ -74,99 +75,11 @@ def newton_euler(mech, sample) -> ref.PlanarDynamics:
 
 
 # ---------------------------------------------------------------- classic virtual work
-def _subtree(st: ref.LinkageState, link: str) -> list[str]:
-    children = [j.child for j in st.joints if j.parent == link and j.name != "C"]
-    return [link] + [d for child in children for d in _subtree(st, child)]
-
-
-Chain = tuple[Any, ...]  # per virtual coordinate: None, "x" / "z" (translation) or a pivot (x, z) (rotation about -y)
-
-
-def _point_jacobian(point: np.ndarray, chain: Chain) -> np.ndarray:
-    """(6, n): virtual displacement and rotation of a body point for each virtual coordinate (world)."""
-    jac = np.zeros((6, len(chain)))
-    for j, pivot in enumerate(chain):
-        if isinstance(pivot, str):
-            jac["xz".index(pivot) * 2, j] = 1.0
-        elif pivot is not None:
-            d = point - pivot
-            jac[:3, j] = ref.to_world(np.array([-d[1], d[0]]))
-            jac[3:, j] = ref.AXIS
-    return jac
-
-
-def _body(link: ref.LinkState, chain: Chain) -> BodyLoad:
-    jac = _point_jacobian(link.com, chain)
-    return BodyLoad(link.name, link.bar.mass, link.bar.inertia_world(link.angle), ref.to_world(link.com_acceleration),
-                    link.omega * ref.AXIS, link.alpha * ref.AXIS, jac[:3], jac[3:])
-
-
-def whole_skc(st: ref.LinkageState) -> SKCInstant:
-    """The whole linkage over its URDF coordinates, the cut "C" as loop rows (classic virtual work)."""
-    n = len(st.coordinates)
-    pivots: dict[str, list[Any]] = {name: [None] * n for name in st.links}
-    for j, name in enumerate(st.coordinates):
-        joint = st.joint(name)
-        for link in _subtree(st, joint.child):
-            pivots[link][j] = joint.point
-    cut = st.joint("C")
-    loop = (_point_jacobian(cut.point, pivots[cut.parent]) - _point_jacobian(cut.point, pivots[cut.child]))[[0, 2]]
-    bodies = [_body(link, tuple(pivots[name])) for name, link in st.links.items()]
-    motors = tuple((j.name, np.eye(n)[st.coordinates.index(j.name)]) for j in st.joints if j.actuated)
-    return SKCInstant("whole", n, tuple(bodies), motors, loop_jacobian=loop)
-
-
 def classic(mech, sample) -> dict[str, Any]:
     return {"efforts": classic_virtual_work(whole_skc(state(mech, sample)))}
 
 
 # ---------------------------------------------------------------- sequential SOC
-def soc_skcs(st: ref.LinkageState) -> list[SKCInstant]:
-    """SKCs in solving order for a single-loop planar linkage cut at "C" with grounded motors.
-
-    1. The dyad of the two links meeting at C (coupling degree 0): a grounded child-side link turns
-       about its pivot carrying the other, which turns about C; otherwise the pair moves freely
-       (x, z, a rotation, and the turn at C). Released: the pins joining the dyad to the rest.
-    2. Each remaining link alone, from its ground pin (released, with its motor), the dyad's pins known.
-    3. The parent-side link of C alone: C released. 4. A grounded child-side link alone: its pivot released.
-    In-plane pin forces only (components fx, fz); motor torques are efforts.
-    """
-    cut = st.joint("C")
-    parent_of = {j.child: j for j in st.joints if j.name != "C"}
-    jp, jq = parent_of[cut.parent], parent_of[cut.child]
-
-    def site(joint: ref.PlanarJoint, chain: Chain, sign: float) -> WrenchSite:
-        return WrenchSite(joint.name, _point_jacobian(joint.point, chain), sign, (0, 2))
-
-    def free(link: str) -> Chain:
-        return ("x", "z", parent_of[link].point)
-
-    if jq.parent is None:
-        chain_p, chain_q = (jq.point, cut.point), (jq.point, None)
-        released = (site(jp, chain_p, 1.0),)
-    else:
-        chain_p, chain_q = ("x", "z", jp.point, None), ("x", "z", jp.point, cut.point)
-        released = (site(jp, chain_p, 1.0), site(jq, chain_q, 1.0))
-    skcs = [SKCInstant("dyad at C", len(chain_p), (_body(st.links[cut.parent], chain_p), _body(st.links[cut.child], chain_q)),
-                       released=released)]
-    solved = {r.joint for r in released}
-    for j in st.joints:
-        if j.name == "C" or j.child in (cut.parent, cut.child):
-            continue
-        chain = free(j.child)
-        known = tuple(site(k, chain, -1.0) for k in st.joints if k.parent == j.child and k.name in solved)
-        motors = ((j.name, _point_jacobian(j.point, chain)[3:].T @ ref.AXIS),) if j.actuated else ()
-        skcs.append(SKCInstant(j.child, 3, (_body(st.links[j.child], chain),), motors, (site(j, chain, 1.0),), known))
-    chain = free(cut.parent)
-    skcs.append(SKCInstant(cut.parent, 3, (_body(st.links[cut.parent], chain),), released=(site(cut, chain, -1.0),),
-                           known=(site(jp, chain, 1.0),)))
-    if jq.parent is None:
-        chain = free(cut.child)
-        skcs.append(SKCInstant(cut.child, 3, (_body(st.links[cut.child], chain),), released=(site(jq, chain, 1.0),),
-                               known=(site(cut, chain, 1.0),)))
-    return skcs
-
-
 def soc(mech, sample) -> Any:
     """Sequential SOC virtual work (`validation.soc.solve_soc`): efforts and in-plane pin forces."""
     return solve_soc(soc_skcs(state(mech, sample)))

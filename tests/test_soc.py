@@ -14,7 +14,15 @@ from mechkit.validation.planar_linkages import (
     five_bar,
     four_bar,
     newton_euler,
-    to_world,
+)
+from mechkit.validation.planar_soc import (
+    Chain,
+    body_load,
+    free_chain,
+    motor_column,
+    pin_site,
+    soc_skcs,
+    whole_skc,
 )
 from mechkit.validation.soc import BodyLoad, SKCInstant, WrenchSite, classic_virtual_work, solve_soc
 
@@ -110,45 +118,15 @@ def test_known_joint_must_be_released_first() -> None:
 
 
 # --- Four-bar and five-bar: SOC against the planar Newton-Euler reference ------------------------
-# Jacobians come from the linkages' own planar geometry. A body's "chain" lists, per virtual
-# coordinate of its SKC, None (does not move it), "x" / "z" (translation) or a planar pivot
-# (x, z) (rotation about -y about that pivot).
-
-Chain = tuple[object, ...]
-
-
-def _jacobian(point: np.ndarray, chain: Chain) -> np.ndarray:
-    """(6, n) virtual displacement (rows 0-2) and rotation (rows 3-5) of a body point, world."""
-    jac = np.zeros((6, len(chain)))
-    for j, pivot in enumerate(chain):
-        if isinstance(pivot, str):
-            jac["xz".index(pivot) * 2, j] = 1.0
-        elif pivot is not None:
-            d = point - pivot
-            jac[:3, j] = to_world(np.array([-d[1], d[0]]))
-            jac[3:, j] = AXIS
-    return jac
-
-
-def _body(link: LinkState, chain: Chain) -> BodyLoad:
-    jac = _jacobian(link.com, chain)
-    inertia = link.bar.inertia_world(link.angle)
-    acc = to_world(link.com_acceleration)
-    omega, alpha = link.omega * AXIS, link.alpha * AXIS
-    return BodyLoad(link.name, link.bar.mass, inertia, acc, omega, alpha, jac[:3], jac[3:])
-
+# Jacobians come from the linkages' own planar geometry (`mechkit.validation.planar_soc` chains).
 
 def _pin(joint: str, point: np.ndarray, chain: Chain, sign: float) -> WrenchSite:
-    return WrenchSite(joint, _jacobian(point, chain), sign, (0, 2))
+    return pin_site(joint, point, chain, sign)
 
 
 def _motor(joint: str, chain: Chain) -> tuple[str, np.ndarray]:
     """Unit motor torque about -y from the ground on the body of ``chain``."""
-    return joint, _jacobian(np.zeros(2), chain)[3:].T @ AXIS
-
-
-def _free(pivot: np.ndarray) -> Chain:
-    return ("x", "z", pivot)
+    return joint, motor_column(chain)
 
 
 def _four_bar_skcs(links: dict[str, LinkState]) -> list[SKCInstant]:
@@ -158,20 +136,20 @@ def _four_bar_skcs(links: dict[str, LinkState]) -> list[SKCInstant]:
     dyad = (d, c)
     return [
         SKCInstant(
-            "rocker+coupler", 2, (_body(rocker, (d, None)), _body(coupler, dyad)),
+            "rocker+coupler", 2, (body_load(rocker, (d, None)), body_load(coupler, dyad)),
             released=(_pin("coupler", b, dyad, +1.0),),
         ),
         SKCInstant(
-            "crank", 3, (_body(crank, _free(a)),), (_motor("crank", _free(a)),),
-            released=(_pin("crank", a, _free(a), +1.0),), known=(_pin("coupler", b, _free(a), -1.0),),
+            "crank", 3, (body_load(crank, free_chain(a)),), (_motor("crank", free_chain(a)),),
+            released=(_pin("crank", a, free_chain(a), +1.0),), known=(_pin("coupler", b, free_chain(a), -1.0),),
         ),
         SKCInstant(
-            "coupler", 3, (_body(coupler, _free(b)),),
-            released=(_pin("C", c, _free(b), -1.0),), known=(_pin("coupler", b, _free(b), +1.0),),
+            "coupler", 3, (body_load(coupler, free_chain(b)),),
+            released=(_pin("C", c, free_chain(b), -1.0),), known=(_pin("coupler", b, free_chain(b), +1.0),),
         ),
         SKCInstant(
-            "rocker", 3, (_body(rocker, _free(d)),),
-            released=(_pin("rocker", d, _free(d), +1.0),), known=(_pin("C", c, _free(d), +1.0),),
+            "rocker", 3, (body_load(rocker, free_chain(d)),),
+            released=(_pin("rocker", d, free_chain(d), +1.0),), known=(_pin("C", c, free_chain(d), +1.0),),
         ),
     ]
 
@@ -183,47 +161,25 @@ def _five_bar_skcs(links: dict[str, LinkState]) -> list[SKCInstant]:
     left, right = ("x", "z", b1, None), ("x", "z", b1, c)
     skcs = [
         SKCInstant(
-            "distal dyad", 4, (_body(dist1, left), _body(dist2, right)),
+            "distal dyad", 4, (body_load(dist1, left), body_load(dist2, right)),
             released=(_pin("dist1", b1, left, +1.0), _pin("dist2", b2, right, +1.0)),
         )
     ]
     for prox, distal in ((prox1, "dist1"), (prox2, "dist2")):
-        a, chain = prox.origin, _free(prox.origin)
+        a, chain = prox.origin, free_chain(prox.origin)
         skcs.append(
             SKCInstant(
-                prox.name, 3, (_body(prox, chain),), (_motor(prox.name, chain),),
+                prox.name, 3, (body_load(prox, chain),), (_motor(prox.name, chain),),
                 released=(_pin(prox.name, a, chain, +1.0),), known=(_pin(distal, prox.tip, chain, -1.0),),
             )
         )
     skcs.append(
         SKCInstant(
-            "dist1", 3, (_body(dist1, _free(b1)),),
-            released=(_pin("C", c, _free(b1), -1.0),), known=(_pin("dist1", b1, _free(b1), +1.0),),
+            "dist1", 3, (body_load(dist1, free_chain(b1)),),
+            released=(_pin("C", c, free_chain(b1), -1.0),), known=(_pin("dist1", b1, free_chain(b1), +1.0),),
         )
     )
     return skcs
-
-
-def _subtree(state: LinkageState, link: str) -> list[str]:
-    """``link`` and every link hinged after it in the tree (the loop cut "C" excluded)."""
-    children = [j.child for j in state.joints if j.parent == link and j.name != "C"]
-    return [link] + [d for child in children for d in _subtree(state, child)]
-
-
-def _whole(state: LinkageState) -> SKCInstant:
-    """Classic virtual work: the whole linkage over its URDF coordinates q, the cut "C" as loop rows."""
-    n = len(state.coordinates)
-    chains: dict[str, list[object]] = {name: [None] * n for name in state.links}
-    for j, name in enumerate(state.coordinates):
-        joint = state.joint(name)
-        for link in _subtree(state, joint.child):
-            chains[link][j] = joint.point
-    cut = state.joint("C")
-    parent_side, child_side = (_jacobian(cut.point, tuple(chains[s])) for s in (cut.parent, cut.child))
-    loop = (parent_side - child_side)[[0, 2]]
-    bodies = tuple(_body(link, tuple(chains[name])) for name, link in state.links.items())
-    motors = tuple((j.name, np.eye(n)[state.coordinates.index(j.name)]) for j in state.joints if j.actuated)
-    return SKCInstant("whole", n, bodies, motors, loop_jacobian=loop)
 
 
 def _four_bar_motion(t: float) -> LinkageState:
@@ -239,15 +195,18 @@ def _five_bar_motion(t: float) -> LinkageState:
     return five_bar(thetas, rates, (-0.4 * w**2 * np.sin(w * t), -0.35 * w**2 * np.cos(w * t)))
 
 
-CASES = [(_four_bar_motion, _four_bar_skcs), (_five_bar_motion, _five_bar_skcs)]
+# decompositions declared by hand per linkage, and the generic planar one (`planar_soc.soc_skcs`)
+CASES = [(_four_bar_motion, lambda st: _four_bar_skcs(st.links)), (_five_bar_motion, lambda st: _five_bar_skcs(st.links)),
+         (_four_bar_motion, soc_skcs), (_five_bar_motion, soc_skcs)]
 
 
-@pytest.mark.parametrize(("motion", "decompose"), CASES, ids=["four_bar", "five_bar"])
+@pytest.mark.parametrize(("motion", "decompose"), CASES,
+                         ids=["four_bar", "five_bar", "four_bar-generic", "five_bar-generic"])
 def test_soc_matches_newton_euler(motion, decompose) -> None:
     for t in np.linspace(0.0, 1.0, 13)[:-1]:
         state = motion(t)
         reference = newton_euler(state, G)
-        soc = solve_soc(decompose(state.links), G)
+        soc = solve_soc(decompose(state), G)
         assert set(soc.reactions) == set(reference.reactions)
         scale = max(np.max(np.abs(w)) for w in reference.reactions.values())
         for name, wrench in reference.reactions.items():
@@ -257,7 +216,7 @@ def test_soc_matches_newton_euler(motion, decompose) -> None:
         for name, u in reference.efforts.items():
             assert soc.efforts[name] == pytest.approx(u, rel=0, abs=1e-9 * scale)
         assert max(soc.consistency.values()) < 1e-9  # the over-determined single-body SKCs agree
-        classic = classic_virtual_work(_whole(state), G)
+        classic = classic_virtual_work(whole_skc(state), G)
         assert classic == pytest.approx(reference.efforts, rel=0, abs=1e-9 * scale)
 
 
