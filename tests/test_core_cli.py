@@ -75,3 +75,14 @@ def test_snapshot_is_self_contained_html(tmp_path):
     html = path.read_text()
     assert html.startswith("<!DOCTYPE html>") and "MeshCat.Viewer" in html
     assert "<script src=" not in html and "<link " not in html  # nothing fetched from elsewhere
+
+
+def test_written_files_have_an_ordinary_mode(tmp_path):
+    import os
+    import stat
+
+    path = tmp_path / "fb.urdf"
+    assert main(["urdf", "four_bar", "-o", str(path)]) == 0
+    umask = os.umask(0)
+    os.umask(umask)
+    assert stat.S_IMODE(path.stat().st_mode) == 0o666 & ~umask
