@@ -625,3 +625,29 @@ def _parse_inputs(text: str) -> list[float]:
         return [float(x) for x in text.split(",")]
     except ValueError:
         raise InvalidParameters("q", text, "expected numbers separated by commas (rad or m)") from None
+
+
+def side_by_side(mechanism: Mechanism, poses: Sequence[np.ndarray], path: str | os.PathLike | None = None,
+                 caption: str = "") -> str:
+    """Self-contained HTML of several configurations drawn next to each other along world x (e.g. every
+    assembly of one set of inputs); written to `path` if given."""
+    if len(poses) < 1:
+        raise InvalidParameters("poses", len(poses), "need at least one configuration")
+    drawing = Drawing(mechanism)
+    scene = StaticScene()
+    scene.set_background()
+    corners = [drawing.corners(np.asarray(q, dtype=float)) for q in poses]
+    gap = 0.25 * max(float(np.ptp(c[:, 0])) for c in corners)
+    shift, points = 0.0, []
+    for i, (q, c) in enumerate(zip(poses, corners)):
+        offset = np.array([shift - c[:, 0].min(), 0.0, 0.0])
+        drawing.draw(scene, np.asarray(q, dtype=float), f"/mechanism/pose{i}")
+        scene.set_transform(f"/mechanism/pose{i}", pin.SE3(np.eye(3), offset).homogeneous)
+        points.append(c + offset)
+        shift += float(np.ptp(c[:, 0])) + gap
+    # frame_camera moves /mechanism itself, so the per-pose offsets above stay under it
+    scene.frame_camera(np.vstack(points), "/mechanism", drawing.view())
+    html = scene.html(mechanism.spec.name, caption or f"{mechanism.spec.name}: {len(poses)} configurations")
+    if path is not None:
+        write_text(path, html)
+    return html

@@ -443,3 +443,20 @@ SPEC = MechanismSpec(
     summary="spatial 2T1R parallel mechanism, five-bar limb + 2 RRR limbs, all axes along y (ref. 001)",
     self_checks=self_checks,
 )
+
+
+def example_configurations(mech) -> list[np.ndarray]:
+    """Every assembly of the paper's example (theta = 10, 20, 30 deg): each forward pose limb III can
+    reach, with each of its theta4 roots, closed by the core's solver from the analytic configuration."""
+    out = []
+    for sol in kin.forward_kinematics(mech.params.dims, EXAMPLE_INPUTS):
+        try:
+            roots, _ = kin.follower_angles(mech.params.dims, sol.pose)
+        except InvalidParameters:
+            continue  # limb III cannot reach this pose
+        for theta4 in roots:
+            q = mech.neutral()
+            for joint, (value, _, _) in joint_coordinates(mech.params, at_rest(sol.pose, EXAMPLE_INPUTS, theta4)).items():
+                q[mech.q_index(joint)] = value
+            out.append(mech.assemble(EXAMPLE_INPUTS, guess=q))
+    return out
