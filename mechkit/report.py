@@ -76,7 +76,7 @@ def format_report(r: dict[str, Any]) -> str:
     """Human-readable text of a report."""
     lines = [f"{r['name']}: {r['summary']}",
              f"  nq {r['nq']}, nv {r['nv']}, actuated: {', '.join(r['actuated'])}",
-             f"  closures: " + ", ".join(f"{c['name']} ({c['kind']}, {c['rows']} {c['row_set']} rows)" for c in r["closures"]),
+             "  closures: " + ", ".join(f"{c['name']} ({c['kind']}, {c['rows']} {c['row_set']} rows)" for c in r["closures"]),
              f"  DOF numerical {r['dof']}, Gruebler {r['dof_gruebler']}, redundant constraints {r['redundant_constraints']}",
              "  parameters:"]
     for p in r["parameters"]:
