@@ -28,10 +28,10 @@ def _load(args):
 
 
 def cmd_list(args) -> None:
-    from mechkit.registry import specs
+    from mechkit.registry import ENTRIES
 
-    for name, spec in specs().items():
-        print(f"{name:<22} {spec.summary}")
+    for e in ENTRIES:
+        print(f"{e.name:<22} {e.summary}")
 
 
 def cmd_urdf(args) -> None:
@@ -42,7 +42,7 @@ def cmd_urdf(args) -> None:
     spec = get_spec(args.name)
     params = spec.params.from_overrides(**_overrides(args.set))
     from_params(spec, params)  # validates: the URDF builds and assembles
-    text = render_urdf(spec.xacro_path, params.xacro_args())
+    text = render_urdf(spec.template_path, params.xacro_args())
     if args.output:
         from mechkit.atomic import write_text
 

@@ -13,7 +13,8 @@ from mechkit.closures import ClosureRows, cut_rows, rigid_constraint_models
 from mechkit.description import build_model, parse_loops, render_urdf
 from mechkit.exceptions import InvalidParameters, MethodUnavailable, SingularConfiguration
 from mechkit.params import MechanismParams
-from mechkit.registry import MechanismSpec, get_spec
+from mechkit.contract import MechanismSpec
+from mechkit.registry import get_spec
 
 Inputs = Mapping[str, float] | Sequence[float] | np.ndarray
 
@@ -243,7 +244,7 @@ def load(name: str, **params: Any) -> Mechanism:
 
 def from_params(spec: MechanismSpec, params: MechanismParams) -> Mechanism:
     """Build a mechanism from a parameter instance."""
-    return Mechanism(spec, params, render_urdf(spec.xacro_path, params.xacro_args()))
+    return Mechanism(spec, params, render_urdf(spec.template_path, params.xacro_args()))
 
 
 def from_urdf(urdf: str, actuated: Sequence[str] | None = None, name: str = "urdf",
@@ -259,7 +260,7 @@ def from_urdf(urdf: str, actuated: Sequence[str] | None = None, name: str = "urd
     """
     model = build_model(urdf)
     joints = tuple(actuated) if actuated is not None else tuple(model.names[1:])
-    spec = MechanismSpec(name=name, params=MechanismParams, xacro="", actuated=joints,
+    spec = MechanismSpec(name=name, params=MechanismParams, template="", actuated=joints,
                          gruebler_dof=model.nv, home=lambda p: {}, guess=(lambda p: guess) if guess else None,
                          summary=f"loaded from URDF ({name})")
     return Mechanism(spec, MechanismParams(), urdf)

@@ -1,84 +1,74 @@
-"""The registry of mechanisms: one module per mechanism under `mechkit/mechanisms/`, each with a `SPEC`."""
+"""The registry: an explicit table of the mechanisms that ship with mechkit, loaded lazily.
+
+Each entry names the package that declares the mechanism (`SPEC`, a `MechanismSpec`) and the line
+`mechkit list` prints, so listing imports no mechanism and `get_spec(name)` imports that one alone.
+A test checks the table against the packages, the templates and the generated URDFs.
+"""
 
 from __future__ import annotations
 
 import importlib
-import pkgutil
-from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from functools import cache
-from pathlib import Path
-from typing import TYPE_CHECKING, Any
 
+from mechkit.contract import MechanismSpec
 from mechkit.exceptions import InvalidParameters
-from mechkit.params import MechanismParams
-
-if TYPE_CHECKING:
-    from mechkit.mechanism import Mechanism
-
-XACRO_DIR = Path(__file__).resolve().parent.parent / "xacro"
-URDF_DIR = Path(__file__).resolve().parent.parent / "urdf"
-
-Inputs = Mapping[str, float]
 
 
 @dataclass(frozen=True)
-class MechanismSpec:
-    """What mechkit needs to know about one mechanism besides its xacro template.
-
-    Attributes:
-        name: registry name (also the URDF file stem).
-        params: the frozen parameter dataclass.
-        xacro: template file name in `xacro/`.
-        actuated: URDF joint names carrying actuators, or a function of the parameters giving them.
-        gruebler_dof: the Gruebler-Kutzbach mobility count (int) for comparison with the numerical one.
-        home: inputs (joint name -> value, rad or m) of the default assembly, from the parameters.
-        guess: an initial guess (joint name -> value) that picks the assembly branch; optional.
-        summary: one line for `mechkit list`.
-        self_checks: optional extra `report` checks: Mechanism -> {check name: worst error}.
-    """
+class Entry:
+    """One registered mechanism: its name, the package declaring its `SPEC`, its one-line summary."""
 
     name: str
-    params: type[MechanismParams]
-    xacro: str
-    actuated: tuple[str, ...] | Callable[[Any], tuple[str, ...]]
-    gruebler_dof: int
-    home: Callable[[Any], Inputs]
-    guess: Callable[[Any], Inputs] | None = None
-    summary: str = ""
-    self_checks: Callable[[Mechanism], dict[str, float]] | None = None
+    package: str
+    summary: str
 
-    def actuated_joints(self, params: MechanismParams) -> tuple[str, ...]:
-        return tuple(self.actuated(params) if callable(self.actuated) else self.actuated)
 
-    @property
-    def xacro_path(self) -> Path:
-        return XACRO_DIR / self.xacro
+ENTRIES: tuple[Entry, ...] = (
+    Entry("deployable_9rr12uru", "mechkit.mechanisms.deployable_9rr12uru",
+          "9RR-12URU deployable composite element of a truss antenna (3 tetrahedral units + 3 URU chains)"),
+    Entry("five_bar", "mechkit.mechanisms.five_bar", "planar five-bar, 2-DOF calibration mechanism of the core"),
+    Entry("four_bar", "mechkit.mechanisms.four_bar",
+          "planar four-bar (crank-rocker), calibration mechanism of the core"),
+    Entry("parallel_2t1r", "mechkit.mechanisms.parallel_2t1r",
+          "spatial 2T1R parallel mechanism, five-bar limb + 2 RRR limbs, all axes along y (ref. 001)"),
+    Entry("rocket_gimbal", "mechkit.mechanisms.rocket_gimbal",
+          "launcher engine gimbal: frame-bracket-engine hinges at 45 deg, two U-P-S servo actuators"),
+    Entry("spherical_2dof", "mechkit.mechanisms.spherical_2dof",
+          "2-DOF spherical parallel platform (2 RRR limbs + central Hooke strut), vibration isolation"),
+    Entry("ten_bar", "mechkit.mechanisms.ten_bar",
+          "Radarsat-2 solar-array ten-bar (patent CN105975733): 9 links, 12 pairs, 2 motors + 1 spring DOF"),
+    Entry("tetra_3rr3uru", "mechkit.mechanisms.tetra_3rr3uru",
+          "3RR-3URU tetrahedral deployable unit H-ABE of a truss antenna, node A fixed"),
+)
 
-    def default_urdf(self) -> str:
-        """The URDF generated at the default parameters (what `urdf/<name>.urdf` must hold)."""
-        from mechkit.description import render_urdf
 
-        return render_urdf(self.xacro_path, self.params().xacro_args())
+def names() -> tuple[str, ...]:
+    """Registered mechanism names, sorted (imports no mechanism)."""
+    return tuple(e.name for e in ENTRIES)
+
+
+def entry(name: str) -> Entry:
+    """The registry entry of a name; an unknown name raises `InvalidParameters`."""
+    for e in ENTRIES:
+        if e.name == name:
+            return e
+    raise InvalidParameters("name", name, f"no such mechanism; registered: {', '.join(names())}")
 
 
 @cache
-def specs() -> dict[str, MechanismSpec]:
-    """Every registered mechanism, by name (modules of `mechkit.mechanisms` that define `SPEC`)."""
-    import mechkit.mechanisms as package
-
-    found: dict[str, MechanismSpec] = {}
-    for info in sorted(pkgutil.iter_modules(package.__path__), key=lambda i: i.name):
-        module = importlib.import_module(f"{package.__name__}.{info.name}")
-        spec = getattr(module, "SPEC", None)
-        if isinstance(spec, MechanismSpec):
-            found[spec.name] = spec
-    return found
-
-
 def get_spec(name: str) -> MechanismSpec:
-    """The spec of a registered mechanism; an unknown name raises `InvalidParameters`."""
-    known = specs()
-    if name not in known:
-        raise InvalidParameters("name", name, f"no such mechanism; registered: {', '.join(known)}")
-    return known[name]
+    """The spec of a registered mechanism: imports its package (and no other mechanism's)."""
+    e = entry(name)
+    try:
+        spec = importlib.import_module(e.package).SPEC
+    except AttributeError:
+        spec = None
+    if not isinstance(spec, MechanismSpec) or spec.name != name:
+        raise InvalidParameters("name", name, f"{e.package} does not declare SPEC = MechanismSpec(name={name!r}, ...)")
+    return spec
+
+
+def specs() -> dict[str, MechanismSpec]:
+    """Every registered mechanism's spec, by name (imports them all: for tests, tools and benches)."""
+    return {name: get_spec(name) for name in names()}

@@ -8,17 +8,9 @@ thicker; loop cuts are yellow spheres; the ground is grey (anchors at the suppor
 the URDF draws no ground body). The camera is fitted to the drawn primitives (the drawing is centred
 on the origin, which meshcat orbits).
 
-Scenes (animations) protocol: a mechanism module `mechkit.mechanisms.<name>` may define
-
-    SCENES: dict[str, Callable[[Mechanism], Sequence[np.ndarray]]]
-
-scene name -> function returning the configurations q (full, assembled) along the motion, in order.
-Every module also gets a generic "sweep" (unless it defines its own): each actuated input in turn
-swings about its home value and back while the others stay at home, assembled with warm starts; an
-excursion stops at its first pose that does not assemble, with a `SweepStopped` warning saying where
-and why, and the sweep goes on with the next one. A module may also define `VIEW = (x, y, z)`, the
-world direction from the mechanism to the camera (default: along the thin axis of a flat mechanism,
-else oblique). Animations play the poses at an even pace (at most MAX_FRAMES of them, evenly picked), ping-pong,
+Scenes come from `mechkit.scenes` (the spec's own, plus the generic input sweep). The camera looks
+along the spec's `view` (world direction from the mechanism to the camera), else along the thin axis
+of a flat mechanism, else obliquely. Animations play the poses at an even pace (at most MAX_FRAMES of them, evenly picked), ping-pong,
 4 to 12 s per pass whatever the scene's own duration (meshcat's controls change the speed).
 
 Nothing here prints or opens a window; screenshots (`--png`) are an explicit call to `mechkit.browser`.
@@ -27,26 +19,20 @@ Nothing here prints or opens a window; screenshots (`--png`) are an explicit cal
 from __future__ import annotations
 
 import base64
-import importlib
 import math
 import os
 import tempfile
-import warnings
-from collections.abc import Callable, Sequence
+from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
-from typing import TYPE_CHECKING
 
 import numpy as np
 import pinocchio as pin
 
 from mechkit.atomic import write_text
-from mechkit.exceptions import InvalidParameters, MalformedDescription, MechkitError
-
-if TYPE_CHECKING:
-    from mechkit.mechanism import Mechanism
-
-SceneFunction = Callable[["Mechanism"], Sequence[np.ndarray]]
+from mechkit.exceptions import InvalidParameters, MechkitError
+from mechkit.mechanism import Mechanism
+from mechkit.scenes import joint_extent, scene_poses
 
 BACKGROUND = (0.93, 0.95, 0.97)  # uniform page background (rgb 0..1)
 ACTUATED = (0.85, 0.08, 0.08, 1.0)
@@ -59,16 +45,8 @@ GHOST_OPACITY = 0.22
 FOV_DEG = 30.0  # vertical field of view of the camera
 ASPECT = 4 / 3  # narrowest width/height the framing allows for
 MARGIN = 0.08  # fraction of the view kept free around the mechanism
-CLOSURE_TOL = 1e-6  # largest closure residual accepted in a scene's pose (m, or rad-like rows)
 MAX_FRAMES = 240  # poses kept in an animation (the page grows with frames x parts)
-SWEEP_FRAMES = 40  # frames per swept input
-SWEEP_ANGLE = 0.3  # rad, swing of a revolute input
-SWEEP_STROKE = 0.05  # fraction of the mechanism's size, swing of a prismatic input
 _LOOP_PINGPONG = 2202  # THREE.LoopPingPong
-
-
-class SweepStopped(UserWarning):
-    """The generic sweep stopped early: a pose did not assemble (the message says which and why)."""
 
 
 def _meshcat():
@@ -240,7 +218,7 @@ class Drawing:
         self.visual = pin.buildGeomFromUrdfString(model, mechanism.urdf, pin.GeometryType.VISUAL)
         self.vdata = self.visual.createData()
         g = StaticScene().geometry
-        self.size = _joint_extent(model, self.data, mechanism.home_q) if size is None else float(size)
+        self.size = joint_extent(model, self.data, mechanism.home_q) if size is None else float(size)
         s = self.size
         self.parts: list[Part] = []
         self._links: list[tuple[int, np.ndarray]] = []  # (geometry index, local rotation)
@@ -328,11 +306,10 @@ class Drawing:
             scene.add(f"{prefix}/{part.path}", part.shape, rgba, placement)
 
     def view(self) -> tuple[float, float, float]:
-        """The camera direction: the module's VIEW, else nearly face-on to a planar linkage (its joint origins
+        """The camera direction: the spec's view, else nearly face-on to a planar linkage (its joint origins
         at home span a thin slab), else oblique."""
-        module = _module(self.mechanism)
-        if module is not None and getattr(module, "VIEW", None) is not None:
-            return tuple(float(c) for c in module.VIEW)
+        if self.mechanism.spec.view is not None:
+            return self.mechanism.spec.view
         model, data = self.model, self.data
         pin.forwardKinematics(model, data, self.mechanism.home_q)
         extent = np.ptp([data.oMi[j].translation for j in range(1, model.njoints)], axis=0)
@@ -340,12 +317,6 @@ class Drawing:
         if extent[thin] < 0.3 * extent.max():
             return ((1.0, 0.2, 0.12), (0.2, -1.0, 0.12), (0.2, -0.3, 1.0))[thin]  # nearly face-on
         return (1.0, -1.6, 0.9)
-
-
-def _joint_extent(model: pin.Model, data: pin.Data, q: np.ndarray) -> float:
-    pin.forwardKinematics(model, data, q)
-    pts = np.array([data.oMi[j].translation for j in range(model.njoints)])
-    return max(float(np.max(np.ptp(pts, axis=0))), 1e-3)
 
 
 def _link_colours(model: pin.Model, visual: pin.GeometryModel) -> list[tuple[float, float, float, float]]:
@@ -420,96 +391,6 @@ def _spanning_tree(points: np.ndarray) -> list[tuple[int, int]]:
         edges.append((inside[a], int(b)))
         inside.append(int(b))
     return edges
-
-
-# ---------------------------------------------------------------- scenes
-def _module(mechanism: Mechanism):
-    try:
-        return importlib.import_module(f"mechkit.mechanisms.{mechanism.spec.name}")
-    except ModuleNotFoundError:
-        return None
-
-
-def own_scenes(mechanism: Mechanism) -> dict[str, SceneFunction]:
-    """The scenes the mechanism's module defines (its SCENES; empty when it has none)."""
-    return dict(getattr(_module(mechanism), "SCENES", {}) or {})
-
-
-def scenes(mechanism: Mechanism) -> dict[str, SceneFunction]:
-    """The mechanism's animated scenes: its module's SCENES, plus the generic "sweep"."""
-    found = own_scenes(mechanism)
-    found.setdefault("sweep", sweep)
-    return found
-
-
-def scene_poses(mechanism: Mechanism, name: str) -> list[np.ndarray]:
-    """The configurations of a scene, checked: at least 2, each of size nq, finite, loops closed.
-
-    Raises:
-        InvalidParameters: no scene of that name.
-        MalformedDescription: the scene returned a pose that is not an assembled configuration.
-    """
-    known = scenes(mechanism)
-    if name not in known:
-        raise InvalidParameters("scene", name, f"{mechanism.spec.name} has the scenes {', '.join(known)}")
-    where = f"{mechanism.spec.name} scene {name!r}"
-    poses = [np.asarray(q, dtype=float) for q in known[name](mechanism)]
-    if len(poses) < 2:
-        raise MalformedDescription(where, f"needs at least 2 poses, got {len(poses)}")
-    for i, q in enumerate(poses):
-        if q.shape != (mechanism.model.nq,) or not np.all(np.isfinite(q)):
-            raise MalformedDescription(where, f"pose {i} is not a finite vector of size nq={mechanism.model.nq}")
-        residual = float(np.max(np.abs(mechanism.closure_residual(q)), initial=0.0))
-        if residual > CLOSURE_TOL:
-            raise MalformedDescription(where, f"pose {i} does not close its loops (residual {residual:.2e})")
-    return poses
-
-
-def sweep(mechanism: Mechanism, frames: int = SWEEP_FRAMES, angle: float = SWEEP_ANGLE,
-          stroke: float = SWEEP_STROKE) -> list[np.ndarray]:
-    """Generic scene: each actuated input in turn goes home -> +A -> home -> -A -> home (one sine period,
-    sampled at `frames` poses) while the others stay at home.
-
-    Each excursion is assembled outwards from home, each pose from the previous one, and comes back
-    through the same poses. An excursion stops at its first pose that does not assemble (a dead point,
-    a singularity, the edge of the workspace): a `SweepStopped` warning says which and why, and the
-    scene goes on with the next excursion.
-
-    Args:
-        frames: poses per input (a multiple of 4).
-        angle: amplitude A of a revolute input (rad).
-        stroke: amplitude of a prismatic input, as a fraction of the mechanism's joint extent.
-        Both amplitudes are capped at 90 % of the distance from home to the joint's limits.
-    """
-    model, home = mechanism.model, mechanism.home_q
-    size = _joint_extent(model, model.createData(), home)
-    names = list(mechanism.actuated)
-    start = np.array([home[mechanism.q_index(n)] for n in names])
-    quarter = max(frames // 4, 1)
-    poses = [home.copy()]
-    for i, name in enumerate(names):
-        k = mechanism.q_index(name)
-        prismatic = model.joints[model.getJointId(name)].shortname().startswith("JointModelP")
-        amplitude = stroke * size if prismatic else angle
-        room = min(model.upperPositionLimit[k] - home[k], home[k] - model.lowerPositionLimit[k])
-        amplitude = min(amplitude, 0.9 * room) if np.isfinite(room) else amplitude
-        for sign in (1.0, -1.0):
-            out, q = [], home
-            for step in range(1, quarter + 1):
-                inputs = start.copy()
-                inputs[i] += sign * amplitude * math.sin(math.pi / 2 * step / quarter)
-                try:
-                    q = mechanism.assemble(inputs, guess=q)
-                except (MechkitError, FloatingPointError) as err:
-                    warnings.warn(SweepStopped(
-                        f"{mechanism.spec.name} sweep of {name} stops at {inputs[i]:.6g} (home {start[i]:.6g}): "
-                        f"inputs {dict(zip(names, np.round(inputs, 6).tolist()))} do not assemble ({err})"),
-                        stacklevel=2)
-                    break
-                out.append(q)
-            if out:
-                poses.extend([*out, *out[-2::-1], home.copy()])
-    return poses
 
 
 # ---------------------------------------------------------------- pages

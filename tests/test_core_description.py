@@ -13,14 +13,15 @@ import pytest
 import mechkit
 from mechkit.description import build_model, parse_loops
 from mechkit.exceptions import InvalidParameters, MalformedDescription
-from mechkit.registry import URDF_DIR, specs
+from mechkit.registry import specs
+from mechkit.resources import urdf_dir
 
 NAMES = list(specs())
 
 
 @pytest.mark.parametrize("name", NAMES)
 def test_committed_urdf_matches_the_xacro_template(name):
-    path = URDF_DIR / f"{name}.urdf"
+    path = urdf_dir() / f"{name}.urdf"
     assert path.exists(), f"urdf/{name}.urdf missing: run python tools/generate_urdfs.py {name}"
     assert path.read_text() == specs()[name].default_urdf(), f"urdf/{name}.urdf is stale: run tools/generate_urdfs.py"
 
@@ -31,33 +32,33 @@ def test_urdfdom_accepts(name, tmp_path):
     exe = shutil.which("check_urdf", path=os.pathsep.join([os.path.dirname(sys.executable), os.environ.get("PATH", "")]))
     if exe is None:
         pytest.skip("check_urdf (urdfdom) not on PATH")
-    out = subprocess.run([exe, str(URDF_DIR / f"{name}.urdf")], capture_output=True, text=True)
+    out = subprocess.run([exe, str(urdf_dir() / f"{name}.urdf")], capture_output=True, text=True)
     assert out.returncode == 0 and "Successfully Parsed" in out.stdout, out.stdout + out.stderr
 
 
 @pytest.mark.parametrize("name", NAMES)
 def test_yourdfpy_accepts(name):
     yourdfpy = pytest.importorskip("yourdfpy")
-    robot = yourdfpy.URDF.load(str(URDF_DIR / f"{name}.urdf"), load_meshes=False, build_scene_graph=False)
+    robot = yourdfpy.URDF.load(str(urdf_dir() / f"{name}.urdf"), load_meshes=False, build_scene_graph=False)
     assert robot.validate()
 
 
 @pytest.mark.parametrize("name", NAMES)
 def test_mujoco_compiles(name):
     mujoco = pytest.importorskip("mujoco")
-    model = mujoco.MjModel.from_xml_string((URDF_DIR / f"{name}.urdf").read_text())
-    assert model.njnt == build_model((URDF_DIR / f"{name}.urdf").read_text()).njoints - 1
+    model = mujoco.MjModel.from_xml_string((urdf_dir() / f"{name}.urdf").read_text())
+    assert model.njnt == build_model((urdf_dir() / f"{name}.urdf").read_text()).njoints - 1
 
 
 @pytest.mark.parametrize("name", NAMES)
 def test_loops_parse_into_typed_records(name):
-    loops = parse_loops((URDF_DIR / f"{name}.urdf").read_text())
+    loops = parse_loops((urdf_dir() / f"{name}.urdf").read_text())
     assert loops, "a mechanism of mechkit has at least one loop closure"
     for loop in loops:
         assert loop.kind in ("revolute", "prismatic", "spherical", "hooke", "weld")
 
 
-FOUR_BAR = (URDF_DIR / "four_bar.urdf").read_text()
+FOUR_BAR = (urdf_dir() / "four_bar.urdf").read_text()
 LOOP = '<mechkit:loop axis="0 -1 0" frame_a="coupler_C" frame_b="rocker_C" name="C" rows="planar" type="revolute"/>'
 
 

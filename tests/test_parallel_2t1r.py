@@ -12,7 +12,7 @@ from mechkit.exceptions import ClosureNotConverged, InvalidParameters, SingularC
 from mechkit.mechanisms import parallel_2t1r as m2
 from mechkit.mechanisms import parallel_2t1r_kinematics as kin
 from mechkit.mechanisms.parallel_2t1r_soc import classic_torques, skcs, soc_inverse_dynamics
-from mechkit.registry import URDF_DIR
+from mechkit.resources import urdf_dir
 
 REGULAR = np.arange(1, 501) * 0.01  # the 501-sample law without its singular start t = 0
 
@@ -29,12 +29,12 @@ def comparison(mech):
 
 def test_urdf_file_is_the_template_at_defaults():
     spec, p = m2.SPEC, m2.Parallel2T1RParams()
-    assert (URDF_DIR / "parallel_2t1r.urdf").read_text() == render_urdf(spec.xacro_path, p.xacro_args())
+    assert (urdf_dir() / "parallel_2t1r.urdf").read_text() == render_urdf(spec.template_path, p.xacro_args())
 
 
 def test_urdf_inertias_are_the_validators_inertias():
     p = m2.Parallel2T1RParams(payload_mass=3.0, bar_width=0.03)
-    root = ET.fromstring(render_urdf(m2.SPEC.xacro_path, p.xacro_args()))
+    root = ET.fromstring(render_urdf(m2.SPEC.template_path, p.xacro_args()))
     for name, (mass, com, inertia) in m2.mass_properties(p).items():
         inertial = root.find(f"link[@name='{name}']/inertial")
         assert float(inertial.find("mass").get("value")) == pytest.approx(mass, rel=1e-14)

@@ -6,14 +6,17 @@ Usage: python tools/generate_urdfs.py [NAME ...]
 from __future__ import annotations
 
 import sys
+from pathlib import Path
 
 from mechkit.atomic import write_text
-from mechkit.registry import URDF_DIR, specs
+from mechkit.registry import get_spec, names
+
+URDF_DIR = Path(__file__).resolve().parent.parent / "urdf"  # the repository's folder, not an installed copy
 
 
-def main(names: list[str]) -> int:
-    for name in names or list(specs()):
-        path = write_text(URDF_DIR / f"{name}.urdf", specs()[name].default_urdf())
+def main(chosen: list[str]) -> int:
+    for name in chosen or names():
+        path = write_text(URDF_DIR / f"{name}.urdf", get_spec(name).default_urdf())
         print(f"wrote {path}")
     return 0
 

@@ -26,7 +26,7 @@ from mechkit.exceptions import InvalidParameters
 from mechkit.mechanisms.tetra_3rr3uru import TetraParams, drive_inputs
 from mechkit.mechanisms.truss_geometry import FOLD_DURATION, drive_state
 from mechkit.params import param
-from mechkit.registry import MechanismSpec
+from mechkit.contract import MechanismSpec
 
 if TYPE_CHECKING:
     from mechkit.mechanism import Mechanism
@@ -298,7 +298,7 @@ SCENES = {"fold": fold_poses}
 SPEC = MechanismSpec(
     name="deployable_9rr12uru",
     params=DeployableParams,
-    xacro="deployable_9rr12uru.urdf.xacro",
+    template="deployable_9rr12uru.urdf.xacro",
     actuated=ACTUATED,
     gruebler_dof=7,
     home=lambda p: {joint: 0.0 for joint in ACTUATED},

@@ -10,7 +10,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from mechkit.params import MechanismParams, param
-from mechkit.registry import MechanismSpec
+from mechkit.contract import MechanismSpec
 
 
 @dataclass(frozen=True)
@@ -29,7 +29,7 @@ class FiveBarParams(MechanismParams):
 SPEC = MechanismSpec(
     name="five_bar",
     params=FiveBarParams,
-    xacro="five_bar.urdf.xacro",
+    template="five_bar.urdf.xacro",
     actuated=("prox1", "prox2"),
     gruebler_dof=2,
     home=lambda p: {"prox1": 2.0, "prox2": 1.1},

@@ -12,7 +12,7 @@ from dataclasses import dataclass
 
 from mechkit.exceptions import InvalidParameters
 from mechkit.params import MechanismParams, param
-from mechkit.registry import MechanismSpec
+from mechkit.contract import MechanismSpec
 
 
 @dataclass(frozen=True)
@@ -36,7 +36,7 @@ class FourBarParams(MechanismParams):
 SPEC = MechanismSpec(
     name="four_bar",
     params=FourBarParams,
-    xacro="four_bar.urdf.xacro",
+    template="four_bar.urdf.xacro",
     actuated=("crank",),
     gruebler_dof=1,
     home=lambda p: {"crank": 0.6},

@@ -20,7 +20,7 @@ import numpy as np
 from mechkit.exceptions import InvalidParameters, MechkitError, SingularConfiguration
 from mechkit.mechanisms import parallel_2t1r_kinematics as kin
 from mechkit.params import MechanismParams, param
-from mechkit.registry import MechanismSpec
+from mechkit.contract import MechanismSpec
 
 #: The assembled branch: (C1 root, alpha root) of `forward_kinematics` (C1 below the chord B1B2,
 #: first alpha root) and the root of `follower_angles` (theta_4 = 0 at the motion law's start).
@@ -435,7 +435,7 @@ VIEW = (0.35, -1.0, 0.45)
 SPEC = MechanismSpec(
     name="parallel_2t1r",
     params=Parallel2T1RParams,
-    xacro="parallel_2t1r.urdf.xacro",
+    template="parallel_2t1r.urdf.xacro",
     actuated=actuated,
     gruebler_dof=3,
     home=_home,

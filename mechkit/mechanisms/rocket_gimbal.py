@@ -23,7 +23,7 @@ from mechkit.mechanisms.rocket_gimbal_kinematics import GimbalGeometry
 from mechkit.mechanisms.rocket_gimbal_motion import GimbalMotion, gimbal_motion
 from mechkit.mechanisms.rocket_gimbal_soc import BodySpec, gimbal_skcs
 from mechkit.params import MechanismParams, param
-from mechkit.registry import MechanismSpec
+from mechkit.contract import MechanismSpec
 from mechkit.spatial import rot_x
 
 if TYPE_CHECKING:
@@ -171,7 +171,7 @@ def _self_checks(mech: Mechanism) -> dict[str, float]:
 SPEC = MechanismSpec(
     name="rocket_gimbal",
     params=RocketGimbalParams,
-    xacro="rocket_gimbal.urdf.xacro",
+    template="rocket_gimbal.urdf.xacro",
     actuated=("a_stroke", "b_stroke"),
     gruebler_dof=2,
     home=lambda p: {"a_stroke": 0.0, "b_stroke": 0.0},

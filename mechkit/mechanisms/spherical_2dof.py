@@ -19,7 +19,7 @@ import numpy as np
 from mechkit.exceptions import InvalidParameters
 from mechkit.mechanisms import spherical_2dof_kinematics as kin
 from mechkit.params import MechanismParams, param
-from mechkit.registry import MechanismSpec
+from mechkit.contract import MechanismSpec
 
 if TYPE_CHECKING:
     from mechkit.mechanism import Mechanism
@@ -224,7 +224,7 @@ def _self_checks(mech: Mechanism) -> dict[str, float]:
 SPEC = MechanismSpec(
     name="spherical_2dof",
     params=Spherical2DofParams,
-    xacro="spherical_2dof.urdf.xacro",
+    template="spherical_2dof.urdf.xacro",
     actuated=("r11", "r21"),
     gruebler_dof=2,
     home=_home,

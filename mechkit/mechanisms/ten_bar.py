@@ -46,7 +46,7 @@ from mechkit.description import LOOP_NAMESPACE
 from mechkit.exceptions import InvalidParameters, MalformedDescription
 from mechkit.mechanisms import ten_bar_geometry as geo
 from mechkit.params import MechanismParams, param
-from mechkit.registry import MechanismSpec
+from mechkit.contract import MechanismSpec
 from mechkit.validation import lagrange
 
 STOWED = {"R1": math.pi / 2, "R3": -math.pi}
@@ -260,7 +260,7 @@ def _self_checks(mechanism) -> dict[str, float]:
 SPEC = MechanismSpec(
     name="ten_bar",
     params=TenBarParams,
-    xacro="ten_bar.urdf.xacro",
+    template="ten_bar.urdf.xacro",
     actuated=MOTORS,
     gruebler_dof=3,
     home=_home,

@@ -25,7 +25,7 @@ from mechkit.mechanisms.truss_geometry import (
     half_angle_beta,
 )
 from mechkit.params import MechanismParams, param
-from mechkit.registry import MechanismSpec
+from mechkit.contract import MechanismSpec
 
 _T0 = drive_state(0.0)
 
@@ -110,7 +110,7 @@ def _self_checks(mech):
 SPEC = MechanismSpec(
     name="tetra_3rr3uru",
     params=TetraParams,
-    xacro="tetra_3rr3uru.urdf.xacro",
+    template="tetra_3rr3uru.urdf.xacro",
     actuated=ACTUATED,
     gruebler_dof=3,
     home=lambda p: {joint: 0.0 for joint in ACTUATED},

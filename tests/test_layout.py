@@ -1,0 +1,187 @@
+"""The package's shape: imports go down (no circle, the core never imports what sits on it), modules stay
+small, the registry is lazy and explicit, and every registered mechanism fulfils the contract."""
+
+from __future__ import annotations
+
+import ast
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+import mechkit
+from mechkit.contract import BENCH_QUANTITIES, MechanismSpec
+from mechkit.registry import ENTRIES, get_spec, names
+from mechkit.resources import urdf_dir, xacro_dir
+
+PACKAGE = Path(mechkit.__file__).resolve().parent
+CORE = ("description", "closures", "kinematics", "dynamics", "mechanism", "registry", "contract", "params",
+        "resources", "exceptions", "spatial", "atomic")
+ABOVE_CORE = ("mechkit.mechanisms", "mechkit.viz", "mechkit.bench", "mechkit.cli")
+MAX_LINES = 400
+
+
+def _module_name(path: Path) -> str:
+    parts = list(path.relative_to(PACKAGE.parent).with_suffix("").parts)
+    return ".".join(parts[:-1] if parts[-1] == "__init__" else parts)
+
+
+def _file_of(module: str) -> Path | None:
+    """The file a dotted module name is (a module or a package's __init__), if it is ours."""
+    base = PACKAGE.parent.joinpath(*module.split("."))
+    for candidate in (base.with_suffix(".py"), base / "__init__.py"):
+        if candidate.is_file():
+            return candidate
+    return None
+
+
+def _imports(path: Path) -> set[Path]:
+    """Our files that `path` imports anywhere (module level, functions, TYPE_CHECKING blocks alike).
+
+    `from package import name` is an edge to the submodule `package.name` when there is one, else to
+    the package's __init__ (the name is then defined there).
+    """
+    here = _module_name(path)
+    package = here if path.name == "__init__.py" else here.rpartition(".")[0]
+    found: set[Path] = set()
+    for node in ast.walk(ast.parse(path.read_text(), str(path))):
+        if isinstance(node, ast.Import):
+            targets = [alias.name for alias in node.names]
+        elif isinstance(node, ast.ImportFrom):
+            base = node.module or ""
+            if node.level:
+                anchor = package.split(".")[: len(package.split(".")) - node.level + 1]
+                base = ".".join(anchor + ([base] if base else []))
+            targets = []
+            for alias in node.names:
+                sub = f"{base}.{alias.name}"
+                targets.append(sub if _file_of(sub) else base)
+        else:
+            continue
+        for target in targets:
+            if target.split(".")[0] != "mechkit":
+                continue
+            file = _file_of(target)
+            if file is not None and file != path:
+                found.add(file)
+    return found
+
+
+def _graph() -> dict[Path, set[Path]]:
+    return {path: _imports(path) for path in sorted(PACKAGE.rglob("*.py"))}
+
+
+def _strongly_connected(graph: dict[Path, set[Path]]) -> list[list[Path]]:
+    """Tarjan's algorithm: the components of more than one file (import circles)."""
+    index: dict[Path, int] = {}
+    low: dict[Path, int] = {}
+    stack: list[Path] = []
+    on_stack: set[Path] = set()
+    circles: list[list[Path]] = []
+
+    def visit(v: Path) -> None:
+        index[v] = low[v] = len(index)
+        stack.append(v)
+        on_stack.add(v)
+        for w in graph.get(v, ()):
+            if w not in index:
+                visit(w)
+                low[v] = min(low[v], low[w])
+            elif w in on_stack:
+                low[v] = min(low[v], index[w])
+        if low[v] == index[v]:
+            component = []
+            while True:
+                w = stack.pop()
+                on_stack.discard(w)
+                component.append(w)
+                if w == v:
+                    break
+            if len(component) > 1:
+                circles.append(component)
+
+    for v in graph:
+        if v not in index:
+            visit(v)
+    return circles
+
+
+def _relative(paths) -> list[str]:
+    return sorted(str(p.relative_to(PACKAGE.parent)) for p in paths)
+
+
+def test_import_graph_has_no_circle():
+    circles = _strongly_connected(_graph())
+    assert not circles, "import circles: " + "; ".join(" <-> ".join(_relative(c)) for c in circles)
+
+
+def test_core_imports_nothing_above_it():
+    graph = _graph()
+    upward = []
+    for name in CORE:
+        path = _file_of(f"mechkit.{name}")
+        assert path is not None, name
+        for target in graph[path]:
+            if _module_name(target).startswith(ABOVE_CORE):
+                upward.append(f"{name} -> {_module_name(target)}")
+    assert not upward, upward
+
+
+def test_a_circle_is_detected():
+    """The detector itself: a two-file circle and a self-consistent chain."""
+    a, b, c = Path("a"), Path("b"), Path("c")
+    assert _strongly_connected({a: {b}, b: {a}, c: {a}}) == [[b, a]]
+    assert _strongly_connected({a: {b}, b: {c}, c: set()}) == []
+
+
+def test_no_module_over_the_line_limit():
+    long = {str(p.relative_to(PACKAGE.parent)): n for p in PACKAGE.rglob("*.py")
+            if (n := len(p.read_text().splitlines())) > MAX_LINES}
+    assert not long, f"modules over {MAX_LINES} lines: {long}"
+
+
+def _modules_after(code: str) -> list[str]:
+    out = subprocess.run([sys.executable, "-c", code + "\nimport sys, json\n"
+                          "print(json.dumps(sorted(m for m in sys.modules if m.startswith('mechkit.mechanisms'))))"],
+                         capture_output=True, text=True, check=True)
+    return json.loads(out.stdout.splitlines()[-1])
+
+
+def test_listing_imports_no_mechanism():
+    assert _modules_after("from mechkit.cli import main; main(['list'])") == []
+
+
+def test_loading_one_mechanism_imports_no_other():
+    loaded = _modules_after("import mechkit; mechkit.load('four_bar')")
+    assert loaded == ["mechkit.mechanisms", "mechkit.mechanisms.four_bar"] or all(
+        m == "mechkit.mechanisms" or m.startswith("mechkit.mechanisms.four_bar") for m in loaded), loaded
+
+
+def test_registry_table_is_sorted_and_unique():
+    assert list(names()) == sorted(set(names()))
+
+
+def test_every_mechanism_package_is_registered():
+    packages = {p.parent.name for p in (PACKAGE / "mechanisms").glob("*/__init__.py")}
+    declaring = {name for name in packages if "SPEC = MechanismSpec(" in (PACKAGE / "mechanisms" / name / "__init__.py").read_text()}
+    assert declaring == set(names())
+
+
+@pytest.mark.parametrize("entry", ENTRIES, ids=lambda e: e.name)
+def test_contract(entry):
+    spec = get_spec(entry.name)
+    assert isinstance(spec, MechanismSpec) and spec.name == entry.name
+    assert spec.summary == entry.summary
+    assert spec.template_path.is_file() and spec.template_path.parent == xacro_dir()
+    assert (urdf_dir() / f"{entry.name}.urdf").is_file()
+    params = spec.params()
+    assert spec.actuated_joints(params) and spec.gruebler_dof >= 1
+    assert isinstance(spec.home(params), dict)
+    assert spec.guess is None or isinstance(spec.guess(params), dict)
+    assert all(callable(f) for f in spec.scenes.values())
+    assert spec.view is None or len(spec.view) == 3
+    assert all(m.quantity in BENCH_QUANTITIES and callable(m.fn) and m.label for m in spec.bench_methods)
+    assert all(r.quantity in BENCH_QUANTITIES and callable(r.fn) and r.label for r in spec.bench_references)
+    assert spec.self_checks is None or callable(spec.self_checks)

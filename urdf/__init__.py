@@ -1,0 +1,1 @@
+"""Package data: the URDF of every registered mechanism at its default parameters (generated)."""

@@ -1,0 +1,1 @@
+"""Package data: the xacro templates of the registered mechanisms, read with `importlib.resources`."""
