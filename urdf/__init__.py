@@ -1,1 +1,0 @@
-"""Package data: the URDF of every registered mechanism at its default parameters (generated)."""
