@@ -1,4 +1,4 @@
-"""Closed-form planar four-bar / five-bar references (mechkit.validation.planar_linkages)."""
+"""Closed-form planar four-bar / five-bar references (mechkit.validation.planar_closed_form, planar_newton_euler)."""
 
 from __future__ import annotations
 
@@ -6,14 +6,9 @@ import numpy as np
 import pytest
 
 from mechkit.exceptions import InvalidParameters, SingularConfiguration
-from mechkit.validation.planar_linkages import (
-    FiveBarGeometry,
-    FourBarGeometry,
-    LinkageState,
-    five_bar,
-    four_bar,
-    newton_euler,
-)
+from mechkit.validation.planar_closed_form import FiveBarGeometry, FourBarGeometry, five_bar, four_bar
+from mechkit.validation.planar_motion import LinkageState
+from mechkit.validation.planar_newton_euler import newton_euler
 
 G = np.array([0.0, 0.0, -9.81])
 TIMES = np.linspace(0.0, 1.0, 9)

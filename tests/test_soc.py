@@ -6,15 +6,9 @@ import numpy as np
 import pytest
 
 from mechkit.exceptions import InvalidParameters, SingularConfiguration
-from mechkit.validation.planar_linkages import (
-    AXIS,
-    Bar,
-    LinkageState,
-    LinkState,
-    five_bar,
-    four_bar,
-    newton_euler,
-)
+from mechkit.validation.planar_closed_form import five_bar, four_bar
+from mechkit.validation.planar_motion import AXIS, Bar, LinkageState, LinkState
+from mechkit.validation.planar_newton_euler import newton_euler
 from mechkit.validation.planar_soc import (
     Chain,
     body_load,

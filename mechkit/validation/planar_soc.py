@@ -12,7 +12,7 @@ from typing import Any
 
 import numpy as np
 
-from mechkit.validation import planar_linkages as ref
+from mechkit.validation.planar_motion import AXIS, LinkageState, LinkState, PlanarJoint, to_world
 from mechkit.validation.soc import BodyLoad, SKCInstant, WrenchSite
 
 Chain = tuple[Any, ...]
@@ -26,16 +26,16 @@ def point_jacobian(point: np.ndarray, chain: Chain) -> np.ndarray:
             jac["xz".index(pivot) * 2, j] = 1.0
         elif pivot is not None:
             d = point - pivot
-            jac[:3, j] = ref.to_world(np.array([-d[1], d[0]]))
-            jac[3:, j] = ref.AXIS
+            jac[:3, j] = to_world(np.array([-d[1], d[0]]))
+            jac[3:, j] = AXIS
     return jac
 
 
-def body_load(link: ref.LinkState, chain: Chain) -> BodyLoad:
+def body_load(link: LinkState, chain: Chain) -> BodyLoad:
     """The SOC body of a link moving along `chain`."""
     jac = point_jacobian(link.com, chain)
-    return BodyLoad(link.name, link.bar.mass, link.bar.inertia_world(link.angle), ref.to_world(link.com_acceleration),
-                    link.omega * ref.AXIS, link.alpha * ref.AXIS, jac[:3], jac[3:])
+    return BodyLoad(link.name, link.bar.mass, link.bar.inertia_world(link.angle), to_world(link.com_acceleration),
+                    link.omega * AXIS, link.alpha * AXIS, jac[:3], jac[3:])
 
 
 def pin_site(joint: str, point: np.ndarray, chain: Chain, sign: float) -> WrenchSite:
@@ -45,7 +45,7 @@ def pin_site(joint: str, point: np.ndarray, chain: Chain, sign: float) -> Wrench
 
 def motor_column(chain: Chain) -> np.ndarray:
     """Generalised force of a unit motor torque about -y from the ground on the body of `chain`."""
-    return point_jacobian(np.zeros(2), chain)[3:].T @ ref.AXIS
+    return point_jacobian(np.zeros(2), chain)[3:].T @ AXIS
 
 
 def free_chain(pivot: np.ndarray) -> Chain:
@@ -53,13 +53,13 @@ def free_chain(pivot: np.ndarray) -> Chain:
     return ("x", "z", pivot)
 
 
-def subtree(state: ref.LinkageState, link: str) -> list[str]:
+def subtree(state: LinkageState, link: str) -> list[str]:
     """`link` and every link hinged after it in the tree (the loop cut "C" excluded)."""
     children = [j.child for j in state.joints if j.parent == link and j.name != "C"]
     return [link] + [d for child in children for d in subtree(state, child)]
 
 
-def whole_skc(state: ref.LinkageState) -> SKCInstant:
+def whole_skc(state: LinkageState) -> SKCInstant:
     """Classic virtual work: the whole linkage over its URDF coordinates q, the cut "C" as loop rows."""
     n = len(state.coordinates)
     chains: dict[str, list[Any]] = {name: [None] * n for name in state.links}
@@ -74,7 +74,7 @@ def whole_skc(state: ref.LinkageState) -> SKCInstant:
     return SKCInstant("whole", n, bodies, motors, loop_jacobian=loop)
 
 
-def soc_skcs(state: ref.LinkageState) -> list[SKCInstant]:
+def soc_skcs(state: LinkageState) -> list[SKCInstant]:
     """SKCs in solving order for a single-loop planar linkage cut at "C" with grounded motors.
 
     1. The dyad of the two links meeting at C (coupling degree 0): a grounded child-side link turns
@@ -89,7 +89,7 @@ def soc_skcs(state: ref.LinkageState) -> list[SKCInstant]:
     parent_of = {j.child: j for j in st.joints if j.name != "C"}
     jp, jq = parent_of[cut.parent], parent_of[cut.child]
 
-    def site(joint: ref.PlanarJoint, chain: Chain, sign: float) -> WrenchSite:
+    def site(joint: PlanarJoint, chain: Chain, sign: float) -> WrenchSite:
         return pin_site(joint.name, joint.point, chain, sign)
 
     def free(link: str) -> Chain:
