@@ -9,13 +9,15 @@ import pytest
 
 from mechkit.exceptions import InvalidParameters, SingularConfiguration
 from mechkit.kinematics import update_kinematics
-from mechkit.mechanisms import ten_bar as tb
-from mechkit.mechanisms import ten_bar_checks as tc
-from mechkit.mechanisms import ten_bar_dynamics as td
-from mechkit.mechanisms import ten_bar_geometry as geo
-from mechkit.mechanisms import ten_bar_kinematics as tk
-from mechkit.mechanisms import ten_bar_limits as tl
-from mechkit.mechanisms import ten_bar_soc as ts
+from mechkit.mechanisms.ten_bar import SPEC
+from mechkit.mechanisms.ten_bar import checks as tc
+from mechkit.mechanisms.ten_bar import dynamics as td
+from mechkit.mechanisms.ten_bar import geometry as geo
+from mechkit.mechanisms.ten_bar import kinematics as tk
+from mechkit.mechanisms.ten_bar import lagrange_model as lm
+from mechkit.mechanisms.ten_bar import limits as tl
+from mechkit.mechanisms.ten_bar import params as tp
+from mechkit.mechanisms.ten_bar import soc as ts
 
 
 @pytest.fixture(scope="module")
@@ -47,7 +49,7 @@ def mid_state(mech, rates=(0.05, -0.1, 0.2)):
 )
 def test_bad_parameters_are_named(change, name):
     with pytest.raises(InvalidParameters, match=name):
-        tb.TenBarParams(**change)
+        tp.TenBarParams(**change)
 
 
 def test_topology_is_the_patents(mech):
@@ -86,23 +88,23 @@ def test_mass_properties_match_the_urdf(mech):
 
 
 def test_spring_is_read_from_the_urdf(mech):
-    assert tb.spring_from_urdf(mech.urdf) == tb.spring(mech.params)
+    assert tp.spring_from_urdf(mech.urdf) == tp.spring(mech.params)
 
 
 def test_every_loop_closes_for_every_input():
-    p = tb.TenBarParams()
+    p = tp.TenBarParams()
     grid = np.linspace(-math.pi, math.pi, 13)
     worst = min(min(geo.pose(p, a, b, c).margins.values()) for a in grid for b in grid for c in grid)
     assert worst > 0.4  # sine of the angle at each closing hinge: far from every dead-centre pose
 
 
 def test_stowed_and_deployed_poses_and_the_wall():
-    p = tb.TenBarParams()
-    stowed = tb.stowed_pose(p)
+    p = tp.TenBarParams()
+    stowed = geo.stowed_pose(p)
     assert np.allclose(geo.unit(stowed.angles["l123"]), [0, 1]) and np.allclose(
         geo.unit(stowed.angles["l34"]), [0, -1]
     )
-    deployed = geo.pose(p, tb.DEPLOYED["R1"], tb.DEPLOYED["R3"], 0.0)
+    deployed = geo.pose(p, tp.DEPLOYED["R1"], tp.DEPLOYED["R3"], 0.0)
     R2, R3, R4 = (deployed.points[k] for k in ("R2", "R3", "R4"))
     cross = (R3 - R2)[0] * (R4 - R3)[1] - (R3 - R2)[1] * (R4 - R3)[0]
     assert abs(cross) < 1e-15 and (R3 - R2) @ (R4 - R3) > 0  # collinear, same direction
@@ -156,13 +158,13 @@ def test_reactions_three_ways(mech):
         td.PinocchioDeployment(mech).rhs(t, q, v)[0],
         tc.spring_fext(mech, td.PinocchioDeployment(mech), q, v),
     )
-    for motor in tb.MOTORS:  # the motor torque is the reaction moment about the axis (-y)
+    for motor in tp.MOTORS:  # the motor torque is the reaction moment about the axis (-y)
         assert inv.reactions[motor].wrench[4] == pytest.approx(-inv.efforts[motor], rel=1e-10)
     for pair in geo.PAIRS:  # planar pins: in-plane forces and the axis moment are determinate
         assert list(inv.reactions[pair].determinate) == [True, False, True, False, True, False]
     qL, vL = td.lagrange_state(mech.params, q, v, mech)
-    L = tb.lagrange_linkage(mech.params)
-    _, _, soc = ts.solve(L, qL, vL, L.solve(qL, vL, tb.motor_law(mech.params, t)[2]).qdd)
+    L = lm.lagrange_linkage(mech.params)
+    _, _, soc = ts.solve(L, qL, vL, L.solve(qL, vL, tp.motor_law(mech.params, t)[2]).qdd)
     assert max(soc.consistency.values()) < 1e-10  # incl. the hub: the passive equation of motion holds
 
 
@@ -177,7 +179,7 @@ def test_deployment_stretch_two_ways(stretch):
 
 def test_lagrange_in_its_own_coordinates_converges_at_fourth_order(mech):
     pin_run, lag_run = td.PinocchioDeployment(mech), td.LagrangeDeployment(mech.params)
-    qL = tb.lagrange_coordinates(mech.params, tb.stowed_pose(mech.params))
+    qL = lm.lagrange_coordinates(mech.params, geo.stowed_pose(mech.params))
     diffs = []
     for dt in (0.02, 0.01):
         a = td.deploy(pin_run, mech.home_q, dt, 0.2)
@@ -190,7 +192,7 @@ def test_the_dynamics_decides_the_passive_dof(mech, load_cached):
     stiff = load_cached("ten_bar", spring_stiffness=8.0, spring_preload=10.8)
     a = td.deploy(td.PinocchioDeployment(mech), mech.home_q, 0.01, 0.2)
     b = td.deploy(td.PinocchioDeployment(stiff), stiff.home_q, 0.01, 0.2)
-    motors = [td.JOINT_ORDER.index(m) for m in tb.MOTORS]
+    motors = [td.JOINT_ORDER.index(m) for m in tp.MOTORS]
     assert np.allclose(a.angles[:, motors], b.angles[:, motors], atol=1e-12)
     assert abs(a.angles[-1, 5] - b.angles[-1, 5]) > 0.05
 
@@ -203,7 +205,7 @@ def test_stabilisation_bounds_the_drift(mech):
 
 
 def test_report_rows(mech):
-    rows = tb.SPEC.self_checks(mech)
+    rows = SPEC.self_checks(mech)
     assert all(value < 1e-8 for value in rows.values()), rows
 
 
@@ -214,8 +216,8 @@ def test_full_deployment(mech):
     b = td.deploy(td.LagrangeJointDeployment(mech.params), pin_run.joint_angles(mech.home_q), 0.005)
     assert a.residual.max() < 1e-9 and b.residual.max() < 1e-9
     assert np.max(np.abs(a.angles - b.angles)) < 1e-8
-    motors = [td.JOINT_ORDER.index(m) for m in tb.MOTORS]
-    assert np.allclose(a.angles[-1, motors], [tb.DEPLOYED[m] for m in tb.MOTORS], atol=1e-12)
+    motors = [td.JOINT_ORDER.index(m) for m in tp.MOTORS]
+    assert np.allclose(a.angles[-1, motors], [tp.DEPLOYED[m] for m in tp.MOTORS], atol=1e-12)
     margins = tl.loop_margins(mech.params, a.angles[::10])
     assert min(m.min() for m in margins.values()) > 0.6
     for k in (len(a.t) // 4, len(a.t) // 2, 3 * len(a.t) // 4):

@@ -16,12 +16,12 @@ import numpy as np
 import pinocchio as pin
 
 import mechkit
-from mechkit.mechanisms import ten_bar as tb
-from mechkit.mechanisms import ten_bar_checks as tc
-from mechkit.mechanisms import ten_bar_dynamics as td
-from mechkit.mechanisms import ten_bar_geometry as geo
-from mechkit.mechanisms import ten_bar_kinematics as tk
-from mechkit.mechanisms import ten_bar_soc as ts
+from mechkit.mechanisms.ten_bar import checks as tc
+from mechkit.mechanisms.ten_bar import dynamics as td
+from mechkit.mechanisms.ten_bar import geometry as geo
+from mechkit.mechanisms.ten_bar import kinematics as tk
+from mechkit.mechanisms.ten_bar import params as tp
+from mechkit.mechanisms.ten_bar import soc as ts
 
 
 def per_call(fn, repeat: int) -> float:
@@ -61,7 +61,7 @@ def main() -> None:
     pin.initConstraintDynamics(m.model, data, cms, cds)
     prox = pin.ProximalSettings(1e-12, 1e-9, 20)
     L = lag_own.L
-    acc = tb.motor_law(p, t)[2]
+    acc = tp.motor_law(p, t)[2]
 
     table(
         "Dynamics: one evaluation at a state",

@@ -17,10 +17,12 @@ import time
 import numpy as np
 
 import mechkit
-from mechkit.mechanisms import ten_bar as tb
-from mechkit.mechanisms import ten_bar_checks as tc
-from mechkit.mechanisms import ten_bar_dynamics as td
-from mechkit.mechanisms import ten_bar_limits as tl
+from mechkit.mechanisms.ten_bar import checks as tc
+from mechkit.mechanisms.ten_bar import dynamics as td
+from mechkit.mechanisms.ten_bar import geometry as geo
+from mechkit.mechanisms.ten_bar import lagrange_model as lm
+from mechkit.mechanisms.ten_bar import limits as tl
+from mechkit.mechanisms.ten_bar import params as tp
 
 
 def main() -> None:
@@ -34,7 +36,7 @@ def main() -> None:
     m = mechkit.load("ten_bar")
     p = m.params
     pin_run = td.PinocchioDeployment(m)
-    motors = [td.JOINT_ORDER.index(j) for j in tb.MOTORS]
+    motors = [td.JOINT_ORDER.index(j) for j in tp.MOTORS]
     r5 = td.JOINT_ORDER.index("R5")
 
     clock = time.perf_counter()
@@ -73,7 +75,7 @@ def main() -> None:
 
     print("Lagrange in its own coordinates (x, z, phi per link) vs Pinocchio, first 0.4 s (spring release):")
     own = td.LagrangeDeployment(p)
-    q_own = tb.lagrange_coordinates(p, tb.stowed_pose(p))
+    q_own = lm.lagrange_coordinates(p, geo.stowed_pose(p))
     previous = None
     for dt in (0.02, 0.01, 0.005):
         diff = np.max(

@@ -18,11 +18,11 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 import mechkit
-from mechkit.mechanisms import ten_bar as tb
-from mechkit.mechanisms import ten_bar_checks as tc
-from mechkit.mechanisms import ten_bar_dynamics as td
-from mechkit.mechanisms import ten_bar_geometry as geo
-from mechkit.mechanisms import ten_bar_limits as tl
+from mechkit.mechanisms.ten_bar import checks as tc
+from mechkit.mechanisms.ten_bar import dynamics as td
+from mechkit.mechanisms.ten_bar import geometry as geo
+from mechkit.mechanisms.ten_bar import limits as tl
+from mechkit.mechanisms.ten_bar import params as tp
 
 LINKS = (
     ("l123", ("R1", "R2", "R10", "R2", "R3")),
@@ -97,7 +97,7 @@ def main() -> None:
             traj.t,
             np.degrees(traj.angles[:, td.JOINT_ORDER.index(j)]),
             lw=2.2 if j in ("R1", "R3", "R5") else 1,
-            label=j + (" (motor)" if j in tb.MOTORS else " (spring)" if j == "R5" else ""),
+            label=j + (" (motor)" if j in tp.MOTORS else " (spring)" if j == "R5" else ""),
         )
     finish(fig, ax, out / "ten_bar_angles.png", "joint angle (deg)", {"ncol": 3, "fontsize": 8})
 

@@ -15,11 +15,12 @@ from dataclasses import dataclass
 import numpy as np
 import pinocchio as pin
 
-from mechkit.mechanisms import ten_bar as tb
-from mechkit.mechanisms import ten_bar_dynamics as td
-from mechkit.mechanisms import ten_bar_geometry as geo
-from mechkit.mechanisms import ten_bar_kinematics as tk
-from mechkit.mechanisms import ten_bar_soc as ts
+from mechkit.mechanisms.ten_bar import dynamics as td
+from mechkit.mechanisms.ten_bar import geometry as geo
+from mechkit.mechanisms.ten_bar import kinematics as tk
+from mechkit.mechanisms.ten_bar import soc as ts
+from mechkit.mechanisms.ten_bar.lagrange_model import lagrange_linkage
+from mechkit.mechanisms.ten_bar.params import MOTORS, PASSIVE, TenBarParams, motor_law
 
 
 @dataclass(frozen=True)
@@ -35,7 +36,7 @@ class Reactions:
     forces: dict[str, np.ndarray]
 
     def vector(self) -> np.ndarray:
-        return np.concatenate([[self.efforts[m] for m in tb.MOTORS], *[self.forces[j] for j in geo.PAIRS]])
+        return np.concatenate([[self.efforts[m] for m in MOTORS], *[self.forces[j] for j in geo.PAIRS]])
 
 
 def spring_fext(
@@ -44,7 +45,7 @@ def spring_fext(
     """The R5 spring-damper torque as an external moment on l56 (joint-local frame, about -y)."""
     fext = pin.StdVec_Force([pin.Force.Zero() for _ in range(mechanism.model.njoints)])
     torque = deployment.spring_torque(q, v)
-    fext[mechanism.model.getJointId(tb.PASSIVE)] = pin.Force(np.zeros(3), np.array([0.0, -torque, 0.0]))
+    fext[mechanism.model.getJointId(PASSIVE)] = pin.Force(np.zeros(3), np.array([0.0, -torque, 0.0]))
     return fext
 
 
@@ -61,8 +62,8 @@ def reactions_three_ways(mechanism, t: float, q: np.ndarray, v: np.ndarray) -> d
     out = {"pinocchio": Reactions(dict(inv.efforts), {j: inv.reactions[j].wrench[[0, 2]] for j in geo.PAIRS})}
     p = mechanism.params
     qL, vL = td.lagrange_state(p, q, v, mechanism)
-    L = tb.lagrange_linkage(p)
-    sol = L.solve(qL, vL, tb.motor_law(p, t)[2])
+    L = lagrange_linkage(p)
+    sol = L.solve(qL, vL, motor_law(p, t)[2])
     out["lagrange"] = Reactions(sol.efforts, sol.forces)
     efforts, forces, _ = ts.solve(L, qL, vL, sol.qdd)
     out["soc"] = Reactions(efforts, forces)
@@ -121,11 +122,11 @@ def kinematics_disagreement(mechanism, inputs_list: list[dict[str, float]]) -> d
     return worst
 
 
-def nominal_inputs(p: tb.TenBarParams, n: int) -> list[dict[str, float]]:
+def nominal_inputs(p: TenBarParams, n: int) -> list[dict[str, float]]:
     """Inputs along the motor laws with the rocker moved linearly from stowed to 0 (a kinematic path)."""
     out = []
     for t in np.linspace(0.0, p.deploy_time, n):
-        pos, _, _ = tb.motor_law(p, t)
+        pos, _, _ = motor_law(p, t)
         out.append({"R1": pos[0], "R3": pos[1], "R5": p.stowed_rocker * (1 - t / p.deploy_time)})
     return out
 

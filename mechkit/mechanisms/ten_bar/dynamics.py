@@ -1,6 +1,6 @@
 """Ten-bar deployment dynamics: prescribed motors, free passive DOF, RK4 with constraint stabilisation.
 
-Motors R1 and R3 are ideal servos on the cycloidal laws of `ten_bar.motor_law`; the passive DOF
+Motors R1 and R3 are ideal servos on the cycloidal laws of `params.motor_law`; the passive DOF
 (R5) moves under the spring-damper, gravity and the linkage's inertia. Two independent models of
 the same motion share one integrator:
 
@@ -26,13 +26,20 @@ import numpy as np
 import pinocchio as pin
 
 from mechkit.exceptions import ClosureNotConverged
-from mechkit.mechanisms import ten_bar as tb
+from mechkit.mechanisms.ten_bar import geometry as geo
+from mechkit.mechanisms.ten_bar.lagrange_model import (
+    TreeKinematics,
+    joint_angles_from_lagrange,
+    lagrange_from_joints,
+    lagrange_linkage,
+)
+from mechkit.mechanisms.ten_bar.params import MOTORS, TenBarParams, motor_law, spring_from_urdf
 
 
 class DeploymentSystem(Protocol):
     """What `integrate` needs from a model of the deployment (`p`: the parameters)."""
 
-    p: tb.TenBarParams
+    p: TenBarParams
 
     def rhs(self, t: float, q: np.ndarray, v: np.ndarray) -> tuple[np.ndarray, np.ndarray, float]:
         """(accelerations, motor torques (R1, R3) N m, net external power W)."""
@@ -50,7 +57,7 @@ class DeploymentSystem(Protocol):
         """The 9 tree-joint angles in `JOINT_ORDER` (rad)."""
 
 
-JOINT_ORDER = tb.geo.TREE_JOINTS
+JOINT_ORDER = geo.TREE_JOINTS
 
 
 class PinocchioDeployment:
@@ -66,8 +73,8 @@ class PinocchioDeployment:
         # (0, 0) rather than None: the core keeps the last Baumgarte gains set on its constraint models
         self.m, self.baumgarte, self.method = mechanism, baumgarte or (0.0, 0.0), method
         self.p = mechanism.params
-        self.spring = tb.spring_from_urdf(mechanism.urdf)
-        self.motor_v = np.array([mechanism.v_index(j) for j in tb.MOTORS])
+        self.spring = spring_from_urdf(mechanism.urdf)
+        self.motor_v = np.array([mechanism.v_index(j) for j in MOTORS])
         self.spring_v = mechanism.v_index(self.spring.pin)
         self.order = np.array([mechanism.q_index(j) for j in JOINT_ORDER])
         self.data = mechanism.model.createData()
@@ -80,7 +87,7 @@ class PinocchioDeployment:
         return self.m.forward_dynamics(q, v, tau, method=self.method, baumgarte=self.baumgarte).a
 
     def rhs(self, t, q, v):
-        _, _, acc = tb.motor_law(self.p, t)
+        _, _, acc = motor_law(self.p, t)
         tau = np.zeros(self.m.model.nv)
         tau[self.spring_v] = self.spring_torque(q, v)
         a0 = self._fd(q, v, tau)
@@ -94,13 +101,13 @@ class PinocchioDeployment:
         return a0 + G @ u, u, power
 
     def _rows(self, t, q):
-        pos, _, _ = tb.motor_law(self.p, t)
+        pos, _, _ = motor_law(self.p, t)
         e = np.concatenate([self.m.closure_residual(q), q[self.motor_v] - pos])
         G = np.vstack([self.m.closure_jacobian(q), np.eye(self.m.model.nv)[self.motor_v]])
         return e, G
 
     def project(self, t, q, v):
-        _, rate, _ = tb.motor_law(self.p, t)
+        _, rate, _ = motor_law(self.p, t)
         return project(lambda x: self._rows(t, x), q, v, rate, "ten-bar projection (Pinocchio)")
 
     def residual(self, t, q):
@@ -120,19 +127,19 @@ class PinocchioDeployment:
 class LagrangeDeployment:
     """Deployment dynamics by the patent's Lagrange first-kind method (numpy only)."""
 
-    def __init__(self, params: tb.TenBarParams):
+    def __init__(self, params: TenBarParams):
         self.p = params
-        self.L = tb.lagrange_linkage(params)
+        self.L = lagrange_linkage(params)
 
     def rhs(self, t, q, v):
-        _, _, acc = tb.motor_law(self.p, t)
+        _, _, acc = motor_law(self.p, t)
         sol = self.L.solve(q, v, acc)
-        u = np.array([sol.efforts[m] for m in tb.MOTORS])
+        u = np.array([sol.efforts[m] for m in MOTORS])
         power = self.L.power(q, v, sol.efforts)
         return sol.qdd, u, power["motor"] - power["damper"]
 
     def project(self, t, q, v):
-        pos, rate, _ = tb.motor_law(self.p, t)
+        pos, rate, _ = motor_law(self.p, t)
         return self.L.project(q, v, pos, rate)
 
     def residual(self, t, q):
@@ -142,7 +149,7 @@ class LagrangeDeployment:
         return float(sum(self.L.energy(q, v).values()))
 
     def joint_angles(self, q):
-        angles = tb.joint_angles_from_lagrange(q)
+        angles = joint_angles_from_lagrange(q)
         return np.array([angles[j] for j in JOINT_ORDER])
 
 
@@ -156,20 +163,20 @@ class LagrangeJointDeployment:
     not by the integrator's truncation error.
     """
 
-    def __init__(self, params: tb.TenBarParams):
+    def __init__(self, params: TenBarParams):
         self.p = params
         self.inner = LagrangeDeployment(params)
         self.L = self.inner.L
-        hinges = tb.geo.hinges(params)[: len(JOINT_ORDER)]
-        index = {b: i for i, b in enumerate(tb.geo.BODIES)}
+        hinges = geo.hinges(params)[: len(JOINT_ORDER)]
+        index = {b: i for i, b in enumerate(geo.BODIES)}
         self.joint_rows = np.zeros((len(JOINT_ORDER), self.L.n))  # joint angle = row . q_L
         for h in hinges:
             k = JOINT_ORDER.index(h.name)
             self.joint_rows[k, 3 * index[h.child] + 2] = 1.0
             if h.parent is not None:
                 self.joint_rows[k, 3 * index[h.parent] + 2] = -1.0
-        self.motor_rows = np.array([JOINT_ORDER.index(m) for m in tb.MOTORS])
-        self.fk = tb.TreeKinematics(params)
+        self.motor_rows = np.array([JOINT_ORDER.index(m) for m in MOTORS])
+        self.fk = TreeKinematics(params)
 
     def _state(self, q, v):
         return self.fk(q, v)
@@ -184,13 +191,13 @@ class LagrangeJointDeployment:
         return self.joint_rows @ qdd, u, power
 
     def _rows(self, t, q):
-        pos, _, _ = tb.motor_law(self.p, t)
+        pos, _, _ = motor_law(self.p, t)
         qL, T = self._map(q)
         e = np.concatenate([self.L.constraints(qL), q[self.motor_rows] - pos])
         return e, np.vstack([self.L.jacobian(qL) @ T, np.eye(len(q))[self.motor_rows]])
 
     def project(self, t, q, v):
-        _, rate, _ = tb.motor_law(self.p, t)
+        _, rate, _ = motor_law(self.p, t)
         return project(lambda x: self._rows(t, x), q, v, rate, "ten-bar projection (Lagrange, joints)")
 
     def residual(self, t, q):
@@ -301,12 +308,12 @@ def integrate(
 
 
 def lagrange_state(
-    params: tb.TenBarParams, q_pin: np.ndarray, v_pin: np.ndarray, mechanism
+    params: TenBarParams, q_pin: np.ndarray, v_pin: np.ndarray, mechanism
 ) -> tuple[np.ndarray, np.ndarray]:
     """Reference-point coordinates and rates of a Pinocchio state (numpy forward kinematics)."""
     angles = {j: float(q_pin[mechanism.q_index(j)]) for j in JOINT_ORDER}
     rates = {j: float(v_pin[mechanism.v_index(j)]) for j in JOINT_ORDER}
-    return tb.lagrange_from_joints(params, angles, rates)
+    return lagrange_from_joints(params, angles, rates)
 
 
 def deploy(

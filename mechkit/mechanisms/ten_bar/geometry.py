@@ -26,6 +26,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from mechkit.exceptions import ClosureNotConverged
+from mechkit.mechanisms.ten_bar.params import STOWED, TenBarParams
 
 BODIES = ("l123", "l27", "l34", "l48", "l87", "l56", "l67", "l79", "l910")
 """The 9 moving links, in the order of the Lagrange coordinates."""
@@ -254,3 +255,8 @@ def pose(p, phi1: float, psi3: float, phi5: float) -> Pose:
         "l87": ang("R8", "R7"),
     }
     return Pose(angles, P, {"five_bar": m5, "four_bar": m4, "six_bar": m6})
+
+
+def stowed_pose(p: TenBarParams) -> Pose:
+    """Closed-form stowed assembly."""
+    return pose(p, STOWED["R1"], STOWED["R3"], p.stowed_rocker)

@@ -17,10 +17,10 @@ from scipy.linalg import null_space
 
 from mechkit.kinematics import update_kinematics
 from mechkit.mechanism import from_params
-from mechkit.mechanisms import ten_bar as tb
-from mechkit.mechanisms import ten_bar_dynamics as td
-from mechkit.mechanisms import ten_bar_geometry as geo
-from mechkit.mechanisms import ten_bar_kinematics as tk
+from mechkit.mechanisms.ten_bar import dynamics as td
+from mechkit.mechanisms.ten_bar import geometry as geo
+from mechkit.mechanisms.ten_bar import kinematics as tk
+from mechkit.mechanisms.ten_bar.params import MOTORS, TenBarParams
 
 
 @dataclass(frozen=True)
@@ -41,7 +41,7 @@ class KinematicSplit:
 def kinematic_split(mechanism, q: np.ndarray) -> KinematicSplit:
     """Null space of the closure Jacobian with the motor columns held (the patent's kinematic split)."""
     J = mechanism.closure_jacobian(q)
-    motors = [mechanism.v_index(m) for m in tb.MOTORS]
+    motors = [mechanism.v_index(m) for m in MOTORS]
     free = np.setdiff1d(np.arange(J.shape[1]), motors)
     null = null_space(J[:, free])
     direction = np.zeros(J.shape[1])
@@ -76,7 +76,7 @@ def drift(
     return td.deploy(system, own.home_q, dt, t_end, project=project)
 
 
-def loop_margins(params: tb.TenBarParams, angles: np.ndarray) -> dict[str, np.ndarray]:
+def loop_margins(params: TenBarParams, angles: np.ndarray) -> dict[str, np.ndarray]:
     """Sine of the angle at each loop's closing hinge (R7, R9, R8) along a trajectory (0: singular).
 
     Args:

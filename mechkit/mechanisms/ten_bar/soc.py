@@ -25,7 +25,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from mechkit.mechanisms import ten_bar_geometry as geo
+from mechkit.mechanisms.ten_bar import geometry as geo
 from mechkit.validation import lagrange
 from mechkit.validation.soc import BodyLoad, SKCInstant, SOCResult, WrenchSite, solve_soc
 
