@@ -8,10 +8,11 @@ from __future__ import annotations
 import pytest
 
 import mechkit
-from mechkit import viz
-from mechkit.browser import coverage, find_chromium, screenshot
+from mechkit import scenes, viz
 from mechkit.cli import main
 from mechkit.exceptions import MethodUnavailable
+from mechkit.viz import meshcat_page
+from mechkit.viz.browser import coverage, find_chromium, screenshot
 
 try:
     find_chromium()
@@ -20,7 +21,7 @@ except MethodUnavailable as err:
     NO_BROWSER = str(err)
 
 pytestmark = pytest.mark.skipif(bool(NO_BROWSER), reason=NO_BROWSER)
-BACKGROUND = tuple(round(255 * c) for c in viz.BACKGROUND)
+BACKGROUND = tuple(round(255 * c) for c in meshcat_page.BACKGROUND)
 MIN_COVERAGE = 0.02  # fraction of the pixels the mechanism must cover
 
 
@@ -88,7 +89,7 @@ def test_every_gallery_picture_is_reproduced(name, tmp_path, load_tool):
 @pytest.mark.parametrize("name", list(mechkit.specs()))
 def test_every_scene_picture_shows_the_mechanism(name, tmp_path):
     m = mechkit.load(name)
-    for scene in viz.scenes(m):
+    for scene in scenes.scenes(m):
         png = tmp_path / f"{scene}.png"
         viz.snapshot_command(m, scene=scene, html=str(tmp_path / f"{scene}.html"), png=str(png))
         assert_shows_a_mechanism(png)

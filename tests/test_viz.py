@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import base64
+import dataclasses
 import math
 import re
 from pathlib import Path
@@ -12,8 +13,10 @@ import pinocchio as pin
 import pytest
 
 import mechkit
-from mechkit import viz
+from mechkit import scenes, viz
 from mechkit.exceptions import InvalidParameters, MalformedDescription, MechkitError, MethodUnavailable
+from mechkit.mechanism import from_params
+from mechkit.viz import camera, drawing, meshcat_page
 
 umsgpack = pytest.importorskip("umsgpack")
 ROOT = Path(__file__).resolve().parent.parent
@@ -39,30 +42,30 @@ def test_camera_fit_keeps_every_point_in_view_and_is_tight():
     rng = np.random.default_rng(3)
     for direction in [(1.0, -1.6, 0.9), (0.35, -1.0, 0.35), (0.0, 0.0, 1.0), (-2.0, 0.5, -0.3)]:
         points = rng.normal(size=(50, 3)) * [0.4, 0.1, 1.3]
-        distance, back = viz.camera_distance(points, direction)
-        camera = back * distance
+        distance, back = camera.camera_distance(points, direction)
+        eye = back * distance
         forward = -back
         right = np.cross(forward, [0, 0, 1.0])
         right = right / np.linalg.norm(right) if np.linalg.norm(right) > 1e-9 else np.array([1.0, 0, 0])
         up = np.cross(right, forward)
-        rel = points - camera
+        rel = points - eye
         depth = rel @ forward
         assert np.all(depth > 0)
-        tan_v = math.tan(math.radians(viz.FOV_DEG) / 2)
-        ratio = np.maximum(np.abs(rel @ up) / tan_v, np.abs(rel @ right) / (tan_v * viz.ASPECT)) / depth
-        assert ratio.max() <= 1 - viz.MARGIN + 1e-12  # in view, with the margin
-        assert ratio.max() == pytest.approx(1 - viz.MARGIN, rel=1e-9)  # and no farther than needed
+        tan_v = math.tan(math.radians(camera.FOV_DEG) / 2)
+        ratio = np.maximum(np.abs(rel @ up) / tan_v, np.abs(rel @ right) / (tan_v * camera.ASPECT)) / depth
+        assert ratio.max() <= 1 - camera.MARGIN + 1e-12  # in view, with the margin
+        assert ratio.max() == pytest.approx(1 - camera.MARGIN, rel=1e-9)  # and no farther than needed
 
 
 def test_snapshot_marks_actuators_cuts_and_ground(load_cached):
     m = load_cached("five_bar")
     cmds = commands(viz.snapshot(m))
     colours = objects(cmds)
-    red = {p for p, c in colours.items() if c == viz._hex(viz.ACTUATED)}
+    red = {p for p, c in colours.items() if c == meshcat_page._hex(drawing.ACTUATED)}
     assert red == {f"/mechanism/pose/joints/{j}" for j in m.actuated}
     cuts = {p for p in colours if "/cuts/" in p}
     assert cuts == {f"/mechanism/pose/cuts/{c.name}" for c in m.closures}
-    assert all(colours[p] == viz._hex(viz.CUT) for p in cuts)
+    assert all(colours[p] == meshcat_page._hex(drawing.CUT) for p in cuts)
     ground = [p for p in colours if "/ground/" in p]
     assert len([p for p in ground if "anchor" in p]) == 2 and len([p for p in ground if "bar" in p]) == 1
     links = [p for p in colours if "/links/" in p]
@@ -73,9 +76,9 @@ def test_snapshot_marks_actuators_cuts_and_ground(load_cached):
 def test_drawn_poses_agree_with_the_kinematics(load_cached):
     """Joint markers lie along the world joint axes (from the Jacobian); cut markers sit on both frames."""
     m = load_cached("four_bar")
-    drawing = viz.Drawing(m)
+    drawn = viz.Drawing(m)
     q = m.assemble([1.1])
-    placements = dict(zip((p.path for p in drawing.parts), drawing.placements(q)))
+    placements = dict(zip((p.path for p in drawn.parts), drawn.placements(q)))
     data = m.model.createData()
     pin.computeJointJacobians(m.model, data, q)
     pin.framesForwardKinematics(m.model, data, q)
@@ -92,7 +95,7 @@ def test_drawn_poses_agree_with_the_kinematics(load_cached):
 
 def test_animation_tracks_follow_each_pose(load_cached):
     m = load_cached("five_bar")
-    poses = viz.scene_poses(m, "sweep")
+    poses = scenes.scene_poses(m, "sweep")
     cmds = commands(viz.animation(m, "sweep"))
     (anim,) = [c for c in cmds if c["type"] == "set_animation"]
     assert anim["options"]["loopMode"] == 2202 and anim["options"]["repetitions"] == math.inf
@@ -117,46 +120,46 @@ def test_animation_tracks_follow_each_pose(load_cached):
 
 def test_sweep_moves_each_input_in_turn_and_stays_assembled(load_cached):
     m = load_cached("five_bar")
-    poses = viz.sweep(m, frames=12)
+    poses = scenes.sweep(m, frames=12)
     assert len(poses) == 1 + 12 * len(m.actuated)
     assert np.array_equal(poses[0], m.home_q)
     home = np.array([m.home_q[m.q_index(j)] for j in m.actuated])
     for n, q in enumerate(poses[1:]):
         i, t = divmod(n, 12)
         expected = home.copy()
-        expected[i] += viz.SWEEP_ANGLE * math.sin(2 * math.pi * (t + 1) / 12)
+        expected[i] += scenes.SWEEP_ANGLE * math.sin(2 * math.pi * (t + 1) / 12)
         assert np.allclose([q[m.q_index(j)] for j in m.actuated], expected, atol=1e-12)
         assert np.max(np.abs(m.closure_residual(q))) < 1e-10
     steps = np.abs(np.diff(poses, axis=0)).max()
-    assert steps < 3 * viz.SWEEP_ANGLE * 2 * math.pi / 12  # continuous: no jump to another assembly branch
+    assert steps < 3 * scenes.SWEEP_ANGLE * 2 * math.pi / 12  # continuous: no jump to another assembly branch
     assert np.allclose(poses[-1], m.home_q, atol=1e-9)
 
 
 def test_sweep_stops_at_the_first_pose_that_does_not_assemble(load_cached):
     m = load_cached("five_bar")
-    with pytest.warns(viz.SweepStopped, match=r"sweep of prox1 stops at .* do not assemble"):
-        poses = viz.sweep(m, frames=24, angle=3.0)
+    with pytest.warns(scenes.SweepStopped, match=r"sweep of prox1 stops at .* do not assemble"):
+        poses = scenes.sweep(m, frames=24, angle=3.0)
     assert 2 <= len(poses) < 1 + 24 * 2
     assert all(np.max(np.abs(m.closure_residual(q))) < 1e-10 for q in poses)
     assert np.allclose(poses[-1], m.home_q)  # each excursion comes back home
 
 
-def test_scene_protocol(load_cached, monkeypatch):
-    import mechkit.mechanisms.four_bar as module
-
-    m = load_cached("four_bar")
-    good = [m.assemble([a]) for a in np.linspace(0.5, 0.9, 5)]
+def test_scene_protocol(load_cached):
+    """The scenes a spec declares come first, in order, then the generic sweep; their poses are checked."""
+    four_bar = load_cached("four_bar")
+    good = [four_bar.assemble([a]) for a in np.linspace(0.5, 0.9, 5)]
     bad = [good[0], good[1] + 0.1]
-    monkeypatch.setattr(module, "SCENES", {"turn": lambda mech: good, "bad": lambda mech: bad,
-                                           "short": lambda mech: good[:1]}, raising=False)
-    assert list(viz.scenes(m)) == ["turn", "bad", "short", "sweep"]
-    assert all(np.array_equal(a, b) for a, b in zip(viz.scene_poses(m, "turn"), good))
+    spec = dataclasses.replace(four_bar.spec, scenes={"turn": lambda mech: good, "bad": lambda mech: bad,
+                                                      "short": lambda mech: good[:1]})
+    m = from_params(spec, four_bar.params)
+    assert list(scenes.scenes(m)) == ["turn", "bad", "short", "sweep"]
+    assert all(np.array_equal(a, b) for a, b in zip(scenes.scene_poses(m, "turn"), good))
     with pytest.raises(MalformedDescription, match="pose 1 does not close its loops"):
-        viz.scene_poses(m, "bad")
+        scenes.scene_poses(m, "bad")
     with pytest.raises(MalformedDescription, match="at least 2 poses"):
-        viz.scene_poses(m, "short")
+        scenes.scene_poses(m, "short")
     with pytest.raises(InvalidParameters, match="turn, bad, short, sweep"):
-        viz.scene_poses(m, "dance")
+        scenes.scene_poses(m, "dance")
 
 
 def test_overlay_shows_ghosts_and_the_last_pose(load_cached):
@@ -222,6 +225,6 @@ def test_one_colour_per_limb_when_the_urdf_gives_none(load_cached):
     for obj in visual.geometryObjects:
         obj.meshColor = np.array([0.9, 0.9, 0.9, 1.0])
     colours = dict(zip((m.model.names[g.parentJoint] for g in visual.geometryObjects),
-                       viz._link_colours(m.model, visual)))
+                       drawing._link_colours(m.model, visual)))
     # five-bar limbs: prox1 -> dist1 and prox2 -> dist2, cut at C
     assert colours["prox1"] == colours["dist1"] != colours["prox2"] == colours["dist2"]

@@ -1,7 +1,7 @@
 """Regenerate the README gallery: `docs/gallery/<name>.png` for every registered mechanism, and
 `docs/gallery.md` (a table, one picture per mechanism with a one-line caption).
 
-A mechanism whose module defines SCENES is shown by its first scene (last pose solid, three earlier
+A mechanism whose spec declares scenes is shown by its first scene (last pose solid, three earlier
 poses faded); the others at their home assembly. Needs headless Chromium (`apt-get install chromium`).
 
 Usage: python tools/gallery.py [NAME ...]   (default: every registered mechanism; the table always
@@ -22,7 +22,7 @@ sys.path.insert(0, str(ROOT))
 import mechkit
 from mechkit import viz
 from mechkit.atomic import write_text
-from mechkit.browser import coverage, screenshot
+from mechkit.viz.browser import coverage, screenshot
 
 GALLERY = ROOT / "docs" / "gallery"
 TABLE = ROOT / "docs" / "gallery.md"
@@ -57,7 +57,7 @@ LEGEND = ("Red: actuated joints; dark: passive joints; yellow spheres: loop cuts
 def picture(mechanism: mechkit.Mechanism, png: Path) -> str:
     """Write the mechanism's picture (checked: under MAX_BYTES, covering MIN_COVERAGE); returns its caption."""
     name = mechanism.spec.name
-    own = list(viz.own_scenes(mechanism))
+    own = list(mechanism.spec.scenes)
     with tempfile.TemporaryDirectory(prefix="mechkit-gallery-") as tmp:
         page = Path(tmp) / f"{name}.html"
         if own:

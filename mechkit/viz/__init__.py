@@ -1,0 +1,29 @@
+"""Meshcat pictures of a mechanism: self-contained HTML of a pose, of an animated scene, of a scene's
+poses overlaid, or of several configurations side by side; drawn with primitives only; PNG
+screenshots through headless Chromium.
+
+Modules, bottom up:
+    meshcat_page: `StaticScene`, the offline meshcat HTML page (commands inlined, no server).
+    browser: headless-Chromium screenshots of a page, and a picture's coverage.
+    camera: framing (camera direction from the spec's `view` or the mechanism's shape, distance).
+    drawing: `Part`, `Drawing`: the primitives of a mechanism, their colours and placements.
+    pages: `snapshot`, `animation`, `overlay`, `side_by_side`, `mechanism_scene`, `snapshot_command`.
+
+Scenes (named motions) live in `mechkit.scenes`.
+"""
+
+from mechkit.viz.drawing import Drawing, Part
+from mechkit.viz.meshcat_page import StaticScene
+from mechkit.viz.pages import animation, mechanism_scene, overlay, side_by_side, snapshot, snapshot_command
+
+__all__ = [
+    "Drawing",
+    "Part",
+    "StaticScene",
+    "animation",
+    "mechanism_scene",
+    "overlay",
+    "side_by_side",
+    "snapshot",
+    "snapshot_command",
+]
