@@ -16,7 +16,6 @@ import pinocchio as pin
 
 import mechkit
 from mechkit.bench import make_samples, references, time_per_call
-from mechkit.bench_planar import extras
 
 
 def _us(fn, sample, budget: float) -> float:
@@ -27,7 +26,7 @@ def measure(name: str, budget: float) -> list[tuple[str, float, str]]:
     """(label, microseconds, comment) rows for one mechanism."""
     m = mechkit.load(name)
     s = make_samples(m, 1)[0]
-    references(m, [s], extras(m))
+    references(m, [s])
     q, v, a, tau = s.q, s.v, s.a, s.tau
     model, data = m.model, m.model.createData()
     cms, cds = m.pin_constraints()
