@@ -6,10 +6,14 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from mechkit.mechanisms import deployable_9rr12uru as dep
-from mechkit.mechanisms.truss_geometry import drive_state
+from mechkit.exceptions import InvalidParameters
+from mechkit.mechanisms.deployable_9rr12uru import DeployableParams
+from mechkit.mechanisms.deployable_9rr12uru import redundancy as red
+from mechkit.mechanisms.truss.drives import drive_state
+from mechkit.mechanisms.truss.fold import fold, fold_times
+from mechkit.mechanisms.truss.nodes import node_positions, node_velocity
 
-COARSE = dep.fold_times(25.0)
+COARSE = fold_times(25.0)
 
 
 @pytest.fixture(scope="module")
@@ -19,7 +23,7 @@ def mech(load_cached):
 
 @pytest.fixture(scope="module")
 def coarse_fold(mech):
-    return dep.fold(mech, COARSE)
+    return fold(mech, COARSE)
 
 
 def test_model_size(mech):
@@ -36,10 +40,10 @@ def test_mobility_7_with_one_redundant_row_along_the_fold(mech, coarse_fold):
 
 def test_the_third_chain_is_the_redundant_one(mech):
     q = mech.home_q
-    assert dep.mobility_without(mech, q, ("EC", "DF", "BG")) == (9, 0)  # three 3-DOF units
-    assert dep.mobility_without(mech, q, ("EC", "DF")) == (8, 0)
+    assert red.mobility_without(mech, q, ("EC", "DF", "BG")) == (9, 0)  # three 3-DOF units
+    assert red.mobility_without(mech, q, ("EC", "DF")) == (8, 0)
     for chain in ("EC", "DF", "BG"):  # each chain is redundant given the two others (eq. 5)
-        assert dep.mobility_without(mech, q, (chain,)) == (7, 0)
+        assert red.mobility_without(mech, q, (chain,)) == (7, 0)
 
 
 @pytest.mark.parametrize("i", [0, 4])
@@ -47,7 +51,7 @@ def test_the_seventh_dof_is_instantaneous_off_the_symmetric_motions(mech, coarse
     """Second order: on the 7-dim kernel of J, Q(d) = y^T e''[d, d] has 2 positive, 2 negative and
     3 zero eigenvalues; only motions with Q(d) = 0 continue, the paper's fold among them."""
     sample = coarse_fold[i]
-    Q, basis = dep.second_order_form(mech, sample.q)
+    Q, basis = red.second_order_form(mech, sample.q)
     w = np.linalg.eigvalsh(Q)
     big = np.abs(w).max()
     assert w[1] < -0.5 * big and w[5] > 0.5 * big
@@ -61,7 +65,7 @@ def test_self_stress_is_forces_along_the_middle_hinges(mech, coarse_fold):
     """At t = 0 each URU's share is a pure force along its middle hinge (the paper's eq. 2); later
     the Hooke axes leave the links and moments normal to the hinge join in."""
     for sample in coarse_fold:
-        r = dep.redundancy(mech, sample.q)
+        r = red.redundancy(mech, sample.q)
         for cut, (force, moment) in r.self_stress.items():
             assert abs(force @ r.hinge_axes[cut]) == pytest.approx(np.linalg.norm(force), rel=1e-9)
             assert np.linalg.norm(force) > 1e-4  # every rod and chain carries it
@@ -75,13 +79,13 @@ def test_fold_matches_eq6_to_eq8_closes_and_reaches_the_folded_end(mech, coarse_
     for sample in coarse_fold:
         s = drive_state(sample.t)
         expected = g.node_positions(s.alpha, s.gamma)
-        positions = dep.node_positions(mech, sample.q)
+        positions = node_positions(mech, sample.q)
         assert set(positions) == set(expected)
         for node, pos in positions.items():
             np.testing.assert_allclose(pos, expected[node], atol=1e-9, err_msg=f"{node} at t={sample.t}")
         assert np.abs(mech.closure_residual(sample.q)).max() < 1e-10
         velocities = g.node_velocities(s.alpha, s.gamma, s.alpha_rate, s.gamma_rate)
-        speed_i = dep.node_velocity(mech, sample.q, sample.v, "I")
+        speed_i = node_velocity(mech, sample.q, sample.v, "I")
         np.testing.assert_allclose(speed_i, velocities["I"], atol=1e-12)
     assert coarse_fold[-1].t == 200.0
     end = drive_state(200.0)
@@ -99,7 +103,7 @@ def test_inverse_dynamics_support_balance_and_indeterminate_set(mech, coarse_fol
     g = mech.model.gravity.linear
     support = sum(r.wrench[:3] for r in result.reactions.values() if r.support)
     np.testing.assert_allclose(support, total * (mech.data.acom[0] - g), atol=1e-9 * total * 9.81)
-    summary = dep.indeterminate_reactions(result)
+    summary = red.indeterminate_reactions(result)
     # the efforts are determinate; some reaction components are not (one redundant constraint)
     assert summary and all(np.isfinite(r.wrench).all() for r in result.reactions.values())
     for joint in ("EC_M", "DF_M", "BG_M", "AB_M"):
@@ -109,7 +113,7 @@ def test_inverse_dynamics_support_balance_and_indeterminate_set(mech, coarse_fol
 def test_indeterminate_direction_is_the_one_the_core_flags(mech, coarse_fold):
     sample = coarse_fold[1]
     result = mech.inverse_dynamics(sample.q, sample.v, sample.a)
-    pattern = dep.indeterminate_direction(mech, sample.q)
+    pattern = red.indeterminate_direction(mech, sample.q)
     assert set(pattern) == set(result.reactions)
     for joint, reaction in result.reactions.items():
         np.testing.assert_array_equal(np.abs(pattern[joint]) < 1e-8, reaction.determinate, err_msg=joint)
@@ -120,13 +124,13 @@ def test_indeterminate_direction_is_the_one_the_core_flags(mech, coarse_fold):
 
 @pytest.mark.slow
 def test_full_fold_with_dynamics(mech):
-    samples = dep.fold(mech, dep.fold_times(1.0))
+    samples = fold(mech, fold_times(1.0))
     g = mech.params.geometry()
     worst_pos = worst_res = 0.0
     for sample in samples:
         s = drive_state(sample.t)
         expected = g.node_positions(s.alpha, s.gamma)
-        worst_pos = max(worst_pos, max(np.abs(p - expected[n]).max() for n, p in dep.node_positions(mech, sample.q).items()))
+        worst_pos = max(worst_pos, max(np.abs(p - expected[n]).max() for n, p in node_positions(mech, sample.q).items()))
         worst_res = max(worst_res, np.abs(mech.closure_residual(sample.q)).max())
         result = mech.inverse_dynamics(sample.q, sample.v, sample.a)
         assert all(np.isfinite(u) for u in result.efforts.values())
@@ -134,17 +138,14 @@ def test_full_fold_with_dynamics(mech):
 
 
 def test_bad_inputs_raise_named_errors(mech):
-    from mechkit.exceptions import InvalidParameters
-    from mechkit.mechanisms.deployable_9rr12uru import DeployableParams
-
     with pytest.raises(InvalidParameters, match="l3"):
         DeployableParams(l3=0.1)
     with pytest.raises(InvalidParameters, match="times"):
-        dep.fold(mech, np.array([5.0, 3.0]))
+        fold(mech, np.array([5.0, 3.0]))
     with pytest.raises(InvalidParameters, match="step"):
-        dep.fold_times(0.0)
+        fold_times(0.0)
     with pytest.raises(InvalidParameters, match="node"):
-        dep.node_velocity(mech, mech.home_q, np.zeros(mech.model.nv), "Z")
+        node_velocity(mech, mech.home_q, np.zeros(mech.model.nv), "Z")
     untested = mech.inverse_dynamics(mech.home_q, np.zeros(mech.model.nv), np.zeros(mech.model.nv), determinacy=False)
     with pytest.raises(InvalidParameters, match="result"):
-        dep.indeterminate_reactions(untested)
+        red.indeterminate_reactions(untested)

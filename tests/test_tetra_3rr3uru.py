@@ -7,22 +7,21 @@ import numpy as np
 import pytest
 
 from mechkit.exceptions import InvalidParameters
-from mechkit.mechanisms import deployable_9rr12uru as dep
-from mechkit.mechanisms import tetra_3rr3uru_soc as soc
-from mechkit.mechanisms.tetra_3rr3uru import TetraParams, web_joint_motion
-from mechkit.mechanisms.truss_geometry import (
+from mechkit.mechanisms.tetra_3rr3uru import TetraParams, soc
+from mechkit.mechanisms.truss.drives import drive_state
+from mechkit.mechanisms.truss.fold import fold
+from mechkit.mechanisms.truss.geometry import (
     DEG,
     GAMMA0,
     R_B0_ANGLES,
     TrussGeometry,
-    drive_state,
     euler_xyz,
     rot_axis,
-    rot_x,
-    rot_y,
-    rot_z,
     rpy_angles,
 )
+from mechkit.mechanisms.truss.motion import web_joint_motion
+from mechkit.mechanisms.truss.nodes import node_positions
+from mechkit.spatial import rot_x, rot_y, rot_z
 
 GEOMETRY = TrussGeometry(0.590, 0.2504, 0.250)
 TIMES = (0.0, 37.0, 100.0, 163.0, 200.0)
@@ -111,7 +110,7 @@ def unit(load_cached):
 
 @pytest.fixture(scope="module")
 def unit_fold(unit):
-    return dep.fold(unit, np.array(TIMES))
+    return fold(unit, np.array(TIMES))
 
 
 def test_unit_mobility_is_3_without_redundancy(unit, unit_fold):
@@ -139,7 +138,7 @@ def test_unit_fold_matches_eq6_eq7_and_closes(unit, unit_fold):
     for sample in unit_fold:
         s = drive_state(sample.t)
         expected = p.geometry().node_positions(s.alpha, s.gamma)
-        for node, pos in dep.node_positions(unit, sample.q).items():
+        for node, pos in node_positions(unit, sample.q).items():
             np.testing.assert_allclose(pos, expected[node], atol=1e-9)
         assert np.abs(unit.closure_residual(sample.q)).max() < 1e-10
         angles, rates, accs = web_joint_motion(p, s)
@@ -151,10 +150,10 @@ def test_unit_fold_matches_eq6_eq7_and_closes(unit, unit_fold):
 
 
 def test_fold_continuation_takes_the_whole_fold_in_one_requested_step(unit):
-    (end,) = dep.fold(unit, np.array([200.0]))
+    (end,) = fold(unit, np.array([200.0]))
     s = drive_state(200.0)
     expected = unit.params.geometry().node_positions(s.alpha, s.gamma)
-    for node, pos in dep.node_positions(unit, end.q).items():
+    for node, pos in node_positions(unit, end.q).items():
         np.testing.assert_allclose(pos, expected[node], atol=1e-9)
 
 

@@ -25,7 +25,7 @@ import pinocchio as pin
 from mechkit import kinematics
 from mechkit.bench import time_per_call
 from mechkit.mechanism import Mechanism, load
-from mechkit.mechanisms import deployable_9rr12uru as dep
+from mechkit.mechanisms.truss.fold import fold
 
 NAMES = ("four_bar", "five_bar", "tetra_3rr3uru", "deployable_9rr12uru")
 
@@ -33,7 +33,7 @@ NAMES = ("four_bar", "five_bar", "tetra_3rr3uru", "deployable_9rr12uru")
 def _trajectory(mech: Mechanism, steps: int) -> list[tuple[np.ndarray, np.ndarray, np.ndarray]]:
     """(q, v, a) along a motion: the paper's fold for the trusses, small input sweeps otherwise."""
     if mech.spec.name in ("tetra_3rr3uru", "deployable_9rr12uru"):
-        return [(s.q, s.v, s.a) for s in dep.fold(mech, np.linspace(0.0, 200.0, steps))]
+        return [(s.q, s.v, s.a) for s in fold(mech, np.linspace(0.0, 200.0, steps))]
     out, q = [], mech.home_q
     for k in range(steps):
         inputs = {j: q[mech.q_index(j)] + 0.01 for j in mech.actuated}

@@ -19,15 +19,11 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 from mechkit.mechanism import load
-from mechkit.mechanisms import deployable_9rr12uru as dep
-from mechkit.mechanisms.truss_geometry import (
-    R_B0_ANGLES,
-    drive_state,
-    euler_xyz,
-    rot_axis,
-    rot_y,
-    rpy_angles,
-)
+from mechkit.mechanisms.truss.drives import drive_state
+from mechkit.mechanisms.truss.fold import fold, fold_times
+from mechkit.mechanisms.truss.geometry import R_B0_ANGLES, euler_xyz, rot_axis, rpy_angles
+from mechkit.mechanisms.truss.nodes import node_positions, node_velocity
+from mechkit.spatial import rot_y
 
 FIGURES = Path(__file__).resolve().parent.parent / "docs" / "figures"
 PAPER_END_GAMMA_X = 85.5133  # deg, section 3.2 (theory; Adams 84.9368)
@@ -45,7 +41,7 @@ def main(step: float = 1.0, folder: Path = FIGURES) -> dict[str, float]:
     folder.mkdir(parents=True, exist_ok=True)
     mech = load("deployable_9rr12uru")
     p, g = mech.params, mech.params.geometry()
-    samples = dep.fold(mech, dep.fold_times(step))
+    samples = fold(mech, fold_times(step))
     t = np.array([s.t for s in samples])
     states = [drive_state(x) for x in t]
     node_b = mech.model.getFrameId("node_B")
@@ -53,7 +49,7 @@ def main(step: float = 1.0, folder: Path = FIGURES) -> dict[str, float]:
     rows = []
     for sample, s in zip(samples, states):
         eq = g.node_positions(s.alpha, s.gamma)
-        model = dep.node_positions(mech, sample.q)
+        model = node_positions(mech, sample.q)
         rpy_model = rpy_angles(mech.data.oMf[node_b].rotation @ b_initial)
         printed = rpy_angles(rot_y(s.gamma) @ rot_axis(g.tangent("B"), s.gamma - p.gamma_ref) @ euler_xyz(R_B0_ANGLES))
         efforts = mech.inverse_dynamics(sample.q, sample.v, sample.a, determinacy=False).efforts
@@ -61,7 +57,7 @@ def main(step: float = 1.0, folder: Path = FIGURES) -> dict[str, float]:
             "F_eq": eq["F"], "F_model": model["F"],
             "pos_err": max(np.abs(model[k] - eq[k]).max() for k in model),
             "I_speed_eq": np.linalg.norm(g.node_velocities(s.alpha, s.gamma, s.alpha_rate, s.gamma_rate)["I"]),
-            "I_speed_model": np.linalg.norm(dep.node_velocity(mech, sample.q, sample.v, "I")),
+            "I_speed_model": np.linalg.norm(node_velocity(mech, sample.q, sample.v, "I")),
             "rpy_eq": g.node_rpy("B", s.gamma, p.gamma_ref), "rpy_model": rpy_model, "rpy_printed": printed,
             "residual": np.abs(mech.closure_residual(sample.q)).max(), "efforts": efforts})
 

@@ -1,14 +1,13 @@
-"""The paper's analytic kinematics of the 3RR-3URU unit and the 9RR-12URU composite (numpy only).
+"""The paper's analytic geometry of the 3RR-3URU unit and the 9RR-12URU composite (numpy only).
 
-Xu et al., Journal of Deep Space Exploration 4(4) 2017 (references/003), eq. (6)-(13) and the
-drive laws of section 3.2. Frames: A-xyz at the fixed node A, z up; O1-x1y1z1 at the circumcentre
-O1 of triangle ABE, z1 along O1H, x1 along O1A. Units SI and radians.
+Xu et al., Journal of Deep Space Exploration 4(4) 2017 (references/003), eq. (6)-(13); the drive
+laws of section 3.2 are in `mechkit.mechanisms.truss.drives`. Frames: A-xyz at the fixed node A,
+z up; O1-x1y1z1 at the circumcentre O1 of triangle ABE, z1 along O1H, x1 along O1A. Units SI and
+radians.
 
-Stated reading of what the text leaves open (see docs/mechanisms/deployable_9rr12uru.md):
+Stated reading of what the text leaves open (see docs/mechanisms/deployable_9rr12uru.md; the sign
+of gamma is read in `truss.drives`):
 
-- Sign of gamma. ``acos`` in the printed law gives |gamma|; the text's initial value
-  gamma0 = -3.571 deg (the angle from x to x1 about y, eq. 7) is what the law gives at t = 0 with
-  the minus sign, so gamma(t) = -acos(...) here (it stays negative over the 200 s).
 - Node orientation (eq. 9). Each outer node turns relative to O1 about its web-rod joint axis
   (the tangent t = z1 x r of the circumcircle at the node) by -(gamma - gamma0), the same sense as
   the fixed node A turns relative to O1 (Rot(y1, -(gamma - gamma0))). For B, t = S4, so
@@ -26,16 +25,9 @@ from dataclasses import dataclass
 import numpy as np
 
 from mechkit.exceptions import InvalidParameters
-from mechkit.spatial import rot_x, rot_y, rot_z
+from mechkit.spatial import rot_x, rot_y, rot_z, skew
 
 DEG = np.pi / 180.0
-
-# Drive laws of section 3.2 (printed constants).
-XI0, XI_RATE = 23.171 * DEG, 0.25 * DEG  # rad, rad/s
-ZETA0, ZETA_RATE = 21.574 * DEG, 0.15 * DEG  # rad, rad/s
-ALPHA_GAIN = 0.490
-GAMMA_A, GAMMA_B, GAMMA_C, GAMMA_D, GAMMA_E = 0.267, 0.172, 0.718, 0.413, 1.392
-FOLD_DURATION = 200.0  # s, "200 s of simulation fold it fully"
 
 # Initial node orientations relative to O1 (section 3.2), Rx(a) Ry(b) Rz(c).
 GAMMA0 = -3.571 * DEG
@@ -51,7 +43,7 @@ UNIT_NODES = {"H": ("H", "B", "E"), "J": ("J", "C", "F"), "I": ("I", "D", "G")}
 def rot_axis(k: np.ndarray, angle: float) -> np.ndarray:
     """Eq. (10): rotation by `angle` (rad) about the unit axis k (Rodrigues)."""
     k = np.asarray(k, dtype=float)
-    K = np.array([[0, -k[2], k[1]], [k[2], 0, -k[0]], [-k[1], k[0], 0]])
+    K = skew(k)
     return np.eye(3) + np.sin(angle) * K + (1.0 - np.cos(angle)) * (K @ K)
 
 
@@ -74,71 +66,6 @@ def half_angle_beta(l1: float, l2: float) -> float:
     return float(np.arcsin(l2 / (2.0 * l1)))
 
 
-# ----------------------------------------------------------------------------------------- drives
-def alpha_law(t):
-    """alpha(t) = asin(0.490 cos xi), xi = 0.25 deg/s t + 23.171 deg (rad); complex-safe in t."""
-    xi = XI0 + XI_RATE * t
-    return np.arcsin(ALPHA_GAIN * np.cos(xi))
-
-
-def _alpha_rate_law(t):
-    xi = XI0 + XI_RATE * t
-    c = ALPHA_GAIN * np.cos(xi)
-    return -ALPHA_GAIN * np.sin(xi) * XI_RATE / np.sqrt(1.0 - c * c)
-
-
-def _gamma_cos(t):
-    cx, cz = np.cos(XI0 + XI_RATE * t), np.cos(ZETA0 + ZETA_RATE * t)
-    return GAMMA_A * cx * cz + np.sqrt((GAMMA_B * cx**2 - GAMMA_C) * (GAMMA_D * cz**2 - GAMMA_E))
-
-
-def gamma_law(t):
-    """gamma(t) = -acos(...) (rad; our sign reading, see the module docstring); complex-safe in t."""
-    return -np.arccos(_gamma_cos(t))
-
-
-def _gamma_rate_law(t):
-    xi, ze = XI0 + XI_RATE * t, ZETA0 + ZETA_RATE * t
-    cx, sx, cz, sz = np.cos(xi), np.sin(xi), np.cos(ze), np.sin(ze)
-    p, q = GAMMA_B * cx**2 - GAMMA_C, GAMMA_D * cz**2 - GAMMA_E
-    dp, dq = -2.0 * GAMMA_B * cx * sx * XI_RATE, -2.0 * GAMMA_D * cz * sz * ZETA_RATE
-    dc = GAMMA_A * (-sx * XI_RATE * cz - cx * sz * ZETA_RATE) + (dp * q + p * dq) / (2.0 * np.sqrt(p * q))
-    c = _gamma_cos(t)
-    return dc / np.sqrt(1.0 - c * c)  # d/dt(-acos c) = +c' / sqrt(1 - c^2)
-
-
-def _complex_step(f, t: float) -> float:
-    h = 1e-30
-    return float(np.imag(f(t + 1j * h)) / h)
-
-
-@dataclass(frozen=True)
-class DriveState:
-    """The paper's drive angles at one instant: fold alpha and attitude gamma (rad, rad/s, rad/s^2)."""
-
-    t: float
-    alpha: float
-    gamma: float
-    alpha_rate: float
-    gamma_rate: float
-    alpha_acc: float
-    gamma_acc: float
-
-
-def drive_state(t: float) -> DriveState:
-    """alpha(t) = asin(0.490 cos xi), gamma(t) = -acos(...) (our sign reading), with derivatives.
-
-    First derivatives are analytic; second derivatives by complex step of the analytic first ones
-    (exact to rounding).
-    """
-    t = float(t)
-    if not np.isfinite(t) or t < 0.0 or t > FOLD_DURATION:
-        raise InvalidParameters("t", t, f"the paper's drive laws are stated for 0 <= t <= {FOLD_DURATION} s")
-    return DriveState(t, float(alpha_law(t)), float(gamma_law(t)), float(_alpha_rate_law(t)),
-                      float(_gamma_rate_law(t)), _complex_step(_alpha_rate_law, t), _complex_step(_gamma_rate_law, t))
-
-
-# ----------------------------------------------------------------------------------------- nodes
 @dataclass(frozen=True)
 class TrussGeometry:
     """Dimensions of the composite: web rod L, folding links l1 (to A) and l2 (B-E type), m."""
@@ -149,6 +76,7 @@ class TrussGeometry:
 
     @property
     def beta(self) -> float:
+        """Half the angle B-A-E of the base triangle, rad (eq. 6)."""
         return half_angle_beta(self.l1, self.l2)
 
     def radial(self, which: str) -> np.ndarray:

@@ -1,7 +1,7 @@
 """Sequential SOC inverse dynamics of the 3RR-3URU unit along the paper's fold (numpy only).
 
 Independent of Pinocchio's kinematics and dynamics: the motion of every body comes from the
-paper's node positions (eq. 6-7), the web-joint map of `tetra_3rr3uru.web_joint_motion` and a
+paper's node positions (eq. 6-7), the web-joint map of `truss.motion.web_joint_motion` and a
 closed-form closure of each URU rod; the tree (joint axes and points) is re-derived here from the
 same geometry, not read from the URDF. Only masses, COM offsets and inertias are read from the
 model description. Time derivatives: complex step (first), central differences of complex-step
@@ -23,9 +23,11 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from mechkit.exceptions import InvalidParameters
-from mechkit.mechanisms.tetra_3rr3uru import ACTUATED, TetraParams
-from mechkit.mechanisms.truss_geometry import alpha_law, gamma_law, rot_axis
-from mechkit.spatial import rot_y
+from mechkit.mechanisms.tetra_3rr3uru.actuation import ACTUATED
+from mechkit.mechanisms.truss.drives import alpha_law, gamma_law
+from mechkit.mechanisms.truss.geometry import rot_axis
+from mechkit.mechanisms.truss.params import TetraParams
+from mechkit.spatial import rot_y, skew
 from mechkit.validation.soc import BodyLoad, SKCInstant, SOCResult, WrenchSite, solve_soc
 
 if TYPE_CHECKING:
@@ -43,10 +45,6 @@ def _unit(v):
 def _frame(u, v):
     """Columns (u, v, u x v) of two perpendicular unit vectors."""
     return np.column_stack([u, v, np.cross(u, v)])
-
-
-def _skew(v: np.ndarray) -> np.ndarray:
-    return np.array([[0, -v[2], v[1]], [v[2], 0, -v[0]], [-v[1], v[0], 0]])
 
 
 @dataclass(frozen=True)
@@ -188,7 +186,7 @@ def _point_jacobian(motion: UnitMotion, states: dict, body: str, point: np.ndarr
 def _site(point: np.ndarray, com: np.ndarray) -> np.ndarray:
     """(6, 6) site Jacobian of a point of a free body over (COM translation, rotation)."""
     J = np.zeros((6, 6))
-    J[:3, :3], J[:3, 3:], J[3:, 3:] = np.eye(3), -_skew(point - com), np.eye(3)
+    J[:3, :3], J[:3, 3:], J[3:, 3:] = np.eye(3), -skew(point - com), np.eye(3)
     return J
 
 

@@ -1,0 +1,24 @@
+"""Parameters of the 9RR-12URU composite: the unit's (`truss.params.TetraParams`) plus its chains."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from mechkit.exceptions import InvalidParameters
+from mechkit.mechanisms.truss.params import TetraParams
+from mechkit.params import param
+
+
+@dataclass(frozen=True)
+class DeployableParams(TetraParams):
+    l3: float = param(0.250, "m", "each link of the constraint chains EC, DF, BG (paper silent; = l2)", ours=True)
+
+    def validate(self) -> None:
+        super().validate()
+        nodes = self.geometry().node_positions(self.alpha_ref, self.gamma_ref)
+        for chain in ("EC", "DF", "BG"):
+            chord = float(np.linalg.norm(nodes[chain[1]] - nodes[chain[0]]))
+            if chord >= 2.0 * self.l3:
+                raise InvalidParameters("l3", self.l3, f"chain {chain} cannot reach: chord {chord:.4f} m >= 2 l3")

@@ -1,0 +1,138 @@
+"""The redundant constraint of the 9RR-12URU composite and what it leaves indeterminate.
+
+60 closure rows of rank 59 along the paper's (three-fold symmetric) motions: one self-stress
+(`redundancy`), the one-dimensional indeterminate part of the reactions it causes
+(`indeterminate_direction`, `indeterminate_reactions`), the second-order test of the seventh DOF
+(`second_order_form`: it holds only along those motions) and the mobility with chains removed
+(`mobility_without`: each chain is redundant given the two others, eq. 5).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import pinocchio as pin
+from scipy.linalg import null_space
+
+from mechkit.dynamics import (
+    InverseDynamicsResult,
+    cut_wrench_arrays,
+    subtract_cut_wrenches,
+    subtree_incidence,
+)
+from mechkit.exceptions import InvalidParameters
+from mechkit.kinematics import numerical_rank
+from mechkit.mechanism import Mechanism
+
+#: Names of the world reaction components, in wrench order [f, m].
+COMPONENTS = ("fx", "fy", "fz", "mx", "my", "mz")
+
+
+def indeterminate_reactions(result: InverseDynamicsResult) -> dict[str, tuple[str, ...]]:
+    """Joint -> world reaction components that statics leaves undetermined (from the determinacy
+    flags of `Mechanism.inverse_dynamics`); joints whose reaction is fully determinate are absent."""
+    if any(r.determinate is None for r in result.reactions.values()):
+        raise InvalidParameters("result", "determinacy=False", "run Mechanism.inverse_dynamics with determinacy=True")
+    return {joint: tuple(c for c, ok in zip(COMPONENTS, r.determinate) if not ok)
+            for joint, r in result.reactions.items() if not r.determinate.all()}
+
+
+@dataclass(frozen=True)
+class Redundancy:
+    """The redundant constraint of the composite at one configuration.
+
+    Attributes:
+        singular_values: of the closure Jacobian (descending).
+        self_stress: cut name -> (force (N), moment (N m)) world, at the middle hinge, of the unit
+            left null vector y of the closure Jacobian (J^T y = 0): the constraint forces that
+            balance among themselves, i.e. the direction in which the reactions are indeterminate.
+            Each share is a force along the cut's middle hinge (plus, once folding has started, a
+            moment normal to it).
+        hinge_axes: cut name -> unit middle-hinge axis (world).
+    """
+
+    singular_values: np.ndarray
+    self_stress: dict[str, tuple[np.ndarray, np.ndarray]]
+    hinge_axes: dict[str, np.ndarray]
+
+
+def _self_stress(mech: Mechanism, q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Singular values of the closure Jacobian at q and its last left singular vector y (J^T y = 0),
+    signed so that its largest entry is positive. Leaves mech.data at q."""
+    U, s, _ = np.linalg.svd(mech.closure_jacobian(q))
+    y = U[:, -1]
+    return s, y * np.sign(y[np.argmax(np.abs(y))])
+
+
+def redundancy(mech: Mechanism, q: np.ndarray) -> Redundancy:
+    """Self-stress of the composite at q: the redundant combination of closure rows."""
+    s, y = _self_stress(mech, q)
+    stress, axes = {}, {}
+    for cut, (f, m, _) in zip(mech.rows.cuts, mech.rows.wrenches(mech.data, y)):
+        stress[cut.closure.name] = (f, m)
+        axes[cut.closure.name] = mech.data.oMf[cut.frame_a].rotation @ cut.closure.axis
+    return Redundancy(s, stress, axes)
+
+
+def indeterminate_direction(mech: Mechanism, q: np.ndarray) -> dict[str, np.ndarray]:
+    """The one-dimensional indeterminate part of the reactions at q, made explicit.
+
+    Every reaction is R = R_0 + s P with s undetermined by statics: P (joint -> (6,) world wrench,
+    parent on child, at the joint point) is the set of reactions that the self-stress alone
+    produces (its closure forces applied to the tree, no gravity, no motion), scaled so that
+    max |P| = 1. Components where P vanishes are the determinate ones.
+    """
+    _, y = _self_stress(mech, q)
+    model = mech.model
+    G = subtree_incidence(model, mech.rows)
+    W, P = cut_wrench_arrays(mech.data, mech.rows, y)
+    tree = subtract_cut_wrenches(np.zeros((model.njoints, 6)), mech.data, np.flatnonzero(np.any(G != 0, axis=1)), G, W, P)
+    pattern = {model.names[i]: tree[i] for i in range(1, model.njoints)}
+    pattern |= {c.closure.name: w for c, w in zip(mech.rows.cuts, W)}
+    scale = max(np.abs(v).max() for v in pattern.values())
+    return {joint: v / scale for joint, v in pattern.items()}
+
+
+def second_order_form(mech: Mechanism, q: np.ndarray, h: float = 1e-3) -> tuple[np.ndarray, np.ndarray]:
+    """Second-order test of the redundant configuration q: Q(d) = y^T e''(q)[d, d] on ker J.
+
+    y is the self-stress (J^T y = 0), e the closure residual. A first-order motion d (J d = 0)
+    continues to a motion only if Q(d) = 0, so the instantaneous DOF count holds for finite motions
+    only along the zero set of Q. Central differences with step h (rad, m) on the residual.
+
+    Returns:
+        ((k, k) matrix of Q, (nv, k) orthonormal basis of ker J in which it is written).
+    """
+    _, y = _self_stress(mech, q)
+    basis = null_space(mech.closure_jacobian(q), rcond=1e-9)
+
+    def along(d: np.ndarray) -> float:
+        return float(y @ mech.closure_residual(pin.integrate(mech.model, q, d)))
+
+    k = basis.shape[1]
+    Q = np.zeros((k, k))
+    for i in range(k):
+        for j in range(i, k):
+            a, b = h * basis[:, i], h * basis[:, j]
+            Q[i, j] = Q[j, i] = (along(a + b) - along(a - b) - along(b - a) + along(-a - b)) / (4.0 * h * h)
+    return Q, basis
+
+
+def chain_joints(chain: str) -> tuple[str, ...]:
+    """Tree joints of a URU rod or chain (e.g. "BG": BG_B1, BG_B2, BG_G1, BG_G2)."""
+    return tuple(f"{chain}_{node}{k}" for node in chain for k in (1, 2))
+
+
+def mobility_without(mech: Mechanism, q: np.ndarray, chains: tuple[str, ...]) -> tuple[int, int]:
+    """(DOF, redundant rows) of the composite at q with the given URU chains removed."""
+    J = mech.closure_jacobian(q)
+    drop_cols = [mech.v_index(j) for c in chains for j in chain_joints(c)]
+    keep_rows, i = [], 0
+    for cut in mech.rows.cuts:
+        if cut.closure.name[:-2] not in chains:
+            keep_rows += list(range(i, i + cut.size))
+        i += cut.size
+    sub = np.delete(J[keep_rows], drop_cols, axis=1)
+    rank = numerical_rank(np.linalg.svd(sub, compute_uv=False))
+    return sub.shape[1] - rank, sub.shape[0] - rank
