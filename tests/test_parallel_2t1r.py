@@ -9,10 +9,18 @@ import pytest
 
 from mechkit.description import render_urdf
 from mechkit.exceptions import ClosureNotConverged, InvalidParameters, SingularConfiguration
-from mechkit.mechanisms import parallel_2t1r as m2
-from mechkit.mechanisms import parallel_2t1r_kinematics as kin
-from mechkit.mechanisms.parallel_2t1r_soc import classic_torques, skcs, soc_inverse_dynamics
+from mechkit.mechanisms.parallel_2t1r import SPEC
+from mechkit.mechanisms.parallel_2t1r import kinematics as kin
+from mechkit.mechanisms.parallel_2t1r.assembly import EXAMPLE_INPUTS
+from mechkit.mechanisms.parallel_2t1r.compare import compare_along
+from mechkit.mechanisms.parallel_2t1r.joints import joint_coordinates
+from mechkit.mechanisms.parallel_2t1r.motion_law import motion_law, state_at
+from mechkit.mechanisms.parallel_2t1r.params import Parallel2T1RParams, mass_properties
+from mechkit.mechanisms.parallel_2t1r.rates import at_rest
+from mechkit.mechanisms.parallel_2t1r.soc import classic_torques, skcs, soc_inverse_dynamics
+from mechkit.mechanisms.parallel_2t1r.studies import singular_approach, start_of_motion
 from mechkit.resources import urdf_dir
+from mechkit.scenes import scene_poses
 
 REGULAR = np.arange(1, 501) * 0.01  # the 501-sample law without its singular start t = 0
 
@@ -24,18 +32,18 @@ def mech(load_cached):
 
 @pytest.fixture(scope="module")
 def comparison(mech):
-    return m2.compare_along(mech, REGULAR)
+    return compare_along(mech, REGULAR)
 
 
 def test_urdf_file_is_the_template_at_defaults():
-    spec, p = m2.SPEC, m2.Parallel2T1RParams()
+    spec, p = SPEC, Parallel2T1RParams()
     assert (urdf_dir() / "parallel_2t1r.urdf").read_text() == render_urdf(spec.template_path, p.xacro_args())
 
 
 def test_urdf_inertias_are_the_validators_inertias():
-    p = m2.Parallel2T1RParams(payload_mass=3.0, bar_width=0.03)
-    root = ET.fromstring(render_urdf(m2.SPEC.template_path, p.xacro_args()))
-    for name, (mass, com, inertia) in m2.mass_properties(p).items():
+    p = Parallel2T1RParams(payload_mass=3.0, bar_width=0.03)
+    root = ET.fromstring(render_urdf(SPEC.template_path, p.xacro_args()))
+    for name, (mass, com, inertia) in mass_properties(p).items():
         inertial = root.find(f"link[@name='{name}']/inertial")
         assert float(inertial.find("mass").get("value")) == pytest.approx(mass, rel=1e-14)
         np.testing.assert_allclose([float(x) for x in inertial.find("origin").get("xyz").split()], com, atol=1e-15)
@@ -51,9 +59,9 @@ def test_mobility_and_redundant_variant(load_cached):
 
 
 def _analytic_q(mech, pose: kin.Pose, theta4: float) -> np.ndarray:
-    s = m2.at_rest(pose, m2.EXAMPLE_INPUTS, theta4)
+    s = at_rest(pose, EXAMPLE_INPUTS, theta4)
     q = mech.neutral()
-    for joint, (value, _, _) in m2.joint_coordinates(mech.params, s).items():
+    for joint, (value, _, _) in joint_coordinates(mech.params, s).items():
         q[mech.q_index(joint)] = value
     return q
 
@@ -63,17 +71,17 @@ def test_example_assembles_into_every_forward_solution(mech):
     lands on the analytic configuration. The one pose limb III cannot reach does not assemble."""
     rng = np.random.default_rng(3)
     assembled = 0
-    for sol in kin.forward_kinematics(mech.params.dims, m2.EXAMPLE_INPUTS):
+    for sol in kin.forward_kinematics(mech.params.dims, EXAMPLE_INPUTS):
         try:
             roots, _ = kin.follower_angles(mech.params.dims, sol.pose)
         except InvalidParameters:
             with pytest.raises(ClosureNotConverged):
                 q0 = _analytic_q(mech, sol.pose, 0.0)
-                mech.assemble(m2.EXAMPLE_INPUTS, guess=q0 + rng.uniform(-0.05, 0.05, q0.size), max_iter=40)
+                mech.assemble(EXAMPLE_INPUTS, guess=q0 + rng.uniform(-0.05, 0.05, q0.size), max_iter=40)
             continue
         for theta4 in roots:
             exact = _analytic_q(mech, sol.pose, theta4)
-            q = mech.assemble(m2.EXAMPLE_INPUTS, guess=exact + rng.uniform(-0.05, 0.05, exact.size))
+            q = mech.assemble(EXAMPLE_INPUTS, guess=exact + rng.uniform(-0.05, 0.05, exact.size))
             assert np.max(np.abs(mech.closure_residual(q))) < 1e-12
             np.testing.assert_allclose(np.angle(np.exp(1j * (q - exact))), 0.0, atol=1e-10)
             assembled += 1
@@ -96,8 +104,8 @@ def test_in_plane_forces_are_the_determinate_components(comparison):
 
 def test_soc_equals_classic_virtual_work_at_one_instant():
     """Two virtual-work routes on the same loads: SKC by SKC, and the whole mechanism at once."""
-    p = m2.Parallel2T1RParams()
-    s = m2.state_at(p, *m2.motion_law(2.2))
+    p = Parallel2T1RParams()
+    s = state_at(p, *motion_law(2.2))
     soc = soc_inverse_dynamics(p, s)
     ours, _ = classic_torques(p, s)
     assert soc.consistency["SKC1"] < 1e-12
@@ -106,7 +114,7 @@ def test_soc_equals_classic_virtual_work_at_one_instant():
 
 
 def test_redundant_minimum_norm_distribution_agrees_everywhere(mech):
-    cmp = m2.compare_along(mech, REGULAR[::25], redundant=True)
+    cmp = compare_along(mech, REGULAR[::25], redundant=True)
     assert np.all(cmp.relative_error("soc") < 1e-8)
     assert np.all(cmp.relative_error("classic")[:3] < 1e-8)
 
@@ -115,7 +123,7 @@ def test_start_of_motion_law(mech):
     """t -> 0+: torques tend to finite limits, cond(J_p) and the five-bar's R13 force grow as 1/t;
     at t = 0 every method raises SingularConfiguration (none returns NaN)."""
     times = np.array([1e-1, 1e-2, 1e-3, 1e-4, 0.0])
-    study = m2.start_of_motion(mech, times)
+    study = start_of_motion(mech, times)
     v = study.values
     for key in ("cond_Jp", "pinocchio:R13_fx"):
         slope = np.polyfit(np.log(times[:4]), np.log(np.abs(v[key][:4])), 1)[0]
@@ -129,7 +137,7 @@ def test_start_of_motion_law(mech):
 
 def test_singular_approach_blows_up_only_without_redundant_actuation(mech):
     deltas = np.array([1e-1, 1e-2, 1e-3, 1e-4, 1e-5, 1e-6, 0.0])
-    study = m2.singular_approach(mech, deltas)
+    study = singular_approach(mech, deltas)
     v, x = study.values, deltas[:-1]
     for key in ("cond_Jp", "classic:cond", "soc:M1", "pinocchio:M1", "pinocchio:M2", "pinocchio:R13_fx"):
         slope = np.polyfit(np.log(x[2:]), np.log(np.abs(v[key][2:-1])), 1)[0]
@@ -154,13 +162,13 @@ def test_singular_approach_blows_up_only_without_redundant_actuation(mech):
 
 
 def test_self_checks_report(mech):
-    checks = m2.SPEC.self_checks(mech)
+    checks = SPEC.self_checks(mech)
     assert checks and all(np.isfinite(x) and x < 1e-8 for x in checks.values())
 
 
 def test_skc_order_and_unknowns():
-    p = m2.Parallel2T1RParams()
-    s = m2.state_at(p, *m2.motion_law(1.0))
+    p = Parallel2T1RParams()
+    s = state_at(p, *motion_law(1.0))
     names = [(k.name, [a for a, _ in k.actuators], [r.joint for r in k.released], [r.joint for r in k.known])
              for k in skcs(p, s)]
     assert names == [("SKC3", [], ["R43"], []), ("SKC2", ["R31"], ["R23"], ["R43"]),
@@ -170,8 +178,6 @@ def test_skc_order_and_unknowns():
 
 
 def test_motion_law_scene_closes_every_loop(mech):
-    from mechkit import viz
-
-    poses = viz.scene_poses(mech, "motion_law")  # checks sizes, finiteness and closure
+    poses = scene_poses(mech, "motion_law")  # checks sizes, finiteness and closure
     assert len(poses) == 101
     np.testing.assert_allclose([q[mech.q_index("R21")] for q in poses], np.pi / 15 * np.linspace(0, 5, 101), atol=1e-15)

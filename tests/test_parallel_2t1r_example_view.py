@@ -5,12 +5,12 @@ from __future__ import annotations
 import numpy as np
 
 from mechkit import viz
-from mechkit.mechanisms import parallel_2t1r as m2
+from mechkit.mechanisms.parallel_2t1r.scenes import example_configurations
 
 
 def test_every_example_assembly_is_drawn_side_by_side(load_cached):
     mech = load_cached("parallel_2t1r")
-    configurations = m2.example_configurations(mech)
+    configurations = example_configurations(mech)
     assert len(configurations) == 6  # 3 reachable poses x 2 theta4 roots (pose 4: limb III cannot reach)
     for q in configurations:
         assert np.max(np.abs(mech.closure_residual(q))) < 1e-12

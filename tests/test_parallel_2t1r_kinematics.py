@@ -6,16 +6,12 @@ import numpy as np
 import pytest
 
 from mechkit.exceptions import InvalidParameters, SingularConfiguration
-from mechkit.mechanisms import parallel_2t1r_kinematics as kin
-from mechkit.mechanisms.parallel_2t1r import (
-    EXAMPLE_INPUTS,
-    MOTION_RATES,
-    Parallel2T1RParams,
-    assembled_pose,
-    motion_law,
-    state_at,
-)
-from mechkit.mechanisms.parallel_2t1r_soc import Points
+from mechkit.mechanisms.parallel_2t1r import kinematics as kin
+from mechkit.mechanisms.parallel_2t1r import rates
+from mechkit.mechanisms.parallel_2t1r.assembly import EXAMPLE_INPUTS, assembled_pose
+from mechkit.mechanisms.parallel_2t1r.motion_law import MOTION_RATES, motion_law, state_at
+from mechkit.mechanisms.parallel_2t1r.params import Parallel2T1RParams
+from mechkit.mechanisms.parallel_2t1r.soc import Points
 
 P = Parallel2T1RParams()
 D = P.dims
@@ -77,7 +73,7 @@ def test_inverse_kinematics_eight_sets_round_trip():
 
 
 def test_sixteen_configurations_of_the_assembled_pose():
-    pose, _, _ = assembled_pose(P, EXAMPLE_INPUTS)
+    pose, _, _ = assembled_pose(D, EXAMPLE_INPUTS)
     roots, _ = kin.follower_angles(D, pose)
     configs = [np.append(inputs, t4) for inputs in kin.inverse_kinematics(D, pose) for t4 in roots]
     assert len({tuple(np.round(c, 9)) for c in configs}) == 16
@@ -87,7 +83,7 @@ def test_sixteen_configurations_of_the_assembled_pose():
 
 def test_theta3_matches_printed_eq10_half_angle_form():
     """t3, M3, N3 of eq. (10): N3 u^2 - 2 t3 u - M3 = 0 with u = tan(theta_3 / 2)."""
-    pose, _, _ = assembled_pose(P, EXAMPLE_INPUTS)
+    pose, _, _ = assembled_pose(D, EXAMPLE_INPUTS)
     x, z, al = pose.x, pose.z, pose.alpha
     xx = -x + D.l3 * np.cos(al) / 2 - D.l1 / 2
     t3 = 2 * D.l2 * z + D.l2 * D.l3 * np.sin(al)
@@ -119,7 +115,7 @@ def test_link_motion_matches_finite_differences(t: float):
 
     def coms(u: float) -> np.ndarray:
         s = st(u)
-        pts, motion = Points.of(D, s), kin.link_motion(D, s)
+        pts, motion = Points.of(D, s), rates.link_motion(D, s)
         out = [pts.p]
         for i in range(4):
             for start, name in ((pts.a[i], f"link{i + 1}1"), (pts.b[i], f"link{i + 1}2")):
@@ -127,22 +123,22 @@ def test_link_motion_matches_finite_differences(t: float):
         return np.array(out)
 
     names = ["platform"] + [f"link{i}{e}" for i in range(1, 5) for e in (1, 2)]
-    motion = kin.link_motion(D, st(t))
+    motion = rates.link_motion(D, st(t))
     np.testing.assert_allclose(coms(t), [motion[n].com for n in names], atol=1e-15)
     v = np.array([motion[n].v_com for n in names])
     np.testing.assert_allclose(_fd(coms, t), v, atol=1e-8)
-    vel = lambda u: np.array([kin.link_motion(D, st(u))[n].v_com for n in names])
+    vel = lambda u: np.array([rates.link_motion(D, st(u))[n].v_com for n in names])
     np.testing.assert_allclose(_fd(vel, t), [motion[n].a_com for n in names], atol=1e-7)
-    angle = lambda u: np.unwrap([kin.link_motion(D, st(u))[n].angle for n in names])
+    angle = lambda u: np.unwrap([rates.link_motion(D, st(u))[n].angle for n in names])
     np.testing.assert_allclose(_fd(angle, t), [motion[n].omega[1] for n in names], atol=1e-8)
-    omega = lambda u: np.array([kin.link_motion(D, st(u))[n].omega for n in names])
+    omega = lambda u: np.array([rates.link_motion(D, st(u))[n].omega for n in names])
     np.testing.assert_allclose(_fd(omega, t), [motion[n].alpha for n in names], atol=1e-7)
 
 
 def test_velocity_equation_sign_of_printed_g():
     """J_p v = J_q omega holds with our g_ii; the printed g_ii (opposite sign) would give -v."""
     s = state_at(P, *motion_law(2.0))
-    jp, jq = kin.jacobians(D, s.theta, s.pose)
+    jp, jq = rates.jacobians(D, s.theta, s.pose)
     np.testing.assert_allclose(jp @ s.x_dot, jq @ MOTION_RATES, atol=1e-14)
     r = kin.platform_points(D, s.pose)["C1"] - kin.elbow_points(D, s.theta[:1])[0]
     printed_g11 = 2 * D.l2 * (np.sin(s.theta[0]) * -r[0] + np.cos(s.theta[0]) * -r[2])

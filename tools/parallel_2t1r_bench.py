@@ -19,8 +19,15 @@ import time
 import numpy as np
 
 import mechkit
-from mechkit.mechanisms import parallel_2t1r as m2
-from mechkit.mechanisms.parallel_2t1r_soc import classic_torques, soc_inverse_dynamics
+from mechkit.mechanisms.parallel_2t1r.compare import pinocchio_inverse_dynamics, pinocchio_motion
+from mechkit.mechanisms.parallel_2t1r.joints import joint_positions
+from mechkit.mechanisms.parallel_2t1r.motion_law import (
+    MOTION_DURATION,
+    motion_law,
+    motion_law_states,
+    state_at,
+)
+from mechkit.mechanisms.parallel_2t1r.soc import classic_torques, soc_inverse_dynamics
 
 
 def _per_sample_us(fn, items, repeat: int) -> float:
@@ -42,22 +49,22 @@ def main(argv: list[str] | None = None) -> int:
     args = parser.parse_args(argv)
     mech = mechkit.load("parallel_2t1r")
     p = mech.params
-    times = np.linspace(m2.MOTION_DURATION / args.samples, m2.MOTION_DURATION, args.samples)
-    states = m2.motion_law_states(p, times)
-    motions = [m2.pinocchio_motion(mech, *m2.motion_law(t), m2.joint_positions(p, s)) for t, s in zip(times, states)]
-    guesses = [(m2.motion_law(t), q) for t, (q, _, _) in zip(times, motions)]
+    times = np.linspace(MOTION_DURATION / args.samples, MOTION_DURATION, args.samples)
+    states = motion_law_states(p, times)
+    motions = [pinocchio_motion(mech, *motion_law(t), joint_positions(p, s)) for t, s in zip(times, states)]
+    guesses = [(motion_law(t), q) for t, (q, _, _) in zip(times, motions)]
 
     rows = {
         "Pinocchio constrained RNEA + reactions": _per_sample_us(
-            lambda m: m2.pinocchio_inverse_dynamics(mech, *m, determinacy=False), motions, args.repeat),
+            lambda m: pinocchio_inverse_dynamics(mech, *m, determinacy=False), motions, args.repeat),
         "  + determinacy rank test": _per_sample_us(
-            lambda m: m2.pinocchio_inverse_dynamics(mech, *m, determinacy=True), motions, args.repeat),
+            lambda m: pinocchio_inverse_dynamics(mech, *m, determinacy=True), motions, args.repeat),
         "SOC (3 SKCs, analytic Jacobians)": _per_sample_us(lambda s: soc_inverse_dynamics(p, s), states, args.repeat),
         "classic virtual work (torques)": _per_sample_us(lambda s: classic_torques(p, s), states, args.repeat),
         "Pinocchio motion (assemble + v + a)": _per_sample_us(
-            lambda g: m2.pinocchio_motion(mech, *g[0], g[1]), guesses, args.repeat),
+            lambda g: pinocchio_motion(mech, *g[0], g[1]), guesses, args.repeat),
         "analytic motion state (FK + (12) + (15))": _per_sample_us(
-            lambda t: m2.state_at(p, *m2.motion_law(t)), times, args.repeat),
+            lambda t: state_at(p, *motion_law(t)), times, args.repeat),
     }
     ref = rows["Pinocchio constrained RNEA + reactions"]
     load = os.getloadavg()[0]

@@ -17,7 +17,9 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 import mechkit
-from mechkit.mechanisms import parallel_2t1r as m2
+from mechkit.mechanisms.parallel_2t1r.compare import QUANTITIES, Comparison, compare_along
+from mechkit.mechanisms.parallel_2t1r.motion_law import MOTION_DURATION
+from mechkit.mechanisms.parallel_2t1r.studies import Study, singular_approach, start_of_motion
 
 FIGURES = Path(__file__).resolve().parent.parent / "docs" / "figures"
 GROUPS = (("driving torques", "N m", ("M1", "M2", "M3")),
@@ -25,13 +27,13 @@ GROUPS = (("driving torques", "N m", ("M1", "M2", "M3")),
           ("R43 (link42 on platform)", "N", ("R43_fx", "R43_fz")))
 
 
-def comparison_figure(cmp: m2.Comparison, path: Path) -> None:
+def comparison_figure(cmp: Comparison, path: Path) -> None:
     """Values (SOC dashed over Pinocchio) and |method - Pinocchio| on a log axis, per group."""
     fig, axes = plt.subplots(2, 3, figsize=(15, 7.5), sharex=True)
     for col, (title, unit, names) in enumerate(GROUPS):
         top, bottom = axes[0, col], axes[1, col]
         for name in names:
-            k = m2.QUANTITIES.index(name)
+            k = QUANTITIES.index(name)
             line, = top.plot(cmp.times, cmp.values["pinocchio"][:, k], lw=2.5, alpha=0.5, label=f"{name} Pinocchio")
             top.plot(cmp.times, cmp.values["soc"][:, k], "--", color=line.get_color(), lw=1, label=f"{name} SOC")
             for method, style in (("soc", "-"), ("classic", ":")):
@@ -53,7 +55,7 @@ def comparison_figure(cmp: m2.Comparison, path: Path) -> None:
     plt.close(fig)
 
 
-def singular_figure(start: m2.Study, approach: m2.Study, path: Path) -> None:
+def singular_figure(start: Study, approach: Study, path: Path) -> None:
     """Log-log: the motion law's start (t -> 0) and theta_1 -> theta_2 for both actuation variants."""
     fig, (left, right) = plt.subplots(1, 2, figsize=(14, 5.5))
     for key, label in (("cond_Jp", "cond J_p"), ("pinocchio:R13_fx", "|R13 fx| Pinocchio (N)"),
@@ -90,10 +92,10 @@ def main(argv: list[str] | None = None) -> int:
     args = parser.parse_args(argv)
     args.out.mkdir(parents=True, exist_ok=True)
     mech = mechkit.load("parallel_2t1r")
-    times = np.linspace(m2.MOTION_DURATION / args.samples, m2.MOTION_DURATION, args.samples)
-    comparison_figure(m2.compare_along(mech, times), args.out / "parallel_2t1r_comparison.png")
-    start = m2.start_of_motion(mech, np.logspace(-5, 0, 11))
-    approach = m2.singular_approach(mech, np.append(np.logspace(-1, -8, 15), 0.0))
+    times = np.linspace(MOTION_DURATION / args.samples, MOTION_DURATION, args.samples)
+    comparison_figure(compare_along(mech, times), args.out / "parallel_2t1r_comparison.png")
+    start = start_of_motion(mech, np.logspace(-5, 0, 11))
+    approach = singular_approach(mech, np.append(np.logspace(-1, -8, 15), 0.0))
     singular_figure(start, approach, args.out / "parallel_2t1r_singular.png")
     for name in ("comparison", "singular"):
         print(f"wrote {args.out / f'parallel_2t1r_{name}.png'}")

@@ -1,7 +1,7 @@
 """The 2T1R's inverse dynamics without Pinocchio: SKC decomposition for `mechkit.validation.soc`
 and the classic whole-mechanism virtual work (eqs. (39)-(40)), numpy only.
 
-Motion from the paper's analytic kinematics (`parallel_2t1r_kinematics`); virtual-displacement
+Motion from the paper's analytic kinematics (`kinematics`, `rates`); virtual-displacement
 Jacobians from the joint points (a planar revolute chain about +y: dP/dq_j = e_y x (P - J_j)).
 SKCs in the paper's order (section 4.3):
 
@@ -24,20 +24,16 @@ from dataclasses import dataclass
 import numpy as np
 
 from mechkit.exceptions import SingularConfiguration
-from mechkit.mechanisms import parallel_2t1r_kinematics as kin
-from mechkit.mechanisms.parallel_2t1r import Parallel2T1RParams, mass_properties
-from mechkit.spatial import cross
+from mechkit.mechanisms.parallel_2t1r import kinematics as kin
+from mechkit.mechanisms.parallel_2t1r import rates
+from mechkit.mechanisms.parallel_2t1r.params import Parallel2T1RParams, mass_properties
+from mechkit.spatial import cross, rot_y
 from mechkit.validation.soc import RANK_TOL, BodyLoad, SKCInstant, SOCResult, WrenchSite, solve_soc
 
 __all__ = ["GRAVITY", "Points", "classic_torques", "skcs", "soc_inverse_dynamics"]
 
 GRAVITY = np.array([0.0, 0.0, -9.81])
 PIN = (0, 2)  # unknown world components of a released pin: fx, fz
-
-
-def _rot_y(angle: float) -> np.ndarray:
-    c, s = np.cos(angle), np.sin(angle)
-    return np.array([[c, 0.0, s], [0.0, 1.0, 0.0], [-s, 0.0, c]])
 
 
 @dataclass(frozen=True)
@@ -50,10 +46,9 @@ class Points:
     p: np.ndarray
 
     @classmethod
-    def of(cls, d: kin.Dims, s: kin.State) -> Points:
-        pts = kin.platform_points(d, s.pose)
-        return cls(kin.base_points(d), kin.elbow_points(d, s.theta),
-                   np.array([pts["C1"], pts["C1"], pts["C3"], pts["C4"]]), pts["p"])
+    def of(cls, d: kin.Dims, s: rates.State) -> Points:
+        return cls(kin.base_points(d), kin.elbow_points(d, s.theta), kin.end_points(d, s.pose),
+                   kin.platform_points(d, s.pose)["p"])
 
 
 def _point_jacobian(point: np.ndarray, pivots: list[np.ndarray | None]) -> np.ndarray:
@@ -67,17 +62,17 @@ def _site(point: np.ndarray, pivots: list[np.ndarray | None]) -> np.ndarray:
     return np.vstack([_point_jacobian(point, pivots), rot])
 
 
-def _loads(p: Parallel2T1RParams, s: kin.State) -> dict[str, tuple[float, np.ndarray, kin.BodyMotion]]:
+def _loads(p: Parallel2T1RParams, s: rates.State) -> dict[str, tuple[float, np.ndarray, rates.BodyMotion]]:
     """Per body: mass, world inertia about the COM, motion (eqs. (16)-(29))."""
-    motion = kin.link_motion(p.dims, s)
+    motion = rates.link_motion(p.dims, s)
     out = {}
     for name, (mass, _, inertia) in mass_properties(p).items():
-        r = _rot_y(motion[name].angle)
+        r = rot_y(motion[name].angle)
         out[name] = (mass, r @ inertia @ r.T, motion[name])
     return out
 
 
-def skcs(p: Parallel2T1RParams, s: kin.State, m4: float | None = None) -> list[SKCInstant]:
+def skcs(p: Parallel2T1RParams, s: rates.State, m4: float | None = None) -> list[SKCInstant]:
     """SKC3, SKC2, SKC1 at one instant (see the module docstring).
 
     Args:
@@ -99,7 +94,8 @@ def skcs(p: Parallel2T1RParams, s: kin.State, m4: float | None = None) -> list[S
         released=[WrenchSite("R43", _site(c[3], [a[3], b[3]]), -1.0, PIN)], external=ext3)
     chain2 = [a[2], b[2], c[2]]
     skc2 = SKCInstant(
-        "SKC2", 3, [body("link31", [a[2], None, None]), body("link32", [a[2], b[2], None]), body("platform", chain2)],
+        "SKC2", 3,
+        [body("link31", [a[2], None, None]), body("link32", [a[2], b[2], None]), body("platform", chain2)],
         actuators=[("R31", np.array([1.0, 0.0, 0.0]))],
         released=[WrenchSite("R23", _site(c[0], chain2), 1.0, PIN)],
         known=[WrenchSite("R43", _site(c[3], chain2), 1.0)])
@@ -115,7 +111,7 @@ def skcs(p: Parallel2T1RParams, s: kin.State, m4: float | None = None) -> list[S
     return [skc3, skc2, skc1]
 
 
-def soc_inverse_dynamics(p: Parallel2T1RParams, s: kin.State, m4: float | None = None) -> SOCResult:
+def soc_inverse_dynamics(p: Parallel2T1RParams, s: rates.State, m4: float | None = None) -> SOCResult:
     """Efforts M1..M3 and the reactions at R43 and R23 by the SOC method (`mechkit.validation.soc`).
 
     Raises:
@@ -125,14 +121,14 @@ def soc_inverse_dynamics(p: Parallel2T1RParams, s: kin.State, m4: float | None =
     return solve_soc(skcs(p, s, m4), GRAVITY)
 
 
-def _whole_jacobians(p: Parallel2T1RParams, s: kin.State) -> tuple[dict[str, np.ndarray], np.ndarray]:
+def _whole_jacobians(p: Parallel2T1RParams, s: rates.State) -> tuple[dict[str, np.ndarray], np.ndarray]:
     """Body site Jacobians (6, 3) over the platform pose X = (x_p, z_p, alpha), and d theta / dX (4, 3).
 
     Obtained from the velocity equations (11), (16)-(29) with unit platform rates: the body
     velocities are linear in the rates, so each column is one evaluation with X' = e_k.
     """
     d = p.dims
-    jp, jq = kin.jacobians(d, s.theta, s.pose)
+    jp, jq = rates.jacobians(d, s.theta, s.pose)
     g = np.diag(jq)
     if np.min(np.abs(g)) < RANK_TOL * np.max(np.abs(g)):
         raise SingularConfiguration(np.inf, "J_q: a limb is stretched or folded (serial singularity)")
@@ -141,15 +137,15 @@ def _whole_jacobians(p: Parallel2T1RParams, s: kin.State) -> tuple[dict[str, np.
     for k in range(3):
         x_dot = np.eye(3)[k]
         td = jp @ x_dot / g
-        t4d = kin.follower_rate(d, s.theta, s.pose, x_dot)
+        t4d = rates.follower_rate(d, s.theta, s.pose, x_dot)
         dtheta[:, k] = np.append(td, t4d)
-        unit = kin.State(s.pose, x_dot, np.zeros(3), s.theta, dtheta[:, k], np.zeros(4))
-        for name, m in kin.link_motion(d, unit).items():
+        unit = rates.State(s.pose, x_dot, np.zeros(3), s.theta, dtheta[:, k], np.zeros(4))
+        for name, m in rates.link_motion(d, unit).items():
             cols.setdefault(name, []).append(np.concatenate([m.v_com, m.omega]))
     return {name: np.column_stack(c) for name, c in cols.items()}, dtheta
 
 
-def classic_torques(p: Parallel2T1RParams, s: kin.State, actuated: tuple[str, ...] = ("R11", "R21", "R31"),
+def classic_torques(p: Parallel2T1RParams, s: rates.State, actuated: tuple[str, ...] = ("R11", "R21", "R31"),
                     max_cond: float = 1e10) -> tuple[dict[str, float], float]:
     """Driving torques by the classic whole-mechanism virtual work, eqs. (39)-(40).
 

@@ -1,0 +1,53 @@
+"""Spatial 2T1R parallel mechanism with a redundant limb (Huang, Shen, Li, Zhu, Yang; reference 001).
+
+A five-bar limb (I) and two RRR limbs (II, III) carry a platform; every joint axis is along y, so the
+platform translates in x-z and turns about y. Actuation: R11, R21, R31 (theta_1..theta_3); with
+``redundant_actuation=True`` R41 (theta_4) is driven too (four motors for three degrees of freedom,
+minimum-norm torques in the validators).
+
+Modules (each imports only the core, `mechkit.validation` and the siblings listed before it):
+`kinematics` (the paper's position analysis: FK, IK), `rates` (velocities and accelerations, body
+motion), `assembly` (the example inputs and the assembled branch), `params` (parameters, mass
+properties, motors), `motion_law` (the paper's law, analytic states), `joints` (analytic state ->
+URDF joint coordinates), `soc` (SKC decomposition, classic virtual work), `compare` (the three
+inverse dynamics methods), `studies` (singular studies), `checks` (report rows), `scenes`.
+"""
+
+from __future__ import annotations
+
+from mechkit.contract import MechanismSpec
+from mechkit.mechanisms.parallel_2t1r.assembly import EXAMPLE_INPUTS, assembled_pose
+from mechkit.mechanisms.parallel_2t1r.checks import self_checks
+from mechkit.mechanisms.parallel_2t1r.joints import joint_positions
+from mechkit.mechanisms.parallel_2t1r.params import Parallel2T1RParams, actuated
+from mechkit.mechanisms.parallel_2t1r.rates import at_rest
+from mechkit.mechanisms.parallel_2t1r.scenes import motion_law_scene
+
+
+def _guess(p: Parallel2T1RParams) -> dict[str, float]:
+    pose, theta4, _ = assembled_pose(p.dims, EXAMPLE_INPUTS)
+    return joint_positions(p, at_rest(pose, EXAMPLE_INPUTS, theta4))
+
+
+def _home(p: Parallel2T1RParams) -> dict[str, float]:
+    home = dict(zip(("R11", "R21", "R31"), EXAMPLE_INPUTS))
+    if p.redundant_actuation:
+        home["R41"] = _guess(p)["R41"]
+    return home
+
+
+SPEC = MechanismSpec(
+    name="parallel_2t1r",
+    params=Parallel2T1RParams,
+    template="parallel_2t1r.urdf.xacro",
+    actuated=actuated,
+    gruebler_dof=3,
+    home=_home,
+    guess=_guess,
+    summary="spatial 2T1R parallel mechanism, five-bar limb + 2 RRR limbs, all axes along y (ref. 001)",
+    scenes={"motion_law": motion_law_scene},
+    view=(0.35, -1.0, 0.45),  # the motion is in the x-z plane: seen from -y, slightly above
+    self_checks=self_checks,
+)
+
+__all__ = ["SPEC", "Parallel2T1RParams"]
