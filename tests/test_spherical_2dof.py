@@ -9,13 +9,14 @@ import pytest
 
 from mechkit.exceptions import ClosureNotConverged, InvalidParameters
 from mechkit.mechanism import load
-from mechkit.mechanisms import spherical_2dof as sph
-from mechkit.mechanisms import spherical_2dof_checks as checks
-from mechkit.mechanisms import spherical_2dof_kinematics as kin
-from mechkit.mechanisms import spherical_2dof_soc as soc
-from mechkit.mechanisms.spherical_2dof_fk import NEAR_SINGULAR, REGULAR, basin_study
+from mechkit.mechanisms.spherical_2dof import SPEC, Spherical2DofParams, checks, soc
+from mechkit.mechanisms.spherical_2dof import kinematics as kin
+from mechkit.mechanisms.spherical_2dof.fk import NEAR_SINGULAR, REGULAR, basin_study
+from mechkit.mechanisms.spherical_2dof.kinematics import BRANCHES, platform_normal
+from mechkit.mechanisms.spherical_2dof.scenes import cone_attitude, cone_times
+from mechkit.mechanisms.spherical_2dof.tree import state
 
-P = sph.Spherical2DofParams()
+P = Spherical2DofParams()
 
 
 @pytest.fixture(scope="module")
@@ -64,7 +65,7 @@ def test_middle_axis_is_eq4_as_printed():
 
 
 def test_ik_both_branches_close_eq7_and_differ():
-    for phi in sph.cone_attitude(checks.cone_times(9))[0]:
+    for phi in cone_attitude(cone_times(9))[0]:
         plus, minus = (kin.inverse_kinematics(P, phi, (k, k)) for k in (1, -1))
         assert np.abs(kin.constraint(P, plus, phi)).max() < 1e-14
         assert np.abs(kin.constraint(P, minus, phi)).max() < 1e-14
@@ -79,11 +80,11 @@ def test_unreachable_attitude_raises():
 
 def test_cone_scene_derivatives_and_angle():
     t, h = np.linspace(0, 2, 11), 1e-5
-    phi, phi_d, phi_dd = sph.cone_attitude(t)
-    np.testing.assert_allclose(np.degrees(np.arccos(sph.platform_normal(phi)[:, 2])), 15.0, atol=1e-12)
-    fd = (sph.cone_attitude(t + h)[0] - sph.cone_attitude(t - h)[0]) / (2 * h)
+    phi, phi_d, phi_dd = cone_attitude(t)
+    np.testing.assert_allclose(np.degrees(np.arccos(platform_normal(phi)[:, 2])), 15.0, atol=1e-12)
+    fd = (cone_attitude(t + h)[0] - cone_attitude(t - h)[0]) / (2 * h)
     np.testing.assert_allclose(phi_d, fd, atol=1e-8)
-    fd2 = (sph.cone_attitude(t + h)[1] - sph.cone_attitude(t - h)[1]) / (2 * h)
+    fd2 = (cone_attitude(t + h)[1] - cone_attitude(t - h)[1]) / (2 * h)
     np.testing.assert_allclose(phi_dd, fd2, atol=1e-7)
 
 
@@ -99,9 +100,9 @@ def test_jacobian_against_finite_differences():
 
 def test_jacobian_against_pinocchio_velocity_projection(mech):
     """Hooke rates from the core's closure Jacobian equal J theta' (J = -B^-1 A)."""
-    for phi in sph.cone_attitude(checks.cone_times(6))[0]:
-        theta = kin.inverse_kinematics(P, phi, sph.BRANCHES)
-        q, _, _ = sph.state(mech, phi, np.zeros(2), np.zeros(2))
+    for phi in cone_attitude(cone_times(6))[0]:
+        theta = kin.inverse_kinematics(P, phi, BRANCHES)
+        q, _, _ = state(mech, phi, np.zeros(2), np.zeros(2))
         for rates in np.eye(2):
             v = mech.velocities(q, rates)
             hooke = v[[mech.v_index("hooke_roll"), mech.v_index("hooke_pitch")]]
@@ -110,12 +111,12 @@ def test_jacobian_against_pinocchio_velocity_projection(mech):
 
 def test_printed_fk_step_does_not_converge():
     """The step as printed, -J^-1 (theta_d - theta_k), wanders off; J (theta_d - theta_k) converges."""
-    target = sph.cone_attitude(0.3)[0]
-    theta_d = kin.inverse_kinematics(P, target, sph.BRANCHES)
+    target = cone_attitude(0.3)[0]
+    theta_d = kin.inverse_kinematics(P, target, BRANCHES)
     phi = target + 0.02
     for _ in range(30):
         try:
-            theta = kin.inverse_kinematics(P, phi, sph.BRANCHES)
+            theta = kin.inverse_kinematics(P, phi, BRANCHES)
         except InvalidParameters:
             break
         phi = phi - np.linalg.solve(kin.jacobian(P, theta, phi), theta_d - theta)
@@ -126,7 +127,7 @@ def test_printed_fk_step_does_not_converge():
 def test_home_assembles_with_two_dof(mech):
     assert np.abs(mech.closure_residual(mech.home_q)).max() < 1e-12
     mob = mech.mobility()
-    assert mob.dof == 2 == sph.SPEC.gruebler_dof and mob.redundant == 0
+    assert mob.dof == 2 == SPEC.gruebler_dof and mob.redundant == 0
 
 
 def test_spatial_rows_are_six_redundant_constraints():
@@ -137,9 +138,9 @@ def test_spatial_rows_are_six_redundant_constraints():
 
 
 def test_analytic_state_satisfies_pinocchio_closure(mech):
-    t = checks.cone_times(8)
-    for phi, phi_d, phi_dd in zip(*sph.cone_attitude(t)):
-        q, v, a = sph.state(mech, phi, phi_d, phi_dd)
+    t = cone_times(8)
+    for phi, phi_d, phi_dd in zip(*cone_attitude(t)):
+        q, v, a = state(mech, phi, phi_d, phi_dd)
         assert np.abs(mech.closure_residual(q)).max() < 1e-13
         assert np.abs(mech.closure_jacobian(q) @ v).max() < 1e-12
         assert np.abs(mech.closure_jacobian(q) @ a + mech.closure_drift(q, v)).max() < 1e-11
@@ -151,8 +152,8 @@ def test_fk_methods_agree(mech):
 
 def test_mechanism_assemble_is_the_forward_kinematics(mech):
     """`Mechanism.assemble` from the motor angles (home guess) returns the planned attitude."""
-    for phi in sph.cone_attitude(checks.cone_times(6))[0]:
-        theta = kin.inverse_kinematics(P, phi, sph.BRANCHES)
+    for phi in cone_attitude(cone_times(6))[0]:
+        theta = kin.inverse_kinematics(P, phi, BRANCHES)
         q = mech.assemble(theta, guess=mech.home_q, tol=1e-13)
         found = q[[mech.q_index("hooke_roll"), mech.q_index("hooke_pitch")]]
         assert np.abs(found - phi).max() < 1e-10
@@ -203,14 +204,14 @@ def test_motor_power_equals_rate_of_energy(mech):
 
     def energy(t: float) -> float:
         total = 0.0
-        for b in soc.body_motions(P, *(x for x in sph.cone_attitude(t))).values():
+        for b in soc.body_motions(P, *(x for x in cone_attitude(t))).values():
             v = kin.cross(b.omega, b.com)
             total += 0.5 * b.mass * v @ v + 0.5 * b.omega @ b.inertia @ b.omega + b.mass * g * b.com[2]
         return total
 
-    for t in checks.cone_times(6):
-        phi, phi_d, phi_dd = sph.cone_attitude(t)
-        q, v, a = sph.state(mech, phi, phi_d, phi_dd)
+    for t in cone_times(6):
+        phi, phi_d, phi_dd = cone_attitude(t)
+        q, v, a = state(mech, phi, phi_d, phi_dd)
         rates = v[[mech.v_index(j) for j in mech.actuated]]
         reference = (energy(t + h) - energy(t - h)) / (2 * h)
         pin_power = rates @ [mech.inverse_dynamics(q, v, a).efforts[j] for j in mech.actuated]
@@ -221,8 +222,8 @@ def test_motor_power_equals_rate_of_energy(mech):
 
 def test_support_determinacy(mech):
     """Every body turns about O: forces at O are indeterminate, moments (about O) determinate."""
-    phi, phi_d, phi_dd = (x[0] for x in sph.cone_attitude(np.array([0.4])))
-    q, v, a = sph.state(mech, phi, phi_d, phi_dd)
+    phi, phi_d, phi_dd = (x[0] for x in cone_attitude(np.array([0.4])))
+    q, v, a = state(mech, phi, phi_d, phi_dd)
     result = mech.inverse_dynamics(q, v, a)
     for name, reaction in result.reactions.items():
         assert not reaction.determinate[:3].any(), name
@@ -254,9 +255,9 @@ def test_cut_joint_angle_matches_pinocchio_frames(mech):
     """The cut frames of r{i}3 differ by Rz(theta_i3) of `kin.limb_angles` (xacro = our chain)."""
     import pinocchio as pin
 
-    for phi in sph.cone_attitude(checks.cone_times(4))[0]:
-        theta = kin.inverse_kinematics(P, phi, sph.BRANCHES)
-        q, _, _ = sph.state(mech, phi, np.zeros(2), np.zeros(2))
+    for phi in cone_attitude(cone_times(4))[0]:
+        theta = kin.inverse_kinematics(P, phi, BRANCHES)
+        q, _, _ = state(mech, phi, np.zeros(2), np.zeros(2))
         pin.framesForwardKinematics(mech.model, mech.data, q)
         for k, i in enumerate((1, 2)):
             rot = [
@@ -270,8 +271,8 @@ def test_cut_joint_angle_matches_pinocchio_frames(mech):
 def test_other_branch_closes_and_dynamics_agree(mech):
     """The other IK branch (-1, -1) is an assembly too; Pinocchio and SOC agree on it."""
     branches = (-1, -1)
-    for phi, phi_d, phi_dd in zip(*sph.cone_attitude(checks.cone_times(4)), strict=True):
-        q, v, a = sph.state(mech, phi, phi_d, phi_dd, branches)
+    for phi, phi_d, phi_dd in zip(*cone_attitude(cone_times(4)), strict=True):
+        q, v, a = state(mech, phi, phi_d, phi_dd, branches)
         assert np.abs(mech.closure_residual(q)).max() < 1e-13
         assert np.abs(mech.closure_jacobian(q) @ a + mech.closure_drift(q, v)).max() < 1e-11
         ref = mech.inverse_dynamics(q, v, a).efforts

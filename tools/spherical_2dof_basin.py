@@ -20,9 +20,10 @@ import numpy as np
 
 from mechkit.exceptions import InvalidParameters
 from mechkit.mechanism import load
-from mechkit.mechanisms import spherical_2dof_kinematics as kin
-from mechkit.mechanisms.spherical_2dof import BRANCHES, cone_attitude
-from mechkit.mechanisms.spherical_2dof_fk import METHODS, NEAR_SINGULAR, REGULAR, basin_study
+from mechkit.mechanisms.spherical_2dof import kinematics as kin
+from mechkit.mechanisms.spherical_2dof.fk import METHODS, NEAR_SINGULAR, REGULAR, basin_study
+from mechkit.mechanisms.spherical_2dof.kinematics import BRANCHES
+from mechkit.mechanisms.spherical_2dof.scenes import cone_attitude
 
 OUT = Path(__file__).resolve().parent.parent / "docs" / "figures" / "spherical_2dof_basin.png"
 RADII_DEG = (0.1, 0.3, 1.0, 2.0, 5.0, 10.0, 20.0, 30.0, 45.0, 60.0)

@@ -23,11 +23,12 @@ import numpy as np
 
 from mechkit.bench import time_per_call
 from mechkit.mechanism import load
-from mechkit.mechanisms import spherical_2dof_kinematics as kin
-from mechkit.mechanisms import spherical_2dof_soc as soc
-from mechkit.mechanisms.spherical_2dof import BRANCHES, cone_attitude, state
-from mechkit.mechanisms.spherical_2dof_checks import cone_times
-from mechkit.mechanisms.spherical_2dof_fk import solve_fk
+from mechkit.mechanisms.spherical_2dof import kinematics as kin
+from mechkit.mechanisms.spherical_2dof import soc
+from mechkit.mechanisms.spherical_2dof.fk import solve_fk
+from mechkit.mechanisms.spherical_2dof.kinematics import BRANCHES
+from mechkit.mechanisms.spherical_2dof.scenes import cone_attitude, cone_times
+from mechkit.mechanisms.spherical_2dof.tree import state
 from mechkit.validation.soc import solve_soc
 
 OUT = Path(__file__).resolve().parent.parent / "docs" / "figures" / "spherical_2dof_bench.png"

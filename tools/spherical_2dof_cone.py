@@ -20,10 +20,11 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 from mechkit.mechanism import load
-from mechkit.mechanisms import spherical_2dof_kinematics as kin
-from mechkit.mechanisms import spherical_2dof_soc as soc
-from mechkit.mechanisms.spherical_2dof import BRANCHES, cone_attitude, platform_normal, state
-from mechkit.mechanisms.spherical_2dof_checks import cone_times
+from mechkit.mechanisms.spherical_2dof import kinematics as kin
+from mechkit.mechanisms.spherical_2dof import soc
+from mechkit.mechanisms.spherical_2dof.kinematics import BRANCHES, platform_normal
+from mechkit.mechanisms.spherical_2dof.scenes import cone_attitude, cone_times
+from mechkit.mechanisms.spherical_2dof.tree import state
 
 OUT = Path(__file__).resolve().parent.parent / "docs" / "figures" / "spherical_2dof_cone.png"
 

@@ -9,17 +9,18 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from mechkit.mechanisms import spherical_2dof_kinematics as kin
-from mechkit.mechanisms import spherical_2dof_soc as soc
-from mechkit.mechanisms.spherical_2dof import BRANCHES, CONE_PERIOD, cone_attitude, platform_normal, state
-from mechkit.mechanisms.spherical_2dof_fk import METHODS, solve_fk
+from mechkit.mechanisms.spherical_2dof import kinematics as kin
+from mechkit.mechanisms.spherical_2dof import soc
+from mechkit.mechanisms.spherical_2dof.fk import METHODS, solve_fk
+from mechkit.mechanisms.spherical_2dof.kinematics import BRANCHES, platform_normal
+from mechkit.mechanisms.spherical_2dof.scenes import cone_attitude, cone_times
+from mechkit.mechanisms.spherical_2dof.tree import state
 
 if TYPE_CHECKING:
     from mechkit.mechanism import Mechanism
 
 __all__ = [
     "cone_round_trip",
-    "cone_times",
     "dynamics_agreement",
     "fk_agreement",
     "jacobian_fd_error",
@@ -29,11 +30,6 @@ __all__ = [
 #: Compared components of every reaction: the moments about O (world x, y, z). The forces at O
 #: are statically indeterminate (the tests check that Pinocchio flags them so).
 MOMENTS = [3, 4, 5]
-
-
-def cone_times(samples: int) -> np.ndarray:
-    """``samples`` instants over one turn of the cone scene (s)."""
-    return np.linspace(0.0, CONE_PERIOD, samples, endpoint=False)
 
 
 def cone_round_trip(p: kin.Geometry, samples: int = 72) -> tuple[float, float]:

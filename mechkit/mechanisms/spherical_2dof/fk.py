@@ -16,8 +16,10 @@ import numpy as np
 
 from mechkit import kinematics
 from mechkit.exceptions import ClosureNotConverged, InvalidParameters
-from mechkit.mechanisms import spherical_2dof_kinematics as kin
-from mechkit.mechanisms.spherical_2dof import BRANCHES, cone_attitude, tree_configuration
+from mechkit.mechanisms.spherical_2dof import kinematics as kin
+from mechkit.mechanisms.spherical_2dof.kinematics import BRANCHES
+from mechkit.mechanisms.spherical_2dof.scenes import cone_attitude
+from mechkit.mechanisms.spherical_2dof.tree import tree_q
 
 if TYPE_CHECKING:
     from mechkit.mechanism import Mechanism
@@ -42,11 +44,7 @@ def fk_closure(
     Raises:
         ClosureNotConverged: the closure solver failed.
     """
-    q0 = mech.neutral()
-    for joint, value in tree_configuration(
-        mech.params, np.asarray(phi0, float), np.asarray(theta_d, float)
-    ).items():
-        q0[mech.q_index(joint)] = value
+    q0 = tree_q(mech, np.asarray(phi0, float), np.asarray(theta_d, float))
     free_v = np.setdiff1d(np.arange(mech.model.nv), [mech.v_index(j) for j in mech.actuated])
     q, iters = kinematics.solve_closure(mech.rows, mech.data, q0, free_v, tol=tol, max_iter=max_iter)
     phi = np.array([q[mech.q_index("hooke_roll")], q[mech.q_index("hooke_pitch")]])

@@ -31,6 +31,7 @@ from mechkit.exceptions import ClosureNotConverged, InvalidParameters, SingularC
 from mechkit.spatial import cross, rot_x, rot_y, rot_z
 
 __all__ = [
+    "BRANCHES",
     "FKResult",
     "Geometry",
     "base_axis",
@@ -48,11 +49,15 @@ __all__ = [
     "limb_rates",
     "middle_axis",
     "platform_axis",
+    "platform_normal",
     "platform_rotation",
     "rot_x",
     "rot_y",
     "rot_z",
 ]
+
+#: Assembly branch (+1 / -1 per limb, see `inverse_kinematics`) used for the home pose and every scene (ours).
+BRANCHES = (1, 1)
 
 
 class Geometry(Protocol):
@@ -78,6 +83,13 @@ def _etas(p: Geometry, i: int) -> tuple[float, float]:
 def platform_rotation(phi: Sequence[float]) -> np.ndarray:
     """Platform attitude ``R = Rx(phi_x) Ry(phi_y)`` (platform frame -> base frame)."""
     return rot_x(phi[0]) @ rot_y(phi[1])
+
+
+def platform_normal(phi: np.ndarray) -> np.ndarray:
+    """Unit platform normal n = R(phi) e_z (base frame) of attitudes (..., 2)."""
+    phi = np.asarray(phi, dtype=float)
+    px, py = phi[..., 0], phi[..., 1]
+    return np.stack([np.sin(py), -np.sin(px) * np.cos(py), np.cos(px) * np.cos(py)], axis=-1)
 
 
 def base_frame(p: Geometry, i: int) -> np.ndarray:
@@ -116,7 +128,7 @@ def ik_coefficients(p: Geometry, i: int, v: np.ndarray) -> tuple[float, float, f
     return float(a), float(b), float(c)
 
 
-def inverse_kinematics(p: Geometry, phi: Sequence[float], branches: Sequence[int] = (1, 1)) -> np.ndarray:
+def inverse_kinematics(p: Geometry, phi: Sequence[float], branches: Sequence[int] = BRANCHES) -> np.ndarray:
     """Motor angles (theta_11, theta_21) (rad) of attitude ``phi`` (eq. 8).
 
     Eq. (8) solves ``A s + B c + C = 0``; written as ``r cos(theta - atan2(A, B)) = -C`` with
@@ -263,7 +275,7 @@ def fk_paper(
     p: Geometry,
     theta_d: Sequence[float],
     phi0: Sequence[float],
-    branches: Sequence[int] = (1, 1),
+    branches: Sequence[int] = BRANCHES,
     tol: float = 1e-13,
     max_iter: int = 50,
 ) -> FKResult:

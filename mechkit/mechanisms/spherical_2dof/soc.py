@@ -18,7 +18,7 @@ only the moments about O are solved. The SKCs, in order (virtual coordinates in 
 
 Reactions: parent on child, world, at O; the motor joints' reactions exclude the motor torque
 (add ``effort * u_i`` for the wrench the joint transmits). Bodies, inertias and motion come from
-the parameters and the paper's kinematics (`spherical_2dof_kinematics`); the inertias are
+the parameters and the paper's kinematics (`spherical_2dof.kinematics`); the inertias are
 re-derived here from the same sizes as the xacro.
 """
 
@@ -29,14 +29,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from mechkit.mechanisms import spherical_2dof_kinematics as kin
+from mechkit.mechanisms.spherical_2dof import kinematics as kin
+from mechkit.spatial import skew
 from mechkit.validation.soc import BodyLoad, SKCInstant, SOCResult, WrenchSite, solve_soc
 
 __all__ = ["BodyMotion", "body_inertias", "body_motions", "skcs", "solve"]
-
-
-def _skew(c: np.ndarray) -> np.ndarray:
-    return np.array([[0.0, -c[2], c[1]], [c[2], 0.0, -c[0]], [-c[1], c[0], 0.0]])
 
 
 def body_inertias(p: kin.Geometry) -> dict[str, tuple[float, np.ndarray, np.ndarray]]:
@@ -79,7 +76,7 @@ class BodyMotion:
         """The body in an SKC whose virtual rotation of this body is ``jw`` (3, n)."""
         c = self.com
         acc = kin.cross(self.alpha, c) + kin.cross(self.omega, kin.cross(self.omega, c))
-        return BodyLoad(name, self.mass, self.inertia, acc, self.omega, self.alpha, -_skew(c) @ jw, jw)
+        return BodyLoad(name, self.mass, self.inertia, acc, self.omega, self.alpha, -skew(c) @ jw, jw)
 
 
 def _motion(
@@ -146,7 +143,7 @@ def body_motions(
     phi: Sequence[float],
     phi_d: Sequence[float],
     phi_dd: Sequence[float],
-    branches: Sequence[int] = (1, 1),
+    branches: Sequence[int] = kin.BRANCHES,
 ) -> dict[str, BodyMotion]:
     """Motion of every moving body (cross, platform, link11, link12, link21, link22) at one instant."""
     return _bodies(p, phi, phi_d, phi_dd, branches)[0]
@@ -158,7 +155,7 @@ def skcs(
     phi_d: Sequence[float],
     phi_dd: Sequence[float],
     efforts: dict[str, float] | None = None,
-    branches: Sequence[int] = (1, 1),
+    branches: Sequence[int] = kin.BRANCHES,
 ) -> list[SKCInstant]:
     """The SKCs at one instant of a platform motion (rad, rad/s, rad/s^2), in solving order.
 
@@ -234,7 +231,7 @@ def solve(
     phi: Sequence[float],
     phi_d: Sequence[float],
     phi_dd: Sequence[float],
-    branches: Sequence[int] = (1, 1),
+    branches: Sequence[int] = kin.BRANCHES,
     gravity: Sequence[float] = (0.0, 0.0, -9.81),
 ) -> SOCResult:
     """Motor torques r11, r21 (N m) and the moment about O of every joint's reaction (see module doc).

@@ -1,0 +1,36 @@
+"""2-DOF spherical parallel platform for low-frequency vibration isolation (Zhang et al. 2016).
+
+A platform on a central strut through a Hooke joint at O, driven by two RRR limbs whose axes all
+pass through O (every point moves on a sphere about O). Motors at the base joints r11, r21.
+
+Modules, bottom up: `kinematics` (the paper's eqs. 4-12 and its iterative forward kinematics, numpy
+only), `params`, `tree` (the Pinocchio tree filled from the paper's kinematics), `scenes` (the cone
+scene), `fk` (forward kinematics three ways and their basins), `soc` (the SOC decomposition),
+`checks` (`mechkit report` rows), `bench` (`mechkit bench` methods). Conventions the source leaves
+out (roll/pitch, platform-side axes, the reading of "cone angle 30 deg") are derived in
+docs/mechanisms/spherical_2dof.md.
+"""
+
+from __future__ import annotations
+
+from mechkit.contract import MechanismSpec
+from mechkit.mechanisms.spherical_2dof import bench, checks, tree
+from mechkit.mechanisms.spherical_2dof.params import Spherical2DofParams
+from mechkit.mechanisms.spherical_2dof.scenes import cone_scene
+
+__all__ = ["SPEC", "Spherical2DofParams"]
+
+SPEC = MechanismSpec(
+    name="spherical_2dof",
+    params=Spherical2DofParams,
+    template="spherical_2dof.urdf.xacro",
+    actuated=("r11", "r21"),
+    gruebler_dof=2,
+    home=tree.home,
+    guess=tree.guess,
+    summary="2-DOF spherical parallel platform (2 RRR limbs + central Hooke strut), vibration isolation",
+    scenes={"cone": cone_scene},
+    bench_methods=bench.METHODS,
+    bench_references=bench.REFERENCES,
+    self_checks=checks.self_checks,
+)

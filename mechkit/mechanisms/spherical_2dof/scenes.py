@@ -1,0 +1,66 @@
+"""The cone scene of the 2-DOF spherical platform: the platform normal sweeps a cone about Z0 at constant
+speed (the paper's Figs. 5-7), as an attitude law with its derivatives and as assembled poses.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from mechkit.exceptions import InvalidParameters
+from mechkit.mechanisms.spherical_2dof.tree import state
+
+if TYPE_CHECKING:
+    from mechkit.mechanism import Mechanism
+
+__all__ = ["CONE_HALF_ANGLE", "CONE_PERIOD", "cone_attitude", "cone_scene", "cone_times"]
+
+#: Cone scene: the paper's "cone angle 30 deg" (錐角) read as the apex angle: half angle 15 deg.
+CONE_HALF_ANGLE = math.radians(15.0)
+#: Cone scene: one turn of the normal about Z0 in 2 s (ours: "constant speed" is all the paper says).
+CONE_PERIOD = 2.0
+
+
+def cone_attitude(
+    t: np.ndarray | float, half_angle: float = CONE_HALF_ANGLE, period: float = CONE_PERIOD
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Cone scene: the platform normal n = [s(g) c(psi), s(g) s(psi), c(g)], psi = 2 pi t / period.
+
+    With n = Rx(phi_x) Ry(phi_y) e_z: phi_y = asin(s(g) c(psi)), phi_x = atan(-tan(g) s(psi)).
+
+    Args:
+        t: time(s), s.
+        half_angle: g, the cone's half angle (rad).
+        period: one turn, s.
+
+    Returns:
+        phi, phi', phi'' as arrays (..., 2) (rad, rad/s, rad/s^2), columns (roll, pitch).
+    """
+    if not 0.0 <= half_angle < math.pi / 2:
+        raise InvalidParameters("half_angle", half_angle, "must lie in [0, 90) deg")
+    if not period > 0.0:
+        raise InvalidParameters("period", period, "must be > 0 s")
+    w = 2.0 * math.pi / period
+    psi = w * np.asarray(t, dtype=float)
+    sg, tg = math.sin(half_angle), math.tan(half_angle)
+    g, g1, g2 = sg * np.cos(psi), -sg * w * np.sin(psi), -sg * w**2 * np.cos(psi)
+    root = np.sqrt(1.0 - g**2)
+    h, h1, h2 = -tg * np.sin(psi), -tg * w * np.cos(psi), tg * w**2 * np.sin(psi)
+    den = 1.0 + h**2
+    phi = np.stack([np.arctan(h), np.arcsin(g)], axis=-1)
+    phi_d = np.stack([h1 / den, g1 / root], axis=-1)
+    phi_dd = np.stack([h2 / den - 2.0 * h * h1**2 / den**2, g2 / root + g * g1**2 / root**3], axis=-1)
+    return phi, phi_d, phi_dd
+
+
+def cone_times(samples: int) -> np.ndarray:
+    """``samples`` instants over one turn of the cone scene (s)."""
+    return np.linspace(0.0, CONE_PERIOD, samples, endpoint=False)
+
+
+def cone_scene(mech: Mechanism) -> list[np.ndarray]:
+    """One turn of the cone scene as assembled configurations (`mechkit snapshot spherical_2dof --scene cone`)."""
+    phi, phi_d, phi_dd = cone_attitude(np.linspace(0.0, CONE_PERIOD, 73))
+    return [state(mech, *x)[0] for x in zip(phi, phi_d, phi_dd, strict=True)]
