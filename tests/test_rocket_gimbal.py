@@ -5,16 +5,13 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from mechkit.mechanisms.rocket_gimbal import (
-    SwingScene,
-    body_inertias,
-    geometry,
-    joint_state,
-    soc_skcs,
-    thrust_fext,
-)
-from mechkit.mechanisms.rocket_gimbal_checks import dynamics_agreement, fk_agreement, fk_closure
-from mechkit.mechanisms.rocket_gimbal_kinematics import strokes
+from mechkit.mechanisms.rocket_gimbal.checks import dynamics_agreement, fk_agreement, fk_closure
+from mechkit.mechanisms.rocket_gimbal.kinematics import strokes
+from mechkit.mechanisms.rocket_gimbal.params import body_inertias, geometry
+from mechkit.mechanisms.rocket_gimbal.resultant import fk_resultant
+from mechkit.mechanisms.rocket_gimbal.scenes import SwingScene, thrust_fext
+from mechkit.mechanisms.rocket_gimbal.soc import soc_skcs
+from mechkit.mechanisms.rocket_gimbal.state import joint_state
 from mechkit.validation.soc import solve_soc
 
 
@@ -32,8 +29,6 @@ def test_fk_polynomial_newton_and_closure_solver_agree_over_the_stroke_square(me
 
 
 def test_closure_solver_reaches_the_flipped_mode_from_its_guess(mech):
-    from mechkit.mechanisms.rocket_gimbal_resultant import fk_resultant
-
     geo = geometry(mech.params)
     stroke = np.array([-0.06, 0.105])
     flipped = [m for m in fk_resultant(geo, stroke) if m.nozzle_z < 0]

@@ -9,14 +9,10 @@ from hypothesis import strategies as st
 from numpy.polynomial import Polynomial
 
 from mechkit.exceptions import InvalidParameters
-from mechkit.mechanisms.rocket_gimbal import (
+from mechkit.mechanisms.rocket_gimbal.kinematics import (
     PAPER_EXAMPLE,
     RULE_ANGLE,
     RULE_STROKE,
-    RocketGimbalParams,
-    geometry,
-)
-from mechkit.mechanisms.rocket_gimbal_kinematics import (
     actuator_lengths,
     attitude,
     fk_newton,
@@ -25,7 +21,9 @@ from mechkit.mechanisms.rocket_gimbal_kinematics import (
     pitch_yaw,
     strokes,
 )
-from mechkit.mechanisms.rocket_gimbal_resultant import (
+from mechkit.mechanisms.rocket_gimbal.motion import gimbal_motion
+from mechkit.mechanisms.rocket_gimbal.params import RocketGimbalParams, geometry
+from mechkit.mechanisms.rocket_gimbal.resultant import (
     degree16_polynomial,
     fk_resultant,
     half_angle_equations,
@@ -33,6 +31,7 @@ from mechkit.mechanisms.rocket_gimbal_resultant import (
     sylvester_matrix,
     sylvester_resultant,
 )
+from mechkit.mechanisms.rocket_gimbal.scenes import SwingScene
 
 GEO = geometry(RocketGimbalParams())
 MM = 1e-3
@@ -158,9 +157,6 @@ def test_bad_strokes_raise_named_errors():
         pick_in_range(fk_resultant(GEO, [0.6, -0.6]))
     with pytest.raises(InvalidParameters, match="pivot_offset"):
         RocketGimbalParams(pivot_offset=1.843)
-    from mechkit.mechanisms.rocket_gimbal import SwingScene
-    from mechkit.mechanisms.rocket_gimbal_motion import gimbal_motion
-
     with pytest.raises(InvalidParameters, match="rates"):
         gimbal_motion(GEO, [0.0, 0.0], [np.inf, 0.0], [0.0, 0.0])
     with pytest.raises(InvalidParameters, match="frequency"):
@@ -170,9 +166,6 @@ def test_bad_strokes_raise_named_errors():
 
 
 def test_analytic_motion_matches_finite_differences_of_the_geometry():
-    from mechkit.mechanisms.rocket_gimbal import SwingScene
-    from mechkit.mechanisms.rocket_gimbal_motion import gimbal_motion
-
     scene, t, h = SwingScene(), 0.37, 1e-5
     motions = [gimbal_motion(GEO, *scene.angles(t + k * h)) for k in (-1, 0, 1)]
     for i in range(2):

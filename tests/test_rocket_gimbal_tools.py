@@ -16,7 +16,7 @@ def test_linearisation_tool_writes_its_figure_and_reports_the_worst_error(tmp_pa
 
 def test_resultant_tool_runs(tmp_path, capsys, load_tool):
     tool = load_tool("rocket_gimbal_resultant")
-    from mechkit.mechanisms.rocket_gimbal import RocketGimbalParams, geometry
+    from mechkit.mechanisms.rocket_gimbal.params import RocketGimbalParams, geometry
 
     geo = geometry(RocketGimbalParams())
     tool.example(geo)

@@ -23,10 +23,13 @@ import numpy as np
 
 from mechkit.bench import time_per_call
 from mechkit.mechanism import load
-from mechkit.mechanisms.rocket_gimbal import SwingScene, geometry, joint_state, soc_skcs, thrust_fext
-from mechkit.mechanisms.rocket_gimbal_checks import fk_closure
-from mechkit.mechanisms.rocket_gimbal_kinematics import actuator_lengths, fk_newton
-from mechkit.mechanisms.rocket_gimbal_resultant import fk_resultant, pick_in_range
+from mechkit.mechanisms.rocket_gimbal.checks import fk_closure
+from mechkit.mechanisms.rocket_gimbal.kinematics import actuator_lengths, fk_newton
+from mechkit.mechanisms.rocket_gimbal.params import geometry
+from mechkit.mechanisms.rocket_gimbal.resultant import fk_resultant, pick_in_range
+from mechkit.mechanisms.rocket_gimbal.scenes import SwingScene, thrust_fext
+from mechkit.mechanisms.rocket_gimbal.soc import soc_skcs
+from mechkit.mechanisms.rocket_gimbal.state import joint_state
 from mechkit.validation.soc import solve_soc
 
 OUT = Path(__file__).resolve().parent.parent / "docs" / "figures" / "rocket_gimbal_bench.png"

@@ -16,8 +16,15 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 import numpy as np
 
-from mechkit.mechanisms.rocket_gimbal import RULE_ANGLE, RULE_STROKE, RocketGimbalParams, geometry
-from mechkit.mechanisms.rocket_gimbal_kinematics import fk_newton, linear_rule, linear_rule_errors, pitch_yaw
+from mechkit.mechanisms.rocket_gimbal.kinematics import (
+    RULE_ANGLE,
+    RULE_STROKE,
+    fk_newton,
+    linear_rule,
+    linear_rule_errors,
+    pitch_yaw,
+)
+from mechkit.mechanisms.rocket_gimbal.params import RocketGimbalParams, geometry
 
 OUT = Path(__file__).resolve().parent.parent / "docs" / "figures" / "rocket_gimbal_linearisation.png"
 

@@ -18,9 +18,9 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 import numpy as np
 
-from mechkit.mechanisms.rocket_gimbal import RULE_STROKE, RocketGimbalParams, geometry
-from mechkit.mechanisms.rocket_gimbal_kinematics import fk_newton
-from mechkit.mechanisms.rocket_gimbal_resultant import (
+from mechkit.mechanisms.rocket_gimbal.kinematics import RULE_STROKE, fk_newton
+from mechkit.mechanisms.rocket_gimbal.params import RocketGimbalParams, geometry
+from mechkit.mechanisms.rocket_gimbal.resultant import (
     degree16_polynomial,
     fk_resultant,
     half_angle_equations,

@@ -17,7 +17,9 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 from mechkit.mechanism import load
-from mechkit.mechanisms.rocket_gimbal import SwingScene, joint_state, soc_skcs, thrust_fext
+from mechkit.mechanisms.rocket_gimbal.scenes import SwingScene, thrust_fext
+from mechkit.mechanisms.rocket_gimbal.soc import soc_skcs
+from mechkit.mechanisms.rocket_gimbal.state import joint_state
 from mechkit.validation.soc import solve_soc
 
 OUT = Path(__file__).resolve().parent.parent / "docs" / "figures" / "rocket_gimbal_swing.png"

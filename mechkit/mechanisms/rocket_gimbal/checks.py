@@ -10,17 +10,18 @@ from dataclasses import dataclass
 import numpy as np
 
 from mechkit.mechanism import Mechanism
-from mechkit.mechanisms.rocket_gimbal import (
+from mechkit.mechanisms.rocket_gimbal.kinematics import (
     PAPER_EXAMPLE,
     RULE_STROKE,
-    SwingScene,
-    geometry,
-    joint_state,
-    soc_skcs,
-    thrust_fext,
+    actuator_lengths,
+    fk_newton,
+    strokes,
 )
-from mechkit.mechanisms.rocket_gimbal_kinematics import actuator_lengths, fk_newton, strokes
-from mechkit.mechanisms.rocket_gimbal_resultant import fk_resultant, pick_in_range
+from mechkit.mechanisms.rocket_gimbal.params import geometry
+from mechkit.mechanisms.rocket_gimbal.resultant import fk_resultant, pick_in_range
+from mechkit.mechanisms.rocket_gimbal.scenes import SwingScene, thrust_fext
+from mechkit.mechanisms.rocket_gimbal.soc import soc_skcs
+from mechkit.mechanisms.rocket_gimbal.state import hinges, joint_state
 from mechkit.validation.soc import solve_soc
 
 __all__ = [
@@ -38,7 +39,7 @@ def fk_closure(
 ) -> tuple[np.ndarray, np.ndarray]:
     """FK by the closure solver (`Mechanism.assemble`, the strokes as inputs): ((alpha, beta) rad, q)."""
     q = mech.assemble({"a_stroke": stroke[0], "b_stroke": stroke[1]}, guess=guess)
-    return np.array([q[mech.q_index("bracket_hinge")], q[mech.q_index("engine_hinge")]]), q
+    return hinges(mech, q, "q"), q
 
 
 @dataclass(frozen=True)

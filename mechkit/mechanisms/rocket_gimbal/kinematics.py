@@ -23,6 +23,9 @@ from mechkit.spatial import cross, rot_x, rot_y, rot_z
 
 __all__ = [
     "GIMBAL_ANGLE",
+    "PAPER_EXAMPLE",
+    "RULE_ANGLE",
+    "RULE_STROKE",
     "GimbalGeometry",
     "LinearRuleErrors",
     "actuator_lengths",
@@ -38,6 +41,14 @@ __all__ = [
 
 GIMBAL_ANGLE = np.pi / 4
 """Angle (rad) from Ox to the bracket hinge Ox1, about Oz (the paper's 45 deg)."""
+#: The paper's linear rule: stroke 110 mm <-> 6.5 deg.
+RULE_STROKE, RULE_ANGLE = 0.110, np.radians(6.5)
+#: The paper's worked example: strokes (m), its FK answer (rad), its IK lengths of that answer (m).
+PAPER_EXAMPLE = {
+    "strokes": np.array([-0.060, 0.105]),
+    "angles": np.radians([6.6336, -2.0624]),
+    "lengths": np.array([1.7828855, 1.9479909]),
+}
 
 
 @dataclass(frozen=True)
@@ -169,7 +180,7 @@ def pitch_yaw(alpha: float, beta: float) -> np.ndarray:
 
 
 def linear_rule(
-    stroke: np.ndarray, stroke_max: float = 0.110, angle_max: float = np.radians(6.5)
+    stroke: np.ndarray, stroke_max: float = RULE_STROKE, angle_max: float = RULE_ANGLE
 ) -> np.ndarray:
     """The proportional rule used in practice: |stroke| = stroke_max <-> |angle| = angle_max.
 
@@ -215,7 +226,7 @@ class LinearRuleErrors:
 
 
 def linear_rule_errors(
-    geo: GimbalGeometry, stroke_max: float = 0.110, angle_max: float = np.radians(6.5), n: int = 45
+    geo: GimbalGeometry, stroke_max: float = RULE_STROKE, angle_max: float = RULE_ANGLE, n: int = 45
 ) -> LinearRuleErrors:
     """Error map of the linear rule over the square [-stroke_max, stroke_max]^2 (n x n strokes, n odd)."""
     if n < 3 or n % 2 == 0:

@@ -15,7 +15,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from mechkit.exceptions import InvalidParameters, SingularConfiguration
-from mechkit.mechanisms.rocket_gimbal_kinematics import GimbalGeometry, attitude, hinge_axes
+from mechkit.mechanisms.rocket_gimbal.kinematics import GimbalGeometry, attitude, hinge_axes
 from mechkit.spatial import cross, rot_x
 
 __all__ = ["GimbalMotion", "LegMotion", "gimbal_motion"]

@@ -25,7 +25,7 @@ import numpy as np
 from numpy.polynomial import Polynomial
 
 from mechkit.exceptions import InvalidParameters
-from mechkit.mechanisms.rocket_gimbal_kinematics import GIMBAL_ANGLE, GimbalGeometry, attitude
+from mechkit.mechanisms.rocket_gimbal.kinematics import GIMBAL_ANGLE, GimbalGeometry, attitude
 from mechkit.spatial import rot_z
 
 __all__ = [

@@ -16,21 +16,23 @@ split. Order of solution (world frame, the wrench parent-on-child at the joint p
    Hooke's second revolute (3 forces + 2 moments normal to e2); ``*_cross`` (free body): known that,
    unknown the first revolute, the frame pivot's support (3 forces + 2 moments normal to e1).
 
-Body motions come from `rocket_gimbal_motion` (the paper's geometry), never from Pinocchio.
+Body motions come from `rocket_gimbal.motion` (the paper's geometry), never from Pinocchio.
 """
 
 from __future__ import annotations
 
 import numpy as np
 
-from mechkit.mechanisms.rocket_gimbal_motion import GimbalMotion
-from mechkit.spatial import cross, skew
+from mechkit.mechanisms.rocket_gimbal.motion import GimbalMotion
+from mechkit.mechanisms.rocket_gimbal.params import BodySpec, RocketGimbalParams, body_inertias, geometry
+from mechkit.mechanisms.rocket_gimbal.scenes import SwingScene
+from mechkit.spatial import cross, rot_x, skew
 from mechkit.validation.soc import BodyLoad, SKCInstant, WrenchSite
 
-__all__ = ["BodySpec", "gimbal_skcs"]
+__all__ = ["PAPER_TO_WORLD", "gimbal_skcs", "soc_skcs"]
 
-BodySpec = dict[str, tuple[float, float, float]]
-"""Body name -> (mass kg, transverse and axial moments of inertia about the COM, kg m^2)."""
+#: Rotation from the paper frame O-xyz to the world frame (nozzle down, world z up).
+PAPER_TO_WORLD = rot_x(np.pi)
 
 _FORCES = np.vstack([np.eye(3), np.zeros((3, 3))])
 
@@ -260,4 +262,18 @@ def _free(body: BodyLoad, com: np.ndarray, ref: np.ndarray) -> BodyLoad:
         body.alpha,
         jac[:3],
         jac[3:],
+    )
+
+
+def soc_skcs(p: RocketGimbalParams, motion: GimbalMotion, scene: SwingScene) -> list[SKCInstant]:
+    """The SKCs of `gimbal_skcs` for these parameters (world frame), under the scene's thrust."""
+    return gimbal_skcs(
+        motion,
+        geometry(p).frame_pivots,
+        body_inertias(p),
+        p.engine_com,
+        p.cylinder_length,
+        p.rod_length,
+        PAPER_TO_WORLD,
+        (scene.thrust, scene.thrust_point),
     )

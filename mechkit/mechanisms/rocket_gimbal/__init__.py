@@ -1,0 +1,39 @@
+"""Two-way swinging mechanism of a launcher engine (Qian, Fu, Zhang, Zhu; reference 004).
+
+The engine turns about a fixed point O: gimbal frame -> bracket about Ox1, bracket -> engine about
+Oy2 (hinges at 45 deg to Ox / Oy, meeting at O). Two U-P-S actuators A and B drive it; their strokes
+are the inputs. Frames: the paper frame O-xyz (z along the nozzle) is the URDF link `gimbal_frame`;
+it hangs nozzle-down from the world (`rocket`, z up): world = Rx(pi) * paper.
+
+Modules, bottom up: `kinematics` (the paper's IK, Newton FK, pitch / yaw, the linear rule, numpy
+only), `resultant` (the paper's FK: half-angle substitution, Sylvester resultant, common-root test),
+`motion` (every body's motion from (alpha, beta)), `params` (parameters, pivots, inertias), `state`
+(the Pinocchio tree from the motion), `scenes` (the swing under thrust), `soc` (the SKC
+decomposition), `checks` (`mechkit report` rows), `bench` (`mechkit bench` methods).
+
+Not in the source (ours): the pivot coordinates (a reconstruction that reproduces the paper's
+printed numbers), every mass and inertia, the actuator dimensions.
+"""
+
+from __future__ import annotations
+
+from mechkit.contract import MechanismSpec
+from mechkit.mechanisms.rocket_gimbal import bench, checks
+from mechkit.mechanisms.rocket_gimbal.params import RocketGimbalParams
+from mechkit.mechanisms.rocket_gimbal.scenes import swing_scene
+
+__all__ = ["SPEC", "RocketGimbalParams"]
+
+SPEC = MechanismSpec(
+    name="rocket_gimbal",
+    params=RocketGimbalParams,
+    template="rocket_gimbal.urdf.xacro",
+    actuated=("a_stroke", "b_stroke"),
+    gruebler_dof=2,
+    home=lambda p: {"a_stroke": 0.0, "b_stroke": 0.0},
+    summary="launcher engine gimbal: frame-bracket-engine hinges at 45 deg, two U-P-S servo actuators",
+    scenes={"swing": swing_scene},
+    bench_methods=bench.METHODS,
+    bench_references=bench.REFERENCES,
+    self_checks=checks.self_checks,
+)

@@ -1,0 +1,82 @@
+"""The swing scene of the engine gimbal: a conical swing in flight under thrust.
+
+The motion law (`SwingScene`: alpha and beta as sines, with their derivatives), its thrust as
+Pinocchio external forces (`thrust_fext`), and one period as assembled poses (`swing_scene`, the
+`SPEC.scenes` entry). Every value of the scene is ours.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import TYPE_CHECKING
+
+import numpy as np
+import pinocchio as pin
+
+from mechkit.exceptions import InvalidParameters
+from mechkit.mechanisms.rocket_gimbal.motion import GimbalMotion, gimbal_motion
+from mechkit.mechanisms.rocket_gimbal.params import RocketGimbalParams, geometry
+from mechkit.mechanisms.rocket_gimbal.state import joint_state
+
+if TYPE_CHECKING:
+    from mechkit.mechanism import Mechanism
+
+__all__ = ["SwingScene", "swing_scene", "thrust_fext"]
+
+
+@dataclass(frozen=True)
+class SwingScene:
+    """A conical swing manoeuvre in flight: alpha = A sin(w t), beta = B sin(w t + phase), under thrust.
+
+    All values are ours: a YF-100-class sea-level thrust and a swing of a few degrees at 1 Hz
+    (about 25 deg/s, the order of a launcher's thrust-vector slew rate).
+    """
+
+    amplitude_alpha: float = np.radians(4.0)  # rad
+    amplitude_beta: float = np.radians(4.0)  # rad
+    frequency: float = 1.0  # Hz
+    phase: float = np.pi / 2  # rad
+    thrust: float = 1.2e6  # N, against the nozzle axis
+    thrust_point: float = 1.5  # m from O along the nozzle axis (the throat)
+
+    def __post_init__(self) -> None:
+        for name, value in vars(self).items():
+            if not np.isfinite(value):
+                raise InvalidParameters(name, value, "must be finite")
+        if self.frequency <= 0 or self.thrust < 0:
+            raise InvalidParameters(
+                "frequency/thrust", (self.frequency, self.thrust), "need frequency > 0, thrust >= 0"
+            )
+
+    def angles(self, t: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """(alpha, beta) rad, their rates rad/s and accelerations rad/s^2 at time t (s)."""
+        w = 2.0 * np.pi * self.frequency
+        amp = np.array([self.amplitude_alpha, self.amplitude_beta])
+        arg = w * t + np.array([0.0, self.phase])
+        return amp * np.sin(arg), amp * w * np.cos(arg), -amp * w**2 * np.sin(arg)
+
+    def motion(self, p: RocketGimbalParams, t: float) -> GimbalMotion:
+        """The analytic motion of every body at time t."""
+        return gimbal_motion(geometry(p), *self.angles(t))
+
+
+def thrust_fext(mech: Mechanism, q: np.ndarray, scene: SwingScene) -> list:
+    """Pinocchio external forces (per joint, local frames): the thrust on the engine at q."""
+    pin.forwardKinematics(mech.model, mech.data, q)
+    engine = mech.model.getJointId("engine_hinge")
+    oMi = mech.data.oMi[engine]
+    n = oMi.rotation[:, 2]  # the engine frame's z is the nozzle axis
+    force = -scene.thrust * n
+    point = oMi.translation + scene.thrust_point * n
+    fext = [pin.Force.Zero() for _ in range(mech.model.njoints)]
+    fext[engine] = oMi.actInv(pin.Force(force, np.cross(point, force)))
+    return fext
+
+
+def swing_scene(mech: Mechanism) -> list[np.ndarray]:
+    """One period of the swing scene as assembled configurations (`mechkit snapshot rocket_gimbal --scene swing`)."""
+    scene = SwingScene()
+    return [
+        joint_state(mech, scene.motion(mech.params, t))[0]
+        for t in np.linspace(0.0, 1.0 / scene.frequency, 120)
+    ]
