@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import os
 import sys
 
 import numpy as np
@@ -65,10 +66,53 @@ def cmd_snapshot(args) -> None:
         print(f"wrote {path}")
 
 
-def cmd_bench(args) -> None:
-    from mechkit.bench import bench_command
+class ProgressBar:
+    """A one-line progress bar per mechanism on stderr (a `mechkit.bench.run.Progress` callback), shown
+    only on a terminal or when MECHKIT_PROGRESS=1."""
 
-    bench_command(args)
+    def __init__(self, enabled: bool | None = None):
+        self.enabled = (sys.stderr.isatty() or os.environ.get("MECHKIT_PROGRESS") == "1") if enabled is None else enabled
+
+    def __call__(self, label: str, done: int, total: int, what: str = "") -> None:
+        if self.enabled:
+            width, total = 30, max(total, 1)
+            filled = int(width * done / total)
+            sys.stderr.write(f"\r{label} [{'#' * filled}{'.' * (width - filled)}] {done}/{total} {what[:40]:<40}")
+            if done >= total:
+                sys.stderr.write("\n")
+            sys.stderr.flush()
+
+
+def cmd_bench(args) -> None:
+    from pathlib import Path
+
+    from mechkit.atomic import write_text
+    from mechkit.bench import charts, failure_atlas, loadtime, markdown, run, scale
+
+    with np.errstate(under="ignore"):
+        results, skipped = run.run(args.names, args.quick, progress=ProgressBar())
+        for b in results:
+            print(markdown.format_table(b))
+        for line in markdown.goals(results):
+            print(line)
+        for name, why in skipped.items():
+            print(f"{name}: not measured ({why})")
+        fits = scale.scale_fits(results)
+        for name, pts, slope in fits:
+            print(f"scale: {name}: t ~ nv^{slope:.2f} (" + ", ".join(f"{m} nv={n}: {t * 1e6:.1f} us" for m, n, t in pts) + ")")
+        first = loadtime.first_load(runs=5 if args.quick else 15)
+        print("\n".join(["first load in a fresh process:", *markdown.first_load_lines(first)]))
+        figures = []
+        if args.charts:
+            figures = charts.draw_all(results, fits, Path(args.charts))
+            print(f"wrote {len(figures)} charts to {args.charts}")
+        if args.markdown:
+            failures = []
+            if args.charts:
+                failures = failure_atlas.summary_lines(Path(args.charts), quick=args.quick)
+                figures += sorted(Path(args.charts).glob("bench_atlas_*.png"))
+            write_text(args.markdown, markdown.markdown_report(results, args.quick, figures, failures, skipped, fits, first))
+            print(f"wrote {args.markdown}")
 
 
 def cmd_export(args) -> None:

@@ -1,28 +1,32 @@
-"""mechkit bench: error measurement, ratios, the BENCH_METHODS protocol, and a quick smoke run."""
+"""mechkit bench: error measurement, ratios, the spec's bench methods, first load, and a quick smoke run."""
 
 from __future__ import annotations
 
-import importlib
+import dataclasses
 from pathlib import Path
 
 import numpy as np
 import pytest
 
 import mechkit
-from mechkit import bench
-from mechkit.cli import main
+from mechkit.bench import errors, failure_atlas, loadtime, run, timing
+from mechkit.bench.methods import BASELINES, Method
+from mechkit.bench.results import Row
+from mechkit.cli import ProgressBar, main
+from mechkit.contract import BENCH_QUANTITIES, BenchMethod
 from mechkit.exceptions import SingularConfiguration
+from mechkit.mechanism import from_params
 
 
-def _row(name: str, quantity: str, seconds: float, error: float) -> bench.Row:
-    return bench.Row("m", bench.Method(name, quantity, lambda m, s: None), median_s=seconds, error=error)
+def _row(name: str, quantity: str, seconds: float, error: float) -> Row:
+    return Row("m", Method(name, quantity, lambda m, s: None), median_s=seconds, error=error)
 
 
 def test_ratio_to_fastest_of_equal_or_better_accuracy():
     rows = [_row("slow exact", "forward_dynamics", 10e-6, 1e-15), _row("fast exact", "forward_dynamics", 2e-6, 1e-13),
             _row("fastest sloppy", "forward_dynamics", 1e-6, 1e-2),
-            _row(bench.BASELINES["forward_dynamics"], "forward_dynamics", 4e-6, 1e-14)]
-    bench._ratios(rows)
+            _row(BASELINES["forward_dynamics"], "forward_dynamics", 4e-6, 1e-14)]
+    timing.ratios(rows)
     by = {r.method.name: r for r in rows}
     assert by["slow exact"].x_fastest == pytest.approx(5.0)  # both exact within the machine-precision class
     assert by["fast exact"].x_fastest == pytest.approx(1.0)
@@ -34,48 +38,50 @@ def test_efforts_only_is_no_yardstick_for_reactions():
     full = _row("with reactions", "inverse_dynamics", 10e-6, 1e-15)
     cheap = _row("efforts only", "inverse_dynamics", 1e-6, 1e-15)
     cheap.note = "efforts only"
-    bench._ratios([full, cheap])
+    timing.ratios([full, cheap])
     assert full.x_fastest == pytest.approx(1.0) and cheap.x_fastest == pytest.approx(1.0)
 
 
 def test_inverse_error_compares_determinate_components_only():
-    ref = bench.IDReference({"m1": 2.0}, {"j": np.array([1.0, 5.0, 0, 0, 0, 0]), "m1": np.array([0, 0, 1.0, 0, -2.0, 0])},
+    ref = errors.IDReference({"m1": 2.0}, {"j": np.array([1.0, 5.0, 0, 0, 0, 0]), "m1": np.array([0, 0, 1.0, 0, -2.0, 0])},
                             {"j": np.array([True, False, True, True, True, True]), "m1": np.ones(6, bool)})
     good = {"efforts": {"m1": 2.0}, "reactions": {"j": np.array([1.0, -99.0, 0, 0, 0, 0]), "m1": np.array([0, 0, 1.0, 0, 7.0, 0])}}
-    err, note = bench.inverse_error(good, ref, ("m1",))
+    err, note = errors.inverse_error(good, ref, ("m1",))
     assert err == 0.0 and note == ""  # the indeterminate fy and the actuated joint's moment are not compared
     bad = {"efforts": {"m1": 2.5}}
-    err, note = bench.inverse_error(bad, ref, ("m1",))
+    err, note = errors.inverse_error(bad, ref, ("m1",))
     assert err == pytest.approx(0.5 / 5.0) and note == "efforts only"
 
 
 def test_time_per_call_counts_every_call():
     calls = []
-    times = bench.time_per_call(lambda s: calls.append(s), [1, 2], budget_s=0.01, repeats=3)
+    times = timing.time_per_call(lambda s: calls.append(s), [1, 2], budget_s=0.01, repeats=3)
     assert times.shape == (3,) and np.all(times > 0)
     assert set(calls) == {1, 2}
 
 
-def test_bench_methods_protocol_measures_a_wrong_method_and_a_raising_one(monkeypatch):
-    """A module's BENCH_METHODS rows are measured like the core's: a 1 mrad bias shows as 1e-3 error."""
-    module = importlib.import_module("mechkit.mechanisms.four_bar")
-
+def test_spec_bench_methods_measure_a_wrong_method_and_a_raising_one():
+    """A spec's bench_methods rows are measured like the core's: a 1 mrad bias shows as 1e-3 error."""
     def biased(m, s):
         return m.assemble(dict(zip(s.input_names, s.inputs)), guess=m.home_q) + 1e-3
 
     def refuses(m, s):
         raise SingularConfiguration(float("inf"), "test")
 
-    monkeypatch.setattr(module, "BENCH_METHODS", {"assembly": [("biased", biased)], "inverse_dynamics": [("refuses", refuses)]},
-                        raising=False)
-    result = bench.bench_mechanism("four_bar", quick=True, with_peers=False)
+    spec = mechkit.get_spec("four_bar")
+    spec = dataclasses.replace(spec, bench_methods=(*spec.bench_methods, BenchMethod("biased", "assembly", biased),
+                                                    BenchMethod("refuses", "inverse_dynamics", refuses)))
+    calls = []
+    result = run.bench_mechanism(from_params(spec, spec.params()), quick=True, with_peers=False,
+                                 progress=lambda *args: calls.append(args))
     by = {r.method.name: r for r in result.rows}
+    assert [c[1:3] for c in calls] == [(k, len(result.rows)) for k in range(1, len(result.rows) + 1)]
     assert by["biased"].error == pytest.approx(1e-3, rel=1e-6)
     assert by["refuses"].outcome.startswith("raises SingularConfiguration")
     # the core against the independent closed form and planar Newton-Euler
-    assert by[bench.BASELINES["assembly"]].error < 1e-10
-    assert by[bench.BASELINES["forward_dynamics"]].error < 1e-9
-    assert by[bench.BASELINES["inverse_dynamics"]].error < 1e-9
+    assert by[BASELINES["assembly"]].error < 1e-10
+    assert by[BASELINES["forward_dynamics"]].error < 1e-9
+    assert by[BASELINES["inverse_dynamics"]].error < 1e-9
     assert by["dense KKT (independent rows)"].error < 1e-9
     assert by["Lagrange first kind (numpy, from link motion)"].error < 1e-9
     assert by["Lagrange first kind, forward (numpy, from link motion)"].error < 1e-9
@@ -86,32 +92,34 @@ def test_bench_methods_protocol_measures_a_wrong_method_and_a_raising_one(monkey
 
 def test_quick_bench_smoke(tmp_path, capsys, monkeypatch):
     """`mechkit bench four_bar --quick` prints the table with peers, writes charts and the markdown."""
-    from mechkit import failure_atlas
-
-    # the atlas studies have their own tests: keep one here to check the wiring, and the run short
+    # the atlas studies and the first load have their own tests: keep one study here to check the
+    # wiring, and the run short
     monkeypatch.setattr(failure_atlas, "STUDIES", {"proximal_mu": failure_atlas.proximal_mu})
+    first_load = loadtime.first_load
+    monkeypatch.setattr(loadtime, "first_load", lambda runs: first_load(runs=1))
     md = tmp_path / "bench.md"
     assert main(["bench", "four_bar", "--quick", "--charts", str(tmp_path), "--markdown", str(md)]) == 0
     out = capsys.readouterr().out
     assert "us/call" in out and "x fastest" in out
-    for quantity in bench.QUANTITIES:
+    for quantity in BENCH_QUANTITIES:
         assert quantity in out
         for ext in ("png", "svg"):
             assert (tmp_path / f"bench_four_bar_{quantity}.{ext}").stat().st_size > 1000
     assert "[peer] MuJoCo mj_forward (default solref/solimp)" in out
     text = md.read_text()
     assert "## Machine" in text and "pinocchio" in text and "## Goals" in text and "## Failure atlas" in text
+    assert "## First load" in text and "mechkit.mechanisms.four_bar" in text
     assert (tmp_path / "bench_atlas_proximal_mu.png").exists() and "bench_atlas_proximal_mu.png" in text
 
 
 @pytest.mark.bench
 def test_full_bench_measures_every_registered_mechanism():
-    results, skipped = bench.run(quick=True)
+    results, skipped = run.run(quick=True)
     assert not skipped, skipped
     assert {b.name for b in results} == set(mechkit.specs())
     for b in results:
         by = {r.method.name: r for r in b.rows}
-        for name in bench.BASELINES.values():
+        for name in BASELINES.values():
             assert by[name].outcome == "ok" or by[name].outcome.startswith("raises"), (b.name, name)
 
 
@@ -129,12 +137,21 @@ def test_bench_core_tool_prints_ratios(capsys):
 
 
 def test_progress_bar_only_when_asked(capsys):
-    bar = bench.Progress(2, "x", enabled=False)
-    bar.step("a")
-    bar.step("b")
+    bar = ProgressBar(enabled=False)
+    bar("x", 1, 2, "a")
+    bar("x", 2, 2, "b")
     assert capsys.readouterr().err == ""
-    bar = bench.Progress(2, "x", enabled=True)
-    bar.step("a")
-    bar.step("b")
+    bar = ProgressBar(enabled=True)
+    bar("x", 1, 2, "a")
+    bar("x", 2, 2, "b")
     err = capsys.readouterr().err
     assert "2/2" in err and err.endswith("\n")
+
+
+def test_first_load_times_a_fresh_process_and_lists_its_mechanism_modules():
+    """Not a timing test: the measurement returns positive times and the imported modules (four_bar's only)."""
+    first = loadtime.first_load("four_bar", runs=1)
+    assert len(first.process_s) == len(first.inside_s) == 1
+    assert 0 < first.inside_s[0] < first.process_s[0]
+    assert "mechkit.mechanisms.four_bar" in first.modules
+    assert first.others == ()

@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from mechkit import peers
+from mechkit.bench import peers
 from mechkit.exceptions import MethodUnavailable
 
 pytest.importorskip("mujoco")

@@ -15,7 +15,9 @@ import numpy as np
 import pinocchio as pin
 
 import mechkit
-from mechkit.bench import make_samples, references, time_per_call
+from mechkit.bench.methods import references
+from mechkit.bench.sampling import make_samples
+from mechkit.bench.timing import time_per_call
 
 
 def _us(fn, sample, budget: float) -> float:

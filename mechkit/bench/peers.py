@@ -21,14 +21,16 @@ v, a, tau are mechkit's vectors throughout.
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
+import xml.etree.ElementTree as ET
 
 import numpy as np
 
+from mechkit.bench.methods import Method
+from mechkit.closures import AXIS_ANCHOR_OFFSET
+from mechkit.description import LOOP_NAMESPACE
 from mechkit.exceptions import MechkitError, MethodUnavailable
-
-if TYPE_CHECKING:
-    from mechkit.mechanism import Mechanism
+from mechkit.export import _body_name, frame_b_vector, to_mjcf
+from mechkit.mechanism import Mechanism
 
 #: MuJoCo equality solref (time constant s, damping ratio) and solimp for the "stiff" setting.
 STIFF_SOLREF = (0.002, 1.0)
@@ -62,8 +64,6 @@ class MujocoPeer:
     """
 
     def __init__(self, mech: Mechanism, stiff: bool = False):
-        from mechkit.export import to_mjcf
-
         mujoco = self._mj = _import_mujoco()
         self.model = mujoco.MjModel.from_xml_string(to_mjcf(mech))
         if stiff:
@@ -129,9 +129,6 @@ class DrakePeer:
             from pydrake.systems.analysis import Simulator
         except ImportError:
             raise MethodUnavailable("drake", "not installed: pip install drake") from None
-        from mechkit.closures import AXIS_ANCHOR_OFFSET
-        from mechkit.export import frame_b_vector
-
         self.dt = dt
         plant = MultibodyPlant(time_step=dt)
         plant.set_discrete_contact_approximation(DiscreteContactApproximation.kSap)  # constraints need SAP
@@ -184,10 +181,6 @@ class DrakePeer:
 
 def _strip_loops(urdf: str) -> str:
     """The URDF without `<mechkit:loop>` elements (Drake's parser warns about unknown elements)."""
-    import xml.etree.ElementTree as ET
-
-    from mechkit.description import LOOP_NAMESPACE
-
     root = ET.fromstring(urdf)
     for el in root.findall(f"{{{LOOP_NAMESPACE}}}loop"):
         root.remove(el)
@@ -195,6 +188,27 @@ def _strip_loops(urdf: str) -> str:
 
 
 def _link_of(model, joint: int) -> str:
-    from mechkit.export import _body_name
-
     return _body_name(model, joint) if joint else model.frames[1].name
+
+
+def peer_methods(mech: Mechanism) -> tuple[list[Method], list[str]]:
+    """MuJoCo (default and stiff) and Drake rows; unavailable peers come back as notes."""
+    methods, notes = [], []
+    for stiff, label in ((False, "default"), (True, "stiff")):
+        try:
+            p = MujocoPeer(mech, stiff=stiff)
+        except MechkitError as err:
+            notes.append(f"MuJoCo {label}: {err}")
+            continue
+        methods.append(Method(f"MuJoCo mj_forward ({label} solref/solimp)", "forward_dynamics",
+                              lambda m, s, p=p: p.forward(s.q, s.v, s.tau), family="MuJoCo", peer=True, knob=label))
+        if not stiff:
+            methods.append(Method("MuJoCo mj_inverse + split on efc_J", "inverse_dynamics",
+                                  lambda m, s, p=p: {"efforts": p.inverse(s.q, s.v, s.a)}, peer=True))
+    try:
+        d = DrakePeer(mech)
+        methods.append(Method(f"Drake SAP step (dt={DRAKE_DT:g})", "forward_dynamics",
+                              lambda m, s, d=d: d.forward(s.q, s.v, s.tau), peer=True))
+    except MechkitError as err:
+        notes.append(f"Drake: {err}")
+    return methods, notes

@@ -1,0 +1,142 @@
+"""The bench's states: assembled configurations near home with random input rates and accelerations.
+
+Every method of a mechanism is measured on the same few `Sample`s, drawn by `make_samples`.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+import pinocchio as pin
+from scipy.linalg import null_space
+
+from mechkit.exceptions import MechkitError, MethodUnavailable
+
+#: Largest offset of the sampled inputs from the home inputs (rad or m).
+INPUT_SPREAD = 0.05
+
+
+@dataclass
+class Sample:
+    """One assembled state of a mechanism (SI units, mechkit's joint vectors).
+
+    `inputs`, `rates`, `accelerations` are values of `input_names`: the actuated joints, then extra
+    joints when the actuators alone do not fix the configuration (under-actuated mechanisms).
+    `q`, `v`, `a`, `tau` are (nq,), (nv,), (nv,), (nv,) joint vectors; `extra` caches data of the
+    methods (and holds "guess", the configuration the assembly methods start from, and "efforts"
+    when the efforts were drawn first and a follows from the dynamics).
+    """
+
+    inputs: np.ndarray
+    rates: np.ndarray
+    accelerations: np.ndarray
+    q: np.ndarray
+    v: np.ndarray
+    a: np.ndarray
+    tau: np.ndarray
+    input_names: tuple[str, ...] = ()
+    extra: dict[str, Any] = field(default_factory=dict)
+
+
+def input_joints(mech) -> tuple[str, ...]:
+    """The actuated joints, then (under-actuated mechanisms) extra joints completing a set of independent coordinates."""
+    names = list(mech.actuated)
+    dof = mech.mobility().dof
+    if len(names) >= dof:
+        return tuple(names)
+    basis = null_space(mech.closure_jacobian(mech.home_q))
+    chosen = [mech.v_index(j) for j in names]
+    for joint in mech.model.names[1:]:
+        if len(chosen) == dof:
+            break
+        trial = chosen + [mech.v_index(joint)]
+        if joint not in names and np.linalg.matrix_rank(basis[trial]) == len(trial):
+            chosen, names = trial, names + [joint]
+    return tuple(names)
+
+
+def scene_configurations(mech, count: int) -> list[tuple[np.ndarray, np.ndarray]]:
+    """Up to `count` (configuration, the scene's previous configuration) pairs spread along the first
+    scene the mechanism's spec declares; the previous one is the assembly's warm start."""
+    for scene in mech.spec.scenes.values():
+        poses = [np.asarray(q, dtype=float) for q in scene(mech)]
+        picks = np.linspace(1, len(poses) - 1, min(count, len(poses) - 1)).round().astype(int)
+        return [(poses[i], poses[i - 1]) for i in picks]
+    return []
+
+
+def _closes(mech, q: np.ndarray, v: np.ndarray, a: np.ndarray) -> bool:
+    """Whether a satisfies the acceleration-level closure J a + gamma = 0 to 1e-9 (relative)."""
+    J = mech.closure_jacobian(q)
+    gamma = mech.closure_drift(q, v)
+    return bool(np.max(np.abs(J @ a + gamma), initial=0.0) <= 1e-9 * max(np.max(np.abs(J), initial=0.0) * np.max(np.abs(a)),
+                                                                             np.max(np.abs(gamma), initial=0.0), 1e-12))
+
+
+def make_samples(mech, count: int, seed: int = 7) -> list[Sample]:
+    """`count` assembled states near home (closure tolerance 1e-12).
+
+    Inputs within INPUT_SPREAD of home (divided by 5 until the linkage assembles), then, if too few
+    assemble, configurations along the spec's first scene; input rates ~ N(0, 0.5).
+    Fully actuated: input accelerations ~ N(0, 1) and a from the closure kinematics (tau is set by
+    `mechkit.bench.methods.references`). Under-actuated, or where that a does not satisfy
+    J a + gamma = 0 to 1e-9 (a rank change near home): efforts ~ N(0, generalised gravity scale) on
+    the actuators and a from the core's dense KKT forward dynamics (the inverse dynamics must give
+    those efforts back).
+
+    Raises:
+        MethodUnavailable: no state could be assembled.
+    """
+    rng = np.random.default_rng(seed)
+    names = input_joints(mech)
+    under = len(names) > len(mech.actuated)
+    act_v = [mech.v_index(j) for j in mech.actuated]
+    home = np.array([mech.home_q[mech.q_index(j)] for j in names])
+    out: list[Sample] = []
+    why = ""
+    data = mech.model.createData()
+
+    def add(q: np.ndarray, guess: np.ndarray) -> None:
+        """Moving state at q: random input rates; accelerations from the closure, else from the dynamics.
+        `guess` is where the assembly methods start from."""
+        inputs = np.array([q[mech.q_index(j)] for j in names])
+        rates = rng.normal(0.0, 0.5, home.size)
+        accs = rng.normal(0.0, 1.0, home.size)
+        v = mech.velocities(q, rates, inputs=names)
+        tau = np.zeros(mech.model.nv)
+        a = None if under else mech.accelerations(q, v, accs, inputs=names)
+        if a is not None and not _closes(mech, q, v, a):
+            a = None  # the projection is inconsistent here (second-order mobility): use the dynamics
+        if a is None:
+            scale = max(float(np.max(np.abs(pin.computeGeneralizedGravity(mech.model, data, q)[act_v]))), 1e-3)
+            tau[act_v] = rng.normal(0.0, scale, len(act_v))
+            a = mech.forward_dynamics(q, v, tau, "kkt").a
+            accs = a[[mech.v_index(j) for j in names]]
+        sample = Sample(inputs, rates, accs, q, v, a, tau, tuple(names))
+        if tau.any():
+            sample.extra["efforts"] = {j: float(tau[i]) for j, i in zip(mech.actuated, act_v)}
+        sample.extra["guess"] = guess
+        out.append(sample)
+
+    for spread in (INPUT_SPREAD, INPUT_SPREAD / 5, INPUT_SPREAD / 25):
+        for _ in range(count * 2):
+            if len(out) == count:
+                break
+            try:
+                q = mech.assemble(dict(zip(names, home + rng.uniform(-spread, spread, home.size))), guess=mech.home_q)
+                add(q, mech.home_q)
+            except MechkitError as err:
+                why = str(err)
+    if len(out) < count:
+        # some linkages do not assemble for arbitrary inputs near home (the deployable's seventh DOF
+        # exists only along symmetric folds): take states along the mechanism's own scene instead
+        for q, previous in scene_configurations(mech, count - len(out)):
+            try:
+                add(q, previous)
+            except MechkitError as err:
+                why = str(err)
+    if not out:
+        raise MethodUnavailable("bench samples", f"no state near home of {mech.spec.name}: {why}")
+    return out
