@@ -12,7 +12,8 @@ import mechkit
 from mechkit.bench import errors, failure_atlas, loadtime, run, timing
 from mechkit.bench.methods import BASELINES, Method
 from mechkit.bench.results import Row
-from mechkit.cli import ProgressBar, main
+from mechkit.cli import main
+from mechkit.cli.bench import ProgressBar
 from mechkit.contract import BENCH_QUANTITIES, BenchMethod
 from mechkit.exceptions import SingularConfiguration
 from mechkit.mechanism import from_params

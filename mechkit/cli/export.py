@@ -1,0 +1,24 @@
+"""`mechkit export`: the mechanism for other tools (MJCF, Extended URDF)."""
+
+from __future__ import annotations
+
+import argparse
+
+from mechkit.cli.common import add_mechanism_arguments, load_mechanism
+
+
+def run(args: argparse.Namespace) -> None:
+    """Write the export and say where."""
+    from mechkit.export import export_command
+
+    for path in export_command(load_mechanism(args), args.format, args.output):
+        print(f"wrote {path}")
+
+
+def add_parser(sub) -> None:
+    """Register `export`."""
+    p = sub.add_parser("export", help="write the mechanism for other tools")
+    add_mechanism_arguments(p)
+    p.add_argument("--format", required=True, choices=["mjcf", "extended-urdf"], help="target format")
+    p.add_argument("-o", "--output", required=True, help="file to write (extended-urdf also writes a .yaml beside it)")
+    p.set_defaults(func=run)

@@ -1,0 +1,18 @@
+"""`mechkit list`: the registered mechanisms (imports none of them)."""
+
+from __future__ import annotations
+
+import argparse
+
+from mechkit.registry import ENTRIES
+
+
+def run(args: argparse.Namespace) -> None:
+    """Print one line per registered mechanism."""
+    for e in ENTRIES:
+        print(f"{e.name:<22} {e.summary}")
+
+
+def add_parser(sub) -> None:
+    """Register `list`."""
+    sub.add_parser("list", help="registered mechanisms").set_defaults(func=run)

@@ -1,0 +1,24 @@
+"""`mechkit report`: structure, mobility and self-checks (text or the JSON contract)."""
+
+from __future__ import annotations
+
+import argparse
+import json
+
+from mechkit.cli.common import add_mechanism_arguments, load_mechanism
+
+
+def run(args: argparse.Namespace) -> None:
+    """Print the report."""
+    from mechkit.report import format_report, report
+
+    r = report(load_mechanism(args))
+    print(json.dumps(r, indent=2) if args.json else format_report(r))
+
+
+def add_parser(sub) -> None:
+    """Register `report`."""
+    p = sub.add_parser("report", help="structure, mobility and self-checks")
+    add_mechanism_arguments(p)
+    p.add_argument("--json", action="store_true", help="machine-readable output")
+    p.set_defaults(func=run)

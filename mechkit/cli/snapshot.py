@@ -1,0 +1,26 @@
+"""`mechkit snapshot`: self-contained meshcat HTML (and PNG) of a pose or a scene."""
+
+from __future__ import annotations
+
+import argparse
+
+from mechkit.cli.common import add_mechanism_arguments, load_mechanism
+
+
+def run(args: argparse.Namespace) -> None:
+    """Write the page (and the screenshot) and say where."""
+    from mechkit.viz import snapshot_command
+
+    for path in snapshot_command(load_mechanism(args), q=args.q, scene=args.scene, html=args.output, png=args.png):
+        print(f"wrote {path}")
+
+
+def add_parser(sub) -> None:
+    """Register `snapshot`."""
+    p = sub.add_parser("snapshot", help="self-contained meshcat HTML (and PNG) of a pose or an animated scene")
+    add_mechanism_arguments(p)
+    p.add_argument("--q", help="input coordinates, comma-separated, in actuated order (rad or m)")
+    p.add_argument("--scene", help="animate a scene of the mechanism (see `mechkit.scenes`), instead of one pose")
+    p.add_argument("-o", "--output", help="HTML file to write")
+    p.add_argument("--png", help="PNG screenshot to write (needs a headless Chromium)")
+    p.set_defaults(func=run)
