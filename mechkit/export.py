@@ -34,7 +34,7 @@ import numpy as np
 import pinocchio as pin
 
 from mechkit.closures import AXIS_ANCHOR_OFFSET
-from mechkit.exceptions import InvalidParameters, MethodUnavailable
+from mechkit.exceptions import MethodUnavailable, OutputError, UnknownOption
 
 if TYPE_CHECKING:
     from mechkit.mechanism import Mechanism
@@ -218,18 +218,23 @@ def load_extended_urdf(urdf: str, yaml_text: str) -> tuple[pin.Model, list[pin.R
 def export_command(mechanism: Mechanism, fmt: str, output: str | Path) -> list[Path]:
     """Write the mechanism in `fmt` ("mjcf" or "extended-urdf") to `output`; returns the files written.
 
-    extended-urdf also writes the YAML sidecar beside the URDF (same stem, `.yaml`).
-    """
-    from mechkit.atomic import write_text
+    extended-urdf also writes the YAML sidecar beside the URDF (same stem, `.yaml`); both files are
+    written as one step (neither is replaced unless both can be written). mjcf to `-` writes to
+    standard output.
 
-    output = Path(output)
+    Raises:
+        UnknownOption: an unknown format.
+        OutputError: the output is refused (a directory, a device, the sidecar's own name, ...) or
+            cannot be written.
+    """
+    from mechkit.atomic import write_files, write_text
+
+    if fmt not in FORMATS:
+        raise UnknownOption("format", fmt, FORMATS)
     if fmt == "mjcf":
-        write_text(output, to_mjcf(mechanism))
-        return [output]
-    if fmt == "extended-urdf":
-        urdf, yaml = to_extended_urdf(mechanism)
-        sidecar = output.with_suffix(".yaml")
-        write_text(output, urdf)
-        write_text(sidecar, yaml)
-        return [output, sidecar]
-    raise InvalidParameters("format", fmt, f"expected one of {FORMATS}")
+        return [write_text(output, to_mjcf(mechanism))]
+    sidecar = Path(output).with_suffix(".yaml")
+    if Path(output) == sidecar:
+        raise OutputError(output, "the Extended URDF needs a name whose .yaml sidecar is another file (e.g. robot.urdf)")
+    urdf, yaml = to_extended_urdf(mechanism)
+    return write_files({output: urdf.encode(), sidecar: yaml.encode()})

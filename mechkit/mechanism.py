@@ -10,10 +10,10 @@ import pinocchio as pin
 
 from mechkit import dynamics, kinematics
 from mechkit.closures import ClosureRows, cut_rows, rigid_constraint_models
+from mechkit.contract import MechanismSpec
 from mechkit.description import build_model, parse_loops, render_urdf
 from mechkit.exceptions import InvalidParameters, MethodUnavailable, SingularConfiguration
 from mechkit.params import MechanismParams
-from mechkit.contract import MechanismSpec
 from mechkit.registry import get_spec
 
 Inputs = Mapping[str, float] | Sequence[float] | np.ndarray

@@ -9,7 +9,9 @@ from pathlib import Path
 
 import numpy as np
 
-from mechkit.atomic import write_text
+from mechkit import registry
+from mechkit.atomic import resolve_output, write_text
+from mechkit.exceptions import OutputError
 
 
 class ProgressBar:
@@ -33,6 +35,12 @@ def run(args: argparse.Namespace) -> None:
     """Measure, print the tables and goals, and write the charts and the page when asked."""
     from mechkit.bench import charts, failure_atlas, loadtime, markdown, run, scale
 
+    for name in args.names:
+        registry.entry(name)  # an unknown name fails now, not as "not measured" after the run
+    if args.markdown:
+        resolve_output(args.markdown)  # refused before the run, not after it
+    if args.charts and Path(args.charts).exists() and not Path(args.charts).is_dir():
+        raise OutputError(args.charts, "--charts needs a folder")
     with np.errstate(under="ignore"):
         results, skipped = run.run(args.names, args.quick, progress=ProgressBar())
         for b in results:
