@@ -8,15 +8,22 @@ from typing import Any
 import numpy as np
 import pinocchio as pin
 
-from mechkit import dynamics, kinematics
+from mechkit import arguments, dynamics, kinematics
 from mechkit.closures import ClosureRows, cut_rows, rigid_constraint_models
 from mechkit.contract import MechanismSpec
 from mechkit.description import build_model, parse_loops, render_urdf
-from mechkit.exceptions import InvalidParameters, MethodUnavailable, SingularConfiguration
+from mechkit.exceptions import InvalidArgument, InvalidParameters, SingularConfiguration
 from mechkit.params import MechanismParams
 from mechkit.registry import get_spec
 
 Inputs = Mapping[str, float] | Sequence[float] | np.ndarray
+
+#: Closure solvers of `Mechanism.assemble`.
+ASSEMBLY_METHODS = ("newton", "lm")
+#: Methods of `Mechanism.forward_dynamics`.
+FORWARD_METHODS = ("proximal", "kkt")
+#: Redundancy resolutions of `Mechanism.inverse_dynamics`.
+DISTRIBUTIONS = ("min_norm", "min_effort")
 
 
 class Mechanism:
@@ -56,7 +63,7 @@ class Mechanism:
 
     # ---------------------------------------------------------------- indices
     def _joint_id(self, joint: str) -> int:
-        if not self.model.existJointName(joint):
+        if not isinstance(joint, str) or not self.model.existJointName(joint):
             raise InvalidParameters("joint", joint, f"no such joint in {self.spec.name}; joints: {list(self.model.names[1:])}")
         return self.model.getJointId(joint)
 
@@ -71,15 +78,19 @@ class Mechanism:
     def neutral(self) -> np.ndarray:
         return pin.neutral(self.model)
 
-    def _inputs(self, inputs: Inputs | None, default_names: Sequence[str]) -> dict[str, float]:
+    def _inputs(self, inputs: Inputs | None, default_names: Sequence[str], arg: str = "inputs") -> dict[str, float]:
         if inputs is None:
             return {}
-        if isinstance(inputs, Mapping):
-            return {k: float(v) for k, v in inputs.items()}
-        values = np.atleast_1d(np.asarray(inputs, dtype=float))
-        if values.size != len(default_names):
-            raise InvalidParameters("inputs", list(values), f"expected {len(default_names)} values for {list(default_names)}")
-        return dict(zip(default_names, values))
+        return arguments.joint_values(arg, inputs, default_names, list(self.model.names[1:]))
+
+    def _state(self, **values: Any) -> list[np.ndarray]:
+        """Check state arrays by name (q: nq, v/a/tau: nv), (n,) or (N, n); see `arguments.state`."""
+        sizes = {"q": self.model.nq, "v": self.model.nv, "a": self.model.nv, "tau": self.model.nv}
+        return arguments.state(sizes, **values)
+
+    def _input_names(self, inputs: Sequence[str] | None) -> list[str]:
+        """The given input joints (default: the actuated ones), checked."""
+        return list(self.actuated) if inputs is None else arguments.joint_names("inputs", inputs, list(self.model.names[1:]))
 
     def _split(self, names: Sequence[str]) -> tuple[np.ndarray, np.ndarray]:
         input_v = np.array([self.v_index(j) for j in names], dtype=int)
@@ -87,7 +98,7 @@ class Mechanism:
         return input_v, free_v
 
     # ---------------------------------------------------------------- kinematics
-    def assemble(self, inputs: Inputs, guess: Inputs | np.ndarray | None = None, *, tol: float = 1e-12,
+    def assemble(self, inputs: Inputs, guess: Inputs | np.ndarray | None = None, *, tol: float = kinematics.CLOSURE_TOL,
                  method: str = "newton", max_iter: int = 60) -> np.ndarray:
         """Configuration q that closes every loop with the given input coordinates.
 
@@ -101,18 +112,19 @@ class Mechanism:
         Raises:
             ClosureNotConverged: no assembly found near the guess.
         """
+        tol = arguments.number("tol", tol, positive=True)
+        arguments.option("method", method, ASSEMBLY_METHODS)
+        max_iter = arguments.integer("max_iter", max_iter, minimum=1)
         given = self._inputs(inputs, self.actuated)
         if guess is None and self.spec.guess is not None:
             guess = self.spec.guess(self.params)
-        if isinstance(guess, np.ndarray) and guess.shape == (self.model.nq,):
-            q0 = guess.astype(float).copy()
-        else:
+        if guess is None or isinstance(guess, Mapping):
             q0 = self.neutral()
-            for joint, value in self._inputs(guess, ()).items():
+            for joint, value in self._inputs(guess, (), "guess").items():
                 q0[self.q_index(joint)] = value
+        else:
+            q0 = arguments.array("guess", guess, self.model.nq, batch=False)
         for joint, value in given.items():
-            if not np.isfinite(value):
-                raise InvalidParameters(joint, value, "input must be finite")
             q0[self.q_index(joint)] = value
         _, free_v = self._split(list(given))
         q, _ = kinematics.solve_closure(self.rows, self.data, q0, free_v, tol=tol, max_iter=max_iter, method=method)
@@ -120,49 +132,80 @@ class Mechanism:
 
     def closure_residual(self, q: np.ndarray) -> np.ndarray:
         """Residual of every kept row at q (m for position rows, dimensionless for alignment rows)."""
+        q, = self._state(q=q)
         kinematics.update_kinematics(self.model, self.data, q)
         return self.rows.residual(self.data)
 
     def closure_jacobian(self, q: np.ndarray) -> np.ndarray:
         """(rows, nv) Jacobian of the kept rows at q."""
+        q, = self._state(q=q)
         kinematics.update_kinematics(self.model, self.data, q)
         return self.rows.jacobian(self.data)
 
     def closure_drift(self, q: np.ndarray, v: np.ndarray) -> np.ndarray:
         """gamma(q, v) with d2e/dt2 = J a + gamma."""
+        q, v = self._state(q=q, v=v)
         pin.forwardKinematics(self.model, self.data, q, v, np.zeros(self.model.nv))
         pin.updateFramePlacements(self.model, self.data)
         return self.rows.drift(self.data)
 
-    def velocities(self, q: np.ndarray, input_rates: Inputs, inputs: Sequence[str] | None = None) -> np.ndarray:
-        """Joint velocities v from the input rates (rad/s or m/s), J v = 0.
+    def velocities(self, q: np.ndarray, input_rates: Inputs, inputs: Sequence[str] | None = None, *,
+                   allow_singular: bool = False) -> kinematics.Conditioned:
+        """Joint velocities v from the input rates (rad/s or m/s), J v = 0; `v.condition` is the passive
+        block's condition number.
+
+        Args:
+            allow_singular: return results where the passive block is below what the closure resolves
+                (see `kinematics.resolvable_singular_value`) instead of raising.
 
         Raises:
-            SingularConfiguration: the inputs do not determine the motion at q.
+            SingularConfiguration: the inputs do not determine the motion at q (to what the closure resolves).
         """
-        names = list(inputs or self.actuated)
-        rates = self._inputs(input_rates, names)
+        allow_singular = arguments.flag("allow_singular", allow_singular)
+        q, = self._state(q=q)
+        names = self._input_names(inputs)
+        rates = self._inputs(input_rates, names, "input_rates")
         input_v, free_v = self._split(list(rates))
         J = self.closure_jacobian(q)
-        return kinematics.project_velocity(J, np.array(list(rates.values())), input_v, free_v, self.independent_rows)
+        return kinematics.project_velocity(J, np.array(list(rates.values())), input_v, free_v, self.independent_rows,
+                                           residual=self._residual_norm(), allow_singular=allow_singular)
 
     def accelerations(self, q: np.ndarray, v: np.ndarray, input_accelerations: Inputs,
-                      inputs: Sequence[str] | None = None) -> np.ndarray:
-        """Joint accelerations a from the input accelerations, J a + gamma = 0."""
-        names = list(inputs or self.actuated)
-        acc = self._inputs(input_accelerations, names)
+                      inputs: Sequence[str] | None = None, *, allow_singular: bool = False) -> kinematics.Conditioned:
+        """Joint accelerations a from the input accelerations, J a + gamma = 0 (`allow_singular` and
+        `a.condition` as in `velocities`)."""
+        allow_singular = arguments.flag("allow_singular", allow_singular)
+        q, v = self._state(q=q, v=v)
+        names = self._input_names(inputs)
+        acc = self._inputs(input_accelerations, names, "input_accelerations")
         input_v, free_v = self._split(list(acc))
         J = self.closure_jacobian(q)
+        residual = self._residual_norm()
         gamma = self.closure_drift(q, v)
-        return kinematics.project_velocity(J, np.array(list(acc.values())), input_v, free_v, self.independent_rows, rhs=gamma)
+        return kinematics.project_velocity(J, np.array(list(acc.values())), input_v, free_v, self.independent_rows,
+                                           rhs=gamma, residual=residual, allow_singular=allow_singular)
+
+    def _residual_norm(self) -> float:
+        """Closure residual norm at the configuration `self.data` holds (frames current)."""
+        return float(np.linalg.norm(self.rows.residual(self.data)))
+
+    def _check_regular(self, q: np.ndarray) -> None:
+        """Raise `SingularConfiguration` where the actuated inputs do not determine the motion at q (or at
+        any sample of a (N, nq) q), to what the closure resolves."""
+        _, free_v = self._split(list(self.actuated))
+        for qi in np.atleast_2d(q):
+            s = np.linalg.svd(self.closure_jacobian(qi)[:, free_v], compute_uv=False)
+            kinematics.judge_passive(s, self.independent_rows, self._residual_norm())
 
     def mobility(self, q: np.ndarray | None = None) -> kinematics.Mobility:
         """Numerical DOF and redundant constraints at q (default: the home assembly)."""
-        return kinematics.mobility(self.rows, self.data, self.home_q if q is None else q)
+        q, = self._state(q=self.home_q if q is None else q)
+        return kinematics.mobility(self.rows, self.data, q)
 
     def singularity(self, q: np.ndarray, inputs: Sequence[str] | None = None) -> float:
         """Condition number of the passive block of the closure Jacobian (inf: singular)."""
-        _, free_v = self._split(list(inputs or self.actuated))
+        q, = self._state(q=q)
+        _, free_v = self._split(self._input_names(inputs))
         return kinematics.passive_condition(self.closure_jacobian(q), free_v, self.independent_rows)
 
     # ---------------------------------------------------------------- dynamics
@@ -194,7 +237,13 @@ class Mechanism:
         method measures the closure error its own way (Pinocchio: point anchors in frame_a's local
         frame; KKT: the rows of `mechkit.closures`), so drift is corrected along different paths.
         """
-        tau = np.asarray(tau, dtype=float)
+        arguments.option("method", method, FORWARD_METHODS)
+        q, v, tau = self._state(q=q, v=v, tau=tau)
+        mu = arguments.number("mu", mu, minimum=0.0)
+        accuracy = arguments.number("accuracy", accuracy, positive=True)
+        max_iter = arguments.integer("max_iter", max_iter, minimum=1)
+        if baumgarte is not None:
+            baumgarte = tuple(arguments.array("baumgarte", baumgarte, 2, batch=False))
         if method == "proximal":
             cms, cds = self.pin_constraints()
             gains = (0.0, 0.0) if baumgarte is None else tuple(baumgarte)
@@ -208,7 +257,7 @@ class Mechanism:
             if not np.all(np.isfinite(a)):
                 raise SingularConfiguration(float("inf"), f"pin.constraintDynamics returned non-finite accelerations (mu={mu})")
             result = dynamics.ForwardDynamicsResult(a, pin.rnea(self.model, data, q, v, a) - tau)
-        elif method == "kkt":
+        else:  # "kkt"
             J = self.closure_jacobian(q)
             gamma = self.closure_drift(q, v)
             if baumgarte is not None:
@@ -220,23 +269,32 @@ class Mechanism:
                 result = dynamics.kkt_forward(self.model, self.data, q, v, tau, J, gamma, self._kkt_rows)
             except SingularConfiguration:  # the cached rows lost rank here: choose rows at this q
                 result = dynamics.kkt_forward(self.model, self.data, q, v, tau, J, gamma)
-        else:
-            raise MethodUnavailable(method, "forward_dynamics methods are 'proximal' and 'kkt'")
         return result
 
     def inverse_dynamics(self, q: np.ndarray, v: np.ndarray, a: np.ndarray, fext=None,
-                         determinacy: bool = True, distribution: str = "min_norm") -> dynamics.InverseDynamicsResult:
+                         determinacy: bool = True, distribution: str = "min_norm", *,
+                         allow_singular: bool = False) -> dynamics.InverseDynamicsResult:
         """Constrained RNEA: actuator efforts and the reaction of every joint (tree and cut).
 
         Reactions: the wrench parent side -> child side at the joint origin, world frame; see
         `dynamics.JointReaction` for the determinacy flags and `dynamics.inverse_dynamics` for
         `fext` (Pinocchio local-frame forces per joint) and `distribution` (redundant actuation).
+        At a configuration where the actuators' passive block is below what the closure resolves the
+        efforts are not determined: `SingularConfiguration`, unless `allow_singular`.
         """
+        arguments.option("distribution", distribution, DISTRIBUTIONS)
+        determinacy = arguments.flag("determinacy", determinacy)
+        q, v, a = self._state(q=q, v=v, a=a)
+        fext = arguments.external_forces("fext", fext, self.model.njoints)
+        if not arguments.flag("allow_singular", allow_singular):
+            self._check_regular(q)
         return dynamics.inverse_dynamics(self._id_problem, q, v, a, fext, determinacy, distribution)
 
 
 def load(name: str, **params: Any) -> Mechanism:
     """Build a registered mechanism from its parameters (unknown names raise `InvalidParameters`)."""
+    if not isinstance(name, str):
+        raise InvalidArgument("name", name, "expected a mechanism name (a string)")
     spec = get_spec(name)
     values = spec.params.from_overrides(**params)
     return from_params(spec, values)
@@ -258,7 +316,15 @@ def from_urdf(urdf: str, actuated: Sequence[str] | None = None, name: str = "urd
         guess: joint name -> value near which the loops are closed for the home configuration
             (default: the neutral configuration).
     """
+    if not isinstance(urdf, str) or not urdf.strip():
+        raise InvalidArgument("urdf", urdf, "expected URDF text (a non-empty string)")
+    if not isinstance(name, str):
+        raise InvalidArgument("name", name, "expected a string")
+    if guess is not None and not isinstance(guess, Mapping):
+        raise InvalidArgument("guess", guess, "expected a mapping joint name -> value")
     model = build_model(urdf)
+    if actuated is not None:
+        arguments.joint_names("actuated", actuated, list(model.names[1:]), allow_empty=True)
     joints = tuple(actuated) if actuated is not None else tuple(model.names[1:])
     spec = MechanismSpec(name=name, params=MechanismParams, template="", actuated=joints,
                          gruebler_dof=model.nv, home=lambda p: {}, guess=(lambda p: guess) if guess else None,
