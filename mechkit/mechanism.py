@@ -43,6 +43,7 @@ class Mechanism:
     def __init__(self, spec: MechanismSpec, params: MechanismParams, urdf: str):
         self.spec, self.params, self.urdf = spec, params, urdf
         self.model = build_model(urdf)
+        dynamics.check_body_masses(self.model)
         self.data = self.model.createData()
         self.closures = parse_loops(urdf)
         self.cuts = [cut_rows(self.model, c) for c in self.closures]
@@ -57,6 +58,7 @@ class Mechanism:
         self._pin_constraints: tuple | None = None
         self._pin_baumgarte = (0.0, 0.0)
         self._kkt_rows: np.ndarray | None = None
+        self._delassus: float | None = None
         self.independent_rows = self.rows.size
         self.home_q = self.assemble(spec.home(params))
         self.independent_rows = kinematics.mobility(self.rows, self.data, self.home_q).rank
@@ -232,6 +234,17 @@ class Mechanism:
             method: "proximal" (`pin.constraintDynamics`, proximal settings mu/accuracy/max_iter) or
                 "kkt" (dense KKT on the independent rows).
             baumgarte: (Kp (1/s^2), Kd (1/s)) closure stabilisation, J a + gamma + Kd J v + Kp e = 0.
+            mu: proximal regularisation relative to the model's Delassus scale
+                (`dynamics.delassus_scale` at the home assembly): dimensionless, so a model of any mass
+                or size gets the same relative regularisation.
+            accuracy: the proximal iterations' accuracy on the closure accelerations (m/s^2 for
+                position rows; passed to Pinocchio as a multiplier accuracy, divided by the Delassus scale).
+            max_iter: the proximal iterations' cap.
+
+        Raises:
+            ClosureNotConverged: the result violates J a + gamma = 0 beyond `dynamics.ACCELERATION_TOL`
+                (e.g. too few proximal iterations for the mu given); it is never returned.
+            SingularConfiguration: no unique accelerations (dependent rows, a coordinate without inertia).
 
         The two methods agree on the closure manifold (e = 0, J v = 0). Off it they differ: each
         method measures the closure error its own way (Pinocchio: point anchors in frame_a's local
@@ -251,12 +264,21 @@ class Mechanism:
                 for cm in cms:
                     cm.setBaumgarteCorrectorParameters(pin.BaumgarteCorrectorParameters(*gains))
                 self._pin_baumgarte = gains
-            prox = pin.ProximalSettings(accuracy, mu, max_iter)
+            if self._delassus is None:
+                self._delassus = dynamics.delassus_scale(pin.crba(self.model, self.data, self.home_q),
+                                                         self.closure_jacobian(self.home_q))
+            # Pinocchio tests its iterations on the multipliers (N): accuracy in m/s^2 times 1/Delassus
+            prox = pin.ProximalSettings(accuracy / self._delassus, mu * self._delassus, max_iter)
             data = self._pin_data
             a = pin.constraintDynamics(self.model, data, q, v, tau, cms, cds, prox).copy()
             if not np.all(np.isfinite(a)):
                 raise SingularConfiguration(float("inf"), f"pin.constraintDynamics returned non-finite accelerations (mu={mu})")
             result = dynamics.ForwardDynamicsResult(a, pin.rnea(self.model, data, q, v, a) - tau)
+            J = self.closure_jacobian(q)
+            # with Baumgarte gains Pinocchio corrects its own closure error: allow what the correction is
+            slack = gains[1] * float(np.max(np.abs(J @ v), initial=0.0)) + gains[0] * float(
+                np.max(np.abs(self.rows.residual(self.data)), initial=0.0))
+            dynamics.check_closure_acceleration(J, a, self.closure_drift(q, v), slack, "forward dynamics (proximal)")
         else:  # "kkt"
             J = self.closure_jacobian(q)
             gamma = self.closure_drift(q, v)
