@@ -8,7 +8,7 @@ from typing import Any
 import numpy as np
 import pinocchio as pin
 
-from mechkit import arguments, dynamics, kinematics
+from mechkit import arguments, batch, dynamics, kinematics
 from mechkit.closures import ClosureRows, cut_rows, rigid_constraint_models
 from mechkit.contract import MechanismSpec
 from mechkit.description import build_model, parse_loops, render_urdf
@@ -160,12 +160,19 @@ class Mechanism:
             allow_singular: return results where the passive block is below what the closure resolves
                 (see `kinematics.resolvable_singular_value`) instead of raising.
 
+        Batched: q of shape (N, nq) and rates of shape (N, k) (or joint name -> (N,) values) give (N, nv).
+
         Raises:
             SingularConfiguration: the inputs do not determine the motion at q (to what the closure resolves).
         """
         allow_singular = arguments.flag("allow_singular", allow_singular)
         q, = self._state(q=q)
         names = self._input_names(inputs)
+        if batch.is_batch(q):
+            q = batch.sample_array(q, "q", len(q), self.model.nq)
+            keys, rates = batch.sample_inputs(input_rates, names, len(q))
+            return np.array([self.velocities(qi, ri, keys, allow_singular=allow_singular)
+                             for qi, ri in zip(q, rates)]).reshape(len(q), self.model.nv)
         rates = self._inputs(input_rates, names, "input_rates")
         input_v, free_v = self._split(list(rates))
         J = self.closure_jacobian(q)
@@ -174,11 +181,17 @@ class Mechanism:
 
     def accelerations(self, q: np.ndarray, v: np.ndarray, input_accelerations: Inputs,
                       inputs: Sequence[str] | None = None, *, allow_singular: bool = False) -> kinematics.Conditioned:
-        """Joint accelerations a from the input accelerations, J a + gamma = 0 (`allow_singular` and
-        `a.condition` as in `velocities`)."""
+        """Joint accelerations a from the input accelerations, J a + gamma = 0 (batched like `velocities`;
+        `allow_singular` and `a.condition` as in `velocities`)."""
         allow_singular = arguments.flag("allow_singular", allow_singular)
         q, v = self._state(q=q, v=v)
         names = self._input_names(inputs)
+        if batch.is_batch(q):
+            q = batch.sample_array(q, "q", len(q), self.model.nq)
+            keys, acc = batch.sample_inputs(input_accelerations, names, len(q))
+            v = batch.sample_array(v, "v", len(q), self.model.nv)
+            return np.array([self.accelerations(qi, vi, ai, keys, allow_singular=allow_singular)
+                             for qi, vi, ai in zip(q, v, acc)]).reshape(len(q), self.model.nv)
         acc = self._inputs(input_accelerations, names, "input_accelerations")
         input_v, free_v = self._split(list(acc))
         J = self.closure_jacobian(q)
@@ -246,6 +259,8 @@ class Mechanism:
                 (e.g. too few proximal iterations for the mu given); it is never returned.
             SingularConfiguration: no unique accelerations (dependent rows, a coordinate without inertia).
 
+        Batched: q (N, nq), v and tau (N, nv) give a result whose arrays have that leading axis.
+
         The two methods agree on the closure manifold (e = 0, J v = 0). Off it they differ: each
         method measures the closure error its own way (Pinocchio: point anchors in frame_a's local
         frame; KKT: the rows of `mechkit.closures`), so drift is corrected along different paths.
@@ -257,6 +272,12 @@ class Mechanism:
         max_iter = arguments.integer("max_iter", max_iter, minimum=1)
         if baumgarte is not None:
             baumgarte = tuple(arguments.array("baumgarte", baumgarte, 2, batch=False))
+        if batch.is_batch(q):
+            n = len(q)
+            out = [self.forward_dynamics(qi, vi, ti, method, mu=mu, accuracy=accuracy, max_iter=max_iter,
+                                         baumgarte=baumgarte) for qi, vi, ti in zip(q, v, tau)]
+            return dynamics.ForwardDynamicsResult(np.array([r.a for r in out]).reshape(n, -1),
+                                                  np.array([r.constraint_force for r in out]).reshape(n, -1))
         if method == "proximal":
             cms, cds = self.pin_constraints()
             gains = (0.0, 0.0) if baumgarte is None else tuple(baumgarte)
@@ -293,23 +314,30 @@ class Mechanism:
                 result = dynamics.kkt_forward(self.model, self.data, q, v, tau, J, gamma)
         return result
 
-    def inverse_dynamics(self, q: np.ndarray, v: np.ndarray, a: np.ndarray, fext=None,
-                         determinacy: bool = True, distribution: str = "min_norm", *,
-                         allow_singular: bool = False) -> dynamics.InverseDynamicsResult:
+    def inverse_dynamics(self, q: np.ndarray, v: np.ndarray, a: np.ndarray, fext=None, determinacy: bool = True,
+                         distribution: str = "min_norm", *, allow_singular: bool = False,
+                         ) -> dynamics.InverseDynamicsResult | batch.BatchInverseDynamicsResult:
         """Constrained RNEA: actuator efforts and the reaction of every joint (tree and cut).
 
         Reactions: the wrench parent side -> child side at the joint origin, world frame; see
         `dynamics.JointReaction` for the determinacy flags and `dynamics.inverse_dynamics` for
         `fext` (Pinocchio local-frame forces per joint) and `distribution` (redundant actuation).
+        Batched: q (N, nq), v and a (N, nv), fext None, (N, njoints, 6) or N per-sample values give
+        a `batch.BatchInverseDynamicsResult`.
         At a configuration where the actuators' passive block is below what the closure resolves the
         efforts are not determined: `SingularConfiguration`, unless `allow_singular`.
         """
         arguments.option("distribution", distribution, DISTRIBUTIONS)
         determinacy = arguments.flag("determinacy", determinacy)
         q, v, a = self._state(q=q, v=v, a=a)
-        fext = arguments.external_forces("fext", fext, self.model.njoints)
         if not arguments.flag("allow_singular", allow_singular):
             self._check_regular(q)
+        if batch.is_batch(q):
+            n, p = len(q), self._id_problem
+            out = [dynamics.inverse_dynamics(p, qi, vi, ai, fi, determinacy, distribution)
+                   for qi, vi, ai, fi in zip(q, v, a, batch.sample_fext(fext, n, self.model.njoints))]
+            return batch.stack_inverse(out, p.joint_names, p.actuated_names)
+        fext = arguments.external_forces("fext", fext, self.model.njoints)
         return dynamics.inverse_dynamics(self._id_problem, q, v, a, fext, determinacy, distribution)
 
 

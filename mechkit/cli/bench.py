@@ -3,8 +3,6 @@
 from __future__ import annotations
 
 import argparse
-import os
-import sys
 from pathlib import Path
 
 import numpy as np
@@ -14,26 +12,10 @@ from mechkit.atomic import resolve_output, write_text
 from mechkit.exceptions import OutputError
 
 
-class ProgressBar:
-    """A one-line progress bar per mechanism on stderr (a `mechkit.bench.run.Progress` callback), shown
-    only on a terminal or when MECHKIT_PROGRESS=1."""
-
-    def __init__(self, enabled: bool | None = None):
-        self.enabled = (sys.stderr.isatty() or os.environ.get("MECHKIT_PROGRESS") == "1") if enabled is None else enabled
-
-    def __call__(self, label: str, done: int, total: int, what: str = "") -> None:
-        if self.enabled:
-            width, total = 30, max(total, 1)
-            filled = int(width * done / total)
-            sys.stderr.write(f"\r{label} [{'#' * filled}{'.' * (width - filled)}] {done}/{total} {what[:40]:<40}")
-            if done >= total:
-                sys.stderr.write("\n")
-            sys.stderr.flush()
-
-
 def run(args: argparse.Namespace) -> None:
     """Measure, print the tables and goals, and write the charts and the page when asked."""
     from mechkit.bench import charts, failure_atlas, loadtime, markdown, run, scale
+    from mechkit.cli.progress import ProgressBars
 
     for name in args.names:
         registry.entry(name)  # an unknown name fails now, not as "not measured" after the run
@@ -42,7 +24,7 @@ def run(args: argparse.Namespace) -> None:
     if args.charts and Path(args.charts).exists() and not Path(args.charts).is_dir():
         raise OutputError(args.charts, "--charts needs a folder")
     with np.errstate(under="ignore"):
-        results, skipped = run.run(args.names, args.quick, progress=ProgressBar())
+        results, skipped = run.run(args.names, args.quick, progress=ProgressBars())
         for b in results:
             print(markdown.format_table(b))
         for line in markdown.goals(results):

@@ -1,0 +1,44 @@
+"""Export a mechanism for other tools: MJCF (MuJoCo, `mjcf`) and Extended URDF (`extended_urdf`)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+from mechkit.exceptions import OutputError, UnknownOption
+from mechkit.export.extended_urdf import frame_b_vector, load_extended_urdf, to_extended_urdf
+from mechkit.export.mjcf import body_name, to_mjcf
+
+if TYPE_CHECKING:
+    from mechkit.mechanism import Mechanism
+
+__all__ = ["FORMATS", "body_name", "export_command", "frame_b_vector", "load_extended_urdf", "to_extended_urdf",
+           "to_mjcf"]
+
+FORMATS = ("mjcf", "extended-urdf")
+
+
+def export_command(mechanism: Mechanism, fmt: str, output: str | Path) -> list[Path]:
+    """Write the mechanism in `fmt` ("mjcf" or "extended-urdf") to `output`; returns the files written.
+
+    extended-urdf also writes the YAML sidecar beside the URDF (same stem, `.yaml`); both files are
+    written as one step (neither is replaced unless both can be written). mjcf to `-` writes to
+    standard output.
+
+    Raises:
+        UnknownOption: an unknown format.
+        MethodUnavailable: a joint or cut the format cannot express.
+        OutputError: the output is refused (a directory, a device, the sidecar's own name, ...) or
+            cannot be written.
+    """
+    from mechkit.atomic import write_files, write_text
+
+    if fmt not in FORMATS:
+        raise UnknownOption("format", fmt, FORMATS)
+    if fmt == "mjcf":
+        return [write_text(output, to_mjcf(mechanism))]
+    sidecar = Path(output).with_suffix(".yaml")
+    if Path(output) == sidecar:
+        raise OutputError(output, "the Extended URDF needs a name whose .yaml sidecar is another file (e.g. robot.urdf)")
+    urdf, sidecar_text = to_extended_urdf(mechanism)
+    return write_files({output: urdf.encode(), sidecar: sidecar_text.encode()})
