@@ -296,23 +296,26 @@ class Mechanism:
                 raise SingularConfiguration(float("inf"), f"pin.constraintDynamics returned non-finite accelerations (mu={mu})")
             result = dynamics.ForwardDynamicsResult(a, pin.rnea(self.model, data, q, v, a) - tau)
             J = self.closure_jacobian(q)
-            # with Baumgarte gains Pinocchio corrects its own closure error: allow what the correction is
-            slack = gains[1] * float(np.max(np.abs(J @ v), initial=0.0)) + gains[0] * float(
-                np.max(np.abs(self.rows.residual(self.data)), initial=0.0))
-            dynamics.check_closure_acceleration(J, a, self.closure_drift(q, v), slack, "forward dynamics (proximal)")
+            # off the closure manifold Pinocchio's point anchors and our rows differ (see below): ours judge on it
+            if dynamics.on_manifold(J, self.rows.residual(self.data), v):
+                dynamics.check_closure_acceleration(J, a, self.closure_drift(q, v), 0.0, "forward dynamics (proximal)")
         else:  # "kkt"
             J = self.closure_jacobian(q)
             gamma = self.closure_drift(q, v)
             if baumgarte is not None:
                 kp, kd = baumgarte
                 gamma = gamma + kd * (J @ v) + kp * self.rows.residual(self.data)
-            if self._kkt_rows is None:
-                self._kkt_rows = dynamics.independent_rows(self.closure_jacobian(self.home_q))
             try:
-                result = dynamics.kkt_forward(self.model, self.data, q, v, tau, J, gamma, self._kkt_rows)
+                result = dynamics.kkt_forward(self.model, self.data, q, v, tau, J, gamma, self._independent_rows())
             except SingularConfiguration:  # the cached rows lost rank here: choose rows at this q
                 result = dynamics.kkt_forward(self.model, self.data, q, v, tau, J, gamma)
         return result
+
+    def _independent_rows(self) -> np.ndarray:
+        """Independent closure rows at the home assembly (cached; KKT rows and the closure check's)."""
+        if self._kkt_rows is None:
+            self._kkt_rows = dynamics.independent_rows(self.closure_jacobian(self.home_q))
+        return self._kkt_rows
 
     def inverse_dynamics(self, q: np.ndarray, v: np.ndarray, a: np.ndarray, fext=None, determinacy: bool = True,
                          distribution: str = "min_norm", *, allow_singular: bool = False,
