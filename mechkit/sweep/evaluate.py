@@ -24,6 +24,7 @@ from mechkit.mechanism import Mechanism
 from mechkit.registry import get_spec
 from mechkit.sweep.metrics import SingularAlongMotion, Study, motion_samples
 from mechkit.sweep.specific import resolve
+from mechkit.template_cache import TemplateCache
 
 STATUSES = ("ok", "does_not_assemble", "singular", "error")
 
@@ -68,7 +69,7 @@ def evaluate_chunk(chunk: Chunk) -> list[dict]:
     message, seconds (the design's wall time)."""
     spec = get_spec(chunk.mechanism)
     metrics = resolve(chunk.mechanism, chunk.metrics)
-    cache = None
+    cache = TemplateCache(spec.template_path) if chunk.fast else None
     rows = []
     for index, values in zip(chunk.indices, chunk.values):
         start = time.perf_counter()
