@@ -4,12 +4,12 @@ and a plot."""
 from __future__ import annotations
 
 import argparse
-import sys
 
 from mechkit.cli.common import add_mechanism_arguments, load_mechanism
+from mechkit.cli.progress import ProgressBars
 from mechkit.exceptions import InvalidParameters
 
-#: Motions of at least this many samples show a progress bar (tqdm, on stderr, on a terminal).
+#: Motions of at least this many samples show a progress bar (`mechkit.cli.progress`: stderr, on a terminal).
 LONG_MOTION = 100
 #: Peak-table columns: header, quantity.
 PEAK_COLUMNS = (("|f| N", "force"), ("axial N", "axial_force"), ("radial N", "radial_force"),
@@ -32,8 +32,6 @@ def format_peaks(result) -> list[str]:
 
 def run(args: argparse.Namespace) -> None:
     """Run the study, print the peak table, write what was asked."""
-    from tqdm import tqdm
-
     from mechkit import motion
     from mechkit.motion.plot import write_plot
 
@@ -47,10 +45,9 @@ def run(args: argparse.Namespace) -> None:
         law = motion.resample(law, args.samples)
     if args.output and not args.output.endswith((".parquet", ".csv")):
         raise InvalidParameters("-o", args.output, "write .parquet or .csv")
-    disable = None if len(law.t) >= LONG_MOTION else True
-    with tqdm(total=len(law.t), file=sys.stderr, disable=disable, desc=f"{mech.spec.name} motion", unit="sample") as bar:
-        result = motion.study(mech, law, determinacy=args.determinacy, skip_failures=True,
-                              progress=lambda done, total: bar.update(1))
+    bars = ProgressBars(None if len(law.t) >= LONG_MOTION else False)
+    result = motion.study(mech, law, determinacy=args.determinacy, skip_failures=True,
+                          progress=lambda done, total: bars(f"{mech.spec.name} motion", done, total))
     print(f"{mech.spec.name}: {law.source}, {len(law.t)} samples, t = {law.t[0]:.6g} .. {law.t[-1]:.6g} s")
     for t, why in result.failures:
         print(f"skipped t = {t:.6g} s: {why}")
