@@ -35,6 +35,7 @@ import pinocchio as pin
 
 from mechkit.closures import AXIS_ANCHOR_OFFSET
 from mechkit.exceptions import InvalidParameters, MethodUnavailable
+from mechkit.structure import body_name
 
 if TYPE_CHECKING:
     from mechkit.mechanism import Mechanism
@@ -51,14 +52,6 @@ def _fmt(values) -> str:
 def _quat_wxyz(rotation: np.ndarray) -> np.ndarray:
     x, y, z, w = pin.Quaternion(rotation).coeffs()
     return np.array([w, x, y, z])
-
-
-def _body_name(model: pin.Model, joint: int) -> str:
-    """The URDF link carried by a joint (first BODY frame at identity on it), else the joint's name."""
-    for frame in model.frames:
-        if frame.parentJoint == joint and frame.type == pin.FrameType.BODY and frame.placement.isIdentity():
-            return frame.name
-    return model.names[joint]
 
 
 def _joint_kind(model: pin.Model, joint: int) -> tuple[str, np.ndarray]:
@@ -120,7 +113,7 @@ def to_mjcf(mech: Mechanism, q: np.ndarray | None = None) -> str:
         motion = axis * value
         M = model.jointPlacements[j] * (pin.exp6(pin.Motion(np.zeros(3), motion)) if kind == "hinge"
                                         else pin.SE3(np.eye(3), motion))
-        names[j] = _body_name(model, j)
+        names[j] = body_name(model, j)
         body = ET.SubElement(elements[model.parents[j]], "body", name=names[j], pos=_fmt(M.translation),
                              quat=_fmt(_quat_wxyz(M.rotation)))
         inertia = model.inertias[j]
@@ -193,26 +186,6 @@ def frame_b_vector(mech: Mechanism, cut, vector: np.ndarray) -> np.ndarray:
     Ra = mech.data.oMf[cut.frame_a].rotation
     Rb = mech.data.oMf[cut.frame_b].rotation
     return Rb.T @ Ra @ np.asarray(vector, dtype=float)
-
-
-def load_extended_urdf(urdf: str, yaml_text: str) -> tuple[pin.Model, list[pin.RigidConstraintModel], list[str]]:
-    """Read an Extended URDF pair the way Gepetto's loader does (model, RigidConstraintModels, motors).
-
-    Args:
-        urdf: tree URDF text.
-        yaml_text: sidecar text (`closed_loop`, `type`, `name_mot`).
-    """
-    import yaml
-
-    content = yaml.safe_load(yaml_text)
-    model = pin.buildModelFromXML(urdf)
-    constraints = []
-    for (name_a, name_b), kind in zip(content["closed_loop"], content["type"], strict=True):
-        fa, fb = (model.frames[model.getFrameId(n)] for n in (name_a, name_b))
-        contact = pin.ContactType.CONTACT_3D if kind.lower() == "3d" else pin.ContactType.CONTACT_6D
-        constraints.append(pin.RigidConstraintModel(contact, model, fa.parentJoint, fa.placement, fb.parentJoint,
-                                                    fb.placement, pin.ReferenceFrame.LOCAL))
-    return model, constraints, list(content["name_mot"])
 
 
 def export_command(mechanism: Mechanism, fmt: str, output: str | Path) -> list[Path]:
