@@ -10,7 +10,7 @@ from typing import Any
 import numpy as np
 import pinocchio as pin
 
-from mechkit import coordinates, dynamics, kinematics, sources
+from mechkit import batch, coordinates, dynamics, kinematics, sources
 from mechkit.closures import ClosureRows, cut_rows, rigid_constraint_models
 from mechkit.description import build_model, parse_loops, render_urdf
 from mechkit.exceptions import InvalidParameters, MethodUnavailable, SingularConfiguration
@@ -157,9 +157,15 @@ class Mechanism:
     def velocities(self, q: np.ndarray, input_rates: Inputs, inputs: Sequence[str] | None = None) -> np.ndarray:
         """Joint velocities v from the input rates (rad/s or m/s), J v = 0.
 
+        Batched: q of shape (N, nq) and rates of shape (N, k) (or joint name -> (N,) values) give (N, nv).
+
         Raises:
             SingularConfiguration: the inputs do not determine the motion at q.
         """
+        if batch.is_batch(q):
+            q = batch.sample_array(q, "q", len(q), self.model.nq)
+            keys, rates = batch.sample_inputs(input_rates, list(inputs or self.actuated), len(q))
+            return np.array([self.velocities(qi, ri, keys) for qi, ri in zip(q, rates)]).reshape(len(q), self.model.nv)
         names = list(inputs or self.actuated)
         if not names:
             self.require_actuators("velocities from input rates")
@@ -170,7 +176,13 @@ class Mechanism:
 
     def accelerations(self, q: np.ndarray, v: np.ndarray, input_accelerations: Inputs,
                       inputs: Sequence[str] | None = None) -> np.ndarray:
-        """Joint accelerations a from the input accelerations, J a + gamma = 0."""
+        """Joint accelerations a from the input accelerations, J a + gamma = 0 (batched like `velocities`)."""
+        if batch.is_batch(q):
+            q = batch.sample_array(q, "q", len(q), self.model.nq)
+            keys, acc = batch.sample_inputs(input_accelerations, list(inputs or self.actuated), len(q))
+            v = batch.sample_array(v, "v", len(q), self.model.nv)
+            return np.array([self.accelerations(qi, vi, ai, keys) for qi, vi, ai in zip(q, v, acc)]).reshape(
+                len(q), self.model.nv)
         names = list(inputs or self.actuated)
         if not names:
             self.require_actuators("accelerations from input accelerations")
@@ -214,10 +226,20 @@ class Mechanism:
                 "kkt" (dense KKT on the independent rows).
             baumgarte: (Kp (1/s^2), Kd (1/s)) closure stabilisation, J a + gamma + Kd J v + Kp e = 0.
 
+        Batched: q (N, nq), v and tau (N, nv) give a result whose arrays have that leading axis.
+
         The two methods agree on the closure manifold (e = 0, J v = 0). Off it they differ: each
         method measures the closure error its own way (Pinocchio: point anchors in frame_a's local
         frame; KKT: the rows of `mechkit.closures`), so drift is corrected along different paths.
         """
+        if batch.is_batch(q):
+            n = len(q)
+            q = batch.sample_array(q, "q", n, self.model.nq)
+            v, tau = batch.sample_array(v, "v", n, self.model.nv), batch.sample_array(tau, "tau", n, self.model.nv)
+            out = [self.forward_dynamics(qi, vi, ti, method, mu=mu, accuracy=accuracy, max_iter=max_iter,
+                                         baumgarte=baumgarte) for qi, vi, ti in zip(q, v, tau)]
+            return dynamics.ForwardDynamicsResult(np.array([r.a for r in out]).reshape(n, -1),
+                                                  np.array([r.constraint_force for r in out]).reshape(n, -1))
         tau = np.asarray(tau, dtype=float)
         if method == "proximal":
             cms, cds = self.pin_constraints()
@@ -248,14 +270,23 @@ class Mechanism:
             raise MethodUnavailable(method, "forward_dynamics methods are 'proximal' and 'kkt'")
         return result
 
-    def inverse_dynamics(self, q: np.ndarray, v: np.ndarray, a: np.ndarray, fext=None,
-                         determinacy: bool = True, distribution: str = "min_norm") -> dynamics.InverseDynamicsResult:
+    def inverse_dynamics(self, q: np.ndarray, v: np.ndarray, a: np.ndarray, fext=None, determinacy: bool = True,
+                         distribution: str = "min_norm") -> dynamics.InverseDynamicsResult | batch.BatchInverseDynamicsResult:
         """Constrained RNEA: actuator efforts and the reaction of every joint (tree and cut).
 
         Reactions: the wrench parent side -> child side at the joint origin, world frame; see
         `dynamics.JointReaction` for the determinacy flags and `dynamics.inverse_dynamics` for
         `fext` (Pinocchio local-frame forces per joint) and `distribution` (redundant actuation).
+        Batched: q (N, nq), v and a (N, nv), fext None, (N, njoints, 6) or N per-sample values give
+        a `batch.BatchInverseDynamicsResult`.
         """
+        if batch.is_batch(q):
+            n, p = len(q), self._id_problem
+            q = batch.sample_array(q, "q", n, self.model.nq)
+            v, a = batch.sample_array(v, "v", n, self.model.nv), batch.sample_array(a, "a", n, self.model.nv)
+            out = [dynamics.inverse_dynamics(p, qi, vi, ai, fi, determinacy, distribution)
+                   for qi, vi, ai, fi in zip(q, v, a, batch.sample_fext(fext, n, self.model.njoints))]
+            return batch.stack_inverse(out, p.joint_names, p.actuated_names)
         return dynamics.inverse_dynamics(self._id_problem, q, v, a, fext, determinacy, distribution)
 
 
