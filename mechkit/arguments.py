@@ -95,6 +95,17 @@ def number(name: str, value: Any, *, minimum: float | None = None, positive: boo
     return x
 
 
+def solver_settings(mu: Any, accuracy: Any, max_iter: Any, baumgarte: Any) -> tuple[float, float, int, tuple | None]:
+    """Forward-dynamics settings checked: mu >= 0, accuracy > 0, max_iter >= 1, baumgarte None or 2 finite gains.
+
+    Raises:
+        InvalidArgument: naming the first bad one.
+    """
+    gains = None if baumgarte is None else tuple(array("baumgarte", baumgarte, 2, batch=False))
+    return (number("mu", mu, minimum=0.0), number("accuracy", accuracy, positive=True),
+            integer("max_iter", max_iter, minimum=1), gains)
+
+
 def integer(name: str, value: Any, *, minimum: int = 0) -> int:
     """An integer >= minimum (bools refused).
 

@@ -17,6 +17,8 @@ from mechkit.exceptions import ClosureNotConverged, SingularConfiguration
 
 #: Relative singular-value threshold for numerical rank decisions.
 RANK_TOL = 1e-9
+#: Closure solvers of `solve_closure` (and `Mechanism.assemble`).
+ASSEMBLY_METHODS = ("newton", "lm")
 #: Closure residual the assembly solves to by default (`Mechanism.assemble`'s tol; m for position rows).
 CLOSURE_TOL = 1e-12
 #: Margin above the resolvable smallest singular value below which a configuration counts as singular.
@@ -173,6 +175,15 @@ def judge_passive(s: np.ndarray, independent_rows: int, residual: float = CLOSUR
                                     f"below the {limit:.2e} a closure residual of {residual:.1e} resolves "
                                     "(inputs do not determine the motion)")
     return cond
+
+
+def check_regular(rows: ClosureRows, data: pin.Data, q: np.ndarray, free_v: np.ndarray, independent_rows: int) -> None:
+    """Raise `SingularConfiguration` where the inputs (all but `free_v`) do not determine the motion at q
+    (or at any sample of a (N, nq) q), to what the closure resolves (`judge_passive`)."""
+    for qi in np.atleast_2d(q):
+        update_kinematics(rows.model, data, qi)
+        s = np.linalg.svd(rows.jacobian(data)[:, free_v], compute_uv=False)
+        judge_passive(s, independent_rows, float(np.linalg.norm(rows.residual(data))))
 
 
 class Conditioned(np.ndarray):

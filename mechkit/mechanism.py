@@ -2,28 +2,24 @@
 
 from __future__ import annotations
 
-from collections.abc import Mapping, Sequence
+import dataclasses
+from collections.abc import Callable, Mapping, Sequence
+from pathlib import Path
 from typing import Any
 
 import numpy as np
 import pinocchio as pin
 
-from mechkit import arguments, batch, dynamics, kinematics
-from mechkit.closures import ClosureRows, cut_rows, rigid_constraint_models
+from mechkit import arguments, batch, coordinates, dynamics, forward, kinematics, sources
+from mechkit.closures import ClosureRows, cut_rows
 from mechkit.contract import MechanismSpec
 from mechkit.description import build_model, parse_loops, render_urdf
 from mechkit.exceptions import InvalidArgument, InvalidParameters, SingularConfiguration
 from mechkit.params import MechanismParams
 from mechkit.registry import get_spec
+from mechkit.structure import analyse
 
 Inputs = Mapping[str, float] | Sequence[float] | np.ndarray
-
-#: Closure solvers of `Mechanism.assemble`.
-ASSEMBLY_METHODS = ("newton", "lm")
-#: Methods of `Mechanism.forward_dynamics`.
-FORWARD_METHODS = ("proximal", "kkt")
-#: Redundancy resolutions of `Mechanism.inverse_dynamics`.
-DISTRIBUTIONS = ("min_norm", "min_effort")
 
 
 class Mechanism:
@@ -34,18 +30,22 @@ class Mechanism:
         params: the parameter values used.
         urdf: the generated URDF text.
         model, data: Pinocchio model of the tree and a data for it.
-        closures: the loop declarations read from the URDF.
+        closures: the loop declarations read from the URDF, with the rows the structure chose.
+        structure: loops, sub-mechanisms and Kutzbach count (`mechkit.structure.Structure`).
         rows: the closure rows the scene solves with; `full_rows`: all spatial rows (physical joints).
-        actuated: actuated joint names.
+        actuated: actuated joint names (empty: the mechanism is unactuated).
         independent_rows: rank of the closure Jacobian at the home assembly (its generic rank).
     """
 
-    def __init__(self, spec: MechanismSpec, params: MechanismParams, urdf: str):
+    def __init__(self, spec: MechanismSpec, params: MechanismParams, urdf: str, rows: str | None = None,
+                 model: pin.Model | None = None):
+        """Build the model, analyse its structure (`rows="spatial"` forces full rows) and assemble home."""
         self.spec, self.params, self.urdf = spec, params, urdf
-        self.model = build_model(urdf)
-        dynamics.check_body_masses(self.model)
+        self.model = build_model(urdf) if model is None else model
+        forward.check_body_masses(self.model)
         self.data = self.model.createData()
-        self.closures = parse_loops(urdf)
+        self.structure = analyse(self.model, parse_loops(urdf), rows)
+        self.closures = list(self.structure.closures)
         self.cuts = [cut_rows(self.model, c) for c in self.closures]
         self.rows = ClosureRows(self.model, self.cuts)
         self.full_rows = ClosureRows(self.model, [cut_rows(self.model, c, "spatial") for c in self.closures])
@@ -80,9 +80,22 @@ class Mechanism:
     def neutral(self) -> np.ndarray:
         return pin.neutral(self.model)
 
+    def require_actuators(self, what: str) -> None:
+        """Raise `InvalidParameters` naming `what` when the mechanism declares no actuator."""
+        if not self.actuated:
+            raise InvalidParameters("actuated", (), f"{self.spec.name} is unactuated (its file declares no "
+                                    f"<transmission>, name_mot or MJCF actuator): {what} needs actuators; "
+                                    "pass actuated=[...] (command line: --actuated J1,J2)")
+
+    def joint_values(self, q: np.ndarray) -> dict[str, float]:
+        """Every one-freedom joint's value at q (rad or m; continuous joints as angles)."""
+        return coordinates.values(self.model, q)
+
     def _inputs(self, inputs: Inputs | None, default_names: Sequence[str], arg: str = "inputs") -> dict[str, float]:
         if inputs is None:
             return {}
+        if not isinstance(inputs, Mapping) and not default_names:
+            self.require_actuators(f"{arg} given in actuated order")
         return arguments.joint_values(arg, inputs, default_names, list(self.model.names[1:]))
 
     def _state(self, **values: Any) -> list[np.ndarray]:
@@ -90,8 +103,10 @@ class Mechanism:
         sizes = {"q": self.model.nq, "v": self.model.nv, "a": self.model.nv, "tau": self.model.nv}
         return arguments.state(sizes, **values)
 
-    def _input_names(self, inputs: Sequence[str] | None) -> list[str]:
-        """The given input joints (default: the actuated ones), checked."""
+    def _input_names(self, inputs: Sequence[str] | None, what: str) -> list[str]:
+        """The given input joints (default: the actuated ones, which must exist), checked."""
+        if inputs is None and not self.actuated:
+            self.require_actuators(what)
         return list(self.actuated) if inputs is None else arguments.joint_names("inputs", inputs, list(self.model.names[1:]))
 
     def _split(self, names: Sequence[str]) -> tuple[np.ndarray, np.ndarray]:
@@ -115,7 +130,7 @@ class Mechanism:
             ClosureNotConverged: no assembly found near the guess.
         """
         tol = arguments.number("tol", tol, positive=True)
-        arguments.option("method", method, ASSEMBLY_METHODS)
+        arguments.option("method", method, kinematics.ASSEMBLY_METHODS)
         max_iter = arguments.integer("max_iter", max_iter, minimum=1)
         given = self._inputs(inputs, self.actuated)
         if guess is None and self.spec.guess is not None:
@@ -123,11 +138,11 @@ class Mechanism:
         if guess is None or isinstance(guess, Mapping):
             q0 = self.neutral()
             for joint, value in self._inputs(guess, (), "guess").items():
-                q0[self.q_index(joint)] = value
+                coordinates.set_value(self.model, q0, self._joint_id(joint), value)
         else:
             q0 = arguments.array("guess", guess, self.model.nq, batch=False)
         for joint, value in given.items():
-            q0[self.q_index(joint)] = value
+            coordinates.set_value(self.model, q0, self._joint_id(joint), value)
         _, free_v = self._split(list(given))
         q, _ = kinematics.solve_closure(self.rows, self.data, q0, free_v, tol=tol, max_iter=max_iter, method=method)
         return q
@@ -153,21 +168,15 @@ class Mechanism:
 
     def velocities(self, q: np.ndarray, input_rates: Inputs, inputs: Sequence[str] | None = None, *,
                    allow_singular: bool = False) -> kinematics.Conditioned:
-        """Joint velocities v from the input rates (rad/s or m/s), J v = 0; `v.condition` is the passive
-        block's condition number.
-
-        Args:
-            allow_singular: return results where the passive block is below what the closure resolves
-                (see `kinematics.resolvable_singular_value`) instead of raising.
+        """Joint velocities v from the input rates (rad/s or m/s), J v = 0; `v.condition`: the passive block's.
 
         Batched: q of shape (N, nq) and rates of shape (N, k) (or joint name -> (N,) values) give (N, nv).
-
-        Raises:
-            SingularConfiguration: the inputs do not determine the motion at q (to what the closure resolves).
+        Raises `SingularConfiguration` where the inputs do not determine the motion to what the closure
+        resolves (`kinematics.resolvable_singular_value`), unless `allow_singular`.
         """
         allow_singular = arguments.flag("allow_singular", allow_singular)
         q, = self._state(q=q)
-        names = self._input_names(inputs)
+        names = self._input_names(inputs, "velocities from input rates")
         if batch.is_batch(q):
             q = batch.sample_array(q, "q", len(q), self.model.nq)
             keys, rates = batch.sample_inputs(input_rates, names, len(q))
@@ -177,7 +186,8 @@ class Mechanism:
         input_v, free_v = self._split(list(rates))
         J = self.closure_jacobian(q)
         return kinematics.project_velocity(J, np.array(list(rates.values())), input_v, free_v, self.independent_rows,
-                                           residual=self._residual_norm(), allow_singular=allow_singular)
+                                           residual=float(np.linalg.norm(self.rows.residual(self.data))),
+                                           allow_singular=allow_singular)
 
     def accelerations(self, q: np.ndarray, v: np.ndarray, input_accelerations: Inputs,
                       inputs: Sequence[str] | None = None, *, allow_singular: bool = False) -> kinematics.Conditioned:
@@ -185,7 +195,7 @@ class Mechanism:
         `allow_singular` and `a.condition` as in `velocities`)."""
         allow_singular = arguments.flag("allow_singular", allow_singular)
         q, v = self._state(q=q, v=v)
-        names = self._input_names(inputs)
+        names = self._input_names(inputs, "accelerations from input accelerations")
         if batch.is_batch(q):
             q = batch.sample_array(q, "q", len(q), self.model.nq)
             keys, acc = batch.sample_inputs(input_accelerations, names, len(q))
@@ -195,22 +205,10 @@ class Mechanism:
         acc = self._inputs(input_accelerations, names, "input_accelerations")
         input_v, free_v = self._split(list(acc))
         J = self.closure_jacobian(q)
-        residual = self._residual_norm()
+        residual = float(np.linalg.norm(self.rows.residual(self.data)))
         gamma = self.closure_drift(q, v)
         return kinematics.project_velocity(J, np.array(list(acc.values())), input_v, free_v, self.independent_rows,
                                            rhs=gamma, residual=residual, allow_singular=allow_singular)
-
-    def _residual_norm(self) -> float:
-        """Closure residual norm at the configuration `self.data` holds (frames current)."""
-        return float(np.linalg.norm(self.rows.residual(self.data)))
-
-    def _check_regular(self, q: np.ndarray) -> None:
-        """Raise `SingularConfiguration` where the actuated inputs do not determine the motion at q (or at
-        any sample of a (N, nq) q), to what the closure resolves."""
-        _, free_v = self._split(list(self.actuated))
-        for qi in np.atleast_2d(q):
-            s = np.linalg.svd(self.closure_jacobian(qi)[:, free_v], compute_uv=False)
-            kinematics.judge_passive(s, self.independent_rows, self._residual_norm())
 
     def mobility(self, q: np.ndarray | None = None) -> kinematics.Mobility:
         """Numerical DOF and redundant constraints at q (default: the home assembly)."""
@@ -220,22 +218,14 @@ class Mechanism:
     def singularity(self, q: np.ndarray, inputs: Sequence[str] | None = None) -> float:
         """Condition number of the passive block of the closure Jacobian (inf: singular)."""
         q, = self._state(q=q)
-        _, free_v = self._split(self._input_names(inputs))
+        _, free_v = self._split(self._input_names(inputs, "the singularity measure"))
         return kinematics.passive_condition(self.closure_jacobian(q), free_v, self.independent_rows)
 
     # ---------------------------------------------------------------- dynamics
     def pin_constraints(self) -> tuple[Any, Any]:
         """Pinocchio `RigidConstraintModel`s (and datas) equivalent to the closures."""
         if self._pin_constraints is None:
-            cms = pin.StdVec_RigidConstraintModel()
-            for cm in rigid_constraint_models(self.model, self.cuts):
-                cms.append(cm)
-            cds = pin.StdVec_RigidConstraintData()
-            for cm in cms:
-                cds.append(cm.createData())
-            self._pin_data = self.model.createData()
-            pin.initConstraintDynamics(self.model, self._pin_data, cms, cds)
-            self._pin_constraints = (cms, cds)
+            self._pin_constraints, self._pin_data = forward.constraint_models(self.model, self.cuts)
         return self._pin_constraints
 
     def forward_dynamics(self, q: np.ndarray, v: np.ndarray, tau: np.ndarray, method: str = "proximal", *,
@@ -247,17 +237,11 @@ class Mechanism:
             method: "proximal" (`pin.constraintDynamics`, proximal settings mu/accuracy/max_iter) or
                 "kkt" (dense KKT on the independent rows).
             baumgarte: (Kp (1/s^2), Kd (1/s)) closure stabilisation, J a + gamma + Kd J v + Kp e = 0.
-            mu: proximal regularisation relative to the model's Delassus scale
-                (`dynamics.delassus_scale` at the home assembly): dimensionless, so a model of any mass
-                or size gets the same relative regularisation.
-            accuracy: the proximal iterations' accuracy on the closure accelerations (m/s^2 for
-                position rows; passed to Pinocchio as a multiplier accuracy, divided by the Delassus scale).
-            max_iter: the proximal iterations' cap.
+            mu, accuracy, max_iter: proximal settings, mu and accuracy relative to the model (see
+                `forward.proximal_forward`).
 
-        Raises:
-            ClosureNotConverged: the result violates J a + gamma = 0 beyond `dynamics.ACCELERATION_TOL`
-                (e.g. too few proximal iterations for the mu given); it is never returned.
-            SingularConfiguration: no unique accelerations (dependent rows, a coordinate without inertia).
+        Raises `ClosureNotConverged` for a result violating J a + gamma = 0 (`forward.ACCELERATION_TOL`),
+        `SingularConfiguration` where the accelerations are not unique.
 
         Batched: q (N, nq), v and tau (N, nv) give a result whose arrays have that leading axis.
 
@@ -265,13 +249,9 @@ class Mechanism:
         method measures the closure error its own way (Pinocchio: point anchors in frame_a's local
         frame; KKT: the rows of `mechkit.closures`), so drift is corrected along different paths.
         """
-        arguments.option("method", method, FORWARD_METHODS)
+        arguments.option("method", method, forward.METHODS)
         q, v, tau = self._state(q=q, v=v, tau=tau)
-        mu = arguments.number("mu", mu, minimum=0.0)
-        accuracy = arguments.number("accuracy", accuracy, positive=True)
-        max_iter = arguments.integer("max_iter", max_iter, minimum=1)
-        if baumgarte is not None:
-            baumgarte = tuple(arguments.array("baumgarte", baumgarte, 2, batch=False))
+        mu, accuracy, max_iter, baumgarte = arguments.solver_settings(mu, accuracy, max_iter, baumgarte)
         if batch.is_batch(q):
             n = len(q)
             out = [self.forward_dynamics(qi, vi, ti, method, mu=mu, accuracy=accuracy, max_iter=max_iter,
@@ -280,42 +260,25 @@ class Mechanism:
                                                   np.array([r.constraint_force for r in out]).reshape(n, -1))
         if method == "proximal":
             cms, cds = self.pin_constraints()
-            gains = (0.0, 0.0) if baumgarte is None else tuple(baumgarte)
-            if gains != self._pin_baumgarte:
-                for cm in cms:
-                    cm.setBaumgarteCorrectorParameters(pin.BaumgarteCorrectorParameters(*gains))
-                self._pin_baumgarte = gains
+            self._pin_baumgarte = forward.set_baumgarte(cms, baumgarte, self._pin_baumgarte)
             if self._delassus is None:
-                self._delassus = dynamics.delassus_scale(pin.crba(self.model, self.data, self.home_q),
-                                                         self.closure_jacobian(self.home_q))
-            # Pinocchio tests its iterations on the multipliers (N): accuracy in m/s^2 times 1/Delassus
-            prox = pin.ProximalSettings(accuracy / self._delassus, mu * self._delassus, max_iter)
-            data = self._pin_data
-            a = pin.constraintDynamics(self.model, data, q, v, tau, cms, cds, prox).copy()
-            if not np.all(np.isfinite(a)):
-                raise SingularConfiguration(float("inf"), f"pin.constraintDynamics returned non-finite accelerations (mu={mu})")
-            result = dynamics.ForwardDynamicsResult(a, pin.rnea(self.model, data, q, v, a) - tau)
-            J = self.closure_jacobian(q)
-            # off the closure manifold Pinocchio's point anchors and our rows differ (see below): ours judge on it
-            if dynamics.on_manifold(J, self.rows.residual(self.data), v):
-                dynamics.check_closure_acceleration(J, a, self.closure_drift(q, v), 0.0, "forward dynamics (proximal)")
+                self._delassus = forward.delassus_scale(pin.crba(self.model, self.data, self.home_q),
+                                                        self.closure_jacobian(self.home_q))
+            result = forward.proximal_forward(self.model, self._pin_data, self.data, self.rows, (cms, cds), q, v, tau,
+                                              mu=mu, accuracy=accuracy, max_iter=max_iter, delassus=self._delassus)
         else:  # "kkt"
             J = self.closure_jacobian(q)
             gamma = self.closure_drift(q, v)
             if baumgarte is not None:
                 kp, kd = baumgarte
                 gamma = gamma + kd * (J @ v) + kp * self.rows.residual(self.data)
+            if self._kkt_rows is None:
+                self._kkt_rows = dynamics.independent_rows(self.closure_jacobian(self.home_q))
             try:
-                result = dynamics.kkt_forward(self.model, self.data, q, v, tau, J, gamma, self._independent_rows())
+                result = forward.kkt_forward(self.model, self.data, q, v, tau, J, gamma, self._kkt_rows)
             except SingularConfiguration:  # the cached rows lost rank here: choose rows at this q
-                result = dynamics.kkt_forward(self.model, self.data, q, v, tau, J, gamma)
+                result = forward.kkt_forward(self.model, self.data, q, v, tau, J, gamma)
         return result
-
-    def _independent_rows(self) -> np.ndarray:
-        """Independent closure rows at the home assembly (cached; KKT rows and the closure check's)."""
-        if self._kkt_rows is None:
-            self._kkt_rows = dynamics.independent_rows(self.closure_jacobian(self.home_q))
-        return self._kkt_rows
 
     def inverse_dynamics(self, q: np.ndarray, v: np.ndarray, a: np.ndarray, fext=None, determinacy: bool = True,
                          distribution: str = "min_norm", *, allow_singular: bool = False,
@@ -330,11 +293,11 @@ class Mechanism:
         At a configuration where the actuators' passive block is below what the closure resolves the
         efforts are not determined: `SingularConfiguration`, unless `allow_singular`.
         """
-        arguments.option("distribution", distribution, DISTRIBUTIONS)
+        arguments.option("distribution", distribution, dynamics.DISTRIBUTIONS)
         determinacy = arguments.flag("determinacy", determinacy)
         q, v, a = self._state(q=q, v=v, a=a)
         if not arguments.flag("allow_singular", allow_singular):
-            self._check_regular(q)
+            kinematics.check_regular(self.rows, self.data, q, self._split(list(self.actuated))[1], self.independent_rows)
         if batch.is_batch(q):
             n, p = len(q), self._id_problem
             out = [dynamics.inverse_dynamics(p, qi, vi, ai, fi, determinacy, distribution)
@@ -344,42 +307,93 @@ class Mechanism:
         return dynamics.inverse_dynamics(self._id_problem, q, v, a, fext, determinacy, distribution)
 
 
-def load(name: str, **params: Any) -> Mechanism:
-    """Build a registered mechanism from its parameters (unknown names raise `InvalidParameters`)."""
-    if not isinstance(name, str):
-        raise InvalidArgument("name", name, "expected a mechanism name (a string)")
-    spec = get_spec(name)
-    values = spec.params.from_overrides(**params)
-    return from_params(spec, values)
-
-
-def from_params(spec: MechanismSpec, params: MechanismParams) -> Mechanism:
-    """Build a mechanism from a parameter instance."""
-    return Mechanism(spec, params, render_urdf(spec.template_path, params.xacro_args()))
-
-
-def from_urdf(urdf: str, actuated: Sequence[str] | None = None, name: str = "urdf",
-              guess: Mapping[str, float] | None = None) -> Mechanism:
-    """Wrap any URDF text (a tree, or with `<mechkit:loop>` closures) as a Mechanism.
+def load(source: str | Path, *, actuated: Sequence[str] | None = None, home: Mapping[str, float] | None = None,
+         guess: Mapping[str, float] | None = None, **params: Any) -> Mechanism:
+    """Build a mechanism from a registered name or a description file.
 
     Args:
-        urdf: URDF text.
-        actuated: actuated joint names (default: every joint of the tree).
-        name: a name for reports.
-        guess: joint name -> value near which the loops are closed for the home configuration
-            (default: the neutral configuration).
+        source: a registered name (`mechkit list`) or a path: a `.urdf` with `<mechkit:loop>`s, a
+            `.urdf` with an Extended-URDF `.yaml` sidecar, a `.xacro`, or an MJCF `.xml`.
+        actuated: actuated joints, overriding what the file (or the spec) declares.
+        home: joint -> value (rad or m) of the default assembly's inputs (default: the file's
+            `<mechkit:home>` / MJCF qpos0, else none: every loop closed from the guess).
+        guess: joint -> value near which the default assembly is sought.
+        **params: the mechanism's parameters (a name) or xacro arguments (a xacro file);
+            `rows="spatial"`, unless the mechanism has a parameter of that name, closes every cut
+            with its full rows.
+
+    Raises:
+        InvalidParameters: unknown name or parameter; MalformedDescription: a bad file.
     """
-    if not isinstance(urdf, str) or not urdf.strip():
-        raise InvalidArgument("urdf", urdf, "expected URDF text (a non-empty string)")
-    if not isinstance(name, str):
-        raise InvalidArgument("name", name, "expected a string")
-    if guess is not None and not isinstance(guess, Mapping):
-        raise InvalidArgument("guess", guess, "expected a mapping joint name -> value")
-    model = build_model(urdf)
+    if not isinstance(source, (str, Path)):
+        raise InvalidArgument("source", source, "expected a mechanism name or a path")
+    where = sources.resolve(source)
+    if isinstance(where, Path):
+        declared = sources.xacro_args(where) if where.name.endswith(".xacro") else {}
+        rows = None if "rows" in declared else params.pop("rows", None)
+        return from_description(sources.read(where, params), actuated, home, guess, rows)
+    spec = get_spec(where)
+    rows = None if "rows" in {f.name for f in dataclasses.fields(spec.params)} else params.pop("rows", None)
+    values = spec.params.from_overrides(**params)
+    changes: dict[str, Any] = {} if actuated is None else {"actuated": tuple(actuated)}
+    if home is not None:
+        changes["home"] = _constant(dict(home))
+    if guess is not None:
+        changes["guess"] = _constant(dict(guess))
+    return from_params(dataclasses.replace(spec, **changes) if changes else spec, values, rows)
+
+
+def _constant(value: dict[str, float]) -> Callable[[Any], dict[str, float]]:
+    return lambda params: dict(value)
+
+
+def from_params(spec: MechanismSpec, params: MechanismParams, rows: str | None = None) -> Mechanism:
+    """Build a mechanism from a parameter instance."""
+    return Mechanism(spec, params, render_urdf(spec.template_path, params.xacro_args()), rows)
+
+
+def from_description(desc: sources.Description, actuated: Sequence[str] | None = None,
+                     home: Mapping[str, float] | None = None, guess: Mapping[str, float] | None = None,
+                     rows: str | None = None) -> Mechanism:
+    """Build a mechanism from what a file reader gave (see `load` for the arguments).
+
+    Its spec's `gruebler_dof` is the Kutzbach count of its topology (`mechkit.structure`).
+    """
+    for arg, value in (("home", home), ("guess", guess)):
+        if value is not None and not isinstance(value, Mapping):
+            raise InvalidArgument(arg, value, "expected a mapping joint name -> value")
+    model = build_model(desc.urdf)
     if actuated is not None:
         arguments.joint_names("actuated", actuated, list(model.names[1:]), allow_empty=True)
-    joints = tuple(actuated) if actuated is not None else tuple(model.names[1:])
-    spec = MechanismSpec(name=name, params=MechanismParams, template="", actuated=joints,
-                         gruebler_dof=model.nv, home=lambda p: {}, guess=(lambda p: guess) if guess else None,
-                         summary=f"loaded from URDF ({name})")
-    return Mechanism(spec, MechanismParams(), urdf)
+    joints = tuple(actuated) if actuated is not None else desc.actuated
+    home_values = dict(home) if home is not None else dict(desc.home)
+    guess_values = dict(guess) if guess is not None else dict(desc.guess)
+    count = analyse(model, parse_loops(desc.urdf), rows).kutzbach
+    where = f" {desc.source}" if desc.source is not None else ""
+    spec = MechanismSpec(name=desc.name, params=MechanismParams, template="", actuated=joints, gruebler_dof=count,
+                         home=_constant(home_values), guess=_constant(guess_values) if guess_values else None,
+                         summary=f"read from the {desc.format} file{where}")
+    return Mechanism(spec, MechanismParams(), desc.urdf, rows, model)
+
+
+def from_urdf(urdf: str | Path, actuated: Sequence[str] | None = None, name: str | None = None,
+              guess: Mapping[str, float] | None = None, home: Mapping[str, float] | None = None,
+              rows: str | None = None) -> Mechanism:
+    """Wrap a URDF (text, or a path to any description file) as a Mechanism.
+
+    Args:
+        urdf: URDF text (a tree, or with `<mechkit:loop>` closures), or a path (see `load`).
+        actuated: actuated joint names (default: the URDF's `<transmission>` joints; none declared
+            makes the mechanism unactuated).
+        name: a name for reports (default: the robot's name).
+        guess, home, rows: see `load`.
+    """
+    if not isinstance(urdf, (str, Path)) or not str(urdf).strip():
+        raise InvalidArgument("urdf", urdf, "expected URDF text or a path to a description file")
+    if isinstance(urdf, Path) or not urdf.lstrip().startswith("<"):
+        desc = sources.read(sources.resolve(Path(urdf)))
+    else:
+        desc = sources.describe_urdf(urdf, None, "urdf")
+    if name is not None:
+        desc = dataclasses.replace(desc, name=name)
+    return from_description(desc, actuated, home, guess, rows)
