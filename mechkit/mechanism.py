@@ -229,7 +229,7 @@ class Mechanism:
         return self._pin_constraints
 
     def forward_dynamics(self, q: np.ndarray, v: np.ndarray, tau: np.ndarray, method: str = "proximal", *,
-                         mu: float = 1e-9, accuracy: float = 1e-12, max_iter: int = 20,
+                         mu: float = 1e-11, accuracy: float = 1e-12, max_iter: int = 20,
                          baumgarte: tuple[float, float] | None = None) -> dynamics.ForwardDynamicsResult:
         """Constrained forward dynamics (constrained ABA): accelerations under joint efforts tau.
 
