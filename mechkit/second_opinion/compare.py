@@ -59,15 +59,19 @@ class Agreement:
     by_quantity: dict[str, float] = field(default_factory=dict)
 
 
-def scene_states(mechanism: Mechanism, count: int, seed: int = 3) -> list[State]:
-    """Up to ``count`` moving states (q, v, a) along the mechanism's scene (see the module docstring).
+def scene_states(mechanism: Mechanism, count: int, seed: int = 3, scene: str | None = None) -> list[State]:
+    """Up to ``count`` moving states (q, v, a) along a scene (see the module docstring).
+
+    Args:
+        scene: a scene name (`mechkit.scenes.scenes`); default: the first the spec declares, else
+            the generic sweep.
 
     Raises:
         MethodUnavailable: no state could be built.
     """
     if count < 1:
         raise MethodUnavailable("second opinion samples", f"needs at least one sample, got {count}")
-    scene = next(iter(mechanism.spec.scenes), "sweep")
+    scene = scene or next(iter(mechanism.spec.scenes), "sweep")
     poses = scene_poses(mechanism, scene)
     picks = np.unique(np.linspace(0, len(poses) - 1, min(count, len(poses))).round().astype(int))
     rng = np.random.default_rng(seed)
@@ -105,8 +109,12 @@ def _us_per_state(fn, states: list[State], repeats: int = 3) -> float:
     return best * 1e6
 
 
-def agreement(opinion: SecondOpinion, states: list[State]) -> Agreement:
-    """Compare the second opinion with constrained RNEA on ``states`` (see the module docstring)."""
+def agreement(opinion: SecondOpinion, states: list[State], timing: bool = True) -> Agreement:
+    """Compare the second opinion with constrained RNEA on ``states`` (see the module docstring).
+
+    Args:
+        timing: also time both methods (best of three passes over the states; ``us_per_sample``).
+    """
     mech = opinion.mechanism
     ours = [opinion.solve(q, v, a) for q, v, a in states]
     theirs = [mech.inverse_dynamics(q, v, a) for q, v, a in states]
@@ -138,7 +146,9 @@ def agreement(opinion: SecondOpinion, states: list[State]) -> Agreement:
         scale = max(float(np.max(np.abs(ref))), NEGLIGIBLE * largest[kind], 1e-300)
         by_quantity[key] = float(np.max(np.abs(np.subtract(mine, ref)))) / scale
     label = max(by_quantity, key=by_quantity.__getitem__, default="")
-    timing = {"second opinion (SOC virtual work)": _us_per_state(opinion.solve, states),
-              "constrained RNEA + determinacy": _us_per_state(mech.inverse_dynamics, states)}
+    times = {}
+    if timing:
+        times = {"second opinion (SOC virtual work)": _us_per_state(opinion.solve, states),
+                 "constrained RNEA + determinacy": _us_per_state(mech.inverse_dynamics, states)}
     consistency = max(max(o.consistency.values(), default=0.0) for o in ours)
-    return Agreement(len(states), by_quantity.get(label, 0.0), label, mismatches, timing, consistency, by_quantity)
+    return Agreement(len(states), by_quantity.get(label, 0.0), label, mismatches, times, consistency, by_quantity)
