@@ -76,26 +76,35 @@ def scene_states(mechanism: Mechanism, count: int, seed: int = 3, scene: str | N
     picks = np.unique(np.linspace(0, len(poses) - 1, min(count, len(poses))).round().astype(int))
     rng = np.random.default_rng(seed)
     names = input_joints(mechanism)
-    under = len(names) > len(mechanism.actuated)
-    act_v = [mechanism.v_index(j) for j in mechanism.actuated]
     out: list[State] = []
     why = ""
-    for i in picks:
-        q = poses[i]
-        try:
-            v = mechanism.velocities(q, rng.normal(0.0, 0.5, len(names)), inputs=names)
-            accs = rng.normal(0.0, 1.0, len(names))
-            a = None if under else mechanism.accelerations(q, v, accs, inputs=names)
-            if a is None or np.abs(mechanism.closure_jacobian(q) @ a + mechanism.closure_drift(q, v)).max() > 1e-9:
-                tau = np.zeros(mechanism.model.nv)
-                tau[act_v] = rng.normal(0.0, 1.0, len(act_v))
-                a = mechanism.forward_dynamics(q, v, tau, "kkt").a
-            out.append((q, v, a))
-        except MechkitError as err:
-            why = str(err)
+    used: set[int] = set()
+    for pick in picks:
+        for i in range(pick, len(poses)):  # a pose where the inputs do not fix the motion: the next one
+            if i in used:
+                continue
+            used.add(i)
+            try:
+                out.append(_moving_state(mechanism, poses[i], names, rng))
+                break
+            except MechkitError as err:
+                why = str(err)
     if not out:
         raise MethodUnavailable("second opinion samples", f"no moving state along {scene!r}: {why}")
     return out
+
+
+def _moving_state(mechanism: Mechanism, q: np.ndarray, names: tuple[str, ...], rng: np.random.Generator) -> State:
+    """(q, v, a) with random input rates and accelerations (or efforts; see the module docstring)."""
+    act_v = [mechanism.v_index(j) for j in mechanism.actuated]
+    v = mechanism.velocities(q, rng.normal(0.0, 0.5, len(names)), inputs=names)
+    accs = rng.normal(0.0, 1.0, len(names))
+    a = None if len(names) > len(act_v) else mechanism.accelerations(q, v, accs, inputs=names)
+    if a is None or np.abs(mechanism.closure_jacobian(q) @ a + mechanism.closure_drift(q, v)).max() > 1e-9:
+        tau = np.zeros(mechanism.model.nv)
+        tau[act_v] = rng.normal(0.0, 1.0, len(act_v))
+        a = mechanism.forward_dynamics(q, v, tau, "kkt").a
+    return q, v, a
 
 
 def _us_per_state(fn, states: list[State], repeats: int = 3) -> float:
@@ -144,7 +153,7 @@ def agreement(opinion: SecondOpinion, states: list[State], timing: bool = True) 
     by_quantity = {}
     for key, (kind, mine, ref) in values.items():
         scale = max(float(np.max(np.abs(ref))), NEGLIGIBLE * largest[kind], 1e-300)
-        by_quantity[key] = float(np.max(np.abs(np.subtract(mine, ref)))) / scale
+        by_quantity[key] = float(np.max(np.abs(np.subtract(mine, ref))) / scale)
     label = max(by_quantity, key=by_quantity.__getitem__, default="")
     times = {}
     if timing:
