@@ -21,6 +21,8 @@ class SecondOpinion:
         mechanism: the mechanism.
         structure: its structure graph (bodies, joints, reaction components, actuators).
         skcs: the SKCs in solve order.
+        plans: what each SKC's solve needs (`mechkit.second_opinion.solve.Plan`: its rows, moving
+            bodies, released, actuated and known joints).
         level: the decomposition's granularity (`mechkit.second_opinion.decomposition.decompose`).
         decompose_seconds: wall time (s) the structure graph and the decomposition took.
     """
@@ -35,11 +37,11 @@ class SecondOpinion:
         zero = np.zeros(model.nv)
         home = instant(model, self._data, mechanism.full_rows, self.structure, mechanism.home_q, zero, zero)
         self.skcs: list[SKC] = decompose(self.structure, home, level)
-        self._plans = plan(self.skcs, self.structure)
+        self.plans = plan(self.skcs, self.structure)
         self.decompose_seconds = time.perf_counter() - start
 
     def solve(self, q: np.ndarray, v: np.ndarray, a: np.ndarray) -> Opinion:
         """Efforts and reactions for a motion (q, v, a) that closes the loops (rad, m and rates)."""
         m = self.mechanism
         state = instant(m.model, self._data, m.full_rows, self.structure, q, v, a)
-        return solve_instant(self._plans, self.structure, state)
+        return solve_instant(self.plans, self.structure, state)
