@@ -13,11 +13,11 @@ from pathlib import Path
 import matplotlib
 
 matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
+import matplotlib.pyplot as plt
 
-import mechkit  # noqa: E402
-from mechkit.registry import names  # noqa: E402
-from mechkit.second_opinion.opinion import SecondOpinion  # noqa: E402
+import mechkit
+from mechkit.registry import names
+from mechkit.second_opinion.opinion import SecondOpinion
 
 OUT = Path(__file__).resolve().parent.parent / "docs" / "figures"
 COLOURS = {"determined": "#cfe3f7", "under": "#f9d9b0", "over": "#f4c2c2"}
