@@ -1,13 +1,15 @@
 """The automatic decomposition: the block-triangular (Dulmage-Mendelsohn) form of the body-equilibrium
 system, read as ordered sub-kinematic chains (SKCs).
 
-The system. Each moving body gives six equilibrium rows (force, and moment about its joint origin,
-world axes); each joint gives one unknown per reaction component it can carry, plus its effort when
-actuated. Row (b, k) depends on unknown u when u's wrench acts on body b with a non-zero k-th
-component. Which entries are non-zero is read from the structure with every lever arm generic (a
-force along a world axis has no moment about that axis; a joint's own body origin is its point), and
-from the wrench directions at the home assembly, so that an accidental zero of one pose is not taken
-for structure.
+The system. Each moving body k gives six rows: the equilibrium of the subtree it carries (force, and
+moment about k's joint origin, world axes), i.e. the virtual work of a rigid motion of everything
+beyond joint k, the SOC method's virtual displacements. Each joint gives one unknown per reaction
+component it can carry, plus its effort when actuated. A tree joint's wrench enters only its child's
+rows; a cut joint's the rows of the bodies that carry exactly one of its sides
+(`Structure.crossings`). Which entries are non-zero is read with every lever arm generic (a force
+along a world axis has no moment about that axis; a point on the row's origin has no lever), and from
+the wrench directions at the home assembly, so that an accidental zero of one pose is not taken for
+structure.
 
 Why Dulmage-Mendelsohn gives the finest solve order. A maximum matching of rows to unknowns
 (`scipy.sparse.csgraph.maximum_bipartite_matching`) splits the system into an over-determined part
@@ -105,11 +107,11 @@ def unknowns_of(structure: Structure) -> list[Unknown]:
 
 
 def equilibrium_matrix(structure: Structure, home: Instant, generic: bool) -> tuple[list[Row], list[Unknown], np.ndarray]:
-    """The body-equilibrium matrix at ``home``: rows (body, component) x unknowns.
+    """The subtree-equilibrium matrix at ``home``: rows (body, component) x unknowns.
 
-    Entry: the row's component of the unknown's unit wrench on that body (+ on the child side, - on
-    the parent side), moment about the body's origin. With ``generic``, a 0/1 pattern instead, every
-    lever arm taken as generic (see the module docstring).
+    Entry: the row's component of the unknown's unit wrench on the subtree of that body (+ where the
+    subtree holds the joint's child side, - where it holds the parent side), moment about the body's
+    origin. With ``generic``, a 0/1 pattern instead (see the module docstring).
     """
     rows = [(b, k) for b in structure.bodies for k in range(6)]
     points = np.array([g.point for g in home.joints.values()] + [b.origin for b in home.bodies.values()])
