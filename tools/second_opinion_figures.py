@@ -50,11 +50,11 @@ def figure(name: str) -> Path:
             edges.setdefault((solved_in[joint], i), []).append(joint)
     n = len(skcs)
     span = max((b - a for a, b in edges), default=1)
-    fig, ax = plt.subplots(figsize=(max(3.2 * n, 6.0), 2.6 + 0.5 * span))
-    xs = [3.2 * i for i in range(n)]
+    fig, ax = plt.subplots(figsize=(max(4.2 * n, 6.0), 2.6 + 0.5 * span))
+    xs = [4.2 * i for i in range(n)]
     for (a, b), joints in sorted(edges.items()):
         rad = 0.0 if b == a + 1 else -0.35
-        ax.annotate("", xy=(xs[b] - 1.2, 0), xytext=(xs[a] + 1.2, 0),
+        ax.annotate("", xy=(xs[b] - 1.7, 0), xytext=(xs[a] + 1.7, 0),
                     arrowprops={"arrowstyle": "->", "color": "#555", "connectionstyle": f"arc3,rad={rad}"})
         text = ", ".join(sorted(joints)[:3]) + (" ..." if len(joints) > 3 else "")
         ax.text((xs[a] + xs[b]) / 2, 0.55 + (0.0 if b == a + 1 else 0.5 + 0.15 * (b - a)), text, ha="center",
@@ -62,7 +62,7 @@ def figure(name: str) -> Path:
     for i, s in enumerate(skcs):
         ax.text(xs[i], 0, _label(i + 1, s), ha="center", va="center", fontsize=7.5,
                 bbox={"boxstyle": "round,pad=0.4", "fc": COLOURS[s.kind], "ec": "#333"})
-    ax.set_xlim(-1.8, xs[-1] + 1.8)
+    ax.set_xlim(-2.2, xs[-1] + 2.2)
     span = max((b - a for a, b in edges), default=1)
     ax.set_ylim(-1.2, 1.4 + 0.6 * span)
     ax.axis("off")
