@@ -178,3 +178,22 @@ def test_revolute_axes_carry_no_axial_moment_at_free_hinges(two_t1r):
             assert by_joint[joint].values["axial_moment"] < 1e-9 * scale
     for k, joint in enumerate(r.actuated):
         assert by_joint[joint].values["axial_moment"] == pytest.approx(np.abs(r.efforts[:, k]).max(), rel=1e-9)
+
+
+def test_speed_benchmark_runs():
+    """The benchmark's figures exist and are consistent (its timings are printed by tools/motion_speed.py,
+    never asserted)."""
+    from mechkit.bench.motion_speed import lines, motion_law_speed
+
+    s = motion_law_speed(samples=6, repeats=1)
+    assert s.samples == 6 and min(s.study_s, s.kinematics_s, s.dynamics_s, s.raw_constraint_dynamics_s) > 0
+    assert lines(s)[-1].startswith("goal: the whole study under 50 ms")
+
+
+def test_peaks_flag_indeterminate_joints(two_t1r):
+    """The 2T1R is planar, modelled in space: its out-of-plane reaction parts are indeterminate."""
+    _, r = two_t1r
+    flags = {p.joint: p.determinate for p in motion.peaks(r)}
+    assert set(flags.values()) <= {True, False} and False in flags.values()
+    for j, joint in enumerate(r.joints):
+        assert flags[joint] == bool(r.determinate[:, j].all())
