@@ -56,7 +56,8 @@ def inverse_batch(problem: dynamics.InverseDynamicsProblem, q: np.ndarray, v: np
     """
     results = [dynamics.inverse_dynamics(problem, q[i], v[i], a[i], None if fexts is None else fexts[i], determinacy)
                for i in range(len(q))]
-    efforts = np.array([[r.efforts[j] for j in problem.actuated_names] for r in results]).reshape(len(q), -1)
+    efforts = np.array([[r.efforts[j] for j in problem.actuated_names] for r in results]).reshape(
+        len(q), len(problem.actuated_names))
     reactions = np.array([[r.reactions[j].wrench for j in problem.joint_names] for r in results]).reshape(
         len(q), len(problem.joint_names), 6)
     flags = np.array([[r.reactions[j].determinate for j in problem.joint_names] for r in results]).reshape(
