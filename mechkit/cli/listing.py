@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import argparse
 
+from mechkit.cli.common import examples
 from mechkit.registry import ENTRIES
 
 
@@ -15,4 +16,4 @@ def run(args: argparse.Namespace) -> None:
 
 def add_parser(sub) -> None:
     """Register `list`."""
-    sub.add_parser("list", help="registered mechanisms").set_defaults(func=run)
+    sub.add_parser("list", help="registered mechanisms", **examples("mechkit list", "mechkit list | grep planar")).set_defaults(func=run)
