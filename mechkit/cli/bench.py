@@ -42,7 +42,7 @@ def run(args: argparse.Namespace) -> None:
             print(f"wrote {args.markdown}")
 
 
-def add_parser(sub) -> None:
+def add_parser(sub: argparse._SubParsersAction) -> None:
     """Register `bench`."""
     p = sub.add_parser("bench", help="speed and accuracy of every method, per mechanism", **examples(
         "mechkit bench four_bar --quick", "mechkit bench --charts docs/bench --markdown docs/benchmarks.md"))

@@ -15,7 +15,7 @@ def run(args: argparse.Namespace) -> None:
         print(f"wrote {path}")
 
 
-def add_parser(sub) -> None:
+def add_parser(sub: argparse._SubParsersAction) -> None:
     """Register `export`."""
     p = sub.add_parser("export", help="write the mechanism for other tools", **examples(
         "mechkit export ten_bar --format mjcf -o ten_bar.xml", "mechkit export four_bar --format extended-urdf -o four_bar.urdf"))

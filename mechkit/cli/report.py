@@ -16,7 +16,7 @@ def run(args: argparse.Namespace) -> None:
     print(json.dumps(r, indent=2) if args.json else format_report(r))
 
 
-def add_parser(sub) -> None:
+def add_parser(sub: argparse._SubParsersAction) -> None:
     """Register `report`."""
     p = sub.add_parser("report", help="structure, mobility and self-checks", **examples("mechkit report five_bar", "mechkit report four_bar --set coupler=0.3 --json"))
     add_mechanism_arguments(p)

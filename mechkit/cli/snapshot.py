@@ -15,7 +15,7 @@ def run(args: argparse.Namespace) -> None:
         print(f"wrote {path}")
 
 
-def add_parser(sub) -> None:
+def add_parser(sub: argparse._SubParsersAction) -> None:
     """Register `snapshot`."""
     p = sub.add_parser("snapshot", help="self-contained meshcat HTML (and PNG) of a pose or an animated scene", **examples(
         "mechkit snapshot four_bar --q 0.8 -o four_bar.html", "mechkit snapshot ten_bar --scene deploy -o deploy.html --png deploy.png"))

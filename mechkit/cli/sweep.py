@@ -46,7 +46,7 @@ def run(args: argparse.Namespace) -> None:
           f"{summary.seconds:.1f} s: {counts} -> {summary.out}")
 
 
-def add_parser(sub) -> None:
+def add_parser(sub: argparse._SubParsersAction) -> None:
     """Register `sweep`."""
     p = sub.add_parser("sweep", help="evaluate many designs on Dask (Parquet results, resumable)", **examples(
         "mechkit sweep four_bar --grid crank=0.08:0.12:5 --grid coupler=0.26:0.30:5 -o sweep_fb",

@@ -18,7 +18,7 @@ def run(args: argparse.Namespace) -> None:
         sys.stdout.write(text)
 
 
-def add_parser(sub) -> None:
+def add_parser(sub: argparse._SubParsersAction) -> None:
     """Register `urdf`."""
     p = sub.add_parser("urdf", help="print or write the URDF generated from the parameters", **examples("mechkit urdf four_bar --set crank=0.12", "mechkit urdf ten_bar -o ten_bar.urdf"))
     add_mechanism_arguments(p)
