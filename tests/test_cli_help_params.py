@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import json
 import shlex
+from pathlib import Path
 
 import pytest
 
@@ -11,6 +12,7 @@ from mechkit.cli import COMMANDS, build_parser, main
 from mechkit.exceptions import InvalidParameters
 from mechkit.param_ranges import param_ranges
 from mechkit.registry import get_spec
+from mechkit.sources import xacro_args
 
 
 def _subparsers() -> dict[str, object]:
@@ -67,3 +69,14 @@ def test_cli_params_table_and_json(capsys):
     assert row["unit"] == "m" and row["range"] == expected.text() and row["value"] == get_spec("rocket_gimbal").params().length_a
     assert main(["params", "no_such"]) == 2
     assert "no such mechanism" in capsys.readouterr().err
+
+
+def test_cli_params_of_files(capsys):
+    """A xacro file lists its xacro arguments with their defaults; a URDF has none."""
+    fixtures = Path(__file__).resolve().parent / "fixtures"
+    xacro = fixtures / "watt_six_bar.urdf.xacro"
+    assert main(["params", str(xacro), "--json"]) == 0
+    rows = json.loads(capsys.readouterr().out)
+    assert {r["name"]: r["value"] for r in rows} == xacro_args(xacro) and rows
+    assert main(["params", str(fixtures / "slider_crank.urdf")]) == 0
+    assert "no parameters" in capsys.readouterr().out
