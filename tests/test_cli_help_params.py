@@ -26,7 +26,8 @@ def test_every_command_ends_its_help_with_two_examples_that_parse():
     assert len(subs) == len(COMMANDS)
     for name, sub in subs.items():
         lines = sub.format_help().rstrip().splitlines()
-        assert lines[-3] == "examples:", name
+        assert lines[-3] == "examples:", (f"`mechkit {name} --help` must end with two examples: pass "
+                                          f"**mechkit.cli.common.examples(cmd1, cmd2) to its sub.add_parser")
         for line in lines[-2:]:
             argv = shlex.split(line.split("|")[0])
             assert argv[:2] == ["mechkit", name], line
