@@ -26,7 +26,10 @@ def format_peaks(result) -> list[str]:
     lines = [head]
     for p in rows:
         cells = " ".join(f"{p.values[q]:11.4g} {p.times[q]:7.3f}" for _, q in PEAK_COLUMNS)
-        lines.append(f"{p.joint:<{width}} {'yes' if p.support else 'no ':>3} {cells}")
+        mark = " *" if p.determinate is False else ""
+        lines.append(f"{p.joint:<{width}} {'yes' if p.support else 'no ':>3} {cells}{mark}")
+    if any(p.determinate is False for p in rows):
+        lines.append("* some components statically indeterminate (redundant constraints): minimum-norm values")
     return lines
 
 
