@@ -7,7 +7,7 @@ import argparse
 
 from mechkit.cli.common import add_mechanism_arguments, load_mechanism
 from mechkit.cli.progress import ProgressBars
-from mechkit.exceptions import InvalidParameters
+from mechkit.exceptions import InvalidParameters, MechkitError
 
 #: Motions of at least this many samples show a progress bar (`mechkit.cli.progress`: stderr, on a terminal).
 LONG_MOTION = 100
@@ -51,6 +51,8 @@ def run(args: argparse.Namespace) -> None:
     bars = ProgressBars(None if len(law.t) >= LONG_MOTION else False)
     result = motion.study(mech, law, determinacy=args.determinacy, skip_failures=True,
                           progress=lambda done, total: bars(f"{mech.spec.name} motion", done, total))
+    if len(result.failures) == len(law.t):
+        raise MechkitError(f"no sample of the motion succeeded; at t = {result.failures[0][0]:.6g} s: {result.failures[0][1]}")
     print(f"{mech.spec.name}: {law.source}, {len(law.t)} samples, t = {law.t[0]:.6g} .. {law.t[-1]:.6g} s")
     for t, why in result.failures:
         print(f"skipped t = {t:.6g} s: {why}")
