@@ -178,3 +178,44 @@ def test_revolute_axes_carry_no_axial_moment_at_free_hinges(two_t1r):
             assert by_joint[joint].values["axial_moment"] < 1e-9 * scale
     for k, joint in enumerate(r.actuated):
         assert by_joint[joint].values["axial_moment"] == pytest.approx(np.abs(r.efforts[:, k]).max(), rel=1e-9)
+
+
+def test_speed_benchmark_runs():
+    """The benchmark's figures exist and are consistent (its timings are printed by tools/motion_speed.py,
+    never asserted)."""
+    from mechkit.bench.motion_speed import lines, motion_law_speed
+
+    s = motion_law_speed(samples=6, repeats=1)
+    assert s.samples == 6 and min(s.study_s, s.kinematics_s, s.dynamics_s, s.raw_constraint_dynamics_s) > 0
+    assert lines(s)[-1].startswith("goal: the whole study under 50 ms")
+
+
+def test_peaks_flag_indeterminate_joints(two_t1r):
+    """The 2T1R is planar, modelled in space: its out-of-plane reaction parts are indeterminate."""
+    _, r = two_t1r
+    flags = {p.joint: p.determinate for p in motion.peaks(r)}
+    assert set(flags.values()) <= {True, False} and False in flags.values()
+    for j, joint in enumerate(r.joints):
+        assert flags[joint] == bool(r.determinate[:, j].all())
+
+
+def test_ten_bar_efforts_equal_the_deployment_dynamics(load_cached):
+    """Along the ten-bar's deployment (constrained forward dynamics, its transient included), the study's
+    efforts are the motor torques that realised the motion, and at the spring hinge R5 the spring and
+    damper torque: forward and inverse dynamics agree."""
+    from mechkit.mechanisms.ten_bar import dynamics as td
+
+    mech = load_cached("ten_bar")
+    system = td.PinocchioDeployment(mech)
+    trajectory = td.deploy(system, mech.home_q, 0.02, t_end=0.3)
+    names = motion.default_inputs(mech)
+    idx = [mech.v_index(j) for j in names]
+    states = [system.rhs(t, q, v) for t, q, v in zip(trajectory.t, trajectory.q, trajectory.v)]
+    acc = np.array([s[0] for s in states])
+    law = motion.from_arrays(mech, trajectory.t, trajectory.q[:, idx], trajectory.v[:, idx], acc[:, idx], names=names,
+                             guesses=trajectory.q)
+    r = motion.study(mech, law)
+    assert np.allclose(r.v, trajectory.v, atol=1e-12) and np.allclose(r.a, acc, atol=1e-10)
+    spring = np.array([system.spring_torque(q, v) for q, v in zip(trajectory.q, trajectory.v)])
+    expected = np.column_stack([np.array([s[1] for s in states]), spring])
+    assert np.allclose(r.efforts, expected, rtol=1e-11, atol=1e-11 * np.abs(expected).max())

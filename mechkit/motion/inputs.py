@@ -120,7 +120,8 @@ def from_arrays(mech: Mechanism, t, values, rates=None, accelerations=None, name
     return InputLaw(names, t, values, np.asarray(rates, float), np.asarray(accelerations, float), guesses, source)
 
 
-def from_callable(mech: Mechanism, law: LawFunction, t, names: Sequence[str] | None = None) -> InputLaw:
+def from_callable(mech: Mechanism, law: LawFunction, t, names: Sequence[str] | None = None,
+                  source: str = "callable") -> InputLaw:
     """A law from a function of time, sampled at t (s).
 
     `law(t)` returns the values, or (values, rates, accelerations); with values only, rates and
@@ -148,7 +149,7 @@ def from_callable(mech: Mechanism, law: LawFunction, t, names: Sequence[str] | N
         accs = (-near[-2] + 16 * near[-1] - 30 * values + 16 * near[1] - near[2]) / (12 * h * h)
     if values.shape[1:] != (len(names),):
         raise InvalidParameters("law", values.shape, f"must return {len(names)} values for {list(names)}")
-    return InputLaw(names, t, values, rates, accs, None, "callable")
+    return InputLaw(names, t, values, rates, accs, None, source)
 
 
 def from_csv(mech: Mechanism, path: str | Path) -> InputLaw:

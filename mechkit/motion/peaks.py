@@ -28,12 +28,15 @@ QUANTITIES = {
 @dataclass(frozen=True)
 class JointPeaks:
     """One joint's peaks: `values[k]` the largest of quantity k over the motion and `times[k]` (s)
-    the first time it is reached (NaN for a quantity the joint has no axis for)."""
+    the first time it is reached (NaN for a quantity the joint has no axis for). `determinate`: every
+    component of the reaction is fixed by statics at every sample (None: not tested); when False the
+    peaks include minimum-norm values of indeterminate components (see `dynamics.JointReaction`)."""
 
     joint: str
     support: bool
     values: dict[str, float]
     times: dict[str, float]
+    determinate: bool | None = None
 
 
 def split(vectors: np.ndarray, axes: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -62,7 +65,8 @@ def peaks(result: MotionResult) -> list[JointPeaks]:
                 continue
             k = int(np.nanargmax(column))
             values[name], times[name] = float(column[k]), float(result.t[k])
-        out.append(JointPeaks(joint, bool(result.supports[j]), values, times))
+        determinate = None if result.determinate is None else bool(result.determinate[:, j].all())
+        out.append(JointPeaks(joint, bool(result.supports[j]), values, times, determinate))
     return out
 
 
@@ -70,7 +74,7 @@ def peak_table(result: MotionResult):
     """The peaks as a pandas DataFrame: one row per joint, columns `<quantity>` and `t_<quantity>`."""
     from mechkit.motion.result import pandas
 
-    rows = [{"joint": p.joint, "support": p.support,
+    rows = [{"joint": p.joint, "support": p.support, "determinate": p.determinate,
              **{k: v for q in QUANTITIES for k, v in ((q, p.values[q]), (f"t_{q}", p.times[q]))}}
             for p in peaks(result)]
     return pandas().DataFrame(rows).set_index("joint")

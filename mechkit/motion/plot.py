@@ -15,6 +15,8 @@ from mechkit.motion.result import MotionResult
 
 #: Joints shown when none are chosen: the ones with the largest peak force (at most this many).
 DEFAULT_JOINTS = 4
+#: A reaction panel turns logarithmic when its peak exceeds its median this many times.
+LOG_SPAN = 100.0
 
 
 def busiest_joints(result: MotionResult, count: int = DEFAULT_JOINTS) -> list[str]:
@@ -58,6 +60,10 @@ def figure(result: MotionResult, joints: Sequence[str] | None = None, title: str
             ax.plot(result.t, h[f"axial_{kind}"][:, j], ":", color=f"C{color}", lw=1, label=f"{joint} axial")
     mid.set_ylabel("reaction force (N)")
     bottom.set_ylabel("reaction moment (N m)")
+    for ax, kind in ((mid, "force"), (bottom, "moment")):
+        shown = h[kind][:, [result.joints.index(j) for j in joints]]
+        if np.nanmax(shown, initial=0.0) > LOG_SPAN * max(float(np.nanmedian(shown)), 1e-300):
+            ax.set_yscale("log")  # a peak (near a singularity) decades above the rest
     bottom.set_xlabel("time t (s)")
     for ax in axes:
         ax.grid(alpha=0.3)

@@ -17,10 +17,12 @@ from mechkit import dynamics
 from mechkit.exceptions import MechkitError
 from mechkit.mechanism import Mechanism
 from mechkit.motion.inputs import InputLaw
+from mechkit.motion.path import PathKinematics
 from mechkit.motion.result import MotionResult
 
 Progress = Callable[[int, int], None]
-"""(samples done, samples in all) -> None, called after each sample."""
+"""(steps done, steps in all) -> None: each sample's kinematics is a step, the dynamics of all samples
+the last N steps."""
 
 Loads = Callable[[Mechanism, np.ndarray, float], Sequence]
 """(mechanism, q, t) -> Pinocchio external forces per joint (local frames), e.g. a thrust."""
@@ -35,35 +37,6 @@ def coordinate_names(model: pin.Model) -> tuple[str, ...]:
     return tuple(out)
 
 
-class JointAxes:
-    """Unit axes (world frame) of every joint of an inverse-dynamics problem.
-
-    Tree joints of one degree of freedom: the rotation axis (revolute) or the sliding direction
-    (prismatic), from the joint's motion subspace. Cut joints: the declared axis of a revolute or
-    prismatic closure, in frame_a's frame. Other joints (spherical, Hooke, weld) have no single axis: NaN.
-    """
-
-    def __init__(self, mech: Mechanism, problem: dynamics.InverseDynamicsProblem):
-        model = mech.model
-        data = model.createData()
-        pin.forwardKinematics(model, data, mech.home_q)
-        self.tree = np.full((model.njoints, 3), np.nan)
-        for j in range(1, model.njoints):
-            if model.joints[j].nv == 1:
-                S = np.asarray(data.joints[j].S).reshape(6)
-                local = S[3:] if np.linalg.norm(S[3:]) > 0 else S[:3]
-                self.tree[j] = local / np.linalg.norm(local)
-        self.cuts = [(c.frame_a, np.asarray(c.closure.axis, dtype=float) if c.closure.kind in ("revolute", "prismatic")
-                      else np.full(3, np.nan)) for c in problem.rows.cuts]
-
-    def world(self, data: pin.Data) -> np.ndarray:
-        """(n_joints, 3) world axes at the configuration `data` holds (joint and frame placements current)."""
-        R = np.array([data.oMi[j].rotation for j in range(1, len(self.tree))]).reshape(-1, 3, 3)
-        tree = np.einsum("jab,jb->ja", R, self.tree[1:])
-        cuts = [data.oMf[f].rotation @ axis for f, axis in self.cuts]
-        return np.vstack([tree, *cuts]) if cuts else tree
-
-
 def driven_problem(mech: Mechanism, names: Sequence[str]) -> dynamics.InverseDynamicsProblem:
     """The inverse-dynamics problem with a generalised force on every actuated joint and every input
     of the law (a passive input's force is what its spring or damper must supply)."""
@@ -71,6 +44,25 @@ def driven_problem(mech: Mechanism, names: Sequence[str]) -> dynamics.InverseDyn
     return dynamics.InverseDynamicsProblem(
         mech.model, mech.model.createData(), mech.rows, mech.full_rows,
         np.array([mech.v_index(j) for j in driven], dtype=int), driven)
+
+
+def inverse_batch(problem: dynamics.InverseDynamicsProblem, q: np.ndarray, v: np.ndarray, a: np.ndarray,
+                  fexts: Sequence | None, determinacy: bool) -> tuple[np.ndarray, np.ndarray, np.ndarray | None]:
+    """Efforts (N, n_driven), reactions (N, n_joints, 6) and determinacy flags (N, n_joints, 6) or None
+    of N samples (q, v, a), with per-sample external forces `fexts` or None.
+
+    Raises:
+        SingularConfiguration: a sample's drives cannot hold its motion.
+    """
+    results = [dynamics.inverse_dynamics(problem, q[i], v[i], a[i], None if fexts is None else fexts[i], determinacy)
+               for i in range(len(q))]
+    efforts = np.array([[r.efforts[j] for j in problem.actuated_names] for r in results]).reshape(
+        len(q), len(problem.actuated_names))
+    reactions = np.array([[r.reactions[j].wrench for j in problem.joint_names] for r in results]).reshape(
+        len(q), len(problem.joint_names), 6)
+    flags = np.array([[r.reactions[j].determinate for j in problem.joint_names] for r in results]).reshape(
+        len(q), len(problem.joint_names), 6) if determinacy else None
+    return efforts, reactions, flags
 
 
 def study(mech: Mechanism, law: InputLaw, *, determinacy: bool = False, loads: Loads | None = None,
@@ -93,46 +85,59 @@ def study(mech: Mechanism, law: InputLaw, *, determinacy: bool = False, loads: L
     """
     model, names, n = mech.model, list(law.names), len(law.t)
     problem = driven_problem(mech, names)
-    axes = JointAxes(mech, problem)
+    path = PathKinematics(mech, names)
     nj = len(problem.joint_names)
-    q = np.empty((n, model.nq))
-    v = np.empty((n, model.nv))
-    a = np.empty((n, model.nv))
-    efforts = np.empty((n, len(problem.actuated_names)))
-    reactions = np.empty((n, nj, 6))
-    world_axes = np.empty((n, nj, 3))
-    flags = np.zeros((n, nj, 6), dtype=bool) if determinacy else None
+    q = np.full((n, model.nq), np.nan)
+    v = np.full((n, model.nv), np.nan)
+    a = np.full((n, model.nv), np.nan)
+    axes = np.full((n, nj, 3), np.nan)
     failures: list[tuple[float, str]] = []
     last = None  # the last sample that succeeded: the predictor's start
     for i in range(n):
-        if law.guesses is not None:
-            guess = law.guesses[i]
-        elif last is not None:
-            dt = law.t[i] - law.t[last]
-            guess = pin.integrate(model, q[last], v[last] * dt + 0.5 * a[last] * dt * dt)
-        else:
-            guess = None
         try:
-            q[i] = mech.assemble(dict(zip(names, law.values[i])), guess=guess, tol=tol)
-            v[i] = mech.velocities(q[i], law.rates[i], inputs=names)
-            a[i] = mech.accelerations(q[i], v[i], law.accelerations[i], inputs=names)
-            fext = None if loads is None else loads(mech, q[i], float(law.t[i]))
-            result = dynamics.inverse_dynamics(problem, q[i], v[i], a[i], fext, determinacy)
+            if law.guesses is not None:
+                guess = law.guesses[i]
+            elif last is not None:
+                dt = law.t[i] - law.t[last]
+                guess = pin.integrate(model, q[last], v[last] * dt + 0.5 * a[last] * dt * dt)
+            else:
+                guess = path.first_guess(law.values[i])
+            q[i], v[i], a[i], axes[i] = path.sample(guess, law.values[i], law.rates[i], law.accelerations[i], tol)
+            last = i
         except MechkitError as err:
             if not skip_failures:
                 raise
             failures.append((float(law.t[i]), str(err)))
-            for x in (q, v, a, efforts, reactions, world_axes):
-                x[i] = np.nan
-        else:
-            efforts[i] = [result.efforts[j] for j in problem.actuated_names]
-            reactions[i] = [result.reactions[j].wrench for j in problem.joint_names]
-            world_axes[i] = axes.world(problem.data)
-            if flags is not None:
-                flags[i] = [result.reactions[j].determinate for j in problem.joint_names]
-            last = i
+            q[i] = v[i] = a[i] = np.nan
         if progress is not None:
-            progress(i + 1, n)
+            progress(i + 1, 2 * n)
+    good = np.flatnonzero(np.isfinite(q).all(axis=1))
+    fexts = None if loads is None else [loads(mech, q[i], float(law.t[i])) for i in good]
+    efforts = np.full((n, len(problem.actuated_names)), np.nan)
+    reactions = np.full((n, nj, 6), np.nan)
+    flags = np.zeros((n, nj, 6), dtype=bool) if determinacy else None
+    try:  # all samples at once; where that fails and failures may be skipped, sample by sample
+        batches = [good]
+        out = [inverse_batch(problem, q[good], v[good], a[good], fexts, determinacy)]
+    except MechkitError:
+        if not skip_failures:
+            raise
+        batches, out = [], []
+        for k, i in enumerate(good):
+            one = None if fexts is None else [fexts[k]]
+            try:
+                out.append(inverse_batch(problem, q[i:i + 1], v[i:i + 1], a[i:i + 1], one, determinacy))
+                batches.append(np.array([i]))
+            except MechkitError as err:
+                failures.append((float(law.t[i]), str(err)))
+                q[i] = v[i] = a[i] = axes[i] = np.nan
+    for rows, (u, w, f) in zip(batches, out):
+        efforts[rows], reactions[rows] = u, w
+        if flags is not None:
+            flags[rows] = f
+    if progress is not None:
+        progress(2 * n, 2 * n)
     return MotionResult(mech.spec.name, law.source, law.t.copy(), coordinate_names(model), q, v, a,
                         problem.actuated_names, tuple(mech.actuated), efforts, problem.joint_names,
-                        np.array(problem.supports, dtype=bool), reactions, world_axes, flags, tuple(failures))
+                        np.array(problem.supports, dtype=bool), reactions, axes, flags,
+                        tuple(sorted(failures)))
