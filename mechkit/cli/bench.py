@@ -7,8 +7,9 @@ from pathlib import Path
 
 import numpy as np
 
-from mechkit import registry
+from mechkit import sources
 from mechkit.atomic import resolve_output, write_text
+from mechkit.cli.common import examples
 from mechkit.exceptions import OutputError
 
 
@@ -18,7 +19,7 @@ def run(args: argparse.Namespace) -> None:
     from mechkit.cli.progress import ProgressBars
 
     for name in args.names:
-        registry.entry(name)  # an unknown name fails now, not as "not measured" after the run
+        sources.resolve(name)  # an unknown name fails now, not as "not measured" after the run
     if args.markdown:
         resolve_output(args.markdown)  # refused before the run, not after it
     if args.charts and Path(args.charts).exists() and not Path(args.charts).is_dir():
@@ -49,9 +50,10 @@ def run(args: argparse.Namespace) -> None:
             print(f"wrote {args.markdown}")
 
 
-def add_parser(sub) -> None:
+def add_parser(sub: argparse._SubParsersAction) -> None:
     """Register `bench`."""
-    p = sub.add_parser("bench", help="speed and accuracy of every method, per mechanism")
+    p = sub.add_parser("bench", help="speed and accuracy of every method, per mechanism", **examples(
+        "mechkit bench four_bar --quick", "mechkit bench --charts docs/bench --markdown docs/benchmarks.md"))
     p.add_argument("names", nargs="*", help="mechanisms (default: all)")
     p.add_argument("--quick", action="store_true", help="few repetitions, smallest sweeps")
     p.add_argument("--charts", help="folder for the error-vs-time charts (PNG and SVG)")

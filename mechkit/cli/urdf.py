@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 
 from mechkit.atomic import STDOUT, write_text
-from mechkit.cli.common import add_mechanism_arguments, load_mechanism
+from mechkit.cli.common import add_mechanism_arguments, examples, load_mechanism
 
 
 def run(args: argparse.Namespace) -> None:
@@ -13,9 +13,9 @@ def run(args: argparse.Namespace) -> None:
     write_text(args.output or STDOUT, load_mechanism(args).urdf)
 
 
-def add_parser(sub) -> None:
+def add_parser(sub: argparse._SubParsersAction) -> None:
     """Register `urdf`."""
-    p = sub.add_parser("urdf", help="print or write the URDF generated from the parameters")
+    p = sub.add_parser("urdf", help="print or write the URDF generated from the parameters", **examples("mechkit urdf four_bar --set crank=0.12", "mechkit urdf ten_bar -o ten_bar.urdf"))
     add_mechanism_arguments(p)
     p.add_argument("-o", "--output", help="file to write (default or -: standard output)")
     p.set_defaults(func=run)
