@@ -97,7 +97,7 @@ class Mechanism:
     def _inputs(self, inputs: Inputs | None, default_names: Sequence[str], arg: str = "inputs") -> dict[str, float]:
         if inputs is None:
             return {}
-        if not isinstance(inputs, Mapping) and not default_names:
+        if not isinstance(inputs, Mapping) and not default_names:  # values in actuated order, and none is
             self.require_actuators(f"{arg} given in actuated order")
         return arguments.joint_values(arg, inputs, default_names, list(self.model.names[1:]))
 
@@ -188,9 +188,9 @@ class Mechanism:
         rates = self._inputs(input_rates, names, "input_rates")
         input_v, free_v = self._split(list(rates))
         J = self.closure_jacobian(q)
+        residual = float(np.linalg.norm(self.rows.residual(self.data)))
         return kinematics.project_velocity(J, np.array(list(rates.values())), input_v, free_v, self.independent_rows,
-                                           residual=float(np.linalg.norm(self.rows.residual(self.data))),
-                                           allow_singular=allow_singular)
+                                           residual=residual, allow_singular=allow_singular)
 
     def accelerations(self, q: np.ndarray, v: np.ndarray, input_accelerations: Inputs,
                       inputs: Sequence[str] | None = None, *, allow_singular: bool = False) -> kinematics.Conditioned:
@@ -293,8 +293,7 @@ class Mechanism:
         `fext` (Pinocchio local-frame forces per joint) and `distribution` (redundant actuation).
         Batched: q (N, nq), v and a (N, nv), fext None, (N, njoints, 6) or N per-sample values give
         a `batch.BatchInverseDynamicsResult`.
-        At a configuration where the actuators' passive block is below what the closure resolves the
-        efforts are not determined: `SingularConfiguration`, unless `allow_singular`.
+        Efforts undetermined to what the closure resolves: `SingularConfiguration` unless `allow_singular`.
         """
         arguments.option("distribution", distribution, dynamics.DISTRIBUTIONS)
         determinacy = arguments.flag("determinacy", determinacy)
