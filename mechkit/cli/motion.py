@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import argparse
 
-from mechkit.cli.common import add_mechanism_arguments, load_mechanism
+from mechkit.cli.common import add_mechanism_arguments, examples, load_mechanism
 from mechkit.cli.progress import ProgressBars
 from mechkit.exceptions import InvalidParameters, MechkitError
 
@@ -66,9 +66,11 @@ def run(args: argparse.Namespace) -> None:
         print(f"wrote {write_plot(result, args.plot, joints)}")
 
 
-def add_parser(sub) -> None:
+def add_parser(sub: argparse._SubParsersAction) -> None:
     """Register `motion`."""
-    p = sub.add_parser("motion", help="efforts and every joint's reaction along a motion: peak table, Parquet/CSV, plot")
+    p = sub.add_parser("motion", help="efforts and every joint's reaction along a motion: peak table, Parquet/CSV, plot",
+                       **examples("mechkit motion parallel_2t1r --scene motion_law --samples 501 -o law.parquet --plot law.png",
+                                  "mechkit motion four_bar --inputs crank.csv -o loads.csv"))
     add_mechanism_arguments(p)
     source = p.add_mutually_exclusive_group()
     source.add_argument("--scene", help="a scene of the mechanism (default: its first declared scene, else 'sweep')")

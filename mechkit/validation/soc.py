@@ -24,13 +24,13 @@ from mechkit.exceptions import InvalidParameters, SingularConfiguration
 from mechkit.spatial import cross
 
 __all__ = [
+    "RANK_TOL",
     "BodyLoad",
-    "WrenchSite",
     "SKCInstant",
     "SOCResult",
-    "solve_soc",
+    "WrenchSite",
     "classic_virtual_work",
-    "RANK_TOL",
+    "solve_soc",
 ]
 
 RANK_TOL = 1e-10
