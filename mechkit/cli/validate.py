@@ -36,7 +36,7 @@ def report(args: argparse.Namespace) -> dict:
         labels = s.unknown_labels(opinion.structure)
         free = [label for label, (joint, k) in zip(labels, s.unknowns, strict=True)
                 if (first.free_efforts[joint] if k < 0 else first.free[joint][opinion.structure.joint(joint).components[k]])]
-        skcs.append({"kind": s.kind, "bodies": list(s.bodies), "released": list(s.released),
+        skcs.append({"kind": s.kind, "bodies": list(s.bodies), "joints": list(s.joints), "released": list(s.released),
                      "actuators": list(s.actuators), "unknowns": labels, "equations": s.equations,
                      "indeterminate": free})
     return {"name": mech.spec.name, "level": opinion.level, "skcs": skcs,
