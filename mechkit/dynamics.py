@@ -4,7 +4,7 @@ Equation of motion: M a + nle = tau + J^T lambda, J the closure Jacobian (rows o
 J a + gamma = 0. Forward dynamics (`mechkit.forward`) two ways: Pinocchio's proximal
 `constraintDynamics` on the equivalent `RigidConstraintModel`s, and a dense KKT solve on the
 independent rows; their result type and the row choice are here. Inverse
-dynamics: [S, J^T] [u; lambda] = rnea(q, v, a) - J_ext^T f_ext; every tree joint's transmitted
+dynamics: `[S, J^T] [u; lambda] = rnea(q, v, a) - J_ext^T f_ext`; every tree joint's transmitted
 wrench is then the RNEA's minus the cut wrenches that act on its subtree.
 """
 
@@ -153,18 +153,21 @@ class InverseDynamicsProblem:
         self.untested = (None,) * len(self.joint_names)
 
 
-def inverse_dynamics(p: InverseDynamicsProblem, q, v, a, fext=None, determinacy: bool = True,
+def inverse_dynamics(p: InverseDynamicsProblem, q: np.ndarray, v: np.ndarray, a: np.ndarray,
+                     fext: pin.StdVec_Force | list[pin.Force] | None = None, determinacy: bool = True,
                      distribution: str = "min_norm") -> InverseDynamicsResult:
     """Actuator efforts and every joint's reaction for a motion (q, v, a) that satisfies the closures.
 
     Args:
         p: the problem (model, rows, actuators).
-        q, v, a: configuration, velocity, acceleration (a must satisfy J a + gamma = 0).
+        q: configuration (nq,).
+        v: velocity (nv,).
+        a: acceleration (nv,); it must satisfy J a + gamma = 0.
         fext: optional external forces per joint (Pinocchio local frames), e.g. thrust.
         determinacy: run the rank test that flags indeterminate components (one SVD of the full
             spatial rows); without it `JointReaction.determinate` is None (not tested).
         distribution: where [S, J^T] has a null space (redundant actuation or rows), which solution:
-            "min_norm" (smallest |[u; lambda]|) or "min_effort" (smallest |u|, then smallest |lambda|).
+            "min_norm" (smallest `|[u; lambda]|`) or "min_effort" (smallest `|u|`, then smallest `|lambda|`).
 
     Raises:
         SingularConfiguration: [S, J^T] has lost rank where it must not (efforts undetermined).

@@ -134,6 +134,13 @@ def kkt_forward(model: pin.Model, data: pin.Data, q, v, tau, J: np.ndarray, gamm
     scale: a model of 1e30 kg or of millimetre links solves like one of kilograms and metres.
 
     Args:
+        model: the tree's Pinocchio model.
+        data: a data of it.
+        q: configuration (nq,).
+        v: velocity (nv,).
+        tau: joint efforts (nv,), N m or N.
+        J: closure Jacobian (rows, nv) at q.
+        gamma: closure acceleration drift (rows,) at (q, v): J a + gamma = 0.
         rows: a set of independent rows to use (e.g. cached from a regular configuration); chosen
             by pivoted QR when None.
 
@@ -228,3 +235,57 @@ def proximal_forward(model: pin.Model, pin_data: pin.Data, data: pin.Data, rows:
 
         check_closure_acceleration(J, a, rows.drift(data), 0.0, "forward dynamics (proximal)", a_scale)
     return result
+
+
+class ForwardSolver:
+    """One mechanism's forward dynamics, with what it caches: Pinocchio's constraint models, the KKT rows
+    and the Delassus scale (both at the home assembly), the Baumgarte gains set on the models.
+
+    Args:
+        model: the tree's Pinocchio model; data: a scratch data of it.
+        rows: the closure rows; cuts: their cuts (for Pinocchio's constraint models).
+        home_q: the home assembly (nq,).
+    """
+
+    def __init__(self, model: pin.Model, data: pin.Data, rows: ClosureRows, cuts: list, home_q: np.ndarray):
+        self.model, self.data, self.rows, self.cuts, self.home_q = model, data, rows, cuts, home_q
+        self._constraints: tuple | None = None
+        self._gains = (0.0, 0.0)
+        self._kkt_rows: np.ndarray | None = None
+        self._delassus: float | None = None
+
+    def constraints(self) -> tuple[Any, Any]:
+        """Pinocchio `RigidConstraintModel`s (and datas) equivalent to the closures (built once)."""
+        if self._constraints is None:
+            self._constraints, self.pin_data = constraint_models(self.model, self.cuts)
+        return self._constraints
+
+    def _jacobian(self, q: np.ndarray) -> np.ndarray:
+        pin.computeJointJacobians(self.model, self.data, q)
+        pin.updateFramePlacements(self.model, self.data)
+        return self.rows.jacobian(self.data)
+
+    def solve(self, q: np.ndarray, v: np.ndarray, tau: np.ndarray, method: str, *, mu: float, accuracy: float,
+              max_iter: int, baumgarte: tuple[float, float] | None) -> ForwardDynamicsResult:
+        """Accelerations under efforts tau by `method` ("proximal" or "kkt"; see `Mechanism.forward_dynamics`)."""
+        if method == "proximal":
+            cms, cds = self.constraints()
+            self._gains = set_baumgarte(cms, baumgarte, self._gains)
+            if self._delassus is None:
+                self._delassus = delassus_scale(pin.crba(self.model, self.data, self.home_q), self._jacobian(self.home_q))
+            return proximal_forward(self.model, self.pin_data, self.data, self.rows, (cms, cds), q, v, tau,
+                                    mu=mu, accuracy=accuracy, max_iter=max_iter, delassus=self._delassus)
+        if self._kkt_rows is None:
+            self._kkt_rows = independent_rows(self._jacobian(self.home_q))
+        J = self._jacobian(q)
+        residual = self.rows.residual(self.data)
+        pin.forwardKinematics(self.model, self.data, q, v, np.zeros(self.model.nv))
+        pin.updateFramePlacements(self.model, self.data)
+        gamma = self.rows.drift(self.data)
+        if baumgarte is not None:
+            kp, kd = baumgarte
+            gamma = gamma + kd * (J @ v) + kp * residual
+        try:
+            return kkt_forward(self.model, self.data, q, v, tau, J, gamma, self._kkt_rows)
+        except SingularConfiguration:  # the cached rows lost rank here: choose rows at this q
+            return kkt_forward(self.model, self.data, q, v, tau, J, gamma)

@@ -14,7 +14,7 @@ from mechkit import arguments, batch, coordinates, dynamics, forward, kinematics
 from mechkit.closures import ClosureRows, cut_rows
 from mechkit.contract import MechanismSpec
 from mechkit.description import build_model, parse_loops, render_urdf
-from mechkit.exceptions import InvalidArgument, InvalidParameters, SingularConfiguration
+from mechkit.exceptions import InvalidArgument, InvalidParameters
 from mechkit.params import MechanismParams
 from mechkit.registry import get_spec
 from mechkit.structure import Structure, analyse
@@ -58,12 +58,9 @@ class Mechanism:
         self._id_problem = dynamics.InverseDynamicsProblem(
             self.model, self.model.createData(), self.rows, self.full_rows,
             np.array([self.v_index(j) for j in self.actuated], dtype=int), self.actuated)
-        self._pin_constraints: tuple | None = None
-        self._pin_baumgarte = (0.0, 0.0)
-        self._kkt_rows: np.ndarray | None = None
-        self._delassus: float | None = None
         self.independent_rows = self.rows.size
         self.home_q = self.assemble(spec.home(params))
+        self._forward = forward.ForwardSolver(self.model, self.data, self.rows, self.cuts, self.home_q)
         self.independent_rows = kinematics.mobility(self.rows, self.data, self.home_q).rank
 
     # ---------------------------------------------------------------- indices
@@ -81,6 +78,7 @@ class Mechanism:
         return self.model.joints[self._joint_id(joint)].idx_v
 
     def neutral(self) -> np.ndarray:
+        """Pinocchio's neutral configuration (nq,) of the tree (every joint at zero; loops open)."""
         return pin.neutral(self.model)
 
     def require_actuators(self, what: str) -> None:
@@ -227,9 +225,7 @@ class Mechanism:
     # ---------------------------------------------------------------- dynamics
     def pin_constraints(self) -> tuple[Any, Any]:
         """Pinocchio `RigidConstraintModel`s (and datas) equivalent to the closures."""
-        if self._pin_constraints is None:
-            self._pin_constraints, self._pin_data = forward.constraint_models(self.model, self.cuts)
-        return self._pin_constraints
+        return self._forward.constraints()
 
     def forward_dynamics(self, q: np.ndarray, v: np.ndarray, tau: np.ndarray, method: str = "proximal", *,
                          mu: float = 1e-11, accuracy: float = 1e-12, max_iter: int = 20,
@@ -261,29 +257,10 @@ class Mechanism:
                                          baumgarte=baumgarte) for qi, vi, ti in zip(q, v, tau)]
             return dynamics.ForwardDynamicsResult(np.array([r.a for r in out]).reshape(n, -1),
                                                   np.array([r.constraint_force for r in out]).reshape(n, -1))
-        if method == "proximal":
-            cms, cds = self.pin_constraints()
-            self._pin_baumgarte = forward.set_baumgarte(cms, baumgarte, self._pin_baumgarte)
-            if self._delassus is None:
-                self._delassus = forward.delassus_scale(pin.crba(self.model, self.data, self.home_q),
-                                                        self.closure_jacobian(self.home_q))
-            result = forward.proximal_forward(self.model, self._pin_data, self.data, self.rows, (cms, cds), q, v, tau,
-                                              mu=mu, accuracy=accuracy, max_iter=max_iter, delassus=self._delassus)
-        else:  # "kkt"
-            J = self.closure_jacobian(q)
-            gamma = self.closure_drift(q, v)
-            if baumgarte is not None:
-                kp, kd = baumgarte
-                gamma = gamma + kd * (J @ v) + kp * self.rows.residual(self.data)
-            if self._kkt_rows is None:
-                self._kkt_rows = dynamics.independent_rows(self.closure_jacobian(self.home_q))
-            try:
-                result = forward.kkt_forward(self.model, self.data, q, v, tau, J, gamma, self._kkt_rows)
-            except SingularConfiguration:  # the cached rows lost rank here: choose rows at this q
-                result = forward.kkt_forward(self.model, self.data, q, v, tau, J, gamma)
-        return result
+        return self._forward.solve(q, v, tau, method, mu=mu, accuracy=accuracy, max_iter=max_iter, baumgarte=baumgarte)
 
-    def inverse_dynamics(self, q: np.ndarray, v: np.ndarray, a: np.ndarray, fext=None, determinacy: bool = True,
+    def inverse_dynamics(self, q: np.ndarray, v: np.ndarray, a: np.ndarray,
+                         fext: pin.StdVec_Force | list[pin.Force] | np.ndarray | list | None = None, determinacy: bool = True,
                          distribution: str = "min_norm", *, allow_singular: bool = False,
                          ) -> dynamics.InverseDynamicsResult | batch.BatchInverseDynamicsResult:
         """Constrained RNEA: actuator efforts and the reaction of every joint (tree and cut).
@@ -375,7 +352,16 @@ def from_description(desc: sources.Description, actuated: Sequence[str] | None =
     spec = MechanismSpec(name=desc.name, params=MechanismParams, template="", actuated=joints, gruebler_dof=structure.kutzbach,
                          home=_constant(home_values), guess=_constant(guess_values) if guess_values else None,
                          summary=f"read from the {desc.format} file{where}")
-    return Mechanism(spec, MechanismParams(), desc.urdf, rows, model, structure)
+    params = _xacro_params(desc)
+    return Mechanism(dataclasses.replace(spec, params=type(params)), params, desc.urdf, rows, model, structure)
+
+
+def _xacro_params(desc: sources.Description) -> MechanismParams:
+    """The file's xacro arguments as a parameter instance (strings; shown by `report`), else none."""
+    fields = [(k, str, dataclasses.field(default=v, metadata={"unit": "-", "doc": "xacro argument", "ours": False}))
+              for k, v in desc.params.items()]
+    cls = dataclasses.make_dataclass("XacroArguments", fields, bases=(MechanismParams,), frozen=True)
+    return cls()
 
 
 def from_urdf(urdf: str | Path, actuated: Sequence[str] | None = None, name: str | None = None,
@@ -388,7 +374,9 @@ def from_urdf(urdf: str | Path, actuated: Sequence[str] | None = None, name: str
         actuated: actuated joint names (default: the URDF's `<transmission>` joints; none declared
             makes the mechanism unactuated).
         name: a name for reports (default: the robot's name).
-        guess, home, rows: see `load`.
+        guess: see `load`.
+        home: see `load`.
+        rows: see `load`.
     """
     if not isinstance(urdf, (str, Path)) or not str(urdf).strip():
         raise InvalidArgument("urdf", urdf, "expected URDF text or a path to a description file")
