@@ -125,7 +125,7 @@ def _power_of_two(x: float) -> float:
     return 1.0 if 1 / 16 <= x <= 16 else float(2.0 ** np.round(np.log2(x)))
 
 
-def kkt_forward(model: pin.Model, data: pin.Data, q, v, tau, J: np.ndarray, gamma: np.ndarray,
+def kkt_forward(model: pin.Model, data: pin.Data, q: np.ndarray, v: np.ndarray, tau: np.ndarray, J: np.ndarray, gamma: np.ndarray,
                 rows: np.ndarray | None = None) -> ForwardDynamicsResult:
     """Dense KKT solve on independent rows of J (needs J, gamma at (q, v)).
 
