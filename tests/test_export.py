@@ -5,11 +5,13 @@ from __future__ import annotations
 import numpy as np
 import pinocchio as pin
 import pytest
+import yaml
 
 import mechkit
 from mechkit.cli import main
 from mechkit.exceptions import MethodUnavailable
-from mechkit.export import load_extended_urdf, to_extended_urdf, to_mjcf
+from mechkit.export import to_extended_urdf, to_mjcf
+from mechkit.sources.extended_urdf import load_extended_urdf
 
 mujoco = pytest.importorskip("mujoco")
 
@@ -118,4 +120,6 @@ def test_cli_export_writes_both_formats(tmp_path, capsys):
     out = capsys.readouterr().out
     assert "fb.xml" in out and "fb.yaml" in out
     mujoco.MjModel.from_xml_path(str(tmp_path / "fb.xml"))
-    assert "closed_loop: [['coupler_C', 'rocker_C']]" in (tmp_path / "fb.yaml").read_text()
+    sidecar = yaml.safe_load((tmp_path / "fb.yaml").read_text())
+    assert sidecar == {"closed_loop": [["coupler_C", "rocker_C"]], "type": ["3d"], "name_mot": ["crank"],
+                       "joint_name": [], "joint_type": []}

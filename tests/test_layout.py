@@ -18,7 +18,7 @@ from mechkit.resources import urdf_dir, xacro_dir
 
 PACKAGE = Path(mechkit.__file__).resolve().parent
 CORE = ("description", "closures", "kinematics", "dynamics", "mechanism", "registry", "contract", "params",
-        "resources", "exceptions", "spatial", "atomic")
+        "structure", "coordinates", "resources", "exceptions", "spatial", "atomic")
 ABOVE_CORE = ("mechkit.mechanisms", "mechkit.viz", "mechkit.bench", "mechkit.cli")
 MAX_LINES = 400
 
@@ -187,3 +187,14 @@ def test_contract(entry):
     assert all(m.quantity in BENCH_QUANTITIES and callable(m.fn) and m.label for m in spec.bench_methods)
     assert all(r.quantity in BENCH_QUANTITIES and callable(r.fn) and r.label for r in spec.bench_references)
     assert spec.self_checks is None or callable(spec.self_checks)
+
+
+def test_only_the_command_line_prints():
+    printing = []
+    for path in PACKAGE.rglob("*.py"):
+        if path.is_relative_to(PACKAGE / "cli"):
+            continue
+        for node in ast.walk(ast.parse(path.read_text(), str(path))):
+            if isinstance(node, ast.Call) and isinstance(node.func, ast.Name) and node.func.id in ("print", "input"):
+                printing.append(f"{path.relative_to(PACKAGE.parent)}:{node.lineno}")
+    assert not printing, printing

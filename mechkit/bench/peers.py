@@ -3,8 +3,9 @@
 Both are optional imports; a missing one raises `MethodUnavailable` with its install hint.
 
 - MuJoCo (`pip install mechkit[peers]`): the MJCF of `mechkit.export.to_mjcf` (tree + `equality`
-  connect/weld). Its equality constraints are soft: `solref`/`solimp` at MuJoCo's defaults, or
-  "stiff" (`STIFF_SOLREF`, `STIFF_SOLIMP`: impedance at its cap, time constant 2 timesteps).
+  connect/weld) without its springs and damping. Its equality constraints are soft: `solref`/`solimp`
+  at MuJoCo's defaults (`DEFAULT_SOLREF`, `DEFAULT_SOLIMP`, not the export's), or "stiff"
+  (`STIFF_SOLREF`, `STIFF_SOLIMP`: impedance at its cap, time constant 2 timesteps).
   Forward dynamics = `mj_forward` with the efforts as `qfrc_applied`, read `qacc`. Inverse
   dynamics = `mj_inverse` at the given acceleration, then the split of M a + c into actuator efforts
   and constraint forces on MuJoCo's own constraint Jacobian (least squares, as mechkit does on its
@@ -29,12 +30,15 @@ from mechkit.bench.methods import Method
 from mechkit.closures import AXIS_ANCHOR_OFFSET
 from mechkit.description import LOOP_NAMESPACE
 from mechkit.exceptions import MechkitError, MethodUnavailable
-from mechkit.export import _body_name, frame_b_vector, to_mjcf
+from mechkit.export import body_name, frame_b_vector, to_mjcf
 from mechkit.mechanism import Mechanism
 
 #: MuJoCo equality solref (time constant s, damping ratio) and solimp for the "stiff" setting.
 STIFF_SOLREF = (0.002, 1.0)
 STIFF_SOLIMP = (0.9999, 0.9999, 0.001, 0.5, 2.0)
+#: MuJoCo's own defaults for equality constraints.
+DEFAULT_SOLREF = (0.02, 1.0)
+DEFAULT_SOLIMP = (0.9, 0.95, 0.001, 0.5, 2.0)
 #: Drake's discrete time step (s).
 DRAKE_DT = 1e-3
 
@@ -66,9 +70,10 @@ class MujocoPeer:
     def __init__(self, mech: Mechanism, stiff: bool = False):
         mujoco = self._mj = _import_mujoco()
         self.model = mujoco.MjModel.from_xml_string(to_mjcf(mech))
-        if stiff:
-            self.model.eq_solref[:] = STIFF_SOLREF
-            self.model.eq_solimp[:] = STIFF_SOLIMP
+        self.model.eq_solref[:] = STIFF_SOLREF if stiff else DEFAULT_SOLREF
+        self.model.eq_solimp[:] = STIFF_SOLIMP if stiff else DEFAULT_SOLIMP
+        # mechkit's dynamics has no passive joint forces: drop the export's springs and dampers
+        self.model.opt.disableflags |= mujoco.mjtDisableBit.mjDSBL_SPRING | mujoco.mjtDisableBit.mjDSBL_DAMPER
         self.data = mujoco.MjData(self.model)
         names = list(mech.model.names[1:])
         jid = [mujoco.mj_name2id(self.model, mujoco.mjtObj.mjOBJ_JOINT, n) for n in names]
@@ -188,7 +193,7 @@ def _strip_loops(urdf: str) -> str:
 
 
 def _link_of(model, joint: int) -> str:
-    return _body_name(model, joint) if joint else model.frames[1].name
+    return body_name(model, joint) if joint else model.frames[1].name
 
 
 def peer_methods(mech: Mechanism) -> tuple[list[Method], list[str]]:
