@@ -98,3 +98,19 @@ def test_search_order():
     assert search.resolve("package://any_name/box.stl") == MESHES / "box.stl"  # a folder that is the package
     assert search.resolve("package://meshes/gone.stl") is None
     assert MeshSearch().resolve("box.stl") is None
+
+
+def test_snapshot_command_of_a_urdf_file(tmp_path, capsys):
+    """`mechkit snapshot arm.urdf`: the STL beside the file is found; the package:// OBJ with --mesh-path,
+    else a warning and a placeholder (exit 0 both ways)."""
+    from mechkit.cli import main
+
+    urdf = str(MESHES / "arm.urdf")
+    assert main(["snapshot", urdf, "-o", str(tmp_path / "a.html"), "--mesh-path", str(MESHES.parent)]) == 0
+    objects = page_objects((tmp_path / "a.html").read_text())
+    assert sorted(o["geometries"][0].get("format") for p, o in objects.items() if "/links/" in p) == ["obj", "stl"]
+    with pytest.warns(MissingMesh, match="package://meshes/box.obj"):
+        assert main(["snapshot", urdf, "-o", str(tmp_path / "b.html")]) == 0
+    objects = page_objects((tmp_path / "b.html").read_text())
+    kinds = sorted(o["geometries"][0]["type"] for p, o in objects.items() if "/links/" in p)
+    assert kinds == ["SphereGeometry", "_meshfile"]

@@ -4,9 +4,14 @@ from __future__ import annotations
 
 import argparse
 import time
-from pathlib import Path
 
-from mechkit.cli.common import add_mechanism_arguments, examples, load_mechanism
+from mechkit.cli.common import (
+    add_mechanism_arguments,
+    add_mesh_path_argument,
+    examples,
+    load_mechanism,
+    mesh_search,
+)
 
 
 def run(args: argparse.Namespace) -> None:
@@ -31,11 +36,8 @@ def _start(args: argparse.Namespace):
     """Load the mechanism (a registered name or a file) and start a viewer showing it; meshes are looked
     for beside the file, then in the --mesh-path folders."""
     from mechkit.viz.live import view
-    from mechkit.viz.meshes import MeshSearch
 
-    path = Path(args.name).expanduser()
-    base = path.resolve().parent if path.is_file() else None
-    return view(load_mechanism(args), scene=args.scene, meshes=MeshSearch.of(base, args.mesh_path or ()))
+    return view(load_mechanism(args), scene=args.scene, meshes=mesh_search(args))
 
 
 def add_parser(sub) -> None:
@@ -45,6 +47,5 @@ def add_parser(sub) -> None:
                                   "mechkit view robot.urdf --mesh-path ~/ros/src --actuated shoulder,elbow"))
     add_mechanism_arguments(p)
     p.add_argument("--scene", help="play a scene of the mechanism (see `mechkit.scenes`); default: its home pose")
-    p.add_argument("--mesh-path", action="append", metavar="DIR",
-                   help="folder searched for mesh files and package:// addresses (repeatable)")
+    add_mesh_path_argument(p)
     p.set_defaults(func=run)

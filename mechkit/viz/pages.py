@@ -142,10 +142,10 @@ def side_by_side(mechanism: Mechanism, poses: Sequence[np.ndarray], path: str | 
 
 
 def snapshot_command(mechanism: Mechanism, q: str | None = None, scene: str | None = None,
-                     html: str | None = None, png: str | None = None) -> list[Path]:
+                     html: str | None = None, png: str | None = None, meshes: MeshSearch | None = None) -> list[Path]:
     """What `mechkit snapshot` does: the HTML of a pose (inputs `q`, comma-separated, in actuated order)
     or of an animated scene, and optionally a PNG screenshot (of the pose; of a scene, its overlay
-    picture). Returns the files written."""
+    picture); `meshes`: where mesh files are looked for. Returns the files written."""
     if html is None and png is None:
         raise MechkitError("give -o FILE.html, --png FILE.png, or both")
     if q is not None and scene is not None:
@@ -156,12 +156,12 @@ def snapshot_command(mechanism: Mechanism, q: str | None = None, scene: str | No
     if scene is not None:
         poses = scene_poses(mechanism, scene)
         if html is not None:
-            animation(mechanism, scene, html, poses=poses)
+            animation(mechanism, scene, html, poses=poses, meshes=meshes)
             written.append(Path(html))
-        page = overlay(mechanism, scene, poses=poses) if png is not None else None
+        page = overlay(mechanism, scene, poses=poses, meshes=meshes) if png is not None else None
     else:
         pose = None if q is None else mechanism.assemble(_parse_inputs(q), guess=mechanism.home_q)
-        page = snapshot(mechanism, pose, html)
+        page = snapshot(mechanism, pose, html, meshes=meshes)
         if html is not None:
             written.append(Path(html))
     if png is not None:
