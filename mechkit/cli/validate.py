@@ -6,7 +6,7 @@ from __future__ import annotations
 import argparse
 import json
 
-from mechkit.cli.common import add_mechanism_arguments, load_mechanism
+from mechkit.cli.common import add_mechanism_arguments, examples, load_mechanism
 from mechkit.exceptions import InvalidParameters
 
 
@@ -36,7 +36,7 @@ def report(args: argparse.Namespace) -> dict:
         labels = s.unknown_labels(opinion.structure)
         free = [label for label, (joint, k) in zip(labels, s.unknowns, strict=True)
                 if (first.free_efforts[joint] if k < 0 else first.free[joint][opinion.structure.joint(joint).components[k]])]
-        skcs.append({"kind": s.kind, "bodies": list(s.bodies), "released": list(s.released),
+        skcs.append({"kind": s.kind, "bodies": list(s.bodies), "joints": list(s.joints), "released": list(s.released),
                      "actuators": list(s.actuators), "unknowns": labels, "equations": s.equations,
                      "indeterminate": free})
     return {"name": mech.spec.name, "level": opinion.level, "skcs": skcs,
@@ -72,9 +72,10 @@ def run(args: argparse.Namespace) -> None:
     print(json.dumps(r, indent=2) if args.json else format_text(r))
 
 
-def add_parser(sub) -> None:
+def add_parser(sub: argparse._SubParsersAction) -> None:
     """Register `validate`."""
-    p = sub.add_parser("validate", help="second opinion: automatic SOC decomposition vs constrained RNEA")
+    p = sub.add_parser("validate", help="second opinion: automatic SOC decomposition vs constrained RNEA", **examples(
+        "mechkit validate parallel_2t1r", "mechkit validate ten_bar --samples 24 --level body --json"))
     add_mechanism_arguments(p)
     p.add_argument("--samples", type=int, default=12, help="states along the scene (default 12)")
     p.add_argument("--scene", help="scene to sample (default: the mechanism's first, else the sweep)")
