@@ -40,7 +40,7 @@ def _start(args: argparse.Namespace):
     return view(load_mechanism(args), scene=args.scene, meshes=mesh_search(args))
 
 
-def add_parser(sub) -> None:
+def add_parser(sub: argparse._SubParsersAction) -> None:
     """Register `view`."""
     p = sub.add_parser("view", help="live meshcat viewer (a browser page) of a pose or a playing scene",
                        **examples("mechkit view four_bar --scene sweep",

@@ -10,6 +10,7 @@ class, rather than as a `_repr_html_` method. For a live view that updates, see 
 from __future__ import annotations
 
 from html import escape
+from typing import Any
 
 import numpy as np
 
@@ -59,7 +60,7 @@ def show(mechanism: Mechanism, q: np.ndarray | None = None, scene: str | None = 
     return InlineView(snapshot(mechanism, q, meshes=meshes), height)
 
 
-def register(shell=None) -> bool:
+def register(shell: Any = None) -> bool:
     """Display every `Mechanism` that is a cell's result as its inline view (text stays `repr`).
 
     Args:

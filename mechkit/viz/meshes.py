@@ -18,6 +18,8 @@ import xml.etree.ElementTree as ET
 from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
+from types import ModuleType
+from typing import Any
 
 import numpy as np
 
@@ -106,7 +108,7 @@ def resolve_meshes(urdf: str, search: MeshSearch, placeholder_radius: float) -> 
     return ET.tostring(root, encoding="unicode"), placeholders
 
 
-def mesh_geometry(geometry_module, path: str, vertices: np.ndarray, bvh):
+def mesh_geometry(geometry_module: ModuleType, path: str, vertices: np.ndarray, bvh: Any) -> Any:
     """The meshcat geometry of a mesh file: read from the file for STL, OBJ and DAE, else built from the
     triangles Pinocchio loaded (`vertices` (N, 3) in the file's units, `bvh` coal's mesh)."""
     kind = MESH_FORMATS.get(Path(path).suffix.lower())
