@@ -114,6 +114,20 @@ class OutputError(MechkitError):
         super().__init__(f"output {str(path)!r}: {why}")
 
 
+class SelfCheckFailed(MechkitError):
+    """A mechanism disagrees with itself or its sources: self-checks above their threshold.
+
+    Attributes:
+        failing: check name -> value (worst residual or relative error; nan counts as failing).
+        limit: the threshold.
+    """
+
+    def __init__(self, name: str, failing: dict[str, float], limit: float):
+        self.failing, self.limit = dict(failing), limit
+        listed = "; ".join(f"{k} = {v:.3e}" for k, v in failing.items())
+        super().__init__(f"{name}: {len(failing)} self-check(s) above {limit:g}: {listed}")
+
+
 def _summary(value: object) -> str:
     """A short text of a value for an error message (arrays by shape and dtype)."""
     shape = getattr(value, "shape", None)

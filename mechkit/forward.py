@@ -68,7 +68,8 @@ def delassus_scale(M: np.ndarray, J: np.ndarray) -> float:
     inconsistent states up to 150 times worse: 1114 delta against 7.2 delta)."""
     if J.shape[0] == 0:
         return 1.0
-    return float(np.max(np.sum(J ** 2, axis=1)) / np.max(np.diag(M)))
+    scale = float(np.max(np.sum(J ** 2, axis=1)) / np.max(np.diag(M)))
+    return scale if scale > 0 else 1.0  # rows all zero here: nothing to scale against
 
 
 def check_closure_acceleration(J: np.ndarray, a: np.ndarray, gamma: np.ndarray, slack: float = 0.0,

@@ -45,8 +45,8 @@ def main(argv: list[str] | None = None) -> int:
         return EXIT_BROKEN_PIPE
     except MechkitError as err:
         return _error(str(err))
-    except FloatingPointError as err:
-        return _error(f"numerical failure ({err})")
+    except ArithmeticError as err:  # FloatingPointError under errstate, ZeroDivisionError in a law
+        return _error(f"numerical failure ({type(err).__name__}: {err})")
     except OSError as err:
         where = f"{err.filename}: " if err.filename else ""
         return _error(f"{where}{err.strerror or err}")
