@@ -24,6 +24,11 @@ from mechkit.exceptions import MalformedDescription
 LOOP_NAMESPACE = "https://mechkit.dev/loop"
 LOOP_KINDS = ("revolute", "prismatic", "spherical", "hooke", "weld")
 ROW_SETS = ("spatial", "planar", "spherical")
+#: Elements of the loop namespace mechkit knows (`home`: an input value of the default assembly;
+#: `spring`: the ten-bar's spring, read by its package). Any other one is a `MalformedDescription`.
+KNOWN_ELEMENTS = ("loop", "home", "spring")
+#: Local names that declare a loop in some convention; outside the loop namespace they are an error.
+LOOP_LIKE = ("loop", "loops", "closure", "closed_loop", "loop_closure", "constraint", "cut")
 
 
 @dataclass(frozen=True)
@@ -40,6 +45,8 @@ class LoopClosure:
         axis_a: Hooke: first cross axis, in frame_a's frame.
         axis_b: Hooke: second cross axis, in frame_b's frame.
         rows: which constraint rows the scene keeps: "spatial", "planar" or "spherical".
+        explicit_rows: whether the declaration names its rows (else the structure analysis may
+            choose minimal rows, `mechkit.structure`).
     """
 
     name: str
@@ -50,6 +57,7 @@ class LoopClosure:
     axis_a: np.ndarray | None = None
     axis_b: np.ndarray | None = None
     rows: str = "spatial"
+    explicit_rows: bool = True
 
 
 def render_urdf(xacro_path: Path, args: dict[str, str]) -> str:
@@ -79,12 +87,41 @@ def document_text(doc: xml.dom.minidom.Document) -> str:
     return doc.toprettyxml(indent="  ")
 
 
+def parse_xml(text: str, where: str = "urdf") -> ET.Element:
+    """The root element of an XML text; anything not well-formed is a `MalformedDescription`."""
+    try:
+        return ET.fromstring(text.encode())
+    except ET.ParseError as err:
+        raise MalformedDescription(where, f"not well-formed XML: {err}") from None
+
+
+def check_loop_elements(root: ET.Element) -> None:
+    """Refuse loop declarations mechkit would otherwise drop without a word.
+
+    Raises:
+        MalformedDescription: an element in a namespace that looks like mechkit's but is not
+            `LOOP_NAMESPACE` (a mistyped URI), an unknown element of the loop namespace, or a
+            loop-like element (`LOOP_LIKE`) outside it.
+    """
+    for element in root.iter():
+        if not isinstance(element.tag, str):
+            continue
+        uri, _, local = element.tag[1:].partition("}") if element.tag.startswith("{") else ("", "", element.tag)
+        if uri == LOOP_NAMESPACE:
+            if local not in KNOWN_ELEMENTS:
+                raise MalformedDescription(f"mechkit:{local}", f"unknown element of the loop namespace; known: {KNOWN_ELEMENTS}")
+        elif "mechkit" in uri.lower():
+            raise MalformedDescription(f"<{local}> in namespace {uri!r}",
+                                       f"the loop namespace is {LOOP_NAMESPACE!r} (mistyped URI?)")
+        elif local.lower() in LOOP_LIKE:
+            raise MalformedDescription(f"<{element.tag}>", f"a loop-like element outside the loop namespace "
+                                       f"{LOOP_NAMESPACE!r}: declare loops as <mechkit:loop>")
+
+
 def parse_loops(urdf: str) -> list[LoopClosure]:
     """Read every `<mechkit:loop>` of a URDF into `LoopClosure` records, checked against its links."""
-    try:
-        root = ET.fromstring(urdf.encode())
-    except ET.ParseError as err:
-        raise MalformedDescription("urdf", f"not well-formed XML: {err}") from None
+    root = parse_xml(urdf)
+    check_loop_elements(root)
     links = {link.get("name") for link in root.findall("link")}
     loops = []
     for element in root.findall(f"{{{LOOP_NAMESPACE}}}loop"):
@@ -123,7 +160,23 @@ def _parse_loop(element: ET.Element, links: set[str]) -> LoopClosure:
         raise MalformedDescription(where, "a Hooke cut has no planar rows")
     if kind == "spherical" and rows == "spherical":
         raise MalformedDescription(where, "a spherical cut about a common centre has no rows left")
-    return LoopClosure(name, kind, frames["frame_a"], frames["frame_b"], axis, axis_a, axis_b, rows)
+    return LoopClosure(name, kind, frames["frame_a"], frames["frame_b"], axis, axis_a, axis_b, rows,
+                       element.get("rows") is not None)
+
+
+def parse_home(urdf: str) -> dict[str, float]:
+    """The `<mechkit:home joint="..." value="..."/>` inputs of the default assembly (rad or m)."""
+    out = {}
+    for element in parse_xml(urdf).findall(f"{{{LOOP_NAMESPACE}}}home"):
+        joint, text = element.get("joint"), element.get("value")
+        try:
+            value = float(text)
+        except (TypeError, ValueError):
+            raise MalformedDescription(f"mechkit:home {joint!r}", f"value {text!r} is not a number") from None
+        if not joint or not np.isfinite(value):
+            raise MalformedDescription(f"mechkit:home {joint!r}", "needs a joint name and a finite value")
+        out[joint] = value
+    return out
 
 
 def _vector(element: ET.Element, attr: str, where: str, required: bool) -> np.ndarray | None:
