@@ -352,7 +352,16 @@ def from_description(desc: sources.Description, actuated: Sequence[str] | None =
     spec = MechanismSpec(name=desc.name, params=MechanismParams, template="", actuated=joints, gruebler_dof=structure.kutzbach,
                          home=_constant(home_values), guess=_constant(guess_values) if guess_values else None,
                          summary=f"read from the {desc.format} file{where}")
-    return Mechanism(spec, MechanismParams(), desc.urdf, rows, model, structure)
+    params = _xacro_params(desc)
+    return Mechanism(dataclasses.replace(spec, params=type(params)), params, desc.urdf, rows, model, structure)
+
+
+def _xacro_params(desc: sources.Description) -> MechanismParams:
+    """The file's xacro arguments as a parameter instance (strings; shown by `report`), else none."""
+    fields = [(k, str, dataclasses.field(default=v, metadata={"unit": "-", "doc": "xacro argument", "ours": False}))
+              for k, v in desc.params.items()]
+    cls = dataclasses.make_dataclass("XacroArguments", fields, bases=(MechanismParams,), frozen=True)
+    return cls()
 
 
 def from_urdf(urdf: str | Path, actuated: Sequence[str] | None = None, name: str | None = None,

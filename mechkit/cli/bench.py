@@ -8,6 +8,7 @@ from pathlib import Path
 import numpy as np
 
 from mechkit.atomic import write_text
+from mechkit.cli.common import examples
 
 
 def run(args: argparse.Namespace) -> None:
@@ -41,9 +42,10 @@ def run(args: argparse.Namespace) -> None:
             print(f"wrote {args.markdown}")
 
 
-def add_parser(sub) -> None:
+def add_parser(sub: argparse._SubParsersAction) -> None:
     """Register `bench`."""
-    p = sub.add_parser("bench", help="speed and accuracy of every method, per mechanism")
+    p = sub.add_parser("bench", help="speed and accuracy of every method, per mechanism", **examples(
+        "mechkit bench four_bar --quick", "mechkit bench --charts docs/bench --markdown docs/benchmarks.md"))
     p.add_argument("names", nargs="*", help="mechanisms (default: all)")
     p.add_argument("--quick", action="store_true", help="few repetitions, smallest sweeps")
     p.add_argument("--charts", help="folder for the error-vs-time charts (PNG and SVG)")

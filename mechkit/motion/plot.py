@@ -15,7 +15,7 @@ from mechkit.motion.result import MotionResult
 
 #: Joints shown when none are chosen: the ones with the largest peak force (at most this many).
 DEFAULT_JOINTS = 4
-#: A reaction panel turns logarithmic when its peak exceeds its median this many times.
+#: A reaction panel turns logarithmic when its peak exceeds the median of what it carries this many times.
 LOG_SPAN = 100.0
 
 
@@ -62,7 +62,9 @@ def figure(result: MotionResult, joints: Sequence[str] | None = None, title: str
     bottom.set_ylabel("reaction moment (N m)")
     for ax, kind in ((mid, "force"), (bottom, "moment")):
         shown = h[kind][:, [result.joints.index(j) for j in joints]]
-        if np.nanmax(shown, initial=0.0) > LOG_SPAN * max(float(np.nanmedian(shown)), 1e-300):
+        top = np.nanmax(shown, initial=0.0)
+        carried = shown[shown > 1e-9 * top]  # leave out the joints that carry none of it (round-off)
+        if carried.size and top > LOG_SPAN * float(np.median(carried)):
             ax.set_yscale("log")  # a peak (near a singularity) decades above the rest
     bottom.set_xlabel("time t (s)")
     for ax in axes:

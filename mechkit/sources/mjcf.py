@@ -12,6 +12,9 @@ reads the compiled model at its reference configuration qpos0:
   at qpos0), two `connect`s between the same two bodies at distinct points -> one revolute cut about
   the line through them, `weld` -> a weld cut at body 2's frame (relative pose taken at qpos0);
 - joint actuators -> actuated joints; home inputs and guess: qpos0.
+
+Not read: the MJCF's gravity (mechkit's is -9.81 m/s^2 along z), joint springs and damping,
+contacts, and the solver parameters of the equalities (mechkit's loops are exact).
 """
 
 from __future__ import annotations
