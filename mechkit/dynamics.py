@@ -3,7 +3,7 @@
 Equation of motion: M a + nle = tau + J^T lambda, J the closure Jacobian (rows of `ClosureRows`),
 J a + gamma = 0. Forward dynamics two ways: Pinocchio's proximal `constraintDynamics` on the
 equivalent `RigidConstraintModel`s, and a dense KKT solve on the independent rows. Inverse
-dynamics: [S, J^T] [u; lambda] = rnea(q, v, a) - J_ext^T f_ext; every tree joint's transmitted
+dynamics: `[S, J^T] [u; lambda] = rnea(q, v, a) - J_ext^T f_ext`; every tree joint's transmitted
 wrench is then the RNEA's minus the cut wrenches that act on its subtree.
 """
 
@@ -72,11 +72,18 @@ def independent_rows(J: np.ndarray) -> np.ndarray:
     return np.sort(piv[: numerical_rank(d)])
 
 
-def kkt_forward(model: pin.Model, data: pin.Data, q, v, tau, J: np.ndarray, gamma: np.ndarray,
+def kkt_forward(model: pin.Model, data: pin.Data, q: np.ndarray, v: np.ndarray, tau: np.ndarray, J: np.ndarray, gamma: np.ndarray,
                 rows: np.ndarray | None = None) -> ForwardDynamicsResult:
     """Dense KKT solve on independent rows of J (needs J, gamma at (q, v)).
 
     Args:
+        model: the tree's Pinocchio model.
+        data: a data of it.
+        q: configuration (nq,).
+        v: velocity (nv,).
+        tau: joint efforts (nv,), N m or N.
+        J: closure Jacobian (rows, nv) at q.
+        gamma: closure acceleration drift (rows,) at (q, v): J a + gamma = 0.
         rows: a set of independent rows to use (e.g. cached from a regular configuration); chosen
             by pivoted QR when None.
     """
@@ -178,18 +185,21 @@ class InverseDynamicsProblem:
         self.untested = (None,) * len(self.joint_names)
 
 
-def inverse_dynamics(p: InverseDynamicsProblem, q, v, a, fext=None, determinacy: bool = True,
+def inverse_dynamics(p: InverseDynamicsProblem, q: np.ndarray, v: np.ndarray, a: np.ndarray,
+                     fext: pin.StdVec_Force | list[pin.Force] | None = None, determinacy: bool = True,
                      distribution: str = "min_norm") -> InverseDynamicsResult:
     """Actuator efforts and every joint's reaction for a motion (q, v, a) that satisfies the closures.
 
     Args:
         p: the problem (model, rows, actuators).
-        q, v, a: configuration, velocity, acceleration (a must satisfy J a + gamma = 0).
+        q: configuration (nq,).
+        v: velocity (nv,).
+        a: acceleration (nv,); it must satisfy J a + gamma = 0.
         fext: optional external forces per joint (Pinocchio local frames), e.g. thrust.
         determinacy: run the rank test that flags indeterminate components (one SVD of the full
             spatial rows); without it `JointReaction.determinate` is None (not tested).
         distribution: where [S, J^T] has a null space (redundant actuation or rows), which solution:
-            "min_norm" (smallest |[u; lambda]|) or "min_effort" (smallest |u|, then smallest |lambda|).
+            "min_norm" (smallest `|[u; lambda]|`) or "min_effort" (smallest `|u|`, then smallest `|lambda|`).
 
     Raises:
         SingularConfiguration: [S, J^T] has lost rank where it must not (efforts undetermined).

@@ -64,6 +64,11 @@ class Mechanism:
         self.home_q = self.assemble(spec.home(params))
         self.independent_rows = kinematics.mobility(self.rows, self.data, self.home_q).rank
 
+    def __repr__(self) -> str:
+        """One line: name, coordinates, degrees of freedom, loops, actuators."""
+        return (f"<Mechanism {self.spec.name}: nq={self.model.nq}, dof={self.model.nv - self.independent_rows}, "
+                f"loops={len(self.closures)}, actuators={list(self.actuated)}>")
+
     # ---------------------------------------------------------------- indices
     def _joint_id(self, joint: str) -> int:
         if not self.model.existJointName(joint):
@@ -79,6 +84,7 @@ class Mechanism:
         return self.model.joints[self._joint_id(joint)].idx_v
 
     def neutral(self) -> np.ndarray:
+        """Pinocchio's neutral configuration (nq,) of the tree (every joint at zero; loops open)."""
         return pin.neutral(self.model)
 
     def require_actuators(self, what: str) -> None:
@@ -273,7 +279,8 @@ class Mechanism:
             raise MethodUnavailable(method, "forward_dynamics methods are 'proximal' and 'kkt'")
         return result
 
-    def inverse_dynamics(self, q: np.ndarray, v: np.ndarray, a: np.ndarray, fext=None, determinacy: bool = True,
+    def inverse_dynamics(self, q: np.ndarray, v: np.ndarray, a: np.ndarray,
+                         fext: pin.StdVec_Force | list[pin.Force] | np.ndarray | list | None = None, determinacy: bool = True,
                          distribution: str = "min_norm") -> dynamics.InverseDynamicsResult | batch.BatchInverseDynamicsResult:
         """Constrained RNEA: actuator efforts and the reaction of every joint (tree and cut).
 
@@ -374,7 +381,9 @@ def from_urdf(urdf: str | Path, actuated: Sequence[str] | None = None, name: str
         actuated: actuated joint names (default: the URDF's `<transmission>` joints; none declared
             makes the mechanism unactuated).
         name: a name for reports (default: the robot's name).
-        guess, home, rows: see `load`.
+        guess: see `load`.
+        home: see `load`.
+        rows: see `load`.
     """
     if isinstance(urdf, Path) or not urdf.lstrip().startswith("<"):
         desc = sources.read(sources.resolve(Path(urdf)))

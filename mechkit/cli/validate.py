@@ -6,7 +6,7 @@ from __future__ import annotations
 import argparse
 import json
 
-from mechkit.cli.common import add_mechanism_arguments, load_mechanism
+from mechkit.cli.common import add_mechanism_arguments, examples, load_mechanism
 from mechkit.exceptions import InvalidParameters
 
 
@@ -72,9 +72,10 @@ def run(args: argparse.Namespace) -> None:
     print(json.dumps(r, indent=2) if args.json else format_text(r))
 
 
-def add_parser(sub) -> None:
+def add_parser(sub: argparse._SubParsersAction) -> None:
     """Register `validate`."""
-    p = sub.add_parser("validate", help="second opinion: automatic SOC decomposition vs constrained RNEA")
+    p = sub.add_parser("validate", help="second opinion: automatic SOC decomposition vs constrained RNEA", **examples(
+        "mechkit validate parallel_2t1r", "mechkit validate ten_bar --samples 24 --level body --json"))
     add_mechanism_arguments(p)
     p.add_argument("--samples", type=int, default=12, help="states along the scene (default 12)")
     p.add_argument("--scene", help="scene to sample (default: the mechanism's first, else the sweep)")

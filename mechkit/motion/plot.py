@@ -5,6 +5,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -12,6 +13,9 @@ from mechkit.atomic import write_bytes
 from mechkit.exceptions import MethodUnavailable
 from mechkit.motion.peaks import load_histories
 from mechkit.motion.result import MotionResult
+
+if TYPE_CHECKING:
+    from matplotlib.figure import Figure
 
 #: Joints shown when none are chosen: the ones with the largest peak force (at most this many).
 DEFAULT_JOINTS = 4
@@ -26,7 +30,7 @@ def busiest_joints(result: MotionResult, count: int = DEFAULT_JOINTS) -> list[st
     return [result.joints[j] for j in np.argsort(-peak, kind="stable")[:count]]
 
 
-def figure(result: MotionResult, joints: Sequence[str] | None = None, title: str | None = None):
+def figure(result: MotionResult, joints: Sequence[str] | None = None, title: str | None = None) -> Figure:
     """A figure: efforts (top), reaction forces (middle) and moments (bottom) of `joints` over time.
 
     Args:
