@@ -9,11 +9,12 @@ from __future__ import annotations
 from pathlib import Path
 
 import numpy as np
+import pandas as pd
 
 from mechkit.exceptions import InvalidParameters
 
 
-def _columns(frame, *names: str) -> None:
+def _columns(frame: pd.DataFrame, *names: str) -> None:
     for name in names:
         if name not in frame.columns:
             raise InvalidParameters("column", name, f"the rows have the columns {', '.join(frame.columns)}")
@@ -29,7 +30,7 @@ def pareto_mask(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     return mask
 
 
-def heat_map(frame, x: str, y: str, metric: str, path: str | Path, title: str = "", unit: str = "") -> Path:
+def heat_map(frame: pd.DataFrame, x: str, y: str, metric: str, path: str | Path, title: str = "", unit: str = "") -> Path:
     """The metric over a grid of two parameters (one row per (x, y)); non-ok designs in grey."""
     import matplotlib
 
@@ -54,7 +55,7 @@ def heat_map(frame, x: str, y: str, metric: str, path: str | Path, title: str = 
     return Path(path)
 
 
-def pareto_plot(frame, a: str, b: str, path: str | Path, title: str = "", highlight: dict | None = None) -> Path:
+def pareto_plot(frame: pd.DataFrame, a: str, b: str, path: str | Path, title: str = "", highlight: dict | None = None) -> Path:
     """Every ok design in (a, b), its Pareto front (both minimised) joined; `highlight`: label -> (a, b)."""
     import matplotlib
 
