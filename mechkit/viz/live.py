@@ -31,9 +31,12 @@ from mechkit.viz.pages import compose
 HOST = "127.0.0.1"
 START_TIMEOUT = 30.0  # s for the server to say where it listens
 REPLY_TIMEOUT_MS = 10000  # ms for the server to acknowledge one command
-# meshcat's server, with its web server bound to the loopback address (it listens on every address else)
+# meshcat's server, with its web server bound to the loopback address (it listens on every address else);
+# on Linux it gets SIGTERM when the process that started it dies, however that dies (PR_SET_PDEATHSIG)
 _SERVER = f"""
-import sys, tornado.web
+import ctypes, signal, sys, tornado.web
+if sys.platform.startswith("linux"):
+    ctypes.CDLL(None).prctl(1, signal.SIGTERM)
 from meshcat.servers import zmqserver
 listen = tornado.web.Application.listen
 tornado.web.Application.listen = lambda self, port, **kw: listen(self, port, address={HOST!r}, **kw)
@@ -80,6 +83,7 @@ class LiveViewer:
         except MechkitError:
             self.close()
             raise
+        self._shown = 0  # how many drawings were shown (the current one is under /mechanism<_shown>)
         self._context = zmq.Context()
         self._socket = self._context.socket(zmq.REQ)
         self._socket.setsockopt(zmq.RCVTIMEO, REPLY_TIMEOUT_MS)
@@ -123,8 +127,11 @@ class LiveViewer:
             mechanism.home_q if q is None else np.asarray(q, dtype=float)]
         live = LiveScene(self._socket)
         try:
-            live._send(live._commands_module.Delete(live._path("/mechanism")).lower())
-            compose(live, mechanism, poses, animate=scene is not None, meshes=meshes)
+            if self._shown:
+                live._send(live._commands_module.Delete(live._path(f"/mechanism{self._shown}")).lower())
+            # a new root each time: the tracks of a scene shown before keep playing, but on nothing
+            self._shown += 1
+            compose(live, mechanism, poses, animate=scene is not None, meshes=meshes, root=f"/mechanism{self._shown}")
         except Exception as err:  # zmq.Again: no reply within REPLY_TIMEOUT_MS
             if isinstance(err, MechkitError):
                 raise

@@ -31,29 +31,30 @@ MAX_FRAMES = 240  # poses kept in an animation (the page grows with frames x par
 
 
 def compose(scene: StaticScene, mechanism: Mechanism, poses: Sequence[np.ndarray], *, animate: bool = False,
-            ghosts: int = 0, meshes: MeshSearch | None = None) -> None:
+            ghosts: int = 0, meshes: MeshSearch | None = None, root: str = "/mechanism") -> None:
     """Draw the mechanism into a scene, framed: at poses[-1] (with `ghosts` faded earlier poses), or
-    animated along poses (at most MAX_FRAMES of them); `meshes`: where mesh files are looked for."""
+    animated along poses (at most MAX_FRAMES of them); `meshes`: where mesh files are looked for;
+    `root`: the meshcat path of the drawing."""
     drawing = Drawing(mechanism, meshes=meshes)
     scene.set_background()
     if animate:
         shown = [poses[int(i)] for i in np.linspace(0, len(poses) - 1, min(len(poses), MAX_FRAMES)).round()]
-        drawing.draw(scene, shown[0], "/mechanism/pose")
+        drawing.draw(scene, shown[0], f"{root}/pose")
     else:  # ghosts evenly spread from the first pose, then the last pose (periodic scenes: no ghost on it)
         picks = [poses[int(i)] for i in np.linspace(0, len(poses) - 1, ghosts + 1).round()] if ghosts else []
         shown = [q for q in picks[:-1] if np.max(np.abs(q - poses[-1])) > 1e-9] + [poses[-1]]
         for i, q in enumerate(shown[:-1]):
-            drawing.draw(scene, q, f"/mechanism/ghost{i}", ghost=True)
-        drawing.draw(scene, shown[-1], "/mechanism/pose")
+            drawing.draw(scene, q, f"{root}/ghost{i}", ghost=True)
+        drawing.draw(scene, shown[-1], f"{root}/pose")
     points = np.vstack([drawing.corners(q) for q in shown])
-    frame_camera(scene, points, "/mechanism", view_direction(mechanism))
+    frame_camera(scene, points, root, view_direction(mechanism))
     if animate:
         frames = [drawing.placements(q) for q in shown]
         tracks = {}
         for k, part in enumerate(drawing.parts):
             path = [frame[k] for frame in frames]
             if max(float(np.max(np.abs(T - path[0]))) for T in path) > 1e-12:  # fixed parts need no track
-                tracks[f"/mechanism/pose/{part.path}"] = path
+                tracks[f"{root}/pose/{part.path}"] = path
         fps = len(shown) / min(max(len(shown) / 30, 4.0), 12.0)
         scene.set_animation(tracks, fps)
 
