@@ -8,7 +8,7 @@ from typing import Any
 import numpy as np
 import pinocchio as pin
 
-from mechkit import batch, dynamics, kinematics
+from mechkit import batch, dynamics, inverse, kinematics
 from mechkit.closures import ClosureRows, cut_rows, rigid_constraint_models
 from mechkit.description import build_model, parse_loops, render_urdf
 from mechkit.exceptions import InvalidParameters, MethodUnavailable, SingularConfiguration
@@ -44,7 +44,7 @@ class Mechanism:
         self.actuated = spec.actuated_joints(params)
         for joint in self.actuated:
             self._joint_id(joint)
-        self._id_problem = dynamics.InverseDynamicsProblem(
+        self._id_problem = inverse.InverseDynamicsProblem(
             self.model, self.model.createData(), self.rows, self.full_rows,
             np.array([self.v_index(j) for j in self.actuated], dtype=int), self.actuated)
         self._pin_constraints: tuple | None = None
@@ -251,19 +251,18 @@ class Mechanism:
         """Constrained RNEA: actuator efforts and the reaction of every joint (tree and cut).
 
         Reactions: the wrench parent side -> child side at the joint origin, world frame; see
-        `dynamics.JointReaction` for the determinacy flags and `dynamics.inverse_dynamics` for
+        `dynamics.JointReaction` for the determinacy flags and `inverse.inverse_dynamics_batch` for
         `fext` (Pinocchio local-frame forces per joint) and `distribution` (redundant actuation).
         Batched: q (N, nq), v and a (N, nv), fext None, (N, njoints, 6) or N per-sample values give
-        a `batch.BatchInverseDynamicsResult`.
+        a `batch.BatchInverseDynamicsResult` (the same numbers as one sample at a time).
         """
         if batch.is_batch(q):
             n, p = len(q), self._id_problem
             q = batch.sample_array(q, "q", n, self.model.nq)
             v, a = batch.sample_array(v, "v", n, self.model.nv), batch.sample_array(a, "a", n, self.model.nv)
-            out = [dynamics.inverse_dynamics(p, qi, vi, ai, fi, determinacy, distribution)
-                   for qi, vi, ai, fi in zip(q, v, a, batch.sample_fext(fext, n, self.model.njoints))]
-            return batch.stack_inverse(out, p.joint_names, p.actuated_names)
-        return dynamics.inverse_dynamics(self._id_problem, q, v, a, fext, determinacy, distribution)
+            return inverse.inverse_dynamics_batch(p, q, v, a, batch.sample_fext(fext, n, self.model.njoints),
+                                                  determinacy, distribution)
+        return inverse.inverse_dynamics(self._id_problem, q, v, a, fext, determinacy, distribution)
 
 
 def load(name: str, **params: Any) -> Mechanism:
