@@ -2,19 +2,22 @@
 
 from __future__ import annotations
 
-from collections.abc import Mapping, Sequence
+import dataclasses
+from collections.abc import Callable, Mapping, Sequence
+from pathlib import Path
 from typing import Any
 
 import numpy as np
 import pinocchio as pin
 
-from mechkit import batch, dynamics, inverse, kinematics
+from mechkit import batch, coordinates, dynamics, inverse, kinematics, sources
 from mechkit.closures import ClosureRows, cut_rows, rigid_constraint_models
 from mechkit.description import build_model, parse_loops, render_urdf
 from mechkit.exceptions import InvalidParameters, MethodUnavailable, SingularConfiguration
 from mechkit.params import MechanismParams
 from mechkit.contract import MechanismSpec
 from mechkit.registry import get_spec
+from mechkit.structure import analyse
 
 Inputs = Mapping[str, float] | Sequence[float] | np.ndarray
 
@@ -27,17 +30,21 @@ class Mechanism:
         params: the parameter values used.
         urdf: the generated URDF text.
         model, data: Pinocchio model of the tree and a data for it.
-        closures: the loop declarations read from the URDF.
+        closures: the loop declarations read from the URDF, with the rows the structure chose.
+        structure: loops, sub-mechanisms and Kutzbach count (`mechkit.structure.Structure`).
         rows: the closure rows the scene solves with; `full_rows`: all spatial rows (physical joints).
-        actuated: actuated joint names.
+        actuated: actuated joint names (empty: the mechanism is unactuated).
         independent_rows: rank of the closure Jacobian at the home assembly (its generic rank).
     """
 
-    def __init__(self, spec: MechanismSpec, params: MechanismParams, urdf: str):
+    def __init__(self, spec: MechanismSpec, params: MechanismParams, urdf: str, rows: str | None = None,
+                 model: pin.Model | None = None):
+        """Build the model, analyse its structure (`rows="spatial"` forces full rows) and assemble home."""
         self.spec, self.params, self.urdf = spec, params, urdf
-        self.model = build_model(urdf)
+        self.model = build_model(urdf) if model is None else model
         self.data = self.model.createData()
-        self.closures = parse_loops(urdf)
+        self.structure = analyse(self.model, parse_loops(urdf), rows)
+        self.closures = list(self.structure.closures)
         self.cuts = [cut_rows(self.model, c) for c in self.closures]
         self.rows = ClosureRows(self.model, self.cuts)
         self.full_rows = ClosureRows(self.model, [cut_rows(self.model, c, "spatial") for c in self.closures])
@@ -71,11 +78,24 @@ class Mechanism:
     def neutral(self) -> np.ndarray:
         return pin.neutral(self.model)
 
+    def require_actuators(self, what: str) -> None:
+        """Raise `InvalidParameters` naming `what` when the mechanism declares no actuator."""
+        if not self.actuated:
+            raise InvalidParameters("actuated", (), f"{self.spec.name} is unactuated (its file declares no "
+                                    f"<transmission>, name_mot or MJCF actuator): {what} needs actuators; "
+                                    "pass actuated=[...] (command line: --actuated J1,J2)")
+
+    def joint_values(self, q: np.ndarray) -> dict[str, float]:
+        """Every one-freedom joint's value at q (rad or m; continuous joints as angles)."""
+        return coordinates.values(self.model, q)
+
     def _inputs(self, inputs: Inputs | None, default_names: Sequence[str]) -> dict[str, float]:
         if inputs is None:
             return {}
         if isinstance(inputs, Mapping):
             return {k: float(v) for k, v in inputs.items()}
+        if not default_names:
+            self.require_actuators("inputs given in actuated order")
         values = np.atleast_1d(np.asarray(inputs, dtype=float))
         if values.size != len(default_names):
             raise InvalidParameters("inputs", list(values), f"expected {len(default_names)} values for {list(default_names)}")
@@ -109,11 +129,11 @@ class Mechanism:
         else:
             q0 = self.neutral()
             for joint, value in self._inputs(guess, ()).items():
-                q0[self.q_index(joint)] = value
+                coordinates.set_value(self.model, q0, self._joint_id(joint), value)
         for joint, value in given.items():
             if not np.isfinite(value):
                 raise InvalidParameters(joint, value, "input must be finite")
-            q0[self.q_index(joint)] = value
+            coordinates.set_value(self.model, q0, self._joint_id(joint), value)
         _, free_v = self._split(list(given))
         q, _ = kinematics.solve_closure(self.rows, self.data, q0, free_v, tol=tol, max_iter=max_iter, method=method)
         return q
@@ -147,6 +167,8 @@ class Mechanism:
             keys, rates = batch.sample_inputs(input_rates, list(inputs or self.actuated), len(q))
             return np.array([self.velocities(qi, ri, keys) for qi, ri in zip(q, rates)]).reshape(len(q), self.model.nv)
         names = list(inputs or self.actuated)
+        if not names:
+            self.require_actuators("velocities from input rates")
         rates = self._inputs(input_rates, names)
         input_v, free_v = self._split(list(rates))
         J = self.closure_jacobian(q)
@@ -162,6 +184,8 @@ class Mechanism:
             return np.array([self.accelerations(qi, vi, ai, keys) for qi, vi, ai in zip(q, v, acc)]).reshape(
                 len(q), self.model.nv)
         names = list(inputs or self.actuated)
+        if not names:
+            self.require_actuators("accelerations from input accelerations")
         acc = self._inputs(input_accelerations, names)
         input_v, free_v = self._split(list(acc))
         J = self.closure_jacobian(q)
@@ -265,32 +289,84 @@ class Mechanism:
         return inverse.inverse_dynamics(self._id_problem, q, v, a, fext, determinacy, distribution)
 
 
-def load(name: str, **params: Any) -> Mechanism:
-    """Build a registered mechanism from its parameters (unknown names raise `InvalidParameters`)."""
-    spec = get_spec(name)
-    values = spec.params.from_overrides(**params)
-    return from_params(spec, values)
-
-
-def from_params(spec: MechanismSpec, params: MechanismParams) -> Mechanism:
-    """Build a mechanism from a parameter instance."""
-    return Mechanism(spec, params, render_urdf(spec.template_path, params.xacro_args()))
-
-
-def from_urdf(urdf: str, actuated: Sequence[str] | None = None, name: str = "urdf",
-              guess: Mapping[str, float] | None = None) -> Mechanism:
-    """Wrap any URDF text (a tree, or with `<mechkit:loop>` closures) as a Mechanism.
+def load(source: str | Path, *, actuated: Sequence[str] | None = None, home: Mapping[str, float] | None = None,
+         guess: Mapping[str, float] | None = None, **params: Any) -> Mechanism:
+    """Build a mechanism from a registered name or a description file.
 
     Args:
-        urdf: URDF text.
-        actuated: actuated joint names (default: every joint of the tree).
-        name: a name for reports.
-        guess: joint name -> value near which the loops are closed for the home configuration
-            (default: the neutral configuration).
+        source: a registered name (`mechkit list`) or a path: a `.urdf` with `<mechkit:loop>`s, a
+            `.urdf` with an Extended-URDF `.yaml` sidecar, a `.xacro`, or an MJCF `.xml`.
+        actuated: actuated joints, overriding what the file (or the spec) declares.
+        home: joint -> value (rad or m) of the default assembly's inputs (default: the file's
+            `<mechkit:home>` / MJCF qpos0, else none: every loop closed from the guess).
+        guess: joint -> value near which the default assembly is sought.
+        **params: the mechanism's parameters (a name) or xacro arguments (a xacro file);
+            `rows="spatial"`, unless the mechanism has a parameter of that name, closes every cut
+            with its full rows.
+
+    Raises:
+        InvalidParameters: unknown name or parameter; MalformedDescription: a bad file.
     """
-    model = build_model(urdf)
-    joints = tuple(actuated) if actuated is not None else tuple(model.names[1:])
-    spec = MechanismSpec(name=name, params=MechanismParams, template="", actuated=joints,
-                         gruebler_dof=model.nv, home=lambda p: {}, guess=(lambda p: guess) if guess else None,
-                         summary=f"loaded from URDF ({name})")
-    return Mechanism(spec, MechanismParams(), urdf)
+    where = sources.resolve(source)
+    if isinstance(where, Path):
+        declared = sources.xacro_args(where) if where.name.endswith(".xacro") else {}
+        rows = None if "rows" in declared else params.pop("rows", None)
+        return from_description(sources.read(where, params), actuated, home, guess, rows)
+    spec = get_spec(where)
+    rows = None if "rows" in {f.name for f in dataclasses.fields(spec.params)} else params.pop("rows", None)
+    values = spec.params.from_overrides(**params)
+    changes: dict[str, Any] = {} if actuated is None else {"actuated": tuple(actuated)}
+    if home is not None:
+        changes["home"] = _constant(dict(home))
+    if guess is not None:
+        changes["guess"] = _constant(dict(guess))
+    return from_params(dataclasses.replace(spec, **changes) if changes else spec, values, rows)
+
+
+def _constant(value: dict[str, float]) -> Callable[[Any], dict[str, float]]:
+    return lambda params: dict(value)
+
+
+def from_params(spec: MechanismSpec, params: MechanismParams, rows: str | None = None) -> Mechanism:
+    """Build a mechanism from a parameter instance."""
+    return Mechanism(spec, params, render_urdf(spec.template_path, params.xacro_args()), rows)
+
+
+def from_description(desc: sources.Description, actuated: Sequence[str] | None = None,
+                     home: Mapping[str, float] | None = None, guess: Mapping[str, float] | None = None,
+                     rows: str | None = None) -> Mechanism:
+    """Build a mechanism from what a file reader gave (see `load` for the arguments).
+
+    Its spec's `gruebler_dof` is the Kutzbach count of its topology (`mechkit.structure`).
+    """
+    model = build_model(desc.urdf)
+    joints = tuple(actuated) if actuated is not None else desc.actuated
+    home_values = dict(home) if home is not None else dict(desc.home)
+    guess_values = dict(guess) if guess is not None else dict(desc.guess)
+    count = analyse(model, parse_loops(desc.urdf), rows).kutzbach
+    where = f" {desc.source}" if desc.source is not None else ""
+    spec = MechanismSpec(name=desc.name, params=MechanismParams, template="", actuated=joints, gruebler_dof=count,
+                         home=_constant(home_values), guess=_constant(guess_values) if guess_values else None,
+                         summary=f"read from the {desc.format} file{where}")
+    return Mechanism(spec, MechanismParams(), desc.urdf, rows, model)
+
+
+def from_urdf(urdf: str | Path, actuated: Sequence[str] | None = None, name: str | None = None,
+              guess: Mapping[str, float] | None = None, home: Mapping[str, float] | None = None,
+              rows: str | None = None) -> Mechanism:
+    """Wrap a URDF (text, or a path to any description file) as a Mechanism.
+
+    Args:
+        urdf: URDF text (a tree, or with `<mechkit:loop>` closures), or a path (see `load`).
+        actuated: actuated joint names (default: the URDF's `<transmission>` joints; none declared
+            makes the mechanism unactuated).
+        name: a name for reports (default: the robot's name).
+        guess, home, rows: see `load`.
+    """
+    if isinstance(urdf, Path) or not urdf.lstrip().startswith("<"):
+        desc = sources.read(sources.resolve(Path(urdf)))
+    else:
+        desc = sources.describe_urdf(urdf, None, "urdf")
+    if name is not None:
+        desc = dataclasses.replace(desc, name=name)
+    return from_description(desc, actuated, home, guess, rows)

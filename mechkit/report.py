@@ -1,7 +1,14 @@
 """`mechkit report`: structure, mobility and self-checks of one mechanism, as a dict (the JSON contract).
 
 Top-level keys (a contract for scripts): name, nq, nv, actuated, closures [{name, kind, rows}], dof,
-dof_gruebler, redundant_constraints, checks {name: worst residual or relative error}.
+dof_gruebler, redundant_constraints, checks {name: worst residual or relative error}; and idle
+{body: its idle freedoms}, loops [{cut, kind (planar / spherical / spatial),
+rows, full_rows, chosen}], rows_avoided, gruebler {kutzbach, declared}, home {joint: value}.
+
+`dof_gruebler` is the loop-by-loop Kutzbach count of the topology (`mechkit.structure`); a
+registered mechanism's declared count (its spec) is shown beside it: the two differ only where the
+declared count is a modified one with overconstraints found by screw theory at a configuration (the
+deployable 9RR-12URU: 6 from topology, 7 declared with one redundant constraint).
 """
 
 from __future__ import annotations
@@ -12,6 +19,7 @@ import numpy as np
 
 from mechkit.exceptions import MechkitError
 from mechkit.mechanism import Mechanism
+from mechkit.structure import idle_freedoms, loop_joints
 
 
 def _relative(a: np.ndarray, b: np.ndarray) -> float:
@@ -27,6 +35,8 @@ def self_checks(m: Mechanism) -> dict[str, float]:
     """
     q = m.home_q
     checks: dict[str, float] = {"closure_residual": float(np.max(np.abs(m.closure_residual(q)), initial=0.0))}
+    if not m.actuated:
+        return checks  # the other checks drive the actuators
     ones = np.ones(len(m.actuated))
     dof = m.mobility(q).dof
     if dof == len(m.actuated):
@@ -52,9 +62,19 @@ def self_checks(m: Mechanism) -> dict[str, float]:
     return checks | ({} if m.spec.self_checks is None else m.spec.self_checks(m))
 
 
+def idle(m: Mechanism) -> dict[str, int]:
+    """Idle freedoms at the home assembly: body -> freedoms that move it alone (a body on a loop)."""
+    on_loops = set()
+    for cut in m.cuts:
+        a, b = m.model.frames[cut.frame_a].parentJoint, m.model.frames[cut.frame_b].parentJoint
+        on_loops.update(loop_joints(m.model, a, b))
+    return idle_freedoms(m.model, m.home_q, m.closure_jacobian(m.home_q), on_loops)
+
+
 def report(m: Mechanism) -> dict[str, Any]:
     """The report of a mechanism (see module docstring for the keys)."""
     mob = m.mobility()
+    declared = None if m.spec.template == "" else m.spec.gruebler_dof
     return {
         "name": m.spec.name,
         "summary": m.spec.summary,
@@ -64,8 +84,14 @@ def report(m: Mechanism) -> dict[str, Any]:
         "closures": [{"name": c.closure.name, "kind": c.closure.kind, "rows": c.size, "row_set": c.closure.rows}
                      for c in m.cuts],
         "dof": mob.dof,
-        "dof_gruebler": m.spec.gruebler_dof,
+        "dof_gruebler": m.structure.kutzbach,
         "redundant_constraints": mob.redundant,
+        "idle": idle(m),
+        "loops": [{"cut": lp.cut, "kind": lp.kind, "rows": lp.rows, "full_rows": lp.full_rows, "chosen": lp.chosen}
+                  for lp in m.structure.loops],
+        "rows_avoided": m.structure.rows_avoided,
+        "gruebler": {"kutzbach": m.structure.kutzbach, "declared": declared},
+        "home": m.joint_values(m.home_q),
         "parameters": [{k: v for k, v in row.items() if k != "positive"} for row in m.params.describe()],
         "home_q": [float(x) for x in m.home_q],
         "checks": self_checks(m),
@@ -75,9 +101,13 @@ def report(m: Mechanism) -> dict[str, Any]:
 def format_report(r: dict[str, Any]) -> str:
     """Human-readable text of a report."""
     lines = [f"{r['name']}: {r['summary']}",
-             f"  nq {r['nq']}, nv {r['nv']}, actuated: {', '.join(r['actuated'])}",
+             f"  nq {r['nq']}, nv {r['nv']}, actuated: {', '.join(r['actuated']) or 'none (unactuated)'}",
              "  closures: " + ", ".join(f"{c['name']} ({c['kind']}, {c['rows']} {c['row_set']} rows)" for c in r["closures"]),
-             f"  DOF numerical {r['dof']}, Gruebler {r['dof_gruebler']}, redundant constraints {r['redundant_constraints']}",
+             f"  DOF numerical {r['dof']}, Gruebler {r['dof_gruebler']}, redundant constraints {r['redundant_constraints']}"
+             + (f" (declared Gruebler {r['gruebler']['declared']})" if r["gruebler"]["declared"] not in (None, r["dof_gruebler"]) else ""),
+             "  idle freedoms: " + (", ".join(f"{j} {n}" for j, n in r["idle"].items()) or "none"),
+             "  loops: " + ", ".join(f"{lp['cut']} {lp['kind']} {lp['rows']}/{lp['full_rows']} rows ({lp['chosen']})"
+                                     for lp in r["loops"]) + f"; {r['rows_avoided']} rows avoided",
              "  parameters:"]
     for p in r["parameters"]:
         mark = " (ours)" if p.get("ours") else ""

@@ -13,7 +13,6 @@ from mechkit.bench import errors, failure_atlas, loadtime, run, timing
 from mechkit.bench.methods import BASELINES, Method
 from mechkit.bench.results import Row
 from mechkit.cli import main
-from mechkit.cli.bench import ProgressBar
 from mechkit.contract import BENCH_QUANTITIES, BenchMethod
 from mechkit.exceptions import SingularConfiguration
 from mechkit.mechanism import from_params
@@ -135,18 +134,6 @@ def test_bench_core_tool_prints_ratios(capsys):
     for line in out.splitlines()[1:]:
         assert " us" in line
     assert out.count("ratio to raw constraintDynamics") == 4
-
-
-def test_progress_bar_only_when_asked(capsys):
-    bar = ProgressBar(enabled=False)
-    bar("x", 1, 2, "a")
-    bar("x", 2, 2, "b")
-    assert capsys.readouterr().err == ""
-    bar = ProgressBar(enabled=True)
-    bar("x", 1, 2, "a")
-    bar("x", 2, 2, "b")
-    err = capsys.readouterr().err
-    assert "2/2" in err and err.endswith("\n")
 
 
 def test_first_load_times_a_fresh_process_and_lists_its_mechanism_modules():

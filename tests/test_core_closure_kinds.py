@@ -100,7 +100,7 @@ def test_reactions_hold_every_body_in_equilibrium(kind):
     """With every joint actuated the statics are determinate; the cut wrench and the tree joints'
     wrenches must balance each branch: sum of ground supports = m a_com - m g."""
     loop = f'<mechkit:loop name="cut" {KINDS[kind][0]} frame_a="b1_tip" frame_b="b2_tip" rows="spatial"/>'
-    m = mechkit.from_urdf(linkage(loop), name=kind)
+    m = mechkit.from_urdf(linkage(loop), actuated=[f"b{k}_j{i}" for k in (1, 2) for i in (1, 2, 3)], name=kind)
     q = m.home_q
     null = scipy.linalg.null_space(m.closure_jacobian(q))
     v = null @ np.linspace(0.5, 1.0, null.shape[1]) if null.size else np.zeros(m.model.nv)

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import sysconfig
+import xml.etree.ElementTree as ET
 from pathlib import Path
 
 import numpy as np
@@ -140,7 +141,9 @@ def _example_robot(relative: str) -> str:
 
 @pytest.mark.parametrize("robot", ["ur_description/urdf/ur5_robot.urdf", "double_pendulum_description/urdf/double_pendulum.urdf"])
 def test_reactions_equal_pinocchio_rnea_forces_on_a_third_party_tree(robot):
-    m = mechkit.from_urdf(_example_robot(robot), name=robot)
+    urdf = _example_robot(robot)
+    joints = [j.get("name") for j in ET.fromstring(urdf).findall("joint") if j.get("type") != "fixed"]
+    m = mechkit.from_urdf(urdf, actuated=joints, name=robot)
     rng = np.random.default_rng(7)
     q = pin.randomConfiguration(m.model, -np.ones(m.model.nq), np.ones(m.model.nq))
     v, a = rng.normal(size=m.model.nv), rng.normal(size=m.model.nv)
@@ -162,7 +165,7 @@ def test_redundant_actuation_flags_efforts_and_offers_least_effort(load_cached):
     """Five-bar with all four joints driven (2 DOF, 4 motors): efforts are a choice, not a fact of statics."""
     five = load_cached("five_bar")
     guess = {j: five.home_q[five.q_index(j)] for j in five.model.names[1:]}
-    m = mechkit.from_urdf(five.urdf, name="five_bar_all_driven", guess=guess)
+    m = mechkit.from_urdf(five.urdf, actuated=list(guess), name="five_bar_all_driven", guess=guess)
     q, v, a = _moving_state(five)
     results = {d: m.inverse_dynamics(q, v, a, distribution=d) for d in ("min_norm", "min_effort")}
     for res in results.values():

@@ -10,7 +10,8 @@ import yaml
 import mechkit
 from mechkit.cli import main
 from mechkit.exceptions import MethodUnavailable
-from mechkit.export import load_extended_urdf, to_extended_urdf, to_mjcf
+from mechkit.export import to_extended_urdf, to_mjcf
+from mechkit.sources.extended_urdf import load_extended_urdf
 
 mujoco = pytest.importorskip("mujoco")
 

@@ -18,7 +18,7 @@ from mechkit.resources import urdf_dir, xacro_dir
 
 PACKAGE = Path(mechkit.__file__).resolve().parent
 CORE = ("description", "closures", "kinematics", "dynamics", "mechanism", "registry", "contract", "params",
-        "resources", "exceptions", "spatial", "atomic")
+        "structure", "coordinates", "resources", "exceptions", "spatial", "atomic")
 ABOVE_CORE = ("mechkit.mechanisms", "mechkit.viz", "mechkit.bench", "mechkit.cli")
 MAX_LINES = 400
 

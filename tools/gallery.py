@@ -22,6 +22,7 @@ sys.path.insert(0, str(ROOT))
 import mechkit
 from mechkit import viz
 from mechkit.atomic import write_text
+from mechkit.cli.progress import ProgressBars
 from mechkit.viz.browser import coverage, screenshot
 
 GALLERY = ROOT / "docs" / "gallery"
@@ -93,10 +94,12 @@ def main(argv: list[str] | None = None) -> int:
     names = parser.parse_args(argv).names or list(mechkit.specs())
     GALLERY.mkdir(parents=True, exist_ok=True)
     captions = _read_captions()
-    for name in names:
+    progress = ProgressBars()
+    for done, name in enumerate(names, 1):
         png = GALLERY / f"{name}.png"
         captions[name] = picture(mechkit.load(name), png)
         print(f"{png.relative_to(ROOT)}: {png.stat().st_size / 1000:.0f} kB")
+        progress("gallery", done, len(names), name)
     rows = [f"| `{name}` | ![{name}](docs/gallery/{name}.png) | {captions.get(name, '(not drawn yet)')} |"
             for name in mechkit.specs()]
     write_text(TABLE, "\n".join(["## Gallery", "", LEGEND, "", "| mechanism | picture | what it shows |",

@@ -12,10 +12,10 @@ import sys
 
 import numpy as np
 
-from mechkit.cli import bench, export, listing, report, snapshot, urdf
+from mechkit.cli import bench, export, listing, report, snapshot, sweep, urdf
 from mechkit.exceptions import MechkitError
 
-COMMANDS = (listing, urdf, report, snapshot, bench, export)
+COMMANDS = (listing, urdf, report, snapshot, bench, export, sweep)
 
 
 def build_parser() -> argparse.ArgumentParser:

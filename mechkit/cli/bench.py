@@ -3,8 +3,6 @@
 from __future__ import annotations
 
 import argparse
-import os
-import sys
 from pathlib import Path
 
 import numpy as np
@@ -12,29 +10,13 @@ import numpy as np
 from mechkit.atomic import write_text
 
 
-class ProgressBar:
-    """A one-line progress bar per mechanism on stderr (a `mechkit.bench.run.Progress` callback), shown
-    only on a terminal or when MECHKIT_PROGRESS=1."""
-
-    def __init__(self, enabled: bool | None = None):
-        self.enabled = (sys.stderr.isatty() or os.environ.get("MECHKIT_PROGRESS") == "1") if enabled is None else enabled
-
-    def __call__(self, label: str, done: int, total: int, what: str = "") -> None:
-        if self.enabled:
-            width, total = 30, max(total, 1)
-            filled = int(width * done / total)
-            sys.stderr.write(f"\r{label} [{'#' * filled}{'.' * (width - filled)}] {done}/{total} {what[:40]:<40}")
-            if done >= total:
-                sys.stderr.write("\n")
-            sys.stderr.flush()
-
-
 def run(args: argparse.Namespace) -> None:
     """Measure, print the tables and goals, and write the charts and the page when asked."""
     from mechkit.bench import charts, failure_atlas, loadtime, markdown, run, scale
+    from mechkit.cli.progress import ProgressBars
 
     with np.errstate(under="ignore"):
-        results, skipped = run.run(args.names, args.quick, progress=ProgressBar())
+        results, skipped = run.run(args.names, args.quick, progress=ProgressBars())
         for b in results:
             print(markdown.format_table(b))
         for line in markdown.goals(results):

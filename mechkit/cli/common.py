@@ -1,4 +1,4 @@
-"""What several commands share: the mechanism argument and its parameter overrides."""
+"""What several commands share: the mechanism argument (a name or a file) and its overrides."""
 
 from __future__ import annotations
 
@@ -9,9 +9,14 @@ from mechkit.mechanism import Mechanism, load
 
 
 def add_mechanism_arguments(parser: argparse.ArgumentParser) -> None:
-    """The positional mechanism name and the repeatable `--set NAME=VALUE`."""
-    parser.add_argument("name", help="mechanism name (see `mechkit list`)")
-    parser.add_argument("--set", action="append", metavar="NAME=VALUE", help="override a parameter (SI units, rad)")
+    """The positional NAME or PATH, the repeatable `--set NAME=VALUE` and `--actuated`."""
+    parser.add_argument("name", metavar="NAME|PATH",
+                        help="registered mechanism (see `mechkit list`) or a file: .urdf with <mechkit:loop>s "
+                             "or a .yaml sidecar (Extended URDF), .xacro, MJCF .xml")
+    parser.add_argument("--set", action="append", metavar="NAME=VALUE",
+                        help="override a parameter (SI units, rad) or pass a xacro argument to a .xacro file; "
+                             "rows=spatial closes every cut with its full rows")
+    parser.add_argument("--actuated", metavar="J1,J2", help="actuated joints, overriding what the file declares")
 
 
 def overrides(pairs: list[str] | None) -> dict[str, str]:
@@ -25,6 +30,16 @@ def overrides(pairs: list[str] | None) -> dict[str, str]:
     return out
 
 
+def actuated(text: str | None) -> list[str] | None:
+    """`--actuated J1,J2` as a list of joint names (None when not given)."""
+    if text is None:
+        return None
+    names = [j.strip() for j in text.split(",") if j.strip()]
+    if not names:
+        raise MechkitError("--actuated expects joint names separated by commas")
+    return names
+
+
 def load_mechanism(args: argparse.Namespace) -> Mechanism:
     """The mechanism the command line names, with its overrides."""
-    return load(args.name, **overrides(args.set))
+    return load(args.name, actuated=actuated(args.actuated), **overrides(args.set))

@@ -6,8 +6,9 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from mechkit.exceptions import InvalidParameters
-from mechkit.export.extended_urdf import frame_b_vector, load_extended_urdf, to_extended_urdf
+from mechkit.export.extended_urdf import frame_b_vector, to_extended_urdf
 from mechkit.export.mjcf import body_name, to_mjcf
+from mechkit.sources.extended_urdf import load_extended_urdf
 
 if TYPE_CHECKING:
     from mechkit.mechanism import Mechanism

@@ -70,21 +70,3 @@ def frame_b_vector(mech: Mechanism, cut: CutRows, vector: np.ndarray) -> np.ndar
     Ra = mech.data.oMf[cut.frame_a].rotation
     Rb = mech.data.oMf[cut.frame_b].rotation
     return Rb.T @ Ra @ np.asarray(vector, dtype=float)
-
-
-def load_extended_urdf(urdf: str, yaml_text: str) -> tuple[pin.Model, list[pin.RigidConstraintModel], list[str]]:
-    """Read an Extended URDF pair the way Gepetto's loader does (model, RigidConstraintModels, motors).
-
-    Args:
-        urdf: tree URDF text.
-        yaml_text: sidecar text (`closed_loop`, `type`, `name_mot`).
-    """
-    content = yaml.safe_load(yaml_text)
-    model = pin.buildModelFromXML(urdf)
-    constraints = []
-    for (name_a, name_b), kind in zip(content["closed_loop"], content["type"], strict=True):
-        fa, fb = (model.frames[model.getFrameId(n)] for n in (name_a, name_b))
-        contact = pin.ContactType.CONTACT_3D if kind.lower() == "3d" else pin.ContactType.CONTACT_6D
-        constraints.append(pin.RigidConstraintModel(contact, model, fa.parentJoint, fa.placement, fb.parentJoint,
-                                                    fb.placement, pin.ReferenceFrame.LOCAL))
-    return model, constraints, list(content["name_mot"])

@@ -51,6 +51,7 @@ from mechkit.description import LOOP_NAMESPACE
 from mechkit.exceptions import MalformedDescription, MethodUnavailable
 from mechkit.export.xmltext import numbers as _fmt
 from mechkit.export.xmltext import quat_wxyz as _quat_wxyz
+from mechkit.structure import body_name
 
 if TYPE_CHECKING:
     from mechkit.mechanism import Mechanism
@@ -68,14 +69,6 @@ SOLIMP = (0.9999, 0.9999, 0.001, 0.5, 2.0)
 DEFAULT_PERIOD = 1.0
 #: Radius of the capsules drawn along links without a primitive visual (m, ours).
 CAPSULE_RADIUS = 0.005
-
-
-def body_name(model: pin.Model, joint: int) -> str:
-    """The URDF link carried by a joint (first BODY frame at identity on it), else the joint's name."""
-    for frame in model.frames:
-        if frame.parentJoint == joint and frame.type == pin.FrameType.BODY and frame.placement.isIdentity():
-            return frame.name
-    return model.names[joint]
 
 
 def _joint_kind(model: pin.Model, joint: int) -> tuple[str, np.ndarray]:

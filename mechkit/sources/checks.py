@@ -1,0 +1,108 @@
+"""Checks of a URDF tree that urdfdom lets through or reports only on stderr: its shape and its inertias.
+
+Every failure is a `MalformedDescription` naming the element; nothing is built from a bad file.
+"""
+
+from __future__ import annotations
+
+import xml.etree.ElementTree as ET
+
+import numpy as np
+
+from mechkit.exceptions import MalformedDescription
+
+
+def check_tree(root: ET.Element) -> None:
+    """Links and joints form one tree: unique names, known parents and children, one root, no cycle.
+
+    Raises:
+        MalformedDescription: the first fault found, naming the link or joint.
+    """
+    if root.tag != "robot":
+        raise MalformedDescription(f"<{root.tag}>", "the root element of a URDF must be <robot>")
+    links = [link.get("name") for link in root.findall("link")]
+    if not links:
+        raise MalformedDescription("urdf", "no <link>: nothing to build")
+    _unique(links, "link")
+    joints = root.findall("joint")
+    _unique([j.get("name") for j in joints], "joint")
+    parent_of: dict[str, str] = {}
+    children: dict[str, list[str]] = {}
+    for joint in joints:
+        name = joint.get("name")
+        ends = []
+        for tag in ("parent", "child"):
+            element = joint.find(tag)
+            link = None if element is None else element.get("link")
+            if link not in links:
+                raise MalformedDescription(f"joint {name!r}", f"{tag} link {link!r} is not a link of the URDF")
+            ends.append(link)
+        parent, child = ends
+        if child in parent_of:
+            raise MalformedDescription(f"link {child!r}", f"has two parent joints ({parent_of[child]!r}, {name!r}): "
+                                       "a tree has one; close the loop with a <mechkit:loop> instead")
+        parent_of[child] = name
+        children.setdefault(parent, []).append(child)
+    roots = [link for link in links if link not in parent_of]
+    if not roots:
+        raise MalformedDescription("urdf", "the joints form a cycle: every link has a parent joint")
+    if len(roots) > 1:
+        raise MalformedDescription("urdf", f"several root links {roots}: the links are not one tree")
+    reached, stack = set(), [roots[0]]
+    while stack:
+        link = stack.pop()
+        reached.add(link)
+        stack.extend(children.get(link, []))
+    lost = [link for link in links if link not in reached]
+    if lost:
+        raise MalformedDescription(f"link {lost[0]!r}", "is on a cycle of joints, not on the tree from the root")
+
+
+def _unique(names: list[str | None], what: str) -> None:
+    if any(not n for n in names):
+        raise MalformedDescription(f"<{what}>", "missing attribute 'name'")
+    seen = set()
+    for n in names:
+        if n in seen:
+            raise MalformedDescription(f"{what} {n!r}", "declared twice")
+        seen.add(n)
+
+
+def check_inertias(root: ET.Element) -> None:
+    """Every `<inertial>` has a positive finite mass and a positive definite inertia (kg, kg m^2).
+
+    A zero mass with a zero inertia is a massless link (third-party URDFs write their tool frames so).
+
+    Raises:
+        MalformedDescription: naming the link and the value.
+    """
+    for link in root.findall("link"):
+        inertial = link.find("inertial")
+        if inertial is None:
+            continue
+        where = f"link {link.get('name')!r}"
+        mass = inertial.find("mass")
+        text = None if mass is None else mass.get("value")
+        value = _number(text, where, "mass")
+        element = inertial.find("inertia")
+        c = {k: _number(element.get(k, "0") if element is not None else "0", where, k)
+             for k in ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")}
+        if value == 0 and not any(c.values()):
+            continue  # a massless link, as if it had no <inertial>
+        if not value > 0:
+            raise MalformedDescription(where, f"mass {text} must be positive (kg)")
+        if element is None:
+            raise MalformedDescription(where, "<inertial> without <inertia>")
+        matrix = np.array([[c["ixx"], c["ixy"], c["ixz"]], [c["ixy"], c["iyy"], c["iyz"]], [c["ixz"], c["iyz"], c["izz"]]])
+        if np.min(np.linalg.eigvalsh(matrix)) <= 0:
+            raise MalformedDescription(where, f"inertia {c} is not positive definite (kg m^2)")
+
+
+def _number(text: str | None, where: str, what: str) -> float:
+    try:
+        value = float(text)
+    except (TypeError, ValueError):
+        raise MalformedDescription(where, f"{what} {text!r} is not a number") from None
+    if not np.isfinite(value):
+        raise MalformedDescription(where, f"{what} {text!r} is not finite")
+    return value

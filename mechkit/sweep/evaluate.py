@@ -1,0 +1,93 @@
+"""One design -> one result row, and one chunk of designs -> its rows (what a Dask task runs).
+
+A task carries everything it needs (`Chunk`): workers keep no state between tasks. Within a chunk the
+template is expanded once (`mechkit.template_cache`) and every design substitutes its parameters.
+A design that fails is a row with its status and message, never an exception:
+
+- "ok": built, assembled and measured;
+- "does_not_assemble": its loops do not close at the home inputs;
+- "singular": it assembles at home, but the motion reaches a pose where the inputs do not determine
+  the motion (a singular passive block, or the edge of the workspace: a dead point);
+- "error": anything else (invalid parameters, a numerical failure), with the exception's message.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass
+
+import numpy as np
+
+from mechkit.description import render_urdf
+from mechkit.exceptions import ClosureNotConverged, SingularConfiguration
+from mechkit.mechanism import Mechanism
+from mechkit.registry import get_spec
+from mechkit.sweep.metrics import SingularAlongMotion, Study, motion_samples
+from mechkit.sweep.specific import resolve
+from mechkit.template_cache import TemplateCache
+
+STATUSES = ("ok", "does_not_assemble", "singular", "error")
+
+
+@dataclass(frozen=True)
+class Chunk:
+    """The designs of one task.
+
+    Attributes:
+        mechanism: registry name.
+        base: fixed parameter overrides (name -> value) of every design.
+        names: the swept parameters, in the order of `values`' columns.
+        indices: (k,) design indices (the rows' keys).
+        values: (k, len(names)) parameter values, SI.
+        study: the motion study.
+        metrics: metric names.
+        columns: every metric column, in order (a failed design leaves them NaN).
+        fast: build through the template cache (else through xacro for each design).
+    """
+
+    mechanism: str
+    base: dict
+    names: tuple[str, ...]
+    indices: tuple[int, ...]
+    values: np.ndarray
+    study: Study
+    metrics: tuple[str, ...]
+    columns: tuple[str, ...]
+    fast: bool = True
+
+
+def _status(err: Exception, assembled: bool) -> str:
+    if isinstance(err, SingularAlongMotion):
+        return "singular"
+    if isinstance(err, (ClosureNotConverged, SingularConfiguration)):
+        return "singular" if assembled else "does_not_assemble"
+    return "error"
+
+
+def evaluate_chunk(chunk: Chunk) -> list[dict]:
+    """The rows of a chunk's designs, in index order: index, parameters, metric columns, status,
+    message, seconds (the design's wall time)."""
+    spec = get_spec(chunk.mechanism)
+    metrics = resolve(chunk.mechanism, chunk.metrics)
+    cache = TemplateCache(spec.template_path) if chunk.fast else None
+    rows = []
+    for index, values in zip(chunk.indices, chunk.values):
+        start = time.perf_counter()
+        row: dict = {"index": int(index), **dict(zip(chunk.names, map(float, values)))}
+        row.update(dict.fromkeys(chunk.columns, float("nan")))
+        assembled = False
+        try:
+            params = spec.params.from_overrides(**chunk.base, **dict(zip(chunk.names, map(float, values))))
+            args = params.xacro_args()
+            urdf = cache.render(args) if cache is not None else render_urdf(spec.template_path, args)
+            mech = Mechanism(spec, params, urdf)
+            assembled = True
+            samples = motion_samples(mech, chunk.study) if any(m.motion for m in metrics) else None
+            for metric in metrics:
+                row.update(metric.fn(mech, samples))
+            row.update(status="ok", message="")
+        except Exception as err:  # noqa: BLE001 - every failure is a row; the status says which kind
+            row.update(status=_status(err, assembled), message=f"{type(err).__name__}: {err}")
+        row["seconds"] = time.perf_counter() - start
+        rows.append(row)
+    return rows
