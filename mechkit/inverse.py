@@ -102,11 +102,22 @@ def _ranks(s: np.ndarray) -> np.ndarray:
     return np.sum(s > RANK_TOL * np.maximum(s[:, :1], 1e-300), axis=1)
 
 
-def _solve(p: InverseDynamicsProblem, A: np.ndarray, b: np.ndarray, svd: bool, distribution: str):
-    """x (N, cols) with A x = b: gesv when square and no SVD is asked, else the minimum-norm SVD
-    solution (then moved to the least efforts for "min_effort"); and the condition numbers (N,)."""
+def _solve(p: InverseDynamicsProblem, A: np.ndarray, b: np.ndarray, condition: bool, distribution: str):
+    """x (N, cols) with A x = b, and the condition numbers (N,) (nan when `condition` is False).
+
+    Square systems: gesv (with `condition`, after singular values that show every sample regular);
+    otherwise the minimum-norm SVD solution, moved to the least efforts for "min_effort".
+    """
     n, nv, cols = A.shape
-    if not svd:
+    square = nv == cols
+    cond = np.full(n, np.nan)
+    if square and condition:
+        s = np.linalg.svd(A, compute_uv=False)
+        if np.all(s[:, -1] > RANK_TOL * s[:, 0]):
+            cond = s[:, 0] / s[:, -1]
+        else:
+            square = False  # a sample has lost rank: the SVD path decides whether b is still reachable
+    if square:
         if n == 1:  # LAPACK gesv directly: a fraction of np.linalg.solve's overhead on small systems
             _, _, x, info = scipy.linalg.lapack.dgesv(A[0], b[0])
             x = x[None] if info == 0 else np.full((1, cols), np.nan)
@@ -117,7 +128,7 @@ def _solve(p: InverseDynamicsProblem, A: np.ndarray, b: np.ndarray, svd: bool, d
                 x = np.full((n, cols), np.nan)
         if not np.all(np.isfinite(x)):
             raise SingularConfiguration(float("inf"), "[S, J^T]: efforts and multipliers undetermined")
-        return x, np.full(n, np.nan)
+        return x, cond
     U, s, Vt = np.linalg.svd(A, full_matrices=True)
     r = _ranks(s)
     k = s.shape[1]
@@ -150,8 +161,7 @@ def _least_effort(x: np.ndarray, N: np.ndarray, na: int) -> np.ndarray:
     return x
 
 
-def _determinacy(p: InverseDynamicsProblem, oMa: np.ndarray, oMb: np.ndarray, J: np.ndarray,
-                 origins: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+def _determinacy(p: InverseDynamicsProblem, oMi: np.ndarray, J: np.ndarray, points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Which reaction components (N, joints, 6) and efforts (N, na) static equilibrium fixes.
 
     Tested on the full spatial rows: a component is determinate when it does not change along the
@@ -159,15 +169,16 @@ def _determinacy(p: InverseDynamicsProblem, oMa: np.ndarray, oMb: np.ndarray, J:
     forces, and actuator efforts, in equilibrium with no load).
     """
     na = p.actuated_v.size
-    Wf = p.full.wrenches(oMa, oMb)
+    Wf = p.full.wrenches(oMi)
     A = _system(p, p.full.jacobian(Wf, J))
     _, s, Vt = np.linalg.svd(A, full_matrices=True)
     r = _ranks(s)
-    k = Vt.shape[1]
-    null = np.where((np.arange(k)[None, :] >= r[:, None])[..., None], Vt, 0.0)  # (N, k, k): null vectors or 0
-    tree, cuts = _cut_loads(p, p.full, Wf, null[..., na:], origins, oMb[:, :, :3, 3])
-    variation = np.abs(np.concatenate([tree[:, :, 1:], cuts], axis=2)).max(axis=1)
-    effort_variation = np.abs(null[..., :na]).max(axis=1)
+    k, first = Vt.shape[1], int(r.min())
+    # rows first..k-1 of Vt: the null vectors of every sample (zeroed where a sample's rank is higher)
+    null = np.where((np.arange(first, k)[None, :] >= r[:, None])[..., None], Vt[:, first:], 0.0)
+    tree, cuts = _cut_loads(p, p.full, Wf, null[..., na:], oMi[..., :3, 3], points)
+    variation = np.abs(np.concatenate([tree[:, :, 1:], cuts], axis=2)).max(axis=1, initial=0.0)
+    effort_variation = np.abs(null[..., :na]).max(axis=1, initial=0.0)
     scale = np.maximum(np.maximum(variation.max(axis=(1, 2)), effort_variation.max(axis=1, initial=0.0)), 1e-300)
     tol = DETERMINACY_TOL * scale
     return variation <= tol[:, None, None], effort_variation <= tol[:, None]
@@ -194,17 +205,15 @@ def inverse_dynamics_batch(p: InverseDynamicsProblem, Q: np.ndarray, V: np.ndarr
         raise InvalidParameters("distribution", distribution, f"expected one of {DISTRIBUTIONS}")
     n, na = len(Q), p.actuated_v.size
     oMi, J, b, tree_world = _gather(p, Q, V, A, [None] * n if fexts is None else fexts)
-    oMa, oMb = p.kept.cut_frames(oMi)
-    W = p.kept.wrenches(oMa, oMb)
+    W = p.kept.wrenches(oMi)
     system = _system(p, p.kept.jacobian(W, J))
-    square = system.shape[1] == system.shape[2]
-    x, cond = _solve(p, system, b, determinacy or not square, distribution)
-    origins = oMi[:, :, :3, 3]
-    tree, cuts = _cut_loads(p, p.kept, W, x[:, None, na:], origins, oMb[:, :, :3, 3])
+    x, cond = _solve(p, system, b, determinacy, distribution)
+    points = p.kept.cut_points(oMi)
+    tree, cuts = _cut_loads(p, p.kept, W, x[:, None, na:], oMi[..., :3, 3], points)
     reactions = np.concatenate([tree_world[:, 1:] - tree[:, 0, 1:], cuts[:, 0]], axis=1)
     flags = effort_flags = None
     if determinacy:
-        flags, effort_flags = _determinacy(p, oMa, oMb, J, origins)
+        flags, effort_flags = _determinacy(p, oMi, J, points)
     return BatchInverseDynamicsResult(p.joint_names, p.actuated_names, x[:, :na], reactions, p.supports, x[:, na:],
                                       cond, flags, effort_flags)
 

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import dataclasses
+import math
 from collections.abc import Callable, Mapping, Sequence
 from pathlib import Path
 from typing import Any
@@ -56,6 +57,7 @@ class Mechanism:
             np.array([self.v_index(j) for j in self.actuated], dtype=int), self.actuated)
         self._pin_constraints: tuple | None = None
         self._pin_baumgarte = (0.0, 0.0)
+        self._prox: dict[tuple[float, float, int], Any] = {}
         self._kkt_rows: np.ndarray | None = None
         self.independent_rows = self.rows.size
         self.home_q = self.assemble(spec.home(params))
@@ -248,10 +250,12 @@ class Mechanism:
                 for cm in cms:
                     cm.setBaumgarteCorrectorParameters(pin.BaumgarteCorrectorParameters(*gains))
                 self._pin_baumgarte = gains
-            prox = pin.ProximalSettings(accuracy, mu, max_iter)
+            prox = self._prox.get((accuracy, mu, max_iter))
+            if prox is None:
+                prox = self._prox[(accuracy, mu, max_iter)] = pin.ProximalSettings(accuracy, mu, max_iter)
             data = self._pin_data
             a = pin.constraintDynamics(self.model, data, q, v, tau, cms, cds, prox).copy()
-            if not np.all(np.isfinite(a)):
+            if not math.isfinite(a.sum()):  # a NaN or an infinity anywhere makes the sum non-finite
                 raise SingularConfiguration(float("inf"), f"pin.constraintDynamics returned non-finite accelerations (mu={mu})")
             result = dynamics.ForwardDynamicsResult(a, pin.rnea(self.model, data, q, v, a) - tau)
         elif method == "kkt":

@@ -49,69 +49,58 @@ def support_columns(model: pin.Model, joint: int) -> np.ndarray:
 class RowWrenches:
     """The rows of a `ClosureRows` set as world wrenches, evaluated for N samples at once.
 
+    Each row carries two homogeneous 4-vectors in its joints' frames: `row_a` (direction t or u,
+    w = 0, on frame_a's joint) and `row_b` (frame_b's origin p_b, w = 1, for a position row; the
+    direction w, w = 0, for an alignment row). In the world they give X_a and Y, and the row wrench
+    is [X_a (position rows; 0 for alignment rows), Y x X_a]: one gather, two products, one cross.
+
     Attributes:
-        size: number of rows.
-        ncuts: number of cuts.
+        size: number of rows; ncuts: number of cuts.
         mask: (rows, nv) +1 on columns moving frame_b only, -1 on frame_a only, 0 elsewhere.
-        cut_of_row: (rows,) the cut of each row.
         row_sum: (ncuts, rows) 1 where a row belongs to a cut.
+        joint_b, point_b: frame_b's joint and origin (homogeneous, in that joint's frame) per cut.
     """
 
     def __init__(self, rows: ClosureRows):
         model = rows.model
         self.size, self.ncuts = rows.size, len(rows.cuts)
-        self.joint_a = np.array([model.frames[c.frame_a].parentJoint for c in rows.cuts], dtype=int)
-        self.joint_b = np.array([model.frames[c.frame_b].parentJoint for c in rows.cuts], dtype=int)
-        self.frame_a = np.array([model.frames[c.frame_a].placement.homogeneous for c in rows.cuts]).reshape(-1, 4, 4)
-        self.frame_b = np.array([model.frames[c.frame_b].placement.homogeneous for c in rows.cuts]).reshape(-1, 4, 4)
-        pos_cut, pos_t, al_cut, al_u, al_w, kind = [], [], [], [], [], []
-        cut_of_row = []
+        frames = model.frames
+        joint_a = [frames[c.frame_a].parentJoint for c in rows.cuts]
+        self.joint_b = np.array([frames[c.frame_b].parentJoint for c in rows.cuts], dtype=int)
+        self.point_b = np.array([frames[c.frame_b].placement.homogeneous[:, 3] for c in rows.cuts]).reshape(-1, 4)
+        row_a, row_b, is_force, cut_of_row = [], [], [], []
         for c, cut in enumerate(rows.cuts):
+            Ma, Mb = frames[cut.frame_a].placement.homogeneous, frames[cut.frame_b].placement.homogeneous
             for t in cut.positions.T:
-                pos_cut.append(c), pos_t.append(t), kind.append(0), cut_of_row.append(c)
+                row_a.append(Ma[:, :3] @ t), row_b.append(Mb[:, 3]), is_force.append(1.0), cut_of_row.append(c)
             for u, w in cut.alignments:
-                al_cut.append(c), al_u.append(u), al_w.append(w), kind.append(1), cut_of_row.append(c)
-        kind = np.array(kind, dtype=int)
-        self.pos_rows, self.align_rows = np.flatnonzero(kind == 0), np.flatnonzero(kind == 1)
-        self.pos_cut, self.align_cut = np.array(pos_cut, dtype=int), np.array(al_cut, dtype=int)
-        self.pos_t = np.array(pos_t, dtype=float).reshape(-1, 3)
-        self.align_u = np.array(al_u, dtype=float).reshape(-1, 3)
-        self.align_w = np.array(al_w, dtype=float).reshape(-1, 3)
+                row_a.append(Ma[:, :3] @ u), row_b.append(Mb[:, :3] @ w), is_force.append(0.0), cut_of_row.append(c)
         self.cut_of_row = np.array(cut_of_row, dtype=int)
+        self.row_joint_a = np.array(joint_a, dtype=int)[self.cut_of_row]
+        self.row_joint_b = self.joint_b[self.cut_of_row]
+        self.row_a = np.array(row_a, dtype=float).reshape(-1, 4, 1)
+        self.row_b = np.array(row_b, dtype=float).reshape(-1, 4, 1)
+        self.is_force = np.array(is_force).reshape(-1, 1)
         self.row_sum = (self.cut_of_row[None, :] == np.arange(self.ncuts)[:, None]).astype(float)
-        support = {j: support_columns(model, j) for j in set(self.joint_a.tolist()) | set(self.joint_b.tolist())}
-        cut_mask = np.array([support[b] - support[a] for a, b in zip(self.joint_a.tolist(), self.joint_b.tolist())]).reshape(-1, model.nv)
+        support = {j: support_columns(model, j) for j in set(joint_a) | set(self.joint_b.tolist())}
+        cut_mask = np.array([support[b] - support[a] for a, b in zip(joint_a, self.joint_b.tolist())]).reshape(-1, model.nv)
         self.mask = cut_mask[self.cut_of_row] if self.size else np.zeros((0, model.nv))
 
-    def cut_frames(self, oMi: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """(N, ncuts, 4, 4) world placements of frame_a and frame_b from joint placements (N, njoints, 4, 4)."""
-        return oMi[:, self.joint_a] @ self.frame_a, oMi[:, self.joint_b] @ self.frame_b
+    def wrenches(self, oMi: np.ndarray) -> np.ndarray:
+        """(N, rows, 6) row wrenches [force, moment about the world origin] from joint placements (N, njoints, 4, 4)."""
+        xa = (oMi[:, self.row_joint_a, :3] @ self.row_a)[..., 0]
+        y = (oMi[:, self.row_joint_b, :3] @ self.row_b)[..., 0]
+        return np.concatenate([xa * self.is_force, cross3(y, xa)], axis=-1)
 
-    def wrenches(self, oMa: np.ndarray, oMb: np.ndarray) -> np.ndarray:
-        """(N, rows, 6) row wrenches [force, moment about the world origin] from the cut frames."""
-        n = oMa.shape[0]
-        out = np.zeros((n, self.size, 6))
-        if self.pos_rows.size:
-            t = np.einsum("nrij,rj->nri", oMa[:, self.pos_cut, :3, :3], self.pos_t)
-            out[:, self.pos_rows, :3] = t
-            out[:, self.pos_rows, 3:] = cross3(oMb[..., :3, 3][:, self.pos_cut], t)
-        if self.align_rows.size:
-            u = np.einsum("nrij,rj->nri", oMa[:, self.align_cut, :3, :3], self.align_u)
-            w = np.einsum("nrij,rj->nri", oMb[:, self.align_cut, :3, :3], self.align_w)
-            out[:, self.align_rows, 3:] = cross3(w, u)
-        return out
+    def cut_points(self, oMi: np.ndarray) -> np.ndarray:
+        """(N, ncuts, 3) frame_b origins p_b (world) from joint placements."""
+        return (oMi[:, self.joint_b, :3] @ self.point_b[..., None])[..., 0]
 
     def jacobian(self, W: np.ndarray, J: np.ndarray) -> np.ndarray:
         """(N, rows, nv) closure Jacobian from the row wrenches (N, rows, 6) and `data.J` (N, 6, nv)."""
         return (W @ J) * self.mask
 
     def cut_wrenches(self, W: np.ndarray, lam: np.ndarray) -> np.ndarray:
-        """(N, ncuts, 6) wrench of each cut [f, m about the world origin] from multipliers (N, rows)."""
+        """(..., ncuts, 6) wrench of each cut [f, m about the world origin] from row wrenches (..., rows, 6)
+        and multipliers (..., rows)."""
         return self.row_sum @ (W * lam[..., None])
-
-
-def shift_moment(wrench: np.ndarray, point: np.ndarray) -> np.ndarray:
-    """Wrenches [f, m about the origin] (..., 6) re-expressed about `point` (..., 3): m - point x f."""
-    out = wrench.copy()
-    out[..., 3:] -= cross3(point, wrench[..., :3])
-    return out
