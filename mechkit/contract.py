@@ -27,6 +27,9 @@ Inputs = Mapping[str, float]
 SceneFunction = Callable[[Any], Sequence[np.ndarray]]
 """Mechanism -> assembled configurations q (nq,), in order (an animation or an overlay)."""
 
+SceneTimes = Callable[[Any, int], np.ndarray]
+"""(Mechanism, number of poses) -> the times (s) of a time-parametrised scene's poses."""
+
 BenchFunction = Callable[[Any, Any], Any]
 """(Mechanism, bench sample) -> q (assembly), a (forward dynamics) or an effort/reaction result."""
 
@@ -92,6 +95,8 @@ class MechanismSpec:
         guess: parameters -> initial guess (joint name -> value) picking the assembly branch.
         summary: one line for `mechkit list` (must equal the registry entry's summary).
         scenes: scene name -> function giving assembled poses (`mechkit snapshot --scene`, gallery).
+        scene_times: scene name -> the times of its poses, for the scenes that follow a law in time
+            (motion studies differentiate the inputs along them; other scenes get uniform steps).
         view: camera direction (world frame, from the target towards the camera), or None for the
             automatic choice (face-on to planar linkages, oblique otherwise).
         bench_methods: the mechanism's own methods (the paper's closed forms, its SOC decomposition).
@@ -108,6 +113,7 @@ class MechanismSpec:
     guess: Callable[[Any], Inputs] | None = None
     summary: str = ""
     scenes: Mapping[str, SceneFunction] = field(default_factory=dict)
+    scene_times: Mapping[str, SceneTimes] = field(default_factory=dict)
     view: tuple[float, float, float] | None = None
     bench_methods: tuple[BenchMethod, ...] = ()
     bench_references: tuple[BenchReference, ...] = ()
@@ -115,6 +121,9 @@ class MechanismSpec:
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "scenes", _frozen(self.scenes))
+        object.__setattr__(self, "scene_times", _frozen(self.scene_times))
+        if not set(self.scene_times) <= set(self.scenes):
+            raise InvalidParameters("scene_times", sorted(self.scene_times), f"{self.name}: times of undeclared scenes")
         object.__setattr__(self, "bench_methods", tuple(self.bench_methods))
         object.__setattr__(self, "bench_references", tuple(self.bench_references))
         quantities = [r.quantity for r in self.bench_references]

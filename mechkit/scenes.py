@@ -24,6 +24,7 @@ CLOSURE_TOL = 1e-6  # largest closure residual accepted in a scene's pose (m, or
 SWEEP_FRAMES = 40  # frames per swept input
 SWEEP_ANGLE = 0.3  # rad, swing of a revolute input
 SWEEP_STROKE = 0.05  # fraction of the mechanism's size, swing of a prismatic input
+SCENE_STEP = 1.0  # s between the poses of a scene without a time axis (ours)
 
 
 class SweepStopped(UserWarning):
@@ -65,6 +66,23 @@ def scene_poses(mechanism: Mechanism, name: str) -> list[np.ndarray]:
         if residual > CLOSURE_TOL:
             raise MalformedDescription(where, f"pose {i} does not close its loops (residual {residual:.2e})")
     return poses
+
+
+def scene_times(mechanism: Mechanism, name: str, poses: int) -> np.ndarray:
+    """Times (s) of a scene's poses: the spec's time axis for a time-parametrised scene, else one
+    `SCENE_STEP` per pose from 0.
+
+    Raises:
+        MalformedDescription: the spec's time axis is not `poses` increasing finite times.
+    """
+    declared = mechanism.spec.scene_times.get(name)
+    if declared is None:
+        return SCENE_STEP * np.arange(poses, dtype=float)
+    t = np.asarray(declared(mechanism, poses), dtype=float)
+    if t.shape != (poses,) or not np.all(np.isfinite(t)) or np.any(np.diff(t) <= 0):
+        raise MalformedDescription(f"{mechanism.spec.name} scene {name!r}",
+                                   f"time axis is not {poses} strictly increasing finite times")
+    return t
 
 
 def sweep(mechanism: Mechanism, frames: int = SWEEP_FRAMES, angle: float = SWEEP_ANGLE,

@@ -21,7 +21,7 @@ from mechkit.contract import MechanismSpec
 from mechkit.mechanisms.deployable_9rr12uru.actuation import ACTUATED, home
 from mechkit.mechanisms.deployable_9rr12uru.params import DeployableParams
 from mechkit.mechanisms.truss.checks import fold_checks
-from mechkit.mechanisms.truss.fold import fold_poses
+from mechkit.mechanisms.truss.fold import fold_poses, fold_scene_times
 
 __all__ = ["SPEC", "DeployableParams"]
 
@@ -34,5 +34,6 @@ SPEC = MechanismSpec(
     home=home,
     summary="9RR-12URU deployable composite element of a truss antenna (3 tetrahedral units + 3 URU chains)",
     scenes={"fold": fold_poses},
+    scene_times={"fold": fold_scene_times},
     self_checks=fold_checks,
 )

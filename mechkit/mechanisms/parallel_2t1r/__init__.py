@@ -21,7 +21,7 @@ from mechkit.mechanisms.parallel_2t1r.checks import self_checks
 from mechkit.mechanisms.parallel_2t1r.joints import joint_positions
 from mechkit.mechanisms.parallel_2t1r.params import Parallel2T1RParams, actuated
 from mechkit.mechanisms.parallel_2t1r.rates import at_rest
-from mechkit.mechanisms.parallel_2t1r.scenes import motion_law_scene
+from mechkit.mechanisms.parallel_2t1r.scenes import motion_law_scene, motion_law_times
 
 
 def _guess(p: Parallel2T1RParams) -> dict[str, float]:
@@ -46,6 +46,7 @@ SPEC = MechanismSpec(
     guess=_guess,
     summary="spatial 2T1R parallel mechanism, five-bar limb + 2 RRR limbs, all axes along y (ref. 001)",
     scenes={"motion_law": motion_law_scene},
+    scene_times={"motion_law": motion_law_times},
     view=(0.35, -1.0, 0.45),  # the motion is in the x-z plane: seen from -y, slightly above
     self_checks=self_checks,
 )

@@ -23,6 +23,11 @@ def motion_law_scene(mech: Mechanism) -> list[np.ndarray]:
     return poses
 
 
+def motion_law_times(mech: Mechanism, poses: int) -> np.ndarray:
+    """Times (s) of the motion-law scene's poses: uniform over the law's 5 s."""
+    return np.linspace(0.0, MOTION_DURATION, poses)
+
+
 def example_configurations(mech: Mechanism) -> list[np.ndarray]:
     """Every assembly of the paper's example (theta = 10, 20, 30 deg): each forward pose limb III can
     reach, with each of its theta4 roots, closed by the core's solver from the analytic configuration."""

@@ -20,7 +20,7 @@ from __future__ import annotations
 from mechkit.contract import MechanismSpec
 from mechkit.mechanisms.rocket_gimbal import bench, checks
 from mechkit.mechanisms.rocket_gimbal.params import RocketGimbalParams
-from mechkit.mechanisms.rocket_gimbal.scenes import swing_scene
+from mechkit.mechanisms.rocket_gimbal.scenes import swing_scene, swing_times
 
 __all__ = ["SPEC", "RocketGimbalParams"]
 
@@ -33,6 +33,7 @@ SPEC = MechanismSpec(
     home=lambda p: {"a_stroke": 0.0, "b_stroke": 0.0},
     summary="launcher engine gimbal: frame-bracket-engine hinges at 45 deg, two U-P-S servo actuators",
     scenes={"swing": swing_scene},
+    scene_times={"swing": swing_times},
     bench_methods=bench.METHODS,
     bench_references=bench.REFERENCES,
     self_checks=checks.self_checks,

@@ -21,7 +21,7 @@ from mechkit.mechanisms.rocket_gimbal.state import joint_state
 if TYPE_CHECKING:
     from mechkit.mechanism import Mechanism
 
-__all__ = ["SwingScene", "swing_scene", "thrust_fext"]
+__all__ = ["SwingScene", "swing_scene", "swing_times", "thrust_fext"]
 
 
 @dataclass(frozen=True)
@@ -80,3 +80,8 @@ def swing_scene(mech: Mechanism) -> list[np.ndarray]:
         joint_state(mech, scene.motion(mech.params, t))[0]
         for t in np.linspace(0.0, 1.0 / scene.frequency, 120)
     ]
+
+
+def swing_times(mech: Mechanism, poses: int) -> np.ndarray:
+    """Times (s) of the swing scene's poses: uniform over one period."""
+    return np.linspace(0.0, 1.0 / SwingScene().frequency, poses)

@@ -16,7 +16,7 @@ from __future__ import annotations
 from mechkit.contract import MechanismSpec
 from mechkit.mechanisms.spherical_2dof import bench, checks, tree
 from mechkit.mechanisms.spherical_2dof.params import Spherical2DofParams
-from mechkit.mechanisms.spherical_2dof.scenes import cone_scene
+from mechkit.mechanisms.spherical_2dof.scenes import cone_scene, cone_scene_times
 
 __all__ = ["SPEC", "Spherical2DofParams"]
 
@@ -30,6 +30,7 @@ SPEC = MechanismSpec(
     guess=tree.guess,
     summary="2-DOF spherical parallel platform (2 RRR limbs + central Hooke strut), vibration isolation",
     scenes={"cone": cone_scene},
+    scene_times={"cone": cone_scene_times},
     bench_methods=bench.METHODS,
     bench_references=bench.REFERENCES,
     self_checks=checks.self_checks,

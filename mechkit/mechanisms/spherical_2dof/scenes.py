@@ -15,7 +15,7 @@ from mechkit.mechanisms.spherical_2dof.tree import state
 if TYPE_CHECKING:
     from mechkit.mechanism import Mechanism
 
-__all__ = ["CONE_HALF_ANGLE", "CONE_PERIOD", "cone_attitude", "cone_scene", "cone_times"]
+__all__ = ["CONE_HALF_ANGLE", "CONE_PERIOD", "cone_attitude", "cone_scene", "cone_scene_times", "cone_times"]
 
 #: Cone scene: the paper's "cone angle 30 deg" (錐角) read as the apex angle: half angle 15 deg.
 CONE_HALF_ANGLE = math.radians(15.0)
@@ -64,3 +64,8 @@ def cone_scene(mech: Mechanism) -> list[np.ndarray]:
     """One turn of the cone scene as assembled configurations (`mechkit snapshot spherical_2dof --scene cone`)."""
     phi, phi_d, phi_dd = cone_attitude(np.linspace(0.0, CONE_PERIOD, 73))
     return [state(mech, *x)[0] for x in zip(phi, phi_d, phi_dd, strict=True)]
+
+
+def cone_scene_times(mech: Mechanism, poses: int) -> np.ndarray:
+    """Times (s) of the cone scene's poses: uniform over one turn, both ends included."""
+    return np.linspace(0.0, CONE_PERIOD, poses)

@@ -47,7 +47,7 @@ from mechkit.contract import MechanismSpec
 from mechkit.mechanisms.ten_bar.checks import self_checks
 from mechkit.mechanisms.ten_bar.geometry import stowed_pose
 from mechkit.mechanisms.ten_bar.params import MOTORS, PASSIVE, STOWED, TenBarParams
-from mechkit.mechanisms.ten_bar.scenes import deployment_poses
+from mechkit.mechanisms.ten_bar.scenes import deployment_poses, deployment_times
 
 
 def _home(p: TenBarParams) -> dict[str, float]:
@@ -68,6 +68,7 @@ SPEC = MechanismSpec(
     guess=_guess,
     summary="Radarsat-2 solar-array ten-bar (patent CN105975733): 9 links, 12 pairs, 2 motors + 1 spring DOF",
     scenes={"deploy": deployment_poses},
+    scene_times={"deploy": deployment_times},
     self_checks=self_checks,
 )
 

@@ -7,10 +7,21 @@ import numpy as np
 from mechkit.mechanism import Mechanism
 from mechkit.mechanisms.ten_bar import dynamics as td
 
+#: Step (s) of the deployment the scene samples.
+DEPLOY_STEP = 0.02
 
-def deployment_poses(mechanism: Mechanism, frames: int = 120, dt: float = 0.02) -> list[np.ndarray]:
+
+def _picks(steps: int, frames: int) -> np.ndarray:
+    return np.linspace(0, steps, frames).round().astype(int)
+
+
+def deployment_poses(mechanism: Mechanism, frames: int = 120, dt: float = DEPLOY_STEP) -> list[np.ndarray]:
     """Stowed to deployed: the constrained-ABA deployment (RK4 with projection, step dt in s) sampled
     at `frames` poses, for animations."""
     trajectory = td.deploy(td.PinocchioDeployment(mechanism), mechanism.home_q, dt)
-    picks = np.linspace(0, len(trajectory.q) - 1, frames).round().astype(int)
-    return [trajectory.q[i] for i in picks]
+    return [trajectory.q[i] for i in _picks(len(trajectory.q) - 1, frames)]
+
+
+def deployment_times(mechanism: Mechanism, poses: int, dt: float = DEPLOY_STEP) -> np.ndarray:
+    """Times (s) of the deployment scene's poses (the RK4 steps it picks)."""
+    return dt * _picks(round(mechanism.params.deploy_time / dt), poses)

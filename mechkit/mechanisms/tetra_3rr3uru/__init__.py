@@ -17,7 +17,7 @@ from __future__ import annotations
 from mechkit.contract import MechanismSpec
 from mechkit.mechanisms.tetra_3rr3uru.actuation import ACTUATED, home
 from mechkit.mechanisms.tetra_3rr3uru.checks import self_checks
-from mechkit.mechanisms.truss.fold import fold_poses
+from mechkit.mechanisms.truss.fold import fold_poses, fold_scene_times
 from mechkit.mechanisms.truss.params import TetraParams
 
 __all__ = ["SPEC", "TetraParams"]
@@ -31,5 +31,6 @@ SPEC = MechanismSpec(
     home=home,
     summary="3RR-3URU tetrahedral deployable unit H-ABE of a truss antenna, node A fixed",
     scenes={"fold": fold_poses},
+    scene_times={"fold": fold_scene_times},
     self_checks=self_checks,
 )

@@ -88,3 +88,8 @@ def fold_times(step: float = 1.0) -> np.ndarray:
 def fold_poses(mech: Mechanism) -> list[np.ndarray]:
     """The 200 s fold sampled every 1 s: 201 assembled configurations (the "fold" scene)."""
     return [s.q for s in fold(mech, fold_times(1.0))]
+
+
+def fold_scene_times(mech: Mechanism, poses: int) -> np.ndarray:
+    """Times (s) of the fold scene's poses: uniform over the 200 s fold."""
+    return np.linspace(0.0, FOLD_DURATION, poses)

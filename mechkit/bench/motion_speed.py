@@ -1,0 +1,99 @@
+"""Speed of a motion study: the 2T1R's motion law (the issue's 501 samples: assembly, velocities,
+accelerations, efforts and every reaction), against the 50 ms goal, split into its phases and set
+beside one raw `pin.constraintDynamics` per sample, all measured in one process.
+
+Nothing here prints: `motion_law_speed` returns the figures, `lines` formats them
+(`tools/motion_speed.py` prints them).
+"""
+
+from __future__ import annotations
+
+import gc
+import time
+from collections.abc import Callable
+from dataclasses import dataclass
+
+import numpy as np
+import pinocchio as pin
+
+from mechkit import dynamics
+from mechkit.mechanism import Mechanism, load
+from mechkit.mechanisms.parallel_2t1r.motion_law import MOTION_DURATION, motion_law
+from mechkit.motion.inputs import from_callable
+from mechkit.motion.path import PathKinematics
+from mechkit.motion.study import driven_problem, study
+
+#: The issue's goal for the 2T1R motion law (501 samples), s.
+GOAL_S = 0.050
+
+
+@dataclass(frozen=True)
+class MotionSpeed:
+    """Medians over repeats (s): the whole study, its kinematics (closure solve, v, a) and its dynamics
+    (efforts and every reaction), and one raw `pin.constraintDynamics` at the law's first sample."""
+
+    samples: int
+    repeats: int
+    study_s: float
+    kinematics_s: float
+    dynamics_s: float
+    raw_constraint_dynamics_s: float
+
+
+def _median_time(fn: Callable[[], object], repeats: int) -> float:
+    times = []
+    gc.disable()
+    try:
+        for _ in range(repeats):
+            start = time.perf_counter()
+            fn()
+            times.append(time.perf_counter() - start)
+    finally:
+        gc.enable()
+    return float(np.median(times))
+
+
+def _raw_call(mech: Mechanism, q: np.ndarray, v: np.ndarray) -> Callable[[], object]:
+    cms, cds = mech.pin_constraints()
+    data, prox, tau = mech.model.createData(), pin.ProximalSettings(1e-12, 1e-9, 20), np.zeros(mech.model.nv)
+    pin.initConstraintDynamics(mech.model, data, cms, cds)
+    return lambda: pin.constraintDynamics(mech.model, data, q, v, tau, cms, cds, prox)
+
+
+def motion_law_speed(samples: int = 501, repeats: int = 5) -> MotionSpeed:
+    """Time the 2T1R motion law, t in (0, 5] s (its start t = 0 is a singularity), `samples` uniform steps."""
+    mech = load("parallel_2t1r")
+    law = from_callable(mech, motion_law, np.linspace(MOTION_DURATION / samples, MOTION_DURATION, samples))
+    result = study(mech, law)
+    path = PathKinematics(mech, law.names)
+    problem = driven_problem(mech, law.names)
+
+    def kinematics() -> None:
+        guess = result.q[0]
+        for i in range(samples):
+            guess = path.sample(guess, law.values[i], law.rates[i], law.accelerations[i], 1e-12)[0]
+
+    def inverse() -> None:
+        for i in range(samples):
+            dynamics.inverse_dynamics(problem, result.q[i], result.v[i], result.a[i], None, False)
+
+    raw = _raw_call(mech, result.q[0], result.v[0])
+    raw_s = _median_time(lambda: [raw() for _ in range(1000)], repeats) / 1000
+    return MotionSpeed(samples, repeats, _median_time(lambda: study(mech, law), repeats),
+                       _median_time(kinematics, repeats), _median_time(inverse, repeats), raw_s)
+
+
+def lines(s: MotionSpeed) -> list[str]:
+    """The figures as text: totals, per sample, ratios to the raw call, the goal."""
+    per = {k: getattr(s, f"{k}_s") / s.samples for k in ("study", "kinematics", "dynamics")}
+    raw = s.raw_constraint_dynamics_s
+    out = [f"2T1R motion law, {s.samples} samples (median of {s.repeats} runs in one process)"]
+    for k, label in (("study", "whole study (assembly, v, a, efforts, every reaction)"),
+                     ("kinematics", "  kinematics (closure solve from the predictor, v, a)"),
+                     ("dynamics", "  efforts and every reaction (no determinacy)")):
+        out.append(f"{label}: {getattr(s, f'{k}_s') * 1e3:.1f} ms, {per[k] * 1e6:.0f} us/sample, "
+                   f"{per[k] / raw:.0f}x one raw constraintDynamics")
+    out.append(f"raw pin.constraintDynamics: {raw * 1e6:.1f} us")
+    verdict = "met" if s.study_s <= GOAL_S else f"NOT met ({s.study_s / GOAL_S:.0f}x over)"
+    out.append(f"goal: the whole study under {GOAL_S * 1e3:.0f} ms: {verdict}")
+    return out

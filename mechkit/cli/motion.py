@@ -1,0 +1,80 @@
+"""`mechkit motion`: efforts and every joint's reaction along a motion; the peak table, Parquet or CSV,
+and a plot."""
+
+from __future__ import annotations
+
+import argparse
+
+from mechkit.cli.common import add_mechanism_arguments, load_mechanism
+from mechkit.cli.progress import ProgressBars
+from mechkit.exceptions import InvalidParameters
+
+#: Motions of at least this many samples show a progress bar (`mechkit.cli.progress`: stderr, on a terminal).
+LONG_MOTION = 100
+#: Peak-table columns: header, quantity.
+PEAK_COLUMNS = (("|f| N", "force"), ("axial N", "axial_force"), ("radial N", "radial_force"),
+                ("|m| N m", "moment"), ("axial N m", "axial_moment"), ("radial N m", "radial_moment"))
+
+
+def format_peaks(result) -> list[str]:
+    """The peak table: one line per joint, each peak with its time."""
+    from mechkit.motion import peaks
+
+    rows = peaks(result)
+    width = max(len("joint"), *(len(p.joint) for p in rows))
+    head = f"{'joint':<{width}} sup " + " ".join(f"{h:>11} {'t (s)':>7}" for h, _ in PEAK_COLUMNS)
+    lines = [head]
+    for p in rows:
+        cells = " ".join(f"{p.values[q]:11.4g} {p.times[q]:7.3f}" for _, q in PEAK_COLUMNS)
+        mark = " *" if p.determinate is False else ""
+        lines.append(f"{p.joint:<{width}} {'yes' if p.support else 'no ':>3} {cells}{mark}")
+    if any(p.determinate is False for p in rows):
+        lines.append("* some components statically indeterminate (redundant constraints): minimum-norm values")
+    return lines
+
+
+def run(args: argparse.Namespace) -> None:
+    """Run the study, print the peak table, write what was asked."""
+    from mechkit import motion
+    from mechkit.motion.plot import write_plot
+
+    mech = load_mechanism(args)
+    if args.inputs:
+        law = motion.from_csv(mech, args.inputs)
+    else:
+        scene = args.scene or next(iter(mech.spec.scenes), "sweep")
+        law = motion.from_scene(mech, scene)
+    if args.samples is not None:
+        law = motion.resample(law, args.samples)
+    if args.output and not args.output.endswith((".parquet", ".csv")):
+        raise InvalidParameters("-o", args.output, "write .parquet or .csv")
+    bars = ProgressBars(None if len(law.t) >= LONG_MOTION else False)
+    result = motion.study(mech, law, determinacy=args.determinacy, skip_failures=True,
+                          progress=lambda done, total: bars(f"{mech.spec.name} motion", done, total))
+    print(f"{mech.spec.name}: {law.source}, {len(law.t)} samples, t = {law.t[0]:.6g} .. {law.t[-1]:.6g} s")
+    for t, why in result.failures:
+        print(f"skipped t = {t:.6g} s: {why}")
+    print("peak reactions (world frame; axial/radial along the joint axis):")
+    print("\n".join(format_peaks(result)))
+    if args.output:
+        writer = motion.write_parquet if args.output.endswith(".parquet") else motion.write_csv
+        print(f"wrote {writer(result, args.output)}")
+    if args.plot:
+        joints = [j.strip() for j in args.joints.split(",")] if args.joints else None
+        print(f"wrote {write_plot(result, args.plot, joints)}")
+
+
+def add_parser(sub) -> None:
+    """Register `motion`."""
+    p = sub.add_parser("motion", help="efforts and every joint's reaction along a motion: peak table, Parquet/CSV, plot")
+    add_mechanism_arguments(p)
+    source = p.add_mutually_exclusive_group()
+    source.add_argument("--scene", help="a scene of the mechanism (default: its first declared scene, else 'sweep')")
+    source.add_argument("--inputs", metavar="LAW.csv",
+                        help="CSV of t (s) and one column per driven joint (rad or m); optional <joint>_dot, <joint>_ddot")
+    p.add_argument("--samples", type=int, help="resample the law at N uniform times")
+    p.add_argument("-o", "--output", help="write the table: .parquet or .csv")
+    p.add_argument("--plot", help="write a plot of efforts and reactions (.png, .svg, .pdf)")
+    p.add_argument("--joints", help="comma-separated joints whose reactions the plot shows (default: the 4 busiest)")
+    p.add_argument("--determinacy", action="store_true", help="flag the reaction components equilibrium fixes")
+    p.set_defaults(func=run)

@@ -1,0 +1,119 @@
+"""A motion study: assemble along an input law with warm starts, then velocities, accelerations, the
+efforts of the driven joints and every joint's reaction, sample by sample.
+
+Warm start of sample i: the law's guess (a scene's pose) when it has one, else the previous
+configuration advanced by v dt + a dt^2 / 2 (`pin.integrate`), which keeps the assembly branch and
+lets the closure solve converge in one or two Newton steps.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Sequence
+
+import numpy as np
+import pinocchio as pin
+
+from mechkit import dynamics
+from mechkit.exceptions import MechkitError
+from mechkit.mechanism import Mechanism
+from mechkit.motion.inputs import InputLaw
+from mechkit.motion.path import PathKinematics
+from mechkit.motion.result import MotionResult
+
+Progress = Callable[[int, int], None]
+"""(steps done, steps in all) -> None: each sample counts twice (kinematics, then dynamics)."""
+
+Loads = Callable[[Mechanism, np.ndarray, float], Sequence]
+"""(mechanism, q, t) -> Pinocchio external forces per joint (local frames), e.g. a thrust."""
+
+
+def coordinate_names(model: pin.Model) -> tuple[str, ...]:
+    """Names of the q coordinates: the joint's name, `name[k]` for a joint of several coordinates."""
+    out = []
+    for j in range(1, model.njoints):
+        n = model.joints[j].nq
+        out += [model.names[j]] if n == 1 else [f"{model.names[j]}[{k}]" for k in range(n)]
+    return tuple(out)
+
+
+def driven_problem(mech: Mechanism, names: Sequence[str]) -> dynamics.InverseDynamicsProblem:
+    """The inverse-dynamics problem with a generalised force on every actuated joint and every input
+    of the law (a passive input's force is what its spring or damper must supply)."""
+    driven = tuple(mech.actuated) + tuple(n for n in names if n not in mech.actuated)
+    return dynamics.InverseDynamicsProblem(
+        mech.model, mech.model.createData(), mech.rows, mech.full_rows,
+        np.array([mech.v_index(j) for j in driven], dtype=int), driven)
+
+
+def study(mech: Mechanism, law: InputLaw, *, determinacy: bool = False, loads: Loads | None = None,
+          progress: Progress | None = None, tol: float = 1e-12, skip_failures: bool = False) -> MotionResult:
+    """Efforts and every joint's reaction along an input law.
+
+    Args:
+        mech: the mechanism.
+        law: the driven joints' values, rates and accelerations over time (`mechkit.motion.inputs`).
+        determinacy: also flag the reaction components static equilibrium fixes (one SVD per sample).
+        loads: optional external forces as a function of (mechanism, q, t).
+        progress: called after each sample with (done, total).
+        tol: closure residual of each assembly (m for position rows).
+        skip_failures: a sample that does not assemble or is singular (a motion law starting at a
+            singularity) becomes a row of NaN, listed in `MotionResult.failures`, instead of an error.
+
+    Raises:
+        ClosureNotConverged: a sample does not assemble near its warm start (the message says which).
+        SingularConfiguration: the inputs do not determine the motion, or the drives cannot hold it.
+    """
+    model, names, n = mech.model, list(law.names), len(law.t)
+    problem = driven_problem(mech, names)
+    path = PathKinematics(mech, names)
+    nj = len(problem.joint_names)
+    q = np.full((n, model.nq), np.nan)
+    v = np.full((n, model.nv), np.nan)
+    a = np.full((n, model.nv), np.nan)
+    axes = np.full((n, nj, 3), np.nan)
+    failures: list[tuple[float, str]] = []
+    last = None  # the last sample that succeeded: the predictor's start
+    for i in range(n):
+        try:
+            if law.guesses is not None:
+                guess = law.guesses[i]
+            elif last is not None:
+                dt = law.t[i] - law.t[last]
+                guess = pin.integrate(model, q[last], v[last] * dt + 0.5 * a[last] * dt * dt)
+            else:
+                guess = path.first_guess(law.values[i])
+            q[i], v[i], a[i], axes[i] = path.sample(guess, law.values[i], law.rates[i], law.accelerations[i], tol)
+            last = i
+        except MechkitError as err:
+            if not skip_failures:
+                raise
+            failures.append((float(law.t[i]), str(err)))
+            q[i] = v[i] = a[i] = np.nan
+        if progress is not None:
+            progress(i + 1, 2 * n)
+    good = np.flatnonzero(np.isfinite(q).all(axis=1))
+    fexts = [None if loads is None else loads(mech, q[i], float(law.t[i])) for i in good]
+    efforts = np.full((n, len(problem.actuated_names)), np.nan)
+    reactions = np.full((n, nj, 6), np.nan)
+    flags = np.zeros((n, nj, 6), dtype=bool) if determinacy else None
+    for k, i in enumerate(good):
+        try:
+            result = dynamics.inverse_dynamics(problem, q[i], v[i], a[i], fexts[k], determinacy)
+        except MechkitError as err:
+            if not skip_failures:
+                raise
+            failures.append((float(law.t[i]), str(err)))
+            q[i] = v[i] = a[i] = axes[i] = np.nan
+            continue
+        efforts[i] = [result.efforts[j] for j in problem.actuated_names]
+        reactions[i] = [result.reactions[j].wrench for j in problem.joint_names]
+        if flags is not None:
+            flags[i] = [result.reactions[j].determinate for j in problem.joint_names]
+        if progress is not None:
+            progress(n + i + 1, 2 * n)
+    if progress is not None:
+        progress(2 * n, 2 * n)
+    return MotionResult(mech.spec.name, law.source, law.t.copy(), coordinate_names(model), q, v, a,
+                        problem.actuated_names, tuple(mech.actuated), efforts, problem.joint_names,
+                        np.array(problem.supports, dtype=bool), reactions, axes, flags,
+                        tuple(sorted(failures)))
