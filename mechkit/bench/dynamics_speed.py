@@ -1,7 +1,8 @@
 """Speed of the core's dynamics against one raw Pinocchio call and MuJoCo called bare (issue 13).
 
-For one mechanism, every row's time is measured back to back with one raw `pin.constraintDynamics`
-in each repeat (`mechkit.bench.timing.paired_ratio`), so that the ratio survives a loaded machine.
+For one mechanism, every row is timed alternately with one raw `pin.constraintDynamics`, repeat after
+repeat; each keeps its fastest repeat (the least disturbed on a shared machine) and the ratio is
+that of the two minima.
 Rows: the forward-dynamics wrapper; the inverse dynamics with every reaction, one sample and batched
 (`BATCH` samples per call, time per sample), determinacy off and on; velocities and accelerations;
 MuJoCo's `mj_forward` and `mj_inverse` called bare on a state written once (warm start: each
@@ -19,7 +20,7 @@ import numpy as np
 import pinocchio as pin
 
 from mechkit.bench.sampling import Sample, make_samples
-from mechkit.bench.timing import paired_ratio, time_per_call
+from mechkit.bench.timing import time_per_call
 from mechkit.exceptions import MechkitError
 from mechkit.mechanism import Mechanism
 
@@ -111,21 +112,30 @@ def _mujoco_calls(mech: Mechanism, s: Sample) -> dict[str, tuple[Callable[[Sampl
     }
 
 
-def measure(mech: Mechanism, budget: float = 0.2, repeats: int = 7) -> MechanismSpeed:
-    """Every row of one mechanism, each paired with the raw call; then the targets of issue 13."""
+def _interleaved(fn: Callable[[Sample], object], raw: Callable[[Sample], object], samples: list[Sample],
+                 budget: float, repeats: int) -> tuple[float, float]:
+    """Seconds per call of fn and of raw, timed alternately `repeats` times; the minimum of each (the
+    least disturbed repeat on a shared machine)."""
+    pairs = [(time_per_call(fn, samples, budget / repeats / 2, 1)[0], time_per_call(raw, samples, budget / repeats / 2, 1)[0])
+             for _ in range(repeats)]
+    return min(p[0] for p in pairs), min(p[1] for p in pairs)
+
+
+def measure(mech: Mechanism, budget: float = 0.3, repeats: int = 15) -> MechanismSpeed:
+    """Every row of one mechanism, each timed alternately with the raw call; then the targets of issue 13."""
     samples = make_samples(mech, 3)
     calls = _calls(mech, samples)
     raw_fn = calls[RAW][0]
-    raw_us = float(np.median(time_per_call(raw_fn, samples, budget, repeats))) * 1e6
+    raw_us = float(np.min(time_per_call(raw_fn, samples, budget, repeats))) * 1e6
     rows = [SpeedRow(RAW, raw_us, 1.0)]
     for label, (fn, per) in calls.items():
         if label == RAW:
             continue
         try:
-            ratio = paired_ratio(fn, raw_fn, samples, budget, repeats) / per
+            t, t_raw = _interleaved(fn, raw_fn, samples, budget, repeats)
         except MechkitError:
             continue  # e.g. a cut Pinocchio's constraintDynamics cannot express: no row
-        rows.append(SpeedRow(label, ratio * raw_us, ratio))
+        rows.append(SpeedRow(label, t / per * 1e6, t / per / t_raw))
     return MechanismSpeed(mech.spec.name, mech.model.nv, rows, targets(rows))
 
 

@@ -2,8 +2,8 @@
 
 For each N: one state (q = 0, input rates ~ N(0, 1), efforts ~ N(0, 0.1) N m, seed 0), the exact
 accelerations from the dense KKT on mechkit's independent closure rows, solved by LU with iterative
-refinement (residual in extended precision, `exact_accelerations`); then microseconds per call and
-the relative error of the raw `pin.constraintDynamics` (mu = 1e-9, the core's default) and of
+refinement (residual in extended precision, `exact_accelerations`); then microseconds per call (fastest of the
+repeats: the least disturbed on a shared machine) and the relative error of the raw `pin.constraintDynamics` (mu = 1e-9, the core's default) and of
 `pin.lcaba` (`LoopConstrainedABA` at `LCABA_DEFAULTS`). Growth: the least-squares slope of log t
 against log N over N >= `FIT_FROM`.
 """
@@ -83,8 +83,8 @@ def measure(loops: int, budget: float = 0.2, repeats: int = 5) -> LadderPoint:
     iterations = int(lcaba.prox.iter)
     raw_t = time_per_call(raw, [None], budget, repeats)
     lcaba_t = time_per_call(lambda _: lcaba(q, v, tau), [None], budget, repeats)
-    return LadderPoint(loops, mech.model.nv, float(np.median(raw_t)) * 1e6, raw_error,
-                       float(np.median(lcaba_t)) * 1e6, lcaba_error, iterations)
+    return LadderPoint(loops, mech.model.nv, float(np.min(raw_t)) * 1e6, raw_error,
+                       float(np.min(lcaba_t)) * 1e6, lcaba_error, iterations)
 
 
 def growth(points: list[LadderPoint], attr: str) -> float:

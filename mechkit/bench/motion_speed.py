@@ -16,7 +16,7 @@ from dataclasses import dataclass
 import numpy as np
 import pinocchio as pin
 
-from mechkit import dynamics
+from mechkit.inverse import inverse_dynamics
 from mechkit.mechanism import Mechanism, load
 from mechkit.mechanisms.parallel_2t1r.motion_law import MOTION_DURATION, motion_law
 from mechkit.motion.inputs import from_callable
@@ -75,7 +75,7 @@ def motion_law_speed(samples: int = 501, repeats: int = 5) -> MotionSpeed:
 
     def inverse() -> None:
         for i in range(samples):
-            dynamics.inverse_dynamics(problem, result.q[i], result.v[i], result.a[i], None, False)
+            inverse_dynamics(problem, result.q[i], result.v[i], result.a[i], None, False)
 
     raw = _raw_call(mech, result.q[0], result.v[0])
     raw_s = _median_time(lambda: [raw() for _ in range(1000)], repeats) / 1000

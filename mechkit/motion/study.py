@@ -13,7 +13,7 @@ from collections.abc import Callable, Sequence
 import numpy as np
 import pinocchio as pin
 
-from mechkit import dynamics
+from mechkit import inverse
 from mechkit.exceptions import MechkitError
 from mechkit.mechanism import Mechanism
 from mechkit.motion.inputs import InputLaw
@@ -36,11 +36,11 @@ def coordinate_names(model: pin.Model) -> tuple[str, ...]:
     return tuple(out)
 
 
-def driven_problem(mech: Mechanism, names: Sequence[str]) -> dynamics.InverseDynamicsProblem:
+def driven_problem(mech: Mechanism, names: Sequence[str]) -> inverse.InverseDynamicsProblem:
     """The inverse-dynamics problem with a generalised force on every actuated joint and every input
     of the law (a passive input's force is what its spring or damper must supply)."""
     driven = tuple(mech.actuated) + tuple(n for n in names if n not in mech.actuated)
-    return dynamics.InverseDynamicsProblem(
+    return inverse.InverseDynamicsProblem(
         mech.model, mech.model.createData(), mech.rows, mech.full_rows,
         np.array([mech.v_index(j) for j in driven], dtype=int), driven)
 
@@ -98,7 +98,7 @@ def study(mech: Mechanism, law: InputLaw, *, determinacy: bool = False, loads: L
     flags = np.zeros((n, nj, 6), dtype=bool) if determinacy else None
     for k, i in enumerate(good):
         try:
-            result = dynamics.inverse_dynamics(problem, q[i], v[i], a[i], fexts[k], determinacy)
+            result = inverse.inverse_dynamics(problem, q[i], v[i], a[i], fexts[k], determinacy)
         except MechkitError as err:
             if not skip_failures:
                 raise
