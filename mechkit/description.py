@@ -118,9 +118,10 @@ def check_loop_elements(root: ET.Element) -> None:
                                        f"{LOOP_NAMESPACE!r}: declare loops as <mechkit:loop>")
 
 
-def parse_loops(urdf: str) -> list[LoopClosure]:
-    """Read every `<mechkit:loop>` of a URDF into `LoopClosure` records, checked against its links."""
-    root = parse_xml(urdf)
+def parse_loops(urdf: str | ET.Element) -> list[LoopClosure]:
+    """Read every `<mechkit:loop>` of a URDF (text or parsed root) into `LoopClosure` records, checked
+    against its links and against loop declarations that would be dropped (`check_loop_elements`)."""
+    root = parse_xml(urdf) if isinstance(urdf, str) else urdf
     check_loop_elements(root)
     links = {link.get("name") for link in root.findall("link")}
     loops = []
@@ -164,10 +165,10 @@ def _parse_loop(element: ET.Element, links: set[str]) -> LoopClosure:
                        element.get("rows") is not None)
 
 
-def parse_home(urdf: str) -> dict[str, float]:
+def parse_home(urdf: str | ET.Element) -> dict[str, float]:
     """The `<mechkit:home joint="..." value="..."/>` inputs of the default assembly (rad or m)."""
     out = {}
-    for element in parse_xml(urdf).findall(f"{{{LOOP_NAMESPACE}}}home"):
+    for element in (parse_xml(urdf) if isinstance(urdf, str) else urdf).findall(f"{{{LOOP_NAMESPACE}}}home"):
         joint, text = element.get("joint"), element.get("value")
         try:
             value = float(text)

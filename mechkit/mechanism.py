@@ -18,7 +18,7 @@ from mechkit.exceptions import InvalidParameters, MethodUnavailable, SingularCon
 from mechkit.params import MechanismParams
 from mechkit.contract import MechanismSpec
 from mechkit.registry import get_spec
-from mechkit.structure import analyse
+from mechkit.structure import Structure, analyse
 
 Inputs = Mapping[str, float] | Sequence[float] | np.ndarray
 
@@ -39,12 +39,15 @@ class Mechanism:
     """
 
     def __init__(self, spec: MechanismSpec, params: MechanismParams, urdf: str, rows: str | None = None,
-                 model: pin.Model | None = None):
-        """Build the model, analyse its structure (`rows="spatial"` forces full rows) and assemble home."""
+                 model: pin.Model | None = None, structure: Structure | None = None):
+        """Build the model, analyse its structure (`rows="spatial"` forces full rows) and assemble home.
+
+        `model` and `structure`, when given, must be those of `urdf` (a file reader computed them).
+        """
         self.spec, self.params, self.urdf = spec, params, urdf
         self.model = build_model(urdf) if model is None else model
         self.data = self.model.createData()
-        self.structure = analyse(self.model, parse_loops(urdf), rows)
+        self.structure = analyse(self.model, parse_loops(urdf), rows) if structure is None else structure
         self.closures = list(self.structure.closures)
         self.cuts = [cut_rows(self.model, c) for c in self.closures]
         self.rows = ClosureRows(self.model, self.cuts)
@@ -347,12 +350,12 @@ def from_description(desc: sources.Description, actuated: Sequence[str] | None =
     joints = tuple(actuated) if actuated is not None else desc.actuated
     home_values = dict(home) if home is not None else dict(desc.home)
     guess_values = dict(guess) if guess is not None else dict(desc.guess)
-    count = analyse(model, parse_loops(desc.urdf), rows).kutzbach
+    structure = analyse(model, list(desc.closures) if desc.closures is not None else parse_loops(desc.urdf), rows)
     where = f" {desc.source}" if desc.source is not None else ""
-    spec = MechanismSpec(name=desc.name, params=MechanismParams, template="", actuated=joints, gruebler_dof=count,
+    spec = MechanismSpec(name=desc.name, params=MechanismParams, template="", actuated=joints, gruebler_dof=structure.kutzbach,
                          home=_constant(home_values), guess=_constant(guess_values) if guess_values else None,
                          summary=f"read from the {desc.format} file{where}")
-    return Mechanism(spec, MechanismParams(), desc.urdf, rows, model)
+    return Mechanism(spec, MechanismParams(), desc.urdf, rows, model, structure)
 
 
 def from_urdf(urdf: str | Path, actuated: Sequence[str] | None = None, name: str | None = None,

@@ -107,8 +107,9 @@ def format_report(r: dict[str, Any]) -> str:
              + (f" (declared Gruebler {r['gruebler']['declared']})" if r["gruebler"]["declared"] not in (None, r["dof_gruebler"]) else ""),
              "  idle freedoms: " + (", ".join(f"{j} {n}" for j, n in r["idle"].items()) or "none"),
              "  loops: " + ", ".join(f"{lp['cut']} {lp['kind']} {lp['rows']}/{lp['full_rows']} rows ({lp['chosen']})"
-                                     for lp in r["loops"]) + f"; {r['rows_avoided']} rows avoided",
-             "  parameters:"]
+                                     for lp in r["loops"]) + f"; {r['rows_avoided']} rows avoided"]
+    if r["parameters"]:
+        lines.append("  parameters:")
     for p in r["parameters"]:
         mark = " (ours)" if p.get("ours") else ""
         lines.append(f"    {p['name']:<18} {p['value']!s:>12} {p['unit']:<8} {p['doc']}{mark}")

@@ -99,7 +99,8 @@ def sweep(mechanism: Mechanism, frames: int = SWEEP_FRAMES, angle: float = SWEEP
         frames: poses per input (a multiple of 4).
         angle: amplitude A of a revolute input (rad).
         stroke: amplitude of a prismatic input, as a fraction of the mechanism's joint extent.
-        Both amplitudes are capped at 90 % of the distance from home to the joint's limits.
+
+    Both amplitudes are capped at 90 % of the distance from home to the joint's limits.
     """
     model, home = mechanism.model, mechanism.home_q
     size = joint_extent(model, model.createData(), home)

@@ -89,18 +89,17 @@ class Structure:
         return sum(lp.full_rows - lp.rows for lp in self.loops)
 
 
-def joint_axis(model: pin.Model, joint: int) -> tuple[str, np.ndarray | None]:
+def joint_axis(model: pin.Model, data: pin.Data, joint: int) -> tuple[str, np.ndarray | None]:
     """("revolute" | "prismatic" | "other", unit axis in the joint frame) of a tree joint.
 
-    Read from the joint's motion subspace (its local Jacobian column), so that every revolute or
-    prismatic joint model (aligned, unaligned, unbounded) is recognised alike.
+    Read from the joint's motion subspace (its column of the local Jacobian; `data` after
+    `pin.computeJointJacobians`), so that every revolute or prismatic joint model (aligned,
+    unaligned, unbounded) is recognised alike.
     """
     if model.nvs[joint] != 1:
         return "other", None
-    sub = pin.Model()
-    sub.addJoint(0, model.joints[joint], pin.SE3.Identity(), "j")
-    data = sub.createData()
-    S = np.ravel(pin.computeJointJacobian(sub, data, pin.neutral(sub), 1))  # [linear; angular], joint frame
+    J = pin.getJointJacobian(model, data, joint, pin.ReferenceFrame.LOCAL).reshape(6, -1)
+    S = J[:, model.joints[joint].idx_v]  # [linear; angular], joint frame
     linear, angular = S[:3], S[3:]
     if np.linalg.norm(linear) < GEOMETRY_TOL and np.linalg.norm(angular) > 0:
         return "revolute", angular / np.linalg.norm(angular)
@@ -141,7 +140,10 @@ def analyse(model: pin.Model, closures: list[LoopClosure], rows: str | None = No
         MalformedDescription: a cut whose frames are not in the model or sit on one body.
     """
     data = model.createData()
-    pin.framesForwardKinematics(model, data, pin.neutral(model))
+    q0 = pin.neutral(model)
+    pin.computeJointJacobians(model, data, q0)
+    pin.framesForwardKinematics(model, data, q0)
+    axes = {j: joint_axis(model, data, j) for j in range(1, model.njoints)}
     loops, out = [], []
     for closure in closures:
         ids = []
@@ -154,7 +156,7 @@ def analyse(model: pin.Model, closures: list[LoopClosure], rows: str | None = No
             raise MalformedDescription(f"mechkit:loop {closure.name!r}",
                                        f"frames {closure.frame_a!r} and {closure.frame_b!r} are on one body")
         path = loop_joints(model, ja, jb)
-        kind, normal = _classify(model, data, path, closure, ids)
+        kind, normal = _classify(data, [(j, *axes[j]) for j in path], closure, ids)
         closure, chosen = _choose_rows(closure, kind, normal, data.oMf[ids[0]].rotation, rows)
         full = FULL_ROWS[closure.kind]
         kept = full if closure.rows == "spatial" else MINIMAL_ROWS[closure.rows][closure.kind]
@@ -164,11 +166,10 @@ def analyse(model: pin.Model, closures: list[LoopClosure], rows: str | None = No
     return Structure(tuple(loops), tuple(out), model.nv)
 
 
-def _lines(model, data, path, closure, ids) -> tuple[list, list, bool]:
+def _lines(data, path, closure, ids) -> tuple[list, list, bool]:
     """World (point, axis) of the loop's revolute and prismatic axes; False if another joint is on it."""
     revolute, prismatic, simple = [], [], True
-    for j in path:
-        kind, axis = joint_axis(model, j)
+    for j, kind, axis in path:
         M = data.oMi[j]
         if kind == "other":
             simple = False
@@ -182,9 +183,9 @@ def _lines(model, data, path, closure, ids) -> tuple[list, list, bool]:
     return revolute, prismatic, simple
 
 
-def _classify(model, data, path, closure, ids) -> tuple[str, np.ndarray | None]:
-    """("planar", normal) | ("spherical", centre) | ("spatial", None)."""
-    revolute, prismatic, simple = _lines(model, data, path, closure, ids)
+def _classify(data, path, closure, ids) -> tuple[str, np.ndarray | None]:
+    """("planar", normal) | ("spherical", centre) | ("spatial", None); path: (joint, kind, axis)."""
+    revolute, prismatic, simple = _lines(data, path, closure, ids)
     if not simple or not revolute:
         return "spatial", None
     n = revolute[0][1] / np.linalg.norm(revolute[0][1])

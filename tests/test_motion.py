@@ -197,3 +197,25 @@ def test_peaks_flag_indeterminate_joints(two_t1r):
     assert set(flags.values()) <= {True, False} and False in flags.values()
     for j, joint in enumerate(r.joints):
         assert flags[joint] == bool(r.determinate[:, j].all())
+
+
+def test_ten_bar_efforts_equal_the_deployment_dynamics(load_cached):
+    """Along the ten-bar's deployment (constrained forward dynamics, its transient included), the study's
+    efforts are the motor torques that realised the motion, and at the spring hinge R5 the spring and
+    damper torque: forward and inverse dynamics agree."""
+    from mechkit.mechanisms.ten_bar import dynamics as td
+
+    mech = load_cached("ten_bar")
+    system = td.PinocchioDeployment(mech)
+    trajectory = td.deploy(system, mech.home_q, 0.02, t_end=0.3)
+    names = motion.default_inputs(mech)
+    idx = [mech.v_index(j) for j in names]
+    states = [system.rhs(t, q, v) for t, q, v in zip(trajectory.t, trajectory.q, trajectory.v)]
+    acc = np.array([s[0] for s in states])
+    law = motion.from_arrays(mech, trajectory.t, trajectory.q[:, idx], trajectory.v[:, idx], acc[:, idx], names=names,
+                             guesses=trajectory.q)
+    r = motion.study(mech, law)
+    assert np.allclose(r.v, trajectory.v, atol=1e-12) and np.allclose(r.a, acc, atol=1e-10)
+    spring = np.array([system.spring_torque(q, v) for q, v in zip(trajectory.q, trajectory.v)])
+    expected = np.column_stack([np.array([s[1] for s in states]), spring])
+    assert np.allclose(r.efforts, expected, rtol=1e-11, atol=1e-11 * np.abs(expected).max())

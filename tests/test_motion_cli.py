@@ -3,6 +3,8 @@ plot; bad input is one line and exit 2, with nothing written."""
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import numpy as np
 import pytest
 
@@ -52,3 +54,20 @@ def test_bad_input(args, needle, tmp_path, capsys, monkeypatch):
     err = capsys.readouterr().err.strip()
     assert needle in err and len(err.splitlines()) == 1
     assert list(tmp_path.iterdir()) == []
+
+
+@pytest.mark.parametrize("fixture", ["slider_crank.urdf", "rssr.xml"])
+def test_a_file_mechanism(fixture, tmp_path, capsys):
+    """NAME|PATH: a mechanism from a file gets the generic sweep; a prismatic slider carries no axial force;
+    where the inputs leave a freedom (the RSSR's coupler spin) no sample succeeds: one line, exit 2."""
+    path = Path(__file__).resolve().parent / "fixtures" / fixture
+    out = tmp_path / "m.parquet"
+    status = main(["motion", str(path), "--samples", "6", "-o", str(out)])
+    if fixture == "rssr.xml":  # the coupler's spin about its own axis is an idle freedom: no sample has a motion
+        err = capsys.readouterr().err.strip()
+        assert status == 2 and "do not determine" in err and len(err.splitlines()) == 1 and not out.exists()
+    else:
+        result = motion.read_parquet(out)
+        assert status == 0 and result.source == "scene sweep" and np.isfinite(result.efforts).all()
+        peak = {p.joint: p for p in motion.peaks(result)}["slider"]
+        assert peak.values["axial_force"] < 1e-12 * peak.values["force"]

@@ -86,6 +86,20 @@ def test_idle_rod_spins_are_found_and_move_nothing_else():
             assert np.max(np.abs(twist)) < 1e-15, m.model.names[j]
 
 
+def test_idle_freedoms_are_given_as_inputs_to_drive_the_leg():
+    """With the spins given (zero) beside the two motors, the inputs determine the leg's motion; the
+    spins' rates change no other joint's rate (they are idle)."""
+    m = mechkit.load(FIXTURES / "leg.urdf")
+    inputs = ["hip", "knee_motor", "rod1_top_z", "rod2_top_z"]
+    still = m.velocities(m.home_q, [1.0, -0.5, 0.0, 0.0], inputs=inputs)
+    spun = m.velocities(m.home_q, [1.0, -0.5, 3.0, -2.0], inputs=inputs)
+    assert np.max(np.abs(m.closure_jacobian(m.home_q) @ spun)) < 1e-12
+    for joint in ("knee", "ankle", "hip", "knee_motor"):
+        assert spun[m.v_index(joint)] == pytest.approx(still[m.v_index(joint)], abs=1e-12)
+    with pytest.raises(mechkit.SingularConfiguration, match="give more inputs"):
+        m.velocities(m.home_q, [1.0, -0.5])
+
+
 def test_no_idle_freedom_in_the_registered_mechanisms(load_cached):
     for name in ("four_bar", "rocket_gimbal", "spherical_2dof"):
         assert report(load_cached(name))["idle"] == {}

@@ -3,6 +3,8 @@
 from __future__ import annotations
 
 from pathlib import Path
+from types import ModuleType
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -11,11 +13,15 @@ from mechkit.bench.results import MechanismBench, Row
 from mechkit.bench.scale import ScaleFit
 from mechkit.contract import BENCH_QUANTITIES
 
+if TYPE_CHECKING:
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure
+
 #: Error shown on log charts for an exact result.
 CHART_FLOOR = 1e-17
 
 
-def pyplot():
+def pyplot() -> ModuleType:
     """matplotlib.pyplot on the Agg backend (files only, no window)."""
     import matplotlib
 
@@ -25,7 +31,7 @@ def pyplot():
     return plt
 
 
-def save_figure(fig, ax, folder: Path, stem: str, legend_size: int = 6) -> list[Path]:
+def save_figure(fig: Figure, ax: Axes, folder: Path, stem: str, legend_size: int = 6) -> list[Path]:
     """Grid, legend, tight layout; write `folder/stem.png` and `.svg`; close the figure."""
     ax.grid(True, which="both", alpha=0.3)
     ax.legend(fontsize=legend_size)

@@ -14,7 +14,7 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 import pinocchio as pin
@@ -22,6 +22,9 @@ import pinocchio as pin
 from mechkit.bench.errors import IDReference, id_parts
 from mechkit.bench.sampling import Sample
 from mechkit.exceptions import MechkitError
+
+if TYPE_CHECKING:
+    from mechkit.mechanism import Mechanism
 
 #: Per quantity, the core's default method: the "x base" column divides by its time.
 BASELINES = {"assembly": "closure Newton tol=1e-12", "forward_dynamics": "constraintDynamics mu=1e-09 it=20",
@@ -59,13 +62,13 @@ class References:
     inverse: list[IDReference]
 
 
-def _core_inverse_reference(mech, s: Sample) -> IDReference:
+def _core_inverse_reference(mech: Mechanism, s: Sample) -> IDReference:
     r = mech.inverse_dynamics(s.q, s.v, s.a, determinacy=True)
     return IDReference(dict(s.extra.get("efforts", r.efforts)), {k: x.wrench for k, x in r.reactions.items()},
                        {k: x.determinate for k, x in r.reactions.items()})
 
 
-def references(mech, samples: list[Sample]) -> References:
+def references(mech: Mechanism, samples: list[Sample]) -> References:
     """The best reference per quantity (the spec's own, else the core's); sets each sample's tau to the
     reference efforts (unless the sample's efforts were drawn first)."""
     labels = {"assembly": "closure Newton at 1e-14 (or the tightest reached, core)",
@@ -100,7 +103,7 @@ def references(mech, samples: list[Sample]) -> References:
     return References(labels, q_ref, a_ref, inverse)
 
 
-def core_methods(mech, quick: bool) -> list[Method]:
+def core_methods(mech: Mechanism, quick: bool) -> list[Method]:
     """The core's methods with their accuracy knobs swept (fewer settings when quick)."""
     methods = []
     tols = (1e-6, 1e-12) if quick else (1e-4, 1e-6, 1e-9, 1e-12)
@@ -138,6 +141,6 @@ def core_methods(mech, quick: bool) -> list[Method]:
     return methods
 
 
-def own_methods(mech) -> list[Method]:
+def own_methods(mech: Mechanism) -> list[Method]:
     """The mechanism's own methods, as its spec declares them (`MechanismSpec.bench_methods`)."""
     return [Method(m.label, m.quantity, m.fn) for m in mech.spec.bench_methods]

@@ -16,12 +16,11 @@ from dataclasses import dataclass
 import numpy as np
 import pinocchio as pin
 
-from mechkit.inverse import inverse_dynamics
 from mechkit.mechanism import Mechanism, load
 from mechkit.mechanisms.parallel_2t1r.motion_law import MOTION_DURATION, motion_law
 from mechkit.motion.inputs import from_callable
 from mechkit.motion.path import PathKinematics
-from mechkit.motion.study import driven_problem, study
+from mechkit.motion.study import driven_problem, inverse_batch, study
 
 #: The issue's goal for the 2T1R motion law (501 samples), s.
 GOAL_S = 0.050
@@ -74,8 +73,7 @@ def motion_law_speed(samples: int = 501, repeats: int = 5) -> MotionSpeed:
             guess = path.sample(guess, law.values[i], law.rates[i], law.accelerations[i], 1e-12)[0]
 
     def inverse() -> None:
-        for i in range(samples):
-            inverse_dynamics(problem, result.q[i], result.v[i], result.a[i], None, False)
+        inverse_batch(problem, result.q, result.v, result.a, None, False)
 
     raw = _raw_call(mech, result.q[0], result.v[0])
     raw_s = _median_time(lambda: [raw() for _ in range(1000)], repeats) / 1000

@@ -6,13 +6,16 @@ Every method of a mechanism is measured on the same few `Sample`s, drawn by `mak
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 import pinocchio as pin
 from scipy.linalg import null_space
 
 from mechkit.exceptions import MechkitError, MethodUnavailable
+
+if TYPE_CHECKING:
+    from mechkit.mechanism import Mechanism
 
 #: Largest offset of the sampled inputs from the home inputs (rad or m).
 INPUT_SPREAD = 0.05
@@ -40,7 +43,7 @@ class Sample:
     extra: dict[str, Any] = field(default_factory=dict)
 
 
-def input_joints(mech) -> tuple[str, ...]:
+def input_joints(mech: Mechanism) -> tuple[str, ...]:
     """The actuated joints, then (under-actuated mechanisms) extra joints completing a set of independent coordinates."""
     names = list(mech.actuated)
     dof = mech.mobility().dof
@@ -57,7 +60,7 @@ def input_joints(mech) -> tuple[str, ...]:
     return tuple(names)
 
 
-def scene_configurations(mech, count: int) -> list[tuple[np.ndarray, np.ndarray]]:
+def scene_configurations(mech: Mechanism, count: int) -> list[tuple[np.ndarray, np.ndarray]]:
     """Up to `count` (configuration, the scene's previous configuration) pairs spread along the first
     scene the mechanism's spec declares; the previous one is the assembly's warm start."""
     for scene in mech.spec.scenes.values():
@@ -67,7 +70,7 @@ def scene_configurations(mech, count: int) -> list[tuple[np.ndarray, np.ndarray]
     return []
 
 
-def _closes(mech, q: np.ndarray, v: np.ndarray, a: np.ndarray) -> bool:
+def _closes(mech: Mechanism, q: np.ndarray, v: np.ndarray, a: np.ndarray) -> bool:
     """Whether a satisfies the acceleration-level closure J a + gamma = 0 to 1e-9 (relative)."""
     J = mech.closure_jacobian(q)
     gamma = mech.closure_drift(q, v)
@@ -75,7 +78,7 @@ def _closes(mech, q: np.ndarray, v: np.ndarray, a: np.ndarray) -> bool:
                                                                              np.max(np.abs(gamma), initial=0.0), 1e-12))
 
 
-def make_samples(mech, count: int, seed: int = 7) -> list[Sample]:
+def make_samples(mech: Mechanism, count: int, seed: int = 7) -> list[Sample]:
     """`count` assembled states near home (closure tolerance 1e-12).
 
     Inputs within INPUT_SPREAD of home (divided by 5 until the linkage assembles), then, if too few

@@ -12,7 +12,7 @@ from __future__ import annotations
 import gc
 import time
 from collections.abc import Callable, Sequence
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -22,6 +22,9 @@ from mechkit.bench.results import Row
 from mechkit.bench.sampling import Sample
 from mechkit.contract import BENCH_QUANTITIES
 from mechkit.exceptions import MechkitError
+
+if TYPE_CHECKING:
+    from mechkit.mechanism import Mechanism
 
 #: Errors at or below this count as one accuracy class (machine precision) for the ratio column.
 EQUAL_ACCURACY_FLOOR = 1e-12
@@ -60,7 +63,7 @@ def paired_ratio(fa: Callable[[Any], Any], fb: Callable[[Any], Any], samples: Se
     return float(np.median(ratios))
 
 
-def measure(mech, method: Method, samples: list[Sample], refs: References, budget_s: float, repeats: int) -> Row:
+def measure(mech: Mechanism, method: Method, samples: list[Sample], refs: References, budget_s: float, repeats: int) -> Row:
     """Error on every sample, then time per call; a raised MechkitError becomes the row's outcome."""
     row = Row(mech.spec.name, method)
     errors = []

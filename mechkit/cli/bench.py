@@ -8,6 +8,7 @@ from pathlib import Path
 import numpy as np
 
 from mechkit.atomic import write_text
+from mechkit.cli.common import examples
 
 
 def run(args: argparse.Namespace) -> None:
@@ -45,6 +46,7 @@ def run(args: argparse.Namespace) -> None:
             print(f"wrote {args.markdown}")
 
 
+<<<<<<< HEAD
 def speed_sections(names: list[str], quick: bool) -> dict[str, list[str]]:
     """The dynamics speed rows (issue 13) on the named mechanisms and the ladder of four-bar loops."""
     from mechkit import registry
@@ -59,8 +61,12 @@ def speed_sections(names: list[str], quick: bool) -> dict[str, list[str]]:
 
 
 def add_parser(sub) -> None:
+=======
+def add_parser(sub: argparse._SubParsersAction) -> None:
+>>>>>>> main
     """Register `bench`."""
-    p = sub.add_parser("bench", help="speed and accuracy of every method, per mechanism")
+    p = sub.add_parser("bench", help="speed and accuracy of every method, per mechanism", **examples(
+        "mechkit bench four_bar --quick", "mechkit bench --charts docs/bench --markdown docs/benchmarks.md"))
     p.add_argument("names", nargs="*", help="mechanisms (default: all)")
     p.add_argument("--quick", action="store_true", help="few repetitions, smallest sweeps")
     p.add_argument("--charts", help="folder for the error-vs-time charts (PNG and SVG)")

@@ -3,9 +3,16 @@
 from __future__ import annotations
 
 import argparse
+from typing import Any
 
 from mechkit.exceptions import MechkitError
 from mechkit.mechanism import Mechanism, load
+
+
+def examples(*commands: str) -> dict[str, Any]:
+    """`add_parser` keywords ending a command's `--help` with its examples (one command line each)."""
+    return {"epilog": "examples:\n" + "\n".join(f"  {c}" for c in commands),
+            "formatter_class": argparse.RawDescriptionHelpFormatter}
 
 
 def add_mechanism_arguments(parser: argparse.ArgumentParser) -> None:

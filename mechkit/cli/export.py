@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import argparse
 
-from mechkit.cli.common import add_mechanism_arguments, load_mechanism
+from mechkit.cli.common import add_mechanism_arguments, examples, load_mechanism
 
 
 def run(args: argparse.Namespace) -> None:
@@ -15,9 +15,10 @@ def run(args: argparse.Namespace) -> None:
         print(f"wrote {path}")
 
 
-def add_parser(sub) -> None:
+def add_parser(sub: argparse._SubParsersAction) -> None:
     """Register `export`."""
-    p = sub.add_parser("export", help="write the mechanism for other tools")
+    p = sub.add_parser("export", help="write the mechanism for other tools", **examples(
+        "mechkit export ten_bar --format mjcf -o ten_bar.xml", "mechkit export four_bar --format extended-urdf -o four_bar.urdf"))
     add_mechanism_arguments(p)
     p.add_argument("--format", required=True, choices=["mjcf", "extended-urdf"], help="target format")
     p.add_argument("-o", "--output", required=True, help="file to write (extended-urdf also writes a .yaml beside it)")

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import argparse
 
+from mechkit.cli.common import examples
 from mechkit.registry import ENTRIES
 
 
@@ -13,6 +14,6 @@ def run(args: argparse.Namespace) -> None:
         print(f"{e.name:<22} {e.summary}")
 
 
-def add_parser(sub) -> None:
+def add_parser(sub: argparse._SubParsersAction) -> None:
     """Register `list`."""
-    sub.add_parser("list", help="registered mechanisms").set_defaults(func=run)
+    sub.add_parser("list", help="registered mechanisms", **examples("mechkit list", "mechkit list | grep planar")).set_defaults(func=run)

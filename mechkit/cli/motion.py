@@ -5,9 +5,9 @@ from __future__ import annotations
 
 import argparse
 
-from mechkit.cli.common import add_mechanism_arguments, load_mechanism
+from mechkit.cli.common import add_mechanism_arguments, examples, load_mechanism
 from mechkit.cli.progress import ProgressBars
-from mechkit.exceptions import InvalidParameters
+from mechkit.exceptions import InvalidParameters, MechkitError
 
 #: Motions of at least this many samples show a progress bar (`mechkit.cli.progress`: stderr, on a terminal).
 LONG_MOTION = 100
@@ -51,6 +51,8 @@ def run(args: argparse.Namespace) -> None:
     bars = ProgressBars(None if len(law.t) >= LONG_MOTION else False)
     result = motion.study(mech, law, determinacy=args.determinacy, skip_failures=True,
                           progress=lambda done, total: bars(f"{mech.spec.name} motion", done, total))
+    if len(result.failures) == len(law.t):
+        raise MechkitError(f"no sample of the motion succeeded; at t = {result.failures[0][0]:.6g} s: {result.failures[0][1]}")
     print(f"{mech.spec.name}: {law.source}, {len(law.t)} samples, t = {law.t[0]:.6g} .. {law.t[-1]:.6g} s")
     for t, why in result.failures:
         print(f"skipped t = {t:.6g} s: {why}")
@@ -64,9 +66,11 @@ def run(args: argparse.Namespace) -> None:
         print(f"wrote {write_plot(result, args.plot, joints)}")
 
 
-def add_parser(sub) -> None:
+def add_parser(sub: argparse._SubParsersAction) -> None:
     """Register `motion`."""
-    p = sub.add_parser("motion", help="efforts and every joint's reaction along a motion: peak table, Parquet/CSV, plot")
+    p = sub.add_parser("motion", help="efforts and every joint's reaction along a motion: peak table, Parquet/CSV, plot",
+                       **examples("mechkit motion parallel_2t1r --scene motion_law --samples 501 -o law.parquet --plot law.png",
+                                  "mechkit motion four_bar --inputs crank.csv -o loads.csv"))
     add_mechanism_arguments(p)
     source = p.add_mutually_exclusive_group()
     source.add_argument("--scene", help="a scene of the mechanism (default: its first declared scene, else 'sweep')")

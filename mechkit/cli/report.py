@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 import json
 
-from mechkit.cli.common import add_mechanism_arguments, load_mechanism
+from mechkit.cli.common import add_mechanism_arguments, examples, load_mechanism
 
 
 def run(args: argparse.Namespace) -> None:
@@ -16,9 +16,9 @@ def run(args: argparse.Namespace) -> None:
     print(json.dumps(r, indent=2) if args.json else format_report(r))
 
 
-def add_parser(sub) -> None:
+def add_parser(sub: argparse._SubParsersAction) -> None:
     """Register `report`."""
-    p = sub.add_parser("report", help="structure, mobility and self-checks")
+    p = sub.add_parser("report", help="structure, mobility and self-checks", **examples("mechkit report five_bar", "mechkit report four_bar --set coupler=0.3 --json"))
     add_mechanism_arguments(p)
     p.add_argument("--json", action="store_true", help="machine-readable output")
     p.set_defaults(func=run)

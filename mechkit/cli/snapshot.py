@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import argparse
 
-from mechkit.cli.common import add_mechanism_arguments, load_mechanism
+from mechkit.cli.common import add_mechanism_arguments, examples, load_mechanism
 
 
 def run(args: argparse.Namespace) -> None:
@@ -15,9 +15,10 @@ def run(args: argparse.Namespace) -> None:
         print(f"wrote {path}")
 
 
-def add_parser(sub) -> None:
+def add_parser(sub: argparse._SubParsersAction) -> None:
     """Register `snapshot`."""
-    p = sub.add_parser("snapshot", help="self-contained meshcat HTML (and PNG) of a pose or an animated scene")
+    p = sub.add_parser("snapshot", help="self-contained meshcat HTML (and PNG) of a pose or an animated scene", **examples(
+        "mechkit snapshot four_bar --q 0.8 -o four_bar.html", "mechkit snapshot ten_bar --scene deploy -o deploy.html --png deploy.png"))
     add_mechanism_arguments(p)
     p.add_argument("--q", help="input coordinates, comma-separated, in actuated order (rad or m)")
     p.add_argument("--scene", help="animate a scene of the mechanism (see `mechkit.scenes`), instead of one pose")

@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 import sys
 
-from mechkit.cli.common import overrides
+from mechkit.cli.common import examples, overrides
 from mechkit.exceptions import InvalidParameters
 
 
@@ -46,9 +46,11 @@ def run(args: argparse.Namespace) -> None:
           f"{summary.seconds:.1f} s: {counts} -> {summary.out}")
 
 
-def add_parser(sub) -> None:
+def add_parser(sub: argparse._SubParsersAction) -> None:
     """Register `sweep`."""
-    p = sub.add_parser("sweep", help="evaluate many designs on Dask (Parquet results, resumable)")
+    p = sub.add_parser("sweep", help="evaluate many designs on Dask (Parquet results, resumable)", **examples(
+        "mechkit sweep four_bar --grid crank=0.08:0.12:5 --grid coupler=0.26:0.30:5 -o sweep_fb",
+        "mechkit sweep five_bar --lhs 200 --grid dist1=0.2:0.25 --grid dist2=0.2:0.25 -o sweep_5b --resume"))
     p.add_argument("name", help="mechanism name (see `mechkit list`)")
     p.add_argument("--grid", action="append", metavar="NAME=LO:HI[:N]",
                    help="a swept parameter: N grid values from LO to HI (bounds only with --random/--lhs)")

@@ -6,7 +6,7 @@ import argparse
 import sys
 
 from mechkit.atomic import write_text
-from mechkit.cli.common import add_mechanism_arguments, load_mechanism
+from mechkit.cli.common import add_mechanism_arguments, examples, load_mechanism
 
 
 def run(args: argparse.Namespace) -> None:
@@ -18,9 +18,9 @@ def run(args: argparse.Namespace) -> None:
         sys.stdout.write(text)
 
 
-def add_parser(sub) -> None:
+def add_parser(sub: argparse._SubParsersAction) -> None:
     """Register `urdf`."""
-    p = sub.add_parser("urdf", help="print or write the URDF generated from the parameters")
+    p = sub.add_parser("urdf", help="print or write the URDF generated from the parameters", **examples("mechkit urdf four_bar --set crank=0.12", "mechkit urdf ten_bar -o ten_bar.urdf"))
     add_mechanism_arguments(p)
     p.add_argument("-o", "--output", help="file to write (default: stdout)")
     p.set_defaults(func=run)

@@ -3,6 +3,11 @@ YAML sidecar `closed_loop: [[frame_a, frame_b], ...]`, `type: ['3d' | '6d', ...]
 `joint_name`, `joint_type`. A 3d pair is a point anchor, 6d a weld. A revolute cut with spatial
 rows becomes two 3d pairs; the second pair's frames (`<frame>_axis`) are added to the URDF on
 fixed joints, `AXIS_ANCHOR_OFFSET` along the axis.
+
+The URDF keeps mechkit's other elements (e.g. the ten-bar's `<mechkit:spring>`, which other
+readers ignore) and gains a `<mechkit:home joint value>` per actuated joint: the home inputs, so
+that `mechkit.load` of the pair assembles the same default configuration (on the branch nearest its
+guess: the format has no place for one).
 """
 
 from __future__ import annotations
@@ -15,6 +20,7 @@ import pinocchio as pin
 import yaml
 
 from mechkit.closures import AXIS_ANCHOR_OFFSET
+from mechkit.description import LOOP_NAMESPACE
 from mechkit.exceptions import MethodUnavailable
 from mechkit.export.xmltext import numbers as _fmt
 
@@ -55,8 +61,12 @@ def to_extended_urdf(mech: Mechanism) -> tuple[str, str]:
                 extra.append(name)
             pairs.append((extra[0], extra[1]))
             kinds.append("3d")
-    for loop in [el for el in robot if el.tag.endswith("}loop") or el.tag == "loop"]:
+    for loop in [el for el in robot if el.tag.endswith("}loop") or el.tag.endswith("}home") or el.tag == "loop"]:
         robot.remove(loop)
+    for joint in mech.actuated:
+        ET.SubElement(robot, f"{{{LOOP_NAMESPACE}}}home", joint=joint,
+                      value=repr(float(mech.home_q[mech.q_index(joint)])))
+    ET.register_namespace("mechkit", LOOP_NAMESPACE)
     ET.indent(robot)
     urdf = '<?xml version="1.0" ?>\n' + ET.tostring(robot, encoding="unicode") + "\n"
     sidecar = {"closed_loop": [list(p) for p in pairs], "type": kinds, "name_mot": list(mech.actuated),

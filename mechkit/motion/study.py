@@ -21,7 +21,8 @@ from mechkit.motion.path import PathKinematics
 from mechkit.motion.result import MotionResult
 
 Progress = Callable[[int, int], None]
-"""(steps done, steps in all) -> None: each sample counts twice (kinematics, then dynamics)."""
+"""(steps done, steps in all) -> None: each sample's kinematics is a step, the dynamics of all samples
+the last N steps."""
 
 Loads = Callable[[Mechanism, np.ndarray, float], Sequence]
 """(mechanism, q, t) -> Pinocchio external forces per joint (local frames), e.g. a thrust."""
@@ -43,6 +44,18 @@ def driven_problem(mech: Mechanism, names: Sequence[str]) -> inverse.InverseDyna
     return inverse.InverseDynamicsProblem(
         mech.model, mech.model.createData(), mech.rows, mech.full_rows,
         np.array([mech.v_index(j) for j in driven], dtype=int), driven)
+
+
+def inverse_batch(problem: inverse.InverseDynamicsProblem, q: np.ndarray, v: np.ndarray, a: np.ndarray,
+                  fexts: Sequence | None, determinacy: bool) -> tuple[np.ndarray, np.ndarray, np.ndarray | None]:
+    """Efforts (N, n_driven), reactions (N, n_joints, 6) and determinacy flags (N, n_joints, 6) or None
+    of N samples (q, v, a), with per-sample external forces `fexts` or None.
+
+    Raises:
+        SingularConfiguration: a sample's drives cannot hold its motion.
+    """
+    out = inverse.inverse_dynamics_batch(problem, q, v, a, fexts, determinacy)
+    return out.efforts, out.reactions, out.determinate
 
 
 def study(mech: Mechanism, law: InputLaw, *, determinacy: bool = False, loads: Loads | None = None,
@@ -92,25 +105,29 @@ def study(mech: Mechanism, law: InputLaw, *, determinacy: bool = False, loads: L
         if progress is not None:
             progress(i + 1, 2 * n)
     good = np.flatnonzero(np.isfinite(q).all(axis=1))
-    fexts = [None if loads is None else loads(mech, q[i], float(law.t[i])) for i in good]
+    fexts = None if loads is None else [loads(mech, q[i], float(law.t[i])) for i in good]
     efforts = np.full((n, len(problem.actuated_names)), np.nan)
     reactions = np.full((n, nj, 6), np.nan)
     flags = np.zeros((n, nj, 6), dtype=bool) if determinacy else None
-    for k, i in enumerate(good):
-        try:
-            result = inverse.inverse_dynamics(problem, q[i], v[i], a[i], fexts[k], determinacy)
-        except MechkitError as err:
-            if not skip_failures:
-                raise
-            failures.append((float(law.t[i]), str(err)))
-            q[i] = v[i] = a[i] = axes[i] = np.nan
-            continue
-        efforts[i] = [result.efforts[j] for j in problem.actuated_names]
-        reactions[i] = [result.reactions[j].wrench for j in problem.joint_names]
+    try:  # all samples at once; where that fails and failures may be skipped, sample by sample
+        batches = [good]
+        out = [inverse_batch(problem, q[good], v[good], a[good], fexts, determinacy)]
+    except MechkitError:
+        if not skip_failures:
+            raise
+        batches, out = [], []
+        for k, i in enumerate(good):
+            one = None if fexts is None else [fexts[k]]
+            try:
+                out.append(inverse_batch(problem, q[i:i + 1], v[i:i + 1], a[i:i + 1], one, determinacy))
+                batches.append(np.array([i]))
+            except MechkitError as err:
+                failures.append((float(law.t[i]), str(err)))
+                q[i] = v[i] = a[i] = axes[i] = np.nan
+    for rows, (u, w, f) in zip(batches, out):
+        efforts[rows], reactions[rows] = u, w
         if flags is not None:
-            flags[i] = [result.reactions[j].determinate for j in problem.joint_names]
-        if progress is not None:
-            progress(n + i + 1, 2 * n)
+            flags[rows] = f
     if progress is not None:
         progress(2 * n, 2 * n)
     return MotionResult(mech.spec.name, law.source, law.t.copy(), coordinate_names(model), q, v, a,

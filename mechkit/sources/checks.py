@@ -93,8 +93,11 @@ def check_inertias(root: ET.Element) -> None:
             raise MalformedDescription(where, f"mass {text} must be positive (kg)")
         if element is None:
             raise MalformedDescription(where, "<inertial> without <inertia>")
-        matrix = np.array([[c["ixx"], c["ixy"], c["ixz"]], [c["ixy"], c["iyy"], c["iyz"]], [c["ixz"], c["iyz"], c["izz"]]])
-        if np.min(np.linalg.eigvalsh(matrix)) <= 0:
+        # Sylvester's criterion: the leading minors are positive
+        minors = (c["ixx"], c["ixx"] * c["iyy"] - c["ixy"] ** 2,
+                  c["ixx"] * (c["iyy"] * c["izz"] - c["iyz"] ** 2) - c["ixy"] * (c["ixy"] * c["izz"] - c["iyz"] * c["ixz"])
+                  + c["ixz"] * (c["ixy"] * c["iyz"] - c["iyy"] * c["ixz"]))
+        if min(minors) <= 0:
             raise MalformedDescription(where, f"inertia {c} is not positive definite (kg m^2)")
 
 

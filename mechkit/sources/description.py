@@ -5,6 +5,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from mechkit.description import LoopClosure
 from mechkit.exceptions import MalformedDescription
 
 
@@ -21,6 +22,7 @@ class Description:
         guess: joint -> value near which the default assembly is sought (picks the branch).
         source: the file read; `format`: "urdf", "extended-urdf", "xacro" or "mjcf".
         params: the xacro arguments used (strings), empty for other formats.
+        closures: the loops of `urdf`, when the reader has parsed them (else None: parsed on use).
     """
 
     name: str
@@ -31,6 +33,7 @@ class Description:
     source: Path | None = None
     format: str = "urdf"
     params: dict[str, str] = field(default_factory=dict)
+    closures: tuple[LoopClosure, ...] | None = None
 
 
 def read_text(path: Path) -> str:

@@ -10,8 +10,11 @@ first pair's, its axis the direction to the second pair, in frame_a's frame.
 
 from __future__ import annotations
 
+import dataclasses
+import re
 import xml.etree.ElementTree as ET
 from pathlib import Path
+from xml.sax.saxutils import quoteattr
 
 import numpy as np
 import pinocchio as pin
@@ -41,32 +44,58 @@ def read_extended_urdf(path: Path, sidecar: Path) -> Description:
     urdf = read_text(path)
     content = _sidecar(sidecar)
     root = parse_xml(urdf, str(path))
-    base = describe_urdf(urdf, path, "extended-urdf")
-    model = build_model(urdf)
-    pairs, kinds = content["closed_loop"], content["type"]
+    placements = link_placements(root)
+    pairs, kinds = content["closed_loop"], [str(k).lower() for k in content["type"]]
     for pair in pairs:
         if not (isinstance(pair, list) and len(pair) == 2 and all(isinstance(f, str) for f in pair)):
             raise MalformedDescription(f"{sidecar}: closed_loop", f"{pair!r} is not a pair of frame names")
         for frame in pair:
-            if not model.existFrame(frame):
+            if frame not in placements:
                 raise MalformedDescription(f"{sidecar}: closed_loop", f"frame {frame!r} is not a link of {path.name}")
-    joints = set(model.names[1:])
+    joints = {j.get("name") for j in root.findall("joint") if j.get("type") != "fixed"}
     motors = tuple(content.get("name_mot") or ())
     for motor in motors:
         if motor not in joints:
             raise MalformedDescription(f"{sidecar}: name_mot", f"{motor!r} is not a moving joint of {path.name}")
-    for element in _loops(model, pairs, [str(k).lower() for k in kinds], sidecar):
-        root.append(element)
-    ET.register_namespace("mechkit", LOOP_NAMESPACE)
-    text = ET.tostring(root, encoding="unicode")
-    return Description(base.name, text, motors or base.actuated, base.home, {}, path, "extended-urdf")
+    loops = "".join(f"\n  <mechkit:loop {' '.join(f'{k}={quoteattr(v)}' for k, v in attrs.items())}/>"
+                    for attrs in _loops(placements, pairs, kinds, sidecar))
+    end = urdf.rindex("</robot>")
+    text = urdf[:end] + loops + "\n" + urdf[end:]
+    if f'xmlns:mechkit="{LOOP_NAMESPACE}"' not in text:
+        text = re.sub(r"<robot\b", f'<robot xmlns:mechkit="{LOOP_NAMESPACE}"', text, count=1)
+    desc = describe_urdf(text, path, "extended-urdf")  # checks the tree, the inertias and the loops once
+    return dataclasses.replace(desc, actuated=motors or desc.actuated)
+
+
+def link_placements(root: ET.Element) -> dict[str, tuple[str, pin.SE3]]:
+    """Every link -> (the body it is fixed to: the link after its last moving joint, its placement
+    in that body's frame), following fixed joints up the tree."""
+    parent_joint = {j.find("child").get("link"): j for j in root.findall("joint")}
+    out: dict[str, tuple[str, pin.SE3]] = {}
+
+    def place(link: str) -> tuple[str, pin.SE3]:
+        if link not in out:
+            joint = parent_joint.get(link)
+            if joint is None or joint.get("type") != "fixed":
+                out[link] = (link, pin.SE3.Identity())
+            else:
+                body, M = place(joint.find("parent").get("link"))
+                origin = joint.find("origin")
+                xyz = [float(x) for x in (origin.get("xyz", "0 0 0") if origin is not None else "0 0 0").split()]
+                rpy = [float(x) for x in (origin.get("rpy", "0 0 0") if origin is not None else "0 0 0").split()]
+                out[link] = (body, M * pin.SE3(pin.rpy.rpyToMatrix(*rpy), np.array(xyz)))
+        return out[link]
+
+    for link in root.findall("link"):
+        place(link.get("name"))
+    return out
 
 
 def _sidecar(sidecar: Path) -> dict:
     import yaml
 
     try:
-        content = yaml.safe_load(read_text(sidecar))
+        content = yaml.load(read_text(sidecar), Loader=getattr(yaml, "CSafeLoader", yaml.SafeLoader))
     except yaml.YAMLError as err:
         raise MalformedDescription(str(sidecar), f"not YAML: {str(err).splitlines()[0]}") from None
     if not isinstance(content, dict) or not isinstance(content.get("closed_loop"), list):
@@ -82,31 +111,31 @@ def _sidecar(sidecar: Path) -> dict:
     return content
 
 
-def _loops(model, pairs: list[list[str]], kinds: list[str], sidecar: Path) -> list[ET.Element]:
-    """`<mechkit:loop>` elements of the pairs (3d pairs on the same two bodies merged into hinges)."""
-    frames = [[model.frames[model.getFrameId(f)] for f in pair] for pair in pairs]
+def _loops(placements: dict[str, tuple[str, pin.SE3]], pairs: list[list[str]], kinds: list[str],
+           sidecar: Path) -> list[dict[str, str]]:
+    """Attributes of the `<mechkit:loop>`s of the pairs (3d pairs on the same two bodies merged into hinges)."""
     used = [False] * len(pairs)
     out = []
     for i, ((a, b), kind) in enumerate(zip(pairs, kinds)):
         if used[i]:
             continue
         used[i] = True
-        fa, fb = frames[i]
-        if fa.parentJoint == fb.parentJoint:
+        (body_a, Ma), (body_b, _) = placements[a], placements[b]
+        if body_a == body_b:
             raise MalformedDescription(f"{sidecar}: closed_loop {[a, b]}", "both frames are on one body")
         attrs = {"name": f"{a}-{b}", "frame_a": a, "frame_b": b, "type": "weld" if kind == "6d" else "spherical"}
         if kind == "3d":
             for k in range(i + 1, len(pairs)):
-                ga, gb = frames[k]
-                if used[k] or kinds[k] != "3d" or (ga.parentJoint, gb.parentJoint) != (fa.parentJoint, fb.parentJoint):
+                (ga_body, Ga), (gb_body, _) = (placements[f] for f in pairs[k])
+                if used[k] or kinds[k] != "3d" or (ga_body, gb_body) != (body_a, body_b):
                     continue
-                offset = fa.placement.actInv(ga.placement.translation)  # second anchor in frame_a (m)
+                offset = Ma.actInv(Ga.translation)  # second anchor in frame_a (m)
                 if np.linalg.norm(offset) > 1e-9:
                     used[k] = True
                     attrs["type"] = "revolute"
                     attrs["axis"] = " ".join(repr(float(x)) for x in offset / np.linalg.norm(offset))
                     break
-        out.append(ET.Element(f"{{{LOOP_NAMESPACE}}}loop", attrs))
+        out.append(attrs)
     return out
 
 

@@ -12,6 +12,9 @@ reads the compiled model at its reference configuration qpos0:
   at qpos0), two `connect`s between the same two bodies at distinct points -> one revolute cut about
   the line through them, `weld` -> a weld cut at body 2's frame (relative pose taken at qpos0);
 - joint actuators -> actuated joints; home inputs and guess: qpos0.
+
+Not read: the MJCF's gravity (mechkit's is -9.81 m/s^2 along z), joint springs and damping,
+contacts, and the solver parameters of the equalities (mechkit's loops are exact).
 """
 
 from __future__ import annotations
@@ -79,6 +82,7 @@ class _Writer:
         self.world = [pin.SE3(md.xmat[b].reshape(3, 3).copy(), md.xpos[b].copy()) for b in range(mm.nbody)]
         self.offset = {0: pin.SE3.Identity()}  # URDF link frame -> MuJoCo body frame
         self.parts: list[str] = []
+        self.link_line: dict[str, int] = {}  # link name -> its index in parts
 
     def _name(self, kind, i: int, prefix: str) -> str:
         return self.id2name(self.mm, kind, i) or f"{prefix}{i}"
@@ -97,6 +101,10 @@ class _Writer:
         self.parts.append("</robot>")
         return "\n".join(self.parts) + "\n"
 
+    def _link(self, name: str) -> None:
+        self.link_line[name] = len(self.parts)
+        self.parts.append(f'  <link name="{name}"/>')
+
     def _joint(self, name: str, kind: str, parent: str, child: str, origin: pin.SE3, axis=None) -> None:
         rpy = pin.rpy.matrixToRpy(origin.rotation)
         lines = [f'  <joint name="{name}" type="{kind}">', f'    <parent link="{parent}"/>', f'    <child link="{child}"/>',
@@ -113,7 +121,7 @@ class _Writer:
         prev = self.body_name(parent)
         first, count = int(mm.body_jntadr[b]), int(mm.body_jntnum[b])
         if count == 0:
-            self.parts.append(f'  <link name="{name}"/>')
+            self._link(name)
             self._joint(f"{name}_fixed", "fixed", prev, name, M)
             M = pin.SE3.Identity()
         for k, j in enumerate(range(first, first + count)):
@@ -121,7 +129,7 @@ class _Writer:
             axis, pos = mm.jnt_axis[j].astype(float), mm.jnt_pos[j].astype(float)
             ref = float(mm.qpos0[mm.jnt_qposadr[j]])
             child = name if k == count - 1 else f"{name}__{jname}"
-            self.parts.append(f'  <link name="{child}"/>')
+            self._link(child)
             if kind == HINGE:
                 origin = M * pin.SE3(np.eye(3), pos) * pin.SE3(pin.exp3(-ref * axis), np.zeros(3))
                 self._joint(jname, "revolute", prev, child, origin, axis)
@@ -146,8 +154,7 @@ class _Writer:
             return
         X = self.offset[b] * _se3(mm.body_iquat[b], mm.body_ipos[b])
         ixx, iyy, izz = (float(x) for x in mm.body_inertia[b])
-        index = next(i for i, p in enumerate(self.parts) if p == f'  <link name="{name}"/>')
-        self.parts[index] = "\n".join([
+        self.parts[self.link_line[name]] = "\n".join([
             f'  <link name="{name}">', "    <inertial>",
             f'      <origin xyz="{_fmt(X.translation)}" rpy="{_fmt(pin.rpy.matrixToRpy(X.rotation))}"/>',
             f'      <mass value="{mass!r}"/>',
@@ -156,7 +163,7 @@ class _Writer:
 
     def _frame(self, frame: str, b: int, placement: pin.SE3) -> None:
         """A fixed link `frame` at `placement` in body b's frame."""
-        self.parts.append(f'  <link name="{frame}"/>')
+        self._link(frame)
         self._joint(f"{frame}_fixed", "fixed", self.body_name(b), frame, self.offset[b] * placement)
 
     def _equalities(self) -> None:

@@ -5,7 +5,7 @@ from __future__ import annotations
 import xml.etree.ElementTree as ET
 from pathlib import Path
 
-from mechkit.description import check_loop_elements, parse_home, parse_loops, parse_xml
+from mechkit.description import parse_home, parse_loops, parse_xml
 from mechkit.exceptions import MalformedDescription
 from mechkit.sources.checks import check_inertias, check_tree
 from mechkit.sources.description import Description, read_text
@@ -26,15 +26,14 @@ def describe_urdf(urdf: str, source: Path | None, fmt: str, params: dict[str, st
     root = parse_xml(urdf, where)
     check_tree(root)
     check_inertias(root)
-    check_loop_elements(root)
-    parse_loops(urdf)
+    closures = tuple(parse_loops(root))
     joints = {j.get("name") for j in root.findall("joint") if j.get("type") != "fixed"}
-    home = parse_home(urdf)
+    home = parse_home(root)
     for joint in home:
         if joint not in joints:
             raise MalformedDescription(f"mechkit:home {joint!r}", "not a moving joint of the URDF")
     name = root.get("name") or (source.name.split(".")[0] if source else "urdf")
-    return Description(name, urdf, transmissions(root, joints), home, {}, source, fmt, dict(params or {}))
+    return Description(name, urdf, transmissions(root, joints), home, {}, source, fmt, dict(params or {}), closures)
 
 
 def transmissions(root: ET.Element, joints: set[str]) -> tuple[str, ...]:

@@ -114,18 +114,22 @@ class LinkState:
 
     @property
     def tip(self) -> np.ndarray:
+        """Position (m) of the bar's far end."""
         return self.point(self.bar.length)
 
     @property
     def com(self) -> np.ndarray:
+        """Position (m) of the bar's centre of mass (its midpoint)."""
         return self.point(0.5 * self.bar.length)
 
     @property
     def com_velocity(self) -> np.ndarray:
+        """Velocity (m/s) of the centre of mass."""
         return self.point_velocity(0.5 * self.bar.length)
 
     @property
     def com_acceleration(self) -> np.ndarray:
+        """Acceleration (m/s^2) of the centre of mass."""
         return self.point_acceleration(0.5 * self.bar.length)
 
 

@@ -24,17 +24,20 @@ from mechkit.exceptions import InvalidParameters, SingularConfiguration
 from mechkit.spatial import cross
 
 __all__ = [
+    "RANK_TOL",
     "BodyLoad",
-    "WrenchSite",
     "SKCInstant",
     "SOCResult",
-    "solve_soc",
+    "WrenchSite",
     "classic_virtual_work",
-    "RANK_TOL",
+    "solve_soc",
 ]
 
 RANK_TOL = 1e-10
 """Relative singular-value tolerance below which an SKC system counts as rank-deficient."""
+
+FREE_TOL = 1e-8
+"""Relative variation along an SKC's null space above which a value counts as not fixed (``free``)."""
 
 _ALL_COMPONENTS = (0, 1, 2, 3, 4, 5)
 
@@ -125,12 +128,17 @@ class SOCResult:
         consistency: SKC -> relative residual of its virtual-work equations
             (|N^T Q| / |N^T Q_known|; nonzero only for an over-determined SKC).
         condition: SKC -> condition number of its linear solve.
+        free: only with ``indeterminate=True``: joint -> (6,) bool, the world components of its
+            reaction that the SKC's equations do not fix.
+        free_efforts: only with ``indeterminate=True``: actuator -> whether its SKC leaves it free.
     """
 
     efforts: dict[str, float] = field(default_factory=dict)
     reactions: dict[str, np.ndarray] = field(default_factory=dict)
     consistency: dict[str, float] = field(default_factory=dict)
     condition: dict[str, float] = field(default_factory=dict)
+    free: dict[str, np.ndarray] = field(default_factory=dict)
+    free_efforts: dict[str, bool] = field(default_factory=dict)
 
 
 def _array(value: object, shape: tuple[int, ...], name: str) -> np.ndarray:
@@ -193,7 +201,8 @@ def _unknown_columns(skc: SKCInstant, directions: Sequence[np.ndarray]) -> np.nd
     return np.column_stack(cols) if cols else np.zeros((n, 0))
 
 
-def solve_soc(skcs: Sequence[SKCInstant], gravity: np.ndarray = np.array([0.0, 0.0, -9.81])) -> SOCResult:
+def solve_soc(skcs: Sequence[SKCInstant], gravity: np.ndarray = np.array([0.0, 0.0, -9.81]),
+              indeterminate: bool = False) -> SOCResult:
     """Inverse dynamics by sequential SOC virtual work.
 
     Per SKC, in order: Q = sum_bodies jv^T (m g - m a_c) + jw^T (-I alpha - omega x I omega)
@@ -205,14 +214,17 @@ def solve_soc(skcs: Sequence[SKCInstant], gravity: np.ndarray = np.array([0.0, 0
     Args:
         skcs: the SKCs in solving order; a joint released by one SKC may be known in later ones.
         gravity: (3,) m/s^2, world.
+        indeterminate: where an SKC's system does not determine its unknowns (redundant
+            constraints or actuation), take its minimum-norm solution and record in ``free`` which
+            efforts and reaction components vary along its null space, instead of raising.
 
     Returns:
         Efforts, reactions (parent on child, world, at the joint point; zero outside the declared
         components / basis), and per SKC the consistency residual and condition number.
 
     Raises:
-        SingularConfiguration: an SKC's system does not determine its unknowns (relative smallest
-            singular value below RANK_TOL, or fewer equations than unknowns).
+        SingularConfiguration: (without ``indeterminate``) an SKC's system does not determine its
+            unknowns (relative smallest singular value below RANK_TOL, or fewer equations than unknowns).
         InvalidParameters: malformed SKC data (shapes, NaN, a known joint never released, a joint
             released twice, an actuator solved twice).
     """
@@ -232,7 +244,11 @@ def solve_soc(skcs: Sequence[SKCInstant], gravity: np.ndarray = np.array([0.0, 0
         rhs = -null.T @ _known_forces(skc, gravity, result.reactions)
         directions = [_directions(skc, site) for site in skc.released]
         matrix = null.T @ _unknown_columns(skc, directions)
-        x, cond = _solve_determinate(matrix, rhs, skc.name)
+        if indeterminate:
+            x, cond, null = _solve_min_norm(matrix, rhs)
+            _record_free(result, skc, directions, null)
+        else:
+            x, cond = _solve_determinate(matrix, rhs, skc.name)
         result.condition[skc.name] = cond
         residual = np.linalg.norm(matrix @ x - rhs)
         result.consistency[skc.name] = float(residual / max(np.linalg.norm(rhs), np.finfo(float).tiny))
@@ -269,6 +285,36 @@ def _solve_determinate(matrix: np.ndarray, rhs: np.ndarray, skc: str) -> tuple[n
         what = f"SKC {skc!r} virtual-work system ({matrix.shape[0]} equations, {k} unknowns)"
         raise SingularConfiguration(cond, what)
     return np.linalg.lstsq(matrix, rhs, rcond=None)[0], float(sv[0] / sv[-1])
+
+
+def _solve_min_norm(matrix: np.ndarray, rhs: np.ndarray) -> tuple[np.ndarray, float, np.ndarray]:
+    """Minimum-norm least-squares solution, condition number of the kept part, null space (k, d)."""
+    k = matrix.shape[1]
+    if k == 0:
+        return np.zeros(0), 1.0, np.zeros((0, 0))
+    u, sv, vt = np.linalg.svd(matrix, full_matrices=True)
+    rank = int(np.sum(sv > RANK_TOL * sv[0])) if sv.size and sv[0] > 0.0 else 0
+    x = vt[:rank].T @ ((u[:, :rank].T @ rhs) / sv[:rank])
+    cond = float(sv[0] / sv[rank - 1]) if rank else np.inf
+    return x, cond, vt[rank:].T
+
+
+def _record_free(result: SOCResult, skc: SKCInstant, directions: Sequence[np.ndarray], null: np.ndarray) -> None:
+    """Store in ``result`` which efforts and reaction components of ``skc`` vary along ``null``."""
+    na = len(skc.actuators)
+    efforts = np.abs(null[:na]).max(axis=1, initial=0.0)
+    reactions = []
+    i = na
+    for basis in directions:
+        k = basis.shape[1]
+        reactions.append(np.abs(basis @ null[i : i + k]).max(axis=1, initial=0.0))
+        i += k
+    scale = max([float(efforts.max(initial=0.0))] + [float(v.max(initial=0.0)) for v in reactions])
+    threshold = FREE_TOL * scale if scale > 0.0 else np.inf
+    for (name, _), v in zip(skc.actuators, efforts, strict=True):
+        result.free_efforts[name] = bool(v > threshold)
+    for site, v in zip(skc.released, reactions, strict=True):
+        result.free[site.joint] = v > threshold
 
 
 def classic_virtual_work(

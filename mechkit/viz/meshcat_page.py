@@ -12,6 +12,7 @@ import html as html_escape
 import math
 from collections.abc import Sequence
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
@@ -54,7 +55,7 @@ class StaticScene:
     def _path(self, path: str):
         return self._MeshcatPath(tuple(p for p in path.split("/") if p))
 
-    def add(self, path: str, shape, rgba: Sequence[float], transform: np.ndarray) -> None:
+    def add(self, path: str, shape: Any, rgba: Sequence[float], transform: np.ndarray) -> None:
         """Add a meshcat primitive at `path` with a colour (rgba 0..1) and a 4x4 world transform (m)."""
         material = self.geometry.MeshPhongMaterial(color=_hex(rgba), opacity=float(rgba[3]),
                                                    transparent=bool(rgba[3] < 1))
@@ -65,7 +66,7 @@ class StaticScene:
         """Place the object at `path` by a 4x4 transform (m) relative to its parent path."""
         self._send(self._commands_module.SetTransform(np.asarray(transform, dtype=float), self._path(path)).lower())
 
-    def set_property(self, path: str, key: str, value) -> None:
+    def set_property(self, path: str, key: str, value: Any) -> None:
         """Set a three.js property of the object at `path` (e.g. a camera's "fov")."""
         self._send(self._commands_module.SetProperty(key, value, self._path(path)).lower())
 

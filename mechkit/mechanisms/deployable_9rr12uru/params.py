@@ -13,9 +13,16 @@ from mechkit.params import param
 
 @dataclass(frozen=True)
 class DeployableParams(TetraParams):
+    """The tetrahedral unit's parameters plus the links of the three URU constraint chains (m)."""
+
     l3: float = param(0.250, "m", "each link of the constraint chains EC, DF, BG (paper silent; = l2)", ours=True)
 
     def validate(self) -> None:
+        """The unit's checks, and each constraint chain EC, DF, BG must reach: chord < 2 l3.
+
+        Raises:
+            InvalidParameters: a chain cannot close at the reference fold.
+        """
         super().validate()
         nodes = self.geometry().node_positions(self.alpha_ref, self.gamma_ref)
         for chain in ("EC", "DF", "BG"):

@@ -22,6 +22,11 @@ class FourBarParams(MechanismParams):
     rows: str = param("planar", "-", "closure rows: planar (2 per pin) or spatial (5 per pin)")
 
     def validate(self) -> None:
+        """The loop must close: the longest link shorter than the sum of the other three.
+
+        Raises:
+            InvalidParameters: it cannot.
+        """
         lengths = [self.ground, self.crank, self.coupler, self.rocker]
         if max(lengths) >= sum(lengths) - max(lengths):
             raise InvalidParameters("ground/crank/coupler/rocker", lengths,

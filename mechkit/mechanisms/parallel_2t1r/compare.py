@@ -12,6 +12,7 @@ from dataclasses import dataclass
 import numpy as np
 import pinocchio as pin
 
+from mechkit.dynamics import InverseDynamicsResult
 from mechkit.exceptions import MechkitError, SingularConfiguration
 from mechkit.mechanism import Mechanism
 from mechkit.mechanisms.parallel_2t1r.joints import joint_coordinates, joint_positions
@@ -27,7 +28,7 @@ METHODS = ("pinocchio", "soc", "classic")
 
 
 def pinocchio_motion(mech: Mechanism, theta: np.ndarray, rates: np.ndarray, acc: np.ndarray,
-                     guess) -> tuple[np.ndarray, ...]:
+                     guess: np.ndarray | dict[str, float] | None) -> tuple[np.ndarray, ...]:
     """Pinocchio's own motion for the inputs: closure solve from ``guess``, then v and a (SI).
 
     Raises:
@@ -39,7 +40,7 @@ def pinocchio_motion(mech: Mechanism, theta: np.ndarray, rates: np.ndarray, acc:
 
 
 def pinocchio_inverse_dynamics(mech: Mechanism, q: np.ndarray, v: np.ndarray, a: np.ndarray,
-                               m4: float | None = None, determinacy: bool = True):
+                               m4: float | None = None, determinacy: bool = True) -> InverseDynamicsResult:
     """`Mechanism.inverse_dynamics` of a non-redundant model, with R41's motor torque m4 (N m) as a
     known external torque on link41 when given (the redundant variant with a chosen distribution)."""
     fext = None

@@ -76,6 +76,7 @@ class Pose:
     alpha: float
 
     def array(self) -> np.ndarray:
+        """(x (m), z (m), alpha (rad)) as an array (3,)."""
         return np.array([self.x, self.z, self.alpha])
 
 
@@ -92,7 +93,9 @@ def solve_trig(a: float, b: float, c: float, name: str) -> tuple[tuple[float, fl
     """Both roots of ``a sin x + b cos x + c = 0`` (the paper's form of eqs. (8), (9), (10)).
 
     Args:
-        a, b, c: coefficients.
+        a: coefficient of sin x.
+        b: coefficient of cos x.
+        c: constant term.
         name: the unknown's name, for the error.
 
     Returns:

@@ -22,8 +22,14 @@ def motion_law(t: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     return MOTION_RATES * t, MOTION_RATES.copy(), np.zeros(3)
 
 
-def state_at(p: Parallel2T1RParams, theta, theta_dot, theta_ddot) -> State:
+def state_at(p: Parallel2T1RParams, theta: np.ndarray, theta_dot: np.ndarray, theta_ddot: np.ndarray) -> State:
     """Full motion state of the assembled branch for the inputs, their rates and accelerations.
+
+    Args:
+        p: the parameters.
+        theta: inputs theta_1..theta_3 (rad).
+        theta_dot: their rates (rad/s).
+        theta_ddot: their accelerations (rad/s^2).
 
     Raises:
         SingularConfiguration: J_p singular (e.g. the motion law's start, t = 0).

@@ -20,6 +20,8 @@ from mechkit.params import MechanismParams, param
 
 @dataclass(frozen=True)
 class Parallel2T1RParams(MechanismParams):
+    """Dimensions (m), bar sections and material, payload of the 2T1R parallel mechanism."""
+
     l1: float = param(0.4, "m", "side of the base square A1A2A3A4 (paper: 400 mm)")
     l2: float = param(0.2, "m", "length of every limb link (paper: 200 mm)")
     l3: float = param(0.462, "m", "platform side C3C4 (paper: 462 mm)")
@@ -32,6 +34,11 @@ class Parallel2T1RParams(MechanismParams):
     redundant_actuation: bool = param(False, "-", "drive R41 too (four motors for three DOF)")
 
     def validate(self) -> None:
+        """The platform within the limbs' reach, bars narrower than l2, the paper's example inputs assemble.
+
+        Raises:
+            InvalidParameters: one of them fails.
+        """
         if self.l3 / 2.0 >= self.l1 + self.l2:
             raise InvalidParameters("l3", self.l3, "platform wider than the limbs can hold")
         if self.l2 <= self.bar_width:

@@ -118,7 +118,9 @@ def motion_state(
     """Platform and follower motion from the inputs: eqs. (12), (15) and the follower theta_4.
 
     Args:
-        theta, theta_dot, theta_ddot: (3,) inputs theta_1..theta_3 (rad, rad/s, rad/s^2).
+        theta: (3,) inputs theta_1..theta_3 (rad).
+        theta_dot: (3,) their rates (rad/s).
+        theta_ddot: (3,) their accelerations (rad/s^2).
         pose: the assembled pose for ``theta`` (one of ``forward_kinematics``).
         theta4: the assembled follower angle (one of ``follower_angles``).
 

@@ -47,6 +47,7 @@ class Points:
 
     @classmethod
     def of(cls, d: kin.Dims, s: rates.State) -> Points:
+        """The points (world, m) of a motion state at dimensions d."""
         return cls(kin.base_points(d), kin.elbow_points(d, s.theta), kin.end_points(d, s.pose),
                    kin.platform_points(d, s.pose)["p"])
 

@@ -52,7 +52,7 @@ def lagrange_first_kind(motion: Motion, mech: Mechanism, sample: Any) -> dict[st
 
 
 def lagrange_forward(motion: Motion, mech: Mechanism, sample: Any) -> np.ndarray:
-    """Forward dynamics in reference-point coordinates: [M, C_q^T; C_q, 0] [qdd; lambda] = [Q + S^T u; gamma].
+    """Forward dynamics in reference-point coordinates: `[M, C_q^T; C_q, 0] [qdd; lambda] = [Q + S^T u; gamma]`.
 
     The efforts u are the sample's tau on the motor pins (torques about -y); returns the joint
     accelerations of mechkit's q (relative angle rates of each URDF joint).

@@ -21,6 +21,8 @@ BodySpec = dict[str, tuple[float, float, float]]
 
 @dataclass(frozen=True)
 class RocketGimbalParams(MechanismParams):
+    """Pivot layout (m), actuator lengths (m) and the masses and inertias of the engine gimbal."""
+
     pivot_radius: float = param(
         1.009116,
         "m",
@@ -55,6 +57,11 @@ class RocketGimbalParams(MechanismParams):
     cross_inertia: float = param(0.004, "kg m^2", "Hooke cross moment of inertia (isotropic)", ours=True)
 
     def validate(self) -> None:
+        """Rod and cylinder shorter than the shortest actuator, overlapping at full stroke; frame pivots off the plane of O.
+
+        Raises:
+            InvalidParameters: one of them fails.
+        """
         shortest = min(self.length_a, self.length_b) - RULE_STROKE
         if self.rod_length >= shortest or self.cylinder_length >= shortest:
             raise InvalidParameters(

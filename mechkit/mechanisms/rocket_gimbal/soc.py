@@ -87,7 +87,8 @@ def gimbal_skcs(
         bodies: mass and inertias of "bracket", "engine" and, per servo "a" / "b", "*_cross",
             "*_cylinder", "*_rod".
         engine_com: distance of the engine COM from O along the nozzle axis, m.
-        cylinder_length, rod_length: m (COMs at half length from the frame pivot / the ball).
+        cylinder_length: m (COM at half length from the frame pivot).
+        rod_length: m (COM at half length from the ball).
         to_world: (3, 3) rotation paper frame -> world.
         thrust: (force N, distance m from O along the nozzle axis of its point of application); the
             force acts on the engine against the nozzle axis (the exhaust leaves along +n).

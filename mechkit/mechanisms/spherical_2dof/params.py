@@ -20,6 +20,8 @@ __all__ = ["Spherical2DofParams"]
 
 @dataclass(frozen=True)
 class Spherical2DofParams(MechanismParams):
+    """Link arcs and axis angles (rad), sizes (m) and masses of the 2-DOF spherical platform."""
+
     alpha1: float = param(math.radians(25.0), "rad", "arc between the motor axis u_i and the middle axis w_i")
     alpha2: float = param(
         math.radians(30.0), "rad", "arc between the middle axis w_i and the platform axis v_i"
@@ -55,6 +57,11 @@ class Spherical2DofParams(MechanismParams):
     )
 
     def validate(self) -> None:
+        """Rows known, link arcs in (0, 90) deg, and both limbs assemble at home.
+
+        Raises:
+            InvalidParameters: one of them fails.
+        """
         if self.rows not in ("spherical", "spatial"):
             raise InvalidParameters("rows", self.rows, "one of 'spherical', 'spatial'")
         for name in ("alpha1", "alpha2"):

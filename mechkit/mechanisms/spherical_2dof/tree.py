@@ -60,7 +60,9 @@ def state(
 
     Args:
         mech: the loaded spherical_2dof mechanism.
-        phi, phi_d, phi_dd: attitude (roll, pitch) rad, its rates rad/s and accelerations rad/s^2.
+        phi: attitude (roll, pitch), rad.
+        phi_d: its rates, rad/s.
+        phi_dd: its accelerations, rad/s^2.
         branches: the IK branch per limb (+1 / -1).
     """
     p = mech.params

@@ -11,6 +11,7 @@
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 import pinocchio as pin
@@ -21,6 +22,9 @@ from mechkit.mechanisms.ten_bar import kinematics as tk
 from mechkit.mechanisms.ten_bar import soc as ts
 from mechkit.mechanisms.ten_bar.lagrange_model import lagrange_linkage
 from mechkit.mechanisms.ten_bar.params import MOTORS, PASSIVE, TenBarParams, motor_law
+
+if TYPE_CHECKING:
+    from mechkit.mechanism import Mechanism
 
 
 @dataclass(frozen=True)
@@ -36,11 +40,12 @@ class Reactions:
     forces: dict[str, np.ndarray]
 
     def vector(self) -> np.ndarray:
+        """Motor torques (N m, `MOTORS`) then every pair's force components (N, `geometry.PAIRS`), flat."""
         return np.concatenate([[self.efforts[m] for m in MOTORS], *[self.forces[j] for j in geo.PAIRS]])
 
 
 def spring_fext(
-    mechanism, deployment: td.PinocchioDeployment, q: np.ndarray, v: np.ndarray
+    mechanism: Mechanism, deployment: td.PinocchioDeployment, q: np.ndarray, v: np.ndarray
 ) -> pin.StdVec_Force:
     """The R5 spring-damper torque as an external moment on l56 (joint-local frame, about -y)."""
     fext = pin.StdVec_Force([pin.Force.Zero() for _ in range(mechanism.model.njoints)])
@@ -49,7 +54,7 @@ def spring_fext(
     return fext
 
 
-def reactions_three_ways(mechanism, t: float, q: np.ndarray, v: np.ndarray) -> dict[str, Reactions]:
+def reactions_three_ways(mechanism: Mechanism, t: float, q: np.ndarray, v: np.ndarray) -> dict[str, Reactions]:
     """Motor torques and pin forces at a state (q, v) on the manifold at time t, by three methods.
 
     Pinocchio: accelerations from constrained ABA with the motor laws, then constrained RNEA with
@@ -71,7 +76,7 @@ def reactions_three_ways(mechanism, t: float, q: np.ndarray, v: np.ndarray) -> d
 
 
 def reactions_along(
-    mechanism, trajectory: td.Trajectory, every: int
+    mechanism: Mechanism, trajectory: td.Trajectory, every: int
 ) -> tuple[np.ndarray, dict[str, list[Reactions]]]:
     """`reactions_three_ways` at every `every`-th sample of a Pinocchio-route trajectory.
 
@@ -95,7 +100,7 @@ def reaction_disagreement(results: dict[str, Reactions]) -> float:
     return float(max(np.max(np.abs(x - y)) for x in vectors for y in vectors) / scale)
 
 
-def kinematics_disagreement(mechanism, inputs_list: list[dict[str, float]]) -> dict[str, float]:
+def kinematics_disagreement(mechanism: Mechanism, inputs_list: list[dict[str, float]]) -> dict[str, float]:
     """Largest joint-angle difference (rad) between the routes over a sequence of inputs (R1, R3, R5).
 
     Each solve starts from the previous instant's answer, so consecutive inputs must be close (a
@@ -131,7 +136,7 @@ def nominal_inputs(p: TenBarParams, n: int) -> list[dict[str, float]]:
     return out
 
 
-def self_checks(mechanism) -> dict[str, float]:
+def self_checks(mechanism: Mechanism) -> dict[str, float]:
     """Rows of `mechkit report ten_bar` (worst error of each check; smaller is better)."""
     p = mechanism.params
     kin = kinematics_disagreement(mechanism, nominal_inputs(p, 21))

@@ -19,8 +19,9 @@ projection is off, left to drift (optionally with Baumgarte terms in the acceler
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Protocol
+from typing import TYPE_CHECKING, Protocol
 
 import numpy as np
 import pinocchio as pin
@@ -34,6 +35,9 @@ from mechkit.mechanisms.ten_bar.lagrange_model import (
     lagrange_linkage,
 )
 from mechkit.mechanisms.ten_bar.params import MOTORS, TenBarParams, motor_law, spring_from_urdf
+
+if TYPE_CHECKING:
+    from mechkit.mechanism import Mechanism
 
 
 class DeploymentSystem(Protocol):
@@ -69,7 +73,8 @@ class PinocchioDeployment:
         method: forward-dynamics method of the core ("proximal" = pin.constraintDynamics, or "kkt").
     """
 
-    def __init__(self, mechanism, baumgarte: tuple[float, float] | None = None, method: str = "proximal"):
+    def __init__(self, mechanism: Mechanism, baumgarte: tuple[float, float] | None = None,
+                 method: str = "proximal") -> None:
         # (0, 0) rather than None: the core keeps the last Baumgarte gains set on its constraint models
         self.m, self.baumgarte, self.method = mechanism, baumgarte or (0.0, 0.0), method
         self.p = mechanism.params
@@ -80,13 +85,15 @@ class PinocchioDeployment:
         self.data = mechanism.model.createData()
 
     def spring_torque(self, q: np.ndarray, v: np.ndarray) -> float:
+        """The R5 spring-damper torque on l56 (N m): k (free angle - q) - c qdot."""
         s = self.spring
         return s.stiffness * (s.free_angle - q[self.spring_v]) - s.damping * v[self.spring_v]
 
     def _fd(self, q, v, tau):
         return self.m.forward_dynamics(q, v, tau, method=self.method, baumgarte=self.baumgarte).a
 
-    def rhs(self, t, q, v):
+    def rhs(self, t: float, q: np.ndarray, v: np.ndarray) -> tuple[np.ndarray, np.ndarray, float]:
+        """(accelerations, motor torques (R1, R3) N m, net external power W) at time t (s)."""
         _, _, acc = motor_law(self.p, t)
         tau = np.zeros(self.m.model.nv)
         tau[self.spring_v] = self.spring_torque(q, v)
@@ -106,49 +113,58 @@ class PinocchioDeployment:
         G = np.vstack([self.m.closure_jacobian(q), np.eye(self.m.model.nv)[self.motor_v]])
         return e, G
 
-    def project(self, t, q, v):
+    def project(self, t: float, q: np.ndarray, v: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """(q, v) on the closures and the motor laws at time t (s)."""
         _, rate, _ = motor_law(self.p, t)
         return project(lambda x: self._rows(t, x), q, v, rate, "ten-bar projection (Pinocchio)")
 
-    def residual(self, t, q):
+    def residual(self, t: float, q: np.ndarray) -> float:
+        """Largest closure residual (m) at q."""
         return float(np.max(np.abs(self.m.closure_residual(q))))
 
-    def energy(self, q, v):
+    def energy(self, q: np.ndarray, v: np.ndarray) -> float:
+        """Kinetic + gravity + spring energy (J)."""
         model, data = self.m.model, self.data
         kinetic = pin.computeKineticEnergy(model, data, q, v)
         gravity = pin.computePotentialEnergy(model, data, q)
         s = self.spring
         return float(kinetic + gravity + 0.5 * s.stiffness * (q[self.spring_v] - s.free_angle) ** 2)
 
-    def joint_angles(self, q):
+    def joint_angles(self, q: np.ndarray) -> np.ndarray:
+        """The 9 tree-joint angles in `JOINT_ORDER` (rad)."""
         return q[self.order]
 
 
 class LagrangeDeployment:
     """Deployment dynamics by the patent's Lagrange first-kind method (numpy only)."""
 
-    def __init__(self, params: TenBarParams):
+    def __init__(self, params: TenBarParams) -> None:
         self.p = params
         self.L = lagrange_linkage(params)
 
-    def rhs(self, t, q, v):
+    def rhs(self, t: float, q: np.ndarray, v: np.ndarray) -> tuple[np.ndarray, np.ndarray, float]:
+        """(reference-point accelerations, motor torques (R1, R3) N m, net external power W) at t (s)."""
         _, _, acc = motor_law(self.p, t)
         sol = self.L.solve(q, v, acc)
         u = np.array([sol.efforts[m] for m in MOTORS])
         power = self.L.power(q, v, sol.efforts)
         return sol.qdd, u, power["motor"] - power["damper"]
 
-    def project(self, t, q, v):
+    def project(self, t: float, q: np.ndarray, v: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """(q, v) on the pin constraints and the motor laws at time t (s)."""
         pos, rate, _ = motor_law(self.p, t)
         return self.L.project(q, v, pos, rate)
 
-    def residual(self, t, q):
+    def residual(self, t: float, q: np.ndarray) -> float:
+        """Largest pin-constraint residual (m) at q."""
         return float(np.max(np.abs(self.L.constraints(q))))
 
-    def energy(self, q, v):
+    def energy(self, q: np.ndarray, v: np.ndarray) -> float:
+        """Kinetic + gravity + spring energy (J)."""
         return float(sum(self.L.energy(q, v).values()))
 
-    def joint_angles(self, q):
+    def joint_angles(self, q: np.ndarray) -> np.ndarray:
+        """The 9 tree-joint angles in `JOINT_ORDER` (rad) of reference-point coordinates q."""
         angles = joint_angles_from_lagrange(q)
         return np.array([angles[j] for j in JOINT_ORDER])
 
@@ -163,7 +179,7 @@ class LagrangeJointDeployment:
     not by the integrator's truncation error.
     """
 
-    def __init__(self, params: TenBarParams):
+    def __init__(self, params: TenBarParams) -> None:
         self.p = params
         self.inner = LagrangeDeployment(params)
         self.L = self.inner.L
@@ -185,7 +201,8 @@ class LagrangeJointDeployment:
         """(q_L, T) with T = d q_L / d q (the forward kinematics is linear in the rates)."""
         return self.fk(q, np.eye(len(q)))
 
-    def rhs(self, t, q, v):
+    def rhs(self, t: float, q: np.ndarray, v: np.ndarray) -> tuple[np.ndarray, np.ndarray, float]:
+        """(joint accelerations, motor torques (R1, R3) N m, net external power W) at time t (s)."""
         qL, vL = self._state(q, v)
         qdd, u, power = self.inner.rhs(t, qL, vL)
         return self.joint_rows @ qdd, u, power
@@ -196,27 +213,36 @@ class LagrangeJointDeployment:
         e = np.concatenate([self.L.constraints(qL), q[self.motor_rows] - pos])
         return e, np.vstack([self.L.jacobian(qL) @ T, np.eye(len(q))[self.motor_rows]])
 
-    def project(self, t, q, v):
+    def project(self, t: float, q: np.ndarray, v: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """(q, v) on the pin constraints and the motor laws at time t (s)."""
         _, rate, _ = motor_law(self.p, t)
         return project(lambda x: self._rows(t, x), q, v, rate, "ten-bar projection (Lagrange, joints)")
 
-    def residual(self, t, q):
+    def residual(self, t: float, q: np.ndarray) -> float:
+        """Largest pin-constraint residual (m) at joint angles q."""
         return self.inner.residual(t, self._state(q, 0 * q)[0])
 
-    def energy(self, q, v):
+    def energy(self, q: np.ndarray, v: np.ndarray) -> float:
+        """Kinetic + gravity + spring energy (J)."""
         return self.inner.energy(*self._state(q, v))
 
-    def joint_angles(self, q):
+    def joint_angles(self, q: np.ndarray) -> np.ndarray:
+        """The joint angles themselves (rad, `JOINT_ORDER`)."""
         return q.copy()
 
 
-def project(rows, q: np.ndarray, v: np.ndarray, motor_rates: np.ndarray, what: str, tol: float = 1e-13,
+def project(rows: Callable[[np.ndarray], tuple[np.ndarray, np.ndarray]], q: np.ndarray, v: np.ndarray, motor_rates: np.ndarray, what: str, tol: float = 1e-13,
             max_iter: int = 20) -> tuple[np.ndarray, np.ndarray]:
     """Minimum-norm Gauss-Newton projection of q onto e(q) = 0, then of v onto G v = (0, motor rates).
 
     Args:
         rows: q -> (e, G): residuals (closure rows, then the 2 motor-law rows) and their Jacobian.
+        q: configuration to project.
+        v: rates to project.
+        motor_rates: the motor-law rates (rad/s) the motor rows of G v must equal.
         what: names the system in the error.
+        tol: residual norm to reach.
+        max_iter: Gauss-Newton steps allowed.
 
     Raises:
         ClosureNotConverged: the residual does not reach tol.
@@ -252,6 +278,7 @@ class Trajectory:
 
     @property
     def energy_error(self) -> float:
+        """Largest drift (J) of E - W from its initial value."""
         balance = self.energy - self.work
         return float(np.max(np.abs(balance - balance[0])))
 
@@ -269,9 +296,12 @@ def integrate(
 
     Args:
         system: the dynamics model.
-        q0, v0: initial state on the constraint manifold.
-        t_end, dt: end time and step (s).
+        q0: initial configuration, on the constraint manifold.
+        v0: initial rates, on the constraint manifold.
+        t_end: end time (s).
+        dt: step (s).
         project: project (q, v) onto the closures and motor laws after every step.
+        t0: start time (s).
     """
     steps = round((t_end - t0) / dt)
     q, v, w = q0.copy(), v0.copy(), 0.0
@@ -308,7 +338,7 @@ def integrate(
 
 
 def lagrange_state(
-    params: TenBarParams, q_pin: np.ndarray, v_pin: np.ndarray, mechanism
+    params: TenBarParams, q_pin: np.ndarray, v_pin: np.ndarray, mechanism: Mechanism
 ) -> tuple[np.ndarray, np.ndarray]:
     """Reference-point coordinates and rates of a Pinocchio state (numpy forward kinematics)."""
     angles = {j: float(q_pin[mechanism.q_index(j)]) for j in JOINT_ORDER}

@@ -91,10 +91,11 @@ def rot(phi: float) -> np.ndarray:
 
 
 def unit(phi: float) -> np.ndarray:
+    """Unit vector (2,) of the plane at angle phi (rad) from the x axis."""
     return np.array([np.cos(phi), np.sin(phi)])
 
 
-def hinge_points(p) -> dict[str, dict[str, np.ndarray]]:
+def hinge_points(p: TenBarParams) -> dict[str, dict[str, np.ndarray]]:
     """Body-frame coordinates (m) of every hinge on every link (and the wall's, in world)."""
     r2 = np.array([p.r2_along, p.r2_normal])
     return {
@@ -116,7 +117,7 @@ def hinge_points(p) -> dict[str, dict[str, np.ndarray]]:
     }
 
 
-def hinges(p) -> tuple[Hinge, ...]:
+def hinges(p: TenBarParams) -> tuple[Hinge, ...]:
     """The 12 revolute pairs in `PAIRS` order (parent side first; R7a/R7c/R10 are the cuts)."""
     h = hinge_points(p)
     out = []
@@ -128,7 +129,7 @@ def hinges(p) -> tuple[Hinge, ...]:
     return tuple(out)
 
 
-def pieces(p) -> dict[str, tuple[Piece, ...]]:
+def pieces(p: TenBarParams) -> dict[str, tuple[Piece, ...]]:
     """The bars and plates of every link (body frames); the xacro template builds the same ones."""
     h = hinge_points(p)
     rod = p.rod_width * p.rod_thickness * p.rod_density  # kg/m
@@ -156,7 +157,7 @@ def pieces(p) -> dict[str, tuple[Piece, ...]]:
     }
 
 
-def mass_properties(p) -> dict[str, tuple[float, np.ndarray, float]]:
+def mass_properties(p: TenBarParams) -> dict[str, tuple[float, np.ndarray, float]]:
     """Per link: mass (kg), COM (body frame, m), inertia about the COM normal to the plane (kg m^2)."""
     out = {}
     for body, parts in pieces(p).items():
@@ -216,7 +217,7 @@ class Pose:
         return {k: v if k == "R3" else float(np.angle(np.exp(1j * v))) for k, v in rel.items()}
 
 
-def pose(p, phi1: float, psi3: float, phi5: float) -> Pose:
+def pose(p: TenBarParams, phi1: float, psi3: float, phi5: float) -> Pose:
     """Closed-form assembly from the two motor angles and the passive one.
 
     Args:

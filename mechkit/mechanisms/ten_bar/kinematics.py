@@ -13,12 +13,16 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 import pinocchio as pin
 
 from mechkit.closures import ClosureRows, cut_rows
 from mechkit.kinematics import solve_closure
+
+if TYPE_CHECKING:
+    from mechkit.mechanism import Mechanism
 
 
 @dataclass(frozen=True)
@@ -32,6 +36,7 @@ class Unit:
 
     @property
     def unknowns(self) -> tuple[str, ...]:
+        """The unit's joints that are not inputs (solved for)."""
         return tuple(j for j in self.joints if j not in self.inputs)
 
 
@@ -46,7 +51,7 @@ UNITS = (
 class _ReducedUnit:
     """One unit as a reduced Pinocchio model with its closure rows."""
 
-    def __init__(self, mechanism, unit: Unit):
+    def __init__(self, mechanism: Mechanism, unit: Unit):
         model = mechanism.model
         locked = [model.getJointId(n) for n in model.names[1:] if n not in unit.joints]
         self.unit = unit
@@ -72,7 +77,7 @@ class DimensionReduction:
         mechanism: `mechkit.load("ten_bar", ...)`.
     """
 
-    def __init__(self, mechanism):
+    def __init__(self, mechanism: Mechanism):
         self.units = [_ReducedUnit(mechanism, u) for u in UNITS]
 
     def unit_model(self, name: str) -> pin.Model:
@@ -98,6 +103,6 @@ class DimensionReduction:
         return known
 
 
-def full_solve(mechanism, inputs: Mapping[str, float], guess: np.ndarray, tol: float = 1e-13) -> np.ndarray:
+def full_solve(mechanism: Mechanism, inputs: Mapping[str, float], guess: np.ndarray, tol: float = 1e-13) -> np.ndarray:
     """The whole closure at once (the core's Gauss-Newton on all 6 rows) from R1, R3, R5."""
     return mechanism.assemble(dict(inputs), guess=guess, tol=tol)

@@ -11,6 +11,7 @@
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 from scipy.linalg import null_space
@@ -21,6 +22,9 @@ from mechkit.mechanisms.ten_bar import dynamics as td
 from mechkit.mechanisms.ten_bar import geometry as geo
 from mechkit.mechanisms.ten_bar import kinematics as tk
 from mechkit.mechanisms.ten_bar.params import MOTORS, TenBarParams
+
+if TYPE_CHECKING:
+    from mechkit.mechanism import Mechanism
 
 
 @dataclass(frozen=True)
@@ -38,7 +42,7 @@ class KinematicSplit:
     five_bar_nullity: int
 
 
-def kinematic_split(mechanism, q: np.ndarray) -> KinematicSplit:
+def kinematic_split(mechanism: Mechanism, q: np.ndarray) -> KinematicSplit:
     """Null space of the closure Jacobian with the motor columns held (the patent's kinematic split)."""
     J = mechanism.closure_jacobian(q)
     motors = [mechanism.v_index(m) for m in MOTORS]
@@ -64,7 +68,7 @@ STABILISATIONS = (
 
 
 def drift(
-    mechanism, t_end: float, dt: float, baumgarte: tuple[float, float] | None, project: bool
+    mechanism: Mechanism, t_end: float, dt: float, baumgarte: tuple[float, float] | None, project: bool
 ) -> td.Trajectory:
     """A stretch of the deployment from stowed with a chosen stabilisation (Pinocchio route).
 

@@ -68,6 +68,11 @@ class TenBarParams(MechanismParams):
     rows: str = param("planar", "-", "closure rows: planar (2 per pin) or spatial (5 per pin)")
 
     def validate(self) -> None:
+        """Damping >= 0 and the five-bar closes for every motor and rocker angle.
+
+        Raises:
+            InvalidParameters: one of them fails.
+        """
         if self.spring_damping < 0:
             raise InvalidParameters("spring_damping", self.spring_damping, "must be >= 0")
         reach = math.hypot(self.r2_along, self.r2_normal) + self.l56

@@ -95,12 +95,12 @@ class UnitMotion:
         self.bodies = [j.child for j in joints]  # parents before children
         self.index = {j.name: i for i, j in enumerate(joints)}
 
-    def nodes(self, alpha, gamma) -> dict:
+    def nodes(self, alpha: complex, gamma: complex) -> dict:
         """Eq. (6)-(7): node positions of the unit, m (complex-safe)."""
         local = self.geometry.unit_local(alpha)
         return {k: rot_y(gamma) @ v for k, v in local.items()}
 
-    def poses(self, t) -> tuple[dict, dict]:
+    def poses(self, t: complex) -> tuple[dict, dict]:
         """(rotation, origin) of every body at time t, world (complex-safe in t)."""
         p = self.p
         alpha, gamma = alpha_law(t), gamma_law(t)

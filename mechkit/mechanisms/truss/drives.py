@@ -14,6 +14,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from mechkit.exceptions import InvalidParameters
 from mechkit.mechanisms.truss.geometry import DEG
@@ -26,7 +27,7 @@ GAMMA_A, GAMMA_B, GAMMA_C, GAMMA_D, GAMMA_E = 0.267, 0.172, 0.718, 0.413, 1.392
 FOLD_DURATION = 200.0  # s, "200 s of simulation fold it fully"
 
 
-def alpha_law(t):
+def alpha_law(t: ArrayLike) -> np.ndarray:
     """alpha(t) = asin(0.490 cos xi), xi = 0.25 deg/s t + 23.171 deg (rad); complex-safe in t."""
     xi = XI0 + XI_RATE * t
     return np.arcsin(ALPHA_GAIN * np.cos(xi))
@@ -43,7 +44,7 @@ def _gamma_cos(t):
     return GAMMA_A * cx * cz + np.sqrt((GAMMA_B * cx**2 - GAMMA_C) * (GAMMA_D * cz**2 - GAMMA_E))
 
 
-def gamma_law(t):
+def gamma_law(t: ArrayLike) -> np.ndarray:
     """gamma(t) = -acos(...) (rad; our sign reading, see the module docstring); complex-safe in t."""
     return -np.arccos(_gamma_cos(t))
 

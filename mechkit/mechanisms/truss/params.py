@@ -21,6 +21,8 @@ _T0 = drive_state(0.0)
 
 @dataclass(frozen=True)
 class TetraParams(MechanismParams):
+    """Rod lengths (m), reference fold angles (rad) and masses (kg) of the tetrahedral unit."""
+
     L: float = param(0.590, "m", "web rod length AH = BH = EH (Adams model, section 3.2)")
     l1: float = param(0.2504, "m", "each link of the folding rods AB, AE")
     l2: float = param(0.250, "m", "each link of the folding rod BE")
@@ -33,6 +35,11 @@ class TetraParams(MechanismParams):
     cross_mass: float = param(0.01, "kg", "Hooke-joint cross", ours=True)
 
     def validate(self) -> None:
+        """The folding rods can reach at the reference fold angle, in (0, 90) deg.
+
+        Raises:
+            InvalidParameters: one of them fails.
+        """
         half_angle_beta(self.l1, self.l2)
         if not 0.0 < self.alpha_ref < np.pi / 2:
             raise InvalidParameters("alpha_ref", self.alpha_ref, "the fold angle must lie in (0, 90) deg")

@@ -1,0 +1,95 @@
+"""One instant of a mechanism for the second opinion: every body's motion and every joint's point and
+wrench directions, from Pinocchio KINEMATICS only (`forwardKinematics`, joint Jacobians, frame
+placements; no mass matrix, no RNEA).
+
+World axes throughout. A body's equilibrium rows are its force and its moment about its own joint
+origin ``origin``; a joint's wrench directions have their moment about the joint point.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import pinocchio as pin
+
+from mechkit.closures import ClosureRows
+from mechkit.second_opinion.structure import Structure, constraint_span, tree_motion
+from mechkit.spatial import cross
+
+
+@dataclass(frozen=True)
+class BodyMotion:
+    """A body at one instant (world): origin and COM (m), mass (kg), inertia about the COM (kg m^2),
+    angular velocity (rad/s) and acceleration (rad/s^2), COM acceleration (m/s^2)."""
+
+    origin: np.ndarray
+    com: np.ndarray
+    mass: float
+    inertia: np.ndarray
+    omega: np.ndarray
+    alpha: np.ndarray
+    com_acceleration: np.ndarray
+
+
+@dataclass(frozen=True)
+class JointGeometry:
+    """A joint at one instant: its point (m), the (6, k) world wrench directions of its reaction
+    components (moment about the point), and the (6,) wrench of a unit effort (None if passive)."""
+
+    point: np.ndarray
+    basis: np.ndarray
+    effort: np.ndarray | None
+
+
+@dataclass(frozen=True)
+class Instant:
+    """Bodies (id -> motion) and joints (name -> geometry) of one state; gravity (3,) m/s^2."""
+
+    bodies: dict[int, BodyMotion]
+    joints: dict[str, JointGeometry]
+    gravity: np.ndarray
+
+
+def joint_geometry(model: pin.Model, data: pin.Data, rows: ClosureRows, structure: Structure) -> dict[str, JointGeometry]:
+    """Every joint's point and wrench directions; joint Jacobians and frame placements must be current."""
+    out = {}
+    eye = np.eye(6)
+    for joint in structure.joints:
+        span = constraint_span(model, data, rows, joint)
+        basis = span @ (span.T @ eye[:, list(joint.components)])
+        effort = None
+        if joint.cut:
+            point = data.oMf[rows.cuts[joint.index].frame_b].translation.copy()
+        else:
+            point = data.oMi[joint.index].translation.copy()
+            if joint.actuated:
+                s = tree_motion(model, data, joint.index)[:, 0]
+                effort = s / (s @ s)
+        out[joint.name] = JointGeometry(point, basis, effort)
+    return out
+
+
+def instant(model: pin.Model, data: pin.Data, rows: ClosureRows, structure: Structure, q: np.ndarray,
+            v: np.ndarray, a: np.ndarray) -> Instant:
+    """The instant (q, v, a) (rad, m; rad/s, m/s; rad/s^2, m/s^2) of a mechanism's tree.
+
+    Args:
+        rows: the closures' full spatial rows (the cut joints of ``structure``).
+    """
+    pin.computeJointJacobians(model, data, q)
+    pin.forwardKinematics(model, data, q, v, a)
+    pin.updateFramePlacements(model, data)
+    bodies = {}
+    for j in structure.bodies:
+        placement, inertia = data.oMi[j], model.inertias[j]
+        rot = placement.rotation
+        vel, acc = data.v[j], data.a[j]
+        omega, v_origin = rot @ vel.angular, rot @ vel.linear
+        alpha = rot @ acc.angular
+        a_origin = rot @ acc.linear + cross(omega, v_origin)
+        lever = rot @ inertia.lever
+        a_com = a_origin + cross(alpha, lever) + cross(omega, cross(omega, lever))
+        bodies[j] = BodyMotion(placement.translation.copy(), placement.translation + lever, float(inertia.mass),
+                               rot @ inertia.inertia @ rot.T, omega, alpha, a_com)
+    return Instant(bodies, joint_geometry(model, data, rows, structure), model.gravity.linear.copy())

@@ -1,0 +1,47 @@
+"""`SecondOpinion`: a mechanism's automatic SOC decomposition, found once, and its solve at any instant."""
+
+from __future__ import annotations
+
+import time
+
+import numpy as np
+
+from mechkit.mechanism import Mechanism
+from mechkit.second_opinion.decomposition import SKC, decompose
+from mechkit.second_opinion.motion import instant
+from mechkit.second_opinion.solve import Opinion, plan, solve_instant
+from mechkit.second_opinion.structure import Structure, build_structure
+
+
+class SecondOpinion:
+    """Efforts and joint reactions of a mechanism by sequential SOC virtual work, with its SKCs found
+    automatically (`mechkit.second_opinion.decomposition`) from its structure at the home assembly.
+
+    Attributes:
+        mechanism: the mechanism.
+        structure: its structure graph (bodies, joints, reaction components, actuators).
+        skcs: the SKCs in solve order.
+        plans: what each SKC's solve needs (`mechkit.second_opinion.solve.Plan`: its rows, moving
+            bodies, released, actuated and known joints).
+        level: the decomposition's granularity (`mechkit.second_opinion.decomposition.decompose`).
+        decompose_seconds: wall time (s) the structure graph and the decomposition took.
+    """
+
+    def __init__(self, mechanism: Mechanism, level: str = "skc"):
+        start = time.perf_counter()
+        self.mechanism, self.level = mechanism, level
+        model = mechanism.model
+        self._data = model.createData()
+        self.structure: Structure = build_structure(model, mechanism.full_rows, tuple(mechanism.actuated),
+                                                    mechanism.home_q)
+        zero = np.zeros(model.nv)
+        home = instant(model, self._data, mechanism.full_rows, self.structure, mechanism.home_q, zero, zero)
+        self.skcs: list[SKC] = decompose(self.structure, home, level)
+        self.plans = plan(self.skcs, self.structure)
+        self.decompose_seconds = time.perf_counter() - start
+
+    def solve(self, q: np.ndarray, v: np.ndarray, a: np.ndarray) -> Opinion:
+        """Efforts and reactions for a motion (q, v, a) that closes the loops (rad, m and rates)."""
+        m = self.mechanism
+        state = instant(m.model, self._data, m.full_rows, self.structure, q, v, a)
+        return solve_instant(self.plans, self.structure, state)

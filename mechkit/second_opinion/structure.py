@@ -1,0 +1,172 @@
+"""The structure graph of a mechanism: bodies, tree joints, cut joints, the reaction components each
+joint can carry, and the actuators.
+
+Bodies are Pinocchio's joints' child bodies (links on fixed joints merged), numbered by their joint
+id; 0 is the ground. A joint's reaction (the wrench [f, m], N and N m, its parent side exerts on its
+child side, world axes, moment about the joint point) lies in its constraint wrench space: the
+annihilator of its motion subspace for a tree joint, the span of its full spatial rows for a cut
+joint (the physical joint, whatever rows the scene solves with). Its unknown components are the
+projections onto that space of chosen world unit wrenches: chosen once, at the home assembly, so that
+a joint whose axis is a world axis carries world components (a pin of an x-z planar linkage: fx, fy,
+fz, mx, mz), which is what lets the decomposition separate in-plane from out-of-plane equilibrium.
+An actuated tree joint adds its effort: the wrench along its motion subspace.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import pinocchio as pin
+
+from mechkit.closures import ClosureRows
+from mechkit.exceptions import MalformedDescription
+from mechkit.spatial import cross
+
+LWA = pin.ReferenceFrame.LOCAL_WORLD_ALIGNED
+#: Singular-value threshold (relative) of the wrench spaces and of the component choice.
+SPAN_TOL = 1e-9
+COMPONENT_NAMES = ("fx", "fy", "fz", "mx", "my", "mz")
+
+
+@dataclass(frozen=True)
+class Joint:
+    """One joint of the structure graph.
+
+    Attributes:
+        name: URDF joint name (tree) or `mechkit:loop` name (cut).
+        parent, child: body ids (0 = ground); for a cut, frame_a's and frame_b's bodies.
+        index: Pinocchio joint id (tree) or index in the closure list (cut).
+        cut: whether it is a loop closure.
+        components: indices (0..5 = fx fy fz mx my mz, world) of the unit wrenches whose projections
+            onto the joint's constraint wrench space are its unknown reaction components.
+        actuated: whether its effort (the wrench along its one-dimensional motion) is an unknown.
+    """
+
+    name: str
+    parent: int
+    child: int
+    index: int
+    cut: bool
+    components: tuple[int, ...]
+    actuated: bool
+
+
+@dataclass(frozen=True)
+class Structure:
+    """Bodies and joints of a mechanism (see the module docstring).
+
+    Attributes:
+        bodies: body id -> URDF link name, moving bodies only (ids 1..njoints-1).
+        joints: tree joints in Pinocchio order, then cut joints in closure order.
+        parents: body id -> its parent body id in the tree (0 = ground).
+    """
+
+    bodies: dict[int, str]
+    joints: tuple[Joint, ...]
+    parents: dict[int, int]
+
+    def joint(self, name: str) -> Joint:
+        """The joint called ``name``."""
+        return next(j for j in self.joints if j.name == name)
+
+    def chain(self, body: int) -> list[int]:
+        """``body`` and its ancestors up to (not including) the ground."""
+        out = []
+        while body != 0:
+            out.append(body)
+            body = self.parents[body]
+        return out
+
+    def crossings(self, joint: Joint) -> dict[int, float]:
+        """Bodies k whose subtree holds exactly one side of ``joint`` -> +1 (the child side) or -1.
+
+        A tree joint crosses only its child's subtree; a cut joint, the subtrees of the ancestors of
+        one side that are not ancestors of the other.
+        """
+        count: dict[int, float] = {}
+        for body, sign in ((joint.child, 1.0), (joint.parent, -1.0)):
+            for k in self.chain(body):
+                count[k] = count.get(k, 0.0) + sign
+        return {k: s for k, s in count.items() if s != 0.0}
+
+
+def _orthonormal(span: np.ndarray) -> np.ndarray:
+    """Orthonormal basis (6, r) of the column span of ``span``."""
+    if span.size == 0:
+        return np.zeros((6, 0))
+    u, s, _ = np.linalg.svd(span, full_matrices=False)
+    return u[:, : int(np.sum(s > SPAN_TOL * max(s[0], 1e-300)))]
+
+
+def tree_motion(model: pin.Model, data: pin.Data, joint: int) -> np.ndarray:
+    """(6, nv_j) motion subspace of a tree joint, world axes, linear part at the joint origin.
+
+    Needs `pin.computeJointJacobians` at the configuration.
+    """
+    jm = model.joints[joint]
+    return pin.getJointJacobian(model, data, joint, LWA)[:, jm.idx_v : jm.idx_v + jm.nv]
+
+
+def constraint_span(model: pin.Model, data: pin.Data, rows: ClosureRows, joint: Joint) -> np.ndarray:
+    """Orthonormal basis (6, r) of the joint's constraint wrench space at the current configuration.
+
+    World axes, moment about the joint point (tree: joint origin; cut: frame_b's origin). Needs
+    joint Jacobians and frame placements current.
+    """
+    if not joint.cut:
+        motion = tree_motion(model, data, joint.index)
+        return _orthonormal(np.eye(6) - motion @ np.linalg.pinv(motion))
+    cut = rows.cuts[joint.index]
+    ra, rb = data.oMf[cut.frame_a].rotation, data.oMf[cut.frame_b].rotation
+    cols = [np.concatenate([ra @ t, np.zeros(3)]) for t in cut.positions.T]
+    cols += [np.concatenate([np.zeros(3), cross(rb @ w, ra @ u)]) for u, w in cut.alignments]
+    return _orthonormal(np.array(cols).T.reshape(6, -1))
+
+
+def choose_components(span: np.ndarray) -> tuple[int, ...]:
+    """World unit wrenches whose projections onto ``span`` form a basis of it, aligned ones first."""
+    projections = span @ span.T
+    order = np.argsort(-np.linalg.norm(projections, axis=0), kind="stable")
+    chosen: list[int] = []
+    for k in order:
+        trial = chosen + [int(k)]
+        if np.linalg.matrix_rank(projections[:, trial], tol=1e-6) == len(trial):
+            chosen = trial
+        if len(chosen) == span.shape[1]:
+            break
+    return tuple(sorted(chosen))
+
+
+def body_names(model: pin.Model) -> dict[int, str]:
+    """Body id -> name of the URDF link carried by that Pinocchio joint (its first body frame)."""
+    names = {}
+    for frame in model.frames:
+        if frame.type == pin.FrameType.BODY and frame.parentJoint > 0:
+            names.setdefault(int(frame.parentJoint), frame.name)
+    return {j: names.get(j, model.names[j]) for j in range(1, model.njoints)}
+
+
+def build_structure(model: pin.Model, full_rows: ClosureRows, actuated: tuple[str, ...], q: np.ndarray) -> Structure:
+    """The structure graph, components chosen at the (assembled) configuration ``q``.
+
+    Raises:
+        MalformedDescription: an actuated joint does not have exactly one degree of freedom.
+    """
+    data = model.createData()
+    pin.computeJointJacobians(model, data, q)
+    pin.updateFramePlacements(model, data)
+    joints: list[Joint] = []
+    for j in range(1, model.njoints):
+        name = model.names[j]
+        if name in actuated and model.joints[j].nv != 1:
+            raise MalformedDescription(f"joint {name!r}", "an actuator needs a one-DOF joint")
+        probe = Joint(name, int(model.parents[j]), j, j, False, (), name in actuated)
+        span = constraint_span(model, data, full_rows, probe)
+        joints.append(Joint(name, probe.parent, j, j, False, choose_components(span), probe.actuated))
+    for c, cut in enumerate(full_rows.cuts):
+        probe = Joint(cut.closure.name, int(model.frames[cut.frame_a].parentJoint),
+                      int(model.frames[cut.frame_b].parentJoint), c, True, (), False)
+        span = constraint_span(model, data, full_rows, probe)
+        joints.append(Joint(probe.name, probe.parent, probe.child, c, True, choose_components(span), False))
+    return Structure(body_names(model), tuple(joints), {j: int(model.parents[j]) for j in range(1, model.njoints)})
