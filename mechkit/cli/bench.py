@@ -46,7 +46,6 @@ def run(args: argparse.Namespace) -> None:
             print(f"wrote {args.markdown}")
 
 
-<<<<<<< HEAD
 def speed_sections(names: list[str], quick: bool) -> dict[str, list[str]]:
     """The dynamics speed rows (issue 13) on the named mechanisms and the ladder of four-bar loops."""
     from mechkit import registry
@@ -60,10 +59,7 @@ def speed_sections(names: list[str], quick: bool) -> dict[str, list[str]]:
             "Ladder of four-bar loops": [ladder.__doc__.split("\n\n")[1].replace("\n", " "), "", *ladder.markdown(points)]}
 
 
-def add_parser(sub) -> None:
-=======
 def add_parser(sub: argparse._SubParsersAction) -> None:
->>>>>>> main
     """Register `bench`."""
     p = sub.add_parser("bench", help="speed and accuracy of every method, per mechanism", **examples(
         "mechkit bench four_bar --quick", "mechkit bench --charts docs/bench --markdown docs/benchmarks.md"))
