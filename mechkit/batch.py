@@ -60,12 +60,12 @@ class BatchInverseDynamicsResult:
                                      self.multipliers[i], float(self.condition[i]), eff_det)
 
 
-def is_batch(q) -> bool:
+def is_batch(q: np.ndarray | Sequence[float]) -> bool:
     """True when q carries a leading sample axis (shape (N, nq))."""
     return np.ndim(q) == 2
 
 
-def sample_array(x, name: str, n: int, width: int) -> np.ndarray:
+def sample_array(x: np.ndarray | Sequence[Sequence[float]], name: str, n: int, width: int) -> np.ndarray:
     """x as an (n, width) float array, or `InvalidParameters` naming the argument."""
     arr = np.asarray(x, dtype=float)
     if n == 0:
@@ -75,7 +75,7 @@ def sample_array(x, name: str, n: int, width: int) -> np.ndarray:
     return arr
 
 
-def sample_inputs(values, names: Sequence[str], n: int) -> tuple[list[str], np.ndarray]:
+def sample_inputs(values: np.ndarray | Mapping[str, np.ndarray | Sequence[float]], names: Sequence[str], n: int) -> tuple[list[str], np.ndarray]:
     """Batched input rates: (n, k) values in `names` order, or a mapping joint name -> (n,) values.
 
     Returns the joint names and an (n, k) array.
@@ -87,7 +87,7 @@ def sample_inputs(values, names: Sequence[str], n: int) -> tuple[list[str], np.n
     return list(names), sample_array(values, "inputs", n, len(names))
 
 
-def sample_fext(fext, n: int, njoints: int) -> list:
+def sample_fext(fext: np.ndarray | Sequence | None, n: int, njoints: int) -> list:
     """Per-sample external forces: None, an (n, njoints, 6) array of local-frame wrenches, or n per-sample values."""
     if fext is None:
         return [None] * n

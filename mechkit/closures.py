@@ -54,6 +54,7 @@ class CutRows:
 
     @property
     def size(self) -> int:
+        """Number of rows the cut keeps (position rows + alignment rows)."""
         return self.positions.shape[1] + len(self.alignments)
 
 

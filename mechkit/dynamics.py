@@ -69,11 +69,18 @@ def independent_rows(J: np.ndarray) -> np.ndarray:
     return np.sort(piv[: numerical_rank(d)])
 
 
-def kkt_forward(model: pin.Model, data: pin.Data, q, v, tau, J: np.ndarray, gamma: np.ndarray,
+def kkt_forward(model: pin.Model, data: pin.Data, q: np.ndarray, v: np.ndarray, tau: np.ndarray, J: np.ndarray, gamma: np.ndarray,
                 rows: np.ndarray | None = None) -> ForwardDynamicsResult:
     """Dense KKT solve on independent rows of J (needs J, gamma at (q, v)).
 
     Args:
+        model: the tree's Pinocchio model.
+        data: a data of it.
+        q: configuration (nq,).
+        v: velocity (nv,).
+        tau: joint efforts (nv,), N m or N.
+        J: closure Jacobian (rows, nv) at q.
+        gamma: closure acceleration drift (rows,) at (q, v): J a + gamma = 0.
         rows: a set of independent rows to use (e.g. cached from a regular configuration); chosen
             by pivoted QR when None.
     """

@@ -11,6 +11,8 @@ One sample is the batch of one, so the single-sample and batched results are the
 
 from __future__ import annotations
 
+from collections.abc import Sequence
+
 import numpy as np
 import pinocchio as pin
 import scipy.linalg
@@ -184,7 +186,8 @@ def _determinacy(p: InverseDynamicsProblem, oMi: np.ndarray, J: np.ndarray, poin
     return variation <= tol[:, None, None], effort_variation <= tol[:, None]
 
 
-def inverse_dynamics_batch(p: InverseDynamicsProblem, Q: np.ndarray, V: np.ndarray, A: np.ndarray, fexts=None,
+def inverse_dynamics_batch(p: InverseDynamicsProblem, Q: np.ndarray, V: np.ndarray, A: np.ndarray,
+                           fexts: Sequence[pin.StdVec_Force | list[pin.Force] | None] | None = None,
                            determinacy: bool = True, distribution: str = "min_norm") -> BatchInverseDynamicsResult:
     """Actuator efforts and every joint's reaction for N motions (q, v, a) that satisfy the closures.
 
@@ -218,7 +221,8 @@ def inverse_dynamics_batch(p: InverseDynamicsProblem, Q: np.ndarray, V: np.ndarr
                                       cond, flags, effort_flags)
 
 
-def inverse_dynamics(p: InverseDynamicsProblem, q, v, a, fext=None, determinacy: bool = True,
+def inverse_dynamics(p: InverseDynamicsProblem, q: np.ndarray, v: np.ndarray, a: np.ndarray,
+                     fext: pin.StdVec_Force | list[pin.Force] | None = None, determinacy: bool = True,
                      distribution: str = "min_norm") -> InverseDynamicsResult:
     """One sample of `inverse_dynamics_batch` (q (nq,), v and a (nv,), fext per joint or None), as dicts."""
     out = inverse_dynamics_batch(p, np.asarray(q, dtype=float)[None], np.asarray(v, dtype=float)[None],

@@ -81,6 +81,7 @@ class Mechanism:
         return self.model.joints[self._joint_id(joint)].idx_v
 
     def neutral(self) -> np.ndarray:
+        """Pinocchio's neutral configuration (nq,) of the tree (every joint at zero; loops open)."""
         return pin.neutral(self.model)
 
     def require_actuators(self, what: str) -> None:
@@ -277,7 +278,8 @@ class Mechanism:
             raise MethodUnavailable(method, "forward_dynamics methods are 'proximal' and 'kkt'")
         return result
 
-    def inverse_dynamics(self, q: np.ndarray, v: np.ndarray, a: np.ndarray, fext=None, determinacy: bool = True,
+    def inverse_dynamics(self, q: np.ndarray, v: np.ndarray, a: np.ndarray,
+                         fext: pin.StdVec_Force | list[pin.Force] | np.ndarray | list | None = None, determinacy: bool = True,
                          distribution: str = "min_norm") -> dynamics.InverseDynamicsResult | batch.BatchInverseDynamicsResult:
         """Constrained RNEA: actuator efforts and the reaction of every joint (tree and cut).
 
@@ -355,7 +357,16 @@ def from_description(desc: sources.Description, actuated: Sequence[str] | None =
     spec = MechanismSpec(name=desc.name, params=MechanismParams, template="", actuated=joints, gruebler_dof=structure.kutzbach,
                          home=_constant(home_values), guess=_constant(guess_values) if guess_values else None,
                          summary=f"read from the {desc.format} file{where}")
-    return Mechanism(spec, MechanismParams(), desc.urdf, rows, model, structure)
+    params = _xacro_params(desc)
+    return Mechanism(dataclasses.replace(spec, params=type(params)), params, desc.urdf, rows, model, structure)
+
+
+def _xacro_params(desc: sources.Description) -> MechanismParams:
+    """The file's xacro arguments as a parameter instance (strings; shown by `report`), else none."""
+    fields = [(k, str, dataclasses.field(default=v, metadata={"unit": "-", "doc": "xacro argument", "ours": False}))
+              for k, v in desc.params.items()]
+    cls = dataclasses.make_dataclass("XacroArguments", fields, bases=(MechanismParams,), frozen=True)
+    return cls()
 
 
 def from_urdf(urdf: str | Path, actuated: Sequence[str] | None = None, name: str | None = None,
@@ -368,7 +379,9 @@ def from_urdf(urdf: str | Path, actuated: Sequence[str] | None = None, name: str
         actuated: actuated joint names (default: the URDF's `<transmission>` joints; none declared
             makes the mechanism unactuated).
         name: a name for reports (default: the robot's name).
-        guess, home, rows: see `load`.
+        guess: see `load`.
+        home: see `load`.
+        rows: see `load`.
     """
     if isinstance(urdf, Path) or not urdf.lstrip().startswith("<"):
         desc = sources.read(sources.resolve(Path(urdf)))

@@ -23,6 +23,10 @@ def test_validate_json_contract(capsys):
     assert r["samples"] == 3 and r["max_relative_difference"] < 1e-8 and not r["determinacy_mismatches"]
     assert set(r["us_per_sample"]) == {"second opinion (SOC virtual work)", "constrained RNEA + determinacy"}
     assert all(us > 0 for us in r["us_per_sample"].values())
+    # the determined SKCs fix all their unknowns; the out-of-plane block leaves some free
+    assert all(not s["indeterminate"] for s in r["skcs"] if s["kind"] == "determined")
+    (under,) = [s for s in r["skcs"] if s["kind"] == "under"]
+    assert under["indeterminate"] and {u.split(".")[1] for u in under["indeterminate"]} <= {"fy", "mx", "mz"}
 
 
 def test_validate_text_names_each_skc(capsys):

@@ -100,7 +100,9 @@ def test_xacro_keyword_parameters_are_xacro_arguments():
     """The Watt II written at another crank angle: its home assembly moves, the loops stay closed."""
     a = mechkit.load(FIXTURES / "watt_six_bar.urdf.xacro")
     b = mechkit.load(FIXTURES / "watt_six_bar.urdf.xacro", theta=1.1, a=0.12)
-    assert "1.1" in b.urdf and b.urdf != a.urdf
+    assert b.urdf != a.urdf
+    shown = {row["name"]: row["value"] for row in report(b)["parameters"]}
+    assert shown["theta"] == "1.1" and shown["a"] == "0.12" and shown["b"] == "0.35"  # given, given, default
     assert np.max(np.abs(b.closure_residual(b.home_q))) < 1e-12
     pin_c = b.model.getFrameId("coupler_C")
     assert b.data.oMf[pin_c].translation[0] != pytest.approx(a.data.oMf[a.model.getFrameId("coupler_C")].translation[0])

@@ -48,11 +48,14 @@ class SpeedTarget:
 
     @property
     def met(self) -> bool:
+        """Whether the target is met."""
         return bool(self.value <= self.limit)
 
 
 @dataclass(frozen=True)
 class MechanismSpeed:
+    """The rows of one mechanism (nv velocity coordinates) and its targets."""
+
     name: str
     nv: int
     rows: list[SpeedRow]

@@ -97,6 +97,7 @@ def growth(points: list[LadderPoint], attr: str) -> float:
 
 
 def run(sizes: tuple[int, ...] = SIZES, budget: float = 0.2, repeats: int = 5) -> list[LadderPoint]:
+    """`measure` at every ladder size."""
     return [measure(n, budget, repeats) for n in sizes]
 
 

@@ -49,7 +49,8 @@ def second_opinion_rows(mechanisms: list[str] | None = None, samples: int = 6, s
     Args:
         samples: states along the scene (`scene_states`).
         scene: scene to sample (default: each mechanism's first).
-        budget_s, repeats: timing budget per method and repeats (`mechkit.bench.timing.time_per_call`).
+        budget_s: timing budget per method, s (`mechkit.bench.timing.time_per_call`).
+        repeats: timing repeats (`mechkit.bench.timing.time_per_call`).
     """
     rows = []
     for name in mechanisms or list(registered()):

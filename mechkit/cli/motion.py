@@ -4,10 +4,14 @@ and a plot."""
 from __future__ import annotations
 
 import argparse
+from typing import TYPE_CHECKING
 
 from mechkit.cli.common import add_mechanism_arguments, examples, load_mechanism
 from mechkit.cli.progress import ProgressBars
 from mechkit.exceptions import InvalidParameters, MechkitError
+
+if TYPE_CHECKING:
+    from mechkit.motion.result import MotionResult
 
 #: Motions of at least this many samples show a progress bar (`mechkit.cli.progress`: stderr, on a terminal).
 LONG_MOTION = 100
@@ -16,7 +20,7 @@ PEAK_COLUMNS = (("|f| N", "force"), ("axial N", "axial_force"), ("radial N", "ra
                 ("|m| N m", "moment"), ("axial N m", "axial_moment"), ("radial N m", "radial_moment"))
 
 
-def format_peaks(result) -> list[str]:
+def format_peaks(result: MotionResult) -> list[str]:
     """The peak table: one line per joint, each peak with its time."""
     from mechkit.motion import peaks
 

@@ -6,12 +6,16 @@ from __future__ import annotations
 import argparse
 import json
 
-from mechkit.cli.common import add_mechanism_arguments, load_mechanism
+from mechkit.cli.common import add_mechanism_arguments, examples, load_mechanism
 from mechkit.exceptions import InvalidParameters
 
 
 def report(args: argparse.Namespace) -> dict:
-    """The validation as the JSON contract: name, skcs, max_relative_difference, samples, us_per_sample."""
+    """The validation as the JSON contract: name, skcs, max_relative_difference, samples, us_per_sample.
+
+    Each SKC's "indeterminate" lists its unknowns (labelled by the world direction each component was
+    chosen from) that its equations leave free at the first state.
+    """
     import warnings
 
     from mechkit.scenes import SweepStopped
@@ -26,8 +30,15 @@ def report(args: argparse.Namespace) -> dict:
         warnings.simplefilter("ignore", SweepStopped)
         states = scene_states(mech, args.samples, scene=args.scene)
     result = agreement(opinion, states)
-    skcs = [{"kind": s.kind, "bodies": list(s.bodies), "released": list(s.released), "actuators": list(s.actuators),
-             "unknowns": s.unknown_labels(opinion.structure), "equations": s.equations} for s in opinion.skcs]
+    first = opinion.solve(*states[0])
+    skcs = []
+    for s in opinion.skcs:
+        labels = s.unknown_labels(opinion.structure)
+        free = [label for label, (joint, k) in zip(labels, s.unknowns, strict=True)
+                if (first.free_efforts[joint] if k < 0 else first.free[joint][opinion.structure.joint(joint).components[k]])]
+        skcs.append({"kind": s.kind, "bodies": list(s.bodies), "joints": list(s.joints), "released": list(s.released),
+                     "actuators": list(s.actuators), "unknowns": labels, "equations": s.equations,
+                     "indeterminate": free})
     return {"name": mech.spec.name, "level": opinion.level, "skcs": skcs,
             "max_relative_difference": result.max_relative_difference, "worst": result.worst,
             "determinacy_mismatches": result.determinacy_mismatches, "consistency": result.consistency,
@@ -43,6 +54,9 @@ def format_text(r: dict) -> str:
         lines.append(f"        released: {', '.join(s['released']) or '-'}; actuators: {', '.join(s['actuators']) or '-'}")
         lines.append(f"        unknowns: {len(s['unknowns'])}, independent equations: {s['equations']}"
                      + (f" ({len(s['unknowns']) - s['equations']} indeterminate)" if len(s["unknowns"]) > s["equations"] else ""))
+        if s["indeterminate"]:
+            shown = ", ".join(s["indeterminate"][:12]) + (" ..." if len(s["indeterminate"]) > 12 else "")
+            lines.append(f"        not fixed by statics: {shown}")
     lines.append(f"vs constrained RNEA over {r['samples']} samples: max relative difference "
                  f"{r['max_relative_difference']:.2e} ({r['worst']}); determinacy mismatches: "
                  f"{len(r['determinacy_mismatches'])}; worst SKC residual {r['consistency']:.1e}")
@@ -58,9 +72,10 @@ def run(args: argparse.Namespace) -> None:
     print(json.dumps(r, indent=2) if args.json else format_text(r))
 
 
-def add_parser(sub) -> None:
+def add_parser(sub: argparse._SubParsersAction) -> None:
     """Register `validate`."""
-    p = sub.add_parser("validate", help="second opinion: automatic SOC decomposition vs constrained RNEA")
+    p = sub.add_parser("validate", help="second opinion: automatic SOC decomposition vs constrained RNEA", **examples(
+        "mechkit validate parallel_2t1r", "mechkit validate ten_bar --samples 24 --level body --json"))
     add_mechanism_arguments(p)
     p.add_argument("--samples", type=int, default=12, help="states along the scene (default 12)")
     p.add_argument("--scene", help="scene to sample (default: the mechanism's first, else the sweep)")

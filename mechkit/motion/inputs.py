@@ -91,14 +91,16 @@ def _spline_derivatives(t: np.ndarray, values: np.ndarray) -> tuple[np.ndarray, 
     return spline(t, 1), spline(t, 2)
 
 
-def from_arrays(mech: Mechanism, t, values, rates=None, accelerations=None, names: Sequence[str] | None = None,
-                guesses=None, source: str = "arrays") -> InputLaw:
+def from_arrays(mech: Mechanism, t: np.ndarray, values: np.ndarray, rates: np.ndarray | None = None,
+                accelerations: np.ndarray | None = None, names: Sequence[str] | None = None,
+                guesses: np.ndarray | None = None, source: str = "arrays") -> InputLaw:
     """A law from sampled arrays.
 
     Args:
         t: (N,) times, s.
         values: (N, k) coordinates of `names` (rad or m); (N,) for one joint.
-        rates, accelerations: (N, k), or None for the spline's derivatives (both or neither).
+        rates: (N, k) rates (rad/s or m/s), or None for the spline's derivative (with `accelerations`).
+        accelerations: (N, k) accelerations (rad/s^2 or m/s^2), or None (both or neither).
         names: the driven joints (default: `default_inputs`).
         guesses: optional (N, nq) configurations near the samples.
     """
@@ -120,7 +122,7 @@ def from_arrays(mech: Mechanism, t, values, rates=None, accelerations=None, name
     return InputLaw(names, t, values, np.asarray(rates, float), np.asarray(accelerations, float), guesses, source)
 
 
-def from_callable(mech: Mechanism, law: LawFunction, t, names: Sequence[str] | None = None,
+def from_callable(mech: Mechanism, law: LawFunction, t: np.ndarray, names: Sequence[str] | None = None,
                   source: str = "callable") -> InputLaw:
     """A law from a function of time, sampled at t (s).
 

@@ -9,10 +9,14 @@ hinge) and the radial moment the tilting moment the bearing carries. Joints with
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from mechkit.motion.result import MotionResult
+
+if TYPE_CHECKING:
+    import pandas as pd
 
 #: Peak quantities, in table order: name -> (unit, description).
 QUANTITIES = {
@@ -70,7 +74,7 @@ def peaks(result: MotionResult) -> list[JointPeaks]:
     return out
 
 
-def peak_table(result: MotionResult):
+def peak_table(result: MotionResult) -> pd.DataFrame:
     """The peaks as a pandas DataFrame: one row per joint, columns `<quantity>` and `t_<quantity>`."""
     from mechkit.motion.result import pandas
 

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -13,9 +14,12 @@ from mechkit.exceptions import MethodUnavailable
 from mechkit.motion.peaks import load_histories
 from mechkit.motion.result import MotionResult
 
+if TYPE_CHECKING:
+    from matplotlib.figure import Figure
+
 #: Joints shown when none are chosen: the ones with the largest peak force (at most this many).
 DEFAULT_JOINTS = 4
-#: A reaction panel turns logarithmic when its peak exceeds its median this many times.
+#: A reaction panel turns logarithmic when its peak exceeds the median of what it carries this many times.
 LOG_SPAN = 100.0
 
 
@@ -26,7 +30,7 @@ def busiest_joints(result: MotionResult, count: int = DEFAULT_JOINTS) -> list[st
     return [result.joints[j] for j in np.argsort(-peak, kind="stable")[:count]]
 
 
-def figure(result: MotionResult, joints: Sequence[str] | None = None, title: str | None = None):
+def figure(result: MotionResult, joints: Sequence[str] | None = None, title: str | None = None) -> Figure:
     """A figure: efforts (top), reaction forces (middle) and moments (bottom) of `joints` over time.
 
     Args:
@@ -62,7 +66,9 @@ def figure(result: MotionResult, joints: Sequence[str] | None = None, title: str
     bottom.set_ylabel("reaction moment (N m)")
     for ax, kind in ((mid, "force"), (bottom, "moment")):
         shown = h[kind][:, [result.joints.index(j) for j in joints]]
-        if np.nanmax(shown, initial=0.0) > LOG_SPAN * max(float(np.nanmedian(shown)), 1e-300):
+        top = np.nanmax(shown, initial=0.0)
+        carried = shown[shown > 1e-9 * top]  # leave out the joints that carry none of it (round-off)
+        if carried.size and top > LOG_SPAN * float(np.median(carried)):
             ax.set_yscale("log")  # a peak (near a singularity) decades above the rest
     bottom.set_xlabel("time t (s)")
     for ax in axes:

@@ -14,18 +14,23 @@ import io
 import json
 from dataclasses import dataclass
 from pathlib import Path
+from types import ModuleType
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from mechkit.atomic import write_bytes, write_text
 from mechkit.exceptions import MalformedDescription, MethodUnavailable
 
+if TYPE_CHECKING:
+    import pandas as pd
+
 COMPONENTS = ("fx", "fy", "fz", "mx", "my", "mz")
 AXES = ("x", "y", "z")
 META = ("mechanism", "source", "actuated", "coordinates", "joints", "supports", "failures")
 
 
-def pandas():
+def pandas() -> ModuleType:
     """The pandas module (the `motion` extra), or a `MethodUnavailable` naming the install."""
     try:
         import pandas as pd
@@ -112,14 +117,14 @@ class MotionResult:
                 "supports": json.dumps([bool(s) for s in self.supports]),
                 "failures": json.dumps([[t, why] for t, why in self.failures])}
 
-    def to_dataframe(self):
+    def to_dataframe(self) -> pd.DataFrame:
         """A pandas DataFrame, one row per sample (metadata in `attrs`)."""
         df = pandas().DataFrame(self.columns())
         df.attrs.update(self.metadata())
         return df
 
     @classmethod
-    def from_dataframe(cls, df) -> MotionResult:
+    def from_dataframe(cls, df: pd.DataFrame) -> MotionResult:
         """The result back from its table (`to_dataframe`, `read_parquet`, `read_csv`).
 
         Raises:

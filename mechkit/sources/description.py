@@ -21,7 +21,8 @@ class Description:
         home: joint -> value (rad or m) of the default assembly's inputs.
         guess: joint -> value near which the default assembly is sought (picks the branch).
         source: the file read; `format`: "urdf", "extended-urdf", "xacro" or "mjcf".
-        params: the xacro arguments used (strings), empty for other formats.
+        params: the xacro arguments and the values used (strings; defaults included), empty for
+            other formats.
         closures: the loops of `urdf`, when the reader has parsed them (else None: parsed on use).
     """
 

@@ -26,7 +26,8 @@ def read_xacro(path: Path, params: dict[str, Any]) -> Description:
             raise InvalidParameters(key, value, f"{path.name} declares no such xacro:arg; it has {sorted(declared)}")
     args = {k: _arg(v) for k, v in params.items()}
     urdf = render_urdf(path.resolve(), args)
-    return describe_urdf(urdf, path, "xacro", args)
+    used = {k: v for k, v in declared.items() if v is not None} | args
+    return describe_urdf(urdf, path, "xacro", used)
 
 
 def xacro_args(path: Path) -> dict[str, str | None]:

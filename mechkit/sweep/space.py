@@ -89,6 +89,7 @@ class DesignSpace:
 
     @property
     def names(self) -> tuple[str, ...]:
+        """The swept parameters' names, in axis order."""
         return tuple(a.name for a in self.axes)
 
     def designs(self) -> np.ndarray:
@@ -112,5 +113,6 @@ class DesignSpace:
 
     @classmethod
     def from_dict(cls, data: dict) -> DesignSpace:
+        """The design space `to_dict` described."""
         return cls(tuple(Axis(n, lo, hi, k) for n, lo, hi, k in data["axes"]), data["mode"], data["count"],
                    data["seed"])

@@ -17,6 +17,7 @@ from __future__ import annotations
 import json
 import re
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 import pyarrow as pa
@@ -24,6 +25,9 @@ import pyarrow.parquet as pq
 
 from mechkit.atomic import write_bytes, write_text
 from mechkit.exceptions import InvalidParameters, MalformedDescription
+
+if TYPE_CHECKING:
+    import pandas as pd
 
 MANIFEST = "sweep.json"
 DESIGNS = "designs.parquet"
@@ -97,7 +101,7 @@ def write_part(out: Path, chunk: int, rows: list[dict], row_schema: pa.Schema) -
     return write_bytes(Path(out) / PARTS / f"part-{chunk:06d}.parquet", _bytes(table))
 
 
-def read(out: Path):
+def read(out: Path) -> pd.DataFrame:
     """Every row written so far, as a pandas DataFrame sorted by design index.
 
     Raises:
