@@ -71,7 +71,8 @@ def _gather(p: InverseDynamicsProblem, Q, V, A, fexts) -> tuple[np.ndarray, np.n
         tau[i] = pin.rnea(model, data, Q[i], V[i], A[i]) if fexts[i] is None else pin.rnea(model, data, Q[i], V[i], A[i], fexts[i])
         f[i] = [F.np for F in data.f.tolist()]
     R = oMi[:, :, :3, :3]
-    world = np.concatenate([R @ f[..., :3, None], R @ f[..., 3:, None]], axis=2)[..., 0]
+    with np.errstate(under="ignore"):
+        world = np.concatenate([R @ f[..., :3, None], R @ f[..., 3:, None]], axis=2)[..., 0]
     return oMi, J, tau, world
 
 
@@ -208,15 +209,16 @@ def inverse_dynamics_batch(p: InverseDynamicsProblem, Q: np.ndarray, V: np.ndarr
         raise InvalidParameters("distribution", distribution, f"expected one of {DISTRIBUTIONS}")
     n, na = len(Q), p.actuated_v.size
     oMi, J, b, tree_world = _gather(p, Q, V, A, [None] * n if fexts is None else fexts)
-    W = p.kept.wrenches(oMi)
-    system = _system(p, p.kept.jacobian(W, J))
-    x, cond = _solve(p, system, b, determinacy, distribution)
-    points = p.kept.cut_points(oMi)
-    tree, cuts = _cut_loads(p, p.kept, W, x[:, None, na:], oMi[..., :3, 3], points)
-    reactions = np.concatenate([tree_world[:, 1:] - tree[:, 0, 1:], cuts[:, 0]], axis=1)
-    flags = effort_flags = None
-    if determinacy:
-        flags, effort_flags = _determinacy(p, oMi, J, points)
+    with np.errstate(under="ignore"):  # products of tiny lever arms and forces flush to zero harmlessly
+        W = p.kept.wrenches(oMi)
+        system = _system(p, p.kept.jacobian(W, J))
+        x, cond = _solve(p, system, b, determinacy, distribution)
+        points = p.kept.cut_points(oMi)
+        tree, cuts = _cut_loads(p, p.kept, W, x[:, None, na:], oMi[..., :3, 3], points)
+        reactions = np.concatenate([tree_world[:, 1:] - tree[:, 0, 1:], cuts[:, 0]], axis=1)
+        flags = effort_flags = None
+        if determinacy:
+            flags, effort_flags = _determinacy(p, oMi, J, points)
     return BatchInverseDynamicsResult(p.joint_names, p.actuated_names, x[:, :na], reactions, p.supports, x[:, na:],
                                       cond, flags, effort_flags)
 
