@@ -66,6 +66,11 @@ class Mechanism:
         self.home_q = self.assemble(spec.home(params))
         self.independent_rows = kinematics.mobility(self.rows, self.data, self.home_q).rank
 
+    def __repr__(self) -> str:
+        """One line: name, coordinates, degrees of freedom, loops, actuators."""
+        return (f"<Mechanism {self.spec.name}: nq={self.model.nq}, dof={self.model.nv - self.independent_rows}, "
+                f"loops={len(self.closures)}, actuators={list(self.actuated)}>")
+
     # ---------------------------------------------------------------- indices
     def _joint_id(self, joint: str) -> int:
         if not self.model.existJointName(joint):

@@ -114,3 +114,45 @@ def test_sweep_on_embedded_cluster_and_resume(tmp_path):
     assert resumed.drop(columns="seconds").equals(frame.drop(columns="seconds"))
     with pytest.raises(InvalidParameters):  # another sweep in the same folder
         sweep("four_bar", space, out, Study(law="turn", samples=31), workers=1, chunk_size=5, resume=True)
+
+
+def test_optimise_improves_on_the_best_sweep_design(tmp_path):
+    from mechkit.sweep.optimise import optimise
+
+    space = DesignSpace((parse_axis("crank=0.06:0.12:3"), parse_axis("rocker=0.18:0.26:3")))
+    study = Study(law="turn", samples=30, period=0.5)
+    out = tmp_path / "r"
+    sweep("four_bar", space, out, study, ("peak_effort",), workers=1)
+    column = "peak_effort.crank"
+    frame = read(out)
+    refined = optimise(out, column, starts=1, max_evaluations=15, workers=1)[0]
+    assert refined.start_value == pytest.approx(frame[frame["status"] == "ok"][column].min())
+    assert refined.value <= refined.start_value and 1 < refined.evaluations <= 16
+    for axis in space.axes:
+        assert axis.lo <= refined.best[axis.name] <= axis.hi
+    again = evaluate_chunk(Chunk("four_bar", {}, space.names, (0,), np.array([list(refined.best.values())]),
+                                 study, ("peak_effort",), ("peak_effort.crank",)))[0]
+    assert again["status"] == "ok" and again[column] == pytest.approx(refined.value, rel=1e-9)
+
+
+def test_pareto_front_and_plots(tmp_path):
+    from mechkit.sweep.plots import heat_map, pareto_mask, pareto_plot
+
+    rng = np.random.default_rng(5)
+    a, b = rng.random(200), rng.random(200)
+    a[3] = np.nan
+    front = pareto_mask(a, b)
+    assert not front[3] and front.any()
+    for i in range(len(a)):  # off the front: beaten by a point of the front; on it: beaten by none
+        if np.isnan(a[i]):
+            continue
+        beaten = front & (a <= a[i]) & (b <= b[i]) & ((a < a[i]) | (b < b[i]))
+        assert beaten.any() != front[i]
+    import pandas as pd
+
+    frame = pd.DataFrame({"x": np.repeat([1.0, 2.0], 2), "y": np.tile([1.0, 2.0], 2), "m": [1.0, 2.0, 3.0, np.nan],
+                          "n": [4.0, 3.0, 1.0, np.nan], "status": ["ok", "ok", "ok", "singular"]})
+    assert heat_map(frame, "x", "y", "m", tmp_path / "h.png").stat().st_size > 1000
+    assert pareto_plot(frame, "m", "n", tmp_path / "p.png").stat().st_size > 1000
+    with pytest.raises(InvalidParameters):
+        heat_map(frame, "x", "y", "nope", tmp_path / "h.png")

@@ -12,10 +12,10 @@ import sys
 
 import numpy as np
 
-from mechkit.cli import bench, export, listing, motion, params, report, snapshot, sweep, urdf, validate
+from mechkit.cli import bench, export, listing, motion, params, report, snapshot, sweep, urdf, validate, view
 from mechkit.exceptions import MechkitError
 
-COMMANDS = (listing, urdf, report, snapshot, bench, export, params, sweep, motion, validate)
+COMMANDS = (listing, urdf, report, snapshot, bench, export, params, sweep, motion, validate, view)
 
 
 def build_parser() -> argparse.ArgumentParser:

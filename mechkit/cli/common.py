@@ -3,10 +3,14 @@
 from __future__ import annotations
 
 import argparse
-from typing import Any
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
 
 from mechkit.exceptions import MechkitError
 from mechkit.mechanism import Mechanism, load
+
+if TYPE_CHECKING:
+    from mechkit.viz.meshes import MeshSearch
 
 
 def examples(*commands: str) -> dict[str, Any]:
@@ -50,3 +54,18 @@ def actuated(text: str | None) -> list[str] | None:
 def load_mechanism(args: argparse.Namespace) -> Mechanism:
     """The mechanism the command line names, with its overrides."""
     return load(args.name, actuated=actuated(args.actuated), **overrides(args.set))
+
+
+def add_mesh_path_argument(parser: argparse.ArgumentParser) -> None:
+    """The repeatable `--mesh-path DIR` (folders searched for a URDF's mesh files)."""
+    parser.add_argument("--mesh-path", action="append", metavar="DIR",
+                        help="folder searched for mesh files and package:// addresses, after the file's own (repeatable)")
+
+
+def mesh_search(args: argparse.Namespace) -> MeshSearch:
+    """Where the drawing looks for mesh files (`mechkit.viz.meshes.MeshSearch`): beside the file the
+    command line names (if it names a file), then in the `--mesh-path` folders."""
+    from mechkit.viz.meshes import MeshSearch
+
+    path = Path(args.name).expanduser()
+    return MeshSearch.of(path.resolve().parent if path.is_file() else None, args.mesh_path or ())

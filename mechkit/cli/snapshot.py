@@ -4,14 +4,21 @@ from __future__ import annotations
 
 import argparse
 
-from mechkit.cli.common import add_mechanism_arguments, examples, load_mechanism
+from mechkit.cli.common import (
+    add_mechanism_arguments,
+    add_mesh_path_argument,
+    examples,
+    load_mechanism,
+    mesh_search,
+)
 
 
 def run(args: argparse.Namespace) -> None:
     """Write the page (and the screenshot) and say where."""
     from mechkit.viz import snapshot_command
 
-    for path in snapshot_command(load_mechanism(args), q=args.q, scene=args.scene, html=args.output, png=args.png):
+    for path in snapshot_command(load_mechanism(args), q=args.q, scene=args.scene, html=args.output, png=args.png,
+                                 meshes=mesh_search(args)):
         print(f"wrote {path}")
 
 
@@ -24,4 +31,5 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--scene", help="animate a scene of the mechanism (see `mechkit.scenes`), instead of one pose")
     p.add_argument("-o", "--output", help="HTML file to write")
     p.add_argument("--png", help="PNG screenshot to write (needs a headless Chromium)")
+    add_mesh_path_argument(p)
     p.set_defaults(func=run)

@@ -18,6 +18,10 @@ def _space(args: argparse.Namespace):
     return DesignSpace(tuple(parse_axis(a) for a in args.grid or []), mode, count, args.seed)
 
 
+def _show(design: dict[str, float]) -> str:
+    return ", ".join(f"{k}={v:.6g}" for k, v in design.items())
+
+
 def run(args: argparse.Namespace) -> None:
     """Run (or resume) the sweep, with a progress bar on stderr and a summary on stdout."""
     from tqdm import tqdm
@@ -44,6 +48,13 @@ def run(args: argparse.Namespace) -> None:
     counts = ", ".join(f"{k} {v}" for k, v in sorted(summary.statuses.items()))
     print(f"{summary.designs} designs ({summary.evaluated} evaluated now) on {summary.workers} workers in "
           f"{summary.seconds:.1f} s: {counts} -> {summary.out}")
+    if args.optimise:
+        from mechkit.sweep.optimise import optimise
+
+        for r in optimise(args.output, args.optimise, starts=args.starts, maximise=args.maximise,
+                          max_evaluations=args.evaluations, scheduler=args.scheduler, workers=args.workers):
+            print(f"{args.optimise}: {r.start_value:.6g} at {_show(r.start)} -> {r.value:.6g} at {_show(r.best)} "
+                  f"({r.evaluations} evaluations; {r.message})")
 
 
 def add_parser(sub: argparse._SubParsersAction) -> None:
@@ -71,5 +82,10 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--workers", type=int, help="workers of the embedded cluster (default: the CPU count)")
     p.add_argument("--chunk-size", type=int, help="designs per task (default: about 4 tasks per worker)")
     p.add_argument("--xacro", action="store_true", help="build every design through xacro (not the template cache)")
+    p.add_argument("--optimise", metavar="COLUMN", help="then refine this metric column from the best designs "
+                   "(scipy.optimize, evaluations on the same engine)")
+    p.add_argument("--maximise", action="store_true", help="maximise the --optimise column (default: minimise)")
+    p.add_argument("--starts", type=int, default=2, help="searches started from the best designs (default 2)")
+    p.add_argument("--evaluations", type=int, default=60, help="evaluations per search (default 60)")
     p.add_argument("-q", "--quiet", action="store_true", help="no progress bar")
     p.set_defaults(func=run)

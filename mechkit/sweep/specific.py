@@ -29,7 +29,8 @@ def _rule_error(mech: Mechanism, _: Samples | None) -> dict[str, float]:
     return {"rule_error": linear_rule_errors(geometry(mech.params), n=RULE_GRID).worst}
 
 
-def _deployment(mech: Mechanism, _: Samples | None) -> dict[str, float]:
+def deployment_metrics(mech: Mechanism, _: Samples | None = None) -> dict[str, float]:
+    """The ten-bar's deployment (RK4 with projection, step `TEN_BAR_DT`): max_motor_torque, latch_speed."""
     trajectory = td.deploy(td.PinocchioDeployment(mech), mech.home_q, TEN_BAR_DT)
     data = mech.model.createData()
     pin.forwardKinematics(mech.model, data, trajectory.q[-1], trajectory.v[-1])
@@ -45,7 +46,7 @@ SPECIFIC = {
     ),
     "ten_bar": (
         Metric("deployment", "N m, m/s", "max_motor_torque (N m) and latch_speed (m/s) of the deployment",
-               lambda m: ["max_motor_torque", "latch_speed"], _deployment, motion=False),
+               lambda m: ["max_motor_torque", "latch_speed"], deployment_metrics, motion=False),
     ),
 }
 

@@ -45,12 +45,12 @@ def find_chromium() -> str:
 
 def screenshot(page: str | os.PathLike, png: str | os.PathLike, size: Sequence[int] = (800, 600),
                budget_ms: int = 8000, timeout: float = 180.0) -> Path:
-    """Render a local HTML file in headless Chromium and write its screenshot.
+    """Render a local HTML file (or a page served on this machine) in headless Chromium and write its screenshot.
 
-    The page is opened with `#capture` appended to its address (mechkit pages then hide their controls).
+    A file is opened with `#capture` appended to its address (mechkit pages then hide their controls).
 
     Args:
-        page: the HTML file.
+        page: the HTML file, or an http:// address (e.g. a live viewer's `url`).
         png: the PNG to write (replaced atomically; nothing is left when the browser fails).
         size: window width and height (pixels).
         budget_ms: virtual time the page may run before the picture is taken (ms).
@@ -65,8 +65,9 @@ def screenshot(page: str | os.PathLike, png: str | os.PathLike, size: Sequence[i
             output lines).
     """
     executable = find_chromium()
-    source = Path(page).resolve()
-    if not source.is_file():
+    served = str(page).startswith("http://")
+    source = Path(page).resolve() if not served else None
+    if source is not None and not source.is_file():
         raise MechkitError(f"screenshot: no page at {source}")
     target = Path(png)
     target.parent.mkdir(parents=True, exist_ok=True)
@@ -74,7 +75,7 @@ def screenshot(page: str | os.PathLike, png: str | os.PathLike, size: Sequence[i
         shot = Path(tmp) / "shot.png"
         command = [executable, *FLAGS, f"--user-data-dir={Path(tmp) / 'profile'}",
                    f"--window-size={int(size[0])},{int(size[1])}", f"--virtual-time-budget={int(budget_ms)}",
-                   f"--screenshot={shot}", source.as_uri() + "#capture"]
+                   f"--screenshot={shot}", str(page) if served else source.as_uri() + "#capture"]
         try:
             run = subprocess.run(command, capture_output=True, text=True, timeout=timeout,
                                  stdin=subprocess.DEVNULL, check=False)

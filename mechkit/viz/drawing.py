@@ -1,7 +1,8 @@
 """What is drawn of a mechanism, with primitives only, and where each primitive sits at a configuration.
 
-Links are the URDF visual primitives in their URDF colours (a palette per limb when the URDF gives
-none; meshes are not drawn); joints are short cylinders along their axis, actuated ones red and
+Links are the URDF visuals in their URDF colours (a palette per limb when the URDF gives none):
+primitives, and meshes (STL, OBJ, DAE; found as `mechkit.viz.meshes` says, a missing one is a
+placeholder); joints are short cylinders along their axis, actuated ones red and
 thicker (spheres for multi-coordinate joints); loop cuts are yellow spheres; the ground is grey
 (anchors at the supports, joined by bars when the URDF draws no ground body). Sizes scale with the
 mechanism (its joint extent at home); placements are 4x4 world transforms (m).
@@ -9,7 +10,7 @@ mechanism (its joint extent at home); placements are 4x4 world transforms (m).
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 import pinocchio as pin
@@ -17,6 +18,7 @@ import pinocchio as pin
 from mechkit.mechanism import Mechanism
 from mechkit.scenes import joint_extent
 from mechkit.viz.meshcat_page import StaticScene
+from mechkit.viz.meshes import MISSING, MeshSearch, mesh_geometry, resolve_meshes
 
 ACTUATED = (0.85, 0.08, 0.08, 1.0)
 PASSIVE = (0.15, 0.15, 0.18, 1.0)
@@ -29,17 +31,18 @@ GHOST_OPACITY = 0.22
 
 @dataclass(frozen=True)
 class Part:
-    """One drawn primitive: meshcat path (relative to the drawing's root), shape, colour, half sizes."""
+    """One drawn primitive or mesh: meshcat path (relative to the drawing's root), shape, colour, bounds."""
 
     path: str
     shape: object
     rgba: tuple[float, float, float, float]
-    half_extent: np.ndarray  # in the primitive's own frame (m)
+    half_extent: np.ndarray  # half sizes of its bounding box, in its own frame (m, or mesh file units)
+    centre: np.ndarray = field(default_factory=lambda: np.zeros(3))  # centre of that box in its own frame (same units)
 
     def corners(self, placement: np.ndarray) -> np.ndarray:
-        """The 8 corners of the primitive's box at a 4x4 world placement."""
+        """The 8 corners of the part's bounding box at a 4x4 world placement (which may scale a mesh)."""
         signs = np.array([[sx, sy, sz] for sx in (-1, 1) for sy in (-1, 1) for sz in (-1, 1)], dtype=float)
-        return (signs * self.half_extent) @ placement[:3, :3].T + placement[:3, 3]
+        return (signs * self.half_extent + self.centre) @ placement[:3, :3].T + placement[:3, 3]
 
 
 class Drawing:
@@ -48,25 +51,31 @@ class Drawing:
     Args:
         mechanism: the mechanism.
         size: marker scale (m); default: the extent of the joint origins at its home configuration.
+        meshes: where mesh files are looked for (default: absolute file names only).
+
+    Warns:
+        MissingMesh: a mesh file was not found (a placeholder is drawn).
     """
 
-    def __init__(self, mechanism: Mechanism, size: float | None = None):
+    def __init__(self, mechanism: Mechanism, size: float | None = None, meshes: MeshSearch | None = None):
         self.mechanism = mechanism
         model = mechanism.model
         self.model, self.data = model, model.createData()
-        self.visual = pin.buildGeomFromUrdfString(model, mechanism.urdf, pin.GeometryType.VISUAL)
-        self.vdata = self.visual.createData()
         g = StaticScene().geometry
         self.size = joint_extent(model, self.data, mechanism.home_q) if size is None else float(size)
         s = self.size
+        urdf, placeholders = resolve_meshes(mechanism.urdf, meshes or MeshSearch(), 0.04 * s)
+        self.visual = pin.buildGeomFromUrdfString(model, urdf, pin.GeometryType.VISUAL)
+        self.vdata = self.visual.createData()
         self.parts: list[Part] = []
-        self._links: list[tuple[int, np.ndarray]] = []  # (geometry index, local rotation)
+        self._links: list[tuple[int, np.ndarray]] = []  # (geometry index, 4x4 local transform)
         colours = _link_colours(model, self.visual)
         for k, obj in enumerate(self.visual.geometryObjects):
-            primitive = _shape(g, obj.geometry)
+            primitive = _shape(g, obj)
             if primitive is not None:
-                shape, local, half = primitive
-                self.parts.append(Part(f"links/{obj.name}", shape, colours[k], half))
+                shape, local, half, centre = primitive
+                colour = MISSING if obj.name in placeholders else colours[k]
+                self.parts.append(Part(f"links/{obj.name}", shape, colour, half, centre))
                 self._links.append((k, local))
         self._joints: list[tuple[int, np.ndarray | None]] = []
         actuated = set(mechanism.actuated)
@@ -123,7 +132,7 @@ class Drawing:
         model, data = self.model, self.data
         pin.framesForwardKinematics(model, data, q)
         pin.updateGeometryPlacements(model, data, self.visual, self.vdata)
-        out = [(self.vdata.oMg[k] * pin.SE3(local, np.zeros(3))).homogeneous for k, local in self._links]
+        out = [self.vdata.oMg[k].homogeneous @ local for k, local in self._links]
         for j, axis in self._joints:
             oMi = data.oMi[j]
             rotation = np.eye(3) if axis is None else _rotation_y_to(oMi.rotation @ axis)
@@ -164,19 +173,28 @@ def _link_colours(model: pin.Model, visual: pin.GeometryModel) -> list[tuple[flo
     return colours
 
 
-def _shape(g, geometry) -> tuple[object, np.ndarray, np.ndarray] | None:
-    """Meshcat primitive for a coal shape, the local rotation that aligns it (meshcat cylinders lie along
-    y, coal's along z) and its half sizes in meshcat's frame; None for meshes (not drawn)."""
+def _shape(g, obj: pin.GeometryObject) -> tuple[object, np.ndarray, np.ndarray, np.ndarray] | None:
+    """Meshcat geometry of a visual, the 4x4 local transform that places it in the visual's frame
+    (meshcat cylinders lie along y, coal's along z; a mesh file is scaled by the URDF's scale), and the
+    half sizes and centre of its bounding box in meshcat's frame; None for a shape not drawn."""
+    geometry = obj.geometry
     name = type(geometry).__name__
     if name == "Box":
         half = np.asarray(geometry.halfSide, dtype=float)
-        return g.Box(list(2 * half)), np.eye(3), half
+        return g.Box(list(2 * half)), np.eye(4), half, np.zeros(3)
     if name == "Sphere":
         r = float(geometry.radius)
-        return g.Sphere(r), np.eye(3), np.full(3, r)
+        return g.Sphere(r), np.eye(4), np.full(3, r), np.zeros(3)
     if name == "Cylinder":
         r, h = float(geometry.radius), float(geometry.halfLength)
-        return g.Cylinder(2 * h, r), pin.rpy.rpyToMatrix(np.pi / 2, 0, 0), np.array([r, h, r])
+        local = pin.SE3(pin.rpy.rpyToMatrix(np.pi / 2, 0, 0), np.zeros(3)).homogeneous
+        return g.Cylinder(2 * h, r), local, np.array([r, h, r]), np.zeros(3)
+    if name.startswith("BVHModel") and obj.meshPath:
+        scale = np.asarray(obj.meshScale, dtype=float)  # coal loaded the mesh scaled; meshcat reads the file
+        vertices = np.asarray(geometry.vertices(), dtype=float) / scale
+        low, high = vertices.min(axis=0), vertices.max(axis=0)
+        shape = mesh_geometry(g, obj.meshPath, vertices, geometry)
+        return shape, np.diag([*scale, 1.0]), (high - low) / 2, (high + low) / 2
     return None
 
 

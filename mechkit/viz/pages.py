@@ -25,36 +25,45 @@ from mechkit.viz.browser import find_chromium, screenshot
 from mechkit.viz.camera import frame_camera, view_direction
 from mechkit.viz.drawing import Drawing
 from mechkit.viz.meshcat_page import StaticScene
+from mechkit.viz.meshes import MeshSearch
 
 MAX_FRAMES = 240  # poses kept in an animation (the page grows with frames x parts)
 
 
-def _page(mechanism: Mechanism, poses: Sequence[np.ndarray], *, animate: bool = False, ghosts: int = 0,
-          caption: str = "") -> str:
-    """HTML of the mechanism: at poses[-1] (with `ghosts` faded earlier poses), or animated along poses."""
-    drawing = Drawing(mechanism)
-    scene = StaticScene()
+def compose(scene: StaticScene, mechanism: Mechanism, poses: Sequence[np.ndarray], *, animate: bool = False,
+            ghosts: int = 0, meshes: MeshSearch | None = None, root: str = "/mechanism") -> None:
+    """Draw the mechanism into a scene, framed: at poses[-1] (with `ghosts` faded earlier poses), or
+    animated along poses (at most MAX_FRAMES of them); `meshes`: where mesh files are looked for;
+    `root`: the meshcat path of the drawing."""
+    drawing = Drawing(mechanism, meshes=meshes)
     scene.set_background()
     if animate:
         shown = [poses[int(i)] for i in np.linspace(0, len(poses) - 1, min(len(poses), MAX_FRAMES)).round()]
-        drawing.draw(scene, shown[0], "/mechanism/pose")
+        drawing.draw(scene, shown[0], f"{root}/pose")
     else:  # ghosts evenly spread from the first pose, then the last pose (periodic scenes: no ghost on it)
         picks = [poses[int(i)] for i in np.linspace(0, len(poses) - 1, ghosts + 1).round()] if ghosts else []
         shown = [q for q in picks[:-1] if np.max(np.abs(q - poses[-1])) > 1e-9] + [poses[-1]]
         for i, q in enumerate(shown[:-1]):
-            drawing.draw(scene, q, f"/mechanism/ghost{i}", ghost=True)
-        drawing.draw(scene, shown[-1], "/mechanism/pose")
+            drawing.draw(scene, q, f"{root}/ghost{i}", ghost=True)
+        drawing.draw(scene, shown[-1], f"{root}/pose")
     points = np.vstack([drawing.corners(q) for q in shown])
-    frame_camera(scene, points, "/mechanism", view_direction(mechanism))
+    frame_camera(scene, points, root, view_direction(mechanism))
     if animate:
         frames = [drawing.placements(q) for q in shown]
         tracks = {}
         for k, part in enumerate(drawing.parts):
             path = [frame[k] for frame in frames]
             if max(float(np.max(np.abs(T - path[0]))) for T in path) > 1e-12:  # fixed parts need no track
-                tracks[f"/mechanism/pose/{part.path}"] = path
+                tracks[f"{root}/pose/{part.path}"] = path
         fps = len(shown) / min(max(len(shown) / 30, 4.0), 12.0)
         scene.set_animation(tracks, fps)
+
+
+def _page(mechanism: Mechanism, poses: Sequence[np.ndarray], *, animate: bool = False, ghosts: int = 0,
+          caption: str = "", meshes: MeshSearch | None = None) -> str:
+    """HTML of the mechanism (see `compose`)."""
+    scene = StaticScene()
+    compose(scene, mechanism, poses, animate=animate, ghosts=ghosts, meshes=meshes)
     return scene.html(mechanism.spec.name, caption)
 
 
@@ -72,33 +81,36 @@ def mechanism_scene(mechanism: Mechanism, q: np.ndarray, prefix: str = "/mechani
     return scene, corners.min(axis=0), corners.max(axis=0)
 
 
-def snapshot(mechanism: Mechanism, q: np.ndarray | None = None, path: str | os.PathLike | None = None) -> str:
-    """Self-contained HTML of the mechanism at q (default: its home assembly); written to `path` if given."""
+def snapshot(mechanism: Mechanism, q: np.ndarray | None = None, path: str | os.PathLike | None = None, *,
+             meshes: MeshSearch | None = None) -> str:
+    """Self-contained HTML of the mechanism at q (default: its home assembly); written to `path` if given.
+    `meshes`: where mesh files are looked for."""
     q = mechanism.home_q if q is None else np.asarray(q, dtype=float)
-    html = _page(mechanism, [q], caption=f"{mechanism.spec.name}: {mechanism.spec.summary}")
+    html = _page(mechanism, [q], caption=f"{mechanism.spec.name}: {mechanism.spec.summary}", meshes=meshes)
     if path is not None:
         write_text(path, html)
     return html
 
 
 def animation(mechanism: Mechanism, scene: str, path: str | os.PathLike | None = None, *,
-              poses: Sequence[np.ndarray] | None = None) -> str:
+              poses: Sequence[np.ndarray] | None = None, meshes: MeshSearch | None = None) -> str:
     """Self-contained HTML animating one of the mechanism's scenes; written to `path` if given.
-    `poses`: the scene's poses when already computed (by `mechkit.scenes.scene_poses`)."""
+    `poses`: the scene's poses when already computed (by `mechkit.scenes.scene_poses`); `meshes`: where
+    mesh files are looked for."""
     poses = scene_poses(mechanism, scene) if poses is None else poses
     html = _page(mechanism, poses, animate=True, caption=f"{mechanism.spec.name}, scene {scene!r}: "
-                                                          f"{len(poses)} poses")
+                                                          f"{len(poses)} poses", meshes=meshes)
     if path is not None:
         write_text(path, html)
     return html
 
 
 def overlay(mechanism: Mechanism, scene: str, ghosts: int = 3, path: str | os.PathLike | None = None, *,
-            poses: Sequence[np.ndarray] | None = None) -> str:
+            poses: Sequence[np.ndarray] | None = None, meshes: MeshSearch | None = None) -> str:
     """Self-contained HTML of a scene as one picture: its last pose, and `ghosts` earlier poses (evenly
-    spread from the first) faded; written to `path` if given. `poses`: as for `animation`."""
+    spread from the first) faded; written to `path` if given. `poses`, `meshes`: as for `animation`."""
     poses = scene_poses(mechanism, scene) if poses is None else poses
-    html = _page(mechanism, poses, ghosts=ghosts, caption=f"{mechanism.spec.name}, scene {scene!r}")
+    html = _page(mechanism, poses, ghosts=ghosts, caption=f"{mechanism.spec.name}, scene {scene!r}", meshes=meshes)
     if path is not None:
         write_text(path, html)
     return html
@@ -131,10 +143,10 @@ def side_by_side(mechanism: Mechanism, poses: Sequence[np.ndarray], path: str | 
 
 
 def snapshot_command(mechanism: Mechanism, q: str | None = None, scene: str | None = None,
-                     html: str | None = None, png: str | None = None) -> list[Path]:
+                     html: str | None = None, png: str | None = None, meshes: MeshSearch | None = None) -> list[Path]:
     """What `mechkit snapshot` does: the HTML of a pose (inputs `q`, comma-separated, in actuated order)
     or of an animated scene, and optionally a PNG screenshot (of the pose; of a scene, its overlay
-    picture). Returns the files written."""
+    picture); `meshes`: where mesh files are looked for. Returns the files written."""
     if html is None and png is None:
         raise MechkitError("give -o FILE.html, --png FILE.png, or both")
     if q is not None and scene is not None:
@@ -145,12 +157,12 @@ def snapshot_command(mechanism: Mechanism, q: str | None = None, scene: str | No
     if scene is not None:
         poses = scene_poses(mechanism, scene)
         if html is not None:
-            animation(mechanism, scene, html, poses=poses)
+            animation(mechanism, scene, html, poses=poses, meshes=meshes)
             written.append(Path(html))
-        page = overlay(mechanism, scene, poses=poses) if png is not None else None
+        page = overlay(mechanism, scene, poses=poses, meshes=meshes) if png is not None else None
     else:
         pose = None if q is None else mechanism.assemble(_parse_inputs(q), guess=mechanism.home_q)
-        page = snapshot(mechanism, pose, html)
+        page = snapshot(mechanism, pose, html, meshes=meshes)
         if html is not None:
             written.append(Path(html))
     if png is not None:
