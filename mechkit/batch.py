@@ -60,24 +60,6 @@ class BatchInverseDynamicsResult:
                                      self.multipliers[i], float(self.condition[i]), eff_det)
 
 
-def stack_inverse(results: Sequence[InverseDynamicsResult], joint_names: Sequence[str],
-                  actuated: Sequence[str]) -> BatchInverseDynamicsResult:
-    """Stack single-sample results (same mechanism) into one batched result."""
-    first = results[0]
-    tested = first.reactions[joint_names[0]].determinate is not None if joint_names else first.efforts_determinate is not None
-    det = np.array([[r.reactions[j].determinate for j in joint_names] for r in results], dtype=bool) if tested else None
-    eff_det = (np.array([[r.efforts_determinate[j] for j in actuated] for r in results], dtype=bool)
-               if first.efforts_determinate is not None else None)
-    return BatchInverseDynamicsResult(
-        tuple(joint_names), tuple(actuated),
-        np.array([[r.efforts[j] for j in actuated] for r in results], dtype=float).reshape(len(results), len(actuated)),
-        np.array([[r.reactions[j].wrench for j in joint_names] for r in results], dtype=float).reshape(
-            len(results), len(joint_names), 6),
-        np.array([first.reactions[j].support for j in joint_names], dtype=bool),
-        np.array([r.multipliers for r in results], dtype=float).reshape(len(results), -1),
-        np.array([r.condition for r in results], dtype=float), det, eff_det)
-
-
 def is_batch(q: np.ndarray | Sequence[float]) -> bool:
     """True when q carries a leading sample axis (shape (N, nq))."""
     return np.ndim(q) == 2

@@ -10,7 +10,7 @@ from typing import Any
 import numpy as np
 import pinocchio as pin
 
-from mechkit import arguments, batch, coordinates, dynamics, forward, kinematics, sources
+from mechkit import arguments, batch, coordinates, dynamics, forward, inverse, kinematics, sources
 from mechkit.closures import ClosureRows, cut_rows
 from mechkit.contract import MechanismSpec
 from mechkit.description import build_model, parse_loops, render_urdf
@@ -55,7 +55,7 @@ class Mechanism:
         self.actuated = spec.actuated_joints(params)
         for joint in self.actuated:
             self._joint_id(joint)
-        self._id_problem = dynamics.InverseDynamicsProblem(
+        self._id_problem = inverse.InverseDynamicsProblem(
             self.model, self.model.createData(), self.rows, self.full_rows,
             np.array([self.v_index(j) for j in self.actuated], dtype=int), self.actuated)
         self.independent_rows = self.rows.size
@@ -271,24 +271,23 @@ class Mechanism:
         """Constrained RNEA: actuator efforts and the reaction of every joint (tree and cut).
 
         Reactions: the wrench parent side -> child side at the joint origin, world frame; see
-        `dynamics.JointReaction` for the determinacy flags and `dynamics.inverse_dynamics` for
+        `dynamics.JointReaction` for the determinacy flags and `inverse.inverse_dynamics_batch` for
         `fext` (Pinocchio local-frame forces per joint) and `distribution` (redundant actuation).
         Batched: q (N, nq), v and a (N, nv), fext None, (N, njoints, 6) or N per-sample values give
-        a `batch.BatchInverseDynamicsResult`.
+        a `batch.BatchInverseDynamicsResult` (the same numbers as one sample at a time).
         Efforts undetermined to what the closure resolves: `SingularConfiguration` unless `allow_singular`.
         """
-        arguments.option("distribution", distribution, dynamics.DISTRIBUTIONS)
+        arguments.option("distribution", distribution, inverse.DISTRIBUTIONS)
         determinacy = arguments.flag("determinacy", determinacy)
         q, v, a = self._state(q=q, v=v, a=a)
         if not arguments.flag("allow_singular", allow_singular):
             kinematics.check_regular(self.rows, self.data, q, self._split(list(self.actuated))[1], self.independent_rows)
         if batch.is_batch(q):
             n, p = len(q), self._id_problem
-            out = [dynamics.inverse_dynamics(p, qi, vi, ai, fi, determinacy, distribution)
-                   for qi, vi, ai, fi in zip(q, v, a, batch.sample_fext(fext, n, self.model.njoints))]
-            return batch.stack_inverse(out, p.joint_names, p.actuated_names)
+            return inverse.inverse_dynamics_batch(p, q, v, a, batch.sample_fext(fext, n, self.model.njoints),
+                                                  determinacy, distribution)
         fext = arguments.external_forces("fext", fext, self.model.njoints)
-        return dynamics.inverse_dynamics(self._id_problem, q, v, a, fext, determinacy, distribution)
+        return inverse.inverse_dynamics(self._id_problem, q, v, a, fext, determinacy, distribution)
 
 
 def load(source: str | Path, *, actuated: Sequence[str] | None = None, home: Mapping[str, float] | None = None,

@@ -94,21 +94,27 @@ class MujocoPeer:
             J[r, d.efc_J_colind[adr:adr + nnz]] = d.efc_J[adr:adr + nnz]
         return J
 
-    def forward(self, q: np.ndarray, v: np.ndarray, tau: np.ndarray) -> np.ndarray:
-        """Accelerations (mechkit order) under joint efforts tau."""
+    def set_state(self, q: np.ndarray, v: np.ndarray, tau: np.ndarray | None = None, a: np.ndarray | None = None) -> None:
+        """Write a state (mechkit order) into the MjData, for timing `mj_forward` / `mj_inverse` bare."""
         d = self.data
         d.qpos[self.qadr] = q
         d.qvel[self.vadr] = v
-        d.qfrc_applied[self.vadr] = tau
+        if tau is not None:
+            d.qfrc_applied[self.vadr] = tau
+        if a is not None:
+            d.qacc[self.vadr] = a
+
+    def forward(self, q: np.ndarray, v: np.ndarray, tau: np.ndarray) -> np.ndarray:
+        """Accelerations (mechkit order) under joint efforts tau."""
+        d = self.data
+        self.set_state(q, v, tau)
         self._mj.mj_forward(self.model, d)
         return d.qacc[self.vadr].copy()
 
     def inverse(self, q: np.ndarray, v: np.ndarray, a: np.ndarray) -> dict[str, float]:
         """Actuator efforts holding the motion: M a + c = S u + J_eq^T f solved by least squares."""
         d = self.data
-        d.qpos[self.qadr] = q
-        d.qvel[self.vadr] = v
-        d.qacc[self.vadr] = a
+        self.set_state(q, v, a=a)
         self._mj.mj_inverse(self.model, d)
         b = (d.qfrc_inverse + d.qfrc_constraint)[self.vadr]
         nefc = d.nefc

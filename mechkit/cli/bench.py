@@ -35,6 +35,9 @@ def run(args: argparse.Namespace) -> None:
         fits = scale.scale_fits(results)
         for name, pts, slope in fits:
             print(f"scale: {name}: t ~ nv^{slope:.2f} (" + ", ".join(f"{m} nv={n}: {t * 1e6:.1f} us" for m, n, t in pts) + ")")
+        sections = speed_sections(args.names, args.quick) if args.speed else {}
+        for title, body in sections.items():
+            print("\n".join([f"{title}:", *body]))
         first = loadtime.first_load(runs=5 if args.quick else 15)
         print("\n".join(["first load in a fresh process:", *markdown.first_load_lines(first)]))
         figures = []
@@ -46,8 +49,22 @@ def run(args: argparse.Namespace) -> None:
             if args.charts:
                 failures = failure_atlas.summary_lines(Path(args.charts), quick=args.quick)
                 figures += sorted(Path(args.charts).glob("bench_atlas_*.png"))
-            write_text(args.markdown, markdown.markdown_report(results, args.quick, figures, failures, skipped, fits, first))
+            write_text(args.markdown, markdown.markdown_report(results, args.quick, figures, failures, skipped, fits, first,
+                                                                  sections))
             print(f"wrote {args.markdown}")
+
+
+def speed_sections(names: list[str], quick: bool) -> dict[str, list[str]]:
+    """The dynamics speed rows (issue 13) on the named mechanisms and the ladder of four-bar loops."""
+    from mechkit import registry
+    from mechkit.bench import dynamics_speed, ladder
+    from mechkit.mechanism import load
+
+    budget = 0.05 if quick else 0.3
+    speed = [dynamics_speed.measure(load(n), budget) for n in names or registry.names()]
+    points = ladder.run(ladder.SIZES, budget)
+    return {"Dynamics speed": [dynamics_speed.__doc__.split("\n\n")[1].replace("\n", " "), "", *dynamics_speed.markdown(speed)],
+            "Ladder of four-bar loops": [ladder.__doc__.split("\n\n")[1].replace("\n", " "), "", *ladder.markdown(points)]}
 
 
 def add_parser(sub: argparse._SubParsersAction) -> None:
@@ -58,4 +75,5 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--quick", action="store_true", help="few repetitions, smallest sweeps")
     p.add_argument("--charts", help="folder for the error-vs-time charts (PNG and SVG)")
     p.add_argument("--markdown", help="write the summary table (docs/benchmarks.md)")
+    p.add_argument("--speed", action="store_true", help="also the dynamics speed rows and the ladder of four-bar loops")
     p.set_defaults(func=run)

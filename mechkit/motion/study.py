@@ -13,7 +13,7 @@ from collections.abc import Callable, Sequence
 import numpy as np
 import pinocchio as pin
 
-from mechkit import dynamics
+from mechkit import inverse
 from mechkit.exceptions import MechkitError
 from mechkit.mechanism import Mechanism
 from mechkit.motion.inputs import InputLaw
@@ -37,16 +37,16 @@ def coordinate_names(model: pin.Model) -> tuple[str, ...]:
     return tuple(out)
 
 
-def driven_problem(mech: Mechanism, names: Sequence[str]) -> dynamics.InverseDynamicsProblem:
+def driven_problem(mech: Mechanism, names: Sequence[str]) -> inverse.InverseDynamicsProblem:
     """The inverse-dynamics problem with a generalised force on every actuated joint and every input
     of the law (a passive input's force is what its spring or damper must supply)."""
     driven = tuple(mech.actuated) + tuple(n for n in names if n not in mech.actuated)
-    return dynamics.InverseDynamicsProblem(
+    return inverse.InverseDynamicsProblem(
         mech.model, mech.model.createData(), mech.rows, mech.full_rows,
         np.array([mech.v_index(j) for j in driven], dtype=int), driven)
 
 
-def inverse_batch(problem: dynamics.InverseDynamicsProblem, q: np.ndarray, v: np.ndarray, a: np.ndarray,
+def inverse_batch(problem: inverse.InverseDynamicsProblem, q: np.ndarray, v: np.ndarray, a: np.ndarray,
                   fexts: Sequence | None, determinacy: bool) -> tuple[np.ndarray, np.ndarray, np.ndarray | None]:
     """Efforts (N, n_driven), reactions (N, n_joints, 6) and determinacy flags (N, n_joints, 6) or None
     of N samples (q, v, a), with per-sample external forces `fexts` or None.
@@ -54,15 +54,8 @@ def inverse_batch(problem: dynamics.InverseDynamicsProblem, q: np.ndarray, v: np
     Raises:
         SingularConfiguration: a sample's drives cannot hold its motion.
     """
-    results = [dynamics.inverse_dynamics(problem, q[i], v[i], a[i], None if fexts is None else fexts[i], determinacy)
-               for i in range(len(q))]
-    efforts = np.array([[r.efforts[j] for j in problem.actuated_names] for r in results]).reshape(
-        len(q), len(problem.actuated_names))
-    reactions = np.array([[r.reactions[j].wrench for j in problem.joint_names] for r in results]).reshape(
-        len(q), len(problem.joint_names), 6)
-    flags = np.array([[r.reactions[j].determinate for j in problem.joint_names] for r in results]).reshape(
-        len(q), len(problem.joint_names), 6) if determinacy else None
-    return efforts, reactions, flags
+    out = inverse.inverse_dynamics_batch(problem, q, v, a, fexts, determinacy)
+    return out.efforts, out.reactions, out.determinate
 
 
 def study(mech: Mechanism, law: InputLaw, *, determinacy: bool = False, loads: Loads | None = None,

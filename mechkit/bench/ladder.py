@@ -1,0 +1,120 @@
+"""The ladder of N four-bar loops (`mechkit.large_models`): forward dynamics cost and error against N.
+
+For each N: one state (q = 0, input rates ~ N(0, 1), efforts ~ N(0, 0.1) N m, seed 0), the exact
+accelerations from the dense KKT on mechkit's independent closure rows, solved by LU with iterative
+refinement (residual in extended precision, `exact_accelerations`); then microseconds per call (fastest of the
+repeats: the least disturbed on a shared machine) and the relative error of the raw `pin.constraintDynamics` (mu = 1e-9, the core's default) and of
+`pin.lcaba` (`LoopConstrainedABA` at `LCABA_DEFAULTS`). Growth: the least-squares slope of log t
+against log N over N >= `FIT_FROM`.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import pinocchio as pin
+import scipy.linalg
+
+from mechkit.bench.timing import time_per_call
+from mechkit.dynamics import independent_rows
+from mechkit.large_models import LCABA_DEFAULTS, LoopConstrainedABA, ladder
+from mechkit.mechanism import Mechanism
+
+SIZES = (1, 2, 4, 8, 16, 32, 64)
+FIT_FROM = 4
+
+
+@dataclass(frozen=True)
+class LadderPoint:
+    """One ladder size: microseconds per call and relative error (max |a - a_exact| / max |a_exact|)."""
+
+    loops: int
+    nv: int
+    raw_us: float
+    raw_error: float
+    lcaba_us: float
+    lcaba_error: float
+    lcaba_iterations: int
+
+
+def exact_accelerations(mech: Mechanism, q: np.ndarray, v: np.ndarray, tau: np.ndarray) -> np.ndarray:
+    """Accelerations of the dense KKT [M, -J^T; J, 0] [a; lambda] = [tau - nle; -gamma] on the independent
+    rows, LU-solved then refined four times with the residual in extended precision (np.longdouble)."""
+    J, gamma = mech.closure_jacobian(q), mech.closure_drift(q, v)
+    rows = independent_rows(J)
+    J, gamma = J[rows], gamma[rows]
+    data = mech.model.createData()
+    M = pin.crba(mech.model, data, q)
+    M = np.triu(M) + np.triu(M, 1).T
+    nle = pin.nonLinearEffects(mech.model, data, q, v)
+    n, k = M.shape[0], rows.size
+    K = np.zeros((n + k, n + k))
+    K[:n, :n], K[:n, n:], K[n:, :n] = M, -J.T, J
+    rhs = np.concatenate([tau - nle, -gamma])
+    lu = scipy.linalg.lu_factor(K)
+    x = scipy.linalg.lu_solve(lu, rhs)
+    K_ext, rhs_ext = K.astype(np.longdouble), rhs.astype(np.longdouble)
+    for _ in range(4):
+        x = x + scipy.linalg.lu_solve(lu, (rhs_ext - K_ext @ x.astype(np.longdouble)).astype(float))
+    return x[:n]
+
+
+def measure(loops: int, budget: float = 0.2, repeats: int = 5) -> LadderPoint:
+    """Time and error of the raw constraintDynamics and of lcaba on the ladder of `loops` loops."""
+    mech = ladder(loops)
+    rng = np.random.default_rng(0)
+    q = mech.home_q
+    v = mech.velocities(q, rng.normal(size=loops))
+    tau = rng.normal(0.0, 0.1, mech.model.nv)
+    exact = exact_accelerations(mech, q, v, tau)
+    scale = max(float(np.max(np.abs(exact))), 1e-300)
+    lcaba = LoopConstrainedABA(mech, *LCABA_DEFAULTS)
+    cms, cds = mech.pin_constraints()
+    data = mech.model.createData()
+    pin.initConstraintDynamics(mech.model, data, cms, cds)
+    prox = pin.ProximalSettings(1e-12, 1e-9, 20)
+
+    def raw(_):
+        return pin.constraintDynamics(mech.model, data, q, v, tau, cms, cds, prox)
+
+    raw_error = float(np.max(np.abs(raw(None) - exact))) / scale
+    lcaba_error = float(np.max(np.abs(lcaba(q, v, tau) - exact))) / scale
+    iterations = int(lcaba.prox.iter)
+    raw_t = time_per_call(raw, [None], budget, repeats)
+    lcaba_t = time_per_call(lambda _: lcaba(q, v, tau), [None], budget, repeats)
+    return LadderPoint(loops, mech.model.nv, float(np.min(raw_t)) * 1e6, raw_error,
+                       float(np.min(lcaba_t)) * 1e6, lcaba_error, iterations)
+
+
+def growth(points: list[LadderPoint], attr: str) -> float:
+    """Least-squares slope p of log t = p log N + c over the points with N >= FIT_FROM."""
+    pts = [(p.loops, getattr(p, attr)) for p in points if p.loops >= FIT_FROM]
+    if len(pts) < 2:
+        return float("nan")
+    n, t = np.log(np.array(pts)).T
+    return float(np.polyfit(n, t, 1)[0])
+
+
+def run(sizes: tuple[int, ...] = SIZES, budget: float = 0.2, repeats: int = 5) -> list[LadderPoint]:
+    """`measure` at every ladder size."""
+    return [measure(n, budget, repeats) for n in sizes]
+
+
+def markdown(points: list[LadderPoint]) -> list[str]:
+    """The benchmark page's ladder section: the table, the growth fits and the targets of issue 13."""
+    lines = ["| loops | nv | raw constraintDynamics us | its error | lcaba us | its error | lcaba iterations |",
+             "|---|---|---|---|---|---|---|"]
+    for p in points:
+        lines.append(f"| {p.loops} | {p.nv} | {p.raw_us:.1f} | {p.raw_error:.1e} | {p.lcaba_us:.1f} | "
+                     f"{p.lcaba_error:.1e} | {p.lcaba_iterations} |")
+    raw_p, lc_p = growth(points, "raw_us"), growth(points, "lcaba_us")
+    lines += ["", (f"Growth (slope of log t on log N, N >= {FIT_FROM}): raw constraintDynamics N^{raw_p:.2f}, "
+              f"lcaba N^{lc_p:.2f}.")]
+    last = max(points, key=lambda p: p.loops)
+    checks = [(f"lcaba at {last.loops} loops under 1 ms", last.lcaba_us < 1000.0, f"{last.lcaba_us:.0f} us"),
+              ("lcaba growth at most N^1.3", lc_p <= 1.3, f"N^{lc_p:.2f}"),
+              ("lcaba error at most 1e-10", max(p.lcaba_error for p in points) <= 1e-10,
+               f"worst {max(p.lcaba_error for p in points):.1e}")]
+    lines += [""] + [f"- {label}: {value}: {'met' if ok else 'MISSED'}" for label, ok, value in checks]
+    return lines

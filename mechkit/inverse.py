@@ -1,0 +1,232 @@
+"""Constrained inverse dynamics (constrained RNEA) of closed-loop mechanisms, for N samples at once.
+
+[S, J^T] [u; lambda] = rnea(q, v, a) - J_ext^T f_ext, S selecting the actuated joints, J the closure
+Jacobian. Every tree joint's transmitted wrench is the RNEA's minus the cut wrenches acting on its
+subtree; the cut joints transmit the cut wrenches. The per-sample work is Pinocchio's
+(`computeJointJacobians`, `rnea`) and reading its arrays; everything else is one numpy operation
+over the sample axis: closure rows as world wrenches (`mechkit.row_wrenches`), one batched solve
+(LAPACK gesv where [S, J^T] is square, an SVD otherwise), the reactions as batched products.
+One sample is the batch of one, so the single-sample and batched results are the same numbers.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+import numpy as np
+import pinocchio as pin
+import scipy.linalg
+import scipy.linalg.lapack
+
+from mechkit.batch import BatchInverseDynamicsResult
+from mechkit.closures import ClosureRows
+from mechkit.dynamics import InverseDynamicsResult, subtree_incidence
+from mechkit.exceptions import InvalidParameters, SingularConfiguration
+from mechkit.kinematics import RANK_TOL
+from mechkit.row_wrenches import RowWrenches, cross3, placements
+
+#: Relative threshold under which a reaction component's null-space variation counts as zero.
+DETERMINACY_TOL = 1e-8
+DISTRIBUTIONS = ("min_norm", "min_effort")
+
+
+class InverseDynamicsProblem:
+    """What constrained RNEA needs besides (q, v, a): built once per mechanism.
+
+    Attributes:
+        model, data: the Pinocchio model and a scratch data.
+        rows: the closure rows the scene solves with; full_rows: the closures' full spatial rows
+            (the physical joints), for the determinacy test (same cuts, same order).
+        actuated_v: velocity indices of the actuated joints, in effort order; actuated_names: their names.
+        joint_names: tree joints (model order) then cut joints; supports: True for joints to the ground.
+    """
+
+    def __init__(self, model: pin.Model, data: pin.Data, rows: ClosureRows, full_rows: ClosureRows,
+                 actuated_v: np.ndarray, actuated_names: tuple[str, ...]):
+        self.model, self.data, self.rows, self.full_rows = model, data, rows, full_rows
+        self.actuated_v, self.actuated_names = np.asarray(actuated_v, dtype=int), tuple(actuated_names)
+        self.kept, self.full = RowWrenches(rows), RowWrenches(full_rows)
+        self.incidence = subtree_incidence(model, rows)
+        cut_names = tuple(c.closure.name for c in rows.cuts)
+        self.joint_names = tuple(model.names[1:]) + cut_names
+        parents = model.parents
+        self.supports = np.array([parents[i] == 0 for i in range(1, model.njoints)] + [
+            model.frames[c.frame_a].parentJoint == 0 or model.frames[c.frame_b].parentJoint == 0 for c in rows.cuts],
+            dtype=bool)
+
+
+def _gather(p: InverseDynamicsProblem, Q, V, A, fexts) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """Per sample, Pinocchio's joint placements (N, nj, 4, 4), data.J (N, 6, nv), rnea torques (N, nv)
+    and joint wrenches data.f in world axes about each joint origin (N, nj, 6)."""
+    model, data = p.model, p.data
+    n = len(Q)
+    oMi = np.empty((n, model.njoints, 4, 4))
+    J = np.empty((n, 6, model.nv))
+    tau = np.empty((n, model.nv))
+    f = np.empty((n, model.njoints, 6))
+    for i in range(n):
+        pin.computeJointJacobians(model, data, Q[i])
+        J[i] = data.J
+        oMi[i] = placements(data)
+        tau[i] = pin.rnea(model, data, Q[i], V[i], A[i]) if fexts[i] is None else pin.rnea(model, data, Q[i], V[i], A[i], fexts[i])
+        f[i] = [F.np for F in data.f.tolist()]
+    R = oMi[:, :, :3, :3]
+    with np.errstate(under="ignore"):
+        world = np.concatenate([R @ f[..., :3, None], R @ f[..., 3:, None]], axis=2)[..., 0]
+    return oMi, J, tau, world
+
+
+def _cut_loads(p: InverseDynamicsProblem, rw: RowWrenches, W: np.ndarray, lam: np.ndarray, origins: np.ndarray,
+               points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """What row multipliers lam (N, K, rows) put on the joints: per set k, the tree joints' share to
+    subtract (N, K, njoints, 6), about each joint origin, and the cut wrenches (N, K, ncuts, 6) about p_b.
+
+    W: (N, rows, 6) row wrenches; origins: (N, njoints, 3) joint origins; points: (N, ncuts, 3) p_b.
+    """
+    cuts0 = rw.cut_wrenches(W[:, None], lam)  # about the world origin
+    tree = p.incidence @ cuts0
+    tree[..., 3:] -= cross3(origins[:, None], tree[..., :3])
+    cuts = cuts0.copy()
+    cuts[..., 3:] -= cross3(points[:, None], cuts0[..., :3])
+    return tree, cuts
+
+
+def _system(p: InverseDynamicsProblem, Jrows: np.ndarray) -> np.ndarray:
+    """(N, nv, na + rows) matrices [S, J^T]."""
+    na = p.actuated_v.size
+    A = np.zeros((Jrows.shape[0], p.model.nv, na + Jrows.shape[1]))
+    A[:, p.actuated_v, np.arange(na)] = 1.0
+    A[:, :, na:] = Jrows.transpose(0, 2, 1)
+    return A
+
+
+def _ranks(s: np.ndarray) -> np.ndarray:
+    """(N,) numerical ranks from descending singular values (N, k), relative to the largest."""
+    return np.sum(s > RANK_TOL * np.maximum(s[:, :1], 1e-300), axis=1)
+
+
+def _solve(p: InverseDynamicsProblem, A: np.ndarray, b: np.ndarray, condition: bool, distribution: str):
+    """x (N, cols) with A x = b, and the condition numbers (N,) (nan when `condition` is False).
+
+    Square systems: gesv (with `condition`, after singular values that show every sample regular);
+    otherwise the minimum-norm SVD solution, moved to the least efforts for "min_effort".
+    """
+    n, nv, cols = A.shape
+    square = nv == cols
+    cond = np.full(n, np.nan)
+    if square and condition:
+        s = np.linalg.svd(A, compute_uv=False)
+        if np.all(s[:, -1] > RANK_TOL * s[:, 0]):
+            cond = s[:, 0] / s[:, -1]
+        else:
+            square = False  # a sample has lost rank: the SVD path decides whether b is still reachable
+    if square:
+        if n == 1:  # LAPACK gesv directly: a fraction of np.linalg.solve's overhead on small systems
+            _, _, x, info = scipy.linalg.lapack.dgesv(A[0], b[0])
+            x = x[None] if info == 0 else np.full((1, cols), np.nan)
+        else:
+            try:
+                x = np.linalg.solve(A, b[..., None])[..., 0]
+            except np.linalg.LinAlgError:
+                x = np.full((n, cols), np.nan)
+        if not np.all(np.isfinite(x)):
+            raise SingularConfiguration(float("inf"), "[S, J^T]: efforts and multipliers undetermined")
+        return x, cond
+    U, s, Vt = np.linalg.svd(A, full_matrices=True)
+    r = _ranks(s)
+    k = s.shape[1]
+    keep = np.arange(k)[None, :] < r[:, None]
+    proj = np.einsum("nij,ni->nj", U, b)
+    outside = np.linalg.norm(np.where(np.arange(nv)[None, :] >= r[:, None], proj, 0.0), axis=1)
+    bad = np.flatnonzero(outside > 1e-9 * np.maximum(np.linalg.norm(b, axis=1), 1.0))
+    if bad.size:
+        i = int(bad[0])
+        raise SingularConfiguration(float(s[i, 0] / s[i, -1]) if s[i, -1] > 0 else float("inf"),
+                                    f"[S, J^T] does not span the required generalised force (sample {i}): the "
+                                    "actuators cannot hold this motion")
+    coef = np.where(keep, proj[:, :k] / np.where(keep, s, 1.0), 0.0)
+    x = np.einsum("nij,ni->nj", Vt[:, :k], coef)
+    cond = s[:, 0] / s[np.arange(n), r - 1]
+    if distribution == "min_effort":
+        na = p.actuated_v.size
+        for i in np.flatnonzero(r < cols):
+            x[i] = _least_effort(x[i], Vt[i, r[i]:].T, na)
+    return x, cond
+
+
+def _least_effort(x: np.ndarray, N: np.ndarray, na: int) -> np.ndarray:
+    """Move x along the null space N to the smallest efforts |u|, then the smallest multipliers."""
+    z = -np.linalg.lstsq(N[:na], x[:na], rcond=None)[0]
+    x = x + N @ z
+    keep = N @ scipy.linalg.null_space(N[:na]) if na else N
+    if keep.size:
+        x = x - keep @ np.linalg.lstsq(keep[na:], x[na:], rcond=None)[0]
+    return x
+
+
+def _determinacy(p: InverseDynamicsProblem, oMi: np.ndarray, J: np.ndarray, points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Which reaction components (N, joints, 6) and efforts (N, na) static equilibrium fixes.
+
+    Tested on the full spatial rows: a component is determinate when it does not change along the
+    null space of [S, J_full^T] (Wojtyra and Fraczek 2013); such a null vector is a self-stress (cut
+    forces, and actuator efforts, in equilibrium with no load).
+    """
+    na = p.actuated_v.size
+    Wf = p.full.wrenches(oMi)
+    A = _system(p, p.full.jacobian(Wf, J))
+    _, s, Vt = np.linalg.svd(A, full_matrices=True)
+    r = _ranks(s)
+    k, first = Vt.shape[1], int(r.min())
+    # rows first..k-1 of Vt: the null vectors of every sample (zeroed where a sample's rank is higher)
+    null = np.where((np.arange(first, k)[None, :] >= r[:, None])[..., None], Vt[:, first:], 0.0)
+    tree, cuts = _cut_loads(p, p.full, Wf, null[..., na:], oMi[..., :3, 3], points)
+    variation = np.abs(np.concatenate([tree[:, :, 1:], cuts], axis=2)).max(axis=1, initial=0.0)
+    effort_variation = np.abs(null[..., :na]).max(axis=1, initial=0.0)
+    scale = np.maximum(np.maximum(variation.max(axis=(1, 2)), effort_variation.max(axis=1, initial=0.0)), 1e-300)
+    tol = DETERMINACY_TOL * scale
+    return variation <= tol[:, None, None], effort_variation <= tol[:, None]
+
+
+def inverse_dynamics_batch(p: InverseDynamicsProblem, Q: np.ndarray, V: np.ndarray, A: np.ndarray,
+                           fexts: Sequence[pin.StdVec_Force | list[pin.Force] | None] | None = None,
+                           determinacy: bool = True, distribution: str = "min_norm") -> BatchInverseDynamicsResult:
+    """Actuator efforts and every joint's reaction for N motions (q, v, a) that satisfy the closures.
+
+    Args:
+        p: the problem (model, rows, actuators).
+        Q, V, A: (N, nq), (N, nv), (N, nv) configurations, velocities, accelerations (J a + gamma = 0).
+        fexts: None or N per-sample external forces per joint (Pinocchio local frames), e.g. thrust.
+        determinacy: run the rank test that flags indeterminate components (an SVD of the full
+            spatial rows per sample); without it the masks are None (not tested).
+        distribution: where [S, J^T] has a null space (redundant actuation or rows), which solution:
+            "min_norm" (smallest |[u; lambda]|) or "min_effort" (smallest |u|, then smallest |lambda|).
+
+    Raises:
+        SingularConfiguration: [S, J^T] has lost rank where it must not (efforts undetermined).
+        InvalidParameters: an unknown distribution.
+    """
+    if distribution not in DISTRIBUTIONS:
+        raise InvalidParameters("distribution", distribution, f"expected one of {DISTRIBUTIONS}")
+    n, na = len(Q), p.actuated_v.size
+    oMi, J, b, tree_world = _gather(p, Q, V, A, [None] * n if fexts is None else fexts)
+    with np.errstate(under="ignore"):  # products of tiny lever arms and forces flush to zero harmlessly
+        W = p.kept.wrenches(oMi)
+        system = _system(p, p.kept.jacobian(W, J))
+        x, cond = _solve(p, system, b, determinacy, distribution)
+        points = p.kept.cut_points(oMi)
+        tree, cuts = _cut_loads(p, p.kept, W, x[:, None, na:], oMi[..., :3, 3], points)
+        reactions = np.concatenate([tree_world[:, 1:] - tree[:, 0, 1:], cuts[:, 0]], axis=1)
+        flags = effort_flags = None
+        if determinacy:
+            flags, effort_flags = _determinacy(p, oMi, J, points)
+    return BatchInverseDynamicsResult(p.joint_names, p.actuated_names, x[:, :na], reactions, p.supports, x[:, na:],
+                                      cond, flags, effort_flags)
+
+
+def inverse_dynamics(p: InverseDynamicsProblem, q: np.ndarray, v: np.ndarray, a: np.ndarray,
+                     fext: pin.StdVec_Force | list[pin.Force] | None = None, determinacy: bool = True,
+                     distribution: str = "min_norm") -> InverseDynamicsResult:
+    """One sample of `inverse_dynamics_batch` (q (nq,), v and a (nv,), fext per joint or None), as dicts."""
+    out = inverse_dynamics_batch(p, np.asarray(q, dtype=float)[None], np.asarray(v, dtype=float)[None],
+                                 np.asarray(a, dtype=float)[None], [fext], determinacy, distribution)
+    return out.sample(0)

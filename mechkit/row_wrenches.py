@@ -1,0 +1,106 @@
+"""Closure rows as world wrenches, for many samples at once.
+
+Every closure row is a wrench W (6,) at the world origin: a position row t.(p_b - p_a) is the unit
+force t at p_b, W = [t, p_b x t]; an alignment row (u fixed in frame_a, w in frame_b) is the pure
+moment W = [0, w x u]. Its Jacobian is W^T J_world (Pinocchio's `data.J` after
+`computeJointJacobians`: world axes, twists at the world origin) on the columns that move frame_b
+minus those that move frame_a (a cached +1/-1/0 support mask), which is the exact derivative of the
+row forms of `mechkit.closures`. The same wrenches, weighted by the row multipliers, are the cut
+wrenches that frame_a's side exerts on frame_b's side.
+
+Arrays carry a leading sample axis N; placements are (N, njoints, 4, 4) homogeneous matrices
+(`placements` reads them from a Pinocchio data).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pinocchio as pin
+
+from mechkit.closures import ClosureRows
+
+#: Levi-Civita symbol as a (9, 3) matrix: (a outer b).reshape(9) @ LEVI_CIVITA = a x b.
+LEVI_CIVITA = np.zeros((9, 3))
+for _i, _j, _k in ((0, 1, 2), (1, 2, 0), (2, 0, 1)):
+    LEVI_CIVITA[3 * _i + _j, _k], LEVI_CIVITA[3 * _j + _i, _k] = 1.0, -1.0
+
+
+def cross3(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """a x b on the last axis of two broadcastable (..., 3) arrays, as one matrix product."""
+    outer = a[..., :, None] * b[..., None, :]
+    return outer.reshape(*outer.shape[:-2], 9) @ LEVI_CIVITA
+
+
+def placements(data: pin.Data) -> np.ndarray:
+    """(njoints, 4, 4) homogeneous joint placements data.oMi."""
+    return np.array([M.np for M in data.oMi.tolist()])
+
+
+def support_columns(model: pin.Model, joint: int) -> np.ndarray:
+    """(nv,) 1.0 on the velocity columns of the joints from the root to `joint` (0: none)."""
+    out = np.zeros(model.nv)
+    while joint > 0:
+        jm = model.joints[joint]
+        out[jm.idx_v:jm.idx_v + jm.nv] = 1.0
+        joint = model.parents[joint]
+    return out
+
+
+class RowWrenches:
+    """The rows of a `ClosureRows` set as world wrenches, evaluated for N samples at once.
+
+    Each row carries two homogeneous 4-vectors in its joints' frames: `row_a` (direction t or u,
+    w = 0, on frame_a's joint) and `row_b` (frame_b's origin p_b, w = 1, for a position row; the
+    direction w, w = 0, for an alignment row). In the world they give X_a and Y, and the row wrench
+    is [X_a (position rows; 0 for alignment rows), Y x X_a]: one gather, two products, one cross.
+
+    Attributes:
+        size: number of rows; ncuts: number of cuts.
+        mask: (rows, nv) +1 on columns moving frame_b only, -1 on frame_a only, 0 elsewhere.
+        row_sum: (ncuts, rows) 1 where a row belongs to a cut.
+        joint_b, point_b: frame_b's joint and origin (homogeneous, in that joint's frame) per cut.
+    """
+
+    def __init__(self, rows: ClosureRows):
+        model = rows.model
+        self.size, self.ncuts = rows.size, len(rows.cuts)
+        frames = model.frames
+        joint_a = [frames[c.frame_a].parentJoint for c in rows.cuts]
+        self.joint_b = np.array([frames[c.frame_b].parentJoint for c in rows.cuts], dtype=int)
+        self.point_b = np.array([frames[c.frame_b].placement.homogeneous[:, 3] for c in rows.cuts]).reshape(-1, 4)
+        row_a, row_b, is_force, cut_of_row = [], [], [], []
+        for c, cut in enumerate(rows.cuts):
+            Ma, Mb = frames[cut.frame_a].placement.homogeneous, frames[cut.frame_b].placement.homogeneous
+            for t in cut.positions.T:
+                row_a.append(Ma[:, :3] @ t), row_b.append(Mb[:, 3]), is_force.append(1.0), cut_of_row.append(c)
+            for u, w in cut.alignments:
+                row_a.append(Ma[:, :3] @ u), row_b.append(Mb[:, :3] @ w), is_force.append(0.0), cut_of_row.append(c)
+        self.cut_of_row = np.array(cut_of_row, dtype=int)
+        self.row_joint_a = np.array(joint_a, dtype=int)[self.cut_of_row]
+        self.row_joint_b = self.joint_b[self.cut_of_row]
+        self.row_a = np.array(row_a, dtype=float).reshape(-1, 4, 1)
+        self.row_b = np.array(row_b, dtype=float).reshape(-1, 4, 1)
+        self.is_force = np.array(is_force).reshape(-1, 1)
+        self.row_sum = (self.cut_of_row[None, :] == np.arange(self.ncuts)[:, None]).astype(float)
+        support = {j: support_columns(model, j) for j in set(joint_a) | set(self.joint_b.tolist())}
+        cut_mask = np.array([support[b] - support[a] for a, b in zip(joint_a, self.joint_b.tolist())]).reshape(-1, model.nv)
+        self.mask = cut_mask[self.cut_of_row] if self.size else np.zeros((0, model.nv))
+
+    def wrenches(self, oMi: np.ndarray) -> np.ndarray:
+        """(N, rows, 6) row wrenches [force, moment about the world origin] from joint placements (N, njoints, 4, 4)."""
+        xa = (oMi[:, self.row_joint_a, :3] @ self.row_a)[..., 0]
+        y = (oMi[:, self.row_joint_b, :3] @ self.row_b)[..., 0]
+        return np.concatenate([xa * self.is_force, cross3(y, xa)], axis=-1)
+
+    def cut_points(self, oMi: np.ndarray) -> np.ndarray:
+        """(N, ncuts, 3) frame_b origins p_b (world) from joint placements."""
+        return (oMi[:, self.joint_b, :3] @ self.point_b[..., None])[..., 0]
+
+    def jacobian(self, W: np.ndarray, J: np.ndarray) -> np.ndarray:
+        """(N, rows, nv) closure Jacobian from the row wrenches (N, rows, 6) and `data.J` (N, 6, nv)."""
+        return (W @ J) * self.mask
+
+    def cut_wrenches(self, W: np.ndarray, lam: np.ndarray) -> np.ndarray:
+        """(..., ncuts, 6) wrench of each cut [f, m about the world origin] from row wrenches (..., rows, 6)
+        and multipliers (..., rows)."""
+        return self.row_sum @ (W * lam[..., None])
