@@ -202,7 +202,7 @@ def set_baumgarte(cms: Any, baumgarte: tuple[float, float] | None, current: tupl
 
 def proximal_forward(model: pin.Model, pin_data: pin.Data, data: pin.Data, rows: ClosureRows, constraints: tuple,
                      q: np.ndarray, v: np.ndarray, tau: np.ndarray, *, mu: float, accuracy: float, max_iter: int,
-                     delassus: float) -> ForwardDynamicsResult:
+                     delassus: float, settings: dict | None = None) -> ForwardDynamicsResult:
     """`pin.constraintDynamics` with mu and accuracy relative to the model, its result checked.
 
     Args:
@@ -212,6 +212,7 @@ def proximal_forward(model: pin.Model, pin_data: pin.Data, data: pin.Data, rows:
         accuracy: accuracy on the closure accelerations (m/s^2 for position rows); Pinocchio tests its
             iterations on the multipliers, so it is given accuracy / delassus.
         delassus: the model's `delassus_scale`.
+        settings: a cache of `pin.ProximalSettings` by (accuracy, mu, max_iter) (building one costs a call).
 
     Raises:
         SingularConfiguration: non-finite accelerations.
@@ -219,7 +220,10 @@ def proximal_forward(model: pin.Model, pin_data: pin.Data, data: pin.Data, rows:
             anchors and our rows measure the closure differently, and ours cannot judge).
     """
     cms, cds = constraints
-    prox = pin.ProximalSettings(accuracy / delassus, mu * delassus, max_iter)
+    settings = {} if settings is None else settings
+    prox = settings.get((accuracy, mu, max_iter))
+    if prox is None:
+        prox = settings[(accuracy, mu, max_iter)] = pin.ProximalSettings(accuracy / delassus, mu * delassus, max_iter)
     a = pin.constraintDynamics(model, pin_data, q, v, tau, cms, cds, prox).copy()
     if not np.all(np.isfinite(a)):
         raise SingularConfiguration(float("inf"), f"pin.constraintDynamics returned non-finite accelerations (mu={mu})")
@@ -254,6 +258,7 @@ class ForwardSolver:
         self._gains = (0.0, 0.0)
         self._kkt_rows: np.ndarray | None = None
         self._delassus: float | None = None
+        self._settings: dict = {}
 
     def constraints(self) -> tuple[Any, Any]:
         """Pinocchio `RigidConstraintModel`s (and datas) equivalent to the closures (built once)."""
@@ -275,7 +280,8 @@ class ForwardSolver:
             if self._delassus is None:
                 self._delassus = delassus_scale(pin.crba(self.model, self.data, self.home_q), self._jacobian(self.home_q))
             return proximal_forward(self.model, self.pin_data, self.data, self.rows, (cms, cds), q, v, tau,
-                                    mu=mu, accuracy=accuracy, max_iter=max_iter, delassus=self._delassus)
+                                    mu=mu, accuracy=accuracy, max_iter=max_iter, delassus=self._delassus,
+                                    settings=self._settings)
         if self._kkt_rows is None:
             self._kkt_rows = independent_rows(self._jacobian(self.home_q))
         J = self._jacobian(q)
