@@ -1,10 +1,10 @@
 """Constrained dynamics of closed-loop mechanisms: forward (constrained ABA) and inverse (constrained RNEA).
 
 Equation of motion: M a + nle = tau + J^T lambda, J the closure Jacobian (rows of `ClosureRows`),
-J a + gamma = 0. Forward dynamics two ways: Pinocchio's proximal `constraintDynamics` on the
-equivalent `RigidConstraintModel`s, and a dense KKT solve on the independent rows. The inverse
-dynamics is `mechkit.inverse`; its result types, and the subtree incidence of the cut wrenches,
-are here.
+J a + gamma = 0. Forward dynamics (`mechkit.forward`) two ways: Pinocchio's proximal
+`constraintDynamics` on the equivalent `RigidConstraintModel`s, and a dense KKT solve on the
+independent rows. The inverse dynamics is `mechkit.inverse`; the result types, the row choice and
+the subtree incidence of the cut wrenches are here.
 """
 
 from __future__ import annotations
@@ -16,7 +16,6 @@ import pinocchio as pin
 import scipy.linalg
 
 from mechkit.closures import ClosureRows
-from mechkit.exceptions import SingularConfiguration
 from mechkit.kinematics import numerical_rank
 from mechkit.spatial import cross_rows
 
@@ -69,39 +68,6 @@ def independent_rows(J: np.ndarray) -> np.ndarray:
     return np.sort(piv[: numerical_rank(d)])
 
 
-def kkt_forward(model: pin.Model, data: pin.Data, q: np.ndarray, v: np.ndarray, tau: np.ndarray, J: np.ndarray, gamma: np.ndarray,
-                rows: np.ndarray | None = None) -> ForwardDynamicsResult:
-    """Dense KKT solve on independent rows of J (needs J, gamma at (q, v)).
-
-    Args:
-        model: the tree's Pinocchio model.
-        data: a data of it.
-        q: configuration (nq,).
-        v: velocity (nv,).
-        tau: joint efforts (nv,), N m or N.
-        J: closure Jacobian (rows, nv) at q.
-        gamma: closure acceleration drift (rows,) at (q, v): J a + gamma = 0.
-        rows: a set of independent rows to use (e.g. cached from a regular configuration); chosen
-            by pivoted QR when None.
-    """
-    rows = independent_rows(J) if rows is None else rows
-    Ji, gi = J[rows], gamma[rows]
-    M = pin.crba(model, data, q)
-    M = np.triu(M) + np.triu(M, 1).T
-    nle = pin.nonLinearEffects(model, data, q, v)
-    n, m = model.nv, len(rows)
-    K = np.zeros((n + m, n + m))
-    K[:n, :n], K[:n, n:], K[n:, :n] = M, -Ji.T, Ji
-    rhs = np.concatenate([tau - nle, -gi])
-    try:
-        lu = scipy.linalg.lu_factor(K, check_finite=True)
-    except (ValueError, np.linalg.LinAlgError) as err:
-        raise SingularConfiguration(float("inf"), f"KKT matrix: {err}") from None
-    if np.min(np.abs(np.diag(lu[0]))) < 1e-14 * np.max(np.abs(np.diag(lu[0]))):
-        raise SingularConfiguration(float(np.linalg.cond(K)), "KKT matrix (singular mass matrix or constraint rows)")
-    x = scipy.linalg.lu_solve(lu, rhs)
-    a, lam = x[:n], x[n:]
-    return ForwardDynamicsResult(a, Ji.T @ lam)
 
 
 def subtree_incidence(model: pin.Model, rows: ClosureRows) -> np.ndarray:

@@ -73,3 +73,65 @@ class MethodUnavailable(MechkitError):
     def __init__(self, method: str, why: str):
         self.method, self.why = method, why
         super().__init__(f"{method} unavailable: {why}")
+
+
+class InvalidArgument(InvalidParameters):
+    """An argument of a call is malformed: wrong shape or type, not finite, out of range.
+
+    Attributes:
+        name: the argument's name.
+        value: the offending value (summarised for arrays).
+        why: the reason, in words.
+    """
+
+    def __init__(self, name: str, value: object, why: str):
+        MechkitError.__init__(self, f"argument {name!r}: {why} (got {_summary(value)})")
+        self.name, self.value, self.why = name, value, why
+
+
+class UnknownOption(InvalidArgument):
+    """An option's value is not one of the names it accepts.
+
+    Attributes:
+        name: the option's name; value: what was given; choices: the accepted names.
+    """
+
+    def __init__(self, name: str, value: object, choices: tuple[str, ...]):
+        self.choices = tuple(choices)
+        super().__init__(name, value, f"expected one of {', '.join(map(repr, self.choices))}")
+
+
+class OutputError(MechkitError):
+    """An output file cannot be written (refused, or the system said no); nothing was left half-written.
+
+    Attributes:
+        path: the output as given.
+        why: the reason, in words.
+    """
+
+    def __init__(self, path: object, why: str):
+        self.path, self.why = path, why
+        super().__init__(f"output {str(path)!r}: {why}")
+
+
+class SelfCheckFailed(MechkitError):
+    """A mechanism disagrees with itself or its sources: self-checks above their threshold.
+
+    Attributes:
+        failing: check name -> value (worst residual or relative error; nan counts as failing).
+        limit: the threshold.
+    """
+
+    def __init__(self, name: str, failing: dict[str, float], limit: float):
+        self.failing, self.limit = dict(failing), limit
+        listed = "; ".join(f"{k} = {v:.3e}" for k, v in failing.items())
+        super().__init__(f"{name}: {len(failing)} self-check(s) above {limit:g}: {listed}")
+
+
+def _summary(value: object) -> str:
+    """A short text of a value for an error message (arrays by shape and dtype)."""
+    shape = getattr(value, "shape", None)
+    if shape is not None and getattr(value, "size", 0) > 6:
+        return f"{type(value).__name__} of shape {tuple(shape)}, dtype {getattr(value, 'dtype', '?')}"
+    text = repr(value)
+    return text if len(text) <= 80 else text[:77] + "..."

@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import dataclasses
-import math
 from collections.abc import Callable, Mapping, Sequence
 from pathlib import Path
 from typing import Any
@@ -11,12 +10,12 @@ from typing import Any
 import numpy as np
 import pinocchio as pin
 
-from mechkit import batch, coordinates, dynamics, inverse, kinematics, sources
-from mechkit.closures import ClosureRows, cut_rows, rigid_constraint_models
-from mechkit.description import build_model, parse_loops, render_urdf
-from mechkit.exceptions import InvalidParameters, MethodUnavailable, SingularConfiguration
-from mechkit.params import MechanismParams
+from mechkit import arguments, batch, coordinates, dynamics, forward, inverse, kinematics, sources
+from mechkit.closures import ClosureRows, cut_rows
 from mechkit.contract import MechanismSpec
+from mechkit.description import build_model, parse_loops, render_urdf
+from mechkit.exceptions import InvalidArgument, InvalidParameters
+from mechkit.params import MechanismParams
 from mechkit.registry import get_spec
 from mechkit.structure import Structure, analyse
 
@@ -46,6 +45,7 @@ class Mechanism:
         """
         self.spec, self.params, self.urdf = spec, params, urdf
         self.model = build_model(urdf) if model is None else model
+        forward.check_body_masses(self.model)
         self.data = self.model.createData()
         self.structure = analyse(self.model, parse_loops(urdf), rows) if structure is None else structure
         self.closures = list(self.structure.closures)
@@ -58,12 +58,9 @@ class Mechanism:
         self._id_problem = inverse.InverseDynamicsProblem(
             self.model, self.model.createData(), self.rows, self.full_rows,
             np.array([self.v_index(j) for j in self.actuated], dtype=int), self.actuated)
-        self._pin_constraints: tuple | None = None
-        self._pin_baumgarte = (0.0, 0.0)
-        self._prox: dict[tuple[float, float, int], Any] = {}
-        self._kkt_rows: np.ndarray | None = None
         self.independent_rows = self.rows.size
         self.home_q = self.assemble(spec.home(params))
+        self._forward = forward.ForwardSolver(self.model, self.data, self.rows, self.cuts, self.home_q)
         self.independent_rows = kinematics.mobility(self.rows, self.data, self.home_q).rank
 
     def __repr__(self) -> str:
@@ -73,7 +70,7 @@ class Mechanism:
 
     # ---------------------------------------------------------------- indices
     def _joint_id(self, joint: str) -> int:
-        if not self.model.existJointName(joint):
+        if not isinstance(joint, str) or not self.model.existJointName(joint):
             raise InvalidParameters("joint", joint, f"no such joint in {self.spec.name}; joints: {list(self.model.names[1:])}")
         return self.model.getJointId(joint)
 
@@ -100,17 +97,23 @@ class Mechanism:
         """Every one-freedom joint's value at q (rad or m; continuous joints as angles)."""
         return coordinates.values(self.model, q)
 
-    def _inputs(self, inputs: Inputs | None, default_names: Sequence[str]) -> dict[str, float]:
+    def _inputs(self, inputs: Inputs | None, default_names: Sequence[str], arg: str = "inputs") -> dict[str, float]:
         if inputs is None:
             return {}
-        if isinstance(inputs, Mapping):
-            return {k: float(v) for k, v in inputs.items()}
-        if not default_names:
-            self.require_actuators("inputs given in actuated order")
-        values = np.atleast_1d(np.asarray(inputs, dtype=float))
-        if values.size != len(default_names):
-            raise InvalidParameters("inputs", list(values), f"expected {len(default_names)} values for {list(default_names)}")
-        return dict(zip(default_names, values))
+        if not isinstance(inputs, Mapping) and not default_names:  # values in actuated order, and none is
+            self.require_actuators(f"{arg} given in actuated order")
+        return arguments.joint_values(arg, inputs, default_names, list(self.model.names[1:]))
+
+    def _state(self, **values: Any) -> list[np.ndarray]:
+        """Check state arrays by name (q: nq, v/a/tau: nv), (n,) or (N, n); see `arguments.state`."""
+        sizes = {"q": self.model.nq, "v": self.model.nv, "a": self.model.nv, "tau": self.model.nv}
+        return arguments.state(sizes, **values)
+
+    def _input_names(self, inputs: Sequence[str] | None, what: str) -> list[str]:
+        """The given input joints (default: the actuated ones, which must exist), checked."""
+        if inputs is None and not self.actuated:
+            self.require_actuators(what)
+        return list(self.actuated) if inputs is None else arguments.joint_names("inputs", inputs, list(self.model.names[1:]))
 
     def _split(self, names: Sequence[str]) -> tuple[np.ndarray, np.ndarray]:
         input_v = np.array([self.v_index(j) for j in names], dtype=int)
@@ -118,7 +121,7 @@ class Mechanism:
         return input_v, free_v
 
     # ---------------------------------------------------------------- kinematics
-    def assemble(self, inputs: Inputs, guess: Inputs | np.ndarray | None = None, *, tol: float = 1e-12,
+    def assemble(self, inputs: Inputs, guess: Inputs | np.ndarray | None = None, *, tol: float = kinematics.CLOSURE_TOL,
                  method: str = "newton", max_iter: int = 60) -> np.ndarray:
         """Configuration q that closes every loop with the given input coordinates.
 
@@ -132,18 +135,19 @@ class Mechanism:
         Raises:
             ClosureNotConverged: no assembly found near the guess.
         """
+        tol = arguments.number("tol", tol, positive=True)
+        arguments.option("method", method, kinematics.ASSEMBLY_METHODS)
+        max_iter = arguments.integer("max_iter", max_iter, minimum=1)
         given = self._inputs(inputs, self.actuated)
         if guess is None and self.spec.guess is not None:
             guess = self.spec.guess(self.params)
-        if isinstance(guess, np.ndarray) and guess.shape == (self.model.nq,):
-            q0 = guess.astype(float).copy()
-        else:
+        if guess is None or isinstance(guess, Mapping):
             q0 = self.neutral()
-            for joint, value in self._inputs(guess, ()).items():
+            for joint, value in self._inputs(guess, (), "guess").items():
                 coordinates.set_value(self.model, q0, self._joint_id(joint), value)
+        else:
+            q0 = arguments.array("guess", guess, self.model.nq, batch=False)
         for joint, value in given.items():
-            if not np.isfinite(value):
-                raise InvalidParameters(joint, value, "input must be finite")
             coordinates.set_value(self.model, q0, self._joint_id(joint), value)
         _, free_v = self._split(list(given))
         q, _ = kinematics.solve_closure(self.rows, self.data, q0, free_v, tol=tol, max_iter=max_iter, method=method)
@@ -151,84 +155,85 @@ class Mechanism:
 
     def closure_residual(self, q: np.ndarray) -> np.ndarray:
         """Residual of every kept row at q (m for position rows, dimensionless for alignment rows)."""
+        q, = self._state(q=q)
         kinematics.update_kinematics(self.model, self.data, q)
         return self.rows.residual(self.data)
 
     def closure_jacobian(self, q: np.ndarray) -> np.ndarray:
         """(rows, nv) Jacobian of the kept rows at q."""
+        q, = self._state(q=q)
         kinematics.update_kinematics(self.model, self.data, q)
         return self.rows.jacobian(self.data)
 
     def closure_drift(self, q: np.ndarray, v: np.ndarray) -> np.ndarray:
         """gamma(q, v) with d2e/dt2 = J a + gamma."""
+        q, v = self._state(q=q, v=v)
         pin.forwardKinematics(self.model, self.data, q, v, np.zeros(self.model.nv))
         pin.updateFramePlacements(self.model, self.data)
         return self.rows.drift(self.data)
 
-    def velocities(self, q: np.ndarray, input_rates: Inputs, inputs: Sequence[str] | None = None) -> np.ndarray:
-        """Joint velocities v from the input rates (rad/s or m/s), J v = 0.
+    def velocities(self, q: np.ndarray, input_rates: Inputs, inputs: Sequence[str] | None = None, *,
+                   allow_singular: bool = False) -> kinematics.Conditioned:
+        """Joint velocities v from the input rates (rad/s or m/s), J v = 0; `v.condition`: the passive block's.
 
         Batched: q of shape (N, nq) and rates of shape (N, k) (or joint name -> (N,) values) give (N, nv).
-
-        Raises:
-            SingularConfiguration: the inputs do not determine the motion at q.
+        Raises `SingularConfiguration` where the inputs do not determine the motion to what the closure
+        resolves (`kinematics.resolvable_singular_value`), unless `allow_singular`.
         """
+        allow_singular = arguments.flag("allow_singular", allow_singular)
+        q, = self._state(q=q)
+        names = self._input_names(inputs, "velocities from input rates")
         if batch.is_batch(q):
             q = batch.sample_array(q, "q", len(q), self.model.nq)
-            keys, rates = batch.sample_inputs(input_rates, list(inputs or self.actuated), len(q))
-            return np.array([self.velocities(qi, ri, keys) for qi, ri in zip(q, rates)]).reshape(len(q), self.model.nv)
-        names = list(inputs or self.actuated)
-        if not names:
-            self.require_actuators("velocities from input rates")
-        rates = self._inputs(input_rates, names)
+            keys, rates = batch.sample_inputs(input_rates, names, len(q))
+            return np.array([self.velocities(qi, ri, keys, allow_singular=allow_singular)
+                             for qi, ri in zip(q, rates)]).reshape(len(q), self.model.nv)
+        rates = self._inputs(input_rates, names, "input_rates")
         input_v, free_v = self._split(list(rates))
         J = self.closure_jacobian(q)
-        return kinematics.project_velocity(J, np.array(list(rates.values())), input_v, free_v, self.independent_rows)
+        residual = float(np.linalg.norm(self.rows.residual(self.data)))
+        return kinematics.project_velocity(J, np.array(list(rates.values())), input_v, free_v, self.independent_rows,
+                                           residual=residual, allow_singular=allow_singular)
 
     def accelerations(self, q: np.ndarray, v: np.ndarray, input_accelerations: Inputs,
-                      inputs: Sequence[str] | None = None) -> np.ndarray:
-        """Joint accelerations a from the input accelerations, J a + gamma = 0 (batched like `velocities`)."""
+                      inputs: Sequence[str] | None = None, *, allow_singular: bool = False) -> kinematics.Conditioned:
+        """Joint accelerations a from the input accelerations, J a + gamma = 0 (batched like `velocities`;
+        `allow_singular` and `a.condition` as in `velocities`)."""
+        allow_singular = arguments.flag("allow_singular", allow_singular)
+        q, v = self._state(q=q, v=v)
+        names = self._input_names(inputs, "accelerations from input accelerations")
         if batch.is_batch(q):
             q = batch.sample_array(q, "q", len(q), self.model.nq)
-            keys, acc = batch.sample_inputs(input_accelerations, list(inputs or self.actuated), len(q))
+            keys, acc = batch.sample_inputs(input_accelerations, names, len(q))
             v = batch.sample_array(v, "v", len(q), self.model.nv)
-            return np.array([self.accelerations(qi, vi, ai, keys) for qi, vi, ai in zip(q, v, acc)]).reshape(
-                len(q), self.model.nv)
-        names = list(inputs or self.actuated)
-        if not names:
-            self.require_actuators("accelerations from input accelerations")
-        acc = self._inputs(input_accelerations, names)
+            return np.array([self.accelerations(qi, vi, ai, keys, allow_singular=allow_singular)
+                             for qi, vi, ai in zip(q, v, acc)]).reshape(len(q), self.model.nv)
+        acc = self._inputs(input_accelerations, names, "input_accelerations")
         input_v, free_v = self._split(list(acc))
         J = self.closure_jacobian(q)
+        residual = float(np.linalg.norm(self.rows.residual(self.data)))
         gamma = self.closure_drift(q, v)
-        return kinematics.project_velocity(J, np.array(list(acc.values())), input_v, free_v, self.independent_rows, rhs=gamma)
+        return kinematics.project_velocity(J, np.array(list(acc.values())), input_v, free_v, self.independent_rows,
+                                           rhs=gamma, residual=residual, allow_singular=allow_singular)
 
     def mobility(self, q: np.ndarray | None = None) -> kinematics.Mobility:
         """Numerical DOF and redundant constraints at q (default: the home assembly)."""
-        return kinematics.mobility(self.rows, self.data, self.home_q if q is None else q)
+        q, = self._state(q=self.home_q if q is None else q)
+        return kinematics.mobility(self.rows, self.data, q)
 
     def singularity(self, q: np.ndarray, inputs: Sequence[str] | None = None) -> float:
         """Condition number of the passive block of the closure Jacobian (inf: singular)."""
-        _, free_v = self._split(list(inputs or self.actuated))
+        q, = self._state(q=q)
+        _, free_v = self._split(self._input_names(inputs, "the singularity measure"))
         return kinematics.passive_condition(self.closure_jacobian(q), free_v, self.independent_rows)
 
     # ---------------------------------------------------------------- dynamics
     def pin_constraints(self) -> tuple[Any, Any]:
         """Pinocchio `RigidConstraintModel`s (and datas) equivalent to the closures."""
-        if self._pin_constraints is None:
-            cms = pin.StdVec_RigidConstraintModel()
-            for cm in rigid_constraint_models(self.model, self.cuts):
-                cms.append(cm)
-            cds = pin.StdVec_RigidConstraintData()
-            for cm in cms:
-                cds.append(cm.createData())
-            self._pin_data = self.model.createData()
-            pin.initConstraintDynamics(self.model, self._pin_data, cms, cds)
-            self._pin_constraints = (cms, cds)
-        return self._pin_constraints
+        return self._forward.constraints()
 
     def forward_dynamics(self, q: np.ndarray, v: np.ndarray, tau: np.ndarray, method: str = "proximal", *,
-                         mu: float = 1e-9, accuracy: float = 1e-12, max_iter: int = 20,
+                         mu: float = 1e-11, accuracy: float = 1e-12, max_iter: int = 20,
                          baumgarte: tuple[float, float] | None = None) -> dynamics.ForwardDynamicsResult:
         """Constrained forward dynamics (constrained ABA): accelerations under joint efforts tau.
 
@@ -236,6 +241,11 @@ class Mechanism:
             method: "proximal" (`pin.constraintDynamics`, proximal settings mu/accuracy/max_iter) or
                 "kkt" (dense KKT on the independent rows).
             baumgarte: (Kp (1/s^2), Kd (1/s)) closure stabilisation, J a + gamma + Kd J v + Kp e = 0.
+            mu, accuracy, max_iter: proximal settings, mu and accuracy relative to the model (see
+                `forward.proximal_forward`).
+
+        Raises `ClosureNotConverged` for a result violating J a + gamma = 0 (`forward.ACCELERATION_TOL`),
+        `SingularConfiguration` where the accelerations are not unique.
 
         Batched: q (N, nq), v and tau (N, nv) give a result whose arrays have that leading axis.
 
@@ -243,49 +253,21 @@ class Mechanism:
         method measures the closure error its own way (Pinocchio: point anchors in frame_a's local
         frame; KKT: the rows of `mechkit.closures`), so drift is corrected along different paths.
         """
+        arguments.option("method", method, forward.METHODS)
+        q, v, tau = self._state(q=q, v=v, tau=tau)
+        mu, accuracy, max_iter, baumgarte = arguments.solver_settings(mu, accuracy, max_iter, baumgarte)
         if batch.is_batch(q):
             n = len(q)
-            q = batch.sample_array(q, "q", n, self.model.nq)
-            v, tau = batch.sample_array(v, "v", n, self.model.nv), batch.sample_array(tau, "tau", n, self.model.nv)
             out = [self.forward_dynamics(qi, vi, ti, method, mu=mu, accuracy=accuracy, max_iter=max_iter,
                                          baumgarte=baumgarte) for qi, vi, ti in zip(q, v, tau)]
             return dynamics.ForwardDynamicsResult(np.array([r.a for r in out]).reshape(n, -1),
                                                   np.array([r.constraint_force for r in out]).reshape(n, -1))
-        tau = np.asarray(tau, dtype=float)
-        if method == "proximal":
-            cms, cds = self.pin_constraints()
-            gains = (0.0, 0.0) if baumgarte is None else tuple(baumgarte)
-            if gains != self._pin_baumgarte:
-                for cm in cms:
-                    cm.setBaumgarteCorrectorParameters(pin.BaumgarteCorrectorParameters(*gains))
-                self._pin_baumgarte = gains
-            prox = self._prox.get((accuracy, mu, max_iter))
-            if prox is None:
-                prox = self._prox[(accuracy, mu, max_iter)] = pin.ProximalSettings(accuracy, mu, max_iter)
-            data = self._pin_data
-            a = pin.constraintDynamics(self.model, data, q, v, tau, cms, cds, prox).copy()
-            if not math.isfinite(a.sum()):  # a NaN or an infinity anywhere makes the sum non-finite
-                raise SingularConfiguration(float("inf"), f"pin.constraintDynamics returned non-finite accelerations (mu={mu})")
-            result = dynamics.ForwardDynamicsResult(a, pin.rnea(self.model, data, q, v, a) - tau)
-        elif method == "kkt":
-            J = self.closure_jacobian(q)
-            gamma = self.closure_drift(q, v)
-            if baumgarte is not None:
-                kp, kd = baumgarte
-                gamma = gamma + kd * (J @ v) + kp * self.rows.residual(self.data)
-            if self._kkt_rows is None:
-                self._kkt_rows = dynamics.independent_rows(self.closure_jacobian(self.home_q))
-            try:
-                result = dynamics.kkt_forward(self.model, self.data, q, v, tau, J, gamma, self._kkt_rows)
-            except SingularConfiguration:  # the cached rows lost rank here: choose rows at this q
-                result = dynamics.kkt_forward(self.model, self.data, q, v, tau, J, gamma)
-        else:
-            raise MethodUnavailable(method, "forward_dynamics methods are 'proximal' and 'kkt'")
-        return result
+        return self._forward.solve(q, v, tau, method, mu=mu, accuracy=accuracy, max_iter=max_iter, baumgarte=baumgarte)
 
     def inverse_dynamics(self, q: np.ndarray, v: np.ndarray, a: np.ndarray,
                          fext: pin.StdVec_Force | list[pin.Force] | np.ndarray | list | None = None, determinacy: bool = True,
-                         distribution: str = "min_norm") -> dynamics.InverseDynamicsResult | batch.BatchInverseDynamicsResult:
+                         distribution: str = "min_norm", *, allow_singular: bool = False,
+                         ) -> dynamics.InverseDynamicsResult | batch.BatchInverseDynamicsResult:
         """Constrained RNEA: actuator efforts and the reaction of every joint (tree and cut).
 
         Reactions: the wrench parent side -> child side at the joint origin, world frame; see
@@ -293,13 +275,18 @@ class Mechanism:
         `fext` (Pinocchio local-frame forces per joint) and `distribution` (redundant actuation).
         Batched: q (N, nq), v and a (N, nv), fext None, (N, njoints, 6) or N per-sample values give
         a `batch.BatchInverseDynamicsResult` (the same numbers as one sample at a time).
+        Efforts undetermined to what the closure resolves: `SingularConfiguration` unless `allow_singular`.
         """
+        arguments.option("distribution", distribution, inverse.DISTRIBUTIONS)
+        determinacy = arguments.flag("determinacy", determinacy)
+        q, v, a = self._state(q=q, v=v, a=a)
+        if not arguments.flag("allow_singular", allow_singular):
+            kinematics.check_regular(self.rows, self.data, q, self._split(list(self.actuated))[1], self.independent_rows)
         if batch.is_batch(q):
             n, p = len(q), self._id_problem
-            q = batch.sample_array(q, "q", n, self.model.nq)
-            v, a = batch.sample_array(v, "v", n, self.model.nv), batch.sample_array(a, "a", n, self.model.nv)
             return inverse.inverse_dynamics_batch(p, q, v, a, batch.sample_fext(fext, n, self.model.njoints),
                                                   determinacy, distribution)
+        fext = arguments.external_forces("fext", fext, self.model.njoints)
         return inverse.inverse_dynamics(self._id_problem, q, v, a, fext, determinacy, distribution)
 
 
@@ -321,6 +308,8 @@ def load(source: str | Path, *, actuated: Sequence[str] | None = None, home: Map
     Raises:
         InvalidParameters: unknown name or parameter; MalformedDescription: a bad file.
     """
+    if not isinstance(source, (str, Path)):
+        raise InvalidArgument("source", source, "expected a mechanism name or a path")
     where = sources.resolve(source)
     if isinstance(where, Path):
         declared = sources.xacro_args(where) if where.name.endswith(".xacro") else {}
@@ -353,7 +342,12 @@ def from_description(desc: sources.Description, actuated: Sequence[str] | None =
 
     Its spec's `gruebler_dof` is the Kutzbach count of its topology (`mechkit.structure`).
     """
+    for arg, value in (("home", home), ("guess", guess)):
+        if value is not None and not isinstance(value, Mapping):
+            raise InvalidArgument(arg, value, "expected a mapping joint name -> value")
     model = build_model(desc.urdf)
+    if actuated is not None:
+        arguments.joint_names("actuated", actuated, list(model.names[1:]), allow_empty=True)
     joints = tuple(actuated) if actuated is not None else desc.actuated
     home_values = dict(home) if home is not None else dict(desc.home)
     guess_values = dict(guess) if guess is not None else dict(desc.guess)
@@ -388,6 +382,8 @@ def from_urdf(urdf: str | Path, actuated: Sequence[str] | None = None, name: str
         home: see `load`.
         rows: see `load`.
     """
+    if not isinstance(urdf, (str, Path)) or not str(urdf).strip():
+        raise InvalidArgument("urdf", urdf, "expected URDF text or a path to a description file")
     if isinstance(urdf, Path) or not urdf.lstrip().startswith("<"):
         desc = sources.read(sources.resolve(Path(urdf)))
     else:

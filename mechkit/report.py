@@ -21,6 +21,16 @@ from mechkit.exceptions import MechkitError
 from mechkit.mechanism import Mechanism
 from mechkit.structure import idle_freedoms, loop_joints
 
+#: Largest accepted self-check value (worst residual, m or rad, or relative error; ours): the registry's
+#: defaults stay below 3e-9 (the rocket gimbal's printed lengths), a parameter set that breaks a
+#: mechanism's own source kinematics lands far above (tetra_3rr3uru gamma_ref=0.0623: 0.39 m).
+CHECK_LIMIT = 1e-6
+
+
+def failing_checks(checks: dict[str, float], limit: float = CHECK_LIMIT) -> dict[str, float]:
+    """The checks above `limit`, or not finite."""
+    return {k: v for k, v in checks.items() if not v <= limit}
+
 
 def _relative(a: np.ndarray, b: np.ndarray) -> float:
     return float(np.max(np.abs(a - b)) / max(np.max(np.abs(b)), 1e-300))

@@ -18,7 +18,8 @@ from mechkit.resources import urdf_dir, xacro_dir
 
 PACKAGE = Path(mechkit.__file__).resolve().parent
 CORE = ("description", "closures", "kinematics", "dynamics", "mechanism", "registry", "contract", "params",
-        "structure", "coordinates", "resources", "exceptions", "spatial", "atomic", "template_cache")
+        "structure", "coordinates", "resources", "exceptions", "spatial", "atomic", "template_cache", "arguments",
+        "forward")
 ABOVE_CORE = ("mechkit.mechanisms", "mechkit.viz", "mechkit.bench", "mechkit.cli", "mechkit.sweep")
 MAX_LINES = 400
 

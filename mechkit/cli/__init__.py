@@ -8,6 +8,7 @@ registering a command is one line in `COMMANDS`. Command modules import the heav
 from __future__ import annotations
 
 import argparse
+import os
 import sys
 
 import numpy as np
@@ -27,16 +28,32 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
+#: Exit status after a broken pipe (a reader such as `head` closed standard output): 128 + SIGPIPE.
+EXIT_BROKEN_PIPE = 141
+
+
 def main(argv: list[str] | None = None) -> int:
-    """Run one command; errors are one line on stderr and exit status 2."""
+    """Run one command; errors are one line on stderr and exit status 2, a broken pipe ends quietly."""
     args = build_parser().parse_args(argv)
     try:
         with np.errstate(all="raise"):
             args.func(args)
+        sys.stdout.flush()
+    except BrokenPipeError:
+        # nobody reads any more: point stdout at /dev/null so the interpreter's final flush is silent
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        return EXIT_BROKEN_PIPE
     except MechkitError as err:
-        print(f"mechkit: error: {err}", file=sys.stderr)
-        return 2
-    except FloatingPointError as err:
-        print(f"mechkit: error: numerical failure ({err})", file=sys.stderr)
-        return 2
+        return _error(str(err))
+    except ArithmeticError as err:  # FloatingPointError under errstate, ZeroDivisionError in a law
+        return _error(f"numerical failure ({type(err).__name__}: {err})")
+    except OSError as err:
+        where = f"{err.filename}: " if err.filename else ""
+        return _error(f"{where}{err.strerror or err}")
     return 0
+
+
+def _error(message: str) -> int:
+    """Print the error (no traceback) and give status 2."""
+    print(f"mechkit: error: {message}", file=sys.stderr)
+    return 2

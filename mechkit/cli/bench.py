@@ -7,8 +7,10 @@ from pathlib import Path
 
 import numpy as np
 
-from mechkit.atomic import write_text
+from mechkit import sources
+from mechkit.atomic import resolve_output, write_text
 from mechkit.cli.common import examples
+from mechkit.exceptions import OutputError
 
 
 def run(args: argparse.Namespace) -> None:
@@ -16,6 +18,12 @@ def run(args: argparse.Namespace) -> None:
     from mechkit.bench import charts, failure_atlas, loadtime, markdown, run, scale
     from mechkit.cli.progress import ProgressBars
 
+    for name in args.names:
+        sources.resolve(name)  # an unknown name fails now, not as "not measured" after the run
+    if args.markdown:
+        resolve_output(args.markdown)  # refused before the run, not after it
+    if args.charts and Path(args.charts).exists() and not Path(args.charts).is_dir():
+        raise OutputError(args.charts, "--charts needs a folder")
     with np.errstate(under="ignore"):
         results, skipped = run.run(args.names, args.quick, progress=ProgressBars())
         for b in results:

@@ -9,10 +9,12 @@ from mechkit.cli.common import add_mechanism_arguments, examples, load_mechanism
 
 def run(args: argparse.Namespace) -> None:
     """Write the export and say where."""
+    from mechkit.atomic import is_stdout
     from mechkit.export import export_command
 
     for path in export_command(load_mechanism(args), args.format, args.output):
-        print(f"wrote {path}")
+        if not is_stdout(path):
+            print(f"wrote {path}")
 
 
 def add_parser(sub: argparse._SubParsersAction) -> None:

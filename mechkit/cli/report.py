@@ -10,10 +10,14 @@ from mechkit.cli.common import add_mechanism_arguments, examples, load_mechanism
 
 def run(args: argparse.Namespace) -> None:
     """Print the report."""
-    from mechkit.report import format_report, report
+    from mechkit.exceptions import SelfCheckFailed
+    from mechkit.report import CHECK_LIMIT, failing_checks, format_report, report
 
     r = report(load_mechanism(args))
     print(json.dumps(r, indent=2) if args.json else format_report(r))
+    failing = failing_checks(r["checks"])
+    if failing:
+        raise SelfCheckFailed(r["name"], failing, CHECK_LIMIT)
 
 
 def add_parser(sub: argparse._SubParsersAction) -> None:

@@ -3,24 +3,19 @@
 from __future__ import annotations
 
 import argparse
-import sys
 
-from mechkit.atomic import write_text
+from mechkit.atomic import STDOUT, write_text
 from mechkit.cli.common import add_mechanism_arguments, examples, load_mechanism
 
 
 def run(args: argparse.Namespace) -> None:
     """Build the mechanism (which checks that it assembles), then print or write its URDF."""
-    text = load_mechanism(args).urdf
-    if args.output:
-        write_text(args.output, text)
-    else:
-        sys.stdout.write(text)
+    write_text(args.output or STDOUT, load_mechanism(args).urdf)
 
 
 def add_parser(sub: argparse._SubParsersAction) -> None:
     """Register `urdf`."""
     p = sub.add_parser("urdf", help="print or write the URDF generated from the parameters", **examples("mechkit urdf four_bar --set crank=0.12", "mechkit urdf ten_bar -o ten_bar.urdf"))
     add_mechanism_arguments(p)
-    p.add_argument("-o", "--output", help="file to write (default: stdout)")
+    p.add_argument("-o", "--output", help="file to write (default or -: standard output)")
     p.set_defaults(func=run)

@@ -5,7 +5,7 @@ from __future__ import annotations
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from mechkit.exceptions import InvalidParameters
+from mechkit.exceptions import OutputError, UnknownOption
 from mechkit.export.extended_urdf import frame_b_vector, to_extended_urdf
 from mechkit.export.mjcf import body_name, to_mjcf
 from mechkit.sources.extended_urdf import load_extended_urdf
@@ -22,22 +22,24 @@ FORMATS = ("mjcf", "extended-urdf")
 def export_command(mechanism: Mechanism, fmt: str, output: str | Path) -> list[Path]:
     """Write the mechanism in `fmt` ("mjcf" or "extended-urdf") to `output`; returns the files written.
 
-    extended-urdf also writes the YAML sidecar beside the URDF (same stem, `.yaml`).
+    extended-urdf also writes the YAML sidecar beside the URDF (same stem, `.yaml`); both files are
+    written as one step (neither is replaced unless both can be written). mjcf to `-` writes to
+    standard output.
 
     Raises:
-        InvalidParameters: an unknown format.
+        UnknownOption: an unknown format.
         MethodUnavailable: a joint or cut the format cannot express.
+        OutputError: the output is refused (a directory, a device, the sidecar's own name, ...) or
+            cannot be written.
     """
-    from mechkit.atomic import write_text
+    from mechkit.atomic import write_files, write_text
 
-    output = Path(output)
+    if fmt not in FORMATS:
+        raise UnknownOption("format", fmt, FORMATS)
     if fmt == "mjcf":
-        write_text(output, to_mjcf(mechanism))
-        return [output]
-    if fmt == "extended-urdf":
-        urdf, sidecar_text = to_extended_urdf(mechanism)
-        sidecar = output.with_suffix(".yaml")
-        write_text(output, urdf)
-        write_text(sidecar, sidecar_text)
-        return [output, sidecar]
-    raise InvalidParameters("format", fmt, f"expected one of {FORMATS}")
+        return [write_text(output, to_mjcf(mechanism))]
+    sidecar = Path(output).with_suffix(".yaml")
+    if Path(output) == sidecar:
+        raise OutputError(output, "the Extended URDF needs a name whose .yaml sidecar is another file (e.g. robot.urdf)")
+    urdf, sidecar_text = to_extended_urdf(mechanism)
+    return write_files({output: urdf.encode(), sidecar: sidecar_text.encode()})

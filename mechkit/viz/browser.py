@@ -15,6 +15,7 @@ import tempfile
 from collections.abc import Sequence
 from pathlib import Path
 
+from mechkit.atomic import resolve_output, write_bytes
 from mechkit.exceptions import MechkitError, MethodUnavailable
 
 CANDIDATES = ("chromium", "chromium-browser", "google-chrome", "google-chrome-stable")
@@ -70,7 +71,7 @@ def screenshot(page: str | os.PathLike, png: str | os.PathLike, size: Sequence[i
     if source is not None and not source.is_file():
         raise MechkitError(f"screenshot: no page at {source}")
     target = Path(png)
-    target.parent.mkdir(parents=True, exist_ok=True)
+    resolve_output(target)  # refuse a directory, a device, a FIFO before the browser runs
     with tempfile.TemporaryDirectory(prefix="mechkit-chromium-") as tmp:
         shot = Path(tmp) / "shot.png"
         command = [executable, *FLAGS, f"--user-data-dir={Path(tmp) / 'profile'}",
@@ -84,8 +85,7 @@ def screenshot(page: str | os.PathLike, png: str | os.PathLike, size: Sequence[i
         if not shot.is_file() or shot.stat().st_size == 0:
             tail = "\n".join((run.stderr or run.stdout).strip().splitlines()[-5:])
             raise MechkitError(f"screenshot: {executable} exited with {run.returncode} and wrote no picture:\n{tail}")
-        shutil.move(str(shot), Path(target.parent) / f".{target.name}.tmp")
-        os.replace(Path(target.parent) / f".{target.name}.tmp", target)
+        write_bytes(target, shot.read_bytes())
     return target
 
 

@@ -17,7 +17,7 @@ from pathlib import Path
 import numpy as np
 import pinocchio as pin
 
-from mechkit.atomic import write_text
+from mechkit.atomic import check_distinct, write_text
 from mechkit.exceptions import InvalidParameters, MechkitError
 from mechkit.mechanism import Mechanism
 from mechkit.scenes import scene_poses
@@ -153,6 +153,7 @@ def snapshot_command(mechanism: Mechanism, q: str | None = None, scene: str | No
         raise InvalidParameters("q", q, "give either --q (one pose) or --scene (an animation), not both")
     if png is not None:
         find_chromium()  # fail before any work when there is no browser
+        check_distinct([p for p in (html, png) if p is not None])
     written: list[Path] = []
     if scene is not None:
         poses = scene_poses(mechanism, scene)
