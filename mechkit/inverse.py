@@ -1,6 +1,6 @@
 """Constrained inverse dynamics (constrained RNEA) of closed-loop mechanisms, for N samples at once.
 
-[S, J^T] [u; lambda] = rnea(q, v, a) - J_ext^T f_ext, S selecting the actuated joints, J the closure
+`[S, J^T] [u; lambda] = rnea(q, v, a) - J_ext^T f_ext`, S selecting the actuated joints, J the closure
 Jacobian. Every tree joint's transmitted wrench is the RNEA's minus the cut wrenches acting on its
 subtree; the cut joints transmit the cut wrenches. The per-sample work is Pinocchio's
 (`computeJointJacobians`, `rnea`) and reading its arrays; everything else is one numpy operation
@@ -194,12 +194,14 @@ def inverse_dynamics_batch(p: InverseDynamicsProblem, Q: np.ndarray, V: np.ndarr
 
     Args:
         p: the problem (model, rows, actuators).
-        Q, V, A: (N, nq), (N, nv), (N, nv) configurations, velocities, accelerations (J a + gamma = 0).
+        Q: (N, nq) configurations.
+        V: (N, nv) velocities.
+        A: (N, nv) accelerations satisfying the closures (J a + gamma = 0).
         fexts: None or N per-sample external forces per joint (Pinocchio local frames), e.g. thrust.
         determinacy: run the rank test that flags indeterminate components (an SVD of the full
             spatial rows per sample); without it the masks are None (not tested).
         distribution: where [S, J^T] has a null space (redundant actuation or rows), which solution:
-            "min_norm" (smallest |[u; lambda]|) or "min_effort" (smallest |u|, then smallest |lambda|).
+            "min_norm" (smallest `|[u; lambda]|`) or "min_effort" (smallest |u|, then smallest |lambda|).
 
     Raises:
         SingularConfiguration: [S, J^T] has lost rank where it must not (efforts undetermined).

@@ -81,7 +81,8 @@ class LoopConstrainedABA:
     Args:
         mech: a mechanism whose cuts Pinocchio's legacy constraints express (`Mechanism.pin_constraints`).
         mu: proximal regularisation (must be positive; see `LCABA_DEFAULTS`).
-        accuracy, max_iter: proximal stopping rule.
+        accuracy: proximal stopping tolerance.
+        max_iter: proximal iteration limit.
     """
 
     def __init__(self, mech: Mechanism, mu: float = LCABA_DEFAULTS[0], accuracy: float = LCABA_DEFAULTS[1],

@@ -241,8 +241,9 @@ class Mechanism:
             method: "proximal" (`pin.constraintDynamics`, proximal settings mu/accuracy/max_iter) or
                 "kkt" (dense KKT on the independent rows).
             baumgarte: (Kp (1/s^2), Kd (1/s)) closure stabilisation, J a + gamma + Kd J v + Kp e = 0.
-            mu, accuracy, max_iter: proximal settings, mu and accuracy relative to the model (see
-                `forward.proximal_forward`).
+            mu: proximal regularisation, relative to the model (see `forward.proximal_forward`).
+            accuracy: proximal stopping tolerance, relative to the model.
+            max_iter: proximal iteration limit.
 
         Raises `ClosureNotConverged` for a result violating J a + gamma = 0 (`forward.ACCELERATION_TOL`),
         `SingularConfiguration` where the accelerations are not unique.

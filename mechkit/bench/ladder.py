@@ -39,7 +39,7 @@ class LadderPoint:
 
 
 def exact_accelerations(mech: Mechanism, q: np.ndarray, v: np.ndarray, tau: np.ndarray) -> np.ndarray:
-    """Accelerations of the dense KKT [M, -J^T; J, 0] [a; lambda] = [tau - nle; -gamma] on the independent
+    """Accelerations of the dense KKT `[M, -J^T; J, 0] [a; lambda] = [tau - nle; -gamma]` on the independent
     rows, LU-solved then refined four times with the residual in extended precision (np.longdouble)."""
     J, gamma = mech.closure_jacobian(q), mech.closure_drift(q, v)
     rows = independent_rows(J)
