@@ -73,7 +73,7 @@ def _render_cached(path: str, args: tuple[tuple[str, str], ...]) -> str:
         raise MalformedDescription(path, "xacro template not found")
     try:
         doc = xacro.process_file(path, mappings=dict(args))
-    except Exception as err:  # xacro raises its own XacroException and plain ones
+    except Exception as err:  # noqa: BLE001 -- xacro raises XacroException and plain exceptions alike
         raise MalformedDescription(path, f"xacro failed: {err}") from None
     return document_text(doc)
 

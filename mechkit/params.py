@@ -15,7 +15,7 @@ from typing import Any
 from mechkit.exceptions import InvalidParameters
 
 
-def param(default: float | int | bool | str, unit: str, doc: str, *, ours: bool = False,
+def param(default: float | bool | str, unit: str, doc: str, *, ours: bool = False,
           positive: bool | None = None) -> Any:
     """Declare one parameter.
 
@@ -38,7 +38,7 @@ class MechanismParams:
     def __post_init__(self) -> None:
         for f in fields(self):
             value = getattr(self, f.name)
-            if isinstance(value, bool) or isinstance(value, str):
+            if isinstance(value, (bool, str)):
                 continue
             if not isinstance(value, (int, float)) or not math.isfinite(value):
                 raise InvalidParameters(f.name, value, "must be a finite number")

@@ -39,6 +39,9 @@ RANK_TOL = 1e-10
 FREE_TOL = 1e-8
 """Relative variation along an SKC's null space above which a value counts as not fixed (``free``)."""
 
+STANDARD_GRAVITY = (0.0, 0.0, -9.81)
+"""Default gravity (m/s^2, world frame): 9.81 along -z."""
+
 _ALL_COMPONENTS = (0, 1, 2, 3, 4, 5)
 
 
@@ -201,7 +204,7 @@ def _unknown_columns(skc: SKCInstant, directions: Sequence[np.ndarray]) -> np.nd
     return np.column_stack(cols) if cols else np.zeros((n, 0))
 
 
-def solve_soc(skcs: Sequence[SKCInstant], gravity: np.ndarray = np.array([0.0, 0.0, -9.81]),
+def solve_soc(skcs: Sequence[SKCInstant], gravity: np.ndarray | Sequence[float] = STANDARD_GRAVITY,
               indeterminate: bool = False) -> SOCResult:
     """Inverse dynamics by sequential SOC virtual work.
 
@@ -318,7 +321,7 @@ def _record_free(result: SOCResult, skc: SKCInstant, directions: Sequence[np.nda
 
 
 def classic_virtual_work(
-    skc: SKCInstant, gravity: np.ndarray = np.array([0.0, 0.0, -9.81])
+    skc: SKCInstant, gravity: np.ndarray | Sequence[float] = STANDARD_GRAVITY
 ) -> dict[str, float]:
     """Classic whole-mechanism virtual work: one SKC holding every body and every actuator.
 
