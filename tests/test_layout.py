@@ -130,6 +130,21 @@ def test_core_imports_nothing_above_it():
     assert not upward, upward
 
 
+def test_only_the_command_line_reaches_the_top_floors():
+    """The bench measures the library and the command line prints it: no library module imports either
+    (the second opinion once took its input joints from the bench)."""
+    top = {"mechkit.bench": ("mechkit.bench", "mechkit.cli"), "mechkit.cli": ("mechkit.cli", "mechkit.__main__")}
+    upward = []
+    for path, targets in _graph().items():
+        here = _module_name(path)
+        for target in targets:
+            name = _module_name(target)
+            for floor, allowed in top.items():
+                if name.startswith(floor) and not here.startswith(allowed):
+                    upward.append(f"{here} -> {name}")
+    assert not upward, upward
+
+
 def test_a_circle_is_detected():
     """The detector itself: a two-file circle and a self-consistent chain."""
     a, b, c = Path("a"), Path("b"), Path("c")

@@ -10,9 +10,9 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 import pinocchio as pin
-from scipy.linalg import null_space
 
 from mechkit.exceptions import MechkitError, MethodUnavailable
+from mechkit.independent_inputs import input_joints
 
 if TYPE_CHECKING:
     from mechkit.mechanism import Mechanism
@@ -41,23 +41,6 @@ class Sample:
     tau: np.ndarray
     input_names: tuple[str, ...] = ()
     extra: dict[str, Any] = field(default_factory=dict)
-
-
-def input_joints(mech: Mechanism) -> tuple[str, ...]:
-    """The actuated joints, then (under-actuated mechanisms) extra joints completing a set of independent coordinates."""
-    names = list(mech.actuated)
-    dof = mech.mobility().dof
-    if len(names) >= dof:
-        return tuple(names)
-    basis = null_space(mech.closure_jacobian(mech.home_q))
-    chosen = [mech.v_index(j) for j in names]
-    for joint in mech.model.names[1:]:
-        if len(chosen) == dof:
-            break
-        trial = chosen + [mech.v_index(joint)]
-        if joint not in names and np.linalg.matrix_rank(basis[trial]) == len(trial):
-            chosen, names = trial, names + [joint]
-    return tuple(names)
 
 
 def scene_configurations(mech: Mechanism, count: int) -> list[tuple[np.ndarray, np.ndarray]]:

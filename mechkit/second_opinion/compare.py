@@ -22,8 +22,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from mechkit.bench.sampling import input_joints
 from mechkit.exceptions import MechkitError, MethodUnavailable
+from mechkit.independent_inputs import input_joints
 from mechkit.mechanism import Mechanism
 from mechkit.scenes import joint_extent, scene_poses
 from mechkit.second_opinion.opinion import SecondOpinion
