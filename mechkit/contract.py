@@ -40,8 +40,8 @@ BENCH_QUANTITIES = ("assembly", "forward_dynamics", "inverse_dynamics")
 
 
 @dataclass(frozen=True)
-class BenchMethod:
-    """One of the mechanism's own methods, timed beside the core's in `mechkit bench`.
+class BenchEntry:
+    """A function of the mechanism's own for one bench quantity (`BenchMethod`, `BenchReference`).
 
     Attributes:
         label: the row's name in the benchmark tables.
@@ -59,22 +59,13 @@ class BenchMethod:
 
 
 @dataclass(frozen=True)
-class BenchReference:
-    """The best independent reference the mechanism has for one bench quantity.
+class BenchMethod(BenchEntry):
+    """One of the mechanism's own methods, timed beside the core's in `mechkit bench`."""
 
-    Attributes:
-        label: what the reference is (shown as the table's `reference`).
-        quantity: one of `BENCH_QUANTITIES`.
-        fn: (mechanism, sample) -> the reference value, in a `BenchMethod`'s return form.
-    """
 
-    label: str
-    quantity: str
-    fn: BenchFunction
-
-    def __post_init__(self) -> None:
-        if self.quantity not in BENCH_QUANTITIES:
-            raise InvalidParameters("quantity", self.quantity, f"bench quantities are {', '.join(BENCH_QUANTITIES)}")
+@dataclass(frozen=True)
+class BenchReference(BenchEntry):
+    """The best independent reference the mechanism has for one bench quantity (the table's `reference`)."""
 
 
 def _frozen(mapping: Mapping[str, Any]) -> Mapping[str, Any]:
