@@ -3,7 +3,7 @@ come back as figures, with the agreement measured on the same states."""
 
 from __future__ import annotations
 
-from mechkit.bench.second_opinion import second_opinion_rows
+from mechkit.bench.second_opinion import lines, second_opinion_rows
 
 
 def test_rows_give_the_figures_and_the_agreement():
@@ -12,3 +12,5 @@ def test_rows_give_the_figures_and_the_agreement():
     assert row.decompose_ms > 0 and row.soc_us > 0 and row.rnea_us > 0
     assert abs(row.ratio - row.soc_us / row.rnea_us) < 1e-12
     assert row.samples == 3 and row.max_relative_difference < 1e-8
+    table = lines([row])
+    assert len(table) == 3 and table[2].startswith("| four_bar | 2 | 12 |")

@@ -70,3 +70,13 @@ def second_opinion_rows(mechanisms: list[str] | None = None, samples: int = 6, s
         rows.append(SecondOpinionRow(name, len(opinion.skcs), largest, min(decompose) * 1e3, soc * 1e6, rnea * 1e6,
                                      soc / rnea, agree.samples, agree.max_relative_difference))
     return rows
+
+
+def lines(rows: list[SecondOpinionRow]) -> list[str]:
+    """A markdown table of the rows."""
+    table = [("| mechanism | SKCs | largest SKC (unknowns) | decompose (ms, once) | SOC (us/sample) "
+              "| constrained RNEA + determinacy (us/sample) | SOC / RNEA | samples | max rel. difference |"),
+             "|---|---|---|---|---|---|---|---|---|"]
+    table += [f"| {r.name} | {r.skcs} | {r.largest} | {r.decompose_ms:.0f} | {r.soc_us:.0f} | {r.rnea_us:.0f} "
+              f"| {r.ratio:.1f} | {r.samples} | {r.max_relative_difference:.1e} |" for r in rows]
+    return table

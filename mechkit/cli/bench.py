@@ -55,16 +55,27 @@ def run(args: argparse.Namespace) -> None:
 
 
 def speed_sections(names: list[str], quick: bool) -> dict[str, list[str]]:
-    """The dynamics speed rows (issue 13) on the named mechanisms and the ladder of four-bar loops."""
+    """The rows the issues ask of the benchmark page: the dynamics against one raw Pinocchio call, the
+    ladder of four-bar loops, the 2T1R motion law, loading from files, and the second opinion."""
     from mechkit import registry
-    from mechkit.bench import dynamics_speed, ladder
+    from mechkit.bench import dynamics_speed, ladder, loading, motion_speed, second_opinion
     from mechkit.mechanism import load
 
     budget = 0.05 if quick else 0.3
-    speed = [dynamics_speed.measure(load(n), budget) for n in names or registry.names()]
+    chosen = names or list(registry.names())
+    speed = [dynamics_speed.measure(load(n), budget) for n in chosen]
     points = ladder.run(ladder.SIZES, budget)
+
+    def intro(module) -> str:
+        return module.__doc__.split("\n\n")[0].replace("\n", " ")
+
     return {"Dynamics speed": [dynamics_speed.__doc__.split("\n\n")[1].replace("\n", " "), "", *dynamics_speed.markdown(speed)],
-            "Ladder of four-bar loops": [ladder.__doc__.split("\n\n")[1].replace("\n", " "), "", *ladder.markdown(points)]}
+            "Ladder of four-bar loops": [ladder.__doc__.split("\n\n")[1].replace("\n", " "), "", *ladder.markdown(points)],
+            "Motion law": [intro(motion_speed), "",
+                           *motion_speed.lines(motion_speed.motion_law_speed(repeats=2 if quick else 5))],
+            "Loading from a file": [intro(loading), "", *loading.lines(loading.load_times(repeats=3 if quick else 15))],
+            "Second opinion": [intro(second_opinion), "", *second_opinion.lines(second_opinion.second_opinion_rows(
+                chosen, samples=3 if quick else 6, budget_s=budget))]}
 
 
 def add_parser(sub: argparse._SubParsersAction) -> None:
@@ -75,5 +86,5 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--quick", action="store_true", help="few repetitions, smallest sweeps")
     p.add_argument("--charts", help="folder for the error-vs-time charts (PNG and SVG)")
     p.add_argument("--markdown", help="write the summary table (docs/benchmarks.md)")
-    p.add_argument("--speed", action="store_true", help="also the dynamics speed rows and the ladder of four-bar loops")
+    p.add_argument("--speed", action="store_true", help="also the dynamics speed rows, the ladder of four-bar loops, the 2T1R motion law, loading from files and the second opinion")
     p.set_defaults(func=run)
