@@ -245,7 +245,8 @@ class Mechanism:
             accuracy: proximal stopping tolerance, relative to the model.
             max_iter: proximal iteration limit.
 
-        Raises `ClosureNotConverged` for a result violating J a + gamma = 0 (`forward.ACCELERATION_TOL`),
+        Raises `ClosureNotConverged` for a result violating J a + gamma = 0 (`forward.ACCELERATION_TOL`) on
+        the rows its method solved (proximal: Pinocchio's anchors, on and off the manifold; KKT: ours),
         `SingularConfiguration` where the accelerations are not unique.
 
         Batched: q (N, nq), v and tau (N, nv) give a result whose arrays have that leading axis.
