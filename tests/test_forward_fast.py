@@ -131,3 +131,22 @@ def test_lcaba_refuses_what_it_does_not_converge_on(load_cached):
         LoopConstrainedABA(ladder(1), mu=0.0)
     with pytest.raises(InvalidArgument, match="v"):
         LoopConstrainedABA(ladder(1))(np.zeros(3), np.zeros((2, 3)), np.zeros(3))
+
+
+@pytest.mark.parametrize(("loops", "max_iter"), [(1, 6), (4, 8), (16, 20)])
+def test_lcaba_measures_the_closure_error_of_its_final_accelerations(loops, max_iter):
+    """Stopped at max_iter, lcaba's own residual is the one before its last step; the refusal reports
+    that plus J g, which is the error of the final accelerations on Pinocchio's rows (as constraintDynamics
+    poses them at the same state)."""
+    m = ladder(loops)
+    lc = LoopConstrainedABA(m, max_iter=max_iter)
+    q, v, tau = m.home_q, m.velocities(m.home_q, np.ones(loops)), np.full(m.model.nv, 0.05)
+    with pytest.raises(ClosureNotConverged) as err:
+        lc(q, v, tau)
+    a = lc.data.ddq.copy()
+    solver = m._forward
+    solver.solve(q, v, tau, "proximal", mu=1e-11, accuracy=1e-12, max_iter=20, baumgarte=None)
+    J = pin.getConstraintsJacobian(m.model, solver.pin_data, *solver.constraints())
+    true = np.max(np.abs(J @ a - solver.pin_data.primal_rhs_contact[:J.shape[0]]))
+    assert abs(err.value.residual - true) <= 1e-9 * true + 1e-14 * np.max(np.abs(J)) * np.max(np.abs(a))  # rounding of J a
+    assert err.value.residual != lc.prox.absolute_residual  # not the stale value
