@@ -5,6 +5,7 @@ For each N: one state (q = 0, input rates ~ N(0, 1), efforts ~ N(0, 0.1) N m, se
 
 from __future__ import annotations
 
+import os
 from dataclasses import dataclass
 
 import numpy as np
@@ -31,6 +32,7 @@ class LadderPoint:
     lcaba_us: float
     lcaba_error: float
     lcaba_iterations: int
+    load: float  # the machine's 1-minute load average after the timing
 
     @property
     def ratio(self) -> float:
@@ -85,7 +87,7 @@ def measure(loops: int, budget: float = 0.2, repeats: int = 5) -> LadderPoint:
     pairs = [(time_per_call(raw, [None], budget / repeats / 2, 1)[0],
               time_per_call(lambda _: lcaba(q, v, tau), [None], budget / repeats / 2, 1)[0]) for _ in range(repeats)]
     return LadderPoint(loops, mech.model.nv, min(p[0] for p in pairs) * 1e6, raw_error,
-                       min(p[1] for p in pairs) * 1e6, lcaba_error, iterations)
+                       min(p[1] for p in pairs) * 1e6, lcaba_error, iterations, os.getloadavg()[0])
 
 
 def growth(points: list[LadderPoint], attr: str) -> float:
@@ -110,8 +112,9 @@ def markdown(points: list[LadderPoint]) -> list[str]:
         lines.append(f"| {p.loops} | {p.nv} | {p.raw_us:.1f} | {p.raw_error:.1e} | {p.lcaba_us:.1f} | "
                      f"{p.lcaba_error:.1e} | {p.ratio:.2f} | {p.lcaba_iterations} |")
     raw_p, lc_p = growth(points, "raw_us"), growth(points, "lcaba_us")
+    loads = [p.load for p in points]
     lines += ["", (f"Growth (slope of log t on log N, N >= {FIT_FROM}): raw constraintDynamics N^{raw_p:.2f}, "
-              f"lcaba N^{lc_p:.2f}.")]
+              f"lcaba N^{lc_p:.2f}. Load average (1 min) during the run: {min(loads):.1f} to {max(loads):.1f}.")]
     last = max(points, key=lambda p: p.loops)
     checks = [(f"lcaba at {last.loops} loops under 1 ms", last.lcaba_us < 1000.0, f"{last.lcaba_us:.0f} us"),
               ("lcaba growth at most N^1.3", lc_p <= 1.3, f"N^{lc_p:.2f}"),
