@@ -8,6 +8,7 @@ error, never returned. Bodies too light for Pinocchio's inertia arithmetic are r
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable
 from typing import Any
 
@@ -88,7 +89,7 @@ def check_closure_acceleration(J: np.ndarray, a: np.ndarray, gamma: np.ndarray, 
             method measures its own way.
         a_scale: gives the size of the accelerations the loads would cause unconstrained (rad/s^2 or
             m/s^2), max |tau - nle| / M_jj: where the closures hold the mechanism still, a is rounding
-            and this sets the scale (called only when the first test fails).
+            and this sets the scale (called only when the tests without it fail).
 
     Raises:
         ClosureNotConverged: max |J a + gamma| above ACCELERATION_TOL (max |J_i| max |a| + max |gamma|)
@@ -96,29 +97,36 @@ def check_closure_acceleration(J: np.ndarray, a: np.ndarray, gamma: np.ndarray, 
     """
     if J.shape[0] == 0:
         return
-    residual = float(np.max(np.abs(J @ a + gamma)))
-    c = float(np.max(np.linalg.norm(J, axis=1)))
-    limit = ACCELERATION_TOL * (c * float(np.max(np.abs(a), initial=0.0)) + float(np.max(np.abs(gamma)))) + slack
+    r = J @ a
+    r += gamma
+    residual = float(np.abs(r).max())
+    g = float(np.abs(gamma).max())
+    if residual <= ACCELERATION_TOL * g + slack:  # below a part of the limit: the rest need not be computed
+        return
+    c = math.sqrt(float(np.einsum("ij,ij->i", J, J).max()))
+    limit = ACCELERATION_TOL * (c * float(np.abs(a).max(initial=0.0)) + g) + slack
+    if residual <= limit:
+        return
+    # least squares by complete orthogonal factorisation (LAPACK gelsy, 3-4 times faster than numpy's SVD-based
+    # gelsd on the deployable's 72 x 66 rows), rank cut at numpy's default eps max(rows, nv)
+    x = scipy.linalg.lstsq(J, -gamma, cond=np.finfo(float).eps * max(J.shape), lapack_driver="gelsy")[0]
+    limit += INCONSISTENT_FACTOR * float(np.abs(J @ x + gamma).max())
     if residual <= limit:
         return
     if a_scale is not None:
         limit += ACCELERATION_TOL * c * a_scale()
-        if residual <= limit:
-            return
-    delta = float(np.max(np.abs(J @ np.linalg.lstsq(J, -gamma, rcond=None)[0] + gamma)))
-    if not residual <= limit + INCONSISTENT_FACTOR * delta:
-        raise ClosureNotConverged(residual, limit + INCONSISTENT_FACTOR * delta, 1,
-                                  f"{what}: the accelerations violate J a + gamma = 0")
+    if not residual <= limit:
+        raise ClosureNotConverged(residual, limit, 1, f"{what}: the accelerations violate J a + gamma = 0")
 
 
-def on_manifold(J: np.ndarray, residual: np.ndarray, v: np.ndarray) -> bool:
-    """True where the closure holds to `ACCELERATION_TOL` relative to the rows (max |e| <= tol max |J_i|,
-    max |J v| <= tol max |J_i| max |v|): there every method's rows agree, so ours can judge any method."""
-    if J.shape[0] == 0:
-        return True
-    c = float(np.max(np.linalg.norm(J, axis=1)))
-    return bool(np.max(np.abs(residual)) <= ACCELERATION_TOL * c
-                and np.max(np.abs(J @ v)) <= ACCELERATION_TOL * c * max(float(np.max(np.abs(v), initial=0.0)), 1e-300))
+def plain_state(q: Any, v: Any, tau: Any, nq: int, nv: int) -> bool:
+    """True for the common call that needs no conversion: float64 arrays of shapes (nq,), (nv,), (nv,),
+    all finite. Anything else (lists, other dtypes, batches, NaN or inf) goes through
+    `arguments.state`, which converts it or names what is wrong."""
+    return (isinstance(q, np.ndarray) and isinstance(v, np.ndarray) and isinstance(tau, np.ndarray)
+            and q.dtype == np.float64 and v.dtype == np.float64 and tau.dtype == np.float64
+            and q.shape == (nq,) and v.shape == (nv,) and tau.shape == (nv,)
+            and bool(np.isfinite(q).all() and np.isfinite(v).all() and np.isfinite(tau).all()))
 
 
 def _power_of_two(x: float) -> float:
@@ -200,46 +208,38 @@ def set_baumgarte(cms: Any, baumgarte: tuple[float, float] | None, current: tupl
     return gains
 
 
-def proximal_forward(model: pin.Model, pin_data: pin.Data, data: pin.Data, rows: ClosureRows, constraints: tuple,
-                     q: np.ndarray, v: np.ndarray, tau: np.ndarray, *, mu: float, accuracy: float, max_iter: int,
-                     delassus: float, settings: dict | None = None) -> ForwardDynamicsResult:
-    """`pin.constraintDynamics` with mu and accuracy relative to the model, its result checked.
+def proximal_forward(model: pin.Model, pin_data: pin.Data, data: pin.Data, constraints: tuple,
+                     q: np.ndarray, v: np.ndarray, tau: np.ndarray, prox: pin.ProximalSettings) -> ForwardDynamicsResult:
+    """`pin.constraintDynamics` with its result checked on the rows it solved.
+
+    The check is on Pinocchio's own constraint Jacobian and right-hand side at (q, v), both left by
+    the call (`getConstraintsJacobian`, `primal_rhs_contact` = -(gamma + Baumgarte terms), in each
+    anchor's c1 frame): J a + gamma = 0 on the system actually solved, valid on and off the closure
+    manifold (on it, these rows span the same constraint as `mechkit.closures`' rows).
 
     Args:
-        pin_data: the data the constraints were initialised with; data: a scratch data for our rows.
+        pin_data: the data the constraints were initialised with; data: a scratch data (only for the
+            unconstrained-acceleration scale of a failing check).
         constraints: (RigidConstraintModels, RigidConstraintDatas), Baumgarte gains already set.
-        mu: proximal regularisation in units of `delassus` (dimensionless).
-        accuracy: accuracy on the closure accelerations (m/s^2 for position rows); Pinocchio tests its
-            iterations on the multipliers, so it is given accuracy / delassus.
-        delassus: the model's `delassus_scale`.
-        settings: a cache of `pin.ProximalSettings` by (accuracy, mu, max_iter) (building one costs a call).
+        prox: Pinocchio's proximal settings, already scaled to the model (`ForwardSolver.settings`).
 
     Raises:
         SingularConfiguration: non-finite accelerations.
-        ClosureNotConverged: on the closure manifold, J a + gamma = 0 violated (off it Pinocchio's point
-            anchors and our rows measure the closure differently, and ours cannot judge).
+        ClosureNotConverged: J a + gamma = 0 violated beyond `check_closure_acceleration`'s tolerance.
     """
     cms, cds = constraints
-    settings = {} if settings is None else settings
-    prox = settings.get((accuracy, mu, max_iter))
-    if prox is None:
-        prox = settings[(accuracy, mu, max_iter)] = pin.ProximalSettings(accuracy / delassus, mu * delassus, max_iter)
     a = pin.constraintDynamics(model, pin_data, q, v, tau, cms, cds, prox).copy()
-    if not np.all(np.isfinite(a)):
-        raise SingularConfiguration(float("inf"), f"pin.constraintDynamics returned non-finite accelerations (mu={mu})")
-    result = ForwardDynamicsResult(a, pin.rnea(model, pin_data, q, v, a) - tau)
-    pin.computeJointJacobians(model, data, q)
-    pin.updateFramePlacements(model, data)
-    J = rows.jacobian(data)
-    if on_manifold(J, rows.residual(data), v):
-        pin.forwardKinematics(model, data, q, v, np.zeros(model.nv))
-        pin.updateFramePlacements(model, data)
-        def a_scale() -> float:
-            loads = np.abs(tau - pin.rnea(model, data, q, v, np.zeros(model.nv)))
-            return float(np.max(loads / np.diag(pin.crba(model, data, q))))
+    if not np.isfinite(a).all():
+        raise SingularConfiguration(float("inf"), f"pin.constraintDynamics returned non-finite accelerations (mu={prox.mu})")
+    J = pin.getConstraintsJacobian(model, pin_data, cms, cds)
+    gamma = -pin_data.primal_rhs_contact[:J.shape[0]]
 
-        check_closure_acceleration(J, a, rows.drift(data), 0.0, "forward dynamics (proximal)", a_scale)
-    return result
+    def a_scale() -> float:
+        loads = np.abs(tau - pin.rnea(model, data, q, v, np.zeros(model.nv)))
+        return float(np.max(loads / np.diag(pin.crba(model, data, q))))
+
+    check_closure_acceleration(J, a, gamma, 0.0, "forward dynamics (proximal)", a_scale)
+    return ForwardDynamicsResult(a, pin.rnea(model, pin_data, q, v, a) - tau)
 
 
 class ForwardSolver:
@@ -266,6 +266,18 @@ class ForwardSolver:
             self._constraints, self.pin_data = constraint_models(self.model, self.cuts)
         return self._constraints
 
+    def settings(self, mu: float, accuracy: float, max_iter: int) -> pin.ProximalSettings:
+        """Pinocchio's proximal settings for mu (in units of the Delassus scale at home, `delassus_scale`)
+        and accuracy (m/s^2 for position rows; Pinocchio tests its iterations on the multipliers, so it
+        is given accuracy / scale), built once per (mu, accuracy, max_iter)."""
+        prox = self._settings.get((mu, accuracy, max_iter))
+        if prox is None:
+            if self._delassus is None:
+                self._delassus = delassus_scale(pin.crba(self.model, self.data, self.home_q), self._jacobian(self.home_q))
+            prox = self._settings[(mu, accuracy, max_iter)] = pin.ProximalSettings(
+                accuracy / self._delassus, mu * self._delassus, max_iter)
+        return prox
+
     def _jacobian(self, q: np.ndarray) -> np.ndarray:
         pin.computeJointJacobians(self.model, self.data, q)
         pin.updateFramePlacements(self.model, self.data)
@@ -277,11 +289,8 @@ class ForwardSolver:
         if method == "proximal":
             cms, cds = self.constraints()
             self._gains = set_baumgarte(cms, baumgarte, self._gains)
-            if self._delassus is None:
-                self._delassus = delassus_scale(pin.crba(self.model, self.data, self.home_q), self._jacobian(self.home_q))
-            return proximal_forward(self.model, self.pin_data, self.data, self.rows, (cms, cds), q, v, tau,
-                                    mu=mu, accuracy=accuracy, max_iter=max_iter, delassus=self._delassus,
-                                    settings=self._settings)
+            return proximal_forward(self.model, self.pin_data, self.data, (cms, cds), q, v, tau,
+                                    self.settings(mu, accuracy, max_iter))
         if self._kkt_rows is None:
             self._kkt_rows = independent_rows(self._jacobian(self.home_q))
         J = self._jacobian(q)

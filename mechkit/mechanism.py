@@ -241,11 +241,12 @@ class Mechanism:
             method: "proximal" (`pin.constraintDynamics`, proximal settings mu/accuracy/max_iter) or
                 "kkt" (dense KKT on the independent rows).
             baumgarte: (Kp (1/s^2), Kd (1/s)) closure stabilisation, J a + gamma + Kd J v + Kp e = 0.
-            mu: proximal regularisation, relative to the model (see `forward.proximal_forward`).
+            mu: proximal regularisation, relative to the model (see `forward.ForwardSolver.settings`).
             accuracy: proximal stopping tolerance, relative to the model.
             max_iter: proximal iteration limit.
 
-        Raises `ClosureNotConverged` for a result violating J a + gamma = 0 (`forward.ACCELERATION_TOL`),
+        Raises `ClosureNotConverged` for a result violating J a + gamma = 0 (`forward.ACCELERATION_TOL`) on
+        the rows its method solved (proximal: Pinocchio's anchors, on and off the manifold; KKT: ours),
         `SingularConfiguration` where the accelerations are not unique.
 
         Batched: q (N, nq), v and tau (N, nv) give a result whose arrays have that leading axis.
@@ -255,15 +256,15 @@ class Mechanism:
         frame; KKT: the rows of `mechkit.closures`), so drift is corrected along different paths.
         """
         arguments.option("method", method, forward.METHODS)
-        q, v, tau = self._state(q=q, v=v, tau=tau)
+        if not forward.plain_state(q, v, tau, self.model.nq, self.model.nv):
+            q, v, tau = self._state(q=q, v=v, tau=tau)
         mu, accuracy, max_iter, baumgarte = arguments.solver_settings(mu, accuracy, max_iter, baumgarte)
-        if batch.is_batch(q):
-            n = len(q)
-            out = [self.forward_dynamics(qi, vi, ti, method, mu=mu, accuracy=accuracy, max_iter=max_iter,
-                                         baumgarte=baumgarte) for qi, vi, ti in zip(q, v, tau)]
-            return dynamics.ForwardDynamicsResult(np.array([r.a for r in out]).reshape(n, -1),
-                                                  np.array([r.constraint_force for r in out]).reshape(n, -1))
-        return self._forward.solve(q, v, tau, method, mu=mu, accuracy=accuracy, max_iter=max_iter, baumgarte=baumgarte)
+        solve = self._forward.solve
+        if batch.is_batch(q):  # checked once, then every sample on the solver's cached scales
+            out = [solve(qi, vi, ti, method, mu=mu, accuracy=accuracy, max_iter=max_iter, baumgarte=baumgarte)
+                   for qi, vi, ti in zip(q, v, tau)]
+            return dynamics.ForwardDynamicsResult(np.array([r.a for r in out]), np.array([r.constraint_force for r in out]))
+        return solve(q, v, tau, method, mu=mu, accuracy=accuracy, max_iter=max_iter, baumgarte=baumgarte)
 
     def inverse_dynamics(self, q: np.ndarray, v: np.ndarray, a: np.ndarray,
                          fext: pin.StdVec_Force | list[pin.Force] | np.ndarray | list | None = None, determinacy: bool = True,

@@ -1,15 +1,11 @@
 """The ladder of N four-bar loops (`mechkit.large_models`): forward dynamics cost and error against N.
 
-For each N: one state (q = 0, input rates ~ N(0, 1), efforts ~ N(0, 0.1) N m, seed 0), the exact
-accelerations from the dense KKT on mechkit's independent closure rows, solved by LU with iterative
-refinement (residual in extended precision, `exact_accelerations`); then microseconds per call (fastest of the
-repeats: the least disturbed on a shared machine) and the relative error of the raw `pin.constraintDynamics` (mu = 1e-9, the core's default) and of
-`pin.lcaba` (`LoopConstrainedABA` at `LCABA_DEFAULTS`). Growth: the least-squares slope of log t
-against log N over N >= `FIT_FROM`.
+For each N: one state (q = 0, input rates ~ N(0, 1), efforts ~ N(0, 0.1) N m, seed 0), the exact accelerations from the dense KKT on mechkit's independent closure rows, solved by LU with iterative refinement (residual in extended precision, `exact_accelerations`); then microseconds per call of the raw `pin.constraintDynamics` (mu = 1e-9, the core's default) and of `LoopConstrainedABA` (`pin.lcaba` at `LCABA_DEFAULTS`, its closure error certified), timed alternately repeat after repeat in one process, each keeping its fastest repeat (the least disturbed on a shared machine), and their ratio; the relative error of each against the exact accelerations. Growth: the least-squares slope of log t against log N over N >= `FIT_FROM`.
 """
 
 from __future__ import annotations
 
+import os
 from dataclasses import dataclass
 
 import numpy as np
@@ -36,6 +32,12 @@ class LadderPoint:
     lcaba_us: float
     lcaba_error: float
     lcaba_iterations: int
+    load: float  # the machine's 1-minute load average after the timing
+
+    @property
+    def ratio(self) -> float:
+        """lcaba time / raw constraintDynamics time (timed alternately in one process)."""
+        return self.lcaba_us / self.raw_us
 
 
 def exact_accelerations(mech: Mechanism, q: np.ndarray, v: np.ndarray, tau: np.ndarray) -> np.ndarray:
@@ -61,7 +63,8 @@ def exact_accelerations(mech: Mechanism, q: np.ndarray, v: np.ndarray, tau: np.n
 
 
 def measure(loops: int, budget: float = 0.2, repeats: int = 5) -> LadderPoint:
-    """Time and error of the raw constraintDynamics and of lcaba on the ladder of `loops` loops."""
+    """Time (alternately, fastest of `repeats` each) and error of the raw constraintDynamics and of lcaba
+    on the ladder of `loops` loops."""
     mech = ladder(loops)
     rng = np.random.default_rng(0)
     q = mech.home_q
@@ -81,10 +84,10 @@ def measure(loops: int, budget: float = 0.2, repeats: int = 5) -> LadderPoint:
     raw_error = float(np.max(np.abs(raw(None) - exact))) / scale
     lcaba_error = float(np.max(np.abs(lcaba(q, v, tau) - exact))) / scale
     iterations = int(lcaba.prox.iter)
-    raw_t = time_per_call(raw, [None], budget, repeats)
-    lcaba_t = time_per_call(lambda _: lcaba(q, v, tau), [None], budget, repeats)
-    return LadderPoint(loops, mech.model.nv, float(np.min(raw_t)) * 1e6, raw_error,
-                       float(np.min(lcaba_t)) * 1e6, lcaba_error, iterations)
+    pairs = [(time_per_call(raw, [None], budget / repeats / 2, 1)[0],
+              time_per_call(lambda _: lcaba(q, v, tau), [None], budget / repeats / 2, 1)[0]) for _ in range(repeats)]
+    return LadderPoint(loops, mech.model.nv, min(p[0] for p in pairs) * 1e6, raw_error,
+                       min(p[1] for p in pairs) * 1e6, lcaba_error, iterations, os.getloadavg()[0])
 
 
 def growth(points: list[LadderPoint], attr: str) -> float:
@@ -103,14 +106,15 @@ def run(sizes: tuple[int, ...] = SIZES, budget: float = 0.2, repeats: int = 5) -
 
 def markdown(points: list[LadderPoint]) -> list[str]:
     """The benchmark page's ladder section: the table, the growth fits and the targets of issue 13."""
-    lines = ["| loops | nv | raw constraintDynamics us | its error | lcaba us | its error | lcaba iterations |",
-             "|---|---|---|---|---|---|---|"]
+    lines = ["| loops | nv | raw constraintDynamics us | its error | lcaba us | its error | lcaba / raw | lcaba iterations |",
+             "|---|---|---|---|---|---|---|---|"]
     for p in points:
         lines.append(f"| {p.loops} | {p.nv} | {p.raw_us:.1f} | {p.raw_error:.1e} | {p.lcaba_us:.1f} | "
-                     f"{p.lcaba_error:.1e} | {p.lcaba_iterations} |")
+                     f"{p.lcaba_error:.1e} | {p.ratio:.2f} | {p.lcaba_iterations} |")
     raw_p, lc_p = growth(points, "raw_us"), growth(points, "lcaba_us")
+    loads = [p.load for p in points]
     lines += ["", (f"Growth (slope of log t on log N, N >= {FIT_FROM}): raw constraintDynamics N^{raw_p:.2f}, "
-              f"lcaba N^{lc_p:.2f}.")]
+              f"lcaba N^{lc_p:.2f}. Load average (1 min) during the run: {min(loads):.1f} to {max(loads):.1f}.")]
     last = max(points, key=lambda p: p.loops)
     checks = [(f"lcaba at {last.loops} loops under 1 ms", last.lcaba_us < 1000.0, f"{last.lcaba_us:.0f} us"),
               ("lcaba growth at most N^1.3", lc_p <= 1.3, f"N^{lc_p:.2f}"),
