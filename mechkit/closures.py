@@ -6,8 +6,8 @@ Every row is one of two exact forms, so that its Jacobian is its exact derivativ
 - an alignment row e = u . w, u = R_a u_local fixed in frame_a, w = R_b w_local fixed in frame_b
   (u and w perpendicular when the cut is closed).
 
-Velocities and accelerations use Pinocchio frame Jacobians in LOCAL_WORLD_ALIGNED (world axes,
-frame origin). The wrench a closure transmits, parent (frame_a side) on child (frame_b side), is
+They are evaluated in numpy from the joint placements, world joint Jacobians and joint motions
+(`mechkit.closure_eval`), without per-frame Pinocchio calls. The wrench a closure transmits, parent (frame_a side) on child (frame_b side), is
 f = sum_t lambda_t t at p_b and m = sum_(u,w) lambda (w x u): `ClosureRows.wrenches` returns it.
 """
 
@@ -18,11 +18,11 @@ from dataclasses import dataclass
 import numpy as np
 import pinocchio as pin
 
+from mechkit.closure_eval import RowEvaluator
 from mechkit.description import LoopClosure
 from mechkit.exceptions import MalformedDescription, MethodUnavailable
-from mechkit.spatial import cross, skew
+from mechkit.spatial import cross
 
-LWA = pin.ReferenceFrame.LOCAL_WORLD_ALIGNED
 #: Offset (m) along a revolute axis of the second point anchor that Pinocchio's 3D constraints use.
 AXIS_ANCHOR_OFFSET = 0.1
 
@@ -101,82 +101,42 @@ def cut_rows(model: pin.Model, closure: LoopClosure, rows: str | None = None) ->
 
 
 class ClosureRows:
-    """All closures of a mechanism as one stacked set of rows.
+    """All closures of a mechanism as one stacked set of rows, evaluated by `closure_eval.RowEvaluator`
+    from one gather of the joint placements `data.oMi`.
 
-    Call `update(data)` after `pin.framesForwardKinematics` / `computeJointJacobians` so that the
-    frame placements are current; then `residual`, `jacobian`, `drift` read them.
+    `residual` needs the joint placements current (any forward pass), `jacobian` also the joint
+    Jacobians (`pin.computeJointJacobians`), `drift` the joint velocities and accelerations
+    (`pin.forwardKinematics(model, data, q, v, 0 * v)`).
     """
 
     def __init__(self, model: pin.Model, cuts: list[CutRows]):
         self.model = model
         self.cuts = cuts
         self.size = sum(c.size for c in cuts)
+        self.evaluator = RowEvaluator(model, cuts)
 
     def residual(self, data: pin.Data) -> np.ndarray:
-        """Row residuals (m for position rows, dimensionless for alignment rows); frames must be current."""
-        out = np.empty(self.size)
-        i = 0
-        for cut in self.cuts:
-            oMa, oMb = data.oMf[cut.frame_a], data.oMf[cut.frame_b]
-            d = oMb.translation - oMa.translation
-            k = cut.positions.shape[1]
-            out[i:i + k] = (oMa.rotation @ cut.positions).T @ d
-            i += k
-            for u, w in cut.alignments:
-                out[i] = (oMa.rotation @ u) @ (oMb.rotation @ w)
-                i += 1
-        return out
+        """Row residuals (m for position rows, dimensionless for alignment rows); joint placements must be current."""
+        return self.evaluator.residual(self.evaluator.gather(data))
+
+    def evaluate(self, data: pin.Data) -> tuple[np.ndarray, np.ndarray]:
+        """Residuals (rows,) and Jacobian (rows, nv) from one gather; needs `pin.computeJointJacobians`."""
+        return self.evaluator.evaluate(self.evaluator.gather(data), data.J.reshape(6, self.model.nv))
 
     def jacobian(self, data: pin.Data) -> np.ndarray:
-        """d(residual)/dq as (rows, nv); needs `pin.computeJointJacobians` and frame placements."""
-        out = np.empty((self.size, self.model.nv))
-        i = 0
-        for cut in self.cuts:
-            Ja = pin.getFrameJacobian(self.model, data, cut.frame_a, LWA).reshape(6, -1)  # (6,) when nv = 1
-            Jb = pin.getFrameJacobian(self.model, data, cut.frame_b, LWA).reshape(6, -1)
-            oMa, oMb = data.oMf[cut.frame_a], data.oMf[cut.frame_b]
-            d = oMb.translation - oMa.translation
-            T = oMa.rotation @ cut.positions
-            k = T.shape[1]
-            if k:
-                out[i:i + k] = T.T @ (Jb[:3] - Ja[:3] + skew(d) @ Ja[3:])
-            i += k
-            for u, w in cut.alignments:
-                uw, ww = oMa.rotation @ u, oMb.rotation @ w
-                out[i] = cross(ww, uw) @ (Jb[3:] - Ja[3:])
-                i += 1
-        return out
+        """d(residual)/dq as (rows, nv); needs `pin.computeJointJacobians`."""
+        return self.evaluate(data)[1]
 
     def drift(self, data: pin.Data) -> np.ndarray:
         """gamma such that d2(residual)/dt2 = J a + gamma.
 
-        Needs `pin.forwardKinematics(model, data, q, v, 0 * v)` and `updateFramePlacements`.
+        Needs `pin.forwardKinematics(model, data, q, v, 0 * v)`.
         """
-        out = np.empty(self.size)
-        i = 0
-        model = self.model
-        for cut in self.cuts:
-            va = pin.getFrameVelocity(model, data, cut.frame_a, LWA)
-            vb = pin.getFrameVelocity(model, data, cut.frame_b, LWA)
-            aa = pin.getFrameClassicalAcceleration(model, data, cut.frame_a, LWA)
-            ab = pin.getFrameClassicalAcceleration(model, data, cut.frame_b, LWA)
-            oMa, oMb = data.oMf[cut.frame_a], data.oMf[cut.frame_b]
-            d = oMb.translation - oMa.translation
-            dv = vb.linear - va.linear
-            wa, wb = va.angular, vb.angular
-            k = cut.positions.shape[1]
-            if k:
-                # d2/dt2 of t.d with t fixed in frame_a: t.(da + d x alpha_a + dv x w_a + (dv + d x w_a) x w_a)
-                g = (ab.linear - aa.linear + cross(d, aa.angular) + cross(dv, wa) + cross(dv + cross(d, wa), wa))
-                out[i:i + k] = (oMa.rotation @ cut.positions).T @ g
-                i += k
-            for u_local, w_local in cut.alignments:
-                u, w = oMa.rotation @ u_local, oMb.rotation @ w_local
-                n = cross(w, u)
-                ndot = cross(cross(wb, w), u) + cross(w, cross(wa, u))
-                out[i] = n @ (ab.angular - aa.angular) + ndot @ (wb - wa)
-                i += 1
-        return out
+        ev = self.evaluator
+        G = ev.gather(data)
+        v, a = data.v.tolist(), data.a.tolist()
+        local = np.array([[v[j].np, a[j].np] for j in ev.joints]).reshape(-1, 2, 6)
+        return ev.drift(G, ev.world_twists(G, local[:, 0]), ev.world_twists(G, local[:, 1]))
 
     def wrenches(self, data: pin.Data, lam: np.ndarray) -> list[tuple[np.ndarray, np.ndarray, np.ndarray]]:
         """Per cut, (force, moment, point): the wrench frame_a's side exerts on frame_b's side.
