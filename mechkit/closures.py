@@ -135,8 +135,21 @@ def support_columns(model: pin.Model, joint: int) -> np.ndarray:
     return out
 
 
+#: (12, 6) map of (Y' outer X).reshape(12), Y' = [Y, f], to the row wrench [f X, Y x X].
+WRENCH_MAP = np.zeros((12, 6))
+WRENCH_MAP[:9, 3:] = LEVI_CIVITA
+WRENCH_MAP[9:, :3] = np.eye(3)
+#: (24, 7) map of ([Z', Y'] outer X).reshape(24) to [W, e]: the wrench and the residual X . (Y - Z).
+WRENCH_RESIDUAL_MAP = np.zeros((24, 7))
+WRENCH_RESIDUAL_MAP[12:, :6] = WRENCH_MAP
+WRENCH_RESIDUAL_MAP[[0, 4, 8], 6], WRENCH_RESIDUAL_MAP[[12, 16, 20], 6] = -1.0, 1.0
+
+
 class RowEvaluator:
     """The rows of a list of cuts as numpy maps of the placements of the joints they involve.
+
+    Each row's X, Z, Y are homogeneous 4-vectors (X' = [X, 0], Z' = [Z, f], Y' = [Y, f]): one product of
+    the fixed local vectors with every used placement, one gather.
 
     Attributes:
         joints: (n_used,) ids of the joints carrying frame_a or frame_b of some cut.
@@ -150,32 +163,36 @@ class RowEvaluator:
         self.model = model
         self.joints = np.array(sorted({frames[f].parentJoint for c in cuts for f in (c.frame_a, c.frame_b)}), dtype=int)
         where = {int(j): k for k, j in enumerate(self.joints)}
-        ia, ib, xz, y, f = [], [], [], [], []
+        ia, ib, local = [], [], []
         for cut in cuts:
             Ma, Mb = frames[cut.frame_a].placement.homogeneous, frames[cut.frame_b].placement.homogeneous
             ja, jb = where[frames[cut.frame_a].parentJoint], where[frames[cut.frame_b].parentJoint]
             for t in cut.positions.T:
-                ia.append(ja), ib.append(jb), xz.append([Ma[:, :3] @ t, Ma[:, 3]]), y.append(Mb[:, 3]), f.append(1.0)
+                ia.append(ja), ib.append(jb), local.append([Ma[:, :3] @ t, Ma[:, 3], Mb[:, 3]])
             for u, w in cut.alignments:
-                ia.append(ja), ib.append(jb), xz.append([Ma[:, :3] @ u, np.zeros(4)]), y.append(Mb[:, :3] @ w), f.append(0.0)
-        self.size = len(f)
+                ia.append(ja), ib.append(jb), local.append([Ma[:, :3] @ u, np.zeros(4), Mb[:, :3] @ w])
+        self.size = len(ia)
         self._ia, self._ib = np.array(ia, dtype=int), np.array(ib, dtype=int)
-        self._xz = np.array(xz, dtype=float).reshape(-1, 2, 4).transpose(0, 2, 1)  # (rows, 4, 2): X and Z
-        self._y = np.array(y, dtype=float).reshape(-1, 4, 1)
-        self._f = np.array(f).reshape(-1, 1)
+        self._local = np.array(local, dtype=float).reshape(-1, 4)  # (3 rows, 4): X, Z, Y of each row
+        self._joint = np.stack([self._ia, self._ia, self._ib], axis=1).reshape(-1)
+        self._slot = np.arange(3 * self.size)
+        self._joint_list = self.joints.tolist()
         self.support = np.array([support_columns(model, int(j)) for j in self.joints]).reshape(-1, model.nv)
         self.mask = self.support[self._ib] - self.support[self._ia]
 
     def gather(self, data: pin.Data) -> np.ndarray:
         """(n_used, 4, 4) placements of the used joints from `data.oMi` (current after any forward pass)."""
         oMi = data.oMi.tolist()
-        return np.array([oMi[j].np for j in self.joints]).reshape(-1, 4, 4)
+        return np.array([oMi[j].np for j in self._joint_list]).reshape(-1, 4, 4)
+
+    def _xzy(self, G: np.ndarray) -> np.ndarray:
+        every = self._local @ np.swapaxes(G, -1, -2)  # (..., n_used, 3 rows, 4): each vector by each placement
+        return every[..., self._joint, self._slot, :].reshape(*G.shape[:-3], self.size, 3, 4)
 
     def vectors(self, G: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """X, Y, Z (..., rows, 3) of every row (world, m or unit) from placements (..., n_used, 4, 4)."""
-        A = G[..., :3, :]
-        xz = A[..., self._ia, :, :] @ self._xz
-        return xz[..., 0], (A[..., self._ib, :, :] @ self._y)[..., 0], xz[..., 1]
+        """X', Y', Z' (..., rows, 4) of every row (world; m or unit) from placements (..., n_used, 4, 4)."""
+        xzy = self._xzy(G)
+        return xzy[..., 0, :], xzy[..., 2, :], xzy[..., 1, :]
 
     def residual(self, G: np.ndarray) -> np.ndarray:
         """(..., rows) residuals (m for position rows, dimensionless for alignment rows)."""
@@ -183,13 +200,17 @@ class RowEvaluator:
         return np.sum(x * (y - z), axis=-1)
 
     def wrenches(self, x: np.ndarray, y: np.ndarray) -> np.ndarray:
-        """(..., rows, 6) row wrenches [force, moment about the world origin] from X, Y."""
-        return np.concatenate([x * self._f, cross_batch(y, x)], axis=-1)
+        """(..., rows, 6) row wrenches [force, moment about the world origin] from X', Y' (..., rows, 4)."""
+        outer = y[..., :, None] * x[..., None, :3]
+        return outer.reshape(*outer.shape[:-2], 12) @ WRENCH_MAP
 
     def evaluate(self, G: np.ndarray, J: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """Residuals (..., rows) and Jacobian (..., rows, nv) from placements and `data.J` (..., 6, nv)."""
-        x, y, z = self.vectors(G)
-        return np.sum(x * (y - z), axis=-1), (self.wrenches(x, y) @ J) * self.mask
+        """Residuals (..., rows) and Jacobian (..., rows, nv) from placements and `data.J` (..., 6, nv):
+        one product of [Z', Y'] outer X with `WRENCH_RESIDUAL_MAP` (residual as X . Y - X . Z)."""
+        xzy = self._xzy(G)
+        outer = xzy[..., 1:, :, None] * xzy[..., 0, None, None, :3]
+        we = outer.reshape(*outer.shape[:-3], 24) @ WRENCH_RESIDUAL_MAP
+        return we[..., 6], (we[..., :6] @ J) * self.mask
 
     def twists(self, J: np.ndarray, v: np.ndarray) -> np.ndarray:
         """(..., n_used, 6) world twists [v_O, omega] of the used joints from world Jacobian columns
@@ -205,18 +226,21 @@ class RowEvaluator:
 
     def drift(self, G: np.ndarray, V: np.ndarray, A: np.ndarray) -> np.ndarray:
         """(..., rows) gamma with d2e/dt2 = J a + gamma, from the used joints' world twists V and
-        accelerations at a = 0, A (..., n_used, 6)."""
+        accelerations at a = 0, A (..., n_used, 6): W . (A_b - A_a) + dW/dt . (V_b - V_a), with
+        dX/dt = omega_a x X and dY/dt = f v_Ob + omega_b x Y."""
         x, y, _ = self.vectors(G)
         Va, Vb = V[..., self._ia, :], V[..., self._ib, :]
-        xdot = cross_batch(Va[..., 3:], x)
-        ydot = self._f * Vb[..., :3] + cross_batch(Vb[..., 3:], y)
-        Wdot = np.concatenate([xdot * self._f, cross_batch(ydot, x) + cross_batch(y, xdot)], axis=-1)
+        xdot = cross_batch(Va[..., 3:], x[..., :3])
+        ydot = y[..., 3:] * Vb[..., :3] + cross_batch(Vb[..., 3:], y[..., :3])
+        outer = ydot[..., :, None] * x[..., None, :3]
+        outer = np.concatenate([outer, np.zeros_like(outer[..., :1, :])], axis=-2) + y[..., :, None] * xdot[..., None, :]
+        Wdot = outer.reshape(*outer.shape[:-2], 12) @ WRENCH_MAP
         Arel = A[..., self._ib, :] - A[..., self._ia, :]
         return np.sum(self.wrenches(x, y) * Arel + Wdot * (Vb - Va), axis=-1)
 
 
 class ClosureRows:
-    """All closures of a mechanism as one stacked set of rows, evaluated by `closure_eval.RowEvaluator`
+    """All closures of a mechanism as one stacked set of rows, evaluated by `RowEvaluator`
     from one gather of the joint placements `data.oMi`.
 
     `residual` needs the joint placements current (any forward pass), `jacobian` also the joint

@@ -205,21 +205,34 @@ def _verdict(s: np.ndarray, independent_rows: int, residual: np.ndarray,
     return cond, bad, limit
 
 
-def judge_batch(s: np.ndarray, independent_rows: int, residual: np.ndarray, allow_singular: bool = False) -> np.ndarray:
+def rejected(s: np.ndarray, independent_rows: int, residual: np.ndarray | float,
+             allow_singular: bool = False) -> np.ndarray:
+    """(N,) True at the samples of singular values s (N, m) that `judge_batch` rejects."""
+    return _verdict(s, independent_rows, np.broadcast_to(np.asarray(residual, dtype=float), (len(s),)), allow_singular)[1]
+
+
+def judge_batch(s: np.ndarray, independent_rows: int, residual: np.ndarray | float,
+                allow_singular: bool = False) -> np.ndarray:
     """`judge_passive` for N samples: condition numbers (N,) from singular values (N, m) and residuals (N,).
 
     Raises:
         SingularConfiguration: at the first sample that `judge_passive` rejects.
     """
     residual = np.broadcast_to(np.asarray(residual, dtype=float), (len(s),))
-    cond, bad, limit = _verdict(s, independent_rows, residual, allow_singular)
+    cond, bad, _ = _verdict(s, independent_rows, residual, allow_singular)
     if bad.any():
         i = int(np.argmax(bad))
-        k = min(independent_rows, s.shape[1])
-        raise SingularConfiguration(float(cond[i]), f"passive block of the closure Jacobian: smallest singular value "
-                                    f"{s[i, k - 1]:.2e} below the {limit[i]:.2e} a closure residual of {residual[i]:.1e} "
-                                    "resolves (inputs do not determine the motion)")
+        raise singular_error(s[i], independent_rows, float(residual[i]))
     return cond
+
+
+def singular_error(s: np.ndarray, independent_rows: int, residual: float) -> SingularConfiguration:
+    """The error for a passive block with singular values s (m,) that `judge_passive` rejects."""
+    cond, _, limit = _verdict(s[None], independent_rows, np.array([residual]), False)
+    k = min(independent_rows, s.size)
+    return SingularConfiguration(float(cond[0]), f"passive block of the closure Jacobian: smallest singular value "
+                                 f"{s[k - 1]:.2e} below the {limit[0]:.2e} a closure residual of {residual:.1e} "
+                                 "resolves (inputs do not determine the motion)")
 
 
 def judge_passive(s: np.ndarray, independent_rows: int, residual: float = CLOSURE_TOL,
@@ -299,6 +312,13 @@ def passive_solve(J: np.ndarray, inputs: np.ndarray, input_v: np.ndarray, free_v
     return x
 
 
+def check_determined(free_v: np.ndarray, independent_rows: int) -> None:
+    """Raise `SingularConfiguration` when more coordinates are free than the closure has independent rows."""
+    if free_v.size > independent_rows:
+        raise SingularConfiguration(float("inf"), f"{free_v.size} free coordinates but only {independent_rows} independent "
+                                    "closure rows: the inputs do not determine the motion (give more inputs)")
+
+
 def project_batch(J: np.ndarray, inputs: np.ndarray, input_v: np.ndarray, free_v: np.ndarray, independent_rows: int,
                   rhs: np.ndarray | None = None, *, residual: np.ndarray | float = CLOSURE_TOL,
                   allow_singular: bool = False) -> tuple[np.ndarray, np.ndarray]:
@@ -310,9 +330,7 @@ def project_batch(J: np.ndarray, inputs: np.ndarray, input_v: np.ndarray, free_v
     Raises:
         SingularConfiguration: as `project_velocity`, at the first sample it rejects.
     """
-    if free_v.size > independent_rows:
-        raise SingularConfiguration(float("inf"), f"{free_v.size} free coordinates but only {independent_rows} independent "
-                                    "closure rows: the inputs do not determine the motion (give more inputs)")
+    check_determined(free_v, independent_rows)
     cond = judge_batch(np.linalg.svd(J[..., free_v], compute_uv=False), independent_rows, residual, allow_singular)
     return passive_solve(J, inputs, input_v, free_v, rhs), cond
 

@@ -20,7 +20,7 @@ from mechkit.mechanism import Mechanism, load
 from mechkit.mechanisms.parallel_2t1r.motion_law import MOTION_DURATION, motion_law
 from mechkit.motion.inputs import from_callable
 from mechkit.motion.path import PathKinematics
-from mechkit.motion.study import driven_problem, inverse_batch, study
+from mechkit.motion.study import driven_problem, inverse_batch, kinematics_along, study
 
 #: The issue's goal for the 2T1R motion law (501 samples), s.
 GOAL_S = 0.050
@@ -69,9 +69,7 @@ def motion_law_speed(samples: int = 501, repeats: int = 5) -> MotionSpeed:
     problem = driven_problem(mech, law.names)
 
     def kinematics() -> None:
-        guess = result.q[0]
-        for i in range(samples):
-            guess = path.sample(guess, law.values[i], law.rates[i], law.accelerations[i], 1e-12)[0]
+        kinematics_along(path, law)
 
     def inverse() -> None:
         inverse_batch(problem, result.q, result.v, result.a, None, False)
