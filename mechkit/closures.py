@@ -277,6 +277,36 @@ class ClosureRows:
         local = np.array([[v[j].np, a[j].np] for j in ev.joints]).reshape(-1, 2, 6)
         return ev.drift(G, ev.world_twists(G, local[:, 0]), ev.world_twists(G, local[:, 1]))
 
+    def gather(self, data: pin.Data, q: np.ndarray,
+               v: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray, np.ndarray | None]:
+        """One Pinocchio pass per sample of q (N, nq) (and v (N, nv)): the used joint placements
+        (N, n_used, 4, 4), world joint Jacobians `data.J` (N, 6, nv) and, with v, their time derivatives
+        `data.dJ` (N, 6, nv). Leaves data at the last sample, frame placements updated."""
+        model, ev = self.model, self.evaluator
+        n, nv = len(q), model.nv
+        G = np.empty((n, len(ev.joints), 4, 4))
+        J = np.empty((n, 6, nv))
+        dJ = None if v is None else np.empty((n, 6, nv))
+        for i in range(n):
+            if v is None:
+                pin.computeJointJacobians(model, data, q[i])
+            else:
+                pin.computeJointJacobiansTimeVariation(model, data, q[i], v[i])
+                dJ[i] = data.dJ.reshape(6, nv)
+            G[i] = ev.gather(data)
+            J[i] = data.J.reshape(6, nv)
+        pin.updateFramePlacements(model, data)
+        return G, J, dJ
+
+    def jacobian_derivatives(self, data: pin.Data, q: np.ndarray, v: np.ndarray) -> np.ndarray:
+        """(N, 6, nv) time derivatives of the world joint Jacobians `data.dJ` at N samples (q, v)."""
+        model = self.model
+        out = np.empty((len(q), 6, model.nv))
+        for i in range(len(q)):
+            pin.computeJointJacobiansTimeVariation(model, data, q[i], v[i])
+            out[i] = data.dJ.reshape(6, model.nv)
+        return out
+
     def wrenches(self, data: pin.Data, lam: np.ndarray) -> list[tuple[np.ndarray, np.ndarray, np.ndarray]]:
         """Per cut, (force, moment, point): the wrench frame_a's side exerts on frame_b's side.
 

@@ -67,17 +67,23 @@ def mobility(rows: ClosureRows, data: pin.Data, q: np.ndarray) -> Mobility:
 
 @dataclass(frozen=True)
 class ClosureSolve:
-    """A solved closure: configuration q, Newton steps taken, residuals e (rows,) and Jacobian J (rows, nv) at q."""
+    """A solved closure: configuration q, Newton steps taken, residuals e (rows,) and Jacobian J (rows, nv)
+    at q (None when not asked for)."""
 
     q: np.ndarray
     iterations: int
     residual: np.ndarray
-    jacobian: np.ndarray
+    jacobian: np.ndarray | None
 
 
-def _evaluate(rows: ClosureRows, data: pin.Data, q: np.ndarray) -> tuple[np.ndarray, np.ndarray, float]:
-    pin.computeJointJacobians(rows.model, data, q)
-    e, J = rows.evaluate(data)
+def _evaluate(rows: ClosureRows, data: pin.Data, q: np.ndarray,
+              jacobian: bool = True) -> tuple[np.ndarray, np.ndarray | None, float]:
+    if jacobian:
+        pin.computeJointJacobians(rows.model, data, q)
+        e, J = rows.evaluate(data)
+    else:
+        pin.forwardKinematics(rows.model, data, q)
+        e, J = rows.residual(data), None
     return e, J, float(np.sqrt(e @ e))
 
 
@@ -91,9 +97,11 @@ def _newton_step(J: np.ndarray, e: np.ndarray) -> np.ndarray:
 
 
 def newton_closure(rows: ClosureRows, data: pin.Data, q0: np.ndarray, free_v: np.ndarray, *,
-                   tol: float = 1e-12, max_iter: int = 60, method: str = "newton") -> ClosureSolve:
-    """`solve_closure`'s solve, returning the residual and Jacobian at the solution too (data holds the
-    joint placements and Jacobians at q, not the frame placements)."""
+                   tol: float = 1e-12, max_iter: int = 60, method: str = "newton",
+                   jacobian_at_solution: bool = True) -> ClosureSolve:
+    """`solve_closure`'s solve, returning the residual (and, when `jacobian_at_solution`, the Jacobian) at
+    the solution too; data then holds the joint placements (and Jacobians) at q, not the frame
+    placements. Without `jacobian_at_solution` a trial point's Jacobian is evaluated only to step from it."""
     model = rows.model
     q = q0.copy()
     e, J, norm = _evaluate(rows, data, q)
@@ -103,6 +111,8 @@ def newton_closure(rows: ClosureRows, data: pin.Data, q0: np.ndarray, free_v: np
     for it in range(max_iter):
         if norm <= tol:
             return ClosureSolve(q, it, e, J)
+        if J is None:  # data holds q: the accepted trial
+            e, J, norm = _evaluate(rows, data, q)
         Jf = J[:, free_v]
         if method == "lm":
             step_free = -np.linalg.solve(Jf.T @ Jf + damping * np.eye(Jf.shape[1]), Jf.T @ e)
@@ -113,7 +123,7 @@ def newton_closure(rows: ClosureRows, data: pin.Data, q0: np.ndarray, free_v: np
         alpha = 1.0
         while True:
             trial = pin.integrate(model, q, alpha * step)
-            e_trial, J_trial, n_trial = _evaluate(rows, data, trial)
+            e_trial, J_trial, n_trial = _evaluate(rows, data, trial, jacobian_at_solution)
             if n_trial < norm or alpha < 1e-6:
                 break
             alpha *= 0.5
@@ -127,7 +137,7 @@ def newton_closure(rows: ClosureRows, data: pin.Data, q0: np.ndarray, free_v: np
             break
     if norm <= tol:
         return ClosureSolve(q, it + 1, e, J)
-    if not at_q:
+    if not at_q or J is None:
         pin.computeJointJacobians(model, data, q)
     raise ClosureNotConverged(float(norm), tol, it + 1, "the loop cannot close from this guess, or at all, for these inputs")
 
@@ -255,7 +265,7 @@ def judge_passive(s: np.ndarray, independent_rows: int, residual: float = CLOSUR
 def check_regular(rows: ClosureRows, data: pin.Data, q: np.ndarray, free_v: np.ndarray, independent_rows: int) -> None:
     """Raise `SingularConfiguration` where the inputs (all but `free_v`) do not determine the motion at q
     (or at any sample of a (N, nq) q), to what the closure resolves (`judge_passive`)."""
-    G, J, _ = gather(rows, data, np.atleast_2d(q))
+    G, J, _ = rows.gather(data, np.atleast_2d(q))
     e, Jc = rows.evaluator.evaluate(G, J)
     judge_batch(np.linalg.svd(Jc[..., free_v], compute_uv=False), independent_rows, np.linalg.norm(e, axis=-1))
 
@@ -266,26 +276,6 @@ class Conditioned(np.ndarray):
     a batch; nan on derived arrays)."""
 
     condition: float = float("nan")
-
-
-def gather(rows: ClosureRows, data: pin.Data, q: np.ndarray,
-           v: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray, np.ndarray | None]:
-    """One Pinocchio pass per sample of q (N, nq) (and v (N, nv)): the used joint placements (N, n_used, 4, 4),
-    world joint Jacobians `data.J` (N, 6, nv) and, with v, their time derivatives `data.dJ` (N, 6, nv)."""
-    model, ev = rows.model, rows.evaluator
-    n, nv = len(q), model.nv
-    G = np.empty((n, len(ev.joints), 4, 4))
-    J = np.empty((n, 6, nv))
-    dJ = None if v is None else np.empty((n, 6, nv))
-    for i in range(n):
-        if v is None:
-            pin.computeJointJacobians(model, data, q[i])
-        else:
-            pin.computeJointJacobiansTimeVariation(model, data, q[i], v[i])
-            dJ[i] = data.dJ.reshape(6, nv)
-        G[i] = ev.gather(data)
-        J[i] = data.J.reshape(6, nv)
-    return G, J, dJ
 
 
 def passive_solve(J: np.ndarray, inputs: np.ndarray, input_v: np.ndarray, free_v: np.ndarray,
@@ -369,7 +359,7 @@ def velocities(rows: ClosureRows, data: pin.Data, q: np.ndarray, rates: np.ndarr
     """Joint velocities (N, nv) and condition numbers (N,) of N samples q (N, nq) from input rates (N, k):
     one Pinocchio pass and one gather per sample, then batched numpy (`project_batch`, judged at each
     sample's closure residual)."""
-    G, J, _ = gather(rows, data, q)
+    G, J, _ = rows.gather(data, q)
     e, Jc = rows.evaluator.evaluate(G, J)
     return project_batch(Jc, rates, input_v, free_v, independent_rows, residual=np.linalg.norm(e, axis=-1),
                          allow_singular=allow_singular)
@@ -380,7 +370,7 @@ def accelerations(rows: ClosureRows, data: pin.Data, q: np.ndarray, v: np.ndarra
                   allow_singular: bool = False) -> tuple[np.ndarray, np.ndarray]:
     """Joint accelerations (N, nv), J a + gamma = 0, and condition numbers (N,) of N samples (q, v) from
     input accelerations (N, k), as `velocities`; gamma from the joint Jacobians' time derivatives."""
-    G, J, dJ = gather(rows, data, q, v)
+    G, J, dJ = rows.gather(data, q, v)
     ev = rows.evaluator
     e, Jc = ev.evaluate(G, J)
     gamma = ev.drift(G, ev.twists(J, v), ev.twists(dJ, v))

@@ -156,19 +156,20 @@ class Mechanism:
     def closure_residual(self, q: np.ndarray) -> np.ndarray:
         """Residual of every kept row at q (m for position rows, dimensionless for alignment rows)."""
         q, = self._state(q=q)
-        pin.forwardKinematics(self.model, self.data, q)
+        kinematics.update_kinematics(self.model, self.data, q)
         return self.rows.residual(self.data)
 
     def closure_jacobian(self, q: np.ndarray) -> np.ndarray:
         """(rows, nv) Jacobian of the kept rows at q."""
         q, = self._state(q=q)
-        pin.computeJointJacobians(self.model, self.data, q)
+        kinematics.update_kinematics(self.model, self.data, q)
         return self.rows.jacobian(self.data)
 
     def closure_drift(self, q: np.ndarray, v: np.ndarray) -> np.ndarray:
         """gamma(q, v) with d2e/dt2 = J a + gamma."""
         q, v = self._state(q=q, v=v)
         pin.forwardKinematics(self.model, self.data, q, v, np.zeros(self.model.nv))
+        pin.updateFramePlacements(self.model, self.data)
         return self.rows.drift(self.data)
 
     def _kinematic_inputs(self, q: np.ndarray, values: Inputs, names: Sequence[str],

@@ -49,7 +49,7 @@ class JointAxes:
 
     def world(self, J: np.ndarray, G: np.ndarray) -> np.ndarray:
         """(N, n_joints, 3) world axes from world joint Jacobians (N, 6, nv) and the rows' used joint
-        placements (N, n_used, 4, 4) (`kinematics.gather`)."""
+        placements (N, n_used, 4, 4) (`ClosureRows.gather`)."""
         cols = J[:, :, self.column]  # (N, 6, n_tree)
         tree = np.where(self.angular[None, :, None], np.swapaxes(cols[:, 3:], 1, 2), np.swapaxes(cols[:, :3], 1, 2))
         tree = tree / np.linalg.norm(tree, axis=-1, keepdims=True)
@@ -91,9 +91,8 @@ class PathKinematics:
             x += weight * pin.difference(self.model, q[0], q[j])
         return pin.integrate(self.model, q[0], x)
 
-    def assemble(self, guess: np.ndarray, values: np.ndarray, tol: float) -> tuple[np.ndarray, np.ndarray]:
-        """q and the closure Jacobian (rows, nv) at q of one sample, the loops closed from `guess`; its
-        singularity is judged by `singular`.
+    def assemble(self, guess: np.ndarray, values: np.ndarray, tol: float) -> np.ndarray:
+        """q of one sample, the loops closed from `guess` (its singularity is judged by `singular`).
 
         Raises:
             ClosureNotConverged: no assembly near the guess.
@@ -101,9 +100,15 @@ class PathKinematics:
         """
         q0 = np.array(guess, dtype=float)
         q0[self.input_q] = values
-        solved = kinematics.newton_closure(self.mech.rows, self.data, q0, self.free_v, tol=tol)
+        solved = kinematics.newton_closure(self.mech.rows, self.data, q0, self.free_v, tol=tol, jacobian_at_solution=False)
         kinematics.check_determined(self.free_v, self.mech.independent_rows)
-        return solved.q, solved.jacobian
+        return solved.q
+
+    def jacobians(self, q: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Closure Jacobians (N, rows, nv), world joint Jacobians (N, 6, nv) and the rows' used joint
+        placements (N, n_used, 4, 4) of N assembled samples q (N, nq)."""
+        G, Jw, _ = self.mech.rows.gather(self.data, q)
+        return self.mech.rows.evaluator.evaluate(G, Jw)[1], Jw, G
 
     def singular(self, J: np.ndarray) -> tuple[int, SingularConfiguration] | None:
         """The first of N samples, by their closure Jacobians (N, rows, nv), where the inputs do not
@@ -115,14 +120,13 @@ class PathKinematics:
         i = int(np.argmax(bad))
         return i, kinematics.singular_error(s[i], self.mech.independent_rows, kinematics.CLOSURE_TOL)
 
-    def motion(self, q: np.ndarray, J: np.ndarray, rates: np.ndarray,
+    def motion(self, q: np.ndarray, J: np.ndarray, Jw: np.ndarray, G: np.ndarray, rates: np.ndarray,
                accelerations: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """v, a (N, nv) and the joint axes (N, n_joints, 3) of N assembled samples q (N, nq), from their
-        closure Jacobians (N, rows, nv) and the inputs' rates and accelerations (N, k), batched."""
-        rows = self.mech.rows
+        `jacobians` and the inputs' rates and accelerations (N, k), batched."""
+        ev = self.mech.rows.evaluator
         v = kinematics.passive_solve(J, rates, self.input_v, self.free_v)
-        G, Jw, dJ = kinematics.gather(rows, self.data, q, v)
-        ev = rows.evaluator
+        dJ = self.mech.rows.jacobian_derivatives(self.data, q, v)
         gamma = ev.drift(G, ev.twists(Jw, v), ev.twists(dJ, v))
         a = kinematics.passive_solve(J, accelerations, self.input_v, self.free_v, gamma)
         return v, a, self.axes.world(Jw, G)

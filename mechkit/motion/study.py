@@ -81,6 +81,8 @@ def kinematics_along(path: PathKinematics, law: InputLaw, tol: float = 1e-12, sk
     model, n = path.model, len(law.t)
     q = np.full((n, model.nq), np.nan)
     J = np.full((n, path.mech.rows.size, model.nv), np.nan)
+    Jw = np.full((n, 6, model.nv), np.nan)
+    G = np.full((n, len(path.mech.rows.evaluator.joints), 4, 4), np.nan)
     failures: list[tuple[float, str]] = []
     done: list[int] = []  # the samples assembled so far, in order: the predictor's points
 
@@ -102,13 +104,15 @@ def kinematics_along(path: PathKinematics, law: InputLaw, tol: float = 1e-12, sk
                     guess = path.predict(q[last], law.t[last], law.t[i])
                 else:
                     guess = path.first_guess(law.values[i])
-                q[i], J[i] = path.assemble(guess, law.values[i], tol)
+                q[i] = path.assemble(guess, law.values[i], tol)
             except MechkitError as err:
                 error = (i, err)
                 break
             block.append(i)
             done.append(i)
             i += 1
+        if block:
+            J[block], Jw[block], G[block] = path.jacobians(q[block])
         singular = path.singular(J[block]) if block else None
         if singular is not None:
             k, err = singular
@@ -126,7 +130,8 @@ def kinematics_along(path: PathKinematics, law: InputLaw, tol: float = 1e-12, sk
     a = np.full((n, model.nv), np.nan)
     axes = np.full((n, len(path.axes.column) + len(path.axes.cut_joint), 3), np.nan)
     if good.size:
-        v[good], a[good], axes[good] = path.motion(q[good], J[good], law.rates[good], law.accelerations[good])
+        v[good], a[good], axes[good] = path.motion(q[good], J[good], Jw[good], G[good], law.rates[good],
+                                                   law.accelerations[good])
     return q, v, a, axes, failures
 
 
