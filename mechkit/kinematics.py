@@ -22,6 +22,8 @@ RANK_TOL = 1e-9
 ASSEMBLY_METHODS = ("newton", "lm")
 #: Closure residual the assembly solves to by default (`Mechanism.assemble`'s tol; m for position rows).
 CLOSURE_TOL = 1e-12
+#: Machine epsilon of float64 (the rounding floor of a residual).
+EPS = float(np.finfo(float).eps)
 #: Margin above the resolvable smallest singular value below which a configuration counts as singular.
 SINGULAR_MARGIN = 3.0
 
@@ -195,8 +197,7 @@ def resolvable_singular_value(s_max: float | np.ndarray, residual: float | np.nd
         s_max: largest singular value of the passive block (the rows' scale).
         residual: closure residual norm reached at the configuration.
     """
-    floor = float(np.finfo(float).eps) * np.asarray(s_max)
-    out = SINGULAR_MARGIN * np.sqrt(np.maximum(residual, floor) * s_max)
+    out = SINGULAR_MARGIN * np.sqrt(np.maximum(residual, EPS * s_max) * s_max)
     return float(out) if np.ndim(out) == 0 else out
 
 
@@ -208,10 +209,10 @@ def _verdict(s: np.ndarray, independent_rows: int, residual: np.ndarray,
         ones = np.ones(len(s))
         return ones, np.zeros(len(s), dtype=bool), ones * 0.0
     s_max, s_min = s[:, 0], s[:, k - 1]
-    with np.errstate(divide="ignore", invalid="ignore"):
-        cond = np.where(s_min > 0, s_max / s_min, np.inf)
-    limit = np.asarray(resolvable_singular_value(s_max, residual))
-    bad = (s_min <= 0) | ((s_min < limit) & (not allow_singular))
+    positive = s_min > 0
+    cond = np.divide(s_max, s_min, out=np.full(len(s), np.inf), where=positive)
+    limit = resolvable_singular_value(s_max, residual)
+    bad = ~positive | ((s_min < limit) & (not allow_singular))
     return cond, bad, limit
 
 
