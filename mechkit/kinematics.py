@@ -280,10 +280,11 @@ class Conditioned(np.ndarray):
 
 
 def passive_solve(J: np.ndarray, inputs: np.ndarray, input_v: np.ndarray, free_v: np.ndarray,
-                  rhs: np.ndarray | None = None) -> np.ndarray:
+                  rhs: np.ndarray | None = None, svd: tuple | None = None) -> np.ndarray:
     """x (N, nv) with x[input_v] = inputs (N, k) and J_free x_free = -(J_in x_in + rhs) for J (N, rows, nv):
-    one batched LU solve where the passive block is square, else the least-squares solution (the
-    block has full column rank where `judge_batch` accepted it)."""
+    one batched LU solve where the passive block is square, else the least-squares solution from its
+    thin SVD (`svd` = (U, s, Vt) when already computed; the block has full column rank where
+    `judge_batch` accepted it)."""
     b = (J[..., input_v] @ inputs[..., None])[..., 0]
     if rhs is not None:
         b = b + rhs
@@ -292,14 +293,15 @@ def passive_solve(J: np.ndarray, inputs: np.ndarray, input_v: np.ndarray, free_v
     x[..., input_v] = inputs
     if Jf.shape[-1] == 0:
         return x
-    try:
-        if Jf.shape[-2] != Jf.shape[-1]:
-            raise np.linalg.LinAlgError
-        x[..., free_v] = -np.linalg.solve(Jf, b[..., None])[..., 0]
-    except np.linalg.LinAlgError:
-        U, s, Vt = np.linalg.svd(Jf, full_matrices=False)
-        with np.errstate(divide="ignore", invalid="ignore"):
-            x[..., free_v] = -(np.swapaxes(Vt, -1, -2) @ ((np.swapaxes(U, -1, -2) @ b[..., None])[..., 0] / s)[..., None])[..., 0]
+    if svd is None and Jf.shape[-2] == Jf.shape[-1]:
+        try:
+            x[..., free_v] = -np.linalg.solve(Jf, b[..., None])[..., 0]
+            return x
+        except np.linalg.LinAlgError:
+            pass
+    U, s, Vt = np.linalg.svd(Jf, full_matrices=False) if svd is None else svd
+    with np.errstate(divide="ignore", invalid="ignore"):
+        x[..., free_v] = -(np.swapaxes(Vt, -1, -2) @ ((np.swapaxes(U, -1, -2) @ b[..., None])[..., 0] / s)[..., None])[..., 0]
     return x
 
 
@@ -314,6 +316,8 @@ def project_batch(J: np.ndarray, inputs: np.ndarray, input_v: np.ndarray, free_v
                   rhs: np.ndarray | None = None, *, residual: np.ndarray | float = CLOSURE_TOL,
                   allow_singular: bool = False) -> tuple[np.ndarray, np.ndarray]:
     """`project_velocity` for N samples: J (N, rows, nv), inputs (N, k), rhs (N, rows), residual (N,).
+    One SVD per sample: singular values only for a square passive block (then an LU solve), thin
+    factors otherwise (reused for the least-squares solve).
 
     Returns:
         x (N, nv) and the passive block's condition numbers (N,).
@@ -322,8 +326,11 @@ def project_batch(J: np.ndarray, inputs: np.ndarray, input_v: np.ndarray, free_v
         SingularConfiguration: as `project_velocity`, at the first sample it rejects.
     """
     check_determined(free_v, independent_rows)
-    cond = judge_batch(np.linalg.svd(J[..., free_v], compute_uv=False), independent_rows, residual, allow_singular)
-    return passive_solve(J, inputs, input_v, free_v, rhs), cond
+    Jf = J[..., free_v]
+    factors = None if Jf.shape[-2] == Jf.shape[-1] else np.linalg.svd(Jf, full_matrices=False)
+    s = np.linalg.svd(Jf, compute_uv=False) if factors is None else factors[1]
+    cond = judge_batch(s, independent_rows, residual, allow_singular)
+    return passive_solve(J, inputs, input_v, free_v, rhs, factors), cond
 
 
 def project_velocity(J: np.ndarray, v_inputs: np.ndarray, input_v: np.ndarray, free_v: np.ndarray,
