@@ -127,3 +127,26 @@ def test_batched_singular_sample_raises_and_allow_singular_passes(load_cached):
         v = m.velocities(Q[i], rates[i], allow_singular=True)
         assert np.abs(V[i] - v).max() <= 1e-13 * np.abs(v).max()
     assert V.condition == m.velocities(Q[1], rates[1], allow_singular=True).condition > 1e5
+
+
+def test_motion_study_kinematics_equal_the_mechanism_calls(load_cached):
+    """The study's batched v, a (after the per-sample solves from the polynomial warm start) equal
+    `Mechanism.velocities` / `accelerations` at its q, and its tree axes the joints' world axes."""
+    from mechkit import motion
+    from mechkit.mechanisms.parallel_2t1r.motion_law import MOTION_DURATION, motion_law
+
+    mech = load_cached("parallel_2t1r")
+    law = motion.from_callable(mech, motion_law, np.linspace(0.2, MOTION_DURATION, 40))
+    r = motion.study(mech, law)
+    names = list(law.names)
+    data = mech.model.createData()
+    for i in range(len(r.t)):
+        v = mech.velocities(r.q[i], law.rates[i], names)
+        a = mech.accelerations(r.q[i], v, law.accelerations[i], names)
+        assert np.abs(r.v[i] - v).max() <= 1e-12 * max(1.0, np.abs(v).max())
+        assert np.abs(r.a[i] - a).max() <= 1e-11 * max(1.0, np.abs(a).max())
+        pin.forwardKinematics(mech.model, data, r.q[i])
+        for j in range(1, mech.model.njoints):
+            S = np.asarray(data.joints[j].S).reshape(6)
+            axis = data.oMi[j].rotation @ (S[3:] if np.linalg.norm(S[3:]) > 0 else S[:3])
+            assert np.abs(r.axes[i, j - 1] - axis / np.linalg.norm(axis)).max() < 1e-14
