@@ -11,6 +11,7 @@ from dataclasses import dataclass
 
 import numpy as np
 import pinocchio as pin
+from scipy.linalg import lapack
 
 from mechkit.closures import ClosureRows
 from mechkit.exceptions import ClosureNotConverged, SingularConfiguration
@@ -21,6 +22,8 @@ RANK_TOL = 1e-9
 ASSEMBLY_METHODS = ("newton", "lm")
 #: Closure residual the assembly solves to by default (`Mechanism.assemble`'s tol; m for position rows).
 CLOSURE_TOL = 1e-12
+#: Machine epsilon of float64 (the rounding floor of a residual).
+EPS = float(np.finfo(float).eps)
 #: Margin above the resolvable smallest singular value below which a configuration counts as singular.
 SINGULAR_MARGIN = 3.0
 
@@ -64,12 +67,90 @@ def mobility(rows: ClosureRows, data: pin.Data, q: np.ndarray) -> Mobility:
     return Mobility(rows.model.nv - r, rows.size, r, rows.size - r, s)
 
 
+@dataclass(frozen=True)
+class ClosureSolve:
+    """A solved closure: configuration q, Newton steps taken, residuals e (rows,) and Jacobian J (rows, nv)
+    at q (None when not asked for)."""
+
+    q: np.ndarray
+    iterations: int
+    residual: np.ndarray
+    jacobian: np.ndarray | None
+
+
+def _evaluate(rows: ClosureRows, data: pin.Data, q: np.ndarray,
+              jacobian: bool = True) -> tuple[np.ndarray, np.ndarray | None, float]:
+    if jacobian:
+        pin.computeJointJacobians(rows.model, data, q)
+        e, J = rows.evaluate(data)
+    else:
+        pin.forwardKinematics(rows.model, data, q)
+        e, J = rows.residual(data), None
+    return e, J, float(np.sqrt(e @ e))
+
+
+def _newton_step(J: np.ndarray, e: np.ndarray) -> np.ndarray:
+    """Minimum-norm x with J x = -e: LAPACK gesv when J is square and regular, else lstsq."""
+    if J.shape[0] == J.shape[1]:
+        _, _, x, info = lapack.dgesv(J, e)
+        if info == 0:
+            return -x
+    return -np.linalg.lstsq(J, e, rcond=None)[0]
+
+
+def newton_closure(rows: ClosureRows, data: pin.Data, q0: np.ndarray, free_v: np.ndarray, *,
+                   tol: float = 1e-12, max_iter: int = 60, method: str = "newton",
+                   jacobian_at_solution: bool = True) -> ClosureSolve:
+    """`solve_closure`'s solve, returning the residual (and, when `jacobian_at_solution`, the Jacobian) at
+    the solution too; data then holds the joint placements (and Jacobians) at q, not the frame
+    placements. Without `jacobian_at_solution` a trial point's Jacobian is evaluated only to step from it."""
+    model = rows.model
+    q = q0.copy()
+    e, J, norm = _evaluate(rows, data, q)
+    damping = 1e-3
+    it = 0
+    at_q = True  # data holds q (not a rejected trial)
+    for it in range(max_iter):
+        if norm <= tol:
+            return ClosureSolve(q, it, e, J)
+        if J is None:  # data holds q: the accepted trial
+            e, J, norm = _evaluate(rows, data, q)
+        Jf = J[:, free_v]
+        if method == "lm":
+            step_free = -np.linalg.solve(Jf.T @ Jf + damping * np.eye(Jf.shape[1]), Jf.T @ e)
+        else:
+            step_free = _newton_step(Jf, e)
+        step = np.zeros(model.nv)
+        step[free_v] = step_free
+        alpha = 1.0
+        while True:
+            trial = pin.integrate(model, q, alpha * step)
+            e_trial, J_trial, n_trial = _evaluate(rows, data, trial, jacobian_at_solution)
+            if n_trial < norm or alpha < 1e-6:
+                break
+            alpha *= 0.5
+        if not np.isfinite(n_trial):
+            at_q = False
+            break
+        if method == "lm":
+            damping = damping * 0.3 if n_trial < norm else damping * 10.0
+        q, e, J, norm = trial, e_trial, J_trial, n_trial
+        if alpha < 1e-6 and norm > tol:
+            break
+    if norm <= tol:
+        return ClosureSolve(q, it + 1, e, J)
+    if not at_q or J is None:
+        pin.computeJointJacobians(model, data, q)
+    raise ClosureNotConverged(float(norm), tol, it + 1, "the loop cannot close from this guess, or at all, for these inputs")
+
+
 def solve_closure(rows: ClosureRows, data: pin.Data, q0: np.ndarray, free_v: np.ndarray, *,
                   tol: float = 1e-12, max_iter: int = 60, method: str = "newton") -> tuple[np.ndarray, int]:
     """Solve the closure for the velocity directions `free_v`, keeping the others fixed.
 
-    Gauss-Newton with a minimum-norm step (lstsq: redundant rows allowed) or Levenberg-Marquardt,
-    both with a backtracking line search on |e|.
+    Gauss-Newton with a minimum-norm step (LAPACK gesv on a square regular block, else lstsq:
+    redundant rows allowed) or Levenberg-Marquardt, both with a backtracking line search on |e|.
+    Leaves `data` current at q (joint and frame placements, joint Jacobians).
 
     Args:
         rows: the closure rows.
@@ -86,51 +167,20 @@ def solve_closure(rows: ClosureRows, data: pin.Data, q0: np.ndarray, free_v: np.
     Raises:
         ClosureNotConverged: the residual did not reach tol (the linkage may not assemble there).
     """
-    model = rows.model
-    q = q0.copy()
-    update_kinematics(model, data, q)
-    e = rows.residual(data)
-    norm = np.linalg.norm(e)
-    damping = 1e-3
-    it = 0
-    for it in range(max_iter):
-        if norm <= tol:
-            return q, it
-        J = rows.jacobian(data)[:, free_v]
-        if method == "lm":
-            step_free = -np.linalg.solve(J.T @ J + damping * np.eye(J.shape[1]), J.T @ e)
-        else:
-            step_free = -np.linalg.lstsq(J, e, rcond=None)[0]
-        step = np.zeros(model.nv)
-        step[free_v] = step_free
-        alpha = 1.0
-        while True:
-            trial = pin.integrate(model, q, alpha * step)
-            update_kinematics(model, data, trial)
-            e_trial = rows.residual(data)
-            n_trial = np.linalg.norm(e_trial)
-            if n_trial < norm or alpha < 1e-6:
-                break
-            alpha *= 0.5
-        if not np.isfinite(n_trial):
-            break
-        if method == "lm":
-            damping = damping * 0.3 if n_trial < norm else damping * 10.0
-        q, e, norm = trial, e_trial, n_trial
-        if alpha < 1e-6 and norm > tol:
-            break
-    update_kinematics(model, data, q)
-    if norm <= tol:
-        return q, it + 1
-    raise ClosureNotConverged(float(norm), tol, it + 1, "the loop cannot close from this guess, or at all, for these inputs")
+    try:
+        out = newton_closure(rows, data, q0, free_v, tol=tol, max_iter=max_iter, method=method)
+    finally:
+        pin.updateFramePlacements(rows.model, data)
+    return out.q, out.iterations
 
 
 def passive_condition(J: np.ndarray, free_v: np.ndarray, independent_rows: int) -> float:
     """Condition number of the passive block restricted to the generic rank (inf when singular)."""
-    return _condition(np.linalg.svd(J[:, free_v], compute_uv=False), independent_rows)
+    s = np.linalg.svd(J[:, free_v], compute_uv=False)
+    return float(_verdict(s[None], independent_rows, np.array([CLOSURE_TOL]), True)[0][0])
 
 
-def resolvable_singular_value(s_max: float, residual: float) -> float:
+def resolvable_singular_value(s_max: float | np.ndarray, residual: float | np.ndarray) -> float | np.ndarray:
     """The smallest singular value of the passive block that a closure solved to `residual` can resolve.
 
     Near a singularity the closure residual grows quadratically in the passive coordinates, e ~ s_max
@@ -141,14 +191,59 @@ def resolvable_singular_value(s_max: float, residual: float) -> float:
     it overshoots to rounding; r is floored at rounding, eps s_max. Measured on the five-bar with its
     distal links collinear (tests/test_bad_inputs_singular.py): at the singular input s_min is 0.6 to
     0.9 sqrt(r s_max); 1e-8 rad away it is over 30 times that. `SINGULAR_MARGIN` (3, ours) sits above
-    the singular floor.
+    the singular floor. Element-wise on arrays.
 
     Args:
         s_max: largest singular value of the passive block (the rows' scale).
         residual: closure residual norm reached at the configuration.
     """
-    floor = float(np.finfo(float).eps) * s_max
-    return SINGULAR_MARGIN * float(np.sqrt(max(residual, floor) * s_max))
+    out = SINGULAR_MARGIN * np.sqrt(np.maximum(residual, EPS * s_max) * s_max)
+    return float(out) if np.ndim(out) == 0 else out
+
+
+def _verdict(s: np.ndarray, independent_rows: int, residual: np.ndarray,
+             allow_singular: bool) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Per sample of s (N, m): condition number, not-resolvable flag and resolvable limit."""
+    k = min(independent_rows, s.shape[1])
+    if k == 0:
+        ones = np.ones(len(s))
+        return ones, np.zeros(len(s), dtype=bool), ones * 0.0
+    s_max, s_min = s[:, 0], s[:, k - 1]
+    positive = s_min > 0
+    cond = np.divide(s_max, s_min, out=np.full(len(s), np.inf), where=positive)
+    limit = resolvable_singular_value(s_max, residual)
+    bad = ~positive | ((s_min < limit) & (not allow_singular))
+    return cond, bad, limit
+
+
+def rejected(s: np.ndarray, independent_rows: int, residual: np.ndarray | float,
+             allow_singular: bool = False) -> np.ndarray:
+    """(N,) True at the samples of singular values s (N, m) that `judge_batch` rejects."""
+    return _verdict(s, independent_rows, np.broadcast_to(np.asarray(residual, dtype=float), (len(s),)), allow_singular)[1]
+
+
+def judge_batch(s: np.ndarray, independent_rows: int, residual: np.ndarray | float,
+                allow_singular: bool = False) -> np.ndarray:
+    """`judge_passive` for N samples: condition numbers (N,) from singular values (N, m) and residuals (N,).
+
+    Raises:
+        SingularConfiguration: at the first sample that `judge_passive` rejects.
+    """
+    residual = np.broadcast_to(np.asarray(residual, dtype=float), (len(s),))
+    cond, bad, _ = _verdict(s, independent_rows, residual, allow_singular)
+    if bad.any():
+        i = int(np.argmax(bad))
+        raise singular_error(s[i], independent_rows, float(residual[i]))
+    return cond
+
+
+def singular_error(s: np.ndarray, independent_rows: int, residual: float) -> SingularConfiguration:
+    """The error for a passive block with singular values s (m,) that `judge_passive` rejects."""
+    cond, _, limit = _verdict(s[None], independent_rows, np.array([residual]), False)
+    k = min(independent_rows, s.size)
+    return SingularConfiguration(float(cond[0]), f"passive block of the closure Jacobian: smallest singular value "
+                                 f"{s[k - 1]:.2e} below the {limit[0]:.2e} a closure residual of {residual:.1e} "
+                                 "resolves (inputs do not determine the motion)")
 
 
 def judge_passive(s: np.ndarray, independent_rows: int, residual: float = CLOSURE_TOL,
@@ -165,39 +260,77 @@ def judge_passive(s: np.ndarray, independent_rows: int, residual: float = CLOSUR
         SingularConfiguration: smallest singular value (on the generic rank) zero, or below
             `resolvable_singular_value` unless `allow_singular`.
     """
-    cond = _condition(s, independent_rows)
-    k = min(independent_rows, s.size)
-    if k == 0:
-        return cond
-    limit = resolvable_singular_value(s[0], residual)
-    if s[k - 1] <= 0 or (s[k - 1] < limit and not allow_singular):
-        raise SingularConfiguration(cond, f"passive block of the closure Jacobian: smallest singular value {s[k - 1]:.2e} "
-                                    f"below the {limit:.2e} a closure residual of {residual:.1e} resolves "
-                                    "(inputs do not determine the motion)")
-    return cond
+    return float(judge_batch(np.asarray(s)[None], independent_rows, np.array([residual]), allow_singular)[0])
 
 
 def check_regular(rows: ClosureRows, data: pin.Data, q: np.ndarray, free_v: np.ndarray, independent_rows: int) -> None:
     """Raise `SingularConfiguration` where the inputs (all but `free_v`) do not determine the motion at q
     (or at any sample of a (N, nq) q), to what the closure resolves (`judge_passive`)."""
-    for qi in np.atleast_2d(q):
-        update_kinematics(rows.model, data, qi)
-        s = np.linalg.svd(rows.jacobian(data)[:, free_v], compute_uv=False)
-        judge_passive(s, independent_rows, float(np.linalg.norm(rows.residual(data))))
+    G, J, _ = rows.gather(data, np.atleast_2d(q))
+    e, Jc = rows.evaluator.evaluate(G, J)
+    judge_batch(np.linalg.svd(Jc[..., free_v], compute_uv=False), independent_rows, np.linalg.norm(e, axis=-1))
 
 
 class Conditioned(np.ndarray):
     """A kinematic result (velocities or accelerations) with the condition number of the passive block
-    it was solved with (`condition`, s_max / s_min on the generic rank; nan on derived arrays)."""
+    it was solved with (`condition`, s_max / s_min on the generic rank, the largest over the samples of
+    a batch; nan on derived arrays)."""
 
     condition: float = float("nan")
 
 
-def _condition(s: np.ndarray, independent_rows: int) -> float:
-    k = min(independent_rows, s.size)
-    if k == 0:
-        return 1.0
-    return float(s[0] / s[k - 1]) if s[k - 1] > 0 else float("inf")
+def passive_solve(J: np.ndarray, inputs: np.ndarray, input_v: np.ndarray, free_v: np.ndarray,
+                  rhs: np.ndarray | None = None, svd: tuple | None = None) -> np.ndarray:
+    """x (N, nv) with x[input_v] = inputs (N, k) and J_free x_free = -(J_in x_in + rhs) for J (N, rows, nv):
+    one batched LU solve where the passive block is square, else the least-squares solution from its
+    thin SVD (`svd` = (U, s, Vt) when already computed; the block has full column rank where
+    `judge_batch` accepted it)."""
+    b = (J[..., input_v] @ inputs[..., None])[..., 0]
+    if rhs is not None:
+        b = b + rhs
+    Jf = J[..., free_v]
+    x = np.empty(J.shape[:-2] + J.shape[-1:])
+    x[..., input_v] = inputs
+    if Jf.shape[-1] == 0:
+        return x
+    if svd is None and Jf.shape[-2] == Jf.shape[-1]:
+        try:
+            x[..., free_v] = -np.linalg.solve(Jf, b[..., None])[..., 0]
+            return x
+        except np.linalg.LinAlgError:
+            pass
+    U, s, Vt = np.linalg.svd(Jf, full_matrices=False) if svd is None else svd
+    with np.errstate(divide="ignore", invalid="ignore"):
+        x[..., free_v] = -(np.swapaxes(Vt, -1, -2) @ ((np.swapaxes(U, -1, -2) @ b[..., None])[..., 0] / s)[..., None])[..., 0]
+    return x
+
+
+def check_determined(free_v: np.ndarray, independent_rows: int) -> None:
+    """Raise `SingularConfiguration` when more coordinates are free than the closure has independent rows."""
+    if free_v.size > independent_rows:
+        raise SingularConfiguration(float("inf"), f"{free_v.size} free coordinates but only {independent_rows} independent "
+                                    "closure rows: the inputs do not determine the motion (give more inputs)")
+
+
+def project_batch(J: np.ndarray, inputs: np.ndarray, input_v: np.ndarray, free_v: np.ndarray, independent_rows: int,
+                  rhs: np.ndarray | None = None, *, residual: np.ndarray | float = CLOSURE_TOL,
+                  allow_singular: bool = False) -> tuple[np.ndarray, np.ndarray]:
+    """`project_velocity` for N samples: J (N, rows, nv), inputs (N, k), rhs (N, rows), residual (N,).
+    One SVD per sample: singular values only for a square passive block (then an LU solve), thin
+    factors otherwise (reused for the least-squares solve).
+
+    Returns:
+        x (N, nv) and the passive block's condition numbers (N,).
+
+    Raises:
+        SingularConfiguration: as `project_velocity`, at the first sample it rejects.
+    """
+    check_determined(free_v, independent_rows)
+    Jf = J[..., free_v]
+    factors = None if Jf.shape[-2] == Jf.shape[-1] else np.linalg.svd(Jf, full_matrices=False)
+    s = np.linalg.svd(Jf, compute_uv=False) if factors is None else factors[1]
+    cond = judge_batch(s, independent_rows, residual, allow_singular)
+    return passive_solve(J, inputs, input_v, free_v, rhs, factors), cond
 
 
 def project_velocity(J: np.ndarray, v_inputs: np.ndarray, input_v: np.ndarray, free_v: np.ndarray,
@@ -217,20 +350,37 @@ def project_velocity(J: np.ndarray, v_inputs: np.ndarray, input_v: np.ndarray, f
             `resolvable_singular_value` (the inputs do not determine the motion, to what the closure
             resolves).
     """
-    if free_v.size > independent_rows:
-        raise SingularConfiguration(float("inf"), f"{free_v.size} free coordinates but only {independent_rows} independent "
-                                    "closure rows: the inputs do not determine the motion (give more inputs)")
-    U, s, Vt = np.linalg.svd(J[:, free_v], full_matrices=False)
-    cond = judge_passive(s, independent_rows, residual, allow_singular)
-    k = min(independent_rows, s.size)
-    b = J[:, input_v] @ v_inputs
-    if rhs is not None:
-        b = b + rhs
-    x = np.zeros(J.shape[1])
-    x[input_v] = v_inputs
-    # truncated to the generic rank: a row redundant at a regular pose stays redundant here, even
-    # when rounding leaves it a singular value just above any fixed threshold
-    x[free_v] = -Vt[:k].T @ ((U[:, :k].T @ b) / s[:k])
+    x, cond = project_batch(J[None], np.asarray(v_inputs, dtype=float)[None], input_v, free_v, independent_rows,
+                            None if rhs is None else rhs[None], residual=residual, allow_singular=allow_singular)
+    return conditioned(x[0], cond)
+
+
+def conditioned(x: np.ndarray, cond: np.ndarray) -> Conditioned:
+    """x as a `Conditioned` carrying the largest of the condition numbers `cond`."""
     out = x.view(Conditioned)
-    out.condition = cond
+    out.condition = float(np.max(cond))
     return out
+
+
+def velocities(rows: ClosureRows, data: pin.Data, q: np.ndarray, rates: np.ndarray, input_v: np.ndarray,
+               free_v: np.ndarray, independent_rows: int, allow_singular: bool = False) -> tuple[np.ndarray, np.ndarray]:
+    """Joint velocities (N, nv) and condition numbers (N,) of N samples q (N, nq) from input rates (N, k):
+    one Pinocchio pass and one gather per sample, then batched numpy (`project_batch`, judged at each
+    sample's closure residual)."""
+    G, J, _ = rows.gather(data, q)
+    e, Jc = rows.evaluator.evaluate(G, J)
+    return project_batch(Jc, rates, input_v, free_v, independent_rows, residual=np.linalg.norm(e, axis=-1),
+                         allow_singular=allow_singular)
+
+
+def accelerations(rows: ClosureRows, data: pin.Data, q: np.ndarray, v: np.ndarray, input_accelerations: np.ndarray,
+                  input_v: np.ndarray, free_v: np.ndarray, independent_rows: int,
+                  allow_singular: bool = False) -> tuple[np.ndarray, np.ndarray]:
+    """Joint accelerations (N, nv), J a + gamma = 0, and condition numbers (N,) of N samples (q, v) from
+    input accelerations (N, k), as `velocities`; gamma from the joint Jacobians' time derivatives."""
+    G, J, dJ = rows.gather(data, q, v)
+    ev = rows.evaluator
+    e, Jc = ev.evaluate(G, J)
+    gamma = ev.drift(G, ev.twists(J, v), ev.twists(dJ, v))
+    return project_batch(Jc, input_accelerations, input_v, free_v, independent_rows, gamma,
+                         residual=np.linalg.norm(e, axis=-1), allow_singular=allow_singular)

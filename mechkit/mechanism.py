@@ -172,28 +172,35 @@ class Mechanism:
         pin.updateFramePlacements(self.model, self.data)
         return self.rows.drift(self.data)
 
+    def _kinematic_inputs(self, q: np.ndarray, values: Inputs, names: Sequence[str],
+                          arg: str) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+        """q as (N, nq), the given values as (N, k), and the input and free velocity indices."""
+        if batch.is_batch(q):
+            q = batch.sample_array(q, "q", len(q), self.model.nq)
+            keys, given = batch.sample_inputs(values, names, len(q))
+            arguments.joint_names("inputs", keys, list(self.model.names[1:]), allow_empty=True)
+            given = arguments.array(arg, given, len(keys))
+        else:
+            one = self._inputs(values, names, arg)
+            keys, q, given = list(one), q[None], np.array([list(one.values())], dtype=float).reshape(1, -1)
+        return (q, given, *self._split(keys))
+
     def velocities(self, q: np.ndarray, input_rates: Inputs, inputs: Sequence[str] | None = None, *,
                    allow_singular: bool = False) -> kinematics.Conditioned:
         """Joint velocities v from the input rates (rad/s or m/s), J v = 0; `v.condition`: the passive block's.
 
-        Batched: q of shape (N, nq) and rates of shape (N, k) (or joint name -> (N,) values) give (N, nv).
+        Batched: q of shape (N, nq) and rates of shape (N, k) (or joint name -> (N,) values) give (N, nv),
+        computed together (`kinematics.velocities`); `condition` is then the largest over the samples.
         Raises `SingularConfiguration` where the inputs do not determine the motion to what the closure
         resolves (`kinematics.resolvable_singular_value`), unless `allow_singular`.
         """
         allow_singular = arguments.flag("allow_singular", allow_singular)
         q, = self._state(q=q)
         names = self._input_names(inputs, "velocities from input rates")
-        if batch.is_batch(q):
-            q = batch.sample_array(q, "q", len(q), self.model.nq)
-            keys, rates = batch.sample_inputs(input_rates, names, len(q))
-            return np.array([self.velocities(qi, ri, keys, allow_singular=allow_singular)
-                             for qi, ri in zip(q, rates)]).reshape(len(q), self.model.nv)
-        rates = self._inputs(input_rates, names, "input_rates")
-        input_v, free_v = self._split(list(rates))
-        J = self.closure_jacobian(q)
-        residual = float(np.linalg.norm(self.rows.residual(self.data)))
-        return kinematics.project_velocity(J, np.array(list(rates.values())), input_v, free_v, self.independent_rows,
-                                           residual=residual, allow_singular=allow_singular)
+        qs, rates, input_v, free_v = self._kinematic_inputs(q, input_rates, names, "input_rates")
+        x, cond = kinematics.velocities(self.rows, self.data, qs, rates, input_v, free_v, self.independent_rows,
+                                        allow_singular)
+        return kinematics.conditioned(x if batch.is_batch(q) else x[0], cond)
 
     def accelerations(self, q: np.ndarray, v: np.ndarray, input_accelerations: Inputs,
                       inputs: Sequence[str] | None = None, *, allow_singular: bool = False) -> kinematics.Conditioned:
@@ -202,19 +209,12 @@ class Mechanism:
         allow_singular = arguments.flag("allow_singular", allow_singular)
         q, v = self._state(q=q, v=v)
         names = self._input_names(inputs, "accelerations from input accelerations")
+        qs, acc, input_v, free_v = self._kinematic_inputs(q, input_accelerations, names, "input_accelerations")
         if batch.is_batch(q):
-            q = batch.sample_array(q, "q", len(q), self.model.nq)
-            keys, acc = batch.sample_inputs(input_accelerations, names, len(q))
             v = batch.sample_array(v, "v", len(q), self.model.nv)
-            return np.array([self.accelerations(qi, vi, ai, keys, allow_singular=allow_singular)
-                             for qi, vi, ai in zip(q, v, acc)]).reshape(len(q), self.model.nv)
-        acc = self._inputs(input_accelerations, names, "input_accelerations")
-        input_v, free_v = self._split(list(acc))
-        J = self.closure_jacobian(q)
-        residual = float(np.linalg.norm(self.rows.residual(self.data)))
-        gamma = self.closure_drift(q, v)
-        return kinematics.project_velocity(J, np.array(list(acc.values())), input_v, free_v, self.independent_rows,
-                                           rhs=gamma, residual=residual, allow_singular=allow_singular)
+        x, cond = kinematics.accelerations(self.rows, self.data, qs, v.reshape(-1, self.model.nv), acc, input_v, free_v,
+                                           self.independent_rows, allow_singular)
+        return kinematics.conditioned(x if batch.is_batch(q) else x[0], cond)
 
     def mobility(self, q: np.ndarray | None = None) -> kinematics.Mobility:
         """Numerical DOF and redundant constraints at q (default: the home assembly)."""

@@ -20,7 +20,7 @@ from mechkit.mechanism import Mechanism, load
 from mechkit.mechanisms.parallel_2t1r.motion_law import MOTION_DURATION, motion_law
 from mechkit.motion.inputs import from_callable
 from mechkit.motion.path import PathKinematics
-from mechkit.motion.study import driven_problem, inverse_batch, study
+from mechkit.motion.study import driven_problem, inverse_batch, kinematics_along, study
 
 #: The issue's goal for the 2T1R motion law (501 samples), s.
 GOAL_S = 0.050
@@ -28,8 +28,9 @@ GOAL_S = 0.050
 
 @dataclass(frozen=True)
 class MotionSpeed:
-    """Fastest of the repeats (s; the least disturbed by other load on the machine): the whole study, its
-    kinematics (closure solve, v, a) and its dynamics (efforts and every reaction), and one raw
+    """Fastest of the repeats (s; the least disturbed by other load on the machine; the four timings
+    alternate within each repeat): the whole study, its kinematics (closure solve, v, a, joint axes:
+    `kinematics_along`) and its dynamics (efforts and every reaction), and one raw
     `pin.constraintDynamics` at the law's first sample (fastest mean of 1000 calls)."""
 
     samples: int
@@ -40,17 +41,20 @@ class MotionSpeed:
     raw_constraint_dynamics_s: float
 
 
-def _best_time(fn: Callable[[], object], repeats: int) -> float:
-    times = []
+def _best_times(fns: list[Callable[[], object]], repeats: int) -> list[float]:
+    """Fastest time (s) of each function, the functions alternated within every repeat (so that load
+    on the machine falls on all of them alike)."""
+    best = [float("inf")] * len(fns)
     gc.disable()
     try:
         for _ in range(repeats):
-            start = time.perf_counter()
-            fn()
-            times.append(time.perf_counter() - start)
+            for k, fn in enumerate(fns):
+                start = time.perf_counter()
+                fn()
+                best[k] = min(best[k], time.perf_counter() - start)
     finally:
         gc.enable()
-    return float(np.min(times))
+    return best
 
 
 def _raw_call(mech: Mechanism, q: np.ndarray, v: np.ndarray) -> Callable[[], object]:
@@ -69,17 +73,15 @@ def motion_law_speed(samples: int = 501, repeats: int = 5) -> MotionSpeed:
     problem = driven_problem(mech, law.names)
 
     def kinematics() -> None:
-        guess = result.q[0]
-        for i in range(samples):
-            guess = path.sample(guess, law.values[i], law.rates[i], law.accelerations[i], 1e-12)[0]
+        kinematics_along(path, law)
 
     def inverse() -> None:
         inverse_batch(problem, result.q, result.v, result.a, None, False)
 
     raw = _raw_call(mech, result.q[0], result.v[0])
-    raw_s = _best_time(lambda: [raw() for _ in range(1000)], repeats) / 1000
-    return MotionSpeed(samples, repeats, _best_time(lambda: study(mech, law), repeats),
-                       _best_time(kinematics, repeats), _best_time(inverse, repeats), raw_s)
+    study_s, kinematics_s, dynamics_s, raw_s = _best_times(
+        [lambda: study(mech, law), kinematics, inverse, lambda: [raw() for _ in range(1000)]], repeats)
+    return MotionSpeed(samples, repeats, study_s, kinematics_s, dynamics_s, raw_s / 1000)
 
 
 def lines(s: MotionSpeed) -> list[str]:
@@ -88,7 +90,7 @@ def lines(s: MotionSpeed) -> list[str]:
     raw = s.raw_constraint_dynamics_s
     out = [f"2T1R motion law, {s.samples} samples (fastest of {s.repeats} runs in one process)"]
     for k, label in (("study", "whole study (assembly, v, a, efforts, every reaction)"),
-                     ("kinematics", "  kinematics (closure solve from the predictor, v, a)"),
+                     ("kinematics", "  kinematics (closure solve from the predictor, v, a, axes)"),
                      ("dynamics", "  efforts and every reaction (no determinacy)")):
         out.append(f"{label}: {getattr(s, f'{k}_s') * 1e3:.1f} ms, {per[k] * 1e6:.0f} us/sample, "
                    f"{per[k] / raw:.0f}x one raw constraintDynamics")

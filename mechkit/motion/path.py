@@ -1,10 +1,11 @@
-"""Kinematics along a path: per sample, the closure solve from a warm start, then velocities and
-accelerations from one closure Jacobian, and the joint axes in world axes.
+"""Kinematics along a path: per sample, the closure solve from a warm start (the one sequential step),
+then velocities, accelerations and the joint axes of all samples at once.
 
 The same steps as `Mechanism.assemble`, `velocities` and `accelerations` (the core's
-`kinematics.solve_closure` and `project_velocity`), with what they recompute per call done once:
-the input and free velocity indices are fixed for the whole path, and the closure Jacobian that the
-solve leaves current at q serves both projections.
+`kinematics.newton_closure`, `judge_batch` and `passive_solve`), with what they recompute per call done
+once: the input and free velocity indices are fixed for the whole path, the closure Jacobian the
+solve leaves at q serves the singularity judgement and the velocities, and the judgement, velocities,
+accelerations and axes are batched numpy over many samples.
 """
 
 from __future__ import annotations
@@ -15,6 +16,7 @@ import numpy as np
 import pinocchio as pin
 
 from mechkit import kinematics
+from mechkit.exceptions import SingularConfiguration
 from mechkit.mechanism import Mechanism
 
 
@@ -22,29 +24,38 @@ class JointAxes:
     """Unit axes (world frame) of every joint: tree joints in model order, then the cuts of `mech.rows`.
 
     Tree joints of one degree of freedom: the rotation axis (revolute) or the sliding direction
-    (prismatic), from the joint's motion subspace. Cut joints: the declared axis of a revolute or
-    prismatic closure, in frame_a's frame. Other joints (spherical, Hooke, weld) have no single axis: NaN.
+    (prismatic), the angular or linear part of the joint's world Jacobian column. Cut joints: the
+    declared axis of a revolute or prismatic closure, in frame_a's frame. Other joints (spherical,
+    Hooke, weld) have no single axis: NaN.
     """
 
     def __init__(self, mech: Mechanism):
         model = mech.model
         data = model.createData()
         pin.forwardKinematics(model, data, mech.home_q)
-        self.tree = np.full((model.njoints, 3), np.nan)
+        self.column = np.zeros(model.njoints - 1, dtype=int)  # velocity column of the joint
+        self.angular = np.zeros(model.njoints - 1, dtype=bool)  # its axis in the angular part
+        self.single = np.zeros(model.njoints - 1, dtype=bool)  # one degree of freedom
         for j in range(1, model.njoints):
             if model.joints[j].nv == 1:
                 S = np.asarray(data.joints[j].S).reshape(6)
-                local = S[3:] if np.linalg.norm(S[3:]) > 0 else S[:3]
-                self.tree[j] = local / np.linalg.norm(local)
-        self.cuts = [(c.frame_a, np.asarray(c.closure.axis, dtype=float) if c.closure.kind in ("revolute", "prismatic")
-                      else np.full(3, np.nan)) for c in mech.rows.cuts]
+                self.column[j - 1], self.angular[j - 1], self.single[j - 1] = model.joints[j].idx_v, np.linalg.norm(S[3:]) > 0, True
+        ev = mech.rows.evaluator
+        frames = model.frames
+        self.cut_joint = np.array([int(np.searchsorted(ev.joints, frames[c.frame_a].parentJoint)) for c in mech.rows.cuts], dtype=int)
+        self.cut_axis = np.array([frames[c.frame_a].placement.rotation @ np.asarray(c.closure.axis, dtype=float)
+                                  if c.closure.kind in ("revolute", "prismatic") else np.full(3, np.nan)
+                                  for c in mech.rows.cuts]).reshape(-1, 3)
 
-    def world(self, data: pin.Data) -> np.ndarray:
-        """(n_joints, 3) world axes at the configuration `data` holds (joint and frame placements current)."""
-        R = np.array([data.oMi[j].rotation for j in range(1, len(self.tree))]).reshape(-1, 3, 3)
-        tree = np.einsum("jab,jb->ja", R, self.tree[1:])
-        cuts = [data.oMf[f].rotation @ axis for f, axis in self.cuts]
-        return np.vstack([tree, *cuts]) if cuts else tree
+    def world(self, J: np.ndarray, G: np.ndarray) -> np.ndarray:
+        """(N, n_joints, 3) world axes from world joint Jacobians (N, 6, nv) and the rows' used joint
+        placements (N, n_used, 4, 4) (`ClosureRows.gather`)."""
+        cols = J[:, :, self.column]  # (N, 6, n_tree)
+        tree = np.where(self.angular[None, :, None], np.swapaxes(cols[:, 3:], 1, 2), np.swapaxes(cols[:, :3], 1, 2))
+        tree = tree / np.linalg.norm(tree, axis=-1, keepdims=True)
+        tree[:, ~self.single] = np.nan
+        cuts = (G[:, self.cut_joint, :3, :3] @ self.cut_axis[..., None])[..., 0]
+        return np.concatenate([tree, cuts], axis=1)
 
 
 class PathKinematics:
@@ -68,24 +79,54 @@ class PathKinematics:
         """The assembly at the first sample from the mechanism's own guess (its branch)."""
         return self.mech.assemble(dict(zip(self.names, values)))
 
-    def sample(self, guess: np.ndarray, values: np.ndarray, rates: np.ndarray, accelerations: np.ndarray,
-               tol: float) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-        """q, v, a and the joint axes (world) at one sample, the loops closed from `guess`.
+    def predict(self, q: np.ndarray, t: np.ndarray, t_next: float) -> np.ndarray:
+        """Warm start at time t_next from the last assembled samples q (k, nq) at times t (k,), latest
+        first: the polynomial through them (degree k - 1, Lagrange, in the tangent space at q[0])."""
+        x = np.zeros(self.model.nv)
+        for j in range(1, len(t)):
+            weight = 1.0
+            for m in range(len(t)):
+                if m != j:
+                    weight *= (t_next - t[m]) / (t[j] - t[m])
+            x += weight * pin.difference(self.model, q[0], q[j])
+        return pin.integrate(self.model, q[0], x)
+
+    def assemble(self, guess: np.ndarray, values: np.ndarray, tol: float) -> np.ndarray:
+        """q of one sample, the loops closed from `guess` (its singularity is judged by `singular`).
 
         Raises:
             ClosureNotConverged: no assembly near the guess.
-            SingularConfiguration: the inputs do not determine the motion there.
+            SingularConfiguration: more free coordinates than independent closure rows.
         """
-        model, data, rows = self.model, self.data, self.mech.rows
         q0 = np.array(guess, dtype=float)
         q0[self.input_q] = values
-        q, _ = kinematics.solve_closure(rows, data, q0, self.free_v, tol=tol)
-        J = rows.jacobian(data)  # the solve leaves joint Jacobians and frames current at q
-        axes = self.axes.world(data)
-        independent = self.mech.independent_rows
-        v = kinematics.project_velocity(J, rates, self.input_v, self.free_v, independent)
-        pin.forwardKinematics(model, data, q, v, np.zeros(model.nv))
-        pin.updateFramePlacements(model, data)
-        gamma = rows.drift(data)
-        a = kinematics.project_velocity(J, accelerations, self.input_v, self.free_v, independent, rhs=gamma)
-        return q, v, a, axes
+        solved = kinematics.newton_closure(self.mech.rows, self.data, q0, self.free_v, tol=tol, jacobian_at_solution=False)
+        kinematics.check_determined(self.free_v, self.mech.independent_rows)
+        return solved.q
+
+    def jacobians(self, q: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Closure Jacobians (N, rows, nv), world joint Jacobians (N, 6, nv) and the rows' used joint
+        placements (N, n_used, 4, 4) of N assembled samples q (N, nq)."""
+        G, Jw, _ = self.mech.rows.gather(self.data, q)
+        return self.mech.rows.evaluator.evaluate(G, Jw)[1], Jw, G
+
+    def singular(self, J: np.ndarray) -> tuple[int, SingularConfiguration] | None:
+        """The first of N samples, by their closure Jacobians (N, rows, nv), where the inputs do not
+        determine the motion (`kinematics.judge_batch` at the closure tolerance), and its error; or None."""
+        s = np.linalg.svd(J[:, :, self.free_v], compute_uv=False)
+        bad = kinematics.rejected(s, self.mech.independent_rows, kinematics.CLOSURE_TOL)
+        if not bad.any():
+            return None
+        i = int(np.argmax(bad))
+        return i, kinematics.singular_error(s[i], self.mech.independent_rows, kinematics.CLOSURE_TOL)
+
+    def motion(self, q: np.ndarray, J: np.ndarray, Jw: np.ndarray, G: np.ndarray, rates: np.ndarray,
+               accelerations: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """v, a (N, nv) and the joint axes (N, n_joints, 3) of N assembled samples q (N, nq), from their
+        `jacobians` and the inputs' rates and accelerations (N, k), batched."""
+        ev = self.mech.rows.evaluator
+        v = kinematics.passive_solve(J, rates, self.input_v, self.free_v)
+        dJ = self.mech.rows.jacobian_derivatives(self.data, q, v)
+        gamma = ev.drift(G, ev.twists(Jw, v), ev.twists(dJ, v))
+        a = kinematics.passive_solve(J, accelerations, self.input_v, self.free_v, gamma)
+        return v, a, self.axes.world(Jw, G)

@@ -1,9 +1,12 @@
-"""A motion study: assemble along an input law with warm starts, then velocities, accelerations, the
-efforts of the driven joints and every joint's reaction, sample by sample.
+"""A motion study: assemble along an input law with warm starts, sample by sample, then velocities,
+accelerations, the efforts of the driven joints and every joint's reaction for all samples at once.
 
-Warm start of sample i: the law's guess (a scene's pose) when it has one, else the previous
-configuration advanced by v dt + a dt^2 / 2 (`pin.integrate`), which keeps the assembly branch and
-lets the closure solve converge in one or two Newton steps.
+Warm start of sample i: the law's guess (a scene's pose) when it has one, else the polynomial through
+the last `PREDICTOR_POINTS` assembled configurations extrapolated to t_i (in the tangent space of the
+latest, `pin.difference` / `pin.integrate`; the first sample from the mechanism's own guess). It keeps
+the assembly branch and, on a smooth law, leaves one Newton step (the 2T1R law in 501 samples: within
+5e-8 rad of the solution, as the former v dt + a dt^2 / 2 predictor, 1e-8, which needed v and a in the
+loop).
 """
 
 from __future__ import annotations
@@ -58,6 +61,81 @@ def inverse_batch(problem: inverse.InverseDynamicsProblem, q: np.ndarray, v: np.
     return out.efforts, out.reactions, out.determinate
 
 
+#: Samples assembled between two batched singularity judgements (a singular sample re-assembles at most
+#: this many samples after it, predicted from it).
+JUDGED_BLOCK = 32
+#: Assembled samples the warm start extrapolates from (a polynomial of degree one less).
+PREDICTOR_POINTS = 3
+
+
+def kinematics_along(path: PathKinematics, law: InputLaw, tol: float = 1e-12, skip_failures: bool = False,
+                     progress: Progress | None = None) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, list]:
+    """q (N, nq), v, a (N, nv), joint axes (N, n_joints, 3) and the failures [(t, message)] along a law.
+
+    The closure is solved sample by sample from the warm start, blocks of `JUDGED_BLOCK` samples are
+    judged for singularity at once (a singular sample fails as if judged alone: the samples after it
+    are solved again from the good ones before it), then v, a and the axes are batched.
+
+    Raises:
+        ClosureNotConverged, SingularConfiguration: as `study` (unless `skip_failures`).
+    """
+    model, n = path.model, len(law.t)
+    q = np.full((n, model.nq), np.nan)
+    J = np.full((n, path.mech.rows.size, model.nv), np.nan)
+    Jw = np.full((n, 6, model.nv), np.nan)
+    G = np.full((n, len(path.mech.rows.evaluator.joints), 4, 4), np.nan)
+    failures: list[tuple[float, str]] = []
+    done: list[int] = []  # the samples assembled so far, in order: the predictor's points
+
+    def fail(i: int, err: MechkitError) -> None:
+        if not skip_failures:
+            raise err
+        failures.append((float(law.t[i]), str(err)))
+        q[i] = np.nan
+
+    i = 0
+    while i < n:
+        block, error = [], None
+        while i < n and len(block) < JUDGED_BLOCK:
+            try:
+                if law.guesses is not None:
+                    guess = law.guesses[i]
+                elif done:
+                    last = done[:-PREDICTOR_POINTS - 1:-1]
+                    guess = path.predict(q[last], law.t[last], law.t[i])
+                else:
+                    guess = path.first_guess(law.values[i])
+                q[i] = path.assemble(guess, law.values[i], tol)
+            except MechkitError as err:
+                error = (i, err)
+                break
+            block.append(i)
+            done.append(i)
+            i += 1
+        if block:
+            J[block], Jw[block], G[block] = path.jacobians(q[block])
+        singular = path.singular(J[block]) if block else None
+        if singular is not None:
+            k, err = singular
+            q[block[k + 1:]] = np.nan
+            del done[len(done) - len(block) + k:]
+            fail(block[k], err)
+            i = block[k] + 1
+        elif error is not None:
+            fail(*error)
+            i = error[0] + 1
+        if progress is not None:
+            progress(i, 2 * n)
+    good = np.flatnonzero(np.isfinite(q).all(axis=1))
+    v = np.full((n, model.nv), np.nan)
+    a = np.full((n, model.nv), np.nan)
+    axes = np.full((n, len(path.axes.column) + len(path.axes.cut_joint), 3), np.nan)
+    if good.size:
+        v[good], a[good], axes[good] = path.motion(q[good], J[good], Jw[good], G[good], law.rates[good],
+                                                   law.accelerations[good])
+    return q, v, a, axes, failures
+
+
 def study(mech: Mechanism, law: InputLaw, *, determinacy: bool = False, loads: Loads | None = None,
           progress: Progress | None = None, tol: float = 1e-12, skip_failures: bool = False) -> MotionResult:
     """Efforts and every joint's reaction along an input law.
@@ -78,32 +156,8 @@ def study(mech: Mechanism, law: InputLaw, *, determinacy: bool = False, loads: L
     """
     model, names, n = mech.model, list(law.names), len(law.t)
     problem = driven_problem(mech, names)
-    path = PathKinematics(mech, names)
     nj = len(problem.joint_names)
-    q = np.full((n, model.nq), np.nan)
-    v = np.full((n, model.nv), np.nan)
-    a = np.full((n, model.nv), np.nan)
-    axes = np.full((n, nj, 3), np.nan)
-    failures: list[tuple[float, str]] = []
-    last = None  # the last sample that succeeded: the predictor's start
-    for i in range(n):
-        try:
-            if law.guesses is not None:
-                guess = law.guesses[i]
-            elif last is not None:
-                dt = law.t[i] - law.t[last]
-                guess = pin.integrate(model, q[last], v[last] * dt + 0.5 * a[last] * dt * dt)
-            else:
-                guess = path.first_guess(law.values[i])
-            q[i], v[i], a[i], axes[i] = path.sample(guess, law.values[i], law.rates[i], law.accelerations[i], tol)
-            last = i
-        except MechkitError as err:
-            if not skip_failures:
-                raise
-            failures.append((float(law.t[i]), str(err)))
-            q[i] = v[i] = a[i] = np.nan
-        if progress is not None:
-            progress(i + 1, 2 * n)
+    q, v, a, axes, failures = kinematics_along(PathKinematics(mech, names), law, tol, skip_failures, progress)
     good = np.flatnonzero(np.isfinite(q).all(axis=1))
     fexts = None if loads is None else [loads(mech, q[i], float(law.t[i])) for i in good]
     efforts = np.full((n, len(problem.actuated_names)), np.nan)
