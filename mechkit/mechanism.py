@@ -44,6 +44,7 @@ class Mechanism:
         `model` and `structure`, when given, must be those of `urdf` (a file reader computed them).
         """
         self.spec, self.params, self.urdf = spec, params, urdf
+        self._splits: dict[tuple[str, ...], tuple[np.ndarray, np.ndarray]] = {}
         self.model = build_model(urdf) if model is None else model
         forward.check_body_masses(self.model)
         self.data = self.model.createData()
@@ -116,9 +117,13 @@ class Mechanism:
         return list(self.actuated) if inputs is None else arguments.joint_names("inputs", inputs, list(self.model.names[1:]))
 
     def _split(self, names: Sequence[str]) -> tuple[np.ndarray, np.ndarray]:
-        input_v = np.array([self.v_index(j) for j in names], dtype=int)
-        free_v = np.setdiff1d(np.arange(self.model.nv), input_v)
-        return input_v, free_v
+        """Velocity indices of the given joints and of the others, cached per set of names (read-only)."""
+        if (key := tuple(names)) not in self._splits:
+            input_v = np.array([self.v_index(j) for j in key], dtype=int)
+            free_v = np.setdiff1d(np.arange(self.model.nv), input_v)
+            input_v.flags.writeable = free_v.flags.writeable = False
+            self._splits[key] = input_v, free_v
+        return self._splits[key]
 
     # ---------------------------------------------------------------- kinematics
     def assemble(self, inputs: Inputs, guess: Inputs | np.ndarray | None = None, *, tol: float = kinematics.CLOSURE_TOL,
