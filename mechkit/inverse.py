@@ -22,7 +22,7 @@ from mechkit.batch import BatchInverseDynamicsResult
 from mechkit.closures import ClosureRows
 from mechkit.dynamics import InverseDynamicsResult, subtree_incidence
 from mechkit.exceptions import InvalidParameters, SingularConfiguration
-from mechkit.kinematics import RANK_TOL
+from mechkit.kinematics import RANK_TOL, judge_passive, resolvable_singular_value
 from mechkit.row_wrenches import RowWrenches, cross3, placements
 
 #: Relative threshold under which a reaction component's null-space variation counts as zero.
@@ -38,6 +38,7 @@ class InverseDynamicsProblem:
         rows: the closure rows the scene solves with; full_rows: the closures' full spatial rows
             (the physical joints), for the determinacy test (same cuts, same order).
         actuated_v: velocity indices of the actuated joints, in effort order; actuated_names: their names.
+        passive_v: the other velocity indices (the passive block's columns).
         joint_names: tree joints (model order) then cut joints; supports: True for joints to the ground.
     """
 
@@ -45,6 +46,8 @@ class InverseDynamicsProblem:
                  actuated_v: np.ndarray, actuated_names: tuple[str, ...]):
         self.model, self.data, self.rows, self.full_rows = model, data, rows, full_rows
         self.actuated_v, self.actuated_names = np.asarray(actuated_v, dtype=int), tuple(actuated_names)
+        self.passive_v = np.setdiff1d(np.arange(model.nv), self.actuated_v)
+        self._effort_columns = np.arange(self.actuated_v.size)
         self.kept, self.full = RowWrenches(rows), RowWrenches(full_rows)
         self.incidence = subtree_incidence(model, rows)
         cut_names = tuple(c.closure.name for c in rows.cuts)
@@ -95,9 +98,30 @@ def _system(p: InverseDynamicsProblem, Jrows: np.ndarray) -> np.ndarray:
     """(N, nv, na + rows) matrices [S, J^T]."""
     na = p.actuated_v.size
     A = np.zeros((Jrows.shape[0], p.model.nv, na + Jrows.shape[1]))
-    A[:, p.actuated_v, np.arange(na)] = 1.0
+    A[:, p.actuated_v, p._effort_columns] = 1.0
     A[:, :, na:] = Jrows.transpose(0, 2, 1)
     return A
+
+
+def _check_regular(p: InverseDynamicsProblem, Jrows: np.ndarray, oMi: np.ndarray, independent_rows: int) -> None:
+    """`kinematics.check_regular` on gathered arrays: raise `SingularConfiguration` where a sample's
+    passive block Jrows[:, :, passive_v] is not resolvably regular (`judge_passive`, whose test this is).
+
+    The resolvable limit grows with s_max and the residual, so the batch's largest of each bounds every
+    sample's limit: only samples at or under that bound are judged one by one (none, at regular poses).
+    """
+    if min(independent_rows, p.passive_v.size, Jrows.shape[1]) == 0:
+        return
+    block = Jrows[:, :, p.passive_v]
+    if len(block) == 1:  # LAPACK directly: a fraction of np.linalg.svd's overhead on one small matrix
+        s = scipy.linalg.lapack.dgesdd(block[0], compute_uv=0)[1][None]
+    else:
+        s = np.linalg.svd(block, compute_uv=False)
+    residuals = p.kept.residual_norms(oMi)
+    k = min(independent_rows, s.shape[1])
+    bound = resolvable_singular_value(float(s[:, 0].max()), float(residuals.max()))
+    for i in np.flatnonzero(s[:, k - 1] <= bound):
+        judge_passive(s[i], independent_rows, float(residuals[i]))
 
 
 def _ranks(s: np.ndarray) -> np.ndarray:
@@ -189,7 +213,8 @@ def _determinacy(p: InverseDynamicsProblem, oMi: np.ndarray, J: np.ndarray, poin
 
 def inverse_dynamics_batch(p: InverseDynamicsProblem, Q: np.ndarray, V: np.ndarray, A: np.ndarray,
                            fexts: Sequence[pin.StdVec_Force | list[pin.Force] | None] | None = None,
-                           determinacy: bool = True, distribution: str = "min_norm") -> BatchInverseDynamicsResult:
+                           determinacy: bool = True, distribution: str = "min_norm",
+                           independent_rows: int | None = None) -> BatchInverseDynamicsResult:
     """Actuator efforts and every joint's reaction for N motions (q, v, a) that satisfy the closures.
 
     Args:
@@ -202,9 +227,12 @@ def inverse_dynamics_batch(p: InverseDynamicsProblem, Q: np.ndarray, V: np.ndarr
             spatial rows per sample); without it the masks are None (not tested).
         distribution: where [S, J^T] has a null space (redundant actuation or rows), which solution:
             "min_norm" (smallest `|[u; lambda]|`) or "min_effort" (smallest |u|, then smallest |lambda|).
+        independent_rows: the closure's generic rank: check every sample's passive block first
+            (`kinematics.check_regular` on the gathered arrays); None: no check.
 
     Raises:
-        SingularConfiguration: [S, J^T] has lost rank where it must not (efforts undetermined).
+        SingularConfiguration: a passive block not resolvably regular (with `independent_rows`), or
+            [S, J^T] has lost rank where it must not (efforts undetermined).
         InvalidParameters: an unknown distribution.
     """
     if distribution not in DISTRIBUTIONS:
@@ -213,7 +241,10 @@ def inverse_dynamics_batch(p: InverseDynamicsProblem, Q: np.ndarray, V: np.ndarr
     oMi, J, b, tree_world = _gather(p, Q, V, A, [None] * n if fexts is None else fexts)
     with np.errstate(under="ignore"):  # products of tiny lever arms and forces flush to zero harmlessly
         W = p.kept.wrenches(oMi)
-        system = _system(p, p.kept.jacobian(W, J))
+        Jrows = p.kept.jacobian(W, J)
+        if independent_rows is not None:
+            _check_regular(p, Jrows, oMi, independent_rows)
+        system = _system(p, Jrows)
         x, cond = _solve(p, system, b, determinacy, distribution)
         points = p.kept.cut_points(oMi)
         tree, cuts = _cut_loads(p, p.kept, W, x[:, None, na:], oMi[..., :3, 3], points)
@@ -227,8 +258,8 @@ def inverse_dynamics_batch(p: InverseDynamicsProblem, Q: np.ndarray, V: np.ndarr
 
 def inverse_dynamics(p: InverseDynamicsProblem, q: np.ndarray, v: np.ndarray, a: np.ndarray,
                      fext: pin.StdVec_Force | list[pin.Force] | None = None, determinacy: bool = True,
-                     distribution: str = "min_norm") -> InverseDynamicsResult:
+                     distribution: str = "min_norm", independent_rows: int | None = None) -> InverseDynamicsResult:
     """One sample of `inverse_dynamics_batch` (q (nq,), v and a (nv,), fext per joint or None), as dicts."""
     out = inverse_dynamics_batch(p, np.asarray(q, dtype=float)[None], np.asarray(v, dtype=float)[None],
-                                 np.asarray(a, dtype=float)[None], [fext], determinacy, distribution)
+                                 np.asarray(a, dtype=float)[None], [fext], determinacy, distribution, independent_rows)
     return out.sample(0)

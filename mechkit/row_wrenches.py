@@ -59,6 +59,8 @@ class RowWrenches:
         mask: (rows, nv) +1 on columns moving frame_b only, -1 on frame_a only, 0 elsewhere.
         row_sum: (ncuts, rows) 1 where a row belongs to a cut.
         joint_b, point_b: frame_b's joint and origin (homogeneous, in that joint's frame) per cut.
+        row_point_a: (rows, 4, 1) frame_a's origin (homogeneous, in frame_a's joint) for position
+            rows, 0 for alignment rows (the residual's p_a).
     """
 
     def __init__(self, rows: ClosureRows):
@@ -68,18 +70,21 @@ class RowWrenches:
         joint_a = [frames[c.frame_a].parentJoint for c in rows.cuts]
         self.joint_b = np.array([frames[c.frame_b].parentJoint for c in rows.cuts], dtype=int)
         self.point_b = np.array([frames[c.frame_b].placement.homogeneous[:, 3] for c in rows.cuts]).reshape(-1, 4)
-        row_a, row_b, is_force, cut_of_row = [], [], [], []
+        row_a, row_b, is_force, cut_of_row, point_a = [], [], [], [], []
         for c, cut in enumerate(rows.cuts):
             Ma, Mb = frames[cut.frame_a].placement.homogeneous, frames[cut.frame_b].placement.homogeneous
             for t in cut.positions.T:
                 row_a.append(Ma[:, :3] @ t), row_b.append(Mb[:, 3]), is_force.append(1.0), cut_of_row.append(c)
+                point_a.append(Ma[:, 3])
             for u, w in cut.alignments:
                 row_a.append(Ma[:, :3] @ u), row_b.append(Mb[:, :3] @ w), is_force.append(0.0), cut_of_row.append(c)
+                point_a.append(np.zeros(4))
         self.cut_of_row = np.array(cut_of_row, dtype=int)
         self.row_joint_a = np.array(joint_a, dtype=int)[self.cut_of_row]
         self.row_joint_b = self.joint_b[self.cut_of_row]
         self.row_a = np.array(row_a, dtype=float).reshape(-1, 4, 1)
         self.row_b = np.array(row_b, dtype=float).reshape(-1, 4, 1)
+        self.row_point_a = np.array(point_a, dtype=float).reshape(-1, 4, 1)
         self.is_force = np.array(is_force).reshape(-1, 1)
         self.row_sum = (self.cut_of_row[None, :] == np.arange(self.ncuts)[:, None]).astype(float)
         support = {j: support_columns(model, j) for j in set(joint_a) | set(self.joint_b.tolist())}
@@ -91,6 +96,13 @@ class RowWrenches:
         xa = (oMi[:, self.row_joint_a, :3] @ self.row_a)[..., 0]
         y = (oMi[:, self.row_joint_b, :3] @ self.row_b)[..., 0]
         return np.concatenate([xa * self.is_force, cross3(y, xa)], axis=-1)
+
+    def residual_norms(self, oMi: np.ndarray) -> np.ndarray:
+        """(N,) closure residual norms |e| from joint placements: e = X_a . (p_b - p_a) for a position row,
+        u . w for an alignment row (the row forms of `mechkit.closures`; m for position rows)."""
+        xa = oMi[:, self.row_joint_a, :3] @ self.row_a
+        y = oMi[:, self.row_joint_b, :3] @ self.row_b - oMi[:, self.row_joint_a, :3] @ self.row_point_a
+        return np.linalg.norm((xa * y).sum(axis=2)[..., 0], axis=1)
 
     def cut_points(self, oMi: np.ndarray) -> np.ndarray:
         """(N, ncuts, 3) frame_b origins p_b (world) from joint placements."""
