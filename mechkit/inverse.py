@@ -49,7 +49,8 @@ class InverseDynamicsProblem:
         self.passive_v = np.setdiff1d(np.arange(model.nv), self.actuated_v)
         self._effort_columns = np.arange(self.actuated_v.size)
         self.kept, self.full = RowWrenches(rows), RowWrenches(full_rows)
-        self.incidence = subtree_incidence(model, rows)
+        # cut wrenches -> what they put on every joint (tree joints but the universe, then the cuts)
+        self.load_map = np.vstack([-subtree_incidence(model, rows)[1:], np.eye(len(rows.cuts))])
         cut_names = tuple(c.closure.name for c in rows.cuts)
         self.joint_names = tuple(model.names[1:]) + cut_names
         parents = model.parents
@@ -60,7 +61,8 @@ class InverseDynamicsProblem:
 
 def _gather(p: InverseDynamicsProblem, Q, V, A, fexts) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """Per sample, Pinocchio's joint placements (N, nj, 4, 4), data.J (N, 6, nv), rnea torques (N, nv)
-    and joint wrenches data.f in world axes about each joint origin (N, nj, 6)."""
+    and the tree joints' wrenches data.f in world axes about each joint origin, then zeros for the
+    cuts (N, nj - 1 + ncuts, 6): the reactions before the cut wrenches act."""
     model, data = p.model, p.data
     n = len(Q)
     oMi = np.empty((n, model.njoints, 4, 4))
@@ -73,25 +75,22 @@ def _gather(p: InverseDynamicsProblem, Q, V, A, fexts) -> tuple[np.ndarray, np.n
         oMi[i] = placements(data)
         tau[i] = pin.rnea(model, data, Q[i], V[i], A[i]) if fexts[i] is None else pin.rnea(model, data, Q[i], V[i], A[i], fexts[i])
         f[i] = [F.np for F in data.f.tolist()]
-    R = oMi[:, :, :3, :3]
+    R = oMi[:, 1:, None, :3, :3]
+    world = np.zeros((n, len(p.load_map), 6))
     with np.errstate(under="ignore"):
-        world = np.concatenate([R @ f[..., :3, None], R @ f[..., 3:, None]], axis=2)[..., 0]
+        world[:, :model.njoints - 1] = (R @ f[:, 1:].reshape(n, -1, 2, 3, 1)).reshape(n, -1, 6)
     return oMi, J, tau, world
 
 
-def _cut_loads(p: InverseDynamicsProblem, rw: RowWrenches, W: np.ndarray, lam: np.ndarray, origins: np.ndarray,
-               points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """What row multipliers lam (N, K, rows) put on the joints: per set k, the tree joints' share to
-    subtract (N, K, njoints, 6), about each joint origin, and the cut wrenches (N, K, ncuts, 6) about p_b.
+def _cut_loads(p: InverseDynamicsProblem, rw: RowWrenches, W: np.ndarray, lam: np.ndarray, points: np.ndarray) -> np.ndarray:
+    """What row multipliers lam (N, K, rows) put on the joints, per set k (N, K, nj - 1 + ncuts, 6): minus
+    the tree joints' share of the cut wrenches, then the cut wrenches, each about its joint's point.
 
-    W: (N, rows, 6) row wrenches; origins: (N, njoints, 3) joint origins; points: (N, ncuts, 3) p_b.
+    W: (N, rows, 6) row wrenches; points: (N, nj - 1 + ncuts, 3) tree joint origins, then the cuts' p_b.
     """
-    cuts0 = rw.cut_wrenches(W[:, None], lam)  # about the world origin
-    tree = p.incidence @ cuts0
-    tree[..., 3:] -= cross3(origins[:, None], tree[..., :3])
-    cuts = cuts0.copy()
-    cuts[..., 3:] -= cross3(points[:, None], cuts0[..., :3])
-    return tree, cuts
+    loads = p.load_map @ rw.cut_wrenches(W[:, None], lam)  # about the world origin
+    loads[..., 3:] -= cross3(points[:, None], loads[..., :3])
+    return loads
 
 
 def _system(p: InverseDynamicsProblem, Jrows: np.ndarray) -> np.ndarray:
@@ -103,9 +102,10 @@ def _system(p: InverseDynamicsProblem, Jrows: np.ndarray) -> np.ndarray:
     return A
 
 
-def _check_regular(p: InverseDynamicsProblem, Jrows: np.ndarray, oMi: np.ndarray, independent_rows: int) -> None:
+def _check_regular(p: InverseDynamicsProblem, Jrows: np.ndarray, residuals: np.ndarray, independent_rows: int) -> None:
     """`kinematics.check_regular` on gathered arrays: raise `SingularConfiguration` where a sample's
-    passive block Jrows[:, :, passive_v] is not resolvably regular (`judge_passive`, whose test this is).
+    passive block Jrows[:, :, passive_v] is not resolvably regular at its closure residual norm
+    `residuals` (N,) (`judge_passive`, whose test this is).
 
     The resolvable limit grows with s_max and the residual, so the batch's largest of each bounds every
     sample's limit: only samples at or under that bound are judged one by one (none, at regular poses).
@@ -117,7 +117,6 @@ def _check_regular(p: InverseDynamicsProblem, Jrows: np.ndarray, oMi: np.ndarray
         s = scipy.linalg.lapack.dgesdd(block[0], compute_uv=0)[1][None]
     else:
         s = np.linalg.svd(block, compute_uv=False)
-    residuals = p.kept.residual_norms(oMi)
     k = min(independent_rows, s.shape[1])
     bound = resolvable_singular_value(float(s[:, 0].max()), float(residuals.max()))
     for i in np.flatnonzero(s[:, k - 1] <= bound):
@@ -193,7 +192,7 @@ def _determinacy(p: InverseDynamicsProblem, oMi: np.ndarray, J: np.ndarray, poin
 
     Tested on the full spatial rows: a component is determinate when it does not change along the
     null space of [S, J_full^T] (Wojtyra and Fraczek 2013); such a null vector is a self-stress (cut
-    forces, and actuator efforts, in equilibrium with no load).
+    forces, and actuator efforts, in equilibrium with no load). points: as in `_cut_loads`.
     """
     na = p.actuated_v.size
     Wf = p.full.wrenches(oMi)
@@ -203,8 +202,7 @@ def _determinacy(p: InverseDynamicsProblem, oMi: np.ndarray, J: np.ndarray, poin
     k, first = Vt.shape[1], int(r.min())
     # rows first..k-1 of Vt: the null vectors of every sample (zeroed where a sample's rank is higher)
     null = np.where((np.arange(first, k)[None, :] >= r[:, None])[..., None], Vt[:, first:], 0.0)
-    tree, cuts = _cut_loads(p, p.full, Wf, null[..., na:], oMi[..., :3, 3], points)
-    variation = np.abs(np.concatenate([tree[:, :, 1:], cuts], axis=2)).max(axis=1, initial=0.0)
+    variation = np.abs(_cut_loads(p, p.full, Wf, null[..., na:], points)).max(axis=1, initial=0.0)
     effort_variation = np.abs(null[..., :na]).max(axis=1, initial=0.0)
     scale = np.maximum(np.maximum(variation.max(axis=(1, 2)), effort_variation.max(axis=1, initial=0.0)), 1e-300)
     tol = DETERMINACY_TOL * scale
@@ -240,15 +238,14 @@ def inverse_dynamics_batch(p: InverseDynamicsProblem, Q: np.ndarray, V: np.ndarr
     n, na = len(Q), p.actuated_v.size
     oMi, J, b, tree_world = _gather(p, Q, V, A, [None] * n if fexts is None else fexts)
     with np.errstate(under="ignore"):  # products of tiny lever arms and forces flush to zero harmlessly
-        W = p.kept.wrenches(oMi)
+        W, residuals, cut_points = p.kept.evaluate(oMi)
         Jrows = p.kept.jacobian(W, J)
         if independent_rows is not None:
-            _check_regular(p, Jrows, oMi, independent_rows)
+            _check_regular(p, Jrows, residuals, independent_rows)
         system = _system(p, Jrows)
         x, cond = _solve(p, system, b, determinacy, distribution)
-        points = p.kept.cut_points(oMi)
-        tree, cuts = _cut_loads(p, p.kept, W, x[:, None, na:], oMi[..., :3, 3], points)
-        reactions = np.concatenate([tree_world[:, 1:] - tree[:, 0, 1:], cuts[:, 0]], axis=1)
+        points = np.concatenate([oMi[:, 1:, :3, 3], cut_points], axis=1)
+        reactions = tree_world + _cut_loads(p, p.kept, W, x[:, None, na:], points)[:, 0]
         flags = effort_flags = None
         if determinacy:
             flags, effort_flags = _determinacy(p, oMi, J, points)
