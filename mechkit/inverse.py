@@ -131,50 +131,77 @@ def _ranks(s: np.ndarray) -> np.ndarray:
 def _solve(p: InverseDynamicsProblem, A: np.ndarray, b: np.ndarray, condition: bool, distribution: str):
     """x (N, cols) with A x = b, and the condition numbers (N,) (nan when `condition` is False).
 
-    Square systems: gesv (with `condition`, after singular values that show every sample regular);
-    otherwise the minimum-norm SVD solution, moved to the least efforts for "min_effort".
+    Square systems: gesv (with `condition`, after singular values that show every sample regular).
+    Otherwise, where every sample has full rank and the solution is unique (or minimum-norm is asked
+    for), the least-squares / minimum-norm solution by QR; else by SVD, moved to the least efforts
+    for "min_effort". Either way the same unique x, and b must be reachable.
     """
     n, nv, cols = A.shape
     square = nv == cols
     cond = np.full(n, np.nan)
-    if square and condition:
-        s = np.linalg.svd(A, compute_uv=False)
-        if np.all(s[:, -1] > RANK_TOL * s[:, 0]):
-            cond = s[:, 0] / s[:, -1]
-        else:
-            square = False  # a sample has lost rank: the SVD path decides whether b is still reachable
-    if square:
-        if n == 1:  # LAPACK gesv directly: a fraction of np.linalg.solve's overhead on small systems
-            _, _, x, info = scipy.linalg.lapack.dgesv(A[0], b[0])
-            x = x[None] if info == 0 else np.full((1, cols), np.nan)
-        else:
-            try:
-                x = np.linalg.solve(A, b[..., None])[..., 0]
-            except np.linalg.LinAlgError:
-                x = np.full((n, cols), np.nan)
-        if not np.all(np.isfinite(x)):
-            raise SingularConfiguration(float("inf"), "[S, J^T]: efforts and multipliers undetermined")
+    if square and not condition:
+        return _square_solution(A, b), cond
+    s = np.linalg.svd(A, compute_uv=False)
+    r = _ranks(s)
+    cond = s[:, 0] / s[np.arange(n), np.maximum(r, 1) - 1]
+    full = bool(np.all(r == min(nv, cols)))
+    if square and full:
+        return _square_solution(A, b), cond
+    if full and (distribution == "min_norm" or cols < nv):
+        x, outside = _full_rank_solution(A, b)
+        _check_reachable(s, outside, b)
         return x, cond
     U, s, Vt = np.linalg.svd(A, full_matrices=True)
-    r = _ranks(s)
     k = s.shape[1]
     keep = np.arange(k)[None, :] < r[:, None]
     proj = np.einsum("nij,ni->nj", U, b)
-    outside = np.linalg.norm(np.where(np.arange(nv)[None, :] >= r[:, None], proj, 0.0), axis=1)
+    _check_reachable(s, np.linalg.norm(np.where(np.arange(nv)[None, :] >= r[:, None], proj, 0.0), axis=1), b)
+    coef = np.where(keep, proj[:, :k] / np.where(keep, s, 1.0), 0.0)
+    x = np.einsum("nij,ni->nj", Vt[:, :k], coef)
+    if distribution == "min_effort":
+        na = p.actuated_v.size
+        for i in np.flatnonzero(r < cols):
+            x[i] = _least_effort(x[i], Vt[i, r[i]:].T, na)
+    return x, cond
+
+
+def _square_solution(A: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """x (N, n) with A x = b for square A (N, n, n) by gesv; `SingularConfiguration` where one is singular."""
+    n, cols = A.shape[0], A.shape[2]
+    if n == 1:  # LAPACK gesv directly: a fraction of np.linalg.solve's overhead on small systems
+        _, _, x, info = scipy.linalg.lapack.dgesv(A[0], b[0])
+        x = x[None] if info == 0 else np.full((1, cols), np.nan)
+    else:
+        try:
+            x = np.linalg.solve(A, b[..., None])[..., 0]
+        except np.linalg.LinAlgError:
+            x = np.full((n, cols), np.nan)
+    if not np.all(np.isfinite(x)):
+        raise SingularConfiguration(float("inf"), "[S, J^T]: efforts and multipliers undetermined")
+    return x
+
+
+def _full_rank_solution(A: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The unique least-squares (full column rank) or minimum-norm (full row rank) solution x (N, cols)
+    of A x = b by QR, and the norm (N,) of the part of b outside the range of A."""
+    if A.shape[1] > A.shape[2]:  # A = Q R: x = R^-1 Q^T b
+        Q, R = np.linalg.qr(A)
+        c = np.einsum("nij,ni->nj", Q, b)
+        x = np.linalg.solve(R, c[..., None])[..., 0]
+        return x, np.linalg.norm(b - np.einsum("nij,nj->ni", Q, c), axis=1)
+    Q, R = np.linalg.qr(A.transpose(0, 2, 1))  # A^T = Q R: x = Q R^-T b, every b reachable
+    return (Q @ np.linalg.solve(R.transpose(0, 2, 1), b[..., None]))[..., 0], np.zeros(len(A))
+
+
+def _check_reachable(s: np.ndarray, outside: np.ndarray, b: np.ndarray) -> None:
+    """`SingularConfiguration` where the part of b outside the range of [S, J^T] (singular values s) is not
+    negligible: the actuators cannot hold the motion."""
     bad = np.flatnonzero(outside > 1e-9 * np.maximum(np.linalg.norm(b, axis=1), 1.0))
     if bad.size:
         i = int(bad[0])
         raise SingularConfiguration(float(s[i, 0] / s[i, -1]) if s[i, -1] > 0 else float("inf"),
                                     f"[S, J^T] does not span the required generalised force (sample {i}): the "
                                     "actuators cannot hold this motion")
-    coef = np.where(keep, proj[:, :k] / np.where(keep, s, 1.0), 0.0)
-    x = np.einsum("nij,ni->nj", Vt[:, :k], coef)
-    cond = s[:, 0] / s[np.arange(n), r - 1]
-    if distribution == "min_effort":
-        na = p.actuated_v.size
-        for i in np.flatnonzero(r < cols):
-            x[i] = _least_effort(x[i], Vt[i, r[i]:].T, na)
-    return x, cond
 
 
 def _least_effort(x: np.ndarray, N: np.ndarray, na: int) -> np.ndarray:
