@@ -40,6 +40,7 @@ class InverseDynamicsProblem:
         actuated_v: velocity indices of the actuated joints, in effort order; actuated_names: their names.
         passive_v: the other velocity indices (the passive block's columns).
         joint_names: tree joints (model order) then cut joints; supports: True for joints to the ground.
+        stress_rows: rows of [S, J_full^T] independent at the first sample the determinacy test saw.
     """
 
     def __init__(self, model: pin.Model, data: pin.Data, rows: ClosureRows, full_rows: ClosureRows,
@@ -54,6 +55,7 @@ class InverseDynamicsProblem:
         cut_names = tuple(c.closure.name for c in rows.cuts)
         self.joint_names = tuple(model.names[1:]) + cut_names
         parents = model.parents
+        self.stress_rows: np.ndarray | None = None  # see `_self_stresses`, set on its first call
         self.supports = np.array([parents[i] == 0 for i in range(1, model.njoints)] + [
             model.frames[c.frame_a].parentJoint == 0 or model.frames[c.frame_b].parentJoint == 0 for c in rows.cuts],
             dtype=bool)
@@ -112,15 +114,19 @@ def _check_regular(p: InverseDynamicsProblem, Jrows: np.ndarray, residuals: np.n
     """
     if min(independent_rows, p.passive_v.size, Jrows.shape[1]) == 0:
         return
-    block = Jrows[:, :, p.passive_v]
-    if len(block) == 1:  # LAPACK directly: a fraction of np.linalg.svd's overhead on one small matrix
-        s = scipy.linalg.lapack.dgesdd(block[0], compute_uv=0)[1][None]
-    else:
-        s = np.linalg.svd(block, compute_uv=False)
+    s = _singular_values(Jrows[:, :, p.passive_v])
     k = min(independent_rows, s.shape[1])
     bound = resolvable_singular_value(float(s[:, 0].max()), float(residuals.max()))
     for i in np.flatnonzero(s[:, k - 1] <= bound):
         judge_passive(s[i], independent_rows, float(residuals[i]))
+
+
+def _singular_values(A: np.ndarray) -> np.ndarray:
+    """(N, k) descending singular values of A (N, m, n); one sample through LAPACK directly (a fraction
+    of np.linalg.svd's overhead on one small matrix)."""
+    if len(A) == 1:
+        return scipy.linalg.lapack.dgesdd(A[0], compute_uv=0)[1][None]
+    return np.linalg.svd(A, compute_uv=False)
 
 
 def _ranks(s: np.ndarray) -> np.ndarray:
@@ -141,7 +147,7 @@ def _solve(p: InverseDynamicsProblem, A: np.ndarray, b: np.ndarray, condition: b
     cond = np.full(n, np.nan)
     if square and not condition:
         return _square_solution(A, b), cond
-    s = np.linalg.svd(A, compute_uv=False)
+    s = _singular_values(A)
     r = _ranks(s)
     cond = s[:, 0] / s[np.arange(n), np.maximum(r, 1) - 1]
     full = bool(np.all(r == min(nv, cols)))
@@ -214,23 +220,73 @@ def _least_effort(x: np.ndarray, N: np.ndarray, na: int) -> np.ndarray:
     return x
 
 
+def _svd_null_spaces(A: np.ndarray) -> np.ndarray:
+    """(N, cols, K) right singular vectors of A (N, nv, cols) past each sample's numerical rank (`_ranks`),
+    zero columns where a sample's null space is smaller than the largest."""
+    if len(A) == 1:  # LAPACK directly, as in `_singular_values`
+        _, s, Vt, _ = scipy.linalg.lapack.dgesdd(A[0], full_matrices=1)
+        return Vt[int(_ranks(s[None])[0]):].T[None]
+    _, s, Vt = np.linalg.svd(A, full_matrices=True)
+    r = _ranks(s)
+    k, first = Vt.shape[1], int(r.min())
+    return np.where((np.arange(first, k)[None, :] >= r[:, None])[..., None], Vt[:, first:], 0.0).transpose(0, 2, 1)
+
+
+def _self_stresses(p: InverseDynamicsProblem, A: np.ndarray) -> np.ndarray:
+    """(N, cols, K) orthonormal bases of the null spaces of A = [S, J_full^T] (N, nv, cols), zero-padded:
+    the space `_svd_null_spaces` gives, mostly without an SVD.
+
+    Rows R0 of A, independent at the first sample seen (cached on the problem), give by one QR,
+    A[R0]^T = Q R, the null space Q[:, r0:] of A[R0]. It is A's null space exactly when a sample
+    passes two bounds, which also make the SVD's rank decision r0: sigma_r0(A) >= sigma_min(R) >=
+    1 / |R^-1|_F > RANK_TOL |A|_F >= RANK_TOL sigma_1(A) (rank at least r0) and, N = Q[:, r0:] being
+    orthonormal, sigma_(r0+1)(A) <= |A N|_F <= RANK_TOL |A|_F / sqrt(nv) <= RANK_TOL sigma_1(A) (at
+    most r0). A sample that fails either (a special configuration) gets the SVD, and so does a single
+    sample (one SVD costs less than the QR and the bounds there). Either basis spans the same space,
+    and `_determinacy` depends only on that space.
+    """
+    n, nv, cols = A.shape
+    if n == 1:
+        return _svd_null_spaces(A)
+    if p.stress_rows is None:
+        A0 = A[0]
+        rank = int(_ranks(np.linalg.svd(A0, compute_uv=False)[None])[0])
+        p.stress_rows = np.sort(scipy.linalg.qr(A0.T, mode="r", pivoting=True)[1][:rank])
+    r0 = p.stress_rows.size
+    if r0 == 0 or r0 == cols:
+        return _svd_null_spaces(A)
+    Q, R = np.linalg.qr(A[:, p.stress_rows].transpose(0, 2, 1), mode="complete")
+    null = Q[:, :, r0:]
+    size = np.sqrt(np.einsum("nij,nij->n", A, A))
+    try:
+        inverse_size = np.sqrt(np.square(np.linalg.inv(R[:, :r0])).sum(axis=(1, 2)))
+        ok = (inverse_size * size < 1.0 / RANK_TOL) & (
+            np.sqrt(np.square(A @ null).sum(axis=(1, 2))) <= RANK_TOL * size / np.sqrt(nv))
+    except np.linalg.LinAlgError:
+        ok = np.zeros(n, dtype=bool)
+    if ok.all():
+        return null
+    fallback = _svd_null_spaces(A[~ok])
+    out = np.zeros((n, cols, max(cols - r0, fallback.shape[2])))
+    out[ok, :, :cols - r0] = null[ok]
+    out[~ok, :, :fallback.shape[2]] = fallback
+    return out
+
+
 def _determinacy(p: InverseDynamicsProblem, oMi: np.ndarray, J: np.ndarray, points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Which reaction components (N, joints, 6) and efforts (N, na) static equilibrium fixes.
 
     Tested on the full spatial rows: a component is determinate when it does not change along the
     null space of [S, J_full^T] (Wojtyra and Fraczek 2013); such a null vector is a self-stress (cut
-    forces, and actuator efforts, in equilibrium with no load). points: as in `_cut_loads`.
+    forces, and actuator efforts, in equilibrium with no load). A component's variation is the norm
+    of its changes along an orthonormal basis of that space (`_self_stresses`), the same for every
+    such basis; determinate: at most `DETERMINACY_TOL` times the largest. points: as in `_cut_loads`.
     """
     na = p.actuated_v.size
     Wf = p.full.wrenches(oMi)
-    A = _system(p, p.full.jacobian(Wf, J))
-    _, s, Vt = np.linalg.svd(A, full_matrices=True)
-    r = _ranks(s)
-    k, first = Vt.shape[1], int(r.min())
-    # rows first..k-1 of Vt: the null vectors of every sample (zeroed where a sample's rank is higher)
-    null = np.where((np.arange(first, k)[None, :] >= r[:, None])[..., None], Vt[:, first:], 0.0)
-    variation = np.abs(_cut_loads(p, p.full, Wf, null[..., na:], points)).max(axis=1, initial=0.0)
-    effort_variation = np.abs(null[..., :na]).max(axis=1, initial=0.0)
+    null = _self_stresses(p, _system(p, p.full.jacobian(Wf, J)))
+    variation = np.sqrt(np.square(_cut_loads(p, p.full, Wf, null[:, na:].transpose(0, 2, 1), points)).sum(axis=1))
+    effort_variation = np.sqrt(np.square(null[:, :na]).sum(axis=2))
     scale = np.maximum(np.maximum(variation.max(axis=(1, 2)), effort_variation.max(axis=1, initial=0.0)), 1e-300)
     tol = DETERMINACY_TOL * scale
     return variation <= tol[:, None, None], effort_variation <= tol[:, None]

@@ -101,13 +101,18 @@ class RowWrenches:
         v = (oMi[:, self._joints, :3] @ self._vectors)[..., 0]
         r = self.size
         xa, y = v[:, :r], v[:, r:2 * r]
-        W = np.concatenate([xa * self.is_force, cross3(y, xa)], axis=-1)
         residuals = np.sqrt(np.square((xa * (y - v[:, 2 * r:3 * r])).sum(axis=2)).sum(axis=1))
-        return W, residuals, v[:, 3 * r:]
+        return self._wrenches(xa, y), residuals, v[:, 3 * r:]
 
     def wrenches(self, oMi: np.ndarray) -> np.ndarray:
         """(N, rows, 6) row wrenches [force, moment about the world origin] from joint placements (N, njoints, 4, 4)."""
-        return self.evaluate(oMi)[0]
+        r = self.size
+        v = (oMi[:, self._joints[:2 * r], :3] @ self._vectors[:2 * r])[..., 0]
+        return self._wrenches(v[:, :r], v[:, r:])
+
+    def _wrenches(self, xa: np.ndarray, y: np.ndarray) -> np.ndarray:
+        """(N, rows, 6) [X_a (position rows), Y x X_a] from the world vectors X_a and Y (N, rows, 3)."""
+        return np.concatenate([xa * self.is_force, cross3(y, xa)], axis=-1)
 
     def jacobian(self, W: np.ndarray, J: np.ndarray) -> np.ndarray:
         """(N, rows, nv) closure Jacobian from the row wrenches (N, rows, 6) and `data.J` (N, 6, nv)."""
