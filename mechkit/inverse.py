@@ -83,7 +83,7 @@ def _gather(p: InverseDynamicsProblem, Q, V, A, fexts) -> tuple[np.ndarray, np.n
     R = oMi[:, 1:, None, :3, :3]
     world = np.zeros((n, len(p.load_map), 6))
     with np.errstate(under="ignore"):
-        world[:, :model.njoints - 1] = (R @ f[:, 1:].reshape(n, -1, 2, 3, 1)).reshape(n, -1, 6)
+        world[:, :model.njoints - 1] = (R @ f[:, 1:].reshape(n, model.njoints - 1, 2, 3, 1)).reshape(n, model.njoints - 1, 6)
     return oMi, J, tau, world
 
 
@@ -115,7 +115,7 @@ def _check_regular(p: InverseDynamicsProblem, Jrows: np.ndarray, residuals: np.n
     The resolvable limit grows with s_max and the residual, so the batch's largest of each bounds every
     sample's limit: only samples at or under that bound are judged one by one (none, at regular poses).
     """
-    if min(independent_rows, p.passive_v.size, Jrows.shape[1]) == 0:
+    if min(independent_rows, p.passive_v.size, Jrows.shape[1], len(Jrows)) == 0:
         return
     s = _singular_values(Jrows[:, :, p.passive_v])
     k = min(independent_rows, s.shape[1])
@@ -249,6 +249,8 @@ def _self_stresses(p: InverseDynamicsProblem, A: np.ndarray) -> np.ndarray:
     on that space.
     """
     n, nv, cols = A.shape
+    if n == 0:
+        return np.zeros((0, cols, 0))
     if n == 1 and nv * cols <= SMALL_SYSTEM:
         return _svd_null_spaces(A)
     if p.stress_rows is None:

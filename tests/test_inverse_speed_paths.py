@@ -140,3 +140,16 @@ def test_regularity_is_judged_as_check_regular_at_the_collinear_five_bar(load_ca
                 else:
                     m.inverse_dynamics(*state)
             m.inverse_dynamics(q, z, z, allow_singular=True, determinacy=False)
+
+
+@pytest.mark.parametrize("name", ["four_bar", "ten_bar", "deployable_9rr12uru"])
+@pytest.mark.parametrize("determinacy", [True, False])
+def test_zero_samples_give_empty_results(name, determinacy, load_cached):
+    """A motion study may hand over no sample: every path keeps the (0, ...) shapes."""
+    m = load_cached(name)
+    p, nv = m._id_problem, m.model.nv
+    for distribution in inverse.DISTRIBUTIONS:
+        out = inverse.inverse_dynamics_batch(p, np.zeros((0, m.model.nq)), np.zeros((0, nv)), np.zeros((0, nv)), [],
+                                             determinacy, distribution, m.independent_rows)
+        assert out.efforts.shape == (0, len(m.actuated)) and out.reactions.shape == (0, len(p.joint_names), 6)
+        assert (out.determinate is None) != determinacy
