@@ -4,8 +4,10 @@
 Jacobian. Every tree joint's transmitted wrench is the RNEA's minus the cut wrenches acting on its
 subtree; the cut joints transmit the cut wrenches. The per-sample work is Pinocchio's
 (`computeJointJacobians`, `rnea`) and reading its arrays; everything else is one numpy operation
-over the sample axis: closure rows as world wrenches (`mechkit.row_wrenches`), one batched solve
-(LAPACK gesv where [S, J^T] is square, an SVD otherwise), the reactions as batched products.
+over the sample axis: closure rows as world wrenches and residuals (`mechkit.row_wrenches`), the
+regularity of the passive block judged on that Jacobian (`_check_regular`), one batched solve
+(LAPACK gesv where [S, J^T] is square, QR where it has full rank, an SVD otherwise), the reactions
+as batched products, and the determinacy test on self-stress spaces from one QR (`_self_stresses`).
 One sample is the batch of one, so the single-sample and batched results are the same numbers.
 """
 
