@@ -25,7 +25,7 @@ from mechkit.closures import ClosureRows
 from mechkit.dynamics import InverseDynamicsResult, subtree_incidence
 from mechkit.exceptions import InvalidParameters, SingularConfiguration
 from mechkit.kinematics import RANK_TOL, judge_passive, resolvable_singular_value
-from mechkit.row_wrenches import RowWrenches, cross3, placements
+from mechkit.row_wrenches import RowWrenches, cross3
 
 #: Relative threshold under which a reaction component's null-space variation counts as zero.
 DETERMINACY_TOL = 1e-8
@@ -76,11 +76,13 @@ def _gather(p: InverseDynamicsProblem, Q, V, A, fexts) -> tuple[np.ndarray, np.n
     J = np.empty((n, 6, model.nv))
     tau = np.empty((n, model.nv))
     f = np.empty((n, model.njoints, 6))
+    jacobians, rnea = pin.computeJointJacobians, pin.rnea
     for i in range(n):
-        pin.computeJointJacobians(model, data, Q[i])
+        q = Q[i]
+        jacobians(model, data, q)
         J[i] = data.J
-        oMi[i] = placements(data)
-        tau[i] = pin.rnea(model, data, Q[i], V[i], A[i]) if fexts[i] is None else pin.rnea(model, data, Q[i], V[i], A[i], fexts[i])
+        oMi[i] = [M.np for M in data.oMi.tolist()]  # copied at once: .np views data's memory
+        tau[i] = rnea(model, data, q, V[i], A[i]) if fexts[i] is None else rnea(model, data, q, V[i], A[i], fexts[i])
         f[i] = [F.np for F in data.f.tolist()]
     R = oMi[:, 1:, None, :3, :3]
     world = np.zeros((n, len(p.load_map), 6))
