@@ -287,14 +287,13 @@ class Mechanism:
         arguments.option("distribution", distribution, inverse.DISTRIBUTIONS)
         determinacy = arguments.flag("determinacy", determinacy)
         q, v, a = self._state(q=q, v=v, a=a)
-        if not arguments.flag("allow_singular", allow_singular):
-            kinematics.check_regular(self.rows, self.data, q, self._split(list(self.actuated))[1], self.independent_rows)
+        rank = None if arguments.flag("allow_singular", allow_singular) else self.independent_rows
         if batch.is_batch(q):
             n, p = len(q), self._id_problem
             return inverse.inverse_dynamics_batch(p, q, v, a, batch.sample_fext(fext, n, self.model.njoints),
-                                                  determinacy, distribution)
+                                                  determinacy, distribution, rank)
         fext = arguments.external_forces("fext", fext, self.model.njoints)
-        return inverse.inverse_dynamics(self._id_problem, q, v, a, fext, determinacy, distribution)
+        return inverse.inverse_dynamics(self._id_problem, q, v, a, fext, determinacy, distribution, rank)
 
 
 def load(source: str | Path, *, actuated: Sequence[str] | None = None, home: Mapping[str, float] | None = None,
