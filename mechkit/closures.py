@@ -34,7 +34,7 @@ import pinocchio as pin
 
 from mechkit.description import LoopClosure
 from mechkit.exceptions import MalformedDescription, MethodUnavailable
-from mechkit.spatial import cross
+from mechkit.spatial import LEVI_CIVITA, cross, cross_batch
 
 #: Offset (m) along a revolute axis of the second point anchor that Pinocchio's 3D constraints use.
 AXIS_ANCHOR_OFFSET = 0.1
@@ -111,18 +111,6 @@ def cut_rows(model: pin.Model, closure: LoopClosure, rows: str | None = None) ->
         positions, alignments = [t1, t2], frame_fixed
     pos = np.array(positions).T if positions else np.zeros((3, 0))
     return CutRows(closure, ids[0], ids[1], pos, tuple(alignments))
-
-
-#: Levi-Civita symbol as a (9, 3) matrix: (a outer b).reshape(9) @ LEVI_CIVITA = a x b.
-LEVI_CIVITA = np.zeros((9, 3))
-for _i, _j, _k in ((0, 1, 2), (1, 2, 0), (2, 0, 1)):
-    LEVI_CIVITA[3 * _i + _j, _k], LEVI_CIVITA[3 * _j + _i, _k] = 1.0, -1.0
-
-
-def cross_batch(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """a x b on the last axis of two (..., 3) arrays of the same shape, as one matrix product."""
-    outer = a[..., :, None] * b[..., None, :]
-    return outer.reshape(*outer.shape[:-2], 9) @ LEVI_CIVITA
 
 
 def support_columns(model: pin.Model, joint: int) -> np.ndarray:

@@ -25,7 +25,8 @@ from mechkit.closures import ClosureRows
 from mechkit.dynamics import InverseDynamicsResult, subtree_incidence
 from mechkit.exceptions import InvalidParameters, SingularConfiguration
 from mechkit.kinematics import RANK_TOL, judge_passive, resolvable_singular_value
-from mechkit.row_wrenches import RowWrenches, cross3
+from mechkit.row_wrenches import RowWrenches
+from mechkit.spatial import cross_batch
 
 #: Relative threshold under which a reaction component's null-space variation counts as zero.
 DETERMINACY_TOL = 1e-8
@@ -98,7 +99,7 @@ def _cut_loads(p: InverseDynamicsProblem, rw: RowWrenches, W: np.ndarray, lam: n
     W: (N, rows, 6) row wrenches; points: (N, nj - 1 + ncuts, 3) tree joint origins, then the cuts' p_b.
     """
     loads = p.load_map @ rw.cut_wrenches(W[:, None], lam)  # about the world origin
-    loads[..., 3:] -= cross3(points[:, None], loads[..., :3])
+    loads[..., 3:] -= cross_batch(points[:, None], loads[..., :3])
     return loads
 
 

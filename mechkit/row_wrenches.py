@@ -17,33 +17,13 @@ from __future__ import annotations
 import numpy as np
 import pinocchio as pin
 
-from mechkit.closures import ClosureRows
-
-#: Levi-Civita symbol as a (9, 3) matrix: (a outer b).reshape(9) @ LEVI_CIVITA = a x b.
-LEVI_CIVITA = np.zeros((9, 3))
-for _i, _j, _k in ((0, 1, 2), (1, 2, 0), (2, 0, 1)):
-    LEVI_CIVITA[3 * _i + _j, _k], LEVI_CIVITA[3 * _j + _i, _k] = 1.0, -1.0
-
-
-def cross3(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """a x b on the last axis of two broadcastable (..., 3) arrays, as one matrix product."""
-    outer = a[..., :, None] * b[..., None, :]
-    return outer.reshape(*outer.shape[:-2], 9) @ LEVI_CIVITA
+from mechkit.closures import ClosureRows, support_columns
+from mechkit.spatial import cross_batch
 
 
 def placements(data: pin.Data) -> np.ndarray:
     """(njoints, 4, 4) homogeneous joint placements data.oMi."""
     return np.array([M.np for M in data.oMi.tolist()])
-
-
-def support_columns(model: pin.Model, joint: int) -> np.ndarray:
-    """(nv,) 1.0 on the velocity columns of the joints from the root to `joint` (0: none)."""
-    out = np.zeros(model.nv)
-    while joint > 0:
-        jm = model.joints[joint]
-        out[jm.idx_v:jm.idx_v + jm.nv] = 1.0
-        joint = model.parents[joint]
-    return out
 
 
 class RowWrenches:
@@ -112,7 +92,7 @@ class RowWrenches:
 
     def _wrenches(self, xa: np.ndarray, y: np.ndarray) -> np.ndarray:
         """(N, rows, 6) [X_a (position rows), Y x X_a] from the world vectors X_a and Y (N, rows, 3)."""
-        return np.concatenate([xa * self.is_force, cross3(y, xa)], axis=-1)
+        return np.concatenate([xa * self.is_force, cross_batch(y, xa)], axis=-1)
 
     def jacobian(self, W: np.ndarray, J: np.ndarray) -> np.ndarray:
         """(N, rows, nv) closure Jacobian from the row wrenches (N, rows, 6) and `data.J` (N, 6, nv)."""

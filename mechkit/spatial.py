@@ -19,6 +19,18 @@ def cross_rows(a: np.ndarray, b: np.ndarray) -> np.ndarray:
                             a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0]))
 
 
+#: Levi-Civita symbol as a (9, 3) matrix: (a outer b).reshape(9) @ LEVI_CIVITA = a x b.
+LEVI_CIVITA = np.zeros((9, 3))
+for _i, _j, _k in ((0, 1, 2), (1, 2, 0), (2, 0, 1)):
+    LEVI_CIVITA[3 * _i + _j, _k], LEVI_CIVITA[3 * _j + _i, _k] = 1.0, -1.0
+
+
+def cross_batch(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """a x b on the last axis of two broadcastable (..., 3) arrays, as one matrix product."""
+    outer = a[..., :, None] * b[..., None, :]
+    return outer.reshape(*outer.shape[:-2], 9) @ LEVI_CIVITA
+
+
 def skew(d: np.ndarray) -> np.ndarray:
     """[d]x, so that skew(d) @ b = d x b."""
     return np.array([[0.0, -d[2], d[1]], [d[2], 0.0, -d[0]], [-d[1], d[0], 0.0]])

@@ -9,7 +9,8 @@ from mechkit import registry
 from mechkit.bench.ladder import exact_accelerations
 from mechkit.exceptions import InvalidParameters
 from mechkit.large_models import LCABA_DEFAULTS, LoopConstrainedABA, ladder
-from mechkit.row_wrenches import RowWrenches, cross3, placements
+from mechkit.row_wrenches import RowWrenches, placements
+from mechkit.spatial import cross_batch
 
 
 @pytest.mark.parametrize("name", registry.names())
@@ -25,10 +26,10 @@ def test_wrench_rows_give_the_closure_jacobian(name, load_cached):
         assert np.max(np.abs(got - want), initial=0.0) < 1e-13 * max(1.0, np.max(np.abs(want), initial=0.0))
 
 
-def test_cross3_is_the_cross_product():
+def test_cross_batch_is_the_cross_product():
     rng = np.random.default_rng(3)
     a, b = rng.normal(size=(4, 5, 3)), rng.normal(size=(4, 5, 3))
-    assert np.max(np.abs(cross3(a, b) - np.cross(a, b))) < 1e-15
+    assert np.max(np.abs(cross_batch(a, b) - np.cross(a, b))) < 1e-15
 
 
 @pytest.mark.parametrize("loops", [1, 3, 8])
