@@ -62,6 +62,8 @@ class InverseDynamicsProblem:
         self.joint_names = tuple(model.names[1:]) + cut_names
         parents = model.parents
         self.stress_rows: np.ndarray | None = None  # see `_self_stresses`, set on its first call
+        # views of data.f and data.J (Force.np and data.J alias data's memory; data lives on self)
+        self._f_views, self._J_view = [F.np for F in data.f.tolist()], data.J
         self.supports = np.array([parents[i] == 0 for i in range(1, model.njoints)] + [
             model.frames[c.frame_a].parentJoint == 0 or model.frames[c.frame_b].parentJoint == 0 for c in rows.cuts],
             dtype=bool)
@@ -77,14 +79,14 @@ def _gather(p: InverseDynamicsProblem, Q, V, A, fexts) -> tuple[np.ndarray, np.n
     J = np.empty((n, 6, model.nv))
     tau = np.empty((n, model.nv))
     f = np.empty((n, model.njoints, 6))
-    jacobians, rnea = pin.computeJointJacobians, pin.rnea
+    jacobians, rnea, f_views, J_view = pin.computeJointJacobians, pin.rnea, p._f_views, p._J_view
     for i in range(n):
         q = Q[i]
         jacobians(model, data, q)
-        J[i] = data.J
-        oMi[i] = [M.np for M in data.oMi.tolist()]  # copied at once: .np views data's memory
+        J[i] = J_view
+        oMi[i] = [M.np for M in data.oMi.tolist()]
         tau[i] = rnea(model, data, q, V[i], A[i]) if fexts[i] is None else rnea(model, data, q, V[i], A[i], fexts[i])
-        f[i] = [F.np for F in data.f.tolist()]
+        f[i] = f_views
     R = oMi[:, 1:, None, :3, :3]
     world = np.zeros((n, len(p.load_map), 6))
     with np.errstate(under="ignore"):
