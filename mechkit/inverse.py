@@ -62,6 +62,10 @@ class InverseDynamicsProblem:
         self.joint_names = tuple(model.names[1:]) + cut_names
         parents = model.parents
         self.stress_rows: np.ndarray | None = None  # see `_self_stresses`, set on its first call
+        # views of data.oMi's rotations and translations, data.f and data.J (they alias data's memory,
+        # which lives on self; SE3.np is a copy)
+        self._R_views, self._t_views = [M.rotation for M in data.oMi.tolist()], [M.translation for M in data.oMi.tolist()]
+        self._f_views, self._J_view = [F.np for F in data.f.tolist()], data.J
         self.supports = np.array([parents[i] == 0 for i in range(1, model.njoints)] + [
             model.frames[c.frame_a].parentJoint == 0 or model.frames[c.frame_b].parentJoint == 0 for c in rows.cuts],
             dtype=bool)
@@ -73,18 +77,22 @@ def _gather(p: InverseDynamicsProblem, Q, V, A, fexts) -> tuple[np.ndarray, np.n
     cuts (N, nj - 1 + ncuts, 6): the reactions before the cut wrenches act."""
     model, data = p.model, p.data
     n = len(Q)
-    oMi = np.empty((n, model.njoints, 4, 4))
+    oMi = np.zeros((n, model.njoints, 4, 4))
+    oMi[:, :, 3, 3] = 1.0
+    rotations, translations = oMi[:, :, :3, :3], oMi[:, :, :3, 3]
     J = np.empty((n, 6, model.nv))
     tau = np.empty((n, model.nv))
     f = np.empty((n, model.njoints, 6))
     jacobians, rnea = pin.computeJointJacobians, pin.rnea
+    R_views, t_views, f_views, J_view = p._R_views, p._t_views, p._f_views, p._J_view
     for i in range(n):
         q = Q[i]
         jacobians(model, data, q)
-        J[i] = data.J
-        oMi[i] = [M.np for M in data.oMi.tolist()]  # copied at once: .np views data's memory
+        J[i] = J_view
+        rotations[i] = R_views
+        translations[i] = t_views
         tau[i] = rnea(model, data, q, V[i], A[i]) if fexts[i] is None else rnea(model, data, q, V[i], A[i], fexts[i])
-        f[i] = [F.np for F in data.f.tolist()]
+        f[i] = f_views
     R = oMi[:, 1:, None, :3, :3]
     world = np.zeros((n, len(p.load_map), 6))
     with np.errstate(under="ignore"):

@@ -153,3 +153,19 @@ def test_zero_samples_give_empty_results(name, determinacy, load_cached):
                                              determinacy, distribution, m.independent_rows)
         assert out.efforts.shape == (0, len(m.actuated)) and out.reactions.shape == (0, len(p.joint_names), 6)
         assert (out.determinate is None) != determinacy
+
+
+@pytest.mark.parametrize("name", registry.names())
+def test_gather_reads_each_sample_fresh_from_pinocchio(name, load_cached):
+    """The gather's held views of data give, per sample, what a fresh data's Pinocchio calls give."""
+    m = load_cached(name)
+    model, p = m.model, m._id_problem
+    samples = make_samples(m, 3)
+    Q, V, A = (np.array([getattr(s, k) for s in samples]) for k in "qva")
+    oMi, J, tau, _ = inverse._gather(p, Q, V, A, [None] * len(Q))
+    for i in range(len(Q)):
+        data = model.createData()
+        pin.computeJointJacobians(model, data, Q[i])
+        np.testing.assert_array_equal(oMi[i], np.array([M.np for M in data.oMi.tolist()]))
+        np.testing.assert_array_equal(J[i], data.J)
+        np.testing.assert_array_equal(tau[i], pin.rnea(model, data, Q[i], V[i], A[i]))
