@@ -71,3 +71,15 @@ def test_a_file_mechanism(fixture, tmp_path, capsys):
         assert status == 0 and result.source == "scene sweep" and np.isfinite(result.efforts).all()
         peak = {p.joint: p for p in motion.peaks(result)}["slider"]
         assert peak.values["axial_force"] < 1e-12 * peak.values["force"]
+
+
+@pytest.mark.parametrize("module, args", [("pandas", ["-o", "m.csv"]), ("pyarrow", ["-o", "m.parquet"]),
+                                          ("matplotlib", ["--plot", "m.png"])])
+def test_a_missing_library_is_refused_before_the_study(module, args, tmp_path, capsys, monkeypatch):
+    """An output whose library is not installed is refused in one line before any sample is computed."""
+    monkeypatch.setitem(__import__("sys").modules, module, None)  # import fails as if not installed
+    monkeypatch.chdir(tmp_path)
+    assert main(["motion", "four_bar", "--samples", "6", *args]) == 2
+    out, err = capsys.readouterr()
+    assert "peak reactions" not in out and err.count("\n") == 1 and "pip install" in err
+    assert list(tmp_path.iterdir()) == []

@@ -6,6 +6,7 @@ from __future__ import annotations
 import argparse
 from typing import TYPE_CHECKING
 
+from mechkit.atomic import resolve_output
 from mechkit.cli.common import add_mechanism_arguments, examples, load_mechanism
 from mechkit.cli.progress import ProgressBars
 from mechkit.exceptions import InvalidParameters, MechkitError
@@ -52,6 +53,7 @@ def run(args: argparse.Namespace) -> None:
         law = motion.resample(law, args.samples)
     if args.output and not args.output.endswith((".parquet", ".csv")):
         raise InvalidParameters("-o", args.output, "write .parquet or .csv")
+    _check_outputs(args)
     bars = ProgressBars(None if len(law.t) >= LONG_MOTION else False)
     result = motion.study(mech, law, determinacy=args.determinacy, skip_failures=True,
                           progress=lambda done, total: bars(f"{mech.spec.name} motion", done, total))
@@ -68,6 +70,20 @@ def run(args: argparse.Namespace) -> None:
     if args.plot:
         joints = [j.strip() for j in args.joints.split(",")] if args.joints else None
         print(f"wrote {write_plot(result, args.plot, joints)}")
+
+
+def _check_outputs(args: argparse.Namespace) -> None:
+    """Refuse, before the study runs, an output that cannot be written or whose library is missing."""
+    from mechkit.motion import plot, result
+
+    if args.output:
+        resolve_output(args.output)
+        result.pandas()
+        if args.output.endswith(".parquet"):
+            result.pyarrow()
+    if args.plot:
+        resolve_output(args.plot)
+        plot.pyplot()
 
 
 def add_parser(sub: argparse._SubParsersAction) -> None:

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from pathlib import Path
+from types import ModuleType
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -30,6 +31,18 @@ def busiest_joints(result: MotionResult, count: int = DEFAULT_JOINTS) -> list[st
     return [result.joints[j] for j in np.argsort(-peak, kind="stable")[:count]]
 
 
+def pyplot() -> ModuleType:
+    """matplotlib's pyplot on the Agg backend, or a `MethodUnavailable` naming the install."""
+    try:
+        import matplotlib
+
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+    except ImportError:
+        raise MethodUnavailable("motion plots", "matplotlib is not installed: pip install 'mechkit[bench]'") from None
+    return plt
+
+
 def figure(result: MotionResult, joints: Sequence[str] | None = None, title: str | None = None) -> Figure:
     """A figure: efforts (top), reaction forces (middle) and moments (bottom) of `joints` over time.
 
@@ -38,13 +51,7 @@ def figure(result: MotionResult, joints: Sequence[str] | None = None, title: str
             radial part, dotted axial part.
         title: the figure's title (default: mechanism and source).
     """
-    try:
-        import matplotlib
-
-        matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
-    except ImportError:
-        raise MethodUnavailable("motion plots", "matplotlib is not installed: pip install 'mechkit[bench]'") from None
+    plt = pyplot()
     joints = list(joints) if joints else busiest_joints(result)
     for joint in joints:
         result.reaction(joint)  # an unknown joint is a named error

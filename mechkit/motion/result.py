@@ -159,14 +159,21 @@ class MotionResult:
                    determinate, tuple((float(t), str(why)) for t, why in meta["failures"]))
 
 
-def write_parquet(result: MotionResult, path: str | Path) -> Path:
-    """Write the table as Parquet (pyarrow), metadata in the schema; atomic."""
-    df = result.to_dataframe()
-    buffer = io.BytesIO()
+def pyarrow() -> ModuleType:
+    """The pyarrow module (Parquet, the `motion` extra), or a `MethodUnavailable` naming the install."""
     try:
-        df.to_parquet(buffer, engine="pyarrow", index=False)
+        import pyarrow as pa
     except ImportError:
         raise MethodUnavailable("Parquet", "pyarrow is not installed: pip install 'mechkit[motion]'") from None
+    return pa
+
+
+def write_parquet(result: MotionResult, path: str | Path) -> Path:
+    """Write the table as Parquet (pyarrow), metadata in the schema; atomic."""
+    pyarrow()
+    df = result.to_dataframe()
+    buffer = io.BytesIO()
+    df.to_parquet(buffer, engine="pyarrow", index=False)
     return write_bytes(path, buffer.getvalue())
 
 
