@@ -9,21 +9,15 @@ row forms of `mechkit.closures`. The same wrenches, weighted by the row multipli
 wrenches that frame_a's side exerts on frame_b's side.
 
 Arrays carry a leading sample axis N; placements are (N, njoints, 4, 4) homogeneous matrices
-(`placements` reads them from a Pinocchio data).
+(`data.oMi`, gathered by `mechkit.inverse`).
 """
 
 from __future__ import annotations
 
 import numpy as np
-import pinocchio as pin
 
 from mechkit.closures import ClosureRows, support_columns
 from mechkit.spatial import cross_batch
-
-
-def placements(data: pin.Data) -> np.ndarray:
-    """(njoints, 4, 4) homogeneous joint placements data.oMi."""
-    return np.array([M.np for M in data.oMi.tolist()])
 
 
 class RowWrenches:
