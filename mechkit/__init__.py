@@ -1,6 +1,6 @@
 """mechkit: closed-loop mechanisms on Pinocchio, from parameters to joint reactions."""
 
-from mechkit.exceptions import (
+from mechkit.base.exceptions import (
     ClosureNotConverged,
     InvalidParameters,
     MalformedDescription,
@@ -8,8 +8,9 @@ from mechkit.exceptions import (
     MethodUnavailable,
     SingularConfiguration,
 )
-from mechkit.mechanism import Mechanism, from_urdf, load
-from mechkit.registry import get_spec, specs
+from mechkit.catalog.registry import get_spec, specs
+from mechkit.loading import from_urdf, load
+from mechkit.mechanism import Mechanism
 
 __all__ = [
     "ClosureNotConverged",

@@ -5,7 +5,7 @@ dof_gruebler, redundant_constraints, checks {name: worst residual or relative er
 {body: its idle freedoms}, loops [{cut, kind (planar / spherical / spatial),
 rows, full_rows, chosen}], rows_avoided, gruebler {kutzbach, declared}, home {joint: value}.
 
-`dof_gruebler` is the loop-by-loop Kutzbach count of the topology (`mechkit.structure`); a
+`dof_gruebler` is the loop-by-loop Kutzbach count of the topology (`mechkit.core.structure`); a
 registered mechanism's declared count (its spec) is shown beside it: the two differ only where the
 declared count is a modified one with overconstraints found by screw theory at a configuration (the
 deployable 9RR-12URU: 6 from topology, 7 declared with one redundant constraint).
@@ -17,9 +17,9 @@ from typing import Any
 
 import numpy as np
 
-from mechkit.exceptions import MechkitError
+from mechkit.base.exceptions import MechkitError
+from mechkit.core.structure import idle_freedoms, loop_joints
 from mechkit.mechanism import Mechanism
-from mechkit.structure import idle_freedoms, loop_joints
 
 #: Largest accepted self-check value (worst residual, m or rad, or relative error; ours): the registry's
 #: defaults stay below 3e-9 (the rocket gimbal's printed lengths), a parameter set that breaks a

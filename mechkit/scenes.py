@@ -16,8 +16,8 @@ import warnings
 import numpy as np
 import pinocchio as pin
 
-from mechkit.contract import SceneFunction
-from mechkit.exceptions import InvalidParameters, MalformedDescription, MechkitError
+from mechkit.base.exceptions import InvalidParameters, MalformedDescription, MechkitError
+from mechkit.catalog.contract import SceneFunction
 from mechkit.mechanism import Mechanism
 
 CLOSURE_TOL = 1e-6  # largest closure residual accepted in a scene's pose (m, or rad-like rows)

@@ -9,8 +9,8 @@ from pathlib import Path
 
 import pytest
 
-from mechkit import atomic
-from mechkit.exceptions import OutputError
+from mechkit.base import atomic
+from mechkit.base.exceptions import OutputError
 
 
 def _leftovers(folder: Path) -> list[str]:

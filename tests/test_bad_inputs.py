@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 import mechkit
-from mechkit.exceptions import (
+from mechkit.base.exceptions import (
     ClosureNotConverged,
     InvalidArgument,
     InvalidParameters,

@@ -12,7 +12,7 @@ import pytest
 from scipy.optimize import brentq
 
 import mechkit
-from mechkit.exceptions import ClosureNotConverged, InvalidParameters, SingularConfiguration
+from mechkit.base.exceptions import ClosureNotConverged, InvalidParameters, SingularConfiguration
 
 DISTANCES = (0.0, 1e-14, 1e-12, 1e-11, 1e-10, 1e-9, 1e-8, 1e-6, 1e-4, 1e-2)
 

@@ -5,10 +5,10 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from mechkit import registry
-from mechkit.batch import BatchInverseDynamicsResult
+from mechkit.base.exceptions import InvalidParameters, MethodUnavailable
 from mechkit.bench.sampling import make_samples
-from mechkit.exceptions import InvalidParameters, MethodUnavailable
+from mechkit.catalog import registry
+from mechkit.core.batch import BatchInverseDynamicsResult
 
 #: Batched and per-sample results agree to this, relative to the largest value of the quantity (or 1).
 TOL = 1e-13

@@ -9,13 +9,13 @@ import numpy as np
 import pytest
 
 import mechkit
+from mechkit.base.exceptions import SingularConfiguration
 from mechkit.bench import errors, failure_atlas, loadtime, run, timing
 from mechkit.bench.methods import BASELINES, Method
 from mechkit.bench.results import Row
+from mechkit.catalog.contract import BENCH_QUANTITIES, BenchMethod
 from mechkit.cli import main
-from mechkit.contract import BENCH_QUANTITIES, BenchMethod
-from mechkit.exceptions import SingularConfiguration
-from mechkit.mechanism import from_params
+from mechkit.loading import from_params
 
 
 def _row(name: str, quantity: str, seconds: float, error: float) -> Row:

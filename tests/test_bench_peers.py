@@ -5,8 +5,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from mechkit.base.exceptions import MethodUnavailable
 from mechkit.bench import peers
-from mechkit.exceptions import MethodUnavailable
 
 pytest.importorskip("mujoco")
 

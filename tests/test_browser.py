@@ -10,8 +10,8 @@ import pytest
 
 import mechkit
 from mechkit import scenes, viz
+from mechkit.base.exceptions import MethodUnavailable
 from mechkit.cli import main
-from mechkit.exceptions import MethodUnavailable
 from mechkit.viz import meshcat_page
 from mechkit.viz.browser import coverage, find_chromium, screenshot
 

@@ -8,10 +8,10 @@ from pathlib import Path
 
 import pytest
 
+from mechkit.base.exceptions import InvalidParameters
+from mechkit.catalog.ranges import param_ranges
+from mechkit.catalog.registry import get_spec
 from mechkit.cli import COMMANDS, build_parser, main
-from mechkit.exceptions import InvalidParameters
-from mechkit.param_ranges import param_ranges
-from mechkit.registry import get_spec
 from mechkit.sources import xacro_args
 
 

@@ -8,7 +8,7 @@ import scipy.linalg
 from conftest import support_balance_error
 
 import mechkit
-from mechkit.exceptions import MethodUnavailable
+from mechkit.base.exceptions import MethodUnavailable
 
 
 def _branch(k: int, axes: list[str]) -> str:

@@ -11,10 +11,10 @@ import numpy as np
 import pytest
 
 import mechkit
-from mechkit.description import build_model, parse_loops
-from mechkit.exceptions import InvalidParameters, MalformedDescription
-from mechkit.registry import specs
-from mechkit.resources import urdf_dir
+from mechkit.base.exceptions import InvalidParameters, MalformedDescription
+from mechkit.base.resources import urdf_dir
+from mechkit.catalog.registry import specs
+from mechkit.sources.urdf import build_model, parse_loops
 
 NAMES = list(specs())
 

@@ -12,7 +12,7 @@ import pytest
 from conftest import support_balance_error
 
 import mechkit
-from mechkit.exceptions import SingularConfiguration
+from mechkit.base.exceptions import SingularConfiguration
 
 CALIBRATION = ["four_bar", "five_bar"]
 

@@ -6,8 +6,8 @@ import numpy as np
 import pinocchio as pin
 import pytest
 
-from mechkit.exceptions import ClosureNotConverged, SingularConfiguration
-from mechkit.registry import specs
+from mechkit.base.exceptions import ClosureNotConverged, SingularConfiguration
+from mechkit.catalog.registry import specs
 
 NAMES = list(specs())
 

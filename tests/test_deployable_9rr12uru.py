@@ -6,7 +6,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from mechkit.exceptions import InvalidParameters
+from mechkit.base.exceptions import InvalidParameters
 from mechkit.mechanisms.deployable_9rr12uru import DeployableParams
 from mechkit.mechanisms.deployable_9rr12uru import redundancy as red
 from mechkit.mechanisms.truss.drives import drive_state

@@ -8,8 +8,8 @@ import pytest
 import yaml
 
 import mechkit
+from mechkit.base.exceptions import MethodUnavailable
 from mechkit.cli import main
-from mechkit.exceptions import MethodUnavailable
 from mechkit.export import to_extended_urdf, to_mjcf
 from mechkit.sources.extended_urdf import load_extended_urdf
 

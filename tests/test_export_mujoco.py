@@ -8,8 +8,8 @@ import numpy as np
 import pinocchio as pin
 import pytest
 
-from mechkit import registry
-from mechkit.closures import AXIS_ANCHOR_OFFSET
+from mechkit.catalog import registry
+from mechkit.core.closures import AXIS_ANCHOR_OFFSET
 from mechkit.export import frame_b_vector, to_mjcf
 from mechkit.export.mjcf import SOLREF_DIVISOR, smallest_link_period
 from mechkit.mechanisms.ten_bar.params import spring_from_urdf

@@ -14,7 +14,7 @@ import numpy as np
 import pytest
 
 import mechkit
-from mechkit import registry
+from mechkit.catalog import registry
 from mechkit.export import export_command
 
 pytest.importorskip("mujoco")

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from mechkit import exceptions
+from mechkit.base import exceptions
 from mechkit.bench import failure_atlas
 
 KNOWN = {"ok", "other branch", "root lost"} | {n for n in dir(exceptions) if n[0].isupper()}

@@ -7,11 +7,11 @@ import numpy as np
 import pinocchio as pin
 import pytest
 
-from mechkit import forward
+from mechkit.base.exceptions import ClosureNotConverged, InvalidArgument
 from mechkit.bench.ladder import exact_accelerations
+from mechkit.bench.ladder_model import LCABA_DEFAULTS, LoopConstrainedABA, ladder
 from mechkit.bench.sampling import make_samples
-from mechkit.exceptions import ClosureNotConverged, InvalidArgument
-from mechkit.large_models import LCABA_DEFAULTS, LoopConstrainedABA, ladder
+from mechkit.core import forward
 
 PROXIMAL = ["four_bar", "five_bar", "parallel_2t1r", "ten_bar", "deployable_9rr12uru"]
 

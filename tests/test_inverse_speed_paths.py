@@ -13,9 +13,10 @@ import pinocchio as pin
 import pytest
 from test_bad_inputs_singular import DISTANCES, _singular_inputs
 
-from mechkit import inverse, kinematics, registry
+from mechkit.base.exceptions import SingularConfiguration
 from mechkit.bench.sampling import make_samples
-from mechkit.exceptions import SingularConfiguration
+from mechkit.catalog import registry
+from mechkit.core import inverse, kinematics
 
 
 def _arrays(m, samples):

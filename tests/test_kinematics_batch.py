@@ -8,10 +8,10 @@ import pinocchio as pin
 import pytest
 from scipy.optimize import brentq
 
-from mechkit import registry
+from mechkit.base.exceptions import SingularConfiguration
+from mechkit.base.spatial import cross, skew
 from mechkit.bench.sampling import make_samples
-from mechkit.exceptions import SingularConfiguration
-from mechkit.spatial import cross, skew
+from mechkit.catalog import registry
 
 LWA = pin.ReferenceFrame.LOCAL_WORLD_ALIGNED
 

@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from mechkit.exceptions import InvalidParameters, SingularConfiguration
+from mechkit.base.exceptions import InvalidParameters, SingularConfiguration
 from mechkit.validation.lagrange import Body, Linkage, Pin, Spring
 
 G = 9.81

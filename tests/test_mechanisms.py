@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 from conftest import support_balance_error
 
-from mechkit.registry import specs
+from mechkit.catalog.registry import specs
 from mechkit.report import report
 
 NAMES = list(specs())

@@ -8,7 +8,7 @@ import pinocchio as pin
 import pytest
 
 from mechkit import motion
-from mechkit.exceptions import InvalidParameters, MalformedDescription
+from mechkit.base.exceptions import InvalidParameters, MalformedDescription
 from mechkit.mechanisms.parallel_2t1r.motion_law import MOTION_DURATION, MOTION_RATES, motion_law
 from mechkit.motion.peaks import QUANTITIES
 from mechkit.motion.result import AXES, COMPONENTS

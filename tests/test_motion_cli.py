@@ -9,8 +9,8 @@ import numpy as np
 import pytest
 
 from mechkit import motion
+from mechkit.catalog.registry import names
 from mechkit.cli import main
-from mechkit.registry import names
 
 #: The deployable's fold scene takes about 40 s to assemble (201 poses of a 66-coordinate model).
 SLOW = {"deployable_9rr12uru"}

@@ -7,8 +7,8 @@ import xml.etree.ElementTree as ET
 import numpy as np
 import pytest
 
-from mechkit.description import render_urdf
-from mechkit.exceptions import ClosureNotConverged, InvalidParameters, SingularConfiguration
+from mechkit.base.exceptions import ClosureNotConverged, InvalidParameters, SingularConfiguration
+from mechkit.base.resources import urdf_dir
 from mechkit.mechanisms.parallel_2t1r import SPEC
 from mechkit.mechanisms.parallel_2t1r import kinematics as kin
 from mechkit.mechanisms.parallel_2t1r.assembly import EXAMPLE_INPUTS
@@ -19,8 +19,8 @@ from mechkit.mechanisms.parallel_2t1r.params import Parallel2T1RParams, mass_pro
 from mechkit.mechanisms.parallel_2t1r.rates import at_rest
 from mechkit.mechanisms.parallel_2t1r.soc import classic_torques, skcs, soc_inverse_dynamics
 from mechkit.mechanisms.parallel_2t1r.studies import singular_approach, start_of_motion
-from mechkit.resources import urdf_dir
 from mechkit.scenes import scene_poses
+from mechkit.sources.xacro_file import render_urdf
 
 REGULAR = np.arange(1, 501) * 0.01  # the 501-sample law without its singular start t = 0
 

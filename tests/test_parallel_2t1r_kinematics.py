@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from mechkit.exceptions import InvalidParameters, SingularConfiguration
+from mechkit.base.exceptions import InvalidParameters, SingularConfiguration
 from mechkit.mechanisms.parallel_2t1r import kinematics as kin
 from mechkit.mechanisms.parallel_2t1r import rates
 from mechkit.mechanisms.parallel_2t1r.assembly import EXAMPLE_INPUTS, assembled_pose

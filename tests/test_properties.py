@@ -14,9 +14,9 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 import mechkit
-from mechkit.exceptions import MechkitError
-from mechkit.mechanism import from_params
-from mechkit.registry import get_spec, names
+from mechkit.base.exceptions import MechkitError
+from mechkit.catalog.registry import get_spec, names
+from mechkit.loading import from_params
 from mechkit.report import CHECK_LIMIT, failing_checks, self_checks
 
 

@@ -8,7 +8,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from numpy.polynomial import Polynomial
 
-from mechkit.exceptions import InvalidParameters
+from mechkit.base.exceptions import InvalidParameters
 from mechkit.mechanisms.rocket_gimbal.kinematics import (
     PAPER_EXAMPLE,
     RULE_ANGLE,

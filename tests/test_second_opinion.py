@@ -13,7 +13,7 @@ import scipy.sparse as sp
 from scipy.sparse.csgraph import connected_components, maximum_bipartite_matching
 
 import mechkit
-from mechkit.exceptions import InvalidParameters
+from mechkit.base.exceptions import InvalidParameters
 from mechkit.second_opinion.compare import agreement, scene_states
 from mechkit.second_opinion.decomposition import block_triangular
 from mechkit.second_opinion.opinion import SecondOpinion

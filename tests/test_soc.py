@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from mechkit.exceptions import InvalidParameters, SingularConfiguration
+from mechkit.base.exceptions import InvalidParameters, SingularConfiguration
 from mechkit.validation.planar_closed_form import five_bar, four_bar
 from mechkit.validation.planar_motion import AXIS, Bar, LinkageState, LinkState
 from mechkit.validation.planar_newton_euler import newton_euler

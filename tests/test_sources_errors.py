@@ -9,7 +9,7 @@ from pathlib import Path
 import pytest
 
 import mechkit
-from mechkit.exceptions import InvalidParameters, MalformedDescription
+from mechkit.base.exceptions import InvalidParameters, MalformedDescription
 
 FIXTURES = Path(__file__).parent / "fixtures"
 SLIDER = (FIXTURES / "slider_crank.urdf").read_text()

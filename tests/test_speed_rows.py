@@ -5,12 +5,12 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from mechkit import registry
+from mechkit.base.exceptions import InvalidParameters
+from mechkit.base.spatial import cross_batch
 from mechkit.bench.ladder import exact_accelerations
-from mechkit.exceptions import InvalidParameters
-from mechkit.large_models import LCABA_DEFAULTS, LoopConstrainedABA, ladder
-from mechkit.row_wrenches import RowWrenches
-from mechkit.spatial import cross_batch
+from mechkit.bench.ladder_model import LCABA_DEFAULTS, LoopConstrainedABA, ladder
+from mechkit.catalog import registry
+from mechkit.core.row_wrenches import RowWrenches
 
 
 @pytest.mark.parametrize("name", registry.names())

@@ -7,8 +7,8 @@ import math
 import numpy as np
 import pytest
 
-from mechkit.exceptions import ClosureNotConverged, InvalidParameters
-from mechkit.mechanism import load
+from mechkit.base.exceptions import ClosureNotConverged, InvalidParameters
+from mechkit.loading import load
 from mechkit.mechanisms.spherical_2dof import SPEC, Spherical2DofParams, checks, soc
 from mechkit.mechanisms.spherical_2dof import kinematics as kin
 from mechkit.mechanisms.spherical_2dof.fk import NEAR_SINGULAR, REGULAR, basin_study

@@ -11,7 +11,7 @@ import pinocchio as pin
 import pytest
 
 import mechkit
-from mechkit.registry import names
+from mechkit.catalog.registry import names
 from mechkit.report import report
 
 FIXTURES = Path(__file__).parent / "fixtures"

@@ -10,7 +10,7 @@ import pinocchio as pin
 import pytest
 
 import mechkit
-from mechkit.exceptions import InvalidParameters
+from mechkit.base.exceptions import InvalidParameters
 from mechkit.sweep import DesignSpace, Study, parse_axis, read, sweep
 from mechkit.sweep.evaluate import Chunk, evaluate_chunk
 from mechkit.sweep.metrics import motion_samples

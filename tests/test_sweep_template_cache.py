@@ -5,10 +5,10 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from mechkit.description import render_urdf
-from mechkit.exceptions import MalformedDescription
-from mechkit.registry import get_spec, names
-from mechkit.template_cache import TemplateCache
+from mechkit.base.exceptions import MalformedDescription
+from mechkit.catalog.registry import get_spec, names
+from mechkit.sources.template_cache import TemplateCache
+from mechkit.sources.xacro_file import render_urdf
 
 
 def _random_args(args: dict[str, str], floats: tuple[str, ...], rng: np.random.Generator) -> dict[str, str]:

@@ -7,8 +7,8 @@ import math
 import numpy as np
 import pytest
 
-from mechkit.exceptions import InvalidParameters, SingularConfiguration
-from mechkit.kinematics import update_kinematics
+from mechkit.base.exceptions import InvalidParameters, SingularConfiguration
+from mechkit.core.kinematics import update_kinematics
 from mechkit.mechanisms.ten_bar import SPEC
 from mechkit.mechanisms.ten_bar import checks as tc
 from mechkit.mechanisms.ten_bar import dynamics as td

@@ -6,7 +6,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from mechkit.exceptions import InvalidParameters
+from mechkit.base.exceptions import InvalidParameters
+from mechkit.base.spatial import rot_x, rot_y, rot_z
 from mechkit.mechanisms.tetra_3rr3uru import TetraParams, soc
 from mechkit.mechanisms.truss.drives import drive_state
 from mechkit.mechanisms.truss.fold import fold
@@ -21,7 +22,6 @@ from mechkit.mechanisms.truss.geometry import (
 )
 from mechkit.mechanisms.truss.motion import web_joint_motion
 from mechkit.mechanisms.truss.nodes import node_positions
-from mechkit.spatial import rot_x, rot_y, rot_z
 
 GEOMETRY = TrussGeometry(0.590, 0.2504, 0.250)
 TIMES = (0.0, 37.0, 100.0, 163.0, 200.0)

@@ -16,7 +16,7 @@ import numpy as np
 import pytest
 
 from mechkit import from_urdf
-from mechkit.exceptions import MethodUnavailable
+from mechkit.base.exceptions import MethodUnavailable
 from mechkit.viz import meshcat_page, snapshot
 from mechkit.viz.browser import coverage, find_chromium, screenshot
 from mechkit.viz.meshes import MeshSearch

@@ -14,8 +14,8 @@ import pytest
 
 import mechkit
 from mechkit import scenes, viz
-from mechkit.exceptions import InvalidParameters, MalformedDescription, MechkitError, MethodUnavailable
-from mechkit.mechanism import from_params
+from mechkit.base.exceptions import InvalidParameters, MalformedDescription, MechkitError, MethodUnavailable
+from mechkit.loading import from_params
 from mechkit.viz import camera, drawing, meshcat_page
 
 umsgpack = pytest.importorskip("umsgpack")

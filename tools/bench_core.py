@@ -51,7 +51,7 @@ def measure(name: str, budget: float) -> list[tuple[str, float, str]]:
     q0 = start.copy()
     for joint, value in inputs.items():
         q0[m.q_index(joint)] = value
-    _, iters = mechkit.kinematics.solve_closure(m.rows, data, q0, m._split(list(inputs))[1])
+    _, iters = mechkit.core.kinematics.solve_closure(m.rows, data, q0, m._split(list(inputs))[1])
     for label, fn, base, comment in [
         ("assemble (closure Newton, from home)", lambda: m.assemble(inputs, guess=start), t_kin,
          f"{iters} iterations; ratio to one kinematics update"),

@@ -22,9 +22,10 @@ import itertools
 import numpy as np
 import pinocchio as pin
 
-from mechkit import kinematics
 from mechkit.bench import time_per_call
-from mechkit.mechanism import Mechanism, load
+from mechkit.core import kinematics
+from mechkit.loading import load
+from mechkit.mechanism import Mechanism
 from mechkit.mechanisms.truss.fold import fold
 
 NAMES = ("four_bar", "five_bar", "tetra_3rr3uru", "deployable_9rr12uru")

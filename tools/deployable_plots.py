@@ -18,12 +18,12 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 import numpy as np
 
-from mechkit.mechanism import load
+from mechkit.base.spatial import rot_y
+from mechkit.loading import load
 from mechkit.mechanisms.truss.drives import drive_state
 from mechkit.mechanisms.truss.fold import fold, fold_times
 from mechkit.mechanisms.truss.geometry import R_B0_ANGLES, euler_xyz, rot_axis, rpy_angles
 from mechkit.mechanisms.truss.nodes import node_positions, node_velocity
-from mechkit.spatial import rot_y
 
 FIGURES = Path(__file__).resolve().parent.parent / "docs" / "figures"
 PAPER_END_GAMMA_X = 85.5133  # deg, section 3.2 (theory; Adams 84.9368)

@@ -21,7 +21,7 @@ sys.path.insert(0, str(ROOT))
 
 import mechkit
 from mechkit import viz
-from mechkit.atomic import write_text
+from mechkit.base.atomic import write_text
 from mechkit.cli.progress import ProgressBars
 from mechkit.viz.browser import coverage, screenshot
 

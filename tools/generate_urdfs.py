@@ -8,8 +8,8 @@ from __future__ import annotations
 import sys
 from pathlib import Path
 
-from mechkit.atomic import write_text
-from mechkit.registry import get_spec, names
+from mechkit.base.atomic import write_text
+from mechkit.catalog.registry import get_spec, names
 
 URDF_DIR = Path(__file__).resolve().parent.parent / "urdf"  # the repository's folder, not an installed copy
 

@@ -22,7 +22,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 from mechkit.bench import time_per_call
-from mechkit.mechanism import load
+from mechkit.loading import load
 from mechkit.mechanisms.rocket_gimbal.checks import fk_closure
 from mechkit.mechanisms.rocket_gimbal.kinematics import actuator_lengths, fk_newton
 from mechkit.mechanisms.rocket_gimbal.params import geometry

@@ -16,7 +16,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 import numpy as np
 
-from mechkit.mechanism import load
+from mechkit.loading import load
 from mechkit.mechanisms.rocket_gimbal.scenes import SwingScene, thrust_fext
 from mechkit.mechanisms.rocket_gimbal.soc import soc_skcs
 from mechkit.mechanisms.rocket_gimbal.state import joint_state

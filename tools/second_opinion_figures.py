@@ -16,7 +16,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 
 import mechkit
-from mechkit.registry import names
+from mechkit.catalog.registry import names
 from mechkit.second_opinion.opinion import SecondOpinion
 
 OUT = Path(__file__).resolve().parent.parent / "docs" / "figures"

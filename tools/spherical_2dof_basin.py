@@ -18,8 +18,8 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 import numpy as np
 
-from mechkit.exceptions import InvalidParameters
-from mechkit.mechanism import load
+from mechkit.base.exceptions import InvalidParameters
+from mechkit.loading import load
 from mechkit.mechanisms.spherical_2dof import kinematics as kin
 from mechkit.mechanisms.spherical_2dof.fk import METHODS, NEAR_SINGULAR, REGULAR, basin_study
 from mechkit.mechanisms.spherical_2dof.kinematics import BRANCHES

@@ -22,7 +22,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 from mechkit.bench import time_per_call
-from mechkit.mechanism import load
+from mechkit.loading import load
 from mechkit.mechanisms.spherical_2dof import kinematics as kin
 from mechkit.mechanisms.spherical_2dof import soc
 from mechkit.mechanisms.spherical_2dof.fk import solve_fk

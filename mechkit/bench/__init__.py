@@ -6,7 +6,7 @@ available for each quantity, then runs every method on those states: first once 
 then in a timed loop (one process, garbage collector off) for microseconds per call (median and
 inter-quartile range over repeats).
 
-Quantities (`mechkit.contract.BENCH_QUANTITIES`) and their errors (`errors`): "assembly" (q from the
+Quantities (`mechkit.catalog.contract.BENCH_QUANTITIES`) and their errors (`errors`): "assembly" (q from the
 input coordinates), "forward_dynamics" (accelerations under the reference efforts),
 "inverse_dynamics" (efforts and joint reactions for (q, v, a)).
 

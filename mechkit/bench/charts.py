@@ -11,7 +11,7 @@ import numpy as np
 from mechkit.bench.errors import ERROR_LABELS
 from mechkit.bench.results import MechanismBench, Row
 from mechkit.bench.scale import ScaleFit
-from mechkit.contract import BENCH_QUANTITIES
+from mechkit.catalog.contract import BENCH_QUANTITIES
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes

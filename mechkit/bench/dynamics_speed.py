@@ -19,9 +19,9 @@ from dataclasses import dataclass
 import numpy as np
 import pinocchio as pin
 
+from mechkit.base.exceptions import MechkitError
 from mechkit.bench.sampling import Sample, make_samples
 from mechkit.bench.timing import time_per_call
-from mechkit.exceptions import MechkitError
 from mechkit.mechanism import Mechanism
 
 #: Samples per batched call (the states of `make_samples`, tiled).

@@ -27,11 +27,11 @@ from pathlib import Path
 
 import numpy as np
 
+from mechkit.base.exceptions import MechkitError
 from mechkit.bench.charts import pyplot, save_figure
 from mechkit.bench.methods import references
 from mechkit.bench.sampling import make_samples
-from mechkit.exceptions import MechkitError
-from mechkit.mechanism import load
+from mechkit.loading import load
 from mechkit.mechanisms.rocket_gimbal import resultant as res
 from mechkit.mechanisms.rocket_gimbal.params import geometry
 from mechkit.validation.planar_closed_form import FiveBarGeometry, five_bar

@@ -1,4 +1,4 @@
-"""The ladder of N four-bar loops (`mechkit.large_models`): forward dynamics cost and error against N.
+"""The ladder of N four-bar loops (`mechkit.bench.ladder_model`): forward dynamics cost and error against N.
 
 For each N: one state (q = 0, input rates ~ N(0, 1), efforts ~ N(0, 0.1) N m, seed 0), the exact accelerations from the dense KKT on mechkit's independent closure rows, solved by LU with iterative refinement (residual in extended precision, `exact_accelerations`); then microseconds per call of the raw `pin.constraintDynamics` (mu = 1e-9, the core's default) and of `LoopConstrainedABA` (`pin.lcaba` at `LCABA_DEFAULTS`, its closure error certified), timed alternately repeat after repeat in one process, each keeping its fastest repeat (the least disturbed on a shared machine), and their ratio; the relative error of each against the exact accelerations. Growth: the least-squares slope of log t against log N over N >= `FIT_FROM`.
 """
@@ -12,9 +12,9 @@ import numpy as np
 import pinocchio as pin
 import scipy.linalg
 
+from mechkit.bench.ladder_model import LCABA_DEFAULTS, LoopConstrainedABA, ladder
 from mechkit.bench.timing import time_per_call
-from mechkit.dynamics import independent_rows
-from mechkit.large_models import LCABA_DEFAULTS, LoopConstrainedABA, ladder
+from mechkit.core.dynamics import independent_rows
 from mechkit.mechanism import Mechanism
 
 SIZES = (1, 2, 4, 8, 16, 32, 64)

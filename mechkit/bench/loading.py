@@ -19,7 +19,8 @@ from typing import Any
 import numpy as np
 
 from mechkit.export import to_extended_urdf, to_mjcf
-from mechkit.mechanism import Mechanism, load
+from mechkit.loading import load
+from mechkit.mechanism import Mechanism
 
 NAMES = ("four_bar", "parallel_2t1r", "tetra_3rr3uru")
 

@@ -17,8 +17,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from mechkit.exceptions import MethodUnavailable
-from mechkit.registry import entry, names
+from mechkit.base.exceptions import MethodUnavailable
+from mechkit.catalog.registry import entry, names
 
 _SCRIPT = """\
 import json, sys, time

@@ -19,9 +19,9 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 import pinocchio as pin
 
+from mechkit.base.exceptions import MechkitError
 from mechkit.bench.errors import IDReference, id_parts
 from mechkit.bench.sampling import Sample
-from mechkit.exceptions import MechkitError
 
 if TYPE_CHECKING:
     from mechkit.mechanism import Mechanism
@@ -37,7 +37,7 @@ class Method:
 
     Attributes:
         name: label in tables and charts (unique per quantity).
-        quantity: one of `mechkit.contract.BENCH_QUANTITIES`.
+        quantity: one of `mechkit.catalog.contract.BENCH_QUANTITIES`.
         run: (mechanism, sample) -> result.
         family: points of one family are joined on the charts (an accuracy knob swept).
         peer: a peer simulator's method (marked in tables).

@@ -16,7 +16,8 @@ from dataclasses import dataclass
 import numpy as np
 import pinocchio as pin
 
-from mechkit.mechanism import Mechanism, load
+from mechkit.loading import load
+from mechkit.mechanism import Mechanism
 from mechkit.mechanisms.parallel_2t1r.motion_law import MOTION_DURATION, motion_law
 from mechkit.motion.inputs import from_callable
 from mechkit.motion.path import PathKinematics

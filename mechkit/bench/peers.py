@@ -26,12 +26,12 @@ import xml.etree.ElementTree as ET
 
 import numpy as np
 
+from mechkit.base.exceptions import MechkitError, MethodUnavailable
 from mechkit.bench.methods import Method
-from mechkit.closures import AXIS_ANCHOR_OFFSET
-from mechkit.description import LOOP_NAMESPACE
-from mechkit.exceptions import MechkitError, MethodUnavailable
+from mechkit.core.closures import AXIS_ANCHOR_OFFSET
 from mechkit.export import body_name, frame_b_vector, to_mjcf
 from mechkit.mechanism import Mechanism
+from mechkit.sources.urdf import LOOP_NAMESPACE
 
 #: MuJoCo equality solref (time constant s, damping ratio) and solimp for the "stiff" setting.
 STIFF_SOLREF = (0.002, 1.0)

@@ -11,14 +11,15 @@ from __future__ import annotations
 
 from collections.abc import Callable, Sequence
 
-from mechkit import registry
+from mechkit.base.exceptions import MechkitError
 from mechkit.bench.methods import BASELINES, core_methods, own_methods, references
 from mechkit.bench.peers import peer_methods
 from mechkit.bench.results import MechanismBench, Row
 from mechkit.bench.sampling import Sample, make_samples
 from mechkit.bench.timing import measure, paired_ratio, ratios
-from mechkit.exceptions import MechkitError
-from mechkit.mechanism import Mechanism, load
+from mechkit.catalog import registry
+from mechkit.loading import load
+from mechkit.mechanism import Mechanism
 
 Progress = Callable[[str, int, int, str], None]
 """Called after each method is measured: (mechanism, methods done, methods in all, method's label)."""

@@ -11,7 +11,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 import pinocchio as pin
 
-from mechkit.exceptions import MechkitError, MethodUnavailable
+from mechkit.base.exceptions import MechkitError, MethodUnavailable
 from mechkit.independent_inputs import input_joints
 
 if TYPE_CHECKING:

@@ -11,8 +11,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from mechkit.bench.timing import time_per_call
-from mechkit.mechanism import load
-from mechkit.registry import names as registered
+from mechkit.catalog.registry import names as registered
+from mechkit.loading import load
 from mechkit.scenes import SweepStopped
 from mechkit.second_opinion.compare import agreement, scene_states
 from mechkit.second_opinion.opinion import SecondOpinion

@@ -17,13 +17,13 @@ from typing import Any
 
 import numpy as np
 
-from mechkit.description import render_urdf
+from mechkit.catalog.registry import get_spec
 from mechkit.mechanism import Mechanism
-from mechkit.registry import get_spec
+from mechkit.sources.template_cache import TemplateCache
+from mechkit.sources.xacro_file import render_urdf
 from mechkit.sweep.engine import dask_client, sweep
 from mechkit.sweep.metrics import Study
 from mechkit.sweep.space import DesignSpace, parse_axis
-from mechkit.template_cache import TemplateCache
 
 
 @dataclass(frozen=True)

@@ -16,12 +16,12 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from mechkit.base.exceptions import MechkitError
 from mechkit.bench.errors import acceleration_error, assembly_error, inverse_error
 from mechkit.bench.methods import BASELINES, Method, References
 from mechkit.bench.results import Row
 from mechkit.bench.sampling import Sample
-from mechkit.contract import BENCH_QUANTITIES
-from mechkit.exceptions import MechkitError
+from mechkit.catalog.contract import BENCH_QUANTITIES
 
 if TYPE_CHECKING:
     from mechkit.mechanism import Mechanism

@@ -13,8 +13,8 @@ import sys
 
 import numpy as np
 
+from mechkit.base.exceptions import MechkitError
 from mechkit.cli import bench, export, listing, motion, params, report, snapshot, sweep, urdf, validate, view
-from mechkit.exceptions import MechkitError
 
 COMMANDS = (listing, urdf, report, snapshot, bench, export, params, sweep, motion, validate, view)
 

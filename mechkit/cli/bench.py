@@ -7,10 +7,10 @@ from pathlib import Path
 
 import numpy as np
 
-from mechkit import sources
-from mechkit.atomic import resolve_output, write_text
+from mechkit.base.atomic import resolve_output, write_text
+from mechkit.base.exceptions import OutputError
 from mechkit.cli.common import examples
-from mechkit.exceptions import OutputError
+from mechkit.loading import resolve
 
 
 def run(args: argparse.Namespace) -> None:
@@ -19,7 +19,7 @@ def run(args: argparse.Namespace) -> None:
     from mechkit.cli.progress import ProgressBars
 
     for name in args.names:
-        sources.resolve(name)  # an unknown name fails now, not as "not measured" after the run
+        resolve(name)  # an unknown name fails now, not as "not measured" after the run
     if args.markdown:
         resolve_output(args.markdown)  # refused before the run, not after it
     if args.charts and Path(args.charts).exists() and not Path(args.charts).is_dir():
@@ -57,9 +57,9 @@ def run(args: argparse.Namespace) -> None:
 def speed_sections(names: list[str], quick: bool) -> dict[str, list[str]]:
     """The rows the issues ask of the benchmark page: the dynamics against one raw Pinocchio call, the
     ladder of four-bar loops, the 2T1R motion law, loading from files, and the second opinion."""
-    from mechkit import registry
     from mechkit.bench import dynamics_speed, ladder, loading, motion_speed, second_opinion
-    from mechkit.mechanism import load
+    from mechkit.catalog import registry
+    from mechkit.loading import load
 
     budget = 0.05 if quick else 0.3
     chosen = names or list(registry.names())

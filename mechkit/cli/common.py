@@ -6,8 +6,9 @@ import argparse
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from mechkit.exceptions import MechkitError
-from mechkit.mechanism import Mechanism, load
+from mechkit.base.exceptions import MechkitError
+from mechkit.loading import load
+from mechkit.mechanism import Mechanism
 
 if TYPE_CHECKING:
     from mechkit.viz.meshes import MeshSearch

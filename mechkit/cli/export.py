@@ -9,7 +9,7 @@ from mechkit.cli.common import add_mechanism_arguments, examples, load_mechanism
 
 def run(args: argparse.Namespace) -> None:
     """Write the export and say where."""
-    from mechkit.atomic import is_stdout
+    from mechkit.base.atomic import is_stdout
     from mechkit.export import export_command
 
     for path in export_command(load_mechanism(args), args.format, args.output):

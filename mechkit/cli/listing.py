@@ -4,8 +4,8 @@ from __future__ import annotations
 
 import argparse
 
+from mechkit.catalog.registry import ENTRIES
 from mechkit.cli.common import examples
-from mechkit.registry import ENTRIES
 
 
 def run(args: argparse.Namespace) -> None:

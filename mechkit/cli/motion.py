@@ -6,10 +6,10 @@ from __future__ import annotations
 import argparse
 from typing import TYPE_CHECKING
 
-from mechkit.atomic import resolve_output
+from mechkit.base.atomic import resolve_output
+from mechkit.base.exceptions import InvalidParameters, MechkitError
 from mechkit.cli.common import add_mechanism_arguments, examples, load_mechanism
 from mechkit.cli.progress import ProgressBars
-from mechkit.exceptions import InvalidParameters, MechkitError
 
 if TYPE_CHECKING:
     from mechkit.motion.result import MotionResult

@@ -1,6 +1,6 @@
 """`mechkit params`: a mechanism's parameters with their defaults, units, accepted ranges and meaning.
 
-A registered name lists its parameter class (ranges measured by `mechkit.param_ranges`); a xacro
+A registered name lists its parameter class (ranges measured by `mechkit.catalog.ranges`); a xacro
 file lists its `<xacro:arg>`s and their defaults (no unit or range is declared there); a URDF or
 MJCF file is a fixed description and has none.
 """
@@ -18,9 +18,10 @@ COLUMNS = ("name", "value", "unit", "range", "ours", "doc")
 
 def rows_of(source: str) -> tuple[list[dict[str, Any]], str]:
     """(one row per parameter with `COLUMNS`, a note on what the rows are) of a name or a file."""
-    from mechkit.param_ranges import param_ranges
-    from mechkit.registry import get_spec
-    from mechkit.sources import resolve, xacro_args
+    from mechkit.catalog.ranges import param_ranges
+    from mechkit.catalog.registry import get_spec
+    from mechkit.loading import resolve
+    from mechkit.sources import xacro_args
 
     found = resolve(source)
     if isinstance(found, str):

@@ -10,7 +10,7 @@ from mechkit.cli.common import add_mechanism_arguments, examples, load_mechanism
 
 def run(args: argparse.Namespace) -> None:
     """Print the report."""
-    from mechkit.exceptions import SelfCheckFailed
+    from mechkit.base.exceptions import SelfCheckFailed
     from mechkit.report import CHECK_LIMIT, failing_checks, format_report, report
 
     r = report(load_mechanism(args))

@@ -5,8 +5,8 @@ from __future__ import annotations
 import argparse
 import sys
 
+from mechkit.base.exceptions import InvalidParameters
 from mechkit.cli.common import examples, overrides
-from mechkit.exceptions import InvalidParameters
 
 
 def _space(args: argparse.Namespace):

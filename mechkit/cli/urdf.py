@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import argparse
 
-from mechkit.atomic import STDOUT, write_text
+from mechkit.base.atomic import STDOUT, write_text
 from mechkit.cli.common import add_mechanism_arguments, examples, load_mechanism
 
 

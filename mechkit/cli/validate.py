@@ -6,8 +6,8 @@ from __future__ import annotations
 import argparse
 import json
 
+from mechkit.base.exceptions import InvalidParameters
 from mechkit.cli.common import add_mechanism_arguments, examples, load_mechanism
-from mechkit.exceptions import InvalidParameters
 
 
 def report(args: argparse.Namespace) -> dict:

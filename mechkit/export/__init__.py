@@ -5,7 +5,7 @@ from __future__ import annotations
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from mechkit.exceptions import OutputError, UnknownOption
+from mechkit.base.exceptions import OutputError, UnknownOption
 from mechkit.export.extended_urdf import frame_b_vector, to_extended_urdf
 from mechkit.export.mjcf import body_name, to_mjcf
 from mechkit.sources.extended_urdf import load_extended_urdf
@@ -32,7 +32,7 @@ def export_command(mechanism: Mechanism, fmt: str, output: str | Path) -> list[P
         OutputError: the output is refused (a directory, a device, the sidecar's own name, ...) or
             cannot be written.
     """
-    from mechkit.atomic import write_files, write_text
+    from mechkit.base.atomic import write_files, write_text
 
     if fmt not in FORMATS:
         raise UnknownOption("format", fmt, FORMATS)

@@ -19,13 +19,13 @@ import numpy as np
 import pinocchio as pin
 import yaml
 
-from mechkit.closures import AXIS_ANCHOR_OFFSET
-from mechkit.description import LOOP_NAMESPACE
-from mechkit.exceptions import MethodUnavailable
+from mechkit.base.exceptions import MethodUnavailable
+from mechkit.core.closures import AXIS_ANCHOR_OFFSET
 from mechkit.export.xmltext import numbers as _fmt
+from mechkit.sources.urdf import LOOP_NAMESPACE
 
 if TYPE_CHECKING:
-    from mechkit.closures import CutRows
+    from mechkit.core.closures import CutRows
     from mechkit.mechanism import Mechanism
 
 

@@ -46,12 +46,12 @@ from typing import TYPE_CHECKING
 import numpy as np
 import pinocchio as pin
 
-from mechkit.closures import AXIS_ANCHOR_OFFSET
-from mechkit.description import LOOP_NAMESPACE
-from mechkit.exceptions import MalformedDescription, MethodUnavailable
+from mechkit.base.exceptions import MalformedDescription, MethodUnavailable
+from mechkit.core.closures import AXIS_ANCHOR_OFFSET
+from mechkit.core.structure import body_name
 from mechkit.export.xmltext import numbers as _fmt
 from mechkit.export.xmltext import quat_wxyz as _quat_wxyz
-from mechkit.structure import body_name
+from mechkit.sources.urdf import LOOP_NAMESPACE
 
 if TYPE_CHECKING:
     from mechkit.mechanism import Mechanism

@@ -1,1 +1,1 @@
-"""One module per mechanism; each defines `SPEC` (a `mechkit.registry.MechanismSpec`)."""
+"""One module per mechanism; each defines `SPEC` (a `mechkit.catalog.registry.MechanismSpec`)."""

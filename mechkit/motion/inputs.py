@@ -19,7 +19,7 @@ from pathlib import Path
 import numpy as np
 import scipy.interpolate
 
-from mechkit.exceptions import InvalidParameters, MalformedDescription
+from mechkit.base.exceptions import InvalidParameters, MalformedDescription
 from mechkit.mechanism import Mechanism
 from mechkit.scenes import scene_poses, scene_times
 

@@ -15,8 +15,8 @@ from collections.abc import Sequence
 import numpy as np
 import pinocchio as pin
 
-from mechkit import kinematics
-from mechkit.exceptions import SingularConfiguration
+from mechkit.base.exceptions import SingularConfiguration
+from mechkit.core import kinematics
 from mechkit.mechanism import Mechanism
 
 

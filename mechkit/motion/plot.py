@@ -10,8 +10,8 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from mechkit.atomic import write_bytes
-from mechkit.exceptions import MethodUnavailable
+from mechkit.base.atomic import write_bytes
+from mechkit.base.exceptions import MethodUnavailable
 from mechkit.motion.peaks import load_histories
 from mechkit.motion.result import MotionResult
 

@@ -19,8 +19,8 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from mechkit.atomic import write_bytes, write_text
-from mechkit.exceptions import MalformedDescription, MethodUnavailable
+from mechkit.base.atomic import write_bytes, write_text
+from mechkit.base.exceptions import MalformedDescription, MethodUnavailable
 
 if TYPE_CHECKING:
     import pandas as pd

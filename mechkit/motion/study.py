@@ -16,8 +16,8 @@ from collections.abc import Callable, Sequence
 import numpy as np
 import pinocchio as pin
 
-from mechkit import inverse
-from mechkit.exceptions import MechkitError
+from mechkit.base.exceptions import MechkitError
+from mechkit.core import inverse
 from mechkit.mechanism import Mechanism
 from mechkit.motion.inputs import InputLaw
 from mechkit.motion.path import PathKinematics

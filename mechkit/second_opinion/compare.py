@@ -22,7 +22,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from mechkit.exceptions import MechkitError, MethodUnavailable
+from mechkit.base.exceptions import MechkitError, MethodUnavailable
 from mechkit.independent_inputs import input_joints
 from mechkit.mechanism import Mechanism
 from mechkit.scenes import joint_extent, scene_poses

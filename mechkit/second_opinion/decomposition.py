@@ -46,10 +46,10 @@ import numpy as np
 import scipy.sparse as sp
 from scipy.sparse.csgraph import connected_components, maximum_bipartite_matching
 
-from mechkit.exceptions import InvalidParameters
+from mechkit.base.exceptions import InvalidParameters
+from mechkit.base.spatial import cross
 from mechkit.second_opinion.motion import Instant
 from mechkit.second_opinion.structure import COMPONENT_NAMES, Structure
-from mechkit.spatial import cross
 
 #: Relative size below which a wrench-direction entry counts as a structural zero.
 PATTERN_TOL = 1e-9

@@ -13,9 +13,9 @@ from dataclasses import dataclass
 import numpy as np
 import pinocchio as pin
 
-from mechkit.closures import ClosureRows
+from mechkit.base.spatial import cross
+from mechkit.core.closures import ClosureRows
 from mechkit.second_opinion.structure import Structure, constraint_span, tree_motion
-from mechkit.spatial import cross
 
 
 @dataclass(frozen=True)

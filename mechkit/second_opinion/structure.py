@@ -19,9 +19,9 @@ from dataclasses import dataclass
 import numpy as np
 import pinocchio as pin
 
-from mechkit.closures import ClosureRows
-from mechkit.exceptions import MalformedDescription
-from mechkit.spatial import cross
+from mechkit.base.exceptions import MalformedDescription
+from mechkit.base.spatial import cross
+from mechkit.core.closures import ClosureRows
 
 LWA = pin.ReferenceFrame.LOCAL_WORLD_ALIGNED
 #: Singular-value threshold (relative) of the wrench spaces and of the component choice.

@@ -9,7 +9,7 @@ import xml.etree.ElementTree as ET
 
 import numpy as np
 
-from mechkit.exceptions import MalformedDescription
+from mechkit.base.exceptions import MalformedDescription
 
 
 def check_tree(root: ET.Element) -> None:

@@ -5,8 +5,8 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from mechkit.description import LoopClosure
-from mechkit.exceptions import MalformedDescription
+from mechkit.base.exceptions import MalformedDescription
+from mechkit.core.records import LoopClosure
 
 
 @dataclass(frozen=True)

@@ -19,10 +19,9 @@ from xml.sax.saxutils import quoteattr
 import numpy as np
 import pinocchio as pin
 
-from mechkit.description import LOOP_NAMESPACE, build_model, parse_xml
-from mechkit.exceptions import MalformedDescription
+from mechkit.base.exceptions import MalformedDescription
 from mechkit.sources.description import Description, read_text
-from mechkit.sources.urdf import describe_urdf
+from mechkit.sources.urdf import LOOP_NAMESPACE, build_model, describe_urdf, parse_xml
 
 
 def sidecar_of(path: Path) -> Path | None:

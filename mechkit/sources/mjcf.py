@@ -24,10 +24,9 @@ from pathlib import Path
 import numpy as np
 import pinocchio as pin
 
-from mechkit.description import LOOP_NAMESPACE, parse_xml
-from mechkit.exceptions import MalformedDescription, MethodUnavailable
+from mechkit.base.exceptions import MalformedDescription, MethodUnavailable
 from mechkit.sources.description import Description, read_text
-from mechkit.sources.urdf import describe_urdf
+from mechkit.sources.urdf import LOOP_NAMESPACE, describe_urdf, parse_xml
 
 CONNECT, WELD = 0, 1  # mjtEq
 HINGE, SLIDE = 3, 2  # mjtJoint

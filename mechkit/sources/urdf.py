@@ -1,14 +1,31 @@
-"""A `.urdf` file with `<mechkit:loop>` elements; its actuators are its `<transmission>` elements."""
+"""A URDF with `<mechkit:loop>` elements: the loops read with an XML parser into `LoopClosure` records,
+its actuators from its `<transmission>` elements, its tree built by Pinocchio.
+
+Loop closures are declared inside the URDF as `<mechkit:loop name type frame_a frame_b axis rows/>`
+(namespace `LOOP_NAMESPACE`); urdfdom and other URDF consumers ignore the element.
+"""
 
 from __future__ import annotations
 
+import os
+import tempfile
 import xml.etree.ElementTree as ET
 from pathlib import Path
 
-from mechkit.description import parse_home, parse_loops, parse_xml
-from mechkit.exceptions import MalformedDescription
+import numpy as np
+import pinocchio as pin
+
+from mechkit.base.exceptions import MalformedDescription
+from mechkit.core.records import LOOP_KINDS, ROW_SETS, LoopClosure
 from mechkit.sources.checks import check_inertias, check_tree
 from mechkit.sources.description import Description, read_text
+
+LOOP_NAMESPACE = "https://mechkit.dev/loop"
+#: Elements of the loop namespace mechkit knows (`home`: an input value of the default assembly;
+#: `spring`: a joint spring). Any other one is a `MalformedDescription`.
+KNOWN_ELEMENTS = ("loop", "home", "spring")
+#: Local names that declare a loop in some convention; outside the loop namespace they are an error.
+LOOP_LIKE = ("loop", "loops", "closure", "closed_loop", "loop_closure", "constraint", "cut")
 
 
 def read_urdf(path: Path) -> Description:
@@ -20,7 +37,7 @@ def describe_urdf(urdf: str, source: Path | None, fmt: str, params: dict[str, st
     """Check a URDF text (tree, inertias, loop elements, home) and read its actuators.
 
     Raises:
-        MalformedDescription: see `mechkit.sources.checks`, `mechkit.description.parse_loops`.
+        MalformedDescription: see `mechkit.sources.checks`, `mechkit.sources.urdf.parse_loops`.
     """
     where = str(source) if source is not None else "urdf"
     root = parse_xml(urdf, where)
@@ -48,3 +65,130 @@ def transmissions(root: ET.Element, joints: set[str]) -> tuple[str, ...]:
             if name not in out:
                 out.append(name)
     return tuple(out)
+
+
+def parse_xml(text: str, where: str = "urdf") -> ET.Element:
+    """The root element of an XML text; anything not well-formed is a `MalformedDescription`."""
+    try:
+        return ET.fromstring(text.encode())
+    except ET.ParseError as err:
+        raise MalformedDescription(where, f"not well-formed XML: {err}") from None
+
+
+def check_loop_elements(root: ET.Element) -> None:
+    """Refuse loop declarations mechkit would otherwise drop without a word.
+
+    Raises:
+        MalformedDescription: an element in a namespace that looks like mechkit's but is not
+            `LOOP_NAMESPACE` (a mistyped URI), an unknown element of the loop namespace, or a
+            loop-like element (`LOOP_LIKE`) outside it.
+    """
+    for element in root.iter():
+        if not isinstance(element.tag, str):
+            continue
+        uri, _, local = element.tag[1:].partition("}") if element.tag.startswith("{") else ("", "", element.tag)
+        if uri == LOOP_NAMESPACE:
+            if local not in KNOWN_ELEMENTS:
+                raise MalformedDescription(f"mechkit:{local}", f"unknown element of the loop namespace; known: {KNOWN_ELEMENTS}")
+        elif "mechkit" in uri.lower():
+            raise MalformedDescription(f"<{local}> in namespace {uri!r}",
+                                       f"the loop namespace is {LOOP_NAMESPACE!r} (mistyped URI?)")
+        elif local.lower() in LOOP_LIKE:
+            raise MalformedDescription(f"<{element.tag}>", f"a loop-like element outside the loop namespace "
+                                       f"{LOOP_NAMESPACE!r}: declare loops as <mechkit:loop>")
+
+
+def parse_loops(urdf: str | ET.Element) -> list[LoopClosure]:
+    """Read every `<mechkit:loop>` of a URDF (text or parsed root) into `LoopClosure` records, checked
+    against its links and against loop declarations that would be dropped (`check_loop_elements`)."""
+    root = parse_xml(urdf) if isinstance(urdf, str) else urdf
+    check_loop_elements(root)
+    links = {link.get("name") for link in root.findall("link")}
+    loops = []
+    for element in root.findall(f"{{{LOOP_NAMESPACE}}}loop"):
+        loops.append(_parse_loop(element, links))
+    names = [loop.name for loop in loops]
+    if len(set(names)) != len(names):
+        raise MalformedDescription("mechkit:loop", f"duplicate loop names in {names}")
+    return loops
+
+
+def _parse_loop(element: ET.Element, links: set[str]) -> LoopClosure:
+    name = element.get("name")
+    where = f"mechkit:loop {name!r}"
+    if not name:
+        raise MalformedDescription("mechkit:loop", "missing attribute 'name'")
+    kind = element.get("type")
+    if kind not in LOOP_KINDS:
+        raise MalformedDescription(where, f"type {kind!r} is not one of {LOOP_KINDS}")
+    rows = element.get("rows", "spatial")
+    if rows not in ROW_SETS:
+        raise MalformedDescription(where, f"rows {rows!r} is not one of {ROW_SETS}")
+    frames = {}
+    for attr in ("frame_a", "frame_b"):
+        frame = element.get(attr)
+        if not frame:
+            raise MalformedDescription(where, f"missing attribute {attr!r}")
+        if frame not in links:
+            raise MalformedDescription(where, f"{attr} {frame!r} is not a link of the URDF")
+        frames[attr] = frame
+    if frames["frame_a"] == frames["frame_b"]:
+        raise MalformedDescription(where, "frame_a and frame_b are the same link")
+    axis = _vector(element, "axis", where, required=kind in ("revolute", "prismatic") or rows != "spatial")
+    axis_a = _vector(element, "axis_a", where, required=kind == "hooke")
+    axis_b = _vector(element, "axis_b", where, required=kind == "hooke")
+    if kind == "hooke" and rows == "planar":
+        raise MalformedDescription(where, "a Hooke cut has no planar rows")
+    if kind == "spherical" and rows == "spherical":
+        raise MalformedDescription(where, "a spherical cut about a common centre has no rows left")
+    return LoopClosure(name, kind, frames["frame_a"], frames["frame_b"], axis, axis_a, axis_b, rows,
+                       element.get("rows") is not None)
+
+
+def parse_home(urdf: str | ET.Element) -> dict[str, float]:
+    """The `<mechkit:home joint="..." value="..."/>` inputs of the default assembly (rad or m)."""
+    out = {}
+    for element in (parse_xml(urdf) if isinstance(urdf, str) else urdf).findall(f"{{{LOOP_NAMESPACE}}}home"):
+        joint, text = element.get("joint"), element.get("value")
+        try:
+            value = float(text)
+        except (TypeError, ValueError):
+            raise MalformedDescription(f"mechkit:home {joint!r}", f"value {text!r} is not a number") from None
+        if not joint or not np.isfinite(value):
+            raise MalformedDescription(f"mechkit:home {joint!r}", "needs a joint name and a finite value")
+        out[joint] = value
+    return out
+
+
+def _vector(element: ET.Element, attr: str, where: str, required: bool) -> np.ndarray | None:
+    text = element.get(attr)
+    if text is None:
+        if required:
+            raise MalformedDescription(where, f"missing attribute {attr!r}")
+        return None
+    try:
+        vec = np.array([float(x) for x in text.split()])
+    except ValueError:
+        raise MalformedDescription(where, f"{attr}={text!r} is not three numbers") from None
+    if vec.shape != (3,) or not np.all(np.isfinite(vec)) or np.linalg.norm(vec) < 1e-12:
+        raise MalformedDescription(where, f"{attr}={text!r} is not a non-zero 3-vector")
+    return vec / np.linalg.norm(vec)
+
+
+def build_model(urdf: str) -> pin.Model:
+    """Pinocchio model of the URDF tree; any urdfdom complaint is a `MalformedDescription`."""
+    with tempfile.TemporaryFile(mode="w+b") as captured:
+        saved = os.dup(2)
+        os.dup2(captured.fileno(), 2)
+        try:
+            model = pin.buildModelFromXML(urdf)
+        except (RuntimeError, ValueError) as err:
+            raise MalformedDescription("urdf", f"Pinocchio could not build it: {err}") from None
+        finally:
+            os.dup2(saved, 2)
+            os.close(saved)
+        captured.seek(0)
+        complaints = captured.read().decode(errors="replace").strip()
+    if complaints:
+        raise MalformedDescription("urdf", f"urdfdom: {complaints.splitlines()[0]}")
+    return model

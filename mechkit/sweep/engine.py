@@ -18,9 +18,9 @@ from contextlib import contextmanager
 from dataclasses import asdict, dataclass, fields
 from pathlib import Path
 
-from mechkit.exceptions import InvalidParameters, MethodUnavailable
-from mechkit.mechanism import load
-from mechkit.registry import get_spec
+from mechkit.base.exceptions import InvalidParameters, MethodUnavailable
+from mechkit.catalog.registry import get_spec
+from mechkit.loading import load
 from mechkit.sweep import store
 from mechkit.sweep.evaluate import STATUSES, Chunk, evaluate_chunk
 from mechkit.sweep.metrics import Study

@@ -1,7 +1,7 @@
 """One design -> one result row, and one chunk of designs -> its rows (what a Dask task runs).
 
 A task carries everything it needs (`Chunk`): workers keep no state between tasks. Within a chunk the
-template is expanded once (`mechkit.template_cache`) and every design substitutes its parameters.
+template is expanded once (`mechkit.sources.template_cache`) and every design substitutes its parameters.
 A design that fails is a row with its status and message, never an exception:
 
 - "ok": built, assembled and measured;
@@ -18,13 +18,13 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from mechkit.description import render_urdf
-from mechkit.exceptions import ClosureNotConverged, SingularConfiguration
+from mechkit.base.exceptions import ClosureNotConverged, SingularConfiguration
+from mechkit.catalog.registry import get_spec
 from mechkit.mechanism import Mechanism
-from mechkit.registry import get_spec
+from mechkit.sources.template_cache import TemplateCache
+from mechkit.sources.xacro_file import render_urdf
 from mechkit.sweep.metrics import SingularAlongMotion, Study, motion_samples
 from mechkit.sweep.specific import resolve
-from mechkit.template_cache import TemplateCache
 
 STATUSES = ("ok", "does_not_assemble", "singular", "error")
 

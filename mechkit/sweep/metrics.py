@@ -21,7 +21,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from mechkit.exceptions import ClosureNotConverged, InvalidParameters, SingularConfiguration
+from mechkit.base.exceptions import ClosureNotConverged, InvalidParameters, SingularConfiguration
 from mechkit.mechanism import Mechanism
 from mechkit.scenes import scene_poses
 

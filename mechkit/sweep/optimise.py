@@ -18,7 +18,7 @@ from pathlib import Path
 import numpy as np
 from scipy.optimize import minimize
 
-from mechkit.exceptions import InvalidParameters
+from mechkit.base.exceptions import InvalidParameters
 from mechkit.sweep import store
 from mechkit.sweep.engine import dask_client
 from mechkit.sweep.evaluate import Chunk, evaluate_chunk

@@ -11,7 +11,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from mechkit.exceptions import InvalidParameters
+from mechkit.base.exceptions import InvalidParameters
 
 
 def _columns(frame: pd.DataFrame, *names: str) -> None:

@@ -13,7 +13,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from mechkit.exceptions import InvalidParameters
+from mechkit.base.exceptions import InvalidParameters
 
 MODES = ("grid", "random", "lhs")
 

@@ -14,7 +14,7 @@ from __future__ import annotations
 import numpy as np
 import pinocchio as pin
 
-from mechkit.exceptions import InvalidParameters
+from mechkit.base.exceptions import InvalidParameters
 from mechkit.mechanism import Mechanism
 from mechkit.mechanisms.rocket_gimbal.kinematics import linear_rule_errors
 from mechkit.mechanisms.rocket_gimbal.params import geometry

@@ -23,8 +23,8 @@ import numpy as np
 import pyarrow as pa
 import pyarrow.parquet as pq
 
-from mechkit.atomic import write_bytes, write_text
-from mechkit.exceptions import InvalidParameters, MalformedDescription
+from mechkit.base.atomic import write_bytes, write_text
+from mechkit.base.exceptions import InvalidParameters, MalformedDescription
 
 if TYPE_CHECKING:
     import pandas as pd

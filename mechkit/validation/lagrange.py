@@ -28,7 +28,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import scipy.linalg
 
-from mechkit.exceptions import ClosureNotConverged, InvalidParameters, SingularConfiguration
+from mechkit.base.exceptions import ClosureNotConverged, InvalidParameters, SingularConfiguration
 
 __all__ = ["Body", "Linkage", "Pin", "Solution", "Spring"]
 

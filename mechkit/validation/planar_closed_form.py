@@ -12,7 +12,7 @@ from dataclasses import dataclass, fields
 
 import numpy as np
 
-from mechkit.exceptions import InvalidParameters, SingularConfiguration
+from mechkit.base.exceptions import InvalidParameters, SingularConfiguration
 from mechkit.validation.planar_motion import Bar, LinkageState, LinkState, PlanarJoint, perp
 from mechkit.validation.soc import RANK_TOL
 

@@ -17,7 +17,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from mechkit.exceptions import InvalidParameters
+from mechkit.base.exceptions import InvalidParameters
 
 __all__ = ["AXIS", "Bar", "LinkState", "LinkageState", "PlanarJoint", "perp", "to_world", "unit"]
 

@@ -11,7 +11,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from mechkit.exceptions import InvalidParameters, SingularConfiguration
+from mechkit.base.exceptions import InvalidParameters, SingularConfiguration
 from mechkit.validation.planar_motion import LinkageState
 from mechkit.validation.soc import RANK_TOL
 

@@ -20,8 +20,8 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy.linalg import null_space
 
-from mechkit.exceptions import InvalidParameters, SingularConfiguration
-from mechkit.spatial import cross
+from mechkit.base.exceptions import InvalidParameters, SingularConfiguration
+from mechkit.base.spatial import cross
 
 __all__ = [
     "RANK_TOL",

@@ -15,8 +15,8 @@ import tempfile
 from collections.abc import Sequence
 from pathlib import Path
 
-from mechkit.atomic import resolve_output, write_bytes
-from mechkit.exceptions import MechkitError, MethodUnavailable
+from mechkit.base.atomic import resolve_output, write_bytes
+from mechkit.base.exceptions import MechkitError, MethodUnavailable
 
 CANDIDATES = ("chromium", "chromium-browser", "google-chrome", "google-chrome-stable")
 FLAGS = ("--headless", "--no-sandbox", "--disable-gpu", "--enable-unsafe-swiftshader", "--use-angle=swiftshader",

@@ -14,7 +14,7 @@ from typing import Any
 
 import numpy as np
 
-from mechkit.exceptions import InvalidParameters
+from mechkit.base.exceptions import InvalidParameters
 from mechkit.mechanism import Mechanism
 from mechkit.viz.meshes import MeshSearch
 from mechkit.viz.pages import animation, snapshot

@@ -21,7 +21,7 @@ from typing import Self
 
 import numpy as np
 
-from mechkit.exceptions import InvalidParameters, MechkitError
+from mechkit.base.exceptions import InvalidParameters, MechkitError
 from mechkit.mechanism import Mechanism
 from mechkit.scenes import scene_poses
 from mechkit.viz.meshcat_page import StaticScene

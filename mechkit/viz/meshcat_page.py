@@ -16,7 +16,7 @@ from typing import Any
 
 import numpy as np
 
-from mechkit.exceptions import MechkitError
+from mechkit.base.exceptions import MechkitError
 
 BACKGROUND = (0.93, 0.95, 0.97)  # uniform page background (rgb 0..1)
 _LOOP_PINGPONG = 2202  # THREE.LoopPingPong

@@ -23,7 +23,7 @@ from typing import Any
 
 import numpy as np
 
-from mechkit.exceptions import MalformedDescription
+from mechkit.base.exceptions import MalformedDescription
 
 MISSING = (1.0, 0.0, 1.0, 1.0)  # colour of the placeholder of a missing mesh (ours)
 MESH_FORMATS = {".stl": "StlMeshGeometry", ".obj": "ObjMeshGeometry", ".dae": "DaeMeshGeometry"}

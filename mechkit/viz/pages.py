@@ -17,8 +17,8 @@ from pathlib import Path
 import numpy as np
 import pinocchio as pin
 
-from mechkit.atomic import check_distinct, write_text
-from mechkit.exceptions import InvalidParameters, MechkitError
+from mechkit.base.atomic import check_distinct, write_text
+from mechkit.base.exceptions import InvalidParameters, MechkitError
 from mechkit.mechanism import Mechanism
 from mechkit.scenes import scene_poses
 from mechkit.viz.browser import find_chromium, screenshot

@@ -17,7 +17,7 @@ removed, `indeterminate_direction` of the reactions, `second_order_form`).
 
 from __future__ import annotations
 
-from mechkit.contract import MechanismSpec
+from mechkit.catalog.contract import MechanismSpec
 from mechkit.mechanisms.deployable_9rr12uru.actuation import ACTUATED, home
 from mechkit.mechanisms.deployable_9rr12uru.params import DeployableParams
 from mechkit.mechanisms.truss.checks import fold_checks

@@ -6,9 +6,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from mechkit.exceptions import InvalidParameters
+from mechkit.base.exceptions import InvalidParameters
+from mechkit.catalog.params import param
 from mechkit.mechanisms.truss.params import TetraParams
-from mechkit.params import param
 
 
 @dataclass(frozen=True)

@@ -15,14 +15,14 @@ import numpy as np
 import pinocchio as pin
 from scipy.linalg import null_space
 
-from mechkit.dynamics import (
+from mechkit.base.exceptions import InvalidParameters
+from mechkit.core.dynamics import (
     InverseDynamicsResult,
     cut_wrench_arrays,
     subtract_cut_wrenches,
     subtree_incidence,
 )
-from mechkit.exceptions import InvalidParameters
-from mechkit.kinematics import numerical_rank
+from mechkit.core.kinematics import numerical_rank
 from mechkit.mechanism import Mechanism
 
 #: Names of the world reaction components, in wrench order [f, m].

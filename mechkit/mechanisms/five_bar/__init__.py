@@ -10,7 +10,7 @@ the shared `mechkit.mechanisms.planar_linkage` builds the bench methods and refe
 
 from __future__ import annotations
 
-from mechkit.contract import MechanismSpec
+from mechkit.catalog.contract import MechanismSpec
 from mechkit.mechanisms.five_bar.closed_form import motion
 from mechkit.mechanisms.five_bar.params import FiveBarParams
 from mechkit.mechanisms.planar_linkage.methods import bench_methods, bench_references

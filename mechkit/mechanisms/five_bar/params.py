@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from mechkit.params import MechanismParams, param
+from mechkit.catalog.params import MechanismParams, param
 
 
 @dataclass(frozen=True)

@@ -11,7 +11,7 @@ the shared `mechkit.mechanisms.planar_linkage` builds the bench methods and refe
 
 from __future__ import annotations
 
-from mechkit.contract import MechanismSpec
+from mechkit.catalog.contract import MechanismSpec
 from mechkit.mechanisms.four_bar.closed_form import motion
 from mechkit.mechanisms.four_bar.params import FourBarParams
 from mechkit.mechanisms.planar_linkage.methods import bench_methods, bench_references

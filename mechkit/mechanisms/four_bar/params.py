@@ -4,8 +4,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from mechkit.exceptions import InvalidParameters
-from mechkit.params import MechanismParams, param
+from mechkit.base.exceptions import InvalidParameters
+from mechkit.catalog.params import MechanismParams, param
 
 
 @dataclass(frozen=True)

@@ -15,7 +15,7 @@ inverse dynamics methods), `studies` (singular studies), `checks` (report rows),
 
 from __future__ import annotations
 
-from mechkit.contract import MechanismSpec
+from mechkit.catalog.contract import MechanismSpec
 from mechkit.mechanisms.parallel_2t1r.assembly import EXAMPLE_INPUTS, assembled_pose
 from mechkit.mechanisms.parallel_2t1r.checks import self_checks
 from mechkit.mechanisms.parallel_2t1r.joints import joint_positions

@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from mechkit.exceptions import InvalidParameters
+from mechkit.base.exceptions import InvalidParameters
 from mechkit.mechanisms.parallel_2t1r.kinematics import Dims, Pose, follower_angles, forward_kinematics
 
 #: The assembled branch: (C1 root, alpha root) of `forward_kinematics` (C1 below the chord B1B2,

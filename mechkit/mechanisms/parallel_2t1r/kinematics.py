@@ -26,7 +26,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from mechkit.exceptions import InvalidParameters
+from mechkit.base.exceptions import InvalidParameters
 
 __all__ = [
     "BODIES",

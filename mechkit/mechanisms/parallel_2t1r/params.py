@@ -12,10 +12,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from mechkit.exceptions import InvalidParameters
+from mechkit.base.exceptions import InvalidParameters
+from mechkit.catalog.params import MechanismParams, param
 from mechkit.mechanisms.parallel_2t1r.assembly import EXAMPLE_INPUTS, assembled_pose
 from mechkit.mechanisms.parallel_2t1r.kinematics import BODIES, Dims
-from mechkit.params import MechanismParams, param
 
 
 @dataclass(frozen=True)

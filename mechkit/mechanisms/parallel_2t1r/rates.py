@@ -17,7 +17,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from mechkit.exceptions import SingularConfiguration
+from mechkit.base.exceptions import SingularConfiguration
+from mechkit.base.spatial import cross
 from mechkit.mechanisms.parallel_2t1r.kinematics import (
     EY,
     Dims,
@@ -29,7 +30,6 @@ from mechkit.mechanisms.parallel_2t1r.kinematics import (
     end_points,
     platform_points,
 )
-from mechkit.spatial import cross
 
 __all__ = ["BodyMotion", "State", "at_rest", "follower_rate", "jacobians", "link_motion", "motion_state"]
 

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from mechkit.exceptions import InvalidParameters
+from mechkit.base.exceptions import InvalidParameters
 from mechkit.mechanism import Mechanism
 from mechkit.mechanisms.parallel_2t1r.assembly import EXAMPLE_INPUTS, assembled_pose
 from mechkit.mechanisms.parallel_2t1r.joints import configuration

@@ -23,11 +23,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from mechkit.exceptions import SingularConfiguration
+from mechkit.base.exceptions import SingularConfiguration
+from mechkit.base.spatial import cross, rot_y
 from mechkit.mechanisms.parallel_2t1r import kinematics as kin
 from mechkit.mechanisms.parallel_2t1r import rates
 from mechkit.mechanisms.parallel_2t1r.params import Parallel2T1RParams, mass_properties
-from mechkit.spatial import cross, rot_y
 from mechkit.validation.soc import RANK_TOL, BodyLoad, SKCInstant, SOCResult, WrenchSite, solve_soc
 
 __all__ = ["GRAVITY", "Points", "classic_torques", "skcs", "soc_inverse_dynamics"]

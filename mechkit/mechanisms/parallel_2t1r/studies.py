@@ -11,7 +11,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from mechkit.exceptions import MechkitError
+from mechkit.base.exceptions import MechkitError
 from mechkit.mechanism import Mechanism
 from mechkit.mechanisms.parallel_2t1r.assembly import EXAMPLE_INPUTS, assembled_pose
 from mechkit.mechanisms.parallel_2t1r.compare import INPUTS, evaluate, pinocchio_motion

@@ -25,7 +25,7 @@ from typing import Any
 
 import numpy as np
 
-from mechkit.contract import BenchMethod, BenchReference
+from mechkit.catalog.contract import BenchMethod, BenchReference
 from mechkit.mechanism import Mechanism
 from mechkit.mechanisms.planar_linkage.lagrange import lagrange_first_kind, lagrange_forward
 from mechkit.mechanisms.planar_linkage.state import Motion, at_rest, joint_vector, state

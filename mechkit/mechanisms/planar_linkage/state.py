@@ -13,8 +13,8 @@ from typing import Any
 
 import numpy as np
 
+from mechkit.catalog.params import MechanismParams
 from mechkit.mechanism import Mechanism
-from mechkit.params import MechanismParams
 from mechkit.validation.planar_motion import LinkageState
 
 Motion = Callable[[MechanismParams, Sequence[float], Sequence[float], Sequence[float]], LinkageState]

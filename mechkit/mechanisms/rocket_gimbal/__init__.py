@@ -17,7 +17,7 @@ printed numbers), every mass and inertia, the actuator dimensions.
 
 from __future__ import annotations
 
-from mechkit.contract import MechanismSpec
+from mechkit.catalog.contract import MechanismSpec
 from mechkit.mechanisms.rocket_gimbal import bench, checks
 from mechkit.mechanisms.rocket_gimbal.params import RocketGimbalParams
 from mechkit.mechanisms.rocket_gimbal.scenes import swing_scene, swing_times

@@ -11,7 +11,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from mechkit.contract import BenchFunction, BenchMethod, BenchReference
+from mechkit.catalog.contract import BenchFunction, BenchMethod, BenchReference
 from mechkit.mechanisms.rocket_gimbal.kinematics import fk_newton
 from mechkit.mechanisms.rocket_gimbal.motion import gimbal_motion
 from mechkit.mechanisms.rocket_gimbal.params import geometry

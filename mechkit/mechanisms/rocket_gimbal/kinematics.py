@@ -18,8 +18,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from mechkit.exceptions import ClosureNotConverged, InvalidParameters, SingularConfiguration
-from mechkit.spatial import cross, rot_x, rot_y, rot_z
+from mechkit.base.exceptions import ClosureNotConverged, InvalidParameters, SingularConfiguration
+from mechkit.base.spatial import cross, rot_x, rot_y, rot_z
 
 __all__ = [
     "GIMBAL_ANGLE",

@@ -14,9 +14,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from mechkit.exceptions import InvalidParameters, SingularConfiguration
+from mechkit.base.exceptions import InvalidParameters, SingularConfiguration
+from mechkit.base.spatial import cross, rot_x
 from mechkit.mechanisms.rocket_gimbal.kinematics import GimbalGeometry, attitude, hinge_axes
-from mechkit.spatial import cross, rot_x
 
 __all__ = ["GimbalMotion", "LegMotion", "gimbal_motion"]
 

@@ -9,9 +9,9 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from mechkit.exceptions import InvalidParameters
+from mechkit.base.exceptions import InvalidParameters
+from mechkit.catalog.params import MechanismParams, param
 from mechkit.mechanisms.rocket_gimbal.kinematics import RULE_STROKE, GimbalGeometry
-from mechkit.params import MechanismParams, param
 
 __all__ = ["BodySpec", "RocketGimbalParams", "body_inertias", "geometry"]
 

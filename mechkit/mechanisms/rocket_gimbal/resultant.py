@@ -24,9 +24,9 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.polynomial import Polynomial
 
-from mechkit.exceptions import InvalidParameters
+from mechkit.base.exceptions import InvalidParameters
+from mechkit.base.spatial import rot_z
 from mechkit.mechanisms.rocket_gimbal.kinematics import GIMBAL_ANGLE, GimbalGeometry, attitude
-from mechkit.spatial import rot_z
 
 __all__ = [
     "AssemblyMode",

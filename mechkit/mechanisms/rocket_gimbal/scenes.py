@@ -13,7 +13,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 import pinocchio as pin
 
-from mechkit.exceptions import InvalidParameters
+from mechkit.base.exceptions import InvalidParameters
 from mechkit.mechanisms.rocket_gimbal.motion import GimbalMotion, gimbal_motion
 from mechkit.mechanisms.rocket_gimbal.params import RocketGimbalParams, geometry
 from mechkit.mechanisms.rocket_gimbal.state import joint_state

@@ -23,10 +23,10 @@ from __future__ import annotations
 
 import numpy as np
 
+from mechkit.base.spatial import cross, rot_x, skew
 from mechkit.mechanisms.rocket_gimbal.motion import GimbalMotion
 from mechkit.mechanisms.rocket_gimbal.params import BodySpec, RocketGimbalParams, body_inertias, geometry
 from mechkit.mechanisms.rocket_gimbal.scenes import SwingScene
-from mechkit.spatial import cross, rot_x, skew
 from mechkit.validation.soc import BodyLoad, SKCInstant, WrenchSite
 
 __all__ = ["PAPER_TO_WORLD", "gimbal_skcs", "soc_skcs"]

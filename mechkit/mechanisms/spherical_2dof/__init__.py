@@ -13,7 +13,7 @@ docs/mechanisms/spherical_2dof.md.
 
 from __future__ import annotations
 
-from mechkit.contract import MechanismSpec
+from mechkit.catalog.contract import MechanismSpec
 from mechkit.mechanisms.spherical_2dof import bench, checks, tree
 from mechkit.mechanisms.spherical_2dof.params import Spherical2DofParams
 from mechkit.mechanisms.spherical_2dof.scenes import cone_scene, cone_scene_times

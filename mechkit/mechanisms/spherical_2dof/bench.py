@@ -10,7 +10,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from mechkit.contract import BenchFunction, BenchMethod, BenchReference
+from mechkit.catalog.contract import BenchFunction, BenchMethod, BenchReference
 from mechkit.mechanisms.spherical_2dof import soc
 from mechkit.mechanisms.spherical_2dof.fk import solve_fk
 from mechkit.mechanisms.spherical_2dof.kinematics import BRANCHES

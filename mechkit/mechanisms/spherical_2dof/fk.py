@@ -14,8 +14,8 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from mechkit import kinematics
-from mechkit.exceptions import ClosureNotConverged, InvalidParameters
+from mechkit.base.exceptions import ClosureNotConverged, InvalidParameters
+from mechkit.core import kinematics
 from mechkit.mechanisms.spherical_2dof import kinematics as kin
 from mechkit.mechanisms.spherical_2dof.kinematics import BRANCHES
 from mechkit.mechanisms.spherical_2dof.scenes import cone_attitude

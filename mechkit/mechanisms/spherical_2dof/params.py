@@ -11,9 +11,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from mechkit.exceptions import InvalidParameters
+from mechkit.base.exceptions import InvalidParameters
+from mechkit.catalog.params import MechanismParams, param
 from mechkit.mechanisms.spherical_2dof import kinematics as kin
-from mechkit.params import MechanismParams, param
 
 __all__ = ["Spherical2DofParams"]
 

@@ -9,7 +9,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from mechkit.exceptions import InvalidParameters
+from mechkit.base.exceptions import InvalidParameters
 from mechkit.mechanisms.spherical_2dof.tree import state
 
 if TYPE_CHECKING:

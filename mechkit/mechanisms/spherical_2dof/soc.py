@@ -29,8 +29,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from mechkit.base.spatial import skew
 from mechkit.mechanisms.spherical_2dof import kinematics as kin
-from mechkit.spatial import skew
 from mechkit.validation.soc import BodyLoad, SKCInstant, SOCResult, WrenchSite, solve_soc
 
 __all__ = ["BodyMotion", "body_inertias", "body_motions", "skcs", "solve"]

@@ -43,7 +43,7 @@ with projection), `limits` (where the methods fail), `checks` (cross-checks, rep
 
 from __future__ import annotations
 
-from mechkit.contract import MechanismSpec
+from mechkit.catalog.contract import MechanismSpec
 from mechkit.mechanisms.ten_bar.checks import self_checks
 from mechkit.mechanisms.ten_bar.geometry import stowed_pose
 from mechkit.mechanisms.ten_bar.params import MOTORS, PASSIVE, STOWED, TenBarParams

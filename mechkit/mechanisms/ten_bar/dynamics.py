@@ -26,7 +26,7 @@ from typing import TYPE_CHECKING, Protocol
 import numpy as np
 import pinocchio as pin
 
-from mechkit.exceptions import ClosureNotConverged
+from mechkit.base.exceptions import ClosureNotConverged
 from mechkit.mechanisms.ten_bar import geometry as geo
 from mechkit.mechanisms.ten_bar.lagrange_model import (
     TreeKinematics,

@@ -25,7 +25,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from mechkit.exceptions import ClosureNotConverged
+from mechkit.base.exceptions import ClosureNotConverged
 from mechkit.mechanisms.ten_bar.params import STOWED, TenBarParams
 
 BODIES = ("l123", "l27", "l34", "l48", "l87", "l56", "l67", "l79", "l910")

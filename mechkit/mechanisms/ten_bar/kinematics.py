@@ -18,8 +18,8 @@ from typing import TYPE_CHECKING
 import numpy as np
 import pinocchio as pin
 
-from mechkit.closures import ClosureRows, cut_rows
-from mechkit.kinematics import solve_closure
+from mechkit.core.closures import ClosureRows, cut_rows
+from mechkit.core.kinematics import solve_closure
 
 if TYPE_CHECKING:
     from mechkit.mechanism import Mechanism

@@ -16,8 +16,8 @@ from typing import TYPE_CHECKING
 import numpy as np
 from scipy.linalg import null_space
 
-from mechkit.kinematics import update_kinematics
-from mechkit.mechanism import from_params
+from mechkit.core.kinematics import update_kinematics
+from mechkit.loading import from_params
 from mechkit.mechanisms.ten_bar import dynamics as td
 from mechkit.mechanisms.ten_bar import geometry as geo
 from mechkit.mechanisms.ten_bar import kinematics as tk

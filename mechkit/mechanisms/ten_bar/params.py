@@ -14,9 +14,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from mechkit.description import LOOP_NAMESPACE
-from mechkit.exceptions import InvalidParameters, MalformedDescription
-from mechkit.params import MechanismParams, param
+from mechkit.base.exceptions import InvalidParameters, MalformedDescription
+from mechkit.catalog.params import MechanismParams, param
+from mechkit.sources.urdf import LOOP_NAMESPACE
 from mechkit.validation import lagrange
 
 STOWED = {"R1": math.pi / 2, "R3": -math.pi}

@@ -14,7 +14,7 @@ the unit), `checks` (report rows). Scene: `fold` (the paper's 200 s fold).
 
 from __future__ import annotations
 
-from mechkit.contract import MechanismSpec
+from mechkit.catalog.contract import MechanismSpec
 from mechkit.mechanisms.tetra_3rr3uru.actuation import ACTUATED, home
 from mechkit.mechanisms.tetra_3rr3uru.checks import self_checks
 from mechkit.mechanisms.truss.fold import fold_poses, fold_scene_times

@@ -22,12 +22,12 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from mechkit.exceptions import InvalidParameters
+from mechkit.base.exceptions import InvalidParameters
+from mechkit.base.spatial import rot_y, skew
 from mechkit.mechanisms.tetra_3rr3uru.actuation import ACTUATED
 from mechkit.mechanisms.truss.drives import alpha_law, gamma_law
 from mechkit.mechanisms.truss.geometry import rot_axis
 from mechkit.mechanisms.truss.params import TetraParams
-from mechkit.spatial import rot_y, skew
 from mechkit.validation.soc import BodyLoad, SKCInstant, SOCResult, WrenchSite, solve_soc
 
 if TYPE_CHECKING:

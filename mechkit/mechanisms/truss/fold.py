@@ -11,8 +11,8 @@ from dataclasses import dataclass
 import numpy as np
 import pinocchio as pin
 
-from mechkit import kinematics
-from mechkit.exceptions import ClosureNotConverged, InvalidParameters
+from mechkit.base.exceptions import ClosureNotConverged, InvalidParameters
+from mechkit.core import kinematics
 from mechkit.mechanism import Mechanism
 from mechkit.mechanisms.truss.drives import FOLD_DURATION, drive_state
 from mechkit.mechanisms.truss.motion import drive_inputs

@@ -24,8 +24,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from mechkit.exceptions import InvalidParameters
-from mechkit.spatial import rot_x, rot_y, rot_z, skew
+from mechkit.base.exceptions import InvalidParameters
+from mechkit.base.spatial import rot_x, rot_y, rot_z, skew
 
 DEG = np.pi / 180.0
 

@@ -11,10 +11,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from mechkit.exceptions import InvalidParameters
+from mechkit.base.exceptions import InvalidParameters
+from mechkit.catalog.params import MechanismParams, param
 from mechkit.mechanisms.truss.drives import drive_state
 from mechkit.mechanisms.truss.geometry import TrussGeometry, half_angle_beta
-from mechkit.params import MechanismParams, param
 
 _T0 = drive_state(0.0)
 

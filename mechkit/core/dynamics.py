@@ -1,9 +1,9 @@
 """Constrained dynamics of closed-loop mechanisms: forward (constrained ABA) and inverse (constrained RNEA).
 
 Equation of motion: M a + nle = tau + J^T lambda, J the closure Jacobian (rows of `ClosureRows`),
-J a + gamma = 0. Forward dynamics (`mechkit.forward`) two ways: Pinocchio's proximal
+J a + gamma = 0. Forward dynamics (`mechkit.core.forward`) two ways: Pinocchio's proximal
 `constraintDynamics` on the equivalent `RigidConstraintModel`s, and a dense KKT solve on the
-independent rows. The inverse dynamics is `mechkit.inverse`; the result types, the row choice and
+independent rows. The inverse dynamics is `mechkit.core.inverse`; the result types, the row choice and
 the subtree incidence of the cut wrenches are here.
 """
 
@@ -15,9 +15,9 @@ import numpy as np
 import pinocchio as pin
 import scipy.linalg
 
-from mechkit.closures import ClosureRows
-from mechkit.kinematics import numerical_rank
-from mechkit.spatial import cross_rows
+from mechkit.base.spatial import cross_rows
+from mechkit.core.closures import ClosureRows
+from mechkit.core.kinematics import numerical_rank
 
 
 @dataclass(frozen=True)

@@ -5,19 +5,19 @@ force t at p_b, W = [t, p_b x t]; an alignment row (u fixed in frame_a, w in fra
 moment W = [0, w x u]. Its Jacobian is W^T J_world (Pinocchio's `data.J` after
 `computeJointJacobians`: world axes, twists at the world origin) on the columns that move frame_b
 minus those that move frame_a (a cached +1/-1/0 support mask), which is the exact derivative of the
-row forms of `mechkit.closures`. The same wrenches, weighted by the row multipliers, are the cut
+row forms of `mechkit.core.closures`. The same wrenches, weighted by the row multipliers, are the cut
 wrenches that frame_a's side exerts on frame_b's side.
 
 Arrays carry a leading sample axis N; placements are (N, njoints, 4, 4) homogeneous matrices
-(`data.oMi`, gathered by `mechkit.inverse`).
+(`data.oMi`, gathered by `mechkit.core.inverse`).
 """
 
 from __future__ import annotations
 
 import numpy as np
 
-from mechkit.closures import ClosureRows, support_columns
-from mechkit.spatial import cross_batch
+from mechkit.base.spatial import cross_batch
+from mechkit.core.closures import ClosureRows, support_columns
 
 
 class RowWrenches:
@@ -70,7 +70,7 @@ class RowWrenches:
         Returns:
             (N, rows, 6) row wrenches [force, moment about the world origin]; (N,) closure residual
             norms |e| (e = X_a . (p_b - p_a) for a position row, X_a . Y for an alignment row: the
-            row forms of `mechkit.closures`, m for position rows); (N, ncuts, 3) frame_b origins p_b.
+            row forms of `mechkit.core.closures`, m for position rows); (N, ncuts, 3) frame_b origins p_b.
         """
         v = (oMi[:, self._joints, :3] @ self._vectors)[..., 0]
         r = self.size

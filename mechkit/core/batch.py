@@ -15,8 +15,8 @@ from dataclasses import dataclass
 import numpy as np
 import pinocchio as pin
 
-from mechkit.dynamics import InverseDynamicsResult, JointReaction
-from mechkit.exceptions import InvalidParameters
+from mechkit.base.exceptions import InvalidParameters
+from mechkit.core.dynamics import InverseDynamicsResult, JointReaction
 
 
 @dataclass(frozen=True)

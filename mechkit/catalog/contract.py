@@ -16,10 +16,10 @@ from typing import Any
 
 import numpy as np
 
-from mechkit.description import render_urdf
-from mechkit.exceptions import InvalidParameters
-from mechkit.params import MechanismParams
-from mechkit.resources import xacro_dir
+from mechkit.base.exceptions import InvalidParameters
+from mechkit.base.resources import xacro_dir
+from mechkit.catalog.params import MechanismParams
+from mechkit.sources.xacro_file import render_urdf
 
 Inputs = Mapping[str, float]
 """Joint name -> coordinate (rad or m)."""

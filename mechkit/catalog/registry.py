@@ -11,8 +11,8 @@ import importlib
 from dataclasses import dataclass
 from functools import cache
 
-from mechkit.contract import MechanismSpec
-from mechkit.exceptions import InvalidParameters
+from mechkit.base.exceptions import InvalidParameters
+from mechkit.catalog.contract import MechanismSpec
 
 
 @dataclass(frozen=True)

@@ -32,9 +32,9 @@ from dataclasses import dataclass
 import numpy as np
 import pinocchio as pin
 
-from mechkit.description import LoopClosure
-from mechkit.exceptions import MalformedDescription, MethodUnavailable
-from mechkit.spatial import LEVI_CIVITA, cross, cross_batch
+from mechkit.base.exceptions import MalformedDescription, MethodUnavailable
+from mechkit.base.spatial import LEVI_CIVITA, cross, cross_batch
+from mechkit.core.records import LoopClosure
 
 #: Offset (m) along a revolute axis of the second point anchor that Pinocchio's 3D constraints use.
 AXIS_ANCHOR_OFFSET = 0.1

@@ -15,7 +15,7 @@ import tempfile
 from collections.abc import Mapping
 from pathlib import Path
 
-from mechkit.exceptions import OutputError
+from mechkit.base.exceptions import OutputError
 
 #: The output name that means standard output.
 STDOUT = "-"

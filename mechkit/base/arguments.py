@@ -15,7 +15,7 @@ from typing import Any
 import numpy as np
 import pinocchio as pin
 
-from mechkit.exceptions import InvalidArgument, UnknownOption
+from mechkit.base.exceptions import InvalidArgument, UnknownOption
 
 
 def array(name: str, value: Any, size: int, *, batch: bool = True) -> np.ndarray:

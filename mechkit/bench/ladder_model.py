@@ -22,9 +22,11 @@ from __future__ import annotations
 import numpy as np
 import pinocchio as pin
 
-from mechkit import arguments, forward
-from mechkit.exceptions import ClosureNotConverged, InvalidParameters, SingularConfiguration
-from mechkit.mechanism import Mechanism, from_urdf
+from mechkit.base import arguments
+from mechkit.base.exceptions import ClosureNotConverged, InvalidParameters, SingularConfiguration
+from mechkit.core import forward
+from mechkit.loading import from_urdf
+from mechkit.mechanism import Mechanism
 
 #: Rail bar and rung lengths (m) and the mass of every bar (kg) of the ladder (ours).
 RAIL, RUNG, MASS = 0.2, 0.3, 0.1

@@ -24,7 +24,7 @@ from contextlib import contextmanager
 from pathlib import Path
 from typing import Any
 
-from mechkit.description import document_text, render_urdf
+from mechkit.sources.xacro_file import document_text, render_urdf
 
 _TOKEN = re.compile(r"MkTrc(\d+)Z")
 _BINARY = {"add": operator.add, "sub": operator.sub, "mul": operator.mul, "truediv": operator.truediv,
@@ -247,7 +247,7 @@ class TemplateCache:
     Args:
         path: the template file.
 
-    `render(args)` returns exactly `mechkit.description.render_urdf(path, args)`. A cache lives as long
+    `render(args)` returns exactly `mechkit.sources.urdf.render_urdf(path, args)`. A cache lives as long
     as its owner keeps it (a sweep keeps one per chunk of designs): there is no module-level state.
     """
 

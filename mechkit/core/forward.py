@@ -16,9 +16,9 @@ import numpy as np
 import pinocchio as pin
 import scipy.linalg
 
-from mechkit.closures import ClosureRows, rigid_constraint_models
-from mechkit.dynamics import ForwardDynamicsResult, independent_rows
-from mechkit.exceptions import ClosureNotConverged, InvalidParameters, SingularConfiguration
+from mechkit.base.exceptions import ClosureNotConverged, InvalidParameters, SingularConfiguration
+from mechkit.core.closures import ClosureRows, rigid_constraint_models
+from mechkit.core.dynamics import ForwardDynamicsResult, independent_rows
 
 #: Methods of `Mechanism.forward_dynamics`.
 METHODS = ("proximal", "kkt")
@@ -215,7 +215,7 @@ def proximal_forward(model: pin.Model, pin_data: pin.Data, data: pin.Data, const
     The check is on Pinocchio's own constraint Jacobian and right-hand side at (q, v), both left by
     the call (`getConstraintsJacobian`, `primal_rhs_contact` = -(gamma + Baumgarte terms), in each
     anchor's c1 frame): J a + gamma = 0 on the system actually solved, valid on and off the closure
-    manifold (on it, these rows span the same constraint as `mechkit.closures`' rows).
+    manifold (on it, these rows span the same constraint as `mechkit.core.closures`' rows).
 
     Args:
         pin_data: the data the constraints were initialised with; data: a scratch data (only for the

@@ -12,8 +12,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass, fields
 
-from mechkit.exceptions import InvalidParameters
-from mechkit.params import MechanismParams
+from mechkit.base.exceptions import InvalidParameters
+from mechkit.catalog.params import MechanismParams
 
 #: Relative width (of the search scale) to which a boundary is bisected.
 REL_TOL = 1e-6

@@ -13,8 +13,8 @@ import numpy as np
 import pinocchio as pin
 from scipy.linalg import lapack
 
-from mechkit.closures import ClosureRows
-from mechkit.exceptions import ClosureNotConverged, SingularConfiguration
+from mechkit.base.exceptions import ClosureNotConverged, SingularConfiguration
+from mechkit.core.closures import ClosureRows
 
 #: Relative singular-value threshold for numerical rank decisions.
 RANK_TOL = 1e-9

@@ -29,8 +29,8 @@ import numpy as np
 import pinocchio as pin
 import scipy.linalg
 
-from mechkit.description import LoopClosure
-from mechkit.exceptions import MalformedDescription
+from mechkit.base.exceptions import MalformedDescription
+from mechkit.core.records import LoopClosure
 
 #: Tolerance (rad, and m relative to the loop's size) of the parallel / concurrent axis tests.
 GEOMETRY_TOL = 1e-9

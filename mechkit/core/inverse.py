@@ -4,7 +4,7 @@
 Jacobian. Every tree joint's transmitted wrench is the RNEA's minus the cut wrenches acting on its
 subtree; the cut joints transmit the cut wrenches. The per-sample work is Pinocchio's
 (`computeJointJacobians`, `rnea`) and reading its arrays; everything else is one numpy operation
-over the sample axis: closure rows as world wrenches and residuals (`mechkit.row_wrenches`), the
+over the sample axis: closure rows as world wrenches and residuals (`mechkit.core.row_wrenches`), the
 regularity of the passive block judged on that Jacobian (`_check_regular`), one batched solve
 (LAPACK gesv where [S, J^T] is square, QR where it has full rank, an SVD otherwise), the reactions
 as batched products, and the determinacy test on self-stress spaces from one QR (`_self_stresses`).
@@ -20,13 +20,13 @@ import pinocchio as pin
 import scipy.linalg
 import scipy.linalg.lapack
 
-from mechkit.batch import BatchInverseDynamicsResult
-from mechkit.closures import ClosureRows
-from mechkit.dynamics import InverseDynamicsResult, subtree_incidence
-from mechkit.exceptions import InvalidParameters, SingularConfiguration
-from mechkit.kinematics import RANK_TOL, judge_passive, resolvable_singular_value
-from mechkit.row_wrenches import RowWrenches
-from mechkit.spatial import cross_batch
+from mechkit.base.exceptions import InvalidParameters, SingularConfiguration
+from mechkit.base.spatial import cross_batch
+from mechkit.core.batch import BatchInverseDynamicsResult
+from mechkit.core.closures import ClosureRows
+from mechkit.core.dynamics import InverseDynamicsResult, subtree_incidence
+from mechkit.core.kinematics import RANK_TOL, judge_passive, resolvable_singular_value
+from mechkit.core.row_wrenches import RowWrenches
 
 #: Relative threshold under which a reaction component's null-space variation counts as zero.
 DETERMINACY_TOL = 1e-8

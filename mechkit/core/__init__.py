@@ -1,0 +1,1 @@
+"""The numerical core: a Pinocchio model with loop closures, its kinematics and constrained dynamics."""

@@ -1,0 +1,146 @@
+"""Loading a mechanism: a registered name or a description file, resolved and built into a `Mechanism`."""
+
+from __future__ import annotations
+
+import dataclasses
+from collections.abc import Callable, Mapping, Sequence
+from pathlib import Path
+from typing import Any
+
+from mechkit import sources
+from mechkit.base import arguments
+from mechkit.base.exceptions import InvalidArgument, InvalidParameters, MalformedDescription
+from mechkit.catalog.contract import MechanismSpec
+from mechkit.catalog.params import MechanismParams
+from mechkit.catalog.registry import get_spec, names
+from mechkit.core.structure import analyse
+from mechkit.mechanism import Mechanism
+from mechkit.sources.urdf import build_model, parse_loops
+from mechkit.sources.xacro_file import render_urdf
+
+
+def resolve(source: str | Path) -> str | Path:
+    """A registered name (returned as `str`) or an existing description file (returned as `Path`).
+
+    A string is a name when it is registered; otherwise, or when it is a `Path` or looks like a path
+    (a separator or a known suffix), it must be a readable file.
+
+    Raises:
+        InvalidParameters: neither a registered name nor a path (the message lists the names).
+        MalformedDescription: the path does not exist or is a directory.
+    """
+    if isinstance(source, str) and source in names():
+        return source
+    text = str(source)
+    looks_like_path = isinstance(source, Path) or "/" in text or "\\" in text or text.endswith(sources.SUFFIXES)
+    if not looks_like_path:
+        raise InvalidParameters("source", text, f"no such mechanism and not a path; registered: {', '.join(names())}")
+    path = Path(text).expanduser()
+    if not path.exists():
+        raise MalformedDescription(text, "no such file")
+    if path.is_dir():
+        raise MalformedDescription(text, "is a directory, not a description file")
+    return path
+
+
+def load(source: str | Path, *, actuated: Sequence[str] | None = None, home: Mapping[str, float] | None = None,
+         guess: Mapping[str, float] | None = None, **params: Any) -> Mechanism:
+    """Build a mechanism from a registered name or a description file.
+
+    Args:
+        source: a registered name (`mechkit list`) or a path: a `.urdf` with `<mechkit:loop>`s, a
+            `.urdf` with an Extended-URDF `.yaml` sidecar, a `.xacro`, or an MJCF `.xml`.
+        actuated: actuated joints, overriding what the file (or the spec) declares.
+        home: joint -> value (rad or m) of the default assembly's inputs (default: the file's
+            `<mechkit:home>` / MJCF qpos0, else none: every loop closed from the guess).
+        guess: joint -> value near which the default assembly is sought.
+        **params: the mechanism's parameters (a name) or xacro arguments (a xacro file);
+            `rows="spatial"`, unless the mechanism has a parameter of that name, closes every cut
+            with its full rows.
+
+    Raises:
+        InvalidParameters: unknown name or parameter; MalformedDescription: a bad file.
+    """
+    if not isinstance(source, (str, Path)):
+        raise InvalidArgument("source", source, "expected a mechanism name or a path")
+    where = resolve(source)
+    if isinstance(where, Path):
+        declared = sources.xacro_args(where) if where.name.endswith(".xacro") else {}
+        rows = None if "rows" in declared else params.pop("rows", None)
+        return from_description(sources.read(where, params), actuated, home, guess, rows)
+    spec = get_spec(where)
+    rows = None if "rows" in {f.name for f in dataclasses.fields(spec.params)} else params.pop("rows", None)
+    values = spec.params.from_overrides(**params)
+    changes: dict[str, Any] = {} if actuated is None else {"actuated": tuple(actuated)}
+    if home is not None:
+        changes["home"] = _constant(dict(home))
+    if guess is not None:
+        changes["guess"] = _constant(dict(guess))
+    return from_params(dataclasses.replace(spec, **changes) if changes else spec, values, rows)
+
+
+def _constant(value: dict[str, float]) -> Callable[[Any], dict[str, float]]:
+    return lambda params: dict(value)
+
+
+def from_params(spec: MechanismSpec, params: MechanismParams, rows: str | None = None) -> Mechanism:
+    """Build a mechanism from a parameter instance."""
+    return Mechanism(spec, params, render_urdf(spec.template_path, params.xacro_args()), rows)
+
+
+def from_description(desc: sources.Description, actuated: Sequence[str] | None = None,
+                     home: Mapping[str, float] | None = None, guess: Mapping[str, float] | None = None,
+                     rows: str | None = None) -> Mechanism:
+    """Build a mechanism from what a file reader gave (see `load` for the arguments).
+
+    Its spec's `gruebler_dof` is the Kutzbach count of its topology (`mechkit.core.structure`).
+    """
+    for arg, value in (("home", home), ("guess", guess)):
+        if value is not None and not isinstance(value, Mapping):
+            raise InvalidArgument(arg, value, "expected a mapping joint name -> value")
+    model = build_model(desc.urdf)
+    if actuated is not None:
+        arguments.joint_names("actuated", actuated, list(model.names[1:]), allow_empty=True)
+    joints = tuple(actuated) if actuated is not None else desc.actuated
+    home_values = dict(home) if home is not None else dict(desc.home)
+    guess_values = dict(guess) if guess is not None else dict(desc.guess)
+    structure = analyse(model, list(desc.closures) if desc.closures is not None else parse_loops(desc.urdf), rows)
+    where = f" {desc.source}" if desc.source is not None else ""
+    spec = MechanismSpec(name=desc.name, params=MechanismParams, template="", actuated=joints, gruebler_dof=structure.kutzbach,
+                         home=_constant(home_values), guess=_constant(guess_values) if guess_values else None,
+                         summary=f"read from the {desc.format} file{where}")
+    params = _xacro_params(desc)
+    return Mechanism(dataclasses.replace(spec, params=type(params)), params, desc.urdf, rows, model, structure)
+
+
+def _xacro_params(desc: sources.Description) -> MechanismParams:
+    """The file's xacro arguments as a parameter instance (strings; shown by `report`), else none."""
+    fields = [(k, str, dataclasses.field(default=v, metadata={"unit": "-", "doc": "xacro argument", "ours": False}))
+              for k, v in desc.params.items()]
+    cls = dataclasses.make_dataclass("XacroArguments", fields, bases=(MechanismParams,), frozen=True)
+    return cls()
+
+
+def from_urdf(urdf: str | Path, actuated: Sequence[str] | None = None, name: str | None = None,
+              guess: Mapping[str, float] | None = None, home: Mapping[str, float] | None = None,
+              rows: str | None = None) -> Mechanism:
+    """Wrap a URDF (text, or a path to any description file) as a Mechanism.
+
+    Args:
+        urdf: URDF text (a tree, or with `<mechkit:loop>` closures), or a path (see `load`).
+        actuated: actuated joint names (default: the URDF's `<transmission>` joints; none declared
+            makes the mechanism unactuated).
+        name: a name for reports (default: the robot's name).
+        guess: see `load`.
+        home: see `load`.
+        rows: see `load`.
+    """
+    if not isinstance(urdf, (str, Path)) or not str(urdf).strip():
+        raise InvalidArgument("urdf", urdf, "expected URDF text or a path to a description file")
+    if isinstance(urdf, Path) or not urdf.lstrip().startswith("<"):
+        desc = sources.read(resolve(Path(urdf)))
+    else:
+        desc = sources.describe_urdf(urdf, None, "urdf")
+    if name is not None:
+        desc = dataclasses.replace(desc, name=name)
+    return from_description(desc, actuated, home, guess, rows)
