@@ -41,3 +41,62 @@ class LoopClosure:
     axis_b: np.ndarray | None = None
     rows: str = "spatial"
     explicit_rows: bool = True
+
+
+@dataclass(frozen=True)
+class Coupling:
+    """A coupling row between one-freedom joints (URDF `mimic`, MuJoCo joint and tendon equalities,
+    SDFormat `gearbox`): x_f - follower_ref = P(x_l - leader_ref), P(s) = sum_k polynomial[k] s^k.
+
+    x_f = sum of coefficient * value over `follower`, x_l the same over `leader` (rad or m; a
+    continuous joint's value is its angle). With no leader, the row fixes x_f to follower_ref +
+    polynomial[0].
+
+    Attributes:
+        name: the coupling's name (for reports and errors).
+        follower: ((joint, coefficient), ...), at least one term.
+        leader: ((joint, coefficient), ...), possibly empty.
+        polynomial: (c0, c1, ...) coefficients of P (a URDF mimic: (offset, multiplier)).
+        follower_ref, leader_ref: reference values of x_f and x_l (MuJoCo's qpos0 terms; 0 elsewhere).
+    """
+
+    name: str
+    follower: tuple[tuple[str, float], ...]
+    leader: tuple[tuple[str, float], ...] = ()
+    polynomial: tuple[float, ...] = (0.0, 1.0)
+    follower_ref: float = 0.0
+    leader_ref: float = 0.0
+
+
+@dataclass(frozen=True)
+class JointSpring:
+    """A spring and damper on a one-freedom joint: effort = preload - stiffness (x - reference) - damping dx/dt.
+
+    Attributes:
+        joint: the joint's name.
+        stiffness: N m/rad (revolute) or N/m (prismatic), >= 0.
+        reference: the spring's reference value of x (rad or m).
+        preload: effort at x = reference (N m or N).
+        damping: N m s/rad or N s/m, >= 0.
+    """
+
+    joint: str
+    stiffness: float = 0.0
+    reference: float = 0.0
+    preload: float = 0.0
+    damping: float = 0.0
+
+
+@dataclass(frozen=True)
+class Actuator:
+    """One actuator: its effort u acts on the joints as the generalised force coefficient * u on each
+    named one-freedom joint (a joint motor: one term of coefficient 1; a tendon motor: the tendon's
+    joint coefficients, MuJoCo's `gear` included).
+
+    Attributes:
+        name: the actuator's name (a joint motor is named after its joint).
+        joints: ((joint, coefficient), ...), at least one term.
+    """
+
+    name: str
+    joints: tuple[tuple[str, float], ...]

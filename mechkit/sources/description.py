@@ -1,12 +1,15 @@
-"""`Description`: what every file reader gives — the tree URDF with its loops, actuators and home."""
+"""`Description`: what every file reader gives: the tree (a Pinocchio model, or URDF text), its loops,
+couplings, springs, actuators and home."""
 
 from __future__ import annotations
 
 from dataclasses import dataclass, field
 from pathlib import Path
 
+import pinocchio as pin
+
 from mechkit.base.exceptions import MalformedDescription
-from mechkit.core.records import LoopClosure
+from mechkit.core.records import Actuator, Coupling, JointSpring, LoopClosure
 
 
 @dataclass(frozen=True)
@@ -15,26 +18,36 @@ class Description:
 
     Attributes:
         name: a name for reports (the file's stem, or the model name it declares).
-        urdf: the tree URDF text with `<mechkit:loop>` (and `<mechkit:home>`) elements.
-        actuated: actuated joint names the file declares (URDF `<transmission>`, sidecar `name_mot`,
-            MJCF actuators); empty when it declares none (the mechanism is then unactuated).
-        home: joint -> value (rad or m) of the default assembly's inputs.
+        urdf: the tree URDF text with `<mechkit:loop>` (and `<mechkit:home>`) elements, or None where
+            the format has no URDF of the tree (its joints need not be URDF's: ball, free-flyer).
+        actuated: the actuators' names, in effort order: a joint's name (a motor on that joint) or
+            the name of one of `actuators`; empty when the file declares none (unactuated).
+        home: joint -> value of the default assembly's inputs (rad or m; a ball joint's rotation
+            vector (3,), a free-flyer's position and rotation vector (6,)).
         guess: joint -> value near which the default assembly is sought (picks the branch).
-        source: the file read; `format`: "urdf", "extended-urdf", "xacro" or "mjcf".
+        source: the file read; `format`: "urdf", "extended-urdf", "xacro", "mjcf", "sdf", "urdf+".
         params: the xacro arguments and the values used (strings; defaults included), empty for
             other formats.
-        closures: the loops of `urdf`, when the reader has parsed them (else None: parsed on use).
+        closures: the loops, when the reader has parsed them (else None: parsed from `urdf` on use).
+        model: the tree as a Pinocchio model, when the reader built it (else built from `urdf`).
+        couplings: coupling rows between joints (mimic, gearbox, joint and tendon equalities).
+        springs: joint springs and dampers.
+        actuators: the actuators that are not one joint's motor (tendon transmissions), by name.
     """
 
     name: str
-    urdf: str
+    urdf: str | None
     actuated: tuple[str, ...]
-    home: dict[str, float] = field(default_factory=dict)
-    guess: dict[str, float] = field(default_factory=dict)
+    home: dict[str, float | tuple[float, ...]] = field(default_factory=dict)
+    guess: dict[str, float | tuple[float, ...]] = field(default_factory=dict)
     source: Path | None = None
     format: str = "urdf"
     params: dict[str, str] = field(default_factory=dict)
     closures: tuple[LoopClosure, ...] | None = None
+    model: pin.Model | None = None
+    couplings: tuple[Coupling, ...] = ()
+    springs: tuple[JointSpring, ...] = ()
+    actuators: tuple[Actuator, ...] = ()
 
 
 def read_text(path: Path) -> str:
