@@ -7,13 +7,12 @@ from collections.abc import Callable, Mapping, Sequence
 from pathlib import Path
 from typing import Any
 
-from mechkit import sources
+from mechkit import core, sources
 from mechkit.base import arguments
 from mechkit.base.exceptions import InvalidArgument, InvalidParameters, MalformedDescription
 from mechkit.catalog.contract import MechanismSpec
 from mechkit.catalog.params import MechanismParams
 from mechkit.catalog.registry import get_spec, names
-from mechkit.core.structure import analyse
 from mechkit.mechanism import Mechanism
 from mechkit.sources.urdf import build_model, parse_loops
 from mechkit.sources.xacro_file import render_urdf
@@ -84,8 +83,23 @@ def _constant(value: dict[str, float]) -> Callable[[Any], dict[str, float]]:
 
 
 def from_params(spec: MechanismSpec, params: MechanismParams, rows: str | None = None) -> Mechanism:
-    """Build a mechanism from a parameter instance."""
-    return Mechanism(spec, params, render_urdf(spec.template_path, params.xacro_args()), rows)
+    """Build a mechanism from a parameter instance: its template expanded, the tree and its loops read.
+
+    Raises:
+        MalformedDescription: the expanded URDF is invalid; InvalidParameters: an unknown actuated joint.
+    """
+    return from_expanded(spec, params, render_urdf(spec.template_path, params.xacro_args()), rows)
+
+
+def from_expanded(spec: MechanismSpec, params: MechanismParams, urdf: str, rows: str | None = None) -> Mechanism:
+    """Build a registered mechanism from its template already expanded at `params` (e.g. by a sweep's cache).
+
+    Raises:
+        MalformedDescription: the URDF is invalid; InvalidParameters: an unknown actuated joint.
+    """
+    model = build_model(urdf)
+    cm = core.ClosureModel(model, parse_loops(urdf), actuated=spec.actuated_joints(params), rows=rows)
+    return Mechanism(spec, params, cm, urdf)
 
 
 def from_description(desc: sources.Description, actuated: Sequence[str] | None = None,
@@ -98,19 +112,22 @@ def from_description(desc: sources.Description, actuated: Sequence[str] | None =
     for arg, value in (("home", home), ("guess", guess)):
         if value is not None and not isinstance(value, Mapping):
             raise InvalidArgument(arg, value, "expected a mapping joint name -> value")
-    model = build_model(desc.urdf)
+    model = desc.model if desc.model is not None else build_model(desc.urdf)
     if actuated is not None:
-        arguments.joint_names("actuated", actuated, list(model.names[1:]), allow_empty=True)
-    joints = tuple(actuated) if actuated is not None else desc.actuated
+        known = list(model.names[1:]) + [a.name for a in desc.actuators]
+        arguments.joint_names("actuated", actuated, known, allow_empty=True)
+    closures = desc.closures if desc.closures is not None else parse_loops(desc.urdf)
+    cm = core.ClosureModel(model, closures, desc.couplings, tuple(actuated) if actuated is not None else desc.actuated,
+                           desc.actuators, rows)
     home_values = dict(home) if home is not None else dict(desc.home)
     guess_values = dict(guess) if guess is not None else dict(desc.guess)
-    structure = analyse(model, list(desc.closures) if desc.closures is not None else parse_loops(desc.urdf), rows)
     where = f" {desc.source}" if desc.source is not None else ""
-    spec = MechanismSpec(name=desc.name, params=MechanismParams, template="", actuated=joints, gruebler_dof=structure.kutzbach,
-                         home=_constant(home_values), guess=_constant(guess_values) if guess_values else None,
-                         summary=f"read from the {desc.format} file{where}")
     params = _xacro_params(desc)
-    return Mechanism(dataclasses.replace(spec, params=type(params)), params, desc.urdf, rows, model, structure)
+    spec = MechanismSpec(name=desc.name, params=type(params), template="", actuated=cm.actuated,
+                         gruebler_dof=cm.structure.kutzbach, home=_constant(home_values),
+                         guess=_constant(guess_values) if guess_values else None,
+                         summary=f"read from the {desc.format} file{where}")
+    return Mechanism(spec, params, cm, desc.urdf, desc.springs)
 
 
 def _xacro_params(desc: sources.Description) -> MechanismParams:

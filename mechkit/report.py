@@ -18,7 +18,7 @@ from typing import Any
 import numpy as np
 
 from mechkit.base.exceptions import MechkitError
-from mechkit.core.structure import idle_freedoms, loop_joints
+from mechkit.core import idle_freedoms, loop_joints
 from mechkit.mechanism import Mechanism
 
 #: Largest accepted self-check value (worst residual, m or rad, or relative error; ours): the registry's

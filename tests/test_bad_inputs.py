@@ -130,7 +130,10 @@ def _option_cases(m):
         "inverse-fext-count": (lambda: m.inverse_dynamics(q, z, a, fext=np.zeros((2, 6))), InvalidArgument, "fext"),
         "inverse-fext-nan": (lambda: m.inverse_dynamics(q, z, a, fext=np.full((m.model.njoints, 6), np.nan)), InvalidArgument, "fext"),
         "inverse-fext-string": (lambda: m.inverse_dynamics(q, z, a, fext="thrust"), InvalidArgument, "fext"),
-        "inverse-state-batch-mismatch": (lambda: m.inverse_dynamics(np.stack([q, q]), z, a), InvalidArgument, "q, v, a"),
+        "inverse-state-batch-mismatch": (lambda: m.inverse_dynamics_batch(np.stack([q, q]), np.stack([z, z, z]), np.stack([a, a])),
+                                         InvalidArgument, "q, v, a"),
+        "inverse-batch-to-one-sample": (lambda: m.inverse_dynamics(np.stack([q, q]), z, a), InvalidArgument, "_batch"),
+        "velocities-batch-without-axis": (lambda: m.velocities_batch(q, [1.0, 0.0]), InvalidArgument, "without _batch"),
         "q-index-none": (lambda: m.q_index(None), InvalidParameters, "joint"),
         "v-index-unknown": (lambda: m.v_index("nope"), InvalidParameters, "joint"),
         "singularity-inputs-unknown": (lambda: m.singularity(q, ["nope"]), InvalidArgument, "inputs"),
@@ -147,7 +150,8 @@ def _option_cases(m):
     "forward-accuracy-zero", "forward-max-iter-zero", "forward-baumgarte-short", "forward-baumgarte-nan",
     "forward-kkt-mu-checked-too", "inverse-distribution-bogus", "inverse-distribution-bogus-fast-path",
     "inverse-determinacy-string", "inverse-fext-list-of-numbers", "inverse-fext-count", "inverse-fext-nan",
-    "inverse-fext-string", "inverse-state-batch-mismatch", "q-index-none", "v-index-unknown", "singularity-inputs-unknown"])
+    "inverse-fext-string", "inverse-state-batch-mismatch", "inverse-batch-to-one-sample",
+    "velocities-batch-without-axis", "q-index-none", "v-index-unknown", "singularity-inputs-unknown"])
 def test_bad_options_and_scalars_are_refused_by_name(m, case, capfd):
     call, kind, name = _option_cases(m)[case]
     with pytest.raises(kind) as err:
@@ -192,12 +196,12 @@ def test_well_formed_variants_give_finite_checked_results(m):
     q = m.home_q
     J = m.closure_jacobian(list(q))
     v = m.velocities(list(q), {"prox1": 1.0, "prox2": -0.5})
-    assert np.all(np.isfinite(v)) and np.max(np.abs(J @ v)) < 1e-12 and np.isfinite(v.condition)
+    assert np.all(np.isfinite(v)) and np.max(np.abs(J @ v)) < 1e-12 and np.isfinite(m.singularity(q))
     a = m.accelerations(q, v, (0.3, 0.1))
     assert np.max(np.abs(J @ a + m.closure_drift(q, v))) < 1e-10
     fd = m.forward_dynamics(list(q), list(v), [0.0] * m.model.nv)
     assert np.all(np.isfinite(fd.a))
-    both = m.forward_dynamics(np.stack([q, q]), np.stack([v, v]), np.zeros((2, m.model.nv)), "kkt")
+    both = m.forward_dynamics_batch(np.stack([q, q]), np.stack([v, v]), np.zeros((2, m.model.nv)), "kkt")
     assert np.allclose(both.a[0], fd.a, rtol=1e-9, atol=1e-9)
     fext = np.zeros((m.model.njoints, 6))
     assert m.inverse_dynamics(q, v, a, fext=fext).efforts == pytest.approx(m.inverse_dynamics(q, v, a).efforts)

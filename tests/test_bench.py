@@ -88,7 +88,7 @@ def test_spec_bench_methods_measure_a_wrong_method_and_a_raising_one():
     soc = by["sequential SOC virtual work (numpy, from link motion)"]
     assert soc.error < 1e-9 and soc.note == ""  # every pin's in-plane force compared
     # one proximal iteration at a large mu is biased: the result violates J a + gamma = 0 and is refused
-    assert by["constraintDynamics mu=0.001 it=1"].outcome.startswith("raises ClosureNotConverged")
+    assert by["constraintDynamics mu=0.001 it=1"].outcome.startswith("raises ConstraintViolated")
 
 
 def test_quick_bench_smoke(tmp_path, capsys, monkeypatch):

@@ -27,7 +27,7 @@ def coarse_fold(mech):
 
 
 def test_model_size(mech):
-    assert mech.model.nv == 66 and mech.rows.size == 60 and len(mech.closures) == 12
+    assert mech.model.nv == 66 and mech.closure_model.kernel.size == 60 and len(mech.closures) == 12
     assert len(mech.actuated) == 7
 
 

@@ -9,7 +9,7 @@ import pinocchio as pin
 import pytest
 
 from mechkit.catalog import registry
-from mechkit.core.closures import AXIS_ANCHOR_OFFSET
+from mechkit.core import AXIS_ANCHOR_OFFSET
 from mechkit.export import frame_b_vector, to_mjcf
 from mechkit.export.mjcf import SOLREF_DIVISOR, smallest_link_period
 from mechkit.mechanisms.ten_bar.params import spring_from_urdf

@@ -16,6 +16,7 @@ import pinocchio as pin
 
 import mechkit
 from mechkit.bench.methods import references
+from mechkit.bench.raw import raw_constraint_dynamics
 from mechkit.bench.sampling import make_samples
 from mechkit.bench.timing import time_per_call
 
@@ -31,10 +32,7 @@ def measure(name: str, budget: float) -> list[tuple[str, float, str]]:
     references(m, [s])
     q, v, a, tau = s.q, s.v, s.a, s.tau
     model, data = m.model, m.model.createData()
-    cms, cds = m.pin_constraints()
-    raw_data = model.createData()
-    pin.initConstraintDynamics(model, raw_data, cms, cds)
-    prox = pin.ProximalSettings(1e-12, 1e-9, 20)
+    raw = raw_constraint_dynamics(m)
     inputs = dict(zip(s.input_names, s.inputs))
     start = m.home_q.copy()
     rows = []
@@ -45,13 +43,13 @@ def measure(name: str, budget: float) -> list[tuple[str, float, str]]:
 
     t_kin = row("raw: computeJointJacobians + updateFramePlacements", lambda: (pin.computeJointJacobians(model, data, q),
                                                                              pin.updateFramePlacements(model, data)))
-    t_cd = row("raw: pin.constraintDynamics (mu=1e-9, 20 it)", lambda: pin.constraintDynamics(model, raw_data, q, v, tau, cms, cds, prox))
+    t_cd = row("raw: pin.constraintDynamics (mu=1e-9, 20 it)", lambda: raw(q, v, tau))
     t_rnea = row("raw: pin.rnea", lambda: pin.rnea(model, data, q, v, a))
     t_aba = row("raw: pin.aba (tree, no loop)", lambda: pin.aba(model, data, q, v, tau))
     q0 = start.copy()
     for joint, value in inputs.items():
         q0[m.q_index(joint)] = value
-    _, iters = mechkit.core.kinematics.solve_closure(m.rows, data, q0, m._split(list(inputs))[1])
+    iters = m.solve_closure(q0, list(inputs)).iterations
     for label, fn, base, comment in [
         ("assemble (closure Newton, from home)", lambda: m.assemble(inputs, guess=start), t_kin,
          f"{iters} iterations; ratio to one kinematics update"),

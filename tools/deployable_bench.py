@@ -23,7 +23,6 @@ import numpy as np
 import pinocchio as pin
 
 from mechkit.bench import time_per_call
-from mechkit.core import kinematics
 from mechkit.loading import load
 from mechkit.mechanism import Mechanism
 from mechkit.mechanisms.truss.fold import fold
@@ -60,7 +59,6 @@ def measure(name: str, budget: float, steps: int = 12) -> dict[str, float]:
             tau[mech.v_index(joint)] = u
         taus.append(tau)
     # closure solve from the previous step advanced by v dt (what the fold scene does)
-    free = np.setdiff1d(np.arange(mech.model.nv), [mech.v_index(j) for j in mech.actuated])
     warm = []
     for (q0, v0, _), (q1, _, _) in itertools.pairwise(traj):
         dt = 200.0 / (steps - 1) if name in ("tetra_3rr3uru", "deployable_9rr12uru") else 0.02
@@ -71,7 +69,7 @@ def measure(name: str, budget: float, steps: int = 12) -> dict[str, float]:
     data = mech.model.createData()
     items = list(range(len(traj)))
     out = {
-        "closure solve (warm)": _us(lambda i: kinematics.solve_closure(mech.rows, mech.data, warm[i % len(warm)], free),
+        "closure solve (warm)": _us(lambda i: mech.solve_closure(warm[i % len(warm)], mech.actuated),
                                     items, budget),
         "aba (tree)": _us(lambda i: pin.aba(mech.model, data, traj[i][0], traj[i][1], taus[i]), items, budget),
         "rnea (tree)": _us(lambda i: pin.rnea(mech.model, data, *traj[i]), items, budget),
@@ -89,8 +87,8 @@ def measure(name: str, budget: float, steps: int = 12) -> dict[str, float]:
             err = max(err, np.abs(found - a).max())
             closure = max(closure, np.abs(mech.closure_jacobian(q) @ found + mech.closure_drift(q, v)).max())
         out[f"error a {method}"], out[f"|J a + gamma| {method}"] = err, closure
-    out["nv"], out["rows"] = mech.model.nv, mech.rows.size
-    out["iterations (warm)"] = float(np.mean([kinematics.solve_closure(mech.rows, mech.data, g, free)[1] for g in warm]))
+    out["nv"], out["rows"] = mech.model.nv, mech.closure_model.kernel.size
+    out["iterations (warm)"] = float(np.mean([mech.solve_closure(g, mech.actuated).iterations for g in warm]))
     return out
 
 

@@ -13,9 +13,9 @@ import argparse
 import time
 
 import numpy as np
-import pinocchio as pin
 
 import mechkit
+from mechkit.bench.raw import raw_constraint_dynamics
 from mechkit.mechanisms.ten_bar import checks as tc
 from mechkit.mechanisms.ten_bar import dynamics as td
 from mechkit.mechanisms.ten_bar import geometry as geo
@@ -56,10 +56,7 @@ def main() -> None:
     qL, vL = td.lagrange_state(p, q, v, m)
     qj, vj = pin_run.joint_angles(q), v[[m.v_index(j) for j in td.JOINT_ORDER]]
     tau = np.zeros(m.model.nv)
-    cms, cds = m.pin_constraints()
-    data = m.model.createData()
-    pin.initConstraintDynamics(m.model, data, cms, cds)
-    prox = pin.ProximalSettings(1e-12, 1e-9, 20)
+    raw = raw_constraint_dynamics(m)
     L = lag_own.L
     acc = tp.motor_law(p, t)[2]
 
@@ -67,7 +64,7 @@ def main() -> None:
         "Dynamics: one evaluation at a state",
         {
             "pin.constraintDynamics (raw call)": per_call(
-                lambda: pin.constraintDynamics(m.model, data, q, v, tau, cms, cds, prox), n
+                lambda: raw(q, v, tau), n
             ),
             "Mechanism.forward_dynamics proximal (1 call)": per_call(
                 lambda: m.forward_dynamics(q, v, tau), n

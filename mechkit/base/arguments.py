@@ -48,22 +48,62 @@ def array(name: str, value: Any, size: int, *, batch: bool = True) -> np.ndarray
     return x
 
 
-def state(sizes: Mapping[str, int], **values: Any) -> list[np.ndarray]:
-    """Several state arrays checked by `array`, which must agree on the sample axis.
+def sample(sizes: Mapping[str, int], **values: Any) -> list[np.ndarray]:
+    """State arrays of one sample, each checked by `array` with shape (size,).
 
     Args:
         sizes: argument name -> vector length (e.g. {"q": nq, "v": nv}).
         values: argument name -> value, in the order returned.
 
     Raises:
-        InvalidArgument: one array is malformed, or one is batched and another is not / has another N.
+        InvalidArgument: a malformed array, or one with a sample axis (the `*_batch` methods take those).
     """
-    out = [array(name, value, sizes[name]) for name, value in values.items()]
-    leading = {name: (x.shape[0] if x.ndim == 2 else None) for name, x in zip(values, out)}
-    if len(set(leading.values())) > 1:
-        raise InvalidArgument(", ".join(values), leading, "every state array must have the same leading sample axis "
-                              "(all (n,) or all (N, n) with one N)")
+    out = []
+    for name, value in values.items():
+        if _batched(value):
+            raise InvalidArgument(name, value, f"one sample of shape ({sizes[name]},) expected; for N samples of shape "
+                                  f"(N, {sizes[name]}) call the method's *_batch form")
+        out.append(array(name, value, sizes[name], batch=False))
     return out
+
+
+def samples(sizes: Mapping[str, int], **values: Any) -> list[np.ndarray]:
+    """State arrays of N samples, each of shape (N, size), one N for all.
+
+    Raises:
+        InvalidArgument: a malformed array, one without a sample axis, or two different N.
+    """
+    out = []
+    for name, value in values.items():
+        x = array(name, value, sizes[name])
+        if x.ndim != 2:
+            raise InvalidArgument(name, value, f"N samples of shape (N, {sizes[name]}) expected; for one sample call "
+                                  "the method without _batch")
+        out.append(x)
+    if len({x.shape[0] for x in out}) > 1:
+        raise InvalidArgument(", ".join(values), {n: x.shape for n, x in zip(values, out)},
+                              "every state array must have the same number of samples N")
+    return out
+
+
+def _batched(value: Any) -> bool:
+    """True for a well-formed two-dimensional array of numbers (anything else is for `array` to judge)."""
+    if isinstance(value, (str, bytes, Mapping)):
+        return False
+    try:
+        return np.ndim(value) == 2
+    except ValueError:  # ragged
+        return False
+
+
+def plain_state(q: Any, v: Any, tau: Any, nq: int, nv: int) -> bool:
+    """True for the common call that needs no conversion: float64 arrays of shapes (nq,), (nv,), (nv,),
+    all finite. Anything else (lists, other dtypes, batches, NaN or inf) goes through `sample`, which
+    converts it or names what is wrong."""
+    return (isinstance(q, np.ndarray) and isinstance(v, np.ndarray) and isinstance(tau, np.ndarray)
+            and q.dtype == np.float64 and v.dtype == np.float64 and tau.dtype == np.float64
+            and q.shape == (nq,) and v.shape == (nv,) and tau.shape == (nv,)
+            and bool(np.isfinite(q).all() and np.isfinite(v).all() and np.isfinite(tau).all()))
 
 
 def option(name: str, value: Any, choices: Sequence[str]) -> str:
@@ -95,15 +135,17 @@ def number(name: str, value: Any, *, minimum: float | None = None, positive: boo
     return x
 
 
-def solver_settings(mu: Any, accuracy: Any, max_iter: Any, baumgarte: Any) -> tuple[float, float, int, tuple | None]:
-    """Forward-dynamics settings checked: mu >= 0, accuracy > 0, max_iter >= 1, baumgarte None or 2 finite gains.
+def solver_settings(mu: Any, accuracy: Any, max_iter: Any, baumgarte: Any) -> dict[str, Any]:
+    """Forward-dynamics settings checked: mu >= 0, accuracy > 0, max_iter >= 1 (each None: the method's
+    default), baumgarte None or 2 finite gains; as keyword arguments of `core.forward_dynamics`.
 
     Raises:
         InvalidArgument: naming the first bad one.
     """
-    gains = None if baumgarte is None else tuple(array("baumgarte", baumgarte, 2, batch=False))
-    return (number("mu", mu, minimum=0.0), number("accuracy", accuracy, positive=True),
-            integer("max_iter", max_iter, minimum=1), gains)
+    return {"mu": None if mu is None else number("mu", mu, minimum=0.0),
+            "accuracy": None if accuracy is None else number("accuracy", accuracy, positive=True),
+            "max_iter": None if max_iter is None else integer("max_iter", max_iter, minimum=1),
+            "baumgarte": None if baumgarte is None else tuple(array("baumgarte", baumgarte, 2, batch=False))}
 
 
 def integer(name: str, value: Any, *, minimum: int = 0) -> int:
@@ -149,17 +191,78 @@ def joint_names(name: str, value: Any, known: Sequence[str], *, allow_empty: boo
     return names
 
 
-def joint_values(name: str, value: Any, names: Sequence[str], known: Sequence[str]) -> dict[str, float]:
-    """Joint values as {joint: finite float}: a mapping by name, or numbers in the order of `names`.
+def joint_values(name: str, value: Any, names: Sequence[str], known: Sequence[str],
+                 sizes: Mapping[str, int] | None = None) -> dict[str, float | np.ndarray]:
+    """Joint values as {joint: finite float, or array for a joint of several freedoms}: a mapping by
+    name, or numbers in the order of `names` (each joint taking `sizes[joint]` of them, default 1).
 
     Raises:
         InvalidArgument: unknown joints, wrong count, non-numbers, NaN or inf.
     """
     if isinstance(value, Mapping):
         joint_names(name, list(value), known, allow_empty=True)
-        return {joint: number(f"{name}[{joint!r}]", v) for joint, v in value.items()}
-    values = np.atleast_1d(array(name, value, len(names), batch=False)) if len(names) else array(name, value, 0, batch=False)
-    return dict(zip(names, values.tolist()))
+        out = {}
+        for joint, v in value.items():
+            if np.ndim(v) == 0:
+                out[joint] = number(f"{name}[{joint!r}]", v)
+            else:
+                out[joint] = array(f"{name}[{joint!r}]", v, int(np.size(v)), batch=False)
+        return out
+    widths = [1 if sizes is None else sizes.get(n, 1) for n in names]
+    flat = array(name, value, sum(widths), batch=False) if widths else array(name, value, 0, batch=False)
+    out, i = {}, 0
+    for joint, w in zip(names, widths):
+        out[joint] = float(flat[i]) if w == 1 else flat[i:i + w].copy()
+        i += w
+    return out
+
+
+def sample_inputs(name: str, values: Any, names: Sequence[str], n: int, known: Sequence[str],
+                  sizes: Mapping[str, int] | None = None) -> tuple[list[str], np.ndarray]:
+    """Batched input values: an (n, k) array in `names` order (k the sum of their `sizes`, default 1
+    each), or a mapping joint name -> (n,) values (or (n, size) for a joint of several freedoms).
+
+    Returns:
+        The joint names and an (n, k) float array.
+
+    Raises:
+        InvalidArgument: unknown joints, wrong shape, non-numbers, NaN or inf.
+    """
+    width = {j: 1 if sizes is None else sizes.get(j, 1) for j in known}
+    if isinstance(values, Mapping):
+        keys = joint_names(name, list(values), known, allow_empty=True)
+        cols = []
+        for k in keys:
+            v = values[k]
+            if np.ndim(v) == 0 and width[k] == 1:
+                cols.append(np.full((n, 1), number(f"{name}[{k!r}]", v)))
+            else:
+                cols.append(array(f"{name}[{k!r}]", np.reshape(v, (n, width[k])) if np.size(v) == n * width[k] else v,
+                                  width[k]).reshape(n, width[k]))
+        return keys, (np.concatenate(cols, axis=1) if cols else np.zeros((n, 0)))
+    k = sum(width[j] for j in names)
+    x = array(name, values, k)
+    if x.shape != (n, k):
+        raise InvalidArgument(name, values, f"expected shape ({n}, {k}): one row per sample")
+    return list(names), x
+
+
+def sample_fext(name: str, fext: Any, n: int, njoints: int) -> list:
+    """Per-sample external forces: None, an (n, njoints, 6) array of local-frame wrenches, or n per-sample
+    values (each as `external_forces` takes).
+
+    Raises:
+        InvalidArgument: a wrong shape or count.
+    """
+    if fext is None:
+        return [None] * n
+    if isinstance(fext, np.ndarray):
+        if fext.shape != (n, njoints, 6):
+            raise InvalidArgument(name, fext, f"expected ({n}, {njoints}, 6) or {n} per-sample values")
+        return [external_forces(name, sample, njoints) for sample in fext]
+    if len(fext) != n:
+        raise InvalidArgument(name, fext, f"expected one value per sample ({n})")
+    return [external_forces(name, f, njoints) for f in fext]
 
 
 def external_forces(name: str, value: Any, njoints: int) -> Any:

@@ -62,6 +62,35 @@ class SingularConfiguration(MechkitError):
         super().__init__(f"singular configuration: {what} (condition number {cond:.3e})")
 
 
+class ConstraintViolated(MechkitError):
+    """A dynamics result violates the closure at acceleration level, J a + gamma = 0, beyond tolerance.
+
+    Attributes:
+        residual: max |J a + gamma| (m/s^2 for position rows).
+        limit: the tolerance it exceeds.
+        what: which method produced it.
+    """
+
+    def __init__(self, residual: float, limit: float, what: str):
+        self.residual, self.limit, self.what = residual, limit, what
+        super().__init__(f"{what}: the accelerations violate J a + gamma = 0 by {residual:.3e} (limit {limit:.1e})")
+
+
+class InconsistentMotion(MechkitError):
+    """No rigid answer exists: a right-hand side leaves the range of the closure rows (e.g. a velocity
+    that moves along a freedom existing only instantaneously, whose drift gamma no acceleration cancels).
+
+    Attributes:
+        outside: size of the part outside the range (the least-squares residual).
+        limit: the tolerance it exceeds.
+        what: which equation, in words.
+    """
+
+    def __init__(self, outside: float, limit: float, what: str):
+        self.outside, self.limit, self.what = outside, limit, what
+        super().__init__(f"no rigid answer: {what} (outside the range by {outside:.3e}, limit {limit:.1e})")
+
+
 class MethodUnavailable(MechkitError):
     """A method cannot handle this mechanism (say which and why; another method can).
 

@@ -17,9 +17,9 @@ from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
-import pinocchio as pin
 
 from mechkit.base.exceptions import MechkitError
+from mechkit.bench.raw import raw_constraint_dynamics
 from mechkit.bench.sampling import Sample, make_samples
 from mechkit.bench.timing import time_per_call
 from mechkit.mechanism import Mechanism
@@ -64,29 +64,25 @@ class MechanismSpeed:
 
 def _calls(mech: Mechanism, samples: list[Sample]) -> dict[str, tuple[Callable[[Sample], object], int]]:
     """label -> (call on one sample, samples it handles)."""
-    model = mech.model
-    cms, cds = mech.pin_constraints()
-    raw_data = model.createData()
-    pin.initConstraintDynamics(model, raw_data, cms, cds)
-    prox = pin.ProximalSettings(1e-12, 1e-9, 20)
+    raw = raw_constraint_dynamics(mech)
     reps = -(-BATCH // len(samples))
     Q, V, A = (np.array([getattr(s, k) for s in samples] * reps)[:BATCH] for k in "qva")
     names = list(samples[0].input_names)
     R = np.array([s.rates for s in samples] * reps)[:BATCH]
     Acc = np.array([s.accelerations for s in samples] * reps)[:BATCH]
     calls = {
-        RAW: (lambda s: pin.constraintDynamics(model, raw_data, s.q, s.v, s.tau, cms, cds, prox), 1),
+        RAW: (lambda s: raw(s.q, s.v, s.tau), 1),
         "forward_dynamics wrapper (proximal)": (lambda s: mech.forward_dynamics(s.q, s.v, s.tau), 1),
         "inverse_dynamics, every reaction, determinacy off": (
             lambda s: mech.inverse_dynamics(s.q, s.v, s.a, determinacy=False), 1),
         "inverse_dynamics, every reaction, determinacy on": (lambda s: mech.inverse_dynamics(s.q, s.v, s.a), 1),
         f"batched inverse_dynamics (N={BATCH}), determinacy off": (
-            lambda s: mech.inverse_dynamics(Q, V, A, determinacy=False), BATCH),
-        f"batched inverse_dynamics (N={BATCH}), determinacy on": (lambda s: mech.inverse_dynamics(Q, V, A), BATCH),
+            lambda s: mech.inverse_dynamics_batch(Q, V, A, determinacy=False), BATCH),
+        f"batched inverse_dynamics (N={BATCH}), determinacy on": (lambda s: mech.inverse_dynamics_batch(Q, V, A), BATCH),
         "velocities": (lambda s: mech.velocities(s.q, s.rates, names), 1),
         "accelerations": (lambda s: mech.accelerations(s.q, s.v, s.accelerations, names), 1),
-        f"batched velocities (N={BATCH})": (lambda s: mech.velocities(Q, R, names), BATCH),
-        f"batched accelerations (N={BATCH})": (lambda s: mech.accelerations(Q, V, Acc, names), BATCH),
+        f"batched velocities (N={BATCH})": (lambda s: mech.velocities_batch(Q, R, names), BATCH),
+        f"batched accelerations (N={BATCH})": (lambda s: mech.accelerations_batch(Q, V, Acc, names), BATCH),
     }
     calls.update(_mujoco_calls(mech, samples[0]))
     return calls

@@ -1,6 +1,6 @@
 """The ladder of N four-bar loops (`mechkit.bench.ladder_model`): forward dynamics cost and error against N.
 
-For each N: one state (q = 0, input rates ~ N(0, 1), efforts ~ N(0, 0.1) N m, seed 0), the exact accelerations from the dense KKT on mechkit's independent closure rows, solved by LU with iterative refinement (residual in extended precision, `exact_accelerations`); then microseconds per call of the raw `pin.constraintDynamics` (mu = 1e-9, the core's default) and of `LoopConstrainedABA` (`pin.lcaba` at `LCABA_DEFAULTS`, its closure error certified), timed alternately repeat after repeat in one process, each keeping its fastest repeat (the least disturbed on a shared machine), and their ratio; the relative error of each against the exact accelerations. Growth: the least-squares slope of log t against log N over N >= `FIT_FROM`.
+For each N: one state (q = 0, input rates ~ N(0, 1), efforts ~ N(0, 0.1) N m, seed 0), the exact accelerations from the dense KKT on mechkit's independent closure rows, solved by LU with iterative refinement (residual in extended precision, `exact_accelerations`); then microseconds per call of the raw `pin.constraintDynamics` (mu = 1e-9, the core's default) and of `Mechanism.forward_dynamics(method="lcaba")` (`pin.lcaba` at the core's defaults, its closure error certified), timed alternately repeat after repeat in one process, each keeping its fastest repeat (the least disturbed on a shared machine), and their ratio; the relative error of each against the exact accelerations. Growth: the least-squares slope of log t against log N over N >= `FIT_FROM`.
 """
 
 from __future__ import annotations
@@ -12,9 +12,10 @@ import numpy as np
 import pinocchio as pin
 import scipy.linalg
 
-from mechkit.bench.ladder_model import LCABA_DEFAULTS, LoopConstrainedABA, ladder
+from mechkit import core
+from mechkit.bench.ladder_model import ladder
+from mechkit.bench.raw import raw_constraint_dynamics
 from mechkit.bench.timing import time_per_call
-from mechkit.core.dynamics import independent_rows
 from mechkit.mechanism import Mechanism
 
 SIZES = (1, 2, 4, 8, 16, 32, 64)
@@ -44,7 +45,7 @@ def exact_accelerations(mech: Mechanism, q: np.ndarray, v: np.ndarray, tau: np.n
     """Accelerations of the dense KKT `[M, -J^T; J, 0] [a; lambda] = [tau - nle; -gamma]` on the independent
     rows, LU-solved then refined four times with the residual in extended precision (np.longdouble)."""
     J, gamma = mech.closure_jacobian(q), mech.closure_drift(q, v)
-    rows = independent_rows(J)
+    rows = core.independent_rows(J)
     J, gamma = J[rows], gamma[rows]
     data = mech.model.createData()
     M = pin.crba(mech.model, data, q)
@@ -72,20 +73,20 @@ def measure(loops: int, budget: float = 0.2, repeats: int = 5) -> LadderPoint:
     tau = rng.normal(0.0, 0.1, mech.model.nv)
     exact = exact_accelerations(mech, q, v, tau)
     scale = max(float(np.max(np.abs(exact))), 1e-300)
-    lcaba = LoopConstrainedABA(mech, *LCABA_DEFAULTS)
-    cms, cds = mech.pin_constraints()
-    data = mech.model.createData()
-    pin.initConstraintDynamics(mech.model, data, cms, cds)
-    prox = pin.ProximalSettings(1e-12, 1e-9, 20)
+    bare = raw_constraint_dynamics(mech)
 
     def raw(_):
-        return pin.constraintDynamics(mech.model, data, q, v, tau, cms, cds, prox)
+        return bare(q, v, tau)
+
+    def lcaba(_):
+        return mech.forward_dynamics(q, v, tau, "lcaba")
 
     raw_error = float(np.max(np.abs(raw(None) - exact))) / scale
-    lcaba_error = float(np.max(np.abs(lcaba(q, v, tau) - exact))) / scale
-    iterations = int(lcaba.prox.iter)
+    result = lcaba(None)
+    lcaba_error = float(np.max(np.abs(result.a - exact))) / scale
+    iterations = result.iterations
     pairs = [(time_per_call(raw, [None], budget / repeats / 2, 1)[0],
-              time_per_call(lambda _: lcaba(q, v, tau), [None], budget / repeats / 2, 1)[0]) for _ in range(repeats)]
+              time_per_call(lcaba, [None], budget / repeats / 2, 1)[0]) for _ in range(repeats)]
     return LadderPoint(loops, mech.model.nv, min(p[0] for p in pairs) * 1e6, raw_error,
                        min(p[1] for p in pairs) * 1e6, lcaba_error, iterations, os.getloadavg()[0])
 

@@ -17,10 +17,10 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
-import pinocchio as pin
 
 from mechkit.base.exceptions import MechkitError
 from mechkit.bench.errors import IDReference, id_parts
+from mechkit.bench.raw import raw_constraint_dynamics
 from mechkit.bench.sampling import Sample
 
 if TYPE_CHECKING:
@@ -116,22 +116,17 @@ def core_methods(mech: Mechanism, quick: bool) -> list[Method]:
     mus = (1e-9, 1e-3) if quick else (1e-12, 1e-9, 1e-6, 1e-3)
     iters = (1, 20) if quick else (1, 3, 20)
     try:
-        mech.pin_constraints()
-        proximal = True
+        raw = raw_constraint_dynamics(mech)
     except MechkitError:
-        proximal = False
-    if proximal:
+        raw = None
+    if raw is not None:
         for it in iters:
             for mu in mus:
                 methods.append(Method(f"constraintDynamics mu={mu:g} it={it}", "forward_dynamics",
                                       lambda m, s, mu=mu, it=it: m.forward_dynamics(s.q, s.v, s.tau, "proximal", mu=mu, max_iter=it).a,
                                       family=f"constraintDynamics it={it}", knob=f"mu={mu:g}"))
-        cms, cds = mech.pin_constraints()
-        raw_data = mech.model.createData()
-        pin.initConstraintDynamics(mech.model, raw_data, cms, cds)
-        prox = pin.ProximalSettings(1e-12, 1e-9, 20)
         methods.append(Method("raw pin.constraintDynamics (mu=1e-9)", "forward_dynamics",
-                              lambda m, s: pin.constraintDynamics(m.model, raw_data, s.q, s.v, s.tau, cms, cds, prox)))
+                              lambda m, s: raw(s.q, s.v, s.tau)))
     methods.append(Method("dense KKT (independent rows)", "forward_dynamics",
                           lambda m, s: m.forward_dynamics(s.q, s.v, s.tau, "kkt").a))
     methods.append(Method("constrained RNEA + determinacy", "inverse_dynamics",

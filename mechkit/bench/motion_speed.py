@@ -14,14 +14,14 @@ from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
-import pinocchio as pin
 
+from mechkit.bench.raw import raw_constraint_dynamics
 from mechkit.loading import load
 from mechkit.mechanism import Mechanism
 from mechkit.mechanisms.parallel_2t1r.motion_law import MOTION_DURATION, motion_law
 from mechkit.motion.inputs import from_callable
 from mechkit.motion.path import PathKinematics
-from mechkit.motion.study import driven_problem, inverse_batch, kinematics_along, study
+from mechkit.motion.study import driven_model, inverse_batch, kinematics_along, study
 
 #: The issue's goal for the 2T1R motion law (501 samples), s.
 GOAL_S = 0.050
@@ -59,10 +59,8 @@ def _best_times(fns: list[Callable[[], object]], repeats: int) -> list[float]:
 
 
 def _raw_call(mech: Mechanism, q: np.ndarray, v: np.ndarray) -> Callable[[], object]:
-    cms, cds = mech.pin_constraints()
-    data, prox, tau = mech.model.createData(), pin.ProximalSettings(1e-12, 1e-9, 20), np.zeros(mech.model.nv)
-    pin.initConstraintDynamics(mech.model, data, cms, cds)
-    return lambda: pin.constraintDynamics(mech.model, data, q, v, tau, cms, cds, prox)
+    raw, tau = raw_constraint_dynamics(mech), np.zeros(mech.model.nv)
+    return lambda: raw(q, v, tau)
 
 
 def motion_law_speed(samples: int = 501, repeats: int = 5) -> MotionSpeed:
@@ -71,13 +69,14 @@ def motion_law_speed(samples: int = 501, repeats: int = 5) -> MotionSpeed:
     law = from_callable(mech, motion_law, np.linspace(MOTION_DURATION / samples, MOTION_DURATION, samples))
     result = study(mech, law)
     path = PathKinematics(mech, law.names)
-    problem = driven_problem(mech, law.names)
+    driven = driven_model(mech, law.names)
+    driven_data = driven.create_data()
 
     def kinematics() -> None:
         kinematics_along(path, law)
 
     def inverse() -> None:
-        inverse_batch(problem, result.q, result.v, result.a, None, False)
+        inverse_batch(mech, driven, driven_data, result.q, result.v, result.a, None, False)
 
     raw = _raw_call(mech, result.q[0], result.v[0])
     study_s, kinematics_s, dynamics_s, raw_s = _best_times(

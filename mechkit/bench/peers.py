@@ -28,7 +28,7 @@ import numpy as np
 
 from mechkit.base.exceptions import MechkitError, MethodUnavailable
 from mechkit.bench.methods import Method
-from mechkit.core.closures import AXIS_ANCHOR_OFFSET
+from mechkit.core import AXIS_ANCHOR_OFFSET
 from mechkit.export import body_name, frame_b_vector, to_mjcf
 from mechkit.mechanism import Mechanism
 from mechkit.sources.urdf import LOOP_NAMESPACE

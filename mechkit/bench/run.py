@@ -71,7 +71,7 @@ def bench_mechanism(mech: Mechanism, quick: bool = True, with_peers: bool = True
     labels = dict(refs.labels)
     if notes:
         labels["peers"] = "; ".join(notes)
-    return MechanismBench(name, mech.model.nv, mech.rows.size, labels, rows, paired, mech, samples)
+    return MechanismBench(name, mech.model.nv, mech.closure_model.kernel.size, labels, rows, paired, mech, samples)
 
 
 def run(names: Sequence[str] | None = None, quick: bool = True, with_peers: bool = True,

@@ -65,7 +65,10 @@ def make_samples(mech: Mechanism, count: int, seed: int = 7) -> list[Sample]:
     """`count` assembled states near home (closure tolerance 1e-12).
 
     Inputs within INPUT_SPREAD of home (divided by 5 until the linkage assembles), then, if too few
-    assemble, configurations along the spec's first scene; input rates ~ N(0, 0.5).
+    assemble, configurations along the spec's first scene; input rates ~ N(0, 0.5), the velocity then
+    moved to the nearest one along which the motion continues at second order (`second_order_velocity`:
+    at a redundant configuration, such as the deployable's, a velocity in the null space of J may move
+    along a freedom that exists only instantaneously, where no acceleration closes the loops).
     Fully actuated: input accelerations ~ N(0, 1) and a from the closure kinematics (tau is set by
     `mechkit.bench.methods.references`). Under-actuated, or where that a does not satisfy
     J a + gamma = 0 to 1e-9 (a rank change near home): efforts ~ N(0, generalised gravity scale) on
@@ -90,7 +93,8 @@ def make_samples(mech: Mechanism, count: int, seed: int = 7) -> list[Sample]:
         inputs = np.array([q[mech.q_index(j)] for j in names])
         rates = rng.normal(0.0, 0.5, home.size)
         accs = rng.normal(0.0, 1.0, home.size)
-        v = mech.velocities(q, rates, inputs=names)
+        v = mech.second_order_velocity(q, mech.velocities(q, rates, inputs=names))  # along a finite motion
+        rates = np.concatenate([np.atleast_1d(v[mech.v_index(j)]) for j in names])
         tau = np.zeros(mech.model.nv)
         a = None if under else mech.accelerations(q, v, accs, inputs=names)
         if a is not None and not _closes(mech, q, v, a):

@@ -18,7 +18,7 @@ from typing import Any
 import numpy as np
 
 from mechkit.catalog.registry import get_spec
-from mechkit.mechanism import Mechanism
+from mechkit.loading import from_expanded
 from mechkit.sources.template_cache import TemplateCache
 from mechkit.sources.xacro_file import render_urdf
 from mechkit.sweep.engine import dask_client, sweep
@@ -70,13 +70,13 @@ def load_times(names: tuple[str, ...] = ("four_bar", "ten_bar", "deployable_9rr1
             start = time.perf_counter()
             text = render_urdf(spec.template_path, params.xacro_args())
             r_xacro.append(time.perf_counter() - start)
-            Mechanism(spec, params, text)
+            from_expanded(spec, params, text)
             t_xacro.append(time.perf_counter() - start)
         for params in variants[runs:]:
             start = time.perf_counter()
             text = cache.render(params.xacro_args())
             r_cache.append(time.perf_counter() - start)
-            Mechanism(spec, params, text)
+            from_expanded(spec, params, text)
             t_cache.append(time.perf_counter() - start)
         rows.append(LoadTime(name, 1e3 * float(np.median(t_xacro)), 1e3 * float(np.median(t_cache)),
                              1e3 * float(np.median(r_xacro)), 1e3 * float(np.median(r_cache)), 1e3 * expand, runs))

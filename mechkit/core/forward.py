@@ -1,99 +1,66 @@
-"""Constrained forward dynamics (constrained ABA) with tolerances relative to the model.
+"""Constrained forward dynamics: accelerations under joint efforts, M a + nle = tau + J^T lambda,
+J a + gamma = 0, by four methods with tolerances relative to the model.
 
-Two methods: Pinocchio's proximal `constraintDynamics` on the equivalent `RigidConstraintModel`s
-(mu and accuracy relative to the Delassus scale), and a dense KKT solve on independent rows,
-equilibrated before the LU. A result that violates J a + gamma = 0 beyond `ACCELERATION_TOL` is an
-error, never returned. Bodies too light for Pinocchio's inertia arithmetic are refused.
+- "proximal": Pinocchio's proximal `constraintDynamics` on the equivalent legacy constraint models
+  (mu and accuracy relative to the Delassus scale; `mechkit.core.pin_constraints`);
+- "lcaba": Pinocchio's loop-constrained articulated-body algorithm on the same models (an augmented
+  Lagrangian of O(n) sweeps: the method for many loops);
+- "kkt": a dense KKT solve on independent closure rows of mechkit's kernel, equilibrated before the LU;
+- "nullspace": the exact reference: the accelerations that satisfy every row, a = a_p + N z, with N a
+  basis of the null space of J (SVD) and the reduced mass matrix N^T M N.
+
+Every result is checked against J a + gamma = 0 on the rows its method solved: a violation beyond
+`ACCELERATION_TOL` is an error (`ConstraintViolated`), never a return value, and a state whose gamma
+leaves the range of J (no acceleration satisfies every row: a velocity along a freedom that exists
+only instantaneously) is refused by every method (`InconsistentMotion`).
 """
 
 from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from typing import Any
 
 import numpy as np
 import pinocchio as pin
 import scipy.linalg
 
-from mechkit.base.exceptions import ClosureNotConverged, InvalidParameters, SingularConfiguration
-from mechkit.core.closures import ClosureRows, rigid_constraint_models
-from mechkit.core.dynamics import ForwardDynamicsResult, independent_rows
+from mechkit.base.exceptions import ConstraintViolated, InconsistentMotion, SingularConfiguration
+from mechkit.core import rank
+from mechkit.core.kinematics import kinematic_pass
+from mechkit.core.model import ClosureData, ClosureModel
+from mechkit.core.pin_constraints import LegacyConstraints, proximal_settings
+from mechkit.core.results import ForwardDynamicsResult
 
-#: Methods of `Mechanism.forward_dynamics`.
-METHODS = ("proximal", "kkt")
-#: Lightest body (kg): Pinocchio's inertia sums are exact above its epsilon (2.2e-16 kg); ours, with a margin.
-MIN_BODY_MASS = 1e-14
+#: Methods of `forward_dynamics`.
+METHODS = ("proximal", "lcaba", "kkt", "nullspace")
+#: Default (mu, accuracy, max_iter) of Pinocchio's methods: mu relative to the Delassus scale
+#: (`ClosureModel.delassus_scale`), accuracy in m/s^2 for position rows (ours; measured: lcaba at mu = 1
+#: agrees with the dense KKT to 3e-11 on the planar mechanisms and the ladder of 64 loops).
+DEFAULTS = {"proximal": (1e-11, 1e-12, 20), "lcaba": (1.0, 1e-10, 200)}
+#: lcaba's step criterion is given accuracy / (max |J_i| times this) (ours): the rows' lever at the neutral
+#: configuration only approximates the one at the state, and its final error is checked against `accuracy`.
+LCABA_STEP_MARGIN = 10.0
 #: Smallest LU pivot of the equilibrated KKT matrix, relative to the largest, of a regular system.
 PIVOT_TOL = 1e-14
-#: Allowance, in units of the state's own second-order inconsistency, for a result on such a state (ours).
-INCONSISTENT_FACTOR = 20.0
-#: Largest |J a + gamma| of a forward-dynamics result, relative to max|J_i| max|a| + max|gamma| (ours).
+#: Largest |J a + gamma| of a result, relative to max|J_i| max|a| + max|gamma| (ours).
 ACCELERATION_TOL = 1e-8
 
 
-def check_body_masses(model: pin.Model) -> None:
-    """Refuse bodies lighter than `MIN_BODY_MASS` (massless bodies, mass 0, are fine).
-
-    Pinocchio merges a link's inertia into its joint's body with lever = sum(m c) / max(sum m, eps),
-    eps = 2.2e-16 kg, so a body of 1e-17 kg gets a centre of mass near the joint and wrong dynamics
-    (the five-bar at density 1e-12 kg/m^3: accelerations 46 % off); above eps the sum is exact.
-
-    Raises:
-        InvalidParameters: the lightest such body, by joint name.
-    """
-    for j in range(1, model.njoints):
-        mass = model.inertias[j].mass
-        if 0.0 < mass < MIN_BODY_MASS:
-            raise InvalidParameters(f"mass of {model.names[j]}", mass, f"below {MIN_BODY_MASS:g} kg, where Pinocchio's inertia "
-                                    "arithmetic (an epsilon of 2.2e-16 kg) misplaces the centre of mass; scale the units")
-
-
-def mass_scaling(M: np.ndarray) -> np.ndarray:
-    """diag(M)^(-1/2): the scaling that gives the mass matrix a unit diagonal (1/sqrt(kg) or 1/sqrt(kg m^2)).
-
-    Raises:
-        SingularConfiguration: a coordinate with no inertia (zero or negative diagonal, or not finite).
-    """
-    d = np.diag(M)
-    if not np.all(np.isfinite(M)) or np.any(d <= 0):
-        raise SingularConfiguration(float("inf"), "mass matrix: a coordinate carries no inertia (or the inertias are not finite)")
-    return 1.0 / np.sqrt(d)
-
-
-def delassus_scale(M: np.ndarray, J: np.ndarray) -> float:
-    """max_i |J_i|^2 / max_j M_jj: the Delassus matrix J M^-1 J^T's scale along the heaviest coordinate
-    (1/kg for position rows), the unit the proximal mu is given in. The heaviest coordinate sets the
-    smallest scale, so a relative mu stays small against every coordinate (the lightest coordinate's
-    scale, on the deployable 3e4 times larger, made Pinocchio's compromise on second-order
-    inconsistent states up to 150 times worse: 1114 delta against 7.2 delta)."""
-    if J.shape[0] == 0:
-        return 1.0
-    scale = float(np.max(np.sum(J ** 2, axis=1)) / np.max(np.diag(M)))
-    return scale if scale > 0 else 1.0  # rows all zero here: nothing to scale against
-
-
-def check_closure_acceleration(J: np.ndarray, a: np.ndarray, gamma: np.ndarray, slack: float = 0.0,
-                               what: str = "forward dynamics", a_scale: Callable[[], float] | None = None) -> None:
+def check_acceleration(J: np.ndarray, a: np.ndarray, gamma: np.ndarray, what: str,
+                       a_scale: Callable[[], float] | None = None) -> None:
     """Refuse accelerations that violate J a + gamma = 0 beyond `ACCELERATION_TOL` relative to the terms.
 
-    Where a state's velocity is not a motion of the mechanism at second order (a rank change, as on
-    the deployable's infinitesimal fold), no acceleration satisfies every row: gamma has a part no
-    J a cancels, of size delta = min over a of max |J a + gamma|. That is the state's inconsistency, not
-    the solver's error: a result within `INCONSISTENT_FACTOR` delta is accepted there (a compromise
-    between the rows, such as Pinocchio's proximal solve makes: measured up to 7.2 delta on the
-    deployable's bench states).
-
     Args:
-        slack: an extra allowance (m/s^2 for position rows), e.g. the size of a stabilisation term the
-            method measures its own way.
+        J: (rows, nv) the rows the method solved; gamma: (rows,) their drift.
+        a: (nv,) the accelerations.
+        what: the method, for the error.
         a_scale: gives the size of the accelerations the loads would cause unconstrained (rad/s^2 or
-            m/s^2), max |tau - nle| / M_jj: where the closures hold the mechanism still, a is rounding
-            and this sets the scale (called only when the tests without it fail).
+            m/s^2): where the closures hold the mechanism still, a is rounding and this sets the scale
+            (called only when the tests without it fail).
 
     Raises:
-        ClosureNotConverged: max |J a + gamma| above ACCELERATION_TOL (max |J_i| max |a| + max |gamma|)
-            + slack (+ INCONSISTENT_FACTOR delta).
+        InconsistentMotion: gamma leaves the range of J beyond `rank.RANGE_TOL` (no rigid answer).
+        ConstraintViolated: max |J a + gamma| above the tolerance.
     """
     if J.shape[0] == 0:
         return
@@ -101,32 +68,90 @@ def check_closure_acceleration(J: np.ndarray, a: np.ndarray, gamma: np.ndarray, 
     r += gamma
     residual = float(np.abs(r).max())
     g = float(np.abs(gamma).max())
-    if residual <= ACCELERATION_TOL * g + slack:  # below a part of the limit: the rest need not be computed
+    if residual <= ACCELERATION_TOL * g:  # below a part of the limit: the rest need not be computed
         return
     c = math.sqrt(float(np.einsum("ij,ij->i", J, J).max()))
-    limit = ACCELERATION_TOL * (c * float(np.abs(a).max(initial=0.0)) + g) + slack
+    limit = ACCELERATION_TOL * (c * float(np.abs(a).max(initial=0.0)) + g)
     if residual <= limit:
         return
-    # least squares by complete orthogonal factorisation (LAPACK gelsy, 3-4 times faster than numpy's SVD-based
-    # gelsd on the deployable's 72 x 66 rows), rank cut at numpy's default eps max(rows, nv)
-    x = scipy.linalg.lstsq(J, -gamma, cond=np.finfo(float).eps * max(J.shape), lapack_driver="gelsy")[0]
-    limit += INCONSISTENT_FACTOR * float(np.abs(J @ x + gamma).max())
-    if residual <= limit:
-        return
+    delta = rank.inconsistency(J, gamma)
+    if delta > rank.RANGE_TOL * max(g, c * float(np.abs(a).max(initial=0.0))):
+        raise InconsistentMotion(delta, rank.RANGE_TOL * g, f"{what}: the closure drift gamma leaves the range of J "
+                                 "(the velocity moves along a freedom that exists only instantaneously)")
     if a_scale is not None:
         limit += ACCELERATION_TOL * c * a_scale()
     if not residual <= limit:
-        raise ClosureNotConverged(residual, limit, 1, f"{what}: the accelerations violate J a + gamma = 0")
+        raise ConstraintViolated(residual, limit, what)
 
 
-def plain_state(q: Any, v: Any, tau: Any, nq: int, nv: int) -> bool:
-    """True for the common call that needs no conversion: float64 arrays of shapes (nq,), (nv,), (nv,),
-    all finite. Anything else (lists, other dtypes, batches, NaN or inf) goes through
-    `arguments.state`, which converts it or names what is wrong."""
-    return (isinstance(q, np.ndarray) and isinstance(v, np.ndarray) and isinstance(tau, np.ndarray)
-            and q.dtype == np.float64 and v.dtype == np.float64 and tau.dtype == np.float64
-            and q.shape == (nq,) and v.shape == (nv,) and tau.shape == (nv,)
-            and bool(np.isfinite(q).all() and np.isfinite(v).all() and np.isfinite(tau).all()))
+def _unconstrained_scale(cm: ClosureModel, data: pin.Data, q: np.ndarray, v: np.ndarray, tau: np.ndarray) -> float:
+    """max |tau - nle| / M_jj: the accelerations the loads would cause with no closure (rad/s^2 or m/s^2)."""
+    loads = np.abs(tau - pin.rnea(cm.model, data, q, v, np.zeros(cm.nv)))
+    return float(np.max(loads / np.diag(pin.crba(cm.model, data, q))))
+
+
+def _legacy(cm: ClosureModel, cd: ClosureData, ordered: bool = False) -> LegacyConstraints:
+    """The data's legacy constraints for "proximal" (or, `ordered`, for "lcaba": each its own Pinocchio data)."""
+    key = "lcaba" if ordered else "proximal"
+    if key not in cd.legacy:
+        cd.legacy[key] = LegacyConstraints(cm.model, list(cm.kernel.cuts), len(cm.kernel.couplings), ordered)
+    return cd.legacy[key]
+
+
+def _settings(cm: ClosureModel, cd: ClosureData, method: str, mu: float, accuracy: float, max_iter: int):
+    """Pinocchio's proximal settings of a method, made once per (method, mu, accuracy, max_iter): mu in
+    units of the Delassus scale; the accuracy divided by it ("proximal": Pinocchio tests its iterations on
+    the multipliers) or by the rows' lever arm and `LCABA_STEP_MARGIN` ("lcaba": it tests J delta a)."""
+    key = (method, mu, accuracy, max_iter)
+    prox = cd.settings.get(key)
+    if prox is None:
+        divisor = cm.delassus_scale if method == "proximal" else LCABA_STEP_MARGIN * max(cm.row_scale, 1.0)
+        prox = cd.settings[key] = proximal_settings(accuracy / divisor, mu * cm.delassus_scale, max_iter)
+    return prox
+
+
+def _proximal(cm, cd, q, v, tau, mu, accuracy, max_iter, baumgarte) -> ForwardDynamicsResult:
+    legacy = _legacy(cm, cd)
+    legacy.set_baumgarte(baumgarte)
+    settings = _settings(cm, cd, "proximal", mu, accuracy, max_iter)
+    a = legacy.dynamics(q, v, tau, settings).copy()
+    if not math.isfinite(a @ a):
+        raise SingularConfiguration(float("inf"), f"pin.constraintDynamics returned non-finite accelerations (mu={mu})")
+    J = legacy.jacobian()
+    check_acceleration(J, a, legacy.drift(J.shape[0]), "forward dynamics (proximal)",
+                       lambda: _unconstrained_scale(cm, cd.pin, q, v, tau))
+    return ForwardDynamicsResult(a, pin.rnea(cm.model, legacy.data, q, v, a) - tau, settings.iter)
+
+
+def _lcaba(cm, cd, q, v, tau, mu, accuracy, max_iter) -> ForwardDynamicsResult:
+    """lcaba stops when the closure error, or else the last step |delta a|, falls below its one accuracy;
+    it is given accuracy / max |J_i| (`_settings`), so that a step stop leaves J delta a within about
+    `accuracy`; the final error (before the last step, plus J times that step) is checked against it."""
+    if mu <= 0:
+        raise SingularConfiguration(float("inf"), "lcaba needs a positive mu (its penalty is 1 / mu)")
+    legacy = _legacy(cm, cd, ordered=True)
+    prox = _settings(cm, cd, "lcaba", mu, accuracy, max_iter)
+    a = legacy.loop_constrained_aba(q, v, tau, prox).copy()
+    if not math.isfinite(a @ a):
+        raise SingularConfiguration(float("inf"), "pin.lcaba returned non-finite accelerations")
+    J = legacy.jacobian()
+    residual = float(np.max(np.abs(legacy.lcaba_error() + J @ legacy.last_step()), initial=0.0))
+    if not residual <= accuracy:
+        raise ConstraintViolated(residual, accuracy, f"pin.lcaba after {prox.iter} iterations")
+    return ForwardDynamicsResult(a, pin.rnea(cm.model, legacy.data, q, v, a) - tau, prox.iter)
+
+
+def _rows_and_drift(cm: ClosureModel, cd: ClosureData, q: np.ndarray, v: np.ndarray,
+                    baumgarte: tuple[float, float] | None) -> tuple[np.ndarray, np.ndarray]:
+    """mechkit's closure Jacobian (rows, nv) and drift (rows,) at (q, v), Baumgarte terms added."""
+    G, Jw, dJ = kinematic_pass(cm, cd, q[None], v[None])
+    k = cm.kernel
+    e, J, _ = k.evaluate(G[0], Jw[0], q)
+    gamma = k.drift(G[0], k.twists(Jw[0], v), k.twists(dJ[0], v), q, v)
+    if baumgarte is not None:
+        kp, kd = baumgarte
+        gamma = gamma + kd * (J @ v) + kp * e
+    return J, gamma
 
 
 def _power_of_two(x: float) -> float:
@@ -134,174 +159,110 @@ def _power_of_two(x: float) -> float:
     return 1.0 if 1 / 16 <= x <= 16 else float(2.0 ** np.round(np.log2(x)))
 
 
-def kkt_forward(model: pin.Model, data: pin.Data, q: np.ndarray, v: np.ndarray, tau: np.ndarray, J: np.ndarray, gamma: np.ndarray,
-                rows: np.ndarray | None = None) -> ForwardDynamicsResult:
-    """Dense KKT solve on independent rows of J (needs J, gamma at (q, v)).
-
-    The system is equilibrated before the LU (mass-matrix block to a largest diagonal near 1, rows of J
-    to a largest norm near 1, by powers of two), so the pivot test is relative to the model's own
-    scale: a model of 1e30 kg or of millimetre links solves like one of kilograms and metres.
-
-    Args:
-        model: the tree's Pinocchio model.
-        data: a data of it.
-        q: configuration (nq,).
-        v: velocity (nv,).
-        tau: joint efforts (nv,), N m or N.
-        J: closure Jacobian (rows, nv) at q.
-        gamma: closure acceleration drift (rows,) at (q, v): J a + gamma = 0.
-        rows: a set of independent rows to use (e.g. cached from a regular configuration); chosen
-            by pivoted QR when None.
+def _mass_matrix(cm: ClosureModel, data: pin.Data, q: np.ndarray) -> np.ndarray:
+    """The symmetric joint-space mass matrix at q; refuse a coordinate with no inertia.
 
     Raises:
-        SingularConfiguration: a pivot below `PIVOT_TOL` of the largest (rows dependent, or no inertia).
-        ClosureNotConverged: the solution violates J a + gamma = 0 (`check_closure_acceleration`).
+        SingularConfiguration: a zero, negative or non-finite diagonal.
     """
-    rows = independent_rows(J) if rows is None else rows
-    Ji, gi = J[rows], gamma[rows]
-    M = pin.crba(model, data, q)
+    M = pin.crba(cm.model, data, q)
     M = np.triu(M) + np.triu(M, 1).T
-    nle = pin.nonLinearEffects(model, data, q, v)
-    n, m = model.nv, len(rows)
-    # one power-of-two scale per block, exact in floating point, and none near unit scale: the LU's
-    # pivot order, hence its rounding, then stays that of the unscaled system (rescaling cost the
-    # ill-conditioned deployable 12 to 20 times in its inverse-forward round trip)
-    d = np.full(n, _power_of_two(np.min(mass_scaling(M))))
-    JD = Ji * d
-    r = np.full(m, _power_of_two(1.0 / max(float(np.max(np.linalg.norm(JD, axis=1), initial=0.0)), 1e-300)))
-    K = np.zeros((n + m, n + m))
-    K[:n, :n], K[:n, n:], K[n:, :n] = d[:, None] * M * d, -(r[:, None] * JD).T, r[:, None] * JD
-    rhs = np.concatenate([d * (tau - nle), -r * gi])
-    try:
-        lu = scipy.linalg.lu_factor(K, check_finite=True)
-    except (ValueError, np.linalg.LinAlgError) as err:
-        raise SingularConfiguration(float("inf"), f"KKT matrix: {err}") from None
-    pivots = np.abs(np.diag(lu[0]))
-    if np.min(pivots) < PIVOT_TOL * np.max(pivots):
+    d = np.diag(M)
+    if not np.all(np.isfinite(M)) or np.any(d <= 0):
+        raise SingularConfiguration(float("inf"), "mass matrix: a coordinate carries no inertia (or the inertias are not finite)")
+    return M
+
+
+def _kkt(cm, cd, q, v, tau, baumgarte) -> ForwardDynamicsResult:
+    """Dense KKT on independent rows (cached in the data; chosen again where they lose rank),
+    equilibrated by powers of two (mass block to a largest diagonal near 1, rows to a largest norm near
+    1), so the pivot test is relative to the model's own scale."""
+    J, gamma = _rows_and_drift(cm, cd, q, v, baumgarte)
+    M = _mass_matrix(cm, cd.pin, q)
+    nle = pin.nonLinearEffects(cm.model, cd.pin, q, v)
+    for rows in ([cd.kkt_rows] if cd.kkt_rows is not None else []) + [None]:
+        rows = rank.independent_rows(J) if rows is None else rows
+        Ji, gi = J[rows], gamma[rows]
+        n, m = cm.nv, len(rows)
+        d = np.full(n, _power_of_two(float(np.min(1.0 / np.sqrt(np.diag(M))))))
+        JD = Ji * d
+        r = np.full(m, _power_of_two(1.0 / max(float(np.max(np.linalg.norm(JD, axis=1), initial=0.0)), 1e-300)))
+        K = np.zeros((n + m, n + m))
+        K[:n, :n], K[:n, n:], K[n:, :n] = d[:, None] * M * d, -(r[:, None] * JD).T, r[:, None] * JD
+        lu = scipy.linalg.lu_factor(K, check_finite=False)
+        pivots = np.abs(np.diag(lu[0]))
+        if np.min(pivots, initial=np.inf) >= PIVOT_TOL * np.max(pivots, initial=0.0):
+            cd.kkt_rows = rows
+            break
+    else:
         raise SingularConfiguration(float(np.linalg.cond(K)), "KKT matrix (equilibrated): dependent constraint rows "
                                     "or a coordinate without inertia")
-    x = scipy.linalg.lu_solve(lu, rhs)
+    x = scipy.linalg.lu_solve(lu, np.concatenate([d * (tau - nle), -r * gi]))
     a, lam = d * x[:n], r * x[n:]
-    check_closure_acceleration(Ji, a, gi, what="forward dynamics (KKT)", a_scale=lambda: float(np.max(np.abs(d * d * (tau - nle)))))
+    check_acceleration(J, a, gamma, "forward dynamics (KKT)", lambda: float(np.max(np.abs(d * d * (tau - nle)))))
     return ForwardDynamicsResult(a, Ji.T @ lam)
 
 
-def constraint_models(model: pin.Model, cuts: list) -> tuple[tuple[Any, Any], pin.Data]:
-    """Pinocchio `RigidConstraintModel`s and datas equivalent to the cuts, and the data initialised for them."""
-    cms = pin.StdVec_RigidConstraintModel()
-    for cm in rigid_constraint_models(model, cuts):
-        cms.append(cm)
-    cds = pin.StdVec_RigidConstraintData()
-    for cm in cms:
-        cds.append(cm.createData())
-    data = model.createData()
-    pin.initConstraintDynamics(model, data, cms, cds)
-    return (cms, cds), data
+def _nullspace(cm, cd, q, v, tau, baumgarte) -> ForwardDynamicsResult:
+    """The exact solution on the constraint manifold's tangent space: a = a_p + N z."""
+    J, gamma = _rows_and_drift(cm, cd, q, v, baumgarte)
+    M = _mass_matrix(cm, cd.pin, q)
+    nle = pin.nonLinearEffects(cm.model, cd.pin, q, v)
+    U, s, Vt = np.linalg.svd(J, full_matrices=True)
+    r = rank.numerical_rank(s)
+    outside = float(np.linalg.norm(U[:, r:].T @ gamma)) if J.size else 0.0
+    if outside > rank.RANGE_TOL * max(float(np.linalg.norm(gamma)), 1e-300):
+        raise InconsistentMotion(outside, rank.RANGE_TOL * float(np.linalg.norm(gamma)), "forward dynamics (null space): "
+                                 "the closure drift gamma leaves the range of J (the velocity moves along a freedom "
+                                 "that exists only instantaneously)")
+    a_p = -(Vt[:r].T @ ((U[:, :r].T @ gamma) / s[:r])) if r else np.zeros(cm.nv)
+    N = Vt[r:].T
+    reduced = N.T @ M @ N
+    try:
+        z = scipy.linalg.solve(reduced, N.T @ (tau - nle - M @ a_p), assume_a="pos")
+    except (np.linalg.LinAlgError, scipy.linalg.LinAlgError):
+        raise SingularConfiguration(float("inf"), "reduced mass matrix N^T M N: a free motion carries no inertia") from None
+    a = a_p + N @ z
+    check_acceleration(J, a, gamma, "forward dynamics (null space)")
+    return ForwardDynamicsResult(a, M @ a + nle - tau)
 
 
-def set_baumgarte(cms: Any, baumgarte: tuple[float, float] | None, current: tuple[float, float]) -> tuple[float, float]:
-    """Set (Kp, Kd) on every constraint model when they differ from `current`; returns the gains now set."""
-    gains = (0.0, 0.0) if baumgarte is None else tuple(baumgarte)
-    if gains != current:
-        for cm in cms:
-            cm.setBaumgarteCorrectorParameters(pin.BaumgarteCorrectorParameters(*gains))
-    return gains
-
-
-def proximal_forward(model: pin.Model, pin_data: pin.Data, data: pin.Data, constraints: tuple,
-                     q: np.ndarray, v: np.ndarray, tau: np.ndarray, prox: pin.ProximalSettings) -> ForwardDynamicsResult:
-    """`pin.constraintDynamics` with its result checked on the rows it solved.
-
-    The check is on Pinocchio's own constraint Jacobian and right-hand side at (q, v), both left by
-    the call (`getConstraintsJacobian`, `primal_rhs_contact` = -(gamma + Baumgarte terms), in each
-    anchor's c1 frame): J a + gamma = 0 on the system actually solved, valid on and off the closure
-    manifold (on it, these rows span the same constraint as `mechkit.core.closures`' rows).
+def forward_dynamics(cm: ClosureModel, cd: ClosureData, q: np.ndarray, v: np.ndarray, tau: np.ndarray,
+                     method: str = "proximal", *, mu: float | None = None, accuracy: float | None = None,
+                     max_iter: int | None = None, baumgarte: tuple[float, float] | None = None) -> ForwardDynamicsResult:
+    """Accelerations (nv,) of one state q (nq,), v (nv,) under joint efforts tau (nv,).
 
     Args:
-        pin_data: the data the constraints were initialised with; data: a scratch data (only for the
-            unconstrained-acceleration scale of a failing check).
-        constraints: (RigidConstraintModels, RigidConstraintDatas), Baumgarte gains already set.
-        prox: Pinocchio's proximal settings, already scaled to the model (`ForwardSolver.settings`).
+        method: one of `METHODS` (see the module docstring).
+        mu, accuracy, max_iter: Pinocchio's settings for "proximal" and "lcaba" (None: `DEFAULTS`);
+            mu relative to `ClosureModel.delassus_scale`, accuracy in m/s^2 for position rows.
+        baumgarte: (Kp (1/s^2), Kd (1/s)) closure stabilisation, J a + gamma + Kd J v + Kp e = 0
+            (not for "lcaba").
 
     Raises:
-        SingularConfiguration: non-finite accelerations.
-        ClosureNotConverged: J a + gamma = 0 violated beyond `check_closure_acceleration`'s tolerance.
+        SingularConfiguration: accelerations not unique or not finite.
+        ConstraintViolated: the result violates J a + gamma = 0 on the rows its method solved.
+        InconsistentMotion: gamma leaves the range of J: no rigid answer at this state.
+        MethodUnavailable: a cut or coupling Pinocchio's constraint models cannot express ("proximal", "lcaba").
     """
-    cms, cds = constraints
-    a = pin.constraintDynamics(model, pin_data, q, v, tau, cms, cds, prox).copy()
-    if not np.isfinite(a).all():
-        raise SingularConfiguration(float("inf"), f"pin.constraintDynamics returned non-finite accelerations (mu={prox.mu})")
-    J = pin.getConstraintsJacobian(model, pin_data, cms, cds)
-    gamma = -pin_data.primal_rhs_contact[:J.shape[0]]
+    if method in DEFAULTS:
+        d_mu, d_acc, d_iter = DEFAULTS[method]
+        mu = d_mu if mu is None else mu
+        accuracy = d_acc if accuracy is None else accuracy
+        max_iter = d_iter if max_iter is None else max_iter
+    if method == "proximal":
+        return _proximal(cm, cd, q, v, tau, mu, accuracy, max_iter, baumgarte)
+    if method == "lcaba":
+        return _lcaba(cm, cd, q, v, tau, mu, accuracy, max_iter)
+    if method == "kkt":
+        return _kkt(cm, cd, q, v, tau, baumgarte)
+    return _nullspace(cm, cd, q, v, tau, baumgarte)
 
-    def a_scale() -> float:
-        loads = np.abs(tau - pin.rnea(model, data, q, v, np.zeros(model.nv)))
-        return float(np.max(loads / np.diag(pin.crba(model, data, q))))
 
-    check_closure_acceleration(J, a, gamma, 0.0, "forward dynamics (proximal)", a_scale)
-    return ForwardDynamicsResult(a, pin.rnea(model, pin_data, q, v, a) - tau)
-
-
-class ForwardSolver:
-    """One mechanism's forward dynamics, with what it caches: Pinocchio's constraint models, the KKT rows
-    and the Delassus scale (both at the home assembly), the Baumgarte gains set on the models.
-
-    Args:
-        model: the tree's Pinocchio model; data: a scratch data of it.
-        rows: the closure rows; cuts: their cuts (for Pinocchio's constraint models).
-        home_q: the home assembly (nq,).
-    """
-
-    def __init__(self, model: pin.Model, data: pin.Data, rows: ClosureRows, cuts: list, home_q: np.ndarray):
-        self.model, self.data, self.rows, self.cuts, self.home_q = model, data, rows, cuts, home_q
-        self._constraints: tuple | None = None
-        self._gains = (0.0, 0.0)
-        self._kkt_rows: np.ndarray | None = None
-        self._delassus: float | None = None
-        self._settings: dict = {}
-
-    def constraints(self) -> tuple[Any, Any]:
-        """Pinocchio `RigidConstraintModel`s (and datas) equivalent to the closures (built once)."""
-        if self._constraints is None:
-            self._constraints, self.pin_data = constraint_models(self.model, self.cuts)
-        return self._constraints
-
-    def settings(self, mu: float, accuracy: float, max_iter: int) -> pin.ProximalSettings:
-        """Pinocchio's proximal settings for mu (in units of the Delassus scale at home, `delassus_scale`)
-        and accuracy (m/s^2 for position rows; Pinocchio tests its iterations on the multipliers, so it
-        is given accuracy / scale), built once per (mu, accuracy, max_iter)."""
-        prox = self._settings.get((mu, accuracy, max_iter))
-        if prox is None:
-            if self._delassus is None:
-                self._delassus = delassus_scale(pin.crba(self.model, self.data, self.home_q), self._jacobian(self.home_q))
-            prox = self._settings[(mu, accuracy, max_iter)] = pin.ProximalSettings(
-                accuracy / self._delassus, mu * self._delassus, max_iter)
-        return prox
-
-    def _jacobian(self, q: np.ndarray) -> np.ndarray:
-        pin.computeJointJacobians(self.model, self.data, q)
-        pin.updateFramePlacements(self.model, self.data)
-        return self.rows.jacobian(self.data)
-
-    def solve(self, q: np.ndarray, v: np.ndarray, tau: np.ndarray, method: str, *, mu: float, accuracy: float,
-              max_iter: int, baumgarte: tuple[float, float] | None) -> ForwardDynamicsResult:
-        """Accelerations under efforts tau by `method` ("proximal" or "kkt"; see `Mechanism.forward_dynamics`)."""
-        if method == "proximal":
-            cms, cds = self.constraints()
-            self._gains = set_baumgarte(cms, baumgarte, self._gains)
-            return proximal_forward(self.model, self.pin_data, self.data, (cms, cds), q, v, tau,
-                                    self.settings(mu, accuracy, max_iter))
-        if self._kkt_rows is None:
-            self._kkt_rows = independent_rows(self._jacobian(self.home_q))
-        J = self._jacobian(q)
-        residual = self.rows.residual(self.data)
-        pin.forwardKinematics(self.model, self.data, q, v, np.zeros(self.model.nv))
-        pin.updateFramePlacements(self.model, self.data)
-        gamma = self.rows.drift(self.data)
-        if baumgarte is not None:
-            kp, kd = baumgarte
-            gamma = gamma + kd * (J @ v) + kp * residual
-        try:
-            return kkt_forward(self.model, self.data, q, v, tau, J, gamma, self._kkt_rows)
-        except SingularConfiguration:  # the cached rows lost rank here: choose rows at this q
-            return kkt_forward(self.model, self.data, q, v, tau, J, gamma)
+def forward_dynamics_batch(cm: ClosureModel, cd: ClosureData, Q: np.ndarray, V: np.ndarray, T: np.ndarray,
+                           method: str = "proximal", **settings: float | tuple | None) -> ForwardDynamicsResult:
+    """`forward_dynamics` of N states: Q (N, nq), V and T (N, nv) give arrays with that leading axis."""
+    out = [forward_dynamics(cm, cd, q, v, t, method, **settings) for q, v, t in zip(Q, V, T)]
+    return ForwardDynamicsResult(np.array([r.a for r in out]).reshape(len(Q), cm.nv),
+                                 np.array([r.constraint_force for r in out]).reshape(len(Q), cm.nv),
+                                 max((r.iterations for r in out), default=0))

@@ -1,8 +1,13 @@
-"""Closed-loop kinematics: closure solve, velocity and acceleration projection, mobility, singularity.
+"""Closed-loop kinematics: closure residual, Jacobian and drift, assembly, velocities, accelerations,
+mobility, for one sample or a leading sample axis (functions named `*_batch`).
 
-All functions work on a `ClosureRows` set over a Pinocchio model. "Inputs" are the joint
-coordinates that are given (actuated joints, or any chosen set); the others are solved for.
-Only one-coordinate joints (revolute, prismatic) can be inputs.
+"Inputs" are the joints whose values (and rates) are given; the others are solved for
+(`ClosureModel.split`). Every result is judged by `mechkit.core.rank`: a passive block that does
+not resolvably determine the motion raises `SingularConfiguration` (unless `allow_singular`), and
+an acceleration drift that leaves the range of the closure Jacobian (a velocity that is not a
+motion of the mechanism at second order) raises `InconsistentMotion` (unless `least_squares`).
+Idle freedoms (a rod spinning about its own axis between two ball joints: a velocity that closes
+every loop and moves no body with mass but one) are given their minimum-norm value, not refused.
 """
 
 from __future__ import annotations
@@ -13,80 +18,95 @@ import numpy as np
 import pinocchio as pin
 from scipy.linalg import lapack
 
-from mechkit.base.exceptions import ClosureNotConverged, SingularConfiguration
-from mechkit.core.closures import ClosureRows
+from mechkit.base.exceptions import ClosureNotConverged, InconsistentMotion
+from mechkit.core import rank
+from mechkit.core.model import ClosureData, ClosureModel, InputSplit
+from mechkit.core.results import Mobility
 
-#: Relative singular-value threshold for numerical rank decisions.
-RANK_TOL = 1e-9
-#: Closure solvers of `solve_closure` (and `Mechanism.assemble`).
+#: Closure solvers of `assemble`.
 ASSEMBLY_METHODS = ("newton", "lm")
-#: Closure residual the assembly solves to by default (`Mechanism.assemble`'s tol; m for position rows).
-CLOSURE_TOL = 1e-12
-#: Machine epsilon of float64 (the rounding floor of a residual).
-EPS = float(np.finfo(float).eps)
-#: Margin above the resolvable smallest singular value below which a configuration counts as singular.
-SINGULAR_MARGIN = 3.0
 
 
-@dataclass(frozen=True)
-class Mobility:
-    """Numerical mobility at a configuration.
+def kinematic_pass(cm: ClosureModel, cd: ClosureData, Q: np.ndarray,
+                   V: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray, np.ndarray | None]:
+    """One Pinocchio pass per sample: the used joints' placements (N, n_used, 4, 4), the world joint
+    Jacobians `data.J` (N, 6, nv) and, with V (N, nv), their time derivatives `data.dJ` (N, 6, nv).
 
-    Attributes:
-        dof: nv - rank(J): degrees of freedom.
-        rows: number of closure rows kept.
-        rank: rank of the closure Jacobian.
-        redundant: rows - rank: redundant constraints.
-        singular_values: of the closure Jacobian, descending.
+    Leaves `cd.pin` at the last sample, frame placements updated.
     """
+    model, used = cm.model, cm.kernel.joints.tolist()
+    n = len(Q)
+    G = np.empty((n, len(used), 4, 4))
+    G[..., 3, :3], G[..., 3, 3] = 0.0, 1.0
+    J = np.empty((n, 6, model.nv))
+    dJ = None if V is None else np.empty((n, 6, model.nv))
+    R, t = cd.rotations, cd.translations
+    for i in range(n):
+        if V is None:
+            pin.computeJointJacobians(model, cd.pin, Q[i])
+        else:
+            pin.computeJointJacobiansTimeVariation(model, cd.pin, Q[i], V[i])
+            dJ[i] = cd.dJ
+        J[i] = cd.J
+        for k, j in enumerate(used):
+            G[i, k, :3, :3] = R[j]
+            G[i, k, :3, 3] = t[j]
+    pin.updateFramePlacements(model, cd.pin)
+    return G, J, dJ
 
-    dof: int
-    rows: int
-    rank: int
-    redundant: int
-    singular_values: np.ndarray
+
+def closure_residual(cm: ClosureModel, cd: ClosureData, q: np.ndarray) -> np.ndarray:
+    """(rows,) residual of every kept row at q (m for position rows, dimensionless for alignment rows,
+    rad or m for couplings)."""
+    G, _, _ = kinematic_pass(cm, cd, q[None])
+    return cm.kernel.residual(G[0], q)
 
 
-def update_kinematics(model: pin.Model, data: pin.Data, q: np.ndarray) -> None:
-    """Joint placements, frame placements and joint Jacobians at q."""
-    pin.computeJointJacobians(model, data, q)
-    pin.updateFramePlacements(model, data)
+def closure_jacobian(cm: ClosureModel, cd: ClosureData, q: np.ndarray) -> np.ndarray:
+    """(rows, nv) Jacobian of the kept rows at q (q: (nq,))."""
+    G, J, _ = kinematic_pass(cm, cd, q[None])
+    return cm.kernel.evaluate(G[0], J[0], q)[1]
 
 
-def numerical_rank(s: np.ndarray) -> int:
-    """Rank from descending singular values, relative to the largest."""
-    return int(np.sum(s > RANK_TOL * max(s[0], 1e-300))) if s.size else 0
+def closure_drift(cm: ClosureModel, cd: ClosureData, q: np.ndarray, v: np.ndarray) -> np.ndarray:
+    """(rows,) gamma(q, v) with d2e/dt2 = J a + gamma (q: (nq,), v: (nv,))."""
+    G, J, dJ = kinematic_pass(cm, cd, q[None], v[None])
+    k = cm.kernel
+    return k.drift(G[0], k.twists(J[0], v), k.twists(dJ[0], v), q, v)
 
 
-def mobility(rows: ClosureRows, data: pin.Data, q: np.ndarray) -> Mobility:
+def mobility(cm: ClosureModel, cd: ClosureData, q: np.ndarray) -> Mobility:
     """Degrees of freedom and redundant constraints from the rank of the closure Jacobian at q."""
-    update_kinematics(rows.model, data, q)
-    J = rows.jacobian(data)
+    J = closure_jacobian(cm, cd, q)
     s = np.linalg.svd(J, compute_uv=False) if J.size else np.zeros(0)
-    r = numerical_rank(s)
-    return Mobility(rows.model.nv - r, rows.size, r, rows.size - r, s)
+    r = rank.numerical_rank(s)
+    return Mobility(cm.nv - r, cm.kernel.size, r, cm.kernel.size - r, s)
 
 
+# ------------------------------------------------------------------ assembly
 @dataclass(frozen=True)
-class ClosureSolve:
-    """A solved closure: configuration q, Newton steps taken, residuals e (rows,) and Jacobian J (rows, nv)
-    at q (None when not asked for)."""
+class Assembly:
+    """A solved closure: configuration q (nq,), Newton steps taken, residual norm reached."""
 
     q: np.ndarray
     iterations: int
-    residual: np.ndarray
-    jacobian: np.ndarray | None
+    residual: float
 
 
-def _evaluate(rows: ClosureRows, data: pin.Data, q: np.ndarray,
-              jacobian: bool = True) -> tuple[np.ndarray, np.ndarray | None, float]:
+def _residual_and_jacobian(cm: ClosureModel, cd: ClosureData, q: np.ndarray,
+                           jacobian: bool) -> tuple[np.ndarray, np.ndarray | None, float]:
+    G, J, _ = kinematic_pass(cm, cd, q[None]) if jacobian else (_placements(cm, cd, q), None, None)
     if jacobian:
-        pin.computeJointJacobians(rows.model, data, q)
-        e, J = rows.evaluate(data)
+        e, Jc, _ = cm.kernel.evaluate(G[0], J[0], q)
     else:
-        pin.forwardKinematics(rows.model, data, q)
-        e, J = rows.residual(data), None
-    return e, J, float(np.sqrt(e @ e))
+        e, Jc = cm.kernel.residual(G[0], q), None
+    return e, Jc, float(np.sqrt(e @ e))
+
+
+def _placements(cm: ClosureModel, cd: ClosureData, q: np.ndarray) -> np.ndarray:
+    """(1, n_used, 4, 4) placements of the used joints at q after `forwardKinematics` only."""
+    pin.forwardKinematics(cm.model, cd.pin, q)
+    return np.array([cd.placements[int(j)].homogeneous for j in cm.kernel.joints]).reshape(1, -1, 4, 4)
 
 
 def _newton_step(J: np.ndarray, e: np.ndarray) -> np.ndarray:
@@ -98,23 +118,36 @@ def _newton_step(J: np.ndarray, e: np.ndarray) -> np.ndarray:
     return -np.linalg.lstsq(J, e, rcond=None)[0]
 
 
-def newton_closure(rows: ClosureRows, data: pin.Data, q0: np.ndarray, free_v: np.ndarray, *,
-                   tol: float = 1e-12, max_iter: int = 60, method: str = "newton",
-                   jacobian_at_solution: bool = True) -> ClosureSolve:
-    """`solve_closure`'s solve, returning the residual (and, when `jacobian_at_solution`, the Jacobian) at
-    the solution too; data then holds the joint placements (and Jacobians) at q, not the frame
-    placements. Without `jacobian_at_solution` a trial point's Jacobian is evaluated only to step from it."""
-    model = rows.model
+def assemble(cm: ClosureModel, cd: ClosureData, q0: np.ndarray, split: InputSplit, *, tol: float = rank.CLOSURE_TOL,
+             max_iter: int = 60, method: str = "newton", jacobian_at_trials: bool = True) -> Assembly:
+    """Close every loop by moving the coordinates of `split.free_v`, keeping the given joints at q0's values.
+
+    Gauss-Newton with a minimum-norm step (LAPACK gesv on a square regular block, else lstsq:
+    redundant rows allowed) or Levenberg-Marquardt, both with a backtracking line search on |e|; steps
+    on the configuration manifold (`pin.integrate`), so any joint type works. Leaves `cd.pin` at q.
+
+    Args:
+        q0: (nq,) starting configuration; its given joints' coordinates are the inputs.
+        split: which joints are given (`ClosureModel.split`).
+        tol: residual norm to reach (m for position rows).
+        max_iter: iteration cap.
+        method: "newton" or "lm".
+        jacobian_at_trials: evaluate the Jacobian at every trial point (else only to step from an
+            accepted one: cheaper when most steps are accepted at once, as along a path).
+
+    Raises:
+        ClosureNotConverged: the residual did not reach tol (the linkage may not assemble there).
+    """
+    model, free_v = cm.model, split.free_v
     q = q0.copy()
-    e, J, norm = _evaluate(rows, data, q)
+    e, J, norm = _residual_and_jacobian(cm, cd, q, True)
     damping = 1e-3
     it = 0
-    at_q = True  # data holds q (not a rejected trial)
     for it in range(max_iter):
         if norm <= tol:
-            return ClosureSolve(q, it, e, J)
-        if J is None:  # data holds q: the accepted trial
-            e, J, norm = _evaluate(rows, data, q)
+            return Assembly(q, it, norm)
+        if J is None:
+            e, J, norm = _residual_and_jacobian(cm, cd, q, True)
         Jf = J[:, free_v]
         if method == "lm":
             step_free = -np.linalg.solve(Jf.T @ Jf + damping * np.eye(Jf.shape[1]), Jf.T @ e)
@@ -125,12 +158,11 @@ def newton_closure(rows: ClosureRows, data: pin.Data, q0: np.ndarray, free_v: np
         alpha = 1.0
         while True:
             trial = pin.integrate(model, q, alpha * step)
-            e_trial, J_trial, n_trial = _evaluate(rows, data, trial, jacobian_at_solution)
+            e_trial, J_trial, n_trial = _residual_and_jacobian(cm, cd, trial, jacobian_at_trials)
             if n_trial < norm or alpha < 1e-6:
                 break
             alpha *= 0.5
         if not np.isfinite(n_trial):
-            at_q = False
             break
         if method == "lm":
             damping = damping * 0.3 if n_trial < norm else damping * 10.0
@@ -138,249 +170,205 @@ def newton_closure(rows: ClosureRows, data: pin.Data, q0: np.ndarray, free_v: np
         if alpha < 1e-6 and norm > tol:
             break
     if norm <= tol:
-        return ClosureSolve(q, it + 1, e, J)
-    if not at_q or J is None:
-        pin.computeJointJacobians(model, data, q)
+        pin.forwardKinematics(model, cd.pin, q)
+        return Assembly(q, it + 1, norm)
     raise ClosureNotConverged(float(norm), tol, it + 1, "the loop cannot close from this guess, or at all, for these inputs")
 
 
-def solve_closure(rows: ClosureRows, data: pin.Data, q0: np.ndarray, free_v: np.ndarray, *,
-                  tol: float = 1e-12, max_iter: int = 60, method: str = "newton") -> tuple[np.ndarray, int]:
-    """Solve the closure for the velocity directions `free_v`, keeping the others fixed.
+# ------------------------------------------------------------------ the passive solve
+def idle_count(cm: ClosureModel, Jw: np.ndarray, N: np.ndarray, tol: float = 1e-9) -> int:
+    """How many of the directions N (nv, d) (velocities closing every loop) are idle freedoms.
 
-    Gauss-Newton with a minimum-norm step (LAPACK gesv on a square regular block, else lstsq:
-    redundant rows allowed) or Levenberg-Marquardt, both with a backtracking line search on |e|.
-    Leaves `data` current at q (joint and frame placements, joint Jacobians).
+    A direction set is idle for body k when it moves body k and no other body with mass: their count
+    is rank(T) - rank(T without k's rows) summed over the bodies, T the stacked world twists of the
+    bodies with mass along N (Jw: the world joint Jacobians `data.J`, (6, nv)).
+    """
+    if N.shape[1] == 0 or not len(cm.massive):
+        return 0
+    twists = (Jw[None] @ (cm.massive_support[:, :, None] * N[None]))  # (bodies, 6, d)
+    scale = max(float(np.abs(twists).max()), 1e-300)
+
+    def rank_of(rows: np.ndarray) -> int:
+        return int(np.linalg.matrix_rank(rows.reshape(-1, N.shape[1]), tol * scale)) if rows.size else 0
+
+    full = rank_of(twists)
+    return sum(full - rank_of(np.delete(twists, k, axis=0)) for k in range(len(cm.massive)))
+
+
+def solve_passive(cm: ClosureModel, J: np.ndarray, Jw: np.ndarray, split: InputSplit, given: np.ndarray,
+                  rhs: np.ndarray | None, residual: np.ndarray, *, allow_singular: bool = False,
+                  least_squares: bool = False, judged: bool = False) -> tuple[np.ndarray, np.ndarray]:
+    """x (N, nv) with x[input_v] = given (N, k) and J_free x_free = -(J_in given + rhs), judged.
+
+    One batched LU where every passive block is square and resolvably regular; else, per sample, the
+    thin SVD: its least-squares solution, with idle freedoms at their minimum-norm value.
 
     Args:
-        rows: the closure rows.
-        data: Pinocchio data (scratch).
-        q0: starting configuration; its fixed coordinates are the inputs.
-        free_v: indices (into v) of the coordinates to solve for.
-        tol: residual norm to reach.
-        max_iter: iteration cap.
-        method: "newton" or "lm".
+        J: (N, rows, nv) closure Jacobians; Jw: (N, 6, nv) world joint Jacobians (idle freedoms).
+        rhs: (N, rows) or None (velocities); gamma for accelerations.
+        residual: (N,) closure residual norms (what the passive block can resolve).
+        allow_singular: return a solution where the block is not resolvably regular (still refused
+            where it is exactly rank deficient beyond the idle freedoms).
+        least_squares: return the least-squares solution where the right-hand side leaves the block's
+            range, instead of raising `InconsistentMotion`.
+        judged: the blocks were judged regular already (`passive_verdict`): square ones go straight to
+            the LU (their condition numbers are then nan).
 
     Returns:
-        (q, iterations).
+        x (N, nv) and the passive blocks' condition numbers (N,).
 
     Raises:
-        ClosureNotConverged: the residual did not reach tol (the linkage may not assemble there).
+        SingularConfiguration: a block that does not resolvably determine the free coordinates.
+        InconsistentMotion: a right-hand side outside the block's range beyond `rank.RANGE_TOL`.
     """
-    try:
-        out = newton_closure(rows, data, q0, free_v, tol=tol, max_iter=max_iter, method=method)
-    finally:
-        pin.updateFramePlacements(rows.model, data)
-    return out.q, out.iterations
-
-
-def passive_condition(J: np.ndarray, free_v: np.ndarray, independent_rows: int) -> float:
-    """Condition number of the passive block restricted to the generic rank (inf when singular)."""
-    s = np.linalg.svd(J[:, free_v], compute_uv=False)
-    return float(_verdict(s[None], independent_rows, np.array([CLOSURE_TOL]), True)[0][0])
-
-
-def resolvable_singular_value(s_max: float | np.ndarray, residual: float | np.ndarray) -> float | np.ndarray:
-    """The smallest singular value of the passive block that a closure solved to `residual` can resolve.
-
-    Near a singularity the closure residual grows quadratically in the passive coordinates, e ~ s_max
-    dx^2, while a regular pose has e ~ s_min dx. A solve that stopped at |e| = r therefore leaves the
-    passive coordinates uncertain by sqrt(r / s_max) and cannot tell s_min from zero once s_min is
-    below sqrt(r s_max) (same units as the rows: m for position rows). Newton converges only linearly
-    at a singular point, so there it stops near its tolerance (`CLOSURE_TOL`), while at a regular pose
-    it overshoots to rounding; r is floored at rounding, eps s_max. Measured on the five-bar with its
-    distal links collinear (tests/test_bad_inputs_singular.py): at the singular input s_min is 0.6 to
-    0.9 sqrt(r s_max); 1e-8 rad away it is over 30 times that. `SINGULAR_MARGIN` (3, ours) sits above
-    the singular floor. Element-wise on arrays.
-
-    Args:
-        s_max: largest singular value of the passive block (the rows' scale).
-        residual: closure residual norm reached at the configuration.
-    """
-    out = SINGULAR_MARGIN * np.sqrt(np.maximum(residual, EPS * s_max) * s_max)
-    return float(out) if np.ndim(out) == 0 else out
-
-
-def _verdict(s: np.ndarray, independent_rows: int, residual: np.ndarray,
-             allow_singular: bool) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Per sample of s (N, m): condition number, not-resolvable flag and resolvable limit."""
-    k = min(independent_rows, s.shape[1])
-    if k == 0:
-        ones = np.ones(len(s))
-        return ones, np.zeros(len(s), dtype=bool), ones * 0.0
-    s_max, s_min = s[:, 0], s[:, k - 1]
-    positive = s_min > 0
-    cond = np.divide(s_max, s_min, out=np.full(len(s), np.inf), where=positive)
-    limit = resolvable_singular_value(s_max, residual)
-    bad = ~positive | ((s_min < limit) & (not allow_singular))
-    return cond, bad, limit
-
-
-def rejected(s: np.ndarray, independent_rows: int, residual: np.ndarray | float,
-             allow_singular: bool = False) -> np.ndarray:
-    """(N,) True at the samples of singular values s (N, m) that `judge_batch` rejects."""
-    return _verdict(s, independent_rows, np.broadcast_to(np.asarray(residual, dtype=float), (len(s),)), allow_singular)[1]
-
-
-def judge_batch(s: np.ndarray, independent_rows: int, residual: np.ndarray | float,
-                allow_singular: bool = False) -> np.ndarray:
-    """`judge_passive` for N samples: condition numbers (N,) from singular values (N, m) and residuals (N,).
-
-    Raises:
-        SingularConfiguration: at the first sample that `judge_passive` rejects.
-    """
-    residual = np.broadcast_to(np.asarray(residual, dtype=float), (len(s),))
-    cond, bad, _ = _verdict(s, independent_rows, residual, allow_singular)
-    if bad.any():
-        i = int(np.argmax(bad))
-        raise singular_error(s[i], independent_rows, float(residual[i]))
-    return cond
-
-
-def singular_error(s: np.ndarray, independent_rows: int, residual: float) -> SingularConfiguration:
-    """The error for a passive block with singular values s (m,) that `judge_passive` rejects."""
-    cond, _, limit = _verdict(s[None], independent_rows, np.array([residual]), False)
-    k = min(independent_rows, s.size)
-    return SingularConfiguration(float(cond[0]), f"passive block of the closure Jacobian: smallest singular value "
-                                 f"{s[k - 1]:.2e} below the {limit[0]:.2e} a closure residual of {residual:.1e} "
-                                 "resolves (inputs do not determine the motion)")
-
-
-def judge_passive(s: np.ndarray, independent_rows: int, residual: float = CLOSURE_TOL,
-                  allow_singular: bool = False) -> float:
-    """Condition number of the passive block from its singular values; raises where it is not resolvable.
-
-    Args:
-        s: singular values of the passive block, descending.
-        independent_rows: the closure's generic rank.
-        residual: closure residual norm at the configuration.
-        allow_singular: only an exactly rank-deficient block raises.
-
-    Raises:
-        SingularConfiguration: smallest singular value (on the generic rank) zero, or below
-            `resolvable_singular_value` unless `allow_singular`.
-    """
-    return float(judge_batch(np.asarray(s)[None], independent_rows, np.array([residual]), allow_singular)[0])
-
-
-def check_regular(rows: ClosureRows, data: pin.Data, q: np.ndarray, free_v: np.ndarray, independent_rows: int) -> None:
-    """Raise `SingularConfiguration` where the inputs (all but `free_v`) do not determine the motion at q
-    (or at any sample of a (N, nq) q), to what the closure resolves (`judge_passive`)."""
-    G, J, _ = rows.gather(data, np.atleast_2d(q))
-    e, Jc = rows.evaluator.evaluate(G, J)
-    judge_batch(np.linalg.svd(Jc[..., free_v], compute_uv=False), independent_rows, np.linalg.norm(e, axis=-1))
-
-
-class Conditioned(np.ndarray):
-    """A kinematic result (velocities or accelerations) with the condition number of the passive block
-    it was solved with (`condition`, s_max / s_min on the generic rank, the largest over the samples of
-    a batch; nan on derived arrays)."""
-
-    condition: float = float("nan")
-
-
-def passive_solve(J: np.ndarray, inputs: np.ndarray, input_v: np.ndarray, free_v: np.ndarray,
-                  rhs: np.ndarray | None = None, svd: tuple | None = None) -> np.ndarray:
-    """x (N, nv) with x[input_v] = inputs (N, k) and J_free x_free = -(J_in x_in + rhs) for J (N, rows, nv):
-    one batched LU solve where the passive block is square, else the least-squares solution from its
-    thin SVD (`svd` = (U, s, Vt) when already computed; the block has full column rank where
-    `judge_batch` accepted it)."""
-    b = (J[..., input_v] @ inputs[..., None])[..., 0]
+    input_v, free_v = split.input_v, split.free_v
+    b = (J[..., input_v] @ given[..., None])[..., 0]
     if rhs is not None:
         b = b + rhs
     Jf = J[..., free_v]
     x = np.empty(J.shape[:-2] + J.shape[-1:])
-    x[..., input_v] = inputs
-    if Jf.shape[-1] == 0:
-        return x
-    if svd is None and Jf.shape[-2] == Jf.shape[-1]:
-        try:
-            x[..., free_v] = -np.linalg.solve(Jf, b[..., None])[..., 0]
-            return x
-        except np.linalg.LinAlgError:
-            pass
-    U, s, Vt = np.linalg.svd(Jf, full_matrices=False) if svd is None else svd
-    with np.errstate(divide="ignore", invalid="ignore"):
-        x[..., free_v] = -(np.swapaxes(Vt, -1, -2) @ ((np.swapaxes(U, -1, -2) @ b[..., None])[..., 0] / s)[..., None])[..., 0]
-    return x
+    x[..., input_v] = given
+    columns = free_v.size
+    if columns == 0:
+        return x, np.ones(len(J))
+    square = Jf.shape[-2] == columns
+    if square and judged:
+        x[..., free_v] = -np.linalg.solve(Jf, b[..., None])[..., 0]
+        return x, np.full(len(J), np.nan)
+    if square:
+        s = rank.singular_values(Jf)
+        cond, bad = rank.passive_verdict(s, columns, residual)
+        if not bad.any() or allow_singular:
+            try:
+                x[..., free_v] = -np.linalg.solve(Jf, b[..., None])[..., 0]
+                return x, cond
+            except np.linalg.LinAlgError:
+                pass
+    U, s, Vt = np.linalg.svd(Jf, full_matrices=True)
+    cond, bad = rank.passive_verdict(s, columns, residual)
+    r = np.full(len(J), min(columns, s.shape[1]))
+    for i in np.flatnonzero(bad):
+        exact = rank.numerical_rank(s[i])
+        null = np.zeros((cm.nv, columns - exact))
+        null[free_v] = Vt[i, exact:].T
+        if exact < columns and idle_count(cm, Jw[i], null) == columns - exact:
+            r[i] = exact  # idle freedoms only: their minimum-norm value
+        elif not allow_singular or exact < min(columns, s.shape[1]):
+            raise rank.singular_error(s[i], columns, float(residual[i]))
+    outside = rank.outside_range(U, r, b)
+    scale = np.linalg.norm(b, axis=-1) + np.linalg.norm(b if rhs is None else rhs, axis=-1)
+    inconsistent = outside > rank.RANGE_TOL * np.maximum(scale, 1e-300)
+    if inconsistent.any() and not least_squares:
+        i = int(np.argmax(inconsistent))
+        raise InconsistentMotion(float(outside[i]), float(rank.RANGE_TOL * scale[i]), "the closure rows' right-hand side "
+                                 "leaves the range of the passive block: the given motion is not a motion of the "
+                                 "mechanism (at second order: the velocity moves along a freedom that exists only "
+                                 "instantaneously)")
+    k = np.arange(s.shape[1])
+    proj = np.einsum("nij,ni->nj", U[..., :s.shape[1]], b)
+    coef = np.where(k[None, :] < r[:, None], proj / np.where(k[None, :] < r[:, None], s, 1.0), 0.0)
+    x[..., free_v] = -np.einsum("nij,ni->nj", Vt[:, :s.shape[1]], coef)
+    return x, cond
 
 
-def check_determined(free_v: np.ndarray, independent_rows: int) -> None:
-    """Raise `SingularConfiguration` when more coordinates are free than the closure has independent rows."""
-    if free_v.size > independent_rows:
-        raise SingularConfiguration(float("inf"), f"{free_v.size} free coordinates but only {independent_rows} independent "
-                                    "closure rows: the inputs do not determine the motion (give more inputs)")
-
-
-def project_batch(J: np.ndarray, inputs: np.ndarray, input_v: np.ndarray, free_v: np.ndarray, independent_rows: int,
-                  rhs: np.ndarray | None = None, *, residual: np.ndarray | float = CLOSURE_TOL,
-                  allow_singular: bool = False) -> tuple[np.ndarray, np.ndarray]:
-    """`project_velocity` for N samples: J (N, rows, nv), inputs (N, k), rhs (N, rows), residual (N,).
-    One SVD per sample: singular values only for a square passive block (then an LU solve), thin
-    factors otherwise (reused for the least-squares solve).
-
-    Returns:
-        x (N, nv) and the passive block's condition numbers (N,).
+def velocities_batch(cm: ClosureModel, cd: ClosureData, Q: np.ndarray, split: InputSplit, rates: np.ndarray, *,
+                     allow_singular: bool = False) -> np.ndarray:
+    """(N, nv) joint velocities with J v = 0 at N configurations Q (N, nq) from input rates (N, k).
 
     Raises:
-        SingularConfiguration: as `project_velocity`, at the first sample it rejects.
+        SingularConfiguration, InconsistentMotion: see `solve_passive`.
     """
-    check_determined(free_v, independent_rows)
-    Jf = J[..., free_v]
-    factors = None if Jf.shape[-2] == Jf.shape[-1] else np.linalg.svd(Jf, full_matrices=False)
-    s = np.linalg.svd(Jf, compute_uv=False) if factors is None else factors[1]
-    cond = judge_batch(s, independent_rows, residual, allow_singular)
-    return passive_solve(J, inputs, input_v, free_v, rhs, factors), cond
+    G, Jw, _ = kinematic_pass(cm, cd, Q)
+    e, J, _ = cm.kernel.evaluate(G, Jw, Q)
+    return solve_passive(cm, J, Jw, split, rates, None, np.linalg.norm(e, axis=-1), allow_singular=allow_singular)[0]
 
 
-def project_velocity(J: np.ndarray, v_inputs: np.ndarray, input_v: np.ndarray, free_v: np.ndarray,
-                     independent_rows: int, rhs: np.ndarray | None = None, *, residual: float = CLOSURE_TOL,
-                     allow_singular: bool = False) -> Conditioned:
-    """Solve J_free x_free = -(J_in x_in + rhs) for the free coordinates; returns the full vector.
+def velocities(cm: ClosureModel, cd: ClosureData, q: np.ndarray, split: InputSplit, rates: np.ndarray, *,
+               allow_singular: bool = False) -> np.ndarray:
+    """(nv,) joint velocities with J v = 0 at q (nq,) from input rates (k,) (see `velocities_batch`)."""
+    return velocities_batch(cm, cd, q[None], split, rates[None], allow_singular=allow_singular)[0]
 
-    Used for velocities (rhs = 0) and accelerations (rhs = gamma).
+
+def accelerations_batch(cm: ClosureModel, cd: ClosureData, Q: np.ndarray, V: np.ndarray, split: InputSplit,
+                        given: np.ndarray, *, allow_singular: bool = False, least_squares: bool = False) -> np.ndarray:
+    """(N, nv) joint accelerations with J a + gamma = 0 at N states (Q (N, nq), V (N, nv)) from input
+    accelerations (N, k).
 
     Args:
-        residual: closure residual norm at the configuration (sets what is resolvable).
-        allow_singular: return a result below the resolvable singular value instead of raising (its
-            `condition` tells how far to trust it); an exactly rank-deficient block still raises.
+        least_squares: where gamma leaves the range of J (no acceleration satisfies every row), return
+            the least-squares accelerations (minimum |J a + gamma|, then minimum norm) instead of raising.
 
     Raises:
-        SingularConfiguration: the passive block's smallest singular value is below
-            `resolvable_singular_value` (the inputs do not determine the motion, to what the closure
-            resolves).
+        SingularConfiguration, InconsistentMotion: see `solve_passive`.
     """
-    x, cond = project_batch(J[None], np.asarray(v_inputs, dtype=float)[None], input_v, free_v, independent_rows,
-                            None if rhs is None else rhs[None], residual=residual, allow_singular=allow_singular)
-    return conditioned(x[0], cond)
+    G, Jw, dJ = kinematic_pass(cm, cd, Q, V)
+    k = cm.kernel
+    e, J, _ = k.evaluate(G, Jw, Q)
+    gamma = k.drift(G, k.twists(Jw, V), k.twists(dJ, V), Q, V)
+    return solve_passive(cm, J, Jw, split, given, gamma, np.linalg.norm(e, axis=-1), allow_singular=allow_singular,
+                         least_squares=least_squares)[0]
 
 
-def conditioned(x: np.ndarray, cond: np.ndarray) -> Conditioned:
-    """x as a `Conditioned` carrying the largest of the condition numbers `cond`."""
-    out = x.view(Conditioned)
-    out.condition = float(np.max(cond))
-    return out
+def accelerations(cm: ClosureModel, cd: ClosureData, q: np.ndarray, v: np.ndarray, split: InputSplit,
+                  given: np.ndarray, *, allow_singular: bool = False, least_squares: bool = False) -> np.ndarray:
+    """(nv,) joint accelerations at one state (see `accelerations_batch`)."""
+    return accelerations_batch(cm, cd, q[None], v[None], split, given[None], allow_singular=allow_singular,
+                               least_squares=least_squares)[0]
 
 
-def velocities(rows: ClosureRows, data: pin.Data, q: np.ndarray, rates: np.ndarray, input_v: np.ndarray,
-               free_v: np.ndarray, independent_rows: int, allow_singular: bool = False) -> tuple[np.ndarray, np.ndarray]:
-    """Joint velocities (N, nv) and condition numbers (N,) of N samples q (N, nq) from input rates (N, k):
-    one Pinocchio pass and one gather per sample, then batched numpy (`project_batch`, judged at each
-    sample's closure residual)."""
-    G, J, _ = rows.gather(data, q)
-    e, Jc = rows.evaluator.evaluate(G, J)
-    return project_batch(Jc, rates, input_v, free_v, independent_rows, residual=np.linalg.norm(e, axis=-1),
-                         allow_singular=allow_singular)
+def passive_condition(cm: ClosureModel, cd: ClosureData, q: np.ndarray, split: InputSplit) -> float:
+    """Condition number s_max / s_min of the passive block at q (inf: singular)."""
+    J = closure_jacobian(cm, cd, q)
+    s = rank.singular_values(J[None][..., split.free_v])
+    return float(rank.passive_verdict(s, split.free_v.size, np.array([rank.CLOSURE_TOL]))[0][0])
 
 
-def accelerations(rows: ClosureRows, data: pin.Data, q: np.ndarray, v: np.ndarray, input_accelerations: np.ndarray,
-                  input_v: np.ndarray, free_v: np.ndarray, independent_rows: int,
-                  allow_singular: bool = False) -> tuple[np.ndarray, np.ndarray]:
-    """Joint accelerations (N, nv), J a + gamma = 0, and condition numbers (N,) of N samples (q, v) from
-    input accelerations (N, k), as `velocities`; gamma from the joint Jacobians' time derivatives."""
-    G, J, dJ = rows.gather(data, q, v)
-    ev = rows.evaluator
-    e, Jc = ev.evaluate(G, J)
-    gamma = ev.drift(G, ev.twists(J, v), ev.twists(dJ, v))
-    return project_batch(Jc, input_accelerations, input_v, free_v, independent_rows, gamma,
-                         residual=np.linalg.norm(e, axis=-1), allow_singular=allow_singular)
+def second_order_inconsistency(cm: ClosureModel, cd: ClosureData, q: np.ndarray, v: np.ndarray) -> float:
+    """min over a of max |J a + gamma| at (q, v): 0 (to rounding) where v is a motion of the mechanism at
+    second order, positive where it moves along a freedom that exists only instantaneously."""
+    return rank.inconsistency(closure_jacobian(cm, cd, q), closure_drift(cm, cd, q, v))
+
+
+def second_order_velocity(cm: ClosureModel, cd: ClosureData, q: np.ndarray, v: np.ndarray, *, tol: float = 1e-12,
+                          max_iter: int = 30) -> np.ndarray:
+    """The velocity near v (nv,) at an assembled q (nq,) along which the motion continues at second order.
+
+    A velocity with J v = 0 is a motion at second order only where gamma(q, v) lies in the range of J:
+    y_k . gamma(q, v) = 0 for every left null vector y_k of J (a redundant constraint's self-stress).
+    gamma is quadratic in v, so on v = N z (N a basis of the null space of J) each condition is a
+    quadratic form Q_k(z) = z^T Q_k z, built by polarisation from `closure_drift`. Starting from the z
+    of v's projection, minimum-norm Gauss-Newton steps reach the nearest zero of every Q_k. Where J has
+    no left null vector, or every Q_k vanishes (a redundancy that holds at every order), v's projection
+    onto the null space of J is returned.
+
+    Raises:
+        InconsistentMotion: no velocity near v satisfies the conditions (the cones do not meet near it).
+    """
+    J = closure_jacobian(cm, cd, q)
+    U, s, Vt = np.linalg.svd(J, full_matrices=True)
+    r = rank.numerical_rank(s)
+    N, Y = Vt[r:].T, U[:, r:]
+    z = N.T @ v
+    if Y.shape[1] == 0 or N.shape[1] == 0:
+        return N @ z
+
+    def g(x: np.ndarray) -> np.ndarray:
+        return Y.T @ closure_drift(cm, cd, q, N @ x)
+
+    d = N.shape[1]
+    eye = np.eye(d)
+    diag = [g(eye[i]) for i in range(d)]
+    Q = np.zeros((Y.shape[1], d, d))
+    for i in range(d):
+        Q[:, i, i] = diag[i]
+        for j in range(i + 1, d):
+            Q[:, i, j] = Q[:, j, i] = 0.5 * (g(eye[i] + eye[j]) - diag[i] - diag[j])
+    scale = max(float(np.abs(Q).max()), 1e-300)
+    for _ in range(max_iter):
+        residual = np.einsum("i,kij,j->k", z, Q, z)
+        if np.abs(residual).max() <= tol * scale * max(z @ z, 1e-300):
+            return N @ z
+        z = z - np.linalg.lstsq(2.0 * (Q @ z), residual, rcond=None)[0]
+    raise InconsistentMotion(float(np.abs(residual).max()), tol * scale * float(z @ z), "no velocity near the given one "
+                             "continues at second order (the second-order cones of the redundant constraints do not "
+                             "meet near it)")

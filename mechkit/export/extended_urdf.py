@@ -20,12 +20,12 @@ import pinocchio as pin
 import yaml
 
 from mechkit.base.exceptions import MethodUnavailable
-from mechkit.core.closures import AXIS_ANCHOR_OFFSET
+from mechkit.core import AXIS_ANCHOR_OFFSET
 from mechkit.export.xmltext import numbers as _fmt
 from mechkit.sources.urdf import LOOP_NAMESPACE
 
 if TYPE_CHECKING:
-    from mechkit.core.closures import CutRows
+    from mechkit.core import CutRows
     from mechkit.mechanism import Mechanism
 
 

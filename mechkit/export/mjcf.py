@@ -47,8 +47,7 @@ import numpy as np
 import pinocchio as pin
 
 from mechkit.base.exceptions import MalformedDescription, MethodUnavailable
-from mechkit.core.closures import AXIS_ANCHOR_OFFSET
-from mechkit.core.structure import body_name
+from mechkit.core import AXIS_ANCHOR_OFFSET, body_name
 from mechkit.export.xmltext import numbers as _fmt
 from mechkit.export.xmltext import quat_wxyz as _quat_wxyz
 from mechkit.sources.urdf import LOOP_NAMESPACE

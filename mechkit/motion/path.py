@@ -1,11 +1,10 @@
 """Kinematics along a path: per sample, the closure solve from a warm start (the one sequential step),
 then velocities, accelerations and the joint axes of all samples at once.
 
-The same steps as `Mechanism.assemble`, `velocities` and `accelerations` (the core's
-`kinematics.newton_closure`, `judge_batch` and `passive_solve`), with what they recompute per call done
-once: the input and free velocity indices are fixed for the whole path, the closure Jacobian the
-solve leaves at q serves the singularity judgement and the velocities, and the judgement, velocities,
-accelerations and axes are batched numpy over many samples.
+The core's functions (`assemble`, `kinematic_pass`, `passive_verdict`, `solve_passive`), called with
+what a path fixes once: the split of given and solved coordinates is the same for every sample, the
+placements and Jacobians gathered for the singularity judgement serve the velocities, and the
+judgement, velocities, accelerations and axes are batched over many samples.
 """
 
 from __future__ import annotations
@@ -15,13 +14,13 @@ from collections.abc import Sequence
 import numpy as np
 import pinocchio as pin
 
+from mechkit import core
 from mechkit.base.exceptions import SingularConfiguration
-from mechkit.core import kinematics
 from mechkit.mechanism import Mechanism
 
 
 class JointAxes:
-    """Unit axes (world frame) of every joint: tree joints in model order, then the cuts of `mech.rows`.
+    """Unit axes (world frame) of every joint: tree joints in model order, then the cuts (`mech.cuts`).
 
     Tree joints of one degree of freedom: the rotation axis (revolute) or the sliding direction
     (prismatic), the angular or linear part of the joint's world Jacobian column. Cut joints: the
@@ -40,16 +39,16 @@ class JointAxes:
             if model.joints[j].nv == 1:
                 S = np.asarray(data.joints[j].S).reshape(6)
                 self.column[j - 1], self.angular[j - 1], self.single[j - 1] = model.joints[j].idx_v, np.linalg.norm(S[3:]) > 0, True
-        ev = mech.rows.evaluator
+        used = mech.closure_model.kernel.joints
         frames = model.frames
-        self.cut_joint = np.array([int(np.searchsorted(ev.joints, frames[c.frame_a].parentJoint)) for c in mech.rows.cuts], dtype=int)
+        self.cut_joint = np.array([int(np.searchsorted(used, frames[c.frame_a].parentJoint)) for c in mech.cuts], dtype=int)
         self.cut_axis = np.array([frames[c.frame_a].placement.rotation @ np.asarray(c.closure.axis, dtype=float)
                                   if c.closure.kind in ("revolute", "prismatic") else np.full(3, np.nan)
-                                  for c in mech.rows.cuts]).reshape(-1, 3)
+                                  for c in mech.cuts]).reshape(-1, 3)
 
     def world(self, J: np.ndarray, G: np.ndarray) -> np.ndarray:
         """(N, n_joints, 3) world axes from world joint Jacobians (N, 6, nv) and the rows' used joint
-        placements (N, n_used, 4, 4) (`ClosureRows.gather`)."""
+        placements (N, n_used, 4, 4) (`core.kinematic_pass`)."""
         cols = J[:, :, self.column]  # (N, 6, n_tree)
         tree = np.where(self.angular[None, :, None], np.swapaxes(cols[:, 3:], 1, 2), np.swapaxes(cols[:, :3], 1, 2))
         tree = tree / np.linalg.norm(tree, axis=-1, keepdims=True)
@@ -63,15 +62,14 @@ class PathKinematics:
 
     Args:
         mech: the mechanism.
-        names: the given (driven) joints, one coordinate each.
+        names: the given (driven) joints.
     """
 
     def __init__(self, mech: Mechanism, names: Sequence[str]):
         self.mech, self.model = mech, mech.model
-        self.data = mech.model.createData()
+        self.closure_model, self.closure_data = mech.closure_model, mech.closure_model.create_data()
+        self.split = mech.closure_model.split(tuple(names))
         self.input_q = np.array([mech.q_index(j) for j in names], dtype=int)
-        self.input_v = np.array([mech.v_index(j) for j in names], dtype=int)
-        self.free_v = np.setdiff1d(np.arange(mech.model.nv), self.input_v)
         self.names = tuple(names)
         self.axes = JointAxes(mech)
 
@@ -96,37 +94,37 @@ class PathKinematics:
 
         Raises:
             ClosureNotConverged: no assembly near the guess.
-            SingularConfiguration: more free coordinates than independent closure rows.
         """
         q0 = np.array(guess, dtype=float)
         q0[self.input_q] = values
-        solved = kinematics.newton_closure(self.mech.rows, self.data, q0, self.free_v, tol=tol, jacobian_at_solution=False)
-        kinematics.check_determined(self.free_v, self.mech.independent_rows)
-        return solved.q
+        return core.assemble(self.closure_model, self.closure_data, q0, self.split, tol=tol, jacobian_at_trials=False).q
 
     def jacobians(self, q: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Closure Jacobians (N, rows, nv), world joint Jacobians (N, 6, nv) and the rows' used joint
         placements (N, n_used, 4, 4) of N assembled samples q (N, nq)."""
-        G, Jw, _ = self.mech.rows.gather(self.data, q)
-        return self.mech.rows.evaluator.evaluate(G, Jw)[1], Jw, G
+        G, Jw, _ = core.kinematic_pass(self.closure_model, self.closure_data, q)
+        return self.closure_model.kernel.evaluate(G, Jw, q)[1], Jw, G
 
     def singular(self, J: np.ndarray) -> tuple[int, SingularConfiguration] | None:
         """The first of N samples, by their closure Jacobians (N, rows, nv), where the inputs do not
-        determine the motion (`kinematics.judge_batch` at the closure tolerance), and its error; or None."""
-        s = np.linalg.svd(J[:, :, self.free_v], compute_uv=False)
-        bad = kinematics.rejected(s, self.mech.independent_rows, kinematics.CLOSURE_TOL)
+        determine the motion (`core.passive_verdict` at the closure tolerance), and its error; or None."""
+        free_v = self.split.free_v
+        s = np.linalg.svd(J[:, :, free_v], compute_uv=False)
+        _, bad = core.passive_verdict(s, free_v.size, np.full(len(J), core.CLOSURE_TOL))
         if not bad.any():
             return None
         i = int(np.argmax(bad))
-        return i, kinematics.singular_error(s[i], self.mech.independent_rows, kinematics.CLOSURE_TOL)
+        return i, core.singular_error(s[i], free_v.size, core.CLOSURE_TOL)
 
     def motion(self, q: np.ndarray, J: np.ndarray, Jw: np.ndarray, G: np.ndarray, rates: np.ndarray,
                accelerations: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """v, a (N, nv) and the joint axes (N, n_joints, 3) of N assembled samples q (N, nq), from their
-        `jacobians` and the inputs' rates and accelerations (N, k), batched."""
-        ev = self.mech.rows.evaluator
-        v = kinematics.passive_solve(J, rates, self.input_v, self.free_v)
-        dJ = self.mech.rows.jacobian_derivatives(self.data, q, v)
-        gamma = ev.drift(G, ev.twists(Jw, v), ev.twists(dJ, v))
-        a = kinematics.passive_solve(J, accelerations, self.input_v, self.free_v, gamma)
+        `jacobians` and the inputs' rates and accelerations (N, k), batched (judged regular already)."""
+        cm, cd = self.closure_model, self.closure_data
+        residual = np.full(len(q), core.CLOSURE_TOL)
+        v, _ = core.solve_passive(cm, J, Jw, self.split, rates, None, residual, judged=True)
+        G, Jw, dJ = core.kinematic_pass(cm, cd, q, v)
+        k = cm.kernel
+        gamma = k.drift(G, k.twists(Jw, v), k.twists(dJ, v), q, v)
+        a, _ = core.solve_passive(cm, J, Jw, self.split, accelerations, gamma, residual, judged=True)
         return v, a, self.axes.world(Jw, G)

@@ -16,8 +16,8 @@ from collections.abc import Callable, Sequence
 import numpy as np
 import pinocchio as pin
 
+from mechkit import core
 from mechkit.base.exceptions import MechkitError
-from mechkit.core import inverse
 from mechkit.mechanism import Mechanism
 from mechkit.motion.inputs import InputLaw
 from mechkit.motion.path import PathKinematics
@@ -40,24 +40,24 @@ def coordinate_names(model: pin.Model) -> tuple[str, ...]:
     return tuple(out)
 
 
-def driven_problem(mech: Mechanism, names: Sequence[str]) -> inverse.InverseDynamicsProblem:
-    """The inverse-dynamics problem with a generalised force on every actuated joint and every input
-    of the law (a passive input's force is what its spring or damper must supply)."""
+def driven_model(mech: Mechanism, names: Sequence[str]) -> core.ClosureModel:
+    """The closure model with a generalised force on every actuated joint and every input of the law
+    (a passive input's force is what its spring or damper must supply)."""
     driven = tuple(mech.actuated) + tuple(n for n in names if n not in mech.actuated)
-    return inverse.InverseDynamicsProblem(
-        mech.model, mech.model.createData(), mech.rows, mech.full_rows,
-        np.array([mech.v_index(j) for j in driven], dtype=int), driven)
+    return mech.closure_model.with_actuation(driven)
 
 
-def inverse_batch(problem: inverse.InverseDynamicsProblem, q: np.ndarray, v: np.ndarray, a: np.ndarray,
-                  fexts: Sequence | None, determinacy: bool) -> tuple[np.ndarray, np.ndarray, np.ndarray | None]:
+def inverse_batch(mech: Mechanism, cm: core.ClosureModel, cd: core.ClosureData, q: np.ndarray, v: np.ndarray,
+                  a: np.ndarray, fexts: Sequence | None,
+                  determinacy: bool) -> tuple[np.ndarray, np.ndarray, np.ndarray | None]:
     """Efforts (N, n_driven), reactions (N, n_joints, 6) and determinacy flags (N, n_joints, 6) or None
-    of N samples (q, v, a), with per-sample external forces `fexts` or None.
+    of N samples (q, v, a) of `mech` driven as `cm` says, with per-sample external forces `fexts` or None
+    and the mechanism's joint springs.
 
     Raises:
         SingularConfiguration: a sample's drives cannot hold its motion.
     """
-    out = inverse.inverse_dynamics_batch(problem, q, v, a, fexts, determinacy)
+    out = core.inverse_dynamics_batch(cm, cd, q, v, a, fexts, mech.passive_forces(q, v), determinacy_test=determinacy)
     return out.efforts, out.reactions, out.determinate
 
 
@@ -81,9 +81,10 @@ def kinematics_along(path: PathKinematics, law: InputLaw, tol: float = 1e-12, sk
     """
     model, n = path.model, len(law.t)
     q = np.full((n, model.nq), np.nan)
-    J = np.full((n, path.mech.rows.size, model.nv), np.nan)
+    kernel = path.closure_model.kernel
+    J = np.full((n, kernel.size, model.nv), np.nan)
     Jw = np.full((n, 6, model.nv), np.nan)
-    G = np.full((n, len(path.mech.rows.evaluator.joints), 4, 4), np.nan)
+    G = np.full((n, len(kernel.joints), 4, 4), np.nan)
     failures: list[tuple[float, str]] = []
     done: list[int] = []  # the samples assembled so far, in order: the predictor's points
 
@@ -155,17 +156,18 @@ def study(mech: Mechanism, law: InputLaw, *, determinacy: bool = False, loads: L
         SingularConfiguration: the inputs do not determine the motion, or the drives cannot hold it.
     """
     model, names, n = mech.model, list(law.names), len(law.t)
-    problem = driven_problem(mech, names)
-    nj = len(problem.joint_names)
+    driven = driven_model(mech, names)
+    driven_data = driven.create_data()
+    nj = len(driven.joint_names)
     q, v, a, axes, failures = kinematics_along(PathKinematics(mech, names), law, tol, skip_failures, progress)
     good = np.flatnonzero(np.isfinite(q).all(axis=1))
     fexts = None if loads is None else [loads(mech, q[i], float(law.t[i])) for i in good]
-    efforts = np.full((n, len(problem.actuated_names)), np.nan)
+    efforts = np.full((n, len(driven.actuated)), np.nan)
     reactions = np.full((n, nj, 6), np.nan)
     flags = np.zeros((n, nj, 6), dtype=bool) if determinacy else None
     try:  # all samples at once; where that fails and failures may be skipped, sample by sample
         batches = [good]
-        out = [inverse_batch(problem, q[good], v[good], a[good], fexts, determinacy)]
+        out = [inverse_batch(mech, driven, driven_data, q[good], v[good], a[good], fexts, determinacy)]
     except MechkitError:
         if not skip_failures:
             raise
@@ -173,7 +175,7 @@ def study(mech: Mechanism, law: InputLaw, *, determinacy: bool = False, loads: L
         for k, i in enumerate(good):
             one = None if fexts is None else [fexts[k]]
             try:
-                out.append(inverse_batch(problem, q[i:i + 1], v[i:i + 1], a[i:i + 1], one, determinacy))
+                out.append(inverse_batch(mech, driven, driven_data, q[i:i + 1], v[i:i + 1], a[i:i + 1], one, determinacy))
                 batches.append(np.array([i]))
             except MechkitError as err:
                 failures.append((float(law.t[i]), str(err)))
@@ -185,6 +187,6 @@ def study(mech: Mechanism, law: InputLaw, *, determinacy: bool = False, loads: L
     if progress is not None:
         progress(2 * n, 2 * n)
     return MotionResult(mech.spec.name, law.source, law.t.copy(), coordinate_names(model), q, v, a,
-                        problem.actuated_names, tuple(mech.actuated), efforts, problem.joint_names,
-                        np.array(problem.supports, dtype=bool), reactions, axes, flags,
+                        driven.actuated, tuple(mech.actuated), efforts, driven.joint_names,
+                        np.array(driven.supports, dtype=bool), reactions, axes, flags,
                         tuple(sorted(failures)))

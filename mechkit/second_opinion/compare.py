@@ -1,7 +1,9 @@
 """The second opinion against constrained RNEA (`Mechanism.inverse_dynamics`) over a scene's states.
 
 States: poses spread along the mechanism's first declared scene (else the generic sweep,
-`mechkit.scenes`), with input rates ~ N(0, 0.5) and input accelerations ~ N(0, 1) (ours, seeded); an
+`mechkit.scenes`), with input rates ~ N(0, 0.5) (the velocity moved to the nearest along which the
+motion continues at second order, `Mechanism.second_order_velocity`) and input accelerations ~ N(0, 1)
+(ours, seeded); an
 under-actuated mechanism (or a pose where the closure kinematics cannot give a) gets random efforts on
 its actuators and a from the core's dense KKT forward dynamics, as `mechkit.bench.sampling` does.
 
@@ -97,7 +99,7 @@ def scene_states(mechanism: Mechanism, count: int, seed: int = 3, scene: str | N
 def _moving_state(mechanism: Mechanism, q: np.ndarray, names: tuple[str, ...], rng: np.random.Generator) -> State:
     """(q, v, a) with random input rates and accelerations (or efforts; see the module docstring)."""
     act_v = [mechanism.v_index(j) for j in mechanism.actuated]
-    v = mechanism.velocities(q, rng.normal(0.0, 0.5, len(names)), inputs=names)
+    v = mechanism.second_order_velocity(q, mechanism.velocities(q, rng.normal(0.0, 0.5, len(names)), inputs=names))
     accs = rng.normal(0.0, 1.0, len(names))
     a = None if len(names) > len(act_v) else mechanism.accelerations(q, v, accs, inputs=names)
     if a is None or np.abs(mechanism.closure_jacobian(q) @ a + mechanism.closure_drift(q, v)).max() > 1e-9:

@@ -13,9 +13,9 @@ from dataclasses import dataclass
 import numpy as np
 import pinocchio as pin
 
+from mechkit import core
 from mechkit.base.spatial import cross
-from mechkit.core.closures import ClosureRows
-from mechkit.second_opinion.structure import Structure, constraint_span, tree_motion
+from mechkit.second_opinion.structure import Cuts, Structure, constraint_span, cut_wrenches, tree_motion
 
 
 @dataclass(frozen=True)
@@ -51,16 +51,16 @@ class Instant:
     gravity: np.ndarray
 
 
-def joint_geometry(model: pin.Model, data: pin.Data, rows: ClosureRows, structure: Structure) -> dict[str, JointGeometry]:
+def joint_geometry(model: pin.Model, data: pin.Data, cuts: Cuts, structure: Structure) -> dict[str, JointGeometry]:
     """Every joint's point and wrench directions; joint Jacobians and frame placements must be current."""
     out = {}
     eye = np.eye(6)
     for joint in structure.joints:
-        span = constraint_span(model, data, rows, joint)
+        span = constraint_span(model, data, cuts, joint)
         basis = span @ (span.T @ eye[:, list(joint.components)])
         effort = None
         if joint.cut:
-            point = data.oMf[rows.cuts[joint.index].frame_b].translation.copy()
+            point = data.oMf[cuts.kernel.cuts[joint.index].frame_b].translation.copy()
         else:
             point = data.oMi[joint.index].translation.copy()
             if joint.actuated:
@@ -70,13 +70,16 @@ def joint_geometry(model: pin.Model, data: pin.Data, rows: ClosureRows, structur
     return out
 
 
-def instant(model: pin.Model, data: pin.Data, rows: ClosureRows, structure: Structure, q: np.ndarray,
+def instant(cm: core.ClosureModel, cd: core.ClosureData, data: pin.Data, structure: Structure, q: np.ndarray,
             v: np.ndarray, a: np.ndarray) -> Instant:
     """The instant (q, v, a) (rad, m; rad/s, m/s; rad/s^2, m/s^2) of a mechanism's tree.
 
     Args:
-        rows: the closures' full spatial rows (the cut joints of ``structure``).
+        cm, cd: the closure model (its full spatial rows are the cut joints of ``structure``) and a data.
+        data: a Pinocchio data of the tree (scratch).
     """
+    model = cm.model
+    cuts = cut_wrenches(cm, cd, q)
     pin.computeJointJacobians(model, data, q)
     pin.forwardKinematics(model, data, q, v, a)
     pin.updateFramePlacements(model, data)
@@ -92,4 +95,4 @@ def instant(model: pin.Model, data: pin.Data, rows: ClosureRows, structure: Stru
         a_com = a_origin + cross(alpha, lever) + cross(omega, cross(omega, lever))
         bodies[j] = BodyMotion(placement.translation.copy(), placement.translation + lever, float(inertia.mass),
                                rot @ inertia.inertia @ rot.T, omega, alpha, a_com)
-    return Instant(bodies, joint_geometry(model, data, rows, structure), model.gravity.linear.copy())
+    return Instant(bodies, joint_geometry(model, data, cuts, structure), model.gravity.linear.copy())

@@ -30,12 +30,11 @@ class SecondOpinion:
     def __init__(self, mechanism: Mechanism, level: str = "skc"):
         start = time.perf_counter()
         self.mechanism, self.level = mechanism, level
-        model = mechanism.model
-        self._data = model.createData()
-        self.structure: Structure = build_structure(model, mechanism.full_rows, tuple(mechanism.actuated),
-                                                    mechanism.home_q)
-        zero = np.zeros(model.nv)
-        home = instant(model, self._data, mechanism.full_rows, self.structure, mechanism.home_q, zero, zero)
+        cm = mechanism.closure_model
+        self._data, self._closure_data = cm.model.createData(), cm.create_data()
+        self.structure: Structure = build_structure(cm, mechanism.home_q)
+        zero = np.zeros(cm.nv)
+        home = instant(cm, self._closure_data, self._data, self.structure, mechanism.home_q, zero, zero)
         self.skcs: list[SKC] = decompose(self.structure, home, level)
         self.plans = plan(self.skcs, self.structure)
         self.decompose_seconds = time.perf_counter() - start
@@ -43,5 +42,5 @@ class SecondOpinion:
     def solve(self, q: np.ndarray, v: np.ndarray, a: np.ndarray) -> Opinion:
         """Efforts and reactions for a motion (q, v, a) that closes the loops (rad, m and rates)."""
         m = self.mechanism
-        state = instant(m.model, self._data, m.full_rows, self.structure, q, v, a)
+        state = instant(m.closure_model, self._closure_data, self._data, self.structure, q, v, a)
         return solve_instant(self.plans, self.structure, state)

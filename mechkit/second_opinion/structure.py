@@ -19,9 +19,8 @@ from dataclasses import dataclass
 import numpy as np
 import pinocchio as pin
 
+from mechkit import core
 from mechkit.base.exceptions import MalformedDescription
-from mechkit.base.spatial import cross
-from mechkit.core.closures import ClosureRows
 
 LWA = pin.ReferenceFrame.LOCAL_WORLD_ALIGNED
 #: Singular-value threshold (relative) of the wrench spaces and of the component choice.
@@ -91,6 +90,26 @@ class Structure:
         return {k: s for k, s in count.items() if s != 0.0}
 
 
+@dataclass(frozen=True)
+class Cuts:
+    """The cuts' full spatial rows at one configuration: the kernel and its row wrenches (rows, 6),
+    world axes, each moment about its cut's point p_b (m)."""
+
+    kernel: core.ClosureKernel
+    wrenches: np.ndarray
+
+
+def cut_wrenches(cm: core.ClosureModel, cd: core.ClosureData, q: np.ndarray) -> Cuts:
+    """The full rows' wrenches of every cut at q (nq,), moments about each cut's frame_b origin."""
+    G, _, _ = core.kinematic_pass(cm, cd, q[None])
+    kernel = cm.full_kernel
+    W = kernel.row_wrenches(G[0])
+    points = kernel.cut_points(G[0])
+    for c, rows in enumerate(kernel.cut_slices):
+        W[rows, 3:] -= np.cross(points[c], W[rows, :3])
+    return Cuts(kernel, W)
+
+
 def _orthonormal(span: np.ndarray) -> np.ndarray:
     """Orthonormal basis (6, r) of the column span of ``span``."""
     if span.size == 0:
@@ -108,20 +127,16 @@ def tree_motion(model: pin.Model, data: pin.Data, joint: int) -> np.ndarray:
     return pin.getJointJacobian(model, data, joint, LWA)[:, jm.idx_v : jm.idx_v + jm.nv]
 
 
-def constraint_span(model: pin.Model, data: pin.Data, rows: ClosureRows, joint: Joint) -> np.ndarray:
+def constraint_span(model: pin.Model, data: pin.Data, cuts: Cuts, joint: Joint) -> np.ndarray:
     """Orthonormal basis (6, r) of the joint's constraint wrench space at the current configuration.
 
-    World axes, moment about the joint point (tree: joint origin; cut: frame_b's origin). Needs
-    joint Jacobians and frame placements current.
+    World axes, moment about the joint point (tree: joint origin; cut: frame_b's origin): for a cut,
+    the span of its full rows' wrenches from the closure kernel. Needs joint Jacobians current.
     """
     if not joint.cut:
         motion = tree_motion(model, data, joint.index)
         return _orthonormal(np.eye(6) - motion @ np.linalg.pinv(motion))
-    cut = rows.cuts[joint.index]
-    ra, rb = data.oMf[cut.frame_a].rotation, data.oMf[cut.frame_b].rotation
-    cols = [np.concatenate([ra @ t, np.zeros(3)]) for t in cut.positions.T]
-    cols += [np.concatenate([np.zeros(3), cross(rb @ w, ra @ u)]) for u, w in cut.alignments]
-    return _orthonormal(np.array(cols).T.reshape(6, -1))
+    return _orthonormal(cuts.wrenches[cuts.kernel.cut_slices[joint.index]].T)
 
 
 def choose_components(span: np.ndarray) -> tuple[int, ...]:
@@ -147,15 +162,16 @@ def body_names(model: pin.Model) -> dict[int, str]:
     return {j: names.get(j, model.names[j]) for j in range(1, model.njoints)}
 
 
-def build_structure(model: pin.Model, full_rows: ClosureRows, actuated: tuple[str, ...], q: np.ndarray) -> Structure:
-    """The structure graph, components chosen at the (assembled) configuration ``q``.
+def build_structure(cm: core.ClosureModel, q: np.ndarray) -> Structure:
+    """The structure graph of a closure model, components chosen at the (assembled) configuration ``q``.
 
     Raises:
         MalformedDescription: an actuated joint does not have exactly one degree of freedom.
     """
+    model, actuated = cm.model, cm.actuated
     data = model.createData()
+    full_rows = cut_wrenches(cm, cm.create_data(), q)
     pin.computeJointJacobians(model, data, q)
-    pin.updateFramePlacements(model, data)
     joints: list[Joint] = []
     for j in range(1, model.njoints):
         name = model.names[j]
@@ -164,7 +180,7 @@ def build_structure(model: pin.Model, full_rows: ClosureRows, actuated: tuple[st
         probe = Joint(name, int(model.parents[j]), j, j, False, (), name in actuated)
         span = constraint_span(model, data, full_rows, probe)
         joints.append(Joint(name, probe.parent, j, j, False, choose_components(span), probe.actuated))
-    for c, cut in enumerate(full_rows.cuts):
+    for c, cut in enumerate(cm.full_kernel.cuts):
         probe = Joint(cut.closure.name, int(model.frames[cut.frame_a].parentJoint),
                       int(model.frames[cut.frame_b].parentJoint), c, True, (), False)
         span = constraint_span(model, data, full_rows, probe)

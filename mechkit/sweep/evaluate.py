@@ -20,7 +20,7 @@ import numpy as np
 
 from mechkit.base.exceptions import ClosureNotConverged, SingularConfiguration
 from mechkit.catalog.registry import get_spec
-from mechkit.mechanism import Mechanism
+from mechkit.loading import from_expanded
 from mechkit.sources.template_cache import TemplateCache
 from mechkit.sources.xacro_file import render_urdf
 from mechkit.sweep.metrics import SingularAlongMotion, Study, motion_samples
@@ -80,7 +80,7 @@ def evaluate_chunk(chunk: Chunk) -> list[dict]:
             params = spec.params.from_overrides(**chunk.base, **dict(zip(chunk.names, map(float, values))))
             args = params.xacro_args()
             urdf = cache.render(args) if cache is not None else render_urdf(spec.template_path, args)
-            mech = Mechanism(spec, params, urdf)
+            mech = from_expanded(spec, params, urdf)
             assembled = True
             samples = motion_samples(mech, chunk.study) if any(m.motion for m in metrics) else None
             for metric in metrics:

@@ -15,21 +15,15 @@ import numpy as np
 import pinocchio as pin
 from scipy.linalg import null_space
 
+from mechkit import core
 from mechkit.base.exceptions import InvalidParameters
-from mechkit.core.dynamics import (
-    InverseDynamicsResult,
-    cut_wrench_arrays,
-    subtract_cut_wrenches,
-    subtree_incidence,
-)
-from mechkit.core.kinematics import numerical_rank
 from mechkit.mechanism import Mechanism
 
 #: Names of the world reaction components, in wrench order [f, m].
 COMPONENTS = ("fx", "fy", "fz", "mx", "my", "mz")
 
 
-def indeterminate_reactions(result: InverseDynamicsResult) -> dict[str, tuple[str, ...]]:
+def indeterminate_reactions(result: core.InverseDynamicsResult) -> dict[str, tuple[str, ...]]:
     """Joint -> world reaction components that statics leaves undetermined (from the determinacy
     flags of `Mechanism.inverse_dynamics`); joints whose reaction is fully determinate are absent."""
     if any(r.determinate is None for r in result.reactions.values()):
@@ -68,10 +62,10 @@ def _self_stress(mech: Mechanism, q: np.ndarray) -> tuple[np.ndarray, np.ndarray
 def redundancy(mech: Mechanism, q: np.ndarray) -> Redundancy:
     """Self-stress of the composite at q: the redundant combination of closure rows."""
     s, y = _self_stress(mech, q)
-    stress, axes = {}, {}
-    for cut, (f, m, _) in zip(mech.rows.cuts, mech.rows.wrenches(mech.data, y)):
-        stress[cut.closure.name] = (f, m)
-        axes[cut.closure.name] = mech.data.oMf[cut.frame_a].rotation @ cut.closure.axis
+    cuts = core.multiplier_reactions(mech.closure_model, mech.closure_data, q, y)[-len(mech.cuts):]
+    pin.framesForwardKinematics(mech.model, mech.data, q)
+    stress = {cut.closure.name: (w[:3], w[3:]) for cut, w in zip(mech.cuts, cuts)}
+    axes = {cut.closure.name: mech.data.oMf[cut.frame_a].rotation @ cut.closure.axis for cut in mech.cuts}
     return Redundancy(s, stress, axes)
 
 
@@ -80,18 +74,13 @@ def indeterminate_direction(mech: Mechanism, q: np.ndarray) -> dict[str, np.ndar
 
     Every reaction is R = R_0 + s P with s undetermined by statics: P (joint -> (6,) world wrench,
     parent on child, at the joint point) is the set of reactions that the self-stress alone
-    produces (its closure forces applied to the tree, no gravity, no motion), scaled so that
-    max |P| = 1. Components where P vanishes are the determinate ones.
+    produces (`core.multiplier_reactions`: its closure forces applied to the tree, no gravity, no
+    motion), scaled so that max |P| = 1. Components where P vanishes are the determinate ones.
     """
     _, y = _self_stress(mech, q)
-    model = mech.model
-    G = subtree_incidence(model, mech.rows)
-    W, P = cut_wrench_arrays(mech.data, mech.rows, y)
-    tree = subtract_cut_wrenches(np.zeros((model.njoints, 6)), mech.data, np.flatnonzero(np.any(G != 0, axis=1)), G, W, P)
-    pattern = {model.names[i]: tree[i] for i in range(1, model.njoints)}
-    pattern |= {c.closure.name: w for c, w in zip(mech.rows.cuts, W)}
-    scale = max(np.abs(v).max() for v in pattern.values())
-    return {joint: v / scale for joint, v in pattern.items()}
+    loads = core.multiplier_reactions(mech.closure_model, mech.closure_data, q, y)
+    scale = float(np.abs(loads).max())
+    return {joint: w / scale for joint, w in zip(mech.closure_model.joint_names, loads)}
 
 
 def second_order_form(mech: Mechanism, q: np.ndarray, h: float = 1e-3) -> tuple[np.ndarray, np.ndarray]:
@@ -129,10 +118,10 @@ def mobility_without(mech: Mechanism, q: np.ndarray, chains: tuple[str, ...]) ->
     J = mech.closure_jacobian(q)
     drop_cols = [mech.v_index(j) for c in chains for j in chain_joints(c)]
     keep_rows, i = [], 0
-    for cut in mech.rows.cuts:
+    for cut in mech.cuts:
         if cut.closure.name[:-2] not in chains:
             keep_rows += list(range(i, i + cut.size))
         i += cut.size
     sub = np.delete(J[keep_rows], drop_cols, axis=1)
-    rank = numerical_rank(np.linalg.svd(sub, compute_uv=False))
+    rank = core.numerical_rank(np.linalg.svd(sub, compute_uv=False))
     return sub.shape[1] - rank, sub.shape[0] - rank

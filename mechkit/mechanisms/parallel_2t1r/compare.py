@@ -13,7 +13,7 @@ import numpy as np
 import pinocchio as pin
 
 from mechkit.base.exceptions import MechkitError, SingularConfiguration
-from mechkit.core.dynamics import InverseDynamicsResult
+from mechkit.core import InverseDynamicsResult
 from mechkit.mechanism import Mechanism
 from mechkit.mechanisms.parallel_2t1r.joints import joint_coordinates, joint_positions
 from mechkit.mechanisms.parallel_2t1r.motion_law import motion_law, state_at

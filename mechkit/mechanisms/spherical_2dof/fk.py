@@ -15,7 +15,6 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from mechkit.base.exceptions import ClosureNotConverged, InvalidParameters
-from mechkit.core import kinematics
 from mechkit.mechanisms.spherical_2dof import kinematics as kin
 from mechkit.mechanisms.spherical_2dof.kinematics import BRANCHES
 from mechkit.mechanisms.spherical_2dof.scenes import cone_attitude
@@ -45,8 +44,8 @@ def fk_closure(
         ClosureNotConverged: the closure solver failed.
     """
     q0 = tree_q(mech, np.asarray(phi0, float), np.asarray(theta_d, float))
-    free_v = np.setdiff1d(np.arange(mech.model.nv), [mech.v_index(j) for j in mech.actuated])
-    q, iters = kinematics.solve_closure(mech.rows, mech.data, q0, free_v, tol=tol, max_iter=max_iter)
+    solved = mech.solve_closure(q0, mech.actuated, tol=tol, max_iter=max_iter)
+    q, iters = solved.q, solved.iterations
     phi = np.array([q[mech.q_index("hooke_roll")], q[mech.q_index("hooke_pitch")]])
     return kin.FKResult(phi, iters, float(np.linalg.norm(mech.closure_residual(q))))
 

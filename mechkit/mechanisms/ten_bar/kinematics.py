@@ -18,8 +18,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 import pinocchio as pin
 
-from mechkit.core.closures import ClosureRows, cut_rows
-from mechkit.core.kinematics import solve_closure
+from mechkit import core
 
 if TYPE_CHECKING:
     from mechkit.mechanism import Mechanism
@@ -49,7 +48,7 @@ UNITS = (
 
 
 class _ReducedUnit:
-    """One unit as a reduced Pinocchio model with its closure rows."""
+    """One unit as a reduced Pinocchio model with its one closure (a closure model of the core)."""
 
     def __init__(self, mechanism: Mechanism, unit: Unit):
         model = mechanism.model
@@ -57,16 +56,16 @@ class _ReducedUnit:
         self.unit = unit
         self.model = pin.buildReducedModel(model, locked, mechanism.home_q)
         closure = next(c for c in mechanism.closures if c.name == unit.cut)
-        self.rows = ClosureRows(self.model, [cut_rows(self.model, closure)])
-        self.data = self.model.createData()
+        self.closure_model = core.ClosureModel(self.model, [closure])
+        self.closure_data = self.closure_model.create_data()
         self.q_index = {j: self.model.joints[self.model.getJointId(j)].idx_q for j in unit.joints}
-        self.free_v = np.array([self.model.joints[self.model.getJointId(j)].idx_v for j in unit.unknowns])
+        self.split = self.closure_model.split(unit.inputs)
 
     def solve(self, known: Mapping[str, float], guess: Mapping[str, float], tol: float) -> dict[str, float]:
         q = pin.neutral(self.model)
         for j in self.unit.joints:
             q[self.q_index[j]] = known[j] if j in self.unit.inputs else guess[j]
-        q, _ = solve_closure(self.rows, self.data, q, self.free_v, tol=tol)
+        q = core.assemble(self.closure_model, self.closure_data, q, self.split, tol=tol).q
         return {j: float(q[self.q_index[j]]) for j in self.unit.unknowns}
 
 

@@ -16,7 +16,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 from scipy.linalg import null_space
 
-from mechkit.core.kinematics import update_kinematics
+from mechkit import core
 from mechkit.loading import from_params
 from mechkit.mechanisms.ten_bar import dynamics as td
 from mechkit.mechanisms.ten_bar import geometry as geo
@@ -52,8 +52,7 @@ def kinematic_split(mechanism: Mechanism, q: np.ndarray) -> KinematicSplit:
     direction[free] = null[:, 0]
     unit = tk.DimensionReduction(mechanism).units[0]
     five_q = np.array([q[mechanism.q_index(j)] for j in unit.model.names[1:]])
-    update_kinematics(unit.model, unit.data, five_q)
-    Ju = unit.rows.jacobian(unit.data)
+    Ju = core.closure_jacobian(unit.closure_model, unit.closure_data, five_q)
     r1 = unit.model.joints[unit.model.getJointId("R1")].idx_v
     five_free = np.setdiff1d(np.arange(Ju.shape[1]), [r1])
     return KinematicSplit(null.shape[1], direction, null_space(Ju[:, five_free]).shape[1])

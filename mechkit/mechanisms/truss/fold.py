@@ -12,7 +12,6 @@ import numpy as np
 import pinocchio as pin
 
 from mechkit.base.exceptions import ClosureNotConverged, InvalidParameters
-from mechkit.core import kinematics
 from mechkit.mechanism import Mechanism
 from mechkit.mechanisms.truss.drives import FOLD_DURATION, drive_state
 from mechkit.mechanisms.truss.motion import drive_inputs
@@ -43,9 +42,9 @@ def _fold_step(mech: Mechanism, q: np.ndarray, v: np.ndarray, t_prev: float, t: 
     guess = pin.integrate(mech.model, q, v * (t - t_prev))
     for joint, value in angles.items():
         guess[mech.q_index(joint)] = value
-    free = np.setdiff1d(np.arange(mech.model.nv), [mech.v_index(j) for j in angles])
     try:
-        q_new, iterations = kinematics.solve_closure(mech.rows, mech.data, guess, free, tol=tol)
+        solved = mech.solve_closure(guess, list(angles), tol=tol)
+        q_new, iterations = solved.q, solved.iterations
     except ClosureNotConverged:
         if depth >= 8:
             raise

@@ -14,7 +14,7 @@ import mechkit
 from mechkit.catalog.registry import names
 from mechkit.report import report
 
-FIXTURES = Path(__file__).parent / "fixtures"
+FIXTURES = Path(__file__).resolve().parent.parent / "fixtures"
 
 
 @pytest.mark.parametrize("name", names())
@@ -48,12 +48,12 @@ def test_undeclared_rows_are_the_minimal_rows_the_mechanism_declares(name, kind,
     assert {lp.kind for lp in m.structure.loops} == {kind}
     assert [c.rows for c in m.closures] == [c.rows for c in ref.closures]
     assert all(lp.chosen == "detected" for lp in m.structure.loops)
-    assert m.rows.size == ref.rows.size and m.mobility().dof == ref.mobility().dof
+    assert m.closure_model.kernel.size == ref.closure_model.kernel.size and m.mobility().dof == ref.mobility().dof
     assert np.max(np.abs(m.closure_jacobian(ref.home_q) - ref.closure_jacobian(ref.home_q))) < 1e-12
     forced = mechkit.load(path, actuated=ref.actuated, guess=ref.joint_values(ref.home_q), rows="spatial")
     assert all(lp.chosen == "forced" and lp.rows == lp.full_rows for lp in forced.structure.loops)
     assert forced.mobility().dof == ref.mobility().dof
-    assert forced.mobility().redundant == forced.rows.size - m.rows.size + m.mobility().redundant
+    assert forced.mobility().redundant == forced.closure_model.kernel.size - m.closure_model.kernel.size + m.mobility().redundant
 
 
 def test_spherical_rows_of_a_spherical_loop_avoid_position_rows(load_cached, tmp_path):
@@ -88,7 +88,8 @@ def test_idle_rod_spins_are_found_and_move_nothing_else():
 
 def test_idle_freedoms_are_given_as_inputs_to_drive_the_leg():
     """With the spins given (zero) beside the two motors, the inputs determine the leg's motion; the
-    spins' rates change no other joint's rate (they are idle)."""
+    spins' rates change no other joint's rate (they are idle); with the motors alone, the idle spins
+    take their minimum-norm rates and the rest is the same."""
     m = mechkit.load(FIXTURES / "leg.urdf")
     inputs = ["hip", "knee_motor", "rod1_top_z", "rod2_top_z"]
     still = m.velocities(m.home_q, [1.0, -0.5, 0.0, 0.0], inputs=inputs)
@@ -96,8 +97,15 @@ def test_idle_freedoms_are_given_as_inputs_to_drive_the_leg():
     assert np.max(np.abs(m.closure_jacobian(m.home_q) @ spun)) < 1e-12
     for joint in ("knee", "ankle", "hip", "knee_motor"):
         assert spun[m.v_index(joint)] == pytest.approx(still[m.v_index(joint)], abs=1e-12)
-    with pytest.raises(mechkit.SingularConfiguration, match="give more inputs"):
-        m.velocities(m.home_q, [1.0, -0.5])
+    # with the motors alone the spins are idle freedoms: they get their minimum-norm rates, and every
+    # other joint the rates the inputs fix (the same as with the spins given)
+    motors_only = m.velocities(m.home_q, [1.0, -0.5])
+    assert np.max(np.abs(m.closure_jacobian(m.home_q) @ motors_only)) < 1e-12
+    for joint in ("knee", "ankle", "hip", "knee_motor"):
+        assert motors_only[m.v_index(joint)] == pytest.approx(still[m.v_index(joint)], abs=1e-12)
+    for spin in ([0.0, 0.0, 1.0, 0.0], [0.0, 0.0, 0.0, 1.0]):  # each rod's spin alone: an idle direction
+        idle = m.velocities(m.home_q, spin, inputs=inputs)
+        assert abs(idle @ motors_only) <= 1e-12 * np.linalg.norm(idle) * np.linalg.norm(motors_only)
 
 
 def test_no_idle_freedom_in_the_registered_mechanisms(load_cached):

@@ -1,5 +1,7 @@
-"""Closure rows from one gather (`mechkit.closure_eval`) against Pinocchio's frame calls, and the
-vectorised velocities / accelerations against their single-sample path and the closure identities."""
+"""The closure kernel (`mechkit.core.kernel`): its rows against Pinocchio's frame calls, its Jacobian as
+row wrenches times the world joint Jacobians, its residuals and cut points from placements, and the
+vectorised velocities / accelerations it serves against their single-sample path and the closure
+identities."""
 
 from __future__ import annotations
 
@@ -9,7 +11,7 @@ import pytest
 from scipy.optimize import brentq
 
 from mechkit.base.exceptions import SingularConfiguration
-from mechkit.base.spatial import cross, skew
+from mechkit.base.spatial import cross, cross_batch, skew
 from mechkit.bench.sampling import make_samples
 from mechkit.catalog import registry
 
@@ -57,11 +59,10 @@ def test_rows_equal_the_frame_calls(case):
         pin.computeJointJacobians(m.model, data, q)
         pin.forwardKinematics(m.model, data, q, v, np.zeros(m.model.nv))
         pin.updateFramePlacements(m.model, data)
-        e, J, g = _frame_rows(m.model, data, m.rows.cuts)
+        e, J, g = _frame_rows(m.model, data, m.cuts)
         scale = max(1.0, np.abs(g).max())
-        assert np.abs(m.rows.residual(data) - e).max() < 1e-13
-        assert np.abs(m.rows.jacobian(data) - J).max() < 1e-13 * max(1.0, np.abs(J).max())
-        assert np.abs(m.rows.drift(data) - g).max() < 1e-12 * scale
+        assert np.abs(m.closure_residual(q) - e).max() < 1e-13
+        assert np.abs(m.closure_jacobian(q) - J).max() < 1e-13 * max(1.0, np.abs(J).max())
         assert np.abs(m.closure_drift(q, v) - g).max() < 1e-12 * scale
 
 
@@ -71,24 +72,18 @@ def test_batched_equals_single_and_the_closure_identities(case):
     m, samples = case
     names = list(samples[0].input_names)
     Q = np.array([s.q for s in samples])
-    V = m.velocities(Q, np.array([s.rates for s in samples]), names)
-    A = m.accelerations(Q, V, np.array([s.accelerations for s in samples]), names)
-    conds = []
+    V = m.velocities_batch(Q, np.array([s.rates for s in samples]), names)
+    A = m.accelerations_batch(Q, V, np.array([s.accelerations for s in samples]), names)
     for i, s in enumerate(samples):
         v = m.velocities(s.q, s.rates, names)
         a = m.accelerations(s.q, v, s.accelerations, names)
-        conds.append(v.condition)
         for batched, single in ((V[i], v), (A[i], a)):
             assert np.abs(batched - single).max() <= 1e-13 * max(1.0, np.abs(single).max())
         J = m.closure_jacobian(s.q)
         assert np.abs(J @ v).max() < 1e-10 * max(1.0, np.abs(v).max())
         gamma, scale = m.closure_drift(s.q, v), max(1.0, np.abs(a).max())
-        # with redundant rows (the deployable: rank 59 of 60) a is the least-squares solution, as before
-        passive = np.setdiff1d(np.arange(m.model.nv), [m.v_index(j) for j in names])
-        assert np.abs(J[:, passive].T @ (J @ a + gamma)).max() < 1e-9 * scale * max(1.0, np.abs(J).max())
-        if m.independent_rows == m.rows.size:
-            assert np.abs(J @ a + gamma).max() < 1e-9 * max(scale, np.abs(gamma).max())
-    assert V.condition == pytest.approx(max(conds), rel=1e-12)
+        # every row, redundant ones too: the samples' velocities continue at second order
+        assert np.abs(J @ a + gamma).max() < 1e-9 * max(scale, np.abs(gamma).max())
 
 
 def test_drift_is_the_second_derivative(load_cached):
@@ -121,12 +116,12 @@ def test_batched_singular_sample_raises_and_allow_singular_passes(load_cached):
     with pytest.raises(SingularConfiguration):
         m.velocities(Q[1], rates[1])
     with pytest.raises(SingularConfiguration):
-        m.velocities(Q, rates)
-    V = m.velocities(Q, rates, allow_singular=True)
+        m.velocities_batch(Q, rates)
+    V = m.velocities_batch(Q, rates, allow_singular=True)
     for i in range(2):
         v = m.velocities(Q[i], rates[i], allow_singular=True)
         assert np.abs(V[i] - v).max() <= 1e-13 * np.abs(v).max()
-    assert V.condition == m.velocities(Q[1], rates[1], allow_singular=True).condition > 1e5
+    assert m.singularity(Q[1]) > 1e5
 
 
 def test_motion_study_kinematics_equal_the_mechanism_calls(load_cached):
@@ -150,3 +145,33 @@ def test_motion_study_kinematics_equal_the_mechanism_calls(load_cached):
             S = np.asarray(data.joints[j].S).reshape(6)
             axis = data.oMi[j].rotation @ (S[3:] if np.linalg.norm(S[3:]) > 0 else S[:3])
             assert np.abs(r.axes[i, j - 1] - axis / np.linalg.norm(axis)).max() < 1e-14
+
+
+@pytest.mark.parametrize("name", registry.names())
+def test_row_wrenches_give_the_closure_jacobian_and_the_residuals(name, load_cached):
+    """Off the closure (random q): W^T data.J on the support mask, the residuals and the cut points p_b
+    from one gather equal the frame-by-frame Jacobian, residuals and frame origins (kept and full rows)."""
+    m = load_cached(name)
+    model = m.model
+    rng = np.random.default_rng(3)
+    for _ in range(3):
+        q = pin.integrate(model, m.home_q, 0.3 * rng.standard_normal(model.nv))
+        data = model.createData()
+        pin.computeJointJacobians(model, data, q)
+        pin.forwardKinematics(model, data, q, np.zeros(model.nv), np.zeros(model.nv))
+        pin.updateFramePlacements(model, data)
+        for kernel in (m.closure_model.kernel, m.closure_model.full_kernel):
+            G = np.array([data.oMi[int(j)].homogeneous for j in kernel.joints])[None]
+            e, J, W = kernel.evaluate(G, data.J[None], q[None])
+            e_ref, J_ref, _ = _frame_rows(model, data, kernel.cuts)
+            assert np.max(np.abs(e[0] - e_ref), initial=0.0) < 1e-13
+            assert np.max(np.abs(J[0] - J_ref), initial=0.0) < 1e-13 * max(1.0, np.max(np.abs(J_ref), initial=0.0))
+            assert np.max(np.abs(kernel.jacobian(W, data.J[None], q[None]) - J), initial=0.0) == 0.0
+            for c, cut in enumerate(kernel.cuts):
+                np.testing.assert_allclose(kernel.cut_points(G)[0, c], data.oMf[cut.frame_b].translation, atol=1e-14)
+
+
+def test_cross_batch_is_the_cross_product():
+    rng = np.random.default_rng(3)
+    a, b = rng.normal(size=(4, 5, 3)), rng.normal(size=(4, 5, 3))
+    assert np.max(np.abs(cross_batch(a, b) - np.cross(a, b))) < 1e-15

@@ -1,0 +1,248 @@
+"""The closure kernel: every constraint row's residual, Jacobian, acceleration drift and wrench, and
+what the row multipliers put on every joint, for one sample or N, from one gather of joint placements.
+
+Cut rows (`mechkit.core.cuts`). Each reads three vectors of its cut's two joints, each a fixed
+homogeneous 4-vector mapped by a joint placement: X = R_a t (or u), the direction fixed in frame_a;
+Y = p_b (a position row) or R_b w (an alignment row); Z = p_a (a position row) or 0. Then
+
+- residual  e = X . (Y - Z);
+- row wrench W = [f X, Y x X] (f = 1 for a position row, 0 for an alignment row), world axes, moment
+  about the world origin, so that de/dt = W . (V_b - V_a) with V_j = [v_O, omega] the world twist of
+  joint j at the world origin: the Jacobian is (W @ J_world) * mask (Pinocchio's `data.J` after
+  `computeJointJacobians`; mask +1 on the columns moving only frame_b, -1 on those moving only frame_a);
+- drift gamma = W . (A_b - A_a) + dW/dt . (V_b - V_a), A_j the spatial acceleration of joint j at zero
+  joint accelerations (world, origin), so that d2e/dt2 = J a + gamma;
+- the wrench a cut transmits, frame_a's side on frame_b's side, from its rows' multipliers lambda
+  (sign: J^T lambda is the generalised constraint force): sum of lambda W over its rows.
+
+Coupling rows (`mechkit.core.records.Coupling`) read joint values x: e = f . x - f_ref - P(l . x -
+l_ref), Jacobian f - P'(s) l, drift -P''(s) (l . v)^2. They transmit no wrench through the tree (a
+coupling acts along its joints' freedoms, as a motor does).
+
+Rows are ordered cut by cut, then the couplings. Arrays carry any leading sample axes; placements
+G are (..., n_used, 4, 4) for `joints`, the joints carrying a cut frame.
+"""
+
+from __future__ import annotations
+
+import itertools
+
+import numpy as np
+import pinocchio as pin
+
+from mechkit.base.spatial import LEVI_CIVITA, cross_batch
+from mechkit.core.cuts import CouplingRow, CutRows
+
+
+def support_columns(model: pin.Model, joint: int) -> np.ndarray:
+    """(nv,) 1.0 on the velocity columns of the joints from the root to `joint` (0: none)."""
+    out = np.zeros(model.nv)
+    while joint > 0:
+        jm = model.joints[joint]
+        out[jm.idx_v:jm.idx_v + jm.nv] = 1.0
+        joint = model.parents[joint]
+    return out
+
+
+def subtree_incidence(model: pin.Model, cuts: list[CutRows]) -> np.ndarray:
+    """(njoints, cuts): +1 where joint i has frame_b's body of a cut in its subtree, -1 for frame_a's."""
+    out = np.zeros((model.njoints, len(cuts)))
+    for c, cut in enumerate(cuts):
+        for sign, frame in ((1.0, cut.frame_b), (-1.0, cut.frame_a)):
+            j = model.frames[frame].parentJoint
+            while j > 0:
+                out[j, c] += sign
+                j = model.parents[j]
+    return out
+
+
+#: (12, 6) map of (Y' outer X).reshape(12), Y' = [Y, f], to the row wrench [f X, Y x X].
+WRENCH_MAP = np.zeros((12, 6))
+WRENCH_MAP[:9, 3:] = LEVI_CIVITA
+WRENCH_MAP[9:, :3] = np.eye(3)
+#: (24, 7) map of ([Z', Y'] outer X).reshape(24) to [W, e]: the wrench and the residual X . (Y - Z).
+WRENCH_RESIDUAL_MAP = np.zeros((24, 7))
+WRENCH_RESIDUAL_MAP[12:, :6] = WRENCH_MAP
+WRENCH_RESIDUAL_MAP[[0, 4, 8], 6], WRENCH_RESIDUAL_MAP[[12, 16, 20], 6] = -1.0, 1.0
+
+
+class ClosureKernel:
+    """The rows of a set of cuts and couplings over one Pinocchio model, as numpy maps.
+
+    Attributes:
+        cuts, couplings: the rows' sources, in row order.
+        joints: (n_used,) ids of the joints carrying frame_a or frame_b of some cut.
+        cut_size: rows of the cuts; size: all rows (cuts, then couplings); ncuts: number of cuts.
+        cut_slices: each cut's rows (a slice of the rows).
+        mask: (cut_size, nv) Jacobian column signs (+1 frame_b only, -1 frame_a only, 0 both or none).
+        support: (n_used, nv) 1 on the columns moving each used joint.
+        incidence: (njoints, ncuts) `subtree_incidence`.
+    """
+
+    def __init__(self, model: pin.Model, cuts: list[CutRows], couplings: list[CouplingRow] = ()):
+        frames = model.frames
+        self.nv = model.nv
+        self.cuts, self.couplings = tuple(cuts), tuple(couplings)
+        self.joints = np.array(sorted({frames[f].parentJoint for c in cuts for f in (c.frame_a, c.frame_b)}), dtype=int)
+        where = {int(j): k for k, j in enumerate(self.joints)}
+        ia, ib, local, cut_of_row, force = [], [], [], [], []
+        for c, cut in enumerate(cuts):
+            Ma, Mb = frames[cut.frame_a].placement.homogeneous, frames[cut.frame_b].placement.homogeneous
+            ja, jb = where[frames[cut.frame_a].parentJoint], where[frames[cut.frame_b].parentJoint]
+            for t in cut.positions.T:
+                ia.append(ja), ib.append(jb), cut_of_row.append(c), force.append(1.0)
+                local.append([Ma[:, :3] @ t, Ma[:, 3], Mb[:, 3]])
+            for u, w in cut.alignments:
+                ia.append(ja), ib.append(jb), cut_of_row.append(c), force.append(0.0)
+                local.append([Ma[:, :3] @ u, np.zeros(4), Mb[:, :3] @ w])
+        self.cut_size = len(ia)
+        self.size = self.cut_size + len(self.couplings)
+        self.ncuts = len(cuts)
+        self._ia, self._ib = np.array(ia, dtype=int), np.array(ib, dtype=int)
+        self._local = np.array(local, dtype=float).reshape(-1, 4)  # (3 rows, 4): X, Z, Y of each row
+        self._joint = np.stack([self._ia, self._ia, self._ib], axis=1).reshape(-1)
+        self._slot = np.arange(3 * self.cut_size)
+        self._force = np.array(force).reshape(-1, 1)
+        self._row_sum = (np.array(cut_of_row, dtype=int)[None, :] == np.arange(self.ncuts)[:, None]).astype(float)
+        bounds = np.cumsum([0] + [c.size for c in cuts])
+        self.cut_slices = tuple(slice(int(a), int(b)) for a, b in itertools.pairwise(bounds))
+        self._point_b = np.array([frames[c.frame_b].placement.homogeneous[:, 3] for c in cuts]).reshape(-1, 4)
+        self._joint_b = np.array([where[frames[c.frame_b].parentJoint] for c in cuts], dtype=int)
+        self.support = np.array([support_columns(model, int(j)) for j in self.joints]).reshape(-1, model.nv)
+        self.mask = self.support[self._ib] - self.support[self._ia]
+        self.incidence = subtree_incidence(model, list(cuts))
+
+    # ------------------------------------------------------------ cut rows
+    def _xzy(self, G: np.ndarray) -> np.ndarray:
+        every = self._local @ np.swapaxes(G, -1, -2)  # (..., n_used, 3 rows, 4): each vector by each placement
+        return every[..., self._joint, self._slot, :].reshape(*G.shape[:-3], self.cut_size, 3, 4)
+
+    def vectors(self, G: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """X', Y', Z' (..., cut_size, 4) of every cut row, world (m or unit), from placements (..., n_used, 4, 4)."""
+        xzy = self._xzy(G)
+        return xzy[..., 0, :], xzy[..., 2, :], xzy[..., 1, :]
+
+    def wrenches(self, x: np.ndarray, y: np.ndarray) -> np.ndarray:
+        """(..., cut_size, 6) row wrenches [force, moment about the world origin] from X', Y' (..., cut_size, 4)."""
+        outer = y[..., :, None] * x[..., None, :3]
+        return outer.reshape(*outer.shape[:-2], 12) @ WRENCH_MAP
+
+    def row_wrenches(self, G: np.ndarray) -> np.ndarray:
+        """(..., cut_size, 6) row wrenches from placements (..., n_used, 4, 4)."""
+        x, y, _ = self.vectors(G)
+        return self.wrenches(x, y)
+
+    def cut_points(self, G: np.ndarray) -> np.ndarray:
+        """(..., ncuts, 3) world origins p_b of frame_b of every cut (m)."""
+        return (G[..., self._joint_b, :3, :] @ self._point_b[..., None])[..., 0]
+
+    # ------------------------------------------------------------ all rows
+    def residual(self, G: np.ndarray, q: np.ndarray) -> np.ndarray:
+        """(..., size) residuals (m for position rows; dimensionless for alignment rows; rad or m for
+        couplings) from placements (..., n_used, 4, 4) and configurations q (..., nq)."""
+        x, y, z = self.vectors(G)
+        cut = np.sum(x * (y - z), axis=-1)
+        if not self.couplings:
+            return cut
+        return np.concatenate([cut, self._coupling_residual(q)], axis=-1)
+
+    def evaluate(self, G: np.ndarray, J: np.ndarray, q: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Residuals (..., size), Jacobian (..., size, nv) and cut row wrenches (..., cut_size, 6) from
+        placements (..., n_used, 4, 4), `data.J` (..., 6, nv) and q (..., nq), in one product."""
+        xzy = self._xzy(G)
+        outer = xzy[..., 1:, :, None] * xzy[..., 0, None, None, :3]
+        we = outer.reshape(*outer.shape[:-3], 24) @ WRENCH_RESIDUAL_MAP
+        W, e = we[..., :6], we[..., 6]
+        jac = (W @ J) * self.mask
+        if self.couplings:
+            e = np.concatenate([e, self._coupling_residual(q)], axis=-1)
+            jac = np.concatenate([jac, self._coupling_jacobian(q)], axis=-2)
+        return e, jac, W
+
+    def jacobian(self, W: np.ndarray, J: np.ndarray, q: np.ndarray) -> np.ndarray:
+        """(..., size, nv) closure Jacobian from cut row wrenches (..., cut_size, 6), `data.J` (..., 6, nv) and q."""
+        jac = (W @ J) * self.mask
+        if not self.couplings:
+            return jac
+        return np.concatenate([jac, self._coupling_jacobian(q)], axis=-2)
+
+    def twists(self, J: np.ndarray, v: np.ndarray) -> np.ndarray:
+        """(..., n_used, 6) world twists [v_O, omega] of the used joints from world Jacobian columns
+        (..., 6, nv) times velocities (..., nv) (also: with `data.dJ`, the accelerations at a = 0)."""
+        return np.swapaxes(J @ np.swapaxes(self.support * v[..., None, :], -1, -2), -1, -2)
+
+    def drift(self, G: np.ndarray, V: np.ndarray, A: np.ndarray, q: np.ndarray, v: np.ndarray) -> np.ndarray:
+        """(..., size) gamma with d2e/dt2 = J a + gamma.
+
+        Args:
+            G: (..., n_used, 4, 4) placements of the used joints.
+            V, A: (..., n_used, 6) their world twists and accelerations at a = 0 (`twists`).
+            q, v: (..., nq), (..., nv) the state (coupling rows).
+        """
+        x, y, _ = self.vectors(G)
+        Va, Vb = V[..., self._ia, :], V[..., self._ib, :]
+        xdot = cross_batch(Va[..., 3:], x[..., :3])
+        ydot = y[..., 3:] * Vb[..., :3] + cross_batch(Vb[..., 3:], y[..., :3])
+        outer = ydot[..., :, None] * x[..., None, :3]
+        outer = np.concatenate([outer, np.zeros_like(outer[..., :1, :])], axis=-2) + y[..., :, None] * xdot[..., None, :]
+        Wdot = outer.reshape(*outer.shape[:-2], 12) @ WRENCH_MAP
+        Arel = A[..., self._ib, :] - A[..., self._ia, :]
+        cut = np.sum(self.wrenches(x, y) * Arel + Wdot * (Vb - Va), axis=-1)
+        if not self.couplings:
+            return cut
+        return np.concatenate([cut, self._coupling_drift(q, v)], axis=-1)
+
+    # ------------------------------------------------------------ what multipliers transmit
+    def cut_wrenches(self, W: np.ndarray, lam: np.ndarray) -> np.ndarray:
+        """(..., ncuts, 6) wrench [f, m about the world origin] frame_a's side exerts on frame_b's side of
+        each cut, from row wrenches (..., cut_size, 6) and multipliers (..., size) (coupling entries unused)."""
+        return self._row_sum @ (W * lam[..., :self.cut_size, None])
+
+    def joint_loads(self, W: np.ndarray, lam: np.ndarray, origins: np.ndarray, cut_points: np.ndarray) -> np.ndarray:
+        """What the multipliers transmit through every joint: (..., njoints - 1 + ncuts, 6).
+
+        Tree joints (model order, the universe left out): minus the share of the cut wrenches acting on
+        their subtree; then the cuts: their wrenches. Each [f, m about the joint's point], world.
+
+        Args:
+            W: (..., cut_size, 6) row wrenches; lam: (..., size) multipliers.
+            origins: (..., njoints - 1, 3) tree joint origins; cut_points: (..., ncuts, 3) the cuts' p_b.
+        """
+        cuts = self.cut_wrenches(W, lam)
+        loads = np.concatenate([-(self.incidence[1:] @ cuts), cuts], axis=-2)
+        points = np.concatenate([origins, cut_points], axis=-2)
+        loads[..., 3:] -= cross_batch(points, loads[..., :3])
+        return loads
+
+    # ------------------------------------------------------------ coupling rows
+    def _coupling_values(self, row: CouplingRow, q: np.ndarray) -> np.ndarray:
+        x = q[..., row.q_index]
+        if row.unbounded.any():
+            angle = np.arctan2(q[..., row.q_index + 1], q[..., row.q_index])
+            x = np.where(row.unbounded, angle, x)
+        return x
+
+    def _coupling_residual(self, q: np.ndarray) -> np.ndarray:
+        out = []
+        for row in self.couplings:
+            x = self._coupling_values(row, q)
+            s = x @ row.leader - row.coupling.leader_ref
+            out.append(x @ row.follower - row.coupling.follower_ref - np.polynomial.polynomial.polyval(s, row.polynomial))
+        return np.stack(out, axis=-1)
+
+    def _coupling_jacobian(self, q: np.ndarray) -> np.ndarray:
+        out = np.zeros(q.shape[:-1] + (len(self.couplings), self.nv))
+        for k, row in enumerate(self.couplings):
+            s = self._coupling_values(row, q) @ row.leader - row.coupling.leader_ref
+            slope = np.polynomial.polynomial.polyval(s, np.polynomial.polynomial.polyder(row.polynomial))
+            for col, f, lead in zip(row.v_index, row.follower, row.leader):
+                out[..., k, col] += f - slope * lead
+        return out
+
+    def _coupling_drift(self, q: np.ndarray, v: np.ndarray) -> np.ndarray:
+        out = []
+        for row in self.couplings:
+            s = self._coupling_values(row, q) @ row.leader - row.coupling.leader_ref
+            curvature = np.polynomial.polynomial.polyval(s, np.polynomial.polynomial.polyder(row.polynomial, 2))
+            out.append(-curvature * (v[..., row.v_index] @ row.leader) ** 2)
+        return np.stack(out, axis=-1)

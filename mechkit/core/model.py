@@ -1,0 +1,244 @@
+"""The closure model (what does not change: a Pinocchio tree of any joints, its loop closures and
+couplings, the rows kept, the actuation) and its data (scratch: Pinocchio data, views, caches).
+
+As in Pinocchio, the model is built once and never changes; a data is created from it for each
+user of the functions (`ClosureModel.create_data`), and every function takes both.
+"""
+
+from __future__ import annotations
+
+import copy
+from collections.abc import Sequence
+from dataclasses import dataclass
+from functools import cache
+
+import numpy as np
+import pinocchio as pin
+import scipy.linalg
+
+from mechkit.base.exceptions import InvalidParameters
+from mechkit.core import joints
+from mechkit.core.cuts import coupling_row, cut_rows
+from mechkit.core.kernel import ClosureKernel, support_columns
+from mechkit.core.records import Actuator, Coupling, LoopClosure
+from mechkit.core.structure import analyse
+
+#: Lightest body (kg): Pinocchio's inertia sums are exact above its epsilon (2.2e-16 kg); ours, with a margin.
+MIN_BODY_MASS = 1e-14
+
+
+def check_body_masses(model: pin.Model) -> None:
+    """Refuse bodies lighter than `MIN_BODY_MASS` (massless bodies, mass 0, are fine).
+
+    Pinocchio merges a link's inertia into its joint's body with lever = sum(m c) / max(sum m, eps),
+    eps = 2.2e-16 kg, so a body of 1e-17 kg gets a centre of mass near the joint and wrong dynamics
+    (the five-bar at density 1e-12 kg/m^3: accelerations 46 % off); above eps the sum is exact.
+
+    Raises:
+        InvalidParameters: the lightest such body, by joint name.
+    """
+    for j in range(1, model.njoints):
+        mass = model.inertias[j].mass
+        if 0.0 < mass < MIN_BODY_MASS:
+            raise InvalidParameters(f"mass of {model.names[j]}", mass, f"below {MIN_BODY_MASS:g} kg, where Pinocchio's inertia "
+                                    "arithmetic (an epsilon of 2.2e-16 kg) misplaces the centre of mass; scale the units")
+
+
+@dataclass(frozen=True)
+class InputSplit:
+    """Which velocity coordinates are given and which are solved for.
+
+    Attributes:
+        names: the given joints.
+        input_v: (k,) their velocity indices (a ball joint gives 3, a free-flyer 6).
+        free_v: (nv - k,) the other velocity indices.
+    """
+
+    names: tuple[str, ...]
+    input_v: np.ndarray
+    free_v: np.ndarray
+
+
+class ClosureModel:
+    """A Pinocchio tree with loop closures and couplings, the rows each keeps, and its actuation.
+
+    Args:
+        model: the tree (any Pinocchio joints); not copied, not changed.
+        closures: the loop closures (their frames are Pinocchio frames of any type).
+        couplings: coupling rows between one-freedom joints.
+        actuated: the actuators in effort order: a one-freedom joint's name (a motor on it) or the
+            name of one of `actuators`.
+        actuators: transmissions other than one joint's motor (e.g. tendons).
+        rows: None (the closures' declared rows, else the minimal rows of their loops) or "spatial"
+            (every cut closed with its full rows).
+
+    Attributes:
+        model: the tree. structure: loops and Kutzbach count (`mechkit.core.structure.Structure`).
+        closures: the closures with the rows chosen. kernel: the rows kept (cuts, then couplings).
+        full_kernel: every cut's full spatial rows (the physical joints), for the determinacy test.
+        actuated: actuator names. actuation: (na, nv) S, generalised force S^T u of efforts u.
+        actuated_v: (na,) velocity indices where every actuator is one joint's motor, else None.
+        unactuated: (nv, nv - rank S) orthonormal basis of the motions no actuator drives (the
+            unactuated coordinates' unit vectors where every actuator is a joint motor).
+        joint_names: tree joints (model order), then cut joints: the order of reactions.
+        supports: (n_joints,) True for joints to the ground.
+        massive: ids of the joints whose body has mass; massive_support: (len(massive), nv) the
+            velocity columns moving each (`mechkit.core.kinematics.idle_count`).
+        row_scale: max_i |J_i| at the neutral configuration (the closure rows' lever arm, m).
+        delassus_scale: max_i |J_i|^2 / max_j M_jj there (1/kg for position rows): the unit of the
+            proximal regularisation.
+
+    Raises:
+        MalformedDescription: a closure or coupling naming what the model lacks.
+        InvalidParameters: an unknown or multi-freedom actuated joint, a body too light.
+    """
+
+    def __init__(self, model: pin.Model, closures: Sequence[LoopClosure], couplings: Sequence[Coupling] = (),
+                 actuated: Sequence[str] = (), actuators: Sequence[Actuator] = (), rows: str | None = None):
+        check_body_masses(model)
+        self.model = model
+        self.structure = analyse(model, list(closures), rows)
+        self.closures = tuple(self.structure.closures)
+        cuts = [cut_rows(model, c) for c in self.closures]
+        couplings = [coupling_row(model, c) for c in couplings]
+        self.kernel = ClosureKernel(model, cuts, couplings)
+        self.full_kernel = ClosureKernel(model, [cut_rows(model, c, "spatial") for c in self.closures], couplings)
+        self.actuated = tuple(actuated)
+        self.actuation, self.actuated_v = _actuation(model, self.actuated, {a.name: a for a in actuators})
+        self.unactuated = _unactuated(model, self.actuation, self.actuated_v)
+        self.joint_names = tuple(model.names[1:]) + tuple(c.name for c in self.closures)
+        frames = model.frames
+        self.supports = np.array([model.parents[j] == 0 for j in range(1, model.njoints)] + [
+            frames[c.frame_a].parentJoint == 0 or frames[c.frame_b].parentJoint == 0 for c in cuts], dtype=bool)
+        self.massive = np.array([j for j in range(1, model.njoints) if model.inertias[j].mass > 0], dtype=int)
+        self.massive_support = np.array([support_columns(model, int(j)) for j in self.massive]).reshape(-1, model.nv)
+        self.row_scale, self.delassus_scale = _scales(self)
+        self._split = cache(self._make_split)
+
+    @property
+    def nq(self) -> int:
+        """Configuration size."""
+        return self.model.nq
+
+    @property
+    def nv(self) -> int:
+        """Velocity size."""
+        return self.model.nv
+
+    def with_actuation(self, actuated: Sequence[str], actuators: Sequence[Actuator] = ()) -> ClosureModel:
+        """The same tree, closures, couplings and rows with another actuation (e.g. every driven joint of
+        a motion law).
+
+        Raises:
+            InvalidParameters: an unknown or multi-freedom actuated joint.
+        """
+        out = copy.copy(self)
+        out.actuated = tuple(actuated)
+        out.actuation, out.actuated_v = _actuation(self.model, out.actuated, {a.name: a for a in actuators})
+        out.unactuated = _unactuated(self.model, out.actuation, out.actuated_v)
+        out._split = cache(out._make_split)
+        return out
+
+    def create_data(self) -> ClosureData:
+        """A new scratch data for the functions of the core."""
+        return ClosureData(self)
+
+    def joint_id(self, joint: str) -> int:
+        """Pinocchio id of a joint by name.
+
+        Raises:
+            InvalidParameters: no such joint.
+        """
+        if not isinstance(joint, str) or not self.model.existJointName(joint):
+            raise InvalidParameters("joint", joint, f"no such joint; joints: {list(self.model.names[1:])}")
+        return self.model.getJointId(joint)
+
+    def split(self, names: Sequence[str]) -> InputSplit:
+        """The velocity indices of the given joints and of the others (cached per tuple of names)."""
+        return self._split(tuple(names))
+
+    def _make_split(self, names: tuple[str, ...]) -> InputSplit:
+        given = [joints.velocity_indices(self.model, self.joint_id(j)) for j in names]
+        input_v = np.concatenate(given).astype(int) if given else np.zeros(0, dtype=int)
+        free = np.ones(self.nv, dtype=bool)
+        free[input_v] = False
+        free_v = np.flatnonzero(free)
+        input_v.flags.writeable = free_v.flags.writeable = False
+        return InputSplit(names, input_v, free_v)
+
+
+class ClosureData:
+    """Scratch of a `ClosureModel`: a Pinocchio data, views into its arrays, and derived caches.
+
+    Attributes:
+        pin: the Pinocchio data every function works in.
+        J, dJ: views of `pin.J` and `pin.dJ` (6, nv).
+        placements: `pin.oMi` as a list of SE3 (their `.rotation` and `.translation` alias its memory).
+        rotations, translations, forces: views of every joint's rotation (3, 3), translation (3,) and
+            `pin.f` (6,), in joint order.
+        kkt_rows: the independent rows the KKT solve last used (None before the first).
+        stress_rows: the rows of [S^T, J_full^T] `mechkit.core.determinacy.self_stresses` uses.
+        settings: Pinocchio proximal settings by (mu, accuracy, max_iter), made on first use.
+        legacy: Pinocchio's legacy constraints of the cuts (`mechkit.core.pin_constraints`), by method
+            ("proximal", "lcaba": each needs its own Pinocchio data), made on first use.
+    """
+
+    def __init__(self, cm: ClosureModel):
+        data = cm.model.createData()
+        self.pin = data
+        self.J, self.dJ = data.J, data.dJ
+        self.placements = data.oMi.tolist()
+        self.rotations = [M.rotation for M in self.placements]
+        self.translations = [M.translation for M in self.placements]
+        self.forces = [F.np for F in data.f.tolist()]
+        self.kkt_rows: np.ndarray | None = None
+        self.legacy: dict = {}
+        self.settings: dict = {}
+        self.stress_rows: np.ndarray | None = None
+
+
+def _actuation(model: pin.Model, actuated: tuple[str, ...],
+               actuators: dict[str, Actuator]) -> tuple[np.ndarray, np.ndarray | None]:
+    """(na, nv) S and, where every actuator is one joint's motor, their velocity indices."""
+    S = np.zeros((len(actuated), model.nv))
+    columns: list[int] | None = []
+    if len(set(actuated)) != len(actuated):
+        raise InvalidParameters("actuated", actuated, "an actuator is named twice")
+    for k, name in enumerate(actuated):
+        terms = actuators[name].joints if name in actuators else ((name, 1.0),)
+        for joint, coefficient in terms:
+            if not isinstance(joint, str) or not model.existJointName(joint):
+                where = "actuated" if name not in actuators else f"actuator {name!r}"
+                raise InvalidParameters(where, joint, f"no such joint; joints: {list(model.names[1:])}")
+            j = model.getJointId(joint)
+            if model.nvs[j] != 1:
+                raise InvalidParameters("actuated", joint, f"a {model.joints[j].shortname()} joint has {model.nvs[j]} "
+                                        "freedoms: a motor drives a one-freedom joint (declare an actuator transmission)")
+            S[k, model.joints[j].idx_v] += coefficient
+        if name in actuators or columns is None:
+            columns = None
+        else:
+            columns.append(model.joints[model.getJointId(name)].idx_v)
+    return S, (None if columns is None else np.array(columns, dtype=int))
+
+
+def _unactuated(model: pin.Model, S: np.ndarray, actuated_v: np.ndarray | None) -> np.ndarray:
+    """(nv, nv - rank S) orthonormal basis of the motions no actuator drives."""
+    if actuated_v is not None:
+        return np.delete(np.eye(model.nv), actuated_v, axis=1)
+    return scipy.linalg.null_space(S) if S.size else np.eye(model.nv)
+
+
+def _scales(cm: ClosureModel) -> tuple[float, float]:
+    """(max_i |J_i|, max_i |J_i|^2 / max_j M_jj) at the neutral configuration (1, 1 with no rows or no inertia)."""
+    if cm.kernel.size == 0:
+        return 1.0, 1.0
+    data = cm.model.createData()
+    q = pin.neutral(cm.model)
+    pin.computeJointJacobians(cm.model, data, q)
+    G = np.array([data.oMi[int(j)].homogeneous for j in cm.kernel.joints]).reshape(-1, 4, 4)
+    _, J, _ = cm.kernel.evaluate(G, data.J, q)
+    lever = float(np.sqrt(np.max(np.sum(J**2, axis=1))))
+    heaviest = float(np.max(np.diag(pin.crba(cm.model, data, q))))
+    delassus = lever**2 / heaviest if heaviest > 0 else 0.0
+    return (lever if lever > 0 else 1.0), (delassus if delassus > 0 else 1.0)

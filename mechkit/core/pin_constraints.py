@@ -1,0 +1,129 @@
+"""Pinocchio's constraint API behind one module: the only place in mechkit that names it.
+
+Pinocchio 4.1 keeps `RigidConstraintModel` (with `constraintDynamics`, `lcaba`) as its legacy
+constraint API beside newer anchor models; its maintainers have said the legacy one will be
+replaced (pinocchio issue 2816). Moving to the newer API touches this module alone.
+
+The legacy models equivalent to mechkit's cuts: a weld -> one 6D anchor; a spherical or planar
+revolute cut -> one 3D point anchor; a spatial (or spherical-rows) revolute cut -> two 3D point
+anchors on its axis, `AXIS_ANCHOR_OFFSET` apart. Redundant rows are left to the proximal
+regularisation. Hooke and prismatic cuts, and coupling rows, have no equivalent. Sign convention:
+M a + nle = tau + J^T lambda.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+
+import numpy as np
+import pinocchio as pin
+
+from mechkit.base.exceptions import MethodUnavailable
+from mechkit.core.cuts import CutRows
+
+#: Offset (m) along a revolute axis of the second point anchor of a spatial revolute cut.
+AXIS_ANCHOR_OFFSET = 0.1
+
+#: Pinocchio's own proximal constrained dynamics, bare (for benchmarks that time it raw).
+raw_constraint_dynamics: Callable = pin.constraintDynamics
+
+
+class LegacyConstraints:
+    """Pinocchio's legacy constraint models of a set of cuts, their datas, and a data initialised for them.
+
+    Args:
+        model: the tree's Pinocchio model.
+        cuts: the cuts (their `closure.kind` and `rows` choose the anchors).
+        couplings: number of coupling rows (must be 0: no legacy model expresses them).
+        ordered: set the data up for `loop_constrained_aba` (Pinocchio's joint elimination order, which
+            `constraintDynamics` must not see: a data serves one of the two).
+
+    Raises:
+        MethodUnavailable: a Hooke or prismatic cut, or a coupling row.
+    """
+
+    def __init__(self, model: pin.Model, cuts: list[CutRows], couplings: int = 0, ordered: bool = False):
+        if couplings:
+            raise MethodUnavailable("pin.constraintDynamics", "coupling rows have no RigidConstraintModel; use method='kkt'")
+        self.model = model
+        self.models = pin.StdVec_RigidConstraintModel()
+        for cm in _legacy_models(model, cuts):
+            self.models.append(cm)
+        self.datas = pin.StdVec_RigidConstraintData()
+        for cm in self.models:
+            self.datas.append(cm.createData())
+        self.data = model.createData()
+        pin.initConstraintDynamics(model, self.data, self.models, self.datas)
+        self.sizes = [3 if cm.type == pin.ContactType.CONTACT_3D else 6 for cm in self.models]
+        self._gains = (0.0, 0.0)
+        self.ordered = ordered
+        if ordered:
+            pin.computeJointMinimalOrdering(model, self.data, self.models)
+
+    def set_baumgarte(self, gains: tuple[float, float] | None) -> None:
+        """Set the Baumgarte gains (Kp 1/s^2, Kd 1/s; None: none) on every model, when they change."""
+        gains = (0.0, 0.0) if gains is None else (float(gains[0]), float(gains[1]))
+        if gains != self._gains:
+            for cm in self.models:
+                cm.setBaumgarteCorrectorParameters(pin.BaumgarteCorrectorParameters(*gains))
+            self._gains = gains
+
+    def dynamics(self, q: np.ndarray, v: np.ndarray, tau: np.ndarray, settings: pin.ProximalSettings) -> np.ndarray:
+        """Accelerations (nv,) by `pin.constraintDynamics` (a view: copy it before the next call)."""
+        assert not self.ordered, "a data set up for lcaba"
+        return pin.constraintDynamics(self.model, self.data, q, v, tau, self.models, self.datas, settings)
+
+    def loop_constrained_aba(self, q: np.ndarray, v: np.ndarray, tau: np.ndarray,
+                             settings: pin.ProximalSettings) -> np.ndarray:
+        """Accelerations (nv,) by `pin.lcaba` (needs `ordered`)."""
+        assert self.ordered, "a data not set up for lcaba"
+        return pin.lcaba(self.model, self.data, q, v, tau, self.models, self.datas, settings)
+
+    def jacobian(self) -> np.ndarray:
+        """(rows, nv) the anchors' constraint Jacobian at the last call's state (fresh after either call)."""
+        return pin.getConstraintsJacobian(self.model, self.data, self.models, self.datas)
+
+    def drift(self, rows: int) -> np.ndarray:
+        """(rows,) gamma (+ Baumgarte terms) of the anchors at the last `dynamics` call's state."""
+        return -self.data.primal_rhs_contact[:rows]
+
+    def lcaba_error(self) -> np.ndarray:
+        """(rows,) the anchors' acceleration error before lcaba's last step (add J @ `last_step()`)."""
+        return np.concatenate([cd.contact_acceleration_error.vector[:k] for cd, k in zip(self.datas, self.sizes)])
+
+    def last_step(self) -> np.ndarray:
+        """(nv,) lcaba's last acceleration step (`data.g`)."""
+        return self.data.g
+
+
+def proximal_settings(accuracy: float, mu: float, max_iter: int) -> pin.ProximalSettings:
+    """Pinocchio's proximal settings (absolute accuracy, regularisation mu, iteration limit)."""
+    return pin.ProximalSettings(accuracy, mu, max_iter)
+
+
+def settings_outcome(settings: pin.ProximalSettings) -> tuple[float, int]:
+    """(absolute residual, iterations) Pinocchio reports after a call with these settings."""
+    return float(settings.absolute_residual), int(settings.iter)
+
+
+def _legacy_models(model: pin.Model, cuts: list[CutRows]) -> list[pin.RigidConstraintModel]:
+    out = []
+    for cut in cuts:
+        c = cut.closure
+        fa, fb = model.frames[cut.frame_a], model.frames[cut.frame_b]
+        if c.kind == "weld":
+            out.append(pin.RigidConstraintModel(pin.ContactType.CONTACT_6D, model, fa.parentJoint, fa.placement,
+                                                fb.parentJoint, fb.placement, pin.ReferenceFrame.LOCAL))
+            continue
+        if c.kind in ("hooke", "prismatic"):
+            raise MethodUnavailable("pin.constraintDynamics",
+                                    f"cut {c.name!r} is {c.kind}: no RigidConstraintModel expresses it; use method='kkt'")
+        offsets = [np.zeros(3)]
+        if c.kind == "revolute" and c.rows != "planar":
+            offsets.append(AXIS_ANCHOR_OFFSET * c.axis)
+        for offset in offsets:
+            pa = fa.placement * pin.SE3(np.eye(3), offset)
+            pb = fb.placement * pin.SE3(np.eye(3), offset)
+            out.append(pin.RigidConstraintModel(pin.ContactType.CONTACT_3D, model, fa.parentJoint, pa,
+                                                fb.parentJoint, pb, pin.ReferenceFrame.LOCAL))
+    return out

@@ -1,0 +1,148 @@
+"""The rank judge: numerical rank, regularity of the passive block, singularity, and whether a
+right-hand side lies in the range of a matrix, all judged against what the numbers resolve.
+
+Rank decisions are relative to the largest singular value (`RANK_TOL`). Singularity of the passive
+block (the closure Jacobian's columns of the coordinates solved for) is judged against the closure
+residual the configuration was solved to (`resolvable_singular_value`). A right-hand side outside
+the range (an acceleration drift no acceleration cancels) is measured by the least-squares residual
+(`outside_range`) and judged against the size of the terms (`RANGE_TOL`).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import scipy.linalg
+import scipy.linalg.lapack
+
+from mechkit.base.exceptions import SingularConfiguration
+
+#: Relative singular-value threshold of every numerical rank decision.
+RANK_TOL = 1e-9
+#: Closure residual the assembly solves to by default (m for position rows).
+CLOSURE_TOL = 1e-12
+#: Machine epsilon of float64 (the rounding floor of a residual).
+EPS = float(np.finfo(float).eps)
+#: Margin above the resolvable smallest singular value below which a configuration counts as singular (ours).
+SINGULAR_MARGIN = 3.0
+#: Largest part of a right-hand side outside a range, relative to the size of the equation's terms (ours).
+RANGE_TOL = 1e-8
+
+
+def singular_values(A: np.ndarray) -> np.ndarray:
+    """(N, k) descending singular values of A (N, m, n); one sample through LAPACK directly (a fraction
+    of np.linalg.svd's overhead on one small matrix)."""
+    if len(A) == 1 and A.shape[1] and A.shape[2]:
+        return scipy.linalg.lapack.dgesdd(A[0], compute_uv=0)[1][None]
+    return np.linalg.svd(A, compute_uv=False)
+
+
+def ranks(s: np.ndarray) -> np.ndarray:
+    """(N,) numerical ranks from descending singular values (N, k), relative to the largest."""
+    if s.shape[-1] == 0:
+        return np.zeros(len(s), dtype=int)
+    return np.sum(s > RANK_TOL * np.maximum(s[:, :1], 1e-290), axis=1)  # a floor whose product does not underflow
+
+
+def numerical_rank(s: np.ndarray) -> int:
+    """Rank from one set of descending singular values (k,), relative to the largest."""
+    return int(ranks(np.asarray(s)[None])[0])
+
+
+def independent_rows(J: np.ndarray) -> np.ndarray:
+    """Indices of a maximal set of linearly independent rows of J (pivoted QR of J^T), sorted."""
+    if J.shape[0] == 0:
+        return np.zeros(0, dtype=int)
+    _, r, piv = scipy.linalg.qr(J.T, mode="economic", pivoting=True)
+    return np.sort(piv[: numerical_rank(np.abs(np.diag(r)))])
+
+
+def resolvable_singular_value(s_max: float | np.ndarray, residual: float | np.ndarray) -> float | np.ndarray:
+    """The smallest singular value of the passive block that a closure solved to `residual` can resolve.
+
+    Near a singularity the closure residual grows quadratically in the passive coordinates, e ~ s_max
+    dx^2, while a regular pose has e ~ s_min dx. A solve that stopped at |e| = r therefore leaves the
+    passive coordinates uncertain by sqrt(r / s_max) and cannot tell s_min from zero once s_min is
+    below sqrt(r s_max) (same units as the rows: m for position rows). Newton converges only linearly
+    at a singular point, so there it stops near its tolerance (`CLOSURE_TOL`), while at a regular pose
+    it overshoots to rounding; r is floored at rounding, eps s_max. `SINGULAR_MARGIN` sits above the
+    singular floor (measured on the five-bar with its distal links collinear: at the singular input
+    s_min is 0.6 to 0.9 sqrt(r s_max); 1e-8 rad away over 30 times that). Element-wise on arrays.
+
+    Args:
+        s_max: largest singular value of the passive block (the rows' scale).
+        residual: closure residual norm reached at the configuration.
+    """
+    out = SINGULAR_MARGIN * np.sqrt(np.maximum(residual, EPS * s_max) * s_max)
+    return float(out) if np.ndim(out) == 0 else out
+
+
+def passive_verdict(s: np.ndarray, columns: int, residual: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Per sample, the passive block's condition number and whether it is not resolvably regular.
+
+    Args:
+        s: (N, k) descending singular values of the passive blocks.
+        columns: the blocks' column count (coordinates solved for); a unique solution needs that rank.
+        residual: (N,) closure residual norms at the configurations.
+
+    Returns:
+        (N,) condition numbers s_max / s_min (inf where singular) and (N,) flags, True where s_min is
+        below `resolvable_singular_value` or there are fewer rows than columns.
+    """
+    n = len(s)
+    if columns == 0:
+        return np.ones(n), np.zeros(n, dtype=bool)
+    if s.shape[1] < columns:
+        return np.full(n, np.inf), np.ones(n, dtype=bool)
+    s_max, s_min = s[:, 0], s[:, columns - 1]
+    cond = np.divide(s_max, s_min, out=np.full(n, np.inf), where=s_min > 0)
+    bad = s_min < resolvable_singular_value(s_max, residual)
+    return cond, bad
+
+
+def singular_error(s: np.ndarray, columns: int, residual: float) -> SingularConfiguration:
+    """The error for a passive block with singular values s (k,) that `passive_verdict` rejects."""
+    if s.size < columns:
+        return SingularConfiguration(float("inf"), f"{columns} coordinates to solve for but only {s.size} closure rows: "
+                                     "the inputs do not determine the motion (give more inputs)")
+    cond, _ = passive_verdict(s[None], columns, np.array([residual]))
+    s_min = s[columns - 1]
+    rank = numerical_rank(s)
+    if rank < columns:
+        return SingularConfiguration(float(cond[0]), f"the closure determines only {rank} of the {columns} coordinates "
+                                     "solved for: the inputs do not determine the motion (give more inputs, or the pose "
+                                     "is singular)")
+    limit = resolvable_singular_value(s[0], residual)
+    return SingularConfiguration(float(cond[0]), f"passive block of the closure Jacobian: smallest singular value "
+                                 f"{s_min:.2e} below the {limit:.2e} a closure residual of {residual:.1e} resolves "
+                                 "(inputs do not determine the motion)")
+
+
+def check_passive(s: np.ndarray, columns: int, residual: np.ndarray | float) -> np.ndarray:
+    """Condition numbers (N,) of N passive blocks with singular values s (N, k); raise at the first
+    sample `passive_verdict` rejects.
+
+    Raises:
+        SingularConfiguration: naming the smallest singular value and what the residual resolves.
+    """
+    residual = np.broadcast_to(np.asarray(residual, dtype=float), (len(s),))
+    cond, bad = passive_verdict(s, columns, residual)
+    if bad.any():
+        i = int(np.argmax(bad))
+        raise singular_error(s[i], columns, float(residual[i]))
+    return cond
+
+
+def outside_range(U: np.ndarray, rank: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """(N,) norm of the part of b (N, m) outside the range of matrices with full left singular vectors
+    U (N, m, m) and ranks (N,)."""
+    proj = np.einsum("nij,ni->nj", U, b)
+    return np.sqrt(np.square(np.where(np.arange(proj.shape[1])[None, :] >= rank[:, None], proj, 0.0)).sum(axis=1))
+
+
+def inconsistency(J: np.ndarray, gamma: np.ndarray) -> float:
+    """min over a of max |J a + gamma|: how far no acceleration satisfies every row (0 when gamma is in
+    the range of J), by a complete orthogonal factorisation (LAPACK gelsy)."""
+    if J.shape[0] == 0:
+        return 0.0
+    x = scipy.linalg.lstsq(J, -gamma, cond=EPS * max(J.shape), lapack_driver="gelsy")[0]
+    return float(np.abs(J @ x + gamma).max())
