@@ -37,6 +37,7 @@ class Mechanism:
         model, data: the Pinocchio model of the tree and a data for it (scratch).
         closures, structure, actuated: as the closure model's. home_q: the home assembly.
         home_mobility: the mobility at home; independent_rows: its rank (the closure's generic rank).
+        idle: body -> idle freedoms at home (`mechkit.core.idle_freedoms`: a rod spinning about its axis).
 
     Raises:
         ClosureNotConverged, SingularConfiguration: the home assembly cannot be found.
@@ -54,6 +55,8 @@ class Mechanism:
         self.home_q = self.assemble(spec.home(params))
         self.home_mobility = core.mobility(cm, core_data, self.home_q)
         self.independent_rows = self.home_mobility.rank
+        on_loops = {self.model.getJointId(j) for lp in self.structure.loops for j in lp.joints}
+        self.idle = core.idle_freedoms(self.model, self.home_q, core.closure_jacobian(cm, core_data, self.home_q), on_loops)
 
     def __repr__(self) -> str:
         """One line: name, coordinates, degrees of freedom, loops, actuators."""
@@ -329,7 +332,7 @@ class Mechanism:
         return core.inverse_dynamics(self.closure_model, self.closure_data, q, v, a, fext, self.passive_forces(q, v),
                                      determinacy_test=determinacy, distribution=distribution,
                                      generic_rank=None if arguments.flag("allow_singular", allow_singular)
-                                     else self.independent_rows)
+                                     else self.independent_rows, idle=bool(self.idle))
 
     def inverse_dynamics_batch(self, q: np.ndarray, v: np.ndarray, a: np.ndarray, fext: Any = None,
                                determinacy: bool = True, distribution: str = "min_norm", *,
@@ -344,7 +347,7 @@ class Mechanism:
                                            self.passive_forces(q, v), determinacy_test=determinacy,
                                            distribution=distribution,
                                            generic_rank=None if arguments.flag("allow_singular", allow_singular)
-                                     else self.independent_rows)
+                                     else self.independent_rows, idle=bool(self.idle))
 
 
 def _spring_arrays(mech: Mechanism, springs: Sequence[core.JointSpring]) -> tuple[np.ndarray, np.ndarray, tuple]:

@@ -18,7 +18,6 @@ from typing import Any
 import numpy as np
 
 from mechkit.base.exceptions import MechkitError
-from mechkit.core import idle_freedoms, loop_joints
 from mechkit.mechanism import Mechanism
 
 #: Largest accepted self-check value (worst residual, m or rad, or relative error; ours): the registry's
@@ -72,15 +71,6 @@ def self_checks(m: Mechanism) -> dict[str, float]:
     return checks | ({} if m.spec.self_checks is None else m.spec.self_checks(m))
 
 
-def idle(m: Mechanism) -> dict[str, int]:
-    """Idle freedoms at the home assembly: body -> freedoms that move it alone (a body on a loop)."""
-    on_loops = set()
-    for cut in m.cuts:
-        a, b = m.model.frames[cut.frame_a].parentJoint, m.model.frames[cut.frame_b].parentJoint
-        on_loops.update(loop_joints(m.model, a, b))
-    return idle_freedoms(m.model, m.home_q, m.closure_jacobian(m.home_q), on_loops)
-
-
 def report(m: Mechanism) -> dict[str, Any]:
     """The report of a mechanism (see module docstring for the keys)."""
     mob = m.mobility()
@@ -96,7 +86,7 @@ def report(m: Mechanism) -> dict[str, Any]:
         "dof": mob.dof,
         "dof_gruebler": m.structure.kutzbach,
         "redundant_constraints": mob.redundant,
-        "idle": idle(m),
+        "idle": dict(m.idle),
         "loops": [{"cut": lp.cut, "kind": lp.kind, "rows": lp.rows, "full_rows": lp.full_rows, "chosen": lp.chosen}
                   for lp in m.structure.loops],
         "rows_avoided": m.structure.rows_avoided,

@@ -212,3 +212,57 @@ def test_only_the_command_line_prints():
             if isinstance(node, ast.Call) and isinstance(node.func, ast.Name) and node.func.id in ("print", "input"):
                 printing.append(f"{path.relative_to(PACKAGE.parent)}:{node.lineno}")
     assert not printing, printing
+
+
+def test_nothing_outside_the_core_imports_a_core_submodule():
+    """The core's face (`mechkit/core/__init__.py`) is its contract: other modules import `mechkit.core`
+    or names from it, never `mechkit.core.<module>`."""
+    face = PACKAGE / "core" / "__init__.py"
+    inside = []
+    for path, targets in _graph().items():
+        if _module_name(path).startswith("mechkit.core"):
+            continue
+        inside += [f"{_module_name(path)} -> {_module_name(t)}" for t in targets
+                   if _module_name(t).startswith("mechkit.core.") and t != face]
+    assert not inside, inside
+
+
+#: Pinocchio's constraint API (legacy and newer): only `mechkit/core/pin_constraints.py` names it.
+CONSTRAINT_API = {
+    "RigidConstraintModel", "RigidConstraintData", "StdVec_RigidConstraintModel", "StdVec_RigidConstraintData",
+    "ProximalSettings", "constraintDynamics", "initConstraintDynamics", "lcaba", "computeJointMinimalOrdering",
+    "getConstraintsJacobian", "BaumgarteCorrectorParameters", "ContactType", "PointAnchorConstraintModel",
+    "FrameAnchorConstraintModel", "ConstraintModel", "ConstraintData", "ConstraintCholeskyDecomposition",
+    "ContactCholeskyDecomposition", "ADMMConstraintSolver", "PGSConstraintSolver", "contactInverseDynamics",
+    "convertToRigidConstraintModel", "buildModelAndConstraintsFromMJCF", "buildModelAndLegacyConstraintsFromMJCF",
+}
+
+
+def _constraint_names(path: Path) -> set[str]:
+    """The constraint-API names a file uses as attributes (`pin.X`) or imports (`from pinocchio import X`)."""
+    found = set()
+    for node in ast.walk(ast.parse(path.read_text(), str(path))):
+        if isinstance(node, ast.Attribute) and node.attr in CONSTRAINT_API:
+            found.add(node.attr)
+        elif isinstance(node, ast.ImportFrom) and (node.module or "").startswith("pinocchio"):
+            found |= {a.name for a in node.names if a.name in CONSTRAINT_API}
+    return found
+
+
+def test_only_one_module_names_pinocchios_constraint_api():
+    users = {_module_name(p): sorted(names) for p in sorted(PACKAGE.rglob("*.py")) if (names := _constraint_names(p))}
+    assert set(users) == {"mechkit.core.pin_constraints"}, users
+
+
+def test_the_constraint_api_scan_sees_attributes_and_imports(tmp_path):
+    probe = tmp_path / "probe.py"
+    probe.write_text("import pinocchio as pin\nfrom pinocchio import lcaba\nx = pin.constraintDynamics\n")
+    assert _constraint_names(probe) == {"lcaba", "constraintDynamics"}
+
+
+def test_every_core_module_has_its_test_file():
+    """The test of `mechkit/core/<module>.py` is `tests/core/test_<module>.py`."""
+    tests = PACKAGE.parent / "tests" / "core"
+    missing = [p.name for p in sorted((PACKAGE / "core").glob("*.py"))
+               if p.name != "__init__.py" and not (tests / f"test_{p.stem}.py").is_file()]
+    assert not missing, missing

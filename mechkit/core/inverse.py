@@ -64,7 +64,8 @@ def _used_placements(cm: ClosureModel, R: np.ndarray, t: np.ndarray) -> np.ndarr
     return G
 
 
-def _check_regular(cm: ClosureModel, Jrows: np.ndarray, Jw: np.ndarray, residuals: np.ndarray, generic_rank: int) -> None:
+def _check_regular(cm: ClosureModel, Jrows: np.ndarray, Jw: np.ndarray, residuals: np.ndarray,
+                   generic_rank: int, idle: bool) -> dict[int, np.ndarray]:
     """Raise `SingularConfiguration` where a sample's passive block (the closure Jacobian on the
     unactuated motions, `ClosureModel.unactuated`) has lost rank, to what the closure residual resolves
     (`rank.passive_verdict` on its first min(generic rank, columns) singular values: an under-actuated
@@ -73,24 +74,50 @@ def _check_regular(cm: ClosureModel, Jrows: np.ndarray, Jw: np.ndarray, residual
 
     The resolvable limit grows with s_max and the residual, so the batch's largest of each bounds every
     sample's limit: only samples at or under that bound are judged one by one (none, at regular poses).
+
+    Returns:
+        With `idle` (the mechanism has idle freedoms), sample -> (nv, d) basis of the null space of its
+        passive block where that whole space is idle (rods spinning about their own axes); else {}.
     """
     basis = cm.unactuated
     columns = min(basis.shape[1], generic_rank)
+    found: dict[int, np.ndarray] = {}
     if min(columns, Jrows.shape[1], len(Jrows)) == 0:
-        return
+        return found
     blocks = Jrows @ basis
     s = rank.singular_values(blocks)
     if s.shape[1] < columns:
         raise rank.singular_error(s[0], columns, float(residuals[0]))
     bound = rank.resolvable_singular_value(float(s[:, 0].max()), float(residuals.max()))
-    for i in np.flatnonzero(s[:, columns - 1] <= bound):
+    suspects = range(len(s)) if idle else np.flatnonzero(s[:, columns - 1] <= bound)
+    for i in suspects:
         _, bad = rank.passive_verdict(s[i][None], columns, residuals[i][None])
-        if not bad[0]:
-            continue
         exact = rank.numerical_rank(s[i])
+        if not bad[0] and exact == basis.shape[1]:
+            continue
         null = basis @ np.linalg.svd(blocks[i])[2][exact:].T
-        if not (exact < columns and idle_count(cm, Jw[i], null) >= columns - exact):
+        count = idle_count(cm, Jw[i], null)
+        if bad[0] and (exact >= columns or count < columns - exact):  # not resolvable, and not idle spins
             raise rank.singular_error(s[i], columns, float(residuals[i]))
+        if idle and count == null.shape[1]:
+            found[int(i)] = null
+    return found
+
+
+def _idle_accelerations(cm: ClosureModel, cd: ClosureData, Q: np.ndarray, A: np.ndarray, b: np.ndarray,
+                        idle: dict[int, np.ndarray]) -> np.ndarray:
+    """A with each idle freedom's acceleration set by its own dynamics, N^T (M a + nle - tau) = 0.
+
+    No actuator drives an idle freedom and no closure row holds it (J N = 0), so its acceleration is not
+    the caller's to choose: a (minimum-norm) kinematic value would ask a ball joint for a torque about the
+    rod's axis. The rnea b is affine in a, b(a + N x) = b(a) + M N x.
+    """
+    A = A.copy()
+    for i, N in idle.items():
+        M = pin.crba(cm.model, cd.pin, Q[i])
+        M = np.triu(M) + np.triu(M, 1).T
+        A[i] -= N @ np.linalg.solve(N.T @ M @ N, N.T @ b[i])
+    return A
 
 
 def _solve(cm: ClosureModel, A: np.ndarray, b: np.ndarray, condition: bool, distribution: str):
@@ -185,7 +212,7 @@ def _least_effort(x: np.ndarray, N: np.ndarray, na: int) -> np.ndarray:
 def inverse_dynamics_batch(cm: ClosureModel, cd: ClosureData, Q: np.ndarray, V: np.ndarray, A: np.ndarray,
                            fexts: Sequence | None = None, passive: np.ndarray | None = None, *,
                            determinacy_test: bool = True, distribution: str = "min_norm",
-                           generic_rank: int | None = None) -> BatchInverseDynamicsResult:
+                           generic_rank: int | None = None, idle: bool = False) -> BatchInverseDynamicsResult:
     """Actuator efforts and every joint's reaction for N motions (q, v, a) that satisfy the closures.
 
     Args:
@@ -196,7 +223,9 @@ def inverse_dynamics_batch(cm: ClosureModel, cd: ClosureData, Q: np.ndarray, V: 
         distribution: where [S^T, J^T] has a null space (redundant actuation or rows), which solution:
             "min_norm" (smallest |[u; lambda]|) or "min_effort" (smallest |u|, then smallest |lambda|).
         generic_rank: the closure's rank at regular configurations (`mobility` at an assembly): refuse
-            samples whose passive block has lost rank to what the closure resolves; None: no check.
+            samples whose passive block has lost rank to what the closure resolves, and give idle freedoms
+            the accelerations their own dynamics gives (`_idle_accelerations`); None: neither.
+        idle: the mechanism has idle freedoms (`mechkit.core.structure.idle_freedoms` at an assembly).
 
     Raises:
         SingularConfiguration: a passive block not resolvably regular (with `generic_rank`), or
@@ -213,8 +242,12 @@ def inverse_dynamics_batch(cm: ClosureModel, cd: ClosureData, Q: np.ndarray, V: 
     with np.errstate(under="ignore"):  # products of tiny lever arms and forces flush to zero harmlessly
         G = _used_placements(cm, R, t)
         e, Jrows, W = k.evaluate(G, J, Q)
-        if generic_rank is not None:
-            _check_regular(cm, Jrows, J, np.linalg.norm(e, axis=-1), generic_rank)
+        spins = {} if generic_rank is None else _check_regular(cm, Jrows, J, np.linalg.norm(e, axis=-1), generic_rank, idle)
+        if spins:
+            A = _idle_accelerations(cm, cd, Q, A, b, spins)
+            R, t, J, b, tree = inverse_pass(cm, cd, Q, V, A, [None] * n if fexts is None else fexts)
+            if passive is not None:
+                b = b - passive
         x, cond = _solve(cm, system(cm, Jrows), b, determinacy_test, distribution)
         origins, cut_points = t[:, 1:], k.cut_points(G)
         reactions = np.concatenate([tree, np.zeros((n, k.ncuts, 6))], axis=1)
@@ -229,12 +262,12 @@ def inverse_dynamics_batch(cm: ClosureModel, cd: ClosureData, Q: np.ndarray, V: 
 def inverse_dynamics(cm: ClosureModel, cd: ClosureData, q: np.ndarray, v: np.ndarray, a: np.ndarray,
                      fext: pin.StdVec_Force | None = None, passive: np.ndarray | None = None, *,
                      determinacy_test: bool = True, distribution: str = "min_norm",
-                     generic_rank: int | None = None) -> InverseDynamicsResult:
+                     generic_rank: int | None = None, idle: bool = False) -> InverseDynamicsResult:
     """One sample of `inverse_dynamics_batch`: q (nq,), v and a (nv,), fext per joint or None,
     passive (nv,) or None."""
     out = inverse_dynamics_batch(cm, cd, q[None], v[None], a[None], [fext], None if passive is None else passive[None],
                                  determinacy_test=determinacy_test, distribution=distribution,
-                                 generic_rank=generic_rank)
+                                 generic_rank=generic_rank, idle=idle)
     return out.sample(0)
 
 

@@ -16,7 +16,7 @@ import numpy as np
 import pinocchio as pin
 import scipy.linalg
 
-from mechkit.base.exceptions import InvalidParameters
+from mechkit.base.exceptions import InvalidParameters, MalformedDescription
 from mechkit.core import joints
 from mechkit.core.cuts import coupling_row, cut_rows
 from mechkit.core.kernel import ClosureKernel, support_columns
@@ -25,6 +25,22 @@ from mechkit.core.structure import analyse
 
 #: Lightest body (kg): Pinocchio's inertia sums are exact above its epsilon (2.2e-16 kg); ours, with a margin.
 MIN_BODY_MASS = 1e-14
+
+
+def check_depth_first(model: pin.Model) -> None:
+    """Refuse a model whose joints are not numbered depth first: Pinocchio's algorithms (crba among
+    them) take each joint's subtree as the velocity columns idx_v .. idx_v + nvSubtree, which only a
+    depth-first numbering gives (URDF and MJCF parsers do; a model built joint by joint may not).
+
+    Raises:
+        MalformedDescription: the first joint whose subtree is not contiguous, by name.
+    """
+    for j in range(1, model.njoints):
+        subtree = sorted(int(k) for k in model.subtrees[j])
+        if subtree != list(range(j, j + len(subtree))):
+            raise MalformedDescription(f"joint {model.names[j]!r}", "the model's joints are not numbered depth first "
+                                       f"(its subtree is joints {subtree}): add each joint's children before its "
+                                       "siblings, as Pinocchio's algorithms assume")
 
 
 def check_body_masses(model: pin.Model) -> None:
@@ -89,12 +105,14 @@ class ClosureModel:
             proximal regularisation.
 
     Raises:
-        MalformedDescription: a closure or coupling naming what the model lacks.
+        MalformedDescription: a closure or coupling naming what the model lacks, joints not numbered
+            depth first.
         InvalidParameters: an unknown or multi-freedom actuated joint, a body too light.
     """
 
     def __init__(self, model: pin.Model, closures: Sequence[LoopClosure], couplings: Sequence[Coupling] = (),
                  actuated: Sequence[str] = (), actuators: Sequence[Actuator] = (), rows: str | None = None):
+        check_depth_first(model)
         check_body_masses(model)
         self.model = model
         self.structure = analyse(model, list(closures), rows)

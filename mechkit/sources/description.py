@@ -9,7 +9,7 @@ from pathlib import Path
 import pinocchio as pin
 
 from mechkit.base.exceptions import MalformedDescription
-from mechkit.core.records import Actuator, Coupling, JointSpring, LoopClosure
+from mechkit.core import Actuator, Coupling, JointSpring, LoopClosure
 
 
 @dataclass(frozen=True)

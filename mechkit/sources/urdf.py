@@ -16,7 +16,7 @@ import numpy as np
 import pinocchio as pin
 
 from mechkit.base.exceptions import MalformedDescription
-from mechkit.core.records import LOOP_KINDS, ROW_SETS, LoopClosure
+from mechkit.core import LOOP_KINDS, ROW_SETS, LoopClosure
 from mechkit.sources.checks import check_inertias, check_tree
 from mechkit.sources.description import Description, read_text
 

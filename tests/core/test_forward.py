@@ -8,7 +8,7 @@ import pytest
 
 from mechkit import core
 from mechkit.base.arguments import plain_state
-from mechkit.base.exceptions import ConstraintViolated, InconsistentMotion, InvalidArgument, MethodUnavailable
+from mechkit.base.exceptions import ConstraintViolated, InconsistentMotion, InvalidArgument
 from mechkit.bench.ladder import exact_accelerations
 from mechkit.bench.ladder_model import ladder
 from mechkit.bench.sampling import make_samples
@@ -54,9 +54,6 @@ def test_every_method_agrees_with_the_exact_null_space_solve(name, load_cached):
         for method in core.FORWARD_METHODS:
             try:
                 a = m.forward_dynamics(s.q, s.v, s.tau, method).a
-            except MethodUnavailable:
-                assert method in ("proximal", "lcaba") and name == "rocket_gimbal"  # its Hooke cuts
-                continue
             except ConstraintViolated:
                 assert method == "lcaba" and name in LCABA_DIVERGES
                 continue  # lcaba does not converge on these; it says so

@@ -1,0 +1,75 @@
+"""The closure model (`mechkit.core.model`): rows chosen once, actuation as a matrix (joint motors and
+tendon transmissions), splits of given and solved coordinates, another actuation on the same rows, and
+what it refuses (too light bodies, joints not numbered depth first, unknown or multi-freedom motors)."""
+
+from __future__ import annotations
+
+import numpy as np
+import pinocchio as pin
+import pytest
+
+from mechkit import core
+from mechkit.base.exceptions import InvalidParameters, MalformedDescription
+
+
+def test_actuation_matrix_of_joint_motors_and_tendons(load_cached):
+    m = load_cached("five_bar")
+    cm = m.closure_model
+    S = cm.actuation
+    assert S.shape == (2, m.model.nv) and cm.actuated_v.tolist() == [m.v_index("prox1"), m.v_index("prox2")]
+    np.testing.assert_array_equal(S[0, cm.actuated_v], [1.0, 0.0])
+    tendon = core.Actuator("tendon", (("prox1", 2.0), ("prox2", -1.0)))
+    other = cm.with_actuation(("tendon",), (tendon,))
+    assert other.actuated_v is None and other.actuated == ("tendon",)
+    np.testing.assert_array_equal(other.actuation[0, cm.actuated_v], [2.0, -1.0])
+    assert np.abs(other.actuation @ other.unactuated).max() < 1e-15  # the unactuated motions
+    assert other.unactuated.shape == (m.model.nv, m.model.nv - 1)
+    assert other.kernel is cm.kernel and other.structure is cm.structure  # the same rows
+
+
+def test_split_of_given_and_solved_coordinates(load_cached):
+    m = load_cached("five_bar")
+    split = m.closure_model.split(("prox2",))
+    assert split.input_v.tolist() == [m.v_index("prox2")]
+    assert sorted(split.input_v.tolist() + split.free_v.tolist()) == list(range(m.model.nv))
+    assert m.closure_model.split(("prox2",)) is split  # cached
+    with pytest.raises(ValueError):
+        split.free_v[0] = 3  # read-only
+
+
+def test_refusals_name_what_is_wrong(load_cached):
+    m = load_cached("four_bar")
+    with pytest.raises(InvalidParameters, match="nope"):
+        core.ClosureModel(m.model, m.closures, actuated=("nope",))
+    with pytest.raises(InvalidParameters, match="named twice"):
+        core.ClosureModel(m.model, m.closures, actuated=("crank", "crank"))
+    model = pin.Model()
+    ball = model.addJoint(0, pin.JointModelSpherical(), pin.SE3.Identity(), "ball")
+    model.appendBodyToJoint(ball, pin.Inertia.FromSphere(1.0, 0.1), pin.SE3.Identity())
+    with pytest.raises(InvalidParameters, match="3 freedoms"):
+        core.ClosureModel(model, (), actuated=("ball",))
+    light = m.model.copy()
+    light.inertias[1] = pin.Inertia(1e-17, np.zeros(3), np.eye(3) * 1e-20)
+    with pytest.raises(InvalidParameters, match="mass of"):
+        core.ClosureModel(light, m.closures)
+
+
+def test_joints_not_numbered_depth_first_are_refused():
+    """crba takes a joint's subtree as contiguous velocity columns: a model built breadth first gives a
+    wrong mass matrix, so it is refused by name."""
+    model = pin.Model()
+    a = model.addJoint(0, pin.JointModelRY(), pin.SE3.Identity(), "a")
+    model.addJoint(0, pin.JointModelRY(), pin.SE3.Identity(), "b")
+    model.addJoint(a, pin.JointModelRY(), pin.SE3.Identity(), "a_child")
+    with pytest.raises(MalformedDescription, match="depth first"):
+        core.ClosureModel(model, ())
+
+
+def test_scales_are_those_of_the_neutral_configuration(load_cached):
+    cm = load_cached("four_bar").closure_model
+    data = cm.model.createData()
+    q = pin.neutral(cm.model)
+    J = core.closure_jacobian(cm, cm.create_data(), q)
+    M = pin.crba(cm.model, data, q)
+    assert cm.row_scale == pytest.approx(np.max(np.linalg.norm(J, axis=1)), rel=1e-12)
+    assert cm.delassus_scale == pytest.approx(cm.row_scale**2 / np.max(np.diag(M)), rel=1e-12)

@@ -1,0 +1,57 @@
+"""The rank judge (`mechkit.core.rank`): numerical rank, independent rows, the resolvable singular value,
+the passive verdict and its error, the part of a right-hand side outside a range."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from mechkit.base.exceptions import SingularConfiguration
+from mechkit.core import rank
+
+
+def test_rank_is_relative_to_the_largest_singular_value():
+    assert rank.numerical_rank(np.array([1e6, 1.0, 1e-2, 1e-4])) == 3  # 1e-4 < 1e-9 x 1e6 < 1e-2
+    assert rank.numerical_rank(np.array([1e-20, 1e-25])) == 2  # relative: a tiny scale is still full rank
+    assert rank.numerical_rank(np.zeros(3)) == 0 and rank.numerical_rank(np.zeros(0)) == 0
+    np.testing.assert_array_equal(rank.ranks(np.array([[3.0, 2.0, 0.0], [1.0, 1e-12, 0.0]])), [2, 1])
+
+
+def test_independent_rows_span_the_row_space():
+    rng = np.random.default_rng(0)
+    A = rng.normal(size=(3, 6))
+    J = np.vstack([A, A[0] + 2 * A[2], A[1]])  # rows 3 and 4 repeat the first three
+    rows = rank.independent_rows(J)
+    assert len(rows) == 3 and np.linalg.matrix_rank(J[rows]) == 3
+
+
+def test_resolvable_singular_value_is_sqrt_of_residual_times_scale():
+    assert rank.resolvable_singular_value(4.0, 1e-12) == pytest.approx(rank.SINGULAR_MARGIN * 2e-6)
+    # floored at rounding: a residual below eps s_max resolves no better than eps s_max
+    assert rank.resolvable_singular_value(1.0, 0.0) == pytest.approx(rank.SINGULAR_MARGIN * np.sqrt(rank.EPS))
+
+
+def test_passive_verdict_and_its_error():
+    s = np.array([[2.0, 1.0], [2.0, 1e-7], [2.0, 0.0]])  # 1e-7: above rank 1, below what 1e-12 resolves
+    cond, bad = rank.passive_verdict(s, 2, np.full(3, 1e-12))
+    np.testing.assert_array_equal(bad, [False, True, True])
+    assert cond[0] == 2.0 and np.isinf(cond[2])
+    with pytest.raises(SingularConfiguration, match="smallest singular value"):
+        rank.check_passive(s[:2], 2, 1e-12)
+    with pytest.raises(SingularConfiguration, match="determines only 1 of the 2"):
+        raise rank.singular_error(s[2], 2, 1e-12)
+    with pytest.raises(SingularConfiguration, match="give more inputs"):
+        raise rank.singular_error(np.array([1.0]), 2, 1e-12)
+
+
+def test_outside_range_and_inconsistency():
+    rng = np.random.default_rng(1)
+    J = rng.normal(size=(4, 3))
+    inside = J @ rng.normal(size=3)
+    U, s, _ = np.linalg.svd(J)
+    normal = U[:, 3]  # the left null vector
+    for b, want in ((inside, 0.0), (inside + 0.5 * normal, 0.5)):
+        got = rank.outside_range(U[None], np.array([3]), b[None])[0]
+        assert got == pytest.approx(want, abs=1e-12)
+    assert rank.inconsistency(J, -inside) < 1e-12
+    assert rank.inconsistency(J, -(inside + 0.5 * normal)) == pytest.approx(0.5 * np.abs(normal).max(), rel=1e-9)
