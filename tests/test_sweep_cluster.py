@@ -1,7 +1,7 @@
 """Sweeps on a real Dask cluster: `dask scheduler` and `dask worker` as separate processes on
 127.0.0.1, a sweep sent through `--scheduler`, a sweep killed with SIGKILL midway and resumed, and what
 the cluster itself can do to a sweep (marked slow: they wait on real processes): its scheduler killed
-mid-sweep, no worker at the start or all of them gone, a TLS scheduler. The embedded cluster stays
+mid-sweep, no worker at the start or all of them gone, a task that kills its worker, a TLS scheduler. The embedded cluster stays
 private (127.0.0.1, no dashboard unless asked for)."""
 
 from __future__ import annotations
@@ -22,7 +22,7 @@ from pathlib import Path
 import pytest
 
 from mechkit.cli import main
-from mechkit.cli.sweep import EXIT_NO_WORKERS, EXIT_SCHEDULER_LOST, EXIT_UNREACHABLE
+from mechkit.cli.sweep import EXIT_NO_WORKERS, EXIT_SCHEDULER_LOST, EXIT_TASK_FAILED, EXIT_UNREACHABLE
 from mechkit.sweep import read
 from mechkit.sweep.cluster import LOG, dask_client
 
@@ -57,9 +57,10 @@ class Cluster:
     Args:
         tls: folder holding cert.pem and key.pem: the scheduler and workers then speak TLS only.
         port: the scheduler's port (default: a free one).
+        config: Dask configuration of the scheduler, as environment variables.
     """
 
-    def __init__(self, tls: Path | None = None, port: int | None = None) -> None:
+    def __init__(self, tls: Path | None = None, port: int | None = None, config: dict | None = None) -> None:
         if not DASK.exists():
             pytest.skip("the dask command is not installed")
         self.port = port or _free_port()
@@ -69,10 +70,11 @@ class Cluster:
         self.workers: list[subprocess.Popen] = []
         self.scheduler = self._start("scheduler", "--host", "127.0.0.1", "--port", str(self.port),
                                      "--protocol", "tls" if tls else "tcp", "--no-dashboard",
-                                     "--dashboard-address", "127.0.0.1:0")  # its HTTP routes: loopback only
+                                     "--dashboard-address", "127.0.0.1:0",  # its HTTP routes: loopback only
+                                     env=_env(**(config or {})))
 
-    def _start(self, *args: str) -> subprocess.Popen:
-        return subprocess.Popen([str(DASK), *args, *self.tls], env=_env(), stdout=subprocess.DEVNULL,
+    def _start(self, *args: str, env: dict | None = None) -> subprocess.Popen:
+        return subprocess.Popen([str(DASK), *args, *self.tls], env=env or _env(), stdout=subprocess.DEVNULL,
                                 stderr=subprocess.DEVNULL, start_new_session=True)
 
     def add_worker(self) -> subprocess.Popen:
@@ -156,11 +158,12 @@ def _resume_command(stderr: str) -> list[str]:
     return [sys.executable, "-m", "mechkit", *words[1:]]
 
 
-def _one_error_line(stderr: str) -> str:
+def _one_error_line(stderr: str, notices: bool = False) -> str:
+    """The error line, which ends stderr; before it only "no worker" notices, when `notices` allows them."""
     lines = stderr.strip().splitlines()
-    assert "Traceback" not in stderr and len(lines) == 1, stderr
-    assert lines[0].startswith("mechkit: error: "), lines[0]
-    return lines[0]
+    assert "Traceback" not in stderr and lines[-1].startswith("mechkit: error: "), stderr
+    assert all(n.startswith("mechkit: no worker serves ") for n in lines[:-1]) if notices else len(lines) == 1, stderr
+    return lines[-1]
 
 
 def test_sweep_through_scheduler(scheduler, tmp_path):
@@ -328,6 +331,34 @@ def test_empty_then_vanishing_cluster(clusters, tmp_path):
     after = read(out)
     print(f"a new worker: {after.shape[0]} of 30 designs on disk ({30 - before} evaluated now)")
     assert sorted(after["index"]) == list(range(30)) and f"({30 - before} evaluated now)" in final.stdout
+
+
+@pytest.mark.slow
+def test_task_that_kills_its_worker(clusters, tmp_path):
+    """A scheduler that allows no task to outlive its worker (allowed-failures 0): the worker SIGKILLed
+    mid-task fails the sweep with exit status 6 (KilledWorker), not as a design; a new worker resumes it."""
+    cluster = clusters(config={"DASK_DISTRIBUTED__SCHEDULER__ALLOWED_FAILURES": "0"})
+    worker = cluster.add_worker()
+    cluster.wait_for_workers(1)
+    out = tmp_path / "r"
+    sweep = _cli(*FOUR_BAR, "--lhs", "30", "--seed", "9", "--samples", "30", "--chunk-size", "2", "-o", str(out),
+                 "--scheduler", cluster.address)
+    _wait_for_parts(out, 3, sweep)
+    _stop(worker, signal.SIGKILL)
+    _, stderr = sweep.communicate(timeout=60)
+    before = _rows(out)
+    line = _one_error_line(stderr, notices=True)  # the worker gone: "no worker" may come first
+    print(f"\nworker killed mid-task: exit status {sweep.returncode}, {before} of 30 designs on disk: {line[:160]}")
+    assert sweep.returncode == EXIT_TASK_FAILED and "a task failed on the cluster (KilledWorker" in line
+    assert 0 < before < 30 and f"{before} of 30 designs are saved" in line
+
+    cluster.add_worker()
+    cluster.wait_for_workers(1)
+    resumed = _run(_resume_command(line))
+    assert resumed.returncode == 0, resumed.stderr
+    after = read(out)
+    print(f"a new worker: {after.shape[0]} of 30 designs on disk ({30 - before} evaluated now)")
+    assert sorted(after["index"]) == list(range(30)) and f"({30 - before} evaluated now)" in resumed.stdout
 
 
 @pytest.fixture
