@@ -194,7 +194,8 @@ def dask_client(scheduler: str | None = None, workers: int | None = None, *,
         A context manager giving the client; leaving it closes the client (and the embedded cluster).
 
     Raises:
-        InvalidArgument, MethodUnavailable: see `check_options`.
+        InvalidArgument: see `check_options`.
+        MethodUnavailable: `dashboard` without bokeh installed.
         SchedulerUnreachable: no connection to the scheduler within `CONNECT_TIMEOUT` seconds.
     """
     from distributed import Client, LocalCluster
