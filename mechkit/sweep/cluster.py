@@ -32,6 +32,7 @@ from mechkit.exceptions import InvalidArgument, MechkitError, MethodUnavailable
 if TYPE_CHECKING:
     from distributed import Client, Future
 
+#: The environment variable naming the scheduler when no address is given.
 SCHEDULER_ENV = "MECHKIT_DASK_SCHEDULER"
 #: The log file of a sweep, in its results folder.
 LOG = "sweep.log"
