@@ -121,6 +121,7 @@ def sweep(mechanism: str, space: DesignSpace, out: str | Path, study: Study | No
         InvalidParameters: a swept or fixed parameter the mechanism does not have, a bad chunk size,
             a results folder that holds another sweep (or a sweep, without `resume`), cluster options
             `check_options` refuses (checked before the folder is written).
+        MethodUnavailable: `dashboard` without bokeh installed.
         SweepStopped: the cluster could not finish the sweep (scheduler unreachable or lost, no worker
             for `wait_workers` seconds, a task that failed on the cluster); the rows finished are saved.
     """
