@@ -2,32 +2,55 @@
 
 With no scheduler address (argument or `MECHKIT_DASK_SCHEDULER`), an embedded `LocalCluster` of
 worker processes (one thread each) on 127.0.0.1 starts and stops with the sweep; with one, the same
-tasks go to that running cluster. The client writes each finished chunk's part file (`store`), so
-a sweep killed at any moment resumes with `resume=True`.
+tasks go to that running cluster (`cluster`). The client writes each finished chunk's part file
+(`store`), so a sweep killed at any moment resumes with `resume=True`; a sweep the cluster cannot
+finish (the scheduler lost, no worker for too long) stops with `SweepStopped`, saying what is saved,
+and resumes the same way. While it runs, Dask's log records go to `sweep.log` in the results folder.
 """
 
 from __future__ import annotations
 
-import logging
 import math
 import os
 import time
 from collections import Counter
-from collections.abc import Callable, Iterator
-from contextlib import contextmanager
+from collections.abc import Callable
 from dataclasses import asdict, dataclass, fields
 from pathlib import Path
 
-from mechkit.base.exceptions import InvalidParameters, MethodUnavailable
+from mechkit.base.exceptions import InvalidParameters, MechkitError
 from mechkit.catalog.registry import get_spec
 from mechkit.loading import load
 from mechkit.sweep import store
+from mechkit.sweep.cluster import (
+    LOG,
+    WAIT_WORKERS,
+    ClusterError,
+    ClusterState,
+    Monitor,
+    check_options,
+    dask_client,
+    log_to,
+)
 from mechkit.sweep.evaluate import STATUSES, Chunk, evaluate_chunk
 from mechkit.sweep.metrics import Study
 from mechkit.sweep.space import DesignSpace
 from mechkit.sweep.specific import resolve
 
-SCHEDULER_ENV = "MECHKIT_DASK_SCHEDULER"
+
+class SweepStopped(MechkitError):
+    """The cluster could not finish the sweep; what was saved stays, and `resume=True` continues it.
+
+    Attributes:
+        cause: what the cluster did (`SchedulerLost`, `NoWorkers`, `SchedulerUnreachable`, `TaskFailed`).
+        out: the results folder.
+        saved: designs whose rows are on disk.
+        designs: designs in the sweep.
+    """
+
+    def __init__(self, cause: ClusterError, out: Path, saved: int, designs: int):
+        self.cause, self.out, self.saved, self.designs = cause, out, saved, designs
+        super().__init__(f"{cause}; {saved} of {designs} designs are saved in {out} (details in {out / LOG})")
 
 
 @dataclass(frozen=True)
@@ -40,7 +63,7 @@ class SweepSummary:
         evaluated: designs evaluated by this run (the rest were done by an earlier, resumed run).
         statuses: status -> number of rows in the whole dataset after this run.
         seconds: wall time of this run (s), cluster start included.
-        workers: Dask workers that served the run.
+        workers: the most Dask workers that served the run at once.
     """
 
     out: Path
@@ -49,32 +72,6 @@ class SweepSummary:
     statuses: dict[str, int]
     seconds: float
     workers: int
-
-
-@contextmanager
-def dask_client(scheduler: str | None = None, workers: int | None = None) -> Iterator:
-    """A Dask client: to `scheduler` (or `$MECHKIT_DASK_SCHEDULER`), else to an embedded LocalCluster.
-
-    Raises:
-        MethodUnavailable: the scheduler cannot be reached.
-    """
-    from distributed import Client, LocalCluster
-
-    address = scheduler or os.environ.get(SCHEDULER_ENV)
-    if address:
-        try:
-            client = Client(address, timeout="15s")
-        except (OSError, TimeoutError) as err:
-            raise MethodUnavailable("dask scheduler", f"cannot reach {address!r}: {err}") from None
-        with client:
-            yield client
-        return
-    n = workers or os.cpu_count() or 1
-    # no dashboard; the scheduler's HTTP routes on a free local port (its default 8787 may be taken)
-    quiet = {"dashboard": False, "dashboard_address": "127.0.0.1:0"}
-    with LocalCluster(n_workers=n, threads_per_worker=1, processes=True, host="127.0.0.1", dashboard_address=None,
-                      scheduler_kwargs=quiet, silence_logs=logging.ERROR) as cluster, Client(cluster) as client:
-        yield client
 
 
 def _check_axes(mechanism: str, space: DesignSpace, base: dict) -> None:
@@ -90,7 +87,9 @@ def _check_axes(mechanism: str, space: DesignSpace, base: dict) -> None:
 def sweep(mechanism: str, space: DesignSpace, out: str | Path, study: Study | None = None,
           metrics: tuple[str, ...] | None = None, *, base: dict | None = None, resume: bool = False,
           scheduler: str | None = None, workers: int | None = None, chunk_size: int | None = None,
-          fast: bool = True, progress: Callable[[int], None] | None = None) -> SweepSummary:
+          fast: bool = True, wait_workers: float = WAIT_WORKERS, dashboard: bool = False,
+          progress: Callable[[int], None] | None = None,
+          watch: Callable[[ClusterState], None] | None = None) -> SweepSummary:
     """Evaluate every design of `space` on Dask and write one row per design to `out`.
 
     Args:
@@ -103,10 +102,28 @@ def sweep(mechanism: str, space: DesignSpace, out: str | Path, study: Study | No
         resume: continue the sweep already in `out` (the same arguments), evaluating only the
             chunks without a part file.
         scheduler: address of a running Dask scheduler (default: `$MECHKIT_DASK_SCHEDULER`, else an
-            embedded LocalCluster of `workers` processes, default the CPU count).
+            embedded LocalCluster of `workers` processes, default the CPU count); a `tls://` address
+            uses the certificates of Dask's configuration (`mechkit.sweep.cluster.tls_config`).
+        workers: worker processes of the embedded cluster.
         chunk_size: designs per task (default: about 4 tasks per worker, at most 50 designs).
         fast: build designs through the template cache (False: xacro for each design).
+        wait_workers: how long (s) the cluster may have no worker, at the start or later, before the
+            sweep stops.
+        dashboard: the embedded cluster serves Dask's dashboard on 127.0.0.1.
         progress: called with the number of designs finished, chunk by chunk.
+        watch: called with the `ClusterState` when the sweep starts and whenever the number of workers
+            changes.
+
+    Returns:
+        What the run did.
+
+    Raises:
+        InvalidParameters: a swept or fixed parameter the mechanism does not have, a bad chunk size,
+            a results folder that holds another sweep (or a sweep, without `resume`), cluster options
+            `check_options` refuses (checked before the folder is written).
+        MethodUnavailable: `dashboard` without bokeh installed.
+        SweepStopped: the cluster could not finish the sweep (scheduler unreachable or lost, no worker
+            for `wait_workers` seconds, a task that failed on the cluster); the rows finished are saved.
     """
     start = time.perf_counter()
     study, base = study or Study(), dict(base or {})
@@ -122,6 +139,7 @@ def sweep(mechanism: str, space: DesignSpace, out: str | Path, study: Study | No
     manifest = {"mechanism": mechanism, "base": {k: str(v) for k, v in base.items()}, "space": space.to_dict(),
                 "study": asdict(study), "metrics": [m.name for m in chosen], "columns": list(columns),
                 "chunk_size": size, "designs": len(designs)}
+    check_options(scheduler, dashboard=dashboard, wait_workers=wait_workers)
     out = Path(out)
     done = store.prepare(out, manifest, designs, resume)
     row_schema = store.schema(space.names, columns)
@@ -130,22 +148,22 @@ def sweep(mechanism: str, space: DesignSpace, out: str | Path, study: Study | No
     evaluated = 0
     if progress is not None and done:
         progress(sum(len(range(k * size, min((k + 1) * size, len(designs)))) for k in done))
-    with dask_client(scheduler, workers) as client:
-        from distributed import as_completed
-
-        served = len(client.scheduler_info()["workers"])
-        futures = {}
-        for k in pending:
-            idx = tuple(range(k * size, min((k + 1) * size, len(designs))))
-            task = Chunk(mechanism, base, space.names, idx, designs[list(idx)], study,
-                         tuple(m.name for m in chosen), columns, fast)
-            futures[client.submit(evaluate_chunk, task, pure=False)] = k
-        for future in as_completed(futures):
-            rows = future.result()
-            store.write_part(out, futures[future], rows, row_schema)
-            evaluated += len(rows)
-            if progress is not None:
-                progress(len(rows))
+    try:
+        with log_to(out / LOG), dask_client(scheduler, workers, dashboard=dashboard) as client:
+            monitor = Monitor(client, wait_workers, watch, client.dashboard_link if dashboard else None)
+            futures = {}
+            for k in pending:
+                idx = tuple(range(k * size, min((k + 1) * size, len(designs))))
+                task = Chunk(mechanism, base, space.names, idx, designs[list(idx)], study,
+                             tuple(m.name for m in chosen), columns, fast)
+                futures[client.submit(evaluate_chunk, task, pure=False)] = k
+            for future, rows in monitor.results(futures):
+                store.write_part(out, futures[future], rows, row_schema)
+                evaluated += len(rows)
+                if progress is not None:
+                    progress(len(rows))
+    except ClusterError as err:
+        raise SweepStopped(err, out, len(store.read(out)), len(designs)) from err
     frame = store.read(out)
     statuses = {s: int(c) for s, c in Counter(frame["status"]).items() if s in STATUSES}
-    return SweepSummary(out, len(designs), evaluated, statuses, time.perf_counter() - start, served)
+    return SweepSummary(out, len(designs), evaluated, statuses, time.perf_counter() - start, monitor.most)

@@ -7,13 +7,13 @@ from __future__ import annotations
 import numpy as np
 import pinocchio as pin
 import pytest
+from tests_support import DISTANCES, singular_inputs
 
 from mechkit import core
 from mechkit.base.exceptions import InvalidParameters, SingularConfiguration
 from mechkit.bench.sampling import make_samples
 from mechkit.catalog import registry
 from mechkit.core import inverse
-from tests_support import DISTANCES, singular_inputs
 
 #: Batched and per-sample results agree to this, relative to the largest value of the quantity (or 1).
 TOL = 1e-13
@@ -101,7 +101,6 @@ def test_full_rank_qr_solution_is_the_svd_minimum_norm_solution(name, load_cache
 def test_regularity_is_judged_as_the_velocities_judge_it(load_cached):
     """Near the five-bar's singular inputs (both actuated, square passive block), inverse_dynamics raises
     exactly where `velocities` does, one sample or batched; with allow_singular it returns."""
-    from tests_support import DISTANCES, singular_inputs
 
     m = load_cached("five_bar")
     z = np.zeros(m.model.nv)

@@ -48,7 +48,7 @@ def test_outside_range_and_inconsistency():
     rng = np.random.default_rng(1)
     J = rng.normal(size=(4, 3))
     inside = J @ rng.normal(size=3)
-    U, s, _ = np.linalg.svd(J)
+    U, _, _ = np.linalg.svd(J)
     normal = U[:, 3]  # the left null vector
     for b, want in ((inside, 0.0), (inside + 0.5 * normal, 0.5)):
         got = rank.outside_range(U[None], np.array([3]), b[None])[0]
