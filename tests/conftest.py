@@ -3,8 +3,6 @@
 from __future__ import annotations
 
 import functools
-import importlib.util
-from pathlib import Path
 
 import pytest
 
@@ -22,22 +20,6 @@ def load_cached():
 
     def load(name: str, **params):
         return built(name, **params)
-
-    return load
-
-
-TOOLS = Path(__file__).resolve().parent.parent / "tools"
-
-
-@pytest.fixture(scope="session")
-def load_tool():
-    """Import a script of tools/ by name (tools are scripts, not a package)."""
-
-    def load(name: str):
-        spec = importlib.util.spec_from_file_location(name, TOOLS / f"{name}.py")
-        module = importlib.util.module_from_spec(spec)
-        spec.loader.exec_module(module)
-        return module
 
     return load
 
