@@ -41,8 +41,10 @@ def fold_step(mech: Mechanism, q: np.ndarray, v: np.ndarray, t_prev: float, t: f
 
     Args:
         mech: `tetra_3rr3uru` or `deployable_9rr12uru`.
-        q, v: the state at t_prev, (nq,) and (nv,).
-        t_prev, t: the times, s.
+        q: (nq,) configuration at t_prev.
+        v: (nv,) velocity at t_prev.
+        t_prev: the time of the state, s.
+        t: the time to solve at, s.
         tol: closure residual to reach (m / dimensionless).
         depth: halvings so far.
 
