@@ -23,6 +23,7 @@ import pinocchio as pin
 from mechkit.base.exceptions import MechkitError
 from mechkit.bench.errors import IDReference, id_parts
 from mechkit.bench.sampling import Sample
+from mechkit.catalog.contract import BENCH_QUANTITIES
 
 if TYPE_CHECKING:
     from mechkit.mechanism import Mechanism
@@ -109,7 +110,7 @@ def references(mech: Mechanism, samples: list[Sample]) -> References:
             s.tau = np.zeros(mech.model.nv)
             for joint, u in ref.efforts.items():
                 s.tau[mech.v_index(joint)] = u
-    return References(labels, q_ref, inputs_ref, a_ref, inverse)
+    return References({q: labels[q] for q in BENCH_QUANTITIES if q in labels}, q_ref, inputs_ref, a_ref, inverse)
 
 
 def core_methods(mech: Mechanism, quick: bool) -> list[Method]:
