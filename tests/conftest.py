@@ -36,3 +36,17 @@ def support_balance_error(m: mechkit.Mechanism, q, v, a) -> float:
     supports = sum(r.wrench[:3] for r in inv.reactions.values() if r.support)
     expected = data.mass[0] * (data.acom[0] - m.model.gravity.linear)
     return float(np.max(np.abs(supports - expected)) / max(1.0, np.max(np.abs(expected))))
+
+
+def assert_failures_named(cases) -> None:
+    """A failure study's cases: some, each finite and ok (or on another branch), or naming how it failed
+    (an exception's class, "non-finite", "root lost"): never a silent NaN."""
+    import numpy as np
+
+    from mechkit.base import exceptions
+
+    known = {"ok", "other branch", "root lost"} | {n for n in dir(exceptions) if n[0].isupper()}
+    assert cases
+    for c in cases:
+        assert c.outcome in known, c
+        assert np.isfinite(c.error) == (c.outcome in ("ok", "other branch")), c
