@@ -9,8 +9,6 @@ import os
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
 import functools
-import importlib.util
-from pathlib import Path
 
 import pytest
 
@@ -32,22 +30,6 @@ def load_cached():
     return load
 
 
-TOOLS = Path(__file__).resolve().parent.parent / "tools"
-
-
-@pytest.fixture(scope="session")
-def load_tool():
-    """Import a script of tools/ by name (tools are scripts, not a package)."""
-
-    def load(name: str):
-        spec = importlib.util.spec_from_file_location(name, TOOLS / f"{name}.py")
-        module = importlib.util.module_from_spec(spec)
-        spec.loader.exec_module(module)
-        return module
-
-    return load
-
-
 def support_balance_error(m: mechkit.Mechanism, q, v, a) -> float:
     """Relative error of Newton's second law for the whole mechanism, from the support reactions:
     sum of ground reactions = total mass x (COM acceleration - gravity)."""
@@ -60,3 +42,17 @@ def support_balance_error(m: mechkit.Mechanism, q, v, a) -> float:
     supports = sum(r.wrench[:3] for r in inv.reactions.values() if r.support)
     expected = data.mass[0] * (data.acom[0] - m.model.gravity.linear)
     return float(np.max(np.abs(supports - expected)) / max(1.0, np.max(np.abs(expected))))
+
+
+def assert_failures_named(cases) -> None:
+    """A failure study's cases: some, each finite and ok (or on another branch), or naming how it failed
+    (an exception's class, "non-finite", "root lost"): never a silent NaN."""
+    import numpy as np
+
+    from mechkit.base import exceptions
+
+    known = {"ok", "other branch", "root lost"} | {n for n in dir(exceptions) if n[0].isupper()}
+    assert cases
+    for c in cases:
+        assert c.outcome in known, c
+        assert np.isfinite(c.error) == (c.outcome in ("ok", "other branch")), c

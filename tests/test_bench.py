@@ -3,17 +3,18 @@
 from __future__ import annotations
 
 import dataclasses
-from pathlib import Path
 
 import numpy as np
 import pytest
 
 import mechkit
 from mechkit.base.exceptions import SingularConfiguration
-from mechkit.bench import errors, failure_atlas, loadtime, run, timing
-from mechkit.bench.methods import BASELINES, Method
+from mechkit.bench import core_cost, errors, failure_atlas, loadtime, run, timing
+from mechkit.bench.methods import BASELINES, Method, own_methods, references
 from mechkit.bench.results import Row
-from mechkit.catalog.contract import BENCH_QUANTITIES, BenchMethod
+from mechkit.bench.sampling import make_samples
+from mechkit.catalog.contract import BenchMethod
+from mechkit.catalog.registry import names
 from mechkit.cli import main
 from mechkit.loading import from_params
 
@@ -95,14 +96,15 @@ def test_quick_bench_smoke(tmp_path, capsys, monkeypatch):
     """`mechkit bench four_bar --quick` prints the table with peers, writes charts and the markdown."""
     # the atlas studies and the first load have their own tests: keep one study here to check the
     # wiring, and the run short
-    monkeypatch.setattr(failure_atlas, "STUDIES", {"proximal_mu": failure_atlas.proximal_mu})
+    proximal = next(study for study in failure_atlas.OWN if study.name == "proximal_mu")
+    monkeypatch.setattr(failure_atlas, "studies", lambda: {"proximal_mu": (proximal, None)})
     first_load = loadtime.first_load
     monkeypatch.setattr(loadtime, "first_load", lambda runs: first_load(runs=1))
     md = tmp_path / "bench.md"
     assert main(["bench", "four_bar", "--quick", "--charts", str(tmp_path), "--markdown", str(md)]) == 0
     out = capsys.readouterr().out
     assert "us/call" in out and "x fastest" in out
-    for quantity in BENCH_QUANTITIES:
+    for quantity in BASELINES:  # the quantities the core computes (inverse kinematics: the mechanisms' own only)
         assert quantity in out
         for ext in ("png", "svg"):
             assert (tmp_path / f"bench_four_bar_{quantity}.{ext}").stat().st_size > 1000
@@ -124,17 +126,33 @@ def test_full_bench_measures_every_registered_mechanism():
             assert by[name].outcome == "ok" or by[name].outcome.startswith("raises"), (b.name, name)
 
 
-def test_bench_core_tool_prints_ratios(capsys):
-    """tools/bench_core.py: every row has a time, and the core calls carry their ratio to raw Pinocchio."""
-    import runpy
+def test_core_cost_rows_carry_their_ratios():
+    """`mechkit.bench.core_cost` (tools/bench_core.py): every row has a time, and the core calls carry their
+    ratio to raw Pinocchio."""
+    rows = core_cost.measure("four_bar", 0.005)
+    assert "raw: pin.constraintDynamics (mu=1e-9, 20 it)" in [label for label, _, _ in rows]
+    for _, us, _ in rows:
+        assert np.isfinite(us) and us > 0
+    assert sum("ratio to raw constraintDynamics" in comment for _, _, comment in rows) == 4
 
-    tool = runpy.run_path(str(Path(__file__).resolve().parent.parent / "tools" / "bench_core.py"))
-    tool["main"](["four_bar", "--budget", "0.005"])
-    out = capsys.readouterr().out
-    assert "raw: pin.constraintDynamics" in out
-    for line in out.splitlines()[1:]:
-        assert " us" in line
-    assert out.count("ratio to raw constraintDynamics") == 4
+
+#: Largest error of a mechanism's own method against the bench's reference, per quantity (rad or m;
+#: relative for dynamics). The trusses' fold is quasi-static (|a| ~ 1e-6 rad/s^2): none of their own
+#: methods is a forward dynamics.
+AGREEMENT = {"assembly": 1e-9, "inverse_kinematics": 1e-9, "forward_dynamics": 1e-8, "inverse_dynamics": 1e-8}
+
+
+@pytest.mark.parametrize("name", names())
+def test_every_declared_bench_method_agrees_with_the_reference(name, load_cached):
+    """Each mechanism's own methods (the papers' closed forms, SOC, Lagrange) run on the bench's states
+    and agree with the reference of their quantity (the spec's own where it declares one, else the core's)."""
+    mech = load_cached(name)
+    samples = make_samples(mech, 2)
+    refs = references(mech, samples)
+    for method in own_methods(mech):
+        row = timing.measure(mech, method, samples, refs, budget_s=1e-4, repeats=1)
+        assert row.outcome == "ok", (name, method.name, row.outcome)
+        assert row.error < AGREEMENT[method.quantity], (name, method.name, row.error)
 
 
 def test_first_load_times_a_fresh_process_and_lists_its_mechanism_modules():

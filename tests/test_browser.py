@@ -5,6 +5,8 @@ Skipped only where Chromium is absent. One browser run per mechanism (a few seco
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import numpy as np
 import pytest
 
@@ -12,7 +14,7 @@ import mechkit
 from mechkit import scenes, viz
 from mechkit.base.exceptions import MethodUnavailable
 from mechkit.cli import main
-from mechkit.viz import meshcat_page
+from mechkit.viz import gallery, meshcat_page
 from mechkit.viz.browser import coverage, find_chromium, screenshot
 
 try:
@@ -24,6 +26,7 @@ except MethodUnavailable as err:
 pytestmark = pytest.mark.skipif(bool(NO_BROWSER), reason=NO_BROWSER)
 BACKGROUND = tuple(round(255 * c) for c in meshcat_page.BACKGROUND)
 MIN_COVERAGE = 0.02  # fraction of the pixels the mechanism must cover
+GALLERY = Path(__file__).resolve().parent.parent / "docs" / "gallery"
 
 
 def assert_shows_a_mechanism(png) -> float:
@@ -69,21 +72,20 @@ def same_picture(a, b) -> bool:
     return float(np.mean(diff.max(axis=2) > 12)) < 1e-3
 
 
-def gallery_is_reproduced(name, tmp_path, load_tool) -> None:
-    gallery = load_tool("gallery")
+def gallery_is_reproduced(name, tmp_path) -> None:
     png = tmp_path / f"{name}.png"
     gallery.picture(mechkit.load(name), png)
-    assert same_picture(png, gallery.GALLERY / f"{name}.png"), f"regenerate with: python tools/gallery.py {name}"
+    assert same_picture(png, GALLERY / f"{name}.png"), f"regenerate with: python tools/gallery.py {name}"
 
 
-def test_gallery_picture_is_reproduced(tmp_path, load_tool):
-    gallery_is_reproduced("four_bar", tmp_path, load_tool)
+def test_gallery_picture_is_reproduced(tmp_path):
+    gallery_is_reproduced("four_bar", tmp_path)
 
 
 @pytest.mark.slow
 @pytest.mark.parametrize("name", list(mechkit.specs()))
-def test_every_gallery_picture_is_reproduced(name, tmp_path, load_tool):
-    gallery_is_reproduced(name, tmp_path, load_tool)
+def test_every_gallery_picture_is_reproduced(name, tmp_path):
+    gallery_is_reproduced(name, tmp_path)
 
 
 @pytest.mark.slow

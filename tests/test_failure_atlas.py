@@ -1,36 +1,18 @@
-"""The failure atlas: every method fails with a growing error or a clear exception, never a silent NaN."""
+"""The failure atlas: every method fails with a growing error or a clear exception, never a silent NaN.
+
+The studies the mechanisms declare are tested with them: the five-bar's singularity in
+test_planar_linkages.py, the gimbal's root loss in test_rocket_gimbal.py."""
 
 from __future__ import annotations
 
-import numpy as np
+from conftest import assert_failures_named
 
-from mechkit.base import exceptions
 from mechkit.bench import failure_atlas
-
-KNOWN = {"ok", "other branch", "root lost"} | {n for n in dir(exceptions) if n[0].isupper()}
-
-
-def _check(cases):
-    assert cases
-    for c in cases:
-        assert c.outcome in KNOWN, c
-        assert np.isfinite(c.error) == (c.outcome in ("ok", "other branch")), c
-
-
-def test_singularity_error_grows_then_assembly_refuses():
-    cases = failure_atlas.singularity(quick=True)
-    _check(cases)
-    cond = [c for c in cases if c.method == "passive-block condition number" and c.condition > 0]
-    assert cond[-1].error > 1e5 * cond[0].error  # the passive block degenerates as the gap closes
-    kkt = {c.condition: c.error for c in cases if c.method == "forward dynamics, dense KKT" and c.condition > 0}
-    assert kkt[1e-2] < 1e-12 and kkt[min(kkt)] > 1e-11  # accuracy lost, not silently: a finite growing error
-    past = [c for c in cases if c.condition < 0]
-    assert {c.outcome for c in past} == {"InvalidParameters", "ClosureNotConverged"}
 
 
 def test_proximal_mu_zero_raises_and_kkt_is_exact():
     cases = failure_atlas.proximal_mu(quick=True)
-    _check(cases)
+    assert_failures_named(cases)
     for c in cases:
         if c.method.startswith("constraintDynamics") and c.condition == 0.0:
             assert c.outcome == "SingularConfiguration"
@@ -42,14 +24,14 @@ def test_proximal_mu_zero_raises_and_kkt_is_exact():
 
 def test_far_starts_land_somewhere_or_say_so():
     cases = failure_atlas.far_starts(quick=True)
-    _check(cases)
+    assert_failures_named(cases)
     for method in {c.method for c in cases}:
         assert any(c.method == method and c.outcome == "ok" for c in cases)
 
 
 def test_unstabilised_integration_drifts_more():
     cases = failure_atlas.integration(quick=True)
-    _check(cases)
+    assert_failures_named(cases)
     end = {}
     for c in cases:
         end[c.method] = c.error
@@ -57,5 +39,15 @@ def test_unstabilised_integration_drifts_more():
     assert end["RK4, no stabilisation"] < 1e-6 < end["semi-implicit Euler, no stabilisation"]
 
 
-def test_root_loss_cases_are_finite_or_named():
-    _check(failure_atlas.root_loss(quick=True))
+def test_the_atlas_runs_the_studies_the_mechanisms_declare(tmp_path):
+    """The atlas reads the mechanisms' own studies from their specs (no mechanism imported by name):
+    its own three, then the five-bar's singularity and the gimbal's root loss; a declared study runs on
+    its mechanism and is drawn."""
+    found = failure_atlas.studies()
+    assert list(found)[:3] == ["proximal_mu", "far_starts", "integration"]
+    assert found["singularity"][1] == "five_bar" and found["root_loss"][1] == "rocket_gimbal"
+    study, mechanism = found["root_loss"]
+    cases = failure_atlas.run(study, mechanism, quick=True)
+    assert_failures_named(cases)
+    paths = failure_atlas.draw(study, cases, tmp_path)
+    assert [p.name for p in paths] == ["bench_atlas_root_loss.png", "bench_atlas_root_loss.svg"]

@@ -17,6 +17,7 @@ from mechkit.catalog.contract import BENCH_QUANTITIES, MechanismSpec
 from mechkit.catalog.registry import ENTRIES, get_spec, names
 
 PACKAGE = Path(mechkit.__file__).resolve().parent
+ROOT = PACKAGE.parent
 #: The bottom floors, derived from the folders: the base utilities and the numerical core.
 BELOW = ("mechkit.base", "mechkit.core")
 MAX_LINES = 400
@@ -143,6 +144,72 @@ def test_only_the_command_line_reaches_the_top_floors():
     assert not upward, upward
 
 
+def _mechanism_imports(path: Path) -> list[str]:
+    """The `mechkit.mechanisms...` modules a file imports anywhere (absolute imports)."""
+    found = []
+    for node in ast.walk(ast.parse(path.read_text(), str(path))):
+        names = [a.name for a in node.names] if isinstance(node, ast.Import) else \
+            [node.module or ""] if isinstance(node, ast.ImportFrom) and not node.level else []
+        found += [n for n in names if n == "mechkit.mechanisms" or n.startswith("mechkit.mechanisms.")]
+    return found
+
+
+def test_only_the_contract_leads_to_a_mechanism():
+    """No module outside `mechkit/mechanisms/` (bench, sweep, motion, second opinion, viz, command line,
+    ...) and no driver in `tools/` imports a mechanism package: what they need of a mechanism is a hook
+    of its `MechanismSpec`, read through the registry."""
+    files = [p for p in PACKAGE.rglob("*.py") if not p.is_relative_to(PACKAGE / "mechanisms")]
+    files += sorted((ROOT / "tools").glob("*.py"))
+    bypass = [f"{p.relative_to(ROOT)} -> {m}" for p in files for m in _mechanism_imports(p)]
+    assert not bypass, bypass
+
+
+def test_a_bypass_of_the_contract_is_detected(tmp_path):
+    """The detector itself, on the kinds of import statement a bypass takes."""
+    code = ("import mechkit.mechanisms.ten_bar.dynamics as td\n"
+            "from mechkit.mechanisms.rocket_gimbal import resultant\n"
+            "def f():\n    from mechkit.mechanisms.parallel_2t1r.motion_law import motion_law\n"
+            "from mechkit.catalog.registry import get_spec\n")
+    (tmp_path / "m.py").write_text(code)
+    assert _mechanism_imports(tmp_path / "m.py") == ["mechkit.mechanisms.ten_bar.dynamics",
+                                                     "mechkit.mechanisms.rocket_gimbal",
+                                                     "mechkit.mechanisms.parallel_2t1r.motion_law"]
+
+
+def test_no_test_runs_a_tool():
+    """Tests test the library: no test imports or runs a script of `tools/` (runpy, importlib from a
+    file path, or `tools` put on sys.path)."""
+    running = ("run_path", "spec_from_file_location", "SourceFileLoader")
+    found = []
+    for path in sorted((ROOT / "tests").rglob("*.py")):
+        for node in ast.walk(ast.parse(path.read_text(), str(path))):
+            if isinstance(node, ast.Attribute) and node.attr in running:
+                found.append(f"{path.relative_to(ROOT)}:{node.lineno} {node.attr}")
+            elif isinstance(node, (ast.Import, ast.ImportFrom)):
+                names = [a.name for a in node.names] if isinstance(node, ast.Import) else [node.module or ""]
+                found += [f"{path.relative_to(ROOT)}:{node.lineno} import {n}" for n in names
+                          if n.split(".")[0] == "tools" or n in ("runpy",)]
+    assert not found, found
+
+
+def test_every_mechanism_has_its_files_and_no_file_is_orphaned():
+    """Each registered mechanism has `xacro/<name>.urdf.xacro` (its spec's template), `urdf/<name>.urdf`
+    and `docs/mechanisms/<name>.md`; every template, URDF and page belongs to a registered mechanism,
+    and every other xacro file is a macro file some template includes."""
+    registered = set(names())
+    for name in registered:
+        assert get_spec(name).template == f"{name}.urdf.xacro", name
+    templates = {p.name.removesuffix(".urdf.xacro") for p in (ROOT / "xacro").glob("*.urdf.xacro")}
+    urdfs = {p.stem for p in (ROOT / "urdf").glob("*.urdf")}
+    pages = {p.stem for p in (ROOT / "docs" / "mechanisms").glob("*.md")}
+    for kind, found in (("xacro/<name>.urdf.xacro", templates), ("urdf/<name>.urdf", urdfs),
+                        ("docs/mechanisms/<name>.md", pages)):
+        assert found == registered, f"{kind}: missing {sorted(registered - found)}, orphaned {sorted(found - registered)}"
+    texts = "".join(p.read_text() for p in (ROOT / "xacro").glob("*.xacro"))
+    macros = [p.name for p in (ROOT / "xacro").glob("*.xacro") if not p.name.endswith(".urdf.xacro")]
+    assert all(f"/{m}" in texts or f"'{m}'" in texts or f'"{m}"' in texts for m in macros), macros
+
+
 def test_a_circle_is_detected():
     """The detector itself: a two-file circle and a self-consistent chain."""
     a, b, c = Path("a"), Path("b"), Path("c")
@@ -198,9 +265,32 @@ def test_contract(entry):
     assert spec.guess is None or isinstance(spec.guess(params), dict)
     assert all(callable(f) for f in spec.scenes.values())
     assert spec.view is None or len(spec.view) == 3
+    assert spec.bench_methods, f"{entry.name} declares no bench method of its own"
     assert all(m.quantity in BENCH_QUANTITIES and callable(m.fn) and m.label for m in spec.bench_methods)
     assert all(r.quantity in BENCH_QUANTITIES and callable(r.fn) and r.label for r in spec.bench_references)
     assert spec.self_checks is None or callable(spec.self_checks)
+    assert spec.bench_states is None or callable(spec.bench_states)
+    assert all(callable(s.run) and s.name and s.condition and s.error for s in spec.failure_studies)
+    assert all(callable(law.sample) and all(isinstance(j, str) for j in law.reactions) for law in spec.motion_laws.values())
+    assert all(callable(m.fn) and m.columns and m.unit and m.doc for m in spec.design_metrics)
+    assert all(s.doc and callable(s.run) and callable(s.lines) and (s.figures is None or callable(s.figures))
+               for s in spec.studies.values())
+
+
+def test_the_contract_refuses_hooks_it_cannot_use():
+    """A spec names its hooks once, and captions or times only the scenes it declares."""
+    from mechkit.base.exceptions import InvalidParameters
+    from mechkit.catalog.contract import DesignMetric, FailureStudy
+    from mechkit.catalog.params import MechanismParams
+
+    base = {"name": "m", "params": MechanismParams, "template": "m.urdf.xacro", "actuated": ("a",), "gruebler_dof": 1,
+            "home": lambda p: {"a": 0.0}}
+    study = FailureStudy("s", lambda m, quick: [], "condition (-)", "error (-)")
+    metric = DesignMetric("d", "-", "a metric", ("d",), lambda m: {"d": 0.0})
+    for bad in ({"failure_studies": (study, study)}, {"design_metrics": (metric, metric)},
+                {"scene_captions": {"nowhere": "a scene not declared"}}):
+        with pytest.raises(InvalidParameters):
+            MechanismSpec(**base, **bad)
 
 
 def test_only_the_command_line_prints():

@@ -181,3 +181,46 @@ def test_motion_law_scene_closes_every_loop(mech):
     poses = scene_poses(mech, "motion_law")  # checks sizes, finiteness and closure
     assert len(poses) == 101
     np.testing.assert_allclose([q[mech.q_index("R21")] for q in poses], np.pi / 15 * np.linspace(0, 5, 101), atol=1e-15)
+
+
+def test_studies_write_both_figures(mech, tmp_path):
+    """The comparison (10 samples) and the singular studies drawn (moved from test_parallel_2t1r_tools.py)."""
+    from mechkit.mechanisms.parallel_2t1r.figures import comparison_figure, singular_figure
+    from mechkit.mechanisms.parallel_2t1r.studies import comparison, singular
+
+    comparison_figure(comparison(mech, 10), tmp_path)
+    singular_figure(singular(mech), tmp_path)
+    for name in ("comparison", "singular"):
+        png = tmp_path / f"parallel_2t1r_{name}.png"
+        assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n" and png.stat().st_size > 20_000
+
+
+def test_bench_runs_every_method(mech):
+    """`mechkit bench parallel_2t1r` (the rows of the former tools/parallel_2t1r_bench.py): Pinocchio's
+    constrained RNEA with and without the determinacy test, SOC, classic virtual work and the paper's
+    position analysis, each timed, SOC and classic agreeing with the reference."""
+    from mechkit.bench.run import bench_mechanism
+
+    b = bench_mechanism(mech, quick=True, with_peers=False)
+    by = {r.method.name: r for r in b.rows}
+    for name in ("constrained RNEA + determinacy", "constrained RNEA, no determinacy",
+                 "SOC, 3 SKCs (numpy, from the analytic state)", "classic virtual work (numpy, from the analytic state)",
+                 "paper FK (eqs. 7-9) + closed-form joints"):
+        assert by[name].outcome == "ok" and by[name].median_s > 0 and by[name].error < 1e-9, name
+    assert by["classic virtual work (numpy, from the analytic state)"].note == "efforts only"
+
+
+def test_declared_motion_law_is_the_papers(mech):
+    """`SPEC.motion_laws["motion_law"]` samples the paper's law exactly (values, rates, accelerations),
+    without its singular start, as `motion.from_callable` does."""
+    from mechkit import motion
+    from mechkit.mechanisms.parallel_2t1r.motion_law import MOTION_DURATION
+
+    law = motion.from_law(mech, "motion_law", 7)
+    ref = motion.from_callable(mech, motion_law, np.linspace(MOTION_DURATION / 7, MOTION_DURATION, 7))
+    assert law.names == ("R11", "R21", "R31") == ref.names
+    for field in ("t", "values", "rates", "accelerations"):
+        assert np.array_equal(getattr(law, field), getattr(ref, field)), field
+    assert len(motion.from_law(mech, "motion_law").t) == 501
+    with pytest.raises(InvalidParameters, match="declares the motion laws: motion_law"):
+        motion.from_law(mech, "nothing")

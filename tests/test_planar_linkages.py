@@ -4,8 +4,10 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from conftest import assert_failures_named
 
 from mechkit.base.exceptions import InvalidParameters, SingularConfiguration
+from mechkit.mechanisms.five_bar.failure import singularity
 from mechkit.validation.planar_closed_form import FiveBarGeometry, FourBarGeometry, five_bar, four_bar
 from mechkit.validation.planar_motion import LinkageState
 from mechkit.validation.planar_newton_euler import newton_euler
@@ -166,3 +168,16 @@ def test_collinear_coupler_and_rocker_is_singular() -> None:
     geometry = FourBarGeometry(ground=0.5, crank=0.25, coupler=0.5, rocker=0.25)
     with pytest.raises(SingularConfiguration, match="collinear"):
         four_bar(0.0, geometry=geometry)
+
+
+def test_five_bar_singularity_error_grows_then_assembly_refuses(load_cached):
+    """The five-bar's failure-atlas study (moved from test_failure_atlas.py): driven onto the pose where its
+    distal bars are collinear, every method's error grows or it raises by name, never a silent NaN."""
+    cases = singularity(load_cached("five_bar"), quick=True)
+    assert_failures_named(cases)
+    cond = [c for c in cases if c.method == "passive-block condition number" and c.condition > 0]
+    assert cond[-1].error > 1e5 * cond[0].error  # the passive block degenerates as the gap closes
+    kkt = {c.condition: c.error for c in cases if c.method == "forward dynamics, dense KKT" and c.condition > 0}
+    assert kkt[1e-2] < 1e-12 and kkt[min(kkt)] > 1e-11  # accuracy lost, not silently: a finite growing error
+    past = [c for c in cases if c.condition < 0]
+    assert {c.outcome for c in past} == {"InvalidParameters", "ClosureNotConverged"}

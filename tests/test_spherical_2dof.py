@@ -231,24 +231,30 @@ def test_support_determinacy(mech):
     assert abs(result.reactions["hooke_roll"].wrench[3]) < 1e-12  # the roll axis X0 is free
 
 
-def test_tools_run(tmp_path):
-    """Smoke test of the basin, benchmark and cone-scene tools on tiny runs."""
-    import importlib.util
-    from pathlib import Path
+def test_studies_draw_their_figures(mech, tmp_path):
+    """The cone scene and the basins on tiny runs, drawn (moved from test_tools_run, which ran the tools)."""
+    from mechkit.mechanisms.spherical_2dof.figures import basin_figure, cone_figure
+    from mechkit.mechanisms.spherical_2dof.studies import basin, cone, cone_summary
 
-    tools = Path(__file__).resolve().parent.parent / "tools"
-    runs = (
-        ("spherical_2dof_basin", {"directions": 2, "grid_points": 11}),
-        ("spherical_2dof_bench", {"budget": 0.01}),
-        ("spherical_2dof_cone", {"samples": 6}),
-    )
-    for name, kwargs in runs:
-        spec = importlib.util.spec_from_file_location(name, tools / f"{name}.py")
-        module = importlib.util.module_from_spec(spec)
-        spec.loader.exec_module(module)
-        out = tmp_path / f"{name}.png"
-        module.main(out=out, **kwargs)
-        assert out.stat().st_size > 10_000
+    c = cone(mech, samples=6)
+    summary = cone_summary(c)
+    assert summary["torques Pinocchio vs SOC (N m)"] < 1e-12 and summary["FK vs plan, attitude (rad)"] < 1e-12
+    for path in (*cone_figure(c, tmp_path), *basin_figure(basin(mech, directions=2, grid_points=11), tmp_path)):
+        assert path.stat().st_size > 10_000
+
+
+def test_bench_runs_every_method(mech):
+    """`mechkit bench spherical_2dof` (the rows of the former tools/spherical_2dof_bench.py): IK eq. (8),
+    the paper's FK, Newton FK, the core's closure solver, Pinocchio's inverse dynamics with and without
+    the determinacy test and SOC, each timed."""
+    from mechkit.bench.run import bench_mechanism
+
+    b = bench_mechanism(mech, quick=True, with_peers=False)
+    by = {r.method.name: r for r in b.rows}
+    for name in ("closure Newton tol=1e-12", "constrained RNEA + determinacy", "constrained RNEA, no determinacy",
+                 *(m.label for m in SPEC.bench_methods)):
+        assert by[name].outcome == "ok" and by[name].median_s > 0, name
+    assert by["IK eq. (8)"].method.quantity == "inverse_kinematics" and by["IK eq. (8)"].error < 1e-10
 
 
 def test_cut_joint_angle_matches_pinocchio_frames(mech):

@@ -221,3 +221,65 @@ def test_full_deployment(mech):
     assert min(m.min() for m in margins.values()) > 0.6
     for k in (len(a.t) // 4, len(a.t) // 2, 3 * len(a.t) // 4):
         assert tc.reaction_disagreement(tc.reactions_three_ways(mech, a.t[k], a.q[k], a.v[k])) < 1e-8
+
+
+def test_bench_runs_every_route(mech):
+    """`mechkit bench ten_bar` (the routes of the former tools/ten_bar_bench.py): constrained ABA
+    (pin.constraintDynamics), the Lagrange first kind forward and inverse, SOC virtual work, the
+    dimension reduction and the closed form, each timed and agreeing with the references."""
+    from mechkit.bench.run import bench_mechanism
+
+    b = bench_mechanism(mech, quick=True, with_peers=False)
+    by = {r.method.name: r for r in b.rows}
+    for name in ("raw pin.constraintDynamics (mu=1e-9)", "constrained RNEA, no determinacy",
+                 *(m.label for m in mech.spec.bench_methods)):
+        assert by[name].outcome == "ok" and by[name].median_s > 0, name
+    for m in mech.spec.bench_methods:
+        assert by[m.label].error < 1e-9, m.label
+    assert {m.quantity for m in mech.spec.bench_methods} == {"assembly", "forward_dynamics", "inverse_dynamics"}
+
+
+def test_deployment_law_is_the_deployment_scene(mech):
+    """`SPEC.motion_laws["deploy"]`: the motors and the rocker along the deployment scene's poses, each a
+    warm start, at the scene's times."""
+    from mechkit import motion
+    from mechkit.mechanisms.ten_bar.scenes import deployment_poses, deployment_times
+
+    law = motion.from_law(mech, "deploy", 11)
+    poses = np.array(deployment_poses(mech, 11))
+    assert law.names == ("R1", "R3", "R5")
+    assert np.array_equal(law.guesses, poses) and np.array_equal(law.t, deployment_times(mech, 11))
+    assert np.array_equal(law.values, poses[:, [mech.q_index(j) for j in law.names]])
+
+
+def test_deployment_metric_through_the_sweep(mech):
+    """The sweep reads the ten-bar's `deployment` metric from its spec: the largest motor torque of the
+    deployment at the scene's step (R1, about 86 N m at 5 ms) and a latch speed."""
+    from mechkit.sweep.specific import resolve
+
+    metrics = {m.name: m for m in resolve("ten_bar", None)}
+    assert list(metrics) == ["assembles", "branch", "deployment"]
+    values = metrics["deployment"].fn(mech, None)
+    assert set(values) == set(metrics["deployment"].columns(mech)) == {"max_motor_torque", "latch_speed"}
+    assert 80.0 < values["max_motor_torque"] < 95.0 and 0.0 <= values["latch_speed"] < 1.0
+
+
+@pytest.mark.slow
+def test_cross_checks_short(mech):
+    """The deployment's cross-checks over 0.2 s (moved from test_ten_bar_tools.py)."""
+    from mechkit.mechanisms.ten_bar.studies import cross_check_lines, cross_checks
+
+    c = cross_checks(mech, t_end=0.2, samples=3)
+    assert "worst relative difference" in "\n".join(cross_check_lines(c))
+    assert c.reaction_disagreement < 1e-12
+
+
+@pytest.mark.slow
+def test_deployment_figures_written(mech, tmp_path):
+    """The deployment's five figures over 0.5 s (moved from test_ten_bar_tools.py)."""
+    from mechkit.mechanisms.ten_bar.figures import deployment_figures
+    from mechkit.mechanisms.ten_bar.studies import deployment
+
+    deployment_figures(deployment(mech, t_end=0.5), tmp_path)
+    for name in ("poses", "angles", "torques", "supports", "drift"):
+        assert (tmp_path / f"ten_bar_{name}.png").stat().st_size > 10_000

@@ -1,58 +1,45 @@
-"""Motion-study figures of the 2T1R and the ten-bar: efforts and chosen reactions over time, drawn from
-`mechkit.motion.study` (the same path as `mechkit motion ... --plot`).
+"""Motion-study figures of the motion laws the mechanisms declare (`MechanismSpec.motion_laws`: the
+2T1R's paper law, the ten-bar's deployment at every RK4 step): efforts and the law's chosen reactions
+over time, from `mechkit.motion.study` with the determinacy test (the same path as
+`mechkit motion ... --plot`), and each peak table printed.
 
-- 2T1R: the paper's motion law, t in (0, 5] s in 501 uniform steps (t = 0 is a parallel singularity);
-  reactions of the platform joints R13, R23, R43.
-- ten-bar: the deployment scene at every RK4 step (dt = 0.02 s, 1001 poses over 20 s); efforts at the
-  motors R1, R3 and at the spring hinge R5; reactions of the wall hinges R1, R5 and of R3.
-
-Usage: python tools/motion_figures.py [--out docs/figures]
-Writes OUT/motion_parallel_2t1r.png and OUT/motion_ten_bar.png, and prints each peak table.
+Usage: python tools/motion_figures.py [NAME ...] [--out docs/figures]
+Writes OUT/motion_<name>.png (OUT/motion_<name>_<law>.png for a mechanism with several laws).
 """
 
 from __future__ import annotations
 
 import argparse
+import sys
 from pathlib import Path
-
-import numpy as np
 
 import mechkit
 from mechkit import motion
+from mechkit.base.exceptions import MechkitError
+from mechkit.catalog.registry import get_spec, names
 from mechkit.cli.motion import format_peaks
-from mechkit.mechanisms.parallel_2t1r.motion_law import MOTION_DURATION, motion_law
-from mechkit.mechanisms.ten_bar.scenes import DEPLOY_STEP, deployment_poses, deployment_times
 from mechkit.motion.plot import write_plot
 
 FIGURES = Path(__file__).resolve().parent.parent / "docs" / "figures"
 
 
-def two_t1r(samples: int = 501) -> motion.MotionResult:
-    mech = mechkit.load("parallel_2t1r")
-    t = np.linspace(MOTION_DURATION / samples, MOTION_DURATION, samples)
-    law = motion.from_callable(mech, motion_law, t, source="motion law theta = pi t (1/18, 1/15, 1/10)")
-    return motion.study(mech, law, determinacy=True)
-
-
-def ten_bar() -> motion.MotionResult:
-    mech = mechkit.load("ten_bar")
-    frames = round(mech.params.deploy_time / DEPLOY_STEP) + 1
-    poses = np.array(deployment_poses(mech, frames))
-    names = motion.default_inputs(mech)
-    values = poses[:, [mech.q_index(n) for n in names]]
-    law = motion.from_arrays(mech, deployment_times(mech, frames), values, names=names, guesses=poses,
-                             source="deployment, every RK4 step")
-    return motion.study(mech, law, determinacy=True)
-
-
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("names", nargs="*", help="mechanisms (default: every one that declares a motion law)")
     parser.add_argument("--out", type=Path, default=FIGURES)
     args = parser.parse_args(argv)
-    for name, result, joints in (("parallel_2t1r", two_t1r(), ["R13", "R23", "R43"]),
-                                 ("ten_bar", ten_bar(), ["R1", "R5", "R3"])):
-        print("\n".join([f"{name}: {result.source}, {len(result.t)} samples", *format_peaks(result)]))
-        print(f"wrote {write_plot(result, args.out / f'motion_{name}.png', joints)}")
+    try:
+        for name in args.names or [n for n in names() if get_spec(n).motion_laws]:
+            mech = mechkit.load(name)
+            laws = mech.spec.motion_laws
+            for law_name, law in laws.items():
+                result = motion.study(mech, motion.from_law(mech, law_name), determinacy=True)
+                stem = f"motion_{name}" if len(laws) == 1 else f"motion_{name}_{law_name}"
+                print("\n".join([f"{name}: {result.source}, {len(result.t)} samples", *format_peaks(result)]))
+                print(f"wrote {write_plot(result, args.out / f'{stem}.png', list(law.reactions) or None)}")
+    except MechkitError as err:
+        print(f"error: {err}", file=sys.stderr)
+        return 1
     return 0
 
 

@@ -2,5 +2,5 @@
 
 `exceptions` (the errors mechkit raises), `arguments` (checks of what a public function is given),
 `spatial` (small 3D helpers), `atomic` (atomic file writes), `resources` (where the packaged xacro
-templates and URDFs are).
+templates and URDFs are), `plotting` (matplotlib on the Agg backend, for figure files).
 """

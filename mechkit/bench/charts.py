@@ -8,6 +8,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from mechkit.base import plotting
 from mechkit.bench.errors import ERROR_LABELS
 from mechkit.bench.results import MechanismBench, Row
 from mechkit.bench.scale import ScaleFit
@@ -22,13 +23,12 @@ CHART_FLOOR = 1e-17
 
 
 def pyplot() -> ModuleType:
-    """matplotlib.pyplot on the Agg backend (files only, no window)."""
-    import matplotlib
+    """matplotlib.pyplot on the Agg backend (files only, no window).
 
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    return plt
+    Raises:
+        MethodUnavailable: matplotlib is not installed.
+    """
+    return plotting.pyplot("bench charts")
 
 
 def save_figure(fig: Figure, ax: Axes, folder: Path, stem: str, legend_size: int = 6) -> list[Path]:

@@ -1,6 +1,7 @@
 """Error measures of the bench, one per quantity, against the reference of each sample.
 
 - "assembly": max |q - q_ref| (rad or m, angle differences wrapped).
+- "inverse_kinematics": max |x - x_ref| over the actuated inputs (rad or m, wrapped as for assembly).
 - "forward_dynamics": max |a - a_ref| / max |a_ref|.
 - "inverse_dynamics": max |x - x_ref| / max |x_ref| over efforts and the reaction components that
   static equilibrium determines (the core's determinacy flags); moments of actuated joints are left
@@ -18,6 +19,7 @@ import numpy as np
 
 ERROR_LABELS = {
     "assembly": "max |q - q_ref| (rad or m)",
+    "inverse_kinematics": "max |inputs - inputs_ref| (rad or m)",
     "forward_dynamics": "max |a - a_ref| / max |a_ref| (-)",
     "inverse_dynamics": "max relative error of efforts and determinate reactions (-)",
 }
@@ -43,7 +45,8 @@ def _wrap(x: np.ndarray) -> np.ndarray:
 
 
 def assembly_error(q: np.ndarray, q_ref: np.ndarray) -> float:
-    """max |q - q_ref| with angle differences wrapped to (-pi, pi] (rad or m)."""
+    """max |q - q_ref| with angle differences wrapped to (-pi, pi] (rad or m); also the inverse-kinematics
+    error, on the actuated inputs."""
     return float(np.max(np.abs(_wrap(np.asarray(q) - q_ref))))
 
 

@@ -5,9 +5,10 @@ declared on its spec (`MechanismSpec.bench_methods`, read by `own_methods`).
 
 References (`references`): per quantity, the spec's own `BenchReference` when it declares one (for
 four_bar and five_bar: the closed form and planar Newton-Euler, independent of Pinocchio);
-otherwise the core's own tight solutions: closure Newton at 1e-13 for q, a from the closure
-kinematics with tau from the core's inverse dynamics (so forward dynamics is checked against inverse
-dynamics), and the core inverse dynamics itself.
+otherwise the core's own tight solutions: closure Newton at 1e-13 for q (and the actuated inputs
+read from it, for inverse kinematics), a from the closure kinematics with tau from the core's
+inverse dynamics (so forward dynamics is checked against inverse dynamics), and the core inverse
+dynamics itself.
 """
 
 from __future__ import annotations
@@ -22,6 +23,7 @@ from mechkit.base.exceptions import MechkitError
 from mechkit.bench.errors import IDReference, id_parts
 from mechkit.bench.raw import raw_constraint_dynamics
 from mechkit.bench.sampling import Sample
+from mechkit.catalog.contract import BENCH_QUANTITIES
 
 if TYPE_CHECKING:
     from mechkit.mechanism import Mechanism
@@ -54,10 +56,12 @@ class Method:
 
 @dataclass
 class References:
-    """Per quantity: a label, and one reference value per sample (q (nq,), a (nv,), inverse dynamics)."""
+    """Per quantity: a label, and one reference value per sample (q (nq,), actuated inputs (na,), a (nv,),
+    inverse dynamics)."""
 
     labels: dict[str, str]
     q: list[np.ndarray]
+    inputs: list[np.ndarray]
     a: list[np.ndarray]
     inverse: list[IDReference]
 
@@ -85,6 +89,12 @@ def references(mech: Mechanism, samples: list[Sample]) -> References:
     if (own := spec.reference("assembly")) is not None:
         labels["assembly"] = own.label
         q_ref = [np.asarray(own.fn(mech, s), dtype=float) for s in samples]
+    inputs_ref = [q[[mech.q_index(j) for j in mech.actuated]] for q in q_ref]
+    if any(m.quantity == "inverse_kinematics" for m in spec.bench_methods):  # the core has no method of its own
+        labels["inverse_kinematics"] = f"the actuated inputs of the assembly reference ({labels['assembly']})"
+    if (own := spec.reference("inverse_kinematics")) is not None:
+        labels["inverse_kinematics"] = own.label
+        inputs_ref = [np.asarray(own.fn(mech, s), dtype=float) for s in samples]
     if (own := spec.reference("forward_dynamics")) is not None:
         labels["forward_dynamics"] = own.label
         a_ref = [np.asarray(own.fn(mech, s), dtype=float) for s in samples]
@@ -100,7 +110,7 @@ def references(mech: Mechanism, samples: list[Sample]) -> References:
             s.tau = np.zeros(mech.model.nv)
             for joint, u in ref.efforts.items():
                 s.tau[mech.v_index(joint)] = u
-    return References(labels, q_ref, a_ref, inverse)
+    return References({q: labels[q] for q in BENCH_QUANTITIES if q in labels}, q_ref, inputs_ref, a_ref, inverse)
 
 
 def core_methods(mech: Mechanism, quick: bool) -> list[Method]:

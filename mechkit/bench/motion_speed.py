@@ -1,6 +1,7 @@
-"""Speed of a motion study: the 2T1R's motion law (the issue's 501 samples: assembly, velocities,
-accelerations, efforts and every reaction), against the 50 ms goal, split into its phases and set
-beside one raw `pin.constraintDynamics` per sample, all measured in one process.
+"""Speed of a motion study along a motion law a mechanism declares (`MechanismSpec.motion_laws`; by
+default the 2T1R's paper law, the issue's 501 samples: assembly, velocities, accelerations, efforts
+and every reaction), against the 50 ms goal, split into its phases and set beside one raw
+`pin.constraintDynamics` per sample, all measured in one process.
 
 Nothing here prints: `motion_law_speed` returns the figures, `lines` formats them
 (`tools/motion_speed.py` prints them).
@@ -18,12 +19,11 @@ import numpy as np
 from mechkit.bench.raw import raw_constraint_dynamics
 from mechkit.loading import load
 from mechkit.mechanism import Mechanism
-from mechkit.mechanisms.parallel_2t1r.motion_law import MOTION_DURATION, motion_law
-from mechkit.motion.inputs import from_callable
+from mechkit.motion.inputs import from_law
 from mechkit.motion.path import PathKinematics
 from mechkit.motion.study import driven_model, inverse_batch, kinematics_along, study
 
-#: The issue's goal for the 2T1R motion law (501 samples), s.
+#: The issue's goal for a motion study (the 2T1R motion law, 501 samples), s.
 GOAL_S = 0.050
 
 
@@ -34,6 +34,8 @@ class MotionSpeed:
     `kinematics_along`) and its dynamics (efforts and every reaction), and one raw
     `pin.constraintDynamics` at the law's first sample (fastest mean of 1000 calls)."""
 
+    name: str
+    law: str
     samples: int
     repeats: int
     study_s: float
@@ -63,10 +65,22 @@ def _raw_call(mech: Mechanism, q: np.ndarray, v: np.ndarray) -> Callable[[], obj
     return lambda: raw(q, v, tau)
 
 
-def motion_law_speed(samples: int = 501, repeats: int = 5) -> MotionSpeed:
-    """Time the 2T1R motion law, t in (0, 5] s (its start t = 0 is a singularity), `samples` uniform steps."""
-    mech = load("parallel_2t1r")
-    law = from_callable(mech, motion_law, np.linspace(MOTION_DURATION / samples, MOTION_DURATION, samples))
+def motion_law_speed(samples: int = 501, repeats: int = 5, name: str = "parallel_2t1r",
+                     law_name: str = "motion_law") -> MotionSpeed:
+    """Time a motion study along a declared motion law (default: the 2T1R's, t in (0, 5] s, its singular
+    start left out) at `samples` samples.
+
+    Args:
+        samples: samples of the law.
+        repeats: timed repeats (the fastest is kept).
+        name: the registered mechanism.
+        law_name: the law, one of its spec's `motion_laws`.
+
+    Raises:
+        InvalidParameters: the mechanism declares no such law.
+    """
+    mech = load(name)
+    law = from_law(mech, law_name, samples)
     result = study(mech, law)
     path = PathKinematics(mech, law.names)
     driven = driven_model(mech, law.names)
@@ -81,14 +95,14 @@ def motion_law_speed(samples: int = 501, repeats: int = 5) -> MotionSpeed:
     raw = _raw_call(mech, result.q[0], result.v[0])
     study_s, kinematics_s, dynamics_s, raw_s = _best_times(
         [lambda: study(mech, law), kinematics, inverse, lambda: [raw() for _ in range(1000)]], repeats)
-    return MotionSpeed(samples, repeats, study_s, kinematics_s, dynamics_s, raw_s / 1000)
+    return MotionSpeed(name, law_name, len(law.t), repeats, study_s, kinematics_s, dynamics_s, raw_s / 1000)
 
 
 def lines(s: MotionSpeed) -> list[str]:
     """The figures as text: totals, per sample, ratios to the raw call, the goal."""
     per = {k: getattr(s, f"{k}_s") / s.samples for k in ("study", "kinematics", "dynamics")}
     raw = s.raw_constraint_dynamics_s
-    out = [f"2T1R motion law, {s.samples} samples (fastest of {s.repeats} runs in one process)"]
+    out = [f"{s.name} {s.law.replace('_', ' ')}, {s.samples} samples (fastest of {s.repeats} runs in one process)"]
     for k, label in (("study", "whole study (assembly, v, a, efforts, every reaction)"),
                      ("kinematics", "  kinematics (closure solve from the predictor, v, a, axes)"),
                      ("dynamics", "  efforts and every reaction (no determinacy)")):

@@ -4,7 +4,8 @@
 The ratio columns: "x fastest" = time / time of the fastest method whose error is at most
 max(10 x this error, `EQUAL_ACCURACY_FLOOR`) (the fastest of equal or better accuracy; an "efforts
 only" inverse dynamics is not counted against one that gives reactions); "x base" = time / time of
-the quantity's baseline (`mechkit.bench.methods.BASELINES`: the core's default method).
+the quantity's baseline (`mechkit.bench.methods.BASELINES`: the core's default method; none for
+inverse kinematics, which the core does not compute).
 """
 
 from __future__ import annotations
@@ -72,6 +73,8 @@ def measure(mech: Mechanism, method: Method, samples: list[Sample], refs: Refere
             result = method.run(mech, s)
             if method.quantity == "assembly":
                 errors.append(assembly_error(result, refs.q[i]))
+            elif method.quantity == "inverse_kinematics":
+                errors.append(assembly_error(result, refs.inputs[i]))
             elif method.quantity == "forward_dynamics":
                 errors.append(acceleration_error(result, refs.a[i]))
             else:
@@ -99,7 +102,7 @@ def ratios(rows: list[Row]) -> None:
     """Fill the "x fastest" and "x base" columns of the measured rows (in place)."""
     for quantity in BENCH_QUANTITIES:
         ok = [r for r in rows if r.method.quantity == quantity and r.outcome == "ok"]
-        base = [r for r in ok if r.method.name == BASELINES[quantity]]
+        base = [r for r in ok if r.method.name == BASELINES.get(quantity)]
         for r in ok:
             limit = max(10.0 * r.error, EQUAL_ACCURACY_FLOOR)
             # a method that gives efforts only is no yardstick for one that gives every reaction

@@ -1,7 +1,7 @@
 """Motion studies: efforts and every joint's reaction along a motion, as data, plots and peak loads.
 
 `study(mech, law)` assembles the mechanism along an input law (`inputs`: callables of time, arrays,
-a CSV file, a registered scene), then computes velocities, accelerations, the driven joints' efforts
+a CSV file, a registered scene, a motion law the mechanism declares), then computes velocities, accelerations, the driven joints' efforts
 and every joint's reaction; the `MotionResult` converts to a pandas DataFrame and writes Parquet and
 CSV (`result`); `peaks` finds each joint's largest force and moment, axial and radial; `plot` draws
 efforts and chosen reactions over time (matplotlib, imported on use).
@@ -16,6 +16,7 @@ from mechkit.motion.inputs import (
     from_arrays,
     from_callable,
     from_csv,
+    from_law,
     from_scene,
     resample,
 )
@@ -31,6 +32,7 @@ __all__ = [
     "from_arrays",
     "from_callable",
     "from_csv",
+    "from_law",
     "from_scene",
     "peak_table",
     "peaks",

@@ -3,8 +3,9 @@
 An `InputLaw` holds, for the sample times t (s), the values (rad or m), rates and accelerations of
 the joints that fix the assembly (by default those of the mechanism's home inputs: its actuated
 joints, plus a passive joint driven by a spring where the mechanism declares one, as the ten-bar's
-R5). It comes from a callable of time, from arrays, from a CSV file of time and inputs, or from a
-registered scene (its poses as warm starts). Where rates or accelerations are not given they are
+R5). It comes from a callable of time, from arrays, from a CSV file of time and inputs, from a
+registered scene (its poses as warm starts) or from a motion law the mechanism declares
+(`MechanismSpec.motion_laws`: the 2T1R's paper law, the ten-bar's deployment). Where rates or accelerations are not given they are
 the derivatives of a not-a-knot cubic spline through the values (arrays, CSV, scenes) or a
 fourth-order central difference (callables).
 """
@@ -193,6 +194,24 @@ def from_scene(mech: Mechanism, scene: str, names: Sequence[str] | None = None) 
     t = scene_times(mech, scene, len(poses))
     values = poses[:, [mech.q_index(n) for n in names]]
     return from_arrays(mech, t, values, names=names, guesses=poses, source=f"scene {scene}")
+
+
+def from_law(mech: Mechanism, name: str, samples: int | None = None) -> InputLaw:
+    """A motion law the mechanism declares (`MechanismSpec.motion_laws`).
+
+    Args:
+        name: the law's name.
+        samples: how many samples (default: the law's own count).
+
+    Raises:
+        InvalidParameters: the mechanism declares no law of that name.
+    """
+    declared = mech.spec.motion_laws
+    if name not in declared:
+        raise InvalidParameters("law", name, f"{mech.spec.name} declares the motion laws: {', '.join(declared) or 'none'}")
+    law = declared[name].sample(mech, samples)
+    return from_arrays(mech, law.t, law.values, law.rates, law.accelerations, names=law.joints, guesses=law.guesses,
+                       source=law.source)
 
 
 def resample(law: InputLaw, samples: int) -> InputLaw:

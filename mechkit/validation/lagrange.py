@@ -226,6 +226,27 @@ class Linkage:
             float(cond),
         )
 
+    def forward(self, q: np.ndarray, qd: np.ndarray, efforts: Sequence[float] = ()) -> np.ndarray:
+        """Accelerations (3 per body) under given motor torques, the motors' angles left free:
+        `[M, C_q^T; C_q, 0] [qdd; lambda] = [Q + S^T u; gamma]`.
+
+        Args:
+            q: (3 * bodies,) reference-point coordinates (m, rad).
+            qd: (3 * bodies,) their rates.
+            efforts: torques u (N m) of `motors`, in order.
+
+        Raises:
+            numpy.linalg.LinAlgError: the system is singular (a loop at a dead-centre pose).
+        """
+        n, m = self.n, 2 * len(self.pins)
+        Cq = self.jacobian(q)
+        K = np.zeros((n + m, n + m))
+        K[:n, :n] = np.diag(self.mass_diag)
+        K[:n, n:] = Cq.T
+        K[n:, :n] = Cq
+        rhs = np.concatenate([self.applied(q, qd) + self.S.T @ np.asarray(efforts, dtype=float), self.gamma(q, qd)])
+        return np.linalg.solve(K, rhs)[:n]
+
     # ------------------------------------------------------------ the constraint manifold
     def project(
         self,

@@ -11,6 +11,7 @@ Modules, bottom up:
     pages: `snapshot`, `animation`, `overlay`, `side_by_side`, `mechanism_scene`, `snapshot_command`.
     live: `LiveViewer`, `view`: a meshcat server on 127.0.0.1 showing a pose or playing a scene.
     inline: `show` (a notebook view of a pose or a scene), `register` (a Mechanism displays inline).
+    gallery: `picture` (a mechanism's gallery picture and caption), `table` (the gallery page).
 
 Scenes (named motions) live in `mechkit.scenes`.
 """

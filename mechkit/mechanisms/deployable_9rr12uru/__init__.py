@@ -10,16 +10,20 @@ EH at H (`actuation.ACTUATED`); `truss.motion.web_joint_motion` gives their join
 
 Shared with the unit (`mechkit.mechanisms.truss`): the drive laws, the web-joint motion, the fold
 (`truss.fold`, closure solved along it by continuation; the `fold` scene), the node readings and
-the fold checks (`truss.checks.fold_checks`, rows of `mechkit report`). Own modules: `params`
-(the chain links), `actuation`, `redundancy` (the self-stress, `mobility_without` with chains
-removed, `indeterminate_direction` of the reactions, `second_order_form`).
+the fold checks (`truss.checks.fold_checks`, rows of `mechkit report`), the bench's states along the
+fold and its continuation step (`truss.bench`). Own modules: `params` (the chain links),
+`actuation`, `redundancy` (the self-stress, `mobility_without` with chains removed,
+`indeterminate_direction` of the reactions, `second_order_form`), `studies` (the fold against the
+paper's equations, as data) and `figures` (drawn from it).
 """
 
 from __future__ import annotations
 
-from mechkit.catalog.contract import MechanismSpec
+from mechkit.catalog.contract import MechanismSpec, MechanismStudy
+from mechkit.mechanisms.deployable_9rr12uru import figures, studies
 from mechkit.mechanisms.deployable_9rr12uru.actuation import ACTUATED, home
 from mechkit.mechanisms.deployable_9rr12uru.params import DeployableParams
+from mechkit.mechanisms.truss.bench import FOLD_STEP, fold_states
 from mechkit.mechanisms.truss.checks import fold_checks
 from mechkit.mechanisms.truss.fold import fold_poses, fold_scene_times
 
@@ -33,7 +37,13 @@ SPEC = MechanismSpec(
     gruebler_dof=7,
     home=home,
     summary="9RR-12URU deployable composite element of a truss antenna (3 tetrahedral units + 3 URU chains)",
+    caption="9RR-12URU deployable mast of tetrahedral units",
     scenes={"fold": fold_poses},
     scene_times={"fold": fold_scene_times},
+    scene_captions={"fold": "the 200 s fold, deployed (faded) to folded (solid)"},
+    bench_methods=(FOLD_STEP,),
+    bench_states=fold_states,
+    studies={"fold": MechanismStudy("the 200 s fold against the paper's eq. (6)-(13): Fig. 7-9, drives, torques",
+                                    studies.fold_study, studies.fold_lines, figures.fold_figures)},
     self_checks=fold_checks,
 )

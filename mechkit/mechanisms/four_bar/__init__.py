@@ -25,6 +25,7 @@ SPEC = MechanismSpec(
     home=lambda p: {"crank": 0.6},
     guess=lambda p: {"coupler": 0.6, "rocker": 1.6},
     summary="planar four-bar (crank-rocker), calibration mechanism of the core",
+    caption="Planar four-bar crank-rocker (calibration mechanism)",
     bench_methods=bench_methods(motion),
     bench_references=bench_references(motion),
 )

@@ -14,6 +14,8 @@ from mechkit.mechanisms.parallel_2t1r.kinematics import Dims, Pose, follower_ang
 #: The assembled branch: (C1 root, alpha root) of `forward_kinematics` (C1 below the chord B1B2,
 #: first alpha root) and the root of `follower_angles` (theta_4 = 0 at the motion law's start).
 ASSEMBLED = ((1, 0), 0)
+#: The joints of the paper's three motors, theta_1..theta_3.
+INPUTS = ("R11", "R21", "R31")
 #: The paper's example inputs theta_1..theta_3 (rad): 10, 20, 30 deg.
 EXAMPLE_INPUTS = np.radians([10.0, 20.0, 30.0])
 

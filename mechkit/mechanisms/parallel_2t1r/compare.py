@@ -15,12 +15,12 @@ import pinocchio as pin
 from mechkit.base.exceptions import MechkitError, SingularConfiguration
 from mechkit.core import InverseDynamicsResult
 from mechkit.mechanism import Mechanism
+from mechkit.mechanisms.parallel_2t1r.assembly import INPUTS
 from mechkit.mechanisms.parallel_2t1r.joints import joint_coordinates, joint_positions
 from mechkit.mechanisms.parallel_2t1r.motion_law import motion_law, state_at
 from mechkit.mechanisms.parallel_2t1r.rates import State
 from mechkit.mechanisms.parallel_2t1r.soc import classic_torques, soc_inverse_dynamics
 
-INPUTS = ("R11", "R21", "R31")
 #: Compared quantities: efforts (N m) and the in-plane (determinate) reaction forces (N), world.
 QUANTITIES = ("M1", "M2", "M3", "R23_fx", "R23_fz", "R43_fx", "R43_fz")
 _EFFORT_JOINT = {"M1": "R11", "M2": "R21", "M3": "R31", "M4": "R41"}

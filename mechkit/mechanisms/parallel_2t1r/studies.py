@@ -1,7 +1,11 @@
-"""The 2T1R's singular studies: the motion law's singular start and theta_1 driven onto theta_2.
+"""The 2T1R's studies, as data (`SPEC.studies`; figures in `figures`, numbers in
+docs/mechanisms/parallel_2t1r.md): the three inverse-dynamics methods along the paper's motion law
+(`comparison`), and the singular studies (`singular`): the motion law's singular start and theta_1
+driven onto theta_2.
 
-Both record every method of `compare.evaluate` per sample, NaN where a method raised, and the
-failures with their messages: a singular pose must give a clear error, never a silent NaN.
+The singular studies record every method of `compare.evaluate` per sample, NaN where a method
+raised, and the failures with their messages: a singular pose must give a clear error, never a
+silent NaN.
 """
 
 from __future__ import annotations
@@ -13,10 +17,16 @@ import numpy as np
 
 from mechkit.base.exceptions import MechkitError
 from mechkit.mechanism import Mechanism
-from mechkit.mechanisms.parallel_2t1r.assembly import EXAMPLE_INPUTS, assembled_pose
-from mechkit.mechanisms.parallel_2t1r.compare import INPUTS, evaluate, pinocchio_motion
+from mechkit.mechanisms.parallel_2t1r.assembly import EXAMPLE_INPUTS, INPUTS, assembled_pose
+from mechkit.mechanisms.parallel_2t1r.compare import (
+    QUANTITIES,
+    Comparison,
+    compare_along,
+    evaluate,
+    pinocchio_motion,
+)
 from mechkit.mechanisms.parallel_2t1r.joints import joint_positions
-from mechkit.mechanisms.parallel_2t1r.motion_law import motion_law, state_at
+from mechkit.mechanisms.parallel_2t1r.motion_law import motion_law, motion_law_times, state_at
 from mechkit.mechanisms.parallel_2t1r.rates import at_rest, jacobians
 
 #: Singular-approach study: theta_2, theta_3 held at the example's 20 and 30 deg while theta_1 is
@@ -106,3 +116,53 @@ def start_of_motion(mech: Mechanism, times: np.ndarray) -> Study:
         return values | v, failed | f
 
     return _study(times, (sample(float(t)) for t in times))
+
+
+#: Regular samples of the motion law in the comparison (0.01 s steps).
+COMPARISON_SAMPLES = 500
+#: Times (s) after the motion law's singular start, and offsets theta_2 - theta_1 (rad) of the approach.
+START_TIMES = np.logspace(-5, 0, 11)
+APPROACH_DELTAS = np.append(np.logspace(-1, -8, 15), 0.0)
+
+
+def comparison(mech: Mechanism, samples: int = COMPARISON_SAMPLES) -> Comparison:
+    """Pinocchio, SOC and classic virtual work at `samples` regular times of the motion law in (0, 5] s."""
+    return compare_along(mech, motion_law_times(samples))
+
+
+def comparison_lines(cmp: Comparison) -> list[str]:
+    """Per quantity, its largest magnitude and each method's error relative to it; the joints' agreement."""
+    peak = np.max(np.abs(cmp.values["pinocchio"]), axis=0)
+    soc, classic = cmp.relative_error("soc"), cmp.relative_error("classic")
+    out = [(f"{len(cmp.times)} samples, t = {cmp.times[0]:g}..{cmp.times[-1]:g} s; relative to each quantity's "
+            "largest magnitude:")]
+    for k, name in enumerate(QUANTITIES):
+        other = "-" if np.isnan(classic[k]) else f"{classic[k]:.1e}"
+        out.append(f"  {name:7s} max {peak[k]:8.3f}: SOC vs Pinocchio {soc[k]:.1e}, classic vs Pinocchio {other}")
+    out.append(f"analytic vs Pinocchio joint angles: {cmp.kinematics_error.max():.1e} rad")
+    return out
+
+
+@dataclass(frozen=True)
+class SingularStudies:
+    """The motion law near its singular start, and theta_1 driven onto theta_2 (`start_of_motion`,
+    `singular_approach`)."""
+
+    start: Study
+    approach: Study
+
+
+def singular(mech: Mechanism, times: np.ndarray = START_TIMES, deltas: np.ndarray = APPROACH_DELTAS) -> SingularStudies:
+    """Both singular studies: `start_of_motion` at `times` (s), `singular_approach` at `deltas` (rad)."""
+    return SingularStudies(start_of_motion(mech, times), singular_approach(mech, deltas))
+
+
+def singular_lines(s: SingularStudies) -> list[str]:
+    """Where each method first raised in each study, and why."""
+    out = []
+    for name, study, unit in (("motion law, t -> 0+", s.start, "t (s)"), ("theta_1 onto theta_2", s.approach,
+                                                                         "theta_2 - theta_1 (rad)")):
+        out.append(f"{name}: {len(study.x)} samples, {unit} {study.x.min():.1e}..{study.x.max():.1e}")
+        out += [f"  {method} raises first at {failed[0][0]:.1e}: {failed[0][1][:120]}"
+                for method, failed in study.failures.items()]
+    return out

@@ -52,20 +52,14 @@ def lagrange_first_kind(motion: Motion, mech: Mechanism, sample: Any) -> dict[st
 
 
 def lagrange_forward(motion: Motion, mech: Mechanism, sample: Any) -> np.ndarray:
-    """Forward dynamics in reference-point coordinates: `[M, C_q^T; C_q, 0] [qdd; lambda] = [Q + S^T u; gamma]`.
+    """Forward dynamics in reference-point coordinates (`mechkit.validation.lagrange.Linkage.forward`).
 
     The efforts u are the sample's tau on the motor pins (torques about -y); returns the joint
     accelerations of mechkit's q (relative angle rates of each URDF joint).
     """
     linkage, q, qd, _ = lagrange_problem(motion, mech, sample)
     st = state(motion, mech, sample)
-    n, m = linkage.n, 2 * len(linkage.pins)
-    u = np.array([sample.tau[mech.v_index(j)] for j in linkage.motors])
-    K = np.zeros((n + m, n + m))
-    K[:n, :n] = np.diag(linkage.mass_diag)
-    K[:n, n:] = linkage.jacobian(q).T
-    K[n:, :n] = linkage.jacobian(q)
-    x = np.linalg.solve(K, np.concatenate([linkage.applied(q, qd) + linkage.S.T @ u, linkage.gamma(q, qd)]))
+    x = linkage.forward(q, qd, [sample.tau[mech.v_index(j)] for j in linkage.motors])
     names = list(st.links)
     alpha = {name: x[3 * i + 2] for i, name in enumerate(names)}
     joint_acc = [alpha[j.child] - (alpha[j.parent] if j.parent else 0.0) for j in (st.joint(c) for c in st.coordinates)]

@@ -1,8 +1,9 @@
 """The engine gimbal's own methods in `mechkit bench` (`SPEC.bench_methods`, `SPEC.bench_references`).
 
 Assembly: the paper's FK, (alpha, beta) by the resultant or by Newton on the lengths, then the servos'
-Hooke angles and strokes in closed form. Inverse dynamics: the SOC decomposition (numpy) with the
-analytic motion and no thrust (the bench applies none), also the independent reference.
+Hooke angles and strokes in closed form. Inverse kinematics: the strokes in closed form from the
+hinge angles (alpha, beta). Inverse dynamics: the SOC decomposition (numpy) with the analytic motion
+and no thrust (the bench applies none), also the independent reference.
 """
 
 from __future__ import annotations
@@ -12,7 +13,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from mechkit.catalog.contract import BenchFunction, BenchMethod, BenchReference
-from mechkit.mechanisms.rocket_gimbal.kinematics import fk_newton
+from mechkit.mechanisms.rocket_gimbal.kinematics import fk_newton, strokes
 from mechkit.mechanisms.rocket_gimbal.motion import gimbal_motion
 from mechkit.mechanisms.rocket_gimbal.params import geometry
 from mechkit.mechanisms.rocket_gimbal.resultant import fk_resultant, pick_in_range
@@ -24,7 +25,7 @@ from mechkit.validation.soc import SOCResult, solve_soc
 if TYPE_CHECKING:
     from mechkit.mechanism import Mechanism
 
-__all__ = ["METHODS", "REFERENCES", "fk_assembly", "soc_inverse_dynamics"]
+__all__ = ["METHODS", "REFERENCES", "closed_form_strokes", "fk_assembly", "soc_inverse_dynamics"]
 
 
 def fk_assembly(method: str) -> BenchFunction:
@@ -43,6 +44,11 @@ def fk_assembly(method: str) -> BenchFunction:
     return assemble
 
 
+def closed_form_strokes(mech: Mechanism, sample: Any) -> np.ndarray:
+    """Inverse kinematics in closed form: the strokes (dlA, dlB) (m) of the sample's hinge angles."""
+    return strokes(geometry(mech.params), *hinges(mech, sample.q, "q"))
+
+
 def soc_inverse_dynamics(mech: Mechanism, sample: Any) -> SOCResult:
     """SOC virtual work (numpy) with the analytic motion of (alpha, beta); no thrust (as the bench)."""
     motion = gimbal_motion(
@@ -54,6 +60,7 @@ def soc_inverse_dynamics(mech: Mechanism, sample: Any) -> SOCResult:
 METHODS = (
     BenchMethod("paper FK: resultant + closed-form servos", "assembly", fk_assembly("resultant")),
     BenchMethod("Newton FK on the lengths + closed-form servos", "assembly", fk_assembly("newton")),
+    BenchMethod("IK closed form (servo lengths)", "inverse_kinematics", closed_form_strokes),
     BenchMethod("SOC (numpy)", "inverse_dynamics", soc_inverse_dynamics),
 )
 REFERENCES = (

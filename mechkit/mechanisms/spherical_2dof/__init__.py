@@ -6,15 +6,16 @@ pass through O (every point moves on a sphere about O). Motors at the base joint
 Modules, bottom up: `kinematics` (the paper's eqs. 4-12 and its iterative forward kinematics, numpy
 only), `params`, `tree` (the Pinocchio tree filled from the paper's kinematics), `scenes` (the cone
 scene), `fk` (forward kinematics three ways and their basins), `soc` (the SOC decomposition),
-`checks` (`mechkit report` rows), `bench` (`mechkit bench` methods). Conventions the source leaves
+`checks` (`mechkit report` rows), `bench` (`mechkit bench` methods), `studies` (the cone scene as
+the paper's Figs. 5-7 with its dynamics, the FK's basins, as data) and `figures` (drawn from them). Conventions the source leaves
 out (roll/pitch, platform-side axes, the reading of "cone angle 30 deg") are derived in
 docs/mechanisms/spherical_2dof.md.
 """
 
 from __future__ import annotations
 
-from mechkit.catalog.contract import MechanismSpec
-from mechkit.mechanisms.spherical_2dof import bench, checks, tree
+from mechkit.catalog.contract import MechanismSpec, MechanismStudy
+from mechkit.mechanisms.spherical_2dof import bench, checks, figures, studies, tree
 from mechkit.mechanisms.spherical_2dof.params import Spherical2DofParams
 from mechkit.mechanisms.spherical_2dof.scenes import cone_scene, cone_scene_times
 
@@ -29,9 +30,17 @@ SPEC = MechanismSpec(
     home=tree.home,
     guess=tree.guess,
     summary="2-DOF spherical parallel platform (2 RRR limbs + central Hooke strut), vibration isolation",
+    caption="2-DOF spherical platform: two RRR limbs and a central Hooke strut",
     scenes={"cone": cone_scene},
     scene_times={"cone": cone_scene_times},
+    scene_captions={"cone": "one turn of the platform's cone (solid: its start, faded: later phases)"},
     bench_methods=bench.METHODS,
     bench_references=bench.REFERENCES,
+    studies={
+        "cone": MechanismStudy("the cone scene: the paper's Figs. 5-7, plus its dynamics by two methods",
+                               studies.cone, studies.cone_lines, figures.cone_figure),
+        "basin": MechanismStudy("where the forward kinematics fails: convergence basins of three methods",
+                                studies.basin, studies.basin_lines, figures.basin_figure),
+    },
     self_checks=checks.self_checks,
 )

@@ -1,7 +1,9 @@
 """The 2-DOF spherical platform's own methods in `mechkit bench` (`SPEC.bench_methods`, `SPEC.bench_references`).
 
 Assembly: the paper's iterative FK and Newton on eq. (7), each from the home attitude, then the tree
-joints in closed form. Inverse dynamics: the SOC decomposition (numpy), also the independent reference.
+joints in closed form. Inverse kinematics: the motor angles by eq. (8) from the platform's attitude
+(the Hooke joint's roll and pitch). Inverse dynamics: the SOC decomposition (numpy), also the
+independent reference.
 """
 
 from __future__ import annotations
@@ -13,14 +15,16 @@ import numpy as np
 from mechkit.catalog.contract import BenchFunction, BenchMethod, BenchReference
 from mechkit.mechanisms.spherical_2dof import soc
 from mechkit.mechanisms.spherical_2dof.fk import solve_fk
-from mechkit.mechanisms.spherical_2dof.kinematics import BRANCHES
+from mechkit.mechanisms.spherical_2dof.kinematics import BRANCHES, inverse_kinematics
 from mechkit.mechanisms.spherical_2dof.tree import tree_q
 from mechkit.validation.soc import SOCResult
 
 if TYPE_CHECKING:
     from mechkit.mechanism import Mechanism
 
-__all__ = ["METHODS", "REFERENCES", "fk_assembly", "soc_inverse_dynamics"]
+__all__ = ["METHODS", "REFERENCES", "fk_assembly", "ik_eq8", "soc_inverse_dynamics"]
+
+HOOKE = ("hooke_roll", "hooke_pitch")
 
 
 def fk_assembly(method: str) -> BenchFunction:
@@ -33,16 +37,22 @@ def fk_assembly(method: str) -> BenchFunction:
     return run
 
 
+def ik_eq8(mech: Mechanism, sample: Any) -> np.ndarray:
+    """The motor angles (r11, r21) (rad) by the paper's eq. (8) from the sample's roll and pitch."""
+    return inverse_kinematics(mech.params, [sample.q[mech.q_index(j)] for j in HOOKE], BRANCHES)
+
+
 def soc_inverse_dynamics(mech: Mechanism, sample: Any) -> SOCResult:
     """SOC virtual work (numpy), every joint's moment about O."""
-    hooke = [mech.v_index("hooke_roll"), mech.v_index("hooke_pitch")]
-    phi = [sample.q[mech.q_index("hooke_roll")], sample.q[mech.q_index("hooke_pitch")]]
+    hooke = [mech.v_index(j) for j in HOOKE]
+    phi = [sample.q[mech.q_index(j)] for j in HOOKE]
     return soc.solve(mech.params, phi, sample.v[hooke], sample.a[hooke], BRANCHES)
 
 
 METHODS = (
     BenchMethod("paper FK (Newton on IK eq. 8)", "assembly", fk_assembly("paper")),
     BenchMethod("Newton FK on eq. (7)", "assembly", fk_assembly("newton")),
+    BenchMethod("IK eq. (8)", "inverse_kinematics", ik_eq8),
     BenchMethod("SOC (numpy)", "inverse_dynamics", soc_inverse_dynamics),
 )
 REFERENCES = (

@@ -38,16 +38,21 @@ Modules (each imports only the core, `mechkit.validation` and the siblings liste
 `params` (parameters, motor laws, spring), `geometry` (hinge layout, mass properties, closed-form
 pose), `lagrange_model` (the patent's Lagrange model, numpy tree kinematics), `kinematics` (full
 closure, the patent's dimension reduction), `soc` (SKC decomposition), `dynamics` (deployment, RK4
-with projection), `limits` (where the methods fail), `checks` (cross-checks, report rows), `scenes`.
+with projection), `limits` (where the methods fail), `checks` (cross-checks, report rows), `scenes`
+(the deployment as poses and as an input law), `bench` (`mechkit bench` methods and references),
+`design` (the sweep's `deployment` metric), `studies` (the deployment's cross-checks and figures'
+data) and `figures` (drawn from them).
 """
 
 from __future__ import annotations
 
-from mechkit.catalog.contract import MechanismSpec
+from mechkit.catalog.contract import MechanismSpec, MechanismStudy, MotionLaw
+from mechkit.mechanisms.ten_bar import bench, figures, studies
 from mechkit.mechanisms.ten_bar.checks import self_checks
+from mechkit.mechanisms.ten_bar.design import DESIGN_METRICS
 from mechkit.mechanisms.ten_bar.geometry import stowed_pose
 from mechkit.mechanisms.ten_bar.params import MOTORS, PASSIVE, STOWED, TenBarParams
-from mechkit.mechanisms.ten_bar.scenes import deployment_poses, deployment_times
+from mechkit.mechanisms.ten_bar.scenes import deployment_law, deployment_poses, deployment_times
 
 
 def _home(p: TenBarParams) -> dict[str, float]:
@@ -67,8 +72,22 @@ SPEC = MechanismSpec(
     home=_home,
     guess=_guess,
     summary="Radarsat-2 solar-array ten-bar (patent CN105975733): 9 links, 12 pairs, 2 motors + 1 spring DOF",
+    caption="Radarsat-2 solar-array ten-bar: two motors and a spring-loaded DOF",
     scenes={"deploy": deployment_poses},
     scene_times={"deploy": deployment_times},
+    scene_captions={"deploy": "the deployment, stowed (faded) to deployed (solid)"},
+    bench_methods=bench.METHODS,
+    bench_references=bench.REFERENCES,
+    motion_laws={"deploy": MotionLaw(deployment_law, reactions=("R1", "R5", "R3"))},
+    design_metrics=DESIGN_METRICS,
+    studies={
+        "cross_checks": MechanismStudy(
+            "the deployment, stowed to deployed, by two dynamics routes, with every cross-check",
+            studies.cross_checks, studies.cross_check_lines),
+        "deployment": MechanismStudy(
+            "deployment figures: linkage snapshots, joint angles, torques, wall supports, drift",
+            studies.deployment, studies.deployment_lines, figures.deployment_figures),
+    },
     self_checks=self_checks,
 )
 

@@ -1,11 +1,14 @@
-"""The ten-bar's scenes: the deployment, stowed to deployed, for animations and the gallery."""
+"""The ten-bar's scenes: the deployment, stowed to deployed, for animations and the gallery, and as an
+input law for motion studies."""
 
 from __future__ import annotations
 
 import numpy as np
 
+from mechkit.catalog.contract import SampledLaw
 from mechkit.mechanism import Mechanism
 from mechkit.mechanisms.ten_bar import dynamics as td
+from mechkit.mechanisms.ten_bar.params import MOTORS, PASSIVE
 
 #: Step (s) of the deployment the scene samples.
 DEPLOY_STEP = 0.02
@@ -25,3 +28,15 @@ def deployment_poses(mechanism: Mechanism, frames: int = 120, dt: float = DEPLOY
 def deployment_times(mechanism: Mechanism, poses: int, dt: float = DEPLOY_STEP) -> np.ndarray:
     """Times (s) of the deployment scene's poses (the RK4 steps it picks)."""
     return dt * _picks(round(mechanism.params.deploy_time / dt), poses)
+
+
+def deployment_law(mechanism: Mechanism, samples: int | None = None) -> SampledLaw:
+    """The deployment as an input law of the motors and the rocker R5: every RK4 step (dt =
+    `DEPLOY_STEP`), or `samples` poses, each pose a warm start (`SPEC.motion_laws["deploy"]`)."""
+    every_step = round(mechanism.params.deploy_time / DEPLOY_STEP) + 1
+    frames = samples or every_step
+    poses = np.array(deployment_poses(mechanism, frames))
+    joints = (*MOTORS, PASSIVE)
+    return SampledLaw(joints, deployment_times(mechanism, frames), poses[:, [mechanism.q_index(j) for j in joints]],
+                      guesses=poses,
+                      source="deployment, every RK4 step" if frames == every_step else f"deployment, {frames} poses")

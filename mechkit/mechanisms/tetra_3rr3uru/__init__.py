@@ -8,15 +8,18 @@ the paper's configuration at t = 0 of the fold.
 
 Drives: the paper's folding drive (web rod AH at node H) and attitude drive at B (rod BH at B),
 and rod EH at H (`actuation.ACTUATED`). Shared with the composite (`mechkit.mechanisms.truss`): the
-parameters, the drive laws, the web-joint motion, the fold. Own modules: `soc` (SOC virtual work of
-the unit), `checks` (report rows). Scene: `fold` (the paper's 200 s fold).
+parameters, the drive laws, the web-joint motion, the fold, the bench's states along it. Own modules:
+`soc` (SOC virtual work of the unit), `checks` (report rows), `bench` (`mechkit bench` methods and
+reference). Scene: `fold` (the paper's 200 s fold).
 """
 
 from __future__ import annotations
 
 from mechkit.catalog.contract import MechanismSpec
+from mechkit.mechanisms.tetra_3rr3uru import bench
 from mechkit.mechanisms.tetra_3rr3uru.actuation import ACTUATED, home
 from mechkit.mechanisms.tetra_3rr3uru.checks import self_checks
+from mechkit.mechanisms.truss.bench import fold_states
 from mechkit.mechanisms.truss.fold import fold_poses, fold_scene_times
 from mechkit.mechanisms.truss.params import TetraParams
 
@@ -30,7 +33,12 @@ SPEC = MechanismSpec(
     gruebler_dof=3,
     home=home,
     summary="3RR-3URU tetrahedral deployable unit H-ABE of a truss antenna, node A fixed",
+    caption="Tetrahedral 3RR-3URU deployable unit",
     scenes={"fold": fold_poses},
     scene_times={"fold": fold_scene_times},
+    scene_captions={"fold": "the 200 s fold, deployed (faded) to folded (solid)"},
+    bench_methods=bench.METHODS,
+    bench_references=bench.REFERENCES,
+    bench_states=fold_states,
     self_checks=self_checks,
 )

@@ -33,10 +33,23 @@ def apexes(mech: Mechanism) -> tuple[str, ...]:
     return tuple(a for a in ("H", "J", "I") if mech.model.existJointName(f"A{a}_{a}"))
 
 
-def _fold_step(mech: Mechanism, q: np.ndarray, v: np.ndarray, t_prev: float, t: float, tol: float,
-               depth: int = 0) -> FoldSample:
-    """Closure solve at t from the state (q, v) at t_prev: predictor q + v dt, then Newton on the
-    passive coordinates; the interval is halved (up to 8 times) when Newton does not converge."""
+def fold_step(mech: Mechanism, q: np.ndarray, v: np.ndarray, t_prev: float, t: float, tol: float,
+              depth: int = 0) -> FoldSample:
+    """Closure solve at t (s) from the state (q, v) at t_prev (s): predictor q + v dt, then Newton on the
+    passive coordinates; the interval is halved (up to 8 times) when Newton does not converge.
+
+    Args:
+        mech: `tetra_3rr3uru` or `deployable_9rr12uru`.
+        q: (nq,) configuration at t_prev.
+        v: (nv,) velocity at t_prev.
+        t_prev: the time of the state, s.
+        t: the time to solve at, s.
+        tol: closure residual to reach (m / dimensionless).
+        depth: halvings so far.
+
+    Raises:
+        ClosureNotConverged: still not converged after 8 halvings.
+    """
     s = drive_state(t)
     angles, rates, accs = drive_inputs(mech.params, s, mech.actuated, apexes(mech))
     guess = pin.integrate(mech.model, q, v * (t - t_prev))
@@ -48,8 +61,8 @@ def _fold_step(mech: Mechanism, q: np.ndarray, v: np.ndarray, t_prev: float, t: 
     except ClosureNotConverged:
         if depth >= 8:
             raise
-        half = _fold_step(mech, q, v, t_prev, 0.5 * (t_prev + t), tol, depth + 1)
-        return _fold_step(mech, half.q, half.v, half.t, t, tol, depth + 1)
+        half = fold_step(mech, q, v, t_prev, 0.5 * (t_prev + t), tol, depth + 1)
+        return fold_step(mech, half.q, half.v, half.t, t, tol, depth + 1)
     v_new = mech.velocities(q_new, rates, list(rates))
     return FoldSample(float(t), q_new, v_new, mech.accelerations(q_new, v_new, accs, list(accs)), iterations)
 
@@ -70,9 +83,9 @@ def fold(mech: Mechanism, times: np.ndarray, tol: float = 1e-12) -> list[FoldSam
     if times.ndim != 1 or times.size == 0 or np.any(np.diff(times) <= 0):
         raise InvalidParameters("times", times, "must be a non-empty, strictly increasing 1-D array")
     out: list[FoldSample] = []
-    state = _fold_step(mech, mech.home_q, np.zeros(mech.model.nv), 0.0, 0.0, tol)
+    state = fold_step(mech, mech.home_q, np.zeros(mech.model.nv), 0.0, 0.0, tol)
     for t in times:
-        state = _fold_step(mech, state.q, state.v, state.t, float(t), tol)
+        state = fold_step(mech, state.q, state.v, state.t, float(t), tol)
         out.append(state)
     return out
 

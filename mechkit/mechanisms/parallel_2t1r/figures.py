@@ -1,34 +1,30 @@
-"""Figures of the 2T1R: SOC vs Pinocchio vs classic virtual work along the paper's motion law, and the
-singular studies (the motion law's start; theta_1 driven onto theta_2, plain vs redundant actuation).
+"""The 2T1R's figures, drawn from the data of its studies (`studies`; matplotlib on use).
 
-Usage: python tools/parallel_2t1r_plots.py [--samples N] [--out DIR]
-Writes DIR/parallel_2t1r_comparison.png and DIR/parallel_2t1r_singular.png (DIR: docs/figures).
+`parallel_2t1r_comparison.png` (SOC vs Pinocchio vs classic virtual work along the motion law) and
+`parallel_2t1r_singular.png` (the singular studies), in the folder given (docs/figures when run by
+`tools/figures.py parallel_2t1r`).
 """
 
 from __future__ import annotations
 
-import argparse
 from pathlib import Path
 
-import matplotlib
-
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt
 import numpy as np
 
-import mechkit
-from mechkit.mechanisms.parallel_2t1r.compare import QUANTITIES, Comparison, compare_along
-from mechkit.mechanisms.parallel_2t1r.motion_law import MOTION_DURATION
-from mechkit.mechanisms.parallel_2t1r.studies import Study, singular_approach, start_of_motion
+from mechkit.base.plotting import pyplot, save_png
+from mechkit.mechanisms.parallel_2t1r.compare import QUANTITIES, Comparison
+from mechkit.mechanisms.parallel_2t1r.studies import SingularStudies
 
-FIGURES = Path(__file__).resolve().parent.parent / "docs" / "figures"
+#: Panels of the comparison: (title, unit, quantities).
 GROUPS = (("driving torques", "N m", ("M1", "M2", "M3")),
           ("R23 (link22 on platform)", "N", ("R23_fx", "R23_fz")),
           ("R43 (link42 on platform)", "N", ("R43_fx", "R43_fz")))
+DPI = 80
 
 
-def comparison_figure(cmp: Comparison, path: Path) -> None:
+def comparison_figure(cmp: Comparison, folder: Path) -> list[Path]:
     """Values (SOC dashed over Pinocchio) and |method - Pinocchio| on a log axis, per group."""
+    plt = pyplot("parallel_2t1r figures")
     fig, axes = plt.subplots(2, 3, figsize=(15, 7.5), sharex=True)
     for col, (title, unit, names) in enumerate(GROUPS):
         top, bottom = axes[0, col], axes[1, col]
@@ -50,13 +46,13 @@ def comparison_figure(cmp: Comparison, path: Path) -> None:
         bottom.grid(alpha=0.3, which="both")
     fig.suptitle("2T1R along theta = (pi t/18, pi t/15, pi t/10): Pinocchio constrained RNEA vs SOC vs classic "
                  "virtual work (in-plane reaction forces, world frame)")
-    fig.tight_layout()
-    fig.savefig(path, dpi=80)
-    plt.close(fig)
+    return [save_png(fig, folder / "parallel_2t1r_comparison.png", DPI)]
 
 
-def singular_figure(start: Study, approach: Study, path: Path) -> None:
+def singular_figure(s: SingularStudies, folder: Path) -> list[Path]:
     """Log-log: the motion law's start (t -> 0) and theta_1 -> theta_2 for both actuation variants."""
+    plt = pyplot("parallel_2t1r figures")
+    start, approach = s.start, s.approach
     fig, (left, right) = plt.subplots(1, 2, figsize=(14, 5.5))
     for key, label in (("cond_Jp", "cond J_p"), ("pinocchio:R13_fx", "|R13 fx| Pinocchio (N)"),
                        ("pinocchio:M1", "|M1| Pinocchio (N m)"), ("soc:M1", "|M1| SOC (N m)"),
@@ -80,27 +76,4 @@ def singular_figure(start: Study, approach: Study, path: Path) -> None:
     for ax in (left, right):
         ax.grid(alpha=0.3, which="both")
         ax.legend(fontsize=8)
-    fig.tight_layout()
-    fig.savefig(path, dpi=80)
-    plt.close(fig)
-
-
-def main(argv: list[str] | None = None) -> int:
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--samples", type=int, default=500, help="regular samples of the motion law (0.01 s steps: 500)")
-    parser.add_argument("--out", type=Path, default=FIGURES)
-    args = parser.parse_args(argv)
-    args.out.mkdir(parents=True, exist_ok=True)
-    mech = mechkit.load("parallel_2t1r")
-    times = np.linspace(MOTION_DURATION / args.samples, MOTION_DURATION, args.samples)
-    comparison_figure(compare_along(mech, times), args.out / "parallel_2t1r_comparison.png")
-    start = start_of_motion(mech, np.logspace(-5, 0, 11))
-    approach = singular_approach(mech, np.append(np.logspace(-1, -8, 15), 0.0))
-    singular_figure(start, approach, args.out / "parallel_2t1r_singular.png")
-    for name in ("comparison", "singular"):
-        print(f"wrote {args.out / f'parallel_2t1r_{name}.png'}")
-    return 0
-
-
-if __name__ == "__main__":
-    raise SystemExit(main())
+    return [save_png(fig, folder / "parallel_2t1r_singular.png", DPI)]
