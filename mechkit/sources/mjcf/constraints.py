@@ -66,7 +66,7 @@ def equalities(mm, tree: Tree) -> tuple[tuple[LoopClosure, ...], tuple[Coupling,
         elif kind == TENDON:
             first = fixed_tendon(mm, tree, o1, where)
             second = fixed_tendon(mm, tree, o2, where) if o2 >= 0 else ()
-            couplings.append(Coupling(name, first, second, tuple(data[0:5]), float(mm.tendon_length0[o1]),
+            couplings.append(Coupling(name, first, second, tuple(float(c) for c in data[0:5]), float(mm.tendon_length0[o1]),
                                       float(mm.tendon_length0[o2]) if o2 >= 0 else 0.0))
         else:
             raise MalformedDescription(where, "only connect, weld, joint and tendon equalities are read")
@@ -108,7 +108,7 @@ def _joint_coupling(mm, tree: Tree, name: str, j1: int, j2: int, data: np.ndarra
                                        "joint: a joint equality couples hinges and slides")
     leader = ((tree.names["joint"][j2], 1.0),) if j2 >= 0 else ()
     ref = float(mm.qpos0[mm.jnt_qposadr[j2]]) if j2 >= 0 else 0.0
-    return Coupling(name, ((tree.names["joint"][j1], 1.0),), leader, tuple(data[0:5]),
+    return Coupling(name, ((tree.names["joint"][j1], 1.0),), leader, tuple(float(c) for c in data[0:5]),
                     float(mm.qpos0[mm.jnt_qposadr[j1]]), ref)
 
 
