@@ -50,7 +50,8 @@ def read_mjcf(path: Path) -> Description:
     try:
         mm = mujoco.MjModel.from_xml_path(str(path))
     except ValueError as err:
-        raise MalformedDescription(str(path), f"MuJoCo could not compile it: {str(err).strip().splitlines()[0]}") from None
+        where = "; ".join(line.strip() for line in str(err).strip().splitlines()[:2])
+        raise MalformedDescription(str(path), f"MuJoCo could not compile it: {where}") from None
     if mm.njnt == 0:
         raise MalformedDescription(str(path), "the model has no joint: nothing moves")
     tree = build_tree(mujoco, mm, root.get("model") or path.name.split(".")[0])

@@ -3,8 +3,9 @@
 - `<equality>` `connect` -> a spherical cut whose frames sit at the anchor on each body (MuJoCo's
   anchor on body 2 is where the anchor on body 1 is at qpos0), two `connect`s between the same two
   bodies at distinct points -> one revolute cut about the line through them; `weld` -> a weld cut
-  (body 2 held at `relpose` from body 1, MuJoCo's qpos0 pose when the file gives none); on sites:
-  the site frames meet. `joint` -> a `Coupling` (joint1 - its qpos0 = polycoef(joint2 - its qpos0));
+  (as MuJoCo's: the point at relpose's position on body 1 meets the anchor on body 2, whose frame is
+  turned by relpose's rotation from body 1's; relpose is the qpos0 pose when the file gives none); on
+  sites: the site frames meet. `joint` -> a `Coupling` (joint1 - its qpos0 = polycoef(joint2 - its qpos0));
   `tendon` (fixed tendons) -> a `Coupling` of the tendon lengths about their qpos0 lengths.
 - joint `stiffness`, `springref` (MuJoCo's qpos_spring) and `damping` -> `JointSpring`s; a ball or
   free joint carries damping only.
@@ -57,10 +58,9 @@ def equalities(mm, tree: Tree) -> tuple[tuple[LoopClosure, ...], tuple[Coupling,
             closures.append(_cut(tree, name, "spherical" if kind == CONNECT else "weld", o1, o2, a, b))
         elif kind == CONNECT:
             connects.setdefault((o1, o2), []).append((name, data[0:3]))
-        elif kind == WELD:
-            relpose = se3(data[6:10], data[3:6])
-            anchor = pin.SE3(np.eye(3), data[0:3])
-            closures.append(_cut(tree, name, "weld", o1, o2, relpose * anchor, anchor))
+        elif kind == WELD:  # MuJoCo's weld: relpose's point on body 1 meets the anchor on body 2, which is
+            # turned by relpose's rotation from body 1
+            closures.append(_cut(tree, name, "weld", o1, o2, se3(data[6:10], data[3:6]), pin.SE3(np.eye(3), data[0:3])))
         elif kind == JOINT:
             couplings.append(_joint_coupling(mm, tree, name, o1, o2, data))
         elif kind == TENDON:
@@ -101,11 +101,8 @@ def _cut(tree: Tree, name: str, kind: str, b1: int, b2: int, a: pin.SE3, b: pin.
 
 
 def _joint_coupling(mm, tree: Tree, name: str, j1: int, j2: int, data: np.ndarray) -> Coupling:
-    """joint1 - qpos0 = polycoef(joint2 - qpos0) (joint1 held at qpos0 + polycoef[0] without joint2)."""
-    for j in (j1, j2):
-        if j >= 0 and int(mm.jnt_type[j]) not in ONE_FREEDOM:
-            raise MalformedDescription(f"MJCF equality {name!r}", f"joint {tree.names['joint'][j]!r} is a ball or free "
-                                       "joint: a joint equality couples hinges and slides")
+    """joint1 - qpos0 = polycoef(joint2 - qpos0) (joint1 held at qpos0 + polycoef[0] without joint2; MuJoCo
+    allows hinges and slides only)."""
     leader = ((tree.names["joint"][j2], 1.0),) if j2 >= 0 else ()
     ref = float(mm.qpos0[mm.jnt_qposadr[j2]]) if j2 >= 0 else 0.0
     return Coupling(name, ((tree.names["joint"][j1], 1.0),), leader, tuple(float(c) for c in data[0:5]),
@@ -113,21 +110,18 @@ def _joint_coupling(mm, tree: Tree, name: str, j1: int, j2: int, data: np.ndarra
 
 
 def fixed_tendon(mm, tree: Tree, t: int, where: str) -> tuple[tuple[str, float], ...]:
-    """A fixed tendon as ((joint, coefficient), ...): its length is the sum of coefficient * joint value.
+    """A fixed tendon as ((joint, coefficient), ...): its length is the sum of coefficient * joint value
+    (MuJoCo allows hinges and slides only).
 
     Raises:
-        MalformedDescription: a spatial tendon, or a tendon over a ball or free joint.
+        MalformedDescription: a spatial tendon.
     """
     terms = []
     for w in range(int(mm.tendon_adr[t]), int(mm.tendon_adr[t]) + int(mm.tendon_num[t])):
         if int(mm.wrap_type[w]) != WRAP_JOINT:
             raise MalformedDescription(where, f"tendon {tree.names['tendon'][t]!r} is spatial: only fixed tendons "
                                        "(sums of joint values) are read")
-        j = int(mm.wrap_objid[w])
-        if int(mm.jnt_type[j]) not in ONE_FREEDOM:
-            raise MalformedDescription(where, f"tendon {tree.names['tendon'][t]!r} spans the ball or free joint "
-                                       f"{tree.names['joint'][j]!r}")
-        terms.append((tree.names["joint"][j], float(mm.wrap_prm[w])))
+        terms.append((tree.names["joint"][int(mm.wrap_objid[w])], float(mm.wrap_prm[w])))
     return tuple(terms)
 
 
