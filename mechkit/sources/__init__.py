@@ -2,9 +2,10 @@
 
 Formats (one module each): a `.urdf` with `<mechkit:loop>` elements (`urdf`), a `.urdf` with an
 Extended-URDF `.yaml` sidecar beside it (`extended_urdf`), a `.xacro` / `.urdf.xacro` whose keyword
-parameters become xacro arguments (`xacro_file`), and an MJCF `.xml` (`mjcf`). The URDF readers give
-the tree URDF with its loops as `<mechkit:loop>` elements; the MJCF reader builds the Pinocchio model
-itself (any joint) and gives its URDF only where URDF can hold the tree.
+parameters become xacro arguments (`xacro_file`), an MJCF `.xml` (`mjcf`) and an SDFormat `.sdf`
+(`sdf`). The URDF readers give the tree URDF with its loops as `<mechkit:loop>` elements; the MJCF
+and SDFormat readers build the Pinocchio model themselves (any joint) and give its URDF only where
+URDF can hold the tree.
 """
 
 from __future__ import annotations
@@ -16,12 +17,13 @@ from mechkit.base.exceptions import InvalidParameters, MalformedDescription
 from mechkit.sources.description import Description
 from mechkit.sources.extended_urdf import read_extended_urdf, sidecar_of
 from mechkit.sources.mjcf import read_mjcf
+from mechkit.sources.sdf import read_sdf
 from mechkit.sources.urdf import describe_urdf, read_urdf
 from mechkit.sources.xacro_file import read_xacro, xacro_args
 
 __all__ = ["SUFFIXES", "Description", "describe_urdf", "read", "xacro_args"]
 
-SUFFIXES = (".urdf", ".xacro", ".xml")
+SUFFIXES = (".urdf", ".xacro", ".xml", ".sdf")
 
 
 def read(path: Path, params: dict[str, Any] | None = None) -> Description:
@@ -47,8 +49,10 @@ def read(path: Path, params: dict[str, Any] | None = None) -> Description:
         return read_extended_urdf(path, sidecar) if sidecar is not None else read_urdf(path)
     if name.endswith((".xml", ".mjcf")):
         return _urdf_tree_only(read_mjcf(path))
+    if name.endswith(".sdf"):
+        return _urdf_tree_only(read_sdf(path))
     raise MalformedDescription(str(path), "unknown format: expected .urdf (with loops or a .yaml sidecar), "
-                                          ".xacro / .urdf.xacro or MJCF .xml")
+                                          ".xacro / .urdf.xacro, MJCF .xml or SDFormat .sdf")
 
 
 def _urdf_tree_only(desc: Description) -> Description:

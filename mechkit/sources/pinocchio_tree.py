@@ -59,9 +59,11 @@ def add_body(model: pin.Model, name: str, joint: int, placement: pin.SE3, inerti
     _add(model, pin.Frame(name, joint, _parent_frame(model, joint), placement, pin.FrameType.BODY))
 
 
-def add_frame(model: pin.Model, name: str, joint: int, placement: pin.SE3) -> None:
-    """Add an operational frame at `placement` in the joint's frame; a name already taken is refused."""
-    _add(model, pin.Frame(name, joint, _parent_frame(model, joint), placement, pin.FrameType.OP_FRAME))
+def add_frame(model: pin.Model, name: str, joint: int, placement: pin.SE3,
+              kind: pin.FrameType = pin.FrameType.OP_FRAME) -> None:
+    """Add a frame (operational, or a fixed joint's) at `placement` in the joint's frame; a name
+    already taken by a body or frame is refused."""
+    _add(model, pin.Frame(name, joint, _parent_frame(model, joint), placement, kind))
 
 
 def _add(model: pin.Model, frame: pin.Frame) -> None:
@@ -99,13 +101,13 @@ def tree_urdf(model: pin.Model, closures: tuple[LoopClosure, ...]) -> str | None
     URDF cannot hold the tree (ball, free-flyer, universal joints).
 
     Each joint's link is named after the BODY frame at identity on it (else `<joint>__link`) and
-    carries the joint's whole inertia; every other BODY or OP_FRAME frame is a massless link on a
-    fixed joint `<frame>_fixed`. Joint limits are written wide (+-1e3), efforts and speeds 1e6 / 1e3.
+    carries the joint's whole inertia; every other frame but the universe and JOINT frames is a
+    massless link on a fixed joint `<frame>_fixed`. Joint limits are written wide (+-1e3), efforts and speeds 1e6 / 1e3.
     """
     axes = one_freedom_axes(model)
     if axes is None:
         return None
-    frames = [f for f in model.frames if f.type in (pin.FrameType.BODY, pin.FrameType.OP_FRAME)]
+    frames = [f for f in list(model.frames)[1:] if f.type != pin.FrameType.JOINT]
     link = {0: "world"}
     for j in range(1, model.njoints):
         link[j] = next((f.name for f in frames if f.parentJoint == j and f.type == pin.FrameType.BODY
