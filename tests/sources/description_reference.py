@@ -47,14 +47,15 @@ class Statics:
         return self.model.joints[j].idx_v
 
     def configuration(self, values: dict) -> np.ndarray:
-        """q from joint values: a one-freedom joint's value, a ball's rotation vector, a free-flyer's
-        position and rotation vector (the form of `Description.guess`); other joints neutral."""
+        """q from joint values: a one-freedom joint's value, a universal joint's two angles, a ball's
+        rotation vector, a free-flyer's position and rotation vector (the form of `Description.guess`);
+        other joints neutral."""
         q = pin.neutral(self.model)
         for name, value in values.items():
             jm = self.model.joints[self.model.getJointId(name)]
             v = np.atleast_1d(np.asarray(value, dtype=float))
-            if jm.nq == 1:
-                q[jm.idx_q] = v[0]
+            if jm.nq == len(v):
+                q[jm.idx_q:jm.idx_q + jm.nq] = v
             else:  # a ball (rotation vector) or a free-flyer (position, rotation vector)
                 q[jm.idx_q:jm.idx_q + jm.nq - 4] = v[:-3]
                 q[jm.idx_q + jm.nq - 4:jm.idx_q + jm.nq] = pin.Quaternion(pin.exp3(v[-3:])).coeffs()
@@ -120,15 +121,15 @@ class Statics:
         return g
 
     def assemble(self, q: np.ndarray, fixed: dict[str, float], tol: float = 1e-12, iters: int = 100) -> np.ndarray:
-        """Close every loop and coupling with the `fixed` joints at their values, by damped least squares."""
+        """Close every loop and coupling with the `fixed` joints at their values: Gauss-Newton steps of
+        least norm (singular values below 1e-13 of the largest dropped: idle and redundant directions)."""
         for _ in range(iters):
             r, J = self.rows(q)
             r = np.concatenate([r, [self.value(q, j) - v for j, v in fixed.items()]])
             J = np.vstack([J] + [self._unit(j) for j in fixed])
             if np.max(np.abs(r)) < tol:
                 return q
-            mu = 1e-12 * max(1.0, float(np.max(np.abs(J)))) ** 2
-            q = pin.integrate(self.model, q, -J.T @ np.linalg.solve(J @ J.T + mu * np.eye(len(r)), r))
+            q = pin.integrate(self.model, q, -np.linalg.lstsq(J, r, rcond=1e-13)[0])
         raise AssertionError(f"no assembly: residual {np.max(np.abs(r)):.2e}")
 
     def efforts(self, q: np.ndarray) -> tuple[np.ndarray, float]:
@@ -139,9 +140,10 @@ class Statics:
         x = np.linalg.lstsq(A, b, rcond=None)[0]
         return x[:self.S.shape[1]], float(np.linalg.norm(A @ x - b))
 
-    def equilibrium(self, q: np.ndarray, fixed: dict[str, float], tol: float = 1e-11, iters: int = 60) -> np.ndarray:
+    def equilibrium(self, q: np.ndarray, fixed: dict[str, float], tol: float = 1e-12, iters: int = 60) -> np.ndarray:
         """A closed configuration, the `fixed` joints at their values, where the efforts hold (Newton on
-        q, u and lambda together; the passive freedoms settle where the springs balance gravity)."""
+        q, u and lambda together; the passive freedoms settle where the springs balance gravity), to
+        `tol` times the largest generalised force."""
         q = self.assemble(q, fixed)
         nu, n = self.S.shape[1], self.model.nv
         ncons = self.rows(q)[0].size
@@ -152,9 +154,10 @@ class Statics:
             fix = [self.value(q, j) - v for j, v in fixed.items()]
             return np.concatenate([r, fix, self.S @ x[:nu] + J.T @ x[nu:] - self.generalised(q)])
 
+        scale = max(1.0, float(np.max(np.abs(self.generalised(q)))))
         for _ in range(iters):
             F = residual(q, x)
-            if np.max(np.abs(F)) < tol:
+            if np.max(np.abs(F)) < tol * scale:
                 return q
             h = 1e-7
             Jq = np.column_stack([(residual(pin.integrate(self.model, q, h * e), x)
