@@ -7,7 +7,7 @@ refused by name). Its joints may form a graph; it becomes a spanning tree plus c
 - the tree joint of a link is, among the joints whose child it is, the one named in
   `parent_guidance`, else the first in file order (Pinocchio's SDF parser chooses so); its other
   parent joints are cuts. A link no joint leads to is a root: a free-flyer (`root_joint`, or
-  `<link>_root_joint` when there are several) unless the model is `<static>`, then welded.
+  `<link>_root_joint` when there are several). A `<static>` model (nothing moves) is refused.
 - a cut joint is a `LoopClosure` between frames `<joint>_a` on its parent link and `<joint>_b` on its
   child link, both at the joint's frame in the file's configuration: revolute / continuous ->
   revolute, prismatic -> prismatic, ball -> spherical, fixed -> weld, universal -> Hooke.
@@ -218,7 +218,8 @@ class _Reader:
                 parents[ends[name][1]].append(name)
         tree = {link: next((j for j in options if j in self.guidance), options[0]) for link, options in parents.items()
                 if options}
-        static = (self.element.findtext("static") or "").strip() in ("1", "true")
+        if (self.element.findtext("static") or "").strip() in ("1", "true"):
+            raise MalformedDescription(f"SDF model {self.name!r}", "<static> is true: nothing in it moves")
         roots = [link for link in self.items["link"] if link not in tree]
         model = pin.Model()
         model.name = self.name
@@ -228,13 +229,9 @@ class _Reader:
         queue = ["world", *roots]
         for root in roots:
             at = self.world * self.frame(root)
-            if static:
-                carrier[root] = (0, at)
-            else:
-                name = "root_joint" if len(roots) == 1 else f"{root}_root_joint"
-                carrier[root] = (add_joint(model, name, 0, pin.JointModelFreeFlyer(), pin.SE3.Identity()),
-                                 pin.SE3.Identity())
-                guess[name] = tuple(at.translation) + tuple(pin.log3(at.rotation))
+            name = "root_joint" if len(roots) == 1 else f"{root}_root_joint"
+            carrier[root] = (add_joint(model, name, 0, pin.JointModelFreeFlyer(), pin.SE3.Identity()), pin.SE3.Identity())
+            guess[name] = tuple(float(x) for x in at.translation) + tuple(float(x) for x in pin.log3(at.rotation))
             add_body(model, root, *carrier[root], self._inertia(root))
         springs: list[JointSpring] = []
         for link in queue:
@@ -251,7 +248,7 @@ class _Reader:
                 add_frame(model, name, carrier[link][0], self._in(carrier, link, self.frame(name)))
         closures = [self._cut(model, j, ends[j], carrier) for j, joint in joints.items()
                     if joint.get("type") != "gearbox" and tree.get(ends[j][1]) != j]
-        couplings = [self._gearbox(model, j, ends[j], tree, ends) for j, joint in joints.items()
+        couplings = [self._gearbox(j, ends[j], tree, ends) for j, joint in joints.items()
                      if joint.get("type") == "gearbox"]
         actuated = tuple(dict.fromkeys(k.leader[0][0] for k in couplings))
         return Description(self.name, tree_urdf(model, tuple(closures)), actuated, {j: 0.0 for j in actuated}, guess,
@@ -324,7 +321,7 @@ class _Reader:
         return LoopClosure(name, kind, f"{name}_a", f"{name}_b", None if kind == "hooke" else axis,
                            axis if kind == "hooke" else None, axis2, explicit_rows=False)
 
-    def _gearbox(self, model: pin.Model, name: str, ends: tuple[str, str], tree: dict, all_ends: dict) -> Coupling:
+    def _gearbox(self, name: str, ends: tuple[str, str], tree: dict, all_ends: dict) -> Coupling:
         joint, where = self.items["joint"][name], f"SDF joint {name!r}"
         reference = (joint.findtext("gearbox_reference_body") or "").strip()
         if reference not in self.items["link"]:

@@ -222,6 +222,7 @@ MALFORMED = {  # file text -> what the one-line error says
     "<sdf version='1.9'><model>": "not well-formed",
     "<robot/>": "starts with <sdf>",
     "<sdf version='1.9'><world name='w'/></sdf>": "expected one <model>",
+    GOOD.replace("<link name=\"base\">", "<static>true</static><link name=\"base\">"): "<static> is true",
     GOOD.replace('version="1.9"', 'version="latest"'): "expected a version",
     GOOD.replace('<link name="rotor">', '<model name="inner"/><link name="rotor">'): "nested <model>",
     GOOD.replace('<link name="rocker">', '<link name="crank">'): "missing or repeated name",

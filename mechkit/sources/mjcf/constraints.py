@@ -21,6 +21,8 @@ contacts, limits, friction loss, actuator dynamics and gains, solver parameters.
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 import pinocchio as pin
 
@@ -29,6 +31,9 @@ from mechkit.core.records import Actuator, Coupling, JointSpring, LoopClosure
 from mechkit.sources.mjcf.tree import Tree, se3
 from mechkit.sources.pinocchio_tree import add_frame
 
+if TYPE_CHECKING:
+    from mujoco import MjModel
+
 CONNECT, WELD, JOINT, TENDON = 0, 1, 2, 3  # mjtEq
 OBJ_SITE = 6  # mjtObj
 TRN_JOINT, TRN_JOINTINPARENT, TRN_TENDON = 0, 1, 3  # mjtTrn
@@ -36,7 +41,7 @@ WRAP_JOINT = 1  # mjtWrap
 ONE_FREEDOM = (2, 3)  # mjtJoint: slide, hinge
 
 
-def equalities(mm, tree: Tree) -> tuple[tuple[LoopClosure, ...], tuple[Coupling, ...]]:
+def equalities(mm: MjModel, tree: Tree) -> tuple[tuple[LoopClosure, ...], tuple[Coupling, ...]]:
     """The loops (their frames added to `tree.model`) and couplings of the active equalities.
 
     Raises:
@@ -100,7 +105,7 @@ def _cut(tree: Tree, name: str, kind: str, b1: int, b2: int, a: pin.SE3, b: pin.
     return LoopClosure(name, kind, f"{name}_a", f"{name}_b", axis, explicit_rows=False)
 
 
-def _joint_coupling(mm, tree: Tree, name: str, j1: int, j2: int, data: np.ndarray) -> Coupling:
+def _joint_coupling(mm: MjModel, tree: Tree, name: str, j1: int, j2: int, data: np.ndarray) -> Coupling:
     """joint1 - qpos0 = polycoef(joint2 - qpos0) (joint1 held at qpos0 + polycoef[0] without joint2; MuJoCo
     allows hinges and slides only)."""
     leader = ((tree.names["joint"][j2], 1.0),) if j2 >= 0 else ()
@@ -109,7 +114,7 @@ def _joint_coupling(mm, tree: Tree, name: str, j1: int, j2: int, data: np.ndarra
                     float(mm.qpos0[mm.jnt_qposadr[j1]]), ref)
 
 
-def fixed_tendon(mm, tree: Tree, t: int, where: str) -> tuple[tuple[str, float], ...]:
+def fixed_tendon(mm: MjModel, tree: Tree, t: int, where: str) -> tuple[tuple[str, float], ...]:
     """A fixed tendon as ((joint, coefficient), ...): its length is the sum of coefficient * joint value
     (MuJoCo allows hinges and slides only).
 
@@ -125,7 +130,7 @@ def fixed_tendon(mm, tree: Tree, t: int, where: str) -> tuple[tuple[str, float],
     return tuple(terms)
 
 
-def check_tendons(mm, tree: Tree) -> None:
+def check_tendons(mm: MjModel, tree: Tree) -> None:
     """Refuse tendon springs, dampers, armature and friction loss, which no record carries."""
     for t in range(mm.ntendon):
         for field in ("tendon_stiffness", "tendon_damping", "tendon_armature", "tendon_frictionloss"):
@@ -134,7 +139,7 @@ def check_tendons(mm, tree: Tree) -> None:
                                            f"{field.removeprefix('tendon_')} on a tendon is not read")
 
 
-def springs(mm, tree: Tree) -> tuple[JointSpring, ...]:
+def springs(mm: MjModel, tree: Tree) -> tuple[JointSpring, ...]:
     """Joint springs and dampers (stiffness N m/rad or N/m, springref, damping N m s/rad or N s/m).
 
     Raises:
@@ -158,7 +163,7 @@ def springs(mm, tree: Tree) -> tuple[JointSpring, ...]:
     return tuple(out)
 
 
-def actuation(mm, tree: Tree) -> tuple[tuple[str, ...], tuple[Actuator, ...]]:
+def actuation(mm: MjModel, tree: Tree) -> tuple[tuple[str, ...], tuple[Actuator, ...]]:
     """(actuated names in effort order, tendon actuators): see the module docstring.
 
     Raises:

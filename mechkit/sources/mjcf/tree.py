@@ -12,12 +12,19 @@ frames, sites OP_FRAMEs; armature goes to `model.armature`, the gravity to `mode
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 import pinocchio as pin
+from numpy.typing import ArrayLike
 
 from mechkit.base.exceptions import MalformedDescription
 from mechkit.sources.pinocchio_tree import add_body, add_frame, add_joint, joint_model
+
+if TYPE_CHECKING:
+    from types import ModuleType
+
+    from mujoco import MjModel
 
 #: MuJoCo joint type (mjtJoint) -> the Pinocchio joint kind.
 KINDS = {0: "free", 1: "spherical", 2: "prismatic", 3: "revolute"}
@@ -47,13 +54,13 @@ class Tree:
         return self.names["joint"].index(name)
 
 
-def se3(quat_wxyz, pos) -> pin.SE3:
+def se3(quat_wxyz: ArrayLike, pos: ArrayLike) -> pin.SE3:
     """The placement of a MuJoCo (quaternion w, x, y, z; position) pair."""
     w, x, y, z = (float(c) for c in quat_wxyz)
     return pin.SE3(pin.Quaternion(w, x, y, z).normalized().matrix(), np.asarray(pos, dtype=float))
 
 
-def object_names(mujoco, mm) -> dict[str, list[str]]:
+def object_names(mujoco: ModuleType, mm: MjModel) -> dict[str, list[str]]:
     """Names of MuJoCo's bodies, joints, sites, equalities, tendons and actuators (see `Tree.names`)."""
     obj = mujoco.mjtObj
     kinds = {"body": (obj.mjOBJ_BODY, mm.nbody), "joint": (obj.mjOBJ_JOINT, mm.njnt), "site": (obj.mjOBJ_SITE, mm.nsite),
@@ -72,7 +79,7 @@ def object_names(mujoco, mm) -> dict[str, list[str]]:
     return out
 
 
-def build_tree(mujoco, mm, name: str) -> Tree:
+def build_tree(mujoco: ModuleType, mm: MjModel, name: str) -> Tree:
     """The Pinocchio tree of a compiled MuJoCo model (see the module docstring).
 
     Raises:
@@ -104,13 +111,13 @@ def build_tree(mujoco, mm, name: str) -> Tree:
     return Tree(model, names, body_joint, placement, world)
 
 
-def _principal(iquat, diagonal) -> np.ndarray:
+def _principal(iquat: ArrayLike, diagonal: ArrayLike) -> np.ndarray:
     """The rotational inertia (kg m^2, about the centre of mass, body frame) from MuJoCo's principal form."""
     R = se3(iquat, np.zeros(3)).rotation
     return R @ np.diag(np.asarray(diagonal, dtype=float)) @ R.T
 
 
-def _joint(model: pin.Model, mm, name: str, j: int, parent: int, at: pin.SE3) -> tuple[int, pin.SE3]:
+def _joint(model: pin.Model, mm: MjModel, name: str, j: int, parent: int, at: pin.SE3) -> tuple[int, pin.SE3]:
     """Add MuJoCo joint j after the frame `at` (in parent's frame); returns (joint id, body frame in it)."""
     kind = KINDS[int(mm.jnt_type[j])]
     axis = np.asarray(mm.jnt_axis[j], dtype=float)
