@@ -189,13 +189,16 @@ SYNTHETIC = """<mujoco model="kinds">
 """
 
 
-def test_every_equality_kind_tendon_spring_and_armature_agree_with_mujoco(tmp_path):
+@pytest.mark.parametrize("flags", ["", '<option><flag gravity="disable" spring="disable"/></option>'],
+                         ids=["as-written", "no-gravity-no-springs"])
+def test_every_equality_kind_tendon_spring_and_armature_agree_with_mujoco(flags, tmp_path):
     """Welds (explicit relpose, sites), a site connect, a polynomial joint equality, a tendon equality,
     a tendon actuator, springs on a hinge and a slide, armature: at random configurations the
     coupling residuals equal MuJoCo's rows, the actuation matrix its moments, gravity and springs its
-    forces; closed by our rows, MuJoCo's equality residuals vanish and the DOF agree."""
+    forces; closed by our rows, MuJoCo's equality residuals vanish and the DOF agree. Also with gravity
+    and springs switched off by MuJoCo's flags."""
     path = tmp_path / "kinds.xml"
-    path.write_text(SYNTHETIC)
+    path.write_text(SYNTHETIC.replace('<compiler angle="radian"/>', '<compiler angle="radian"/>' + flags))
     desc = read_mjcf(path)
     st, ref = Statics(desc), MujocoReference(path, desc.model)
     rng = np.random.default_rng(3)

@@ -7,8 +7,8 @@
   turned by relpose's rotation from body 1's; relpose is the qpos0 pose when the file gives none); on
   sites: the site frames meet. `joint` -> a `Coupling` (joint1 - its qpos0 = polycoef(joint2 - its qpos0));
   `tendon` (fixed tendons) -> a `Coupling` of the tendon lengths about their qpos0 lengths.
-- joint `stiffness`, `springref` (MuJoCo's qpos_spring) and `damping` -> `JointSpring`s; a ball or
-  free joint carries damping only.
+- joint `stiffness`, `springref` (MuJoCo's qpos_spring) and `damping` -> `JointSpring`s (none where
+  `<flag spring="disable">` / `damper="disable"`); a ball or free joint carries damping only.
 - actuators on a hinge or slide -> that joint is actuated (the effort is the joint's generalised
   force: MuJoCo's gear is not applied); on a fixed tendon -> an `Actuator` whose joint coefficients
   are the tendon's times the gear (the effort is MuJoCo's actuator force).
@@ -39,6 +39,7 @@ OBJ_SITE = 6  # mjtObj
 TRN_JOINT, TRN_JOINTINPARENT, TRN_TENDON = 0, 1, 3  # mjtTrn
 WRAP_JOINT = 1  # mjtWrap
 ONE_FREEDOM = (2, 3)  # mjtJoint: slide, hinge
+SPRING_OFF, DAMPER_OFF = 1 << 5, 1 << 6  # mjtDisableBit: <flag spring="disable">, <flag damper="disable">
 
 
 def equalities(mm: MjModel, tree: Tree) -> tuple[tuple[LoopClosure, ...], tuple[Coupling, ...]]:
@@ -150,8 +151,8 @@ def springs(mm: MjModel, tree: Tree) -> tuple[JointSpring, ...]:
     for j, name in enumerate(tree.names["joint"]):
         dof, kind = int(mm.jnt_dofadr[j]), int(mm.jnt_type[j])
         nv = 1 if kind in ONE_FREEDOM else (3 if kind == 1 else 6)
-        damping = np.asarray(mm.dof_damping[dof:dof + nv], dtype=float)
-        stiffness = float(mm.jnt_stiffness[j])
+        damping = np.asarray(mm.dof_damping[dof:dof + nv], dtype=float) * (not mm.opt.disableflags & DAMPER_OFF)
+        stiffness = float(mm.jnt_stiffness[j]) * (not mm.opt.disableflags & SPRING_OFF)
         if np.any(mm.jnt_stiffnesspoly[j] != 0) or np.any(mm.dof_dampingpoly[dof:dof + nv] != 0):
             raise MalformedDescription(f"MJCF joint {name!r}", "polynomial (nonlinear) stiffness or damping is not read")
         if kind not in ONE_FREEDOM and (stiffness != 0 or np.ptp(damping) != 0):

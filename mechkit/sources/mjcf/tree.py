@@ -6,7 +6,8 @@ q = 0 where MuJoCo's is at qpos0 (`ref`), its frame at the joint's anchor `pos`;
 MuJoCo's (reordered x, y, z, w); a free joint's q is the body's world position and orientation.
 Several joints in one body are a chain through the joints' frames. Each body's inertia is the one
 MuJoCo compiled (from `<inertial>`, or inferred from its geoms and meshes), body frames are BODY
-frames, sites OP_FRAMEs; armature goes to `model.armature`, the gravity to `model.gravity`.
+frames, sites OP_FRAMEs; armature goes to `model.armature`, the gravity to `model.gravity` (zero
+where `<flag gravity="disable">`).
 """
 
 from __future__ import annotations
@@ -88,7 +89,8 @@ def build_tree(mujoco: ModuleType, mm: MjModel, name: str) -> Tree:
     names = object_names(mujoco, mm)
     model = pin.Model()
     model.name = name
-    model.gravity = pin.Motion(np.asarray(mm.opt.gravity, dtype=float), np.zeros(3))
+    gravity = not mm.opt.disableflags & mujoco.mjtDisableBit.mjDSBL_GRAVITY
+    model.gravity = pin.Motion(np.asarray(mm.opt.gravity, dtype=float) * gravity, np.zeros(3))
     add_body(model, "world", 0, pin.SE3.Identity(), pin.Inertia.Zero())
     body_joint, placement, world = [0], [pin.SE3.Identity()], [pin.SE3.Identity()]
     for b in range(1, mm.nbody):
