@@ -135,6 +135,37 @@ def _reorder(values: np.ndarray, source: Description, target: Description) -> np
     return out
 
 
+def test_a_universal_joint_cut_chosen_by_parent_guidance_gives_the_same_linkage(tmp_path):
+    """The RSUR-S fixture rewritten with the ball joint running rocker -> coupler: the coupler then has
+    two parent joints, and `parent_guidance` makes the ball its tree joint, so the universal joint is
+    the cut (a Hooke closure). Same linkage: the same DOF, assembly and holding effort as the file."""
+    text = OLD.replace("<parent>coupler</parent>\n      <child>rocker</child>", "<parent>rocker</parent>\n      <child>coupler</child>")
+    text = text.replace("<pose>0 0 0.12 0 0 0</pose>", "<pose>0.25 0.1 0.12 0 0 0</pose>")
+    path = tmp_path / "swapped.sdf"
+    path.write_text(text)
+    assert [c.kind for c in read_sdf(path).closures] == ["spherical"]  # without guidance the ball is the cut
+    swapped, original = read_sdf(path, parent_guidance=["C"]), read_sdf(FIXTURES / "rssr_universal.sdf")
+    (cut,) = swapped.closures
+    assert (cut.name, cut.kind) == ("B", "hooke")
+    np.testing.assert_allclose(cut.axis_a, Z, atol=1e-15)
+    np.testing.assert_allclose(cut.axis_b, Y, atol=1e-15)
+    efforts = []
+    for desc in (swapped, original):
+        st = Statics(desc, ("crank_joint",))
+        q = st.assemble(st.configuration(desc.guess), {"crank_joint": 0.4})
+        assert st.mobility(q) == 1 and st.idle(q) == {}
+        data = desc.model.createData()
+        pin.framesForwardKinematics(desc.model, data, q)
+        efforts.append((st.efforts(q), {link: data.oMf[desc.model.getFrameId(link, pin.FrameType.BODY)].homogeneous
+                                         for link in ("crank", "coupler", "rocker")}))
+    (u1, left1), at1 = efforts[0]
+    (u2, left2), at2 = efforts[1]
+    for link in at1:
+        np.testing.assert_allclose(at1[link], at2[link], atol=1e-10)
+    assert left1 < 1e-12 and left2 < 1e-12
+    np.testing.assert_allclose(u1, u2, atol=1e-10 * max(1.0, np.max(np.abs(u2))))
+
+
 CASSIE_FACTS = {  # file -> (DOF floating or as written, DOF with the pelvis welded, loops, gearboxes)
     "cassie.sdf": (16, 10, ["prismatic", "revolute", "spherical"] * 2, 10),
     "cassie_v2.sdf": (18, 12, ["spherical"] * 4, 0),
