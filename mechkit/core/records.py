@@ -71,6 +71,8 @@ class Coupling:
 @dataclass(frozen=True)
 class JointSpring:
     """A spring and damper on a one-freedom joint: effort = preload - stiffness (x - reference) - damping dx/dt.
+    On a joint of several freedoms (ball, free-flyer: MuJoCo's damping) only the damper: effort =
+    -damping v on each of its velocity coordinates (stiffness, reference and preload 0).
 
     Attributes:
         joint: the joint's name.

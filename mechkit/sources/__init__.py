@@ -2,8 +2,10 @@
 
 Formats (one module each): a `.urdf` with `<mechkit:loop>` elements (`urdf`), a `.urdf` with an
 Extended-URDF `.yaml` sidecar beside it (`extended_urdf`), a `.xacro` / `.urdf.xacro` whose keyword
-parameters become xacro arguments (`xacro_file`), and an MJCF `.xml` (`mjcf`). Every reader gives
-the tree URDF with its loops as `<mechkit:loop>` elements, so the rest of mechkit reads one format.
+parameters become xacro arguments (`xacro_file`), an MJCF `.xml` (`mjcf`) and an SDFormat `.sdf`
+(`sdf`). The URDF readers give the tree URDF with its loops as `<mechkit:loop>` elements; the MJCF
+and SDFormat readers build the Pinocchio model themselves (any joint) and give its URDF only where
+URDF can hold the tree.
 """
 
 from __future__ import annotations
@@ -15,12 +17,13 @@ from mechkit.base.exceptions import InvalidParameters, MalformedDescription
 from mechkit.sources.description import Description
 from mechkit.sources.extended_urdf import read_extended_urdf, sidecar_of
 from mechkit.sources.mjcf import read_mjcf
+from mechkit.sources.sdf import read_sdf
 from mechkit.sources.urdf import describe_urdf, read_urdf
 from mechkit.sources.xacro_file import read_xacro, xacro_args
 
 __all__ = ["SUFFIXES", "Description", "describe_urdf", "read", "xacro_args"]
 
-SUFFIXES = (".urdf", ".xacro", ".xml")
+SUFFIXES = (".urdf", ".xacro", ".xml", ".sdf")
 
 
 def read(path: Path, params: dict[str, Any] | None = None) -> Description:
@@ -45,6 +48,29 @@ def read(path: Path, params: dict[str, Any] | None = None) -> Description:
         sidecar = sidecar_of(path)
         return read_extended_urdf(path, sidecar) if sidecar is not None else read_urdf(path)
     if name.endswith((".xml", ".mjcf")):
-        return read_mjcf(path)
+        return _urdf_tree_only(read_mjcf(path))
+    if name.endswith(".sdf"):
+        return _urdf_tree_only(read_sdf(path))
     raise MalformedDescription(str(path), "unknown format: expected .urdf (with loops or a .yaml sidecar), "
-                                          ".xacro / .urdf.xacro or MJCF .xml")
+                                          ".xacro / .urdf.xacro, MJCF .xml or SDFormat .sdf")
+
+
+def _urdf_tree_only(desc: Description) -> Description:
+    """Refuse, by name, what a `Mechanism` built from `desc.urdf` would drop: a tree URDF cannot hold
+    (ball, free-flyer, universal joints), couplings and tendon actuators. The readers put these in
+    `desc.model`, `desc.couplings` and `desc.actuators`, read directly until the core builds from them.
+
+    Raises:
+        MalformedDescription: the first such element, named.
+    """
+    where = str(desc.source)
+    if desc.urdf is None and desc.model is not None:
+        joints = [f"{desc.model.names[j]!r} ({desc.model.joints[j].shortname().removeprefix('JointModel')})"
+                  for j in range(1, desc.model.njoints) if desc.model.joints[j].nv > 1]
+        raise MalformedDescription(where, f"joint {joints[0]}: ball, free and universal joints are read into the "
+                                          "description's Pinocchio model, which mechkit.load does not take yet")
+    for records, what in ((desc.couplings, "coupling"), (desc.actuators, "tendon actuator")):
+        if records:
+            raise MalformedDescription(where, f"{what} {records[0].name!r}: read into the description, which "
+                                              "mechkit.load does not take yet")
+    return desc

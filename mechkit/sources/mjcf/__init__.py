@@ -1,0 +1,82 @@
+"""An MJCF (MuJoCo) file: compiled by MuJoCo, read into a Pinocchio model with closure records.
+
+MuJoCo resolves the format (defaults, angle units, orientations, inertias from geoms and meshes);
+this package reads the compiled model: its tree (`tree`: hinge, slide, ball and free joints, the
+compiled inertias, sites, armature, gravity), its equalities, springs and actuators (`constraints`).
+Pinocchio's q equals MuJoCo's qpos (a ball's and a free joint's quaternion reordered x, y, z, w).
+The home inputs and the guess are qpos0 (a ball's or free joint's rotation as a rotation vector).
+A tree of hinges and slides is also written as URDF text (`Description.urdf`), else that is None.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pinocchio as pin
+
+from mechkit.base.exceptions import MalformedDescription, MethodUnavailable
+from mechkit.sources.description import Description, read_text
+from mechkit.sources.mjcf.constraints import actuation, check_tendons, equalities, springs
+from mechkit.sources.mjcf.tree import Tree, build_tree
+from mechkit.sources.pinocchio_tree import tree_urdf
+from mechkit.sources.urdf import parse_xml
+
+__all__ = ["read_mjcf"]
+
+
+def read_mjcf(path: Path) -> Description:
+    """The description in an MJCF file (see the package docstring).
+
+    Args:
+        path: an MJCF file; its meshes and other assets where the file says (MuJoCo reads them).
+
+    Returns:
+        `Description` with `model` (and `urdf` for a tree of hinges and slides), closures,
+        couplings, springs, actuators, home (qpos0 of the actuated joints) and guess (qpos0).
+
+    Raises:
+        MethodUnavailable: MuJoCo is not installed (`pip install mechkit[peers]`).
+        MalformedDescription: not MJCF, MuJoCo cannot compile it, it has no joint, or it uses what
+            mechkit does not read (`mechkit.sources.mjcf.constraints`), each named.
+    """
+    root = parse_xml(read_text(path), str(path))
+    if root.tag != "mujoco":
+        raise MalformedDescription(str(path), f"root element <{root.tag}>: an MJCF file starts with <mujoco>")
+    try:
+        import mujoco
+    except ImportError:
+        raise MethodUnavailable("MJCF reading", "needs MuJoCo: pip install 'mechkit[peers]'") from None
+    try:
+        mm = mujoco.MjModel.from_xml_path(str(path))
+    except ValueError as err:
+        where = "; ".join(line.strip() for line in str(err).strip().splitlines()[:2])
+        raise MalformedDescription(str(path), f"MuJoCo could not compile it: {where}") from None
+    if mm.njnt == 0:
+        raise MalformedDescription(str(path), "the model has no joint: nothing moves")
+    tree = build_tree(mujoco, mm, root.get("model") or path.name.split(".")[0])
+    closures, couplings = equalities(mm, tree)
+    check_tendons(mm, tree)
+    actuated, actuators = actuation(mm, tree)
+    guess = _qpos0(mm, tree)
+    driven = [j for a in actuators for j, _ in a.joints] + [j for j in actuated if j in guess]
+    return Description(tree.model.name, tree_urdf(tree.model, closures), actuated, {j: guess[j] for j in driven}, guess,
+                       path, "mjcf", closures=closures, model=tree.model, couplings=couplings, springs=springs(mm, tree),
+                       actuators=actuators)
+
+
+def _qpos0(mm, tree: Tree) -> dict[str, float | tuple[float, ...]]:
+    """MuJoCo's qpos0 by joint: a hinge's or slide's value, a ball's rotation vector, a free joint's
+    position and rotation vector."""
+    out: dict[str, float | tuple[float, ...]] = {}
+    for j, name in enumerate(tree.names["joint"]):
+        q = np.asarray(mm.qpos0[mm.jnt_qposadr[j]:], dtype=float)
+        kind = int(mm.jnt_type[j])
+        if kind in (2, 3):
+            out[name] = float(q[0])
+        else:
+            at = 3 if kind == 0 else 0
+            w, x, y, z = q[at:at + 4]
+            rotation = tuple(float(c) for c in pin.log3(pin.Quaternion(w, x, y, z).normalized().matrix()))
+            out[name] = tuple(float(c) for c in q[:3]) + rotation if kind == 0 else rotation
+    return out
