@@ -14,7 +14,7 @@ from mechkit.catalog.contract import MechanismSpec
 from mechkit.catalog.params import MechanismParams
 from mechkit.catalog.registry import get_spec, names
 from mechkit.mechanism import Mechanism
-from mechkit.sources.urdf import build_model, parse_loops
+from mechkit.sources.urdf import build_model, parse_loops, parse_springs, parse_xml
 from mechkit.sources.xacro_file import render_urdf
 
 
@@ -97,9 +97,10 @@ def from_expanded(spec: MechanismSpec, params: MechanismParams, urdf: str, rows:
     Raises:
         MalformedDescription: the URDF is invalid; InvalidParameters: an unknown actuated joint.
     """
+    root = parse_xml(urdf)
     model = build_model(urdf)
-    cm = core.ClosureModel(model, parse_loops(urdf), actuated=spec.actuated_joints(params), rows=rows)
-    return Mechanism(spec, params, cm, urdf)
+    cm = core.ClosureModel(model, parse_loops(root), actuated=spec.actuated_joints(params), rows=rows)
+    return Mechanism(spec, params, cm, urdf, parse_springs(root))
 
 
 def from_description(desc: sources.Description, actuated: Sequence[str] | None = None,

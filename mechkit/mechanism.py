@@ -19,6 +19,7 @@ from mechkit.base import arguments
 from mechkit.base.exceptions import InvalidParameters
 from mechkit.catalog.contract import MechanismSpec
 from mechkit.catalog.params import MechanismParams
+from mechkit.forces import JointSprings
 
 Inputs = Mapping[str, float | Sequence[float]] | Sequence[float] | np.ndarray
 
@@ -31,7 +32,7 @@ class Mechanism:
         params: the parameter values used.
         closure_model: the tree with its closures, couplings and actuation (`mechkit.core.ClosureModel`).
         urdf: the tree's URDF text, where it has one (None: its joints are not URDF's).
-        springs: joint springs and dampers (passive forces in the dynamics).
+        springs: joint springs and dampers (passive forces in the dynamics, `mechkit.forces.JointSprings`).
 
     Attributes:
         model, data: the Pinocchio model of the tree and a data for it (scratch).
@@ -50,8 +51,7 @@ class Mechanism:
         self.closure_data = core_data = cm.create_data()
         self.model, self.data = cm.model, core_data.pin
         self.structure, self.closures, self.actuated = cm.structure, list(cm.closures), cm.actuated
-        self.springs = tuple(springs)
-        self._spring_q, self._spring_v, self._spring_laws = _spring_arrays(self, self.springs)
+        self.springs = JointSprings(self.model, springs)
         self.home_q = self.assemble(spec.home(params))
         self.home_mobility = core.mobility(cm, core_data, self.home_q)
         self.independent_rows = self.home_mobility.rank
@@ -102,7 +102,7 @@ class Mechanism:
             return {}
         if not isinstance(values, Mapping) and not names:
             self.require_actuators(f"{arg} given in actuated order")
-        sizes = {n: core.joint_size(self.model, self.joint_id(n)) for n in names}
+        sizes = {n: core.joint_size(self.model, self.joint_id(n)) for n in names if self.model.existJointName(n)}
         return arguments.joint_values(arg, values, names, list(self.model.names[1:]), sizes)
 
     def _names(self, inputs: Sequence[str] | None, what: str) -> list[str]:
@@ -267,14 +267,17 @@ class Mechanism:
         return core.second_order_velocity(self.closure_model, self.closure_data, *self._one(q=q, v=v))
 
     # ---------------------------------------------------------------- dynamics
+    def generalized_forces(self, efforts: Mapping[str, float] | Sequence[float] | np.ndarray) -> np.ndarray:
+        """The generalised forces S^T u (nv,) of actuator efforts u (N m or N): by actuator name, or in
+        `actuated` order (a joint motor acts on its joint; a transmission on its joints)."""
+        self.require_actuators("generalised forces from efforts")
+        u = arguments.joint_values("efforts", efforts, self.actuated, self.actuated) if isinstance(efforts, Mapping) \
+            else dict(zip(self.actuated, arguments.array("efforts", efforts, len(self.actuated), batch=False)))
+        return self.closure_model.actuation.T @ np.array([u.get(a, 0.0) for a in self.actuated], dtype=float)
+
     def passive_forces(self, q: np.ndarray, v: np.ndarray) -> np.ndarray | None:
         """Generalised forces (nv,) or (N, nv) of the joint springs and dampers, None without any."""
-        if not self.springs:
-            return None
-        out = np.zeros(np.shape(v))
-        k, ref, pre, d = self._spring_laws
-        out[..., self._spring_v] = pre - k * (q[..., self._spring_q] - ref) - d * v[..., self._spring_v]
-        return out
+        return self.springs.forces(q, v) if self.springs else None
 
     def forward_dynamics(self, q: np.ndarray, v: np.ndarray, tau: np.ndarray, method: str = "proximal", *,
                          mu: float | None = None, accuracy: float | None = None, max_iter: int | None = None,
@@ -348,21 +351,3 @@ class Mechanism:
                                            distribution=distribution,
                                            generic_rank=None if arguments.flag("allow_singular", allow_singular)
                                      else self.independent_rows, idle=bool(self.idle))
-
-
-def _spring_arrays(mech: Mechanism, springs: Sequence[core.JointSpring]) -> tuple[np.ndarray, np.ndarray, tuple]:
-    """q and v indices of the springs' joints and their laws (stiffness, reference, preload, damping) as arrays.
-
-    Raises:
-        InvalidParameters: a spring on a joint with more than one freedom or a continuous joint.
-    """
-    q_index, v_index = [], []
-    for s in springs:
-        j = mech.joint_id(s.joint)
-        if mech.model.nqs[j] != 1 or mech.model.nvs[j] != 1:
-            raise InvalidParameters("spring", s.joint, "a joint spring acts on a one-coordinate joint (revolute, prismatic)")
-        q_index.append(mech.model.joints[j].idx_q)
-        v_index.append(mech.model.joints[j].idx_v)
-    laws = tuple(np.array([getattr(s, f) for s in springs], dtype=float)
-                 for f in ("stiffness", "reference", "preload", "damping"))
-    return np.array(q_index, dtype=int), np.array(v_index, dtype=int), laws

@@ -63,10 +63,7 @@ def self_checks(m: Mechanism) -> dict[str, float]:
         checks["kkt_vs_proximal"] = _relative(prox, kkt)
     except MechkitError:
         pass  # method unavailable for this closure kind: reported by the absence of the check
-    inv = m.inverse_dynamics(q, v, a)
-    tau = np.zeros(m.model.nv)
-    for joint, effort in inv.efforts.items():
-        tau[m.v_index(joint)] = effort
+    tau = m.generalized_forces(m.inverse_dynamics(q, v, a).efforts)
     checks["inverse_forward_roundtrip"] = _relative(m.forward_dynamics(q, v, tau, "kkt").a, a)
     return checks | ({} if m.spec.self_checks is None else m.spec.self_checks(m))
 

@@ -151,12 +151,7 @@ def test_reactions_three_ways(mech):
     t, q, v = mid_state(mech)
     results = tc.reactions_three_ways(mech, t, q, v)
     assert tc.reaction_disagreement(results) < 1e-8
-    inv = mech.inverse_dynamics(
-        q,
-        v,
-        td.PinocchioDeployment(mech).rhs(t, q, v)[0],
-        tc.spring_fext(mech, td.PinocchioDeployment(mech), q, v),
-    )
+    inv = mech.inverse_dynamics(q, v, td.PinocchioDeployment(mech).rhs(t, q, v)[0])  # the R5 spring: the mechanism's
     for motor in tp.MOTORS:  # the motor torque is the reaction moment about the axis (-y)
         assert inv.reactions[motor].wrench[4] == pytest.approx(-inv.efforts[motor], rel=1e-10)
     for pair in geo.PAIRS:  # planar pins: in-plane forces and the axis moment are determinate

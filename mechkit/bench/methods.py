@@ -107,9 +107,7 @@ def references(mech: Mechanism, samples: list[Sample]) -> References:
             inverse.append(IDReference(efforts, reactions, {k: c.determinate[k] for k in reactions if k in c.determinate}))
     for s, ref in zip(samples, inverse):
         if "efforts" not in s.extra:
-            s.tau = np.zeros(mech.model.nv)
-            for joint, u in ref.efforts.items():
-                s.tau[mech.v_index(joint)] = u
+            s.tau = mech.generalized_forces(ref.efforts)
     return References({q: labels[q] for q in BENCH_QUANTITIES if q in labels}, q_ref, inputs_ref, a_ref, inverse)
 
 

@@ -115,7 +115,7 @@ class ClosureModel:
         check_depth_first(model)
         check_body_masses(model)
         self.model = model
-        self.structure = analyse(model, list(closures), rows)
+        self.structure = analyse(model, list(closures), rows, len(couplings))
         self.closures = tuple(self.structure.closures)
         cuts = [cut_rows(model, c) for c in self.closures]
         couplings = [coupling_row(model, c) for c in couplings]

@@ -11,7 +11,7 @@ frames. A loop is
 - spatial otherwise: lambda = 6.
 
 Kutzbach-Gruebler count, loop by loop: M = sum of the tree joints' freedoms (nv) + sum of the cut
-joints' freedoms within their loop's motion space - sum of lambda. A cut declared without `rows` is
+joints' freedoms within their loop's motion space - sum of lambda - one per coupling row. A cut declared without `rows` is
 closed with the minimal rows of its loop (planar: 2 position rows normal to n, or 3 for a weld;
 spherical: 2 rotation rows for a revolute cut, 1 for a Hooke, 3 for a weld); `rows="spatial"`
 forces the full rows. The geometry is read at the neutral configuration: parallel axes stay
@@ -77,11 +77,12 @@ class Structure:
     loops: tuple[Loop, ...]
     closures: tuple[LoopClosure, ...]
     tree_freedoms: int
+    couplings: int = 0
 
     @property
     def kutzbach(self) -> int:
-        """M = nv + sum of cut freedoms - sum of lambda (loop by loop)."""
-        return self.tree_freedoms + sum(lp.cut_freedoms - lp.motion_dim for lp in self.loops)
+        """M = nv + sum of cut freedoms - sum of lambda (loop by loop) - one per coupling row."""
+        return self.tree_freedoms + sum(lp.cut_freedoms - lp.motion_dim for lp in self.loops) - self.couplings
 
     @property
     def rows_avoided(self) -> int:
@@ -129,12 +130,13 @@ def loop_joints(model: pin.Model, joint_a: int, joint_b: int) -> list[int]:
     return [j for j in a if j not in b] + [j for j in reversed(b) if j not in a]
 
 
-def analyse(model: pin.Model, closures: list[LoopClosure], rows: str | None = None) -> Structure:
+def analyse(model: pin.Model, closures: list[LoopClosure], rows: str | None = None, couplings: int = 0) -> Structure:
     """Classify every loop, choose the rows of the cuts declared without rows, count the freedoms.
 
     Args:
         rows: None (declared rows, minimal rows where none are declared) or "spatial" (every cut
             closed with its full rows).
+        couplings: the number of coupling rows (each takes one freedom).
 
     Raises:
         MalformedDescription: a cut whose frames are not in the model or sit on one body.
@@ -163,7 +165,7 @@ def analyse(model: pin.Model, closures: list[LoopClosure], rows: str | None = No
         loops.append(Loop(closure.name, tuple(model.names[j] for j in path), kind, MOTION_DIM[kind],
                           CUT_FREEDOMS[kind][closure.kind], full, kept, chosen))
         out.append(closure)
-    return Structure(tuple(loops), tuple(out), model.nv)
+    return Structure(tuple(loops), tuple(out), model.nv, couplings)
 
 
 def _lines(data, path, closure, ids) -> tuple[list, list, bool]:

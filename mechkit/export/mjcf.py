@@ -46,11 +46,10 @@ from typing import TYPE_CHECKING
 import numpy as np
 import pinocchio as pin
 
-from mechkit.base.exceptions import MalformedDescription, MethodUnavailable
+from mechkit.base.exceptions import MethodUnavailable
 from mechkit.core import AXIS_ANCHOR_OFFSET, body_name
 from mechkit.export.xmltext import numbers as _fmt
 from mechkit.export.xmltext import quat_wxyz as _quat_wxyz
-from mechkit.sources.urdf import LOOP_NAMESPACE
 
 if TYPE_CHECKING:
     from mechkit.mechanism import Mechanism
@@ -132,23 +131,11 @@ def _equalities(mech: Mechanism, names: dict[int, str], solref: str) -> list[tup
     return out
 
 
-def springs(urdf: str) -> dict[str, tuple[float, float, float]]:
-    """`<mechkit:spring>` elements: joint -> (stiffness (N m/rad or N/m), spring reference, damping).
-
-    The spring reference is where the torque vanishes: reference + preload / stiffness.
-
-    Raises:
-        MalformedDescription: a spring element without its joint, stiffness, preload or reference.
-    """
-    out = {}
-    for element in ET.fromstring(urdf).iter(f"{{{LOOP_NAMESPACE}}}spring"):
-        try:
-            k, pre, ref = (float(element.attrib[a]) for a in ("stiffness", "preload", "reference"))
-            free = ref + pre / k if k else ref
-            out[element.attrib["joint"]] = (k, free, float(element.attrib.get("damping", 0.0)))
-        except (KeyError, ValueError, ZeroDivisionError) as err:
-            raise MalformedDescription("mechkit:spring", f"bad attribute: {err}") from None
-    return out
+def springs(mech: Mechanism) -> dict[str, tuple[float, float, float]]:
+    """The mechanism's joint springs: joint -> (stiffness (N m/rad or N/m), spring reference, damping); the
+    spring reference is where the spring's torque vanishes, reference + preload / stiffness."""
+    return {s.joint: (s.stiffness, s.reference + s.preload / s.stiffness if s.stiffness else s.reference, s.damping)
+            for s in mech.springs.springs}
 
 
 def _visual_geoms(mech: Mechanism) -> list[tuple[int, str, dict[str, str]]]:
@@ -234,7 +221,7 @@ def to_mjcf(mech: Mechanism, q: np.ndarray | None = None) -> str:
     world = ET.SubElement(worldbody, "body", name=ROOT_BODY)
     names = {0: ROOT_BODY}
     elements = {0: world}
-    spring = springs(mech.urdf)
+    spring = springs(mech)
     for j in range(1, model.njoints):
         kind, axis = _joint_kind(model, j)
         value = q[model.idx_qs[j]]

@@ -44,11 +44,14 @@ class JointGeometry:
 
 @dataclass(frozen=True)
 class Instant:
-    """Bodies (id -> motion) and joints (name -> geometry) of one state; gravity (3,) m/s^2."""
+    """Bodies (id -> motion) and joints (name -> geometry) of one state; gravity (3,) m/s^2; the
+    wrenches (6,) the joint springs and dampers transmit, parent side on child side (world, about the
+    joint point), by joint."""
 
     bodies: dict[int, BodyMotion]
     joints: dict[str, JointGeometry]
     gravity: np.ndarray
+    passive: dict[str, np.ndarray]
 
 
 def joint_geometry(model: pin.Model, data: pin.Data, cuts: Cuts, structure: Structure) -> dict[str, JointGeometry]:
@@ -71,12 +74,14 @@ def joint_geometry(model: pin.Model, data: pin.Data, cuts: Cuts, structure: Stru
 
 
 def instant(cm: core.ClosureModel, cd: core.ClosureData, data: pin.Data, structure: Structure, q: np.ndarray,
-            v: np.ndarray, a: np.ndarray) -> Instant:
+            v: np.ndarray, a: np.ndarray, passive: np.ndarray | None = None) -> Instant:
     """The instant (q, v, a) (rad, m; rad/s, m/s; rad/s^2, m/s^2) of a mechanism's tree.
 
     Args:
         cm, cd: the closure model (its full spatial rows are the cut joints of ``structure``) and a data.
         data: a Pinocchio data of the tree (scratch).
+        passive: (nv,) generalised forces of the joint springs and dampers (N m or N), or None: each
+            joint's share tau_j becomes the wrench w = S (S^T S)^-1 tau_j along its motion subspace S.
     """
     model = cm.model
     cuts = cut_wrenches(cm, cd, q)
@@ -95,4 +100,12 @@ def instant(cm: core.ClosureModel, cd: core.ClosureData, data: pin.Data, structu
         a_com = a_origin + cross(alpha, lever) + cross(omega, cross(omega, lever))
         bodies[j] = BodyMotion(placement.translation.copy(), placement.translation + lever, float(inertia.mass),
                                rot @ inertia.inertia @ rot.T, omega, alpha, a_com)
-    return Instant(bodies, joint_geometry(model, data, cuts, structure), model.gravity.linear.copy())
+    loads = {}
+    if passive is not None:
+        for j in range(1, model.njoints):
+            jm = model.joints[j]
+            share = passive[jm.idx_v:jm.idx_v + jm.nv]
+            if np.any(share != 0.0):
+                S = tree_motion(model, data, j)
+                loads[model.names[j]] = S @ np.linalg.solve(S.T @ S, share)
+    return Instant(bodies, joint_geometry(model, data, cuts, structure), model.gravity.linear.copy(), loads)

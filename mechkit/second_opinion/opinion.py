@@ -36,11 +36,11 @@ class SecondOpinion:
         zero = np.zeros(cm.nv)
         home = instant(cm, self._closure_data, self._data, self.structure, mechanism.home_q, zero, zero)
         self.skcs: list[SKC] = decompose(self.structure, home, level)
-        self.plans = plan(self.skcs, self.structure)
+        self.plans = plan(self.skcs, self.structure, tuple(s.joint for s in mechanism.springs.springs))
         self.decompose_seconds = time.perf_counter() - start
 
     def solve(self, q: np.ndarray, v: np.ndarray, a: np.ndarray) -> Opinion:
         """Efforts and reactions for a motion (q, v, a) that closes the loops (rad, m and rates)."""
         m = self.mechanism
-        state = instant(m.closure_model, self._closure_data, self._data, self.structure, q, v, a)
+        state = instant(m.closure_model, self._closure_data, self._data, self.structure, q, v, a, m.passive_forces(q, v))
         return solve_instant(self.plans, self.structure, state)

@@ -68,12 +68,13 @@ class Plan:
     known: tuple[str, ...]
 
 
-def plan(skcs: Sequence[SKC], structure: Structure) -> list[Plan]:
-    """The plans of the SKCs, in solve order."""
+def plan(skcs: Sequence[SKC], structure: Structure, loaded: Sequence[str] = ()) -> list[Plan]:
+    """The plans of the SKCs, in solve order; the `loaded` joints (springs, dampers) transmit a known
+    wrench from the start."""
     chains = {b: structure.chain(b) for b in structure.bodies}
     chains[0] = []
     out = []
-    solved: set[str] = set()
+    solved: set[str] = set(loaded)
     for i, skc in enumerate(skcs):
         heads = np.array([k for k, _ in skc.rows], dtype=int)
         axes = np.array([axis for _, axis in skc.rows], dtype=int)
@@ -131,7 +132,7 @@ def skc_instant(p: Plan, structure: Structure, instant: Instant, known: dict[str
 def solve_instant(plans: Sequence[Plan], structure: Structure, instant: Instant) -> Opinion:
     """Solve the SKCs in order at one instant (efforts and every joint's reaction)."""
     out = Opinion()
-    known: dict[str, np.ndarray] = {}
+    known: dict[str, np.ndarray] = {name: w.copy() for name, w in instant.passive.items()}
     for i, p in enumerate(plans):
         result = solve_soc([skc_instant(p, structure, instant, known)], instant.gravity, indeterminate=True)
         out.consistency[i] = result.consistency[p.name]

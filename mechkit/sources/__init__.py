@@ -48,29 +48,8 @@ def read(path: Path, params: dict[str, Any] | None = None) -> Description:
         sidecar = sidecar_of(path)
         return read_extended_urdf(path, sidecar) if sidecar is not None else read_urdf(path)
     if name.endswith((".xml", ".mjcf")):
-        return _urdf_tree_only(read_mjcf(path))
+        return read_mjcf(path)
     if name.endswith(".sdf"):
-        return _urdf_tree_only(read_sdf(path))
+        return read_sdf(path)
     raise MalformedDescription(str(path), "unknown format: expected .urdf (with loops or a .yaml sidecar), "
                                           ".xacro / .urdf.xacro, MJCF .xml or SDFormat .sdf")
-
-
-def _urdf_tree_only(desc: Description) -> Description:
-    """Refuse, by name, what a `Mechanism` built from `desc.urdf` would drop: a tree URDF cannot hold
-    (ball, free-flyer, universal joints), couplings and tendon actuators. The readers put these in
-    `desc.model`, `desc.couplings` and `desc.actuators`, read directly until the core builds from them.
-
-    Raises:
-        MalformedDescription: the first such element, named.
-    """
-    where = str(desc.source)
-    if desc.urdf is None and desc.model is not None:
-        joints = [f"{desc.model.names[j]!r} ({desc.model.joints[j].shortname().removeprefix('JointModel')})"
-                  for j in range(1, desc.model.njoints) if desc.model.joints[j].nv > 1]
-        raise MalformedDescription(where, f"joint {joints[0]}: ball, free and universal joints are read into the "
-                                          "description's Pinocchio model, which mechkit.load does not take yet")
-    for records, what in ((desc.couplings, "coupling"), (desc.actuators, "tendon actuator")):
-        if records:
-            raise MalformedDescription(where, f"{what} {records[0].name!r}: read into the description, which "
-                                              "mechkit.load does not take yet")
-    return desc

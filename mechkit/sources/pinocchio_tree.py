@@ -12,7 +12,7 @@ import numpy as np
 import pinocchio as pin
 
 from mechkit.base.exceptions import MalformedDescription
-from mechkit.core.records import LoopClosure
+from mechkit.core import LoopClosure
 from mechkit.sources.urdf import LOOP_NAMESPACE
 
 #: Pinocchio's one-freedom joints along a coordinate axis: short name -> (URDF type, unit axis).

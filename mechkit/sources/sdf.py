@@ -39,7 +39,7 @@ import numpy as np
 import pinocchio as pin
 
 from mechkit.base.exceptions import MalformedDescription
-from mechkit.core.records import Coupling, JointSpring, LoopClosure
+from mechkit.core import Coupling, JointSpring, LoopClosure
 from mechkit.sources.description import Description, read_text
 from mechkit.sources.pinocchio_tree import add_body, add_frame, add_joint, joint_model, tree_urdf
 from mechkit.sources.urdf import parse_xml
@@ -234,10 +234,12 @@ class _Reader:
             guess[name] = tuple(float(x) for x in at.translation) + tuple(float(x) for x in pin.log3(at.rotation))
             add_body(model, root, *carrier[root], self._inertia(root))
         springs: list[JointSpring] = []
-        for link in queue:
-            for child in [c for c, j in tree.items() if ends[j][0] == link]:
-                self._tree_joint(model, tree[child], ends[tree[child]], carrier, springs, guess)
-                queue.append(child)
+        stack = list(reversed(queue))  # depth first: Pinocchio's algorithms take a subtree as contiguous joints
+        while stack:
+            link = stack.pop()
+            if link != "world" and link not in roots:
+                self._tree_joint(model, tree[link], ends[tree[link]], carrier, springs, guess)
+            stack += reversed([c for c, j in tree.items() if ends[j][0] == link])
         lost = [link for link in self.items["link"] if link not in carrier]
         if lost:
             raise MalformedDescription(f"SDF link {lost[0]!r}", f"links {lost} reach neither the world nor a root: "

@@ -16,7 +16,7 @@ import numpy as np
 import pinocchio as pin
 
 from mechkit.base.exceptions import MalformedDescription
-from mechkit.core import LOOP_KINDS, ROW_SETS, LoopClosure
+from mechkit.core import LOOP_KINDS, ROW_SETS, JointSpring, LoopClosure
 from mechkit.sources.checks import check_inertias, check_tree
 from mechkit.sources.description import Description, read_text
 
@@ -50,7 +50,12 @@ def describe_urdf(urdf: str, source: Path | None, fmt: str, params: dict[str, st
         if joint not in joints:
             raise MalformedDescription(f"mechkit:home {joint!r}", "not a moving joint of the URDF")
     name = root.get("name") or (source.name.split(".")[0] if source else "urdf")
-    return Description(name, urdf, transmissions(root, joints), home, {}, source, fmt, dict(params or {}), closures)
+    springs = parse_springs(root)
+    for spring in springs:
+        if spring.joint not in joints:
+            raise MalformedDescription(f"mechkit:spring {spring.joint!r}", "not a moving joint of the URDF")
+    return Description(name, urdf, transmissions(root, joints), home, {}, source, fmt, dict(params or {}), closures,
+                       springs=springs)
 
 
 def transmissions(root: ET.Element, joints: set[str]) -> tuple[str, ...]:
@@ -143,6 +148,30 @@ def _parse_loop(element: ET.Element, links: set[str]) -> LoopClosure:
         raise MalformedDescription(where, "a spherical cut about a common centre has no rows left")
     return LoopClosure(name, kind, frames["frame_a"], frames["frame_b"], axis, axis_a, axis_b, rows,
                        element.get("rows") is not None)
+
+
+def parse_springs(urdf: str | ET.Element) -> tuple[JointSpring, ...]:
+    """The `<mechkit:spring joint stiffness preload reference damping/>` elements as joint springs:
+    effort = preload - stiffness (x - reference) - damping dx/dt (N m or N; stiffness N m/rad or N/m,
+    reference rad or m, damping N m s/rad or N s/m; preload and damping default to 0).
+
+    Raises:
+        MalformedDescription: a spring without its joint, stiffness or reference, or with a value that
+            is not a finite number (a negative stiffness or damping included).
+    """
+    out = []
+    for element in (parse_xml(urdf) if isinstance(urdf, str) else urdf).iter(f"{{{LOOP_NAMESPACE}}}spring"):
+        joint = element.get("joint")
+        where = f"mechkit:spring {joint!r}"
+        try:
+            values = {a: float(element.attrib[a]) if a in ("stiffness", "reference") else float(element.get(a, "0"))
+                      for a in ("stiffness", "reference", "preload", "damping")}
+        except (KeyError, ValueError) as err:
+            raise MalformedDescription(where, f"bad or missing attribute {err}") from None
+        if not joint or not all(np.isfinite(list(values.values()))) or values["stiffness"] < 0 or values["damping"] < 0:
+            raise MalformedDescription(where, f"needs a joint and finite values, stiffness and damping >= 0: {values}")
+        out.append(JointSpring(joint, **values))
+    return tuple(out)
 
 
 def parse_home(urdf: str | ET.Element) -> dict[str, float]:

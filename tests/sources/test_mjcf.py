@@ -13,11 +13,14 @@ import json
 import re
 import subprocess
 import sys
+import tempfile
 from pathlib import Path
 
 import numpy as np
 import pinocchio as pin
 import pytest
+
+import mechkit
 
 mujoco = pytest.importorskip("mujoco")
 
@@ -282,15 +285,36 @@ def test_malformed_mjcf_is_refused_in_one_line_naming_the_element(text, needle, 
 
 
 @pytest.mark.parametrize("case", ["no joint", "cassie"])
-def test_mechkit_report_says_it_in_one_line(case, tmp_path):
-    """Through the command line: a malformed file, and Cassie (read, but its ball and free joints wait
-    for the core: mechkit.load refuses it by name), each one line on stderr, exit 2, no traceback."""
+def test_mechkit_report_through_the_command_line(case, tmp_path):
+    """A malformed file: one line on stderr, exit 2, no traceback. Cassie (ball and free joints, loops,
+    springs): the report, exit 0, its numerical DOF the Kutzbach count, its idle rods named."""
     path = CASSIE
     if case == "no joint":
         path = tmp_path / "none.xml"
         path.write_text(next(t for t, n in MALFORMED.items() if n == case))
     out = subprocess.run([sys.executable, "-m", "mechkit", "report", str(path)], capture_output=True, text=True,
                          check=False)
-    lines = out.stderr.strip().splitlines()
-    assert out.returncode == 2 and len(lines) == 1 and "Traceback" not in out.stderr
-    assert (case if case == "no joint" else "joint 'joint0' (FreeFlyer)") in lines[0]
+    assert "Traceback" not in out.stderr
+    if case == "no joint":
+        lines = out.stderr.strip().splitlines()
+        assert out.returncode == 2 and len(lines) == 1 and case in lines[0]
+    else:
+        assert out.returncode == 0, out.stderr
+        assert "DOF numerical 22, Gruebler 22" in out.stdout
+        assert "left-achilles-rod 1, right-achilles-rod 1" in out.stdout
+
+def test_a_ball_joint_loads_as_the_three_hinges_do():
+    """The RSSR fixture writes its ball as three hinges; written as a ball it loads (the core takes any
+    joint) with the same mobility and the same assembly of its crank and rocker."""
+    rssr = (Path(__file__).resolve().parent.parent / "fixtures" / "rssr.xml").read_text()
+    ball = (rssr.replace('type="hinge" axis="1 0 0"/>', 'type="ball"/>').replace('<joint name="By" type="hinge" axis="0 1 0"/>', "")
+            .replace('<joint name="Bz" type="hinge" axis="0 0 1"/>', ""))
+    with tempfile.TemporaryDirectory() as folder:
+        path = Path(folder) / "rssr_ball.xml"
+        path.write_text(ball)
+        m_ball = mechkit.load(path)
+    m_hinges = mechkit.load(Path(__file__).resolve().parent.parent / "fixtures" / "rssr.xml")
+    assert m_ball.model.nq == m_hinges.model.nq + 1 and m_ball.model.nv == m_hinges.model.nv
+    assert m_ball.mobility().dof == m_hinges.mobility().dof
+    for joint in m_hinges.actuated:
+        assert m_ball.home_q[m_ball.q_index(joint)] == pytest.approx(m_hinges.home_q[m_hinges.q_index(joint)], abs=1e-12)

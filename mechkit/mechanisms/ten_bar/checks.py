@@ -14,14 +14,13 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 import numpy as np
-import pinocchio as pin
 
 from mechkit.mechanisms.ten_bar import dynamics as td
 from mechkit.mechanisms.ten_bar import geometry as geo
 from mechkit.mechanisms.ten_bar import kinematics as tk
 from mechkit.mechanisms.ten_bar import soc as ts
 from mechkit.mechanisms.ten_bar.lagrange_model import lagrange_linkage
-from mechkit.mechanisms.ten_bar.params import MOTORS, PASSIVE, TenBarParams, motor_law
+from mechkit.mechanisms.ten_bar.params import MOTORS, TenBarParams, motor_law
 
 if TYPE_CHECKING:
     from mechkit.mechanism import Mechanism
@@ -44,26 +43,16 @@ class Reactions:
         return np.concatenate([[self.efforts[m] for m in MOTORS], *[self.forces[j] for j in geo.PAIRS]])
 
 
-def spring_fext(
-    mechanism: Mechanism, deployment: td.PinocchioDeployment, q: np.ndarray, v: np.ndarray
-) -> pin.StdVec_Force:
-    """The R5 spring-damper torque as an external moment on l56 (joint-local frame, about -y)."""
-    fext = pin.StdVec_Force([pin.Force.Zero() for _ in range(mechanism.model.njoints)])
-    torque = deployment.spring_torque(q, v)
-    fext[mechanism.model.getJointId(PASSIVE)] = pin.Force(np.zeros(3), np.array([0.0, -torque, 0.0]))
-    return fext
-
-
 def reactions_three_ways(mechanism: Mechanism, t: float, q: np.ndarray, v: np.ndarray) -> dict[str, Reactions]:
     """Motor torques and pin forces at a state (q, v) on the manifold at time t, by three methods.
 
-    Pinocchio: accelerations from constrained ABA with the motor laws, then constrained RNEA with
-    the spring as an external moment. Lagrange: A f = P from the same state mapped to
+    Pinocchio: accelerations from constrained ABA with the motor laws, then constrained RNEA (the R5
+    spring is the mechanism's joint spring in both). Lagrange: A f = P from the same state mapped to
     reference-point coordinates. SOC: virtual work over the SKCs with the Lagrange motion.
     """
     deployment = td.PinocchioDeployment(mechanism)
     a, _, _ = deployment.rhs(t, q, v)
-    inv = mechanism.inverse_dynamics(q, v, a, spring_fext(mechanism, deployment, q, v))
+    inv = mechanism.inverse_dynamics(q, v, a)
     out = {"pinocchio": Reactions(dict(inv.efforts), {j: inv.reactions[j].wrench[[0, 2]] for j in geo.PAIRS})}
     p = mechanism.params
     qL, vL = td.lagrange_state(p, q, v, mechanism)

@@ -85,9 +85,9 @@ class PinocchioDeployment:
         self.data = mechanism.model.createData()
 
     def spring_torque(self, q: np.ndarray, v: np.ndarray) -> float:
-        """The R5 spring-damper torque on l56 (N m): k (free angle - q) - c qdot."""
-        s = self.spring
-        return s.stiffness * (s.free_angle - q[self.spring_v]) - s.damping * v[self.spring_v]
+        """The R5 spring-damper torque on l56 (N m): k (free angle - q) - c qdot (the mechanism's own joint
+        spring, `Mechanism.passive_forces`, which its dynamics apply)."""
+        return float(self.m.passive_forces(q, v)[self.spring_v])
 
     def _fd(self, q, v, tau):
         return self.m.forward_dynamics(q, v, tau, method=self.method, baumgarte=self.baumgarte).a
@@ -95,8 +95,7 @@ class PinocchioDeployment:
     def rhs(self, t: float, q: np.ndarray, v: np.ndarray) -> tuple[np.ndarray, np.ndarray, float]:
         """(accelerations, motor torques (R1, R3) N m, net external power W) at time t (s)."""
         _, _, acc = motor_law(self.p, t)
-        tau = np.zeros(self.m.model.nv)
-        tau[self.spring_v] = self.spring_torque(q, v)
+        tau = np.zeros(self.m.model.nv)  # the spring acts through the mechanism's dynamics
         a0 = self._fd(q, v, tau)
         G = np.empty((len(a0), 2))
         for k, iv in enumerate(self.motor_v):

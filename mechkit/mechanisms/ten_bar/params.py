@@ -9,14 +9,13 @@ Pinocchio route uses.
 from __future__ import annotations
 
 import math
-import xml.etree.ElementTree as ET
 from dataclasses import dataclass
 
 import numpy as np
 
 from mechkit.base.exceptions import InvalidParameters, MalformedDescription
 from mechkit.catalog.params import MechanismParams, param
-from mechkit.sources.urdf import LOOP_NAMESPACE
+from mechkit.sources.urdf import parse_springs
 from mechkit.validation import lagrange
 
 STOWED = {"R1": math.pi / 2, "R3": -math.pi}
@@ -96,21 +95,17 @@ def spring(p: TenBarParams) -> lagrange.Spring:
 
 
 def spring_from_urdf(urdf: str) -> lagrange.Spring:
-    """Read the `<mechkit:spring>` element of the URDF (the xacro's spring arguments).
+    """The `<mechkit:spring>` of the URDF (the xacro's spring arguments, `sources.urdf.parse_springs`) as
+    the Lagrange model's spring: torque = stiffness (free angle - q) - damping qdot.
 
     Raises:
-        MalformedDescription: no spring element, or one without its attributes.
+        MalformedDescription: no spring element, or a malformed one.
     """
-    element = ET.fromstring(urdf).find(f"{{{LOOP_NAMESPACE}}}spring")
-    if element is None:
+    springs = parse_springs(urdf)
+    if not springs:
         raise MalformedDescription("mechkit:spring", "the ten-bar URDF declares no spring")
-    try:
-        k, pre, ref = (float(element.attrib[a]) for a in ("stiffness", "preload", "reference"))
-        return lagrange.Spring(
-            element.attrib["joint"], k, ref + pre / k, float(element.attrib.get("damping", 0.0))
-        )
-    except (KeyError, ValueError) as err:
-        raise MalformedDescription("mechkit:spring", f"bad attribute: {err}") from None
+    s = springs[0]
+    return lagrange.Spring(s.joint, s.stiffness, s.reference + s.preload / s.stiffness, s.damping)
 
 
 def motor_law(p: TenBarParams, t: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:

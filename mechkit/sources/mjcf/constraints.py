@@ -27,7 +27,7 @@ import numpy as np
 import pinocchio as pin
 
 from mechkit.base.exceptions import MalformedDescription
-from mechkit.core.records import Actuator, Coupling, JointSpring, LoopClosure
+from mechkit.core import Actuator, Coupling, JointSpring, LoopClosure
 from mechkit.sources.mjcf.tree import Tree, se3
 from mechkit.sources.pinocchio_tree import add_frame
 

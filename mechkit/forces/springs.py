@@ -1,0 +1,77 @@
+"""Joint springs and dampers (`mechkit.core.JointSpring` records) as generalised forces.
+
+A one-freedom joint (revolute, prismatic, helical; a continuous joint by its angle): effort = preload
+- stiffness (x - reference) - damping dx/dt. A joint of several freedoms (ball, free-flyer): a damper
+only, -damping v on each of its velocity coordinates (MuJoCo's joint damping).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+import numpy as np
+import pinocchio as pin
+
+from mechkit.base.exceptions import InvalidParameters
+from mechkit.core import JointSpring
+
+
+class JointSprings:
+    """The springs and dampers of one model, evaluated for one state or a leading sample axis.
+
+    Args:
+        model: the tree's Pinocchio model.
+        springs: the records.
+
+    Raises:
+        InvalidParameters: an unknown joint, a negative stiffness or damping, or a spring (stiffness or
+            preload) on a joint of several freedoms.
+    """
+
+    def __init__(self, model: pin.Model, springs: Sequence[JointSpring]):
+        self.springs = tuple(springs)
+        q_index, v_index, unbounded, laws, damped_v, damped = [], [], [], [], [], []
+        for s in self.springs:
+            if not model.existJointName(s.joint):
+                raise InvalidParameters("spring", s.joint, f"no such joint; joints: {list(model.names[1:])}")
+            if s.stiffness < 0 or s.damping < 0:
+                raise InvalidParameters(f"spring on {s.joint}", (s.stiffness, s.damping), "stiffness and damping must be >= 0")
+            j = model.getJointId(s.joint)
+            jm = model.joints[j]
+            if jm.nv == 1:
+                q_index.append(jm.idx_q)
+                v_index.append(jm.idx_v)
+                unbounded.append(jm.nq == 2)
+                laws.append((s.stiffness, s.reference, s.preload, s.damping))
+            elif s.stiffness or s.preload:
+                raise InvalidParameters(f"spring on {s.joint}", s, f"a {jm.shortname()} joint has {jm.nv} freedoms: "
+                                        "only a damper acts on it (stiffness and preload 0)")
+            else:
+                damped_v += range(jm.idx_v, jm.idx_v + jm.nv)
+                damped += [s.damping] * jm.nv
+        self._q, self._v = np.array(q_index, dtype=int), np.array(v_index, dtype=int)
+        self._unbounded = np.array(unbounded, dtype=bool)
+        self._k, self._ref, self._pre, self._d = (np.array(c, dtype=float) for c in zip(*laws)) if laws else (np.zeros(0),) * 4
+        self._damped_v, self._damped = np.array(damped_v, dtype=int), np.array(damped, dtype=float)
+
+    def __bool__(self) -> bool:
+        return bool(self.springs)
+
+    def values(self, q: np.ndarray) -> np.ndarray:
+        """(..., k) the one-freedom springs' joint values x (rad or m; a continuous joint's angle) at q (..., nq)."""
+        x = q[..., self._q]
+        if self._unbounded.any():
+            x = np.where(self._unbounded, np.arctan2(q[..., np.minimum(self._q + 1, q.shape[-1] - 1)], q[..., self._q]), x)
+        return x
+
+    def forces(self, q: np.ndarray, v: np.ndarray) -> np.ndarray:
+        """Generalised forces (..., nv) (N m or N) at q (..., nq), v (..., nv)."""
+        out = np.zeros(np.shape(v))
+        out[..., self._v] = self._pre - self._k * (self.values(q) - self._ref) - self._d * v[..., self._v]
+        out[..., self._damped_v] -= self._damped * v[..., self._damped_v]
+        return out
+
+    def energy(self, q: np.ndarray) -> np.ndarray:
+        """(...,) the springs' potential energy (J): sum of stiffness (x - reference)^2 / 2 - preload (x - reference)."""
+        dx = self.values(q) - self._ref
+        return np.sum(0.5 * self._k * dx**2 - self._pre * dx, axis=-1)
