@@ -80,7 +80,7 @@ def references(mech: Mechanism, samples: list[Sample]) -> References:
               "inverse_dynamics": "core constrained RNEA (determinacy on)"}
     core = [_core_inverse_reference(mech, s) for s in samples]
     if "efforts" in samples[0].extra:
-        labels["forward_dynamics"] = "core dense KKT on independent rows (under-actuated, or kinematic a inconsistent)"
+        labels["forward_dynamics"] = "core exact null-space solve (under-actuated, or kinematic a inconsistent)"
         labels["inverse_dynamics"] = "the efforts that produced a (forward/inverse round trip); reactions: core"
     q_ref = [s.q.copy() for s in samples]
     a_ref = [s.a.copy() for s in samples]

@@ -87,7 +87,7 @@ def make_samples(mech: Mechanism, count: int, seed: int = 7) -> list[Sample]:
     Fully actuated: input accelerations ~ N(0, 1) and a from the closure kinematics (tau is set by
     `mechkit.bench.methods.references`). Under-actuated, or where that a does not satisfy
     J a + gamma = 0 to 1e-9 (a rank change near home): efforts ~ N(0, generalised gravity scale) on
-    the actuators and a from the core's dense KKT forward dynamics (the inverse dynamics must give
+    the actuators and a from the core's exact null-space forward dynamics (the inverse dynamics must give
     those efforts back).
 
     Raises:
@@ -124,7 +124,7 @@ def make_samples(mech: Mechanism, count: int, seed: int = 7) -> list[Sample]:
         if a is None:
             scale = max(float(np.max(np.abs(pin.computeGeneralizedGravity(mech.model, data, q)[act_v]))), 1e-3)
             tau[act_v] = rng.normal(0.0, scale, len(act_v))
-            a = mech.forward_dynamics(q, v, tau, "kkt").a
+            a = mech.forward_dynamics(q, v, tau, "nullspace").a
             accs = a[[mech.v_index(j) for j in names]]
         sample = Sample(inputs, rates, accs, q, v, a, tau, tuple(names))
         if tau.any():
