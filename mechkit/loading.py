@@ -14,6 +14,7 @@ from mechkit.catalog.contract import MechanismSpec
 from mechkit.catalog.params import MechanismParams
 from mechkit.catalog.registry import get_spec, names
 from mechkit.mechanism import Mechanism
+from mechkit.reduction import description_of, locked_joints, reduce_description
 from mechkit.sources.urdf import build_model, parse_loops, parse_springs, parse_xml
 from mechkit.sources.xacro_file import render_urdf
 
@@ -43,7 +44,8 @@ def resolve(source: str | Path) -> str | Path:
 
 
 def load(source: str | Path, *, actuated: Sequence[str] | None = None, home: Mapping[str, float] | None = None,
-         guess: Mapping[str, float] | None = None, **params: Any) -> Mechanism:
+         guess: Mapping[str, float] | None = None, lock: Mapping[str, Any] | None = None,
+         keep: Sequence[str] | None = None, fix: Sequence[str] | None = None, **params: Any) -> Mechanism:
     """Build a mechanism from a registered name or a description file.
 
     Args:
@@ -53,6 +55,9 @@ def load(source: str | Path, *, actuated: Sequence[str] | None = None, home: Map
         home: joint -> value (rad or m) of the default assembly's inputs (default: the file's
             `<mechkit:home>` / MJCF qpos0, else none: every loop closed from the guess).
         guess: joint -> value near which the default assembly is sought.
+        lock: joint -> value at which it is locked (welded; `mechkit.reduction`).
+        keep: bodies whose subsystem alone stays free (every other joint locked at home).
+        fix: bodies whose own joint is locked at home (a floating root, for statics).
         **params: the mechanism's parameters (a name) or xacro arguments (a xacro file);
             `rows="spatial"`, unless the mechanism has a parameter of that name, closes every cut
             with its full rows.
@@ -62,6 +67,11 @@ def load(source: str | Path, *, actuated: Sequence[str] | None = None, home: Map
     """
     if not isinstance(source, (str, Path)):
         raise InvalidArgument("source", source, "expected a mechanism name or a path")
+    if lock or keep is not None or fix:
+        whole = load(source, actuated=actuated, home=home, guess=guess, **params)
+        rows = params.get("rows") if "rows" not in {f.name for f in dataclasses.fields(whole.spec.params)} else None
+        reduced = reduce_description(whole, description_of(whole), locked_joints(whole, lock, keep, fix))
+        return from_description(reduced, rows=rows)
     where = resolve(source)
     if isinstance(where, Path):
         declared = sources.xacro_args(where) if where.name.endswith(".xacro") else {}

@@ -1,9 +1,11 @@
 """`mechkit report`: structure, mobility and self-checks of one mechanism, as a dict (the JSON contract).
 
 Top-level keys (a contract for scripts): name, nq, nv, actuated, closures [{name, kind, rows}], dof,
-dof_gruebler, redundant_constraints, checks {name: worst residual or relative error}; and idle
-{body: its idle freedoms}, loops [{cut, kind (planar / spherical / spatial),
-rows, full_rows, chosen}], rows_avoided, gruebler {kutzbach, declared}, home {joint: value}.
+dof_gruebler, redundant_constraints, checks {name: worst residual or relative error}; and refused
+{check: why the core refused it there (e.g. a near-singular pose)}, holding {efforts: {actuator: effort
+holding gravity at rest, N m or N}} or {refused: why the actuators cannot}, idle {body: its idle
+freedoms}, loops [{cut, kind (planar / spherical / spatial), rows, full_rows, chosen}], rows_avoided,
+gruebler {kutzbach, declared}, home {joint: value}.
 
 `dof_gruebler` is the loop-by-loop Kutzbach count of the topology (`mechkit.core.structure`); a
 registered mechanism's declared count (its spec) is shown beside it: the two differ only where the
@@ -35,43 +37,76 @@ def _relative(a: np.ndarray, b: np.ndarray) -> float:
     return float(np.max(np.abs(a - b)) / max(np.max(np.abs(b)), 1e-300))
 
 
-def self_checks(m: Mechanism) -> dict[str, float]:
+def self_checks(m: Mechanism) -> tuple[dict[str, float], dict[str, str]]:
     """Core identities at the home assembly, with unit input rates and accelerations.
 
     closure_residual (m / -), velocity_constraint |J v|, acceleration_constraint |J a + gamma|,
     kkt_vs_proximal (relative, accelerations), inverse_forward_roundtrip (relative, accelerations),
-    global_balance (relative: sum of support wrenches vs total gravity and inertia).
+    and the spec's own checks.
+
+    Returns:
+        The checks' values, and by name the checks the core refused to compute (a `MechkitError`: a
+        near-singular pose, a method that cannot express a closure kind), with the reason.
     """
     q = m.home_q
     checks: dict[str, float] = {"closure_residual": float(np.max(np.abs(m.closure_residual(q)), initial=0.0))}
+    refused: dict[str, str] = {}
     if not m.actuated:
-        return checks  # the other checks drive the actuators
+        return checks, refused  # the other checks drive the actuators
+
+    def attempt(name: str, fn) -> Any:
+        try:
+            return fn()
+        except MechkitError as err:
+            refused[name] = str(err)
+            return None
+
     ones = np.ones(len(m.actuated))
-    dof = m.mobility(q).dof
-    if dof == len(m.actuated):
-        v = m.velocities(q, ones)
-        a = m.accelerations(q, v, 0.5 * ones)
-        checks["velocity_constraint"] = float(np.max(np.abs(m.closure_jacobian(q) @ v), initial=0.0))
-        checks["acceleration_constraint"] = float(np.max(np.abs(m.closure_jacobian(q) @ a + m.closure_drift(q, v)), initial=0.0))
-    else:
-        v = np.zeros(m.model.nv)
-        a = m.forward_dynamics(q, v, np.zeros(m.model.nv), "kkt").a
+    v, a = np.zeros(m.model.nv), None
+
+    def driven() -> tuple[np.ndarray, np.ndarray]:
+        rates = m.velocities(q, ones)
+        return rates, m.accelerations(q, rates, 0.5 * ones)
+
+    if m.mobility(q).dof == len(m.actuated):
+        state = attempt("velocity_constraint", driven)
+        if state is not None:
+            v, a = state
+            checks["velocity_constraint"] = float(np.max(np.abs(m.closure_jacobian(q) @ v), initial=0.0))
+            checks["acceleration_constraint"] = float(np.max(np.abs(m.closure_jacobian(q) @ a + m.closure_drift(q, v)),
+                                                            initial=0.0))
+    if a is None:
+        a = attempt("forward_dynamics", lambda: m.forward_dynamics(q, v, np.zeros(m.model.nv), "kkt").a)
     tau0 = np.zeros(m.model.nv)
+    both = attempt("kkt_vs_proximal", lambda: (m.forward_dynamics(q, v, tau0, "proximal").a,
+                                               m.forward_dynamics(q, v, tau0, "kkt").a))
+    if both is not None:
+        checks["kkt_vs_proximal"] = _relative(*both)
+    if a is not None:
+        back = attempt("inverse_forward_roundtrip", lambda: m.forward_dynamics(
+            q, v, m.generalized_forces(m.inverse_dynamics(q, v, a).efforts), "kkt").a)
+        if back is not None:
+            checks["inverse_forward_roundtrip"] = _relative(back, a)
+    return checks | ({} if m.spec.self_checks is None else m.spec.self_checks(m)), refused
+
+
+def holding(m: Mechanism) -> dict[str, Any]:
+    """The actuator efforts that hold the mechanism still at home under gravity and its springs, or why
+    they cannot (unactuated, a floating base, a motion the actuators do not span)."""
+    if not m.actuated:
+        return {"refused": "unactuated: no actuator to hold it"}
+    zero = np.zeros(m.model.nv)
     try:
-        prox = m.forward_dynamics(q, v, tau0, "proximal").a
-        kkt = m.forward_dynamics(q, v, tau0, "kkt").a
-        checks["kkt_vs_proximal"] = _relative(prox, kkt)
-    except MechkitError:
-        pass  # method unavailable for this closure kind: reported by the absence of the check
-    tau = m.generalized_forces(m.inverse_dynamics(q, v, a).efforts)
-    checks["inverse_forward_roundtrip"] = _relative(m.forward_dynamics(q, v, tau, "kkt").a, a)
-    return checks | ({} if m.spec.self_checks is None else m.spec.self_checks(m))
+        return {"efforts": m.inverse_dynamics(m.home_q, zero, zero, determinacy=False).efforts}
+    except MechkitError as err:
+        return {"refused": str(err)}
 
 
 def report(m: Mechanism) -> dict[str, Any]:
     """The report of a mechanism (see module docstring for the keys)."""
     mob = m.mobility()
     declared = None if m.spec.template == "" else m.spec.gruebler_dof
+    checks, refused = self_checks(m)
     return {
         "name": m.spec.name,
         "summary": m.spec.summary,
@@ -91,7 +126,9 @@ def report(m: Mechanism) -> dict[str, Any]:
         "home": m.joint_values(m.home_q),
         "parameters": [{k: v for k, v in row.items() if k != "positive"} for row in m.params.describe()],
         "home_q": [float(x) for x in m.home_q],
-        "checks": self_checks(m),
+        "checks": checks,
+        "refused": refused,
+        "holding": holding(m),
     }
 
 
@@ -113,4 +150,9 @@ def format_report(r: dict[str, Any]) -> str:
     lines.append("  self-checks (worst residual or relative error):")
     for name, value in r["checks"].items():
         lines.append(f"    {name:<32} {value:.3e}")
+    for name, why in r["refused"].items():
+        lines.append(f"    {name:<32} refused: {why}")
+    held = r["holding"]
+    lines.append("  holding gravity at rest: " + (", ".join(f"{j} {u:.6g}" for j, u in held["efforts"].items())
+                                                  if "efforts" in held else f"the actuators cannot ({held['refused']})"))
     return "\n".join(lines)

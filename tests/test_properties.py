@@ -53,8 +53,11 @@ def check(name: str, params: dict, spec_checks: bool) -> str:
         m = mechkit.load(name, **params)
         if not spec_checks:
             m = from_params(dataclasses.replace(m.spec, self_checks=None), m.params)
-        checks = self_checks(m)
+        checks, refused = self_checks(m)
     except MechkitError:
+        return "refused"
+    if refused:  # a check the core refused by name (e.g. a near-singular pose): also a named refusal
+        assert all(refused.values()), refused
         return "refused"
     assert all(np.isfinite(v) for v in checks.values()), checks
     assert not failing_checks(checks), (params, failing_checks(checks), CHECK_LIMIT)

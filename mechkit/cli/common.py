@@ -29,6 +29,10 @@ def add_mechanism_arguments(parser: argparse.ArgumentParser) -> None:
                         help="override a parameter (SI units, rad) or pass a xacro argument to a .xacro file; "
                              "rows=spatial closes every cut with its full rows")
     parser.add_argument("--actuated", metavar="J1,J2", help="actuated joints, overriding what the file declares")
+    parser.add_argument("--lock", action="append", metavar="JOINT=VALUE",
+                        help="lock a joint at a value (rad or m; a ball or free joint: comma-separated values); repeatable")
+    parser.add_argument("--keep", metavar="B1,B2", help="keep only the subsystem of these bodies; lock every other joint at home")
+    parser.add_argument("--fix", metavar="BODY", action="append", help="lock a body's own joint at home (a floating root); repeatable")
 
 
 def overrides(pairs: list[str] | None) -> dict[str, str]:
@@ -52,9 +56,25 @@ def actuated(text: str | None) -> list[str] | None:
     return names
 
 
+def locks(pairs: list[str] | None) -> dict[str, float | list[float]] | None:
+    """`--lock JOINT=VALUE` pairs (a value, or comma-separated values for a joint of several freedoms)."""
+    if not pairs:
+        return None
+    out: dict[str, float | list[float]] = {}
+    for joint, text in overrides(pairs).items():
+        try:
+            values = [float(x) for x in text.split(",")]
+        except ValueError:
+            raise MechkitError(f"--lock {joint}: {text!r} is not a number (or comma-separated numbers)") from None
+        out[joint] = values[0] if len(values) == 1 else values
+    return out
+
+
 def load_mechanism(args: argparse.Namespace) -> Mechanism:
-    """The mechanism the command line names, with its overrides."""
-    return load(args.name, actuated=actuated(args.actuated), **overrides(args.set))
+    """The mechanism the command line names, with its overrides and reductions."""
+    keep = None if getattr(args, "keep", None) is None else [b.strip() for b in args.keep.split(",") if b.strip()]
+    return load(args.name, actuated=actuated(args.actuated), lock=locks(getattr(args, "lock", None)), keep=keep,
+                fix=getattr(args, "fix", None), **overrides(args.set))
 
 
 def add_mesh_path_argument(parser: argparse.ArgumentParser) -> None:

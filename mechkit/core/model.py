@@ -90,6 +90,7 @@ class ClosureModel:
 
     Attributes:
         model: the tree. structure: loops and Kutzbach count (`mechkit.core.structure.Structure`).
+        couplings, actuators: the records it was built from.
         closures: the closures with the rows chosen. kernel: the rows kept (cuts, then couplings).
         full_kernel: every cut's full spatial rows (the physical joints), for the determinacy test.
         actuated: actuator names. actuation: (na, nv) S, generalised force S^T u of efforts u.
@@ -118,9 +119,10 @@ class ClosureModel:
         self.structure = analyse(model, list(closures), rows, len(couplings))
         self.closures = tuple(self.structure.closures)
         cuts = [cut_rows(model, c) for c in self.closures]
-        couplings = [coupling_row(model, c) for c in couplings]
-        self.kernel = ClosureKernel(model, cuts, couplings)
-        self.full_kernel = ClosureKernel(model, [cut_rows(model, c, "spatial") for c in self.closures], couplings)
+        self.couplings, self.actuators = tuple(couplings), tuple(actuators)
+        rows = [coupling_row(model, c) for c in self.couplings]
+        self.kernel = ClosureKernel(model, cuts, rows)
+        self.full_kernel = ClosureKernel(model, [cut_rows(model, c, "spatial") for c in self.closures], rows)
         self.actuated = tuple(actuated)
         self.actuation, self.actuated_v = _actuation(model, self.actuated, {a.name: a for a in actuators})
         self.unactuated = _unactuated(model, self.actuation, self.actuated_v)
@@ -151,7 +153,7 @@ class ClosureModel:
             InvalidParameters: an unknown or multi-freedom actuated joint.
         """
         out = copy.copy(self)
-        out.actuated = tuple(actuated)
+        out.actuated, out.actuators = tuple(actuated), tuple(actuators)
         out.actuation, out.actuated_v = _actuation(self.model, out.actuated, {a.name: a for a in actuators})
         out.unactuated = _unactuated(self.model, out.actuation, out.actuated_v)
         out._split = cache(out._make_split)

@@ -1,0 +1,65 @@
+"""Only the part a study needs (`mechkit.reduction`): locked joints, a kept subsystem, a fixed root give
+the same dynamics as the whole mechanism for the part that moves."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import mechkit
+from mechkit.base.exceptions import InvalidArgument, MalformedDescription
+
+CASSIE = Path(__file__).resolve().parent / "fixtures" / "field" / "menagerie" / "agility_cassie" / "cassie.xml"
+
+
+def test_a_locked_crank_leaves_a_four_bar_with_the_same_effort(load_cached):
+    """The five-bar with prox2 locked at its home value: a one-freedom linkage whose prox1 effort is the
+    whole five-bar's prox1 effort when prox2 is held still."""
+    whole = load_cached("five_bar")
+    locked = mechkit.load("five_bar", lock={"prox2": float(whole.home_q[whole.q_index("prox2")])})
+    assert locked.mobility().dof == 1 and locked.actuated == ("prox1",)
+    v = whole.velocities(whole.home_q, [0.7, 0.0])
+    a = whole.accelerations(whole.home_q, v, [-0.4, 0.0])
+    effort = whole.inverse_dynamics(whole.home_q, v, a).efforts["prox1"]
+    q = locked.home_q
+    vr = locked.velocities(q, [0.7])
+    ar = locked.accelerations(q, vr, [-0.4])
+    assert locked.inverse_dynamics(q, vr, ar).efforts["prox1"] == pytest.approx(effort, rel=1e-10)
+
+
+def test_one_cassie_leg_kept_moves_as_in_the_whole_robot():
+    """Cassie with the pelvis fixed: the left leg kept alone (the right leg and the pelvis welded) has the
+    whole robot's left-leg accelerations under the same motor torques, and its inverse dynamics gives
+    those torques back where statics fixes them; the foot motor's is not fixed in either model (its
+    torque can load the plantar rod's loop without motion), and both say so."""
+    whole = mechkit.load(CASSIE, fix=["cassie-pelvis"])
+    left = [b for b in (f.name for f in whole.model.frames if f.type.name == "BODY") if b.startswith("left-")]
+    leg = mechkit.load(CASSIE, fix=["cassie-pelvis"], keep=left)
+    assert leg.mobility().dof == 8 and whole.mobility().dof == 16
+    assert set(leg.actuated) == {a for a in whole.actuated if a.startswith("left-")}
+    rng = np.random.default_rng(0)
+    torques = {a: float(rng.normal(0.0, 5.0)) for a in whole.actuated}
+    q, v = whole.home_q, np.zeros(whole.model.nv)
+    a_whole = whole.forward_dynamics(q, v, whole.generalized_forces(torques), "kkt").a
+    leg_torques = {a: torques[a] for a in leg.actuated}
+    a_leg = leg.forward_dynamics(leg.home_q, np.zeros(leg.model.nv), leg.generalized_forces(leg_torques), "kkt").a
+    for joint in leg.model.names[1:]:
+        assert a_leg[leg.v_index(joint)] == pytest.approx(a_whole[whole.v_index(joint)], abs=1e-9 * np.abs(a_whole).max())
+    back = leg.inverse_dynamics(leg.home_q, np.zeros(leg.model.nv), a_leg)
+    whole_back = whole.inverse_dynamics(q, v, a_whole)
+    for motor, torque in leg_torques.items():
+        assert back.efforts_determinate[motor] == whole_back.efforts_determinate[motor]
+        if back.efforts_determinate[motor]:
+            assert back.efforts[motor] == pytest.approx(torque, rel=1e-8, abs=1e-9)
+    assert not back.efforts_determinate["left-foot"]
+
+
+def test_refusals_name_what_is_wrong(load_cached):
+    with pytest.raises(InvalidArgument, match="keep"):
+        mechkit.load("four_bar", keep=["nowhere"])
+    with pytest.raises(InvalidArgument, match="lock"):
+        mechkit.load("four_bar", lock={"nope": 0.0})
+    with pytest.raises(MalformedDescription, match="leave it open"):
+        mechkit.load("four_bar", lock={"crank": 0.6, "rocker": 0.0, "coupler": 0.0})
