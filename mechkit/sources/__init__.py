@@ -43,7 +43,9 @@ def read(path: Path, params: dict[str, Any] | None = None) -> Description:
                                 f"{path.name} is not a xacro file: only xacro files take parameters")
     if name.endswith(".urdf"):
         sidecar = sidecar_of(path)
-        return read_extended_urdf(path, sidecar) if sidecar is not None else read_urdf(path)
+        # balls=False until the core builds from Description.model: three revolutes, no ball joint, so the
+        # tree keeps its URDF (the same mechanism)
+        return read_extended_urdf(path, sidecar, balls=False) if sidecar is not None else read_urdf(path)
     if name.endswith((".xml", ".mjcf")):
         return read_mjcf(path)
     raise MalformedDescription(str(path), "unknown format: expected .urdf (with loops or a .yaml sidecar), "

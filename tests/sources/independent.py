@@ -302,4 +302,4 @@ def study(model: pin.Model, cuts: list[Cut], motors: list[str], q0: np.ndarray |
     _, null_a = _rank(A)
     return Study(q, residual <= closure_tol, residual, model.nv - rank, rank, undriven, gravity_residual < 1e-9,
                  gravity_residual, dict(zip(motors, x[: len(motors)].tolist())),
-                 bool(null_a.size == 0 or np.max(np.abs(null_a[: len(motors)])) < 1e-9))
+                 bool(not motors or null_a.size == 0 or np.max(np.abs(null_a[: len(motors)])) < 1e-9))
