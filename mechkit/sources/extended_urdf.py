@@ -285,6 +285,8 @@ def _closures(model: pin.Model, side: Sidecar, sidecar: Path, urdf: str) -> list
     used = [False] * len(side.pairs)
     out = []
     for i, ((a, b), kind, (fa, fb)) in enumerate(zip(side.pairs, side.kinds, frames)):
+        if [a, b] in [list(p) for p in side.pairs[:i]]:
+            raise MalformedDescription(f"{sidecar}: closed_loop {[a, b]}", "the pair is declared twice")
         if used[i]:
             continue
         used[i] = True

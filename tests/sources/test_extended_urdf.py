@@ -6,6 +6,8 @@ computation (`independent.study`) on both. One test per robot, so one failure hi
 from __future__ import annotations
 
 import functools
+import subprocess
+import sys
 import xml.etree.ElementTree as ET
 from pathlib import Path
 
@@ -218,6 +220,8 @@ MALFORMED = {
                                    "'motor_ankle' is a JointModelSpherical joint: it needs one freedom"),
     "a motor locked by FIXED": (_case("disney_like", {"name_mot:": "joint_name: [motor_ankle]\njoint_type: [FIXED]\nname_mot:"}),
                                 "'motor_ankle' is not a moving joint of robot.urdf once substituted"),
+    "a pair declared twice": (_case("talos_like", {"[['closedloop1_B', 'closedloop1_A']]": "[['closedloop1_B', 'closedloop1_A'], ['closedloop1_B', 'closedloop1_A']]",
+                                                   "type: ['6d']": "type: ['6d', '6d']"}), "the pair is declared twice"),
     "a pair on one body": (_case("5bar_linkage", {"[['closedloop1_A', 'closedloop1_B']]": "[['closedloop1_A', 'sphere']]"}),
                            "both frames are on one body"),
     "a U-joint's own frame as a loop frame": (_case("battobot_6d", {'["closedloop_knee_left_A", "closedloop_knee_left_B"]': '["free_knee_left", "closedloop_knee_left_B"]'}),
@@ -237,3 +241,11 @@ def test_a_malformed_extended_urdf_is_one_named_line_from_the_cli(case, tmp_path
     assert main(["report", str(tmp_path / "robot.urdf")]) == 2
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and needle in err[0] and "Traceback" not in err[0], err
+
+
+def test_in_a_real_process_the_field_file_mechkit_refuses_is_one_line_and_exit_status_2():
+    out = subprocess.run([sys.executable, "-m", "mechkit", "report", str(_urdf("disney_robot"))], capture_output=True,
+                         text=True, check=False)
+    assert out.returncode == 2 and out.stdout == ""
+    lines = out.stderr.strip().splitlines()
+    assert len(lines) == 1 and "left_spherical_free_foot" in lines[0] and "Traceback" not in out.stderr
