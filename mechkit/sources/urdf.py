@@ -152,7 +152,8 @@ def check_loop_elements(root: ET.Element) -> None:
                                        f"the loop namespace is {LOOP_NAMESPACE!r} (mistyped URI?)")
         elif local.lower() in LOOP_LIKE:
             raise MalformedDescription(f"<{element.tag}>", f"a loop-like element outside the loop namespace "
-                                       f"{LOOP_NAMESPACE!r}: declare loops as <mechkit:loop>")
+                                       f"{LOOP_NAMESPACE!r}: declare loops as <mechkit:loop>, or as URDF+ "
+                                       "<loop> with <predecessor> and <successor>")
 
 
 def parse_loops(urdf: str | ET.Element) -> list[LoopClosure]:

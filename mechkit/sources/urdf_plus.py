@@ -44,8 +44,11 @@ LOOP_TYPES = {"revolute": "revolute", "continuous": "revolute", "prismatic": "pr
 
 
 def is_urdf_plus(root: ET.Element) -> bool:
-    """Whether a URDF's root declares URDF+ constraints (`<loop>` or `<coupling>` children)."""
-    return any(child.tag in ("loop", "coupling") for child in root)
+    """Whether a URDF's root declares URDF+ constraints: a `<coupling>`, or a `<loop>` with a
+    `<predecessor>` or `<successor>` (a bare `<loop frame_a=...>` is a mistyped `<mechkit:loop>`)."""
+    return any(child.tag == "coupling" or (child.tag == "loop" and (child.find("predecessor") is not None
+                                                                    or child.find("successor") is not None))
+               for child in root)
 
 
 def read_urdf_plus(path: Path) -> Description:
