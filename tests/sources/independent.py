@@ -246,13 +246,15 @@ def _errors(model: pin.Model, data: pin.Data, cuts: list[Cut], q: np.ndarray, co
 
 def close(model: pin.Model, cuts: list[Cut], q0: np.ndarray, couplings=(), iters: int = 200) -> tuple[np.ndarray, float]:
     """Damped least squares (Levenberg-Marquardt, damping |e|^2 + 1e-12) from q0 on the cuts' frame
-    errors and the coupling residuals; returns (q, largest error component reached)."""
+    errors and the coupling residuals, until closed, or stalled at a least-squares minimum (|e| down by
+    less than 1e-12 of itself in a step); returns (q, largest error component reached)."""
     data = model.createData()
-    q = q0.copy()
+    q, previous = q0.copy(), np.inf
     for _ in range(iters):
         e, J = _errors(model, data, cuts, q, couplings)
-        if e.size == 0 or np.max(np.abs(e)) < CLOSURE_TOL:
+        if e.size == 0 or np.max(np.abs(e)) < CLOSURE_TOL or np.linalg.norm(e) > (1 - 1e-12) * previous:
             break
+        previous = np.linalg.norm(e)
         damping = float(e @ e) + 1e-12
         q = pin.integrate(model, q, -J.T @ np.linalg.solve(J @ J.T + damping * np.eye(len(e)), e))
     e, _ = _errors(model, data, cuts, q, couplings)
