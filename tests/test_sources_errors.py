@@ -38,7 +38,7 @@ URDF_CASES = {
                                              '<parent link="ground"/><child link="rod_link"/>'), "two parent joints"),
     "negative mass": (SLIDER.replace('<mass value="0.4"/>', '<mass value="-1"/>'), "mass -1"),
     "zero mass with inertia": (SLIDER.replace('<mass value="0.4"/>', '<mass value="0"/>'), "mass 0"),
-    "inertia not positive definite": (SLIDER.replace('ixx="2e-5"', 'ixx="-2e-5"'), "positive definite"),
+    "inertia not positive definite": (SLIDER.replace('ixx="2e-5"', 'ixx="-2e-5"'), "positive semi-definite"),
     "home of an unknown joint": (SLIDER.replace('<mechkit:home joint="crank"', '<mechkit:home joint="crnk"'), "crnk"),
     "transmission of an unknown joint": (SLIDER.replace('<joint name="crank"><hardwareInterface>', '<joint name="crnk"><hardwareInterface>'),
                                          "crnk"),

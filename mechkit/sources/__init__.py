@@ -1,11 +1,11 @@
 """Where a mechanism comes from: a registered name or a file, read into one `Description`.
 
 Formats (one module each): a `.urdf` with `<mechkit:loop>` elements (`urdf`), a `.urdf` with an
-Extended-URDF `.yaml` sidecar beside it (`extended_urdf`), a `.xacro` / `.urdf.xacro` whose keyword
-parameters become xacro arguments (`xacro_file`), an MJCF `.xml` (`mjcf`) and an SDFormat `.sdf`
-(`sdf`). The URDF readers give the tree URDF with its loops as `<mechkit:loop>` elements; the MJCF
-and SDFormat readers build the Pinocchio model themselves (any joint) and give its URDF only where
-URDF can hold the tree.
+Extended-URDF `.yaml` sidecar beside it (`extended_urdf`), a `.urdf` with URDF+ `<loop>` /
+`<coupling>` elements (`urdf_plus`), a `.xacro` / `.urdf.xacro` whose keyword parameters become xacro
+arguments (`xacro_file`), an MJCF `.xml` (`mjcf`) and an SDFormat `.sdf` (`sdf`). Every reader gives a
+`Description`: the tree (URDF text, or a Pinocchio model where it has joints URDF lacks), its loops as
+`LoopClosure` records, its couplings, springs and actuators.
 """
 
 from __future__ import annotations
@@ -14,11 +14,12 @@ from pathlib import Path
 from typing import Any
 
 from mechkit.base.exceptions import InvalidParameters, MalformedDescription
-from mechkit.sources.description import Description
+from mechkit.sources.description import Description, read_text
 from mechkit.sources.extended_urdf import read_extended_urdf, sidecar_of
 from mechkit.sources.mjcf import read_mjcf
 from mechkit.sources.sdf import read_sdf
-from mechkit.sources.urdf import describe_urdf, read_urdf
+from mechkit.sources.urdf import describe_urdf, parse_xml, read_urdf
+from mechkit.sources.urdf_plus import is_urdf_plus, read_urdf_plus
 from mechkit.sources.xacro_file import read_xacro, xacro_args
 
 __all__ = ["SUFFIXES", "Description", "describe_urdf", "read", "xacro_args"]
@@ -27,7 +28,8 @@ SUFFIXES = (".urdf", ".xacro", ".xml", ".sdf")
 
 
 def read(path: Path, params: dict[str, Any] | None = None) -> Description:
-    """The description in a file, its format told by its suffix (and a sidecar beside a URDF).
+    """The description in a file, its format told by its suffix (and, for a URDF, a sidecar beside it or
+    URDF+ constraints in it).
 
     Args:
         path: an existing file (see `resolve`).
@@ -46,10 +48,15 @@ def read(path: Path, params: dict[str, Any] | None = None) -> Description:
                                 f"{path.name} is not a xacro file: only xacro files take parameters")
     if name.endswith(".urdf"):
         sidecar = sidecar_of(path)
+        if is_urdf_plus(parse_xml(read_text(path), str(path))):
+            if sidecar is not None:
+                raise MalformedDescription(str(path), f"declares URDF+ loops or couplings and has an Extended-URDF "
+                                           f"sidecar {sidecar.name}: one loop convention per file")
+            return read_urdf_plus(path)
         return read_extended_urdf(path, sidecar) if sidecar is not None else read_urdf(path)
     if name.endswith((".xml", ".mjcf")):
         return read_mjcf(path)
     if name.endswith(".sdf"):
         return read_sdf(path)
-    raise MalformedDescription(str(path), "unknown format: expected .urdf (with loops or a .yaml sidecar), "
-                                          ".xacro / .urdf.xacro, MJCF .xml or SDFormat .sdf")
+    raise MalformedDescription(str(path), "unknown format: expected .urdf (with loops, URDF+ constraints or a .yaml "
+                                          "sidecar), .xacro / .urdf.xacro, MJCF .xml or SDFormat .sdf")

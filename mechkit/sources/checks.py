@@ -1,4 +1,5 @@
-"""Checks of a URDF tree that urdfdom lets through or reports only on stderr: its shape and its inertias.
+"""Checks of a URDF tree that urdfdom lets through or reports only on stderr: its shape and its inertias
+(what is physically invalid; massless links are valid).
 
 Every failure is a `MalformedDescription` naming the element; nothing is built from a bad file.
 """
@@ -10,6 +11,9 @@ import xml.etree.ElementTree as ET
 import numpy as np
 
 from mechkit.base.exceptions import MalformedDescription
+
+#: Relative tolerance on principal moments (of their sum): far above rounding, far below anything physical.
+INERTIA_RTOL = 1e-12
 
 
 def check_tree(root: ET.Element) -> None:
@@ -69,9 +73,13 @@ def _unique(names: list[str | None], what: str) -> None:
 
 
 def check_inertias(root: ET.Element) -> None:
-    """Every `<inertial>` has a positive finite mass and a positive definite inertia (kg, kg m^2).
+    """Every `<inertial>` is physically possible: a finite mass that is not negative (kg) and an inertia
+    about the centre of mass (kg m^2) whose principal moments are not negative (positive semi-definite)
+    and satisfy the triangle inequality (each at most the sum of the other two).
 
-    A zero mass with a zero inertia is a massless link (third-party URDFs write their tool frames so).
+    Zero is valid: a massless link (all zero) is a frame, a point mass has a zero inertia, a thin rod a
+    zero principal moment. A mass of zero with a non-zero inertia is not (no mass, no moment of it).
+    Moments are judged to `INERTIA_RTOL` of their sum (CAD exports print rounded values).
 
     Raises:
         MalformedDescription: naming the link and the value.
@@ -83,25 +91,28 @@ def check_inertias(root: ET.Element) -> None:
         where = f"link {link.get('name')!r}"
         mass = inertial.find("mass")
         text = None if mass is None else mass.get("value")
-        value = _number(text, where, "mass")
+        value = number(text, where, "mass")
         element = inertial.find("inertia")
-        c = {k: _number(element.get(k, "0") if element is not None else "0", where, k)
+        c = {k: number(element.get(k, "0") if element is not None else "0", where, k)
              for k in ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")}
-        if value == 0 and not any(c.values()):
-            continue  # a massless link, as if it had no <inertial>
-        if not value > 0:
-            raise MalformedDescription(where, f"mass {text} must be positive (kg)")
-        if element is None:
-            raise MalformedDescription(where, "<inertial> without <inertia>")
-        # Sylvester's criterion: the leading minors are positive
-        minors = (c["ixx"], c["ixx"] * c["iyy"] - c["ixy"] ** 2,
-                  c["ixx"] * (c["iyy"] * c["izz"] - c["iyz"] ** 2) - c["ixy"] * (c["ixy"] * c["izz"] - c["iyz"] * c["ixz"])
-                  + c["ixz"] * (c["ixy"] * c["iyz"] - c["iyy"] * c["ixz"]))
-        if min(minors) <= 0:
-            raise MalformedDescription(where, f"inertia {c} is not positive definite (kg m^2)")
+        if value < 0:
+            raise MalformedDescription(where, f"mass {text} is negative (kg)")
+        if value == 0 and any(c.values()):
+            raise MalformedDescription(where, f"mass {text} with a non-zero inertia {c}: a massless link has no "
+                                       "moment of inertia (kg m^2)")
+        moments = np.linalg.eigvalsh(np.array([[c["ixx"], c["ixy"], c["ixz"]], [c["ixy"], c["iyy"], c["iyz"]],
+                                               [c["ixz"], c["iyz"], c["izz"]]]))
+        slack = INERTIA_RTOL * float(np.sum(np.abs(moments)))
+        if moments[0] < -slack:
+            raise MalformedDescription(where, f"inertia {c} is not positive semi-definite: principal moment "
+                                       f"{float(moments[0]):.6g} kg m^2 is negative")
+        if moments[0] + moments[1] < moments[2] - slack:
+            raise MalformedDescription(where, f"inertia {c} violates the triangle inequality: principal moments "
+                                       f"{float(moments[0]):.6g} + {float(moments[1]):.6g} < {float(moments[2]):.6g} kg m^2")
 
 
-def _number(text: str | None, where: str, what: str) -> float:
+def number(text: str | None, where: str, what: str) -> float:
+    """A finite number from an attribute's text; anything else is a `MalformedDescription` naming `where`."""
     try:
         value = float(text)
     except (TypeError, ValueError):

@@ -1,8 +1,14 @@
 """A URDF with `<mechkit:loop>` elements: the loops read with an XML parser into `LoopClosure` records,
-its actuators from its `<transmission>` elements, its tree built by Pinocchio.
+its `<mimic>` joints into `Coupling` rows, its actuators from its `<transmission>` elements, its tree
+built by Pinocchio.
 
 Loop closures are declared inside the URDF as `<mechkit:loop name type frame_a frame_b axis rows/>`
-(namespace `LOOP_NAMESPACE`); urdfdom and other URDF consumers ignore the element.
+(namespace `LOOP_NAMESPACE`); urdfdom and other URDF consumers ignore the element. frame_a and frame_b
+name a link or a joint of the URDF (Pinocchio gives both a frame).
+
+A joint's `<mimic joint="leader" multiplier="m" offset="o"/>` (defaults 1 and 0) is the coupling row
+x_joint = m x_leader + o (rad or m); the tree keeps the mimic joint as an ordinary joint (Pinocchio's
+`mimic=False`), so the row is what ties it (see `parse_mimics`).
 """
 
 from __future__ import annotations
@@ -16,8 +22,8 @@ import numpy as np
 import pinocchio as pin
 
 from mechkit.base.exceptions import MalformedDescription
-from mechkit.core import LOOP_KINDS, ROW_SETS, JointSpring, LoopClosure
-from mechkit.sources.checks import check_inertias, check_tree
+from mechkit.core import LOOP_KINDS, ROW_SETS, Coupling, JointSpring, LoopClosure
+from mechkit.sources.checks import check_inertias, check_tree, number
 from mechkit.sources.description import Description, read_text
 
 LOOP_NAMESPACE = "https://mechkit.dev/loop"
@@ -34,17 +40,17 @@ def read_urdf(path: Path) -> Description:
 
 
 def describe_urdf(urdf: str, source: Path | None, fmt: str, params: dict[str, str] | None = None) -> Description:
-    """Check a URDF text (tree, inertias, loop elements, home) and read its actuators.
+    """Check a URDF text (tree, inertias, loop elements, home) and read its actuators and mimic couplings.
 
     Raises:
-        MalformedDescription: see `mechkit.sources.checks`, `mechkit.sources.urdf.parse_loops`.
+        MalformedDescription: see `mechkit.sources.checks`, `parse_loops`, `parse_mimics`.
     """
     where = str(source) if source is not None else "urdf"
     root = parse_xml(urdf, where)
     check_tree(root)
     check_inertias(root)
     closures = tuple(parse_loops(root))
-    joints = {j.get("name") for j in root.findall("joint") if j.get("type") != "fixed"}
+    joints = moving_joints(root)
     home = parse_home(root)
     for joint in home:
         if joint not in joints:
@@ -55,7 +61,57 @@ def describe_urdf(urdf: str, source: Path | None, fmt: str, params: dict[str, st
         if spring.joint not in joints:
             raise MalformedDescription(f"mechkit:spring {spring.joint!r}", "not a moving joint of the URDF")
     return Description(name, urdf, transmissions(root, joints), home, {}, source, fmt, dict(params or {}), closures,
-                       springs=springs)
+                       couplings=parse_mimics(root), springs=springs)
+
+
+def moving_joints(root: ET.Element) -> set[str]:
+    """Names of the URDF's joints that are not fixed."""
+    return {j.get("name") for j in root.findall("joint") if j.get("type") != "fixed"}
+
+
+def parse_mimics(root: ET.Element) -> tuple[Coupling, ...]:
+    """The `<mimic>` of every joint as a coupling row x_joint = multiplier x_leader + offset (rad or m).
+
+    A mimic on a fixed joint couples nothing (no consumer moves a fixed joint): skipped. A mimic of a
+    fixed joint follows its value, zero: the row fixes x_joint = offset.
+
+    Raises:
+        MalformedDescription: a mimic of a joint the URDF lacks or of itself, on or of a joint of more
+            than one freedom (floating, planar), a multiplier or offset that is not a finite number, or
+            mimics that form a cycle.
+    """
+    types = {j.get("name"): j.get("type") for j in root.findall("joint")}
+    leader_of: dict[str, str] = {}
+    out = []
+    for joint in root.findall("joint"):
+        mimic = joint.find("mimic")
+        name = joint.get("name")
+        if mimic is None or types[name] == "fixed":
+            continue
+        leader, where = mimic.get("joint"), f"joint {name!r} <mimic>"
+        if leader not in types:
+            raise MalformedDescription(where, f"joint={leader!r} is not a joint of the URDF")
+        if leader == name:
+            raise MalformedDescription(where, "a joint cannot mimic itself")
+        for joint_name in (name, leader):
+            if types[joint_name] in ("floating", "planar"):
+                raise MalformedDescription(where, f"joint {joint_name!r} is {types[joint_name]}: a mimic couples "
+                                           "one-freedom joints")
+        multiplier, offset = (number(mimic.get(k, default), where, k) for k, default in (("multiplier", "1"), ("offset", "0")))
+        if types[leader] == "fixed":
+            out.append(Coupling(name, ((name, 1.0),), (), (offset,)))
+            continue
+        leader_of[name] = leader
+        out.append(Coupling(name, ((name, 1.0),), ((leader, 1.0),), (offset, multiplier)))
+    for start, first in leader_of.items():
+        chain, joint = [start], first
+        while joint in leader_of and joint not in chain:
+            chain.append(joint)
+            joint = leader_of[joint]
+        if joint in chain:
+            cycle = chain[chain.index(joint):] + [joint]
+            raise MalformedDescription(f"joint {joint!r} <mimic>", f"the mimics form a cycle {' -> '.join(cycle)}")
+    return tuple(out)
 
 
 def transmissions(root: ET.Element, joints: set[str]) -> tuple[str, ...]:
@@ -100,25 +156,42 @@ def check_loop_elements(root: ET.Element) -> None:
                                        f"the loop namespace is {LOOP_NAMESPACE!r} (mistyped URI?)")
         elif local.lower() in LOOP_LIKE:
             raise MalformedDescription(f"<{element.tag}>", f"a loop-like element outside the loop namespace "
-                                       f"{LOOP_NAMESPACE!r}: declare loops as <mechkit:loop>")
+                                       f"{LOOP_NAMESPACE!r}: declare loops as <mechkit:loop>, or as URDF+ "
+                                       "<loop> with <predecessor> and <successor>")
 
 
 def parse_loops(urdf: str | ET.Element) -> list[LoopClosure]:
     """Read every `<mechkit:loop>` of a URDF (text or parsed root) into `LoopClosure` records, checked
-    against its links and against loop declarations that would be dropped (`check_loop_elements`)."""
+    against its links and joints and against loop declarations that would be dropped (`check_loop_elements`)."""
     root = parse_xml(urdf) if isinstance(urdf, str) else urdf
     check_loop_elements(root)
-    links = {link.get("name") for link in root.findall("link")}
+    frames = frame_names(root)
     loops = []
     for element in root.findall(f"{{{LOOP_NAMESPACE}}}loop"):
-        loops.append(_parse_loop(element, links))
+        loops.append(_parse_loop(element, frames))
     names = [loop.name for loop in loops]
     if len(set(names)) != len(names):
         raise MalformedDescription("mechkit:loop", f"duplicate loop names in {names}")
     return loops
 
 
-def _parse_loop(element: ET.Element, links: set[str]) -> LoopClosure:
+def frame_names(root: ET.Element) -> dict[str, str | None]:
+    """Every name a loop may use as a frame -> None, or why it is ambiguous.
+
+    A link and a joint each give Pinocchio a frame of their name; one name for a joint and a link that
+    is not that joint's child names two frames at different places.
+    """
+    out: dict[str, str | None] = {link.get("name"): None for link in root.findall("link")}
+    for joint in root.findall("joint"):
+        name, child = joint.get("name"), joint.find("child")
+        if name in out and (child is None or child.get("link") != name):
+            out[name] = "names both a link and a joint (not that joint's child): two frames"
+        else:
+            out.setdefault(name, None)
+    return out
+
+
+def _parse_loop(element: ET.Element, frame_ok: dict[str, str | None]) -> LoopClosure:
     name = element.get("name")
     where = f"mechkit:loop {name!r}"
     if not name:
@@ -134,11 +207,13 @@ def _parse_loop(element: ET.Element, links: set[str]) -> LoopClosure:
         frame = element.get(attr)
         if not frame:
             raise MalformedDescription(where, f"missing attribute {attr!r}")
-        if frame not in links:
-            raise MalformedDescription(where, f"{attr} {frame!r} is not a link of the URDF")
+        if frame not in frame_ok:
+            raise MalformedDescription(where, f"{attr} {frame!r} is not a link or a joint of the URDF")
+        if frame_ok[frame]:
+            raise MalformedDescription(where, f"{attr} {frame!r} {frame_ok[frame]}")
         frames[attr] = frame
     if frames["frame_a"] == frames["frame_b"]:
-        raise MalformedDescription(where, "frame_a and frame_b are the same link")
+        raise MalformedDescription(where, "frame_a and frame_b are the same link or joint")
     axis = _vector(element, "axis", where, required=kind in ("revolute", "prismatic") or rows != "spatial")
     axis_a = _vector(element, "axis_a", where, required=kind == "hooke")
     axis_b = _vector(element, "axis_b", where, required=kind == "hooke")
@@ -204,13 +279,14 @@ def _vector(element: ET.Element, attr: str, where: str, required: bool) -> np.nd
     return vec / np.linalg.norm(vec)
 
 
-def build_model(urdf: str) -> pin.Model:
-    """Pinocchio model of the URDF tree; any urdfdom complaint is a `MalformedDescription`."""
+def build_model(urdf: str, root: pin.JointModel | None = None) -> pin.Model:
+    """Pinocchio model of the URDF tree (on `root`, named "root_joint", when given: e.g. a free-flyer);
+    any urdfdom complaint is a `MalformedDescription`."""
     with tempfile.TemporaryFile(mode="w+b") as captured:
         saved = os.dup(2)
         os.dup2(captured.fileno(), 2)
         try:
-            model = pin.buildModelFromXML(urdf)
+            model = pin.buildModelFromXML(urdf) if root is None else pin.buildModelFromXML(urdf, root)
         except (RuntimeError, ValueError) as err:
             raise MalformedDescription("urdf", f"Pinocchio could not build it: {err}") from None
         finally:
