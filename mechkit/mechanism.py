@@ -55,8 +55,8 @@ class Mechanism:
         self.home_q = self.assemble(spec.home(params))
         self.home_mobility = core.mobility(cm, core_data, self.home_q)
         self.independent_rows = self.home_mobility.rank
-        on_loops = {self.model.getJointId(j) for lp in self.structure.loops for j in lp.joints}
-        self.idle = core.idle_freedoms(self.model, self.home_q, core.closure_jacobian(cm, core_data, self.home_q), on_loops)
+        self.idle = core.idle_freedoms(self.model, self.home_q, core.closure_jacobian(cm, core_data, self.home_q),
+                                       set(cm.on_loops), cm.rigid_groups)
 
     def __repr__(self) -> str:
         """One line: name, coordinates, degrees of freedom, loops, actuators."""

@@ -11,7 +11,6 @@ import mechkit
 from mechkit.base.exceptions import MethodUnavailable
 from mechkit.cli import main
 from mechkit.export import to_extended_urdf, to_mjcf
-from mechkit.sources.extended_urdf import load_extended_urdf
 
 mujoco = pytest.importorskip("mujoco")
 
@@ -123,3 +122,27 @@ def test_cli_export_writes_both_formats(tmp_path, capsys):
     sidecar = yaml.safe_load((tmp_path / "fb.yaml").read_text())
     assert sidecar == {"closed_loop": [["coupler_C", "rocker_C"]], "type": ["3d"], "name_mot": ["crank"],
                        "joint_name": [], "joint_type": []}
+
+
+def load_extended_urdf(urdf: str, yaml_text: str) -> tuple[pin.Model, list[pin.RigidConstraintModel], list[str]]:
+    """An independent reader for the round trip: an Extended URDF pair read the way Gepetto's loader does (model, RigidConstraintModels, motors),
+    for pairs without substitutions (mechkit's exports).
+
+    Every pair is a point (3d) or frame (6d) anchor, as in Gepetto's toolbox; `read_extended_urdf`
+    is mechkit's reading (joints, not anchors).
+
+    Args:
+        urdf: tree URDF text.
+        yaml_text: sidecar text (`closed_loop`, `type`, `name_mot`).
+    """
+    import yaml
+
+    content = yaml.safe_load(yaml_text)
+    model = pin.buildModelFromXML(urdf)
+    constraints = []
+    for (name_a, name_b), kind in zip(content["closed_loop"], content["type"], strict=True):
+        fa, fb = (model.frames[model.getFrameId(n)] for n in (name_a, name_b))
+        contact = pin.ContactType.CONTACT_3D if kind.lower() == "3d" else pin.ContactType.CONTACT_6D
+        constraints.append(pin.RigidConstraintModel(contact, model, fa.parentJoint, fa.placement, fb.parentJoint,
+                                                    fb.placement, pin.ReferenceFrame.LOCAL))
+    return model, constraints, list(content["name_mot"])

@@ -18,11 +18,13 @@ one sample or, when its name ends in `_batch`, a leading sample axis N:
 
 Inside: `records` (closures, couplings, springs, actuators), `joints` (values of any joint type),
 `cuts` (rows each closure keeps), `kernel` (the closure-row mathematics), `rank` (the rank judge),
+`assembly` (closing loops, from near or far),
 `structure` (loops, Kutzbach count, idle freedoms), `model`, `kinematics`, `inverse`,
 `determinacy`, `forward`, `pin_constraints` (the one module that speaks Pinocchio's constraint
 API), `results`. Nothing outside this package imports those submodules: this face is the contract.
 """
 
+from mechkit.core.assembly import ASSEMBLY_METHODS, Assembly, assemble
 from mechkit.core.cuts import CutRows
 from mechkit.core.forward import DEFAULTS as FORWARD_DEFAULTS
 from mechkit.core.forward import METHODS as FORWARD_METHODS
@@ -34,11 +36,8 @@ from mechkit.core.joints import value as joint_value
 from mechkit.core.joints import values as joint_values
 from mechkit.core.kernel import ClosureKernel
 from mechkit.core.kinematics import (
-    ASSEMBLY_METHODS,
-    Assembly,
     accelerations,
     accelerations_batch,
-    assemble,
     closure_drift,
     closure_jacobian,
     closure_residual,

@@ -1,5 +1,5 @@
-"""Closed-loop kinematics: closure residual, Jacobian and drift, assembly, velocities, accelerations,
-mobility, for one sample or a leading sample axis (functions named `*_batch`).
+"""Closed-loop kinematics: closure residual, Jacobian and drift, velocities, accelerations, mobility, for
+one sample or a leading sample axis (functions named `*_batch`); assembly is `mechkit.core.assembly`.
 
 "Inputs" are the joints whose values (and rates) are given; the others are solved for
 (`ClosureModel.split`). Every result is judged by `mechkit.core.rank`: a passive block that does
@@ -12,19 +12,14 @@ every loop and moves no body with mass but one) are given their minimum-norm val
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-
 import numpy as np
 import pinocchio as pin
-from scipy.linalg import lapack
 
-from mechkit.base.exceptions import ClosureNotConverged, InconsistentMotion
+from mechkit.base.exceptions import InconsistentMotion
 from mechkit.core import rank
 from mechkit.core.model import ClosureData, ClosureModel, InputSplit
 from mechkit.core.results import Mobility
-
-#: Closure solvers of `assemble`.
-ASSEMBLY_METHODS = ("newton", "lm")
+from mechkit.core.structure import grouped, idle_counts
 
 
 def kinematic_pass(cm: ClosureModel, cd: ClosureData, Q: np.ndarray,
@@ -83,116 +78,19 @@ def mobility(cm: ClosureModel, cd: ClosureData, q: np.ndarray) -> Mobility:
     return Mobility(cm.nv - r, cm.kernel.size, r, cm.kernel.size - r, s)
 
 
-# ------------------------------------------------------------------ assembly
-@dataclass(frozen=True)
-class Assembly:
-    """A solved closure: configuration q (nq,), Newton steps taken, residual norm reached."""
-
-    q: np.ndarray
-    iterations: int
-    residual: float
-
-
-def _residual_and_jacobian(cm: ClosureModel, cd: ClosureData, q: np.ndarray,
-                           jacobian: bool) -> tuple[np.ndarray, np.ndarray | None, float]:
-    G, J, _ = kinematic_pass(cm, cd, q[None]) if jacobian else (_placements(cm, cd, q), None, None)
-    if jacobian:
-        e, Jc, _ = cm.kernel.evaluate(G[0], J[0], q)
-    else:
-        e, Jc = cm.kernel.residual(G[0], q), None
-    return e, Jc, float(np.sqrt(e @ e))
-
-
-def _placements(cm: ClosureModel, cd: ClosureData, q: np.ndarray) -> np.ndarray:
-    """(1, n_used, 4, 4) placements of the used joints at q after `forwardKinematics` only."""
-    pin.forwardKinematics(cm.model, cd.pin, q)
-    return np.array([cd.placements[int(j)].homogeneous for j in cm.kernel.joints]).reshape(1, -1, 4, 4)
-
-
-def _newton_step(J: np.ndarray, e: np.ndarray) -> np.ndarray:
-    """Minimum-norm x with J x = -e: LAPACK gesv when J is square and regular, else lstsq."""
-    if J.shape[0] == J.shape[1]:
-        _, _, x, info = lapack.dgesv(J, e)
-        if info == 0:
-            return -x
-    return -np.linalg.lstsq(J, e, rcond=None)[0]
-
-
-def assemble(cm: ClosureModel, cd: ClosureData, q0: np.ndarray, split: InputSplit, *, tol: float = rank.CLOSURE_TOL,
-             max_iter: int = 60, method: str = "newton", jacobian_at_trials: bool = True) -> Assembly:
-    """Close every loop by moving the coordinates of `split.free_v`, keeping the given joints at q0's values.
-
-    Gauss-Newton with a minimum-norm step (LAPACK gesv on a square regular block, else lstsq:
-    redundant rows allowed) or Levenberg-Marquardt, both with a backtracking line search on |e|; steps
-    on the configuration manifold (`pin.integrate`), so any joint type works. Leaves `cd.pin` at q.
-
-    Args:
-        q0: (nq,) starting configuration; its given joints' coordinates are the inputs.
-        split: which joints are given (`ClosureModel.split`).
-        tol: residual norm to reach (m for position rows).
-        max_iter: iteration cap.
-        method: "newton" or "lm".
-        jacobian_at_trials: evaluate the Jacobian at every trial point (else only to step from an
-            accepted one: cheaper when most steps are accepted at once, as along a path).
-
-    Raises:
-        ClosureNotConverged: the residual did not reach tol (the linkage may not assemble there).
-    """
-    model, free_v = cm.model, split.free_v
-    q = q0.copy()
-    e, J, norm = _residual_and_jacobian(cm, cd, q, True)
-    damping = 1e-3
-    it = 0
-    for it in range(max_iter):
-        if norm <= tol:
-            return Assembly(q, it, norm)
-        if J is None:
-            e, J, norm = _residual_and_jacobian(cm, cd, q, True)
-        Jf = J[:, free_v]
-        if method == "lm":
-            step_free = -np.linalg.solve(Jf.T @ Jf + damping * np.eye(Jf.shape[1]), Jf.T @ e)
-        else:
-            step_free = _newton_step(Jf, e)
-        step = np.zeros(model.nv)
-        step[free_v] = step_free
-        alpha = 1.0
-        while True:
-            trial = pin.integrate(model, q, alpha * step)
-            e_trial, J_trial, n_trial = _residual_and_jacobian(cm, cd, trial, jacobian_at_trials)
-            if n_trial < norm or alpha < 1e-6:
-                break
-            alpha *= 0.5
-        if not np.isfinite(n_trial):
-            break
-        if method == "lm":
-            damping = damping * 0.3 if n_trial < norm else damping * 10.0
-        q, e, J, norm = trial, e_trial, J_trial, n_trial
-        if alpha < 1e-6 and norm > tol:
-            break
-    if norm <= tol:
-        pin.forwardKinematics(model, cd.pin, q)
-        return Assembly(q, it + 1, norm)
-    raise ClosureNotConverged(float(norm), tol, it + 1, "the loop cannot close from this guess, or at all, for these inputs")
-
-
 # ------------------------------------------------------------------ the passive solve
 def idle_count(cm: ClosureModel, Jw: np.ndarray, N: np.ndarray, tol: float = 1e-9) -> int:
-    """How many of the directions N (nv, d) (velocities closing every loop) are idle freedoms.
+    """How many of the directions N (nv, d) (velocities closing every loop) are idle freedoms: modes
+    that move one body on a loop and no other body with mass (`mechkit.core.structure.idle_counts`).
 
-    A direction set is idle for body k when it moves body k and no other body with mass: their count
-    is rank(T) - rank(T without k's rows) summed over the bodies, T the stacked world twists of the
-    bodies with mass along N (Jw: the world joint Jacobians `data.J`, (6, nv)).
+    Args:
+        Jw: the world joint Jacobians `data.J` (6, nv) at the configuration.
     """
-    if N.shape[1] == 0 or not len(cm.massive):
+    if N.shape[1] == 0:
         return 0
-    twists = (Jw[None] @ (cm.massive_support[:, :, None] * N[None]))  # (bodies, 6, d)
-    scale = max(float(np.abs(twists).max()), 1e-300)
-
-    def rank_of(rows: np.ndarray) -> int:
-        return int(np.linalg.matrix_rank(rows.reshape(-1, N.shape[1]), tol * scale)) if rows.size else 0
-
-    full = rank_of(twists)
-    return sum(full - rank_of(np.delete(twists, k, axis=0)) for k in range(len(cm.massive)))
+    twists = {int(j): Jw @ (support[:, None] * N) for j, support in zip(cm.tracked, cm.tracked_support)}
+    twists, heavy, looped = grouped(twists, set(cm.massive.tolist()), set(cm.on_loops), cm.rigid_groups)
+    return sum(idle_counts(twists, heavy, looped, tol).values())
 
 
 def solve_passive(cm: ClosureModel, J: np.ndarray, Jw: np.ndarray, split: InputSplit, given: np.ndarray,

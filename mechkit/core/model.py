@@ -21,7 +21,7 @@ from mechkit.core import joints
 from mechkit.core.cuts import coupling_row, cut_rows
 from mechkit.core.kernel import ClosureKernel, support_columns
 from mechkit.core.records import Actuator, Coupling, LoopClosure
-from mechkit.core.structure import analyse
+from mechkit.core.structure import analyse, rigid_groups
 
 #: Lightest body (kg): Pinocchio's inertia sums are exact above its epsilon (2.2e-16 kg); ours, with a margin.
 MIN_BODY_MASS = 1e-14
@@ -99,8 +99,10 @@ class ClosureModel:
             unactuated coordinates' unit vectors where every actuator is a joint motor).
         joint_names: tree joints (model order), then cut joints: the order of reactions.
         supports: (n_joints,) True for joints to the ground.
-        massive: ids of the joints whose body has mass; massive_support: (len(massive), nv) the
-            velocity columns moving each (`mechkit.core.kinematics.idle_count`).
+        massive: ids of the joints whose body has mass; on_loops: ids of the joints on a loop;
+        rigid_groups: joint id -> its welded group's representative (`mechkit.core.structure.rigid_groups`).
+        tracked: the two together, sorted; tracked_support: (len(tracked), nv) the velocity columns
+            moving each (`mechkit.core.kinematics.idle_count`).
         row_scale: max_i |J_i| at the neutral configuration (the closure rows' lever arm, m).
         delassus_scale: max_i |J_i|^2 / max_j M_jj there (1/kg for position rows): the unit of the
             proximal regularisation.
@@ -131,7 +133,10 @@ class ClosureModel:
         self.supports = np.array([model.parents[j] == 0 for j in range(1, model.njoints)] + [
             frames[c.frame_a].parentJoint == 0 or frames[c.frame_b].parentJoint == 0 for c in cuts], dtype=bool)
         self.massive = np.array([j for j in range(1, model.njoints) if model.inertias[j].mass > 0], dtype=int)
-        self.massive_support = np.array([support_columns(model, int(j)) for j in self.massive]).reshape(-1, model.nv)
+        self.on_loops = frozenset(model.getJointId(j) for lp in self.structure.loops for j in lp.joints)
+        self.rigid_groups = rigid_groups(model, list(self.closures))
+        self.tracked = np.array(sorted(set(self.massive.tolist()) | self.on_loops), dtype=int)
+        self.tracked_support = np.array([support_columns(model, int(j)) for j in self.tracked]).reshape(-1, model.nv)
         self.row_scale, self.delassus_scale = _scales(self)
         self._split = cache(self._make_split)
 

@@ -223,37 +223,85 @@ def _choose_rows(closure: LoopClosure, kind: str, normal, Ra: np.ndarray, rows: 
     return replace(closure, rows=kind, axis=axis), "detected"
 
 
+def rigid_groups(model: pin.Model, closures: list[LoopClosure]) -> dict[int, int]:
+    """Joint id -> the id representing its rigid group: bodies a weld closure joins move as one body
+    (a rod split in two halves welded at its middle, as Gepetto's files write a rod between two balls)."""
+    parent = {j: j for j in range(model.njoints)}
+
+    def find(j: int) -> int:
+        while parent[j] != j:
+            parent[j] = parent[parent[j]]
+            j = parent[j]
+        return j
+
+    for c in closures:
+        if c.kind == "weld":
+            a, b = (find(model.frames[model.getFrameId(f)].parentJoint) for f in (c.frame_a, c.frame_b))
+            parent[max(a, b)] = min(a, b)
+    return {j: find(j) for j in range(model.njoints)}
+
+
+def idle_counts(twists: dict[int, np.ndarray], massive: set[int], on_loops: set[int], tol: float = 1e-9) -> dict[int, int]:
+    """Per body on a loop, how many of a set of velocity modes move it alone: no other body with mass.
+
+    count(b) = rank(T over the massive bodies and b) - rank(T over the massive bodies but b), T the
+    stacked world twists along the modes: a rod spinning about its own axis between two balls counts
+    for the rod, with mass or without. Bodies welded together (`rigid_groups`) are one body: give one
+    twist per group, keyed by its representative, with the group's mass and loop membership.
+
+    Args:
+        twists: joint id -> (6, d) world twists of its body along the d modes, for every body with mass
+            and every body on a loop.
+        massive: ids of the bodies with mass; on_loops: ids of the bodies on a loop.
+
+    Returns:
+        joint id -> count, for the bodies on loops with a non-zero count.
+    """
+    if not twists:
+        return {}
+    d = next(iter(twists.values())).shape[1]
+    scale = max(1.0, max(float(np.max(np.abs(t), initial=0.0)) for t in twists.values()))
+
+    def rank(joints: list[int]) -> int:
+        return int(np.linalg.matrix_rank(np.vstack([twists[j] for j in joints]), tol * scale)) if joints else 0
+
+    out = {}
+    for b in sorted(on_loops & set(twists)):
+        others = [k for k in massive if k != b and k in twists]
+        count = rank(others + [b]) - rank(others)
+        if count and d:
+            out[b] = count
+    return out
+
+
+def grouped(twists: dict[int, np.ndarray], massive: set[int], on_loops: set[int],
+            groups: dict[int, int]) -> tuple[dict[int, np.ndarray], set[int], set[int]]:
+    """The arguments of `idle_counts` with one entry per rigid group (`rigid_groups`): its twist (any
+    member's: welded bodies share one), whether it has mass, whether it is on a loop."""
+    out: dict[int, np.ndarray] = {}
+    for j, t in twists.items():
+        out.setdefault(groups[j], t)
+    return out, {groups[j] for j in massive}, {groups[j] for j in on_loops}
+
+
 def idle_freedoms(model: pin.Model, q: np.ndarray, jacobian: np.ndarray, on_loops: set[int],
-                  tol: float = 1e-9) -> dict[str, int]:
+                  groups: dict[int, int], tol: float = 1e-9) -> dict[str, int]:
     """Idle freedoms at q: body (the URDF link a joint carries) -> how many velocity modes move it alone.
 
-    A mode is a v with J v = 0; it is idle for body k (a body on a loop, with mass) when no other
-    body with mass moves. Their count for k is rank(T) - rank(T without k's rows), T the stacked
-    world twists of the bodies with mass over the null space of J.
+    A mode is a v with J v = 0; it is idle for body k on a loop when no other body with mass moves
+    (`idle_counts`, over the null space of J).
 
     Args:
         jacobian: the closure Jacobian at q (rows, nv).
         on_loops: joint ids of the bodies that are on some loop.
+        groups: `rigid_groups` of the closures.
     """
     null = scipy.linalg.null_space(jacobian, rcond=tol) if jacobian.size else np.eye(model.nv)
     if null.shape[1] == 0:
         return {}
     data = model.createData()
     pin.computeJointJacobians(model, data, q)
-    massive = [j for j in range(1, model.njoints) if model.inertias[j].mass > 0]
-    twists = {j: pin.getJointJacobian(model, data, j, pin.ReferenceFrame.WORLD) @ null for j in massive}
-    scale = max(1.0, max((np.max(np.abs(t)) for t in twists.values()), default=1.0))
-
-    def rank(joints: list[int]) -> int:
-        if not joints:
-            return 0
-        return int(np.linalg.matrix_rank(np.vstack([twists[j] for j in joints]), tol * scale))
-
-    full = rank(massive)
-    out = {}
-    for j in massive:
-        if j in on_loops:
-            count = full - rank([k for k in massive if k != j])
-            if count:
-                out[body_name(model, j)] = count
-    return out
+    massive = {j for j in range(1, model.njoints) if model.inertias[j].mass > 0}
+    twists = {j: pin.getJointJacobian(model, data, j, pin.ReferenceFrame.WORLD) @ null for j in massive | on_loops}
+    twists, heavy, looped = grouped(twists, massive, on_loops, groups)
+    return {body_name(model, j): n for j, n in idle_counts(twists, heavy, looped, tol).items()}

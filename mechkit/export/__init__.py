@@ -8,12 +8,11 @@ from typing import TYPE_CHECKING
 from mechkit.base.exceptions import OutputError, UnknownOption
 from mechkit.export.extended_urdf import frame_b_vector, to_extended_urdf
 from mechkit.export.mjcf import body_name, to_mjcf
-from mechkit.sources.extended_urdf import load_extended_urdf
 
 if TYPE_CHECKING:
     from mechkit.mechanism import Mechanism
 
-__all__ = ["FORMATS", "body_name", "export_command", "frame_b_vector", "load_extended_urdf", "to_extended_urdf",
+__all__ = ["FORMATS", "body_name", "export_command", "frame_b_vector", "to_extended_urdf",
            "to_mjcf"]
 
 FORMATS = ("mjcf", "extended-urdf")

@@ -312,27 +312,3 @@ def _attributes(closure: LoopClosure) -> dict[str, str]:
     if closure.axis is not None:
         out["axis"] = " ".join(repr(float(x)) for x in closure.axis)
     return out
-
-
-def load_extended_urdf(urdf: str, yaml_text: str) -> tuple[pin.Model, list[pin.RigidConstraintModel], list[str]]:
-    """Read an Extended URDF pair the way Gepetto's loader does (model, RigidConstraintModels, motors),
-    for pairs without substitutions (mechkit's exports).
-
-    Every pair is a point (3d) or frame (6d) anchor, as in Gepetto's toolbox; `read_extended_urdf`
-    is mechkit's reading (joints, not anchors).
-
-    Args:
-        urdf: tree URDF text.
-        yaml_text: sidecar text (`closed_loop`, `type`, `name_mot`).
-    """
-    import yaml
-
-    content = yaml.safe_load(yaml_text)
-    model = build_model(urdf)
-    constraints = []
-    for (name_a, name_b), kind in zip(content["closed_loop"], content["type"], strict=True):
-        fa, fb = (model.frames[model.getFrameId(n)] for n in (name_a, name_b))
-        contact = pin.ContactType.CONTACT_3D if kind.lower() == "3d" else pin.ContactType.CONTACT_6D
-        constraints.append(pin.RigidConstraintModel(contact, model, fa.parentJoint, fa.placement, fb.parentJoint,
-                                                    fb.placement, pin.ReferenceFrame.LOCAL))
-    return model, constraints, list(content["name_mot"])

@@ -166,13 +166,13 @@ def _as_three_revolutes(balls: pin.Model, kept: pin.Model, q: np.ndarray) -> np.
 
 
 def test_the_three_revolutes_kept_are_the_same_mechanism_as_gepettos_balls():
-    """cassie_like, read with balls=False (as mechkit.load reads it until the core takes ball joints):
-    the URDF's tree and text; at the configuration the ball model closed, written in three angles per
-    ball, the loops are closed and the motors hold with the same torques."""
+    """cassie_like, read with balls=False: the URDF's tree and text; at the configuration the ball model
+    (what mechkit.load reads, as Gepetto's loader does) closed, written in three angles per ball, the
+    loops are closed and the motors hold with the same torques."""
     urdf = _urdf("cassie_like")
     kept, balls = read_extended_urdf(urdf, sidecar_of(urdf), balls=False), _ours("cassie_like")
     assert kept.urdf is not None and balls.urdf is None
-    assert kept.model.njoints == balls.model.njoints + 8 and read(urdf).model.njoints == kept.model.njoints
+    assert kept.model.njoints == balls.model.njoints + 8 and read(urdf).model.njoints == balls.model.njoints
     ball = study(balls.model, cuts_of(balls.model, balls.closures), list(balls.actuated))
     q = _as_three_revolutes(balls.model, kept.model, ball.q)
     cuts = cuts_of(kept.model, kept.closures)
