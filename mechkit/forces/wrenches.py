@@ -24,7 +24,7 @@ def _of_time(what: str, value: Vector) -> Callable[[float], np.ndarray]:
         fn = value
     else:
         constant = np.asarray(value, dtype=float)
-        fn = lambda t: constant  # noqa: E731
+        fn = lambda t: constant
     first = np.asarray(fn(0.0), dtype=float)
     if first.shape != (3,) or not np.all(np.isfinite(first)):
         raise InvalidParameters(what, first, "needs three finite numbers (world frame)")

@@ -126,7 +126,8 @@ class Stepper:
         """
         s = self.solver
         t0 = s.t
-        message = s.step()
+        with np.errstate(under="ignore"):  # scipy's smallest step at t = 0 is a subnormal number
+            message = s.step()
         if s.status == "failed":
             raise IntegrationFailed(t0, str(message))
         self.h = s.t - t0 if self.options.dt is None else self.options.dt
@@ -155,3 +156,27 @@ def first_crossing(events: Sequence[Event], dense, t0: float, y0: np.ndarray, t1
         if best is None or te < best[1]:
             best = (k, te)
     return best
+
+
+def run(fun: Function, t0: float, y0: np.ndarray, t_end: float, options: Options,
+        project: Callable[[float, np.ndarray], np.ndarray] | None = None) -> tuple[list[float], list[np.ndarray]]:
+    """Every accepted step of dy/dt = fun(t, y) from (t0, y0) to t_end, each followed by `project` (no
+    events): the times and states, the initial ones first (y0 projected). The simulator's own loop
+    (`mechkit.simulation.simulate`) adds events; this one serves equations of motion written outside it
+    (the ten-bar's Lagrange model, integrated by the same method as its Pinocchio route).
+
+    Raises:
+        IntegrationFailed: the step size collapsed.
+    """
+    y = project(t0, y0) if project is not None else np.array(y0, dtype=float)
+    times, states = [t0], [y]
+    stepper = Stepper(fun, t_end, options)
+    t = t0
+    while t < t_end - 1e-12 * max(1.0, abs(t_end)):
+        stepper.restart(t, y)
+        t, y = stepper.step()
+        if project is not None:
+            y = project(t, y)
+        times.append(t)
+        states.append(y)
+    return times, states
