@@ -82,7 +82,7 @@ def torque_motors(mech, torques, source=None) -> list[TorqueMotor]:
 def simulate(mech, duration: float, *, inputs=None, input_names: Sequence[str] | None = None, torques=None,
              forces: Sequence[ForceElement] = (), file_forces: bool = True, source=None, q0=None, v0=None,
              t0: float = 0.0, dt: float | None = None, rtol: float = RTOL, atol: float = ATOL, method: str = "RK45",
-             max_step: float = math.inf, dynamics: str = "proximal", baumgarte: tuple[float, float] | None = None,
+             max_step: float = math.inf, dynamics: str | None = None, baumgarte: tuple[float, float] | None = None,
              project: bool = True, limits: str | Sequence[Limit] | None = "file", restitution: float = 0.0,
              latches: Sequence[Latch] = (), reactions: bool = True, progress: Progress | None = None) -> SimulationResult:
     """Simulate a mechanism for `duration` seconds.
@@ -105,7 +105,11 @@ def simulate(mech, duration: float, *, inputs=None, input_names: Sequence[str] |
         dt: a fixed step (s); None: adaptive steps to `rtol`, `atol` (`mechkit.simulation.integrator`).
         method: the scipy one-step method ("RK45", "DOP853", "RK23", "Radau").
         max_step: the largest adaptive step (s).
-        dynamics: the core's forward-dynamics method ("proximal", "lcaba", "kkt", "nullspace").
+        dynamics: the core's forward-dynamics method ("proximal", "lcaba", "kkt", "nullspace"); None:
+            "proximal" (Pinocchio's constraint models), or "kkt" where friction needs the reactions: the
+            core's inverse dynamics solves on mechkit's closure rows, and only accelerations from the
+            same rows stay consistent with it at the integrator's off-manifold stages (the proximal
+            ones differ by O(closure residual) there, which the inverse dynamics refuses).
         baumgarte: (Kp 1/s^2, Kd 1/s) closure stabilisation in the accelerations, or None.
         project: project onto the closures and drives after every step (off: the drift shows).
         limits: "file" (the description's joint limits), a list of `Limit`, or None.
@@ -131,6 +135,8 @@ def simulate(mech, duration: float, *, inputs=None, input_names: Sequence[str] |
     names = [e.name for e in elements]
     if len(set(names)) != len(names):
         raise InvalidParameters("forces", names, "every force element needs its own name")
+    if dynamics is None:
+        dynamics = "kkt" if any(e.needs_reactions for e in elements) else "proximal"
     system = MechanismSystem(mech, elements, drives, dynamics, baumgarte)
     layout = StateLayout(mech.model, 1 + len(elements))
     projection = Projection(mech)
