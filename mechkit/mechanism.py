@@ -358,3 +358,9 @@ class Mechanism:
         `mechkit.simulation.SimulationResult` (options: `mechkit.simulation.simulate`)."""
         from mechkit.simulation import simulate
         return simulate(self, duration, **options)
+
+    def equilibrium(self, held: Mapping[str, float] | None = None, **options: Any) -> Any:
+        """The static equilibrium where gravity, the springs and the `held` inputs (joint -> value) balance:
+        a `mechkit.simulation.Equilibrium` (options: `mechkit.simulation.equilibrium`)."""
+        from mechkit.simulation import equilibrium
+        return equilibrium(self, held, **options)

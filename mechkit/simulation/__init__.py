@@ -11,7 +11,9 @@ held inputs balance; `friction` gives inverse dynamics with joint friction from 
 """
 
 from mechkit.simulation.drives import Drives, law_of_samples, prescribed
+from mechkit.simulation.equilibrium import Equilibrium, equilibrium
 from mechkit.simulation.events import Impact, Latch, Limit, impact
+from mechkit.simulation.friction import FrictionInverse, inverse_dynamics
 from mechkit.simulation.integrator import ATOL, METHODS, RTOL, Event, IntegrationFailed, Options, Stepper, run
 from mechkit.simulation.projection import POSITION_TOL, Projection
 from mechkit.simulation.result import SimulationResult, write_csv, write_parquet
@@ -19,7 +21,8 @@ from mechkit.simulation.simulate import default_forces, file_limits, simulate, t
 from mechkit.simulation.system import Evaluation, MechanismSystem
 
 __all__ = [
-    "ATOL", "METHODS", "POSITION_TOL", "RTOL", "Drives", "Evaluation", "Event", "Impact", "IntegrationFailed", "Latch",
-    "Limit", "MechanismSystem", "Options", "Projection", "SimulationResult", "Stepper", "default_forces", "file_limits",
-    "impact", "law_of_samples", "prescribed", "run", "simulate", "torque_motors", "write_csv", "write_parquet",
+    "ATOL", "METHODS", "POSITION_TOL", "RTOL", "Drives", "Equilibrium", "Evaluation", "Event", "FrictionInverse", "Impact",
+    "IntegrationFailed", "Latch",
+    "Limit", "MechanismSystem", "Options", "Projection", "SimulationResult", "Stepper", "default_forces", "equilibrium",
+    "file_limits", "impact", "inverse_dynamics", "law_of_samples", "prescribed", "run", "simulate", "torque_motors", "write_csv", "write_parquet",
 ]
