@@ -133,7 +133,7 @@ class MechanismSystem:
             FrictionLocks: the friction fixed point does not converge.
             SingularConfiguration: the drives cannot hold their law (a singular P_DD).
         """
-        state = ForceState.at(self.model, self.data, q, v, t)
+        state = ForceState.at(self.model, self.data, q, v, t) if self.elements else None
         plain = [k for k in range(len(self.elements)) if k not in self.friction]
         tau_p, fext_p, pow_p = self._loads(state, plain)
         tau_f, fext_f = self._friction_start or (np.zeros_like(tau_p), np.zeros_like(fext_p))
@@ -143,7 +143,7 @@ class MechanismSystem:
         iterations, reactions = 0, None
         while True:
             generalized, wrenches = tau_p + tau_f, fext_p + fext_f
-            tau = generalized + generalized_of_wrenches(self.model, state.data, wrenches)
+            tau = generalized if state is None else generalized + generalized_of_wrenches(self.model, state.data, wrenches)
             a0 = self._fd(q, v, tau)
             if self.drive_v.size:
                 if P is None:

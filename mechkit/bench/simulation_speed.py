@@ -1,0 +1,81 @@
+"""The simulator against MuJoCo on the same exported MJCF at the same step: the free motion of a
+mechanism released at home under gravity, timed per step, with each side's closure error.
+
+MuJoCo runs the exported file as written (`mechkit.export.mjcf`: stiff equality settings, its RK4,
+the step the export chose) with bare `mj_step` calls; mechkit runs `Mechanism.simulate` at that fixed
+step (the scipy pair with its error control off, projection after each step, no reactions). Both
+closure errors are mechkit's closure residual (m) of the configurations each visits: MuJoCo's qpos is
+Pinocchio's q for an exported model.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass
+
+import numpy as np
+
+from mechkit.base.exceptions import MethodUnavailable
+from mechkit.export.mjcf import to_mjcf
+from mechkit.mechanism import Mechanism
+
+
+@dataclass(frozen=True)
+class SimulationSpeed:
+    """One mechanism's row.
+
+    Attributes:
+        name: the mechanism; dt: the common step (s); steps: steps each side took.
+        mujoco_us, mechkit_us: wall time per step (microseconds).
+        mujoco_closure, mechkit_closure: largest closure residual over the run (m).
+        difference: largest difference of the joint values at the common instants (rad or m).
+    """
+
+    name: str
+    dt: float
+    steps: int
+    mujoco_us: float
+    mechkit_us: float
+    mujoco_closure: float
+    mechkit_closure: float
+    difference: float
+
+    @property
+    def ratio(self) -> float:
+        """mechkit's time per step over MuJoCo's."""
+        return self.mechkit_us / self.mujoco_us
+
+
+def mujoco_run(mech: Mechanism, duration: float) -> tuple[float, np.ndarray, float]:
+    """(step s, qpos at every step (steps + 1, nq), seconds per step) of MuJoCo on the exported MJCF."""
+    try:
+        import mujoco
+    except ImportError:
+        raise MethodUnavailable("mujoco", "not installed: pip install 'mechkit[peers]'") from None
+    model = mujoco.MjModel.from_xml_string(to_mjcf(mech))
+    data = mujoco.MjData(model)
+    data.qpos[:] = mech.home_q
+    mujoco.mj_forward(model, data)
+    dt = float(model.opt.timestep)
+    steps = round(duration / dt)
+    qpos = np.empty((steps + 1, model.nq))
+    qpos[0] = data.qpos
+    start = time.perf_counter()
+    for k in range(steps):
+        mujoco.mj_step(model, data)
+        qpos[k + 1] = data.qpos
+    return dt, qpos, (time.perf_counter() - start) / steps
+
+
+def simulation_speed(mech: Mechanism, duration: float = 0.1) -> SimulationSpeed:
+    """Both simulators on the free motion of `mech` for `duration` s at MuJoCo's step (see the module docstring)."""
+    dt, qpos, mj_seconds = mujoco_run(mech, duration)
+    mech.simulate(2 * dt, dt=dt, reactions=False, limits=None)  # warm: imports and first-call caches out of the timing
+    start = time.perf_counter()
+    result = mech.simulate(duration, dt=dt, reactions=False, limits=None)
+    ours = (time.perf_counter() - start) / max(result.integrator["steps"], 1)
+    mj_closure = max(float(np.max(np.abs(mech.closure_residual(q)))) for q in qpos[:: max(1, len(qpos) // 200)])
+    common = min(len(qpos), len(result.t))
+    difference = float(np.max(np.abs(qpos[:common] - result.motion.q[:common])))
+    return SimulationSpeed(mech.spec.name, dt, result.integrator["steps"], mj_seconds * 1e6, ours * 1e6, mj_closure,
+                           float(result.residual.max()), difference)
