@@ -109,10 +109,10 @@ def from_mjcf(path: Path, model: pin.Model) -> Described:
     except ValueError as err:
         raise MalformedDescription(str(path), f"MuJoCo could not compile it: {str(err).strip().splitlines()[0]}") from None
     out = Described()
-    one = (mujoco.mjtJoint.mjJNT_HINGE, mujoco.mjtJoint.mjJNT_SLIDE)
+    one = (int(mujoco.mjtJoint.mjJNT_HINGE), int(mujoco.mjtJoint.mjJNT_SLIDE))
     for j in range(mm.njnt):
         name = mujoco.mj_id2name(mm, mujoco.mjtObj.mjOBJ_JOINT, j)
-        if mm.jnt_type[j] not in one or not name or not model.existJointName(name):
+        if int(mm.jnt_type[j]) not in one or not name or not model.existJointName(name):
             continue
         loss = float(mm.dof_frictionloss[mm.jnt_dofadr[j]])
         if loss:

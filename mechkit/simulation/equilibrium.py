@@ -102,6 +102,8 @@ def equilibrium(mech, held: Mapping[str, float] | None = None, elements: Sequenc
 
     for it in range(max_iter):
         N = basis(q)
+        if N.shape[1] == 0:  # the held joints fix the pose: nothing to balance
+            return Equilibrium(q, 0.0, np.zeros(0), it)
         rho = N.T @ force(q)
         K = stiffness(q, N)
         eig = -np.linalg.eigvalsh(K)

@@ -145,6 +145,7 @@ def simulate(mech, duration: float, *, inputs=None, input_names: Sequence[str] |
         mech.v_index(j)
     recorder = Recorder(system, layout, projection)
     cache: dict = {}
+    stopped: set[str] = set()  # joints held because they stopped at a bound (released when pulled off it)
 
     def rhs(t: float, y: np.ndarray) -> np.ndarray:
         q, v = layout.q(y), layout.v(y)
@@ -179,8 +180,8 @@ def simulate(mech, duration: float, *, inputs=None, input_names: Sequence[str] |
             q1 = projection.positions(q1, system.drives, t1)
             v1 = projection.velocities(q1, v1, system.drives, t1)
         if hit is not None:
-            v1 = _act(events[hit[0]].name, system, recorder, limit_list, latches, t1, q1, v1)
-        v1 = _release(system, recorder, limit_list, t1, q1, v1)
+            v1 = _act(events[hit[0]].name, system, recorder, limit_list, latches, t1, q1, v1, stopped)
+        _release(system, recorder, limit_list, t1, q1, v1, stopped)
         t, y = t1, layout.pack(q1, v1, layout.works(y1))
         if t < t_end - 1e-12 * max(1.0, abs(t_end)):
             stepper.restart(t, y)
@@ -218,8 +219,9 @@ def _events(drives: Drives, limits: Sequence[Limit], latches: Sequence[Latch], v
 
 
 def _act(event: str, system: MechanismSystem, recorder: Recorder, limits: Sequence[Limit], latches: Sequence[Latch],
-         t: float, q: np.ndarray, v: np.ndarray) -> np.ndarray:
-    """Apply an event at (t, q, v): the impact, and the joint held where it stops; the velocities after it."""
+         t: float, q: np.ndarray, v: np.ndarray, stopped: set[str]) -> np.ndarray:
+    """Apply an event at (t, q, v): the impact, and the joint held where it stops (a stop at a bound joins
+    `stopped`); the velocities after it."""
     kind, joint = event.split(":", 1)
     jv = system.mech.v_index(joint)
     arrived = float(v[jv])
@@ -237,26 +239,28 @@ def _act(event: str, system: MechanismSystem, recorder: Recorder, limits: Sequen
     if hold:
         system.drives = system.drives.holding(joint, bound)
         recorder.holding(joint)
+        if kind != "latch":
+            stopped.add(joint)
     what = "latched" if kind == "latch" else ("stopped and held" if hold else f"bounced at {rate:.4g}")
-    recorder.event(t, event, f"{what} (arrived at {arrived:.4g}, {jump.dissipated:.4g} J dissipated)")
+    recorder.event(t, event, f"{what} (arrived at {arrived:.10g}, {jump.dissipated:.6g} J dissipated)")
     return jump.v
 
 
 def _release(system: MechanismSystem, recorder: Recorder, limits: Sequence[Limit], t: float, q: np.ndarray,
-             v: np.ndarray) -> np.ndarray:
-    """Release the joints held at a bound whose holding effort would pull them off it; the velocities."""
+             v: np.ndarray, stopped: set[str]) -> None:
+    """Release the joints stopped at a bound whose holding effort would pull them off it."""
     bounds = {x.joint: x for x in limits}
-    held = [j for j in system.drives.held if j in bounds]
+    held = sorted(stopped)
     if not held:
-        return v
+        return
     ev = system.evaluate(t, q, v)
     names = system.drives.all
     for joint in held:
         side = 1.0 if abs(system.drives.held[joint] - bounds[joint].upper) < abs(system.drives.held[joint] - bounds[joint].lower) else -1.0
         if side * ev.efforts[names.index(joint)] > 0:
             system.drives = system.drives.releasing(joint)
+            stopped.discard(joint)
             recorder.event(t, f"release:{joint}", "released from its bound")
-    return v
 
 
 def _result(mech, recorder: Recorder, elements: list[ForceElement], info: dict, inputs, with_reactions: bool) -> SimulationResult:
