@@ -28,8 +28,9 @@ def _vector(text: str | None, what: str) -> tuple[float, ...] | None:
 
 
 def _elements(mech, args: argparse.Namespace) -> list:
-    """The force elements the command line adds: reaction friction on every revolute joint, gravity."""
+    """The force elements the command line adds: reaction friction on every revolute joint, gravity, springs."""
     from mechkit import forces
+    from mechkit.core import JointSpring
 
     out = []
     friction = _vector(args.friction, "--friction")
@@ -46,6 +47,15 @@ def _elements(mech, args: argparse.Namespace) -> list:
     gravity = _vector(args.gravity, "--gravity")
     if gravity is not None:
         out.append(forces.Gravity(mech.model, gravity))
+    springs = []
+    for item in args.spring or []:
+        joint, _, values = item.partition("=")
+        numbers = _vector(values, "--spring") or ()
+        if len(numbers) not in (2, 3):
+            raise InvalidParameters("--spring", item, "expected JOINT=STIFFNESS,REFERENCE[,DAMPING]")
+        springs.append(JointSpring(joint.strip(), numbers[0], numbers[1], 0.0, numbers[2] if len(numbers) == 3 else 0.0))
+    if springs:
+        out.append(forces.JointSprings(mech.model, springs, "added springs"))
     return out
 
 
@@ -80,7 +90,7 @@ def run(args: argparse.Namespace) -> None:
     bars = ProgressBars(None if args.duration >= LONG_RUN else False)
     result = simulation.simulate(
         mech, args.duration, inputs=inputs, torques=torques, forces=_elements(mech, args), source=source,
-        dt=args.dt, rtol=args.rtol, atol=args.rtol * 1e-2, method=args.method, restitution=args.restitution,
+        dt=args.dt, rtol=args.rtol, atol=args.rtol * 1e-2, method=args.method, dynamics=args.dynamics, restitution=args.restitution,
         latches=latches, progress=lambda done, total: bars(f"{mech.spec.name} simulate", round(TICKS * done / total), TICKS))
     print(f"{mech.spec.name}: {result.motion.source}")
     print("\n".join(result.summary()))
@@ -120,10 +130,14 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     step.add_argument("--dt", type=float, help="fixed step (s)")
     step.add_argument("--rtol", type=float, default=1e-9, help="relative tolerance of the adaptive steps (default 1e-9; "
                       "absolute: 1e-2 of it)")
+    p.add_argument("--dynamics", choices=("proximal", "lcaba", "kkt", "nullspace"),
+                   help="the core's forward dynamics (default: proximal, kkt with --friction)")
     p.add_argument("--method", default="RK45", help="scipy one-step method: RK45 (default), DOP853, RK23, Radau")
     p.add_argument("--friction", metavar="MU,RADIUS", help="friction from the reactions on every revolute joint "
                    "(cut joints included): coefficient and pin radius (m)")
     p.add_argument("--gravity", metavar="GX,GY,GZ", help="gravity (m/s^2, world) instead of the model's")
+    p.add_argument("--spring", action="append", metavar="JOINT=K,REF[,DAMPING]",
+                   help="a joint spring: stiffness (N m/rad or N/m), reference (rad or m), damping (repeatable)")
     p.add_argument("--restitution", type=float, default=0.0, help="at the file's joint limits: 0 stop (default) .. 1 bounce")
     p.add_argument("--latch", action="append", metavar="JOINT=VALUE", help="a joint that locks at a value (rad or m; repeatable)")
     p.add_argument("-o", "--output", help="write the table: .parquet or .csv")
