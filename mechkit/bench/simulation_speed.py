@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import time
 from dataclasses import dataclass
+from pathlib import Path
 
 import numpy as np
 
@@ -101,10 +102,8 @@ def markdown(rows: list[SimulationSpeed]) -> str:
     return "\n".join(lines) + "\n"
 
 
-def write_section(path, rows: list[SimulationSpeed]) -> None:
+def write_section(path: str | Path, rows: list[SimulationSpeed]) -> None:
     """Put the section into a Markdown file: in place of its former text, else at the end."""
-    from pathlib import Path
-
     from mechkit.base.atomic import write_text
 
     text = Path(path).read_text()

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 import scipy.interpolate
@@ -20,7 +21,7 @@ Law = Callable[[float], tuple[np.ndarray, np.ndarray, np.ndarray]]
 """t (s) -> (positions (k,), rates (k,), accelerations (k,)) of the law's joints."""
 
 
-def law_of_samples(law) -> Law:
+def law_of_samples(law: Any) -> Law:
     """The continuous law through a sampled input law (`mechkit.motion.InputLaw`: names, t, values,
     rates, accelerations): a piecewise quintic matching values, rates and accelerations at every sample
     (`scipy.interpolate.BPoly.from_derivatives`); constant outside the sampled span."""
@@ -80,7 +81,7 @@ class Drives:
         return Drives(self.names, self.law, {j: x for j, x in self.held.items() if j != joint})
 
 
-def prescribed(inputs, names: Sequence[str] | None = None) -> Drives:
+def prescribed(inputs: Any, names: Sequence[str] | None = None) -> Drives:
     """Drives from what a user gives: None (no prescribed joint), a sampled input law
     (`mechkit.motion.InputLaw`), a `Law` callable with `names`, or a mapping joint -> constant value.
 

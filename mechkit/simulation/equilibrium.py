@@ -15,6 +15,7 @@ from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 import pinocchio as pin
@@ -54,7 +55,7 @@ class Equilibrium:
         return bool(np.all(self.stiffness > 0))
 
 
-def equilibrium(mech, held: Mapping[str, float] | None = None, elements: Sequence[ForceElement] | None = None,
+def equilibrium(mech: Any, held: Mapping[str, float] | None = None, elements: Sequence[ForceElement] | None = None,
                 q0: np.ndarray | None = None, tol: float = 1e-10, max_iter: int = 200) -> Equilibrium:
     """The static equilibrium near q0 with the `held` joints at their values.
 

@@ -12,6 +12,7 @@ motion's accelerations. Where the iteration does not settle, friction locks the 
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
@@ -45,7 +46,7 @@ class FrictionInverse:
     check: float
 
 
-def inverse_dynamics(mech, q: np.ndarray, v: np.ndarray, a: np.ndarray, elements: list[ForceElement],
+def inverse_dynamics(mech: Any, q: np.ndarray, v: np.ndarray, a: np.ndarray, elements: list[ForceElement],
                      t: float = 0.0) -> FrictionInverse:
     """The actuators' efforts and every reaction for a motion (q, v, a) under force elements, friction
     from the reactions included (see the module docstring).

@@ -138,12 +138,12 @@ class Stepper:
             self.h = float(s.h_abs)  # the size the controller chose for the next step
         return s.t, s.y.copy()
 
-    def dense(self):
+    def dense(self) -> Callable[[float], np.ndarray]:
         """The last step's dense output (callable on [t0, t1])."""
         return self.solver.dense_output()
 
 
-def first_crossing(events: Sequence[Event], dense, t0: float, y0: np.ndarray, t1: float,
+def first_crossing(events: Sequence[Event], dense: Callable[[float], np.ndarray], t0: float, y0: np.ndarray, t1: float,
                    y1: np.ndarray) -> tuple[int, float] | None:
     """(index, time) of the earliest event crossing on (t0, t1], or None."""
     best = None

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import io
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
@@ -16,7 +17,7 @@ from mechkit.simulation.result import SimulationResult
 MAX_JOINTS = 12
 
 
-def figure(result: SimulationResult, title: str | None = None):
+def figure(result: SimulationResult, title: str | None = None) -> Any:
     """Joint values (top), energies and the balance's drift (middle), closure residual (bottom)."""
     plt = pyplot()
     fig, (top, mid, bottom) = plt.subplots(3, 1, figsize=(10, 9), sharex=True)

@@ -21,6 +21,7 @@ import io
 import json
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
@@ -136,7 +137,7 @@ class SimulationResult:
                      "integrator": json.dumps(self.integrator, default=str)})
         return meta
 
-    def to_dataframe(self):
+    def to_dataframe(self) -> Any:
         """A pandas DataFrame, one row per sample (metadata in `attrs`)."""
         df = pandas().DataFrame(self.columns())
         df.attrs.update(self.metadata())

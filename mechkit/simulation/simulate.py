@@ -12,6 +12,8 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable, Mapping, Sequence
+from pathlib import Path
+from typing import Any
 
 import numpy as np
 
@@ -44,7 +46,7 @@ Progress = Callable[[float, float], None]
 MAX_STEPS = 2_000_000
 
 
-def default_forces(mech, source=None) -> list[ForceElement]:
+def default_forces(mech: Any, source: str | Path | None = None) -> list[ForceElement]:
     """The force elements a mechanism's description declares: its joint springs (`Mechanism.springs`), and
     the dampers and friction of its URDF `<dynamics>` or its MJCF `frictionloss` (`source`: the MJCF
     file, whose URDF the mechanism does not keep)."""
@@ -52,13 +54,13 @@ def default_forces(mech, source=None) -> list[ForceElement]:
     return out + read_described(source, mech.urdf, mech.model, tuple(mech.actuated)).elements(mech.model)
 
 
-def file_limits(mech, source=None, restitution: float = 0.0) -> list[Limit]:
+def file_limits(mech: Any, source: str | Path | None = None, restitution: float = 0.0) -> list[Limit]:
     """The joint limits the description declares (URDF `<limit>`, MJCF `range` of limited joints)."""
     described = read_described(source, mech.urdf, mech.model, tuple(mech.actuated))
     return [Limit(j, lo, hi, restitution) for j, (lo, hi) in described.limits.items()]
 
 
-def torque_motors(mech, torques, source=None) -> list[TorqueMotor]:
+def torque_motors(mech: Any, torques: Any, source: str | Path | None = None) -> list[TorqueMotor]:
     """Torque motors on the actuators from given efforts: a mapping actuator -> effort (N m or N; a
     constant or a function of t) or a sampled law (`names`, `t`, `values`: linear between samples,
     held after the last), each within the envelope its description gives (`mechkit.forces.motors`)."""
@@ -79,8 +81,9 @@ def torque_motors(mech, torques, source=None) -> list[TorqueMotor]:
     return out
 
 
-def simulate(mech, duration: float, *, inputs=None, input_names: Sequence[str] | None = None, torques=None,
-             forces: Sequence[ForceElement] = (), file_forces: bool = True, source=None, q0=None, v0=None,
+def simulate(mech: Any, duration: float, *, inputs: Any = None, input_names: Sequence[str] | None = None, torques: Any = None,
+             forces: Sequence[ForceElement] = (), file_forces: bool = True, source: str | Path | None = None,
+             q0: np.ndarray | None = None, v0: np.ndarray | None = None,
              t0: float = 0.0, dt: float | None = None, rtol: float = RTOL, atol: float = ATOL, method: str = "RK45",
              max_step: float = math.inf, dynamics: str | None = None, baumgarte: tuple[float, float] | None = None,
              project: bool = True, limits: str | Sequence[Limit] | None = "file", restitution: float = 0.0,
@@ -194,7 +197,7 @@ def simulate(mech, duration: float, *, inputs=None, input_names: Sequence[str] |
     return _result(mech, recorder, elements, info, inputs, reactions)
 
 
-def _joint_value(mech, layout: StateLayout) -> Callable[[str, np.ndarray], float]:
+def _joint_value(mech: Any, layout: StateLayout) -> Callable[[str, np.ndarray], float]:
     """joint, y -> the one-freedom joint's value (rad or m)."""
     def value(joint: str, y: np.ndarray) -> float:
         k = mech.q_index(joint)
@@ -263,7 +266,7 @@ def _release(system: MechanismSystem, recorder: Recorder, limits: Sequence[Limit
             recorder.event(t, f"release:{joint}", "released from its bound")
 
 
-def _result(mech, recorder: Recorder, elements: list[ForceElement], info: dict, inputs, with_reactions: bool) -> SimulationResult:
+def _result(mech: Any, recorder: Recorder, elements: list[ForceElement], info: dict, inputs, with_reactions: bool) -> SimulationResult:
     """The recorded samples as a `SimulationResult`, every sample's reactions from the core's inverse dynamics."""
     r = recorder.arrays()
     cm = mech.closure_model

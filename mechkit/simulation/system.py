@@ -88,6 +88,7 @@ class MechanismSystem:
 
     @drives.setter
     def drives(self, drives: Drives) -> None:
+        """Set the driven joints (their velocity indices follow)."""
         self._drives = drives
         self.drive_v = np.array([self.mech.v_index(j) for j in drives.all], dtype=int)
 
