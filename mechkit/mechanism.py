@@ -351,3 +351,16 @@ class Mechanism:
                                            distribution=distribution,
                                            generic_rank=None if arguments.flag("allow_singular", allow_singular)
                                      else self.independent_rows, idle=bool(self.idle))
+
+    # ---------------------------------------------------------------- in time
+    def simulate(self, duration: float, **options: Any) -> Any:
+        """The mechanism moving for `duration` seconds under its forces, drives and events: a
+        `mechkit.simulation.SimulationResult` (options: `mechkit.simulation.simulate`)."""
+        from mechkit.simulation import simulate
+        return simulate(self, duration, **options)
+
+    def equilibrium(self, held: Mapping[str, float] | None = None, **options: Any) -> Any:
+        """The static equilibrium where gravity, the springs and the `held` inputs (joint -> value) balance:
+        a `mechkit.simulation.Equilibrium` (options: `mechkit.simulation.equilibrium`)."""
+        from mechkit.simulation import equilibrium
+        return equilibrium(self, held, **options)

@@ -192,9 +192,12 @@ def test_the_dynamics_decides_the_passive_dof(mech, load_cached):
 
 
 def test_stabilisation_bounds_the_drift(mech):
-    free = tl.drift(mech, 0.5, 0.02, None, project=False).residual.max()
-    baumgarte = tl.drift(mech, 0.5, 0.02, (100.0, 20.0), project=False).residual.max()
-    projected = tl.drift(mech, 0.5, 0.02, None, project=True).residual.max()
+    """Over the drift study's 5 s at 20 ms (the simulator's fifth-order steps: after 0.5 s the free drift
+    is still within 1.3 times Baumgarte's, which its transient at the spring release sets), the free
+    drift grows, Baumgarte's stays bounded, projection removes it."""
+    free = tl.drift(mech, 5.0, 0.02, None, project=False).residual.max()
+    baumgarte = tl.drift(mech, 5.0, 0.02, (100.0, 20.0), project=False).residual.max()
+    projected = tl.drift(mech, 5.0, 0.02, None, project=True).residual.max()
     assert free > 10 * baumgarte and baumgarte > 1e3 * projected and projected < 1e-12
 
 

@@ -1,4 +1,5 @@
-"""Regenerate docs/benchmarks.md and docs/figures/bench_*.{png,svg}: `mechkit bench` over every mechanism.
+"""Regenerate docs/benchmarks.md and docs/figures/bench_*.{png,svg}: `mechkit bench` over every mechanism,
+then the simulator against MuJoCo on the small mechanisms (`mechkit.bench.simulation_speed`).
 
 Usage: python tools/bench_all.py [--quick] [NAME ...]
 (Drake rows appear when `pydrake` is importable: `pip install drake`.)
@@ -9,9 +10,14 @@ from __future__ import annotations
 import sys
 from pathlib import Path
 
+import mechkit
+from mechkit.bench import simulation_speed
 from mechkit.cli import main
 
 DOCS = Path(__file__).resolve().parent.parent / "docs"
 
 if __name__ == "__main__":
-    sys.exit(main(["bench", *sys.argv[1:], "--charts", str(DOCS / "figures"), "--markdown", str(DOCS / "benchmarks.md")]))
+    status = main(["bench", *sys.argv[1:], "--charts", str(DOCS / "figures"), "--markdown", str(DOCS / "benchmarks.md")])
+    rows = [simulation_speed.simulation_speed(mechkit.load(name), 0.1) for name in simulation_speed.SMALL]
+    simulation_speed.write_section(DOCS / "benchmarks.md", rows)
+    sys.exit(status)

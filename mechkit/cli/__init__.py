@@ -14,9 +14,22 @@ import sys
 import numpy as np
 
 from mechkit.base.exceptions import MechkitError
-from mechkit.cli import bench, export, listing, motion, params, report, snapshot, sweep, urdf, validate, view
+from mechkit.cli import (
+    bench,
+    export,
+    listing,
+    motion,
+    params,
+    report,
+    simulate,
+    snapshot,
+    sweep,
+    urdf,
+    validate,
+    view,
+)
 
-COMMANDS = (listing, urdf, report, snapshot, bench, export, params, sweep, motion, validate, view)
+COMMANDS = (listing, urdf, report, snapshot, bench, export, params, sweep, motion, simulate, validate, view)
 
 
 def build_parser() -> argparse.ArgumentParser:

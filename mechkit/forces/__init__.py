@@ -1,9 +1,34 @@
-"""Force elements: generalised forces a mechanism's own parts apply (joint springs and dampers).
+"""Force elements: named objects giving the generalised forces and body wrenches a mechanism feels.
 
-`JointSprings` (`springs`): the springs and dampers a description declares, as generalised forces of
-one state or N.
+Each element (`base.ForceElement`) gives, at a state, a `Load` (generalised forces at the joints,
+body wrenches) and its part of the energy balance (a potential, or a dissipated or supplied power):
+
+| element | module | role |
+|---|---|---|
+| `JointSprings`: springs and dampers a description declares (URDF `<mechkit:spring>`, MJCF stiffness, springref, damping; URDF `<dynamics damping>`) | `springs` | conservative + dissipative |
+| `CoulombFriction`: constant joint friction (URDF `<dynamics friction>`, MJCF frictionloss) | `coulomb` | dissipative |
+| `ReactionFriction`: friction torque from each revolute joint's reaction, tree and cut joints (Adams-like) | `reaction_friction` | dissipative |
+| `TorqueMotor`: a commanded effort within a torque-speed envelope | `motors` | source |
+| `Gravity`: another gravity than the model's | `gravity` | conservative |
+| `BodyWrench`: a force through a body point and a moment, functions of time | `wrenches` | source |
+
+`described.read` collects what a file says beyond the readers' springs (dampers, friction, joint
+limits, motor envelopes). `Mechanism` applies its own `JointSprings` in both dynamics; the simulator
+(`mechkit.simulation`) applies any list of elements.
 """
 
+from mechkit.forces.base import ROLES, ForceElement, ForceState, Load, generalized_of_wrenches, wrench_on_body
+from mechkit.forces.coulomb import SPEED_THRESHOLD, CoulombFriction, smooth_sign
+from mechkit.forces.described import Described
+from mechkit.forces.described import read as read_described
+from mechkit.forces.gravity import Gravity
+from mechkit.forces.motors import TorqueMotor, envelope
+from mechkit.forces.reaction_friction import FrictionLocks, PinFriction, ReactionFriction
 from mechkit.forces.springs import JointSprings
+from mechkit.forces.wrenches import BodyWrench
 
-__all__ = ["JointSprings"]
+__all__ = [
+    "ROLES", "SPEED_THRESHOLD", "BodyWrench", "CoulombFriction", "Described", "ForceElement", "ForceState",
+    "FrictionLocks", "Gravity", "JointSprings", "Load", "PinFriction", "ReactionFriction", "TorqueMotor", "envelope",
+    "generalized_of_wrenches", "read_described", "smooth_sign", "wrench_on_body",
+]

@@ -14,22 +14,29 @@ import pinocchio as pin
 
 from mechkit.base.exceptions import InvalidParameters
 from mechkit.core import JointSpring
+from mechkit.forces.base import ForceElement, ForceState, Load
 
 
-class JointSprings:
+class JointSprings(ForceElement):
     """The springs and dampers of one model, evaluated for one state or a leading sample axis.
+
+    As a force element: the springs' potential is `energy`, the dampers' power (-damping v^2) the
+    dissipated part.
 
     Args:
         model: the tree's Pinocchio model.
         springs: the records.
+        name: the element's name.
 
     Raises:
         InvalidParameters: an unknown joint, a negative stiffness or damping, or a spring (stiffness or
             preload) on a joint of several freedoms.
     """
 
-    def __init__(self, model: pin.Model, springs: Sequence[JointSpring]):
+    def __init__(self, model: pin.Model, springs: Sequence[JointSpring], name: str = "springs"):
+        self.name = name
         self.springs = tuple(springs)
+        self.role = "dissipative" if any(s.damping for s in self.springs) else "conservative"
         q_index, v_index, unbounded, laws, damped_v, damped = [], [], [], [], [], []
         for s in self.springs:
             if not model.existJointName(s.joint):
@@ -71,7 +78,19 @@ class JointSprings:
         out[..., self._damped_v] -= self._damped * v[..., self._damped_v]
         return out
 
-    def energy(self, q: np.ndarray) -> np.ndarray:
+    def potential(self, q: np.ndarray) -> np.ndarray:
         """(...,) the springs' potential energy (J): sum of stiffness (x - reference)^2 / 2 - preload (x - reference)."""
         dx = self.values(q) - self._ref
         return np.sum(0.5 * self._k * dx**2 - self._pre * dx, axis=-1)
+
+    def damper_power(self, v: np.ndarray) -> np.ndarray:
+        """(...,) the dampers' power (W, <= 0): -sum of damping v^2."""
+        return -(np.sum(self._d * v[..., self._v] ** 2, axis=-1) + np.sum(self._damped * v[..., self._damped_v] ** 2, axis=-1))
+
+    def load(self, state: ForceState) -> Load:
+        """Springs and dampers at a state: generalised forces, the dampers' power."""
+        return Load(self.forces(state.q, state.v), None, float(self.damper_power(state.v)))
+
+    def energy(self, model: pin.Model, data: pin.Data, q: np.ndarray) -> float:
+        """The springs' potential energy (J) at q."""
+        return float(self.potential(q))

@@ -24,6 +24,7 @@ from mechkit.base.exceptions import MalformedDescription, MethodUnavailable
 
 if TYPE_CHECKING:
     import pandas as pd
+    import pinocchio as pin
 
 COMPONENTS = ("fx", "fy", "fz", "mx", "my", "mz")
 AXES = ("x", "y", "z")
@@ -37,6 +38,15 @@ def pandas() -> ModuleType:
     except ImportError:
         raise MethodUnavailable("motion tables", "pandas is not installed: pip install 'mechkit[motion]'") from None
     return pd
+
+
+def coordinate_names(model: pin.Model) -> tuple[str, ...]:
+    """Names of the q coordinates: the joint's name, `name[k]` for a joint of several coordinates."""
+    out = []
+    for j in range(1, model.njoints):
+        n = model.joints[j].nq
+        out += [model.names[j]] if n == 1 else [f"{model.names[j]}[{k}]" for k in range(n)]
+    return tuple(out)
 
 
 @dataclass(frozen=True)

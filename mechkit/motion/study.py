@@ -14,14 +14,13 @@ from __future__ import annotations
 from collections.abc import Callable, Sequence
 
 import numpy as np
-import pinocchio as pin
 
 from mechkit import core
 from mechkit.base.exceptions import MechkitError
 from mechkit.mechanism import Mechanism
 from mechkit.motion.inputs import InputLaw
 from mechkit.motion.path import PathKinematics
-from mechkit.motion.result import MotionResult
+from mechkit.motion.result import MotionResult, coordinate_names
 
 Progress = Callable[[int, int], None]
 """(steps done, steps in all) -> None: each sample's kinematics is a step, the dynamics of all samples
@@ -29,15 +28,6 @@ the last N steps."""
 
 Loads = Callable[[Mechanism, np.ndarray, float], Sequence]
 """(mechanism, q, t) -> Pinocchio external forces per joint (local frames), e.g. a thrust."""
-
-
-def coordinate_names(model: pin.Model) -> tuple[str, ...]:
-    """Names of the q coordinates: the joint's name, `name[k]` for a joint of several coordinates."""
-    out = []
-    for j in range(1, model.njoints):
-        n = model.joints[j].nq
-        out += [model.names[j]] if n == 1 else [f"{model.names[j]}[{k}]" for k in range(n)]
-    return tuple(out)
 
 
 def driven_model(mech: Mechanism, names: Sequence[str]) -> core.ClosureModel:

@@ -1,7 +1,7 @@
 """The ten-bar as a design: the figures of merit a sweep asks of it (`SPEC.design_metrics`).
 
 `deployment`: `max_motor_torque` (N m), the largest |torque| of the motors R1, R3 along the
-deployment (constrained ABA, RK4 with projection, step `scenes.DEPLOY_STEP`), and `latch_speed`
+deployment (constrained ABA, fixed steps of the simulator with projection, step `scenes.DEPLOY_STEP`), and `latch_speed`
 (m/s, ours): the largest speed of any joint origin at t = deploy_time, when the motor laws stop and
 the panels latch (the cycloidal laws leave the motor-driven panels at rest there, so this is the
 passive DOF still moving).

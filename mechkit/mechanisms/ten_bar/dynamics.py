@@ -1,4 +1,4 @@
-"""Ten-bar deployment dynamics: prescribed motors, free passive DOF, RK4 with constraint stabilisation.
+"""Ten-bar deployment dynamics: prescribed motors, free passive DOF, the simulator's integrator.
 
 Motors R1 and R3 are ideal servos on the cycloidal laws of `params.motor_law`; the passive DOF
 (R5) moves under the spring-damper, gravity and the linkage's inertia. Two independent models of
@@ -12,9 +12,12 @@ the same motion share one integrator:
   (`mechkit.validation.lagrange`) in reference-point coordinates, A f = P with the motor torques
   among the unknowns.
 
-`integrate` is a fixed-step RK4 on (q, v, W) (W the work of motors minus damper); after each step
-the state is projected back onto the constraint manifold (closures and motor laws), or, when
-projection is off, left to drift (optionally with Baumgarte terms in the accelerations).
+The Pinocchio route is the simulator itself (`mechkit.simulation`: its equations of motion with the
+motor laws as drives, `Mechanism.simulate` for a deployment); the Lagrange routes are integrated by
+the simulator's stepping (`mechkit.simulation.run`: the same scipy method and step, projection after
+each step). `integrate` runs either at a fixed step on (q, v, W), W the work of motors minus damper,
+projecting onto the closures and motor laws after each step or, when projection is off, leaving the
+state to drift (optionally with Baumgarte terms in the accelerations).
 """
 
 from __future__ import annotations
@@ -24,8 +27,8 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING, Protocol
 
 import numpy as np
-import pinocchio as pin
 
+from mechkit import simulation as sim
 from mechkit.base.exceptions import ClosureNotConverged
 from mechkit.mechanisms.ten_bar import geometry as geo
 from mechkit.mechanisms.ten_bar.lagrange_model import (
@@ -34,7 +37,7 @@ from mechkit.mechanisms.ten_bar.lagrange_model import (
     lagrange_from_joints,
     lagrange_linkage,
 )
-from mechkit.mechanisms.ten_bar.params import MOTORS, TenBarParams, motor_law, spring_from_urdf
+from mechkit.mechanisms.ten_bar.params import MOTORS, TenBarParams, motor_law
 
 if TYPE_CHECKING:
     from mechkit.mechanism import Mechanism
@@ -65,7 +68,9 @@ JOINT_ORDER = geo.TREE_JOINTS
 
 
 class PinocchioDeployment:
-    """Deployment dynamics through the core (constrained ABA, closure rows).
+    """Deployment dynamics through the core: the simulator's equations of motion (`MechanismSystem`, the
+    constrained ABA of the core) with the motor laws as computed-torque drives and the R5 spring-damper
+    the mechanism's own joint spring.
 
     Args:
         mechanism: `mechkit.load("ten_bar", ...)`.
@@ -75,59 +80,35 @@ class PinocchioDeployment:
 
     def __init__(self, mechanism: Mechanism, baumgarte: tuple[float, float] | None = None,
                  method: str = "proximal") -> None:
-        # (0, 0) rather than None: the core keeps the last Baumgarte gains set on its constraint models
-        self.m, self.baumgarte, self.method = mechanism, baumgarte or (0.0, 0.0), method
+        self.m, self.baumgarte, self.method = mechanism, baumgarte, method
         self.p = mechanism.params
-        self.spring = spring_from_urdf(mechanism.urdf)
+        self.drives = sim.Drives(MOTORS, self.law)
+        self.system = sim.MechanismSystem(mechanism, [mechanism.springs], self.drives, method, baumgarte)
+        self.projection = sim.Projection(mechanism)
         self.motor_v = np.array([mechanism.v_index(j) for j in MOTORS])
-        self.spring_v = mechanism.v_index(self.spring.pin)
         self.order = np.array([mechanism.q_index(j) for j in JOINT_ORDER])
-        self.data = mechanism.model.createData()
 
-    def spring_torque(self, q: np.ndarray, v: np.ndarray) -> float:
-        """The R5 spring-damper torque on l56 (N m): k (free angle - q) - c qdot (the mechanism's own joint
-        spring, `Mechanism.passive_forces`, which its dynamics apply)."""
-        return float(self.m.passive_forces(q, v)[self.spring_v])
-
-    def _fd(self, q, v, tau):
-        return self.m.forward_dynamics(q, v, tau, method=self.method, baumgarte=self.baumgarte).a
+    def law(self, t: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """The motor laws at t (s): angles, rates, accelerations of (R1, R3)."""
+        return motor_law(self.p, t)
 
     def rhs(self, t: float, q: np.ndarray, v: np.ndarray) -> tuple[np.ndarray, np.ndarray, float]:
         """(accelerations, motor torques (R1, R3) N m, net external power W) at time t (s)."""
-        _, _, acc = motor_law(self.p, t)
-        tau = np.zeros(self.m.model.nv)  # the spring acts through the mechanism's dynamics
-        a0 = self._fd(q, v, tau)
-        G = np.empty((len(a0), 2))
-        for k, iv in enumerate(self.motor_v):
-            unit = tau.copy()
-            unit[iv] += 1.0
-            G[:, k] = self._fd(q, v, unit) - a0
-        u = np.linalg.solve(G[self.motor_v], acc - a0[self.motor_v])
-        power = float(u @ v[self.motor_v]) - self.spring.damping * v[self.spring_v] ** 2
-        return a0 + G @ u, u, power
-
-    def _rows(self, t, q):
-        pos, _, _ = motor_law(self.p, t)
-        e = np.concatenate([self.m.closure_residual(q), q[self.motor_v] - pos])
-        G = np.vstack([self.m.closure_jacobian(q), np.eye(self.m.model.nv)[self.motor_v]])
-        return e, G
+        ev = self.system.evaluate(t, q, v)
+        return ev.a, ev.efforts, float(ev.efforts @ v[self.motor_v]) + float(ev.powers[0])
 
     def project(self, t: float, q: np.ndarray, v: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """(q, v) on the closures and the motor laws at time t (s)."""
-        _, rate, _ = motor_law(self.p, t)
-        return project(lambda x: self._rows(t, x), q, v, rate, "ten-bar projection (Pinocchio)")
+        q = self.projection.positions(q, self.drives, t)
+        return q, self.projection.velocities(q, v, self.drives, t)
 
     def residual(self, t: float, q: np.ndarray) -> float:
         """Largest closure residual (m) at q."""
-        return float(np.max(np.abs(self.m.closure_residual(q))))
+        return self.projection.residual(q)
 
     def energy(self, q: np.ndarray, v: np.ndarray) -> float:
         """Kinetic + gravity + spring energy (J)."""
-        model, data = self.m.model, self.data
-        kinetic = pin.computeKineticEnergy(model, data, q, v)
-        gravity = pin.computePotentialEnergy(model, data, q)
-        s = self.spring
-        return float(kinetic + gravity + 0.5 * s.stiffness * (q[self.spring_v] - s.free_angle) ** 2)
+        return self.system.kinetic(q, v) + float(np.sum(self.system.potentials(q)))
 
     def joint_angles(self, q: np.ndarray) -> np.ndarray:
         """The 9 tree-joint angles in `JOINT_ORDER` (rad)."""
@@ -261,7 +242,7 @@ def project(rows: Callable[[np.ndarray], tuple[np.ndarray, np.ndarray]], q: np.n
 @dataclass(frozen=True)
 class Trajectory:
     """Samples at every step: time (s), joint angles (rad, `JOINT_ORDER`), motor torques (N m, at the
-    step's start state), closure residual (m), energy E (J) and net external work W (J).
+    sample's state), closure residual (m), energy E (J) and net external work W (J).
 
     E - W is constant for exact dynamics: `energy_error` is its largest drift.
     """
@@ -291,7 +272,8 @@ def integrate(
     project: bool = True,
     t0: float = 0.0,
 ) -> Trajectory:
-    """Fixed-step RK4 of (q, v, W) from t0 to t_end, projecting after each step when `project`.
+    """Fixed steps of (q, v, W) from t0 to t_end by the simulator's integrator (`mechkit.simulation.run`:
+    its default scipy method, error control off), projecting after each step when `project`.
 
     Args:
         system: the dynamics model.
@@ -302,37 +284,24 @@ def integrate(
         project: project (q, v) onto the closures and motor laws after every step.
         t0: start time (s).
     """
-    steps = round((t_end - t0) / dt)
-    q, v, w = q0.copy(), v0.copy(), 0.0
+    n = len(q0)
+
+    def fun(t: float, y: np.ndarray) -> np.ndarray:
+        a, _, power = system.rhs(t, y[:n], y[n:2 * n])
+        return np.concatenate([y[n:2 * n], a, [power]])
+
+    def onto(t: float, y: np.ndarray) -> np.ndarray:
+        return np.concatenate([*system.project(t, y[:n], y[n:2 * n]), y[2 * n:]])
+
+    times, states = sim.run(fun, t0, np.concatenate([q0, v0, [0.0]]), t_end, sim.Options(dt=dt),
+                            onto if project else None)
     rows = {k: [] for k in ("t", "q", "v", "angles", "torques", "residual", "energy", "work")}
-
-    def record(t, a_u):
-        rows["t"].append(t)
-        rows["q"].append(q.copy())
-        rows["v"].append(v.copy())
-        rows["angles"].append(system.joint_angles(q))
-        rows["torques"].append(a_u)
-        rows["residual"].append(system.residual(t, q))
-        rows["energy"].append(system.energy(q, v))
-        rows["work"].append(w)
-
-    for n in range(steps):
-        t = t0 + n * dt
-        a1, u1, p1 = system.rhs(t, q, v)
-        record(t, u1)
-        q2, v2 = q + dt / 2 * v, v + dt / 2 * a1
-        a2, _, p2 = system.rhs(t + dt / 2, q2, v2)
-        q3, v3 = q + dt / 2 * v2, v + dt / 2 * a2
-        a3, _, p3 = system.rhs(t + dt / 2, q3, v3)
-        q4, v4 = q + dt * v3, v + dt * a3
-        a4, _, p4 = system.rhs(t + dt, q4, v4)
-        q = q + dt / 6 * (v + 2 * v2 + 2 * v3 + v4)
-        v = v + dt / 6 * (a1 + 2 * a2 + 2 * a3 + a4)
-        w = w + dt / 6 * (p1 + 2 * p2 + 2 * p3 + p4)
-        if project:
-            q, v = system.project(t + dt, q, v)
-    _, u_end, _ = system.rhs(t0 + steps * dt, q, v)
-    record(t0 + steps * dt, u_end)
+    for t, y in zip(times, states):
+        q, v = y[:n], y[n:2 * n]
+        for key, value in (("t", t), ("q", q), ("v", v), ("angles", system.joint_angles(q)),
+                           ("torques", system.rhs(t, q, v)[1]), ("residual", system.residual(t, q)),
+                           ("energy", system.energy(q, v)), ("work", y[2 * n])):
+            rows[key].append(value)
     return Trajectory(**{k: np.array(val) for k, val in rows.items()})
 
 

@@ -104,6 +104,6 @@ def deployment_figures(d: Deployment, folder: Path) -> list[Path]:
     fig, ax = plt.subplots(figsize=(8, 4.5))
     for label, run in d.drift.items():
         ax.semilogy(run.t, np.maximum(run.residual, 1e-17), label=label)
-    ax.set_title(f"first 5 s, RK4 dt = {DRIFT_STEP * 1e3:g} ms")
+    ax.set_title(f"first 5 s, fixed step dt = {DRIFT_STEP * 1e3:g} ms")
     out.append(_over_time(fig, ax, folder / "ten_bar_drift.png", "closure residual (m)"))
     return out

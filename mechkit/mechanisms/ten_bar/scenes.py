@@ -19,19 +19,19 @@ def _picks(steps: int, frames: int) -> np.ndarray:
 
 
 def deployment_poses(mechanism: Mechanism, frames: int = 120, dt: float = DEPLOY_STEP) -> list[np.ndarray]:
-    """Stowed to deployed: the constrained-ABA deployment (RK4 with projection, step dt in s) sampled
+    """Stowed to deployed: the constrained-ABA deployment (fixed steps of the simulator with projection, step dt in s) sampled
     at `frames` poses, for animations."""
     trajectory = td.deploy(td.PinocchioDeployment(mechanism), mechanism.home_q, dt)
     return [trajectory.q[i] for i in _picks(len(trajectory.q) - 1, frames)]
 
 
 def deployment_times(mechanism: Mechanism, poses: int, dt: float = DEPLOY_STEP) -> np.ndarray:
-    """Times (s) of the deployment scene's poses (the RK4 steps it picks)."""
+    """Times (s) of the deployment scene's poses (the steps it picks)."""
     return dt * _picks(round(mechanism.params.deploy_time / dt), poses)
 
 
 def deployment_law(mechanism: Mechanism, samples: int | None = None) -> SampledLaw:
-    """The deployment as an input law of the motors and the rocker R5: every RK4 step (dt =
+    """The deployment as an input law of the motors and the rocker R5: every step (dt =
     `DEPLOY_STEP`), or `samples` poses, each pose a warm start (`SPEC.motion_laws["deploy"]`)."""
     every_step = round(mechanism.params.deploy_time / DEPLOY_STEP) + 1
     frames = samples or every_step
@@ -39,4 +39,4 @@ def deployment_law(mechanism: Mechanism, samples: int | None = None) -> SampledL
     joints = (*MOTORS, PASSIVE)
     return SampledLaw(joints, deployment_times(mechanism, frames), poses[:, [mechanism.q_index(j) for j in joints]],
                       guesses=poses,
-                      source="deployment, every RK4 step" if frames == every_step else f"deployment, {frames} poses")
+                      source="deployment, every step" if frames == every_step else f"deployment, {frames} poses")

@@ -2,7 +2,7 @@
 (`SPEC.studies`; figures in `figures`, numbers in docs/mechanisms/ten_bar.md).
 
 - `cross_checks`: the deployment, stowed to deployed, by Pinocchio's constrained ABA and by the
-  patent's Lagrange first-kind method from the same parameters (RK4 with projection); the Lagrange
+  patent's Lagrange first-kind method from the same parameters (fixed steps of the simulator with projection); the Lagrange
   method in its own coordinates converging at fourth order; reactions by constrained RNEA, Lagrange
   multipliers and SOC at sampled instants; the full closure solve against the dimension reduction
   and the closed form along the motion; where the methods fail (kinematic split, unstabilised drift,
@@ -28,9 +28,9 @@ from mechkit.mechanisms.ten_bar import limits as tl
 from mechkit.mechanisms.ten_bar import params as tp
 from mechkit.mechanisms.ten_bar.params import TenBarParams
 
-#: The drift study: its duration and RK4 step (s).
+#: The drift study: its duration and fixed step (s).
 DRIFT_END, DRIFT_STEP = 5.0, 0.02
-#: RK4 steps (s) of the own-coordinates convergence study, over its first `CONVERGENCE_END` s.
+#: fixed steps (s) of the own-coordinates convergence study, over its first `CONVERGENCE_END` s.
 CONVERGENCE_STEPS, CONVERGENCE_END = (0.02, 0.01, 0.005), 0.4
 
 
@@ -47,7 +47,7 @@ class CrossChecks:
     Attributes:
         params: the design.
         pinocchio, lagrange: the deployment by each route (joint coordinates, same step).
-        dt: the RK4 step (s).
+        dt: the fixed step (s).
         seconds: wall time of each route (s), by route.
         convergence: (dt s, max angle difference rad) of the own-coordinates Lagrange run against
             Pinocchio over the first `CONVERGENCE_END` s.
@@ -84,7 +84,7 @@ def cross_checks(mech: Mechanism, dt: float = 0.005, t_end: float | None = None,
 
     Args:
         mech: the ten-bar.
-        dt: RK4 step (s).
+        dt: fixed step (s).
         t_end: stop early (s); default: the whole deployment.
         samples: instants of the three-way reactions.
     """
@@ -124,7 +124,7 @@ def cross_check_lines(c: CrossChecks) -> list[str]:
     torques = ", ".join(f"{j} [{a.torques[:, k].min():.3f}, {a.torques[:, k].max():.3f}]" for k, j in enumerate(tp.MOTORS))
     out = [
         f"Deployment 0..{a.t[-1]:g} s (motor laws end at {p.deploy_time:g} s)",
-        f"  RK4 dt = {c.dt * 1e3:g} ms, projection after each step",
+        f"  fixed step dt = {c.dt * 1e3:g} ms, projection after each step",
         f"  final motor angles (deg): {np.degrees(a.angles[-1, motors]).round(9)} (deployed: 0, 0)",
         f"  rocker R5 (deg): stowed {rocker[0]:.2f}, range [{rocker.min():.2f}, {rocker.max():.2f}], final {rocker[-1]:.2f}",
         f"  motor torques (N m): {torques}",
@@ -184,7 +184,7 @@ class Deployment:
 
 
 def deployment(mech: Mechanism, dt: float = 0.005, t_end: float | None = None, reaction_instants: int = 100) -> Deployment:
-    """The deployment (RK4 step dt s, up to t_end s, default the whole), the reactions at about
+    """The deployment (fixed step dt s, up to t_end s, default the whole), the reactions at about
     `reaction_instants` instants, and the drift study."""
     run = td.PinocchioDeployment(mech)
     traj = td.deploy(run, mech.home_q, dt, t_end)

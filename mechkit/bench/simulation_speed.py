@@ -1,0 +1,117 @@
+"""The simulator against MuJoCo on the same exported MJCF at the same step: the free motion of a
+mechanism released at home under gravity, timed per step, with each side's closure error.
+
+MuJoCo runs the exported file as written (`mechkit.export.mjcf`: stiff equality settings, its RK4,
+the step the export chose) with bare `mj_step` calls; mechkit runs `Mechanism.simulate` at that fixed
+step (the scipy pair with its error control off, projection after each step, no reactions). Both
+closure errors are mechkit's closure residual (m) of the configurations each visits: MuJoCo's qpos is
+Pinocchio's q for an exported model.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from mechkit.base.exceptions import MethodUnavailable
+from mechkit.export.mjcf import to_mjcf
+from mechkit.mechanism import Mechanism
+
+
+@dataclass(frozen=True)
+class SimulationSpeed:
+    """One mechanism's row.
+
+    Attributes:
+        name: the mechanism; dt: the common step (s); steps: steps each side took.
+        mujoco_us, mechkit_us: wall time per step (microseconds).
+        mujoco_closure, mechkit_closure: largest closure residual over the run (m).
+        difference: largest difference of the joint values at the common instants (rad or m).
+    """
+
+    name: str
+    dt: float
+    steps: int
+    mujoco_us: float
+    mechkit_us: float
+    mujoco_closure: float
+    mechkit_closure: float
+    difference: float
+
+    @property
+    def ratio(self) -> float:
+        """mechkit's time per step over MuJoCo's."""
+        return self.mechkit_us / self.mujoco_us
+
+
+def mujoco_run(mech: Mechanism, duration: float) -> tuple[float, np.ndarray, float]:
+    """(step s, qpos at every step (steps + 1, nq), seconds per step) of MuJoCo on the exported MJCF."""
+    try:
+        import mujoco
+    except ImportError:
+        raise MethodUnavailable("mujoco", "not installed: pip install 'mechkit[peers]'") from None
+    model = mujoco.MjModel.from_xml_string(to_mjcf(mech))
+    data = mujoco.MjData(model)
+    data.qpos[:] = mech.home_q
+    mujoco.mj_forward(model, data)
+    dt = float(model.opt.timestep)
+    steps = round(duration / dt)
+    qpos = np.empty((steps + 1, model.nq))
+    qpos[0] = data.qpos
+    start = time.perf_counter()
+    for k in range(steps):
+        mujoco.mj_step(model, data)
+        qpos[k + 1] = data.qpos
+    return dt, qpos, (time.perf_counter() - start) / steps
+
+
+def simulation_speed(mech: Mechanism, duration: float = 0.1) -> SimulationSpeed:
+    """Both simulators on the free motion of `mech` for `duration` s at MuJoCo's step (see the module docstring)."""
+    dt, qpos, mj_seconds = mujoco_run(mech, duration)
+    mech.simulate(2 * dt, dt=dt, reactions=False, limits=None)  # warm: imports and first-call caches out of the timing
+    start = time.perf_counter()
+    result = mech.simulate((len(qpos) - 1) * dt, dt=dt, reactions=False, limits=None)  # MuJoCo's instants exactly
+    ours = (time.perf_counter() - start) / max(result.integrator["steps"], 1)
+    mj_closure = max(float(np.max(np.abs(mech.closure_residual(q)))) for q in qpos[:: max(1, len(qpos) // 200)])
+    difference = float(np.max(np.abs(qpos - result.motion.q)))
+    return SimulationSpeed(mech.spec.name, dt, result.integrator["steps"], mj_seconds * 1e6, ours * 1e6, mj_closure,
+                           float(result.residual.max()), difference)
+
+
+#: The small mechanisms of the speed goal (within 3x MuJoCo's step time).
+SMALL = ("four_bar", "five_bar", "ten_bar")
+#: Heading of the section in docs/benchmarks.md.
+HEADING = "## Simulation against MuJoCo"
+
+
+def markdown(rows: list[SimulationSpeed]) -> str:
+    """The section: one row per mechanism (step times, their ratio, both closure errors, the difference)."""
+    lines = [HEADING, "",
+             ("Free motion released at home under gravity, MuJoCo on the exported MJCF (stiff equality settings, "
+             "its RK4, bare `mj_step`) and `Mechanism.simulate` at the same fixed step (RK45 with its error control "
+             "off, projection after every step; `mechkit.bench.simulation_speed`). Goal: within 3x MuJoCo's step "
+             "time with 1e-10 m closure."), "",
+             ("| mechanism | step (s) | steps | MuJoCo us/step | mechkit us/step | ratio | MuJoCo closure (m) | "
+             "mechkit closure (m) | max joint difference |"),
+             "|---|---|---|---|---|---|---|---|---|"]
+    lines += [f"| {r.name} | {r.dt:.3g} | {r.steps} | {r.mujoco_us:.1f} | {r.mechkit_us:.0f} | {r.ratio:.0f} | "
+              f"{r.mujoco_closure:.2g} | {r.mechkit_closure:.2g} | {r.difference:.2g} |" for r in rows]
+    return "\n".join(lines) + "\n"
+
+
+def write_section(path: str | Path, rows: list[SimulationSpeed]) -> None:
+    """Put the section into a Markdown file: in place of its former text, else at the end."""
+    from mechkit.base.atomic import write_text
+
+    text = Path(path).read_text()
+    section = markdown(rows)
+    if HEADING in text:
+        head, _, rest = text.partition(HEADING)
+        tail = rest.split("\n## ", 1)
+        text = head + section + ("\n## " + tail[1] if len(tail) == 2 else "")
+    else:
+        text = text.rstrip("\n") + "\n\n" + section
+    write_text(path, text)

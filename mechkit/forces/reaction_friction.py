@@ -1,0 +1,167 @@
+"""Joint friction from the reaction (Adams-like): a revolute pin rubs with a torque that grows with the
+load it carries. Tree joints and loop-cut joints alike.
+
+For a revolute joint of unit axis a carrying the reaction [f, m] (world, about the joint origin), the
+load measure and the friction torque's size are (Adams' FRICTION statement, with its names):
+
+    F_a = |f . a|                 axial force            (collar, Adams' friction arm R_n)
+    F_r = |f - (f . a) a|         radial force           (pin radius R_p)
+    M_b = |m - (m . a) a|         bending moment         (bending reaction arm R_b)
+    T   = mu [ r (F_pre + F_r + M_b / b) + r_c F_a ]
+
+with mu the friction coefficient, r the pin radius (m), b the bending arm (m; the pin's bearing
+length: M_b / b is the edge force the moment adds; inf leaves bending out), r_c the collar radius
+(m; 0 leaves the axial force out) and F_pre the preload (N, a radial force of assembly). The torque
+on the child side is -T tanh(w / threshold), w the child's rate about a relative to the parent
+(`mechkit.forces.coulomb`: the regularisation near zero speed); on a cut joint the child side is
+frame_b's body and the parent frame_a's. For a planar mechanism modelled in space the axial force
+and the bending moment are statically indeterminate (their values are a convention): leave b and
+r_c out there.
+
+The torque depends on the reactions, which depend on the torque: `FrictionState` iterations (in
+`mechkit.simulation`) solve that fixed point; where it does not converge, friction locks the
+mechanism (`FrictionLocks`).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+
+import numpy as np
+import pinocchio as pin
+
+from mechkit.base.exceptions import InvalidParameters, MechkitError
+from mechkit.forces.base import ForceElement, ForceState, Load
+from mechkit.forces.coulomb import SPEED_THRESHOLD, smooth_sign
+
+
+class FrictionLocks(MechkitError):
+    """The fixed point of reactions and friction does not converge: friction locks the mechanism (the
+    friction a load calls for grows faster than the load), or holds it against every effort.
+
+    Attributes:
+        change: the last iteration's largest change of a friction torque (N m).
+        tol: the tolerance it had to reach (N m).
+        iterations: the iterations made.
+    """
+
+    def __init__(self, change: float, tol: float, iterations: int, what: str = ""):
+        self.change, self.tol, self.iterations = change, tol, iterations
+        super().__init__(f"joint friction locks the mechanism{': ' + what if what else ''} (the fixed point of "
+                         f"reactions and friction still changes by {change:.3g} N m > {tol:.3g} after {iterations} "
+                         "iterations)")
+
+
+@dataclass(frozen=True)
+class PinFriction:
+    """One revolute joint's friction data (see the module docstring).
+
+    Attributes:
+        mu: friction coefficient (>= 0).
+        radius: pin radius r (m, > 0).
+        bending_arm: b (m, > 0; inf: bending moment left out).
+        collar_radius: r_c (m, >= 0; 0: axial force left out).
+        preload: F_pre (N, >= 0).
+        threshold: regularisation rate (rad/s, > 0).
+    """
+
+    mu: float
+    radius: float
+    bending_arm: float = math.inf
+    collar_radius: float = 0.0
+    preload: float = 0.0
+    threshold: float = SPEED_THRESHOLD
+
+    def torque(self, wrench: np.ndarray, axis: np.ndarray) -> float:
+        """T (N m, >= 0) for a reaction wrench (6,) [f, m] (world, about the joint origin) and the unit axis (3,)."""
+        f, m = wrench[:3], wrench[3:]
+        axial = float(f @ axis)
+        radial = float(np.linalg.norm(f - axial * axis))
+        bending = float(np.linalg.norm(m - (m @ axis) * axis))
+        load = self.preload + radial + (0.0 if math.isinf(self.bending_arm) else bending / self.bending_arm)
+        return self.mu * (self.radius * load + self.collar_radius * abs(axial))
+
+
+def _check(joint: str, spec: PinFriction) -> None:
+    ok = (spec.mu >= 0 and spec.radius > 0 and spec.bending_arm > 0 and spec.collar_radius >= 0 and spec.preload >= 0
+          and spec.threshold > 0)
+    if not ok:
+        raise InvalidParameters(f"friction on {joint}", spec, "needs mu >= 0, radius > 0, bending_arm > 0, "
+                                "collar_radius >= 0, preload >= 0, threshold > 0")
+
+
+class ReactionFriction(ForceElement):
+    """Friction torques from the reactions of revolute joints, tree joints and loop cuts.
+
+    Args:
+        model: the tree.
+        joint_names: the reactions' joints (`ClosureModel.joint_names`: tree joints, then cut joints).
+        cuts: the cuts' rows (`ClosureModel.kernel.cuts`, in closure order), for the cut joints' frames.
+        joints: joint name -> `PinFriction`.
+        name: the element's name.
+
+    Raises:
+        InvalidParameters: an unknown joint, a joint that is not revolute, data out of range.
+    """
+
+    role = "dissipative"
+    friction = True
+    needs_reactions = True
+
+    def __init__(self, model: pin.Model, joint_names: Sequence[str], cuts: Sequence, joints: Mapping[str, PinFriction],
+                 name: str = "reaction friction"):
+        self.name, self.joints = name, dict(joints)
+        n_tree = model.njoints - 1
+        by_cut = {c.closure.name: c for c in cuts}
+        self._tree, self._cuts = [], []  # (name, reaction index, spec, velocity index) / (name, index, spec, cut rows)
+        for joint, spec in self.joints.items():
+            _check(joint, spec)
+            if joint not in joint_names:
+                raise InvalidParameters("friction", joint, f"no such joint; joints: {list(joint_names)}")
+            k = list(joint_names).index(joint)
+            if k < n_tree:
+                jm = model.joints[k + 1]
+                if jm.nv != 1 or not jm.shortname().startswith(("JointModelR", "JointModelRevolute")):
+                    raise InvalidParameters("friction", joint, f"a {jm.shortname()} joint: revolute joints only")
+                self._tree.append((joint, k, spec, jm.idx_v))
+            else:
+                cut = by_cut[joint]
+                if cut.closure.kind != "revolute":
+                    raise InvalidParameters("friction", joint, f"a {cut.closure.kind} cut: revolute joints only")
+                self._cuts.append((joint, k, spec, cut))
+
+    def load(self, state: ForceState) -> Load:
+        """The friction torques at a state (none before the reactions are known) and their power."""
+        model, data = state.model, state.data
+        tau = np.zeros(model.nv)
+        wrenches = np.zeros((model.njoints, 6))
+        power = 0.0
+        if state.reactions is None:
+            return Load(tau, wrenches, 0.0)
+        for _, k, spec, iv in self._tree:
+            axis = data.J[3:, iv]
+            rate = float(state.v[iv])
+            torque = -spec.torque(state.reactions[k], axis) * float(smooth_sign(rate, spec.threshold))
+            tau[iv] += torque
+            power += torque * rate
+        for _, k, spec, cut in self._cuts:
+            axis = data.oMf[cut.frame_a].rotation @ cut.closure.axis
+            w_a = pin.getFrameVelocity(model, data, cut.frame_a, pin.LOCAL_WORLD_ALIGNED).angular
+            w_b = pin.getFrameVelocity(model, data, cut.frame_b, pin.LOCAL_WORLD_ALIGNED).angular
+            rate = float((w_b - w_a) @ axis)
+            torque = -spec.torque(state.reactions[k], axis) * float(smooth_sign(rate, spec.threshold))
+            for frame, sign in ((cut.frame_b, 1.0), (cut.frame_a, -1.0)):
+                joint = model.frames[frame].parentJoint
+                if joint:
+                    wrenches[joint, 3:] += data.oMi[joint].rotation.T @ (sign * torque * axis)
+            power += torque * rate
+        return Load(tau, wrenches, power)
+
+    def torques(self, state: ForceState) -> dict[str, float]:
+        """Joint name -> the friction torque's size T (N m) at a state with reactions (no sign, no regularisation)."""
+        out = {name: spec.torque(state.reactions[k], state.data.J[3:, iv]) for name, k, spec, iv in self._tree}
+        out.update({name: spec.torque(state.reactions[k], state.data.oMf[cut.frame_a].rotation @ cut.closure.axis)
+                    for name, k, spec, cut in self._cuts})
+        return out

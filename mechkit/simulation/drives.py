@@ -1,0 +1,102 @@
+"""Prescribed joints of a simulation: inputs following a motion law (computed-torque motors) and joints
+held at a value (a latch that has caught, a joint stopped at its limit).
+
+A `Drives` gives, at time t, the positions (rad or m), rates and accelerations of its joints in its
+order; the simulator keeps those joints on them (their accelerations in the dynamics, their values
+and rates in the projection) and records the efforts that do it.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Mapping, Sequence
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+import scipy.interpolate
+
+from mechkit.base.exceptions import InvalidParameters
+
+Law = Callable[[float], tuple[np.ndarray, np.ndarray, np.ndarray]]
+"""t (s) -> (positions (k,), rates (k,), accelerations (k,)) of the law's joints."""
+
+
+def law_of_samples(law: Any) -> Law:
+    """The continuous law through a sampled input law (`mechkit.motion.InputLaw`: names, t, values,
+    rates, accelerations): a piecewise quintic matching values, rates and accelerations at every sample
+    (`scipy.interpolate.BPoly.from_derivatives`); constant outside the sampled span."""
+    t = np.asarray(law.t, dtype=float)
+    pieces = [scipy.interpolate.BPoly.from_derivatives(t, np.stack([law.values[:, k], law.rates[:, k],
+                                                                     law.accelerations[:, k]], axis=1))
+              for k in range(len(law.names))]
+    derivatives = [(p, p.derivative(), p.derivative(2)) for p in pieces]
+
+    def at(time: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        if time <= t[0] or time >= t[-1]:
+            edge = 0 if time <= t[0] else -1
+            return law.values[edge].copy(), np.zeros(len(pieces)), np.zeros(len(pieces))
+        return tuple(np.array([float(d[i](time)) for d in derivatives]) for i in range(3))
+
+    return at
+
+
+@dataclass
+class Drives:
+    """The joints the simulator keeps on a law: prescribed inputs (a law of time) and held joints.
+
+    Attributes:
+        names: the prescribed joints, in the law's order.
+        law: their law (`Law`), or None without prescribed joints.
+        held: joint -> value (rad or m) of the joints held still (latched, stopped at a limit).
+    """
+
+    names: tuple[str, ...] = ()
+    law: Law | None = None
+    held: dict[str, float] = field(default_factory=dict)
+
+    def __post_init__(self) -> None:
+        if bool(self.names) != (self.law is not None):
+            raise InvalidParameters("drives", self.names, "prescribed joints need a law, and a law its joints")
+
+    @property
+    def all(self) -> tuple[str, ...]:
+        """Every driven joint: the prescribed ones, then the held ones."""
+        return self.names + tuple(self.held)
+
+    def at(self, t: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Positions, rates and accelerations (k,) of every driven joint at t (s), in `all` order."""
+        k = len(self.held)
+        if self.law is None:
+            return np.array(list(self.held.values()), dtype=float), np.zeros(k), np.zeros(k)
+        pos, rate, acc = (np.atleast_1d(np.asarray(x, dtype=float)) for x in self.law(t))
+        hold = np.array(list(self.held.values()), dtype=float)
+        return np.concatenate([pos, hold]), np.concatenate([rate, np.zeros(k)]), np.concatenate([acc, np.zeros(k)])
+
+    def holding(self, joint: str, value: float) -> Drives:
+        """These drives with `joint` held at `value` as well."""
+        return Drives(self.names, self.law, {**self.held, joint: float(value)})
+
+    def releasing(self, joint: str) -> Drives:
+        """These drives without holding `joint`."""
+        return Drives(self.names, self.law, {j: x for j, x in self.held.items() if j != joint})
+
+
+def prescribed(inputs: Any, names: Sequence[str] | None = None) -> Drives:
+    """Drives from what a user gives: None (no prescribed joint), a sampled input law
+    (`mechkit.motion.InputLaw`), a `Law` callable with `names`, or a mapping joint -> constant value.
+
+    Raises:
+        InvalidParameters: a callable without names, or an input of another kind.
+    """
+    if inputs is None:
+        return Drives()
+    if isinstance(inputs, Mapping):
+        return Drives(held={str(j): float(x) for j, x in inputs.items()})
+    if callable(inputs):
+        if not names:
+            raise InvalidParameters("input_names", names, "a law given as a function needs the names of its joints")
+        return Drives(tuple(names), inputs)
+    if all(hasattr(inputs, a) for a in ("names", "t", "values", "rates", "accelerations")):
+        return Drives(tuple(inputs.names), law_of_samples(inputs))
+    raise InvalidParameters("inputs", type(inputs).__name__, "expected an InputLaw, a function of time with input_names, "
+                            "or a mapping joint -> value")

@@ -1,0 +1,117 @@
+"""Static equilibrium: the pose where gravity, the springs and the held inputs balance.
+
+At rest (v = 0) the generalised force on the mechanism is Q(q) = tau_elements(q) - g(q) (the force
+elements' loads minus the gravity torques, `pin.computeGeneralizedGravity`); the closures and the
+held joints take what lies in the range of G^T, G = [J; S_held], so the pose is in equilibrium where
+the reduced force N^T Q vanishes, N a basis of the null space of G (the free motions). The solve
+moves along the free motions (each step followed by the closure solve, the held joints kept):
+Newton steps on N^T Q with its Jacobian K by central differences along N where K is negative
+definite (a stable equilibrium: a displacement meets a restoring force), else a step along N^T Q
+itself (downhill in the potential), limited to `MAX_STEP`. The answer reports K's eigenvalues, so a
+caller sees an unstable equilibrium for what it is.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+import pinocchio as pin
+import scipy.linalg
+
+from mechkit import core
+from mechkit.base.exceptions import ClosureNotConverged
+from mechkit.forces import ForceElement, ForceState, generalized_of_wrenches
+from mechkit.simulation.drives import Drives
+from mechkit.simulation.projection import Projection
+
+#: Largest step along the free motions (rad or m per coordinate, ours: a tenth of a radian).
+MAX_STEP = 0.1
+#: Central-difference step of the reduced stiffness (rad or m).
+DIFF_STEP = 1e-6
+
+
+@dataclass(frozen=True)
+class Equilibrium:
+    """A static equilibrium.
+
+    Attributes:
+        q: (nq,) the pose.
+        residual: max |N^T Q| (N m or N) there.
+        stiffness: (d,) eigenvalues of the reduced stiffness -K (N m/rad or N/m; all > 0: stable).
+        iterations: steps taken.
+    """
+
+    q: np.ndarray
+    residual: float
+    stiffness: np.ndarray
+    iterations: int
+
+    @property
+    def stable(self) -> bool:
+        """Every free motion meets a restoring force."""
+        return bool(np.all(self.stiffness > 0))
+
+
+def equilibrium(mech: Any, held: Mapping[str, float] | None = None, elements: Sequence[ForceElement] | None = None,
+                q0: np.ndarray | None = None, tol: float = 1e-10, max_iter: int = 200) -> Equilibrium:
+    """The static equilibrium near q0 with the `held` joints at their values.
+
+    Args:
+        mech: the mechanism (`mechkit.Mechanism`).
+        held: joint -> value (rad or m) of the inputs held still (default: none held).
+        elements: the force elements (default: the mechanism's springs, `Mechanism.springs`).
+        q0: where to start (default: the home assembly).
+        tol: the reduced force to reach (N m or N).
+        max_iter: steps allowed.
+
+    Raises:
+        ClosureNotConverged: no equilibrium reached within max_iter steps (the residual is reported).
+    """
+    elements = list(elements) if elements is not None else ([mech.springs] if mech.springs else [])
+    drives = Drives(held={j: float(x) for j, x in (held or {}).items()})
+    projection = Projection(mech)
+    model, data = mech.model, mech.model.createData()
+    q = projection.positions(mech.home_q if q0 is None else np.asarray(q0, dtype=float), drives, 0.0)
+    zero = np.zeros(model.nv)
+    split = mech.closure_model.split(drives.all)
+
+    def basis(q: np.ndarray) -> np.ndarray:
+        G = np.vstack([mech.closure_jacobian(q), np.eye(model.nv)[split.input_v]])
+        return scipy.linalg.null_space(G, rcond=core.RANK_TOL)
+
+    def force(q: np.ndarray) -> np.ndarray:
+        state = ForceState.at(model, data, q, zero)
+        tau = -pin.computeGeneralizedGravity(model, data, q)
+        for e in elements:
+            load = e.load(state)
+            tau = tau + (load.generalized if load.generalized is not None else 0.0)
+            if load.wrenches is not None:
+                tau = tau + generalized_of_wrenches(model, state.data, load.wrenches)
+        return tau
+
+    def move(q: np.ndarray, N: np.ndarray, z: np.ndarray) -> np.ndarray:
+        return projection.positions(pin.integrate(model, q, N @ z), drives, 0.0)
+
+    def stiffness(q: np.ndarray, N: np.ndarray) -> np.ndarray:
+        cols = [(N.T @ force(move(q, N, DIFF_STEP * e)) - N.T @ force(move(q, N, -DIFF_STEP * e))) / (2 * DIFF_STEP)
+                for e in np.eye(N.shape[1])]
+        K = np.array(cols).T
+        return 0.5 * (K + K.T)
+
+    for it in range(max_iter):
+        N = basis(q)
+        if N.shape[1] == 0:  # the held joints fix the pose: nothing to balance
+            return Equilibrium(q, 0.0, np.zeros(0), it)
+        rho = N.T @ force(q)
+        K = stiffness(q, N)
+        eig = -np.linalg.eigvalsh(K)
+        if np.max(np.abs(rho), initial=0.0) <= tol:
+            return Equilibrium(q, float(np.max(np.abs(rho), initial=0.0)), eig, it)
+        step = -np.linalg.solve(K, rho) if np.all(eig > 0) else rho / max(float(np.max(eig)), 1e-12)
+        step *= min(1.0, MAX_STEP / max(float(np.max(np.abs(step))), 1e-300))
+        q = move(q, N, step)
+    raise ClosureNotConverged(float(np.max(np.abs(rho))), tol, max_iter, "no static equilibrium found (the reduced "
+                              "force did not vanish)")

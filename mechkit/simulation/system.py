@@ -1,0 +1,184 @@
+"""The equations of motion a simulation integrates: the core's constrained forward dynamics under the
+force elements, with computed-torque drives and the fixed point of joint friction and reactions.
+
+At a state (t, q, v):
+
+1. every force element's load (`mechkit.forces`): generalised forces and body wrenches, summed into
+   tau (the wrenches as J^T f);
+2. the core's forward dynamics a0 = FD(q, v, tau) (`mechkit.core.forward_dynamics`, "proximal" by
+   default); with driven joints D (prescribed inputs, held joints), FD is affine in tau, so the columns
+   P_k = FD(tau + e_k) - a0 (k in D) give the efforts u that realise the law's accelerations:
+   P_DD u = a_law - a0_D, a = a0 + P u (computed-torque motors);
+3. with friction from the reactions: every joint's reaction by the core's inverse dynamics at (q, v, a)
+   (the drives as actuators), the friction loads from them, and steps 1-3 again until the friction
+   torques change by less than `FRICTION_TOL` (relative); `FrictionLocks` where they do not. The
+   iteration starts from the previous evaluation's friction (the integrator's stages are close), so
+   that it usually takes two or three rounds; the answer is the fixed point to `FRICTION_TOL` either way.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import pinocchio as pin
+
+from mechkit import core
+from mechkit.forces import ForceElement, ForceState, FrictionLocks, generalized_of_wrenches
+from mechkit.simulation.drives import Drives
+
+#: The friction fixed point stops when no friction torque changes by more than this, relative to the
+#: largest (ours: far below the integrator's tolerances).
+FRICTION_TOL = 1e-11
+#: Iterations allowed to the friction fixed point before `FrictionLocks`.
+FRICTION_ITERATIONS = 60
+
+
+@dataclass
+class Evaluation:
+    """The equations of motion at one state.
+
+    Attributes:
+        a: (nv,) accelerations.
+        efforts: (k,) efforts of the driven joints (`Drives.all` order; N m or N).
+        generalized: (nv,) the force elements' generalised forces (N m or N), wrenches not included.
+        wrenches: (njoints, 6) their body wrenches (`fext` convention).
+        powers: (n_elements,) each element's non-conservative power (W).
+        reactions: (n_joints, 6) every joint's reaction when friction needed it, else None.
+        iterations: friction fixed-point iterations (0 without friction).
+    """
+
+    a: np.ndarray
+    efforts: np.ndarray
+    generalized: np.ndarray
+    wrenches: np.ndarray
+    powers: np.ndarray
+    reactions: np.ndarray | None = None
+    iterations: int = 0
+
+
+class MechanismSystem:
+    """A mechanism's equations of motion under force elements and drives.
+
+    Args:
+        mech: the mechanism (`mechkit.Mechanism`).
+        elements: the force elements (its springs among them where wanted: `Mechanism.springs`).
+        drives: the driven joints.
+        method: the core's forward-dynamics method ("proximal", "lcaba", "kkt", "nullspace").
+        baumgarte: (Kp 1/s^2, Kd 1/s) closure stabilisation in the accelerations, or None.
+    """
+
+    def __init__(self, mech, elements: list[ForceElement], drives: Drives, method: str = "proximal",
+                 baumgarte: tuple[float, float] | None = None):
+        self.mech, self.elements, self.method = mech, list(elements), method
+        self.cm = mech.closure_model
+        self.cd = self.cm.create_data()
+        self.model = self.cm.model
+        self.data = self.model.createData()
+        self.settings = {} if method in ("lcaba",) else {"baumgarte": baumgarte or (0.0, 0.0)}
+        self.friction = [k for k, e in enumerate(self.elements) if e.needs_reactions]
+        self._driven: dict[tuple[str, ...], tuple[core.ClosureModel, core.ClosureData]] = {}
+        self._friction_start: tuple[np.ndarray, np.ndarray] | None = None
+        self.drives = drives
+
+    @property
+    def drives(self) -> Drives:
+        """The driven joints (setting them, e.g. when a latch catches, changes the equations)."""
+        return self._drives
+
+    @drives.setter
+    def drives(self, drives: Drives) -> None:
+        """Set the driven joints (their velocity indices follow)."""
+        self._drives = drives
+        self.drive_v = np.array([self.mech.v_index(j) for j in drives.all], dtype=int)
+
+    def driven(self) -> tuple[core.ClosureModel, core.ClosureData]:
+        """The closure model with the driven joints as actuators (for inverse dynamics), and a data."""
+        names = self._drives.all
+        if names not in self._driven:
+            cm = self.cm.with_actuation(names)
+            self._driven[names] = (cm, cm.create_data())
+        return self._driven[names]
+
+    def _fd(self, q: np.ndarray, v: np.ndarray, tau: np.ndarray) -> np.ndarray:
+        return core.forward_dynamics(self.cm, self.cd, q, v, tau, self.method, **self.settings).a
+
+    def _loads(self, state: ForceState, which) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Sum of the generalised forces (nv,) and wrenches (njoints, 6) of elements `which`, and their powers."""
+        tau = np.zeros(self.model.nv)
+        fext = np.zeros((self.model.njoints, 6))
+        powers = np.zeros(len(which))
+        for i, k in enumerate(which):
+            load = self.elements[k].load(state)
+            if load.generalized is not None:
+                tau += load.generalized
+            if load.wrenches is not None:
+                fext += load.wrenches
+            powers[i] = load.power
+        return tau, fext, powers
+
+    def reactions(self, q: np.ndarray, v: np.ndarray, a: np.ndarray, generalized: np.ndarray,
+                  wrenches: np.ndarray) -> core.InverseDynamicsResult:
+        """The core's inverse dynamics at (q, v, a) with the drives as actuators, the elements'
+        generalised forces as passive forces and their wrenches as external forces (no determinacy test)."""
+        cm, cd = self.driven()
+        fext = pin.StdVec_Force()
+        for row in wrenches:
+            fext.append(pin.Force(row[:3].copy(), row[3:].copy()))
+        return core.inverse_dynamics(cm, cd, q, v, a, fext, generalized, determinacy_test=False)
+
+    def evaluate(self, t: float, q: np.ndarray, v: np.ndarray) -> Evaluation:
+        """The accelerations, drive efforts and element loads at (t, q, v).
+
+        Raises:
+            FrictionLocks: the friction fixed point does not converge.
+            SingularConfiguration: the drives cannot hold their law (a singular P_DD).
+        """
+        state = ForceState.at(self.model, self.data, q, v, t) if self.elements else None
+        plain = [k for k in range(len(self.elements)) if k not in self.friction]
+        tau_p, fext_p, pow_p = self._loads(state, plain)
+        tau_f, fext_f = self._friction_start or (np.zeros_like(tau_p), np.zeros_like(fext_p))
+        pow_f = np.zeros(len(self.friction))
+        _, _, acc = self._drives.at(t)
+        P = None
+        iterations, reactions = 0, None
+        while True:
+            generalized, wrenches = tau_p + tau_f, fext_p + fext_f
+            tau = generalized if state is None else generalized + generalized_of_wrenches(self.model, state.data, wrenches)
+            a0 = self._fd(q, v, tau)
+            if self.drive_v.size:
+                if P is None:
+                    P = np.column_stack([self._fd(q, v, tau + np.eye(self.model.nv)[k]) - a0 for k in self.drive_v])
+                u = np.linalg.solve(P[self.drive_v], acc - a0[self.drive_v])
+                a = a0 + P @ u
+            else:
+                u, a = np.zeros(0), a0
+            if not self.friction:
+                break
+            reactions = self.reactions(q, v, a, generalized, wrenches).reaction_values
+            state.reactions = reactions
+            new_tau, new_fext, pow_f = self._loads(state, self.friction)
+            change = max(float(np.max(np.abs(new_tau - tau_f), initial=0.0)), float(np.max(np.abs(new_fext - fext_f), initial=0.0)))
+            scale = max(float(np.max(np.abs(new_tau), initial=0.0)), float(np.max(np.abs(new_fext), initial=0.0)), 1e-300)
+            tau_f, fext_f = new_tau, new_fext
+            iterations += 1
+            if change <= FRICTION_TOL * scale or change == 0.0:
+                break
+            if iterations >= FRICTION_ITERATIONS:
+                self._friction_start = None
+                raise FrictionLocks(change, FRICTION_TOL * scale, iterations, f"t = {t:.6g} s")
+        if self.friction:
+            self._friction_start = (tau_f, fext_f)
+        powers = np.zeros(len(self.elements))
+        powers[plain] = pow_p
+        powers[self.friction] = pow_f
+        return Evaluation(a, u, tau_p + tau_f, fext_p + fext_f, powers, reactions, iterations)
+
+    def kinetic(self, q: np.ndarray, v: np.ndarray) -> float:
+        """Kinetic energy (J)."""
+        return float(pin.computeKineticEnergy(self.model, self.data, q, v))
+
+    def potentials(self, q: np.ndarray) -> np.ndarray:
+        """(1 + n_elements,) the model's gravity potential, then each element's potential (J)."""
+        gravity = float(pin.computePotentialEnergy(self.model, self.data, q))  # also places the joints
+        return np.array([gravity] + [e.energy(self.model, self.data, q) for e in self.elements])
