@@ -199,6 +199,6 @@ class Idealisation:
         X = np.zeros((n, nj, 6, 6))  # reaction about the centre = X (reaction about the point)
         X[..., :3, :3] = X[..., 3:, 3:] = np.eye(3)
         d = points - centre
-        X[..., 3, 4], X[..., 3, 5], X[..., 4, 5] = -d[..., 2], d[..., 1], -d[..., 0]
-        X[..., 4, 3], X[..., 5, 3], X[..., 5, 4] = d[..., 2], -d[..., 1], d[..., 0]
+        X[..., 3, 1], X[..., 3, 2], X[..., 4, 2] = -d[..., 2], d[..., 1], -d[..., 0]  # m_c = m + d x f
+        X[..., 4, 0], X[..., 5, 0], X[..., 5, 1] = d[..., 2], -d[..., 1], d[..., 0]
         return np.swapaxes(X, -1, -2) @ out @ X

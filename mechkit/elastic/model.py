@@ -16,6 +16,7 @@ from mechkit.base.exceptions import InvalidParameters
 from mechkit.elastic import statics
 from mechkit.elastic.description import parse_elastic
 from mechkit.elastic.idealisation import Idealisation
+from mechkit.elastic.modes import Modes, modes
 from mechkit.elastic.sections import ElasticData, JointElasticity, Section
 
 
@@ -165,6 +166,11 @@ class ElasticModel:
     def deflection(self, q: np.ndarray, link: str, wrench: np.ndarray, point: np.ndarray | None = None) -> np.ndarray:
         """(6,) twist [m, rad] of a body at a point (link frame) under a wrench (6,) [N, N m] there, world axes."""
         return self.compliance(q, link, point) @ arguments.array("wrench", wrench, 6, batch=False)
+
+    def modes(self, q: np.ndarray, n: int = 6) -> Modes:
+        """The first n natural modes at pose q (nq,), actuators locked (`mechkit.elastic.modes`)."""
+        q, = self.mech._one(q=q)
+        return modes(self, q, n)
 
     def _flexibility(self, pose: statics.Pose, bodies: np.ndarray, points: np.ndarray) -> np.ndarray:
         """(N, 6k, 6k) flexibility between unit wrenches at the bodies' points (N, k, 3)."""

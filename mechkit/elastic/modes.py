@@ -1,0 +1,81 @@
+"""Natural frequencies and mode shapes with the actuators locked, about an assembled pose.
+
+The idealisation's masses sit at the bodies' centres of mass (a beam's body carries its link's mass
+and inertia; beams are massless), so the massive degrees of freedom are six per massive body. With
+the flexibility F between unit wrenches at those centres (the force method, `ElasticModel`) and their
+mass matrix M, K phi = w^2 M phi on the constraint manifold is F M phi = mu phi, mu = 1 / w^2: the
+symmetric eigenproblem of M^1/2 F M^1/2 (massless freedoms condensed exactly; directions held rigidly,
+mu = 0, have no finite frequency).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import pinocchio as pin
+
+from mechkit.base.exceptions import InvalidParameters
+from mechkit.elastic import statics
+
+#: Relative eigenvalue mu under which a mode counts as held rigidly (no finite frequency).
+RIGID_TOL = 1e-12
+
+
+@dataclass(frozen=True)
+class Modes:
+    """The first natural modes at one pose.
+
+    Attributes:
+        frequencies: (n,) natural frequencies (Hz), ascending.
+        shapes: (n, bodies, 6) each mode's twist [translation (m), rotation (rad)] of every massive
+            body at its centre of mass, world axes, mass-normalised (phi^T M phi = 1).
+        bodies: (bodies,) the Pinocchio ids of the massive bodies; names: their joints' names.
+        centres: (bodies, 3) their centres of mass (world, m).
+    """
+
+    frequencies: np.ndarray
+    shapes: np.ndarray
+    bodies: np.ndarray
+    names: tuple[str, ...]
+    centres: np.ndarray
+
+
+def mass_matrix(model: pin.Model, R: np.ndarray, bodies: np.ndarray) -> np.ndarray:
+    """(6k, 6k) block-diagonal mass matrix of bodies at their centres of mass: [m I, 0; 0, R I_c R^T]."""
+    M = np.zeros((6 * len(bodies), 6 * len(bodies)))
+    for k, b in enumerate(bodies):
+        inertia = model.inertias[int(b)]
+        M[6 * k:6 * k + 3, 6 * k:6 * k + 3] = inertia.mass * np.eye(3)
+        M[6 * k + 3:6 * k + 6, 6 * k + 3:6 * k + 6] = R[int(b)] @ inertia.inertia @ R[int(b)].T
+    return M
+
+
+def modes(elastic, q: np.ndarray, n: int = 6) -> Modes:
+    """The first `n` natural modes of an `ElasticModel`'s mechanism at pose q (nq,), actuators locked
+    (or on their drive stiffness).
+
+    Raises:
+        InvalidParameters: n < 1 or more modes than the massive freedoms have.
+        SingularConfiguration: the locked mechanism still moves (a zero frequency).
+    """
+    model = elastic.mech.model
+    bodies = np.array([j for j in range(1, model.njoints) if model.inertias[j].mass > 0], dtype=int)
+    if not isinstance(n, (int, np.integer)) or n < 1 or n > 6 * len(bodies):
+        raise InvalidParameters("n", n, f"between 1 and {6 * len(bodies)} (six per massive body)")
+    pose = statics.evaluate(elastic.idealisation, q[None])
+    centres = np.array([pose.R[0, b] @ model.inertias[int(b)].lever + pose.t[0, b] for b in bodies])
+    F = elastic._flexibility(pose, bodies, centres[None])[0]
+    M = mass_matrix(model, pose.R[0], bodies)
+    w, V = np.linalg.eigh(M)
+    root = (V * np.sqrt(np.clip(w, 0.0, None))) @ V.T
+    mu, U = np.linalg.eigh(root @ F @ root)
+    order = np.argsort(mu)[::-1]
+    mu, U = mu[order], U[:, order]
+    finite = int(np.sum(mu > RIGID_TOL * max(mu[0], 1e-300)))
+    n = min(n, finite)
+    phi = (F @ root @ U[:, :n]) / mu[:n]
+    phi /= np.sqrt(np.einsum("in,ij,jn->n", phi, M, phi))
+    frequencies = 1.0 / np.sqrt(mu[:n]) / (2 * np.pi)
+    names = tuple(model.names[int(b)] for b in bodies)
+    return Modes(frequencies, phi.T.reshape(n, len(bodies), 6), bodies, names, centres)
