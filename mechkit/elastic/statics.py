@@ -154,7 +154,7 @@ def compatible(pose: Pose, drive_compliance: np.ndarray, reactions: np.ndarray, 
     inverse = np.where(strained, 1.0 / np.where(strained, w, 1.0), 0.0)
     z = -(V * inverse[:, None, :]) @ np.swapaxes(V, 1, 2) @ g
     free_rigid = _variation(YR)
-    free = _variation(YR @ (V * ~strained[:, None, :]))
+    free = _variation(YR @ (V * ~strained[:, None, :])[:, None])
     limit = 1e-8 * np.maximum(free_rigid.max(axis=(1, 2), keepdims=True), 1e-300)
     return Compatible(reactions + YR @ z[:, None], efforts + Yu @ z, free <= limit, free_rigid <= limit)
 
