@@ -109,9 +109,11 @@ class ElasticModel:
         (loads act on each body's centre of mass node as in the rigid model)."""
         mech = self.mech
         rigid = mech.inverse_dynamics_batch(q, v, a, fext, determinacy=False, allow_singular=allow_singular)
-        pose = statics.evaluate(self.idealisation, np.asarray(q, dtype=float).reshape(len(rigid), -1))
-        efforts = np.concatenate([rigid.efforts, np.zeros((len(rigid), len(self.idealisation.drives)))], axis=1)
-        out = statics.compatible(pose, self.idealisation.drive_compliance, rigid.reactions[..., None], efforts[..., None])
+        with np.errstate(under="ignore"):  # products of tiny compliances and lever arms flush to zero harmlessly
+            pose = statics.evaluate(self.idealisation, np.asarray(q, dtype=float).reshape(len(rigid), -1))
+            efforts = np.concatenate([rigid.efforts, np.zeros((len(rigid), len(self.idealisation.drives)))], axis=1)
+            out = statics.compatible(pose, self.idealisation.drive_compliance, rigid.reactions[..., None],
+                                     efforts[..., None])
         na = len(mech.actuated)
         return CompliantReactions(mech.closure_model.joint_names, mech.actuated, out.efforts[:, :na, 0],
                                   out.reactions[..., 0], out.determinate, out.rigid_determinate, out.efforts[:, na:, 0])
@@ -147,8 +149,9 @@ class ElasticModel:
         q, = self.mech._one(q=q)
         body = self.body(link)
         x = self.point(q, link, point)
-        pose = statics.evaluate(self.idealisation, q[None])
-        return self._flexibility(pose, np.array([body]), x[None, None])[0]
+        with np.errstate(under="ignore"):
+            pose = statics.evaluate(self.idealisation, q[None])
+            return self._flexibility(pose, np.array([body]), x[None, None])[0]
 
     def stiffness(self, q: np.ndarray, link: str, point: np.ndarray | None = None) -> BodyStiffness:
         """`BodyStiffness` of a body at a point (link frame; default its origin) at pose q."""
@@ -170,7 +173,8 @@ class ElasticModel:
     def modes(self, q: np.ndarray, n: int = 6) -> Modes:
         """The first n natural modes at pose q (nq,), actuators locked (`mechkit.elastic.modes`)."""
         q, = self.mech._one(q=q)
-        return modes(self, q, n)
+        with np.errstate(under="ignore"):
+            return modes(self, q, n)
 
     def _flexibility(self, pose: statics.Pose, bodies: np.ndarray, points: np.ndarray) -> np.ndarray:
         """(N, 6k, 6k) flexibility between unit wrenches at the bodies' points (N, k, 3)."""
