@@ -14,7 +14,21 @@ import sys
 import numpy as np
 
 from mechkit.base.exceptions import MechkitError
-from mechkit.cli import bench, export, listing, modes, motion, params, report, snapshot, stiffness, sweep, urdf, validate, view
+from mechkit.cli import (
+    bench,
+    export,
+    listing,
+    modes,
+    motion,
+    params,
+    report,
+    snapshot,
+    stiffness,
+    sweep,
+    urdf,
+    validate,
+    view,
+)
 
 COMMANDS = (listing, urdf, report, snapshot, bench, export, params, sweep, motion, validate, view, stiffness, modes)
 

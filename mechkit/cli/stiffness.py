@@ -9,6 +9,7 @@ import numpy as np
 
 from mechkit.base.exceptions import InvalidParameters
 from mechkit.cli.common import add_mechanism_arguments, examples, load_mechanism
+from mechkit.mechanism import Mechanism
 
 DIRECTIONS = ("x", "y", "z", "rx", "ry", "rz")
 
@@ -26,7 +27,7 @@ def numbers(text: str | None, what: str, size: int | None = None) -> list[float]
     return values
 
 
-def pose(mech, text: str | None) -> np.ndarray:
+def pose(mech: Mechanism, text: str | None) -> np.ndarray:
     """The assembled pose of `--at J=V,...` (rad or m), the home pose without it."""
     if not text:
         return mech.home_q

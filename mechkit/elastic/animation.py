@@ -10,6 +10,7 @@ import pinocchio as pin
 
 from mechkit.base.atomic import write_text
 from mechkit.elastic.modes import Modes
+from mechkit.mechanism import Mechanism
 from mechkit.viz.camera import frame_camera, view_direction
 from mechkit.viz.drawing import Drawing
 from mechkit.viz.meshcat_page import StaticScene
@@ -18,7 +19,7 @@ FRAMES = 48  # frames of the period
 AMPLITUDE = 0.05  # largest modal translation drawn, as a fraction of the mechanism's size (ours: visible, small)
 
 
-def _part_bodies(drawing: Drawing, mech) -> list[int]:
+def _part_bodies(drawing: Drawing, mech: Mechanism) -> list[int]:
     """The body (Pinocchio joint id; 0 = ground) each drawn part moves with, in the order of `parts`."""
     model = mech.model
     out = [int(drawing.visual.geometryObjects[k].parentJoint) for k, _ in drawing._links]
@@ -27,7 +28,7 @@ def _part_bodies(drawing: Drawing, mech) -> list[int]:
     return out + [0] * (len(drawing.parts) - len(out))
 
 
-def write_mode_page(mech, q: np.ndarray, modes: Modes, mode: int, path: str | os.PathLike) -> str:
+def write_mode_page(mech: Mechanism, q: np.ndarray, modes: Modes, mode: int, path: str | os.PathLike) -> str:
     """Write (and return) the HTML animating mode `mode` (0-based) of `modes` at pose q (nq,).
 
     Raises:

@@ -24,6 +24,7 @@ from mechkit import core
 from mechkit.base.exceptions import InvalidParameters
 from mechkit.elastic.beam import cantilever_compliance
 from mechkit.elastic.sections import ElasticData, JointElasticity
+from mechkit.mechanism import Mechanism
 
 #: Beams shorter than this fraction of the mechanism's size count as rigid (a joint at the centre of mass).
 SHORT_BEAM = 1e-9
@@ -71,11 +72,10 @@ class Idealisation:
             without an axis, a drive stiffness on a joint that is not actuated.
     """
 
-    def __init__(self, mech, data: ElasticData):
+    def __init__(self, mech: Mechanism, data: ElasticData):
         cm, model = mech.closure_model, mech.model
         self.mech, self.data = mech, data
         self.names = cm.joint_names
-        nt = model.njoints - 1
         home = _world_placements(model, mech.home_q)
         frames = model.frames
         sides, axes, origins = [], [], []
@@ -139,7 +139,7 @@ class Idealisation:
         self._joint_blocks = self._joint_springs(mech, index, home)
         self.drives, self.drive_compliance = self._drives(mech, index)
 
-    def _joint_springs(self, mech, index: dict[str, int], home: pin.Data) -> list[tuple[int, int, np.ndarray]]:
+    def _joint_springs(self, mech: Mechanism, index: dict[str, int], home: pin.Data) -> list[tuple[int, int, np.ndarray]]:
         """(joint, body whose frame holds the block, (6, 6) compliance at the joint's centre) of every joint
         given a stiffness: W (W^T K W)^-1 W^T, W an orthonormal basis of its constrained directions."""
         out = []
@@ -167,7 +167,7 @@ class Idealisation:
             out.append((k, body, W @ np.linalg.inv(W.T @ K @ W) @ W.T))
         return out
 
-    def _drives(self, mech, index: dict[str, int]) -> tuple[tuple[str, ...], np.ndarray]:
+    def _drives(self, mech: Mechanism, index: dict[str, int]) -> tuple[tuple[str, ...], np.ndarray]:
         actuated = set(mech.actuated)
         for name, j in self.data.joints.items():
             if j.drive is not None and name not in actuated:

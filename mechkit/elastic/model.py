@@ -7,6 +7,7 @@ preload) and comes from the force method over the rigid mechanism (`mechkit.elas
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 import pinocchio as pin
@@ -18,6 +19,7 @@ from mechkit.elastic.description import parse_elastic
 from mechkit.elastic.idealisation import Idealisation
 from mechkit.elastic.modes import Modes, modes
 from mechkit.elastic.sections import ElasticData, JointElasticity, Section
+from mechkit.mechanism import Mechanism
 
 
 @dataclass(frozen=True)
@@ -85,7 +87,7 @@ class ElasticModel:
         InvalidParameters, MalformedDescription: elastic data naming what the mechanism lacks.
     """
 
-    def __init__(self, mech, data: ElasticData | None = None):
+    def __init__(self, mech: Mechanism, data: ElasticData | None = None):
         if data is None:
             data = parse_elastic(mech.urdf) if mech.urdf is not None else ElasticData()
         self.mech, self.data = mech, data
@@ -101,7 +103,7 @@ class ElasticModel:
         return ElasticModel(self.mech, self.data.with_joint(joint, elasticity))
 
     # ------------------------------------------------------------------ reactions
-    def inverse_dynamics_batch(self, q: np.ndarray, v: np.ndarray, a: np.ndarray, fext=None, *,
+    def inverse_dynamics_batch(self, q: np.ndarray, v: np.ndarray, a: np.ndarray, fext: Any = None, *,
                                allow_singular: bool = False) -> CompliantReactions:
         """Efforts and reactions of N motions (q (N, nq), v and a (N, nv), fext as
         `Mechanism.inverse_dynamics_batch`) with every reaction fixed by equilibrium and compatibility:
@@ -118,7 +120,7 @@ class ElasticModel:
         return CompliantReactions(mech.closure_model.joint_names, mech.actuated, out.efforts[:, :na, 0],
                                   out.reactions[..., 0], out.determinate, out.rigid_determinate, out.efforts[:, na:, 0])
 
-    def inverse_dynamics(self, q: np.ndarray, v: np.ndarray, a: np.ndarray, fext=None, *,
+    def inverse_dynamics(self, q: np.ndarray, v: np.ndarray, a: np.ndarray, fext: Any = None, *,
                          allow_singular: bool = False) -> CompliantReactions:
         """`inverse_dynamics_batch` of one sample (q (nq,), v and a (nv,)), as a batch of one."""
         q, v, a = self.mech._one(q=q, v=v, a=a)
@@ -171,10 +173,22 @@ class ElasticModel:
         return self.compliance(q, link, point) @ arguments.array("wrench", wrench, 6, batch=False)
 
     def modes(self, q: np.ndarray, n: int = 6) -> Modes:
-        """The first n natural modes at pose q (nq,), actuators locked (`mechkit.elastic.modes`)."""
+        """The first n natural modes at pose q (nq,), actuators locked (`mechkit.elastic.modes`).
+
+        Raises:
+            InvalidParameters: n < 1 or more than six per massive body.
+            SingularConfiguration: the locked mechanism still moves (a zero frequency).
+        """
         q, = self.mech._one(q=q)
+        model = self.mech.model
+        bodies = np.array([j for j in range(1, model.njoints) if model.inertias[j].mass > 0], dtype=int)
+        if not isinstance(n, (int, np.integer)) or n < 1 or n > 6 * len(bodies):
+            raise InvalidParameters("n", n, f"between 1 and {6 * len(bodies)} (six per massive body)")
         with np.errstate(under="ignore"):
-            return modes(self, q, n)
+            pose = statics.evaluate(self.idealisation, q[None])
+            centres = np.array([pose.R[0, b] @ model.inertias[int(b)].lever + pose.t[0, b] for b in bodies])
+            F = self._flexibility(pose, bodies, centres[None])[0]
+            return modes(model, pose.R[0], bodies, centres, F, n)
 
     def _flexibility(self, pose: statics.Pose, bodies: np.ndarray, points: np.ndarray) -> np.ndarray:
         """(N, 6k, 6k) flexibility between unit wrenches at the bodies' points (N, k, 3)."""

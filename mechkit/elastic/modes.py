@@ -15,9 +15,6 @@ from dataclasses import dataclass
 import numpy as np
 import pinocchio as pin
 
-from mechkit.base.exceptions import InvalidParameters
-from mechkit.elastic import statics
-
 #: Relative eigenvalue mu under which a mode counts as held rigidly (no finite frequency).
 RIGID_TOL = 1e-12
 
@@ -51,22 +48,16 @@ def mass_matrix(model: pin.Model, R: np.ndarray, bodies: np.ndarray) -> np.ndarr
     return M
 
 
-def modes(elastic, q: np.ndarray, n: int = 6) -> Modes:
-    """The first `n` natural modes of an `ElasticModel`'s mechanism at pose q (nq,), actuators locked
-    (or on their drive stiffness).
+def modes(model: pin.Model, R: np.ndarray, bodies: np.ndarray, centres: np.ndarray, F: np.ndarray, n: int) -> Modes:
+    """The first `n` natural modes from the flexibility F (6k, 6k) between unit wrenches at the massive
+    bodies' centres of mass (`ElasticModel` computes it).
 
-    Raises:
-        InvalidParameters: n < 1 or more modes than the massive freedoms have.
-        SingularConfiguration: the locked mechanism still moves (a zero frequency).
+    Args:
+        model: the Pinocchio model (the bodies' masses and inertias). R: (njoints, 3, 3) body rotations.
+        bodies: (k,) the massive bodies' ids; centres: (k, 3) their centres of mass (world, m).
+        n: modes wanted (fewer come back where directions are held rigidly).
     """
-    model = elastic.mech.model
-    bodies = np.array([j for j in range(1, model.njoints) if model.inertias[j].mass > 0], dtype=int)
-    if not isinstance(n, (int, np.integer)) or n < 1 or n > 6 * len(bodies):
-        raise InvalidParameters("n", n, f"between 1 and {6 * len(bodies)} (six per massive body)")
-    pose = statics.evaluate(elastic.idealisation, q[None])
-    centres = np.array([pose.R[0, b] @ model.inertias[int(b)].lever + pose.t[0, b] for b in bodies])
-    F = elastic._flexibility(pose, bodies, centres[None])[0]
-    M = mass_matrix(model, pose.R[0], bodies)
+    M = mass_matrix(model, R, bodies)
     w, V = np.linalg.eigh(M)
     root = (V * np.sqrt(np.clip(w, 0.0, None))) @ V.T
     mu, U = np.linalg.eigh(root @ F @ root)

@@ -167,7 +167,7 @@ class FrameModel:
         """(ndof, 1) the weights of every body at its centre of mass, plus world forces {body: (6,) at its CoM}."""
         f = np.zeros((self.ndof, 1))
         g = self.mech.model.gravity.linear
-        for b, c in self.com.items():
+        for b in self.com:
             w = np.concatenate([self.mech.model.inertias[b].mass * g, np.zeros(3)])
             w += (fext or {}).get(b, np.zeros(6))
             f[:, 0] += self.select(f"c{b}").T @ w

@@ -3,12 +3,14 @@ reactions under gravity and under a lateral force, body compliances, at 1e-6 rel
 
 from __future__ import annotations
 
+import itertools
+
 import numpy as np
 import pinocchio as pin
 import pytest
+from frame_model import FrameModel
 
 import mechkit
-from frame_model import FrameModel
 from mechkit.elastic import ElasticModel, JointElasticity
 
 TOL = 1e-6
@@ -75,7 +77,7 @@ def test_rigid_limit(four_bar):
         r = soft.inverse_dynamics(m.home_q, v, v, fext).reactions[0]
         assert np.abs(r[det] - rigid.reaction_values[det]).max() < 1e-9 * scale
         errors.append(np.abs(r - ideal).max() / scale)
-    assert errors[0] > 1e-4 and all(b < a / 5 for a, b in zip(errors, errors[1:])) and errors[-1] < 1e-6
+    assert errors[0] > 1e-4 and all(b < a / 5 for a, b in itertools.pairwise(errors)) and errors[-1] < 1e-6
     scaled = ElasticModel(m, e.data.scaled(1e3)).inverse_dynamics(m.home_q, v, v, fext).reactions[0]
     assert np.abs(scaled - ideal).max() < 1e-9 * scale
 

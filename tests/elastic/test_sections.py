@@ -20,7 +20,7 @@ def test_tube_constants():
 
 @pytest.mark.parametrize("bad", [{"E": 0.0}, {"A": -1.0}, {"J": float("nan")}, {"axis1": (0, 0, 0)}])
 def test_bad_sections_are_refused(bad):
-    values = dict(E=1.0, G=1.0, A=1.0, I1=1.0, I2=1.0, J=1.0) | bad
+    values = {"E": 1.0, "G": 1.0, "A": 1.0, "I1": 1.0, "I2": 1.0, "J": 1.0} | bad
     with pytest.raises(InvalidParameters):
         Section(**values)
 

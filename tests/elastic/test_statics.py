@@ -6,8 +6,7 @@ from __future__ import annotations
 import numpy as np
 
 import mechkit
-from mechkit.elastic import ElasticModel
-from mechkit.elastic import statics
+from mechkit.elastic import ElasticModel, statics
 
 
 def test_compatible_solution_is_an_equilibrium_of_least_energy():
