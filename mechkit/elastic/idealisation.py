@@ -66,6 +66,8 @@ class Idealisation:
         sides: (n_joints, 2) bodies of each joint's parent (frame_a) and child (frame_b) sides.
         drives: the effort columns beyond the actuators: joints with a `mechkit:spring` (not actuated).
         drive_compliance: (na + len(drives),) compliance of each effort column (rad/(N m) or m/N; 0: locked).
+        pin_data: a Pinocchio data (scratch of `mechkit.elastic.statics.evaluate`); pin_rotations,
+            pin_translations: views of its joint placements.
 
     Raises:
         InvalidParameters: a section or elasticity naming what the mechanism lacks, a centre on a joint
@@ -76,6 +78,10 @@ class Idealisation:
         cm, model = mech.closure_model, mech.model
         self.mech, self.data = mech, data
         self.names = cm.joint_names
+        self.pin_data = model.createData()
+        placements = self.pin_data.oMi.tolist()  # their rotation and translation alias the data's memory
+        self.pin_rotations = [M.rotation for M in placements]
+        self.pin_translations = [M.translation for M in placements]
         home = _world_placements(model, mech.home_q)
         frames = model.frames
         sides, axes, origins = [], [], []
@@ -137,6 +143,10 @@ class Idealisation:
                     self._beam_blocks.append((int(k), body, cantilever_compliance(centre, com, beam_section)))
             self.elastic.append(ElasticBody(body, link, tuple(joints), tuple(lengths)))
         self._joint_blocks = self._joint_springs(mech, index, home)
+        every = self._beam_blocks + self._joint_blocks
+        self._blocks = None if not every else (np.array([j for j, _, _ in every], dtype=int),
+                                               np.array([b for _, b, _ in every], dtype=int),
+                                               np.array([f for _, _, f in every]))
         self.drives, self.drive_compliance = self._drives(mech, index)
 
     def _joint_springs(self, mech: Mechanism, index: dict[str, int], home: pin.Data) -> list[tuple[int, int, np.ndarray]]:
@@ -187,14 +197,14 @@ class Idealisation:
             points: (N, n_joints, 3) the reactions' points (joint origins, cut frame_b origins).
         """
         n, nj = len(R), len(self.names)
+        blocks = self._blocks
         out = np.zeros((n, nj, 6, 6))
-        for joint, body, block in self._beam_blocks + self._joint_blocks:
-            Rb = R[:, body]
-            rotated = np.empty((n, 6, 6))
-            for a in (0, 3):
-                for b in (0, 3):
-                    rotated[:, a:a + 3, b:b + 3] = Rb @ block[a:a + 3, b:b + 3] @ np.swapaxes(Rb, 1, 2)
-            out[:, joint] += rotated
+        if blocks is not None:
+            joints, bodies, F = blocks
+            R6 = np.zeros((n, len(bodies), 6, 6))
+            R6[..., :3, :3] = R6[..., 3:, 3:] = R[:, bodies]
+            rotated = R6 @ F @ np.swapaxes(R6, -1, -2)  # (N, blocks, 6, 6) world axes
+            np.add.at(out, (slice(None), joints), rotated)
         centre = (R[:, self._centre_body] @ self._centre_local[None, :, :, None])[..., 0] + t[:, self._centre_body]
         X = np.zeros((n, nj, 6, 6))  # reaction about the centre = X (reaction about the point)
         X[..., :3, :3] = X[..., 3:, 3:] = np.eye(3)

@@ -197,6 +197,5 @@ class ElasticModel:
         reactions = R0 + pose.reaction_map @ x[:, None]
         c = self.idealisation.drive_compliance
         out = statics.compatible(pose, c, reactions, x[:, :pose.efforts])
-        R = out.reactions
-        C = np.einsum("njak,njab,njbl->nkl", R, pose.compliance, R) + np.einsum("nek,e,nel->nkl", out.efforts, c, out.efforts)
+        C = statics.energy_product(pose, c, out.reactions, out.efforts, out.reactions, out.efforts)
         return (C + np.swapaxes(C, 1, 2)) / 2

@@ -14,6 +14,8 @@ from dataclasses import dataclass
 
 import numpy as np
 import pinocchio as pin
+import scipy.linalg
+import scipy.sparse.linalg
 
 #: Relative eigenvalue mu under which a mode counts as held rigidly (no finite frequency).
 RIGID_TOL = 1e-12
@@ -58,9 +60,18 @@ def modes(model: pin.Model, R: np.ndarray, bodies: np.ndarray, centres: np.ndarr
         n: modes wanted (fewer come back where directions are held rigidly).
     """
     M = mass_matrix(model, R, bodies)
-    w, V = np.linalg.eigh(M)
-    root = (V * np.sqrt(np.clip(w, 0.0, None))) @ V.T
-    mu, U = np.linalg.eigh(root @ F @ root)
+    blocks = M.reshape(len(bodies), 6, len(bodies), 6)[np.arange(len(bodies)), :, np.arange(len(bodies))]
+    w, V = np.linalg.eigh(blocks)  # M is block diagonal: its square root block by block
+    root = scipy.linalg.block_diag(*((V * np.sqrt(np.clip(w, 0.0, None))[:, None, :]) @ np.swapaxes(V, 1, 2)))
+    A = root @ F @ root
+    scale = max(float(np.abs(A).max()), 1e-300)
+    A = np.where(np.abs(A) > 1e-30 * scale, A / scale, 0.0)  # no subnormal numbers: they slow LAPACK a thousandfold
+    A = (A + A.T) / 2
+    if 3 * n < len(A):  # the few largest mu by Lanczos, from a fixed start (the spectrum's top is well separated)
+        mu, U = scipy.sparse.linalg.eigsh(A, k=n + 1, which="LA", v0=np.ones(len(A)), tol=0.0)
+    else:
+        mu, U = np.linalg.eigh(A)
+    mu = mu * scale
     order = np.argsort(mu)[::-1]
     mu, U = mu[order], U[:, order]
     finite = int(np.sum(mu > RIGID_TOL * max(mu[0], 1e-300)))

@@ -59,16 +59,16 @@ def evaluate(ideal: Idealisation, Q: np.ndarray) -> Pose:
     mech = ideal.mech
     cm, model = mech.closure_model, mech.model
     n, nj = len(Q), model.njoints
-    data = model.createData()
+    data = ideal.pin_data
     R = np.empty((n, nj, 3, 3))
     t = np.empty((n, nj, 3))
     J = np.empty((n, 6, model.nv))
+    rotations, translations = ideal.pin_rotations, ideal.pin_translations
     for i in range(n):
         pin.computeJointJacobians(model, data, Q[i])
         J[i] = data.J
-        for j in range(nj):
-            R[i, j] = data.oMi[j].rotation
-            t[i, j] = data.oMi[j].translation
+        R[i] = rotations
+        t[i] = translations
     full = cm.full_kernel
     used = full.joints
     G = np.zeros((n, used.size, 4, 4))
@@ -139,16 +139,23 @@ def _variation(Y: np.ndarray) -> np.ndarray:
     return np.sqrt(np.square(Y).sum(axis=-1))
 
 
+def energy_product(pose: Pose, drive_compliance: np.ndarray, A: np.ndarray, a: np.ndarray, B: np.ndarray,
+                   b: np.ndarray) -> np.ndarray:
+    """(N, s, t) sum_j A_j^T F_j B_j + a^T diag(c) b: the complementary-energy product of two sets of
+    reactions A (N, n_joints, 6, s), B (N, n_joints, 6, t) with their efforts a (N, ne, s), b (N, ne, t)."""
+    n, rows = len(A), A.shape[1] * 6
+    FB = (pose.compliance @ B).reshape(n, rows, B.shape[-1])
+    return np.swapaxes(A.reshape(n, rows, A.shape[-1]), 1, 2) @ FB + np.swapaxes(a * drive_compliance[:, None], 1, 2) @ b
+
+
 def compatible(pose: Pose, drive_compliance: np.ndarray, reactions: np.ndarray, efforts: np.ndarray) -> Compatible:
     """The compatible equilibrium nearest an equilibrium given by its reactions (N, n_joints, 6, k) and
     efforts (N, ne, k): moved along the self-stresses to the least complementary energy."""
     ne = len(drive_compliance)
     YR = pose.reaction_map @ pose.null[:, None]  # (N, n_joints, 6, s)
     Yu = pose.null[:, :ne]
-    F = pose.compliance
-    FY = F @ YR
-    H = np.einsum("njas,njat->nst", YR, FY) + np.einsum("nes,e,net->nst", Yu, drive_compliance, Yu)
-    g = np.einsum("njas,njak->nsk", FY, reactions) + np.einsum("nes,e,nek->nsk", Yu, drive_compliance, efforts)
+    H = energy_product(pose, drive_compliance, YR, Yu, YR, Yu)
+    g = energy_product(pose, drive_compliance, YR, Yu, reactions, efforts)
     w, V = np.linalg.eigh(H)
     strained = w > STRAIN_TOL * np.maximum(w[:, -1:], 1e-300)
     inverse = np.where(strained, 1.0 / np.where(strained, w, 1.0), 0.0)
@@ -157,6 +164,16 @@ def compatible(pose: Pose, drive_compliance: np.ndarray, reactions: np.ndarray, 
     free = _variation(YR @ (V * ~strained[:, None, :])[:, None])
     limit = 1e-8 * np.maximum(free_rigid.max(axis=(1, 2), keepdims=True), 1e-300)
     return Compatible(reactions + YR @ z[:, None], efforts + Yu @ z, free <= limit, free_rigid <= limit)
+
+
+def _unit_wrenches(x: np.ndarray) -> np.ndarray:
+    """(..., 6, 6) [[I, 0], [x^, I]]: columns the unit wrenches at points x (..., 3) about the origin
+    (a unit force e at x has the moment x cross e there)."""
+    out = np.zeros(x.shape[:-1] + (6, 6))
+    out[..., range(6), range(6)] = 1.0
+    out[..., 3, 1], out[..., 3, 2], out[..., 4, 2] = -x[..., 2], x[..., 1], -x[..., 0]
+    out[..., 4, 0], out[..., 5, 0], out[..., 5, 1] = x[..., 2], -x[..., 1], x[..., 0]
+    return out
 
 
 def unit_loads(model: pin.Model, pose: Pose, bodies: np.ndarray, points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -170,22 +187,18 @@ def unit_loads(model: pin.Model, pose: Pose, bodies: np.ndarray, points: np.ndar
         b (N, nv, 6k) = -J^T w (the generalised force the joints must balance) and R0 (N, n_joints, 6, 6k):
         every tree joint between the ground and a loaded body carries -w about its origin.
     """
-    n, k = len(pose.q), len(bodies)
-    b = np.zeros((n, model.nv, 6 * k))
-    R0 = np.zeros((n, pose.points.shape[1], 6, 6 * k))
+    n, k, nt = len(pose.q), len(bodies), model.njoints - 1
+    path = np.zeros((k, nt), dtype=bool)  # tree joints between the ground and each body
+    mask = np.zeros((k, model.nv))  # their velocity columns
     for c, body in enumerate(bodies):
-        x = points[:, c]
-        w = np.broadcast_to(np.eye(6), (n, 6, 6)).copy()  # columns: unit wrenches about x
-        about_origin = w.copy()
-        about_origin[:, 3:] += np.cross(x[:, None, :], w[:, :3].transpose(0, 2, 1)).transpose(0, 2, 1)
         j = int(body)
         while j > 0:
-            jm = model.joints[j]
-            cols = slice(jm.idx_v, jm.idx_v + jm.nv)
-            b[:, cols, 6 * c:6 * c + 6] = -np.swapaxes(pose.J[:, :, cols], 1, 2) @ about_origin
-            o = pose.t[:, j]
-            at_joint = -about_origin
-            at_joint[:, 3:] += np.cross(o[:, None, :], about_origin[:, :3].transpose(0, 2, 1)).transpose(0, 2, 1)
-            R0[:, j - 1, :, 6 * c:6 * c + 6] = at_joint
+            path[c, j - 1] = True
+            mask[c, model.joints[j].idx_v:model.joints[j].idx_v + model.joints[j].nv] = 1.0
             j = model.parents[j]
-    return b, R0
+    W = _unit_wrenches(points)  # (N, k, 6, 6) columns: the unit wrenches at x, about the world origin
+    b = -np.einsum("nav,kv,nkaw->nvkw", pose.J, mask, W).reshape(n, model.nv, 6 * k)
+    at_joints = _unit_wrenches(points[:, None] - pose.t[:, 1:, None])  # (N, nt, k, 6, 6) about each joint origin
+    R0 = np.zeros((n, pose.points.shape[1], 6, k, 6))
+    R0[:, :nt] = -np.swapaxes(at_joints * path.T[None, :, :, None, None], 2, 3)
+    return b, R0.reshape(n, -1, 6, 6 * k)
