@@ -144,9 +144,10 @@ class Idealisation:
             self.elastic.append(ElasticBody(body, link, tuple(joints), tuple(lengths)))
         self._joint_blocks = self._joint_springs(mech, index, home)
         every = self._beam_blocks + self._joint_blocks
-        self._blocks = None if not every else (np.array([j for j, _, _ in every], dtype=int),
-                                               np.array([b for _, b, _ in every], dtype=int),
-                                               np.array([f for _, _, f in every]))
+        incidence = np.zeros((len(self.names), len(every)))  # joint <- block
+        incidence[[j for j, _, _ in every], np.arange(len(every))] = 1.0
+        self._blocks = None if not every else (np.array([b for _, b, _ in every], dtype=int),
+                                               np.array([f for _, _, f in every]), incidence)
         self.drives, self.drive_compliance = self._drives(mech, index)
 
     def _joint_springs(self, mech: Mechanism, index: dict[str, int], home: pin.Data) -> list[tuple[int, int, np.ndarray]]:
@@ -197,14 +198,13 @@ class Idealisation:
             points: (N, n_joints, 3) the reactions' points (joint origins, cut frame_b origins).
         """
         n, nj = len(R), len(self.names)
-        blocks = self._blocks
         out = np.zeros((n, nj, 6, 6))
-        if blocks is not None:
-            joints, bodies, F = blocks
+        if self._blocks is not None:
+            bodies, F, incidence = self._blocks
             R6 = np.zeros((n, len(bodies), 6, 6))
             R6[..., :3, :3] = R6[..., 3:, 3:] = R[:, bodies]
             rotated = R6 @ F @ np.swapaxes(R6, -1, -2)  # (N, blocks, 6, 6) world axes
-            np.add.at(out, (slice(None), joints), rotated)
+            out = (incidence @ rotated.reshape(n, len(bodies), 36)).reshape(n, nj, 6, 6)
         centre = (R[:, self._centre_body] @ self._centre_local[None, :, :, None])[..., 0] + t[:, self._centre_body]
         X = np.zeros((n, nj, 6, 6))  # reaction about the centre = X (reaction about the point)
         X[..., :3, :3] = X[..., 3:, 3:] = np.eye(3)
