@@ -27,8 +27,9 @@ class CompliantReactions:
     """Inverse dynamics of N samples with the reactions compatibility fixes.
 
     Attributes:
-        joint_names: the reactions' joints (tree joints, then cuts); actuated: the actuators.
-        efforts: (N, na) actuator efforts (N m or N). reactions: (N, n_joints, 6) [f, m] about each
+        joint_names: the reactions' joints (tree joints, then cuts); actuated: the drives (the actuators,
+            then any other driven joint, locked).
+        efforts: (N, n_drives) drive efforts (N m or N). reactions: (N, n_joints, 6) [f, m] about each
             joint's origin (a cut: frame_b's origin), world.
         determinate: (N, n_joints, 6) components fixed by equilibrium and compatibility (all, where every
             self-stress strains something elastic). rigid_determinate: (N, n_joints, 6) those rigid
@@ -109,16 +110,37 @@ class ElasticModel:
         `Mechanism.inverse_dynamics_batch`) with every reaction fixed by equilibrium and compatibility:
         the rigid inverse dynamics moved along its self-stresses to the least complementary energy
         (loads act on each body's centre of mass node as in the rigid model)."""
+        rigid = self.mech.inverse_dynamics_batch(q, v, a, fext, determinacy=False, allow_singular=allow_singular)
+        return self.compatible(np.asarray(q, dtype=float).reshape(len(rigid), -1), rigid.efforts, rigid.reactions)
+
+    def compatible(self, q: np.ndarray, efforts: np.ndarray, reactions: np.ndarray,
+                   drives: tuple[str, ...] | None = None) -> CompliantReactions:
+        """The compatible equilibrium nearest any rigid one: efforts (N, n_drives) and reactions (N, n_joints,
+        6) of the poses q (N, nq) (e.g. a motion study's), moved along the self-stresses.
+
+        Args:
+            drives: the joints the efforts drive, the actuators first (default: the actuators); a drive
+                that is not an actuator is locked.
+
+        Raises:
+            InvalidParameters: drives that do not start with the actuators.
+        """
         mech = self.mech
-        rigid = mech.inverse_dynamics_batch(q, v, a, fext, determinacy=False, allow_singular=allow_singular)
-        with np.errstate(under="ignore"):  # products of tiny compliances and lever arms flush to zero harmlessly
-            pose = statics.evaluate(self.idealisation, np.asarray(q, dtype=float).reshape(len(rigid), -1))
-            efforts = np.concatenate([rigid.efforts, np.zeros((len(rigid), len(self.idealisation.drives)))], axis=1)
-            out = statics.compatible(pose, self.idealisation.drive_compliance, rigid.reactions[..., None],
-                                     efforts[..., None])
+        drives = tuple(mech.actuated) if drives is None else tuple(drives)
+        if drives[:len(mech.actuated)] != tuple(mech.actuated):
+            raise InvalidParameters("drives", drives, f"must start with the actuators {list(mech.actuated)}")
+        actuation = mech.closure_model.with_actuation(drives).actuation
+        ideal = self.idealisation
         na = len(mech.actuated)
-        return CompliantReactions(mech.closure_model.joint_names, mech.actuated, out.efforts[:, :na, 0],
-                                  out.reactions[..., 0], out.determinate, out.rigid_determinate, out.efforts[:, na:, 0])
+        compliance = np.concatenate([ideal.drive_compliance[:na], np.zeros(len(drives) - na), ideal.drive_compliance[na:]])
+        n = len(q)
+        with np.errstate(under="ignore"):  # products of tiny compliances and lever arms flush to zero harmlessly
+            pose = statics.evaluate(ideal, q, actuation)
+            full = np.concatenate([efforts, np.zeros((n, len(ideal.drives)))], axis=1)
+            out = statics.compatible(pose, compliance, reactions[..., None], full[..., None])
+        return CompliantReactions(mech.closure_model.joint_names, drives, out.efforts[:, :len(drives), 0],
+                                  out.reactions[..., 0], out.determinate, out.rigid_determinate,
+                                  out.efforts[:, len(drives):, 0])
 
     def inverse_dynamics(self, q: np.ndarray, v: np.ndarray, a: np.ndarray, fext: Any = None, *,
                          allow_singular: bool = False) -> CompliantReactions:

@@ -54,10 +54,13 @@ class Pose:
     efforts: int
 
 
-def evaluate(ideal: Idealisation, Q: np.ndarray) -> Pose:
-    """The rigid statics of the poses Q (N, nq), which must close the loops."""
+def evaluate(ideal: Idealisation, Q: np.ndarray, actuation: np.ndarray | None = None) -> Pose:
+    """The rigid statics of the poses Q (N, nq), which must close the loops; `actuation` (na, nv): the
+    drives' S (default the mechanism's actuators), then the idealisation's spring drives."""
     mech = ideal.mech
     cm, model = mech.closure_model, mech.model
+    S = cm.actuation if actuation is None else actuation
+    na = len(S)
     n, nj = len(Q), model.njoints
     data = ideal.pin_data
     R = np.empty((n, nj, 3, 3))
@@ -75,13 +78,13 @@ def evaluate(ideal: Idealisation, Q: np.ndarray) -> Pose:
     G[..., :3, :3], G[..., :3, 3], G[..., 3, 3] = R[:, used], t[:, used], 1.0
     W = full.row_wrenches(G)
     rows = full.jacobian(W, J, Q)
-    ne = len(mech.actuated) + len(ideal.drives)
+    ne = na + len(ideal.drives)
     m = ne + full.size
     A = np.empty((n, model.nv, m))
-    A[:, :, :len(mech.actuated)] = cm.actuation.T
+    A[:, :, :na] = S.T
     for k, joint in enumerate(ideal.drives):
-        A[:, :, len(mech.actuated) + k] = 0.0
-        A[:, mech.v_index(joint), len(mech.actuated) + k] = 1.0
+        A[:, :, na + k] = 0.0
+        A[:, mech.v_index(joint), na + k] = 1.0
     A[:, :, ne:] = np.swapaxes(rows, 1, 2)
     cut_points = full.cut_points(G)
     eye = np.broadcast_to(np.eye(full.size), (n, full.size, full.size))

@@ -134,3 +134,21 @@ def test_batched_reactions_equal_one_at_a_time(four_bar):
     for i in range(3):
         one = e.inverse_dynamics(qs[i], v[i], v[i])
         assert np.allclose(batch.reactions[i], one.reactions[0], rtol=0, atol=1e-12 * np.abs(batch.reactions).max())
+
+
+def test_motion_study_gains_the_compliant_reactions(four_bar):
+    """A motion study with reactions="compliant" gives `ElasticModel`'s reactions at its states; the
+    components rigid statics fixes are the rigid study's."""
+    from mechkit.motion import from_callable, study
+
+    m = four_bar
+    law = from_callable(m, lambda t: [0.6 + 0.3 * np.sin(2.0 * t)], np.linspace(0.0, 1.0, 9))
+    rigid = study(m, law, determinacy=True)
+    compliant = study(m, law, determinacy=True, reactions="compliant")
+    direct = ElasticModel(m).inverse_dynamics_batch(compliant.q, compliant.v, compliant.a)
+    scale = np.abs(direct.reactions).max()
+    assert np.abs(compliant.reactions - direct.reactions).max() < 1e-9 * scale
+    assert compliant.determinate.all() and not rigid.determinate.all()
+    fixed = rigid.determinate
+    assert np.abs(compliant.reactions[fixed] - rigid.reactions[fixed]).max() < 1e-9 * scale
+    assert np.allclose(compliant.efforts, rigid.efforts, rtol=1e-9, atol=1e-9 * np.abs(rigid.efforts).max())
