@@ -93,7 +93,7 @@ class UnitLoad:
 
     def reactions(self, q: np.ndarray, v: np.ndarray, a: np.ndarray) -> dict[str, np.ndarray]:
         """Joint name -> compatible reaction (6,) [f, m about its point], world, at the motion (q, v, a)."""
-        mech, model = self.mech, self.mech.model
+        model = self.mech.model
         pdata = model.createData()
         pin.framesForwardKinematics(model, pdata, q)
         joints = self._joints(pdata)

@@ -46,3 +46,18 @@ def test_a_mechanism_that_still_moves_has_no_frequencies(tmp_path):
     five = mechkit.load("five_bar", actuated=["prox1"])  # one of two freedoms locked: the five-bar moves
     with pytest.raises(SingularConfiguration):
         ElasticModel(five).modes(five.home_q, 3)
+
+
+def test_sweep_metrics_of_the_elastic_model():
+    """The sweep's elastic metrics: the first frequency is the modes', the mass follows the tubes when the
+    rods' masses are the tubes'."""
+    from mechkit.sweep.specific import available
+
+    metrics = available("tetra_3rr3uru")
+    m = mechkit.load("tetra_3rr3uru", rod_masses="tubes")
+    f1 = metrics["first_frequency"].fn(m, None)["first_frequency"]
+    assert f1 == pytest.approx(ElasticModel(m).modes(m.home_q, 1).frequencies[0], rel=1e-12)
+    heavier = mechkit.load("tetra_3rr3uru", rod_masses="tubes", tube_outer=0.03)
+    assert metrics["mass"].fn(heavier, None)["mass"] > metrics["mass"].fn(m, None)["mass"]
+    s = metrics["stiffness"].fn(m, None)
+    assert set(s) == {f"stiffness.{d}" for d in ("x", "y", "z", "rx", "ry", "rz")} and min(s.values()) > 0
