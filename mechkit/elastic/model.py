@@ -22,6 +22,10 @@ from mechkit.elastic.sections import ElasticData, JointElasticity, Section
 from mechkit.mechanism import Mechanism
 
 
+#: Compliance, relative to the largest, under which a body's direction counts as held rigidly.
+RIGID = 1e-12
+
+
 @dataclass(frozen=True)
 class CompliantReactions:
     """Inverse dynamics of N samples with the reactions compatibility fixes.
@@ -170,25 +174,35 @@ class ElasticModel:
     def compliance(self, q: np.ndarray, link: str, point: np.ndarray | None = None) -> np.ndarray:
         """(6, 6) compliance C of a body at a point (link frame, m; default the link's origin) at pose q:
         its twist [translation (m), rotation (rad)] per wrench [N, N m] there, world axes."""
+        return self._compliance(q, link, point)[0]
+
+    def _compliance(self, q: np.ndarray, link: str, point: np.ndarray | None) -> tuple[np.ndarray, np.ndarray]:
+        """C (6, 6) and the point (3,) in the world, from one kinematic pass."""
         q, = self.mech._one(q=q)
         body = self.body(link)
-        x = self.point(q, link, point)
+        local = np.zeros(3) if point is None else arguments.array("point", point, 3, batch=False)
+        placement = self.links[link].placement
         with np.errstate(under="ignore"):
             pose = statics.evaluate(self.idealisation, q[None])
-            return self._flexibility(pose, np.array([body]), x[None, None])[0]
+            x = pose.R[0, body] @ (placement.rotation @ local + placement.translation) + pose.t[0, body]
+            return self._flexibility(pose, np.array([body]), x[None, None])[0], x
 
     def stiffness(self, q: np.ndarray, link: str, point: np.ndarray | None = None) -> BodyStiffness:
-        """`BodyStiffness` of a body at a point (link frame; default its origin) at pose q."""
-        C = self.compliance(q, link, point)
-        s = np.linalg.svd(C, compute_uv=False)
-        if s[-1] > 1e-12 * s[0]:
-            K = np.linalg.inv(C)
-            K = (K + K.T) / 2
-        else:
-            K = np.full((6, 6), np.inf)
+        """`BodyStiffness` of a body at a point (link frame; default its origin) at pose q. A direction
+        held rigidly (C_ii = 0 to 1e-12 of the largest) has K_ii = 1/C_ii = inf, and K is the inverse of C
+        over the other directions (all inf where that block is singular too)."""
+        C, x = self._compliance(q, link, point)
         diagonal = np.diag(C)
-        free = np.where(diagonal > 0, 1.0 / np.where(diagonal > 0, diagonal, 1.0), np.inf)
-        return BodyStiffness(link, self.point(q, link, point), C, K, np.diag(K).copy(), free)
+        soft = diagonal > RIGID * max(float(diagonal.max()), 1e-300)
+        K = np.full((6, 6), np.inf)
+        block = C[np.ix_(soft, soft)]
+        if soft.any():
+            s = np.linalg.svd(block, compute_uv=False)
+            if s[-1] > RIGID * s[0]:
+                inverse = np.linalg.inv(block)
+                K[np.ix_(soft, soft)] = (inverse + inverse.T) / 2
+        free = np.where(soft, 1.0 / np.where(soft, diagonal, 1.0), np.inf)
+        return BodyStiffness(link, x, C, K, np.diag(K).copy(), free)
 
     def deflection(self, q: np.ndarray, link: str, wrench: np.ndarray, point: np.ndarray | None = None) -> np.ndarray:
         """(6,) twist [m, rad] of a body at a point (link frame) under a wrench (6,) [N, N m] there, world axes."""

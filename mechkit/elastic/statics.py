@@ -18,9 +18,11 @@ import numpy as np
 import pinocchio as pin
 
 from mechkit import core
-from mechkit.base.exceptions import SingularConfiguration
+from mechkit.base.exceptions import InvalidParameters, SingularConfiguration
 from mechkit.elastic.idealisation import Idealisation
 
+#: Closure residual (m, or rad for alignment rows) above which a pose counts as not assembled.
+CLOSED_TOL = 1e-8
 #: Relative tolerance of the equilibrium residual of a particular solution (the load must be held).
 HELD_TOL = 1e-9
 #: Relative eigenvalue of Y^T F Y under which a self-stress counts as straining nothing elastic.
@@ -56,7 +58,11 @@ class Pose:
 
 def evaluate(ideal: Idealisation, Q: np.ndarray, actuation: np.ndarray | None = None) -> Pose:
     """The rigid statics of the poses Q (N, nq), which must close the loops; `actuation` (na, nv): the
-    drives' S (default the mechanism's actuators), then the idealisation's spring drives."""
+    drives' S (default the mechanism's actuators), then the idealisation's spring drives.
+
+    Raises:
+        InvalidParameters: a pose that does not close the loops (residual over `CLOSED_TOL`).
+    """
     mech = ideal.mech
     cm, model = mech.closure_model, mech.model
     S = cm.actuation if actuation is None else actuation
@@ -76,6 +82,10 @@ def evaluate(ideal: Idealisation, Q: np.ndarray, actuation: np.ndarray | None = 
     used = full.joints
     G = np.zeros((n, used.size, 4, 4))
     G[..., :3, :3], G[..., :3, 3], G[..., 3, 3] = R[:, used], t[:, used], 1.0
+    residual = np.abs(full.residual(G, Q)).max(initial=0.0)
+    if residual > CLOSED_TOL:
+        raise InvalidParameters("q", f"closure residual {residual:.3g}", f"the pose does not close the loops (over "
+                                f"{CLOSED_TOL:g}): the elastic model is linear about an assembled pose")
     W = full.row_wrenches(G)
     rows = full.jacobian(W, J, Q)
     ne = na + len(ideal.drives)

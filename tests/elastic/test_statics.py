@@ -25,3 +25,14 @@ def test_compatible_solution_is_an_equilibrium_of_least_energy():
     energy_scale = np.einsum("njak,njab,njbk->k", out.reactions, pose.compliance, out.reactions)
     assert pose.null.shape[2] == 3 and np.abs(gradient).max() < 1e-9 * np.sqrt(energy_scale.max())
     assert out.determinate.all() and not out.rigid_determinate.all()
+
+
+def test_a_pose_that_does_not_close_is_refused():
+    import pytest
+
+    from mechkit.base.exceptions import InvalidParameters
+
+    m = mechkit.load("four_bar")
+    e = ElasticModel(m)
+    with pytest.raises(InvalidParameters, match="does not close"):
+        e.stiffness(m.home_q + 0.01, "coupler_link")
