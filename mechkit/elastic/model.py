@@ -21,7 +21,6 @@ from mechkit.elastic.modes import Modes, modes
 from mechkit.elastic.sections import ElasticData, JointElasticity, Section
 from mechkit.mechanism import Mechanism
 
-
 #: Compliance, relative to the largest, under which a body's direction counts as held rigidly.
 RIGID = 1e-12
 

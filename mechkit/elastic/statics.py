@@ -112,7 +112,7 @@ def _null_spaces(A: np.ndarray) -> np.ndarray:
     columns of the complete QR of A^T (a third of an SVD's cost); the rank is judged on R's diagonal
     against `core.RANK_TOL`, and a sample that fails it gets the SVD.
     """
-    n, nv, m = A.shape
+    _, nv, m = A.shape
     if nv < m:
         Q, R = np.linalg.qr(np.swapaxes(A, 1, 2), mode="complete")
         d = np.abs(np.diagonal(R[:, :nv], axis1=1, axis2=2))
