@@ -3,9 +3,9 @@
 from __future__ import annotations
 
 import numpy as np
-from cantilever import SECTION, L, cantilever
 from Pynite import FEModel3D
 
+from elastic.cantilever import SECTION, L, cantilever
 from mechkit.elastic.beam import cantilever_compliance, stiffness
 
 

@@ -8,9 +8,9 @@ import itertools
 import numpy as np
 import pinocchio as pin
 import pytest
-from frame_model import FrameModel
 
 import mechkit
+from elastic.frame_model import FrameModel
 from mechkit.elastic import ElasticModel, JointElasticity
 
 TOL = 1e-6

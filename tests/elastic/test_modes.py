@@ -5,10 +5,10 @@ from __future__ import annotations
 import numpy as np
 import pytest
 import scipy.linalg
-from cantilever import INERTIA, MASS, SECTION, L, cantilever
-from frame_model import FrameModel
 
 import mechkit
+from elastic.cantilever import INERTIA, MASS, SECTION, L, cantilever
+from elastic.frame_model import FrameModel
 from mechkit.elastic import ElasticModel
 
 TOL = 1e-6
