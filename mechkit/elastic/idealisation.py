@@ -194,7 +194,8 @@ class Idealisation:
         reporting point, world axes.
 
         Args:
-            R, t: (N, njoints, 3, 3), (N, njoints, 3) body rotations and origins (world).
+            R: (N, njoints, 3, 3) body rotations (world).
+            t: (N, njoints, 3) body origins (world, m).
             points: (N, n_joints, 3) the reactions' points (joint origins, cut frame_b origins).
         """
         n, nj = len(R), len(self.names)
