@@ -71,7 +71,8 @@ class FrameModel:
             name = model.names[j]
             axis = pdata.oMi[j].rotation @ urdf_axes[name]
             origin = pdata.oMi[j].translation.copy()
-            self.joints.append(self._joint(name, model.parents[j], j, origin, origin, axis, "revolute"))
+            self.joints.append(self._joint(name, model.parents[j], j, origin, origin, axis, "revolute",
+                                           pdata.oMi[j].rotation))
         for c in mech.closures:
             fa, fb = model.getFrameId(c.frame_a), model.getFrameId(c.frame_b)
             axis = pdata.oMf[fa].rotation @ c.axis if c.axis is not None else None
@@ -79,7 +80,7 @@ class FrameModel:
                 axis = np.cross(pdata.oMf[fa].rotation @ c.axis_a, pdata.oMf[fb].rotation @ c.axis_b)
             origin = pdata.oMf[fb].translation.copy()
             self.joints.append(self._joint(c.name, model.frames[fa].parentJoint, model.frames[fb].parentJoint,
-                                           origin, origin, axis, c.kind))
+                                           origin, origin, axis, c.kind, pdata.oMf[fa].rotation))
         bodies_of = {f.name: f.parentJoint for f in model.frames if f.type == pin.FrameType.BODY}
         count = np.zeros(model.njoints, dtype=int)
         for jt in self.joints:
@@ -89,24 +90,44 @@ class FrameModel:
                          if bodies_of[link] and 1 <= count[bodies_of[link]] <= 2}
         self._build(model, pdata)
 
-    def _joint(self, name, a, b, origin, point, axis, kind):
-        centre = origin + (self.data.joints[name].centre * axis if name in self.data.joints else 0.0)
-        if name in self.mech.actuated or kind == "weld":
-            W = np.eye(6)
+    def _joint(self, name, a, b, origin, point, axis, kind, frame):
+        """A joint: its sides, centre, constraint rows W (6, r) and spring (6, 6) on the sides' relative
+        twist at the centre (world). A joint stiffness replaces the constraint rows by springs
+        W_c (W_c^T K W_c) W_c^T, K the diagonal stiffness turned from the joint frame `frame` (3, 3) to
+        the world; a drive stiffness replaces the lock of its axis by a spring."""
+        elastic = self.data.joints.get(name)
+        centre = origin + (elastic.centre * axis if elastic is not None else 0.0)
+        free = np.zeros((6, 0))
+        if kind == "weld":
+            Wc = np.eye(6)
         elif kind == "revolute":
             a_ = axis / np.linalg.norm(axis)
-            W = np.zeros((6, 5))
-            W[:3, :3] = np.eye(3)
-            W[3:, 3:] = _normals(a_)
+            Wc = np.zeros((6, 5))
+            Wc[:3, :3] = np.eye(3)
+            Wc[3:, 3:] = _normals(a_)
+            free = np.concatenate([np.zeros(3), a_])[:, None]
         elif kind == "spherical":
-            W = np.vstack([np.eye(3), np.zeros((3, 3))])
+            Wc = np.vstack([np.eye(3), np.zeros((3, 3))])
         elif kind == "hooke":
-            W = np.zeros((6, 4))
-            W[:3, :3] = np.eye(3)
-            W[3:, 3] = axis / np.linalg.norm(axis)
+            Wc = np.zeros((6, 4))
+            Wc[:3, :3] = np.eye(3)
+            Wc[3:, 3] = axis / np.linalg.norm(axis)
         else:
             raise NotImplementedError(kind)
-        return {"name": name, "a": a, "b": b, "centre": centre, "point": point, "W": W}
+        rows, spring = [], np.zeros((6, 6))
+        if elastic is not None and elastic.stiffness is not None:
+            R6 = scipy.linalg.block_diag(frame, frame)
+            K = R6 @ np.diag(elastic.stiffness) @ R6.T
+            spring += Wc @ (Wc.T @ K @ Wc) @ Wc.T
+        else:
+            rows.append(Wc)
+        if name in self.mech.actuated:
+            if elastic is not None and elastic.drive is not None:
+                spring += elastic.drive * free @ free.T
+            else:
+                rows.append(free)
+        W = np.hstack(rows) if rows else np.zeros((6, 0))
+        return {"name": name, "a": a, "b": b, "centre": centre, "point": point, "W": W, "spring": spring}
 
     def _build(self, model, pdata):
         nodes: dict[str, np.ndarray] = {}
@@ -133,10 +154,12 @@ class FrameModel:
         rows = []
         self.slices = []
         for k, jt in enumerate(self.joints):
-            block = jt["W"].T @ (self.side(jt["b"], k, jt["centre"]) - self.side(jt["a"], k, jt["centre"]))
+            jt["relative"] = self.side(jt["b"], k, jt["centre"]) - self.side(jt["a"], k, jt["centre"])
+            self.K += jt["relative"].T @ jt["spring"] @ jt["relative"]
+            block = jt["W"].T @ jt["relative"]
             self.slices.append(slice(len(rows), len(rows) + len(block)))
             rows.extend(block)
-        self.C = np.array(rows)
+        self.C = np.array(rows).reshape(-1, self.ndof)
 
     def select(self, node: str) -> np.ndarray:
         out = np.zeros((6, self.ndof))
@@ -175,12 +198,12 @@ class FrameModel:
 
     def reactions(self, f: np.ndarray) -> dict[str, np.ndarray]:
         """Joint name -> the wrench (6,) side a exerts on side b, about the reporting point, world."""
-        _, mu = self.solve(f)
+        d, mu = self.solve(f)
         out = {}
         for jt, rows in zip(self.joints, self.slices):
-            w = -jt["W"] @ mu[rows, 0]
-            d = jt["centre"] - jt["point"]
-            out[jt["name"]] = np.concatenate([w[:3], w[3:] + np.cross(d, w[:3])])
+            w = -jt["W"] @ mu[rows, 0] - jt["spring"] @ jt["relative"] @ d[:, 0]
+            offset = jt["centre"] - jt["point"]
+            out[jt["name"]] = np.concatenate([w[:3], w[3:] + np.cross(offset, w[:3])])
         return out
 
     def compliance(self, body: int, point: np.ndarray) -> np.ndarray:

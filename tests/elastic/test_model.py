@@ -164,3 +164,23 @@ def test_every_elastic_module_has_its_test_file():
     here = Path(__file__).parent
     missing = [p.name for p in sorted(package.glob("*.py")) if p.name != "__init__.py" and not (here / f"test_{p.stem}.py").is_file()]
     assert not missing, missing
+
+
+def test_joint_and_drive_stiffness_equal_the_frame_model(four_bar):
+    """Bearings as 6x6 diagonal stiffness on every joint (their constrained directions) and a drive
+    stiffness on the crank: reactions, compliance and frequencies against the frame model's springs."""
+    m = four_bar
+    e = ElasticModel(m)
+    for k, joint in enumerate(m.closure_model.joint_names):
+        stiffness = np.array([2e6, 3e6, 4e6, 5e3, 6e3, 7e3]) * (1 + k)
+        e = e.with_joint(joint, JointElasticity(stiffness=stiffness, drive=800.0 if joint in m.actuated else None))
+    coupler = e.body("coupler_link")
+    force = np.array([3.0, 20.0, -2.0])
+    v = np.zeros(m.model.nv)
+    r = e.inverse_dynamics(m.home_q, v, v, _lateral(m, coupler, force))
+    fm = FrameModel(m, m.home_q, e.data)
+    assert _agreement(r, fm.reactions(fm.loads({coupler: np.concatenate([force, np.zeros(3)])}))) < TOL
+    point = e.point(m.home_q, "rocker_link", [0.1, 0.0, 0.0])
+    C = e.compliance(m.home_q, "rocker_link", [0.1, 0.0, 0.0])
+    assert np.abs(C - fm.compliance(e.body("rocker_link"), point)).max() < TOL * np.abs(C).max()
+    assert np.allclose(e.modes(m.home_q, 4).frequencies, fm.frequencies(4), rtol=TOL, atol=0)
