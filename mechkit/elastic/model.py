@@ -223,7 +223,8 @@ class ElasticModel:
             pose = statics.evaluate(self.idealisation, q[None])
             centres = np.array([pose.R[0, b] @ model.inertias[int(b)].lever + pose.t[0, b] for b in bodies])
             F = self._flexibility(pose, bodies, centres[None])[0]
-            return modes(model, pose.R[0], bodies, centres, F, n)
+            names = tuple(next(link for link, f in self.links.items() if f.parentJoint == b) for b in bodies)
+            return modes(model, pose.R[0], bodies, centres, F, n, names)
 
     def _flexibility(self, pose: statics.Pose, bodies: np.ndarray, points: np.ndarray) -> np.ndarray:
         """(N, 6k, 6k) flexibility between unit wrenches at the bodies' points (N, k, 3)."""

@@ -29,7 +29,7 @@ class Modes:
         frequencies: (n,) natural frequencies (Hz), ascending.
         shapes: (n, bodies, 6) each mode's twist [translation (m), rotation (rad)] of every massive
             body at its centre of mass, world axes, mass-normalised (phi^T M phi = 1).
-        bodies: (bodies,) the Pinocchio ids of the massive bodies; names: their joints' names.
+        bodies: (bodies,) the Pinocchio ids of the massive bodies; names: their URDF links.
         centres: (bodies, 3) their centres of mass (world, m).
     """
 
@@ -50,7 +50,8 @@ def mass_matrix(model: pin.Model, R: np.ndarray, bodies: np.ndarray) -> np.ndarr
     return M
 
 
-def modes(model: pin.Model, R: np.ndarray, bodies: np.ndarray, centres: np.ndarray, F: np.ndarray, n: int) -> Modes:
+def modes(model: pin.Model, R: np.ndarray, bodies: np.ndarray, centres: np.ndarray, F: np.ndarray, n: int,
+          names: tuple[str, ...]) -> Modes:
     """The first `n` natural modes from the flexibility F (6k, 6k) between unit wrenches at the massive
     bodies' centres of mass (`ElasticModel` computes it).
 
@@ -58,6 +59,7 @@ def modes(model: pin.Model, R: np.ndarray, bodies: np.ndarray, centres: np.ndarr
         model: the Pinocchio model (the bodies' masses and inertias). R: (njoints, 3, 3) body rotations.
         bodies: (k,) the massive bodies' ids; centres: (k, 3) their centres of mass (world, m).
         n: modes wanted (fewer come back where directions are held rigidly).
+        names: (k,) the bodies' names (their URDF links).
     """
     M = mass_matrix(model, R, bodies)
     blocks = M.reshape(len(bodies), 6, len(bodies), 6)[np.arange(len(bodies)), :, np.arange(len(bodies))]
@@ -79,5 +81,4 @@ def modes(model: pin.Model, R: np.ndarray, bodies: np.ndarray, centres: np.ndarr
     phi = (F @ root @ U[:, :n]) / mu[:n]
     phi /= np.sqrt(np.einsum("in,ij,jn->n", phi, M, phi))
     frequencies = 1.0 / np.sqrt(mu[:n]) / (2 * np.pi)
-    names = tuple(model.names[int(b)] for b in bodies)
     return Modes(frequencies, phi.T.reshape(n, len(bodies), 6), bodies, names, centres)
