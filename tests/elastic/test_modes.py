@@ -61,3 +61,14 @@ def test_sweep_metrics_of_the_elastic_model():
     assert metrics["mass"].fn(heavier, None)["mass"] > metrics["mass"].fn(m, None)["mass"]
     s = metrics["stiffness"].fn(m, None)
     assert set(s) == {f"stiffness.{d}" for d in ("x", "y", "z", "rx", "ry", "rz")} and min(s.values()) > 0
+
+
+def test_deployable_frequencies_equal_the_frame_model_above_its_near_mechanism():
+    """Deployed, the locked truss is nearly mobile (passive condition 1.8e5): its first two modes live in
+    the near-null space of the frame model's stiffness (condition 2e15), where double precision leaves
+    the frame model 2e-3 and 3e-4 off (docs/elastic.md); every mode above them agrees to 1e-6."""
+    m = mechkit.load("deployable_9rr12uru")
+    modes = ElasticModel(m).modes(m.home_q, 8)
+    expected = FrameModel(m, m.home_q).frequencies(8)
+    assert modes.frequencies[1] < 0.01 < modes.frequencies[2]
+    assert np.allclose(modes.frequencies[2:], expected[2:], rtol=TOL, atol=0)
