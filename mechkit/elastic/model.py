@@ -13,7 +13,7 @@ import numpy as np
 import pinocchio as pin
 
 from mechkit.base import arguments
-from mechkit.base.exceptions import InvalidParameters
+from mechkit.base.exceptions import InvalidArgument, InvalidParameters
 from mechkit.elastic import statics
 from mechkit.elastic.description import parse_elastic
 from mechkit.elastic.idealisation import Idealisation
@@ -127,11 +127,19 @@ class ElasticModel:
 
         Raises:
             InvalidParameters: drives that do not start with the actuators.
+            InvalidArgument: arrays of the wrong shape or not finite.
         """
         mech = self.mech
         drives = tuple(mech.actuated) if drives is None else tuple(drives)
         if drives[:len(mech.actuated)] != tuple(mech.actuated):
             raise InvalidParameters("drives", drives, f"must start with the actuators {list(mech.actuated)}")
+        q, = mech._many(q=q)
+        n, nj = len(q), len(mech.closure_model.joint_names)
+        for name, value, shape in (("efforts", efforts, (n, len(drives))), ("reactions", reactions, (n, nj, 6))):
+            if np.shape(value) != shape:
+                raise InvalidArgument(name, value, f"expected shape {shape}, got {np.shape(value)}")
+        efforts = arguments.array("efforts", efforts, len(drives))
+        reactions = arguments.array("reactions", np.reshape(reactions, (n, 6 * nj)), 6 * nj).reshape(n, nj, 6)
         actuation = mech.closure_model.with_actuation(drives).actuation
         ideal = self.idealisation
         na = len(mech.actuated)

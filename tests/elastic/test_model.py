@@ -184,3 +184,16 @@ def test_joint_and_drive_stiffness_equal_the_frame_model(four_bar):
     C = e.compliance(m.home_q, "rocker_link", [0.1, 0.0, 0.0])
     assert np.abs(C - fm.compliance(e.body("rocker_link"), point)).max() < TOL * np.abs(C).max()
     assert np.allclose(e.modes(m.home_q, 4).frequencies, fm.frequencies(4), rtol=TOL, atol=0)
+
+
+def test_compatible_checks_its_arguments(four_bar):
+    from mechkit.base.exceptions import InvalidArgument, InvalidParameters
+
+    e = ElasticModel(four_bar)
+    q = four_bar.home_q[None]
+    good = {"q": q, "efforts": np.zeros((1, 1)), "reactions": np.zeros((1, 4, 6))}
+    for bad in ({"efforts": np.zeros((1, 2))}, {"reactions": np.zeros((1, 3, 6))}, {"reactions": np.full((1, 4, 6), np.nan)}):
+        with pytest.raises(InvalidArgument):
+            e.compatible(**{**good, **bad})
+    with pytest.raises(InvalidParameters):
+        e.compatible(**good, drives=("rocker",))
