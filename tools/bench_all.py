@@ -2,7 +2,10 @@
 then the simulator against MuJoCo on the small mechanisms (`mechkit.bench.simulation_speed`).
 
 Usage: python tools/bench_all.py [--quick] [NAME ...]
-(Drake rows appear when `pydrake` is importable: `pip install drake`.)
+(Drake rows appear when `pydrake` is importable: `pip install drake`.) With --speed, the page also gets
+the speed rows (`mechkit bench --speed`), the elastic ones among them (`mechkit.bench.elastic_speed`);
+run it as OPENBLAS_NUM_THREADS=1 python tools/bench_all.py --speed for figures a busy machine does
+not distort.
 """
 
 from __future__ import annotations

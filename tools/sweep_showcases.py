@@ -1,9 +1,9 @@
 """The design studies of docs/sweeps.md: the gimbal's linear-rule error over its geometry (r, h), the
-2T1R's peak motor torque over (l1, l2) with and without its redundant limb, and the ten-bar sized as
-the patent's step 4 asks. Writes the results folders under --work, the figures under docs/figures/,
+2T1R's peak motor torque over (l1, l2) with and without its redundant limb, the ten-bar sized as
+the patent's step 4 asks, and the deployable truss's rod tubes for first frequency per kilogram. Writes the results folders under --work, the figures under docs/figures/,
 and prints the numbers the page quotes.
 
-    PYTHONPATH=. python tools/sweep_showcases.py [--work /tmp/showcases] [--workers 2] [--only gimbal,2t1r,ten_bar]
+    PYTHONPATH=. python tools/sweep_showcases.py [--work /tmp/showcases] [--workers 2] [--only gimbal,2t1r,ten_bar,deployable]
 """
 
 from __future__ import annotations
@@ -106,16 +106,34 @@ def ten_bar(work: Path, workers: int) -> None:
     print(f"ten_bar animation: {work / 'ten_bar_refined.html'}")
 
 
+def deployable_tubes(work: Path, workers: int) -> None:
+    """The deployable truss's rod tubes (outer x inner diameter) for first frequency per kilogram, the rods'
+    masses following their tubes (`rod_masses=tubes`)."""
+    space = DesignSpace((parse_axis("tube_outer=0.014:0.030:5"), parse_axis("tube_inner=0.006:0.012:4")))
+    start = time.perf_counter()
+    s = sweep("deployable_9rr12uru", space, _fresh(work / "deployable_tubes"),
+              metrics=("mass", "first_frequency", "frequency_per_mass"), base={"rod_masses": "tubes"}, workers=workers)
+    frame = read(s.out)
+    ok = frame[frame["status"] == "ok"]
+    best = ok.loc[ok["frequency_per_mass"].idxmax()]
+    print(f"deployable tubes: {s.designs} designs in {time.perf_counter() - start:.1f} s, {s.statuses}; first frequency "
+          f"{ok['first_frequency'].min():.2e}..{ok['first_frequency'].max():.2e} Hz, mass {ok['mass'].min():.2f}.."
+          f"{ok['mass'].max():.2f} kg; best per kg: {best['tube_outer'] * 1e3:.0f} / {best['tube_inner'] * 1e3:.0f} mm, "
+          f"{best['first_frequency']:.2e} Hz, {best['mass']:.2f} kg, {best['frequency_per_mass']:.2e} Hz/kg")
+    heat_map(frame, "tube_outer", "tube_inner", "frequency_per_mass", FIGURES / "sweep_deployable_tubes.png",
+             "deployable truss: first frequency per kilogram", "Hz/kg")
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--work", type=Path, default=Path("/tmp/showcases"))
     parser.add_argument("--workers", type=int, default=2)
-    parser.add_argument("--only", default="gimbal,2t1r,ten_bar")
+    parser.add_argument("--only", default="gimbal,2t1r,ten_bar,deployable")
     args = parser.parse_args()
     args.work.mkdir(parents=True, exist_ok=True)
     FIGURES.mkdir(parents=True, exist_ok=True)
     chosen = args.only.split(",")
-    for key, fn in (("gimbal", gimbal), ("2t1r", parallel), ("ten_bar", ten_bar)):
+    for key, fn in (("gimbal", gimbal), ("2t1r", parallel), ("ten_bar", ten_bar), ("deployable", deployable_tubes)):
         if key in chosen:
             fn(args.work, args.workers)
 

@@ -18,18 +18,21 @@ from mechkit.cli import (
     bench,
     export,
     listing,
+    modes,
     motion,
     params,
     report,
     simulate,
     snapshot,
+    stiffness,
     sweep,
     urdf,
     validate,
     view,
 )
 
-COMMANDS = (listing, urdf, report, snapshot, bench, export, params, sweep, motion, simulate, validate, view)
+COMMANDS = (listing, urdf, report, snapshot, bench, export, params, sweep, motion, simulate, validate, view,
+            stiffness, modes)
 
 
 def build_parser() -> argparse.ArgumentParser:

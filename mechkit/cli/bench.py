@@ -56,8 +56,9 @@ def run(args: argparse.Namespace) -> None:
 
 def speed_sections(names: list[str], quick: bool) -> dict[str, list[str]]:
     """The rows the issues ask of the benchmark page: the dynamics against one raw Pinocchio call, the
-    ladder of four-bar loops, the 2T1R motion law, loading from files, and the second opinion."""
-    from mechkit.bench import dynamics_speed, ladder, loading, motion_speed, second_opinion
+    ladder of four-bar loops, the 2T1R motion law, loading from files, the second opinion, and the elastic
+    quantities."""
+    from mechkit.bench import dynamics_speed, elastic_speed, ladder, loading, motion_speed, second_opinion
     from mechkit.catalog import registry
     from mechkit.loading import load
 
@@ -75,7 +76,8 @@ def speed_sections(names: list[str], quick: bool) -> dict[str, list[str]]:
                            *motion_speed.lines(motion_speed.motion_law_speed(repeats=2 if quick else 5))],
             "Loading from a file": [intro(loading), "", *loading.lines(loading.load_times(repeats=3 if quick else 15))],
             "Second opinion": [intro(second_opinion), "", *second_opinion.lines(second_opinion.second_opinion_rows(
-                chosen, samples=3 if quick else 6, budget_s=budget))]}
+                chosen, samples=3 if quick else 6, budget_s=budget))],
+            "Elastic": [intro(elastic_speed), "", *elastic_speed.lines(elastic_speed.rows(budget, 3 if quick else 5))]}
 
 
 def add_parser(sub: argparse._SubParsersAction) -> None:

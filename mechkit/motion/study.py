@@ -16,7 +16,7 @@ from collections.abc import Callable, Sequence
 import numpy as np
 
 from mechkit import core
-from mechkit.base.exceptions import MechkitError
+from mechkit.base.exceptions import InvalidParameters, MechkitError
 from mechkit.mechanism import Mechanism
 from mechkit.motion.inputs import InputLaw
 from mechkit.motion.path import PathKinematics
@@ -51,6 +51,8 @@ def inverse_batch(mech: Mechanism, cm: core.ClosureModel, cd: core.ClosureData, 
     return out.efforts, out.reactions, out.determinate
 
 
+#: How the reactions statics leaves open are fixed: by convention, or by the links' elasticity.
+REACTIONS = ("rigid", "compliant")
 #: Samples assembled between two batched singularity judgements (a singular sample re-assembles at most
 #: this many samples after it, predicted from it).
 JUDGED_BLOCK = 32
@@ -128,7 +130,8 @@ def kinematics_along(path: PathKinematics, law: InputLaw, tol: float = 1e-12, sk
 
 
 def study(mech: Mechanism, law: InputLaw, *, determinacy: bool = False, loads: Loads | None = None,
-          progress: Progress | None = None, tol: float = 1e-12, skip_failures: bool = False) -> MotionResult:
+          progress: Progress | None = None, tol: float = 1e-12, skip_failures: bool = False,
+          reactions: str = "rigid") -> MotionResult:
     """Efforts and every joint's reaction along an input law.
 
     Args:
@@ -140,11 +143,16 @@ def study(mech: Mechanism, law: InputLaw, *, determinacy: bool = False, loads: L
         tol: closure residual of each assembly (m for position rows).
         skip_failures: a sample that does not assemble or is singular (a motion law starting at a
             singularity) becomes a row of NaN, listed in `MotionResult.failures`, instead of an error.
+        reactions: "rigid" (the components statics leaves open by the minimum-norm convention) or
+            "compliant" (every component fixed by the links' elasticity, `mechkit.elastic`; the flags
+            then say which compatibility fixes).
 
     Raises:
         ClosureNotConverged: a sample does not assemble near its warm start (the message says which).
         SingularConfiguration: the inputs do not determine the motion, or the drives cannot hold it.
     """
+    if reactions not in REACTIONS:
+        raise InvalidParameters("reactions", reactions, f"one of {REACTIONS}")
     model, names, n = mech.model, list(law.names), len(law.t)
     driven = driven_model(mech, names)
     driven_data = driven.create_data()
@@ -153,7 +161,7 @@ def study(mech: Mechanism, law: InputLaw, *, determinacy: bool = False, loads: L
     good = np.flatnonzero(np.isfinite(q).all(axis=1))
     fexts = None if loads is None else [loads(mech, q[i], float(law.t[i])) for i in good]
     efforts = np.full((n, len(driven.actuated)), np.nan)
-    reactions = np.full((n, nj, 6), np.nan)
+    wrenches = np.full((n, nj, 6), np.nan)
     flags = np.zeros((n, nj, 6), dtype=bool) if determinacy else None
     try:  # all samples at once; where that fails and failures may be skipped, sample by sample
         batches = [good]
@@ -171,12 +179,20 @@ def study(mech: Mechanism, law: InputLaw, *, determinacy: bool = False, loads: L
                 failures.append((float(law.t[i]), str(err)))
                 q[i] = v[i] = a[i] = axes[i] = np.nan
     for rows, (u, w, f) in zip(batches, out):
-        efforts[rows], reactions[rows] = u, w
+        efforts[rows], wrenches[rows] = u, w
         if flags is not None:
             flags[rows] = f
+    done = np.concatenate(batches) if batches else np.zeros(0, dtype=int)
+    if reactions == "compliant" and done.size:
+        from mechkit.elastic.model import ElasticModel
+
+        compliant = ElasticModel(mech).compatible(q[done], efforts[done], wrenches[done], driven.actuated)
+        efforts[done], wrenches[done] = compliant.efforts, compliant.reactions
+        if flags is not None:
+            flags[done] = compliant.determinate
     if progress is not None:
         progress(2 * n, 2 * n)
     return MotionResult(mech.spec.name, law.source, law.t.copy(), coordinate_names(model), q, v, a,
                         driven.actuated, tuple(mech.actuated), efforts, driven.joint_names,
-                        np.array(driven.supports, dtype=bool), reactions, axes, flags,
+                        np.array(driven.supports, dtype=bool), wrenches, axes, flags,
                         tuple(sorted(failures)))

@@ -28,8 +28,9 @@ from mechkit.sources.description import Description, read_text
 
 LOOP_NAMESPACE = "https://mechkit.dev/loop"
 #: Elements of the loop namespace mechkit knows (`home`: an input value of the default assembly;
-#: `spring`: a joint spring). Any other one is a `MalformedDescription`.
-KNOWN_ELEMENTS = ("loop", "home", "spring")
+#: `spring`: a joint spring; `beam`, `elastic_joint`: elastic data, read by `mechkit.elastic` and
+#: ignored by the rigid pipeline). Any other one is a `MalformedDescription`.
+KNOWN_ELEMENTS = ("loop", "home", "spring", "beam", "elastic_joint")
 #: Local names that declare a loop in some convention; outside the loop namespace they are an error.
 LOOP_LIKE = ("loop", "loops", "closure", "closed_loop", "loop_closure", "constraint", "cut")
 

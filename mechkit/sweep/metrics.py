@@ -200,6 +200,39 @@ def _branch(mech: Mechanism, _: Samples | None) -> dict[str, float]:
     return {"branch": float(np.sign(np.linalg.det(block)))}
 
 
+def _elastic(mech: Mechanism):
+    """The mechanism's elastic model (sections from its description), and its heaviest moving body's link."""
+    from mechkit.elastic import ElasticModel
+
+    elastic = ElasticModel(mech)
+    heaviest = max(range(1, mech.model.njoints), key=lambda j: mech.model.inertias[j].mass)
+    link = next(name for name, frame in elastic.links.items() if frame.parentJoint == heaviest)
+    return elastic, link
+
+
+def _first_frequency(mech: Mechanism) -> float:
+    """The first natural frequency (Hz) at home, actuators locked; nan without elastic data."""
+    elastic, _ = _elastic(mech)
+    if not elastic.idealisation.elastic:
+        return float("nan")
+    return float(elastic.modes(mech.home_q, 1).frequencies[0])
+
+
+def _stiffness(mech: Mechanism, _: Samples | None) -> dict[str, float]:
+    """1 / C_ii of the heaviest moving body at its centre of mass, home pose (every other direction free)."""
+    elastic, link = _elastic(mech)
+    body = elastic.body(link)
+    s = elastic.stiffness(mech.home_q, link, mech.model.inertias[body].lever)
+    return dict(zip(STIFFNESS_COLUMNS, s.free.tolist()))
+
+
+def _mass(mech: Mechanism) -> float:
+    """Total mass of the bodies (kg)."""
+    return float(sum(inertia.mass for inertia in mech.model.inertias))
+
+
+STIFFNESS_COLUMNS = tuple(f"stiffness.{d}" for d in ("x", "y", "z", "rx", "ry", "rz"))
+
 GENERIC = (
     Metric("assembles", "-", "1 when the design assembles at its home inputs (failed designs: status)",
            lambda m: ["assembles"], lambda m, s: {"assembles": 1.0}, motion=False),
@@ -216,4 +249,17 @@ GENERIC = (
            lambda m, s: {"singularity_distance": float(np.min(s.inv_cond))}),
     Metric("closure_residual", "m", "largest closure residual along the motion",
            lambda m: ["closure_residual"], lambda m, s: {"closure_residual": float(np.max(s.residual))}),
+)
+
+#: Metrics of the elastic model (`mechkit.elastic`), asked for by name (in no default set).
+ELASTIC = (
+    Metric("mass", "kg", "total mass of the bodies", lambda m: ["mass"], lambda m, s: {"mass": _mass(m)}, motion=False),
+    Metric("first_frequency", "Hz", "first natural frequency at home, actuators locked (mechkit.elastic; nan "
+           "without sections)", lambda m: ["first_frequency"], lambda m, s: {"first_frequency": _first_frequency(m)},
+           motion=False),
+    Metric("frequency_per_mass", "Hz/kg", "first natural frequency per kilogram of the mechanism",
+           lambda m: ["frequency_per_mass"], lambda m, s: {"frequency_per_mass": _first_frequency(m) / _mass(m)},
+           motion=False),
+    Metric("stiffness", "N/m, N m/rad", "1/C_ii of the heaviest moving body at its centre of mass, home pose, "
+           "actuators locked (every other direction free)", lambda m: list(STIFFNESS_COLUMNS), _stiffness, motion=False),
 )

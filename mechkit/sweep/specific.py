@@ -11,7 +11,7 @@ from __future__ import annotations
 from mechkit.base.exceptions import InvalidParameters
 from mechkit.catalog.contract import DesignMetric
 from mechkit.catalog.registry import get_spec
-from mechkit.sweep.metrics import GENERIC, Metric
+from mechkit.sweep.metrics import ELASTIC, GENERIC, Metric
 
 #: The generic metrics a mechanism with metrics of its own measures by default, before those.
 DEFAULT_GENERIC = ("assembles", "branch")
@@ -29,8 +29,8 @@ def own(mechanism: str) -> tuple[Metric, ...]:
 
 
 def available(mechanism: str) -> dict[str, Metric]:
-    """Every metric of a registered mechanism by name: the generic ones and its own."""
-    return {m.name: m for m in GENERIC + own(mechanism)}
+    """Every metric of a registered mechanism by name: the generic ones, the elastic ones and its own."""
+    return {m.name: m for m in GENERIC + ELASTIC + own(mechanism)}
 
 
 def resolve(mechanism: str, names: list[str] | tuple[str, ...] | None) -> tuple[Metric, ...]:

@@ -33,6 +33,10 @@ class TetraParams(MechanismParams):
     web_mass: float = param(0.12, "kg", "web rod (CFRP tube, 0.2 kg/m)", ours=True)
     link_mass: float = param(0.05, "kg", "one link of a folding rod (CFRP tube, 0.2 kg/m)", ours=True)
     cross_mass: float = param(0.01, "kg", "Hooke-joint cross", ours=True)
+    tube_outer: float = param(0.020, "m", "outer diameter of the rods' CFRP tube (elastic section)", ours=True)
+    tube_inner: float = param(0.016, "m", "inner diameter of the rods' CFRP tube (elastic section)", ours=True)
+    rod_masses: str = param("given", "-", "rods' masses: given (web_mass, link_mass) or from the tube (1600 kg/m^3 x "
+                            "area x length), for design studies of the section", ours=True)
 
     def validate(self) -> None:
         """The folding rods can reach at the reference fold angle, in (0, 90) deg.
@@ -41,6 +45,10 @@ class TetraParams(MechanismParams):
             InvalidParameters: one of them fails.
         """
         half_angle_beta(self.l1, self.l2)
+        if not 0.0 <= self.tube_inner < self.tube_outer:
+            raise InvalidParameters("tube_inner", self.tube_inner, f"must lie in [0, tube_outer = {self.tube_outer}) m")
+        if self.rod_masses not in ("given", "tubes"):
+            raise InvalidParameters("rod_masses", self.rod_masses, "one of given, tubes")
         if not 0.0 < self.alpha_ref < np.pi / 2:
             raise InvalidParameters("alpha_ref", self.alpha_ref, "the fold angle must lie in (0, 90) deg")
         geometry = self.geometry()

@@ -1,0 +1,57 @@
+"""`mechkit modes`: natural frequencies and mode shapes, actuators locked, optionally one mode animated."""
+
+from __future__ import annotations
+
+import argparse
+import json
+
+from mechkit.base.exceptions import InvalidParameters
+from mechkit.cli.common import add_mechanism_arguments, examples, load_mechanism
+from mechkit.cli.stiffness import pose
+
+
+def report(args: argparse.Namespace) -> dict:
+    """The modes as the JSON contract: frequencies (Hz), and each mode's largest body motion."""
+    from mechkit.elastic import ElasticModel
+
+    if args.n < 1:
+        raise InvalidParameters("-n", args.n, "must be at least 1")
+    mech = load_mechanism(args)
+    q = pose(mech, args.at)
+    modes = ElasticModel(mech).modes(q, args.n)
+    if args.animate:
+        from mechkit.elastic.animation import write_mode_page
+
+        write_mode_page(mech, q, modes, args.mode - 1, args.animate)
+    out = []
+    for k, f in enumerate(modes.frequencies):
+        shape = modes.shapes[k]
+        body = int(abs(shape[:, :3]).sum(axis=1).argmax())
+        out.append({"mode": k + 1, "frequency_hz": float(f), "largest_motion_body": modes.names[body]})
+    return {"name": mech.spec.name, "modes": out, "animation": args.animate}
+
+
+def run(args: argparse.Namespace) -> None:
+    """Print the modes."""
+    r = report(args)
+    if args.json:
+        print(json.dumps(r, indent=2))
+        return
+    print(f"{r['name']}: natural frequencies, actuators locked")
+    for m in r["modes"]:
+        print(f"  mode {m['mode']}: {m['frequency_hz']:.4g} Hz (largest motion: {m['largest_motion_body']})")
+    if r["animation"]:
+        print(f"wrote {r['animation']}")
+
+
+def add_parser(sub: argparse._SubParsersAction) -> None:
+    """Register `modes`."""
+    p = sub.add_parser("modes", help="natural frequencies and mode shapes (elastic links, locked actuators)", **examples(
+        "mechkit modes deployable_9rr12uru -n 6", "mechkit modes parallel_2t1r --animate mode1.html --json"))
+    add_mechanism_arguments(p)
+    p.add_argument("-n", type=int, default=6, help="number of modes (default 6)")
+    p.add_argument("--at", metavar="J=V,...", help="the pose's input joints (rad or m; default the home pose)")
+    p.add_argument("--animate", metavar="F.html", help="write an animation of one mode (offline meshcat page)")
+    p.add_argument("--mode", type=int, default=1, help="the mode to animate (default 1)")
+    p.add_argument("--json", action="store_true", help="machine-readable output")
+    p.set_defaults(func=run)

@@ -1,0 +1,82 @@
+"""`mechkit stiffness`: the 6x6 stiffness and compliance of a body at a point and pose, actuators locked."""
+
+from __future__ import annotations
+
+import argparse
+import json
+
+import numpy as np
+
+from mechkit.base.exceptions import InvalidParameters
+from mechkit.cli.common import add_mechanism_arguments, examples, load_mechanism
+from mechkit.mechanism import Mechanism
+
+DIRECTIONS = ("x", "y", "z", "rx", "ry", "rz")
+
+
+def numbers(text: str | None, what: str, size: int | None = None) -> list[float] | None:
+    """Comma-separated numbers (None when not given)."""
+    if text is None:
+        return None
+    try:
+        values = [float(x) for x in text.split(",")]
+    except ValueError:
+        raise InvalidParameters(what, text, "expected numbers separated by commas") from None
+    if size is not None and len(values) != size:
+        raise InvalidParameters(what, text, f"expected {size} numbers")
+    return values
+
+
+def pose(mech: Mechanism, text: str | None) -> np.ndarray:
+    """The assembled pose of `--at J=V,...` (rad or m), the home pose without it."""
+    if not text:
+        return mech.home_q
+    given = {}
+    for pair in text.split(","):
+        if "=" not in pair:
+            raise InvalidParameters("--at", text, "expected joint=value pairs separated by commas")
+        joint, value = pair.split("=", 1)
+        given[joint.strip()] = numbers(value, "--at", 1)[0]
+    return mech.assemble(given)
+
+
+def report(args: argparse.Namespace) -> dict:
+    """The stiffness as the JSON contract: body, point (world, m), compliance and stiffness (6x6, SI),
+    held (K_ii) and free (1/C_ii) per direction."""
+    from mechkit.elastic import ElasticModel
+
+    mech = load_mechanism(args)
+    e = ElasticModel(mech)
+    q = pose(mech, args.at)
+    s = e.stiffness(q, args.body, numbers(args.point, "--point", 3))
+    return {"name": mech.spec.name, "body": s.body, "point": s.point.tolist(), "compliance": s.compliance.tolist(),
+            "stiffness": np.where(np.isfinite(s.stiffness), s.stiffness, None).tolist(),
+            "held": dict(zip(DIRECTIONS, s.held.tolist())), "free": dict(zip(DIRECTIONS, s.free.tolist()))}
+
+
+def format_text(r: dict) -> str:
+    """K_ii and 1/C_ii per direction for a reader."""
+    lines = [f"{r['name']}: body {r['body']} at ({', '.join(f'{x:.4f}' for x in r['point'])}) m, world axes",
+             f"{'direction':>9} {'K_ii (others held)':>20} {'1/C_ii (others free)':>22}"]
+    for d in DIRECTIONS:
+        unit = "N/m" if len(d) == 1 else "N m/rad"
+        lines.append(f"{d:>9} {r['held'][d]:>16.4g} {unit:<7} {r['free'][d]:>14.4g} {unit}")
+    return "\n".join(lines)
+
+
+def run(args: argparse.Namespace) -> None:
+    """Print the stiffness."""
+    r = report(args)
+    print(json.dumps(r, indent=2) if args.json else format_text(r))
+
+
+def add_parser(sub: argparse._SubParsersAction) -> None:
+    """Register `stiffness`."""
+    p = sub.add_parser("stiffness", help="6x6 stiffness and compliance of a body (elastic links, locked actuators)", **examples(
+        "mechkit stiffness parallel_2t1r --body platform", "mechkit stiffness four_bar --body coupler_link --point 0.14,0,0 --at crank=0.8 --json"))
+    add_mechanism_arguments(p)
+    p.add_argument("--body", required=True, help="the body's URDF link")
+    p.add_argument("--point", metavar="X,Y,Z", help="the point in the link's frame (m; default its origin)")
+    p.add_argument("--at", metavar="J=V,...", help="the pose's input joints (rad or m; default the home pose)")
+    p.add_argument("--json", action="store_true", help="machine-readable output")
+    p.set_defaults(func=run)

@@ -1,0 +1,245 @@
+"""`ElasticModel`: a mechanism with its elastic idealisation, and one method per quantity.
+
+Every quantity is linear about an assembled pose (small deformations, no geometric stiffness from
+preload) and comes from the force method over the rigid mechanism (`mechkit.elastic.statics`).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+import pinocchio as pin
+
+from mechkit.base import arguments
+from mechkit.base.exceptions import InvalidArgument, InvalidParameters
+from mechkit.elastic import statics
+from mechkit.elastic.description import parse_elastic
+from mechkit.elastic.idealisation import Idealisation
+from mechkit.elastic.modes import Modes, modes
+from mechkit.elastic.sections import ElasticData, JointElasticity, Section
+from mechkit.mechanism import Mechanism
+
+#: Compliance, relative to the largest, under which a body's direction counts as held rigidly.
+RIGID = 1e-12
+
+
+@dataclass(frozen=True)
+class CompliantReactions:
+    """Inverse dynamics of N samples with the reactions compatibility fixes.
+
+    Attributes:
+        joint_names: the reactions' joints (tree joints, then cuts); actuated: the drives (the actuators,
+            then any other driven joint, locked).
+        efforts: (N, n_drives) drive efforts (N m or N). reactions: (N, n_joints, 6) [f, m] about each
+            joint's origin (a cut: frame_b's origin), world.
+        determinate: (N, n_joints, 6) components fixed by equilibrium and compatibility (all, where every
+            self-stress strains something elastic). rigid_determinate: (N, n_joints, 6) those rigid
+            statics fixes alone: there the values equal the rigid inverse dynamics'.
+        spring_efforts: (N, n_springs) increments of the joint springs treated as drives (N m or N).
+    """
+
+    joint_names: tuple[str, ...]
+    actuated: tuple[str, ...]
+    efforts: np.ndarray
+    reactions: np.ndarray
+    determinate: np.ndarray
+    rigid_determinate: np.ndarray
+    spring_efforts: np.ndarray
+
+    def reaction(self, joint: str) -> np.ndarray:
+        """(N, 6) reactions of one joint.
+
+        Raises:
+            InvalidParameters: no such joint.
+        """
+        if joint not in self.joint_names:
+            raise InvalidParameters("joint", joint, f"no such joint; joints: {list(self.joint_names)}")
+        return self.reactions[:, self.joint_names.index(joint)]
+
+
+@dataclass(frozen=True)
+class BodyStiffness:
+    """The stiffness of one body at one point and pose (world axes at the point; [translation, rotation]).
+
+    Attributes:
+        body: the body's link. point: (3,) the point (world, m).
+        compliance: (6, 6) C: twist (m, rad) per wrench (N, N m).
+        stiffness: (6, 6) K = C^-1 (inf on the diagonal where C is singular: a direction held rigidly).
+        held: (6,) K_ii (N/m, N m/rad) with every other direction held. free: (6,) 1 / C_ii with every
+            other direction free.
+    """
+
+    body: str
+    point: np.ndarray
+    compliance: np.ndarray
+    stiffness: np.ndarray
+    held: np.ndarray
+    free: np.ndarray
+
+
+class ElasticModel:
+    """A mechanism and its elastic idealisation (`mechkit.elastic.idealisation`).
+
+    Args:
+        mech: the mechanism (`mechkit.Mechanism`).
+        data: its elastic data; default: the `<mechkit:beam>` and `<mechkit:elastic_joint>` elements of
+            its URDF (none: every body rigid, and no quantity here can be computed).
+
+    Raises:
+        InvalidParameters, MalformedDescription: elastic data naming what the mechanism lacks.
+    """
+
+    def __init__(self, mech: Mechanism, data: ElasticData | None = None):
+        if data is None:
+            data = parse_elastic(mech.urdf) if mech.urdf is not None else ElasticData()
+        self.mech, self.data = mech, data
+        self.idealisation = Idealisation(mech, data)
+        self.links = {f.name: f for f in mech.model.frames if f.type == pin.FrameType.BODY}
+
+    def with_section(self, link: str, section: Section | None) -> ElasticModel:
+        """The same mechanism with one link's section set (None: rigid)."""
+        return ElasticModel(self.mech, self.data.with_section(link, section))
+
+    def with_joint(self, joint: str, elasticity: JointElasticity | None) -> ElasticModel:
+        """The same mechanism with one joint's elasticity set (None: ideal, and locked when actuated)."""
+        return ElasticModel(self.mech, self.data.with_joint(joint, elasticity))
+
+    # ------------------------------------------------------------------ reactions
+    def inverse_dynamics_batch(self, q: np.ndarray, v: np.ndarray, a: np.ndarray, fext: Any = None, *,
+                               allow_singular: bool = False) -> CompliantReactions:
+        """Efforts and reactions of N motions (q (N, nq), v and a (N, nv), fext as
+        `Mechanism.inverse_dynamics_batch`) with every reaction fixed by equilibrium and compatibility:
+        the rigid inverse dynamics moved along its self-stresses to the least complementary energy
+        (loads act on each body's centre of mass node as in the rigid model)."""
+        rigid = self.mech.inverse_dynamics_batch(q, v, a, fext, determinacy=False, allow_singular=allow_singular)
+        return self.compatible(np.asarray(q, dtype=float).reshape(len(rigid), -1), rigid.efforts, rigid.reactions)
+
+    def compatible(self, q: np.ndarray, efforts: np.ndarray, reactions: np.ndarray,
+                   drives: tuple[str, ...] | None = None) -> CompliantReactions:
+        """The compatible equilibrium nearest any rigid one: efforts (N, n_drives) and reactions (N, n_joints,
+        6) of the poses q (N, nq) (e.g. a motion study's), moved along the self-stresses.
+
+        Args:
+            drives: the joints the efforts drive, the actuators first (default: the actuators); a drive
+                that is not an actuator is locked.
+
+        Raises:
+            InvalidParameters: drives that do not start with the actuators.
+            InvalidArgument: arrays of the wrong shape or not finite.
+        """
+        mech = self.mech
+        drives = tuple(mech.actuated) if drives is None else tuple(drives)
+        if drives[:len(mech.actuated)] != tuple(mech.actuated):
+            raise InvalidParameters("drives", drives, f"must start with the actuators {list(mech.actuated)}")
+        q, = mech._many(q=q)
+        n, nj = len(q), len(mech.closure_model.joint_names)
+        for name, value, shape in (("efforts", efforts, (n, len(drives))), ("reactions", reactions, (n, nj, 6))):
+            if np.shape(value) != shape:
+                raise InvalidArgument(name, value, f"expected shape {shape}, got {np.shape(value)}")
+        efforts = arguments.array("efforts", efforts, len(drives))
+        reactions = arguments.array("reactions", np.reshape(reactions, (n, 6 * nj)), 6 * nj).reshape(n, nj, 6)
+        actuation = mech.closure_model.with_actuation(drives).actuation
+        ideal = self.idealisation
+        na = len(mech.actuated)
+        compliance = np.concatenate([ideal.drive_compliance[:na], np.zeros(len(drives) - na), ideal.drive_compliance[na:]])
+        n = len(q)
+        with np.errstate(under="ignore"):  # products of tiny compliances and lever arms flush to zero harmlessly
+            pose = statics.evaluate(ideal, q, actuation)
+            full = np.concatenate([efforts, np.zeros((n, len(ideal.drives)))], axis=1)
+            out = statics.compatible(pose, compliance, reactions[..., None], full[..., None])
+        return CompliantReactions(mech.closure_model.joint_names, drives, out.efforts[:, :len(drives), 0],
+                                  out.reactions[..., 0], out.determinate, out.rigid_determinate,
+                                  out.efforts[:, len(drives):, 0])
+
+    def inverse_dynamics(self, q: np.ndarray, v: np.ndarray, a: np.ndarray, fext: Any = None, *,
+                         allow_singular: bool = False) -> CompliantReactions:
+        """`inverse_dynamics_batch` of one sample (q (nq,), v and a (nv,)), as a batch of one."""
+        q, v, a = self.mech._one(q=q, v=v, a=a)
+        return self.inverse_dynamics_batch(q[None], v[None], a[None], None if fext is None else [fext],
+                                           allow_singular=allow_singular)
+
+    # ------------------------------------------------------------------ stiffness
+    def body(self, link: str) -> int:
+        """Pinocchio id of the body carrying a URDF link.
+
+        Raises:
+            InvalidParameters: no such link.
+        """
+        if link not in self.links:
+            raise InvalidParameters("body", link, f"no such link; links: {sorted(self.links)}")
+        return int(self.links[link].parentJoint)
+
+    def point(self, q: np.ndarray, link: str, point: np.ndarray | None = None) -> np.ndarray:
+        """A point (3,) given in a link's frame (m; default its origin), in the world at q."""
+        data = self.mech.model.createData()
+        pin.framesForwardKinematics(self.mech.model, data, q)
+        local = np.zeros(3) if point is None else arguments.array("point", point, 3, batch=False)
+        return data.oMf[self.mech.model.getFrameId(link)].act(local)
+
+    def compliance(self, q: np.ndarray, link: str, point: np.ndarray | None = None) -> np.ndarray:
+        """(6, 6) compliance C of a body at a point (link frame, m; default the link's origin) at pose q:
+        its twist [translation (m), rotation (rad)] per wrench [N, N m] there, world axes."""
+        return self._compliance(q, link, point)[0]
+
+    def _compliance(self, q: np.ndarray, link: str, point: np.ndarray | None) -> tuple[np.ndarray, np.ndarray]:
+        """C (6, 6) and the point (3,) in the world, from one kinematic pass."""
+        q, = self.mech._one(q=q)
+        body = self.body(link)
+        local = np.zeros(3) if point is None else arguments.array("point", point, 3, batch=False)
+        placement = self.links[link].placement
+        with np.errstate(under="ignore"):
+            pose = statics.evaluate(self.idealisation, q[None])
+            x = pose.R[0, body] @ (placement.rotation @ local + placement.translation) + pose.t[0, body]
+            return self._flexibility(pose, np.array([body]), x[None, None])[0], x
+
+    def stiffness(self, q: np.ndarray, link: str, point: np.ndarray | None = None) -> BodyStiffness:
+        """`BodyStiffness` of a body at a point (link frame; default its origin) at pose q. A direction
+        held rigidly (C_ii = 0 to 1e-12 of the largest) has K_ii = 1/C_ii = inf, and K is the inverse of C
+        over the other directions (all inf where that block is singular too)."""
+        C, x = self._compliance(q, link, point)
+        diagonal = np.diag(C)
+        soft = diagonal > RIGID * max(float(diagonal.max()), 1e-300)
+        K = np.full((6, 6), np.inf)
+        block = C[np.ix_(soft, soft)]
+        if soft.any():
+            s = np.linalg.svd(block, compute_uv=False)
+            if s[-1] > RIGID * s[0]:
+                inverse = np.linalg.inv(block)
+                K[np.ix_(soft, soft)] = (inverse + inverse.T) / 2
+        free = np.where(soft, 1.0 / np.where(soft, diagonal, 1.0), np.inf)
+        return BodyStiffness(link, x, C, K, np.diag(K).copy(), free)
+
+    def deflection(self, q: np.ndarray, link: str, wrench: np.ndarray, point: np.ndarray | None = None) -> np.ndarray:
+        """(6,) twist [m, rad] of a body at a point (link frame) under a wrench (6,) [N, N m] there, world axes."""
+        return self.compliance(q, link, point) @ arguments.array("wrench", wrench, 6, batch=False)
+
+    def modes(self, q: np.ndarray, n: int = 6) -> Modes:
+        """The first n natural modes at pose q (nq,), actuators locked (`mechkit.elastic.modes`).
+
+        Raises:
+            InvalidParameters: n < 1 or more than six per massive body.
+            SingularConfiguration: the locked mechanism still moves (a zero frequency).
+        """
+        q, = self.mech._one(q=q)
+        model = self.mech.model
+        bodies = np.array([j for j in range(1, model.njoints) if model.inertias[j].mass > 0], dtype=int)
+        if not isinstance(n, (int, np.integer)) or n < 1 or n > 6 * len(bodies):
+            raise InvalidParameters("n", n, f"between 1 and {6 * len(bodies)} (six per massive body)")
+        with np.errstate(under="ignore"):
+            pose = statics.evaluate(self.idealisation, q[None])
+            centres = np.array([pose.R[0, b] @ model.inertias[int(b)].lever + pose.t[0, b] for b in bodies])
+            F = self._flexibility(pose, bodies, centres[None])[0]
+            names = tuple(next(link for link, f in self.links.items() if f.parentJoint == b) for b in bodies)
+            return modes(model, pose.R[0], bodies, centres, F, n, names)
+
+    def _flexibility(self, pose: statics.Pose, bodies: np.ndarray, points: np.ndarray) -> np.ndarray:
+        """(N, 6k, 6k) flexibility between unit wrenches at the bodies' points (N, k, 3)."""
+        b, R0 = statics.unit_loads(self.mech.model, pose, bodies, points)
+        x = statics.particular(pose, b)
+        reactions = R0 + pose.reaction_map @ x[:, None]
+        c = self.idealisation.drive_compliance
+        out = statics.compatible(pose, c, reactions, x[:, :pose.efforts])
+        C = statics.energy_product(pose, c, out.reactions, out.efforts, out.reactions, out.efforts)
+        return (C + np.swapaxes(C, 1, 2)) / 2

@@ -1,0 +1,1 @@
+"""The elastic tests (a package: tests/core has its own test_model.py)."""
