@@ -1,10 +1,10 @@
-"""`mechkit.bench.loading`: file loads against name loads (figures printed; run with -m bench)."""
+"""`mechkit.bench.load_speed`: file loads against name loads (figures printed; run with -m bench)."""
 
 from __future__ import annotations
 
 import pytest
 
-from mechkit.bench.loading import lines, load_times
+from mechkit.bench.load_speed import lines, load_times
 
 
 @pytest.mark.bench

@@ -13,7 +13,7 @@ from mechkit.mechanisms.parallel_2t1r import SPEC
 from mechkit.mechanisms.parallel_2t1r import kinematics as kin
 from mechkit.mechanisms.parallel_2t1r.assembly import EXAMPLE_INPUTS
 from mechkit.mechanisms.parallel_2t1r.compare import compare_along
-from mechkit.mechanisms.parallel_2t1r.joints import joint_coordinates
+from mechkit.mechanisms.parallel_2t1r.joint_state import joint_coordinates
 from mechkit.mechanisms.parallel_2t1r.motion_law import motion_law, state_at
 from mechkit.mechanisms.parallel_2t1r.params import Parallel2T1RParams, mass_properties
 from mechkit.mechanisms.parallel_2t1r.rates import at_rest

@@ -6,12 +6,12 @@ import numpy as np
 import pytest
 
 from mechkit.mechanisms.rocket_gimbal.checks import dynamics_agreement, fk_agreement, fk_closure
+from mechkit.mechanisms.rocket_gimbal.joint_state import joint_state
 from mechkit.mechanisms.rocket_gimbal.kinematics import strokes
 from mechkit.mechanisms.rocket_gimbal.params import body_inertias, geometry
 from mechkit.mechanisms.rocket_gimbal.resultant import fk_resultant
 from mechkit.mechanisms.rocket_gimbal.scenes import SwingScene, thrust_fext
 from mechkit.mechanisms.rocket_gimbal.soc import soc_skcs
-from mechkit.mechanisms.rocket_gimbal.state import joint_state
 from mechkit.validation.soc import solve_soc
 
 

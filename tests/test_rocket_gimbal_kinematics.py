@@ -9,6 +9,7 @@ from hypothesis import strategies as st
 from numpy.polynomial import Polynomial
 
 from mechkit.base.exceptions import InvalidParameters
+from mechkit.mechanisms.rocket_gimbal.body_motion import gimbal_motion
 from mechkit.mechanisms.rocket_gimbal.kinematics import (
     PAPER_EXAMPLE,
     RULE_ANGLE,
@@ -21,7 +22,6 @@ from mechkit.mechanisms.rocket_gimbal.kinematics import (
     pitch_yaw,
     strokes,
 )
-from mechkit.mechanisms.rocket_gimbal.motion import gimbal_motion
 from mechkit.mechanisms.rocket_gimbal.params import RocketGimbalParams, geometry
 from mechkit.mechanisms.rocket_gimbal.resultant import (
     degree16_polynomial,

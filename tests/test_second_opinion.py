@@ -14,7 +14,7 @@ from scipy.sparse.csgraph import connected_components, maximum_bipartite_matchin
 
 import mechkit
 from mechkit.base.exceptions import InvalidParameters
-from mechkit.second_opinion.compare import agreement, scene_states
+from mechkit.second_opinion.agreement import agreement, scene_states
 from mechkit.second_opinion.decomposition import block_triangular
 from mechkit.second_opinion.opinion import SecondOpinion
 

@@ -3,7 +3,7 @@ come back as figures, with the agreement measured on the same states."""
 
 from __future__ import annotations
 
-from mechkit.bench.second_opinion import lines, second_opinion_rows
+from mechkit.bench.second_opinion_speed import lines, second_opinion_rows
 
 
 def test_rows_give_the_figures_and_the_agreement():

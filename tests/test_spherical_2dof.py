@@ -12,9 +12,9 @@ from mechkit.loading import load
 from mechkit.mechanisms.spherical_2dof import SPEC, Spherical2DofParams, checks, soc
 from mechkit.mechanisms.spherical_2dof import kinematics as kin
 from mechkit.mechanisms.spherical_2dof.fk import NEAR_SINGULAR, REGULAR, basin_study
+from mechkit.mechanisms.spherical_2dof.joint_state import state
 from mechkit.mechanisms.spherical_2dof.kinematics import BRANCHES, platform_normal
 from mechkit.mechanisms.spherical_2dof.scenes import cone_attitude, cone_times
-from mechkit.mechanisms.spherical_2dof.tree import state
 
 P = Spherical2DofParams()
 

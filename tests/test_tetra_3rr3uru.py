@@ -20,7 +20,7 @@ from mechkit.mechanisms.truss.geometry import (
     rot_axis,
     rpy_angles,
 )
-from mechkit.mechanisms.truss.motion import web_joint_motion
+from mechkit.mechanisms.truss.joint_state import web_joint_motion
 from mechkit.mechanisms.truss.nodes import node_positions
 
 GEOMETRY = TrussGeometry(0.590, 0.2504, 0.250)

@@ -57,7 +57,7 @@ def run(args: argparse.Namespace) -> None:
 def speed_sections(names: list[str], quick: bool) -> dict[str, list[str]]:
     """The rows the issues ask of the benchmark page: the dynamics against one raw Pinocchio call, the
     ladder of four-bar loops, the 2T1R motion law, loading from files, and the second opinion."""
-    from mechkit.bench import dynamics_speed, ladder, loading, motion_speed, second_opinion
+    from mechkit.bench import dynamics_speed, ladder, load_speed, motion_speed, second_opinion_speed
     from mechkit.catalog import registry
     from mechkit.loading import load
 
@@ -73,8 +73,8 @@ def speed_sections(names: list[str], quick: bool) -> dict[str, list[str]]:
             "Ladder of four-bar loops": [ladder.__doc__.split("\n\n")[1].replace("\n", " "), "", *ladder.markdown(points)],
             "Motion law": [intro(motion_speed), "",
                            *motion_speed.lines(motion_speed.motion_law_speed(repeats=2 if quick else 5))],
-            "Loading from a file": [intro(loading), "", *loading.lines(loading.load_times(repeats=3 if quick else 15))],
-            "Second opinion": [intro(second_opinion), "", *second_opinion.lines(second_opinion.second_opinion_rows(
+            "Loading from a file": [intro(load_speed), "", *load_speed.lines(load_speed.load_times(repeats=3 if quick else 15))],
+            "Second opinion": [intro(second_opinion_speed), "", *second_opinion_speed.lines(second_opinion_speed.second_opinion_rows(
                 chosen, samples=3 if quick else 6, budget_s=budget))]}
 
 

@@ -19,7 +19,7 @@ def report(args: argparse.Namespace) -> dict:
     import warnings
 
     from mechkit.scenes import SweepStopped
-    from mechkit.second_opinion.compare import agreement, scene_states
+    from mechkit.second_opinion.agreement import agreement, scene_states
     from mechkit.second_opinion.opinion import SecondOpinion
 
     if args.samples < 1:

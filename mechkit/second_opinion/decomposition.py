@@ -48,8 +48,8 @@ from scipy.sparse.csgraph import connected_components, maximum_bipartite_matchin
 
 from mechkit.base.exceptions import InvalidParameters
 from mechkit.base.spatial import cross
-from mechkit.second_opinion.motion import Instant
-from mechkit.second_opinion.structure import COMPONENT_NAMES, Structure
+from mechkit.second_opinion.instant import Instant
+from mechkit.second_opinion.structure_graph import COMPONENT_NAMES, Structure
 
 #: Relative size below which a wrench-direction entry counts as a structural zero.
 PATTERN_TOL = 1e-9

@@ -8,9 +8,9 @@ import numpy as np
 
 from mechkit.mechanism import Mechanism
 from mechkit.second_opinion.decomposition import SKC, decompose
-from mechkit.second_opinion.motion import instant
+from mechkit.second_opinion.instant import instant
 from mechkit.second_opinion.solve import Opinion, plan, solve_instant
-from mechkit.second_opinion.structure import Structure, build_structure
+from mechkit.second_opinion.structure_graph import Structure, build_structure
 
 
 class SecondOpinion:

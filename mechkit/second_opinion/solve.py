@@ -17,8 +17,8 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from mechkit.second_opinion.decomposition import SKC
-from mechkit.second_opinion.motion import Instant
-from mechkit.second_opinion.structure import Structure
+from mechkit.second_opinion.instant import Instant
+from mechkit.second_opinion.structure_graph import Structure
 from mechkit.validation.soc import BodyLoad, SKCInstant, WrenchSite, solve_soc
 
 

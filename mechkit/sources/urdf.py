@@ -17,8 +17,8 @@ import pinocchio as pin
 
 from mechkit.base.exceptions import MalformedDescription
 from mechkit.core import LOOP_KINDS, ROW_SETS, JointSpring, LoopClosure
-from mechkit.sources.checks import check_inertias, check_tree
 from mechkit.sources.description import Description, read_text
+from mechkit.sources.urdf_checks import check_inertias, check_tree
 
 LOOP_NAMESPACE = "https://mechkit.dev/loop"
 #: Elements of the loop namespace mechkit knows (`home`: an input value of the default assembly;
@@ -37,7 +37,7 @@ def describe_urdf(urdf: str, source: Path | None, fmt: str, params: dict[str, st
     """Check a URDF text (tree, inertias, loop elements, home) and read its actuators.
 
     Raises:
-        MalformedDescription: see `mechkit.sources.checks`, `mechkit.sources.urdf.parse_loops`.
+        MalformedDescription: see `mechkit.sources.urdf_checks`, `mechkit.sources.urdf.parse_loops`.
     """
     where = str(source) if source is not None else "urdf"
     root = parse_xml(urdf, where)

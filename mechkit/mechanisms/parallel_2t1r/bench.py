@@ -16,7 +16,7 @@ import numpy as np
 
 from mechkit.catalog.contract import BenchMethod, BenchReference
 from mechkit.mechanisms.parallel_2t1r.assembly import INPUTS, assembled_pose
-from mechkit.mechanisms.parallel_2t1r.joints import configuration
+from mechkit.mechanisms.parallel_2t1r.joint_state import configuration
 from mechkit.mechanisms.parallel_2t1r.motion_law import state_at
 from mechkit.mechanisms.parallel_2t1r.rates import State, at_rest
 from mechkit.mechanisms.parallel_2t1r.soc import classic_torques, soc_inverse_dynamics

@@ -25,7 +25,7 @@ from mechkit.mechanisms.parallel_2t1r.compare import (
     evaluate,
     pinocchio_motion,
 )
-from mechkit.mechanisms.parallel_2t1r.joints import joint_positions
+from mechkit.mechanisms.parallel_2t1r.joint_state import joint_positions
 from mechkit.mechanisms.parallel_2t1r.motion_law import motion_law, motion_law_times, state_at
 from mechkit.mechanisms.parallel_2t1r.rates import at_rest, jacobians
 

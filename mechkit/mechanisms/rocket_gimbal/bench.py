@@ -13,13 +13,13 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from mechkit.catalog.contract import BenchFunction, BenchMethod, BenchReference
+from mechkit.mechanisms.rocket_gimbal.body_motion import gimbal_motion
+from mechkit.mechanisms.rocket_gimbal.joint_state import hinges, joint_state
 from mechkit.mechanisms.rocket_gimbal.kinematics import fk_newton, strokes
-from mechkit.mechanisms.rocket_gimbal.motion import gimbal_motion
 from mechkit.mechanisms.rocket_gimbal.params import geometry
 from mechkit.mechanisms.rocket_gimbal.resultant import fk_resultant, pick_in_range
 from mechkit.mechanisms.rocket_gimbal.scenes import SwingScene
 from mechkit.mechanisms.rocket_gimbal.soc import soc_skcs
-from mechkit.mechanisms.rocket_gimbal.state import hinges, joint_state
 from mechkit.validation.soc import SOCResult, solve_soc
 
 if TYPE_CHECKING:

@@ -10,6 +10,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from mechkit.mechanism import Mechanism
+from mechkit.mechanisms.rocket_gimbal.joint_state import hinges, joint_state
 from mechkit.mechanisms.rocket_gimbal.kinematics import (
     PAPER_EXAMPLE,
     RULE_STROKE,
@@ -21,7 +22,6 @@ from mechkit.mechanisms.rocket_gimbal.params import geometry
 from mechkit.mechanisms.rocket_gimbal.resultant import fk_resultant, pick_in_range
 from mechkit.mechanisms.rocket_gimbal.scenes import SwingScene, thrust_fext
 from mechkit.mechanisms.rocket_gimbal.soc import soc_skcs
-from mechkit.mechanisms.rocket_gimbal.state import hinges, joint_state
 from mechkit.validation.soc import solve_soc
 
 __all__ = [

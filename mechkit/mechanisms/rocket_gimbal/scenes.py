@@ -14,9 +14,9 @@ import numpy as np
 import pinocchio as pin
 
 from mechkit.base.exceptions import InvalidParameters
-from mechkit.mechanisms.rocket_gimbal.motion import GimbalMotion, gimbal_motion
+from mechkit.mechanisms.rocket_gimbal.body_motion import GimbalMotion, gimbal_motion
+from mechkit.mechanisms.rocket_gimbal.joint_state import joint_state
 from mechkit.mechanisms.rocket_gimbal.params import RocketGimbalParams, geometry
-from mechkit.mechanisms.rocket_gimbal.state import joint_state
 
 if TYPE_CHECKING:
     from mechkit.mechanism import Mechanism

@@ -20,6 +20,7 @@ import numpy as np
 from numpy.polynomial import Polynomial
 
 from mechkit.mechanism import Mechanism
+from mechkit.mechanisms.rocket_gimbal.joint_state import joint_state
 from mechkit.mechanisms.rocket_gimbal.kinematics import (
     RULE_ANGLE,
     RULE_STROKE,
@@ -41,7 +42,6 @@ from mechkit.mechanisms.rocket_gimbal.resultant import (
 )
 from mechkit.mechanisms.rocket_gimbal.scenes import SwingScene, thrust_fext
 from mechkit.mechanisms.rocket_gimbal.soc import soc_skcs
-from mechkit.mechanisms.rocket_gimbal.state import joint_state
 from mechkit.validation.soc import solve_soc
 
 #: The paper's example strokes (dlA, dlB), m.

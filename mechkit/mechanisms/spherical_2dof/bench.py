@@ -15,8 +15,8 @@ import numpy as np
 from mechkit.catalog.contract import BenchFunction, BenchMethod, BenchReference
 from mechkit.mechanisms.spherical_2dof import soc
 from mechkit.mechanisms.spherical_2dof.fk import solve_fk
+from mechkit.mechanisms.spherical_2dof.joint_state import tree_q
 from mechkit.mechanisms.spherical_2dof.kinematics import BRANCHES, inverse_kinematics
-from mechkit.mechanisms.spherical_2dof.tree import tree_q
 from mechkit.validation.soc import SOCResult
 
 if TYPE_CHECKING:

@@ -12,9 +12,9 @@ import numpy as np
 from mechkit.mechanisms.spherical_2dof import kinematics as kin
 from mechkit.mechanisms.spherical_2dof import soc
 from mechkit.mechanisms.spherical_2dof.fk import METHODS, solve_fk
+from mechkit.mechanisms.spherical_2dof.joint_state import state
 from mechkit.mechanisms.spherical_2dof.kinematics import BRANCHES, platform_normal
 from mechkit.mechanisms.spherical_2dof.scenes import cone_attitude, cone_times
-from mechkit.mechanisms.spherical_2dof.tree import state
 
 if TYPE_CHECKING:
     from mechkit.mechanism import Mechanism

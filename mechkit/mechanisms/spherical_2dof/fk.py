@@ -16,9 +16,9 @@ import numpy as np
 
 from mechkit.base.exceptions import ClosureNotConverged, InvalidParameters
 from mechkit.mechanisms.spherical_2dof import kinematics as kin
+from mechkit.mechanisms.spherical_2dof.joint_state import tree_q
 from mechkit.mechanisms.spherical_2dof.kinematics import BRANCHES
 from mechkit.mechanisms.spherical_2dof.scenes import cone_attitude
-from mechkit.mechanisms.spherical_2dof.tree import tree_q
 
 if TYPE_CHECKING:
     from mechkit.mechanism import Mechanism

@@ -10,7 +10,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from mechkit.base.exceptions import InvalidParameters
-from mechkit.mechanisms.spherical_2dof.tree import state
+from mechkit.mechanisms.spherical_2dof.joint_state import state
 
 if TYPE_CHECKING:
     from mechkit.mechanism import Mechanism

@@ -20,10 +20,10 @@ from mechkit.mechanism import Mechanism
 from mechkit.mechanisms.spherical_2dof import kinematics as kin
 from mechkit.mechanisms.spherical_2dof import soc
 from mechkit.mechanisms.spherical_2dof.fk import NEAR_SINGULAR, REGULAR, BasinRow, basin_study
+from mechkit.mechanisms.spherical_2dof.joint_state import state
 from mechkit.mechanisms.spherical_2dof.kinematics import BRANCHES, platform_normal
 from mechkit.mechanisms.spherical_2dof.params import Spherical2DofParams
 from mechkit.mechanisms.spherical_2dof.scenes import cone_attitude, cone_times
-from mechkit.mechanisms.spherical_2dof.tree import state
 
 #: Start distances (deg) from the answer in the basin study.
 RADII_DEG = (0.1, 0.3, 1.0, 2.0, 5.0, 10.0, 20.0, 30.0, 45.0, 60.0)

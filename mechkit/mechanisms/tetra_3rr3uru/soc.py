@@ -1,7 +1,7 @@
 """Sequential SOC inverse dynamics of the 3RR-3URU unit along the paper's fold (numpy only).
 
 Independent of Pinocchio's kinematics and dynamics: the motion of every body comes from the
-paper's node positions (eq. 6-7), the web-joint map of `truss.motion.web_joint_motion` and a
+paper's node positions (eq. 6-7), the web-joint map of `truss.joint_state.web_joint_motion` and a
 closed-form closure of each URU rod; the tree (joint axes and points) is re-derived here from the
 same geometry, not read from the URDF. Only masses, COM offsets and inertias are read from the
 model description. Time derivatives: complex step (first), central differences of complex-step

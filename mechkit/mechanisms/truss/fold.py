@@ -14,7 +14,7 @@ import pinocchio as pin
 from mechkit.base.exceptions import ClosureNotConverged, InvalidParameters
 from mechkit.mechanism import Mechanism
 from mechkit.mechanisms.truss.drives import FOLD_DURATION, drive_state
-from mechkit.mechanisms.truss.motion import drive_inputs
+from mechkit.mechanisms.truss.joint_state import drive_inputs
 
 
 @dataclass(frozen=True)

@@ -14,7 +14,7 @@ from mechkit.bench.timing import time_per_call
 from mechkit.catalog.registry import names as registered
 from mechkit.loading import load
 from mechkit.scenes import SweepStopped
-from mechkit.second_opinion.compare import agreement, scene_states
+from mechkit.second_opinion.agreement import agreement, scene_states
 from mechkit.second_opinion.opinion import SecondOpinion
 
 

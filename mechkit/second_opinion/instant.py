@@ -15,7 +15,7 @@ import pinocchio as pin
 
 from mechkit import core
 from mechkit.base.spatial import cross
-from mechkit.second_opinion.structure import Cuts, Structure, constraint_span, cut_wrenches, tree_motion
+from mechkit.second_opinion.structure_graph import Cuts, Structure, constraint_span, cut_wrenches, tree_motion
 
 
 @dataclass(frozen=True)

@@ -1,7 +1,7 @@
 """The engine gimbal's Pinocchio tree filled from the analytic motion (no closure solve), and read back.
 
 Tree joints, as in the xacro: bracket_hinge (alpha), engine_hinge (beta), and per servo "a" / "b" the
-Hooke angles *_swing_1, *_swing_2 (t1, t2 of `rocket_gimbal.motion`) and the stroke *_stroke = L - l0;
+Hooke angles *_swing_1, *_swing_2 (t1, t2 of `rocket_gimbal.body_motion`) and the stroke *_stroke = L - l0;
 the ball joints at the engine pivots are the loop cuts.
 """
 
@@ -11,7 +11,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from mechkit.mechanisms.rocket_gimbal.motion import GimbalMotion
+from mechkit.mechanisms.rocket_gimbal.body_motion import GimbalMotion
 
 if TYPE_CHECKING:
     from mechkit.mechanism import Mechanism
