@@ -29,7 +29,7 @@ distance of its centre of mass from the axis); the export writes `solref = (T / 
 (MuJoCo needs at least 2) and the RK4 integrator, and says so in an XML comment. These choices are
 ours: with them every registered mechanism, released at home under gravity with no effort, keeps
 its loops closed within 1e-4 m over 1 s (worst measured 2.2e-5 m, the deployable mast; with
-MuJoCo's semi-implicit Euler at the same step it drifts by 0.5 mm; tests/test_export_mujoco.py).
+MuJoCo's semi-implicit Euler at the same step it drifts by 0.5 mm; tests/export/test_mjcf.py).
 
 MuJoCo's `connect` (and Pinocchio's MJCF reader) take the second body's anchor from the
 configuration in which the model is written, so the bodies are written at the assembled home
