@@ -6,7 +6,7 @@ import argparse
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from mechkit.base.exceptions import MechkitError
+from mechkit.base.exceptions import InvalidArgument
 from mechkit.loading import load
 from mechkit.mechanism import Mechanism
 
@@ -36,7 +36,7 @@ def overrides(pairs: list[str] | None) -> dict[str, str]:
     out = {}
     for pair in pairs or []:
         if "=" not in pair:
-            raise MechkitError(f"--set expects name=value, got {pair!r}")
+            raise InvalidArgument("--set", pair, "expected name=value")
         key, value = pair.split("=", 1)
         out[key.strip()] = value.strip()
     return out
@@ -48,7 +48,7 @@ def actuated(text: str | None) -> list[str] | None:
         return None
     names = [j.strip() for j in text.split(",") if j.strip()]
     if not names:
-        raise MechkitError("--actuated expects joint names separated by commas")
+        raise InvalidArgument("--actuated", text, "expected joint names separated by commas")
     return names
 
 

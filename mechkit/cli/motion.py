@@ -7,7 +7,7 @@ import argparse
 from typing import TYPE_CHECKING
 
 from mechkit.base.atomic import resolve_output
-from mechkit.base.exceptions import InvalidParameters, MechkitError
+from mechkit.base.exceptions import InvalidParameters, MotionFailed
 from mechkit.cli.common import add_mechanism_arguments, examples, load_mechanism
 from mechkit.cli.progress import ProgressBars
 
@@ -58,7 +58,7 @@ def run(args: argparse.Namespace) -> None:
     result = motion.study(mech, law, determinacy=args.determinacy, skip_failures=True,
                           progress=lambda done, total: bars(f"{mech.spec.name} motion", done, total))
     if len(result.failures) == len(law.t):
-        raise MechkitError(f"no sample of the motion succeeded; at t = {result.failures[0][0]:.6g} s: {result.failures[0][1]}")
+        raise MotionFailed(result.failures)
     print(f"{mech.spec.name}: {law.source}, {len(law.t)} samples, t = {law.t[0]:.6g} .. {law.t[-1]:.6g} s")
     for t, why in result.failures:
         print(f"skipped t = {t:.6g} s: {why}")

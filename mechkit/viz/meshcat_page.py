@@ -16,7 +16,7 @@ from typing import Any
 
 import numpy as np
 
-from mechkit.base.exceptions import MechkitError
+from mechkit.base.exceptions import MethodUnavailable
 
 BACKGROUND = (0.93, 0.95, 0.97)  # uniform page background (rgb 0..1)
 _LOOP_PINGPONG = 2202  # THREE.LoopPingPong
@@ -28,7 +28,7 @@ def _meshcat():
         from meshcat import animation, commands, geometry
         from meshcat.path import Path as MeshcatPath
     except ImportError:
-        raise MechkitError("snapshots need meshcat: pip install 'mechkit[viz]'") from None
+        raise MethodUnavailable("snapshots", "meshcat is not installed: pip install 'mechkit[viz]'") from None
     return geometry, umsgpack, commands, animation, MeshcatPath
 
 

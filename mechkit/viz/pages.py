@@ -18,7 +18,7 @@ import numpy as np
 import pinocchio as pin
 
 from mechkit.base.atomic import check_distinct, write_text
-from mechkit.base.exceptions import InvalidParameters, MechkitError
+from mechkit.base.exceptions import InvalidArgument, InvalidParameters
 from mechkit.mechanism import Mechanism
 from mechkit.scenes import scene_poses
 from mechkit.viz.browser import find_chromium, screenshot
@@ -148,7 +148,7 @@ def snapshot_command(mechanism: Mechanism, q: str | None = None, scene: str | No
     or of an animated scene, and optionally a PNG screenshot (of the pose; of a scene, its overlay
     picture); `meshes`: where mesh files are looked for. Returns the files written."""
     if html is None and png is None:
-        raise MechkitError("give -o FILE.html, --png FILE.png, or both")
+        raise InvalidArgument("output", None, "give -o FILE.html, --png FILE.png, or both")
     if q is not None and scene is not None:
         raise InvalidParameters("q", q, "give either --q (one pose) or --scene (an animation), not both")
     if png is not None:
