@@ -27,7 +27,15 @@ CHECK_LIMIT = 1e-6
 
 
 def failing_checks(checks: dict[str, float], limit: float = CHECK_LIMIT) -> dict[str, float]:
-    """The checks above `limit`, or not finite."""
+    """The checks above `limit`, or not finite.
+
+    Args:
+        checks: check name -> worst residual or relative error.
+        limit: the threshold.
+
+    Returns:
+        The failing checks, name -> value.
+    """
     return {k: v for k, v in checks.items() if not v <= limit}
 
 
@@ -41,6 +49,12 @@ def self_checks(m: Mechanism) -> dict[str, float]:
     closure_residual (m / -), velocity_constraint |J v|, acceleration_constraint |J a + gamma|,
     kkt_vs_proximal (relative, accelerations), inverse_forward_roundtrip (relative, accelerations),
     global_balance (relative: sum of support wrenches vs total gravity and inertia).
+
+    Args:
+        m: the mechanism.
+
+    Returns:
+        Check name -> worst residual or relative error (smaller is better), the spec's own checks added.
     """
     q = m.home_q
     checks: dict[str, float] = {"closure_residual": float(np.max(np.abs(m.closure_residual(q)), initial=0.0))}
@@ -69,7 +83,14 @@ def self_checks(m: Mechanism) -> dict[str, float]:
 
 
 def report(m: Mechanism) -> dict[str, Any]:
-    """The report of a mechanism (see module docstring for the keys)."""
+    """The report of a mechanism (see module docstring for the keys).
+
+    Args:
+        m: the mechanism.
+
+    Returns:
+        The report (the JSON contract: see the module docstring for the keys).
+    """
     mob = m.mobility()
     declared = None if m.spec.template == "" else m.spec.gruebler_dof
     return {
@@ -96,7 +117,14 @@ def report(m: Mechanism) -> dict[str, Any]:
 
 
 def format_report(r: dict[str, Any]) -> str:
-    """Human-readable text of a report."""
+    """Human-readable text of a report.
+
+    Args:
+        r: a report.
+
+    Returns:
+        The text, lines joined.
+    """
     lines = [f"{r['name']}: {r['summary']}",
              f"  nq {r['nq']}, nv {r['nv']}, actuated: {', '.join(r['actuated']) or 'none (unactuated)'}",
              "  closures: " + ", ".join(f"{c['name']} ({c['kind']}, {c['rows']} {c['row_set']} rows)" for c in r["closures"]),

@@ -44,7 +44,16 @@ class LoadTime:
 
 
 def file_versions(mech: Mechanism, folder: Path) -> dict[str, tuple[Path, dict[str, Any]]]:
-    """The mechanism written as files in `folder`: route -> (path, keyword arguments of `load`)."""
+    """The mechanism written as files in `folder`: route -> (path, keyword arguments of `load`).
+
+    Args:
+        mech: the mechanism.
+        folder: where the files go.
+
+    Returns:
+        Route ("urdf", "extended-urdf", "mjcf") -> (the file, the keyword arguments `load` needs for it: a guess
+            and the home inputs, for the URDFs).
+    """
     guess = mech.joint_values(mech.home_q)
     home = {j: guess[j] for j in mech.actuated}
     extra = "".join(f'<transmission name="{j}_motor"><joint name="{j}"/></transmission>'
@@ -61,7 +70,16 @@ def file_versions(mech: Mechanism, folder: Path) -> dict[str, tuple[Path, dict[s
 
 
 def load_times(names: tuple[str, ...] = NAMES, repeats: int = 7) -> list[LoadTime]:
-    """Median warm load times by name and by each file route (see the module docstring)."""
+    """Median warm load times by name and by each file route (see the module docstring).
+
+    Args:
+        names: the registered mechanisms.
+        repeats: timed loads per route.
+
+    Returns:
+        One row per mechanism and route (by name first), with its median load time (s) and its ratio to the load
+            by name.
+    """
     out = []
     for name in names:
         mech = load(name)
@@ -83,7 +101,14 @@ def load_times(names: tuple[str, ...] = NAMES, repeats: int = 7) -> list[LoadTim
 
 
 def lines(rows: list[LoadTime]) -> list[str]:
-    """A markdown table of the rows."""
+    """A markdown table of the rows.
+
+    Args:
+        rows: the load times.
+
+    Returns:
+        Markdown lines.
+    """
     table = ["| mechanism | nv | loops | route | median load (ms) | / by name |", "|---|---|---|---|---|---|"]
     table += [f"| {r.name} | {r.nv} | {r.loops} | {r.route} | {r.median_s * 1e3:.2f} | {r.ratio:.2f} |" for r in rows]
     return table

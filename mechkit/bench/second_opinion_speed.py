@@ -47,10 +47,15 @@ def second_opinion_rows(mechanisms: list[str] | None = None, samples: int = 6, s
     """Decomposition cost and per-sample solve times of each mechanism (all registered by default).
 
     Args:
+        mechanisms: registered names (default: all).
         samples: states along the scene (`scene_states`).
         scene: scene to sample (default: each mechanism's first).
         budget_s: timing budget per method, s (`mechkit.bench.timing.time_per_call`).
         repeats: timing repeats (`mechkit.bench.timing.time_per_call`).
+
+    Returns:
+        One row per mechanism: SKCs, the largest, decomposition time (ms), SOC and constrained RNEA times (us per
+            sample), their ratio and the agreement.
     """
     rows = []
     for name in mechanisms or list(registered()):
@@ -73,7 +78,14 @@ def second_opinion_rows(mechanisms: list[str] | None = None, samples: int = 6, s
 
 
 def lines(rows: list[SecondOpinionRow]) -> list[str]:
-    """A markdown table of the rows."""
+    """A markdown table of the rows.
+
+    Args:
+        rows: the rows.
+
+    Returns:
+        Markdown lines.
+    """
     table = [("| mechanism | SKCs | largest SKC (unknowns) | decompose (ms, once) | SOC (us/sample) "
               "| constrained RNEA + determinacy (us/sample) | SOC / RNEA | samples | max rel. difference |"),
              "|---|---|---|---|---|---|---|---|---|"]

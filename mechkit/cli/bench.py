@@ -14,7 +14,15 @@ from mechkit.loading import resolve
 
 
 def run(args: argparse.Namespace) -> None:
-    """Measure, print the tables and goals, and write the charts and the page when asked."""
+    """Measure, print the tables and goals, and write the charts and the page when asked.
+
+    Args:
+        args: the parsed command line.
+
+    Raises:
+        OutputError: --charts names something other than a folder, or --markdown cannot be written.
+        InvalidParameters: an unknown mechanism.
+    """
     from mechkit.bench import charts, failure_atlas, loadtime, markdown, run, scale
     from mechkit.cli.progress import ProgressBars
 
@@ -55,8 +63,16 @@ def run(args: argparse.Namespace) -> None:
 
 
 def speed_sections(names: list[str], quick: bool) -> dict[str, list[str]]:
-    """The rows the issues ask of the benchmark page: the dynamics against one raw Pinocchio call, the
-    ladder of four-bar loops, the 2T1R motion law, loading from files, and the second opinion."""
+    """The speed sections of the benchmark page: the dynamics against one raw Pinocchio call, the ladder
+    of four-bar loops, the 2T1R motion law, loading from files, and the second opinion.
+
+    Args:
+        names: the mechanisms (default: every registered one).
+        quick: short timing budgets.
+
+    Returns:
+        Section title -> its markdown lines.
+    """
     from mechkit.bench import dynamics_speed, ladder, load_speed, motion_speed, second_opinion_speed
     from mechkit.catalog import registry
     from mechkit.loading import load
@@ -79,7 +95,11 @@ def speed_sections(names: list[str], quick: bool) -> dict[str, list[str]]:
 
 
 def add_parser(sub: argparse._SubParsersAction) -> None:
-    """Register `bench`."""
+    """Register `bench`.
+
+    Args:
+        sub: the command line's sub-parsers.
+    """
     p = sub.add_parser("bench", help="speed and accuracy of every method, per mechanism", **examples(
         "mechkit bench four_bar --quick", "mechkit bench --charts docs/bench --markdown docs/benchmarks.md"))
     p.add_argument("names", nargs="*", help="mechanisms (default: all)")

@@ -15,13 +15,24 @@ if TYPE_CHECKING:
 
 
 def examples(*commands: str) -> dict[str, Any]:
-    """`add_parser` keywords ending a command's `--help` with its examples (one command line each)."""
+    """`add_parser` keywords ending a command's `--help` with its examples (one command line each).
+
+    Args:
+        commands: command lines, each a working example.
+
+    Returns:
+        `epilog` and `formatter_class` keywords for `add_parser`.
+    """
     return {"epilog": "examples:\n" + "\n".join(f"  {c}" for c in commands),
             "formatter_class": argparse.RawDescriptionHelpFormatter}
 
 
 def add_mechanism_arguments(parser: argparse.ArgumentParser) -> None:
-    """The positional NAME or PATH, the repeatable `--set NAME=VALUE` and `--actuated`."""
+    """The positional NAME or PATH, the repeatable `--set NAME=VALUE` and `--actuated`.
+
+    Args:
+        parser: a command's parser.
+    """
     parser.add_argument("name", metavar="NAME|PATH",
                         help="registered mechanism (see `mechkit list`) or a file: .urdf with <mechkit:loop>s "
                              "or a .yaml sidecar (Extended URDF), .xacro, MJCF .xml")
@@ -32,7 +43,17 @@ def add_mechanism_arguments(parser: argparse.ArgumentParser) -> None:
 
 
 def overrides(pairs: list[str] | None) -> dict[str, str]:
-    """`--set` pairs as a dict; a pair without '=' is an error."""
+    """`--set` pairs as a dict.
+
+    Args:
+        pairs: the NAME=VALUE strings given, if any.
+
+    Returns:
+        Name -> value (a string; the parameter class converts it).
+
+    Raises:
+        InvalidArgument: a pair without "=".
+    """
     out = {}
     for pair in pairs or []:
         if "=" not in pair:
@@ -43,7 +64,17 @@ def overrides(pairs: list[str] | None) -> dict[str, str]:
 
 
 def actuated(text: str | None) -> list[str] | None:
-    """`--actuated J1,J2` as a list of joint names (None when not given)."""
+    """`--actuated J1,J2` as a list of joint names (None when not given).
+
+    Args:
+        text: the option's value, if given.
+
+    Returns:
+        The joint names, or None.
+
+    Raises:
+        InvalidArgument: no name in it.
+    """
     if text is None:
         return None
     names = [j.strip() for j in text.split(",") if j.strip()]
@@ -53,19 +84,41 @@ def actuated(text: str | None) -> list[str] | None:
 
 
 def load_mechanism(args: argparse.Namespace) -> Mechanism:
-    """The mechanism the command line names, with its overrides."""
+    """The mechanism the command line names, with its overrides.
+
+    Args:
+        args: the parsed command line (name, --set, --actuated).
+
+    Returns:
+        The mechanism.
+
+    Raises:
+        InvalidArgument: a malformed --set or --actuated.
+        MechkitError: what `mechkit.load` refuses.
+    """
     return load(args.name, actuated=actuated(args.actuated), **overrides(args.set))
 
 
 def add_mesh_path_argument(parser: argparse.ArgumentParser) -> None:
-    """The repeatable `--mesh-path DIR` (folders searched for a URDF's mesh files)."""
+    """The repeatable `--mesh-path DIR` (folders searched for a URDF's mesh files).
+
+    Args:
+        parser: a command's parser.
+    """
     parser.add_argument("--mesh-path", action="append", metavar="DIR",
                         help="folder searched for mesh files and package:// addresses, after the file's own (repeatable)")
 
 
 def mesh_search(args: argparse.Namespace) -> MeshSearch:
     """Where the drawing looks for mesh files (`mechkit.viz.meshes.MeshSearch`): beside the file the
-    command line names (if it names a file), then in the `--mesh-path` folders."""
+    command line names (if it names a file), then in the `--mesh-path` folders.
+
+    Args:
+        args: the parsed command line (name, --mesh-path).
+
+    Returns:
+        The search.
+    """
     from mechkit.viz.meshes import MeshSearch
 
     path = Path(args.name).expanduser()

@@ -22,7 +22,15 @@ PEAK_COLUMNS = (("|f| N", "force"), ("axial N", "axial_force"), ("radial N", "ra
 
 
 def format_peaks(result: MotionResult) -> list[str]:
-    """The peak table: one line per joint, each peak with its time."""
+    """The peak table: one line per joint, each peak with its time.
+
+    Args:
+        result: the study.
+
+    Returns:
+        Text lines: a header, one line per joint (whether it is a support, each peak and its time), and a note
+            when some components are statically indeterminate.
+    """
     from mechkit.motion import peaks
 
     rows = peaks(result)
@@ -39,7 +47,16 @@ def format_peaks(result: MotionResult) -> list[str]:
 
 
 def run(args: argparse.Namespace) -> None:
-    """Run the study, print the peak table, write what was asked."""
+    """Run the study, print the peak table, write what was asked.
+
+    Args:
+        args: the parsed command line.
+
+    Raises:
+        InvalidParameters: an output that is neither .parquet nor .csv, or one that cannot be written or whose
+            library is missing.
+        MotionFailed: no sample of the motion succeeded.
+    """
     from mechkit import motion
     from mechkit.motion.plot import write_plot
 
@@ -87,7 +104,11 @@ def _check_outputs(args: argparse.Namespace) -> None:
 
 
 def add_parser(sub: argparse._SubParsersAction) -> None:
-    """Register `motion`."""
+    """Register `motion`.
+
+    Args:
+        sub: the command line's sub-parsers.
+    """
     p = sub.add_parser("motion", help="efforts and every joint's reaction along a motion: peak table, Parquet/CSV, plot",
                        **examples("mechkit motion parallel_2t1r --scene motion_law --samples 501 -o law.parquet --plot law.png",
                                   "mechkit motion four_bar --inputs crank.csv -o loads.csv"))
