@@ -65,11 +65,17 @@ def scene_states(mechanism: Mechanism, count: int, seed: int = 3, scene: str | N
     """Up to ``count`` moving states (q, v, a) along a scene (see the module docstring).
 
     Args:
-        scene: a scene name (`mechkit.scenes.scenes`); default: the first the spec declares, else
-            the generic sweep.
+        mechanism: the mechanism.
+        count: how many states at most.
+        seed: the random generator's seed (input rates and accelerations).
+        scene: a scene name (`mechkit.scenes.scenes`); default: the first the spec declares, else the generic
+            sweep.
+
+    Returns:
+        The states (q (nq,), v (nv,), a (nv,)).
 
     Raises:
-        MethodUnavailable: no state could be built.
+        MethodUnavailable: no state could be built, or `count` < 1.
     """
     if count < 1:
         raise MethodUnavailable("second opinion samples", f"needs at least one sample, got {count}")
@@ -124,7 +130,13 @@ def agreement(opinion: SecondOpinion, states: list[State], timing: bool = True) 
     """Compare the second opinion with constrained RNEA on ``states`` (see the module docstring).
 
     Args:
+        opinion: the second opinion of a mechanism.
+        states: states (q, v, a) of that mechanism.
         timing: also time both methods (best of three passes over the states; ``us_per_sample``).
+
+    Returns:
+        The largest relative difference and where, the determinacy mismatches, the SKCs' consistency, and the
+            timings.
     """
     mech = opinion.mechanism
     ours = [opinion.solve(q, v, a) for q, v, a in states]

@@ -55,7 +55,18 @@ class Instant:
 
 
 def joint_geometry(model: pin.Model, data: pin.Data, cuts: Cuts, structure: Structure) -> dict[str, JointGeometry]:
-    """Every joint's point and wrench directions; joint Jacobians and frame placements must be current."""
+    """Every joint's point and wrench directions (world); joint Jacobians and frame placements must be
+    current.
+
+    Args:
+        model: the tree's Pinocchio model.
+        data: its data, kinematics current.
+        cuts: the cut joints' full spatial rows (`cut_wrenches`).
+        structure: the structure graph.
+
+    Returns:
+        Joint -> its point (m), wrench basis (6, components) and effort direction (6,) or None.
+    """
     out = {}
     eye = np.eye(6)
     for joint in structure.joints:
@@ -78,10 +89,18 @@ def instant(cm: core.ClosureModel, cd: core.ClosureData, data: pin.Data, structu
     """The instant (q, v, a) (rad, m; rad/s, m/s; rad/s^2, m/s^2) of a mechanism's tree.
 
     Args:
-        cm, cd: the closure model (its full spatial rows are the cut joints of ``structure``) and a data.
+        cm: the closure model (its full spatial rows are the cut joints of ``structure``).
+        cd: a data of it.
         data: a Pinocchio data of the tree (scratch).
-        passive: (nv,) generalised forces of the joint springs and dampers (N m or N), or None: each
-            joint's share tau_j becomes the wrench w = S (S^T S)^-1 tau_j along its motion subspace S.
+        structure: the structure graph.
+        q: configuration (nq,).
+        v: velocity (nv,).
+        a: acceleration (nv,).
+        passive: (nv,) generalised forces of the joint springs and dampers (N m or N), or None: each joint's share
+            tau_j becomes the wrench w = S (S^T S)^-1 tau_j along its motion subspace S.
+
+    Returns:
+        Every body's motion and every joint's geometry (world), gravity, and the passive joints' wrenches.
     """
     model = cm.model
     cuts = cut_wrenches(cm, cd, q)

@@ -66,11 +66,25 @@ class Structure:
     parents: dict[int, int]
 
     def joint(self, name: str) -> Joint:
-        """The joint called ``name``."""
+        """The joint called ``name``.
+
+        Args:
+            name: a joint's name (tree or cut).
+
+        Returns:
+            The joint.
+        """
         return next(j for j in self.joints if j.name == name)
 
     def chain(self, body: int) -> list[int]:
-        """``body`` and its ancestors up to (not including) the ground."""
+        """``body`` and its ancestors up to (not including) the ground.
+
+        Args:
+            body: a body id.
+
+        Returns:
+            Body ids, from ``body`` towards the ground.
+        """
         out = []
         while body != 0:
             out.append(body)
@@ -78,10 +92,16 @@ class Structure:
         return out
 
     def crossings(self, joint: Joint) -> dict[int, float]:
-        """Bodies k whose subtree holds exactly one side of ``joint`` -> +1 (the child side) or -1.
+        """The bodies whose subtree holds exactly one side of ``joint``.
 
         A tree joint crosses only its child's subtree; a cut joint, the subtrees of the ancestors of
         one side that are not ancestors of the other.
+
+        Args:
+            joint: a joint of the graph.
+
+        Returns:
+            Body id -> +1 (its subtree holds the child side) or -1 (the parent side).
         """
         count: dict[int, float] = {}
         for body, sign in ((joint.child, 1.0), (joint.parent, -1.0)):
@@ -100,7 +120,16 @@ class Cuts:
 
 
 def cut_wrenches(cm: core.ClosureModel, cd: core.ClosureData, q: np.ndarray) -> Cuts:
-    """The full rows' wrenches of every cut at q (nq,), moments about each cut's frame_b origin."""
+    """The full rows' wrenches of every cut at a configuration, moments about each cut's frame_b origin.
+
+    Args:
+        cm: the closure model.
+        cd: a data of it.
+        q: an assembled configuration (nq,).
+
+    Returns:
+        The cuts' kernel and their row wrenches (full rows, 6), world axes.
+    """
     G, _, _ = core.kinematic_pass(cm, cd, q[None])
     kernel = cm.full_kernel
     W = kernel.row_wrenches(G[0])
@@ -119,9 +148,17 @@ def _orthonormal(span: np.ndarray) -> np.ndarray:
 
 
 def tree_motion(model: pin.Model, data: pin.Data, joint: int) -> np.ndarray:
-    """(6, nv_j) motion subspace of a tree joint, world axes, linear part at the joint origin.
+    """The motion subspace of a tree joint, world axes, linear part at the joint origin.
 
     Needs `pin.computeJointJacobians` at the configuration.
+
+    Args:
+        model: the Pinocchio model.
+        data: its data, joint Jacobians current.
+        joint: the joint's id.
+
+    Returns:
+        (6, nv_j) motion subspace.
     """
     jm = model.joints[joint]
     return pin.getJointJacobian(model, data, joint, LWA)[:, jm.idx_v : jm.idx_v + jm.nv]
@@ -132,6 +169,15 @@ def constraint_span(model: pin.Model, data: pin.Data, cuts: Cuts, joint: Joint) 
 
     World axes, moment about the joint point (tree: joint origin; cut: frame_b's origin): for a cut,
     the span of its full rows' wrenches from the closure kernel. Needs joint Jacobians current.
+
+    Args:
+        model: the Pinocchio model.
+        data: its data, joint Jacobians current.
+        cuts: the cuts' full rows (`cut_wrenches`).
+        joint: the joint.
+
+    Returns:
+        The basis (6, r).
     """
     if not joint.cut:
         motion = tree_motion(model, data, joint.index)
@@ -140,7 +186,14 @@ def constraint_span(model: pin.Model, data: pin.Data, cuts: Cuts, joint: Joint) 
 
 
 def choose_components(span: np.ndarray) -> tuple[int, ...]:
-    """World unit wrenches whose projections onto ``span`` form a basis of it, aligned ones first."""
+    """World unit wrenches whose projections onto ``span`` form a basis of it, aligned ones first.
+
+    Args:
+        span: an orthonormal basis (6, r) of a constraint wrench space.
+
+    Returns:
+        The chosen world wrench directions (indices 0-5: fx, fy, fz, mx, my, mz), r of them, sorted.
+    """
     projections = span @ span.T
     order = np.argsort(-np.linalg.norm(projections, axis=0), kind="stable")
     chosen: list[int] = []
@@ -154,7 +207,14 @@ def choose_components(span: np.ndarray) -> tuple[int, ...]:
 
 
 def body_names(model: pin.Model) -> dict[int, str]:
-    """Body id -> name of the URDF link carried by that Pinocchio joint (its first body frame)."""
+    """Body id -> name of the URDF link carried by that Pinocchio joint (its first body frame).
+
+    Args:
+        model: the Pinocchio model.
+
+    Returns:
+        Body id -> link name (the joint's name where no body frame names it).
+    """
     names = {}
     for frame in model.frames:
         if frame.type == pin.FrameType.BODY and frame.parentJoint > 0:
@@ -164,6 +224,13 @@ def body_names(model: pin.Model) -> dict[int, str]:
 
 def build_structure(cm: core.ClosureModel, q: np.ndarray) -> Structure:
     """The structure graph of a closure model, components chosen at the (assembled) configuration ``q``.
+
+    Args:
+        cm: the closure model (its actuation and full cut rows).
+        q: an assembled configuration (nq,).
+
+    Returns:
+        The structure graph.
 
     Raises:
         MalformedDescription: an actuated joint does not have exactly one degree of freedom.

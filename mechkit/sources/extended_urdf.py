@@ -25,7 +25,14 @@ from mechkit.sources.urdf import LOOP_NAMESPACE, build_model, describe_urdf, par
 
 
 def sidecar_of(path: Path) -> Path | None:
-    """The `.yaml` (or `.yml`) sidecar beside a URDF, if there is one."""
+    """The `.yaml` (or `.yml`) sidecar beside a URDF, if there is one.
+
+    Args:
+        path: a URDF file.
+
+    Returns:
+        The sidecar, or None.
+    """
     for suffix in (".yaml", ".yml"):
         candidate = path.with_suffix(suffix)
         if candidate.is_file():
@@ -35,6 +42,13 @@ def sidecar_of(path: Path) -> Path | None:
 
 def read_extended_urdf(path: Path, sidecar: Path) -> Description:
     """The URDF with the sidecar's pairs as `<mechkit:loop>` elements and its motors as actuators.
+
+    Args:
+        path: the tree URDF.
+        sidecar: its YAML sidecar (`closed_loop`, `type`, `name_mot`).
+
+    Returns:
+        The description.
 
     Raises:
         MalformedDescription: a sidecar that is not YAML, lacks `closed_loop`, has lists of different
@@ -67,8 +81,15 @@ def read_extended_urdf(path: Path, sidecar: Path) -> Description:
 
 
 def link_placements(root: ET.Element) -> dict[str, tuple[str, pin.SE3]]:
-    """Every link -> (the body it is fixed to: the link after its last moving joint, its placement
-    in that body's frame), following fixed joints up the tree."""
+    """Where every link is fixed: the body it moves with (the link after its last moving joint) and its
+    placement in that body's frame, following fixed joints up the tree.
+
+    Args:
+        root: the URDF's <robot> element.
+
+    Returns:
+        Link -> (body link, placement (pin.SE3)).
+    """
     parent_joint = {j.find("child").get("link"): j for j in root.findall("joint")}
     out: dict[str, tuple[str, pin.SE3]] = {}
 
@@ -147,6 +168,9 @@ def load_extended_urdf(urdf: str, yaml_text: str) -> tuple[pin.Model, list[pin.R
     Args:
         urdf: tree URDF text.
         yaml_text: sidecar text (`closed_loop`, `type`, `name_mot`).
+
+    Returns:
+        (the tree model, one RigidConstraintModel per pair (LOCAL frames), the motors' joint names).
     """
     import yaml
 

@@ -15,6 +15,9 @@ from mechkit.base.exceptions import MalformedDescription
 def check_tree(root: ET.Element) -> None:
     """Links and joints form one tree: unique names, known parents and children, one root, no cycle.
 
+    Args:
+        root: the URDF's <robot> element.
+
     Raises:
         MalformedDescription: the first fault found, naming the link or joint.
     """
@@ -72,6 +75,9 @@ def check_inertias(root: ET.Element) -> None:
     """Every `<inertial>` has a positive finite mass and a positive definite inertia (kg, kg m^2).
 
     A zero mass with a zero inertia is a massless link (third-party URDFs write their tool frames so).
+
+    Args:
+        root: the URDF's <robot> element.
 
     Raises:
         MalformedDescription: naming the link and the value.
