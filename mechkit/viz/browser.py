@@ -98,6 +98,9 @@ def coverage(png: str | os.PathLike, tolerance: int = 12) -> tuple[tuple[int, in
 
     Returns:
         (background rgb 0..255, fraction of the other pixels).
+
+    Raises:
+        MethodUnavailable: Pillow is not installed.
     """
     try:
         import numpy as np

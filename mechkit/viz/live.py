@@ -172,7 +172,22 @@ class LiveViewer:
 
 def view(mechanism: Mechanism, q: np.ndarray | None = None, scene: str | None = None,
          meshes: MeshSearch | None = None) -> LiveViewer:
-    """Start a live viewer showing the mechanism (see `LiveViewer.show`); close it when done."""
+    """Start a live viewer showing the mechanism (see `LiveViewer.show`); close it when done.
+
+    Args:
+        mechanism: the mechanism.
+        q: a configuration (nq,), assembled.
+        scene: a scene name, played ping-pong.
+        meshes: where mesh files are looked for.
+
+    Returns:
+        The running viewer.
+
+    Raises:
+        MethodUnavailable: meshcat is not installed.
+        ExternalToolFailed: its server did not start, or stopped answering.
+        InvalidParameters: both q and scene, or an unknown scene.
+    """
     viewer = LiveViewer()
     try:
         viewer.show(mechanism, q, scene, meshes)
