@@ -20,7 +20,15 @@ TREE = (("R11", "link11", None), ("R12", "link12", "link11"), ("R21", "link21", 
 
 
 def joint_coordinates(p: Parallel2T1RParams, s: State) -> dict[str, tuple[float, float, float]]:
-    """URDF tree joints -> (position rad, rate rad/s, acceleration rad/s^2) for an analytic state."""
+    """URDF tree joints -> (position rad, rate rad/s, acceleration rad/s^2) for an analytic state.
+
+    Args:
+        p: the parameters.
+        s: an analytic state.
+
+    Returns:
+        Joint -> (position rad, rate rad/s, acceleration rad/s^2).
+    """
     motion = link_motion(p.dims, s)
     out = {}
     for joint, child, parent in TREE:
@@ -36,12 +44,28 @@ def joint_coordinates(p: Parallel2T1RParams, s: State) -> dict[str, tuple[float,
 
 
 def joint_positions(p: Parallel2T1RParams, s: State) -> dict[str, float]:
-    """URDF tree joints -> position (rad) of an analytic state: a closure-solve guess."""
+    """URDF tree joints -> position (rad) of an analytic state: a closure-solve guess.
+
+    Args:
+        p: the parameters.
+        s: an analytic state.
+
+    Returns:
+        Joint -> position (rad).
+    """
     return {joint: c[0] for joint, c in joint_coordinates(p, s).items()}
 
 
 def configuration(mech: Mechanism, s: State) -> np.ndarray:
-    """The configuration q (nq,) of an analytic state: the neutral q with every tree joint set."""
+    """The configuration q (nq,) of an analytic state: the neutral q with every tree joint set.
+
+    Args:
+        mech: the 2T1R.
+        s: an analytic state.
+
+    Returns:
+        q (nq,).
+    """
     q = mech.neutral()
     for joint, value in joint_positions(mech.params, s).items():
         q[mech.q_index(joint)] = value

@@ -35,34 +35,87 @@ from mechkit.validation.soc import SOCResult, classic_virtual_work, solve_soc
 
 
 def closed_form_q(motion: Motion, mech: Mechanism, sample: Any) -> np.ndarray:
-    """Assembly by circle intersection, as a mechkit q (rad)."""
+    """Assembly by circle intersection, as a mechkit q (rad).
+
+    Args:
+        motion: the linkage's closed form.
+        mech: the linkage.
+        sample: a bench sample (inputs, rates, accelerations in actuated order; tau; `extra` for the cache).
+
+    Returns:
+        q (nq,).
+    """
     st = at_rest(motion, mech, sample)
     return joint_vector(mech, st, st.q)
 
 
 def closed_form_a(motion: Motion, mech: Mechanism, sample: Any) -> np.ndarray:
-    """The closed form's joint accelerations (rad/s^2), as a mechkit (nv,) vector."""
+    """The closed form's joint accelerations (rad/s^2), as a mechkit (nv,) vector.
+
+    Args:
+        motion: the linkage's closed form.
+        mech: the linkage.
+        sample: a bench sample (inputs, rates, accelerations in actuated order; tau; `extra` for the cache).
+
+    Returns:
+        a (nv,).
+    """
     st = state(motion, mech, sample)
     return joint_vector(mech, st, st.qdd)
 
 
 def newton_euler(motion: Motion, mech: Mechanism, sample: Any) -> planar_newton_euler.PlanarDynamics:
-    """Planar Newton-Euler: efforts and every pin's reaction."""
+    """Planar Newton-Euler: efforts and every pin's reaction.
+
+    Args:
+        motion: the linkage's closed form.
+        mech: the linkage.
+        sample: a bench sample (inputs, rates, accelerations in actuated order; tau; `extra` for the cache).
+
+    Returns:
+        Efforts (N m) and every pin's reaction (world wrench (6,)).
+    """
     return planar_newton_euler.newton_euler(state(motion, mech, sample))
 
 
 def classic(motion: Motion, mech: Mechanism, sample: Any) -> dict[str, Any]:
-    """Classic virtual work over the URDF coordinates: efforts only."""
+    """Classic virtual work over the URDF coordinates: efforts only.
+
+    Args:
+        motion: the linkage's closed form.
+        mech: the linkage.
+        sample: a bench sample (inputs, rates, accelerations in actuated order; tau; `extra` for the cache).
+
+    Returns:
+        {"efforts": actuated joint -> torque (N m)}.
+    """
     return {"efforts": classic_virtual_work(whole_skc(state(motion, mech, sample)))}
 
 
 def soc(motion: Motion, mech: Mechanism, sample: Any) -> SOCResult:
-    """Sequential SOC virtual work (`validation.soc.solve_soc`): efforts and in-plane pin forces."""
+    """Sequential SOC virtual work (`validation.soc.solve_soc`): efforts and in-plane pin forces.
+
+    Args:
+        motion: the linkage's closed form.
+        mech: the linkage.
+        sample: a bench sample (inputs, rates, accelerations in actuated order; tau; `extra` for the cache).
+
+    Returns:
+        Efforts (N m) and every pin's reaction (world wrench (6,), in-plane forces).
+    """
     return solve_soc(soc_skcs(state(motion, mech, sample)))
 
 
 def bench_methods(motion: Motion) -> tuple[BenchMethod, ...]:
-    """The linkage's own methods in `mechkit bench`, for its closed form `motion`."""
+    """The linkage's own methods in `mechkit bench`, for its closed form `motion`.
+
+    Args:
+        motion: the linkage's closed form.
+
+    Returns:
+        The methods (assembly, forward dynamics by Lagrange, inverse dynamics by Lagrange, SOC and classic virtual
+            work).
+    """
     return (
         BenchMethod("closed form (circle intersection, numpy)", "assembly", partial(closed_form_q, motion)),
         BenchMethod("Lagrange first kind, forward (numpy, from link motion)", "forward_dynamics",
@@ -76,7 +129,15 @@ def bench_methods(motion: Motion) -> tuple[BenchMethod, ...]:
 
 
 def bench_references(motion: Motion) -> tuple[BenchReference, ...]:
-    """The linkage's references in `mechkit bench` (independent of Pinocchio), for its closed form `motion`."""
+    """The linkage's references in `mechkit bench` (independent of Pinocchio), for its closed form `motion`.
+
+    Args:
+        motion: the linkage's closed form.
+
+    Returns:
+        The references: the closed form for assembly, its accelerations for forward dynamics, planar Newton-Euler
+            for inverse dynamics.
+    """
     return (
         BenchReference("closed form (circle intersection)", "assembly", partial(closed_form_q, motion)),
         BenchReference("closed-form a, tau from planar Newton-Euler", "forward_dynamics", partial(closed_form_a, motion)),

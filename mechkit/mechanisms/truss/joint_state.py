@@ -23,6 +23,9 @@ def web_joint_motion(p: TetraParams, s: DriveState, apexes: tuple[str, ...] = ("
         p: the unit's (or the composite's) parameters, for the reference configuration.
         s: the drive state at one instant.
         apexes: the units present ("H" for the unit; "H", "J", "I" for the composite).
+
+    Returns:
+        (joint -> angle (rad), joint -> rate (rad/s), joint -> acceleration (rad/s^2)).
     """
     da = (s.alpha - p.alpha_ref, s.alpha_rate, s.alpha_acc)
     dg = (s.gamma - p.gamma_ref, s.gamma_rate, s.gamma_acc)
@@ -37,6 +40,16 @@ def web_joint_motion(p: TetraParams, s: DriveState, apexes: tuple[str, ...] = ("
 
 
 def drive_inputs(p: TetraParams, s: DriveState, actuated: tuple[str, ...], apexes: tuple[str, ...]) -> tuple[dict, dict, dict]:
-    """The paper's motion s on the actuated joints: (angles, rates, accelerations) by joint name."""
+    """The paper's motion s on the actuated joints: (angles, rates, accelerations) by joint name.
+
+    Args:
+        p: the unit's (or the composite's) parameters.
+        s: the drive state at one instant.
+        actuated: the actuated joints.
+        apexes: the units present.
+
+    Returns:
+        (joint -> angle (rad), joint -> rate, joint -> acceleration), the actuated joints only.
+    """
     motion = web_joint_motion(p, s, apexes)
     return tuple({joint: values[joint] for joint in actuated} for values in motion)
