@@ -116,7 +116,21 @@ def _leg(frame_pivot: np.ndarray, point: np.ndarray, velocity: np.ndarray, acc: 
 def gimbal_motion(
     geo: GimbalGeometry, angles: np.ndarray, rates: np.ndarray, accs: np.ndarray
 ) -> GimbalMotion:
-    """Every body's motion from (alpha, beta) and their derivatives (rad, rad/s, rad/s^2)."""
+    """Every body's motion from (alpha, beta) and their derivatives (rad, rad/s, rad/s^2).
+
+    Args:
+        geo: the geometry.
+        angles: (alpha, beta), rad.
+        rates: their rates, rad/s.
+        accs: their accelerations, rad/s^2.
+
+    Returns:
+        Every body's angular velocity and acceleration, and per servo its length, Hooke angles, axis and their
+            derivatives (paper frame O-xyz).
+
+    Raises:
+        InvalidParameters: angles, rates or accelerations that are not two finite values.
+    """
     angles, rates, accs = (np.asarray(x, dtype=float) for x in (angles, rates, accs))
     for name, x in (("angles", angles), ("rates", rates), ("accs", accs)):
         if x.shape != (2,) or not np.all(np.isfinite(x)):

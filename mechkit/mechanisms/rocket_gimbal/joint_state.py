@@ -20,13 +20,30 @@ __all__ = ["hinges", "joint_state"]
 
 
 def hinges(mech: Mechanism, x: np.ndarray, index: str = "v") -> np.ndarray:
-    """(alpha, beta) entries of a joint vector: q with index="q" (rad), v or a with "v" (rad/s, rad/s^2)."""
+    """(alpha, beta) entries of a joint vector: q with index="q" (rad), v or a with "v" (rad/s, rad/s^2).
+
+    Args:
+        mech: the gimbal.
+        x: a joint vector: q (nq,), or v or a (nv,).
+        index: "q" for a configuration, "v" for a velocity or acceleration.
+
+    Returns:
+        (alpha, beta) entries (2,).
+    """
     pick = mech.q_index if index == "q" else mech.v_index
     return np.array([x[pick("bracket_hinge")], x[pick("engine_hinge")]])
 
 
 def joint_state(mech: Mechanism, motion: GimbalMotion) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """(q, v, a) of the URDF tree from the analytic motion (no closure solve)."""
+    """(q, v, a) of the URDF tree from the analytic motion (no closure solve).
+
+    Args:
+        mech: the gimbal.
+        motion: the analytic motion.
+
+    Returns:
+        (q (nq,), v (nv,), a (nv,)).
+    """
     p = mech.params
     values = {
         "bracket_hinge": (motion.angles[0], motion.rates[0], motion.accs[0]),

@@ -267,7 +267,16 @@ def _free(body: BodyLoad, com: np.ndarray, ref: np.ndarray) -> BodyLoad:
 
 
 def soc_skcs(p: RocketGimbalParams, motion: GimbalMotion, scene: SwingScene) -> list[SKCInstant]:
-    """The SKCs of `gimbal_skcs` for these parameters (world frame), under the scene's thrust."""
+    """The SKCs of `gimbal_skcs` for these parameters (world frame), under the scene's thrust.
+
+    Args:
+        p: the parameters.
+        motion: the analytic motion.
+        scene: the scene (its thrust).
+
+    Returns:
+        The SKCs in solve order.
+    """
     return gimbal_skcs(
         motion,
         geometry(p).frame_pivots,
