@@ -40,6 +40,16 @@ def fk_closure(
     The start is the tree pose with the Hooke joint at phi0, the motors at theta_d, and each middle
     joint turned so that link i2's distal axis is the closest to v_i(phi0) (`kin.limb_angles`).
 
+    Args:
+        mech: the platform.
+        theta_d: the motor angles, rad.
+        phi0: the start attitude (roll, pitch), rad.
+        tol: closure residual to reach.
+        max_iter: iterations at most.
+
+    Returns:
+        The attitude found, the iterations and the final residual.
+
     Raises:
         ClosureNotConverged: the closure solver failed.
     """
@@ -51,7 +61,21 @@ def fk_closure(
 
 
 def solve_fk(mech: Mechanism, method: str, theta_d: Sequence[float], phi0: Sequence[float]) -> kin.FKResult:
-    """One forward-kinematics solve by ``method`` (one of `METHODS`)."""
+    """One forward-kinematics solve by ``method`` (one of `METHODS`).
+
+    Args:
+        mech: the platform.
+        method: "paper", "newton" or "closure".
+        theta_d: the motor angles, rad.
+        phi0: the start attitude (roll, pitch), rad.
+
+    Returns:
+        The attitude found, the iterations and the final residual.
+
+    Raises:
+        InvalidParameters: an unknown method.
+        ClosureNotConverged: the method failed to converge.
+    """
     if method == "paper":
         return kin.fk_paper(mech.params, theta_d, phi0, BRANCHES)
     if method == "newton":
@@ -93,6 +117,17 @@ def basin_study(
 
     The motor angles are the paper's IK of phi_star (branch `BRANCHES`); starts are
     ``phi_star + r (cos a, sin a)`` for ``directions`` equally spaced angles a.
+
+    Args:
+        mech: the platform.
+        phi_star: the target attitude (roll, pitch), rad.
+        radii: the start circles' radii, rad.
+        directions: starts per circle.
+        methods: the FK methods.
+
+    Returns:
+        One row per method and radius: the fractions of starts that found the target, another root, or failed, and
+            the mean iterations.
     """
     phi_star = np.asarray(phi_star, dtype=float)
     theta_d = kin.inverse_kinematics(mech.params, phi_star, BRANCHES)

@@ -19,7 +19,16 @@ __all__ = ["guess", "home", "state", "tree_configuration", "tree_q"]
 
 
 def tree_configuration(p: kin.Geometry, phi: np.ndarray, theta: np.ndarray) -> dict[str, float]:
-    """Every tree joint (rad) at attitude ``phi`` and motor angles ``theta`` (closed with eq. 7)."""
+    """Every tree joint (rad) at attitude ``phi`` and motor angles ``theta`` (closed with eq. 7).
+
+    Args:
+        p: the structural parameters.
+        phi: attitude (roll, pitch), rad.
+        theta: motor angles (theta_11, theta_21), rad.
+
+    Returns:
+        Joint -> angle (rad).
+    """
     joints = {"hooke_roll": float(phi[0]), "hooke_pitch": float(phi[1])}
     for k, i in enumerate((1, 2)):
         joints[f"r{i}1"] = float(theta[k])
@@ -28,7 +37,16 @@ def tree_configuration(p: kin.Geometry, phi: np.ndarray, theta: np.ndarray) -> d
 
 
 def tree_q(mech: Mechanism, phi: np.ndarray, theta: np.ndarray) -> np.ndarray:
-    """Pinocchio configuration q (nq,) of `tree_configuration` (the neutral value elsewhere)."""
+    """Pinocchio configuration q (nq,) of `tree_configuration` (the neutral value elsewhere).
+
+    Args:
+        mech: the platform.
+        phi: attitude (roll, pitch), rad.
+        theta: motor angles (theta_11, theta_21), rad.
+
+    Returns:
+        q (nq,).
+    """
     q = mech.neutral()
     for joint, value in tree_configuration(mech.params, phi, theta).items():
         q[mech.q_index(joint)] = value
@@ -36,13 +54,27 @@ def tree_q(mech: Mechanism, phi: np.ndarray, theta: np.ndarray) -> np.ndarray:
 
 
 def home(p: kin.Geometry) -> dict[str, float]:
-    """Motor angles (rad) of the home attitude (platform level), branch `kin.BRANCHES`."""
+    """Motor angles (rad) of the home attitude (platform level), branch `kin.BRANCHES`.
+
+    Args:
+        p: the structural parameters.
+
+    Returns:
+        {"r11", "r21"} -> angle (rad).
+    """
     theta = kin.inverse_kinematics(p, (0.0, 0.0), kin.BRANCHES)
     return {"r11": float(theta[0]), "r21": float(theta[1])}
 
 
 def guess(p: kin.Geometry) -> dict[str, float]:
-    """Every tree joint (rad) at the home attitude: the initial guess picking the assembly branch."""
+    """Every tree joint (rad) at the home attitude: the initial guess picking the assembly branch.
+
+    Args:
+        p: the structural parameters.
+
+    Returns:
+        Joint -> angle (rad).
+    """
     return tree_configuration(p, np.zeros(2), kin.inverse_kinematics(p, (0.0, 0.0), kin.BRANCHES))
 
 
@@ -64,6 +96,9 @@ def state(
         phi_d: its rates, rad/s.
         phi_dd: its accelerations, rad/s^2.
         branches: the IK branch per limb (+1 / -1).
+
+    Returns:
+        (q (nq,), v (nv,), a (nv,)).
     """
     p = mech.params
     theta = kin.inverse_kinematics(p, phi, branches)

@@ -81,44 +81,109 @@ def _etas(p: Geometry, i: int) -> tuple[float, float]:
 
 
 def platform_rotation(phi: Sequence[float]) -> np.ndarray:
-    """Platform attitude ``R = Rx(phi_x) Ry(phi_y)`` (platform frame -> base frame)."""
+    """Platform attitude ``R = Rx(phi_x) Ry(phi_y)`` (platform frame -> base frame).
+
+    Args:
+        phi: attitude (roll, pitch), rad.
+
+    Returns:
+        (3, 3) rotation matrix.
+    """
     return rot_x(phi[0]) @ rot_y(phi[1])
 
 
 def platform_normal(phi: np.ndarray) -> np.ndarray:
-    """Unit platform normal n = R(phi) e_z (base frame) of attitudes (..., 2)."""
+    """Unit platform normal n = R(phi) e_z (base frame) of attitudes (..., 2).
+
+    Args:
+        phi: attitudes (..., 2), rad.
+
+    Returns:
+        (..., 3) unit normals.
+    """
     phi = np.asarray(phi, dtype=float)
     px, py = phi[..., 0], phi[..., 1]
     return np.stack([np.sin(py), -np.sin(px) * np.cos(py), np.cos(px) * np.cos(py)], axis=-1)
 
 
 def base_frame(p: Geometry, i: int) -> np.ndarray:
-    """``F_i0 = Rz(eta1i) Rx(pi - beta)``: frame of limb i's motor joint, z = u_i (base frame)."""
+    """``F_i0 = Rz(eta1i) Rx(pi - beta)``: frame of limb i's motor joint, z = u_i (base frame).
+
+    Args:
+        p: the structural parameters.
+        i: the limb, 1 or 2.
+
+    Returns:
+        (3, 3) rotation matrix.
+    """
     return rot_z(_etas(p, i)[0]) @ rot_x(np.pi - p.beta)
 
 
 def base_axis(p: Geometry, i: int) -> np.ndarray:
-    """u_i (eq. 5): ``[s(eta1i) s(beta), -c(eta1i) s(beta), -c(beta)]``, base frame."""
+    """u_i (eq. 5): ``[s(eta1i) s(beta), -c(eta1i) s(beta), -c(beta)]``, base frame.
+
+    Args:
+        p: the structural parameters.
+        i: the limb, 1 or 2.
+
+    Returns:
+        (3,) unit axis.
+    """
     return base_frame(p, i)[:, 2]
 
 
 def platform_frame_local(p: Geometry, i: int) -> np.ndarray:
-    """``P_i = Rz(eta2i) Rx(pi - b')``: frame of limb i's platform joint in the platform frame, z = v_i."""
+    """``P_i = Rz(eta2i) Rx(pi - b')``: frame of limb i's platform joint in the platform frame, z = v_i.
+
+    Args:
+        p: the structural parameters.
+        i: the limb, 1 or 2.
+
+    Returns:
+        (3, 3) rotation matrix.
+    """
     return rot_z(_etas(p, i)[1]) @ rot_x(np.pi - p.beta_platform)
 
 
 def platform_axis(p: Geometry, i: int, phi: Sequence[float]) -> np.ndarray:
-    """v_i (our eq. 6): ``R(phi) [s(eta2i) s(b'), -c(eta2i) s(b'), -c(b')]``, base frame."""
+    """v_i (our eq. 6): ``R(phi) [s(eta2i) s(b'), -c(eta2i) s(b'), -c(b')]``, base frame.
+
+    Args:
+        p: the structural parameters.
+        i: the limb, 1 or 2.
+        phi: attitude (roll, pitch), rad.
+
+    Returns:
+        (3,) unit axis.
+    """
     return platform_rotation(phi) @ platform_frame_local(p, i)[:, 2]
 
 
 def middle_axis(p: Geometry, i: int, theta1: float) -> np.ndarray:
-    """w_i (eq. 4, third column): the middle joint axis of limb i at motor angle ``theta1``."""
+    """w_i (eq. 4, third column): the middle joint axis of limb i at motor angle ``theta1``.
+
+    Args:
+        p: the structural parameters.
+        i: the limb, 1 or 2.
+        theta1: limb i's motor angle, rad.
+
+    Returns:
+        (3,) unit axis, base frame.
+    """
     return base_frame(p, i) @ rot_z(theta1) @ rot_x(-p.alpha1)[:, 2]
 
 
 def ik_coefficients(p: Geometry, i: int, v: np.ndarray) -> tuple[float, float, float]:
-    """(A_i, B_i, C_i) of ``A sin(theta_i1) + B cos(theta_i1) + C = 0`` (eq. 7 expanded, as printed)."""
+    """(A_i, B_i, C_i) of ``A sin(theta_i1) + B cos(theta_i1) + C = 0`` (eq. 7 expanded, as printed).
+
+    Args:
+        p: the structural parameters.
+        i: the limb, 1 or 2.
+        v: the platform axis v_i (3,), base frame.
+
+    Returns:
+        (A_i, B_i, C_i).
+    """
     eta = _etas(p, i)[0]
     sa1, ca1, sb, cb = np.sin(p.alpha1), np.cos(p.alpha1), np.sin(p.beta), np.cos(p.beta)
     se, ce = np.sin(eta), np.cos(eta)
@@ -140,6 +205,9 @@ def inverse_kinematics(p: Geometry, phi: Sequence[float], branches: Sequence[int
         phi: (roll, pitch), rad.
         branches: per limb, +1 or -1.
 
+    Returns:
+        (2,) motor angles, rad, in (-pi, pi].
+
     Raises:
         InvalidParameters: a limb cannot reach the attitude (|C| > hypot(A, B): the u-v arc leaves
             [|alpha1 - alpha2|, alpha1 + alpha2]), or a branch is not +-1.
@@ -158,7 +226,16 @@ def inverse_kinematics(p: Geometry, phi: Sequence[float], branches: Sequence[int
 
 
 def constraint(p: Geometry, theta: Sequence[float], phi: Sequence[float]) -> np.ndarray:
-    """Residuals ``w_i . v_i - cos(alpha2)`` (2,) of eq. (7)."""
+    """Residuals ``w_i . v_i - cos(alpha2)`` (2,) of eq. (7).
+
+    Args:
+        p: the structural parameters.
+        theta: motor angles (2,), rad.
+        phi: attitude (roll, pitch), rad.
+
+    Returns:
+        (2,) residuals (-).
+    """
     return np.array(
         [
             middle_axis(p, i, theta[k]) @ platform_axis(p, i, phi) - np.cos(p.alpha2)
@@ -176,6 +253,11 @@ def constraint_jacobians(
     p: Geometry, theta: Sequence[float], phi: Sequence[float]
 ) -> tuple[np.ndarray, np.ndarray]:
     """The matrices of eq. (10), ``A theta' + B phi' = 0``.
+
+    Args:
+        p: the structural parameters.
+        theta: motor angles (2,), rad.
+        phi: attitude (roll, pitch), rad.
 
     Returns:
         A (2, 2), diagonal: ``d f_i / d theta_i1 = (u_i x w_i) . v_i``;
@@ -199,6 +281,15 @@ def _cond(m: np.ndarray) -> float:
 def jacobian(p: Geometry, theta: Sequence[float], phi: Sequence[float], max_cond: float = 1e12) -> np.ndarray:
     """``J = -B^-1 A`` (eq. 12): ``phi' = J theta'`` (rad/s per rad/s).
 
+    Args:
+        p: the structural parameters.
+        theta: motor angles (2,), rad.
+        phi: attitude (roll, pitch), rad.
+        max_cond: the largest condition number of B accepted.
+
+    Returns:
+        J (2, 2).
+
     Raises:
         SingularConfiguration: B is singular (a forward-kinematics singularity).
     """
@@ -214,6 +305,15 @@ def limb_angles(p: Geometry, i: int, theta1: float, phi: Sequence[float]) -> tup
 
     theta_i2 turns link i2 about w_i so its distal axis is the closest to v_i (equal to it when
     eq. 7 holds); theta_i3 is the rotation about v_i from link i2 to the platform-side frame P_i.
+
+    Args:
+        p: the structural parameters.
+        i: the limb, 1 or 2.
+        theta1: limb i's motor angle, rad.
+        phi: attitude (roll, pitch), rad.
+
+    Returns:
+        (theta_i2, theta_i3), rad.
     """
     frame = base_frame(p, i) @ rot_z(theta1) @ rot_x(-p.alpha1)
     g = frame.T @ platform_axis(p, i, phi)
@@ -226,7 +326,16 @@ def limb_angles(p: Geometry, i: int, theta1: float, phi: Sequence[float]) -> tup
 def hooke_rates(
     phi: Sequence[float], phi_dot: Sequence[float], phi_ddot: Sequence[float]
 ) -> tuple[np.ndarray, np.ndarray]:
-    """Platform angular velocity and acceleration (rad/s, rad/s^2, base frame) from roll/pitch rates."""
+    """Platform angular velocity and acceleration (rad/s, rad/s^2, base frame) from roll/pitch rates.
+
+    Args:
+        phi: attitude (roll, pitch), rad.
+        phi_dot: its rates, rad/s.
+        phi_ddot: its accelerations, rad/s^2.
+
+    Returns:
+        (omega (3,), alpha (3,)).
+    """
     h = _hooke_axes(phi)
     omega = h @ np.asarray(phi_dot, dtype=float)
     # d/dt of the second axis Rx(phi_x) e_y is (phi_x' e_x) x that axis.
@@ -241,6 +350,17 @@ def limb_rates(
 
     Velocity loop ``theta1' u + theta2' w + theta3' v = omega_p`` and its time derivative
     ``[u w v] theta'' = alpha_p - (theta1' u) x (theta2' w) - (theta1' u + theta2' w) x (theta3' v)``.
+
+    Args:
+        p: the structural parameters.
+        i: the limb, 1 or 2.
+        theta1: limb i's motor angle, rad.
+        phi: attitude (roll, pitch), rad.
+        omega_p: the platform's angular velocity (3,), rad/s, base frame.
+        alpha_p: its angular acceleration (3,), rad/s^2.
+
+    Returns:
+        (rates (3,) rad/s, accelerations (3,) rad/s^2).
 
     Raises:
         SingularConfiguration: u, w, v coplanar (the limb is stretched or folded).
@@ -287,6 +407,17 @@ def fk_paper(
     ``J Delta theta``: a Newton iteration on the closed-form inverse kinematics (the printed form does
     not converge; the test suite shows it).
 
+    Args:
+        p: the structural parameters.
+        theta_d: the motor angles, rad.
+        phi0: the start attitude (roll, pitch), rad.
+        branches: the IK branch per limb (+1 / -1).
+        tol: step size at which to stop, rad.
+        max_iter: iterations at most.
+
+    Returns:
+        The attitude found, the iterations and the final step.
+
     Raises:
         ClosureNotConverged: no convergence within ``max_iter`` steps, or an iterate leaves the
             workspace (InvKin undefined) or meets a singular B.
@@ -307,6 +438,16 @@ def fk_newton(
 
     Unlike the paper's iteration it never evaluates the inverse kinematics, so its iterates may
     leave the workspace.
+
+    Args:
+        p: the structural parameters.
+        theta_d: the motor angles, rad.
+        phi0: the start attitude (roll, pitch), rad.
+        tol: step size at which to stop, rad.
+        max_iter: iterations at most.
+
+    Returns:
+        The attitude found, the iterations and the final step.
 
     Raises:
         ClosureNotConverged: no convergence within ``max_iter`` steps or a singular B.
