@@ -46,19 +46,60 @@ class DeploymentSystem(Protocol):
     p: TenBarParams
 
     def rhs(self, t: float, q: np.ndarray, v: np.ndarray) -> tuple[np.ndarray, np.ndarray, float]:
-        """(accelerations, motor torques (R1, R3) N m, net external power W)."""
+        """(accelerations, motor torques (R1, R3) N m, net external power W).
+
+        Args:
+            t: time, s.
+            q: the system's coordinates.
+            v: their rates.
+
+        Returns:
+            (accelerations, motor torques (R1, R3) N m, net external power W).
+        """
 
     def project(self, t: float, q: np.ndarray, v: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """(q, v) on the constraint manifold at t."""
+        """(q, v) on the constraint manifold at t.
+
+        Args:
+            t: time, s.
+            q: the system's coordinates.
+            v: their rates.
+
+        Returns:
+            (q, v) on the constraints and the motor laws at t.
+        """
 
     def residual(self, t: float, q: np.ndarray) -> float:
-        """Largest closure residual (m)."""
+        """Largest closure residual (m).
+
+        Args:
+            t: time, s.
+            q: the system's coordinates.
+
+        Returns:
+            The residual, m.
+        """
 
     def energy(self, q: np.ndarray, v: np.ndarray) -> float:
-        """Kinetic + gravity + spring energy (J)."""
+        """Kinetic + gravity + spring energy (J).
+
+        Args:
+            q: the system's coordinates.
+            v: their rates.
+
+        Returns:
+            The energy, J.
+        """
 
     def joint_angles(self, q: np.ndarray) -> np.ndarray:
-        """The 9 tree-joint angles in `JOINT_ORDER` (rad)."""
+        """The 9 tree-joint angles in `JOINT_ORDER` (rad).
+
+        Args:
+            q: the system's coordinates.
+
+        Returns:
+            (9,) angles, rad.
+        """
 
 
 JOINT_ORDER = geo.TREE_JOINTS
@@ -86,14 +127,31 @@ class PinocchioDeployment:
 
     def spring_torque(self, q: np.ndarray, v: np.ndarray) -> float:
         """The R5 spring-damper torque on l56 (N m): k (free angle - q) - c qdot (the mechanism's own joint
-        spring, `Mechanism.passive_forces`, which its dynamics apply)."""
+        spring, `Mechanism.passive_forces`, which its dynamics apply).
+
+        Args:
+            q: configuration (nq,).
+            v: velocity (nv,).
+
+        Returns:
+            The torque, N m.
+        """
         return float(self.m.passive_forces(q, v)[self.spring_v])
 
     def _fd(self, q, v, tau):
         return self.m.forward_dynamics(q, v, tau, method=self.method, baumgarte=self.baumgarte).a
 
     def rhs(self, t: float, q: np.ndarray, v: np.ndarray) -> tuple[np.ndarray, np.ndarray, float]:
-        """(accelerations, motor torques (R1, R3) N m, net external power W) at time t (s)."""
+        """(accelerations, motor torques (R1, R3) N m, net external power W) at time t (s).
+
+        Args:
+            t: time, s.
+            q: configuration (nq,).
+            v: their rates.
+
+        Returns:
+            (accelerations, motor torques (R1, R3) N m, net external power W).
+        """
         _, _, acc = motor_law(self.p, t)
         tau = np.zeros(self.m.model.nv)  # the spring acts through the mechanism's dynamics
         a0 = self._fd(q, v, tau)
@@ -113,16 +171,44 @@ class PinocchioDeployment:
         return e, G
 
     def project(self, t: float, q: np.ndarray, v: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """(q, v) on the closures and the motor laws at time t (s)."""
+        """(q, v) on the closures and the motor laws at time t (s).
+
+        Args:
+            t: time, s.
+            q: configuration (nq,).
+            v: their rates.
+
+        Returns:
+            (q, v) on the constraints and the motor laws at t.
+
+        Raises:
+            ClosureNotConverged: the projection does not converge.
+        """
         _, rate, _ = motor_law(self.p, t)
         return project(lambda x: self._rows(t, x), q, v, rate, "ten-bar projection (Pinocchio)")
 
     def residual(self, t: float, q: np.ndarray) -> float:
-        """Largest closure residual (m) at q."""
+        """Largest closure residual (m) at q.
+
+        Args:
+            t: time, s.
+            q: configuration (nq,).
+
+        Returns:
+            The residual, m.
+        """
         return float(np.max(np.abs(self.m.closure_residual(q))))
 
     def energy(self, q: np.ndarray, v: np.ndarray) -> float:
-        """Kinetic + gravity + spring energy (J)."""
+        """Kinetic + gravity + spring energy (J).
+
+        Args:
+            q: configuration (nq,).
+            v: their rates.
+
+        Returns:
+            The energy, J.
+        """
         model, data = self.m.model, self.data
         kinetic = pin.computeKineticEnergy(model, data, q, v)
         gravity = pin.computePotentialEnergy(model, data, q)
@@ -130,7 +216,14 @@ class PinocchioDeployment:
         return float(kinetic + gravity + 0.5 * s.stiffness * (q[self.spring_v] - s.free_angle) ** 2)
 
     def joint_angles(self, q: np.ndarray) -> np.ndarray:
-        """The 9 tree-joint angles in `JOINT_ORDER` (rad)."""
+        """The 9 tree-joint angles in `JOINT_ORDER` (rad).
+
+        Args:
+            q: configuration (nq,).
+
+        Returns:
+            (9,) angles, rad.
+        """
         return q[self.order]
 
 
@@ -142,7 +235,16 @@ class LagrangeDeployment:
         self.L = lagrange_linkage(params)
 
     def rhs(self, t: float, q: np.ndarray, v: np.ndarray) -> tuple[np.ndarray, np.ndarray, float]:
-        """(reference-point accelerations, motor torques (R1, R3) N m, net external power W) at t (s)."""
+        """(reference-point accelerations, motor torques (R1, R3) N m, net external power W) at t (s).
+
+        Args:
+            t: time, s.
+            q: reference-point coordinates (3 per link).
+            v: their rates.
+
+        Returns:
+            (accelerations, motor torques (R1, R3) N m, net external power W).
+        """
         _, _, acc = motor_law(self.p, t)
         sol = self.L.solve(q, v, acc)
         u = np.array([sol.efforts[m] for m in MOTORS])
@@ -150,20 +252,55 @@ class LagrangeDeployment:
         return sol.qdd, u, power["motor"] - power["damper"]
 
     def project(self, t: float, q: np.ndarray, v: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """(q, v) on the pin constraints and the motor laws at time t (s)."""
+        """(q, v) on the pin constraints and the motor laws at time t (s).
+
+        Args:
+            t: time, s.
+            q: reference-point coordinates (3 per link).
+            v: their rates.
+
+        Returns:
+            (q, v) on the constraints and the motor laws at t.
+
+        Raises:
+            ClosureNotConverged: the projection does not converge.
+        """
         pos, rate, _ = motor_law(self.p, t)
         return self.L.project(q, v, pos, rate)
 
     def residual(self, t: float, q: np.ndarray) -> float:
-        """Largest pin-constraint residual (m) at q."""
+        """Largest pin-constraint residual (m) at q.
+
+        Args:
+            t: time, s.
+            q: reference-point coordinates (3 per link).
+
+        Returns:
+            The residual, m.
+        """
         return float(np.max(np.abs(self.L.constraints(q))))
 
     def energy(self, q: np.ndarray, v: np.ndarray) -> float:
-        """Kinetic + gravity + spring energy (J)."""
+        """Kinetic + gravity + spring energy (J).
+
+        Args:
+            q: reference-point coordinates (3 per link).
+            v: their rates.
+
+        Returns:
+            The energy, J.
+        """
         return float(sum(self.L.energy(q, v).values()))
 
     def joint_angles(self, q: np.ndarray) -> np.ndarray:
-        """The 9 tree-joint angles in `JOINT_ORDER` (rad) of reference-point coordinates q."""
+        """The 9 tree-joint angles in `JOINT_ORDER` (rad) of reference-point coordinates q.
+
+        Args:
+            q: reference-point coordinates (3 per link).
+
+        Returns:
+            (9,) angles, rad.
+        """
         angles = joint_angles_from_lagrange(q)
         return np.array([angles[j] for j in JOINT_ORDER])
 
@@ -201,7 +338,16 @@ class LagrangeJointDeployment:
         return self.fk(q, np.eye(len(q)))
 
     def rhs(self, t: float, q: np.ndarray, v: np.ndarray) -> tuple[np.ndarray, np.ndarray, float]:
-        """(joint accelerations, motor torques (R1, R3) N m, net external power W) at time t (s)."""
+        """(joint accelerations, motor torques (R1, R3) N m, net external power W) at time t (s).
+
+        Args:
+            t: time, s.
+            q: the 9 joint angles in `JOINT_ORDER` (rad).
+            v: their rates.
+
+        Returns:
+            (accelerations, motor torques (R1, R3) N m, net external power W).
+        """
         qL, vL = self._state(q, v)
         qdd, u, power = self.inner.rhs(t, qL, vL)
         return self.joint_rows @ qdd, u, power
@@ -213,20 +359,55 @@ class LagrangeJointDeployment:
         return e, np.vstack([self.L.jacobian(qL) @ T, np.eye(len(q))[self.motor_rows]])
 
     def project(self, t: float, q: np.ndarray, v: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """(q, v) on the pin constraints and the motor laws at time t (s)."""
+        """(q, v) on the pin constraints and the motor laws at time t (s).
+
+        Args:
+            t: time, s.
+            q: the 9 joint angles in `JOINT_ORDER` (rad).
+            v: their rates.
+
+        Returns:
+            (q, v) on the constraints and the motor laws at t.
+
+        Raises:
+            ClosureNotConverged: the projection does not converge.
+        """
         _, rate, _ = motor_law(self.p, t)
         return project(lambda x: self._rows(t, x), q, v, rate, "ten-bar projection (Lagrange, joints)")
 
     def residual(self, t: float, q: np.ndarray) -> float:
-        """Largest pin-constraint residual (m) at joint angles q."""
+        """Largest pin-constraint residual (m) at joint angles q.
+
+        Args:
+            t: time, s.
+            q: the 9 joint angles in `JOINT_ORDER` (rad).
+
+        Returns:
+            The residual, m.
+        """
         return self.inner.residual(t, self._state(q, 0 * q)[0])
 
     def energy(self, q: np.ndarray, v: np.ndarray) -> float:
-        """Kinetic + gravity + spring energy (J)."""
+        """Kinetic + gravity + spring energy (J).
+
+        Args:
+            q: the 9 joint angles in `JOINT_ORDER` (rad).
+            v: their rates.
+
+        Returns:
+            The energy, J.
+        """
         return self.inner.energy(*self._state(q, v))
 
     def joint_angles(self, q: np.ndarray) -> np.ndarray:
-        """The joint angles themselves (rad, `JOINT_ORDER`)."""
+        """The joint angles themselves (rad, `JOINT_ORDER`).
+
+        Args:
+            q: the 9 joint angles in `JOINT_ORDER` (rad).
+
+        Returns:
+            (9,) angles, rad.
+        """
         return q.copy()
 
 
@@ -242,6 +423,9 @@ def project(rows: Callable[[np.ndarray], tuple[np.ndarray, np.ndarray]], q: np.n
         what: names the system in the error.
         tol: residual norm to reach.
         max_iter: Gauss-Newton steps allowed.
+
+    Returns:
+        (q, v) projected.
 
     Raises:
         ClosureNotConverged: the residual does not reach tol.
@@ -301,6 +485,9 @@ def integrate(
         dt: step (s).
         project: project (q, v) onto the closures and motor laws after every step.
         t0: start time (s).
+
+    Returns:
+        The trajectory: times, q, v, joint angles, motor torques, residuals, energy error.
     """
     steps = round((t_end - t0) / dt)
     q, v, w = q0.copy(), v0.copy(), 0.0
@@ -339,7 +526,17 @@ def integrate(
 def lagrange_state(
     params: TenBarParams, q_pin: np.ndarray, v_pin: np.ndarray, mechanism: Mechanism
 ) -> tuple[np.ndarray, np.ndarray]:
-    """Reference-point coordinates and rates of a Pinocchio state (numpy forward kinematics)."""
+    """Reference-point coordinates and rates of a Pinocchio state (numpy forward kinematics).
+
+    Args:
+        params: the parameters.
+        q_pin: a Pinocchio configuration (nq,).
+        v_pin: its velocity (nv,).
+        mechanism: the ten-bar (joint indices).
+
+    Returns:
+        (q_L, qd_L), 3 per link.
+    """
     angles = {j: float(q_pin[mechanism.q_index(j)]) for j in JOINT_ORDER}
     rates = {j: float(v_pin[mechanism.v_index(j)]) for j in JOINT_ORDER}
     return lagrange_from_joints(params, angles, rates)
@@ -348,6 +545,17 @@ def lagrange_state(
 def deploy(
     system: DeploymentSystem, q0: np.ndarray, dt: float, t_end: float | None = None, project: bool = True
 ) -> Trajectory:
-    """Integrate from rest at q0 (stowed) to t_end (default: the end of the motor laws)."""
+    """Integrate from rest at q0 (stowed) to t_end (default: the end of the motor laws).
+
+    Args:
+        system: the dynamics model.
+        q0: the stowed configuration, in the system's coordinates.
+        dt: RK4 step, s.
+        t_end: end time, s.
+        project: project after every step.
+
+    Returns:
+        The trajectory.
+    """
     end = system.p.deploy_time if t_end is None else t_end
     return integrate(system, q0, np.zeros_like(q0), end, dt, project=project)
