@@ -1,5 +1,5 @@
 """Speed of a motion study along a motion law a mechanism declares (`MechanismSpec.motion_laws`; by
-default the 2T1R's paper law, the issue's 501 samples: assembly, velocities, accelerations, efforts
+default the 2T1R's paper law in 501 samples: assembly, velocities, accelerations, efforts
 and every reaction), against the 50 ms goal, split into its phases and set beside one raw
 `pin.constraintDynamics` per sample, all measured in one process.
 

@@ -4,9 +4,7 @@ accelerations, the efforts of the driven joints and every joint's reaction for a
 Warm start of sample i: the law's guess (a scene's pose) when it has one, else the polynomial through
 the last `PREDICTOR_POINTS` assembled configurations extrapolated to t_i (in the tangent space of the
 latest, `pin.difference` / `pin.integrate`; the first sample from the mechanism's own guess). It keeps
-the assembly branch and, on a smooth law, leaves one Newton step (the 2T1R law in 501 samples: within
-5e-8 rad of the solution, as the former v dt + a dt^2 / 2 predictor, 1e-8, which needed v and a in the
-loop).
+the assembly branch and, on a smooth law, leaves one Newton step (measured in docs/motion.md, "Speed").
 """
 
 from __future__ import annotations
