@@ -341,6 +341,8 @@ TESTED_ELSEWHERE = {
     "mechkit/mechanisms/rocket_gimbal/figures.py": "drawn in tests/mechanisms/rocket_gimbal/test_studies.py",
     "mechkit/mechanisms/spherical_2dof/figures.py": "drawn in tests/mechanisms/spherical_2dof/test_studies.py",
     "mechkit/mechanisms/ten_bar/design.py": "the deployment metric, read through the sweep: tests/sweep/test_specific.py",
+    "mechkit/mechanisms/ten_bar/lagrange_deployment.py": "the Lagrange route of the deployment, against the Pinocchio "
+                                                         "route in tests/mechanisms/ten_bar/test_dynamics.py",
     "mechkit/mechanisms/ten_bar/lagrange_model.py": "the patent's Lagrange model: tests/mechanisms/ten_bar/test_dynamics.py "
                                                     "and tests/mechanisms/ten_bar/test_checks.py",
     "mechkit/mechanisms/ten_bar/scenes.py": "the deployment scene: tests/mechanisms/test_ten_bar.py (the deployment law)",

@@ -177,8 +177,7 @@ def number(name: str, value: Any, *, minimum: float | None = None, positive: boo
 
 
 def solver_settings(mu: Any, accuracy: Any, max_iter: Any, baumgarte: Any) -> dict[str, Any]:
-    """Forward-dynamics settings checked: mu >= 0, accuracy > 0, max_iter >= 1 (each None: the method's
-    default), baumgarte None or 2 finite gains; as keyword arguments of `core.forward_dynamics`.
+    """Forward-dynamics settings checked (each None: the method's default).
 
     Args:
         mu: proximal regularisation (>= 0), or None.
@@ -187,8 +186,7 @@ def solver_settings(mu: Any, accuracy: Any, max_iter: Any, baumgarte: Any) -> di
         baumgarte: Baumgarte gains (Kp, Kd), or None.
 
     Returns:
-        {"mu", "accuracy", "max_iter", "baumgarte"} -> the checked value (None where not given), as keyword
-            arguments of `core.forward_dynamics`.
+        The keyword arguments of `core.forward_dynamics`: "mu", "accuracy", "max_iter", "baumgarte".
 
     Raises:
         InvalidArgument: naming the first bad one.
@@ -342,8 +340,7 @@ def sample_inputs(name: str, values: Any, names: Sequence[str], n: int, known: S
 
 
 def sample_fext(name: str, fext: Any, n: int, njoints: int) -> list:
-    """Per-sample external forces: None, an (n, njoints, 6) array of local-frame wrenches, or n per-sample
-    values (each as `external_forces` takes).
+    """Per-sample external forces.
 
     Args:
         name: the argument's name (for the error).
@@ -371,9 +368,6 @@ def sample_fext(name: str, fext: Any, n: int, njoints: int) -> list:
 
 def external_forces(name: str, value: Any, njoints: int) -> Any:
     """External forces for Pinocchio's RNEA: None, or one force per joint (universe first).
-
-    Accepts a `pin.StdVec_Force`, a sequence of `pin.Force`, or an (njoints, 6) array [f, m] in each
-    joint's local frame.
 
     Args:
         name: the argument's name (for the error).

@@ -11,7 +11,7 @@ import numpy as np
 
 from mechkit.mechanisms.spherical_2dof import kinematics as kin
 from mechkit.mechanisms.spherical_2dof import soc
-from mechkit.mechanisms.spherical_2dof.fk import METHODS, solve_fk
+from mechkit.mechanisms.spherical_2dof.fk import METHODS, fk_newton, fk_paper, solve_fk
 from mechkit.mechanisms.spherical_2dof.joint_state import state
 from mechkit.mechanisms.spherical_2dof.kinematics import BRANCHES, platform_normal
 from mechkit.mechanisms.spherical_2dof.scenes import cone_attitude, cone_times
@@ -47,7 +47,7 @@ def cone_round_trip(p: kin.Geometry, samples: int = 72) -> tuple[float, float]:
     worst = np.zeros((samples, 2))
     for k, target in enumerate(phi_plan):
         theta = kin.inverse_kinematics(p, target, BRANCHES)
-        phi = kin.fk_paper(p, theta, phi, BRANCHES).phi
+        phi = fk_paper(p, theta, phi, BRANCHES).phi
         worst[k] = phi - target
     normal = np.linalg.norm(platform_normal(phi_plan + worst) - platform_normal(phi_plan), axis=1)
     return float(np.abs(worst).max()), float(normal.max())
@@ -69,7 +69,7 @@ def jacobian_fd_error(p: kin.Geometry, samples: int = 12, h: float = 1e-5) -> fl
         theta = kin.inverse_kinematics(p, target, BRANCHES)
         fd = np.column_stack(
             [
-                (kin.fk_newton(p, theta + h * e, target).phi - kin.fk_newton(p, theta - h * e, target).phi)
+                (fk_newton(p, theta + h * e, target).phi - fk_newton(p, theta - h * e, target).phi)
                 / (2 * h)
                 for e in np.eye(2)
             ]

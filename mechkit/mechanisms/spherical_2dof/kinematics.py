@@ -21,26 +21,23 @@ eq. 4, term by term); link i2 is ``F_i0 Rz(theta_i1) Rx(-alpha1) Rz(theta_i2)`` 
 
 from __future__ import annotations
 
-from collections.abc import Callable, Sequence
-from dataclasses import dataclass
+from collections.abc import Sequence
 from typing import Protocol
 
 import numpy as np
 
-from mechkit.base.exceptions import ClosureNotConverged, InvalidParameters, SingularConfiguration
+from mechkit.base.exceptions import InvalidParameters, SingularConfiguration
 from mechkit.base.spatial import cross, rot_x, rot_y, rot_z
 
 __all__ = [
     "BRANCHES",
-    "FKResult",
     "Geometry",
     "base_axis",
     "base_frame",
+    "condition",
     "constraint",
     "constraint_jacobians",
     "cross",
-    "fk_newton",
-    "fk_paper",
     "hooke_rates",
     "ik_coefficients",
     "inverse_kinematics",
@@ -273,7 +270,15 @@ def constraint_jacobians(
     return a, b
 
 
-def _cond(m: np.ndarray) -> float:
+def condition(m: np.ndarray) -> float:
+    """The 2-norm condition number of a matrix (inf when singular).
+
+    Args:
+        m: a square matrix.
+
+    Returns:
+        Its largest singular value over its smallest (-).
+    """
     sv = np.linalg.svd(m, compute_uv=False)
     return float(sv[0] / sv[-1]) if sv[-1] > 0 else np.inf
 
@@ -294,7 +299,7 @@ def jacobian(p: Geometry, theta: Sequence[float], phi: Sequence[float], max_cond
         SingularConfiguration: B is singular (a forward-kinematics singularity).
     """
     a, b = constraint_jacobians(p, theta, phi)
-    cond = _cond(b)
+    cond = condition(b)
     if cond > max_cond:
         raise SingularConfiguration(cond, "matrix B of eq. (10) (forward kinematic singularity)")
     return -np.linalg.solve(b, a)
@@ -367,117 +372,10 @@ def limb_rates(
     """
     u, w, v = base_axis(p, i), middle_axis(p, i, theta1), platform_axis(p, i, phi)
     m = np.column_stack([u, w, v])
-    cond = _cond(m)
+    cond = condition(m)
     if cond > 1e12:
         raise SingularConfiguration(cond, f"limb {i} axes u, w, v coplanar")
     rate = np.linalg.solve(m, omega_p)
     w1, w2, w3 = rate[0] * u, rate[1] * w, rate[2] * v
     acc = np.linalg.solve(m, alpha_p - cross(w1, w2) - cross(w1 + w2, w3))
     return rate, acc
-
-
-@dataclass(frozen=True)
-class FKResult:
-    """A forward-kinematics solve.
-
-    Attributes:
-        phi: (roll, pitch), rad.
-        iterations: steps taken.
-        step: norm of the last step, rad.
-    """
-
-    phi: np.ndarray
-    iterations: int
-    step: float
-
-
-def fk_paper(
-    p: Geometry,
-    theta_d: Sequence[float],
-    phi0: Sequence[float],
-    branches: Sequence[int] = BRANCHES,
-    tol: float = 1e-13,
-    max_iter: int = 50,
-) -> FKResult:
-    """The paper's iterative forward kinematics (section 2.3.2).
-
-    ``theta_k = InvKin(P_k)``, ``S_k = J(theta_k, P_k) (theta_d - theta_k)``, ``P_k+1 = P_k + S_k`` until
-    ``|S_k| <= tol``. The paper prints ``S_k = -J^-1(theta_k) Delta theta_k``; with its own
-    ``phi' = J theta'`` (eq. 11) the step that makes ``InvKin(P_k+1) = theta_d`` to first order is
-    ``J Delta theta``: a Newton iteration on the closed-form inverse kinematics (the printed form does
-    not converge; the test suite shows it).
-
-    Args:
-        p: the structural parameters.
-        theta_d: the motor angles, rad.
-        phi0: the start attitude (roll, pitch), rad.
-        branches: the IK branch per limb (+1 / -1).
-        tol: step size at which to stop, rad.
-        max_iter: iterations at most.
-
-    Returns:
-        The attitude found, the iterations and the final step.
-
-    Raises:
-        ClosureNotConverged: no convergence within ``max_iter`` steps, or an iterate leaves the
-            workspace (InvKin undefined) or meets a singular B.
-    """
-    theta_d = np.asarray(theta_d, dtype=float)
-
-    def step(phi: np.ndarray) -> np.ndarray:
-        theta = inverse_kinematics(p, phi, branches)
-        return jacobian(p, theta, phi) @ ((theta_d - theta + np.pi) % (2 * np.pi) - np.pi)
-
-    return _iterate(step, phi0, tol, max_iter, "paper FK")
-
-
-def fk_newton(
-    p: Geometry, theta_d: Sequence[float], phi0: Sequence[float], tol: float = 1e-13, max_iter: int = 50
-) -> FKResult:
-    """Newton's method on the constraints (7) at fixed motor angles: ``phi -= B^-1 f(theta_d, phi)``.
-
-    Unlike the paper's iteration it never evaluates the inverse kinematics, so its iterates may
-    leave the workspace.
-
-    Args:
-        p: the structural parameters.
-        theta_d: the motor angles, rad.
-        phi0: the start attitude (roll, pitch), rad.
-        tol: step size at which to stop, rad.
-        max_iter: iterations at most.
-
-    Returns:
-        The attitude found, the iterations and the final step.
-
-    Raises:
-        ClosureNotConverged: no convergence within ``max_iter`` steps or a singular B.
-    """
-
-    def step(phi: np.ndarray) -> np.ndarray:
-        _, b = constraint_jacobians(p, theta_d, phi)
-        cond = _cond(b)
-        if cond > 1e12:
-            raise SingularConfiguration(cond, "matrix B of eq. (10)")
-        return -np.linalg.solve(b, constraint(p, theta_d, phi))
-
-    return _iterate(step, phi0, tol, max_iter, "Newton FK")
-
-
-def _iterate(
-    step: Callable[[np.ndarray], np.ndarray], phi0: Sequence[float], tol: float, max_iter: int, name: str
-) -> FKResult:
-    """``phi += step(phi)`` until ``|step| <= tol``; failures of ``step`` end it as non-converged."""
-    phi = np.array(phi0, dtype=float)
-    size = np.inf
-    for k in range(1, max_iter + 1):
-        try:
-            s = step(phi)
-        except (InvalidParameters, SingularConfiguration) as err:
-            raise ClosureNotConverged(size, tol, k - 1, f"{name}: {err}") from None
-        phi += s
-        size = float(np.linalg.norm(s))
-        if not np.isfinite(size):
-            break
-        if size <= tol:
-            return FKResult(phi, k, size)
-    raise ClosureNotConverged(size, tol, max_iter, name)

@@ -19,7 +19,7 @@ from mechkit.base.exceptions import InvalidParameters
 from mechkit.mechanism import Mechanism
 from mechkit.mechanisms.spherical_2dof import kinematics as kin
 from mechkit.mechanisms.spherical_2dof import soc
-from mechkit.mechanisms.spherical_2dof.fk import NEAR_SINGULAR, REGULAR, BasinRow, basin_study
+from mechkit.mechanisms.spherical_2dof.fk import NEAR_SINGULAR, REGULAR, BasinRow, basin_study, fk_paper
 from mechkit.mechanisms.spherical_2dof.joint_state import state
 from mechkit.mechanisms.spherical_2dof.kinematics import BRANCHES, platform_normal
 from mechkit.mechanisms.spherical_2dof.params import Spherical2DofParams
@@ -71,7 +71,7 @@ def cone(mech: Mechanism, samples: int = 72) -> Cone:
     fk = np.zeros_like(phi)
     start = np.zeros(2)  # the calibrated home pose P0
     for k, th in enumerate(theta):
-        start = fk[k] = kin.fk_paper(p, th, start, BRANCHES).phi
+        start = fk[k] = fk_paper(p, th, start, BRANCHES).phi
     efforts, support = {"pinocchio": [], "soc": []}, {"pinocchio": [], "soc": []}
     for k in range(samples):
         q, v, a = state(mech, phi[k], phi_d[k], phi_dd[k])

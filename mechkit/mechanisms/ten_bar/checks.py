@@ -19,6 +19,7 @@ from mechkit.mechanisms.ten_bar import dynamics as td
 from mechkit.mechanisms.ten_bar import geometry as geo
 from mechkit.mechanisms.ten_bar import kinematics as tk
 from mechkit.mechanisms.ten_bar import soc as ts
+from mechkit.mechanisms.ten_bar.lagrange_deployment import LagrangeJointDeployment
 from mechkit.mechanisms.ten_bar.lagrange_model import lagrange_linkage
 from mechkit.mechanisms.ten_bar.params import MOTORS, TenBarParams, motor_law
 
@@ -173,7 +174,7 @@ def self_checks(mechanism: Mechanism) -> dict[str, float]:
     p = mechanism.params
     kin = kinematics_disagreement(mechanism, nominal_inputs(p, 21))
     pin_run = td.PinocchioDeployment(mechanism)
-    lag_run = td.LagrangeJointDeployment(p)
+    lag_run = LagrangeJointDeployment(p)
     q0 = mechanism.home_q
     qj = pin_run.joint_angles(q0)
     stretch = {"t_end": 0.05, "dt": 0.01}

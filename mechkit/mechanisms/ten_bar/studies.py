@@ -26,6 +26,7 @@ from mechkit.mechanisms.ten_bar import geometry as geo
 from mechkit.mechanisms.ten_bar import lagrange_model as lm
 from mechkit.mechanisms.ten_bar import limits as tl
 from mechkit.mechanisms.ten_bar import params as tp
+from mechkit.mechanisms.ten_bar.lagrange_deployment import LagrangeDeployment, LagrangeJointDeployment
 from mechkit.mechanisms.ten_bar.params import TenBarParams
 
 #: The drift study: its duration and RK4 step (s).
@@ -104,9 +105,9 @@ def cross_checks(mech: Mechanism, dt: float = 0.005, t_end: float | None = None,
     a = td.deploy(pin_run, mech.home_q, dt, t_end)
     seconds = {"Pinocchio": time.perf_counter() - clock}
     clock = time.perf_counter()
-    b = td.deploy(td.LagrangeJointDeployment(p), pin_run.joint_angles(mech.home_q), dt, t_end)
+    b = td.deploy(LagrangeJointDeployment(p), pin_run.joint_angles(mech.home_q), dt, t_end)
     seconds["Lagrange"] = time.perf_counter() - clock
-    own = td.LagrangeDeployment(p)
+    own = LagrangeDeployment(p)
     q_own = lm.lagrange_coordinates(p, geo.stowed_pose(p))
     convergence = [(step, float(np.max(np.abs(td.deploy(pin_run, mech.home_q, step, CONVERGENCE_END).angles
                                               - td.deploy(own, q_own, step, CONVERGENCE_END).angles))))

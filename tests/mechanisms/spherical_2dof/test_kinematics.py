@@ -6,7 +6,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from mechkit.base.exceptions import ClosureNotConverged, InvalidParameters
+from mechkit.base.exceptions import InvalidParameters
 from mechkit.mechanisms.spherical_2dof import Spherical2DofParams
 from mechkit.mechanisms.spherical_2dof import kinematics as kin
 from mechkit.mechanisms.spherical_2dof.joint_state import state
@@ -53,27 +53,6 @@ def test_jacobian_against_pinocchio_velocity_projection(mech):
             v = mech.velocities(q, rates)
             hooke = v[[mech.v_index("hooke_roll"), mech.v_index("hooke_pitch")]]
             np.testing.assert_allclose(hooke, kin.jacobian(P, theta, phi) @ rates, atol=1e-12)
-
-
-def test_printed_fk_step_does_not_converge():
-    """The step as printed, -J^-1 (theta_d - theta_k), wanders off; J (theta_d - theta_k) converges."""
-    target = cone_attitude(0.3)[0]
-    theta_d = kin.inverse_kinematics(P, target, BRANCHES)
-    phi = target + 0.02
-    for _ in range(30):
-        try:
-            theta = kin.inverse_kinematics(P, phi, BRANCHES)
-        except InvalidParameters:
-            break
-        phi = phi - np.linalg.solve(kin.jacobian(P, theta, phi), theta_d - theta)
-    assert np.abs(phi - target).max() > 1e-3
-    assert np.abs(kin.fk_paper(P, theta_d, target + 0.02).phi - target).max() < 1e-12
-
-
-def test_closure_fk_from_a_hopeless_start_raises(mech):
-    theta_d = kin.inverse_kinematics(P, np.zeros(2))
-    with pytest.raises(ClosureNotConverged):
-        kin.fk_newton(P, theta_d, np.radians([170.0, 80.0]), max_iter=5)
 
 
 def test_cut_joint_angle_matches_pinocchio_frames(mech):

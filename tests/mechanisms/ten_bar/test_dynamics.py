@@ -14,6 +14,7 @@ from mechkit.mechanisms.ten_bar import geometry as geo
 from mechkit.mechanisms.ten_bar import lagrange_model as lm
 from mechkit.mechanisms.ten_bar import limits as tl
 from mechkit.mechanisms.ten_bar import params as tp
+from mechkit.mechanisms.ten_bar.lagrange_deployment import LagrangeDeployment, LagrangeJointDeployment
 
 from .states import mid_state
 
@@ -22,7 +23,7 @@ from .states import mid_state
 def stretch(mech):
     """The first 0.1 s of the deployment (spring release) by both dynamics routes, dt = 5 ms."""
     pin_run = td.PinocchioDeployment(mech)
-    lag_run = td.LagrangeJointDeployment(mech.params)
+    lag_run = LagrangeJointDeployment(mech.params)
     a = td.deploy(pin_run, mech.home_q, 0.005, 0.1)
     b = td.deploy(lag_run, pin_run.joint_angles(mech.home_q), 0.005, 0.1)
     return a, b
@@ -33,7 +34,7 @@ def stretch(mech):
 def test_constrained_aba_equals_the_lagrange_first_kind(mech, rates):
     t, q, v = mid_state(mech, rates)
     a, u, power = td.PinocchioDeployment(mech).rhs(t, q, v)
-    lag = td.LagrangeJointDeployment(mech.params)
+    lag = LagrangeJointDeployment(mech.params)
     aL, uL, powerL = lag.rhs(
         t,
         lag.joint_angles(q[[mech.q_index(j) for j in td.JOINT_ORDER]]),
@@ -54,7 +55,7 @@ def test_deployment_stretch_two_ways(stretch):
 
 
 def test_lagrange_in_its_own_coordinates_converges_at_fourth_order(mech):
-    pin_run, lag_run = td.PinocchioDeployment(mech), td.LagrangeDeployment(mech.params)
+    pin_run, lag_run = td.PinocchioDeployment(mech), LagrangeDeployment(mech.params)
     qL = lm.lagrange_coordinates(mech.params, geo.stowed_pose(mech.params))
     diffs = []
     for dt in (0.02, 0.01):
@@ -77,7 +78,7 @@ def test_the_dynamics_decides_the_passive_dof(mech, load_cached):
 def test_full_deployment(mech):
     pin_run = td.PinocchioDeployment(mech)
     a = td.deploy(pin_run, mech.home_q, 0.005)
-    b = td.deploy(td.LagrangeJointDeployment(mech.params), pin_run.joint_angles(mech.home_q), 0.005)
+    b = td.deploy(LagrangeJointDeployment(mech.params), pin_run.joint_angles(mech.home_q), 0.005)
     assert a.residual.max() < 1e-9 and b.residual.max() < 1e-9
     assert np.max(np.abs(a.angles - b.angles)) < 1e-8
     motors = [td.JOINT_ORDER.index(m) for m in tp.MOTORS]
