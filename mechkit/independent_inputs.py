@@ -18,7 +18,15 @@ if TYPE_CHECKING:
 
 
 def input_joints(mech: Mechanism) -> tuple[str, ...]:
-    """The actuated joints, then (under-actuated mechanisms) extra joints completing a set of independent coordinates."""
+    """The actuated joints, then (under-actuated mechanisms) extra joints completing a set of independent
+    coordinates at the home assembly.
+
+    Args:
+        mech: the mechanism.
+
+    Returns:
+        Joint names: the actuated ones first, as many in all as the mechanism has DOF.
+    """
     names = list(mech.actuated)
     dof = mech.mobility().dof
     if len(names) >= dof:

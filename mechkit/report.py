@@ -29,7 +29,15 @@ CHECK_LIMIT = 1e-6
 
 
 def failing_checks(checks: dict[str, float], limit: float = CHECK_LIMIT) -> dict[str, float]:
-    """The checks above `limit`, or not finite."""
+    """The checks above `limit`, or not finite.
+
+    Args:
+        checks: check name -> worst residual or relative error.
+        limit: the threshold.
+
+    Returns:
+        The failing checks, name -> value.
+    """
     return {k: v for k, v in checks.items() if not v <= limit}
 
 
@@ -44,9 +52,13 @@ def self_checks(m: Mechanism) -> tuple[dict[str, float], dict[str, str]]:
     kkt_vs_proximal (relative, accelerations), inverse_forward_roundtrip (relative, accelerations),
     and the spec's own checks.
 
+    Args:
+        m: the mechanism.
+
     Returns:
-        The checks' values, and by name the checks the core refused to compute (a `MechkitError`: a
-        near-singular pose, a method that cannot express a closure kind), with the reason.
+        The checks' values (worst residual or relative error; smaller is better), and by name the checks
+        the core refused to compute (a `MechkitError`: a near-singular pose, a method that cannot express
+        a closure kind), with the reason.
     """
     q = m.home_q
     checks: dict[str, float] = {"closure_residual": float(np.max(np.abs(m.closure_residual(q)), initial=0.0))}
@@ -92,7 +104,14 @@ def self_checks(m: Mechanism) -> tuple[dict[str, float], dict[str, str]]:
 
 def holding(m: Mechanism) -> dict[str, Any]:
     """The actuator efforts that hold the mechanism still at home under gravity and its springs, or why
-    they cannot (unactuated, a floating base, a motion the actuators do not span)."""
+    they cannot (unactuated, a floating base, a motion the actuators do not span).
+
+    Args:
+        m: the mechanism.
+
+    Returns:
+        {"efforts": actuator -> effort (N m or N)} or {"refused": the reason}.
+    """
     if not m.actuated:
         return {"refused": "unactuated: no actuator to hold it"}
     zero = np.zeros(m.model.nv)
@@ -103,7 +122,14 @@ def holding(m: Mechanism) -> dict[str, Any]:
 
 
 def report(m: Mechanism) -> dict[str, Any]:
-    """The report of a mechanism (see module docstring for the keys)."""
+    """The report of a mechanism (see module docstring for the keys).
+
+    Args:
+        m: the mechanism.
+
+    Returns:
+        The report (the JSON contract: see the module docstring for the keys).
+    """
     mob = m.mobility()
     declared = None if m.spec.template == "" else m.spec.gruebler_dof
     checks, refused = self_checks(m)
@@ -133,7 +159,14 @@ def report(m: Mechanism) -> dict[str, Any]:
 
 
 def format_report(r: dict[str, Any]) -> str:
-    """Human-readable text of a report."""
+    """Human-readable text of a report.
+
+    Args:
+        r: a report.
+
+    Returns:
+        The text, lines joined.
+    """
     lines = [f"{r['name']}: {r['summary']}",
              f"  nq {r['nq']}, nv {r['nv']}, actuated: {', '.join(r['actuated']) or 'none (unactuated)'}",
              "  closures: " + ", ".join(f"{c['name']} ({c['kind']}, {c['rows']} {c['row_set']} rows)" for c in r["closures"]),

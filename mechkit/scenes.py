@@ -32,14 +32,30 @@ class SweepStopped(UserWarning):
 
 
 def joint_extent(model: pin.Model, data: pin.Data, q: np.ndarray) -> float:
-    """Largest extent (m) of the joint origins at q along a world axis (at least 1 mm)."""
+    """Largest extent (m) of the joint origins at q along a world axis (at least 1 mm).
+
+    Args:
+        model: the Pinocchio model.
+        data: a data of it (its placements overwritten).
+        q: a configuration (nq,).
+
+    Returns:
+        The extent (m).
+    """
     pin.forwardKinematics(model, data, q)
     pts = np.array([data.oMi[j].translation for j in range(model.njoints)])
     return max(float(np.max(np.ptp(pts, axis=0))), 1e-3)
 
 
 def scenes(mechanism: Mechanism) -> dict[str, SceneFunction]:
-    """The mechanism's scenes: those its spec declares, plus the generic "sweep" unless it has its own."""
+    """The mechanism's scenes: those its spec declares, plus the generic "sweep" unless it has its own.
+
+    Args:
+        mechanism: the mechanism.
+
+    Returns:
+        Scene name -> the function giving its poses, the spec's first in order.
+    """
     found = dict(mechanism.spec.scenes)
     found.setdefault("sweep", sweep)
     return found
@@ -47,6 +63,13 @@ def scenes(mechanism: Mechanism) -> dict[str, SceneFunction]:
 
 def scene_poses(mechanism: Mechanism, name: str) -> list[np.ndarray]:
     """The configurations of a scene, checked: at least 2, each of size nq, finite, loops closed.
+
+    Args:
+        mechanism: the mechanism.
+        name: one of its scenes (`scenes`).
+
+    Returns:
+        The assembled configurations, each (nq,).
 
     Raises:
         InvalidParameters: no scene of that name.
@@ -72,6 +95,14 @@ def scene_times(mechanism: Mechanism, name: str, poses: int) -> np.ndarray:
     """Times (s) of a scene's poses: the spec's time axis for a time-parametrised scene, else one
     `SCENE_STEP` per pose from 0.
 
+    Args:
+        mechanism: the mechanism.
+        name: one of its scenes.
+        poses: the number of poses.
+
+    Returns:
+        The times (s), shape (poses,), increasing.
+
     Raises:
         MalformedDescription: the spec's time axis is not `poses` increasing finite times.
     """
@@ -95,12 +126,16 @@ def sweep(mechanism: Mechanism, frames: int = SWEEP_FRAMES, angle: float = SWEEP
     a singularity, the edge of the workspace): a `SweepStopped` warning says which and why, and the
     scene goes on with the next excursion.
 
+    Both amplitudes are capped at 90 % of the distance from home to the joint's limits.
+
     Args:
+        mechanism: the mechanism.
         frames: poses per input (a multiple of 4).
         angle: amplitude A of a revolute input (rad).
         stroke: amplitude of a prismatic input, as a fraction of the mechanism's joint extent.
 
-    Both amplitudes are capped at 90 % of the distance from home to the joint's limits.
+    Returns:
+        The poses, home first and last, each (nq,).
     """
     model, home = mechanism.model, mechanism.home_q
     size = joint_extent(model, model.createData(), home)

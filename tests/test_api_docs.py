@@ -1,14 +1,21 @@
-"""Every public module, class and function of mechkit has a docstring and full type annotations (ast).
+"""Every public module, class and function of mechkit has a docstring and full type annotations, and every
+public function with parameters documents them (ast).
 
 Public: a module whose path has no component starting with "_" (`__init__.py` counts as its package),
 its top-level classes and functions whose names do not start with "_", and the methods of those
 classes whose names do not start with "_". Fully annotated: every parameter but `self`/`cls`
 (including *args, **kwargs) and the return.
+
+Documented (Google style, what mkdocs renders): a public function or method with parameters (`self`
+and `cls` aside) has an `Args:` section naming each parameter once and nothing else; a `Returns:` (or
+`Yields:`) section when it returns something (its annotation is not `None`; a property's value is
+its one line); a `Raises:` section naming every exception class its own body raises.
 """
 
 from __future__ import annotations
 
 import ast
+import re
 from pathlib import Path
 
 import pytest
@@ -101,3 +108,134 @@ def test_every_core_module_is_in_the_reference():
     pages = "".join(p.read_text() for p in (PACKAGE.parent / "docs" / "reference").glob("*.md"))
     for package in sorted(p.parent.name for p in PACKAGE.glob("*/__init__.py")):
         assert f"::: mechkit.{package}\n" in pages, package
+
+
+#: Modules whose docstrings others are completing while they rewrite them (the core being optimised,
+#: `Mechanism` and its loader, the speed pages, the packages being written); an entry whose module has
+#: become complete fails, so that the list only shrinks.
+BEING_REWRITTEN = ("mechkit/core/", "mechkit/mechanism.py", "mechkit/loading.py", "mechkit/bench/dynamics_speed.py",
+                   "mechkit/bench/markdown.py", "mechkit/forces/", "mechkit/elastic/", "mechkit/simulation/")
+SECTIONS = ("Args", "Arguments", "Returns", "Yields", "Raises", "Attributes", "Examples", "Example", "Note", "Notes",
+            "Warns", "See Also", "References")
+ENTRY = re.compile(r"^ {4}(\*{0,2}\w+)(?: \([^)]*\))?:(?: |$)")
+
+
+def _sections(doc: str) -> dict[str, list[str]]:
+    """Section title -> its lines (Google style: a title alone on a line at the docstring's margin)."""
+    out: dict[str, list[str]] = {}
+    current = None
+    for line in doc.splitlines():
+        title = line.rstrip().removesuffix(":")
+        if line.rstrip().endswith(":") and not line.startswith(" ") and title in SECTIONS:
+            current = out.setdefault(title, [])
+        elif current is not None and (line.startswith(" ") or not line.strip()):
+            current.append(line)
+        else:
+            current = None
+    return out
+
+
+def _raised(fn: ast.FunctionDef | ast.AsyncFunctionDef) -> set[str]:
+    """Exception classes a function's own body raises by name (nested functions and classes excluded)."""
+    found, todo = set(), list(fn.body)
+    while todo:
+        node = todo.pop()
+        if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef, ast.ClassDef, ast.Lambda)):
+            continue
+        if isinstance(node, ast.Raise) and node.exc is not None:
+            exc = node.exc.func if isinstance(node.exc, ast.Call) else node.exc
+            name = exc.attr if isinstance(exc, ast.Attribute) else getattr(exc, "id", "")
+            if name[:1].isupper():
+                found.add(name)
+        todo.extend(ast.iter_child_nodes(node))
+    return found
+
+
+def _parameters(fn: ast.FunctionDef | ast.AsyncFunctionDef, method: bool) -> list[str]:
+    """A function's parameters as its Args section names them (`self`/`cls` of a method aside)."""
+    a = fn.args
+    params = [p.arg for p in [*a.posonlyargs, *a.args, *a.kwonlyargs]]
+    if method and params and params[0] in ("self", "cls") and not any(
+            isinstance(d, ast.Name) and d.id == "staticmethod" for d in fn.decorator_list):
+        params = params[1:]
+    return params + ([f"*{a.vararg.arg}"] if a.vararg else []) + ([f"**{a.kwarg.arg}"] if a.kwarg else [])
+
+
+def _undocumented(fn: ast.FunctionDef | ast.AsyncFunctionDef, method: bool) -> list[str]:
+    """What a function's docstring lacks: parameters missing from Args (or names there that are none),
+    the Returns section, exception classes missing from Raises."""
+    params = _parameters(fn, method)
+    if not params:
+        return []
+    sections = _sections(ast.get_docstring(fn) or "")
+    lacks = []
+    named = [m.group(1) for line in sections.get("Args", []) if (m := ENTRY.match(line))]
+    stripped = [p.lstrip("*") for p in params]
+    missing = [p for p, s in zip(params, stripped) if p not in named and s not in named]
+    extra = [n for n in named if n not in params and n not in stripped]
+    if missing:
+        lacks.append("Args: " + ", ".join(missing))
+    if extra or len(named) != len(set(named)):
+        lacks.append("Args names no parameter or twice: " + ", ".join(extra or named))
+    returns = fn.returns
+    nothing = returns is None or (isinstance(returns, ast.Constant) and returns.value is None) or (
+        isinstance(returns, ast.Name) and returns.id in ("None", "NoReturn"))
+    prop = any(isinstance(d, ast.Name) and d.id == "property" for d in fn.decorator_list)
+    if not nothing and not prop and not ({"Returns", "Yields"} & set(sections)):
+        lacks.append("Returns")
+    listed = " ".join(sections.get("Raises", []))
+    unlisted = sorted(e for e in _raised(fn) if not re.search(rf"\b{e}\b", listed))
+    if unlisted:
+        lacks.append("Raises: " + ", ".join(unlisted))
+    return lacks
+
+
+def docs_audit() -> tuple[list[str], list[str], int]:
+    """(what public functions' docstrings lack, modules listed as being rewritten that are complete,
+    public functions with parameters counted)."""
+    lacking, count = [], 0
+    pending: dict[str, bool] = {}
+    for path in _modules():
+        where = path.relative_to(PACKAGE.parent).as_posix()
+        rewritten = where.startswith(BEING_REWRITTEN)
+        tree = ast.parse(path.read_text(), filename=where)
+        functions = [(node, False, node.name) for node in tree.body
+                     if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef)) and not node.name.startswith("_")]
+        for cls in tree.body:
+            if isinstance(cls, ast.ClassDef) and not cls.name.startswith("_"):
+                functions += [(sub, True, f"{cls.name}.{sub.name}") for sub in cls.body
+                              if isinstance(sub, (ast.FunctionDef, ast.AsyncFunctionDef)) and not sub.name.startswith("_")]
+        for fn, method, name in functions:
+            lacks = _undocumented(fn, method)
+            count += bool(_parameters(fn, method))
+            if rewritten:
+                prefix = next(p for p in BEING_REWRITTEN if where.startswith(p))
+                pending[prefix] = pending.get(prefix, False) or bool(lacks)
+            elif lacks:
+                lacking.append(f"{where}:{fn.lineno} {name}: {'; '.join(lacks)}")
+    complete = [p for p, lacks in pending.items() if not lacks]
+    return lacking, complete, count
+
+
+def test_every_public_function_documents_its_parameters_returns_and_raises():
+    lacking, complete, count = docs_audit()
+    print(f"\n{count} public functions and methods with parameters; {len(lacking)} lacking a section")
+    assert not lacking, "\n".join(lacking)
+    assert not complete, f"complete now: drop from BEING_REWRITTEN: {complete}"
+
+
+def test_the_docs_audit_sees_what_it_claims():
+    """The audit flags a parameter missing from Args, a name there that is no parameter, a missing
+    Returns and an exception raised but not listed; a complete docstring passes."""
+    code = ('''def f(x: int, y: int) -> int:\n    """Sum.\n\n    Args:\n        x: one.\n        z: none.\n    """\n'''
+            '''    if x < 0:\n        raise ValueError(x)\n    return x + y\n''')
+    fn = ast.parse(code).body[0]
+    assert _undocumented(fn, method=False) == ["Args: y", "Args names no parameter or twice: z", "Returns",
+                                               "Raises: ValueError"]
+    good = ('''def f(x: int, *rest: int) -> int:\n    """Sum.\n\n    Args:\n        x (int): one.\n'''
+            '''        *rest: the others,\n            continued.\n\n    Returns:\n        The sum.\n\n'''
+            '''    Raises:\n        ValueError: x < 0.\n    """\n    if x < 0:\n        raise ValueError(x)\n'''
+            '''    return x + sum(rest)\n''')
+    assert _undocumented(ast.parse(good).body[0], method=False) == []
+    method = ast.parse("class A:\n    @property\n    def p(self) -> int:\n        'The p.'\n").body[0].body[0]
+    assert _undocumented(method, method=True) == []

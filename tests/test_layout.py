@@ -1,5 +1,6 @@
 """The package's shape: imports go down (no circle, the core never imports what sits on it), modules stay
-small, the registry is lazy and explicit, and every registered mechanism fulfils the contract."""
+small, the registry is lazy, every mechanism has its files, tests mirror the package, and a module name
+found in several folders is one concept."""
 
 from __future__ import annotations
 
@@ -7,13 +8,10 @@ import ast
 import json
 import subprocess
 import sys
+from fnmatch import fnmatch
 from pathlib import Path
 
-import pytest
-
 import mechkit
-from mechkit.base.resources import urdf_dir, xacro_dir
-from mechkit.catalog.contract import BENCH_QUANTITIES, MechanismSpec
 from mechkit.catalog.registry import ENTRIES, get_spec, names
 
 PACKAGE = Path(mechkit.__file__).resolve().parent
@@ -242,57 +240,6 @@ def test_loading_one_mechanism_imports_no_other():
     assert not [m for m in loaded if any(m == o or m.startswith(o + ".") for o in others)], loaded
 
 
-def test_registry_table_is_sorted_and_unique():
-    assert list(names()) == sorted(set(names()))
-
-
-def test_every_mechanism_package_is_registered():
-    packages = {p.parent.name for p in (PACKAGE / "mechanisms").glob("*/__init__.py")}
-    declaring = {name for name in packages if "SPEC = MechanismSpec(" in (PACKAGE / "mechanisms" / name / "__init__.py").read_text()}
-    assert declaring == set(names())
-
-
-@pytest.mark.parametrize("entry", ENTRIES, ids=lambda e: e.name)
-def test_contract(entry):
-    spec = get_spec(entry.name)
-    assert isinstance(spec, MechanismSpec) and spec.name == entry.name
-    assert spec.summary == entry.summary
-    assert spec.template_path.is_file() and spec.template_path.parent == xacro_dir()
-    assert (urdf_dir() / f"{entry.name}.urdf").is_file()
-    params = spec.params()
-    assert spec.actuated_joints(params) and spec.gruebler_dof >= 1
-    assert isinstance(spec.home(params), dict)
-    assert spec.guess is None or isinstance(spec.guess(params), dict)
-    assert all(callable(f) for f in spec.scenes.values())
-    assert spec.view is None or len(spec.view) == 3
-    assert spec.bench_methods, f"{entry.name} declares no bench method of its own"
-    assert all(m.quantity in BENCH_QUANTITIES and callable(m.fn) and m.label for m in spec.bench_methods)
-    assert all(r.quantity in BENCH_QUANTITIES and callable(r.fn) and r.label for r in spec.bench_references)
-    assert spec.self_checks is None or callable(spec.self_checks)
-    assert spec.bench_states is None or callable(spec.bench_states)
-    assert all(callable(s.run) and s.name and s.condition and s.error for s in spec.failure_studies)
-    assert all(callable(law.sample) and all(isinstance(j, str) for j in law.reactions) for law in spec.motion_laws.values())
-    assert all(callable(m.fn) and m.columns and m.unit and m.doc for m in spec.design_metrics)
-    assert all(s.doc and callable(s.run) and callable(s.lines) and (s.figures is None or callable(s.figures))
-               for s in spec.studies.values())
-
-
-def test_the_contract_refuses_hooks_it_cannot_use():
-    """A spec names its hooks once, and captions or times only the scenes it declares."""
-    from mechkit.base.exceptions import InvalidParameters
-    from mechkit.catalog.contract import DesignMetric, FailureStudy
-    from mechkit.catalog.params import MechanismParams
-
-    base = {"name": "m", "params": MechanismParams, "template": "m.urdf.xacro", "actuated": ("a",), "gruebler_dof": 1,
-            "home": lambda p: {"a": 0.0}}
-    study = FailureStudy("s", lambda m, quick: [], "condition (-)", "error (-)")
-    metric = DesignMetric("d", "-", "a metric", ("d",), lambda m: {"d": 0.0})
-    for bad in ({"failure_studies": (study, study)}, {"design_metrics": (metric, metric)},
-                {"scene_captions": {"nowhere": "a scene not declared"}}):
-        with pytest.raises(InvalidParameters):
-            MechanismSpec(**base, **bad)
-
-
 def test_only_the_command_line_prints():
     printing = []
     for path in PACKAGE.rglob("*.py"):
@@ -350,9 +297,194 @@ def test_the_constraint_api_scan_sees_attributes_and_imports(tmp_path):
     assert _constraint_names(probe) == {"lcaba", "constraintDynamics"}
 
 
-def test_every_core_module_has_its_test_file():
-    """The test of `mechkit/core/<module>.py` is `tests/core/test_<module>.py`."""
-    tests = PACKAGE.parent / "tests" / "core"
-    missing = [p.name for p in sorted((PACKAGE / "core").glob("*.py"))
-               if p.name != "__init__.py" and not (tests / f"test_{p.stem}.py").is_file()]
+#: Modules without a test file at their mirrored path, and where their behaviour is tested instead.
+TESTED_ELSEWHERE = {
+    "mechkit/__main__.py": "`python -m mechkit` runs `mechkit.cli.main`: every subprocess test of the command line "
+                           "goes through it (tests/test_cli.py, tests/cli/)",
+    "mechkit/base/arguments.py": "the argument checks of the Mechanism API: the bad-input campaign of tests/test_mechanism.py",
+    "mechkit/base/exceptions.py": "the error classes: raised and matched by name throughout the tests",
+    "mechkit/base/plotting.py": "matplotlib set up for every figure: drawn by the studies' and figures' tests",
+    "mechkit/base/resources.py": "where the packaged templates and URDFs are: tests/catalog/test_contract.py reads every one",
+    "mechkit/base/spatial.py": "rotation and cross-product helpers of the mechanisms' kinematics, tested with them "
+                               "(tests/mechanisms/truss/test_geometry.py checks the paper's rotations)",
+    "mechkit/bench/charts.py": "drawn by `mechkit bench` in tests/cli/test_bench.py",
+    "mechkit/bench/markdown.py": "the benchmark page, written by `mechkit bench` in tests/cli/test_bench.py",
+    "mechkit/bench/raw.py": "the raw constraintDynamics rows, measured in tests/bench/test_run.py and tests/cli/test_bench.py",
+    "mechkit/bench/results.py": "the bench's rows, built and read in tests/bench/test_timing.py and tests/bench/test_run.py",
+    "mechkit/bench/sampling.py": "the bench's states: tests/bench/test_methods.py measures every declared method on them",
+    "mechkit/bench/scale.py": "the cost-against-size fit, printed by `mechkit bench` in tests/cli/test_bench.py",
+    "mechkit/export/xmltext.py": "the XML text of the MJCF export: tests/export/test_mjcf.py compiles every file in MuJoCo",
+    "mechkit/forces/springs.py": "joint springs as forces (the forces package, being written alongside): applied in "
+                                 "tests/sources/test_mjcf.py, tests/sources/test_sdf.py and tests/export/test_mjcf.py",
+    "mechkit/independent_inputs.py": "the joints a motion fixes: tests/motion/test_study.py (the ten-bar's passive input) "
+                                     "and tests/second_opinion/test_agreement.py",
+    "mechkit/mechanisms/deployable_9rr12uru/actuation.py": "the composite's actuators and home: its model tests, "
+                                                           "tests/mechanisms/test_deployable_9rr12uru.py",
+    "mechkit/mechanisms/deployable_9rr12uru/figures.py": "drawn in tests/mechanisms/deployable_9rr12uru/test_studies.py",
+    "mechkit/mechanisms/deployable_9rr12uru/params.py": "bad parameters named in tests/mechanisms/test_deployable_9rr12uru.py",
+    "mechkit/mechanisms/five_bar/__init__.py": "its SPEC: tests/catalog/test_contract.py; its model against the closed "
+                                               "form: tests/test_mechanism.py",
+    "mechkit/mechanisms/five_bar/closed_form.py": "the bench's reference: tests/bench/test_methods.py, tests/bench/test_run.py",
+    "mechkit/mechanisms/five_bar/params.py": "checked by the property campaign, tests/catalog/test_params.py",
+    "mechkit/mechanisms/four_bar/__init__.py": "its SPEC: tests/catalog/test_contract.py; its model against the closed "
+                                               "form: tests/test_mechanism.py",
+    "mechkit/mechanisms/four_bar/closed_form.py": "the bench's reference: tests/bench/test_methods.py, tests/bench/test_run.py",
+    "mechkit/mechanisms/planar_linkage/bench.py": "the planar linkages' bench methods and references: "
+                                                  "tests/bench/test_methods.py, tests/bench/test_run.py",
+    "mechkit/mechanisms/planar_linkage/lagrange.py": "a bench method of the planar linkages: tests/bench/test_methods.py",
+    "mechkit/mechanisms/planar_linkage/state.py": "the planar linkages' bench states: tests/bench/test_methods.py",
+    "mechkit/mechanisms/rocket_gimbal/__init__.py": "its SPEC: tests/catalog/test_contract.py; its parts: "
+                                                    "tests/mechanisms/rocket_gimbal/",
+    "mechkit/mechanisms/rocket_gimbal/design.py": "its metric is `kinematics.linear_rule_errors` on a grid, which "
+                                                  "tests/mechanisms/rocket_gimbal/test_studies.py runs through the "
+                                                  "linearisation study; the sweep hook itself has no test of its own",
+    "mechkit/mechanisms/rocket_gimbal/figures.py": "drawn in tests/mechanisms/rocket_gimbal/test_studies.py",
+    "mechkit/mechanisms/spherical_2dof/figures.py": "drawn in tests/mechanisms/spherical_2dof/test_studies.py",
+    "mechkit/mechanisms/ten_bar/design.py": "the deployment metric, read through the sweep: tests/sweep/test_specific.py",
+    "mechkit/mechanisms/ten_bar/lagrange_deployment.py": "the Lagrange route of the deployment, against the Pinocchio "
+                                                         "route in tests/mechanisms/ten_bar/test_dynamics.py",
+    "mechkit/mechanisms/ten_bar/lagrange_model.py": "the patent's Lagrange model: tests/mechanisms/ten_bar/test_dynamics.py "
+                                                    "and tests/mechanisms/ten_bar/test_checks.py",
+    "mechkit/mechanisms/ten_bar/scenes.py": "the deployment scene: tests/mechanisms/test_ten_bar.py (the deployment law)",
+    "mechkit/mechanisms/ten_bar/soc.py": "reactions three ways: tests/mechanisms/ten_bar/test_checks.py",
+    "mechkit/mechanisms/tetra_3rr3uru/actuation.py": "the unit's actuators and home: tests/mechanisms/test_tetra_3rr3uru.py",
+    "mechkit/mechanisms/tetra_3rr3uru/checks.py": "its report rows: tests/test_report.py",
+    "mechkit/mechanisms/truss/bench.py": "the fold states of the bench: tests/mechanisms/tetra_3rr3uru/test_bench.py",
+    "mechkit/mechanisms/truss/checks.py": "the truss mechanisms' report rows: tests/test_report.py",
+    "mechkit/mechanisms/truss/joint_state.py": "the web-joint laws the fold follows: tests/mechanisms/truss/test_fold.py",
+    "mechkit/mechanisms/truss/nodes.py": "node centres along the fold: tests/mechanisms/truss/test_fold.py and "
+                                         "tests/mechanisms/test_deployable_9rr12uru.py",
+    "mechkit/motion/path.py": "the kinematics of every study: tests/motion/test_study.py",
+    "mechkit/motion/plot.py": "drawn by `mechkit motion --plot` in tests/cli/test_motion.py",
+    "mechkit/second_opinion/instant.py": "a part of every second opinion: tests/second_opinion/test_agreement.py",
+    "mechkit/second_opinion/opinion.py": "`SecondOpinion`, built in tests/second_opinion/test_decomposition.py and "
+                                         "tests/second_opinion/test_agreement.py",
+    "mechkit/second_opinion/solve.py": "a part of every second opinion: tests/second_opinion/test_agreement.py",
+    "mechkit/second_opinion/structure_graph.py": "what the decomposition reads: tests/second_opinion/test_decomposition.py",
+    "mechkit/sources/description.py": "what every reader returns: tests/sources/test_mjcf.py, tests/sources/test_sdf.py",
+    "mechkit/sources/mjcf/constraints.py": "a part of the MJCF reader: tests/sources/test_mjcf.py",
+    "mechkit/sources/mjcf/tree.py": "a part of the MJCF reader: tests/sources/test_mjcf.py",
+    "mechkit/sources/pinocchio_tree.py": "the trees of the MJCF and SDFormat readers: tests/sources/test_mjcf.py, "
+                                         "tests/sources/test_sdf.py",
+    "mechkit/sweep/store.py": "written, resumed and read in tests/sweep/test_engine.py",
+    "mechkit/validation/planar_motion.py": "the planar linkages' state: tests/validation/test_planar_closed_form.py",
+    "mechkit/viz/browser.py": "the screenshots of every real-browser test (tests/viz/in_browser.py)",
+    "mechkit/viz/inline.py": "the inline views of the tour notebook: tests/docs/test_tour_notebook.py",
+    "mechkit/viz/live.py": "the live viewer in a real browser: tests/cli/test_view.py",
+    "mechkit/viz/meshcat_page.py": "the pages tests/viz/test_pages.py decodes command by command",
+}
+
+
+def _has_code(init: Path) -> bool:
+    """Whether a package's face defines something (beyond its docstring, imports and `__all__`)."""
+    for node in ast.parse(init.read_text()).body:
+        if isinstance(node, (ast.Import, ast.ImportFrom)) or (
+                isinstance(node, ast.Expr) and isinstance(node.value, ast.Constant)):
+            continue
+        if isinstance(node, ast.Assign) and all(isinstance(t, ast.Name) and t.id == "__all__" for t in node.targets):
+            continue
+        return True
+    return False
+
+
+def _mirrored_test(path: Path) -> Path | None:
+    """Where the test of a module is: `tests/x/test_y.py` for `mechkit/x/y.py`, and for the face of a
+    package `mechkit/x/y/__init__.py` (when it defines something) the same, `tests/x/test_y.py`; None for
+    a face that only gathers names (and the package's own face)."""
+    relative = path.relative_to(PACKAGE)
+    if path.name != "__init__.py":
+        return ROOT / "tests" / relative.parent / f"test_{path.stem}.py"
+    if path.parent == PACKAGE or not _has_code(path):
+        return None
+    return ROOT / "tests" / relative.parent.parent / f"test_{path.parent.name}.py"
+
+
+def test_every_module_has_its_test_file():
+    """A reader finds the test of `mechkit/x/y.py` at `tests/x/test_y.py`; the modules tested elsewhere say
+    where, and that list holds no module that has its test file or no longer exists."""
+    missing, listed = [], []
+    for path in sorted(PACKAGE.rglob("*.py")):
+        test = _mirrored_test(path)
+        name = str(path.relative_to(ROOT))
+        if name in TESTED_ELSEWHERE:
+            listed.append(name)
+            assert test is None or not test.is_file(), f"{name} has {test.relative_to(ROOT)}: drop it from TESTED_ELSEWHERE"
+        elif test is not None and not test.is_file():
+            missing.append(f"{name} -> {test.relative_to(ROOT)}")
     assert not missing, missing
+    assert sorted(TESTED_ELSEWHERE) == listed, sorted(set(TESTED_ELSEWHERE) - set(listed))
+
+
+def test_the_mirror_of_a_module_and_of_a_face():
+    """The rule itself: a module's test is beside its folder's mirror, a face's is named after its package."""
+    assert _mirrored_test(PACKAGE / "sweep" / "engine.py") == ROOT / "tests" / "sweep" / "test_engine.py"
+    assert _mirrored_test(PACKAGE / "cli" / "__init__.py") == ROOT / "tests" / "test_cli.py"
+    assert _mirrored_test(PACKAGE / "mechanisms" / "ten_bar" / "__init__.py") == ROOT / "tests" / "mechanisms" / "test_ten_bar.py"
+    assert _mirrored_test(PACKAGE / "__init__.py") is None and _mirrored_test(PACKAGE / "validation" / "__init__.py") is None
+
+
+#: Module names found in several folders of mechkit, each one concept wherever it appears: why, and where
+#: it may appear (a package is its folder, with a trailing slash). Any other repeated name fails.
+SAME_CONCEPT = {
+    "actuation": ("a mechanism package's actuators and home", ("mechkit/mechanisms/*/actuation.py",)),
+    "bench": (("the bench: mechkit/bench/ measures, cli/bench.py is `mechkit bench`, a mechanism package's bench.py "
+              "declares the methods it adds to it"), ("mechkit/bench/", "mechkit/cli/bench.py", "mechkit/mechanisms/*/bench.py")),
+    "checks": ("a mechanism package's self-checks (the rows of `mechkit report`)", ("mechkit/mechanisms/*/checks.py",)),
+    "closed_form": ("a planar calibration linkage's closed form", ("mechkit/mechanisms/*/closed_form.py",)),
+    "design": ("a mechanism's figures of merit for a sweep (`MechanismSpec.design_metrics`)",
+               ("mechkit/mechanisms/*/design.py",)),
+    "export": ("exporting a mechanism: the package, and `mechkit export` (cli/export.py)",
+               ("mechkit/export/", "mechkit/cli/export.py")),
+    "extended_urdf": ("the Extended URDF format: sources/ reads it, export/ writes it",
+                      ("mechkit/sources/extended_urdf.py", "mechkit/export/extended_urdf.py")),
+    "failure": ("a mechanism's failure-atlas study (`MechanismSpec.failure_studies`)", ("mechkit/mechanisms/*/failure.py",)),
+    "figures": ("a mechanism's figures, drawn from its studies' data", ("mechkit/mechanisms/*/figures.py",)),
+    "geometry": ("a mechanism package's paper geometry (numpy only)", ("mechkit/mechanisms/*/geometry.py",)),
+    "joint_state": ("a mechanism's analytic state written on (and read from) its URDF tree's joints",
+                    ("mechkit/mechanisms/*/joint_state.py",)),
+    "kinematics": (("a mechanism's kinematics: the core's numerical closure kinematics, and each mechanism package's "
+                   "from its paper"), ("mechkit/core/kinematics.py", "mechkit/mechanisms/*/kinematics.py")),
+    "lagrange": (("Lagrange's equations of the first kind: the method (validation/) and the planar linkages written "
+                 "in it"), ("mechkit/validation/lagrange.py", "mechkit/mechanisms/planar_linkage/lagrange.py")),
+    "mjcf": ("the MJCF format: sources/mjcf/ reads it, export/ writes it", ("mechkit/sources/mjcf/", "mechkit/export/mjcf.py")),
+    "motion": ("motion studies: the package, and `mechkit motion` (cli/motion.py)", ("mechkit/motion/", "mechkit/cli/motion.py")),
+    "params": (("a mechanism's parameters: their base class (catalog/), each mechanism package's class, and `mechkit "
+               "params` (cli/), which lists them"), ("mechkit/catalog/params.py", "mechkit/cli/params.py",
+                                                    "mechkit/mechanisms/*/params.py")),
+    "report": ("a mechanism's report: the library module, and `mechkit report` (cli/report.py)",
+               ("mechkit/report.py", "mechkit/cli/report.py")),
+    "results": (("a package's result types, what its functions return: the core's (mobility, dynamics), the bench's "
+                "(its rows)"), ("mechkit/core/results.py", "mechkit/bench/results.py")),
+    "scenes": (("a mechanism's scenes: the protocol with the generic sweep (scenes.py), and each mechanism package's "
+               "own"), ("mechkit/scenes.py", "mechkit/mechanisms/*/scenes.py")),
+    "soc": (("sequential SOC virtual work: the solver (validation/soc.py) and each mechanism package's hand-written "
+            "decomposition solved by it"), ("mechkit/validation/soc.py", "mechkit/mechanisms/*/soc.py")),
+    "studies": ("a mechanism package's studies, returning data", ("mechkit/mechanisms/*/studies.py",)),
+    "sweep": ("design sweeps: the package, and `mechkit sweep` (cli/sweep.py)", ("mechkit/sweep/", "mechkit/cli/sweep.py")),
+    "urdf": ("URDF: sources/urdf.py reads it, `mechkit urdf` (cli/urdf.py) writes a mechanism's",
+             ("mechkit/sources/urdf.py", "mechkit/cli/urdf.py")),
+}
+
+
+def _repeated_names() -> dict[str, list[str]]:
+    """Module names (a package by its folder's name) found in more than one folder of mechkit, and where."""
+    found: dict[str, list[str]] = {}
+    for path in sorted(PACKAGE.rglob("*.py")):
+        if path.name == "__main__.py" or path == PACKAGE / "__init__.py":
+            continue
+        if path.name == "__init__.py":
+            found.setdefault(path.parent.name, []).append(f"{path.parent.relative_to(ROOT)}/")
+        else:
+            found.setdefault(path.stem, []).append(str(path.relative_to(ROOT)))
+    return {name: where for name, where in found.items() if len(where) > 1}
+
+
+def test_a_module_name_in_several_folders_is_one_concept():
+    """No two modules share a name unless they are one concept (listed in `SAME_CONCEPT`, with where)."""
+    repeated = _repeated_names()
+    unexplained = {name: where for name, where in repeated.items() if name not in SAME_CONCEPT}
+    astray = {name: [w for w in where if not any(fnmatch(w, p) for p in SAME_CONCEPT[name][1])]
+              for name, where in repeated.items() if name in SAME_CONCEPT}
+    assert not unexplained, f"rename, or add to SAME_CONCEPT with the reason: {unexplained}"
+    assert not any(astray.values()), {name: where for name, where in astray.items() if where}
+    assert set(SAME_CONCEPT) <= set(repeated), f"no longer repeated: {sorted(set(SAME_CONCEPT) - set(repeated))}"

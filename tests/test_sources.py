@@ -1,21 +1,17 @@
-"""Mechanisms from files: URDF with loops, Extended URDF, xacro, MJCF; the four-way agreement with the
-registered mechanisms; the team's fixtures; the CLI on paths."""
+"""`mechkit.sources`: mechanisms from files (URDF with loops, Extended URDF, xacro, MJCF): the four-way
+agreement with the registered mechanisms; the team's fixtures with their structure and self-checks."""
 
 from __future__ import annotations
 
-import json
 from pathlib import Path
 
 import numpy as np
 import pytest
+from tests_support import FIXTURES
 
 import mechkit
-from mechkit.cli import main
 from mechkit.export import to_extended_urdf, to_mjcf
 from mechkit.report import report
-
-FIXTURES = Path(__file__).parent / "fixtures"
-CONTRACT_KEYS = {"name", "nq", "nv", "actuated", "closures", "dof", "dof_gruebler", "redundant_constraints", "checks"}
 
 
 def _with_transmissions(mech: mechkit.Mechanism) -> str:
@@ -96,58 +92,3 @@ def test_fixtures_load_with_their_structure_and_pass_the_self_checks(file):
     assert all(value < 1e-9 for value in r["checks"].values()), r["checks"]
 
 
-def test_xacro_keyword_parameters_are_xacro_arguments():
-    """The Watt II written at another crank angle: its home assembly moves, the loops stay closed."""
-    a = mechkit.load(FIXTURES / "watt_six_bar.urdf.xacro")
-    b = mechkit.load(FIXTURES / "watt_six_bar.urdf.xacro", theta=1.1, a=0.12)
-    assert b.urdf != a.urdf
-    shown = {row["name"]: row["value"] for row in report(b)["parameters"]}
-    assert shown["theta"] == "1.1" and shown["a"] == "0.12" and shown["b"] == "0.35"  # given, given, default
-    assert np.max(np.abs(b.closure_residual(b.home_q))) < 1e-12
-    pin_c = b.model.getFrameId("coupler_C")
-    assert b.data.oMf[pin_c].translation[0] != pytest.approx(a.data.oMf[a.model.getFrameId("coupler_C")].translation[0])
-
-
-def test_a_continuous_joint_is_an_angle_at_the_boundary(tmp_path):
-    """Pinocchio gives a continuous joint (cos, sin); inputs, home and reports use the angle."""
-    text = (FIXTURES / "slider_crank.urdf").read_text().replace('name="crank" type="revolute"', 'name="crank" type="continuous"')
-    (tmp_path / "sc.urdf").write_text(text)
-    m = mechkit.load(tmp_path / "sc.urdf")
-    assert m.model.nq == m.model.nv + 1
-    assert m.joint_values(m.home_q)["crank"] == pytest.approx(0.5, abs=1e-15)
-    i = m.q_index("crank")
-    assert m.home_q[i:i + 2] == pytest.approx([np.cos(0.5), np.sin(0.5)], abs=1e-15)
-    q = m.assemble({"crank": 2.0}, guess=m.home_q)
-    assert m.joint_values(q)["crank"] == pytest.approx(2.0, abs=1e-14)
-    assert report(m)["home"]["crank"] == pytest.approx(0.5, abs=1e-15)
-    ref = mechkit.load(FIXTURES / "slider_crank.urdf")  # the same linkage with a revolute crank
-    assert m.joint_values(q)["slider"] == pytest.approx(ref.joint_values(ref.assemble({"crank": 2.0}, guess=ref.home_q))["slider"], abs=1e-12)
-
-
-def test_actuators_come_from_the_file_or_the_override_and_an_unactuated_model_says_so(tmp_path):
-    text = (FIXTURES / "slider_crank.urdf").read_text()
-    start, end = text.index("<transmission"), text.index("</transmission>") + len("</transmission>")
-    (tmp_path / "bare.urdf").write_text(text[:start] + text[end:])
-    bare = mechkit.load(tmp_path / "bare.urdf")
-    assert bare.actuated == () and report(bare)["actuated"] == []
-    with pytest.raises(mechkit.InvalidParameters, match="unactuated"):
-        bare.velocities(bare.home_q, [1.0])
-    driven = mechkit.load(tmp_path / "bare.urdf", actuated=["slider"])
-    assert driven.actuated == ("slider",)
-    assert mechkit.load("four_bar", actuated=["rocker"]).actuated == ("rocker",)
-
-
-def test_cli_takes_a_path_set_and_actuated(tmp_path, capsys):
-    assert main(["report", str(FIXTURES / "watt_six_bar.urdf.xacro"), "--set", "theta=0.8", "--json"]) == 0
-    r = json.loads(capsys.readouterr().out)
-    assert CONTRACT_KEYS | {"idle", "loops", "rows_avoided"} <= set(r)
-    assert r["dof"] == 1 and r["rows_avoided"] == 6
-    assert main(["report", str(FIXTURES / "slider_crank.urdf"), "--actuated", "slider", "--json"]) == 0
-    assert json.loads(capsys.readouterr().out)["actuated"] == ["slider"]
-    assert main(["report", str(FIXTURES / "slider_crank.urdf"), "--set", "rows=spatial", "--json"]) == 0
-    r = json.loads(capsys.readouterr().out)
-    assert r["loops"][0]["chosen"] == "forced" and r["redundant_constraints"] == 3 and r["dof"] == 1
-    out = tmp_path / "watt.xml"
-    assert main(["export", str(FIXTURES / "watt_six_bar.urdf.xacro"), "--format", "mjcf", "-o", str(out)]) == 0
-    again = mechkit.load(out)
-    assert again.mobility().dof == 1 and again.actuated == ("crank",) and again.structure.kutzbach == 1

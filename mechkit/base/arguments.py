@@ -27,6 +27,9 @@ def array(name: str, value: Any, size: int, *, batch: bool = True) -> np.ndarray
         size: the length of one vector (nq, nv, ...).
         batch: accept a leading sample axis.
 
+    Returns:
+        The values as a float array of shape (size,), or (N, size) for a batch.
+
     Raises:
         InvalidArgument: not numbers (None, strings, complex, objects), wrong shape, NaN or inf.
     """
@@ -55,6 +58,9 @@ def sample(sizes: Mapping[str, int], **values: Any) -> list[np.ndarray]:
         sizes: argument name -> vector length (e.g. {"q": nq, "v": nv}).
         values: argument name -> value, in the order returned.
 
+    Returns:
+        The arrays, each of shape (size,) as `sizes` gives it, in the order of `values`.
+
     Raises:
         InvalidArgument: a malformed array, or one with a sample axis (the `*_batch` methods take those).
     """
@@ -69,6 +75,13 @@ def sample(sizes: Mapping[str, int], **values: Any) -> list[np.ndarray]:
 
 def samples(sizes: Mapping[str, int], **values: Any) -> list[np.ndarray]:
     """State arrays of N samples, each of shape (N, size), one N for all.
+
+    Args:
+        sizes: argument name -> vector length (e.g. {"q": nq, "v": nv}).
+        values: argument name -> value, in the order returned.
+
+    Returns:
+        The arrays, each of shape (N, size), with one N.
 
     Raises:
         InvalidArgument: a malformed array, one without a sample axis, or two different N.
@@ -99,7 +112,18 @@ def _batched(value: Any) -> bool:
 def plain_state(q: Any, v: Any, tau: Any, nq: int, nv: int) -> bool:
     """True for the common call that needs no conversion: float64 arrays of shapes (nq,), (nv,), (nv,),
     all finite. Anything else (lists, other dtypes, batches, NaN or inf) goes through `sample`, which
-    converts it or names what is wrong."""
+    converts it or names what is wrong.
+
+    Args:
+        q: a configuration, expected (nq,).
+        v: a velocity, expected (nv,).
+        tau: generalised efforts, expected (nv,).
+        nq: configuration size of the model.
+        nv: velocity size of the model.
+
+    Returns:
+        Whether all three are finite float64 arrays of those shapes (so no conversion is needed).
+    """
     return (isinstance(q, np.ndarray) and isinstance(v, np.ndarray) and isinstance(tau, np.ndarray)
             and q.dtype == np.float64 and v.dtype == np.float64 and tau.dtype == np.float64
             and q.shape == (nq,) and v.shape == (nv,) and tau.shape == (nv,)
@@ -108,6 +132,14 @@ def plain_state(q: Any, v: Any, tau: Any, nq: int, nv: int) -> bool:
 
 def option(name: str, value: Any, choices: Sequence[str]) -> str:
     """An option's value, one of `choices`.
+
+    Args:
+        name: the option's name (for the error).
+        value: what was given.
+        choices: the accepted names.
+
+    Returns:
+        `value`, once checked.
 
     Raises:
         UnknownOption: anything else (another string, None, a number).
@@ -119,6 +151,15 @@ def option(name: str, value: Any, choices: Sequence[str]) -> str:
 
 def number(name: str, value: Any, *, minimum: float | None = None, positive: bool = False) -> float:
     """A finite real number, optionally >= minimum or > 0.
+
+    Args:
+        name: the argument's name (for the error).
+        value: what was given.
+        minimum: smallest accepted value, if any.
+        positive: refuse zero and below.
+
+    Returns:
+        The value as a float.
 
     Raises:
         InvalidArgument: not a real number (bools, strings, None), not finite, or out of range.
@@ -136,8 +177,16 @@ def number(name: str, value: Any, *, minimum: float | None = None, positive: boo
 
 
 def solver_settings(mu: Any, accuracy: Any, max_iter: Any, baumgarte: Any) -> dict[str, Any]:
-    """Forward-dynamics settings checked: mu >= 0, accuracy > 0, max_iter >= 1 (each None: the method's
-    default), baumgarte None or 2 finite gains; as keyword arguments of `core.forward_dynamics`.
+    """Forward-dynamics settings checked (each None: the method's default).
+
+    Args:
+        mu: proximal regularisation (>= 0), or None.
+        accuracy: the proximal solver's stopping tolerance (> 0), or None.
+        max_iter: the proximal solver's iteration cap (>= 1), or None.
+        baumgarte: Baumgarte gains (Kp, Kd), or None.
+
+    Returns:
+        The keyword arguments of `core.forward_dynamics`: "mu", "accuracy", "max_iter", "baumgarte".
 
     Raises:
         InvalidArgument: naming the first bad one.
@@ -150,6 +199,14 @@ def solver_settings(mu: Any, accuracy: Any, max_iter: Any, baumgarte: Any) -> di
 
 def integer(name: str, value: Any, *, minimum: int = 0) -> int:
     """An integer >= minimum (bools refused).
+
+    Args:
+        name: the argument's name (for the error).
+        value: what was given.
+        minimum: smallest accepted value.
+
+    Returns:
+        The value as an int.
 
     Raises:
         InvalidArgument: not an integer, or below the minimum.
@@ -164,6 +221,13 @@ def integer(name: str, value: Any, *, minimum: int = 0) -> int:
 def flag(name: str, value: Any) -> bool:
     """A bool (numpy bools too).
 
+    Args:
+        name: the argument's name (for the error).
+        value: what was given.
+
+    Returns:
+        The value as a bool.
+
     Raises:
         InvalidArgument: anything else (a string "False" would otherwise count as True).
     """
@@ -174,6 +238,15 @@ def flag(name: str, value: Any) -> bool:
 
 def joint_names(name: str, value: Any, known: Sequence[str], *, allow_empty: bool = False) -> list[str]:
     """A sequence of distinct joint names, each one of `known`.
+
+    Args:
+        name: the argument's name (for the error).
+        value: a sequence of joint names.
+        known: the model's joint names.
+        allow_empty: accept an empty sequence.
+
+    Returns:
+        The names, in the order given.
 
     Raises:
         InvalidArgument: not a sequence of strings, an unknown or repeated name, or empty.
@@ -195,6 +268,16 @@ def joint_values(name: str, value: Any, names: Sequence[str], known: Sequence[st
                  sizes: Mapping[str, int] | None = None) -> dict[str, float | np.ndarray]:
     """Joint values as {joint: finite float, or array for a joint of several freedoms}: a mapping by
     name, or numbers in the order of `names` (each joint taking `sizes[joint]` of them, default 1).
+
+    Args:
+        name: the argument's name (for the error).
+        value: a mapping joint -> value, or numbers in the order of `names`.
+        names: the joints a sequence of numbers is read for, in order.
+        known: the model's joint names (the keys a mapping may use).
+        sizes: joint -> how many numbers it takes (its freedoms; default 1).
+
+    Returns:
+        Joint -> value: a float (rad or m) for a joint of one freedom, a float array of its size otherwise.
 
     Raises:
         InvalidArgument: unknown joints, wrong count, non-numbers, NaN or inf.
@@ -222,6 +305,15 @@ def sample_inputs(name: str, values: Any, names: Sequence[str], n: int, known: S
     """Batched input values: an (n, k) array in `names` order (k the sum of their `sizes`, default 1
     each), or a mapping joint name -> (n,) values (or (n, size) for a joint of several freedoms).
 
+    Args:
+        name: the argument's name (for the error).
+        values: an (n, k) array in `names` order, or a mapping joint -> (n,) or (n, size) values (a scalar: the
+            same for every sample).
+        names: the joints, in the order of an array's columns.
+        n: number of samples.
+        known: the model's joint names (the keys a mapping may use).
+        sizes: joint -> how many columns it takes (its freedoms; default 1).
+
     Returns:
         The joint names and an (n, k) float array.
 
@@ -248,8 +340,17 @@ def sample_inputs(name: str, values: Any, names: Sequence[str], n: int, known: S
 
 
 def sample_fext(name: str, fext: Any, n: int, njoints: int) -> list:
-    """Per-sample external forces: None, an (n, njoints, 6) array of local-frame wrenches, or n per-sample
-    values (each as `external_forces` takes).
+    """Per-sample external forces.
+
+    Args:
+        name: the argument's name (for the error).
+        fext: None, an (n, njoints, 6) array of wrenches [f, m] (N, N m) in each joint's local frame, or n values
+            each as `external_forces` takes.
+        n: number of samples.
+        njoints: the model's joint count, universe included.
+
+    Returns:
+        n values as `external_forces` returns them (None where there are none).
 
     Raises:
         InvalidArgument: a wrong shape or count.
@@ -268,8 +369,14 @@ def sample_fext(name: str, fext: Any, n: int, njoints: int) -> list:
 def external_forces(name: str, value: Any, njoints: int) -> Any:
     """External forces for Pinocchio's RNEA: None, or one force per joint (universe first).
 
-    Accepts a `pin.StdVec_Force`, a sequence of `pin.Force`, or an (njoints, 6) array [f, m] in each
-    joint's local frame.
+    Args:
+        name: the argument's name (for the error).
+        value: None, a `pin.StdVec_Force` or a sequence of `pin.Force`, or an (njoints, 6) array of wrenches [f,
+            m] (N, N m) in each joint's local frame, universe first.
+        njoints: the model's joint count, universe included.
+
+    Returns:
+        None, or a `pin.StdVec_Force` of njoints forces.
 
     Raises:
         InvalidArgument: wrong count, wrong type, NaN or inf.

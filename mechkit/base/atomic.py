@@ -22,12 +22,25 @@ STDOUT = "-"
 
 
 def is_stdout(path: str | os.PathLike | None) -> bool:
-    """True for the output name `-` (standard output)."""
+    """True for the output name `-` (standard output).
+
+    Args:
+        path: an output name, or None.
+
+    Returns:
+        Whether it is `-`.
+    """
     return path is not None and os.fspath(path) == STDOUT
 
 
 def resolve_output(path: str | os.PathLike) -> Path:
     """The regular file a write to `path` replaces: symlinks followed (even dangling ones).
+
+    Args:
+        path: the output as given.
+
+    Returns:
+        The resolved regular file (it may not exist yet).
 
     Raises:
         OutputError: empty name, a directory, a device, a FIFO or a socket, or a symlink loop.
@@ -51,6 +64,12 @@ def resolve_output(path: str | os.PathLike) -> Path:
 def check_distinct(paths: list[str | os.PathLike]) -> list[Path]:
     """Resolve several outputs of one command; refuse two that are the same file.
 
+    Args:
+        paths: the outputs as given.
+
+    Returns:
+        Their resolved files, in order.
+
     Raises:
         OutputError: a path refused by `resolve_output`, or two paths naming one file (after
             symlinks, or hard links of an existing file).
@@ -65,7 +84,18 @@ def check_distinct(paths: list[str | os.PathLike]) -> list[Path]:
 
 
 def write_text(path: str | os.PathLike, text: str) -> Path:
-    """Write `text` (UTF-8) to `path` atomically, or to standard output when `path` is `-`; returns the path."""
+    """Write `text` (UTF-8) to `path` atomically, or to standard output when `path` is `-`.
+
+    Args:
+        path: the output, or `-`.
+        text: the content.
+
+    Returns:
+        The path as given (`Path("-")` for standard output).
+
+    Raises:
+        OutputError: the output is refused (see `write_files`) or cannot be written.
+    """
     if is_stdout(path):
         sys.stdout.write(text)
         sys.stdout.flush()
@@ -74,12 +104,26 @@ def write_text(path: str | os.PathLike, text: str) -> Path:
 
 
 def write_bytes(path: str | os.PathLike, data: bytes) -> Path:
-    """Write `data` to `path` atomically; returns the path."""
+    """Write `data` to `path` atomically.
+
+    Args:
+        path: the output.
+        data: the content.
+
+    Returns:
+        The path as given.
+
+    Raises:
+        OutputError: the output is refused (see `write_files`) or cannot be written.
+    """
     return write_files({path: data})[0]
 
 
 def write_files(contents: Mapping[str | os.PathLike, bytes]) -> list[Path]:
     """Write several files as one step: every temporary file is written and synced before any rename.
+
+    Args:
+        contents: output as given -> its bytes.
 
     Returns:
         The paths as given, in order.

@@ -143,6 +143,32 @@ class OutputError(MechkitError):
         super().__init__(f"output {str(path)!r}: {why}")
 
 
+class MotionFailed(MechkitError):
+    """No sample of a motion study succeeded: the mechanism cannot follow the motion at all.
+
+    Attributes:
+        failures: (t (s), why) of every sample, in time order.
+    """
+
+    def __init__(self, failures: list[tuple[float, str]]):
+        self.failures = list(failures)
+        t, why = self.failures[0]
+        super().__init__(f"no sample of the motion succeeded; at t = {t:.6g} s: {why}")
+
+
+class ExternalToolFailed(MechkitError):
+    """A program mechkit runs (headless Chromium, the meshcat server) failed or stopped answering.
+
+    Attributes:
+        tool: the program.
+        why: what it did, in words (with its last output lines where there are some).
+    """
+
+    def __init__(self, tool: str, why: str):
+        self.tool, self.why = tool, why
+        super().__init__(f"{tool}: {why}")
+
+
 class SelfCheckFailed(MechkitError):
     """A mechanism disagrees with itself or its sources: self-checks above their threshold.
 

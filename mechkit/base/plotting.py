@@ -15,6 +15,9 @@ def pyplot(what: str = "figures") -> ModuleType:
     Args:
         what: what needs it, for the error message.
 
+    Returns:
+        The `matplotlib.pyplot` module.
+
     Raises:
         MethodUnavailable: matplotlib is not installed.
     """

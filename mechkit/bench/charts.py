@@ -32,7 +32,18 @@ def pyplot() -> ModuleType:
 
 
 def save_figure(fig: Figure, ax: Axes, folder: Path, stem: str, legend_size: int = 6) -> list[Path]:
-    """Grid, legend, tight layout; write `folder/stem.png` and `.svg`; close the figure."""
+    """Grid, legend, tight layout; write `folder/stem.png` and `.svg`; close the figure.
+
+    Args:
+        fig: the figure.
+        ax: its axes.
+        folder: where the files go (created).
+        stem: the file name without extension.
+        legend_size: the legend's font size (pt).
+
+    Returns:
+        The two paths written (PNG, SVG).
+    """
     ax.grid(True, which="both", alpha=0.3)
     ax.legend(fontsize=legend_size)
     fig.tight_layout()
@@ -45,7 +56,16 @@ def save_figure(fig: Figure, ax: Axes, folder: Path, stem: str, legend_size: int
 
 
 def chart(b: MechanismBench, quantity: str, folder: Path) -> list[Path]:
-    """Error vs time per call, log-log, one point per method, knob sweeps joined; PNG and SVG."""
+    """Error vs time per call, log-log, one point per method, knob sweeps joined; PNG and SVG.
+
+    Args:
+        b: one mechanism's bench.
+        quantity: a bench quantity (`BENCH_QUANTITIES`).
+        folder: where the files go.
+
+    Returns:
+        The PNG and SVG written as `bench_<name>_<quantity>`, or none when no method of that quantity succeeded.
+    """
     plt = pyplot()
 
     rows = [r for r in b.rows if r.method.quantity == quantity and r.outcome == "ok"]
@@ -84,7 +104,15 @@ def chart(b: MechanismBench, quantity: str, folder: Path) -> list[Path]:
 
 
 def scale_chart(fits: list[ScaleFit], folder: Path) -> list[Path]:
-    """Cost vs model size (nv), log-log, one curve per method, fitted exponent in the legend."""
+    """Cost vs model size (nv), log-log, one curve per method, fitted exponent in the legend.
+
+    Args:
+        fits: (method, [(mechanism, nv, seconds per call)], fitted exponent p) per method (`scale.scale_fits`).
+        folder: where the files go.
+
+    Returns:
+        The PNG and SVG written as `bench_scale`, or none without fits.
+    """
     plt = pyplot()
 
     if not fits:
@@ -101,7 +129,16 @@ def scale_chart(fits: list[ScaleFit], folder: Path) -> list[Path]:
 
 
 def draw_all(results: list[MechanismBench], fits: list[ScaleFit], folder: Path) -> list[Path]:
-    """Every mechanism's charts (one per quantity) and the scale chart, in `folder`; the files written."""
+    """Every mechanism's charts (one per quantity) and the scale chart, in `folder`.
+
+    Args:
+        results: the benches of the mechanisms.
+        fits: the cost-against-size fits (`scale.scale_fits`).
+        folder: where the files go.
+
+    Returns:
+        The files written.
+    """
     paths: list[Path] = []
     with np.errstate(all="ignore"):  # matplotlib's own arithmetic
         for b in results:

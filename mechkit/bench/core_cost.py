@@ -24,11 +24,15 @@ def _us(fn, sample, budget: float) -> float:
 
 
 def measure(name: str, budget: float) -> list[tuple[str, float, str]]:
-    """(label, microseconds per call (median of 9 repeats), comment) rows for one mechanism.
+    """The core's calls against the raw Pinocchio calls they wrap, for one mechanism.
 
     Args:
         name: a registered mechanism.
         budget: seconds of timing per row.
+
+    Returns:
+        (label, microseconds per call (median of 9 repeats), comment) rows; a core call's comment carries its
+            ratio to the raw call.
     """
     m = load(name)
     s = make_samples(m, 1)[0]
@@ -72,13 +76,17 @@ def measure(name: str, budget: float) -> list[tuple[str, float, str]]:
 
 
 def profile(name: str, determinacy: bool, calls: int = 300, top: int = 12) -> list[tuple[str, float, float]]:
-    """cProfile of `inverse_dynamics`: (function, microseconds per ID call own time, cumulative), top by own time.
+    """cProfile of `inverse_dynamics`, the functions taking the most time of their own first.
 
     Args:
         name: a registered mechanism.
         determinacy: with the determinacy test.
         calls: inverse-dynamics calls profiled.
         top: rows returned.
+
+    Returns:
+        (function, microseconds per inverse-dynamics call of its own time, cumulative microseconds) rows, `top` of
+            them.
     """
     import cProfile
     import pstats

@@ -46,12 +46,27 @@ def _wrap(x: np.ndarray) -> np.ndarray:
 
 def assembly_error(q: np.ndarray, q_ref: np.ndarray) -> float:
     """max |q - q_ref| with angle differences wrapped to (-pi, pi] (rad or m); also the inverse-kinematics
-    error, on the actuated inputs."""
+    error, on the actuated inputs.
+
+    Args:
+        q: a configuration (or the actuated inputs).
+        q_ref: the reference, of the same shape.
+
+    Returns:
+        The largest difference (rad or m).
+    """
     return float(np.max(np.abs(_wrap(np.asarray(q) - q_ref))))
 
 
 def acceleration_error(a: np.ndarray, a_ref: np.ndarray) -> float:
     """max |a - a_ref| / max |a_ref| (a_ref scale floored at 1e-300).
+
+    Args:
+        a: accelerations (nv,).
+        a_ref: the reference accelerations (nv,).
+
+    Returns:
+        The relative error (-).
 
     Raises:
         FloatingPointError: a is not finite.
@@ -64,6 +79,14 @@ def acceleration_error(a: np.ndarray, a_ref: np.ndarray) -> float:
 
 def id_parts(result: Any) -> tuple[dict[str, float], dict[str, np.ndarray] | None]:
     """Efforts and (if given) reactions as (6,) wrenches of an inverse-dynamics result (object or dict).
+
+    Args:
+        result: an inverse-dynamics result: an object or a dict with `efforts` and optionally `reactions`
+            (`JointReaction`s or (6,) wrenches).
+
+    Returns:
+        (actuated joint -> effort (N m or N), joint -> (6,) world wrench [f, m], or None when the result has no
+            reactions).
 
     Raises:
         TypeError: the result has no `efforts`.
@@ -79,7 +102,18 @@ def id_parts(result: Any) -> tuple[dict[str, float], dict[str, np.ndarray] | Non
 
 
 def inverse_error(result: Any, ref: IDReference, actuated: Sequence[str]) -> tuple[float, str]:
-    """Relative error of efforts and determinate reaction components, and a note ("efforts only", ...)."""
+    """Relative error of efforts and determinate reaction components, and a note ("efforts only", ...).
+
+    Args:
+        result: an inverse-dynamics result (see `id_parts`).
+        ref: the reference efforts, reactions and their determinacy.
+        actuated: the actuated joints (their reaction moments are efforts, not compared).
+
+    Returns:
+        (largest difference of an effort or a determinate reaction component relative to the reference's largest
+            magnitude (-), a note: "efforts only" when the result has no reactions, "k/n reactions" when it has
+            some of them, else "").
+    """
     efforts, reactions = id_parts(result)
     scale = max([abs(u) for u in ref.efforts.values()] + [float(np.max(np.abs(w))) for w in ref.reactions.values()] + [1e-300])
     worst = max(abs(efforts[j] - u) for j, u in ref.efforts.items())

@@ -45,7 +45,14 @@ def _rel(x, ref) -> float:
 
 # ---------------------------------------------------------------------------- proximal mu
 def proximal_mu(quick: bool = True) -> list[FailureCase]:
-    """Four-bar (planar and spatial closure rows): constraintDynamics error vs mu, at 1 and 20 iterations."""
+    """Four-bar (planar and spatial closure rows): constraintDynamics error vs mu, at 1 and 20 iterations.
+
+    Args:
+        quick: a few values of mu (else a denser sweep).
+
+    Returns:
+        The cases, one per method and mu (condition = mu).
+    """
     mus = [0.0, 1e-12, 1e-9, 1e-6, 1e-3, 1e-1] if quick else [0.0, 1e-14, 1e-12, 1e-10, 1e-8, 1e-6, 1e-4, 1e-2, 1e-1, 1.0]
     return [c for rows in ("planar", "spatial") for c in _proximal_rows(rows, mus)]
 
@@ -68,6 +75,13 @@ def far_starts(quick: bool = True, seed: int = 3) -> list[FailureCase]:
 
     error = distance (rad) to the reference branch's q; outcome "ok" (reached it), "other branch"
     (closed the loop elsewhere) or the exception.
+
+    Args:
+        quick: 20 starts per mechanism (else 200).
+        seed: the random generator's seed.
+
+    Returns:
+        The cases, one per mechanism, method and start.
     """
     rng = np.random.default_rng(seed)
     n = 20 if quick else 200
@@ -92,7 +106,16 @@ def far_starts(quick: bool = True, seed: int = 3) -> list[FailureCase]:
 
 # ---------------------------------------------------------------------------- integration
 def integration(quick: bool = True, duration: float | None = None, dt: float = 1e-3) -> list[FailureCase]:
-    """Four-bar released from home at rest under gravity; condition = time (s), error = |closure residual| (m)."""
+    """Four-bar released from home at rest under gravity; condition = time (s), error = |closure residual| (m).
+
+    Args:
+        quick: 0.5 s of motion (else 2 s), unless `duration` is given.
+        duration: the simulated time (s).
+        dt: the time step (s).
+
+    Returns:
+        The cases: 25 per scheme and stabilisation, along the motion, and the exception where one raised.
+    """
     m = load("four_bar")
     duration = duration or (0.5 if quick else 2.0)
     steps = round(duration / dt)
@@ -144,7 +167,14 @@ OWN = (
 
 def studies(names: Sequence[str] | None = None) -> dict[str, tuple[FailureStudy, str | None]]:
     """Every study of the atlas by name: the atlas's own, then those the named mechanisms (default:
-    every registered one) declare, each with the mechanism it runs on (None: it loads its own)."""
+    every registered one) declare, each with the mechanism it runs on (None: it loads its own).
+
+    Args:
+        names: the mechanisms whose declared studies are added (default: every registered one).
+
+    Returns:
+        Study name -> (the study, the mechanism it runs on, or None when it loads its own).
+    """
     found: dict[str, tuple[FailureStudy, str | None]] = {s.name: (s, None) for s in OWN}
     for name in names or registry.names():
         for study in registry.get_spec(name).failure_studies:
@@ -153,7 +183,16 @@ def studies(names: Sequence[str] | None = None) -> dict[str, tuple[FailureStudy,
 
 
 def run(study: FailureStudy, mechanism: str | None, quick: bool = True) -> list[FailureCase]:
-    """The cases of one study, on the registered mechanism it belongs to (None: the atlas's own study)."""
+    """The cases of one study, on the registered mechanism it belongs to (None: the atlas's own study).
+
+    Args:
+        study: the study.
+        mechanism: the registered mechanism it runs on, or None for an atlas study.
+        quick: the study's short form.
+
+    Returns:
+        Its cases.
+    """
     return study.run(None if mechanism is None else load(mechanism), quick)
 
 
@@ -169,7 +208,16 @@ def _conditions(study: FailureStudy, cases: list[FailureCase]) -> np.ndarray:
 
 def draw(study: FailureStudy, cases: list[FailureCase], folder: Path) -> list[Path]:
     """One figure per study (PNG and SVG): error vs condition per method (or, for a study of counts, the
-    number of each outcome per method); exceptions marked with x."""
+    number of each outcome per method); exceptions marked with x.
+
+    Args:
+        study: the study.
+        cases: its cases.
+        folder: where the files go.
+
+    Returns:
+        The PNG and SVG written as `bench_atlas_<study>`.
+    """
     plt = pyplot()
 
     fig, ax = plt.subplots(figsize=(8, 5))
@@ -209,7 +257,16 @@ def draw(study: FailureStudy, cases: list[FailureCase], folder: Path) -> list[Pa
 
 
 def summary_lines(folder: Path, quick: bool = True) -> list[str]:
-    """Run every study, draw its figure in `folder`, and return markdown lines describing the outcomes."""
+    """Run every study, draw its figure in `folder`, and return markdown lines describing the outcomes.
+
+    Args:
+        folder: where the figures go.
+        quick: every study's short form.
+
+    Returns:
+        Markdown lines: per study, per method, how many cases succeeded, their error range and where the first
+            exception came.
+    """
     lines = []
     for name, (study, mechanism) in studies().items():
         cases = run(study, mechanism, quick)

@@ -43,7 +43,17 @@ class LadderPoint:
 
 def exact_accelerations(mech: Mechanism, q: np.ndarray, v: np.ndarray, tau: np.ndarray) -> np.ndarray:
     """Accelerations of the dense KKT `[M, -J^T; J, 0] [a; lambda] = [tau - nle; -gamma]` on the independent
-    rows, LU-solved then refined four times with the residual in extended precision (np.longdouble)."""
+    rows, LU-solved then refined four times with the residual in extended precision (np.longdouble).
+
+    Args:
+        mech: the mechanism.
+        q: an assembled configuration (nq,).
+        v: a velocity satisfying the closure (nv,).
+        tau: generalised efforts (nv,), N m or N.
+
+    Returns:
+        The accelerations (nv,), rad/s^2 or m/s^2, exact to rounding.
+    """
     J, gamma = mech.closure_jacobian(q), mech.closure_drift(q, v)
     rows = core.independent_rows(J)
     J, gamma = J[rows], gamma[rows]
@@ -65,7 +75,17 @@ def exact_accelerations(mech: Mechanism, q: np.ndarray, v: np.ndarray, tau: np.n
 
 def measure(loops: int, budget: float = 0.2, repeats: int = 5) -> LadderPoint:
     """Time (alternately, fastest of `repeats` each) and error of the raw constraintDynamics and of lcaba
-    on the ladder of `loops` loops."""
+    on the ladder of `loops` loops.
+
+    Args:
+        loops: the ladder's number of four-bar loops.
+        budget: seconds of timing per repeat.
+        repeats: timed repeats of each method.
+
+    Returns:
+        The sizes, times (us per call), errors against `exact_accelerations`, lcaba's iterations and the load
+            average.
+    """
     mech = ladder(loops)
     rng = np.random.default_rng(0)
     q = mech.home_q
@@ -92,7 +112,15 @@ def measure(loops: int, budget: float = 0.2, repeats: int = 5) -> LadderPoint:
 
 
 def growth(points: list[LadderPoint], attr: str) -> float:
-    """Least-squares slope p of log t = p log N + c over the points with N >= FIT_FROM."""
+    """Least-squares slope p of log t = p log N + c over the points with N >= FIT_FROM.
+
+    Args:
+        points: the measured sizes.
+        attr: the time to fit ("raw_us" or "lcaba_us").
+
+    Returns:
+        The slope p (-), NaN with fewer than two points.
+    """
     pts = [(p.loops, getattr(p, attr)) for p in points if p.loops >= FIT_FROM]
     if len(pts) < 2:
         return float("nan")
@@ -101,12 +129,29 @@ def growth(points: list[LadderPoint], attr: str) -> float:
 
 
 def run(sizes: tuple[int, ...] = SIZES, budget: float = 0.2, repeats: int = 5) -> list[LadderPoint]:
-    """`measure` at every ladder size."""
+    """`measure` at every ladder size.
+
+    Args:
+        sizes: the ladder sizes (loops).
+        budget: seconds of timing per repeat.
+        repeats: timed repeats of each method.
+
+    Returns:
+        One point per size.
+    """
     return [measure(n, budget, repeats) for n in sizes]
 
 
 def markdown(points: list[LadderPoint]) -> list[str]:
-    """The benchmark page's ladder section: the table, the growth fits and the targets of issue 13."""
+    """The benchmark page's ladder section: the table, the growth fits and its targets (lcaba under 1 ms at
+    the largest size, growing at most as N^1.3, within 1e-10 of the exact accelerations).
+
+    Args:
+        points: the measured sizes.
+
+    Returns:
+        Markdown lines.
+    """
     lines = ["| loops | nv | raw constraintDynamics us | its error | lcaba us | its error | lcaba / raw | lcaba iterations |",
              "|---|---|---|---|---|---|---|---|"]
     for p in points:

@@ -38,6 +38,12 @@ def _joint(name: str, parent: str, child: str, xyz: tuple[float, float, float], 
 def ladder_urdf(n: int) -> str:
     """URDF text of the ladder of n four-bar loops, closed by `<mechkit:loop>` cuts.
 
+    Args:
+        n: the number of loops (>= 1).
+
+    Returns:
+        The URDF text.
+
     Raises:
         InvalidParameters: n < 1.
     """
@@ -60,5 +66,15 @@ def ladder_urdf(n: int) -> str:
 
 
 def ladder(n: int) -> Mechanism:
-    """The ladder of n four-bar loops as a Mechanism, actuated at the left rail's joints, home at q = 0."""
+    """The ladder of n four-bar loops as a Mechanism, actuated at the left rail's joints, home at q = 0.
+
+    Args:
+        n: the number of loops (>= 1).
+
+    Returns:
+        The mechanism (n DOF, nv = 3 n).
+
+    Raises:
+        InvalidParameters: n < 1.
+    """
     return from_urdf(ladder_urdf(n), actuated=[f"l{i}" for i in range(1, n + 1)], name=f"ladder_{n}")

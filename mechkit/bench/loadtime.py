@@ -50,7 +50,14 @@ class FirstLoad:
 
 
 def quartiles(values: tuple[float, ...]) -> tuple[float, float, float]:
-    """(median, 25th percentile, 75th percentile) of the values."""
+    """The median and the quartiles of some values.
+
+    Args:
+        values: the values.
+
+    Returns:
+        (median, 25th percentile, 75th percentile).
+    """
     p25, median, p75 = np.percentile(values, [25, 50, 75])
     return float(median), float(p25), float(p75)
 
@@ -76,6 +83,14 @@ def _one(name: str) -> tuple[float, float, list[str]]:
 
 def first_load(name: str = "four_bar", runs: int = 5) -> FirstLoad:
     """Time `runs` fresh processes loading `name`, after one untimed run that warms the bytecode cache.
+
+    Args:
+        name: a registered mechanism.
+        runs: timed processes.
+
+    Returns:
+        The wall times of the processes and the times inside them (s), the mechanism modules they imported, and
+            those of other mechanisms (none expected).
 
     Raises:
         MethodUnavailable: a process failed (its stderr's end is in the message).

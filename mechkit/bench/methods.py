@@ -74,7 +74,15 @@ def _core_inverse_reference(mech: Mechanism, s: Sample) -> IDReference:
 
 def references(mech: Mechanism, samples: list[Sample]) -> References:
     """The best reference per quantity (the spec's own, else the core's); sets each sample's tau to the
-    reference efforts (unless the sample's efforts were drawn first)."""
+    reference efforts (unless the sample's efforts were drawn first).
+
+    Args:
+        mech: the mechanism.
+        samples: the bench's states (their `tau` set here).
+
+    Returns:
+        The reference of every quantity at every sample, and their labels.
+    """
     labels = {"assembly": "closure Newton at 1e-14 (or the tightest reached, core)",
               "forward_dynamics": "closure kinematics a, tau from the inverse-dynamics reference",
               "inverse_dynamics": "core constrained RNEA (determinacy on)"}
@@ -112,7 +120,17 @@ def references(mech: Mechanism, samples: list[Sample]) -> References:
 
 
 def core_methods(mech: Mechanism, quick: bool) -> list[Method]:
-    """The core's methods with their accuracy knobs swept (fewer settings when quick)."""
+    """The core's methods with their accuracy knobs swept (fewer settings when quick).
+
+    Args:
+        mech: the mechanism.
+        quick: fewer settings of each knob.
+
+    Returns:
+        The methods: closure Newton and LM at several tolerances, constraintDynamics at several mu and iteration
+            counts, the dense KKT, constrained RNEA with and without the determinacy test, and the raw Pinocchio
+            calls.
+    """
     methods = []
     tols = (1e-6, 1e-12) if quick else (1e-4, 1e-6, 1e-9, 1e-12)
     for algo, label in (("newton", "closure Newton"), ("lm", "closure LM")):
@@ -145,5 +163,12 @@ def core_methods(mech: Mechanism, quick: bool) -> list[Method]:
 
 
 def own_methods(mech: Mechanism) -> list[Method]:
-    """The mechanism's own methods, as its spec declares them (`MechanismSpec.bench_methods`)."""
+    """The mechanism's own methods, as its spec declares them (`MechanismSpec.bench_methods`).
+
+    Args:
+        mech: the mechanism.
+
+    Returns:
+        Its methods, in the spec's order.
+    """
     return [Method(m.label, m.quantity, m.fn) for m in mech.spec.bench_methods]

@@ -1,5 +1,5 @@
 """Speed of a motion study along a motion law a mechanism declares (`MechanismSpec.motion_laws`; by
-default the 2T1R's paper law, the issue's 501 samples: assembly, velocities, accelerations, efforts
+default the 2T1R's paper law in 501 samples: assembly, velocities, accelerations, efforts
 and every reaction), against the 50 ms goal, split into its phases and set beside one raw
 `pin.constraintDynamics` per sample, all measured in one process.
 
@@ -76,6 +76,10 @@ def motion_law_speed(samples: int = 501, repeats: int = 5, name: str = "parallel
         name: the registered mechanism.
         law_name: the law, one of its spec's `motion_laws`.
 
+    Returns:
+        The times (s, fastest of the repeats) of the whole study, its kinematics and its dynamics, and of one raw
+            constraintDynamics call.
+
     Raises:
         InvalidParameters: the mechanism declares no such law.
     """
@@ -99,7 +103,14 @@ def motion_law_speed(samples: int = 501, repeats: int = 5, name: str = "parallel
 
 
 def lines(s: MotionSpeed) -> list[str]:
-    """The figures as text: totals, per sample, ratios to the raw call, the goal."""
+    """The figures as text: totals, per sample, ratios to the raw call, the goal.
+
+    Args:
+        s: the figures.
+
+    Returns:
+        Text lines.
+    """
     per = {k: getattr(s, f"{k}_s") / s.samples for k in ("study", "kinematics", "dynamics")}
     raw = s.raw_constraint_dynamics_s
     out = [f"{s.name} {s.law.replace('_', ' ')}, {s.samples} samples (fastest of {s.repeats} runs in one process)"]

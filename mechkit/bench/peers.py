@@ -95,7 +95,14 @@ class MujocoPeer:
         return J
 
     def set_state(self, q: np.ndarray, v: np.ndarray, tau: np.ndarray | None = None, a: np.ndarray | None = None) -> None:
-        """Write a state (mechkit order) into the MjData, for timing `mj_forward` / `mj_inverse` bare."""
+        """Write a state (mechkit order) into the MjData, for timing `mj_forward` / `mj_inverse` bare.
+
+        Args:
+            q: a configuration (nq,), mechkit's order.
+            v: a velocity (nv,).
+            tau: generalised efforts (nv,), N m or N, if any.
+            a: accelerations (nv,), rad/s^2 or m/s^2, if any.
+        """
         d = self.data
         d.qpos[self.qadr] = q
         d.qvel[self.vadr] = v
@@ -105,14 +112,32 @@ class MujocoPeer:
             d.qacc[self.vadr] = a
 
     def forward(self, q: np.ndarray, v: np.ndarray, tau: np.ndarray) -> np.ndarray:
-        """Accelerations (mechkit order) under joint efforts tau."""
+        """Accelerations (mechkit order) under joint efforts tau.
+
+        Args:
+            q: a configuration (nq,), mechkit's order.
+            v: a velocity (nv,).
+            tau: generalised efforts (nv,), N m or N.
+
+        Returns:
+            MuJoCo's accelerations (nv,), mechkit's order, under its soft closure.
+        """
         d = self.data
         self.set_state(q, v, tau)
         self._mj.mj_forward(self.model, d)
         return d.qacc[self.vadr].copy()
 
     def inverse(self, q: np.ndarray, v: np.ndarray, a: np.ndarray) -> dict[str, float]:
-        """Actuator efforts holding the motion: M a + c = S u + J_eq^T f solved by least squares."""
+        """Actuator efforts holding the motion: M a + c = S u + J_eq^T f solved by least squares.
+
+        Args:
+            q: a configuration (nq,), mechkit's order.
+            v: a velocity (nv,).
+            a: accelerations (nv,).
+
+        Returns:
+            Actuated joint -> effort (N m or N).
+        """
         d = self.data
         self.set_state(q, v, a=a)
         self._mj.mj_inverse(self.model, d)
@@ -173,7 +198,19 @@ class DrakePeer:
         self._simulator = Simulator(plant, self.context)  # steps the plant's per-step discrete update
 
     def forward(self, q: np.ndarray, v: np.ndarray, tau: np.ndarray) -> np.ndarray:
-        """(v_next - v) / dt of one discrete step from (q, v) under efforts tau."""
+        """(v_next - v) / dt of one discrete step from (q, v) under efforts tau.
+
+        Args:
+            q: a configuration (nq,), mechkit's order.
+            v: a velocity (nv,).
+            tau: generalised efforts (nv,), N m or N.
+
+        Returns:
+            The mean accelerations of the step (nv,), mechkit's order.
+
+        Raises:
+            SimulationFailed: Drake stopped the step with its own error.
+        """
         x = np.zeros(self.nq + self.nv)
         x[self.qadr] = q
         x[self.nq + self.vadr] = v
@@ -203,7 +240,14 @@ def _link_of(model, joint: int) -> str:
 
 
 def peer_methods(mech: Mechanism) -> tuple[list[Method], list[str]]:
-    """MuJoCo (default and stiff) and Drake rows; unavailable peers come back as notes."""
+    """MuJoCo (default and stiff) and Drake rows; unavailable peers come back as notes.
+
+    Args:
+        mech: the mechanism.
+
+    Returns:
+        (the peers' methods, notes naming each peer that is unavailable and why).
+    """
     methods, notes = [], []
     for stiff, label in ((False, "default"), (True, "stiff")):
         try:

@@ -20,6 +20,12 @@ def raw_constraint_dynamics(mech: Mechanism) -> Callable[[np.ndarray, np.ndarray
     """A function (q, v, tau) -> a that is one bare `pin.constraintDynamics` call on the mechanism's
     legacy constraint models (set up once, `RAW_SETTINGS`; the result is Pinocchio's own array).
 
+    Args:
+        mech: the mechanism.
+
+    Returns:
+        The function, (q (nq,), v (nv,), tau (nv,)) -> a (nv,).
+
     Raises:
         MethodUnavailable: a cut or coupling the legacy constraint models cannot express.
     """

@@ -48,9 +48,13 @@ def bench_mechanism(mech: Mechanism, quick: bool = True, with_peers: bool = True
     """Every method on one mechanism, measured in this process: the core's, the spec's own, the peers'.
 
     Args:
+        mech: the mechanism.
         quick: 3 samples, 2 settings per accuracy knob, 0.03 s of timing per method (else 8, all, 0.3 s).
         with_peers: also MuJoCo and Drake (where installed).
         progress: called after each method (see `Progress`).
+
+    Returns:
+        Its rows (one per method: error, time, outcome), samples, references and notes.
     """
     name = mech.spec.name
     samples = make_samples(mech, 3 if quick else 8)
@@ -76,8 +80,17 @@ def bench_mechanism(mech: Mechanism, quick: bool = True, with_peers: bool = True
 
 def run(names: Sequence[str] | None = None, quick: bool = True, with_peers: bool = True,
         progress: Progress | None = None) -> tuple[list[MechanismBench], dict[str, str]]:
-    """Bench the named mechanisms (default: every registered one); returns results and the skipped ones
-    with the reason (a mechanism that fails to load or to sample does not stop the others)."""
+    """Bench the named mechanisms; a mechanism that fails to load or to sample does not stop the others.
+
+    Args:
+        names: the mechanisms (default: every registered one).
+        quick: as `bench_mechanism`.
+        with_peers: as `bench_mechanism`.
+        progress: as `bench_mechanism`.
+
+    Returns:
+        (the benches, mechanism -> why it was skipped).
+    """
     results, skipped = [], {}
     for name in names or registry.names():
         try:

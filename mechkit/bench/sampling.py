@@ -48,7 +48,15 @@ class Sample:
 
 def scene_configurations(mech: Mechanism, count: int) -> list[tuple[np.ndarray, np.ndarray]]:
     """Up to `count` (configuration, the scene's previous configuration) pairs spread along the first
-    scene the mechanism's spec declares; the previous one is the assembly's warm start."""
+    scene the mechanism's spec declares; the previous one is the assembly's warm start.
+
+    Args:
+        mech: the mechanism.
+        count: how many pairs at most.
+
+    Returns:
+        The pairs, none when the spec declares no scene.
+    """
     for scene in mech.spec.scenes.values():
         poses = [np.asarray(q, dtype=float) for q in scene(mech)]
         picks = np.linspace(1, len(poses) - 1, min(count, len(poses) - 1)).round().astype(int)
@@ -66,7 +74,15 @@ def _closes(mech: Mechanism, q: np.ndarray, v: np.ndarray, a: np.ndarray) -> boo
 
 def motion_states(mech: Mechanism, count: int) -> list[tuple[MotionState, MotionState]]:
     """Up to `count` (state, the state before it) pairs spread along the mechanism's own motion
-    (`MechanismSpec.bench_states`), or none when its spec declares no such motion."""
+    (`MechanismSpec.bench_states`), or none when its spec declares no such motion.
+
+    Args:
+        mech: the mechanism.
+        count: how many pairs at most.
+
+    Returns:
+        The pairs of `MotionState`s.
+    """
     if mech.spec.bench_states is None:
         return []
     states = list(mech.spec.bench_states(mech, count))
@@ -89,6 +105,14 @@ def make_samples(mech: Mechanism, count: int, seed: int = 7) -> list[Sample]:
     J a + gamma = 0 to 1e-9 (a rank change near home): efforts ~ N(0, generalised gravity scale) on
     the actuators and a from the core's exact null-space forward dynamics (the inverse dynamics must give
     those efforts back).
+
+    Args:
+        mech: the mechanism.
+        count: how many states.
+        seed: the random generator's seed.
+
+    Returns:
+        The samples, `count` of them.
 
     Raises:
         MethodUnavailable: no state could be assembled.

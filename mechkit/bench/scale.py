@@ -24,8 +24,12 @@ def scale_fits(results: list[MechanismBench], budget_s: float = 0.02, rounds: in
     log-log. Methods measured on fewer than 3 mechanisms are left out.
 
     Args:
+        results: the benches (their mechanisms, samples and rows).
         budget_s: seconds of timing per mechanism and round.
         rounds: rounds over the mechanisms.
+
+    Returns:
+        (method, [(mechanism, nv, median seconds per call)] by nv, fitted exponent p) per method.
     """
     out = []
     for name in SCALE_METHODS:

@@ -57,7 +57,16 @@ def _variants(name: str, runs: int):
 
 
 def load_times(names: tuple[str, ...] = ("four_bar", "ten_bar", "deployable_9rr12uru"), runs: int = 7) -> list[LoadTime]:
-    """Median load times of each mechanism with new parameters, through xacro and through the cache."""
+    """Median load times of each mechanism with new parameters, through xacro and through the cache.
+
+    Args:
+        names: registered mechanisms.
+        runs: parameter sets timed per route (each new to xacro's memo).
+
+    Returns:
+        One row per mechanism: the cache's one-off expansion, the median render and load times (s) through xacro
+            and through the cache.
+    """
     rows = []
     for name in names:
         spec, variants = _variants(name, 2 * runs)
@@ -102,7 +111,11 @@ class SweepSpeed:
 
 
 def pin_to_cpu(cpu: int) -> None:
-    """Pin every thread of this process to one CPU (Linux; threads started later inherit it)."""
+    """Pin every thread of this process to one CPU (Linux; threads started later inherit it).
+
+    Args:
+        cpu: the CPU's number.
+    """
     for tid in os.listdir("/proc/self/task"):
         os.sched_setaffinity(int(tid), {cpu})
 
@@ -110,10 +123,12 @@ def pin_to_cpu(cpu: int) -> None:
 def pin_workers(client: Any) -> None:
     """One CPU per worker process of a Dask client's cluster, where the system can pin (Linux).
 
-    Unpinned, a lone worker runs a design about 20 % slower than each of two workers: its compute
-    thread and its event-loop thread sit on different cores and hand the GIL across them (measured on
-    the 2-core machine: 82 ms per four-bar design unpinned, 68 ms pinned, 62-68 ms in a plain process).
-    Pinning both runs alike makes T1 / (2 T2) compare the engine, not that handicap.
+    A lone unpinned worker is slower per design than each of two (its compute and event-loop threads
+    hand the GIL across cores; measured in docs/sweeps.md, "A 1,000-design sweep, and 1 vs 2 workers"):
+    pinning both runs alike makes T1 / (2 T2) compare the engine, not that handicap.
+
+    Args:
+        client: a `distributed.Client`.
     """
     if not hasattr(os, "sched_setaffinity"):
         return
@@ -124,7 +139,16 @@ def pin_workers(client: Any) -> None:
 
 def sweep_speed(designs: int = 1000, samples: int = 100, seed: int = 0) -> SweepSpeed:
     """A Latin hypercube of four-bar designs (crank 0.06-0.14 m, coupler 0.24-0.32 m, rocker 0.18-0.26 m,
-    ground 0.26-0.34 m), each turning its crank once over `samples` instants, on 1 then 2 workers."""
+    ground 0.26-0.34 m), each turning its crank once over `samples` instants, on 1 then 2 workers.
+
+    Args:
+        designs: designs of the hypercube.
+        samples: instants of each design's crank turn.
+        seed: the hypercube's seed.
+
+    Returns:
+        The wall times (s) on 1 and 2 workers, the efficiency T1 / (2 T2), and the statuses of the designs.
+    """
     space = DesignSpace(tuple(parse_axis(a) for a in ("crank=0.06:0.14", "coupler=0.24:0.32",
                                                         "rocker=0.18:0.26", "ground=0.26:0.34")),
                         "lhs", designs, seed)

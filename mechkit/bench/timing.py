@@ -35,6 +35,15 @@ def time_per_call(fn: Callable[[Any], Any], samples: Sequence[Any], budget_s: fl
     """Seconds per call of fn cycling over the samples: one value per repeat.
 
     The loop count is calibrated so that each repeat lasts about budget_s / repeats.
+
+    Args:
+        fn: the call, of one sample.
+        samples: the samples, cycled.
+        budget_s: seconds of timing over all repeats.
+        repeats: repeats.
+
+    Returns:
+        Seconds per call, shape (repeats,).
     """
     gc_was = gc.isenabled()
     gc.disable()
@@ -58,14 +67,37 @@ def time_per_call(fn: Callable[[Any], Any], samples: Sequence[Any], budget_s: fl
 
 def paired_ratio(fa: Callable[[Any], Any], fb: Callable[[Any], Any], samples: Sequence[Any],
                  budget_s: float, repeats: int) -> float:
-    """Median over repeats of t(fa) / t(fb), the two timed back to back in each repeat (load cancels)."""
+    """Median over repeats of t(fa) / t(fb), the two timed back to back in each repeat (load cancels).
+
+    Args:
+        fa: the call timed on top.
+        fb: the call timed beneath.
+        samples: the samples, cycled.
+        budget_s: seconds of timing over all repeats.
+        repeats: repeats.
+
+    Returns:
+        The median ratio (-).
+    """
     ratios = [time_per_call(fa, samples, budget_s / repeats / 2, 1)[0] / time_per_call(fb, samples, budget_s / repeats / 2, 1)[0]
               for _ in range(repeats)]
     return float(np.median(ratios))
 
 
 def measure(mech: Mechanism, method: Method, samples: list[Sample], refs: References, budget_s: float, repeats: int) -> Row:
-    """Error on every sample, then time per call; a raised MechkitError becomes the row's outcome."""
+    """Error on every sample, then time per call; a raised MechkitError becomes the row's outcome.
+
+    Args:
+        mech: the mechanism.
+        method: the method.
+        samples: the bench's states.
+        refs: the references at those states.
+        budget_s: seconds of timing.
+        repeats: timing repeats.
+
+    Returns:
+        The method's row: worst error over the samples, median and spread of its time per call, its outcome.
+    """
     row = Row(mech.spec.name, method)
     errors = []
     try:
@@ -99,7 +131,11 @@ def measure(mech: Mechanism, method: Method, samples: list[Sample], refs: Refere
 
 
 def ratios(rows: list[Row]) -> None:
-    """Fill the "x fastest" and "x base" columns of the measured rows (in place)."""
+    """Fill the "x fastest" and "x base" columns of the measured rows (in place).
+
+    Args:
+        rows: the rows of one or more mechanisms' benches.
+    """
     for quantity in BENCH_QUANTITIES:
         ok = [r for r in rows if r.method.quantity == quantity and r.outcome == "ok"]
         base = [r for r in ok if r.method.name == BASELINES.get(quantity)]

@@ -128,7 +128,18 @@ class FailureCase:
 
     @classmethod
     def attempt(cls, study: str, method: str, condition: float, error: Callable[[], float]) -> FailureCase:
-        """Run `error()`: a finite error is "ok", a non-finite one "non-finite", a `MechkitError` its class name."""
+        """A case from running `error()`: a finite error is "ok", a non-finite one "non-finite", a
+        `MechkitError` its class name (the message kept).
+
+        Args:
+            study: the study's name.
+            method: the method tried.
+            condition: where it was tried (the study's condition axis).
+            error: computes the method's error there.
+
+        Returns:
+            The case.
+        """
         try:
             value = float(error())
         except MechkitError as err:
@@ -316,7 +327,14 @@ class MechanismSpec:
             object.__setattr__(self, "view", view)
 
     def actuated_joints(self, params: MechanismParams) -> tuple[str, ...]:
-        """The actuated joint names at these parameters."""
+        """The actuated joint names at these parameters.
+
+        Args:
+            params: the mechanism's parameters.
+
+        Returns:
+            The actuated joint names.
+        """
         return tuple(self.actuated(params) if callable(self.actuated) else self.actuated)
 
     @property
@@ -329,5 +347,12 @@ class MechanismSpec:
         return render_urdf(self.template_path, self.params().xacro_args())
 
     def reference(self, quantity: str) -> BenchReference | None:
-        """The mechanism's own reference for a bench quantity, if it has one."""
+        """The mechanism's own reference for a bench quantity, if it has one.
+
+        Args:
+            quantity: a bench quantity (`BENCH_QUANTITIES`).
+
+        Returns:
+            The reference, or None (the bench then uses the core's).
+        """
         return next((r for r in self.bench_references if r.quantity == quantity), None)

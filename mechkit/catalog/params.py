@@ -25,6 +25,9 @@ def param(default: float | bool | str, unit: str, doc: str, *, ours: bool = Fals
         doc: one line saying what it is.
         ours: True when the value is not in the source document but chosen by us.
         positive: require a value > 0 (default: True for lengths "m" and masses/densities).
+
+    Returns:
+        The dataclass field, its unit, doc and flags in its metadata.
     """
     if positive is None:
         positive = unit in ("m", "kg", "kg/m^3", "kg/m^2", "kg m^2")
@@ -51,7 +54,17 @@ class MechanismParams:
 
     @classmethod
     def from_overrides(cls, **overrides: Any) -> MechanismParams:
-        """Defaults with some fields replaced; unknown names raise `InvalidParameters`."""
+        """Defaults with some fields replaced (strings, as the command line gives them, converted).
+
+        Args:
+            overrides: field name -> value.
+
+        Returns:
+            The parameters, validated.
+
+        Raises:
+            InvalidParameters: an unknown name, a value of the wrong type, or one the class refuses.
+        """
         known = {f.name: f for f in fields(cls)}
         for name, value in overrides.items():
             if name not in known:
@@ -67,7 +80,17 @@ class MechanismParams:
         return [{"name": f.name, "value": getattr(self, f.name), **f.metadata} for f in fields(self)]
 
     def replace(self, **changes: Any) -> MechanismParams:
-        """A copy with some fields changed (validated)."""
+        """A copy with some fields changed (validated).
+
+        Args:
+            changes: field name -> value.
+
+        Returns:
+            The new parameters.
+
+        Raises:
+            InvalidParameters: a value the class refuses.
+        """
         return dataclasses.replace(self, **changes)
 
 

@@ -91,7 +91,14 @@ def _boundary(cls: type[MechanismParams], name: str, default: float, direction: 
 
 
 def param_ranges(cls: type[MechanismParams]) -> dict[str, ParamRange | None]:
-    """Accepted range of every numeric field of a parameter class (None for booleans and strings)."""
+    """Accepted range of every numeric field of a parameter class (None for booleans and strings).
+
+    Args:
+        cls: a parameter class.
+
+    Returns:
+        Field name -> its range (bisected from the class's own checks), None for booleans and strings.
+    """
     defaults = cls()
     out: dict[str, ParamRange | None] = {}
     for f in fields(cls):

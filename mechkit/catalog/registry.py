@@ -49,7 +49,17 @@ def names() -> tuple[str, ...]:
 
 
 def entry(name: str) -> Entry:
-    """The registry entry of a name; an unknown name raises `InvalidParameters`."""
+    """The registry entry of a name.
+
+    Args:
+        name: a mechanism's name.
+
+    Returns:
+        Its entry (name, package, summary).
+
+    Raises:
+        InvalidParameters: no such mechanism.
+    """
     for e in ENTRIES:
         if e.name == name:
             return e
@@ -58,7 +68,17 @@ def entry(name: str) -> Entry:
 
 @cache
 def get_spec(name: str) -> MechanismSpec:
-    """The spec of a registered mechanism: imports its package (and no other mechanism's)."""
+    """The spec of a registered mechanism: imports its package (and no other mechanism's).
+
+    Args:
+        name: a registered mechanism's name.
+
+    Returns:
+        Its `SPEC`.
+
+    Raises:
+        InvalidParameters: no such mechanism, or its package declares no `SPEC` of that name.
+    """
     e = entry(name)
     try:
         spec = importlib.import_module(e.package).SPEC

@@ -49,7 +49,14 @@ EXIT_BROKEN_PIPE = 141
 
 
 def main(argv: list[str] | None = None) -> int:
-    """Run one command; errors are one line on stderr and exit status 2, a broken pipe ends quietly."""
+    """Run one command; errors are one line on stderr and exit status 2, a broken pipe ends quietly.
+
+    Args:
+        argv: the arguments (default: the process's).
+
+    Returns:
+        The exit status: 0 done, 2 refused (one line on stderr), others as the command says (`mechkit sweep`).
+    """
     args = build_parser().parse_args(argv)
     try:
         with np.errstate(all="raise"):

@@ -14,7 +14,15 @@ from mechkit.loading import resolve
 
 
 def run(args: argparse.Namespace) -> None:
-    """Measure, print the tables and goals, and write the charts and the page when asked."""
+    """Measure, print the tables and goals, and write the charts and the page when asked.
+
+    Args:
+        args: the parsed command line.
+
+    Raises:
+        OutputError: --charts names something other than a folder, or --markdown cannot be written.
+        InvalidParameters: an unknown mechanism.
+    """
     from mechkit.bench import charts, failure_atlas, loadtime, markdown, run, scale
     from mechkit.cli.progress import ProgressBars
 
@@ -55,10 +63,18 @@ def run(args: argparse.Namespace) -> None:
 
 
 def speed_sections(names: list[str], quick: bool) -> dict[str, list[str]]:
-    """The rows the issues ask of the benchmark page: the dynamics against one raw Pinocchio call, the
-    ladder of four-bar loops, the 2T1R motion law, loading from files, the second opinion, and the elastic
-    quantities."""
-    from mechkit.bench import dynamics_speed, elastic_speed, ladder, loading, motion_speed, second_opinion
+    """The speed sections of the benchmark page: the dynamics against one raw Pinocchio call, the ladder
+    of four-bar loops, the 2T1R motion law, loading from files, the second opinion, and the elastic
+    quantities.
+
+    Args:
+        names: the mechanisms (default: every registered one).
+        quick: short timing budgets.
+
+    Returns:
+        Section title -> its markdown lines.
+    """
+    from mechkit.bench import dynamics_speed, elastic_speed, ladder, load_speed, motion_speed, second_opinion_speed
     from mechkit.catalog import registry
     from mechkit.loading import load
 
@@ -74,14 +90,18 @@ def speed_sections(names: list[str], quick: bool) -> dict[str, list[str]]:
             "Ladder of four-bar loops": [ladder.__doc__.split("\n\n")[1].replace("\n", " "), "", *ladder.markdown(points)],
             "Motion law": [intro(motion_speed), "",
                            *motion_speed.lines(motion_speed.motion_law_speed(repeats=2 if quick else 5))],
-            "Loading from a file": [intro(loading), "", *loading.lines(loading.load_times(repeats=3 if quick else 15))],
-            "Second opinion": [intro(second_opinion), "", *second_opinion.lines(second_opinion.second_opinion_rows(
+            "Loading from a file": [intro(load_speed), "", *load_speed.lines(load_speed.load_times(repeats=3 if quick else 15))],
+            "Second opinion": [intro(second_opinion_speed), "", *second_opinion_speed.lines(second_opinion_speed.second_opinion_rows(
                 chosen, samples=3 if quick else 6, budget_s=budget))],
             "Elastic": [intro(elastic_speed), "", *elastic_speed.lines(elastic_speed.rows(budget, 3 if quick else 5))]}
 
 
 def add_parser(sub: argparse._SubParsersAction) -> None:
-    """Register `bench`."""
+    """Register `bench`.
+
+    Args:
+        sub: the command line's sub-parsers.
+    """
     p = sub.add_parser("bench", help="speed and accuracy of every method, per mechanism", **examples(
         "mechkit bench four_bar --quick", "mechkit bench --charts docs/bench --markdown docs/benchmarks.md"))
     p.add_argument("names", nargs="*", help="mechanisms (default: all)")

@@ -6,7 +6,7 @@ import argparse
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from mechkit.base.exceptions import MechkitError
+from mechkit.base.exceptions import InvalidArgument
 from mechkit.loading import load
 from mechkit.mechanism import Mechanism
 
@@ -15,13 +15,24 @@ if TYPE_CHECKING:
 
 
 def examples(*commands: str) -> dict[str, Any]:
-    """`add_parser` keywords ending a command's `--help` with its examples (one command line each)."""
+    """`add_parser` keywords ending a command's `--help` with its examples (one command line each).
+
+    Args:
+        commands: command lines, each a working example.
+
+    Returns:
+        `epilog` and `formatter_class` keywords for `add_parser`.
+    """
     return {"epilog": "examples:\n" + "\n".join(f"  {c}" for c in commands),
             "formatter_class": argparse.RawDescriptionHelpFormatter}
 
 
 def add_mechanism_arguments(parser: argparse.ArgumentParser) -> None:
-    """The positional NAME or PATH, the repeatable `--set NAME=VALUE` and `--actuated`."""
+    """The positional NAME or PATH, the repeatable `--set NAME=VALUE` and `--actuated`.
+
+    Args:
+        parser: a command's parser.
+    """
     parser.add_argument("name", metavar="NAME|PATH",
                         help="registered mechanism (see `mechkit list`) or a file: .urdf with <mechkit:loop>s "
                              "or a .yaml sidecar (Extended URDF), .xacro, MJCF .xml")
@@ -36,56 +47,111 @@ def add_mechanism_arguments(parser: argparse.ArgumentParser) -> None:
 
 
 def overrides(pairs: list[str] | None) -> dict[str, str]:
-    """`--set` pairs as a dict; a pair without '=' is an error."""
+    """`--set` pairs as a dict.
+
+    Args:
+        pairs: the NAME=VALUE strings given, if any.
+
+    Returns:
+        Name -> value (a string; the parameter class converts it).
+
+    Raises:
+        InvalidArgument: a pair without "=".
+    """
     out = {}
     for pair in pairs or []:
         if "=" not in pair:
-            raise MechkitError(f"--set expects name=value, got {pair!r}")
+            raise InvalidArgument("--set", pair, "expected name=value")
         key, value = pair.split("=", 1)
         out[key.strip()] = value.strip()
     return out
 
 
 def actuated(text: str | None) -> list[str] | None:
-    """`--actuated J1,J2` as a list of joint names (None when not given)."""
+    """`--actuated J1,J2` as a list of joint names (None when not given).
+
+    Args:
+        text: the option's value, if given.
+
+    Returns:
+        The joint names, or None.
+
+    Raises:
+        InvalidArgument: no name in it.
+    """
     if text is None:
         return None
     names = [j.strip() for j in text.split(",") if j.strip()]
     if not names:
-        raise MechkitError("--actuated expects joint names separated by commas")
+        raise InvalidArgument("--actuated", text, "expected joint names separated by commas")
     return names
 
 
 def locks(pairs: list[str] | None) -> dict[str, float | list[float]] | None:
-    """`--lock JOINT=VALUE` pairs (a value, or comma-separated values for a joint of several freedoms)."""
+    """`--lock JOINT=VALUE` pairs (a value, or comma-separated values for a joint of several freedoms).
+
+    Args:
+        pairs: the --lock arguments, or None.
+
+    Returns:
+        joint -> value(s), or None when none is given.
+
+    Raises:
+        InvalidArgument: a pair without '=' or a value that is not a number.
+    """
     if not pairs:
         return None
     out: dict[str, float | list[float]] = {}
-    for joint, text in overrides(pairs).items():
+    for pair in pairs:
+        if "=" not in pair:
+            raise InvalidArgument("--lock", pair, "expected JOINT=VALUE")
+        joint, text = (part.strip() for part in pair.split("=", 1))
         try:
             values = [float(x) for x in text.split(",")]
         except ValueError:
-            raise MechkitError(f"--lock {joint}: {text!r} is not a number (or comma-separated numbers)") from None
+            raise InvalidArgument("--lock", pairs, f"{joint}: {text!r} is not a number (or comma-separated numbers)") from None
         out[joint] = values[0] if len(values) == 1 else values
     return out
 
 
 def load_mechanism(args: argparse.Namespace) -> Mechanism:
-    """The mechanism the command line names, with its overrides and reductions."""
+    """The mechanism the command line names, with its overrides and reductions.
+
+    Args:
+        args: the parsed command line (name, --set, --actuated, --lock, --keep, --fix).
+
+    Returns:
+        The mechanism.
+
+    Raises:
+        InvalidArgument: a malformed --set, --actuated or --lock.
+        MechkitError: what `mechkit.load` refuses.
+    """
     keep = None if getattr(args, "keep", None) is None else [b.strip() for b in args.keep.split(",") if b.strip()]
     return load(args.name, actuated=actuated(args.actuated), lock=locks(getattr(args, "lock", None)), keep=keep,
                 fix=getattr(args, "fix", None), **overrides(args.set))
 
 
 def add_mesh_path_argument(parser: argparse.ArgumentParser) -> None:
-    """The repeatable `--mesh-path DIR` (folders searched for a URDF's mesh files)."""
+    """The repeatable `--mesh-path DIR` (folders searched for a URDF's mesh files).
+
+    Args:
+        parser: a command's parser.
+    """
     parser.add_argument("--mesh-path", action="append", metavar="DIR",
                         help="folder searched for mesh files and package:// addresses, after the file's own (repeatable)")
 
 
 def mesh_search(args: argparse.Namespace) -> MeshSearch:
     """Where the drawing looks for mesh files (`mechkit.viz.meshes.MeshSearch`): beside the file the
-    command line names (if it names a file), then in the `--mesh-path` folders."""
+    command line names (if it names a file), then in the `--mesh-path` folders.
+
+    Args:
+        args: the parsed command line (name, --mesh-path).
+
+    Returns:
+        The search.
+    """
     from mechkit.viz.meshes import MeshSearch
 
     path = Path(args.name).expanduser()

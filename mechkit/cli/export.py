@@ -8,7 +8,11 @@ from mechkit.cli.common import add_mechanism_arguments, examples, load_mechanism
 
 
 def run(args: argparse.Namespace) -> None:
-    """Write the export and say where."""
+    """Write the export and say where.
+
+    Args:
+        args: the parsed command line.
+    """
     from mechkit.base.atomic import is_stdout
     from mechkit.export import export_command
 
@@ -18,7 +22,11 @@ def run(args: argparse.Namespace) -> None:
 
 
 def add_parser(sub: argparse._SubParsersAction) -> None:
-    """Register `export`."""
+    """Register `export`.
+
+    Args:
+        sub: the command line's sub-parsers.
+    """
     p = sub.add_parser("export", help="write the mechanism for other tools", **examples(
         "mechkit export ten_bar --format mjcf -o ten_bar.xml", "mechkit export four_bar --format extended-urdf -o four_bar.urdf"))
     add_mechanism_arguments(p)

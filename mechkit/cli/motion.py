@@ -7,7 +7,7 @@ import argparse
 from typing import TYPE_CHECKING
 
 from mechkit.base.atomic import resolve_output
-from mechkit.base.exceptions import InvalidParameters, MechkitError
+from mechkit.base.exceptions import InvalidParameters, MotionFailed
 from mechkit.cli.common import add_mechanism_arguments, examples, load_mechanism
 from mechkit.cli.progress import ProgressBars
 
@@ -22,7 +22,15 @@ PEAK_COLUMNS = (("|f| N", "force"), ("axial N", "axial_force"), ("radial N", "ra
 
 
 def format_peaks(result: MotionResult) -> list[str]:
-    """The peak table: one line per joint, each peak with its time."""
+    """The peak table: one line per joint, each peak with its time.
+
+    Args:
+        result: the study.
+
+    Returns:
+        Text lines: a header, one line per joint (whether it is a support, each peak and its time), and a note
+            when some components are statically indeterminate.
+    """
     from mechkit.motion import peaks
 
     rows = peaks(result)
@@ -39,7 +47,16 @@ def format_peaks(result: MotionResult) -> list[str]:
 
 
 def run(args: argparse.Namespace) -> None:
-    """Run the study, print the peak table, write what was asked."""
+    """Run the study, print the peak table, write what was asked.
+
+    Args:
+        args: the parsed command line.
+
+    Raises:
+        InvalidParameters: an output that is neither .parquet nor .csv, or one that cannot be written or whose
+            library is missing.
+        MotionFailed: no sample of the motion succeeded.
+    """
     from mechkit import motion
     from mechkit.motion.plot import write_plot
 
@@ -58,7 +75,7 @@ def run(args: argparse.Namespace) -> None:
     result = motion.study(mech, law, determinacy=args.determinacy, skip_failures=True,
                           progress=lambda done, total: bars(f"{mech.spec.name} motion", done, total))
     if len(result.failures) == len(law.t):
-        raise MechkitError(f"no sample of the motion succeeded; at t = {result.failures[0][0]:.6g} s: {result.failures[0][1]}")
+        raise MotionFailed(result.failures)
     print(f"{mech.spec.name}: {law.source}, {len(law.t)} samples, t = {law.t[0]:.6g} .. {law.t[-1]:.6g} s")
     for t, why in result.failures:
         print(f"skipped t = {t:.6g} s: {why}")
@@ -87,7 +104,11 @@ def _check_outputs(args: argparse.Namespace) -> None:
 
 
 def add_parser(sub: argparse._SubParsersAction) -> None:
-    """Register `motion`."""
+    """Register `motion`.
+
+    Args:
+        sub: the command line's sub-parsers.
+    """
     p = sub.add_parser("motion", help="efforts and every joint's reaction along a motion: peak table, Parquet/CSV, plot",
                        **examples("mechkit motion parallel_2t1r --scene motion_law --samples 501 -o law.parquet --plot law.png",
                                   "mechkit motion four_bar --inputs crank.csv -o loads.csv"))

@@ -17,7 +17,14 @@ COLUMNS = ("name", "value", "unit", "range", "ours", "doc")
 
 
 def rows_of(source: str) -> tuple[list[dict[str, Any]], str]:
-    """(one row per parameter with `COLUMNS`, a note on what the rows are) of a name or a file."""
+    """The parameters of a name or a file.
+
+    Args:
+        source: a registered name or a description file.
+
+    Returns:
+        (one row per parameter with `COLUMNS`, a note on what the rows are).
+    """
     from mechkit.catalog.ranges import param_ranges
     from mechkit.catalog.registry import get_spec
     from mechkit.loading import resolve
@@ -38,7 +45,11 @@ def rows_of(source: str) -> tuple[list[dict[str, Any]], str]:
 
 
 def run(args: argparse.Namespace) -> None:
-    """Print one row per parameter (or the JSON list)."""
+    """Print one row per parameter (or the JSON list).
+
+    Args:
+        args: the parsed command line.
+    """
     rows, note = rows_of(args.name)
     if args.json:
         print(json.dumps([{k: row[k] for k in COLUMNS} for row in rows], indent=2))
@@ -53,7 +64,11 @@ def run(args: argparse.Namespace) -> None:
 
 
 def add_parser(sub: argparse._SubParsersAction) -> None:
-    """Register `params`."""
+    """Register `params`.
+
+    Args:
+        sub: the command line's sub-parsers.
+    """
     p = sub.add_parser("params", help="a mechanism's parameters: defaults, units, ranges",
                        **examples("mechkit params four_bar", "mechkit params ten_bar --json"))
     p.add_argument("name", help="mechanism name (see `mechkit list`) or a description file (.xacro, .urdf, .xml)")

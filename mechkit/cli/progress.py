@@ -15,7 +15,14 @@ from tqdm import tqdm
 
 
 def wanted(stream: TextIO | None = None) -> bool:
-    """Whether to draw: `stream` (default stderr) is a terminal, or MECHKIT_PROGRESS=1."""
+    """Whether to draw: `stream` (default stderr) is a terminal, or MECHKIT_PROGRESS=1.
+
+    Args:
+        stream: where the bars go (default stderr).
+
+    Returns:
+        Whether to draw.
+    """
     return (stream or sys.stderr).isatty() or os.environ.get("MECHKIT_PROGRESS") == "1"
 
 

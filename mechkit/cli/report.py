@@ -9,7 +9,14 @@ from mechkit.cli.common import add_mechanism_arguments, examples, load_mechanism
 
 
 def run(args: argparse.Namespace) -> None:
-    """Print the report."""
+    """Print the report.
+
+    Args:
+        args: the parsed command line.
+
+    Raises:
+        SelfCheckFailed: a self-check above `report.CHECK_LIMIT` (after the report is printed).
+    """
     from mechkit.base.exceptions import SelfCheckFailed
     from mechkit.report import CHECK_LIMIT, failing_checks, format_report, report
 
@@ -21,7 +28,11 @@ def run(args: argparse.Namespace) -> None:
 
 
 def add_parser(sub: argparse._SubParsersAction) -> None:
-    """Register `report`."""
+    """Register `report`.
+
+    Args:
+        sub: the command line's sub-parsers.
+    """
     p = sub.add_parser("report", help="structure, mobility and self-checks", **examples("mechkit report five_bar", "mechkit report four_bar --set coupler=0.3 --json"))
     add_mechanism_arguments(p)
     p.add_argument("--json", action="store_true", help="machine-readable output")

@@ -14,7 +14,11 @@ from mechkit.cli.common import (
 
 
 def run(args: argparse.Namespace) -> None:
-    """Write the page (and the screenshot) and say where."""
+    """Write the page (and the screenshot) and say where.
+
+    Args:
+        args: the parsed command line.
+    """
     from mechkit.viz import snapshot_command
 
     for path in snapshot_command(load_mechanism(args), q=args.q, scene=args.scene, html=args.output, png=args.png,
@@ -23,7 +27,11 @@ def run(args: argparse.Namespace) -> None:
 
 
 def add_parser(sub: argparse._SubParsersAction) -> None:
-    """Register `snapshot`."""
+    """Register `snapshot`.
+
+    Args:
+        sub: the command line's sub-parsers.
+    """
     p = sub.add_parser("snapshot", help="self-contained meshcat HTML (and PNG) of a pose or an animated scene", **examples(
         "mechkit snapshot four_bar --q 0.8 -o four_bar.html", "mechkit snapshot ten_bar --scene deploy -o deploy.html --png deploy.png"))
     add_mechanism_arguments(p)

@@ -87,9 +87,13 @@ def _watcher(bar: tqdm, wait: float) -> Callable[[ClusterState], None]:
 def run(args: argparse.Namespace) -> None:
     """Run (or resume) the sweep, with a progress bar on stderr and a summary on stdout.
 
+    Args:
+        args: the parsed command line.
+
     Raises:
         SystemExit: the cluster could not finish the sweep (status `EXIT_UNREACHABLE`, `EXIT_NO_WORKERS`,
             `EXIT_SCHEDULER_LOST` or `EXIT_TASK_FAILED`), after one line on stderr.
+        InvalidParameters: --resume on a folder holding another mechanism's sweep, or what the engine refuses.
     """
     import dask
     from tqdm import tqdm
@@ -140,7 +144,11 @@ def run(args: argparse.Namespace) -> None:
 
 
 def add_parser(sub: argparse._SubParsersAction) -> None:
-    """Register `sweep`."""
+    """Register `sweep`.
+
+    Args:
+        sub: the command line's sub-parsers.
+    """
     p = sub.add_parser("sweep", help="evaluate many designs on Dask (Parquet results, resumable)", **examples(
         "mechkit sweep four_bar --grid crank=0.08:0.12:5 --grid coupler=0.26:0.30:5 -o sweep_fb",
         "mechkit sweep five_bar --lhs 200 --grid dist1=0.2:0.25 --grid dist2=0.2:0.25 -o sweep_5b --resume"))

@@ -9,12 +9,20 @@ from mechkit.cli.common import add_mechanism_arguments, examples, load_mechanism
 
 
 def run(args: argparse.Namespace) -> None:
-    """Build the mechanism (which checks that it assembles), then print or write its URDF."""
+    """Build the mechanism (which checks that it assembles), then print or write its URDF.
+
+    Args:
+        args: the parsed command line.
+    """
     write_text(args.output or STDOUT, load_mechanism(args).urdf)
 
 
 def add_parser(sub: argparse._SubParsersAction) -> None:
-    """Register `urdf`."""
+    """Register `urdf`.
+
+    Args:
+        sub: the command line's sub-parsers.
+    """
     p = sub.add_parser("urdf", help="print or write the URDF generated from the parameters", **examples("mechkit urdf four_bar --set crank=0.12", "mechkit urdf ten_bar -o ten_bar.urdf"))
     add_mechanism_arguments(p)
     p.add_argument("-o", "--output", help="file to write (default or -: standard output)")

@@ -15,11 +15,20 @@ def report(args: argparse.Namespace) -> dict:
 
     Each SKC's "indeterminate" lists its unknowns (labelled by the world direction each component was
     chosen from) that its equations leave free at the first state.
+
+    Args:
+        args: the parsed command line.
+
+    Returns:
+        The JSON contract as a dict.
+
+    Raises:
+        InvalidParameters: --samples below 1, or what loading and sampling refuse.
     """
     import warnings
 
     from mechkit.scenes import SweepStopped
-    from mechkit.second_opinion.compare import agreement, scene_states
+    from mechkit.second_opinion.agreement import agreement, scene_states
     from mechkit.second_opinion.opinion import SecondOpinion
 
     if args.samples < 1:
@@ -47,7 +56,14 @@ def report(args: argparse.Namespace) -> dict:
 
 
 def format_text(r: dict) -> str:
-    """The validation for a reader: the SKCs in solve order, then the agreement and the timings."""
+    """The validation for a reader: the SKCs in solve order, then the agreement and the timings.
+
+    Args:
+        r: the validation (`report`).
+
+    Returns:
+        The text, lines joined.
+    """
     lines = [f"{r['name']}: {len(r['skcs'])} SKCs in solve order ({r['level']} level)"]
     for i, s in enumerate(r["skcs"], 1):
         lines.append(f"  SKC{i} [{s['kind']}] bodies: {', '.join(s['bodies'])}")
@@ -67,13 +83,21 @@ def format_text(r: dict) -> str:
 
 
 def run(args: argparse.Namespace) -> None:
-    """Print the validation."""
+    """Print the validation.
+
+    Args:
+        args: the parsed command line.
+    """
     r = report(args)
     print(json.dumps(r, indent=2) if args.json else format_text(r))
 
 
 def add_parser(sub: argparse._SubParsersAction) -> None:
-    """Register `validate`."""
+    """Register `validate`.
+
+    Args:
+        sub: the command line's sub-parsers.
+    """
     p = sub.add_parser("validate", help="second opinion: automatic SOC decomposition vs constrained RNEA", **examples(
         "mechkit validate parallel_2t1r", "mechkit validate ten_bar --samples 24 --level body --json"))
     add_mechanism_arguments(p)

@@ -15,7 +15,11 @@ from mechkit.cli.common import (
 
 
 def run(args: argparse.Namespace) -> None:
-    """Start the viewer, say where it is, and keep it open until Ctrl-C (or until its server ends)."""
+    """Start the viewer, say where it is, and keep it open until Ctrl-C (or until its server ends).
+
+    Args:
+        args: the parsed command line.
+    """
     try:
         viewer = _start(args)
     except KeyboardInterrupt:
@@ -41,7 +45,11 @@ def _start(args: argparse.Namespace):
 
 
 def add_parser(sub: argparse._SubParsersAction) -> None:
-    """Register `view`."""
+    """Register `view`.
+
+    Args:
+        sub: the command line's sub-parsers.
+    """
     p = sub.add_parser("view", help="live meshcat viewer (a browser page) of a pose or a playing scene",
                        **examples("mechkit view four_bar --scene sweep",
                                   "mechkit view robot.urdf --mesh-path ~/ros/src --actuated shoulder,elbow"))

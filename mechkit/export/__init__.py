@@ -19,11 +19,19 @@ FORMATS = ("mjcf", "extended-urdf")
 
 
 def export_command(mechanism: Mechanism, fmt: str, output: str | Path) -> list[Path]:
-    """Write the mechanism in `fmt` ("mjcf" or "extended-urdf") to `output`; returns the files written.
+    """Write the mechanism in `fmt` to `output`.
 
     extended-urdf also writes the YAML sidecar beside the URDF (same stem, `.yaml`); both files are
     written as one step (neither is replaced unless both can be written). mjcf to `-` writes to
     standard output.
+
+    Args:
+        mechanism: the mechanism.
+        fmt: "mjcf" or "extended-urdf".
+        output: the file (the URDF for extended-urdf), or `-` for mjcf.
+
+    Returns:
+        The files written.
 
     Raises:
         UnknownOption: an unknown format.

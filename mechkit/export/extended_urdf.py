@@ -30,7 +30,13 @@ if TYPE_CHECKING:
 
 
 def to_extended_urdf(mech: Mechanism) -> tuple[str, str]:
-    """(URDF text, YAML sidecar text) in the Extended URDF convention.
+    """The mechanism in the Extended URDF convention: a tree URDF and its YAML sidecar.
+
+    Args:
+        mech: the mechanism.
+
+    Returns:
+        (URDF text, YAML sidecar text).
 
     Raises:
         MethodUnavailable: a hooke or prismatic cut (no 3d/6d equivalent).
@@ -75,7 +81,16 @@ def to_extended_urdf(mech: Mechanism) -> tuple[str, str]:
 
 
 def frame_b_vector(mech: Mechanism, cut: CutRows, vector: np.ndarray) -> np.ndarray:
-    """A vector given in a cut's frame_a, expressed in its frame_b at the home assembly (loop closed)."""
+    """A vector given in a cut's frame_a, expressed in its frame_b at the home assembly (loop closed).
+
+    Args:
+        mech: the mechanism.
+        cut: one of its cuts.
+        vector: a 3-vector in the cut's frame_a.
+
+    Returns:
+        The same vector in frame_b, shape (3,).
+    """
     pin.framesForwardKinematics(mech.model, mech.data, mech.home_q)
     Ra = mech.data.oMf[cut.frame_a].rotation
     Rb = mech.data.oMf[cut.frame_b].rotation

@@ -29,7 +29,7 @@ distance of its centre of mass from the axis); the export writes `solref = (T / 
 (MuJoCo needs at least 2) and the RK4 integrator, and says so in an XML comment. These choices are
 ours: with them every registered mechanism, released at home under gravity with no effort, keeps
 its loops closed within 1e-4 m over 1 s (worst measured 2.2e-5 m, the deployable mast; with
-MuJoCo's semi-implicit Euler at the same step it drifts by 0.5 mm; tests/test_export_mujoco.py).
+MuJoCo's semi-implicit Euler at the same step it drifts by 0.5 mm; tests/export/test_mjcf.py).
 
 MuJoCo's `connect` (and Pinocchio's MJCF reader) take the second body's anchor from the
 configuration in which the model is written, so the bodies are written at the assembled home
@@ -90,6 +90,12 @@ def smallest_link_period(model: pin.Model) -> float:
     T = 2 pi sqrt(I_axis / (m g r)), with I_axis the link's inertia about its joint axis (kg m^2)
     and r the distance of its centre of mass from that axis (m); links that do not swing under
     gravity (slides, centre of mass on the axis) are skipped. `DEFAULT_PERIOD` when none swings.
+
+    Args:
+        model: the Pinocchio model (its gravity and inertias).
+
+    Returns:
+        The period (s).
     """
     g = float(np.linalg.norm(model.gravity.linear))
     periods = []
@@ -132,8 +138,15 @@ def _equalities(mech: Mechanism, names: dict[int, str], solref: str) -> list[tup
 
 
 def springs(mech: Mechanism) -> dict[str, tuple[float, float, float]]:
-    """The mechanism's joint springs: joint -> (stiffness (N m/rad or N/m), spring reference, damping); the
-    spring reference is where the spring's torque vanishes, reference + preload / stiffness."""
+    """The mechanism's joint springs, as MJCF writes them.
+
+    Args:
+        mech: the mechanism.
+
+    Returns:
+        Joint -> (stiffness (N m/rad or N/m), spring reference (rad or m: where the spring's effort vanishes,
+            reference + preload / stiffness), damping (N m s/rad or N s/m)).
+    """
     return {s.joint: (s.stiffness, s.reference + s.preload / s.stiffness if s.stiffness else s.reference, s.damping)
             for s in mech.springs.springs}
 
@@ -197,6 +210,9 @@ def to_mjcf(mech: Mechanism, q: np.ndarray | None = None) -> str:
     Args:
         mech: the mechanism.
         q: configuration (nq,) the bodies are written at, closed (default `mech.home_q`).
+
+    Returns:
+        The MJCF text.
 
     Raises:
         MethodUnavailable: a joint or cut with no MJCF counterpart.

@@ -9,11 +9,25 @@ import pinocchio as pin
 
 
 def numbers(values: float | Iterable[float] | np.ndarray) -> str:
-    """Space-separated values at full precision (`repr` of each float), e.g. "0.1 0.0 -9.81"."""
+    """Values as XML attribute text at full precision (`repr` of each float), e.g. "0.1 0.0 -9.81".
+
+    Args:
+        values: a number or numbers (any shape, flattened).
+
+    Returns:
+        The text.
+    """
     return " ".join(repr(float(x)) for x in np.ravel(np.asarray(values, dtype=float)))
 
 
 def quat_wxyz(rotation: np.ndarray) -> np.ndarray:
-    """Unit quaternion (w, x, y, z), MuJoCo's order, of a rotation matrix (3, 3)."""
+    """The unit quaternion of a rotation matrix, in MuJoCo's order.
+
+    Args:
+        rotation: a rotation matrix (3, 3).
+
+    Returns:
+        (w, x, y, z), shape (4,).
+    """
     x, y, z, w = pin.Quaternion(rotation).coeffs()
     return np.array([w, x, y, z])

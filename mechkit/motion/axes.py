@@ -37,8 +37,15 @@ class JointAxes:
                                   for c in mech.cuts]).reshape(-1, 3)
 
     def world(self, J: np.ndarray, G: np.ndarray) -> np.ndarray:
-        """(N, n_joints, 3) world axes from world joint Jacobians (N, 6, nv) and the rows' used joint
-        placements (N, n_used, 4, 4) (`core.kinematic_pass`)."""
+        """World joint axes of N samples.
+
+        Args:
+            J: world joint Jacobians (N, 6, nv).
+            G: the rows' used joint placements (N, n_used, 4, 4) (`core.kinematic_pass`).
+
+        Returns:
+            Unit axes (N, n_joints, 3), world frame; NaN for a joint of several freedoms.
+        """
         cols = J[:, :, self.column]  # (N, 6, n_tree)
         tree = np.where(self.angular[None, :, None], np.swapaxes(cols[:, 3:], 1, 2), np.swapaxes(cols[:, :3], 1, 2))
         tree = tree / np.linalg.norm(tree, axis=-1, keepdims=True)

@@ -74,7 +74,14 @@ class InputLaw:
 
 
 def default_inputs(mech: Mechanism) -> tuple[str, ...]:
-    """The joints that fix the assembly: the keys of the spec's home inputs (actuated first)."""
+    """The joints that fix the assembly: the keys of the spec's home inputs (actuated first).
+
+    Args:
+        mech: the mechanism.
+
+    Returns:
+        Joint names.
+    """
     home = list(mech.spec.home(mech.params))
     return tuple(mech.actuated) + tuple(j for j in home if j not in mech.actuated)
 
@@ -98,12 +105,21 @@ def from_arrays(mech: Mechanism, t: np.ndarray, values: np.ndarray, rates: np.nd
     """A law from sampled arrays.
 
     Args:
+        mech: the mechanism.
         t: (N,) times, s.
         values: (N, k) coordinates of `names` (rad or m); (N,) for one joint.
         rates: (N, k) rates (rad/s or m/s), or None for the spline's derivative (with `accelerations`).
         accelerations: (N, k) accelerations (rad/s^2 or m/s^2), or None (both or neither).
         names: the driven joints (default: `default_inputs`).
         guesses: optional (N, nq) configurations near the samples.
+        source: where the law comes from, in words (kept in the result).
+
+    Returns:
+        The law.
+
+    Raises:
+        InvalidParameters: unknown or repeated joints, times that are not at least 2 finite increasing values,
+            arrays of the wrong shape or not finite, rates without accelerations (or the reverse).
     """
     names = _check_names(mech, names or default_inputs(mech))
     t = np.asarray(t, dtype=float)
@@ -129,6 +145,19 @@ def from_callable(mech: Mechanism, law: LawFunction, t: np.ndarray, names: Seque
 
     `law(t)` returns the values, or (values, rates, accelerations); with values only, rates and
     accelerations are fourth-order central differences with step `DIFF_STEP` of the duration.
+
+    Args:
+        mech: the mechanism.
+        law: a function of t (s) giving the values of `names` (rad or m), or (values, rates, accelerations).
+        t: (N,) sample times, s.
+        names: the driven joints (default: `default_inputs`).
+        source: where the law comes from, in words.
+
+    Returns:
+        The law.
+
+    Raises:
+        InvalidParameters: fewer than 2 times, unknown joints, or values of the wrong size.
     """
     names = _check_names(mech, names or default_inputs(mech))
     t = np.asarray(t, dtype=float)
@@ -159,6 +188,13 @@ def from_csv(mech: Mechanism, path: str | Path) -> InputLaw:
     """A law from a CSV file: a header with `t` (s) and one column per driven joint (rad or m); optional
     `<joint>_dot` and `<joint>_ddot` columns give rates and accelerations (else the spline's).
 
+    Args:
+        mech: the mechanism.
+        path: the CSV file.
+
+    Returns:
+        The law (source: the file's name).
+
     Raises:
         MalformedDescription: the file is missing, has no `t` column, or a value is not a number.
     """
@@ -188,7 +224,20 @@ def from_csv(mech: Mechanism, path: str | Path) -> InputLaw:
 
 def from_scene(mech: Mechanism, scene: str, names: Sequence[str] | None = None) -> InputLaw:
     """A law from a registered scene: its poses' input coordinates, at the scene's time axis where the
-    mechanism declares one (`mechkit.scenes.scene_times`), else one second per pose; poses as guesses."""
+    mechanism declares one (`mechkit.scenes.scene_times`), else one second per pose; poses as guesses.
+
+    Args:
+        mech: the mechanism.
+        scene: one of its scenes (`mechkit.scenes.scenes`).
+        names: the driven joints (default: `default_inputs`).
+
+    Returns:
+        The law.
+
+    Raises:
+        InvalidParameters: no such scene.
+        MalformedDescription: the scene's poses or times are not valid.
+    """
     poses = np.array(scene_poses(mech, scene))
     names = _check_names(mech, names or default_inputs(mech))
     t = scene_times(mech, scene, len(poses))
@@ -200,8 +249,12 @@ def from_law(mech: Mechanism, name: str, samples: int | None = None) -> InputLaw
     """A motion law the mechanism declares (`MechanismSpec.motion_laws`).
 
     Args:
+        mech: the mechanism.
         name: the law's name.
         samples: how many samples (default: the law's own count).
+
+    Returns:
+        The law.
 
     Raises:
         InvalidParameters: the mechanism declares no law of that name.
@@ -216,7 +269,18 @@ def from_law(mech: Mechanism, name: str, samples: int | None = None) -> InputLaw
 
 def resample(law: InputLaw, samples: int) -> InputLaw:
     """The law at `samples` uniform times over its span (cubic splines of values, rates and
-    accelerations); guesses from the nearest original sample."""
+    accelerations); guesses from the nearest original sample.
+
+    Args:
+        law: the law.
+        samples: how many samples (>= 2).
+
+    Returns:
+        The resampled law.
+
+    Raises:
+        InvalidParameters: fewer than 2 samples.
+    """
     if samples < 2:
         raise InvalidParameters("samples", samples, "need at least 2")
     t = np.linspace(law.t[0], law.t[-1], samples)

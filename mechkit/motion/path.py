@@ -37,12 +37,28 @@ class PathKinematics:
         self.axes = JointAxes(mech)
 
     def first_guess(self, values: np.ndarray) -> np.ndarray:
-        """The assembly at the first sample from the mechanism's own guess (its branch)."""
+        """The assembly at the first sample from the mechanism's own guess (its branch).
+
+        Args:
+            values: the inputs' values at the first sample (k,), rad or m.
+
+        Returns:
+            The assembled configuration (nq,).
+        """
         return self.mech.assemble(dict(zip(self.names, values)))
 
     def predict(self, q: np.ndarray, t: np.ndarray, t_next: float) -> np.ndarray:
         """Warm start at time t_next from the last assembled samples q (k, nq) at times t (k,), latest
-        first: the polynomial through them (degree k - 1, Lagrange, in the tangent space at q[0])."""
+        first: the polynomial through them (degree k - 1, Lagrange, in the tangent space at q[0]).
+
+        Args:
+            q: the last assembled samples (k, nq), latest first.
+            t: their times (k,), s.
+            t_next: the next sample's time, s.
+
+        Returns:
+            The warm start (nq,).
+        """
         x = np.zeros(self.model.nv)
         for j in range(1, len(t)):
             weight = 1.0
@@ -55,6 +71,14 @@ class PathKinematics:
     def assemble(self, guess: np.ndarray, values: np.ndarray, tol: float) -> np.ndarray:
         """q of one sample, the loops closed from `guess` (its singularity is judged by `singular`).
 
+        Args:
+            guess: a configuration near the sample (nq,).
+            values: the inputs' values (k,), rad or m.
+            tol: the closure tolerance.
+
+        Returns:
+            The assembled configuration (nq,).
+
         Raises:
             ClosureNotConverged: no assembly near the guess.
         """
@@ -63,14 +87,28 @@ class PathKinematics:
         return core.assemble(self.closure_model, self.closure_data, q0, self.split, tol=tol, jacobian_at_trials=False).q
 
     def jacobians(self, q: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """Closure Jacobians (N, rows, nv), world joint Jacobians (N, 6, nv) and the rows' used joint
-        placements (N, n_used, 4, 4) of N assembled samples q (N, nq)."""
+        """Closure and joint Jacobians of N assembled samples.
+
+        Args:
+            q: the configurations (N, nq).
+
+        Returns:
+            (closure Jacobians (N, rows, nv), world joint Jacobians (N, 6, nv), the rows' used joint placements
+                (N, n_used, 4, 4)).
+        """
         G, Jw, _ = core.kinematic_pass(self.closure_model, self.closure_data, q)
         return self.closure_model.kernel.evaluate(G, Jw, q)[1], Jw, G
 
     def singular(self, J: np.ndarray) -> tuple[int, SingularConfiguration] | None:
-        """The first of N samples, by their closure Jacobians (N, rows, nv), where the inputs do not
-        determine the motion (`core.passive_verdict` at the closure tolerance), and its error; or None."""
+        """The first of N samples where the inputs do not determine the motion (`core.passive_verdict` at
+        the closure tolerance).
+
+        Args:
+            J: the samples' closure Jacobians (N, rows, nv).
+
+        Returns:
+            (its index, the error saying why), or None when every sample is regular.
+        """
         free_v = self.split.free_v
         s = np.linalg.svd(J[:, :, free_v], compute_uv=False)
         _, bad = core.passive_verdict(s, free_v.size, np.full(len(J), core.CLOSURE_TOL))
@@ -81,8 +119,20 @@ class PathKinematics:
 
     def motion(self, q: np.ndarray, J: np.ndarray, Jw: np.ndarray, G: np.ndarray, rates: np.ndarray,
                accelerations: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """v, a (N, nv) and the joint axes (N, n_joints, 3) of N assembled samples q (N, nq), from their
-        `jacobians` and the inputs' rates and accelerations (N, k), batched (judged regular already)."""
+        """Velocities, accelerations and joint axes of N assembled samples, batched (judged regular
+        already).
+
+        Args:
+            q: the configurations (N, nq).
+            J: their closure Jacobians (N, rows, nv) (`jacobians`).
+            Jw: their world joint Jacobians (N, 6, nv).
+            G: the rows' used joint placements (N, n_used, 4, 4).
+            rates: the inputs' rates (N, k), rad/s or m/s.
+            accelerations: the inputs' accelerations (N, k), rad/s^2 or m/s^2.
+
+        Returns:
+            (v (N, nv), a (N, nv), world joint axes (N, n_joints, 3)).
+        """
         cm, cd = self.closure_model, self.closure_data
         residual = np.full(len(q), core.CLOSURE_TOL)
         v, _ = core.solve_passive(cm, J, Jw, self.split, rates, None, residual, judged=True)

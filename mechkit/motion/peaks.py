@@ -44,20 +44,42 @@ class JointPeaks:
 
 
 def split(vectors: np.ndarray, axes: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """(magnitude, |axial part|, |radial part|) of vectors (..., 3) along unit axes (..., 3)."""
+    """A vector's magnitude and its parts along and across an axis.
+
+    Args:
+        vectors: vectors (..., 3).
+        axes: unit axes (..., 3), broadcastable with them.
+
+    Returns:
+        (magnitude, |axial part|, |radial part|), each of shape (...).
+    """
     along = np.einsum("...k,...k->...", vectors, axes)
     radial = vectors - along[..., None] * axes
     return np.linalg.norm(vectors, axis=-1), np.abs(along), np.linalg.norm(radial, axis=-1)
 
 
 def load_histories(result: MotionResult) -> dict[str, np.ndarray]:
-    """Quantity -> (N, n_joints) history of every `QUANTITIES` entry."""
+    """Quantity -> (N, n_joints) history of every `QUANTITIES` entry.
+
+    Args:
+        result: the study.
+
+    Returns:
+        Quantity -> (N, n_joints) history of every `QUANTITIES` entry (N, N m).
+    """
     f, m, n = result.reactions[..., :3], result.reactions[..., 3:], result.axes
     return dict(zip(QUANTITIES, (*split(f, n), *split(m, n))))
 
 
 def peaks(result: MotionResult) -> list[JointPeaks]:
-    """Every joint's peaks, in the result's joint order."""
+    """Every joint's peaks, in the result's joint order.
+
+    Args:
+        result: the study.
+
+    Returns:
+        One `JointPeaks` per joint, in the result's joint order.
+    """
     histories = load_histories(result)
     out = []
     for j, joint in enumerate(result.joints):
@@ -75,7 +97,14 @@ def peaks(result: MotionResult) -> list[JointPeaks]:
 
 
 def peak_table(result: MotionResult) -> pd.DataFrame:
-    """The peaks as a pandas DataFrame: one row per joint, columns `<quantity>` and `t_<quantity>`."""
+    """The peaks as a pandas DataFrame: one row per joint, columns `<quantity>` and `t_<quantity>`.
+
+    Args:
+        result: the study.
+
+    Returns:
+        The DataFrame.
+    """
     from mechkit.motion.result import pandas
 
     rows = [{"joint": p.joint, "support": p.support, "determinate": p.determinate,

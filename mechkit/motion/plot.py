@@ -25,7 +25,15 @@ LOG_SPAN = 100.0
 
 
 def busiest_joints(result: MotionResult, count: int = DEFAULT_JOINTS) -> list[str]:
-    """The `count` joints with the largest peak force, largest first."""
+    """The `count` joints with the largest peak force, largest first.
+
+    Args:
+        result: the study.
+        count: how many joints.
+
+    Returns:
+        Joint names.
+    """
     force = load_histories(result)["force"]
     peak = np.nan_to_num(np.nanmax(np.where(np.isnan(force), -np.inf, force), axis=0), neginf=-1.0)
     return [result.joints[j] for j in np.argsort(-peak, kind="stable")[:count]]
@@ -47,9 +55,13 @@ def figure(result: MotionResult, joints: Sequence[str] | None = None, title: str
     """A figure: efforts (top), reaction forces (middle) and moments (bottom) of `joints` over time.
 
     Args:
-        joints: joints whose reactions are drawn (default: `busiest_joints`); solid |f|, dashed
-            radial part, dotted axial part.
+        result: the study.
+        joints: joints whose reactions are drawn (default: `busiest_joints`); solid |f|, dashed radial part,
+            dotted axial part.
         title: the figure's title (default: mechanism and source).
+
+    Returns:
+        The matplotlib figure.
     """
     plt = pyplot()
     joints = list(joints) if joints else busiest_joints(result)
@@ -87,7 +99,18 @@ def figure(result: MotionResult, joints: Sequence[str] | None = None, title: str
 
 def write_plot(result: MotionResult, path: str | Path, joints: Sequence[str] | None = None,
                title: str | None = None, dpi: int = 90) -> Path:
-    """Draw `figure` and write it (format from the suffix: .png, .svg, .pdf); atomic."""
+    """Draw `figure` and write it (format from the suffix: .png, .svg, .pdf); atomic.
+
+    Args:
+        result: the study.
+        path: the file.
+        joints: as `figure`.
+        title: as `figure`.
+        dpi: resolution of a raster format.
+
+    Returns:
+        The path written.
+    """
     import io
 
     import matplotlib.pyplot as plt

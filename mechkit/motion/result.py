@@ -41,7 +41,14 @@ def pandas() -> ModuleType:
 
 
 def coordinate_names(model: pin.Model) -> tuple[str, ...]:
-    """Names of the q coordinates: the joint's name, `name[k]` for a joint of several coordinates."""
+    """Names of the q coordinates: the joint's name, `name[k]` for a joint of several coordinates.
+
+    Args:
+        model: the Pinocchio model.
+
+    Returns:
+        One name per q coordinate, in q's order.
+    """
     out = []
     for j in range(1, model.njoints):
         n = model.joints[j].nq
@@ -90,11 +97,31 @@ class MotionResult:
     failures: tuple[tuple[float, str], ...] = ()
 
     def reaction(self, joint: str) -> np.ndarray:
-        """(N, 6) reaction of one joint."""
+        """One joint's reaction over the motion.
+
+        Args:
+            joint: a joint (tree or cut).
+
+        Returns:
+            (N, 6) world wrenches [f (N), m (N m)], parent side on child side at the joint point.
+
+        Raises:
+            MalformedDescription: no such joint.
+        """
         return self.reactions[:, self._joint(joint)]
 
     def effort(self, joint: str) -> np.ndarray:
-        """(N,) effort of one driven joint."""
+        """One driven joint's effort over the motion.
+
+        Args:
+            joint: a driven joint (`effort_names`).
+
+        Returns:
+            (N,) efforts, N m or N.
+
+        Raises:
+            MalformedDescription: not a driven joint.
+        """
         if joint not in self.effort_names:
             raise MalformedDescription(f"motion of {self.mechanism}", f"no effort {joint!r}; driven: {self.effort_names}")
         return self.efforts[:, self.effort_names.index(joint)]
@@ -136,6 +163,12 @@ class MotionResult:
     @classmethod
     def from_dataframe(cls, df: pd.DataFrame) -> MotionResult:
         """The result back from its table (`to_dataframe`, `read_parquet`, `read_csv`).
+
+        Args:
+            df: the table, its metadata in `df.attrs`.
+
+        Returns:
+            The result.
 
         Raises:
             MalformedDescription: a column or a metadata entry is missing.
@@ -179,7 +212,19 @@ def pyarrow() -> ModuleType:
 
 
 def write_parquet(result: MotionResult, path: str | Path) -> Path:
-    """Write the table as Parquet (pyarrow), metadata in the schema; atomic."""
+    """Write the table as Parquet (pyarrow), metadata in the schema; atomic.
+
+    Args:
+        result: the study.
+        path: the file.
+
+    Returns:
+        The path written.
+
+    Raises:
+        MethodUnavailable: pandas or pyarrow is not installed.
+        OutputError: the file cannot be written.
+    """
     pyarrow()
     df = result.to_dataframe()
     buffer = io.BytesIO()
@@ -188,7 +233,17 @@ def write_parquet(result: MotionResult, path: str | Path) -> Path:
 
 
 def read_parquet(path: str | Path) -> MotionResult:
-    """A result written by `write_parquet`."""
+    """A result written by `write_parquet`.
+
+    Args:
+        path: the file.
+
+    Returns:
+        The result.
+
+    Raises:
+        MalformedDescription: the file cannot be read, or is not a motion table.
+    """
     try:
         df = pandas().read_parquet(path, engine="pyarrow")
     except (OSError, ValueError) as err:
@@ -197,14 +252,36 @@ def read_parquet(path: str | Path) -> MotionResult:
 
 
 def write_csv(result: MotionResult, path: str | Path) -> Path:
-    """Write the table as CSV (floats to full precision), metadata as leading `# key: value` lines; atomic."""
+    """Write the table as CSV (floats to full precision), metadata as leading `# key: value` lines; atomic.
+
+    Args:
+        result: the study.
+        path: the file.
+
+    Returns:
+        The path written.
+
+    Raises:
+        MethodUnavailable: pandas is not installed.
+        OutputError: the file cannot be written.
+    """
     df = result.to_dataframe()
     header = "".join(f"# {k}: {v}\n" for k, v in result.metadata().items())
     return write_text(path, header + df.to_csv(index=False))
 
 
 def read_csv(path: str | Path) -> MotionResult:
-    """A result written by `write_csv`."""
+    """A result written by `write_csv`.
+
+    Args:
+        path: the file.
+
+    Returns:
+        The result.
+
+    Raises:
+        MalformedDescription: the file cannot be read, or is not a motion table.
+    """
     pd = pandas()
     try:
         with Path(path).open() as handle:

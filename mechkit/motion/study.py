@@ -4,9 +4,7 @@ accelerations, the efforts of the driven joints and every joint's reaction for a
 Warm start of sample i: the law's guess (a scene's pose) when it has one, else the polynomial through
 the last `PREDICTOR_POINTS` assembled configurations extrapolated to t_i (in the tangent space of the
 latest, `pin.difference` / `pin.integrate`; the first sample from the mechanism's own guess). It keeps
-the assembly branch and, on a smooth law, leaves one Newton step (the 2T1R law in 501 samples: within
-5e-8 rad of the solution, as the former v dt + a dt^2 / 2 predictor, 1e-8, which needed v and a in the
-loop).
+the assembly branch and, on a smooth law, leaves one Newton step (measured in docs/motion.md, "Speed").
 """
 
 from __future__ import annotations
@@ -32,7 +30,15 @@ Loads = Callable[[Mechanism, np.ndarray, float], Sequence]
 
 def driven_model(mech: Mechanism, names: Sequence[str]) -> core.ClosureModel:
     """The closure model with a generalised force on every actuated joint and every input of the law
-    (a passive input's force is what its spring or damper must supply)."""
+    (a passive input's force is what its spring or damper must supply).
+
+    Args:
+        mech: the mechanism.
+        names: the law's driven joints.
+
+    Returns:
+        The closure model so driven.
+    """
     driven = tuple(mech.actuated) + tuple(n for n in names if n not in mech.actuated)
     return mech.closure_model.with_actuation(driven)
 
@@ -40,9 +46,22 @@ def driven_model(mech: Mechanism, names: Sequence[str]) -> core.ClosureModel:
 def inverse_batch(mech: Mechanism, cm: core.ClosureModel, cd: core.ClosureData, q: np.ndarray, v: np.ndarray,
                   a: np.ndarray, fexts: Sequence | None,
                   determinacy: bool) -> tuple[np.ndarray, np.ndarray, np.ndarray | None]:
-    """Efforts (N, n_driven), reactions (N, n_joints, 6) and determinacy flags (N, n_joints, 6) or None
-    of N samples (q, v, a) of `mech` driven as `cm` says, with per-sample external forces `fexts` or None
-    and the mechanism's joint springs.
+    """Efforts, reactions and determinacy flags of N samples of `mech` driven as `cm` says, with the
+    mechanism's joint springs.
+
+    Args:
+        mech: the mechanism.
+        cm: its closure model, driven (`driven_model`).
+        cd: a data of it.
+        q: configurations (N, nq).
+        v: velocities (N, nv).
+        a: accelerations (N, nv).
+        fexts: per-sample external forces (as `Mechanism.inverse_dynamics` takes them), or None.
+        determinacy: flag the components static equilibrium fixes.
+
+    Returns:
+        (efforts (N, n_driven), N m or N; reactions (N, n_joints, 6), world [f, m] at each joint point;
+            determinacy flags (N, n_joints, 6) or None).
 
     Raises:
         SingularConfiguration: a sample's drives cannot hold its motion.
@@ -62,11 +81,21 @@ PREDICTOR_POINTS = 3
 
 def kinematics_along(path: PathKinematics, law: InputLaw, tol: float = 1e-12, skip_failures: bool = False,
                      progress: Progress | None = None) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, list]:
-    """q (N, nq), v, a (N, nv), joint axes (N, n_joints, 3) and the failures [(t, message)] along a law.
+    """The kinematics of every sample of a law.
 
     The closure is solved sample by sample from the warm start, blocks of `JUDGED_BLOCK` samples are
     judged for singularity at once (a singular sample fails as if judged alone: the samples after it
     are solved again from the good ones before it), then v, a and the axes are batched.
+
+    Args:
+        path: the path's kinematics (inputs and split fixed once).
+        law: the input law.
+        tol: closure residual of each assembly.
+        skip_failures: a failing sample becomes a row of NaN and a listed failure instead of an error.
+        progress: called after each sample with (done, total).
+
+    Returns:
+        (q (N, nq), v (N, nv), a (N, nv), world joint axes (N, n_joints, 3), the failures [(t (s), message)]).
 
     Raises:
         ClosureNotConverged, SingularConfiguration: as `study` (unless `skip_failures`).
@@ -146,6 +175,10 @@ def study(mech: Mechanism, law: InputLaw, *, determinacy: bool = False, loads: L
         reactions: "rigid" (the components statics leaves open by the minimum-norm convention) or
             "compliant" (every component fixed by the links' elasticity, `mechkit.elastic`; the flags
             then say which compatibility fixes).
+
+    Returns:
+        The motion: per sample q, v, a, efforts, every joint's reaction (world [f, m] at the joint point), axes
+            and supports, with the failures skipped.
 
     Raises:
         ClosureNotConverged: a sample does not assemble near its warm start (the message says which).

@@ -48,8 +48,8 @@ from scipy.sparse.csgraph import connected_components, maximum_bipartite_matchin
 
 from mechkit.base.exceptions import InvalidParameters
 from mechkit.base.spatial import cross
-from mechkit.second_opinion.motion import Instant
-from mechkit.second_opinion.structure import COMPONENT_NAMES, Structure
+from mechkit.second_opinion.instant import Instant
+from mechkit.second_opinion.structure_graph import COMPONENT_NAMES, Structure
 
 #: Relative size below which a wrench-direction entry counts as a structural zero.
 PATTERN_TOL = 1e-9
@@ -88,7 +88,14 @@ class SKC:
 
     def unknown_labels(self, structure: Structure) -> list[str]:
         """Readable unknowns, e.g. "R43.fx", "R31.effort" (component names are the world wrench
-        directions the component was chosen from)."""
+        directions the component was chosen from).
+
+        Args:
+            structure: the structure graph the SKC was found in.
+
+        Returns:
+            One label per unknown, in order.
+        """
         out = []
         for name, k in self.unknowns:
             joint = structure.joint(name)
@@ -97,7 +104,14 @@ class SKC:
 
 
 def unknowns_of(structure: Structure) -> list[Unknown]:
-    """Every unknown of the body-equilibrium system: each joint's components, then its effort."""
+    """Every unknown of the body-equilibrium system: each joint's components, then its effort.
+
+    Args:
+        structure: the structure graph.
+
+    Returns:
+        (joint, component index, -1 for its effort) per unknown, in the system's column order.
+    """
     out: list[Unknown] = []
     for joint in structure.joints:
         out.extend((joint.name, k) for k in range(len(joint.components)))
@@ -112,6 +126,15 @@ def equilibrium_matrix(structure: Structure, home: Instant, generic: bool) -> tu
     Entry: the row's component of the unknown's unit wrench on the subtree of that body (+ where the
     subtree holds the joint's child side, - where it holds the parent side), moment about the body's
     origin. With ``generic``, a 0/1 pattern instead (see the module docstring).
+
+    Args:
+        structure: the structure graph.
+        home: the home assembly's instant.
+        generic: the 0/1 pattern with generic lever arms instead of the values.
+
+    Returns:
+        (rows (body, component 0-5), unknowns (joint, component), the matrix (6 bodies x unknowns); N and N m per
+            unit unknown).
     """
     rows = [(b, k) for b in structure.bodies for k in range(6)]
     points = np.array([g.point for g in home.joints.values()] + [b.origin for b in home.bodies.values()])
@@ -167,6 +190,9 @@ def _parts(rows: list[int], cols: list[int], pattern: sp.csr_matrix) -> list[tup
 
 def block_triangular(pattern: sp.csr_matrix) -> list[tuple[str, list[int], list[int]]]:
     """Dulmage-Mendelsohn blocks of a sparse pattern (rows x cols), in solve order.
+
+    Args:
+        pattern: a sparse (rows x cols) pattern; its non-zeros are the entries.
 
     Returns:
         (kind, rows, cols) per block: the over-determined parts ("over"), the irreducible square
@@ -224,6 +250,15 @@ def merge_by_body(blocks: list[tuple[str, list[int], list[int]]], rows: list[Row
     rows are split between two square blocks (its rows in the over- or under-determined parts stay
     there) and the bodies of each pair in ``joins`` share a block. Blocks sharing a body merge;
     blocks on a cycle of the merged order merge; repeat.
+
+    Args:
+        blocks: (kind, rows, cols) per block, as `block_triangular` gives them.
+        rows: (body, component) of every row.
+        pattern: the system's sparse pattern (rows x unknowns).
+        joins: pairs of bodies that must share a block.
+
+    Returns:
+        The coarsened blocks, in solve order.
     """
     square = [i for i, b in enumerate(blocks) if b[0] == "determined"]
     owner = {c: i for i in square for c in blocks[i][2]}
@@ -273,11 +308,15 @@ def decompose(structure: Structure, home: Instant, level: str = "skc") -> list[S
     """The ordered SKCs of a mechanism from its structure and its home assembly.
 
     Args:
+        structure: the structure graph.
+        home: the home assembly's instant.
         level: "component": the finest Dulmage-Mendelsohn blocks; "body": coarsened to whole bodies
-            (`merge_by_body`), where a driving link whose effort its own equilibrium fixes is a
-            block of its own; "skc": also each driving link (the child of an actuated tree joint)
-            joined to the bodies it carries, as Yang's ordered SOCs count the driving pair in the
-            SOC it drives.
+            (`merge_by_body`), where a driving link whose effort its own equilibrium fixes is a block of its own;
+            "skc": also each driving link (the child of an actuated tree joint) joined to the bodies it carries,
+            as Yang's ordered SOCs count the driving pair in the SOC it drives.
+
+    Returns:
+        The SKCs in solve order.
 
     Raises:
         InvalidParameters: unknown level.

@@ -8,9 +8,9 @@ import numpy as np
 
 from mechkit.mechanism import Mechanism
 from mechkit.second_opinion.decomposition import SKC, decompose
-from mechkit.second_opinion.motion import instant
+from mechkit.second_opinion.instant import instant
 from mechkit.second_opinion.solve import Opinion, plan, solve_instant
-from mechkit.second_opinion.structure import Structure, build_structure
+from mechkit.second_opinion.structure_graph import Structure, build_structure
 
 
 class SecondOpinion:
@@ -40,7 +40,17 @@ class SecondOpinion:
         self.decompose_seconds = time.perf_counter() - start
 
     def solve(self, q: np.ndarray, v: np.ndarray, a: np.ndarray) -> Opinion:
-        """Efforts and reactions for a motion (q, v, a) that closes the loops (rad, m and rates)."""
+        """Efforts and reactions for a motion (q, v, a) that closes the loops (rad, m and rates).
+
+        Args:
+            q: configuration (nq,), loops closed.
+            v: velocity (nv,), J v = 0.
+            a: acceleration (nv,), J a + gamma = 0.
+
+        Returns:
+            Efforts (N m or N), every joint's reaction (world [f, m] at the joint point), and which values statics
+                leaves free.
+        """
         m = self.mechanism
         state = instant(m.closure_model, self._closure_data, self._data, self.structure, q, v, a, m.passive_forces(q, v))
         return solve_instant(self.plans, self.structure, state)

@@ -17,8 +17,8 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from mechkit.second_opinion.decomposition import SKC
-from mechkit.second_opinion.motion import Instant
-from mechkit.second_opinion.structure import Structure
+from mechkit.second_opinion.instant import Instant
+from mechkit.second_opinion.structure_graph import Structure
 from mechkit.validation.soc import BodyLoad, SKCInstant, WrenchSite, solve_soc
 
 
@@ -69,8 +69,16 @@ class Plan:
 
 
 def plan(skcs: Sequence[SKC], structure: Structure, loaded: Sequence[str] = ()) -> list[Plan]:
-    """The plans of the SKCs, in solve order; the `loaded` joints (springs, dampers) transmit a known
-    wrench from the start."""
+    """What each SKC's solve needs, in solve order.
+
+    Args:
+        skcs: the SKCs in solve order.
+        structure: the structure graph.
+        loaded: joints (springs, dampers) that transmit a known wrench from the start.
+
+    Returns:
+        One plan per SKC.
+    """
     chains = {b: structure.chain(b) for b in structure.bodies}
     chains[0] = []
     out = []
@@ -108,7 +116,17 @@ def _site_jacobian(p: Plan, origins: np.ndarray, moved: np.ndarray, point: np.nd
 
 
 def skc_instant(p: Plan, structure: Structure, instant: Instant, known: dict[str, np.ndarray]) -> SKCInstant:
-    """The SOC solver's view of one SKC at one instant, with the ``known`` joint wrenches as loads."""
+    """The SOC solver's view of one SKC at one instant, with the ``known`` joint wrenches as loads.
+
+    Args:
+        p: the SKC's plan.
+        structure: the structure graph.
+        instant: the instant.
+        known: joint -> wrench (6,) solved by earlier SKCs (world, at the joint point).
+
+    Returns:
+        The SKC at that instant.
+    """
     origins = np.array([instant.bodies[k].origin for k in p.heads]).reshape(-1, 3)
     loads = []
     for b, moved in p.bodies:
@@ -130,7 +148,16 @@ def skc_instant(p: Plan, structure: Structure, instant: Instant, known: dict[str
 
 
 def solve_instant(plans: Sequence[Plan], structure: Structure, instant: Instant) -> Opinion:
-    """Solve the SKCs in order at one instant (efforts and every joint's reaction)."""
+    """Solve the SKCs in order at one instant (efforts and every joint's reaction).
+
+    Args:
+        plans: the SKCs' plans, in solve order.
+        structure: the structure graph.
+        instant: the instant.
+
+    Returns:
+        The second opinion at that instant.
+    """
     out = Opinion()
     known: dict[str, np.ndarray] = {name: w.copy() for name, w in instant.passive.items()}
     for i, p in enumerate(plans):

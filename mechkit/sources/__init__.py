@@ -35,6 +35,9 @@ def read(path: Path, params: dict[str, Any] | None = None) -> Description:
         path: an existing file (see `resolve`).
         params: xacro arguments (only a xacro file takes any).
 
+    Returns:
+        The description.
+
     Raises:
         MalformedDescription: unknown suffix, unreadable, empty or invalid content.
         InvalidParameters: parameters given to a format that takes none.

@@ -51,7 +51,17 @@ class Description:
 
 
 def read_text(path: Path) -> str:
-    """A description file's text; unreadable or empty is a `MalformedDescription`."""
+    """A description file's text.
+
+    Args:
+        path: the file.
+
+    Returns:
+        Its text.
+
+    Raises:
+        MalformedDescription: the file cannot be read, or is empty.
+    """
     try:
         text = path.read_text()
     except (OSError, UnicodeDecodeError) as err:

@@ -66,7 +66,14 @@ class Sidecar:
 
 def sidecar_of(path: Path) -> Path | None:
     """The sidecar of a URDF: the `.yaml` (or `.yml`) of the same stem, else `robot.yaml` in the same
-    folder when that URDF is the folder's only one (Gepetto's loader reads `robot.yaml` by default)."""
+    folder when that URDF is the folder's only one (Gepetto's loader reads `robot.yaml` by default).
+
+    Args:
+        path: a URDF file.
+
+    Returns:
+        The sidecar, or None.
+    """
     for candidate in (path.with_suffix(".yaml"), path.with_suffix(".yml")):
         if candidate.is_file():
             return candidate
@@ -89,6 +96,13 @@ def read_extended_urdf(path: Path, sidecar: Path, freeflyer: bool = False, balls
         The description: `model` the Pinocchio model (any joint), `closures` the pairs as cuts,
         `actuated` the motors (else the URDF's transmissions), `urdf` the URDF with its loops only
         where the model is the URDF's own tree, else None.
+
+    Args:
+        path: the tree URDF.
+        sidecar: its YAML sidecar (`closed_loop`, `type`, `name_mot`).
+
+    Returns:
+        The description.
 
     Raises:
         MalformedDescription: a malformed URDF or sidecar, a substitution, motor or frame that names

@@ -29,6 +29,9 @@ def joint_model(kind: str, axis: np.ndarray | None = None, axis2: np.ndarray | N
         kind: "revolute", "prismatic", "spherical", "universal" or "free".
         axis: unit axis in the joint frame (revolute, prismatic, the first of a universal joint).
         axis2: a universal joint's second axis, in the joint frame.
+
+    Returns:
+        The joint model.
     """
     if kind in ("revolute", "prismatic"):
         for name, (k, unit) in _ALIGNED.items():
@@ -41,10 +44,20 @@ def joint_model(kind: str, axis: np.ndarray | None = None, axis2: np.ndarray | N
 
 
 def add_joint(model: pin.Model, name: str, parent: int, joint: pin.JointModel, placement: pin.SE3) -> int:
-    """Add a joint and its JOINT frame; returns the joint's id.
+    """Add a joint and its JOINT frame.
 
     Args:
+        model: the model, extended in place.
+        name: the joint's name.
+        parent: the parent joint's id.
+        joint: the joint model.
         placement: the joint frame at zero coordinates, in the parent joint's frame.
+
+    Returns:
+        The joint's id.
+
+    Raises:
+        MalformedDescription: a second joint of that name.
     """
     if model.existJointName(name):
         raise MalformedDescription(f"joint {name!r}", "a second joint of that name")
@@ -54,15 +67,36 @@ def add_joint(model: pin.Model, name: str, parent: int, joint: pin.JointModel, p
 
 
 def add_body(model: pin.Model, name: str, joint: int, placement: pin.SE3, inertia: pin.Inertia) -> None:
-    """Add a body (its inertia to the joint, a BODY frame) at `placement` in the joint's frame."""
+    """Add a body (its inertia to the joint, a BODY frame).
+
+    Args:
+        model: the model, extended in place.
+        name: the body's name.
+        joint: the joint carrying it.
+        placement: the body frame in the joint's frame.
+        inertia: its inertia (kg, m, kg m^2), in the body frame.
+
+    Raises:
+        MalformedDescription: the name is taken by a body or frame.
+    """
     model.appendBodyToJoint(joint, inertia, placement)
     _add(model, pin.Frame(name, joint, _parent_frame(model, joint), placement, pin.FrameType.BODY))
 
 
 def add_frame(model: pin.Model, name: str, joint: int, placement: pin.SE3,
               kind: pin.FrameType = pin.FrameType.OP_FRAME) -> None:
-    """Add a frame (operational, or a fixed joint's) at `placement` in the joint's frame; a name
-    already taken by a body or frame is refused."""
+    """Add a frame (operational, or a fixed joint's).
+
+    Args:
+        model: the model, extended in place.
+        name: the frame's name.
+        joint: the joint carrying it.
+        placement: the frame in the joint's frame.
+        kind: its Pinocchio frame type.
+
+    Raises:
+        MalformedDescription: the name is taken by a body or frame.
+    """
     _add(model, pin.Frame(name, joint, _parent_frame(model, joint), placement, kind))
 
 
@@ -83,7 +117,14 @@ def _parent_frame(model: pin.Model, joint: int) -> int:
 
 def one_freedom_axes(model: pin.Model) -> dict[int, tuple[str, np.ndarray]] | None:
     """Joint id -> (URDF type, unit axis in the joint frame) for every joint, or None when some joint
-    is not a one-freedom revolute or prismatic joint (URDF cannot hold it)."""
+    is not a one-freedom revolute or prismatic joint (URDF cannot hold it).
+
+    Args:
+        model: the model.
+
+    Returns:
+        Joint id -> ("revolute" or "prismatic", unit axis (3,) in the joint frame), or None.
+    """
     out = {}
     for j in range(1, model.njoints):
         short = model.joints[j].shortname()
@@ -103,6 +144,13 @@ def tree_urdf(model: pin.Model, closures: tuple[LoopClosure, ...]) -> str | None
     Each joint's link is named after the BODY frame at identity on it (else `<joint>__link`) and
     carries the joint's whole inertia; every other frame but the universe and JOINT frames is a
     massless link on a fixed joint `<frame>_fixed`. Joint limits are written wide (+-1e3), efforts and speeds 1e6 / 1e3.
+
+    Args:
+        model: the tree.
+        closures: its loop closures (written as `<mechkit:loop>`s).
+
+    Returns:
+        The URDF text, or None.
     """
     axes = one_freedom_axes(model)
     if axes is None:

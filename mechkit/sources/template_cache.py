@@ -256,12 +256,26 @@ class TemplateCache:
         self._structures: dict[tuple, _Structure | None] = {}
 
     def structure_key(self, args: dict[str, str]) -> tuple:
-        """The non-float arguments (and which arguments are floats): designs sharing it share a template."""
+        """The non-float arguments (and which arguments are floats): designs sharing it share a template.
+
+        Args:
+            args: xacro arguments (name -> text).
+
+        Returns:
+            (the names of the float arguments, the other arguments as sorted (name, text) pairs).
+        """
         floats = _float_args(args)
         return floats, tuple(sorted((k, v) for k, v in args.items() if k not in floats))
 
     def traceable(self, args: dict[str, str]) -> bool:
-        """Whether the structure of `args` renders by substitution (else through xacro each time)."""
+        """Whether the structure of `args` renders by substitution (else through xacro each time).
+
+        Args:
+            args: xacro arguments (name -> text).
+
+        Returns:
+            Whether it does.
+        """
         return self._structure(args) is not None
 
     def _structure(self, args: dict[str, str]) -> _Structure | None:
@@ -283,7 +297,17 @@ class TemplateCache:
         return structure
 
     def render(self, args: dict[str, str]) -> str:
-        """The URDF text xacro renders from the template with these arguments."""
+        """The URDF text xacro renders from the template with these arguments.
+
+        Args:
+            args: xacro arguments (name -> text).
+
+        Returns:
+            The URDF text.
+
+        Raises:
+            MalformedDescription: xacro cannot render the template at these arguments.
+        """
         structure = self._structure(args)
         if structure is not None:
             try:

@@ -23,7 +23,7 @@ import pinocchio as pin
 
 from mechkit.base.exceptions import MalformedDescription
 from mechkit.core import LOOP_KINDS, ROW_SETS, Coupling, JointSpring, LoopClosure
-from mechkit.sources.checks import check_inertias, check_tree, number
+from mechkit.sources.urdf_checks import check_inertias, check_tree, number
 from mechkit.sources.description import Description, read_text
 
 LOOP_NAMESPACE = "https://mechkit.dev/loop"
@@ -36,15 +36,35 @@ LOOP_LIKE = ("loop", "loops", "closure", "closed_loop", "loop_closure", "constra
 
 
 def read_urdf(path: Path) -> Description:
-    """The description in a URDF file (see `describe_urdf`)."""
+    """The description in a URDF file (see `describe_urdf`).
+
+    Args:
+        path: the file.
+
+    Returns:
+        The description.
+
+    Raises:
+        MalformedDescription: the file cannot be read, or its URDF is invalid (see `describe_urdf`).
+    """
     return describe_urdf(read_text(path), path, "urdf")
 
 
 def describe_urdf(urdf: str, source: Path | None, fmt: str, params: dict[str, str] | None = None) -> Description:
     """Check a URDF text (tree, inertias, loop elements, home) and read its actuators and mimic couplings.
 
+    Args:
+        urdf: the URDF text.
+        source: the file it came from, if any.
+        fmt: its format's name ("urdf", "xacro", ...).
+        params: the xacro arguments it was rendered with, if any.
+
+    Returns:
+        The description: the tree URDF, its loops, actuators, springs and home.
+
     Raises:
-        MalformedDescription: see `mechkit.sources.checks`, `parse_loops`, `parse_mimics`.
+        MalformedDescription: see `mechkit.sources.urdf_checks`, `mechkit.sources.urdf.parse_loops`,
+            `mechkit.sources.urdf.parse_mimics`.
     """
     where = str(source) if source is not None else "urdf"
     root = parse_xml(urdf, where)
@@ -116,7 +136,18 @@ def parse_mimics(root: ET.Element) -> tuple[Coupling, ...]:
 
 
 def transmissions(root: ET.Element, joints: set[str]) -> tuple[str, ...]:
-    """Joints driven by `<transmission>` elements (ROS format: `<transmission><joint name=.../>`)."""
+    """Joints driven by `<transmission>` elements (ROS format: `<transmission><joint name=.../>`).
+
+    Args:
+        root: the URDF's <robot> element.
+        joints: its moving joints.
+
+    Returns:
+        The driven joints, in order of appearance.
+
+    Raises:
+        MalformedDescription: a transmission names a joint that is not a moving joint.
+    """
     out: list[str] = []
     for transmission in root.findall("transmission"):
         for joint in transmission.findall("joint"):
@@ -130,7 +161,18 @@ def transmissions(root: ET.Element, joints: set[str]) -> tuple[str, ...]:
 
 
 def parse_xml(text: str, where: str = "urdf") -> ET.Element:
-    """The root element of an XML text; anything not well-formed is a `MalformedDescription`."""
+    """The root element of an XML text.
+
+    Args:
+        text: the XML text.
+        where: what it is, for the error.
+
+    Returns:
+        The root element.
+
+    Raises:
+        MalformedDescription: not well-formed XML.
+    """
     try:
         return ET.fromstring(text.encode())
     except ET.ParseError as err:
@@ -139,6 +181,9 @@ def parse_xml(text: str, where: str = "urdf") -> ET.Element:
 
 def check_loop_elements(root: ET.Element) -> None:
     """Refuse loop declarations mechkit would otherwise drop without a word.
+
+    Args:
+        root: the URDF's <robot> element.
 
     Raises:
         MalformedDescription: an element in a namespace that looks like mechkit's but is not
@@ -163,7 +208,18 @@ def check_loop_elements(root: ET.Element) -> None:
 
 def parse_loops(urdf: str | ET.Element) -> list[LoopClosure]:
     """Read every `<mechkit:loop>` of a URDF (text or parsed root) into `LoopClosure` records, checked
-    against its links and joints and against loop declarations that would be dropped (`check_loop_elements`)."""
+    against its links and joints and against loop declarations that would be dropped (`check_loop_elements`).
+
+    Args:
+        urdf: URDF text or its parsed root.
+
+    Returns:
+        The loop closures, in document order.
+
+    Raises:
+        MalformedDescription: a malformed or misplaced loop declaration, a frame that is not a link, or two loops
+            of one name.
+    """
     root = parse_xml(urdf) if isinstance(urdf, str) else urdf
     check_loop_elements(root)
     frames = frame_names(root)
@@ -231,6 +287,12 @@ def parse_springs(urdf: str | ET.Element) -> tuple[JointSpring, ...]:
     effort = preload - stiffness (x - reference) - damping dx/dt (N m or N; stiffness N m/rad or N/m,
     reference rad or m, damping N m s/rad or N s/m; preload and damping default to 0).
 
+    Args:
+        urdf: URDF text or its parsed root.
+
+    Returns:
+        The springs, in document order.
+
     Raises:
         MalformedDescription: a spring without its joint, stiffness or reference, or with a value that
             is not a finite number (a negative stiffness or damping included).
@@ -251,7 +313,17 @@ def parse_springs(urdf: str | ET.Element) -> tuple[JointSpring, ...]:
 
 
 def parse_home(urdf: str | ET.Element) -> dict[str, float]:
-    """The `<mechkit:home joint="..." value="..."/>` inputs of the default assembly (rad or m)."""
+    """The `<mechkit:home joint="..." value="..."/>` inputs of the default assembly (rad or m).
+
+    Args:
+        urdf: URDF text or its parsed root.
+
+    Returns:
+        Joint -> value (rad or m).
+
+    Raises:
+        MalformedDescription: a value that is not a finite number, or no joint name.
+    """
     out = {}
     for element in (parse_xml(urdf) if isinstance(urdf, str) else urdf).findall(f"{{{LOOP_NAMESPACE}}}home"):
         joint, text = element.get("joint"), element.get("value")
@@ -281,8 +353,18 @@ def _vector(element: ET.Element, attr: str, where: str, required: bool) -> np.nd
 
 
 def build_model(urdf: str, root: pin.JointModel | None = None) -> pin.Model:
-    """Pinocchio model of the URDF tree (on `root`, named "root_joint", when given: e.g. a free-flyer);
-    any urdfdom complaint is a `MalformedDescription`."""
+    """Pinocchio model of the URDF tree.
+
+    Args:
+        urdf: the URDF text.
+        root: a joint the tree hangs from, named "root_joint" (e.g. a free-flyer), or None (fixed).
+
+    Returns:
+        The model (urdfdom's output on stderr captured, not shown).
+
+    Raises:
+        MalformedDescription: Pinocchio could not build it, or urdfdom complained.
+    """
     with tempfile.TemporaryFile(mode="w+b") as captured:
         saved = os.dup(2)
         os.dup2(captured.fileno(), 2)

@@ -35,7 +35,7 @@ import numpy as np
 
 from mechkit.base.exceptions import MalformedDescription, MethodUnavailable
 from mechkit.core import Coupling
-from mechkit.sources.checks import check_tree, number
+from mechkit.sources.urdf_checks import check_tree, number
 from mechkit.sources.description import Description, read_text
 from mechkit.sources.urdf import LOOP_NAMESPACE, describe_urdf, parse_xml
 

@@ -65,8 +65,16 @@ def _status(err: Exception, assembled: bool) -> str:
 
 
 def evaluate_chunk(chunk: Chunk) -> list[dict]:
-    """The rows of a chunk's designs, in index order: index, parameters, metric columns, status,
-    message, seconds (the design's wall time)."""
+    """Evaluate a chunk's designs (on a worker); a design that fails is a row with its status and
+    message, not an error.
+
+    Args:
+        chunk: the designs and what to compute of them.
+
+    Returns:
+        The rows, in index order: index, parameters, metric columns, status, message, seconds (the design's wall
+            time).
+    """
     spec = get_spec(chunk.mechanism)
     metrics = resolve(chunk.mechanism, chunk.metrics)
     cache = TemplateCache(spec.template_path) if chunk.fast else None

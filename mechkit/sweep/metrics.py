@@ -88,7 +88,15 @@ class SingularAlongMotion(SingularConfiguration):
 
 
 def input_law(mech: Mechanism, study: Study) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    """(t, inputs, rates, accelerations) of the actuated inputs, shapes (n,) and (n, actuators)."""
+    """The actuated inputs along the study's law: a full turn ("turn") or a sine about home.
+
+    Args:
+        mech: the mechanism.
+        study: the motion study (law, samples, period, amplitude or scene).
+
+    Returns:
+        (t (n,) s, inputs (n, actuators) rad or m, rates (n, actuators), accelerations (n, actuators)).
+    """
     n, T = study.samples, study.period
     t = np.arange(n) * T / n
     home = np.array([mech.home_q[mech.q_index(j)] for j in mech.actuated])
@@ -102,7 +110,15 @@ def input_law(mech: Mechanism, study: Study) -> tuple[np.ndarray, np.ndarray, np
 
 
 def scene_law(mech: Mechanism, study: Study) -> tuple[np.ndarray, list[np.ndarray], np.ndarray, np.ndarray, np.ndarray]:
-    """(t, poses, inputs, rates, accelerations) of a scene spaced evenly over the period."""
+    """A scene spaced evenly over the study's period, its input rates and accelerations by finite differences.
+
+    Args:
+        mech: the mechanism.
+        study: the motion study (law, samples, period, amplitude or scene).
+
+    Returns:
+        (t (n,) s, poses [(nq,)], inputs (n, actuators), rates, accelerations).
+    """
     poses = scene_poses(mech, study.scene)
     t = np.linspace(0.0, study.period, len(poses))
     x = np.array([[q[mech.q_index(j)] for j in mech.actuated] for q in poses])
@@ -113,9 +129,17 @@ def scene_law(mech: Mechanism, study: Study) -> tuple[np.ndarray, list[np.ndarra
 def motion_samples(mech: Mechanism, study: Study) -> Samples:
     """Assemble, project and solve the inverse dynamics at every instant of the study.
 
+    Args:
+        mech: the mechanism.
+        study: the motion study (law, samples, period, amplitude or scene).
+
+    Returns:
+        Per instant: q, efforts, reaction force and moment magnitudes, the passive block's inverse condition, the
+            closure residual.
+
     Raises:
-        SingularAlongMotion: a pose does not assemble from the previous one, or the passive block is
-            singular there (inverse condition below `SINGULAR_INV_COND`).
+        SingularAlongMotion: (a SingularConfiguration) a pose does not assemble from the previous one, or the
+            passive block is singular there (inverse condition below `SINGULAR_INV_COND`).
     """
     if study.scene is None:
         t, x, xd, xdd = input_law(mech, study)
@@ -179,7 +203,14 @@ def _per(name: str, names: Callable[[Mechanism], tuple[str, ...]]) -> Callable[[
 
 
 def joint_names(mech: Mechanism) -> tuple[str, ...]:
-    """The joints whose reactions `inverse_dynamics` reports (tree joints, then cut joints)."""
+    """The joints whose reactions `inverse_dynamics` reports (tree joints, then cut joints).
+
+    Args:
+        mech: the mechanism.
+
+    Returns:
+        Joint names.
+    """
     zero = np.zeros(mech.model.nv)
     return tuple(mech.inverse_dynamics(mech.home_q, zero, zero, determinacy=False).reactions)
 

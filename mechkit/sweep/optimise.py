@@ -49,6 +49,19 @@ def optimise(out: str | Path, column: str, *, starts: int = 2, maximise: bool = 
              max_evaluations: int = 60, scheduler: str | None = None, workers: int | None = None) -> list[Refined]:
     """Refine `column` of the sweep in `out` from its `starts` best "ok" designs.
 
+    Args:
+        out: the sweep's folder.
+        column: the metric column to minimise (or maximise).
+        starts: how many of the best designs to start from.
+        maximise: maximise instead.
+        method: a `scipy.optimize.minimize` method (bounded to the space).
+        max_evaluations: designs evaluated per start at most.
+        scheduler: a running Dask scheduler (default: as `sweep`).
+        workers: worker processes of an embedded cluster.
+
+    Returns:
+        One refinement per start: the start, the best design found and its value, the evaluations.
+
     Raises:
         InvalidParameters: no such column, or no "ok" design to start from.
     """

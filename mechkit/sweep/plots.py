@@ -21,7 +21,15 @@ def _columns(frame: pd.DataFrame, *names: str) -> None:
 
 
 def pareto_mask(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """True for the points no other point beats in both a and b (both minimised; NaN never on the front)."""
+    """True for the points no other point beats in both a and b (both minimised; NaN never on the front).
+
+    Args:
+        a: the first objective (n,).
+        b: the second objective (n,).
+
+    Returns:
+        Boolean mask (n,) of the front.
+    """
     ok = np.isfinite(a) & np.isfinite(b)
     mask = np.zeros(len(a), dtype=bool)
     for i in np.flatnonzero(ok):
@@ -31,7 +39,23 @@ def pareto_mask(a: np.ndarray, b: np.ndarray) -> np.ndarray:
 
 
 def heat_map(frame: pd.DataFrame, x: str, y: str, metric: str, path: str | Path, title: str = "", unit: str = "") -> Path:
-    """The metric over a grid of two parameters (one row per (x, y)); non-ok designs in grey."""
+    """The metric over a grid of two parameters (one row per (x, y)); non-ok designs in grey.
+
+    Args:
+        frame: the sweep's table.
+        x: the parameter along x.
+        y: the parameter along y.
+        metric: the column drawn.
+        path: the file written.
+        title: the figure's title (default: the metric).
+        unit: the metric's unit, for the colour bar.
+
+    Returns:
+        The path written.
+
+    Raises:
+        InvalidParameters: a column the table does not have.
+    """
     import matplotlib
 
     matplotlib.use("Agg")
@@ -56,7 +80,22 @@ def heat_map(frame: pd.DataFrame, x: str, y: str, metric: str, path: str | Path,
 
 
 def pareto_plot(frame: pd.DataFrame, a: str, b: str, path: str | Path, title: str = "", highlight: dict | None = None) -> Path:
-    """Every ok design in (a, b), its Pareto front (both minimised) joined; `highlight`: label -> (a, b)."""
+    """Every ok design in (a, b), its Pareto front (both minimised) joined; `highlight`: label -> (a, b).
+
+    Args:
+        frame: the sweep's table.
+        a: the first objective's column.
+        b: the second objective's column.
+        path: the file written.
+        title: the figure's title.
+        highlight: label -> (a, b) points drawn as stars.
+
+    Returns:
+        The path written.
+
+    Raises:
+        InvalidParameters: a column the table does not have.
+    """
     import matplotlib
 
     matplotlib.use("Agg")

@@ -37,6 +37,12 @@ class Axis:
 def parse_axis(text: str) -> Axis:
     """`name=lo:hi:n` or `name=lo:hi` -> `Axis`.
 
+    Args:
+        text: the --grid argument.
+
+    Returns:
+        The axis (n None: for --random / --lhs).
+
     Raises:
         InvalidParameters: not of that form, bounds not finite or not increasing, n < 1.
     """
@@ -113,6 +119,13 @@ class DesignSpace:
 
     @classmethod
     def from_dict(cls, data: dict) -> DesignSpace:
-        """The design space `to_dict` described."""
+        """The design space `to_dict` described.
+
+        Args:
+            data: the dict `to_dict` gave.
+
+        Returns:
+            The design space.
+        """
         return cls(tuple(Axis(n, lo, hi, k) for n, lo, hi, k in data["axes"]), data["mode"], data["count"],
                    data["seed"])

@@ -24,18 +24,39 @@ def _metric(declared: DesignMetric) -> Metric:
 
 
 def own(mechanism: str) -> tuple[Metric, ...]:
-    """The metrics a registered mechanism declares, as sweep metrics."""
+    """The metrics a registered mechanism declares, as sweep metrics.
+
+    Args:
+        mechanism: a registered name.
+
+    Returns:
+        Its metrics (none when it declares none).
+    """
     return tuple(_metric(d) for d in get_spec(mechanism).design_metrics)
 
 
 def available(mechanism: str) -> dict[str, Metric]:
-    """Every metric of a registered mechanism by name: the generic ones, the elastic ones and its own."""
+    """Every metric of a registered mechanism by name: the generic ones, the elastic ones and its own.
+
+    Args:
+        mechanism: a registered name.
+
+    Returns:
+        Metric name -> metric.
+    """
     return {m.name: m for m in GENERIC + ELASTIC + own(mechanism)}
 
 
 def resolve(mechanism: str, names: list[str] | tuple[str, ...] | None) -> tuple[Metric, ...]:
     """The metrics asked for (default: "assembles", "branch" and the mechanism's own when it declares
     any, else every generic metric).
+
+    Args:
+        mechanism: a registered name.
+        names: metric names, or None for the default.
+
+    Returns:
+        The metrics, in the order asked (each once).
 
     Raises:
         InvalidParameters: a name the mechanism does not have.

@@ -36,7 +36,15 @@ _PART = re.compile(r"part-(\d{6})\.parquet")
 
 
 def schema(names: tuple[str, ...], columns: tuple[str, ...]) -> pa.Schema:
-    """Row schema: index, the swept parameters, the metric columns, status, message, seconds."""
+    """Row schema: index, the swept parameters, the metric columns, status, message, seconds.
+
+    Args:
+        names: the swept parameters.
+        columns: the metric columns.
+
+    Returns:
+        The pyarrow schema.
+    """
     fields = [pa.field("index", pa.int64())]
     fields += [pa.field(n, pa.float64()) for n in (*names, *columns)]
     fields += [pa.field("status", pa.string()), pa.field("message", pa.string()), pa.field("seconds", pa.float64())]
@@ -51,6 +59,15 @@ def _bytes(table: pa.Table) -> bytes:
 
 def prepare(out: Path, manifest: dict, designs: np.ndarray, resume: bool) -> set[int]:
     """Create the results folder (or check it against the manifest when resuming); the chunks done.
+
+    Args:
+        out: the results folder.
+        manifest: what the sweep is (mechanism, space, study, metrics, ...).
+        designs: the designs (n, parameters).
+        resume: continue the sweep the folder holds.
+
+    Returns:
+        The chunks already done (empty for a new sweep).
 
     Raises:
         InvalidParameters: the folder holds a sweep and `resume` is False, or it holds another sweep.
@@ -80,6 +97,12 @@ def prepare(out: Path, manifest: dict, designs: np.ndarray, resume: bool) -> set
 def read_manifest(out: Path) -> dict:
     """The manifest of the sweep in `out`.
 
+    Args:
+        out: the results folder.
+
+    Returns:
+        The manifest.
+
     Raises:
         InvalidParameters: no sweep there.
     """
@@ -90,13 +113,30 @@ def read_manifest(out: Path) -> dict:
 
 
 def done_chunks(out: Path) -> set[int]:
-    """Chunk numbers whose part file exists."""
+    """Chunk numbers whose part file exists.
+
+    Args:
+        out: the results folder.
+
+    Returns:
+        The chunk numbers.
+    """
     parts = Path(out) / PARTS
     return {int(m.group(1)) for p in parts.iterdir() if (m := _PART.fullmatch(p.name))} if parts.exists() else set()
 
 
 def write_part(out: Path, chunk: int, rows: list[dict], row_schema: pa.Schema) -> Path:
-    """Write one finished chunk's rows atomically."""
+    """Write one finished chunk's rows atomically.
+
+    Args:
+        out: the results folder.
+        chunk: the chunk's number.
+        rows: its rows (`evaluate_chunk`).
+        row_schema: the table's schema.
+
+    Returns:
+        The part file written.
+    """
     table = pa.Table.from_pylist(rows, schema=row_schema)
     return write_bytes(Path(out) / PARTS / f"part-{chunk:06d}.parquet", _bytes(table))
 
@@ -104,8 +144,15 @@ def write_part(out: Path, chunk: int, rows: list[dict], row_schema: pa.Schema) -
 def read(out: Path) -> pd.DataFrame:
     """Every row written so far, as a pandas DataFrame sorted by design index.
 
+    Args:
+        out: the results folder.
+
+    Returns:
+        The rows.
+
     Raises:
         MalformedDescription: a design appears twice.
+        InvalidParameters: no sweep there.
     """
     parts = sorted((Path(out) / PARTS).glob("part-*.parquet"))
     manifest = read_manifest(out)

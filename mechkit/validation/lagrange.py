@@ -126,7 +126,15 @@ class Linkage:
         return row
 
     def relative_angle(self, q: np.ndarray, pin: str) -> float:
-        """phi_b - phi_a of a pin (rad; phi_a = 0 for the wall)."""
+        """phi_b - phi_a of a pin (phi_a = 0 for the wall); of rates, its rate.
+
+        Args:
+            q: (3 * bodies,) reference-point coordinates (x, z in m, phi in rad per body).
+            pin: the pin's name.
+
+        Returns:
+            The angle (rad) (or its rate, rad/s, given rates).
+        """
         return float(self._relative_row(self.pins[self.pin_index[pin]]) @ q)
 
     def _arm(self, q: np.ndarray, body: int, point: np.ndarray) -> np.ndarray:
@@ -134,11 +142,27 @@ class Linkage:
         return _rot(q[3 * body + 2]) @ (point - self.bodies[body].com)
 
     def point(self, q: np.ndarray, body: int, point: np.ndarray) -> np.ndarray:
-        """World position (m) of a body-frame point."""
+        """World position (m) of a body-frame point.
+
+        Args:
+            q: (3 * bodies,) reference-point coordinates (x, z in m, phi in rad per body).
+            body: the body's index.
+            point: the point (2,) in the body frame, m.
+
+        Returns:
+            Its world position (x, z), m.
+        """
         return q[3 * body : 3 * body + 2] + self._arm(q, body, point)
 
     def constraints(self, q: np.ndarray) -> np.ndarray:
-        """Pin residuals C(q), (2 * pins,) m."""
+        """The pin residuals C(q).
+
+        Args:
+            q: (3 * bodies,) reference-point coordinates (x, z in m, phi in rad per body).
+
+        Returns:
+            (2 * pins,) residuals, m.
+        """
         out = np.empty(2 * len(self.pins))
         for k, p in enumerate(self.pins):
             pa = p.point_a if p.a is None else self.point(q, p.a, p.point_a)
@@ -146,7 +170,14 @@ class Linkage:
         return out
 
     def jacobian(self, q: np.ndarray) -> np.ndarray:
-        """C_q, (2 * pins, 3 * bodies)."""
+        """The constraint Jacobian C_q.
+
+        Args:
+            q: (3 * bodies,) reference-point coordinates (x, z in m, phi in rad per body).
+
+        Returns:
+            (2 * pins, 3 * bodies) matrix.
+        """
         Cq = np.zeros((2 * len(self.pins), self.n))
         for k, p in enumerate(self.pins):
             rows = slice(2 * k, 2 * k + 2)
@@ -158,7 +189,15 @@ class Linkage:
         return Cq
 
     def gamma(self, q: np.ndarray, qd: np.ndarray) -> np.ndarray:
-        """Right side of C_q qdd = gamma: the velocity terms of the second derivative of C."""
+        """Right side of C_q qdd = gamma: the velocity terms of the second derivative of C.
+
+        Args:
+            q: (3 * bodies,) reference-point coordinates (x, z in m, phi in rad per body).
+            qd: (3 * bodies,) their rates (m/s, rad/s).
+
+        Returns:
+            (2 * pins,) m/s^2.
+        """
         out = np.empty(2 * len(self.pins))
         for k, p in enumerate(self.pins):
             g = -self._arm(q, p.b, p.point_b) * qd[3 * p.b + 2] ** 2
@@ -169,7 +208,15 @@ class Linkage:
 
     # ------------------------------------------------------------ forces and energy
     def applied(self, q: np.ndarray, qd: np.ndarray) -> np.ndarray:
-        """Generalised applied forces Q: gravity and springs (N, N m)."""
+        """Generalised applied forces Q: gravity and springs (N, N m).
+
+        Args:
+            q: (3 * bodies,) reference-point coordinates (x, z in m, phi in rad per body).
+            qd: (3 * bodies,) their rates (m/s, rad/s).
+
+        Returns:
+            (3 * bodies,) generalised forces (N, N m).
+        """
         Q = np.zeros(self.n)
         for i, b in enumerate(self.bodies):
             Q[3 * i : 3 * i + 2] = b.mass * self.gravity
@@ -179,7 +226,15 @@ class Linkage:
         return Q
 
     def energy(self, q: np.ndarray, qd: np.ndarray) -> dict[str, float]:
-        """Kinetic, gravity and spring energy (J)."""
+        """Kinetic, gravity and spring energy (J).
+
+        Args:
+            q: (3 * bodies,) reference-point coordinates (x, z in m, phi in rad per body).
+            qd: (3 * bodies,) their rates (m/s, rad/s).
+
+        Returns:
+            {"kinetic", "gravity", "spring"} -> energy (J).
+        """
         kinetic = 0.5 * float(qd @ (self.mass_diag * qd))
         gravity = -sum(b.mass * float(self.gravity @ q[3 * i : 3 * i + 2]) for i, b in enumerate(self.bodies))
         spring = sum(
@@ -188,7 +243,16 @@ class Linkage:
         return {"kinetic": kinetic, "gravity": gravity, "spring": spring}
 
     def power(self, q: np.ndarray, qd: np.ndarray, efforts: dict[str, float]) -> dict[str, float]:
-        """Motor power in and damper power out (W)."""
+        """Motor power in and damper power out (W).
+
+        Args:
+            q: (3 * bodies,) reference-point coordinates (x, z in m, phi in rad per body).
+            qd: (3 * bodies,) their rates (m/s, rad/s).
+            efforts: motor -> torque (N m).
+
+        Returns:
+            {"motor": power in, "damper": power out} (W).
+        """
         motor = sum(u * self.relative_angle(qd, m) for m, u in efforts.items())
         damper = sum(s.damping * self.relative_angle(qd, s.pin) ** 2 for s in self.springs)
         return {"motor": motor, "damper": damper}
@@ -196,6 +260,14 @@ class Linkage:
     # ------------------------------------------------------------ the patent's A f = P
     def solve(self, q: np.ndarray, qd: np.ndarray, motor_acc: Sequence[float] = ()) -> Solution:
         """Accelerations, pin forces and motor torques at (q, qd) for prescribed motor accelerations.
+
+        Args:
+            q: (3 * bodies,) reference-point coordinates (x, z in m, phi in rad per body).
+            qd: (3 * bodies,) their rates (m/s, rad/s).
+            motor_acc: the motors' angular accelerations (rad/s^2), in the order of `motors`.
+
+        Returns:
+            The accelerations qdd (3 * bodies,), every pin's force (N, world x-z) and the motors' torques (N m).
 
         Raises:
             SingularConfiguration: A is singular (a loop at a dead-centre pose, or motors that do
@@ -235,6 +307,9 @@ class Linkage:
             qd: (3 * bodies,) their rates.
             efforts: torques u (N m) of `motors`, in order.
 
+        Returns:
+            qdd (3 * bodies,), m/s^2 and rad/s^2.
+
         Raises:
             numpy.linalg.LinAlgError: the system is singular (a loop at a dead-centre pose).
         """
@@ -258,6 +333,17 @@ class Linkage:
         max_iter: int = 20,
     ) -> tuple[np.ndarray, np.ndarray]:
         """Minimum-norm projection onto C = 0, S q = psi (Gauss-Newton), then C_q qd = 0, S qd = psi_dot.
+
+        Args:
+            q: (3 * bodies,) reference-point coordinates (x, z in m, phi in rad per body).
+            qd: (3 * bodies,) their rates (m/s, rad/s).
+            motor_pos: the motors' angles (rad) to hold, in the order of `motors`.
+            motor_vel: their rates (rad/s).
+            tol: the position residual reached (m).
+            max_iter: Gauss-Newton steps at most.
+
+        Returns:
+            (q, qd) on the constraint manifold.
 
         Raises:
             ClosureNotConverged: the position projection does not reach tol.

@@ -138,9 +138,14 @@ def four_bar(
     "C" (coupler tip, parent side, meets rocker tip). q = [theta, phi2, theta3].
 
     Args:
-        theta: crank angle, rad. rate: rad/s. acceleration: rad/s^2.
+        theta: crank angle, rad.
+        rate: its rate, rad/s.
+        acceleration: its acceleration, rad/s^2.
         geometry: lengths and bar section.
         elbow_up: C on the open (larger z) branch; False for the crossed one.
+
+    Returns:
+        The linkage's state: every link's motion and every pin, q, qd and qdd.
 
     Raises:
         InvalidParameters: non-finite input or a crank angle at which the linkage cannot assemble.
@@ -180,9 +185,14 @@ def five_bar(
     "C" (dist1 tip, parent side, meets dist2 tip). q = [theta1, phi1, theta2, phi2].
 
     Args:
-        thetas: (theta1, theta2) proximal angles, rad. rates: rad/s. accelerations: rad/s^2.
+        thetas: (theta1, theta2) proximal angles, rad.
+        rates: their rates, rad/s.
+        accelerations: their accelerations, rad/s^2.
         geometry: lengths and bar section.
         elbow_up: C on the larger-z branch; False for the other.
+
+    Returns:
+        The linkage's state: every link's motion and every pin, q, qd and qdd.
 
     Raises:
         InvalidParameters: non-finite input or input angles at which the linkage cannot assemble.

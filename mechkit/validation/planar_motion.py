@@ -26,17 +26,38 @@ AXIS = np.array([0.0, -1.0, 0.0])
 
 
 def to_world(v: np.ndarray) -> np.ndarray:
-    """Planar (x, z) vector -> world (3,) vector (x, 0, z)."""
+    """A planar (x, z) vector as a world vector (x, 0, z).
+
+    Args:
+        v: the planar vector (2,).
+
+    Returns:
+        The world vector (3,).
+    """
     return np.array([v[0], 0.0, v[1]])
 
 
 def unit(angle: float) -> np.ndarray:
-    """Planar unit vector at ``angle`` (rad) from +x towards +z."""
+    """The planar unit vector at an angle from +x towards +z.
+
+    Args:
+        angle: the angle, rad.
+
+    Returns:
+        (2,) unit vector.
+    """
     return np.array([np.cos(angle), np.sin(angle)])
 
 
 def perp(v: np.ndarray) -> np.ndarray:
-    """Planar vector turned +90 degrees (counter-clockwise, +x towards +z)."""
+    """A planar vector turned +90 degrees (counter-clockwise, +x towards +z).
+
+    Args:
+        v: the vector (2,).
+
+    Returns:
+        The turned vector (2,).
+    """
     return np.array([-v[1], v[0]])
 
 
@@ -67,7 +88,14 @@ class Bar:
         return self.mass * (self.length**2 + self.width**2) / 12.0
 
     def inertia_world(self, angle: float) -> np.ndarray:
-        """(3, 3) box inertia about the COM in world axes, the bar at planar ``angle`` (rad)."""
+        """The box inertia about the COM in world axes.
+
+        Args:
+            angle: the bar's planar angle, rad.
+
+        Returns:
+            (3, 3) inertia, kg m^2.
+        """
         m, length, w, t = self.mass, self.length, self.width, self.thickness
         local = np.diag([m * (t**2 + w**2), m * (length**2 + w**2), m * (length**2 + t**2)]) / 12.0
         c, s = np.cos(angle), np.sin(angle)
@@ -100,15 +128,36 @@ class LinkState:
     origin_acceleration: np.ndarray
 
     def point(self, s: float) -> np.ndarray:
-        """Position of the point at distance ``s`` (m) along the bar."""
+        """Position of a point of the bar.
+
+        Args:
+            s: its distance along the bar from the origin, m.
+
+        Returns:
+            (2,) planar position, m.
+        """
         return self.origin + s * unit(self.angle)
 
     def point_velocity(self, s: float) -> np.ndarray:
-        """Velocity of the point at distance ``s`` along the bar."""
+        """Velocity of a point of the bar.
+
+        Args:
+            s: its distance along the bar from the origin, m.
+
+        Returns:
+            (2,) planar velocity, m/s.
+        """
         return self.origin_velocity + s * self.omega * perp(unit(self.angle))
 
     def point_acceleration(self, s: float) -> np.ndarray:
-        """Acceleration of the point at distance ``s`` along the bar."""
+        """Acceleration of a point of the bar.
+
+        Args:
+            s: its distance along the bar from the origin, m.
+
+        Returns:
+            (2,) planar acceleration, m/s^2.
+        """
         e = unit(self.angle)
         return self.origin_acceleration + s * (self.alpha * perp(e) - self.omega**2 * e)
 
@@ -174,12 +223,29 @@ class LinkageState:
     qdd: np.ndarray
 
     def joint(self, name: str) -> PlanarJoint:
-        """The pin called ``name``."""
+        """The pin called ``name``.
+
+        Args:
+            name: the pin's name.
+
+        Returns:
+            The pin.
+
+        Raises:
+            InvalidParameters: no pin of that name.
+        """
         for j in self.joints:
             if j.name == name:
                 return j
         raise InvalidParameters("joint", name, f"not a joint of this linkage {[j.name for j in self.joints]}")
 
     def joint_position(self, name: str) -> np.ndarray:
-        """World (3,) position of the pin called ``name``, m."""
+        """World (3,) position of the pin called ``name``, m.
+
+        Args:
+            name: the pin's name.
+
+        Returns:
+            World position (3,), m.
+        """
         return to_world(self.joint(name).point)

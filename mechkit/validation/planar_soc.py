@@ -19,7 +19,16 @@ Chain = tuple[Any, ...]
 
 
 def point_jacobian(point: np.ndarray, chain: Chain) -> np.ndarray:
-    """(6, n): virtual displacement (rows 0-2) and rotation (rows 3-5) of a body point, world."""
+    """(6, n): virtual displacement (rows 0-2) and rotation (rows 3-5) of a body point, world.
+
+    Args:
+        point: the body point (2,), planar, m.
+        chain: the body's virtual coordinates: "x", "z" (a translation) or a pivot (2,) (a rotation about it),
+            None for a coordinate that does not move the body.
+
+    Returns:
+        (6, n) matrix, world axes, n = len(chain).
+    """
     jac = np.zeros((6, len(chain)))
     for j, pivot in enumerate(chain):
         if isinstance(pivot, str):
@@ -32,35 +41,85 @@ def point_jacobian(point: np.ndarray, chain: Chain) -> np.ndarray:
 
 
 def body_load(link: LinkState, chain: Chain) -> BodyLoad:
-    """The SOC body of a link moving along `chain`."""
+    """The SOC body of a link moving along `chain`.
+
+    Args:
+        link: the link's motion.
+        chain: the body's virtual coordinates: "x", "z" (a translation) or a pivot (2,) (a rotation about it),
+            None for a coordinate that does not move the body.
+
+    Returns:
+        The body for the SOC solver.
+    """
     jac = point_jacobian(link.com, chain)
     return BodyLoad(link.name, link.bar.mass, link.bar.inertia_world(link.angle), to_world(link.com_acceleration),
                     link.omega * AXIS, link.alpha * AXIS, jac[:3], jac[3:])
 
 
 def pin_site(joint: str, point: np.ndarray, chain: Chain, sign: float) -> WrenchSite:
-    """A pin of the x-z plane acting on the body of `chain`: in-plane forces (fx, fz) unknown or known."""
+    """A pin of the x-z plane acting on the body of `chain`: in-plane forces (fx, fz) unknown or known.
+
+    Args:
+        joint: the pin's name.
+        point: the pin's position (2,), m.
+        chain: the body's virtual coordinates: "x", "z" (a translation) or a pivot (2,) (a rotation about it),
+            None for a coordinate that does not move the body.
+        sign: +1 where the body is the pin's child side, -1 where it is the parent side.
+
+    Returns:
+        The wrench site.
+    """
     return WrenchSite(joint, point_jacobian(point, chain), sign, (0, 2))
 
 
 def motor_column(chain: Chain) -> np.ndarray:
-    """Generalised force of a unit motor torque about -y from the ground on the body of `chain`."""
+    """Generalised force of a unit motor torque about -y from the ground on the body of `chain`.
+
+    Args:
+        chain: the body's virtual coordinates: "x", "z" (a translation) or a pivot (2,) (a rotation about it),
+            None for a coordinate that does not move the body.
+
+    Returns:
+        (n,) generalised force, n = len(chain).
+    """
     return point_jacobian(np.zeros(2), chain)[3:].T @ AXIS
 
 
 def free_chain(pivot: np.ndarray) -> Chain:
-    """A body free in the plane: x, z and a rotation about `pivot`."""
+    """A body free in the plane: x, z and a rotation about `pivot`.
+
+    Args:
+        pivot: the rotation's pivot (2,), m.
+
+    Returns:
+        The chain ("x", "z", pivot).
+    """
     return ("x", "z", pivot)
 
 
 def subtree(state: LinkageState, link: str) -> list[str]:
-    """`link` and every link hinged after it in the tree (the loop cut "C" excluded)."""
+    """`link` and every link hinged after it in the tree (the loop cut "C" excluded).
+
+    Args:
+        state: the linkage's state.
+        link: a link's name.
+
+    Returns:
+        Link names.
+    """
     children = [j.child for j in state.joints if j.parent == link and j.name != "C"]
     return [link] + [d for child in children for d in subtree(state, child)]
 
 
 def whole_skc(state: LinkageState) -> SKCInstant:
-    """Classic virtual work: the whole linkage over its URDF coordinates q, the cut "C" as loop rows."""
+    """Classic virtual work: the whole linkage over its URDF coordinates q, the cut "C" as loop rows.
+
+    Args:
+        state: the linkage's state.
+
+    Returns:
+        One SKC holding every body and motor.
+    """
     n = len(state.coordinates)
     chains: dict[str, list[Any]] = {name: [None] * n for name in state.links}
     for j, name in enumerate(state.coordinates):
@@ -83,6 +142,12 @@ def soc_skcs(state: LinkageState) -> list[SKCInstant]:
     2. Each remaining link alone, from its ground pin (released, with its motor), the dyad's pins known.
     3. The parent-side link of C alone: C released. 4. A grounded child-side link alone: its pivot released.
     In-plane pin forces only (components fx, fz); motor torques are efforts.
+
+    Args:
+        state: the linkage's state.
+
+    Returns:
+        The SKCs in solving order.
     """
     st = state
     cut = st.joint("C")

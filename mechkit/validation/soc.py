@@ -331,6 +331,9 @@ def classic_virtual_work(
 
     Returns:
         Actuator name -> effort (N m or N).
+
+    Raises:
+        InvalidParameters: the SKC has released or known joints.
     """
     if skc.released or skc.known:
         raise InvalidParameters("skc", skc.name, "classic virtual work takes no released or known joints")

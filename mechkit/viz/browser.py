@@ -16,7 +16,7 @@ from collections.abc import Sequence
 from pathlib import Path
 
 from mechkit.base.atomic import resolve_output, write_bytes
-from mechkit.base.exceptions import MechkitError, MethodUnavailable
+from mechkit.base.exceptions import ExternalToolFailed, InvalidArgument, MethodUnavailable
 
 CANDIDATES = ("chromium", "chromium-browser", "google-chrome", "google-chrome-stable")
 FLAGS = ("--headless", "--no-sandbox", "--disable-gpu", "--enable-unsafe-swiftshader", "--use-angle=swiftshader",
@@ -62,14 +62,14 @@ def screenshot(page: str | os.PathLike, png: str | os.PathLike, size: Sequence[i
 
     Raises:
         MethodUnavailable: no Chromium.
-        MechkitError: the page does not exist, or the browser failed or wrote no picture (with its last
-            output lines).
+        InvalidArgument: the page does not exist.
+        ExternalToolFailed: the browser failed or wrote no picture (with its last output lines).
     """
     executable = find_chromium()
     served = str(page).startswith("http://")
     source = Path(page).resolve() if not served else None
     if source is not None and not source.is_file():
-        raise MechkitError(f"screenshot: no page at {source}")
+        raise InvalidArgument("page", str(page), f"no page at {source}")
     target = Path(png)
     resolve_output(target)  # refuse a directory, a device, a FIFO before the browser runs
     with tempfile.TemporaryDirectory(prefix="mechkit-chromium-") as tmp:
@@ -81,10 +81,10 @@ def screenshot(page: str | os.PathLike, png: str | os.PathLike, size: Sequence[i
             run = subprocess.run(command, capture_output=True, text=True, timeout=timeout,
                                  stdin=subprocess.DEVNULL, check=False)
         except subprocess.TimeoutExpired:
-            raise MechkitError(f"screenshot: {executable} did not finish within {timeout:.0f} s") from None
+            raise ExternalToolFailed(executable, f"the screenshot did not finish within {timeout:.0f} s") from None
         if not shot.is_file() or shot.stat().st_size == 0:
             tail = "\n".join((run.stderr or run.stdout).strip().splitlines()[-5:])
-            raise MechkitError(f"screenshot: {executable} exited with {run.returncode} and wrote no picture:\n{tail}")
+            raise ExternalToolFailed(executable, f"exited with {run.returncode} and wrote no picture:\n{tail}")
         write_bytes(target, shot.read_bytes())
     return target
 
@@ -98,12 +98,15 @@ def coverage(png: str | os.PathLike, tolerance: int = 12) -> tuple[tuple[int, in
 
     Returns:
         (background rgb 0..255, fraction of the other pixels).
+
+    Raises:
+        MethodUnavailable: Pillow is not installed.
     """
     try:
         import numpy as np
         from PIL import Image
     except ImportError:
-        raise MechkitError("reading PNG pictures needs Pillow: pip install pillow") from None
+        raise MethodUnavailable("reading PNG pictures", "Pillow is not installed: pip install pillow") from None
     with Image.open(png) as image:
         rgb = np.asarray(image.convert("RGB")).reshape(-1, 3).astype(int)
     colours, counts = np.unique(rgb, axis=0, return_counts=True)

@@ -25,7 +25,14 @@ OBLIQUE = (1.0, -1.6, 0.9)  # default camera direction (world, towards the camer
 
 def view_direction(mechanism: Mechanism) -> tuple[float, float, float]:
     """The camera direction (world, from the mechanism towards the camera): the spec's view, else nearly
-    face-on to a planar linkage (its joint origins at home span a thin slab), else oblique."""
+    face-on to a planar linkage (its joint origins at home span a thin slab), else oblique.
+
+    Args:
+        mechanism: the mechanism.
+
+    Returns:
+        The unit direction (3,), world.
+    """
     if mechanism.spec.view is not None:
         return mechanism.spec.view
     model = mechanism.model

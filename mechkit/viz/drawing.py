@@ -40,7 +40,14 @@ class Part:
     centre: np.ndarray = field(default_factory=lambda: np.zeros(3))  # centre of that box in its own frame (same units)
 
     def corners(self, placement: np.ndarray) -> np.ndarray:
-        """The 8 corners of the part's bounding box at a 4x4 world placement (which may scale a mesh)."""
+        """The 8 corners of the part's bounding box at a 4x4 world placement (which may scale a mesh).
+
+        Args:
+            placement: the part's 4x4 world placement (m; it may scale a mesh).
+
+        Returns:
+            (8, 3) corners, world, m.
+        """
         signs = np.array([[sx, sy, sz] for sx in (-1, 1) for sy in (-1, 1) for sz in (-1, 1)], dtype=float)
         return (signs * self.half_extent + self.centre) @ placement[:3, :3].T + placement[:3, 3]
 
@@ -128,7 +135,14 @@ class Drawing:
         return out
 
     def placements(self, q: np.ndarray) -> list[np.ndarray]:
-        """4x4 world placement (m) of every part at q, in the order of `parts`."""
+        """4x4 world placement (m) of every part at q, in the order of `parts`.
+
+        Args:
+            q: a configuration (nq,).
+
+        Returns:
+            The placements (4, 4), one per part.
+        """
         model, data = self.model, self.data
         pin.framesForwardKinematics(model, data, q)
         pin.updateGeometryPlacements(model, data, self.visual, self.vdata)
@@ -142,11 +156,25 @@ class Drawing:
         return out
 
     def corners(self, q: np.ndarray) -> np.ndarray:
-        """Corners of every drawn primitive at q (world, m), for framing."""
+        """Corners of every drawn primitive at q (world, m), for framing.
+
+        Args:
+            q: a configuration (nq,).
+
+        Returns:
+            (8 * parts, 3) corners, world, m.
+        """
         return np.vstack([part.corners(T) for part, T in zip(self.parts, self.placements(q))])
 
     def draw(self, scene: StaticScene, q: np.ndarray, prefix: str = "/mechanism", ghost: bool = False) -> None:
-        """Add every part at q under `prefix`; a ghost is the links only, faded."""
+        """Add every part at q under `prefix`; a ghost is the links only, faded.
+
+        Args:
+            scene: the scene drawn into.
+            q: a configuration (nq,).
+            prefix: the meshcat path of the drawing.
+            ghost: draw a faded ghost (links only).
+        """
         for part, placement in zip(self.parts, self.placements(q)):
             if ghost and not part.path.startswith("links/"):
                 continue

@@ -60,7 +60,14 @@ def picture(mechanism: Mechanism, png: Path) -> str:
 
 
 def home_inputs(mechanism: Mechanism) -> str:
-    """The home input values, in degrees or millimetres (one value when they are all equal)."""
+    """The home input values, in degrees or millimetres (one value when they are all equal).
+
+    Args:
+        mechanism: the mechanism.
+
+    Returns:
+        The text, e.g. "crank = 34.4 deg", or "its 7 inputs at 40.0 deg".
+    """
     out = []
     for joint in mechanism.actuated:
         value = float(mechanism.home_q[mechanism.q_index(joint)])
@@ -72,14 +79,29 @@ def home_inputs(mechanism: Mechanism) -> str:
 
 
 def table(names: Iterable[str], captions: Mapping[str, str]) -> str:
-    """The gallery page (markdown): the legend and one row per mechanism, its picture and caption."""
+    """The gallery page (markdown): the legend and one row per mechanism, its picture and caption.
+
+    Args:
+        names: the mechanisms, in order.
+        captions: mechanism -> caption.
+
+    Returns:
+        The markdown text.
+    """
     rows = [f"| `{name}` | ![{name}](docs/gallery/{name}.png) | {captions.get(name, '(not drawn yet)')} |"
             for name in names]
     return "\n".join(["## Gallery", "", LEGEND, "", "| mechanism | picture | what it shows |", "|---|---|---|", *rows, ""])
 
 
 def read_captions(text: str) -> dict[str, str]:
-    """The captions of a gallery page (kept for the mechanisms not redrawn), by mechanism."""
+    """The captions of a gallery page (kept for the mechanisms not redrawn), by mechanism.
+
+    Args:
+        text: the gallery page's markdown.
+
+    Returns:
+        Mechanism -> caption.
+    """
     out = {}
     for line in text.splitlines():
         cells = [c.strip() for c in line.strip().strip("|").split("|")]

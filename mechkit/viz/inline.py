@@ -50,6 +50,9 @@ def show(mechanism: Mechanism, q: np.ndarray | None = None, scene: str | None = 
         meshes: where mesh files are looked for.
         height: the frame's height (px).
 
+    Returns:
+        The view (a notebook shows it as an iframe).
+
     Raises:
         InvalidParameters: both q and scene, or an unknown scene.
     """

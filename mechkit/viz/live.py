@@ -21,7 +21,7 @@ from typing import Self
 
 import numpy as np
 
-from mechkit.base.exceptions import InvalidParameters, MechkitError
+from mechkit.base.exceptions import ExternalToolFailed, InvalidParameters, MechkitError, MethodUnavailable
 from mechkit.mechanism import Mechanism
 from mechkit.scenes import scene_poses
 from mechkit.viz.meshcat_page import StaticScene
@@ -56,7 +56,7 @@ class LiveScene(StaticScene):
         self._socket.send_multipart([lowered["type"].encode(), lowered["path"].encode(), self._umsgpack.packb(lowered)])
         reply = self._socket.recv()
         if reply != b"ok":
-            raise MechkitError(f"meshcat server refused {lowered['type']!r}: {reply.decode(errors='replace')}")
+            raise ExternalToolFailed("the meshcat server", f"refused {lowered['type']!r}: {reply.decode(errors='replace')}")
 
 
 class LiveViewer:
@@ -68,14 +68,15 @@ class LiveViewer:
         url: the viewer's web address (http://127.0.0.1:PORT/static/).
 
     Raises:
-        MechkitError: meshcat is missing, or its server did not start within START_TIMEOUT.
+        MethodUnavailable: meshcat is not installed.
+        ExternalToolFailed: its server did not start within START_TIMEOUT.
     """
 
     def __init__(self) -> None:
         try:
             import zmq
         except ImportError:
-            raise MechkitError("the live viewer needs meshcat: pip install 'mechkit[viz]'") from None
+            raise MethodUnavailable("the live viewer", "meshcat is not installed: pip install 'mechkit[viz]'") from None
         self._process = subprocess.Popen([sys.executable, "-u", "-c", _SERVER], stdout=subprocess.PIPE,
                                          stderr=subprocess.DEVNULL, stdin=subprocess.DEVNULL, start_new_session=True)
         try:
@@ -98,13 +99,13 @@ class LiveViewer:
             if select.select([fd], [], [], left)[0]:
                 chunk = os.read(fd, 4096)
                 if not chunk:  # the server ended
-                    raise MechkitError(f"the meshcat server exited with {self._process.wait()} before listening")
+                    raise ExternalToolFailed("the meshcat server", f"exited with {self._process.wait()} before listening")
                 out += chunk
                 text = out.decode(errors="replace")
                 found = [re.search(rf"^{key}=(\S+)$", text, re.MULTILINE) for key in ("zmq_url", "web_url")]
                 if all(found):
                     return found[0].group(1), found[1].group(1)
-        raise MechkitError(f"the meshcat server did not start within {START_TIMEOUT:.0f} s")
+        raise ExternalToolFailed("the meshcat server", f"did not start within {START_TIMEOUT:.0f} s")
 
     def show(self, mechanism: Mechanism, q: np.ndarray | None = None, scene: str | None = None,
              meshes: MeshSearch | None = None) -> None:
@@ -119,7 +120,7 @@ class LiveViewer:
 
         Raises:
             InvalidParameters: both q and scene, or an unknown scene.
-            MechkitError: the server stopped answering.
+            ExternalToolFailed: the server stopped answering.
         """
         if q is not None and scene is not None:
             raise InvalidParameters("q", "given", "give either q (one pose) or scene (an animation), not both")
@@ -135,7 +136,7 @@ class LiveViewer:
         except Exception as err:  # zmq.Again: no reply within REPLY_TIMEOUT_MS
             if isinstance(err, MechkitError):
                 raise
-            raise MechkitError(f"the meshcat server at {self.url} did not answer ({type(err).__name__})") from None
+            raise ExternalToolFailed(f"the meshcat server at {self.url}", f"did not answer ({type(err).__name__})") from None
 
     @property
     def running(self) -> bool:
@@ -171,7 +172,22 @@ class LiveViewer:
 
 def view(mechanism: Mechanism, q: np.ndarray | None = None, scene: str | None = None,
          meshes: MeshSearch | None = None) -> LiveViewer:
-    """Start a live viewer showing the mechanism (see `LiveViewer.show`); close it when done."""
+    """Start a live viewer showing the mechanism (see `LiveViewer.show`); close it when done.
+
+    Args:
+        mechanism: the mechanism.
+        q: a configuration (nq,), assembled.
+        scene: a scene name, played ping-pong.
+        meshes: where mesh files are looked for.
+
+    Returns:
+        The running viewer.
+
+    Raises:
+        MethodUnavailable: meshcat is not installed.
+        ExternalToolFailed: its server did not start, or stopped answering.
+        InvalidParameters: both q and scene, or an unknown scene.
+    """
     viewer = LiveViewer()
     try:
         viewer.show(mechanism, q, scene, meshes)

@@ -16,7 +16,7 @@ from typing import Any
 
 import numpy as np
 
-from mechkit.base.exceptions import MechkitError
+from mechkit.base.exceptions import MethodUnavailable
 
 BACKGROUND = (0.93, 0.95, 0.97)  # uniform page background (rgb 0..1)
 _LOOP_PINGPONG = 2202  # THREE.LoopPingPong
@@ -28,7 +28,7 @@ def _meshcat():
         from meshcat import animation, commands, geometry
         from meshcat.path import Path as MeshcatPath
     except ImportError:
-        raise MechkitError("snapshots need meshcat: pip install 'mechkit[viz]'") from None
+        raise MethodUnavailable("snapshots", "meshcat is not installed: pip install 'mechkit[viz]'") from None
     return geometry, umsgpack, commands, animation, MeshcatPath
 
 
@@ -56,22 +56,44 @@ class StaticScene:
         return self._MeshcatPath(tuple(p for p in path.split("/") if p))
 
     def add(self, path: str, shape: Any, rgba: Sequence[float], transform: np.ndarray) -> None:
-        """Add a meshcat primitive at `path` with a colour (rgba 0..1) and a 4x4 world transform (m)."""
+        """Add a meshcat primitive at `path` with a colour (rgba 0..1) and a 4x4 world transform (m).
+
+        Args:
+            path: the meshcat path.
+            shape: a meshcat geometry.
+            rgba: the colour, each 0..1.
+            transform: its 4x4 world transform (m).
+        """
         material = self.geometry.MeshPhongMaterial(color=_hex(rgba), opacity=float(rgba[3]),
                                                    transparent=bool(rgba[3] < 1))
         self._send(self._commands_module.SetObject(shape, material, self._path(path)).lower())
         self.set_transform(path, transform)
 
     def set_transform(self, path: str, transform: np.ndarray) -> None:
-        """Place the object at `path` by a 4x4 transform (m) relative to its parent path."""
+        """Place the object at `path` by a 4x4 transform (m) relative to its parent path.
+
+        Args:
+            path: the meshcat path.
+            transform: 4x4 transform (m) relative to its parent path.
+        """
         self._send(self._commands_module.SetTransform(np.asarray(transform, dtype=float), self._path(path)).lower())
 
     def set_property(self, path: str, key: str, value: Any) -> None:
-        """Set a three.js property of the object at `path` (e.g. a camera's "fov")."""
+        """Set a three.js property of the object at `path` (e.g. a camera's "fov").
+
+        Args:
+            path: the meshcat path.
+            key: the property.
+            value: its value.
+        """
         self._send(self._commands_module.SetProperty(key, value, self._path(path)).lower())
 
     def set_background(self, rgb: Sequence[float] = BACKGROUND) -> None:
-        """A uniform background colour (rgb 0..1); also hides meshcat's grid and axes."""
+        """A uniform background colour (rgb 0..1); also hides meshcat's grid and axes.
+
+        Args:
+            rgb: the colour, each 0..1.
+        """
         for key in ("top_color", "bottom_color"):
             self.set_property("/Background", key, [float(c) for c in rgb])
         self.set_property("/Grid", "visible", False)
@@ -82,6 +104,10 @@ class StaticScene:
 
         Lowered from `meshcat.animation.Animation` into one set_animation command that plays at
         `fps` frames per second, ping-pong, forever.
+
+        Args:
+            tracks: meshcat path -> its 4x4 world transforms, one per frame.
+            fps: frames per second.
         """
         animation = self._animation.Animation(default_framerate=fps)
         for path, transforms in tracks.items():
@@ -94,7 +120,15 @@ class StaticScene:
 
     def html(self, title: str = "mechkit", caption: str = "") -> str:
         """The page: meshcat's viewer script inlined, then every command. Opened with `#capture` in its
-        address, the page hides the controls and the caption (for screenshots)."""
+        address, the page hides the controls and the caption (for screenshots).
+
+        Args:
+            title: the page's title.
+            caption: a line of text at its bottom left.
+
+        Returns:
+            The HTML text, self-contained.
+        """
         import meshcat
 
         script = (Path(meshcat.__file__).parent / "viewer" / "dist" / "main.min.js").read_text()

@@ -47,11 +47,26 @@ class MeshSearch:
 
     @classmethod
     def of(cls, base: str | os.PathLike | None = None, path: Sequence[str | os.PathLike] = ()) -> MeshSearch:
-        """A search from a URDF folder (or None) and a sequence of folders."""
+        """A search from a URDF's folder and other folders.
+
+        Args:
+            base: the URDF's folder (relative names are looked for there first), or None.
+            path: further folders, in order.
+
+        Returns:
+            The search.
+        """
         return cls(None if base is None else Path(base), tuple(Path(p) for p in path))
 
     def resolve(self, filename: str) -> Path | None:
-        """The existing file a URDF mesh `filename` names, or None when it is nowhere to be found."""
+        """The existing file a URDF mesh `filename` names, or None when it is nowhere to be found.
+
+        Args:
+            filename: the mesh's file name as the URDF gives it (absolute, relative, file:// or package://).
+
+        Returns:
+            The existing file, or None when it is nowhere to be found.
+        """
         if filename.startswith("package://"):
             package, _, rest = filename[len("package://"):].partition("/")
             candidates = [d / package / rest for d in self.path] + [d / rest for d in self.path]
@@ -78,6 +93,9 @@ def resolve_meshes(urdf: str, search: MeshSearch, placeholder_radius: float) -> 
     Returns:
         (URDF text for `pin.buildGeomFromUrdfString`, names of the placeholder visuals as Pinocchio
         names them). The text is returned unchanged when it has no mesh visual.
+
+    Raises:
+        MalformedDescription: the URDF text is not XML.
 
     Warns:
         MissingMesh: once per mesh not found, naming the link, the file and the folders searched.
@@ -110,7 +128,17 @@ def resolve_meshes(urdf: str, search: MeshSearch, placeholder_radius: float) -> 
 
 def mesh_geometry(geometry_module: ModuleType, path: str, vertices: np.ndarray, bvh: Any) -> Any:
     """The meshcat geometry of a mesh file: read from the file for STL, OBJ and DAE, else built from the
-    triangles Pinocchio loaded (`vertices` (N, 3) in the file's units, `bvh` coal's mesh)."""
+    triangles Pinocchio loaded (`vertices` (N, 3) in the file's units, `bvh` coal's mesh).
+
+    Args:
+        geometry_module: `meshcat.geometry`.
+        path: the mesh file.
+        vertices: the mesh's vertices (N, 3), in the file's units, as Pinocchio loaded them.
+        bvh: coal's mesh (its triangles).
+
+    Returns:
+        The meshcat geometry.
+    """
     kind = MESH_FORMATS.get(Path(path).suffix.lower())
     if kind is not None:
         return getattr(geometry_module, kind).from_file(path)

@@ -18,7 +18,7 @@ import numpy as np
 import pinocchio as pin
 
 from mechkit.base.atomic import check_distinct, write_text
-from mechkit.base.exceptions import InvalidParameters, MechkitError
+from mechkit.base.exceptions import InvalidArgument, InvalidParameters
 from mechkit.mechanism import Mechanism
 from mechkit.scenes import scene_poses
 from mechkit.viz.browser import find_chromium, screenshot
@@ -33,8 +33,17 @@ MAX_FRAMES = 240  # poses kept in an animation (the page grows with frames x par
 def compose(scene: StaticScene, mechanism: Mechanism, poses: Sequence[np.ndarray], *, animate: bool = False,
             ghosts: int = 0, meshes: MeshSearch | None = None, root: str = "/mechanism") -> None:
     """Draw the mechanism into a scene, framed: at poses[-1] (with `ghosts` faded earlier poses), or
-    animated along poses (at most MAX_FRAMES of them); `meshes`: where mesh files are looked for;
-    `root`: the meshcat path of the drawing."""
+    animated along poses (at most MAX_FRAMES of them).
+
+    Args:
+        scene: the scene drawn into.
+        mechanism: the mechanism.
+        poses: configurations (nq,) each.
+        animate: animate along the poses instead.
+        ghosts: faded earlier poses drawn beside the last.
+        meshes: where mesh files are looked for.
+        root: the meshcat path of the drawing.
+    """
     drawing = Drawing(mechanism, meshes=meshes)
     scene.set_background()
     if animate:
@@ -71,6 +80,12 @@ def mechanism_scene(mechanism: Mechanism, q: np.ndarray, prefix: str = "/mechani
                     scene: StaticScene | None = None) -> tuple[StaticScene, np.ndarray, np.ndarray]:
     """Draw a mechanism at q into a scene (new one by default).
 
+    Args:
+        mechanism: the mechanism.
+        q: a configuration (nq,).
+        prefix: the meshcat path of the drawing.
+        scene: the scene drawn into (default: a new one).
+
     Returns:
         (scene, lower corner, upper corner) of the drawn primitives (world, m).
     """
@@ -83,8 +98,20 @@ def mechanism_scene(mechanism: Mechanism, q: np.ndarray, prefix: str = "/mechani
 
 def snapshot(mechanism: Mechanism, q: np.ndarray | None = None, path: str | os.PathLike | None = None, *,
              meshes: MeshSearch | None = None) -> str:
-    """Self-contained HTML of the mechanism at q (default: its home assembly); written to `path` if given.
-    `meshes`: where mesh files are looked for."""
+    """Self-contained HTML of the mechanism at q (default: its home assembly).
+
+    Args:
+        mechanism: the mechanism.
+        q: a configuration (nq,), assembled.
+        path: where the page is written, if given.
+        meshes: where mesh files are looked for.
+
+    Returns:
+        The HTML text.
+
+    Raises:
+        OutputError: `path` cannot be written.
+    """
     q = mechanism.home_q if q is None else np.asarray(q, dtype=float)
     html = _page(mechanism, [q], caption=f"{mechanism.spec.name}: {mechanism.spec.summary}", meshes=meshes)
     if path is not None:
@@ -94,9 +121,22 @@ def snapshot(mechanism: Mechanism, q: np.ndarray | None = None, path: str | os.P
 
 def animation(mechanism: Mechanism, scene: str, path: str | os.PathLike | None = None, *,
               poses: Sequence[np.ndarray] | None = None, meshes: MeshSearch | None = None) -> str:
-    """Self-contained HTML animating one of the mechanism's scenes; written to `path` if given.
-    `poses`: the scene's poses when already computed (by `mechkit.scenes.scene_poses`); `meshes`: where
-    mesh files are looked for."""
+    """Self-contained HTML animating one of the mechanism's scenes.
+
+    Args:
+        mechanism: the mechanism.
+        scene: one of its scenes.
+        path: where the page is written, if given.
+        poses: the scene's poses when already computed (by `mechkit.scenes.scene_poses`).
+        meshes: where mesh files are looked for.
+
+    Returns:
+        The HTML text.
+
+    Raises:
+        InvalidParameters: no such scene.
+        OutputError: `path` cannot be written.
+    """
     poses = scene_poses(mechanism, scene) if poses is None else poses
     html = _page(mechanism, poses, animate=True, caption=f"{mechanism.spec.name}, scene {scene!r}: "
                                                           f"{len(poses)} poses", meshes=meshes)
@@ -108,7 +148,23 @@ def animation(mechanism: Mechanism, scene: str, path: str | os.PathLike | None =
 def overlay(mechanism: Mechanism, scene: str, ghosts: int = 3, path: str | os.PathLike | None = None, *,
             poses: Sequence[np.ndarray] | None = None, meshes: MeshSearch | None = None) -> str:
     """Self-contained HTML of a scene as one picture: its last pose, and `ghosts` earlier poses (evenly
-    spread from the first) faded; written to `path` if given. `poses`, `meshes`: as for `animation`."""
+    spread from the first) faded.
+
+    Args:
+        mechanism: the mechanism.
+        scene: one of its scenes.
+        ghosts: how many earlier poses.
+        path: where the page is written, if given.
+        poses: the scene's poses when already computed.
+        meshes: where mesh files are looked for.
+
+    Returns:
+        The HTML text.
+
+    Raises:
+        InvalidParameters: no such scene.
+        OutputError: `path` cannot be written.
+    """
     poses = scene_poses(mechanism, scene) if poses is None else poses
     html = _page(mechanism, poses, ghosts=ghosts, caption=f"{mechanism.spec.name}, scene {scene!r}", meshes=meshes)
     if path is not None:
@@ -119,7 +175,21 @@ def overlay(mechanism: Mechanism, scene: str, ghosts: int = 3, path: str | os.Pa
 def side_by_side(mechanism: Mechanism, poses: Sequence[np.ndarray], path: str | os.PathLike | None = None,
                  caption: str = "") -> str:
     """Self-contained HTML of several configurations drawn next to each other along world x (e.g. every
-    assembly of one set of inputs); written to `path` if given."""
+    assembly of one set of inputs); written to `path` if given.
+
+    Args:
+        mechanism: the mechanism.
+        poses: configurations (nq,) each.
+        path: where the page is written, if given.
+        caption: a line of text on the page.
+
+    Returns:
+        The HTML text.
+
+    Raises:
+        InvalidParameters: no configuration.
+        OutputError: `path` cannot be written.
+    """
     if len(poses) < 1:
         raise InvalidParameters("poses", len(poses), "need at least one configuration")
     drawing = Drawing(mechanism)
@@ -144,11 +214,28 @@ def side_by_side(mechanism: Mechanism, poses: Sequence[np.ndarray], path: str | 
 
 def snapshot_command(mechanism: Mechanism, q: str | None = None, scene: str | None = None,
                      html: str | None = None, png: str | None = None, meshes: MeshSearch | None = None) -> list[Path]:
-    """What `mechkit snapshot` does: the HTML of a pose (inputs `q`, comma-separated, in actuated order)
-    or of an animated scene, and optionally a PNG screenshot (of the pose; of a scene, its overlay
-    picture); `meshes`: where mesh files are looked for. Returns the files written."""
+    """What `mechkit snapshot` does: the HTML of a pose or of an animated scene, and optionally a PNG
+    screenshot (of the pose; of a scene, its overlay picture).
+
+    Args:
+        mechanism: the mechanism.
+        q: the inputs of the pose, comma-separated, in actuated order (rad or m).
+        scene: a scene to animate instead.
+        html: the page's file.
+        png: the screenshot's file.
+        meshes: where mesh files are looked for.
+
+    Returns:
+        The files written.
+
+    Raises:
+        InvalidArgument: neither html nor png.
+        InvalidParameters: both q and scene, inputs that are not numbers, an unknown scene.
+        MethodUnavailable: no Chromium for the PNG.
+        OutputError: a file cannot be written.
+    """
     if html is None and png is None:
-        raise MechkitError("give -o FILE.html, --png FILE.png, or both")
+        raise InvalidArgument("output", None, "give -o FILE.html, --png FILE.png, or both")
     if q is not None and scene is not None:
         raise InvalidParameters("q", q, "give either --q (one pose) or --scene (an animation), not both")
     if png is not None:

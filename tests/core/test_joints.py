@@ -11,7 +11,7 @@ import pytest
 from any_joint_models import floating_five_bar, rssr
 
 from mechkit.core import joints
-from mechkit.second_opinion.compare import agreement
+from mechkit.second_opinion.agreement import agreement
 from mechkit.second_opinion.opinion import SecondOpinion
 
 JOINTS = {

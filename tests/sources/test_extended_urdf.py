@@ -1,7 +1,10 @@
-"""Extended URDF (mechkit.sources.extended_urdf) on the field's own files: every robot of Gepetto's
+"""`mechkit.sources.extended_urdf`: a bad YAML sidecar is a named error.
+
+Extended URDF (mechkit.sources.extended_urdf) on the field's own files: every robot of Gepetto's
 example-parallel-robots, against a model built from the same raw files the way Gepetto's loader builds
 it (`independent.gepetto_load`), then DOF, idle freedoms and holding torques by an independent
-computation (`independent.study`) on both. One test per robot, so one failure hides no other."""
+computation (`independent.study`) on both. One test per robot, so one failure hides no other.
+"""
 
 from __future__ import annotations
 
@@ -15,12 +18,34 @@ import numpy as np
 import pinocchio as pin
 import pytest
 from independent import Cut, LoopsDoNotClose, cuts_of, gepetto_load, require_closed, study
+from tests_support import FIXTURES
 
+import mechkit
 from mechkit.base.exceptions import MalformedDescription
 from mechkit.cli import main
 from mechkit.core.records import Coupling
 from mechkit.sources import read
 from mechkit.sources.extended_urdf import read_extended_urdf, sidecar_of
+
+
+def test_sidecar_errors(tmp_path):
+    tree = (FIXTURES / "leg.urdf").read_text()
+    cases = {
+        "closed_loop: [[rod1_tip, shank_levr]]\ntype: [3d]\nname_mot: [hip]\n": "shank_levr",
+        "closed_loop: [[rod1_tip, shank_lever]]\ntype: [3d]\nname_mot: [hip, kne]\n": "kne",
+        "closed_loop: [[rod1_tip, shank_lever]]\ntype: [4d]\nname_mot: [hip]\n": "4d",
+        "closed_loop: [[rod1_tip, shank_lever]]\ntype: [3d, 6d]\nname_mot: [hip]\n": "one type per",
+        "closed_loop: [[rod1_tip, rod1]]\ntype: [3d]\nname_mot: [hip]\n": "one body",
+        "closed_loop: [rod1_tip\n": "not YAML",
+        "name_mot: [hip]\n": "closed_loop",
+    }
+    for i, (sidecar, needle) in enumerate(cases.items()):
+        folder = tmp_path / str(i)
+        folder.mkdir()
+        (folder / "leg.urdf").write_text(tree)
+        (folder / "leg.yaml").write_text(sidecar)
+        with pytest.raises(MalformedDescription, match=needle):
+            mechkit.load(folder / "leg.urdf")
 
 GEPETTO = Path(__file__).parent.parent / "fixtures" / "field" / "gepetto"
 ROBOTS = sorted(p.name for p in GEPETTO.iterdir() if p.is_dir())

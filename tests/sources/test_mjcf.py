@@ -19,19 +19,20 @@ from pathlib import Path
 import numpy as np
 import pinocchio as pin
 import pytest
+from tests_support import FIXTURES, written
 
 import mechkit
 
 mujoco = pytest.importorskip("mujoco")
 
-from description_reference import Statics
-from mujoco_reference import MujocoReference
-
 from mechkit.base.exceptions import MalformedDescription
 from mechkit.sources.mjcf import read_mjcf
 from mechkit.sources.urdf import build_model
 
-MENAGERIE = Path(__file__).resolve().parents[1] / "fixtures" / "field" / "menagerie"
+from .description_reference import Statics
+from .mujoco_reference import MujocoReference
+
+MENAGERIE = FIXTURES / "field" / "menagerie"
 CASSIE = MENAGERIE / "agility_cassie" / "cassie.xml"
 GRIPPER = MENAGERIE / "robotiq_2f85" / "2f85.xml"
 STOPS = ("right_coupler_joint", "left_coupler_joint")
@@ -225,7 +226,7 @@ def test_every_equality_kind_tendon_spring_and_armature_agree_with_mujoco(flags,
     assert st.mobility(q) == desc.model.nv - np.linalg.matrix_rank(mj["J"], 1e-9 * np.max(np.abs(mj["J"])))
 
 
-@pytest.mark.parametrize("path", [Path(__file__).resolve().parents[1] / "fixtures" / "rssr.xml", GRIPPER],
+@pytest.mark.parametrize("path", [FIXTURES / "rssr.xml", GRIPPER],
                          ids=["rssr", "2f85"])
 def test_the_urdf_text_builds_the_readers_model(path):
     """Where URDF holds the tree, Pinocchio's URDF parser on `desc.urdf` gives the reader's model:
@@ -306,15 +307,26 @@ def test_mechkit_report_through_the_command_line(case, tmp_path):
 def test_a_ball_joint_loads_as_the_three_hinges_do():
     """The RSSR fixture writes its ball as three hinges; written as a ball it loads (the core takes any
     joint) with the same mobility and the same assembly of its crank and rocker."""
-    rssr = (Path(__file__).resolve().parent.parent / "fixtures" / "rssr.xml").read_text()
+    rssr = (FIXTURES / "rssr.xml").read_text()
     ball = (rssr.replace('type="hinge" axis="1 0 0"/>', 'type="ball"/>').replace('<joint name="By" type="hinge" axis="0 1 0"/>', "")
             .replace('<joint name="Bz" type="hinge" axis="0 0 1"/>', ""))
     with tempfile.TemporaryDirectory() as folder:
         path = Path(folder) / "rssr_ball.xml"
         path.write_text(ball)
         m_ball = mechkit.load(path)
-    m_hinges = mechkit.load(Path(__file__).resolve().parent.parent / "fixtures" / "rssr.xml")
+    m_hinges = mechkit.load(FIXTURES / "rssr.xml")
     assert m_ball.model.nq == m_hinges.model.nq + 1 and m_ball.model.nv == m_hinges.model.nv
     assert m_ball.mobility().dof == m_hinges.mobility().dof
     for joint in m_hinges.actuated:
         assert m_ball.home_q[m_ball.q_index(joint)] == pytest.approx(m_hinges.home_q[m_hinges.q_index(joint)], abs=1e-12)
+
+
+def test_mjcf_errors(tmp_path):
+    rssr = (FIXTURES / "rssr.xml").read_text()
+    cases = {
+        rssr.replace('body2="rocker_link"', 'body2="rocker_lnk"'): "MuJoCo could not compile",
+        "<robot/>": "starts with <mujoco>",
+    }
+    for i, (text, needle) in enumerate(cases.items()):
+        with pytest.raises(MalformedDescription, match=needle):
+            mechkit.load(written(tmp_path, text, f"m{i}.xml"))

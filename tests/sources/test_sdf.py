@@ -15,14 +15,16 @@ from pathlib import Path
 import numpy as np
 import pinocchio as pin
 import pytest
-from description_reference import Statics
+from tests_support import FIXTURES
 
 from mechkit.base.exceptions import MalformedDescription
 from mechkit.core.records import Coupling, JointSpring, LoopClosure
 from mechkit.sources.description import Description
 from mechkit.sources.sdf import read_sdf
 
-FIXTURES = Path(__file__).resolve().parents[1] / "fixtures" / "field" / "sdf"
+from .description_reference import Statics
+
+FIXTURES = FIXTURES / "field" / "sdf"
 #: example-robot-data (a test dependency) ships its robots in the environment's cmeel prefix.
 CASSIE = Path(sysconfig.get_paths()["purelib"], "cmeel.prefix", "share", "example-robot-data", "robots",
               "cassie_description", "robots")

@@ -6,7 +6,7 @@ paper plus 24 Hooke crosses, 66 tree coordinates, 12 cuts of 5 rows = 60 rows, r
 paper's (three-fold symmetric) motions: 7 DOF with one redundant constraint (eq. 5); to second order
 the seventh DOF holds only along those motions (`redundancy.second_order_form`). Drives (section
 3.2): fold at H, J, I (web rods AH, AJ, AI), attitude at B, F, G (web rods BH, FJ, GI) and web rod
-EH at H (`actuation.ACTUATED`); `truss.motion.web_joint_motion` gives their joint laws.
+EH at H (`actuation.ACTUATED`); `truss.joint_state.web_joint_motion` gives their joint laws.
 
 Shared with the unit (`mechkit.mechanisms.truss`): the drive laws, the web-joint motion, the fold
 (`truss.fold`, closure solved along it by continuation; the `fold` scene), the node readings and

@@ -10,5 +10,12 @@ ACTUATED = ("AH_H", "AJ_J", "AI_I", "BH_B", "FJ_F", "GI_G", "EH_H")
 
 
 def home(p: DeployableParams) -> dict[str, float]:
-    """Zero on every drive (rad): the reference configuration, the paper's t = 0 of the fold."""
+    """Zero on every drive (rad): the reference configuration, the paper's t = 0 of the fold.
+
+    Args:
+        p: the composite's parameters.
+
+    Returns:
+        Drive -> 0.0.
+    """
     return {joint: 0.0 for joint in ACTUATED}

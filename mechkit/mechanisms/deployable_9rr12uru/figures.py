@@ -15,7 +15,15 @@ from mechkit.mechanisms.deployable_9rr12uru.studies import PAPER_END_GAMMA_X, Fo
 
 
 def fold_figures(f: Fold, folder: Path) -> list[Path]:
-    """The five figures of the fold; returns the files written."""
+    """The five figures of the fold: drives, node F, node I's speed, node B's RPY, efforts.
+
+    Args:
+        f: the fold study.
+        folder: where the PNGs go.
+
+    Returns:
+        The files written.
+    """
     plt = pyplot("deployable figures")
     t, rows, deg, out = f.t, f.rows, np.degrees, []
     fig, ax = plt.subplots(figsize=(7, 3.6))

@@ -25,7 +25,17 @@ COMPONENTS = ("fx", "fy", "fz", "mx", "my", "mz")
 
 def indeterminate_reactions(result: core.InverseDynamicsResult) -> dict[str, tuple[str, ...]]:
     """Joint -> world reaction components that statics leaves undetermined (from the determinacy
-    flags of `Mechanism.inverse_dynamics`); joints whose reaction is fully determinate are absent."""
+    flags of `Mechanism.inverse_dynamics`); joints whose reaction is fully determinate are absent.
+
+    Args:
+        result: an inverse-dynamics result computed with determinacy=True.
+
+    Returns:
+        Joint -> names of its undetermined components ("fx" ... "mz").
+
+    Raises:
+        InvalidParameters: the result carries no determinacy flags.
+    """
     if any(r.determinate is None for r in result.reactions.values()):
         raise InvalidParameters("result", "determinacy=False", "run Mechanism.inverse_dynamics with determinacy=True")
     return {joint: tuple(c for c, ok in zip(COMPONENTS, r.determinate) if not ok)
@@ -60,7 +70,16 @@ def _self_stress(mech: Mechanism, q: np.ndarray) -> tuple[np.ndarray, np.ndarray
 
 
 def redundancy(mech: Mechanism, q: np.ndarray) -> Redundancy:
-    """Self-stress of the composite at q: the redundant combination of closure rows."""
+    """Self-stress of the composite at q: the redundant combination of closure rows.
+
+    Args:
+        mech: the composite.
+        q: an assembled configuration (nq,).
+
+    Returns:
+        The closure rows' singular values, the self-stress as each URU's share (force, moment; world, at its
+            middle hinge) and the middle hinges' axes.
+    """
     s, y = _self_stress(mech, q)
     cuts = core.multiplier_reactions(mech.closure_model, mech.closure_data, q, y)[-len(mech.cuts):]
     pin.framesForwardKinematics(mech.model, mech.data, q)
@@ -76,6 +95,13 @@ def indeterminate_direction(mech: Mechanism, q: np.ndarray) -> dict[str, np.ndar
     parent on child, at the joint point) is the set of reactions that the self-stress alone
     produces (`core.multiplier_reactions`: its closure forces applied to the tree, no gravity, no
     motion), scaled so that max |P| = 1. Components where P vanishes are the determinate ones.
+
+    Args:
+        mech: the composite.
+        q: an assembled configuration (nq,).
+
+    Returns:
+        Joint -> P (6,), world wrench [f, m], max |P| = 1.
     """
     _, y = _self_stress(mech, q)
     loads = core.multiplier_reactions(mech.closure_model, mech.closure_data, q, y)
@@ -89,6 +115,11 @@ def second_order_form(mech: Mechanism, q: np.ndarray, h: float = 1e-3) -> tuple[
     y is the self-stress (J^T y = 0), e the closure residual. A first-order motion d (J d = 0)
     continues to a motion only if Q(d) = 0, so the instantaneous DOF count holds for finite motions
     only along the zero set of Q. Central differences with step h (rad, m) on the residual.
+
+    Args:
+        mech: the composite.
+        q: an assembled configuration (nq,).
+        h: the finite-difference step (rad, m).
 
     Returns:
         ((k, k) matrix of Q, (nv, k) orthonormal basis of ker J in which it is written).
@@ -109,12 +140,28 @@ def second_order_form(mech: Mechanism, q: np.ndarray, h: float = 1e-3) -> tuple[
 
 
 def chain_joints(chain: str) -> tuple[str, ...]:
-    """Tree joints of a URU rod or chain (e.g. "BG": BG_B1, BG_B2, BG_G1, BG_G2)."""
+    """Tree joints of a URU rod or chain (e.g. "BG": BG_B1, BG_B2, BG_G1, BG_G2).
+
+    Args:
+        chain: the rod's or chain's two node letters.
+
+    Returns:
+        Joint names.
+    """
     return tuple(f"{chain}_{node}{k}" for node in chain for k in (1, 2))
 
 
 def mobility_without(mech: Mechanism, q: np.ndarray, chains: tuple[str, ...]) -> tuple[int, int]:
-    """(DOF, redundant rows) of the composite at q with the given URU chains removed."""
+    """(DOF, redundant rows) of the composite at q with the given URU chains removed.
+
+    Args:
+        mech: the composite.
+        q: an assembled configuration (nq,).
+        chains: the URU chains removed (node-letter pairs, e.g. "BG").
+
+    Returns:
+        (DOF, redundant rows).
+    """
     J = mech.closure_jacobian(q)
     drop_cols = [mech.v_index(j) for c in chains for j in chain_joints(c)]
     keep_rows, i = [], 0

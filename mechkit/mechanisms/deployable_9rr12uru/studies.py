@@ -61,7 +61,15 @@ class Fold:
 
 
 def fold_study(mech: Mechanism, step: float = 1.0) -> Fold:
-    """The 200 s fold sampled every `step` s, model against the paper's equations."""
+    """The 200 s fold sampled every `step` s, model against the paper's equations.
+
+    Args:
+        mech: the composite.
+        step: the sampling step, s.
+
+    Returns:
+        The fold: times, states, and per sample the model's and the paper's values.
+    """
     p, g = mech.params, mech.params.geometry()
     samples = fold(mech, fold_times(step))
     t = np.array([s.t for s in samples])
@@ -84,7 +92,14 @@ def fold_study(mech: Mechanism, step: float = 1.0) -> Fold:
 
 
 def worst_deviations(f: Fold) -> dict[str, float]:
-    """The largest deviation of the model from the equations, per quantity, and node B's gamma_x at the end (deg)."""
+    """The largest deviation of the model from the equations, per quantity, and node B's gamma_x at the end (deg).
+
+    Args:
+        f: the fold study.
+
+    Returns:
+        Quantity -> largest deviation (m, m/s or rad, as the quantity), and "node_B_gamma_x_end_deg".
+    """
     return {
         "node_position": max(r.position_error for r in f.rows),
         "closure_residual": max(r.residual for r in f.rows),
@@ -96,5 +111,12 @@ def worst_deviations(f: Fold) -> dict[str, float]:
 
 
 def fold_lines(f: Fold) -> list[str]:
-    """`worst_deviations` as text lines."""
+    """`worst_deviations` as text lines.
+
+    Args:
+        f: the fold study.
+
+    Returns:
+        Text lines.
+    """
     return [f"{key:26s} {value:.3e}" for key, value in worst_deviations(f).items()]

@@ -15,7 +15,7 @@ from mechkit.catalog.contract import MechanismSpec
 from mechkit.mechanisms.five_bar.closed_form import motion
 from mechkit.mechanisms.five_bar.failure import FAILURE_STUDIES
 from mechkit.mechanisms.five_bar.params import FiveBarParams
-from mechkit.mechanisms.planar_linkage.methods import bench_methods, bench_references
+from mechkit.mechanisms.planar_linkage.bench import bench_methods, bench_references
 
 SPEC = MechanismSpec(
     name="five_bar",

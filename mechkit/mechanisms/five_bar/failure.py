@@ -31,6 +31,13 @@ def inputs_at_gap(mech: Mechanism, gap: float) -> np.ndarray:
 
     theta1 is found by bisection in (pi/2, pi), where |B1 B2| grows monotonically as B1 swings away
     from B2.
+
+    Args:
+        mech: the five-bar.
+        gap: how far from collinear the distal bars are (m; negative: past it).
+
+    Returns:
+        (theta1, theta2), rad.
     """
     g = geometry(mech.params)
     b2 = np.array([g.ground + g.prox2 * np.cos(THETA2), g.prox2 * np.sin(THETA2)])
@@ -49,6 +56,9 @@ def singularity(mech: Mechanism, quick: bool = True) -> list[FailureCase]:
     Args:
         mech: a five-bar (`mechkit.load("five_bar")`).
         quick: 7 gaps down to 1e-14 (else 13).
+
+    Returns:
+        The cases: per method and gap, its error or the exception it raised.
     """
     gaps = np.logspace(-2, -14, 7 if quick else 13).tolist() + [0.0, -1e-3]
     cases: list[FailureCase] = []

@@ -14,7 +14,7 @@ from __future__ import annotations
 from mechkit.catalog.contract import MechanismSpec
 from mechkit.mechanisms.four_bar.closed_form import motion
 from mechkit.mechanisms.four_bar.params import FourBarParams
-from mechkit.mechanisms.planar_linkage.methods import bench_methods, bench_references
+from mechkit.mechanisms.planar_linkage.bench import bench_methods, bench_references
 
 SPEC = MechanismSpec(
     name="four_bar",

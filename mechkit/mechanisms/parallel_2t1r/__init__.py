@@ -8,8 +8,8 @@ minimum-norm torques in the validators).
 Modules (each imports only the core, `mechkit.validation` and the siblings listed before it):
 `kinematics` (the paper's position analysis: FK, IK), `rates` (velocities and accelerations, body
 motion), `assembly` (the example inputs and the assembled branch), `params` (parameters, mass
-properties, motors), `motion_law` (the paper's law, analytic states), `joints` (analytic state ->
-URDF joint coordinates), `soc` (SKC decomposition, classic virtual work), `compare` (the three
+properties, motors), `motion_law` (the paper's law, analytic states), `joint_state` (analytic state
+-> URDF joint coordinates), `soc` (SKC decomposition, classic virtual work), `compare` (the three
 inverse dynamics methods), `studies` (the comparison along the motion law and the singular studies,
 as data), `figures` (drawn from them), `checks` (report rows), `scenes`, `bench` (`mechkit bench`
 methods and reference).
@@ -21,7 +21,7 @@ from mechkit.catalog.contract import MechanismSpec, MechanismStudy, MotionLaw
 from mechkit.mechanisms.parallel_2t1r import bench, figures, studies
 from mechkit.mechanisms.parallel_2t1r.assembly import EXAMPLE_INPUTS, INPUTS, assembled_pose
 from mechkit.mechanisms.parallel_2t1r.checks import self_checks
-from mechkit.mechanisms.parallel_2t1r.joints import joint_positions
+from mechkit.mechanisms.parallel_2t1r.joint_state import joint_positions
 from mechkit.mechanisms.parallel_2t1r.motion_law import sampled_motion_law
 from mechkit.mechanisms.parallel_2t1r.params import Parallel2T1RParams, actuated
 from mechkit.mechanisms.parallel_2t1r.rates import at_rest

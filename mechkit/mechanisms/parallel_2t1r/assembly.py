@@ -31,6 +31,9 @@ def assembled_pose(d: Dims, theta: np.ndarray) -> tuple[Pose, float, float]:
         d: the mechanism's dimensions (m).
         theta: (3,) inputs (rad).
 
+    Returns:
+        (the pose, theta_4 (rad), the FK discriminant (-)).
+
     Raises:
         InvalidParameters: the inputs cannot be assembled (a limb out of reach).
     """

@@ -16,7 +16,7 @@ import numpy as np
 
 from mechkit.catalog.contract import BenchMethod, BenchReference
 from mechkit.mechanisms.parallel_2t1r.assembly import INPUTS, assembled_pose
-from mechkit.mechanisms.parallel_2t1r.joints import configuration
+from mechkit.mechanisms.parallel_2t1r.joint_state import configuration
 from mechkit.mechanisms.parallel_2t1r.motion_law import state_at
 from mechkit.mechanisms.parallel_2t1r.rates import State, at_rest
 from mechkit.mechanisms.parallel_2t1r.soc import classic_torques, soc_inverse_dynamics
@@ -35,7 +35,15 @@ def _motors(mech: Mechanism, x: np.ndarray, index: str = "v") -> np.ndarray:
 
 
 def analytic_state(mech: Mechanism, sample: Any) -> State:
-    """The paper's motion state at the sample's motor angles, rates and accelerations; cached."""
+    """The paper's motion state at the sample's motor angles, rates and accelerations; cached.
+
+    Args:
+        mech: the 2T1R.
+        sample: a bench sample (motor angles, rates, accelerations; `extra` for the cache).
+
+    Returns:
+        The analytic state.
+    """
     if "2t1r_state" not in sample.extra:
         sample.extra["2t1r_state"] = state_at(mech.params, _motors(mech, sample.q, "q"), _motors(mech, sample.v),
                                               _motors(mech, sample.a))
@@ -43,19 +51,43 @@ def analytic_state(mech: Mechanism, sample: Any) -> State:
 
 
 def paper_fk(mech: Mechanism, sample: Any) -> np.ndarray:
-    """Assembly by the paper's position analysis on the assembled branch, as a mechkit q (rad)."""
+    """Assembly by the paper's position analysis on the assembled branch, as a mechkit q (rad).
+
+    Args:
+        mech: the 2T1R.
+        sample: a bench sample (motor angles, rates, accelerations; `extra` for the cache).
+
+    Returns:
+        q (nq,).
+    """
     theta = _motors(mech, sample.q, "q")
     pose, theta4, _ = assembled_pose(mech.params.dims, theta)
     return configuration(mech, at_rest(pose, theta, theta4))
 
 
 def soc(mech: Mechanism, sample: Any) -> SOCResult:
-    """SOC virtual work over the three SKCs: motor torques and the reactions at R23 and R43."""
+    """SOC virtual work over the three SKCs: motor torques and the reactions at R23 and R43.
+
+    Args:
+        mech: the 2T1R.
+        sample: a bench sample (motor angles, rates, accelerations; `extra` for the cache).
+
+    Returns:
+        Efforts (N m) and the reactions at R23 and R43 (world wrenches (6,)).
+    """
     return soc_inverse_dynamics(mech.params, analytic_state(mech, sample))
 
 
 def classic(mech: Mechanism, sample: Any) -> dict[str, Any]:
-    """Classic whole-mechanism virtual work, eqs. (39)-(40): motor torques only."""
+    """Classic whole-mechanism virtual work, eqs. (39)-(40): motor torques only.
+
+    Args:
+        mech: the 2T1R.
+        sample: a bench sample (motor angles, rates, accelerations; `extra` for the cache).
+
+    Returns:
+        {"efforts": motor -> torque (N m)}.
+    """
     return {"efforts": classic_torques(mech.params, analytic_state(mech, sample))[0]}
 
 

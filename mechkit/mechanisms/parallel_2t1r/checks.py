@@ -13,7 +13,14 @@ from mechkit.mechanisms.parallel_2t1r.motion_law import MOTION_DURATION
 
 
 def self_checks(mech: Mechanism) -> dict[str, float]:
-    """`mechkit report` rows: FK/IK of the paper's example and SOC / classic vs Pinocchio (26 samples)."""
+    """`mechkit report` rows: FK/IK of the paper's example and SOC / classic vs Pinocchio (26 samples).
+
+    Args:
+        mech: the 2T1R.
+
+    Returns:
+        Check name (with its unit) -> worst residual or relative error.
+    """
     d = mech.params.dims
     worst_residual, worst_trip = 0.0, 0.0
     for pose in (s.pose for s in forward_kinematics(d, EXAMPLE_INPUTS)):

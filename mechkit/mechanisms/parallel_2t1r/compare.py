@@ -16,7 +16,7 @@ from mechkit.base.exceptions import MechkitError, SingularConfiguration
 from mechkit.core import InverseDynamicsResult
 from mechkit.mechanism import Mechanism
 from mechkit.mechanisms.parallel_2t1r.assembly import INPUTS
-from mechkit.mechanisms.parallel_2t1r.joints import joint_coordinates, joint_positions
+from mechkit.mechanisms.parallel_2t1r.joint_state import joint_coordinates, joint_positions
 from mechkit.mechanisms.parallel_2t1r.motion_law import motion_law, state_at
 from mechkit.mechanisms.parallel_2t1r.rates import State
 from mechkit.mechanisms.parallel_2t1r.soc import classic_torques, soc_inverse_dynamics
@@ -31,6 +31,16 @@ def pinocchio_motion(mech: Mechanism, theta: np.ndarray, rates: np.ndarray, acc:
                      guess: np.ndarray | dict[str, float] | None) -> tuple[np.ndarray, ...]:
     """Pinocchio's own motion for the inputs: closure solve from ``guess``, then v and a (SI).
 
+    Args:
+        mech: the 2T1R.
+        theta: motor angles (3,), rad.
+        rates: their rates (3,), rad/s.
+        acc: their accelerations (3,), rad/s^2.
+        guess: the closure solve's start: a configuration (nq,) or joint -> value.
+
+    Returns:
+        (q (nq,), v (nv,), a (nv,)).
+
     Raises:
         ClosureNotConverged, SingularConfiguration: from `Mechanism.assemble` / `velocities`.
     """
@@ -42,7 +52,19 @@ def pinocchio_motion(mech: Mechanism, theta: np.ndarray, rates: np.ndarray, acc:
 def pinocchio_inverse_dynamics(mech: Mechanism, q: np.ndarray, v: np.ndarray, a: np.ndarray,
                                m4: float | None = None, determinacy: bool = True) -> InverseDynamicsResult:
     """`Mechanism.inverse_dynamics` of a non-redundant model, with R41's motor torque m4 (N m) as a
-    known external torque on link41 when given (the redundant variant with a chosen distribution)."""
+    known external torque on link41 when given (the redundant variant with a chosen distribution).
+
+    Args:
+        mech: the 2T1R (not the redundant variant).
+        q: configuration (nq,).
+        v: velocity (nv,).
+        a: acceleration (nv,).
+        m4: R41's motor torque (N m), or None.
+        determinacy: run the determinacy test.
+
+    Returns:
+        Efforts and every joint's reaction.
+    """
     fext = None
     if m4 is not None:
         fext = [pin.Force.Zero() for _ in range(mech.model.njoints)]
@@ -61,9 +83,15 @@ def evaluate(mech: Mechanism, s: State, motion: tuple[np.ndarray, ...] | None, r
     raises a `MechkitError` (e.g. `SingularConfiguration`) gives no values and its message.
 
     Args:
+        mech: the 2T1R.
         s: the analytic state (for SOC and classic virtual work).
         motion: Pinocchio's (q, v, a), or None to skip Pinocchio.
+        redundant: R41 driven too, minimum-norm torques handed to SOC and Pinocchio.
         determinacy: run the core's determinacy rank test (and get Pinocchio's condition number).
+
+    Returns:
+        (values by "<method>:<quantity>" (N m, N), the failures' messages by method, the determinacy flags (6,) by
+            joint).
     """
     p = mech.params
     out: dict[str, float] = {}
@@ -116,7 +144,14 @@ class Comparison:
     determinate: dict[str, np.ndarray]
 
     def relative_error(self, method: str) -> np.ndarray:
-        """Max |method - Pinocchio| / max |Pinocchio| per quantity (7,) (NaN where not given)."""
+        """Max |method - Pinocchio| / max |Pinocchio| per quantity (7,) (NaN where not given).
+
+        Args:
+            method: "soc" or "classic".
+
+        Returns:
+            (7,) relative errors (-).
+        """
         ref = self.values["pinocchio"]
         return np.max(np.abs(self.values[method] - ref), axis=0) / np.max(np.abs(ref), axis=0)
 
@@ -128,6 +163,14 @@ def compare_along(mech: Mechanism, times: np.ndarray, redundant: bool = False) -
     from the analytic state), `velocities`, `accelerations`; the analytic state seeds only the first
     guess and is compared joint by joint. ``redundant``: R41 driven too, torques distributed by
     minimum norm (`classic_torques`), the same M4 handed to SOC and Pinocchio.
+
+    Args:
+        mech: the 2T1R.
+        times: times of the motion law, s.
+        redundant: R41 driven too.
+
+    Returns:
+        The comparison: per time and method, the values; the kinematic error; Pinocchio's determinacy flags.
 
     Raises:
         SingularConfiguration: a sample is singular for one of the methods (e.g. t = 0).

@@ -23,7 +23,15 @@ DPI = 80
 
 
 def comparison_figure(cmp: Comparison, folder: Path) -> list[Path]:
-    """Values (SOC dashed over Pinocchio) and |method - Pinocchio| on a log axis, per group."""
+    """Values (SOC dashed over Pinocchio) and |method - Pinocchio| on a log axis, per group.
+
+    Args:
+        cmp: the comparison.
+        folder: where the PNG goes.
+
+    Returns:
+        The file written.
+    """
     plt = pyplot("parallel_2t1r figures")
     fig, axes = plt.subplots(2, 3, figsize=(15, 7.5), sharex=True)
     for col, (title, unit, names) in enumerate(GROUPS):
@@ -50,7 +58,15 @@ def comparison_figure(cmp: Comparison, folder: Path) -> list[Path]:
 
 
 def singular_figure(s: SingularStudies, folder: Path) -> list[Path]:
-    """Log-log: the motion law's start (t -> 0) and theta_1 -> theta_2 for both actuation variants."""
+    """Log-log: the motion law's start (t -> 0) and theta_1 -> theta_2 for both actuation variants.
+
+    Args:
+        s: the singular studies.
+        folder: where the PNG goes.
+
+    Returns:
+        The file written.
+    """
     plt = pyplot("parallel_2t1r figures")
     start, approach = s.start, s.approach
     fig, (left, right) = plt.subplots(1, 2, figsize=(14, 5.5))

@@ -81,7 +81,14 @@ class Pose:
 
 
 def direction(angle: float) -> np.ndarray:
-    """Unit x axis (3,) of a body at absolute angle ``angle`` (rad) about +y."""
+    """Unit x axis (3,) of a body at absolute angle ``angle`` (rad) about +y.
+
+    Args:
+        angle: the body's absolute angle about +y, rad.
+
+    Returns:
+        (3,) unit vector.
+    """
     return np.array([np.cos(angle), 0.0, -np.sin(angle)])
 
 
@@ -114,13 +121,28 @@ def solve_trig(a: float, b: float, c: float, name: str) -> tuple[tuple[float, fl
 
 
 def base_points(d: Dims) -> np.ndarray:
-    """A1..A4 (4, 3), m, base frame."""
+    """A1..A4 (4, 3), m, base frame.
+
+    Args:
+        d: the mechanism's dimensions (m).
+
+    Returns:
+        (4, 3) points, m.
+    """
     h = d.l1 / 2.0
     return np.array([[h, h, 0.0], [-h, h, 0.0], [-h, -h, 0.0], [h, -h, 0.0]])
 
 
 def elbow_points(d: Dims, theta: np.ndarray) -> np.ndarray:
-    """B_d = A_d + l2 (-cos theta_d, 0, sin theta_d) for the given proximal angles (k, 3), m."""
+    """B_d = A_d + l2 (-cos theta_d, 0, sin theta_d) for the given proximal angles (k, 3), m.
+
+    Args:
+        d: the mechanism's dimensions (m).
+        theta: proximal angles (k,), rad, of limbs 1..k.
+
+    Returns:
+        (k, 3) points, m.
+    """
     theta = np.asarray(theta, dtype=float)
     out = base_points(d)[: theta.size]
     out[:, 0] -= d.l2 * np.cos(theta)
@@ -132,6 +154,13 @@ def platform_points(d: Dims, pose: Pose) -> dict[str, np.ndarray]:
     """Platform points (3,) m, base frame: centroid p, hinges C1 (= C2), C3, C4.
 
     C1 lies in limb I's plane y = l1/2, C3 and C4 in y = -l1/2, p at their centroid y = -l1/6.
+
+    Args:
+        d: the mechanism's dimensions (m).
+        pose: a platform pose (x, z in m, alpha in rad).
+
+    Returns:
+        Name ("p", "C1", "C3", "C4") -> point (3,), m.
     """
     u = direction(pose.alpha)
     h = d.l1 / 2.0
@@ -143,7 +172,15 @@ def platform_points(d: Dims, pose: Pose) -> dict[str, np.ndarray]:
 
 
 def end_points(d: Dims, pose: Pose) -> np.ndarray:
-    """C1, C1, C3, C4 (4, 3): the distal end of limb d = 1..4."""
+    """C1, C1, C3, C4 (4, 3): the distal end of limb d = 1..4.
+
+    Args:
+        d: the mechanism's dimensions (m).
+        pose: a platform pose (x, z in m, alpha in rad).
+
+    Returns:
+        (4, 3) points, m.
+    """
     c = platform_points(d, pose)
     return np.array([c["C1"], c["C1"], c["C3"], c["C4"]])
 
@@ -170,6 +207,13 @@ def forward_kinematics(d: Dims, theta: np.ndarray) -> list[FKSolution]:
     C1 root 0 puts C1 on the side of B1B2 reached by turning B1->B2 by -90 deg about y (above the
     chord when B2 lies at -x of B1), root 1 on the other side; alpha roots as in `solve_trig`.
     A C1 for which limb II cannot reach C3 contributes no pose.
+
+    Args:
+        d: the mechanism's dimensions (m).
+        theta: the inputs theta_1..theta_3 (3,), rad.
+
+    Returns:
+        The solutions: pose, root labels (C1 root, alpha root) and the discriminants.
 
     Raises:
         InvalidParameters: no pose at all (limb I cannot close, or limb II reaches no C3).
@@ -201,7 +245,15 @@ def forward_kinematics(d: Dims, theta: np.ndarray) -> list[FKSolution]:
 
 def five_bar_discriminant(d: Dims, theta: np.ndarray) -> float:
     """1 - (B1B2 / 2 l2)^2 for the inputs theta_1, theta_2: zero when the five-bar's distal links are
-    collinear (C1 a double root of eq. (7), a parallel singularity), negative when it cannot close."""
+    collinear (C1 a double root of eq. (7), a parallel singularity), negative when it cannot close.
+
+    Args:
+        d: the mechanism's dimensions (m).
+        theta: theta_1, theta_2 (at least 2), rad.
+
+    Returns:
+        The discriminant (-).
+    """
     b = elbow_points(d, np.append(np.asarray(theta, dtype=float)[:2], 0.0))[:2]
     chord = b[1] - b[0]
     return float(1.0 - (chord @ chord) / (4.0 * d.l2**2))
@@ -216,13 +268,33 @@ def _alpha_coefficients(d: Dims, c1: np.ndarray, theta3: float) -> tuple[float, 
 
 def alpha_discriminant(d: Dims, theta: np.ndarray, pose: Pose) -> float:
     """Relative discriminant of eq. (8) at the inputs theta and the C1 of ``pose``: zero when limb II's
-    distal link B3C3 points at the platform centre p (a parallel singularity), negative beyond."""
+    distal link B3C3 points at the platform centre p (a parallel singularity), negative beyond.
+
+    Args:
+        d: the mechanism's dimensions (m).
+        theta: the inputs theta_1..theta_3 (3,), rad.
+        pose: a platform pose (x, z in m, alpha in rad).
+
+    Returns:
+        The relative discriminant (-).
+    """
     a, b, c = _alpha_coefficients(d, np.array([pose.x, 0.0, pose.z]), float(theta[2]))
     return float((a * a + b * b - c * c) / (a * a + b * b))
 
 
 def follower_angles(d: Dims, pose: Pose) -> tuple[tuple[float, float], float]:
-    """Both follower angles theta_4 of limb III for a platform pose (eq. (9)), and the discriminant."""
+    """Both follower angles theta_4 of limb III for a platform pose (eq. (9)), and the discriminant.
+
+    Args:
+        d: the mechanism's dimensions (m).
+        pose: a platform pose (x, z in m, alpha in rad).
+
+    Returns:
+        ((both roots of theta_4, rad), the discriminant (-)).
+
+    Raises:
+        InvalidParameters: limb III cannot reach the pose.
+    """
     return _proximal_roots(d, base_points(d)[3], platform_points(d, pose)["C4"], "theta4")
 
 
@@ -231,6 +303,13 @@ def inverse_kinematics(d: Dims, pose: Pose) -> np.ndarray:
 
     Row k holds the roots (k >> 2 & 1, k >> 1 & 1, k & 1) of theta_1, theta_2, theta_3 (0 = the
     ``+`` root of ``solve_trig``). With the 2 follower roots of theta_4, 16 configurations.
+
+    Args:
+        d: the mechanism's dimensions (m).
+        pose: a platform pose (x, z in m, alpha in rad).
+
+    Returns:
+        (8, 3) input sets, rad.
 
     Raises:
         InvalidParameters: a limb cannot reach the pose.
@@ -241,12 +320,30 @@ def inverse_kinematics(d: Dims, pose: Pose) -> np.ndarray:
 
 
 def distal_angles(d: Dims, theta: np.ndarray, pose: Pose) -> np.ndarray:
-    """Absolute angles (4,) rad of the distal links B_d C_d (direction (C_d - B_d) / l2)."""
+    """Absolute angles (4,) rad of the distal links B_d C_d (direction (C_d - B_d) / l2).
+
+    Args:
+        d: the mechanism's dimensions (m).
+        theta: theta_1..theta_4 (4,), rad.
+        pose: a platform pose (x, z in m, alpha in rad).
+
+    Returns:
+        (4,) angles, rad.
+    """
     r = end_points(d, pose) - elbow_points(d, theta)
     return np.arctan2(-r[:, 2], r[:, 0])
 
 
 def loop_residuals(d: Dims, theta: np.ndarray, pose: Pose) -> np.ndarray:
-    """|C_d - B_d| - l2 (4,) m for theta_1..theta_4: zero when every limb closes."""
+    """|C_d - B_d| - l2 (4,) m for theta_1..theta_4: zero when every limb closes.
+
+    Args:
+        d: the mechanism's dimensions (m).
+        theta: theta_1..theta_4 (4,), rad.
+        pose: a platform pose (x, z in m, alpha in rad).
+
+    Returns:
+        (4,) residuals, m.
+    """
     r = end_points(d, pose) - elbow_points(d, theta)
     return np.hypot(r[:, 0], r[:, 2]) - d.l2

@@ -26,12 +26,26 @@ LAW_SAMPLES = 501
 
 
 def motion_law(t: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Inputs theta_1..theta_3 (rad), rates (rad/s), accelerations (rad/s^2) of the paper's law at t (s)."""
+    """Inputs theta_1..theta_3 (rad), rates (rad/s), accelerations (rad/s^2) of the paper's law at t (s).
+
+    Args:
+        t: time, s.
+
+    Returns:
+        (theta (3,), rates (3,), accelerations (3,)).
+    """
     return MOTION_RATES * t, MOTION_RATES.copy(), np.zeros(3)
 
 
 def motion_law_times(samples: int = LAW_SAMPLES) -> np.ndarray:
-    """`samples` uniform times (s) in (0, `MOTION_DURATION`]: the law without its singular start."""
+    """`samples` uniform times (s) in (0, `MOTION_DURATION`]: the law without its singular start.
+
+    Args:
+        samples: how many times.
+
+    Returns:
+        (samples,) times, s.
+    """
     return np.linspace(MOTION_DURATION / samples, MOTION_DURATION, samples)
 
 
@@ -41,6 +55,9 @@ def sampled_motion_law(mech: Mechanism, samples: int | None = None) -> SampledLa
     Args:
         mech: the 2T1R (the law does not depend on its parameters).
         samples: how many times (default `LAW_SAMPLES`).
+
+    Returns:
+        The law on R11, R21, R31.
     """
     t = motion_law_times(samples or LAW_SAMPLES)
     values, rates, accelerations = (np.array(x) for x in zip(*(motion_law(float(x)) for x in t)))
@@ -56,6 +73,9 @@ def state_at(p: Parallel2T1RParams, theta: np.ndarray, theta_dot: np.ndarray, th
         theta_dot: their rates (rad/s).
         theta_ddot: their accelerations (rad/s^2).
 
+    Returns:
+        The state: pose, its rates and accelerations, all four limb angles and theirs.
+
     Raises:
         SingularConfiguration: J_p singular (e.g. the motion law's start, t = 0).
     """
@@ -64,5 +84,13 @@ def state_at(p: Parallel2T1RParams, theta: np.ndarray, theta_dot: np.ndarray, th
 
 
 def motion_law_states(p: Parallel2T1RParams, times: np.ndarray) -> list[State]:
-    """States along the motion law at ``times`` (s)."""
+    """States along the motion law at ``times`` (s).
+
+    Args:
+        p: the parameters.
+        times: times, s.
+
+    Returns:
+        One state per time.
+    """
     return [state_at(p, *motion_law(float(t))) for t in times]

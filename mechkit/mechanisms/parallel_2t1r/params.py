@@ -61,6 +61,12 @@ def mass_properties(p: Parallel2T1RParams) -> dict[str, tuple[float, np.ndarray,
     Bars: local x along the link from its joint, box inertia; platform: frame at C1, x = u, y = v,
     triangular plate (height l1 between the limb planes) plus the payload cube at the centroid.
     The same numbers as the xacro template (a test compares them with the URDF).
+
+    Args:
+        p: the parameters.
+
+    Returns:
+        Body -> (mass, COM, inertia).
     """
     m_bar = p.density * p.l2 * p.bar_width * p.bar_thickness
     w2, t2, l2 = p.bar_width**2, p.bar_thickness**2, p.l2**2
@@ -75,5 +81,12 @@ def mass_properties(p: Parallel2T1RParams) -> dict[str, tuple[float, np.ndarray,
 
 
 def actuated(p: Parallel2T1RParams) -> tuple[str, ...]:
-    """Actuated joints: R11, R21, R31, and R41 in the redundantly actuated variant."""
+    """Actuated joints: R11, R21, R31, and R41 in the redundantly actuated variant.
+
+    Args:
+        p: the parameters.
+
+    Returns:
+        Joint names.
+    """
     return ("R11", "R21", "R31", "R41") if p.redundant_actuation else ("R11", "R21", "R31")

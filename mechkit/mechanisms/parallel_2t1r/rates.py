@@ -45,6 +45,14 @@ def jacobians(d: Dims, theta: np.ndarray, pose: Pose) -> tuple[np.ndarray, np.nd
 
     Entries f_ij as printed; g_ii = 2 l2 (sin theta_i (x_C - x_B) + cos theta_i (z_C - z_B)), the
     time derivative of the printed constraints (the printed g_ii carry the opposite sign).
+
+    Args:
+        d: the mechanism's dimensions (m).
+        theta: the inputs theta_1..theta_3 (3,), rad.
+        pose: a platform pose (x, z in m, alpha in rad).
+
+    Returns:
+        (J_p (3, 3), J_q (3, 3)).
     """
     r, w = _dyad_terms(d, np.append(np.asarray(theta)[:3], 0.0), pose)
     sa, ca = np.sin(pose.alpha), np.cos(pose.alpha)
@@ -87,6 +95,9 @@ def at_rest(pose: Pose, theta: np.ndarray, theta4: float) -> State:
         pose: platform pose.
         theta: (3,) inputs theta_1..theta_3 (rad).
         theta4: follower angle (rad).
+
+    Returns:
+        The state.
     """
     return State(pose, np.zeros(3), np.zeros(3), np.append(theta, theta4), np.zeros(4), np.zeros(4))
 
@@ -118,11 +129,15 @@ def motion_state(
     """Platform and follower motion from the inputs: eqs. (12), (15) and the follower theta_4.
 
     Args:
+        d: the mechanism's dimensions (m).
         theta: (3,) inputs theta_1..theta_3 (rad).
         theta_dot: (3,) their rates (rad/s).
         theta_ddot: (3,) their accelerations (rad/s^2).
         pose: the assembled pose for ``theta`` (one of ``forward_kinematics``).
         theta4: the assembled follower angle (one of ``follower_angles``).
+
+    Returns:
+        The state.
 
     Raises:
         SingularConfiguration: J_p (parallel singularity) or limb III (serial) is singular.
@@ -157,7 +172,13 @@ def follower_rate(d: Dims, theta: np.ndarray, pose: Pose, x_dot: np.ndarray) -> 
     (C4 - B4).(C4' - B4') = 0.
 
     Args:
+        d: the mechanism's dimensions (m).
         theta: (4,) theta_1..theta_4 (rad).
+        pose: a platform pose (x, z in m, alpha in rad).
+        x_dot: the platform's rates (x', z', alpha'), m/s and rad/s.
+
+    Returns:
+        theta_4', rad/s.
 
     Raises:
         SingularConfiguration: limb III stretched or folded (its rate is undefined).
@@ -184,7 +205,15 @@ class BodyMotion:
 
 
 def link_motion(d: Dims, s: State) -> dict[str, BodyMotion]:
-    """Every body's COM (bars: mid-point; platform: p), its velocity and acceleration: eqs. (16)-(29)."""
+    """Every body's COM (bars: mid-point; platform: p), its velocity and acceleration: eqs. (16)-(29).
+
+    Args:
+        d: the mechanism's dimensions (m).
+        s: a motion state.
+
+    Returns:
+        Body -> its motion (COM, velocity, acceleration, angle, angular velocity and acceleration; world).
+    """
     out: dict[str, BodyMotion] = {}
     vc, ac = _end_motion(d, s.pose, s.x_dot, s.x_ddot)
     phi2 = distal_angles(d, s.theta, s.pose)

@@ -7,14 +7,21 @@ import numpy as np
 from mechkit.base.exceptions import InvalidParameters
 from mechkit.mechanism import Mechanism
 from mechkit.mechanisms.parallel_2t1r.assembly import EXAMPLE_INPUTS, assembled_pose
-from mechkit.mechanisms.parallel_2t1r.joints import configuration
+from mechkit.mechanisms.parallel_2t1r.joint_state import configuration
 from mechkit.mechanisms.parallel_2t1r.kinematics import follower_angles, forward_kinematics
 from mechkit.mechanisms.parallel_2t1r.motion_law import MOTION_DURATION, motion_law
 from mechkit.mechanisms.parallel_2t1r.rates import at_rest
 
 
 def motion_law_scene(mech: Mechanism) -> list[np.ndarray]:
-    """Configurations q along the paper's motion law, t = 0..5 s every 0.05 s (analytic positions)."""
+    """Configurations q along the paper's motion law, t = 0..5 s every 0.05 s (analytic positions).
+
+    Args:
+        mech: the 2T1R.
+
+    Returns:
+        101 configurations (nq,).
+    """
     poses = []
     for t in np.linspace(0.0, MOTION_DURATION, 101):
         theta = motion_law(float(t))[0]
@@ -24,13 +31,28 @@ def motion_law_scene(mech: Mechanism) -> list[np.ndarray]:
 
 
 def motion_law_times(mech: Mechanism, poses: int) -> np.ndarray:
-    """Times (s) of the motion-law scene's poses: uniform over the law's 5 s."""
+    """Times (s) of the motion-law scene's poses: uniform over the law's 5 s.
+
+    Args:
+        mech: the 2T1R.
+        poses: the number of poses.
+
+    Returns:
+        (poses,) times, s.
+    """
     return np.linspace(0.0, MOTION_DURATION, poses)
 
 
 def example_configurations(mech: Mechanism) -> list[np.ndarray]:
     """Every assembly of the paper's example (theta = 10, 20, 30 deg): each forward pose limb III can
-    reach, with each of its theta4 roots, closed by the core's solver from the analytic configuration."""
+    reach, with each of its theta4 roots, closed by the core's solver from the analytic configuration.
+
+    Args:
+        mech: the 2T1R.
+
+    Returns:
+        The configurations (nq,), six at the default dimensions.
+    """
     out = []
     for sol in forward_kinematics(mech.params.dims, EXAMPLE_INPUTS):
         try:

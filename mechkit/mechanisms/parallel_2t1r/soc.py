@@ -47,7 +47,15 @@ class Points:
 
     @classmethod
     def of(cls, d: kin.Dims, s: rates.State) -> Points:
-        """The points (world, m) of a motion state at dimensions d."""
+        """The points (world, m) of a motion state at dimensions d.
+
+        Args:
+            d: the mechanism's dimensions (m).
+            s: a motion state.
+
+        Returns:
+            The points.
+        """
         return cls(kin.base_points(d), kin.elbow_points(d, s.theta), kin.end_points(d, s.pose),
                    kin.platform_points(d, s.pose)["p"])
 
@@ -77,8 +85,13 @@ def skcs(p: Parallel2T1RParams, s: rates.State, m4: float | None = None) -> list
     """SKC3, SKC2, SKC1 at one instant (see the module docstring).
 
     Args:
-        m4: effort (N m) of the R41 motor in the redundantly actuated variant, known beforehand
-            (e.g. from `classic_torques`' minimum-norm distribution); None for a passive limb III.
+        p: the parameters.
+        s: a motion state.
+        m4: effort (N m) of the R41 motor in the redundantly actuated variant, known beforehand (e.g. from
+            `classic_torques`' minimum-norm distribution); None for a passive limb III.
+
+    Returns:
+        The SKCs in solve order.
     """
     pts = Points.of(p.dims, s)
     loads = _loads(p, s)
@@ -114,6 +127,14 @@ def skcs(p: Parallel2T1RParams, s: rates.State, m4: float | None = None) -> list
 
 def soc_inverse_dynamics(p: Parallel2T1RParams, s: rates.State, m4: float | None = None) -> SOCResult:
     """Efforts M1..M3 and the reactions at R43 and R23 by the SOC method (`mechkit.validation.soc`).
+
+    Args:
+        p: the parameters.
+        s: a motion state.
+        m4: R41's motor torque (N m), as in `skcs`.
+
+    Returns:
+        Efforts (N m) and the reactions at R23 and R43 (world wrenches (6,)).
 
     Raises:
         SingularConfiguration: an SKC's virtual-work system is singular (e.g. SKC2 when limb II's
@@ -155,6 +176,12 @@ def classic_torques(p: Parallel2T1RParams, s: rates.State, actuated: tuple[str, 
     (u = -J_q^T J_p^-T Q_X, the chain rule of its Jacobians over theta). With four motors
     (``R41`` added) the system has a one-dimensional family of solutions; the minimum-norm torques
     (pseudo-inverse) are returned.
+
+    Args:
+        p: the parameters.
+        s: a motion state.
+        actuated: the motors.
+        max_cond: the largest condition number of J_a accepted.
 
     Returns:
         (efforts by joint name (N m), condition number of J_a).

@@ -25,7 +25,7 @@ from mechkit.mechanisms.parallel_2t1r.compare import (
     evaluate,
     pinocchio_motion,
 )
-from mechkit.mechanisms.parallel_2t1r.joints import joint_positions
+from mechkit.mechanisms.parallel_2t1r.joint_state import joint_positions
 from mechkit.mechanisms.parallel_2t1r.motion_law import motion_law, motion_law_times, state_at
 from mechkit.mechanisms.parallel_2t1r.rates import at_rest, jacobians
 
@@ -63,6 +63,13 @@ def singular_approach(mech: Mechanism, deltas: np.ndarray) -> Study:
     Series: "<method>:<quantity>" as in `evaluate` for the paper's three motors, the same prefixed
     "redundant/" for R41 driven too (minimum-norm torques), and "cond_Jp" (analytic J_p). Pinocchio
     assembles from the analytic configuration and is evaluated at rest.
+
+    Args:
+        mech: the 2T1R.
+        deltas: distances of theta_1 from theta_2, rad.
+
+    Returns:
+        The study: series by name, failures by method.
     """
     p = mech.params
 
@@ -90,6 +97,13 @@ def start_of_motion(mech: Mechanism, times: np.ndarray) -> Study:
 
     Series as in `evaluate` plus "cond_Jp" and "analytic:x_ddot" (|platform acceleration| of eq.
     (15)); a sample whose analytic state or Pinocchio motion raises is recorded as a failure.
+
+    Args:
+        mech: the 2T1R.
+        times: times near the start, s.
+
+    Returns:
+        The study: series by name, failures by method.
     """
     p = mech.params
 
@@ -126,12 +140,27 @@ APPROACH_DELTAS = np.append(np.logspace(-1, -8, 15), 0.0)
 
 
 def comparison(mech: Mechanism, samples: int = COMPARISON_SAMPLES) -> Comparison:
-    """Pinocchio, SOC and classic virtual work at `samples` regular times of the motion law in (0, 5] s."""
+    """Pinocchio, SOC and classic virtual work at `samples` regular times of the motion law in (0, 5] s.
+
+    Args:
+        mech: the 2T1R.
+        samples: how many times.
+
+    Returns:
+        The comparison.
+    """
     return compare_along(mech, motion_law_times(samples))
 
 
 def comparison_lines(cmp: Comparison) -> list[str]:
-    """Per quantity, its largest magnitude and each method's error relative to it; the joints' agreement."""
+    """Per quantity, its largest magnitude and each method's error relative to it; the joints' agreement.
+
+    Args:
+        cmp: the comparison.
+
+    Returns:
+        Text lines.
+    """
     peak = np.max(np.abs(cmp.values["pinocchio"]), axis=0)
     soc, classic = cmp.relative_error("soc"), cmp.relative_error("classic")
     out = [(f"{len(cmp.times)} samples, t = {cmp.times[0]:g}..{cmp.times[-1]:g} s; relative to each quantity's "
@@ -153,12 +182,28 @@ class SingularStudies:
 
 
 def singular(mech: Mechanism, times: np.ndarray = START_TIMES, deltas: np.ndarray = APPROACH_DELTAS) -> SingularStudies:
-    """Both singular studies: `start_of_motion` at `times` (s), `singular_approach` at `deltas` (rad)."""
+    """Both singular studies: `start_of_motion` at `times` (s), `singular_approach` at `deltas` (rad).
+
+    Args:
+        mech: the 2T1R.
+        times: times near the start, s.
+        deltas: distances from the singular pose, rad.
+
+    Returns:
+        Both studies.
+    """
     return SingularStudies(start_of_motion(mech, times), singular_approach(mech, deltas))
 
 
 def singular_lines(s: SingularStudies) -> list[str]:
-    """Where each method first raised in each study, and why."""
+    """Where each method first raised in each study, and why.
+
+    Args:
+        s: the singular studies.
+
+    Returns:
+        Text lines.
+    """
     out = []
     for name, study, unit in (("motion law, t -> 0+", s.start, "t (s)"), ("theta_1 onto theta_2", s.approach,
                                                                          "theta_2 - theta_1 (rad)")):

@@ -18,7 +18,16 @@ from mechkit.validation import lagrange
 
 
 def lagrange_problem(motion: Motion, mech: Mechanism, sample: Any) -> tuple[lagrange.Linkage, np.ndarray, np.ndarray, list[float]]:
-    """The linkage in reference-point coordinates and its state (q, qd, motor accelerations); cached."""
+    """The linkage in reference-point coordinates and its state (q, qd, motor accelerations); cached.
+
+    Args:
+        motion: the linkage's closed form.
+        mech: the linkage.
+        sample: a bench sample (inputs, rates, accelerations in actuated order; tau; `extra` for the cache).
+
+    Returns:
+        (the linkage in `mechkit.validation.lagrange`, q, qd (3 per link), motor accelerations (rad/s^2)).
+    """
     if "lagrange" not in sample.extra:
         st = state(motion, mech, sample)
         names = list(st.links)
@@ -42,7 +51,16 @@ def lagrange_problem(motion: Motion, mech: Mechanism, sample: Any) -> tuple[lagr
 
 
 def lagrange_first_kind(motion: Motion, mech: Mechanism, sample: Any) -> dict[str, Any]:
-    """Efforts (N m) and pin forces (in-plane, world wrenches (6,)) from the patent's A f = P."""
+    """Efforts (N m) and pin forces (in-plane, world wrenches (6,)) from the patent's A f = P.
+
+    Args:
+        motion: the linkage's closed form.
+        mech: the linkage.
+        sample: a bench sample (inputs, rates, accelerations in actuated order; tau; `extra` for the cache).
+
+    Returns:
+        {"efforts": motor -> torque (N m), "reactions": pin -> world wrench (6,)}.
+    """
     linkage, q, qd, acc = lagrange_problem(motion, mech, sample)
     sol = linkage.solve(q, qd, acc)
     reactions = {}
@@ -56,6 +74,14 @@ def lagrange_forward(motion: Motion, mech: Mechanism, sample: Any) -> np.ndarray
 
     The efforts u are the sample's tau on the motor pins (torques about -y); returns the joint
     accelerations of mechkit's q (relative angle rates of each URDF joint).
+
+    Args:
+        motion: the linkage's closed form.
+        mech: the linkage.
+        sample: a bench sample (inputs, rates, accelerations in actuated order; tau; `extra` for the cache).
+
+    Returns:
+        a (nv,), rad/s^2.
     """
     linkage, q, qd, _ = lagrange_problem(motion, mech, sample)
     st = state(motion, mech, sample)

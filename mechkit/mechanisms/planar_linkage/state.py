@@ -22,20 +22,47 @@ Motion = Callable[[MechanismParams, Sequence[float], Sequence[float], Sequence[f
 
 
 def state(motion: Motion, mech: Mechanism, sample: Any) -> LinkageState:
-    """Closed-form motion at the sample's inputs, rates and accelerations (cached in sample.extra)."""
+    """Closed-form motion at the sample's inputs, rates and accelerations (cached in sample.extra).
+
+    Args:
+        motion: the linkage's closed form.
+        mech: the linkage.
+        sample: a bench sample (inputs, rates, accelerations in actuated order; tau; `extra` for the cache).
+
+    Returns:
+        The linkage's state.
+    """
     if "planar_state" not in sample.extra:
         sample.extra["planar_state"] = motion(mech.params, sample.inputs, sample.rates, sample.accelerations)
     return sample.extra["planar_state"]
 
 
 def at_rest(motion: Motion, mech: Mechanism, sample: Any) -> LinkageState:
-    """Closed-form pose at the sample's inputs, zero rates and accelerations (not cached)."""
+    """Closed-form pose at the sample's inputs, zero rates and accelerations (not cached).
+
+    Args:
+        motion: the linkage's closed form.
+        mech: the linkage.
+        sample: a bench sample (inputs, rates, accelerations in actuated order; tau; `extra` for the cache).
+
+    Returns:
+        The linkage's state.
+    """
     zero = [0.0] * len(sample.inputs)
     return motion(mech.params, sample.inputs, zero, zero)
 
 
 def joint_vector(mech: Mechanism, st: LinkageState, values: np.ndarray) -> np.ndarray:
-    """Values given on the state's coordinates (`st.coordinates` order) as a mechkit (nv,) vector."""
+    """Values given on the state's coordinates (`st.coordinates` order) as a mechkit (nv,) vector.
+
+    Args:
+        mech: the linkage.
+        st: a state of it.
+        values: values in `st.coordinates` order.
+
+    Returns:
+        (nv,) vector in mechkit's order.
+    """
     out = np.zeros(mech.model.nv)
     out[[mech.v_index(j) for j in st.coordinates]] = values
     return out

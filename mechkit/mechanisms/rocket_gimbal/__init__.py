@@ -7,8 +7,8 @@ it hangs nozzle-down from the world (`rocket`, z up): world = Rx(pi) * paper.
 
 Modules, bottom up: `kinematics` (the paper's IK, Newton FK, pitch / yaw, the linear rule, numpy
 only), `resultant` (the paper's FK: half-angle substitution, Sylvester resultant, common-root test),
-`motion` (every body's motion from (alpha, beta)), `params` (parameters, pivots, inertias), `state`
-(the Pinocchio tree from the motion), `scenes` (the swing under thrust), `soc` (the SKC
+`body_motion` (every body's motion from (alpha, beta)), `params` (parameters, pivots, inertias),
+`joint_state` (the Pinocchio tree from the motion), `scenes` (the swing under thrust), `soc` (the SKC
 decomposition), `checks` (`mechkit report` rows), `bench` (`mechkit bench` methods), `failure` (the
 failure atlas's study of the resultant's lost digits), `design` (the sweep's `rule_error`),
 `studies` (the linear rule's error map, the resultant's conditioning, the swing by two methods, as

@@ -13,13 +13,13 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from mechkit.catalog.contract import BenchFunction, BenchMethod, BenchReference
+from mechkit.mechanisms.rocket_gimbal.body_motion import gimbal_motion
+from mechkit.mechanisms.rocket_gimbal.joint_state import hinges, joint_state
 from mechkit.mechanisms.rocket_gimbal.kinematics import fk_newton, strokes
-from mechkit.mechanisms.rocket_gimbal.motion import gimbal_motion
 from mechkit.mechanisms.rocket_gimbal.params import geometry
 from mechkit.mechanisms.rocket_gimbal.resultant import fk_resultant, pick_in_range
 from mechkit.mechanisms.rocket_gimbal.scenes import SwingScene
 from mechkit.mechanisms.rocket_gimbal.soc import soc_skcs
-from mechkit.mechanisms.rocket_gimbal.state import hinges, joint_state
 from mechkit.validation.soc import SOCResult, solve_soc
 
 if TYPE_CHECKING:
@@ -30,7 +30,14 @@ __all__ = ["METHODS", "REFERENCES", "closed_form_strokes", "fk_assembly", "soc_i
 
 def fk_assembly(method: str) -> BenchFunction:
     """Assembly by the paper's FK ("resultant": in-range root of the resultant; else Newton from the
-    null pose), then the servos' Hooke angles and strokes in closed form."""
+    null pose), then the servos' Hooke angles and strokes in closed form.
+
+    Args:
+        method: "resultant" (the paper's polynomial) or "newton".
+
+    Returns:
+        The bench function (mechanism, sample) -> q (nq,).
+    """
 
     def assemble(mech: Mechanism, sample: Any) -> np.ndarray:
         geo, stroke = geometry(mech.params), np.asarray(sample.inputs, dtype=float)
@@ -45,12 +52,28 @@ def fk_assembly(method: str) -> BenchFunction:
 
 
 def closed_form_strokes(mech: Mechanism, sample: Any) -> np.ndarray:
-    """Inverse kinematics in closed form: the strokes (dlA, dlB) (m) of the sample's hinge angles."""
+    """Inverse kinematics in closed form: the strokes (dlA, dlB) (m) of the sample's hinge angles.
+
+    Args:
+        mech: the gimbal.
+        sample: a bench sample (q with the hinge angles, v, a).
+
+    Returns:
+        (2,) strokes, m.
+    """
     return strokes(geometry(mech.params), *hinges(mech, sample.q, "q"))
 
 
 def soc_inverse_dynamics(mech: Mechanism, sample: Any) -> SOCResult:
-    """SOC virtual work (numpy) with the analytic motion of (alpha, beta); no thrust (as the bench)."""
+    """SOC virtual work (numpy) with the analytic motion of (alpha, beta); no thrust (as the bench).
+
+    Args:
+        mech: the gimbal.
+        sample: a bench sample (q with the hinge angles, v, a).
+
+    Returns:
+        Efforts (N) and every joint's reaction (world wrenches (6,)).
+    """
     motion = gimbal_motion(
         geometry(mech.params), hinges(mech, sample.q, "q"), hinges(mech, sample.v), hinges(mech, sample.a)
     )

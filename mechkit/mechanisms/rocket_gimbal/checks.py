@@ -10,6 +10,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from mechkit.mechanism import Mechanism
+from mechkit.mechanisms.rocket_gimbal.joint_state import hinges, joint_state
 from mechkit.mechanisms.rocket_gimbal.kinematics import (
     PAPER_EXAMPLE,
     RULE_STROKE,
@@ -21,7 +22,6 @@ from mechkit.mechanisms.rocket_gimbal.params import geometry
 from mechkit.mechanisms.rocket_gimbal.resultant import fk_resultant, pick_in_range
 from mechkit.mechanisms.rocket_gimbal.scenes import SwingScene, thrust_fext
 from mechkit.mechanisms.rocket_gimbal.soc import soc_skcs
-from mechkit.mechanisms.rocket_gimbal.state import hinges, joint_state
 from mechkit.validation.soc import solve_soc
 
 __all__ = [
@@ -37,7 +37,16 @@ __all__ = [
 def fk_closure(
     mech: Mechanism, stroke: np.ndarray, guess: np.ndarray | None = None
 ) -> tuple[np.ndarray, np.ndarray]:
-    """FK by the closure solver (`Mechanism.assemble`, the strokes as inputs): ((alpha, beta) rad, q)."""
+    """FK by the closure solver (`Mechanism.assemble`, the strokes as inputs).
+
+    Args:
+        mech: the gimbal.
+        stroke: (dlA, dlB), m.
+        guess: the solve's start (nq,) (default: the home assembly).
+
+    Returns:
+        ((alpha, beta) rad, q (nq,)).
+    """
     q = mech.assemble({"a_stroke": stroke[0], "b_stroke": stroke[1]}, guess=guess)
     return hinges(mech, q, "q"), q
 
@@ -60,7 +69,16 @@ class FKAgreement:
 
 
 def fk_agreement(mech: Mechanism, n: int = 5, stroke_max: float = RULE_STROKE) -> FKAgreement:
-    """FK by the resultant, by Newton and by the closure solver over an n x n grid of strokes."""
+    """FK by the resultant, by Newton and by the closure solver over an n x n grid of strokes.
+
+    Args:
+        mech: the gimbal.
+        n: grid points per stroke axis.
+        stroke_max: the grid's half width, m.
+
+    Returns:
+        The worst differences (rad) of each pair of methods, the IK round trip (m) and the worst condition.
+    """
     geo = geometry(mech.params)
     axis = np.linspace(-stroke_max, stroke_max, n)
     worst = np.zeros(5)
@@ -108,7 +126,17 @@ class DynamicsAgreement:
 def dynamics_agreement(
     mech: Mechanism, scene: SwingScene | None = None, times: np.ndarray | None = None
 ) -> DynamicsAgreement:
-    """Inverse dynamics of the swing by Pinocchio (thrust as fext) and by SOC, compared at `times` (s)."""
+    """Inverse dynamics of the swing by Pinocchio (thrust as fext) and by SOC, compared at `times` (s).
+
+    Args:
+        mech: the gimbal.
+        scene: the swing (default `SwingScene()`).
+        times: the instants, s (default: one period).
+
+    Returns:
+        The worst relative differences of efforts and reactions, the indeterminate components, the SOC
+            consistency, and the joints not compared.
+    """
     scene = scene or SwingScene()
     times = np.linspace(0.0, 1.0 / scene.frequency, 7, endpoint=False) if times is None else times
     eff = rea = cons = 0.0
@@ -133,7 +161,14 @@ def dynamics_agreement(
 
 
 def self_checks(mech: Mechanism) -> dict[str, float]:
-    """Rows of `mechkit report rocket_gimbal` (worst error of each check; smaller is better)."""
+    """Rows of `mechkit report rocket_gimbal` (worst error of each check; smaller is better).
+
+    Args:
+        mech: the gimbal.
+
+    Returns:
+        Check name -> worst error.
+    """
     geo = geometry(mech.params)
     fk = fk_agreement(mech, n=3)
     dyn = dynamics_agreement(mech, times=np.array([0.1, 0.35]))

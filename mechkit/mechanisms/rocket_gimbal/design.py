@@ -17,7 +17,14 @@ RULE_GRID = 15
 
 
 def rule_error(mech: Mechanism) -> dict[str, float]:
-    """{"rule_error": the linear rule's worst error over the stroke square (rad)} at the design's geometry."""
+    """The linear rule's worst error over the stroke square at the design's geometry.
+
+    Args:
+        mech: the gimbal (one design).
+
+    Returns:
+        {"rule_error": the worst error, rad}.
+    """
     return {"rule_error": linear_rule_errors(geometry(mech.params), n=RULE_GRID).worst}
 
 

@@ -16,7 +16,15 @@ from mechkit.mechanisms.rocket_gimbal.studies import SUPPORTS, Conditioning, Lin
 
 
 def linearisation_figure(study: Linearisation, folder: Path) -> list[Path]:
-    """Error maps of pitch and yaw over the stroke square, and the errors along the Table 1 lines."""
+    """Error maps of pitch and yaw over the stroke square, and the errors along the Table 1 lines.
+
+    Args:
+        study: the linearisation study.
+        folder: where the PNG goes.
+
+    Returns:
+        The file written.
+    """
     plt = pyplot("rocket_gimbal figures")
     e, deg = study.errors, np.degrees
     mm = 1e3 * e.stroke_a
@@ -42,7 +50,15 @@ def linearisation_figure(study: Linearisation, folder: Path) -> list[Path]:
 
 
 def conditioning_figure(study: Conditioning, folder: Path) -> list[Path]:
-    """log10 of the in-range root's condition number and of its raw error over the stroke square."""
+    """log10 of the in-range root's condition number and of its raw error over the stroke square.
+
+    Args:
+        study: the conditioning study.
+        folder: where the PNG goes.
+
+    Returns:
+        The file written.
+    """
     plt = pyplot("rocket_gimbal figures")
     grid = study.grid
     mm = 1e3 * grid.axis
@@ -60,7 +76,15 @@ def conditioning_figure(study: Conditioning, folder: Path) -> list[Path]:
 
 
 def swing_figure(study: Swing, folder: Path) -> list[Path]:
-    """Servo forces and support forces by both methods, and their worst relative difference, over the period."""
+    """Servo forces and support forces by both methods, and their worst relative difference, over the period.
+
+    Args:
+        study: the swing study.
+        folder: where the PNG goes.
+
+    Returns:
+        The file written.
+    """
     plt = pyplot("rocket_gimbal figures")
     times, rel = study.times, study.relative_difference
     pin_u, soc_u = study.efforts["pinocchio"], study.efforts["soc"]

@@ -76,7 +76,14 @@ class GimbalGeometry:
         Args:
             pivot_radius: r, m, distance of the actuator lines from the nozzle axis.
             pivot_offset: h, m, height of the engine pivots along the nozzle axis from O.
-            length_a: lA0, m. length_b: lB0, m.
+            length_a: lA0, m, actuator A's nominal length.
+            length_b: lB0, m, actuator B's nominal length.
+
+        Returns:
+            The geometry.
+
+        Raises:
+            InvalidParameters: a length that is not finite and > 0.
         """
         for name, value in (
             ("pivot_radius", pivot_radius),
@@ -95,24 +102,57 @@ class GimbalGeometry:
 
 
 def attitude(alpha: float, beta: float) -> np.ndarray:
-    """Engine attitude R (3, 3) in O-xyz: about Ox1 by alpha, then about the new y by beta (rad)."""
+    """Engine attitude R (3, 3) in O-xyz: about Ox1 by alpha, then about the new y by beta (rad).
+
+    Args:
+        alpha: the bracket hinge's angle, rad.
+        beta: the engine hinge's angle, rad.
+
+    Returns:
+        R (3, 3).
+    """
     return rot_z(GIMBAL_ANGLE) @ rot_x(alpha) @ rot_y(beta) @ rot_z(-GIMBAL_ANGLE)
 
 
 def hinge_axes(alpha: float) -> tuple[np.ndarray, np.ndarray]:
-    """Unit axes (O-xyz) of the bracket hinge Ox1 (fixed) and the engine hinge Oy2 (turns with alpha)."""
+    """Unit axes (O-xyz) of the bracket hinge Ox1 (fixed) and the engine hinge Oy2 (turns with alpha).
+
+    Args:
+        alpha: the bracket hinge's angle, rad.
+
+    Returns:
+        (Ox1 axis (3,), Oy2 axis (3,)).
+    """
     frame = rot_z(GIMBAL_ANGLE)
     return frame[:, 0].copy(), frame @ rot_x(alpha)[:, 1]
 
 
 def actuator_lengths(geo: GimbalGeometry, alpha: float, beta: float) -> np.ndarray:
-    """Closed-form inverse kinematics: lengths (L_A, L_B) in m of the actuators at (alpha, beta) rad."""
+    """Closed-form inverse kinematics: lengths (L_A, L_B) in m of the actuators at (alpha, beta) rad.
+
+    Args:
+        geo: the geometry.
+        alpha: the bracket hinge's angle, rad.
+        beta: the engine hinge's angle, rad.
+
+    Returns:
+        (L_A, L_B), m.
+    """
     moved = geo.engine_pivots @ attitude(alpha, beta).T
     return np.linalg.norm(moved - geo.frame_pivots, axis=1)
 
 
 def strokes(geo: GimbalGeometry, alpha: float, beta: float) -> np.ndarray:
-    """Inverse kinematics as strokes (dlA, dlB) = (L_A - lA0, L_B - lB0), m."""
+    """Inverse kinematics as strokes (dlA, dlB) = (L_A - lA0, L_B - lB0), m.
+
+    Args:
+        geo: the geometry.
+        alpha: the bracket hinge's angle, rad.
+        beta: the engine hinge's angle, rad.
+
+    Returns:
+        (dlA, dlB), m.
+    """
     return actuator_lengths(geo, alpha, beta) - geo.nominal_lengths
 
 
@@ -127,7 +167,16 @@ def _lengths_and_jacobian(geo: GimbalGeometry, alpha: float, beta: float) -> tup
 
 
 def length_jacobian(geo: GimbalGeometry, alpha: float, beta: float) -> np.ndarray:
-    """d(L_A, L_B)/d(alpha, beta), (2, 2) m/rad, analytic (rows: actuators; columns: alpha, beta)."""
+    """d(L_A, L_B)/d(alpha, beta), (2, 2) m/rad, analytic (rows: actuators; columns: alpha, beta).
+
+    Args:
+        geo: the geometry.
+        alpha: the bracket hinge's angle, rad.
+        beta: the engine hinge's angle, rad.
+
+    Returns:
+        (2, 2) Jacobian, m/rad.
+    """
     return _lengths_and_jacobian(geo, alpha, beta)[1]
 
 
@@ -153,6 +202,7 @@ def fk_newton(
     Raises:
         ClosureNotConverged: no convergence within max_iter.
         SingularConfiguration: the length Jacobian is singular on the way.
+        InvalidParameters: strokes that are not two finite values with lA0 + dl > 0.
     """
     target = geo.nominal_lengths + np.asarray(stroke, dtype=float)
     if target.shape != (2,) or not np.all(np.isfinite(target)) or np.any(target <= 0):
@@ -174,7 +224,15 @@ def fk_newton(
 
 
 def pitch_yaw(alpha: float, beta: float) -> np.ndarray:
-    """(theta_x, theta_y) rad: turns of the nozzle axis n = R e_z about Ox (pitch) and Oy (yaw)."""
+    """(theta_x, theta_y) rad: turns of the nozzle axis n = R e_z about Ox (pitch) and Oy (yaw).
+
+    Args:
+        alpha: the bracket hinge's angle, rad.
+        beta: the engine hinge's angle, rad.
+
+    Returns:
+        (theta_x, theta_y), rad.
+    """
     n = attitude(alpha, beta)[:, 2]
     return np.array([np.arctan2(-n[1], n[2]), np.arctan2(n[0], n[2])])
 
@@ -190,10 +248,14 @@ def linear_rule(
 
     Args:
         stroke: (..., 2) strokes (dlA, dlB), m.
-        stroke_max: m. angle_max: rad.
+        stroke_max: the rule's full stroke, m.
+        angle_max: the angle at full stroke, rad.
 
     Returns:
         (..., 2) (theta_x, theta_y) rad.
+
+    Raises:
+        InvalidParameters: a stroke_max or angle_max that is not finite and > 0.
     """
     if not (np.isfinite(stroke_max) and stroke_max > 0):
         raise InvalidParameters("stroke_max", stroke_max, "must be a finite stroke > 0 (m)")
@@ -228,7 +290,20 @@ class LinearRuleErrors:
 def linear_rule_errors(
     geo: GimbalGeometry, stroke_max: float = RULE_STROKE, angle_max: float = RULE_ANGLE, n: int = 45
 ) -> LinearRuleErrors:
-    """Error map of the linear rule over the square [-stroke_max, stroke_max]^2 (n x n strokes, n odd)."""
+    """Error map of the linear rule over the square [-stroke_max, stroke_max]^2 (n x n strokes, n odd).
+
+    Args:
+        geo: the geometry.
+        stroke_max: the square's half width, m.
+        angle_max: the rule's angle at full stroke, rad.
+        n: grid points per axis (odd).
+
+    Returns:
+        The exact and rule angles on the grid, their errors, and the worst error (rad) and where.
+
+    Raises:
+        InvalidParameters: n even or below 3.
+    """
     if n < 3 or n % 2 == 0:
         raise InvalidParameters("n", n, "need an odd grid size >= 3 (the grid must contain 0)")
     axis = np.linspace(-stroke_max, stroke_max, n)

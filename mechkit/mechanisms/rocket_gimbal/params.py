@@ -84,7 +84,14 @@ class RocketGimbalParams(MechanismParams):
 
 
 def geometry(p: RocketGimbalParams) -> GimbalGeometry:
-    """The pivots of the paper frame O-xyz from the parameters."""
+    """The pivots of the paper frame O-xyz from the parameters.
+
+    Args:
+        p: the parameters.
+
+    Returns:
+        The geometry.
+    """
     return GimbalGeometry.reconstruction(p.pivot_radius, p.pivot_offset, p.length_a, p.length_b)
 
 
@@ -94,6 +101,12 @@ def body_inertias(p: RocketGimbalParams) -> BodySpec:
     Every body is axisymmetric: the engine and the servo parts are uniform solid cylinders about their
     axes, the bracket a thin ring about its normal, the Hooke crosses isotropic. The xacro computes the
     same from the same numbers.
+
+    Args:
+        p: the parameters.
+
+    Returns:
+        Body -> (mass kg, transverse moment kg m^2, axial moment kg m^2).
     """
 
     def cylinder(mass: float, length: float, radius: float) -> tuple[float, float, float]:

@@ -70,6 +70,9 @@ def half_angle_equations(geo: GimbalGeometry, stroke: np.ndarray) -> np.ndarray:
     Returns:
         (2, 3, 3) array C: equation k is ``sum_ij C[k, i, j] a^i b^j = 0`` (a = tan(alpha/2),
         b = tan(beta/2)); units m^2.
+
+    Raises:
+        InvalidParameters: strokes that are not two finite values with l0 + dl > 0.
     """
     lengths = geo.nominal_lengths + np.asarray(stroke, dtype=float)
     if lengths.shape != (2,) or not np.all(np.isfinite(lengths)) or np.any(lengths <= 0):
@@ -91,7 +94,15 @@ def _b_coefficients(eq: np.ndarray) -> list[Polynomial]:
 
 
 def sylvester_matrix(eqs: np.ndarray, a: float) -> np.ndarray:
-    """The 4x4 Sylvester matrix in b of the two equations at a given a (numeric check of the resultant)."""
+    """The 4x4 Sylvester matrix in b of the two equations at a given a (numeric check of the resultant).
+
+    Args:
+        eqs: the (2, 3, 3) coefficients of `half_angle_equations`.
+        a: tan(alpha/2).
+
+    Returns:
+        (4, 4) matrix.
+    """
     (g0, g1, g2), (h0, h1, h2) = ([p(a) for p in _b_coefficients(e)] for e in eqs)
     return np.array([[g2, g1, g0, 0.0], [0.0, g2, g1, g0], [h2, h1, h0, 0.0], [0.0, h2, h1, h0]])
 
@@ -101,6 +112,12 @@ def sylvester_resultant(eqs: np.ndarray) -> Polynomial:
 
     Uses the expanded 4x4 Sylvester determinant of g = g2 b^2 + g1 b + g0 and h likewise:
     ``(g2 h0 - g0 h2)^2 - (g2 h1 - g1 h2)(g1 h0 - g0 h1)``.
+
+    Args:
+        eqs: the (2, 3, 3) coefficients of `half_angle_equations`.
+
+    Returns:
+        The resultant, a polynomial in a = tan(alpha/2).
     """
     (g0, g1, g2), (h0, h1, h2) = (_b_coefficients(e) for e in eqs)
     return (g2 * h0 - g0 * h2) ** 2 - (g2 * h1 - g1 * h2) * (g1 * h0 - g0 * h1)
@@ -111,6 +128,12 @@ def degree16_polynomial(eqs: np.ndarray) -> Polynomial:
 
     Equal to ``(1 + a^2)^4 * sylvester_resultant(eqs)``; computed from the Sylvester formula on the
     multiplied equations (not by multiplying the result), so its coefficients carry their own rounding.
+
+    Args:
+        eqs: the (2, 3, 3) coefficients of `half_angle_equations`.
+
+    Returns:
+        The degree-16 polynomial in a.
     """
     clear = Polynomial([1.0, 0.0, 1.0])
     scaled = np.array([[(clear * Polynomial(e[:, j])).coef for j in range(3)] for e in eqs])
@@ -124,6 +147,13 @@ def root_condition(poly: Polynomial, root: complex) -> float:
     finder such as the companion-matrix eigenvalues of `Polynomial.roots` commits) moves the root by
     about cond * eps, measured relative to max(1, |x|) (absolute near 0, where a = tan(alpha/2) ~
     alpha/2): log10(cond) digits are lost. Infinite at a multiple root.
+
+    Args:
+        poly: the polynomial p.
+        root: one of its roots x.
+
+    Returns:
+        The condition number (-); inf at a multiple root.
     """
     x = complex(root)
     powers = np.abs(x) ** np.arange(poly.coef.size)
@@ -231,6 +261,13 @@ def fk_resultant(
 
 def pick_in_range(modes: list[AssemblyMode], limit: float = SWING_LIMIT) -> AssemblyMode:
     """The mode with |alpha|, |beta| < limit (the paper's in-range pick).
+
+    Args:
+        modes: the real assembly modes (`fk_resultant`).
+        limit: the swing range, rad.
+
+    Returns:
+        The mode.
 
     Raises:
         InvalidParameters: no mode, or more than one, in range (the strokes are outside the swing range).

@@ -14,9 +14,9 @@ import numpy as np
 import pinocchio as pin
 
 from mechkit.base.exceptions import InvalidParameters
-from mechkit.mechanisms.rocket_gimbal.motion import GimbalMotion, gimbal_motion
+from mechkit.mechanisms.rocket_gimbal.body_motion import GimbalMotion, gimbal_motion
+from mechkit.mechanisms.rocket_gimbal.joint_state import joint_state
 from mechkit.mechanisms.rocket_gimbal.params import RocketGimbalParams, geometry
-from mechkit.mechanisms.rocket_gimbal.state import joint_state
 
 if TYPE_CHECKING:
     from mechkit.mechanism import Mechanism
@@ -49,19 +49,43 @@ class SwingScene:
             )
 
     def angles(self, t: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """(alpha, beta) rad, their rates rad/s and accelerations rad/s^2 at time t (s)."""
+        """(alpha, beta) rad, their rates rad/s and accelerations rad/s^2 at time t (s).
+
+        Args:
+            t: time, s.
+
+        Returns:
+            ((alpha, beta), their rates, their accelerations), each (2,).
+        """
         w = 2.0 * np.pi * self.frequency
         amp = np.array([self.amplitude_alpha, self.amplitude_beta])
         arg = w * t + np.array([0.0, self.phase])
         return amp * np.sin(arg), amp * w * np.cos(arg), -amp * w**2 * np.sin(arg)
 
     def motion(self, p: RocketGimbalParams, t: float) -> GimbalMotion:
-        """The analytic motion of every body at time t."""
+        """The analytic motion of every body at time t.
+
+        Args:
+            p: the parameters.
+            t: time, s.
+
+        Returns:
+            The motion (see `gimbal_motion`).
+        """
         return gimbal_motion(geometry(p), *self.angles(t))
 
 
 def thrust_fext(mech: Mechanism, q: np.ndarray, scene: SwingScene) -> list:
-    """Pinocchio external forces (per joint, local frames): the thrust on the engine at q."""
+    """Pinocchio external forces (per joint, local frames): the thrust on the engine at q.
+
+    Args:
+        mech: the gimbal.
+        q: configuration (nq,).
+        scene: the scene (its thrust, N).
+
+    Returns:
+        One `pin.Force` per joint (universe first), the thrust on the engine's joint.
+    """
     pin.forwardKinematics(mech.model, mech.data, q)
     engine = mech.model.getJointId("engine_hinge")
     oMi = mech.data.oMi[engine]
@@ -74,7 +98,14 @@ def thrust_fext(mech: Mechanism, q: np.ndarray, scene: SwingScene) -> list:
 
 
 def swing_scene(mech: Mechanism) -> list[np.ndarray]:
-    """One period of the swing scene as assembled configurations (`mechkit snapshot rocket_gimbal --scene swing`)."""
+    """One period of the swing scene as assembled configurations (`mechkit snapshot rocket_gimbal --scene swing`).
+
+    Args:
+        mech: the gimbal.
+
+    Returns:
+        The configurations (nq,).
+    """
     scene = SwingScene()
     return [
         joint_state(mech, scene.motion(mech.params, t))[0]
@@ -83,5 +114,13 @@ def swing_scene(mech: Mechanism) -> list[np.ndarray]:
 
 
 def swing_times(mech: Mechanism, poses: int) -> np.ndarray:
-    """Times (s) of the swing scene's poses: uniform over one period."""
+    """Times (s) of the swing scene's poses: uniform over one period.
+
+    Args:
+        mech: the gimbal.
+        poses: the number of poses.
+
+    Returns:
+        (poses,) times, s.
+    """
     return np.linspace(0.0, 1.0 / SwingScene().frequency, poses)

@@ -16,7 +16,7 @@ split. Order of solution (world frame, the wrench parent-on-child at the joint p
    Hooke's second revolute (3 forces + 2 moments normal to e2); ``*_cross`` (free body): known that,
    unknown the first revolute, the frame pivot's support (3 forces + 2 moments normal to e1).
 
-Body motions come from `rocket_gimbal.motion` (the paper's geometry), never from Pinocchio.
+Body motions come from `rocket_gimbal.body_motion` (the paper's geometry), never from Pinocchio.
 """
 
 from __future__ import annotations
@@ -24,7 +24,7 @@ from __future__ import annotations
 import numpy as np
 
 from mechkit.base.spatial import cross, rot_x, skew
-from mechkit.mechanisms.rocket_gimbal.motion import GimbalMotion
+from mechkit.mechanisms.rocket_gimbal.body_motion import GimbalMotion
 from mechkit.mechanisms.rocket_gimbal.params import BodySpec, RocketGimbalParams, body_inertias, geometry
 from mechkit.mechanisms.rocket_gimbal.scenes import SwingScene
 from mechkit.validation.soc import BodyLoad, SKCInstant, WrenchSite
@@ -267,7 +267,16 @@ def _free(body: BodyLoad, com: np.ndarray, ref: np.ndarray) -> BodyLoad:
 
 
 def soc_skcs(p: RocketGimbalParams, motion: GimbalMotion, scene: SwingScene) -> list[SKCInstant]:
-    """The SKCs of `gimbal_skcs` for these parameters (world frame), under the scene's thrust."""
+    """The SKCs of `gimbal_skcs` for these parameters (world frame), under the scene's thrust.
+
+    Args:
+        p: the parameters.
+        motion: the analytic motion.
+        scene: the scene (its thrust).
+
+    Returns:
+        The SKCs in solve order.
+    """
     return gimbal_skcs(
         motion,
         geometry(p).frame_pivots,

@@ -20,6 +20,7 @@ import numpy as np
 from numpy.polynomial import Polynomial
 
 from mechkit.mechanism import Mechanism
+from mechkit.mechanisms.rocket_gimbal.joint_state import joint_state
 from mechkit.mechanisms.rocket_gimbal.kinematics import (
     RULE_ANGLE,
     RULE_STROKE,
@@ -41,7 +42,6 @@ from mechkit.mechanisms.rocket_gimbal.resultant import (
 )
 from mechkit.mechanisms.rocket_gimbal.scenes import SwingScene, thrust_fext
 from mechkit.mechanisms.rocket_gimbal.soc import soc_skcs
-from mechkit.mechanisms.rocket_gimbal.state import joint_state
 from mechkit.validation.soc import solve_soc
 
 #: The paper's example strokes (dlA, dlB), m.
@@ -72,6 +72,9 @@ def linearisation(geo: GimbalGeometry, n: int = 45, line_points: int = 89) -> Li
         geo: the gimbal's geometry.
         n: grid points per stroke axis (odd: the grid holds the null pose).
         line_points: samples along each Table 1 line.
+
+    Returns:
+        The error map, the rule along the Table 1 lines and its errors.
     """
     sweep = np.linspace(-RULE_STROKE, RULE_STROKE, line_points)
     held = {"dlA = -10 mm": lambda s: np.array([-0.010, s]), "dlB = -8 mm": lambda s: np.array([s, -0.008])}
@@ -81,7 +84,14 @@ def linearisation(geo: GimbalGeometry, n: int = 45, line_points: int = 89) -> Li
 
 def linearisation_summary(study: Linearisation) -> dict[str, float | tuple[float, float]]:
     """The numbers the docs quote: worst error (deg, % of 6.5 deg) and where (mm), cross-talk (deg),
-    worst error along the Table 1 lines (deg)."""
+    worst error along the Table 1 lines (deg).
+
+    Args:
+        study: the linearisation study.
+
+    Returns:
+        Name -> value.
+    """
     e = study.errors
     return {
         "worst_deg": float(np.degrees(e.worst)),
@@ -116,7 +126,15 @@ class ResultantExample:
 
 
 def resultant_example(geo: GimbalGeometry, stroke: tuple[float, float] = EXAMPLE_STROKES) -> ResultantExample:
-    """Both polynomials, every real root and the in-range pick at the strokes (m; default: the paper's)."""
+    """Both polynomials, every real root and the in-range pick at the strokes (m; default: the paper's).
+
+    Args:
+        geo: the geometry.
+        stroke: (dlA, dlB), m.
+
+    Returns:
+        The degree-8 and degree-16 polynomials, the real modes, the pick and the spurious roots.
+    """
     stroke = np.asarray(stroke, dtype=float)
     eqs = half_angle_equations(geo, stroke)
     p8, p16 = sylvester_resultant(eqs), degree16_polynomial(eqs)
@@ -151,7 +169,15 @@ class ConditionMap:
 
 
 def condition_map(geo: GimbalGeometry, n: int = 41) -> ConditionMap:
-    """The in-range root's condition and raw error on an n x n grid of the stroke square."""
+    """The in-range root's condition and raw error on an n x n grid of the stroke square.
+
+    Args:
+        geo: the geometry.
+        n: grid points per stroke axis.
+
+    Returns:
+        The grid, the condition numbers and the raw errors (rad).
+    """
     axis = np.linspace(-RULE_STROKE, RULE_STROKE, n)
     cond = np.full((n, n), np.nan)
     raw_err = np.full((n, n), np.nan)
@@ -177,12 +203,27 @@ class Conditioning:
 
 
 def conditioning(geo: GimbalGeometry, n: int = 41) -> Conditioning:
-    """`resultant_example` at the paper's strokes and `condition_map` on an n x n grid."""
+    """`resultant_example` at the paper's strokes and `condition_map` on an n x n grid.
+
+    Args:
+        geo: the geometry.
+        n: grid points per stroke axis.
+
+    Returns:
+        Both.
+    """
     return Conditioning(resultant_example(geo), condition_map(geo, n))
 
 
 def conditioning_lines(study: Conditioning) -> list[str]:
-    """The example's polynomials and roots, and the map's figures, as text."""
+    """The example's polynomials and roots, and the map's figures, as text.
+
+    Args:
+        study: the conditioning study.
+
+    Returns:
+        Text lines.
+    """
     ex, grid = study.example, study.grid
     out = ["paper example {-60, 105} mm",
            f"  degree-8 eliminant coefficients (a^0..a^8): {np.array2string(ex.eliminant.coef, precision=6)}",
@@ -227,7 +268,15 @@ class Swing:
 
 
 def swing(mech: Mechanism, n: int = 101) -> Swing:
-    """Servo forces and every joint's reaction over one period at n instants: Pinocchio vs SOC."""
+    """Servo forces and every joint's reaction over one period at n instants: Pinocchio vs SOC.
+
+    Args:
+        mech: the gimbal.
+        n: instants over the period.
+
+    Returns:
+        The times, servo forces (N) and support forces by method.
+    """
     scene = SwingScene()
     times = np.linspace(0.0, 1.0 / scene.frequency, n)
     efforts, supports, rel = {"pinocchio": [], "soc": []}, {"pinocchio": [], "soc": []}, []
@@ -249,7 +298,14 @@ def swing(mech: Mechanism, n: int = 101) -> Swing:
 
 
 def swing_summary(study: Swing) -> dict[str, float]:
-    """Peaks (kN, MN) and the worst relative difference of the two methods."""
+    """Peaks (kN, MN) and the worst relative difference of the two methods.
+
+    Args:
+        study: the swing study.
+
+    Returns:
+        Name -> value.
+    """
     pin_u, pin_f = study.efforts["pinocchio"], study.supports["pinocchio"]
     bearing = np.linalg.norm(pin_f[:, 0, :3], axis=1)
     return {
@@ -262,10 +318,24 @@ def swing_summary(study: Swing) -> dict[str, float]:
 
 
 def linearisation_lines(study: Linearisation) -> list[str]:
-    """`linearisation_summary` as text lines."""
+    """`linearisation_summary` as text lines.
+
+    Args:
+        study: the linearisation study.
+
+    Returns:
+        Text lines.
+    """
     return [f"{key}: {value}" for key, value in linearisation_summary(study).items()]
 
 
 def swing_lines(study: Swing) -> list[str]:
-    """`swing_summary` as text lines."""
+    """`swing_summary` as text lines.
+
+    Args:
+        study: the swing study.
+
+    Returns:
+        Text lines.
+    """
     return [f"{key}: {value:.6g}" for key, value in swing_summary(study).items()]

@@ -3,9 +3,9 @@
 A platform on a central strut through a Hooke joint at O, driven by two RRR limbs whose axes all
 pass through O (every point moves on a sphere about O). Motors at the base joints r11, r21.
 
-Modules, bottom up: `kinematics` (the paper's eqs. 4-12 and its iterative forward kinematics, numpy
-only), `params`, `tree` (the Pinocchio tree filled from the paper's kinematics), `scenes` (the cone
-scene), `fk` (forward kinematics three ways and their basins), `soc` (the SOC decomposition),
+Modules, bottom up: `kinematics` (the paper's eqs. 4-12, numpy only), `params`, `joint_state` (the Pinocchio tree filled from the paper's kinematics), `scenes` (the cone
+scene), `fk` (forward kinematics three ways: the paper's iteration, Newton, the
+core's closure solver; and their basins), `soc` (the SOC decomposition),
 `checks` (`mechkit report` rows), `bench` (`mechkit bench` methods), `studies` (the cone scene as
 the paper's Figs. 5-7 with its dynamics, the FK's basins, as data) and `figures` (drawn from them). Conventions the source leaves
 out (roll/pitch, platform-side axes, the reading of "cone angle 30 deg") are derived in
@@ -15,7 +15,7 @@ docs/mechanisms/spherical_2dof.md.
 from __future__ import annotations
 
 from mechkit.catalog.contract import MechanismSpec, MechanismStudy
-from mechkit.mechanisms.spherical_2dof import bench, checks, figures, studies, tree
+from mechkit.mechanisms.spherical_2dof import bench, checks, figures, joint_state, studies
 from mechkit.mechanisms.spherical_2dof.params import Spherical2DofParams
 from mechkit.mechanisms.spherical_2dof.scenes import cone_scene, cone_scene_times
 
@@ -27,8 +27,8 @@ SPEC = MechanismSpec(
     template="spherical_2dof.urdf.xacro",
     actuated=("r11", "r21"),
     gruebler_dof=2,
-    home=tree.home,
-    guess=tree.guess,
+    home=joint_state.home,
+    guess=joint_state.guess,
     summary="2-DOF spherical parallel platform (2 RRR limbs + central Hooke strut), vibration isolation",
     caption="2-DOF spherical platform: two RRR limbs and a central Hooke strut",
     scenes={"cone": cone_scene},

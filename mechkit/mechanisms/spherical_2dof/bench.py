@@ -15,8 +15,8 @@ import numpy as np
 from mechkit.catalog.contract import BenchFunction, BenchMethod, BenchReference
 from mechkit.mechanisms.spherical_2dof import soc
 from mechkit.mechanisms.spherical_2dof.fk import solve_fk
+from mechkit.mechanisms.spherical_2dof.joint_state import tree_q
 from mechkit.mechanisms.spherical_2dof.kinematics import BRANCHES, inverse_kinematics
-from mechkit.mechanisms.spherical_2dof.tree import tree_q
 from mechkit.validation.soc import SOCResult
 
 if TYPE_CHECKING:
@@ -28,7 +28,14 @@ HOOKE = ("hooke_roll", "hooke_pitch")
 
 
 def fk_assembly(method: str) -> BenchFunction:
-    """Assembly by an FK method of `fk.solve_fk` ("paper" or "newton") from home, then the tree."""
+    """Assembly by an FK method of `fk.solve_fk` ("paper" or "newton") from home, then the tree.
+
+    Args:
+        method: "paper" or "newton".
+
+    Returns:
+        The bench function (mechanism, sample) -> q (nq,).
+    """
 
     def run(mech: Mechanism, sample: Any) -> np.ndarray:
         phi = solve_fk(mech, method, sample.inputs, np.zeros(2)).phi
@@ -38,12 +45,28 @@ def fk_assembly(method: str) -> BenchFunction:
 
 
 def ik_eq8(mech: Mechanism, sample: Any) -> np.ndarray:
-    """The motor angles (r11, r21) (rad) by the paper's eq. (8) from the sample's roll and pitch."""
+    """The motor angles (r11, r21) (rad) by the paper's eq. (8) from the sample's roll and pitch.
+
+    Args:
+        mech: the platform.
+        sample: a bench sample (q with roll and pitch, v, a; the motor angles as inputs).
+
+    Returns:
+        (2,) motor angles, rad.
+    """
     return inverse_kinematics(mech.params, [sample.q[mech.q_index(j)] for j in HOOKE], BRANCHES)
 
 
 def soc_inverse_dynamics(mech: Mechanism, sample: Any) -> SOCResult:
-    """SOC virtual work (numpy), every joint's moment about O."""
+    """SOC virtual work (numpy), every joint's moment about O.
+
+    Args:
+        mech: the platform.
+        sample: a bench sample (q with roll and pitch, v, a; the motor angles as inputs).
+
+    Returns:
+        Motor torques (N m) and every joint's reaction.
+    """
     hooke = [mech.v_index(j) for j in HOOKE]
     phi = [sample.q[mech.q_index(j)] for j in HOOKE]
     return soc.solve(mech.params, phi, sample.v[hooke], sample.a[hooke], BRANCHES)

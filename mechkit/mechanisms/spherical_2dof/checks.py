@@ -11,10 +11,10 @@ import numpy as np
 
 from mechkit.mechanisms.spherical_2dof import kinematics as kin
 from mechkit.mechanisms.spherical_2dof import soc
-from mechkit.mechanisms.spherical_2dof.fk import METHODS, solve_fk
+from mechkit.mechanisms.spherical_2dof.fk import METHODS, fk_newton, fk_paper, solve_fk
+from mechkit.mechanisms.spherical_2dof.joint_state import state
 from mechkit.mechanisms.spherical_2dof.kinematics import BRANCHES, platform_normal
 from mechkit.mechanisms.spherical_2dof.scenes import cone_attitude, cone_times
-from mechkit.mechanisms.spherical_2dof.tree import state
 
 if TYPE_CHECKING:
     from mechkit.mechanism import Mechanism
@@ -35,6 +35,10 @@ MOMENTS = [3, 4, 5]
 def cone_round_trip(p: kin.Geometry, samples: int = 72) -> tuple[float, float]:
     """IK of the cone (eq. 8), then the paper's FK of those motor curves, tracking from home.
 
+    Args:
+        p: the structural parameters.
+        samples: instants over one turn of the cone.
+
     Returns:
         (worst attitude error (rad), worst error of the unit normal's tip, the marker point (-)).
     """
@@ -43,20 +47,29 @@ def cone_round_trip(p: kin.Geometry, samples: int = 72) -> tuple[float, float]:
     worst = np.zeros((samples, 2))
     for k, target in enumerate(phi_plan):
         theta = kin.inverse_kinematics(p, target, BRANCHES)
-        phi = kin.fk_paper(p, theta, phi, BRANCHES).phi
+        phi = fk_paper(p, theta, phi, BRANCHES).phi
         worst[k] = phi - target
     normal = np.linalg.norm(platform_normal(phi_plan + worst) - platform_normal(phi_plan), axis=1)
     return float(np.abs(worst).max()), float(normal.max())
 
 
 def jacobian_fd_error(p: kin.Geometry, samples: int = 12, h: float = 1e-5) -> float:
-    """Worst |J - J_fd| (rad/rad): J = -B^-1 A against central differences of the FK (Newton) in theta."""
+    """Worst |J - J_fd| (rad/rad): J = -B^-1 A against central differences of the FK (Newton) in theta.
+
+    Args:
+        p: the structural parameters.
+        samples: attitudes along the cone.
+        h: the finite-difference step, rad.
+
+    Returns:
+        The worst difference.
+    """
     worst = 0.0
     for target in cone_attitude(cone_times(samples))[0]:
         theta = kin.inverse_kinematics(p, target, BRANCHES)
         fd = np.column_stack(
             [
-                (kin.fk_newton(p, theta + h * e, target).phi - kin.fk_newton(p, theta - h * e, target).phi)
+                (fk_newton(p, theta + h * e, target).phi - fk_newton(p, theta - h * e, target).phi)
                 / (2 * h)
                 for e in np.eye(2)
             ]
@@ -66,7 +79,16 @@ def jacobian_fd_error(p: kin.Geometry, samples: int = 12, h: float = 1e-5) -> fl
 
 
 def fk_agreement(mech: Mechanism, samples: int = 12, offset: float = 0.05) -> float:
-    """Worst pairwise difference (rad) of the three FK methods along the cone, started ``offset`` away."""
+    """Worst pairwise difference (rad) of the three FK methods along the cone, started ``offset`` away.
+
+    Args:
+        mech: the platform.
+        samples: attitudes along the cone.
+        offset: the starts' distance from the answer, rad.
+
+    Returns:
+        The worst difference, rad.
+    """
     worst = 0.0
     for target in cone_attitude(cone_times(samples))[0]:
         theta = kin.inverse_kinematics(mech.params, target, BRANCHES)
@@ -80,6 +102,10 @@ def dynamics_agreement(mech: Mechanism, samples: int = 24) -> dict[str, float]:
 
     The moment that a motor joint transmits includes the motor torque: SOC's r{i}1 reaction (the
     constraint part) plus ``effort * u_i``.
+
+    Args:
+        mech: the platform.
+        samples: instants along the cone.
 
     Returns:
         Relative errors, worst |difference| over the scene / the scene's peak |value|:
@@ -120,7 +146,14 @@ def dynamics_agreement(mech: Mechanism, samples: int = 24) -> dict[str, float]:
 
 
 def self_checks(mech: Mechanism) -> dict[str, float]:
-    """`mechkit report` rows: worst errors of the paper's kinematics and of the dynamics."""
+    """`mechkit report` rows: worst errors of the paper's kinematics and of the dynamics.
+
+    Args:
+        mech: the platform.
+
+    Returns:
+        Check name -> worst error.
+    """
     p = mech.params
     trip, normal = cone_round_trip(p, 36)
     dyn = dynamics_agreement(mech, 12)

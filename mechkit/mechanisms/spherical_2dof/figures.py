@@ -18,7 +18,15 @@ from mechkit.mechanisms.spherical_2dof.studies import RADII_DEG, Basin, Cone
 
 
 def cone_figure(c: Cone, folder: Path) -> list[Path]:
-    """Motor curves, FK against the plan, the marker point from above, torques and support moment."""
+    """Motor curves, FK against the plan, the marker point from above, torques and support moment.
+
+    Args:
+        c: the cone study.
+        folder: where the PNG goes.
+
+    Returns:
+        The file written.
+    """
     plt = pyplot("spherical_2dof figures")
     fig, ax = plt.subplots(1, 4, figsize=(19, 4.4))
     deg = np.degrees
@@ -49,7 +57,15 @@ def cone_figure(c: Cone, folder: Path) -> list[Path]:
 
 def basin_figure(b: Basin, folder: Path) -> list[Path]:
     """det B over (roll, pitch) with the cone and the targets; per method, the fraction of starts that
-    find the answer and the mean iterations, against the start distance."""
+    find the answer and the mean iterations, against the start distance.
+
+    Args:
+        b: the basin study.
+        folder: where the PNG goes.
+
+    Returns:
+        The file written.
+    """
     plt = pyplot("spherical_2dof figures")
     fig, axes = plt.subplots(1, 3, figsize=(16, 4.8))
     grid_deg = np.degrees(b.grid)

@@ -21,26 +21,23 @@ eq. 4, term by term); link i2 is ``F_i0 Rz(theta_i1) Rx(-alpha1) Rz(theta_i2)`` 
 
 from __future__ import annotations
 
-from collections.abc import Callable, Sequence
-from dataclasses import dataclass
+from collections.abc import Sequence
 from typing import Protocol
 
 import numpy as np
 
-from mechkit.base.exceptions import ClosureNotConverged, InvalidParameters, SingularConfiguration
+from mechkit.base.exceptions import InvalidParameters, SingularConfiguration
 from mechkit.base.spatial import cross, rot_x, rot_y, rot_z
 
 __all__ = [
     "BRANCHES",
-    "FKResult",
     "Geometry",
     "base_axis",
     "base_frame",
+    "condition",
     "constraint",
     "constraint_jacobians",
     "cross",
-    "fk_newton",
-    "fk_paper",
     "hooke_rates",
     "ik_coefficients",
     "inverse_kinematics",
@@ -81,44 +78,109 @@ def _etas(p: Geometry, i: int) -> tuple[float, float]:
 
 
 def platform_rotation(phi: Sequence[float]) -> np.ndarray:
-    """Platform attitude ``R = Rx(phi_x) Ry(phi_y)`` (platform frame -> base frame)."""
+    """Platform attitude ``R = Rx(phi_x) Ry(phi_y)`` (platform frame -> base frame).
+
+    Args:
+        phi: attitude (roll, pitch), rad.
+
+    Returns:
+        (3, 3) rotation matrix.
+    """
     return rot_x(phi[0]) @ rot_y(phi[1])
 
 
 def platform_normal(phi: np.ndarray) -> np.ndarray:
-    """Unit platform normal n = R(phi) e_z (base frame) of attitudes (..., 2)."""
+    """Unit platform normal n = R(phi) e_z (base frame) of attitudes (..., 2).
+
+    Args:
+        phi: attitudes (..., 2), rad.
+
+    Returns:
+        (..., 3) unit normals.
+    """
     phi = np.asarray(phi, dtype=float)
     px, py = phi[..., 0], phi[..., 1]
     return np.stack([np.sin(py), -np.sin(px) * np.cos(py), np.cos(px) * np.cos(py)], axis=-1)
 
 
 def base_frame(p: Geometry, i: int) -> np.ndarray:
-    """``F_i0 = Rz(eta1i) Rx(pi - beta)``: frame of limb i's motor joint, z = u_i (base frame)."""
+    """``F_i0 = Rz(eta1i) Rx(pi - beta)``: frame of limb i's motor joint, z = u_i (base frame).
+
+    Args:
+        p: the structural parameters.
+        i: the limb, 1 or 2.
+
+    Returns:
+        (3, 3) rotation matrix.
+    """
     return rot_z(_etas(p, i)[0]) @ rot_x(np.pi - p.beta)
 
 
 def base_axis(p: Geometry, i: int) -> np.ndarray:
-    """u_i (eq. 5): ``[s(eta1i) s(beta), -c(eta1i) s(beta), -c(beta)]``, base frame."""
+    """u_i (eq. 5): ``[s(eta1i) s(beta), -c(eta1i) s(beta), -c(beta)]``, base frame.
+
+    Args:
+        p: the structural parameters.
+        i: the limb, 1 or 2.
+
+    Returns:
+        (3,) unit axis.
+    """
     return base_frame(p, i)[:, 2]
 
 
 def platform_frame_local(p: Geometry, i: int) -> np.ndarray:
-    """``P_i = Rz(eta2i) Rx(pi - b')``: frame of limb i's platform joint in the platform frame, z = v_i."""
+    """``P_i = Rz(eta2i) Rx(pi - b')``: frame of limb i's platform joint in the platform frame, z = v_i.
+
+    Args:
+        p: the structural parameters.
+        i: the limb, 1 or 2.
+
+    Returns:
+        (3, 3) rotation matrix.
+    """
     return rot_z(_etas(p, i)[1]) @ rot_x(np.pi - p.beta_platform)
 
 
 def platform_axis(p: Geometry, i: int, phi: Sequence[float]) -> np.ndarray:
-    """v_i (our eq. 6): ``R(phi) [s(eta2i) s(b'), -c(eta2i) s(b'), -c(b')]``, base frame."""
+    """v_i (our eq. 6): ``R(phi) [s(eta2i) s(b'), -c(eta2i) s(b'), -c(b')]``, base frame.
+
+    Args:
+        p: the structural parameters.
+        i: the limb, 1 or 2.
+        phi: attitude (roll, pitch), rad.
+
+    Returns:
+        (3,) unit axis.
+    """
     return platform_rotation(phi) @ platform_frame_local(p, i)[:, 2]
 
 
 def middle_axis(p: Geometry, i: int, theta1: float) -> np.ndarray:
-    """w_i (eq. 4, third column): the middle joint axis of limb i at motor angle ``theta1``."""
+    """w_i (eq. 4, third column): the middle joint axis of limb i at motor angle ``theta1``.
+
+    Args:
+        p: the structural parameters.
+        i: the limb, 1 or 2.
+        theta1: limb i's motor angle, rad.
+
+    Returns:
+        (3,) unit axis, base frame.
+    """
     return base_frame(p, i) @ rot_z(theta1) @ rot_x(-p.alpha1)[:, 2]
 
 
 def ik_coefficients(p: Geometry, i: int, v: np.ndarray) -> tuple[float, float, float]:
-    """(A_i, B_i, C_i) of ``A sin(theta_i1) + B cos(theta_i1) + C = 0`` (eq. 7 expanded, as printed)."""
+    """(A_i, B_i, C_i) of ``A sin(theta_i1) + B cos(theta_i1) + C = 0`` (eq. 7 expanded, as printed).
+
+    Args:
+        p: the structural parameters.
+        i: the limb, 1 or 2.
+        v: the platform axis v_i (3,), base frame.
+
+    Returns:
+        (A_i, B_i, C_i).
+    """
     eta = _etas(p, i)[0]
     sa1, ca1, sb, cb = np.sin(p.alpha1), np.cos(p.alpha1), np.sin(p.beta), np.cos(p.beta)
     se, ce = np.sin(eta), np.cos(eta)
@@ -140,6 +202,9 @@ def inverse_kinematics(p: Geometry, phi: Sequence[float], branches: Sequence[int
         phi: (roll, pitch), rad.
         branches: per limb, +1 or -1.
 
+    Returns:
+        (2,) motor angles, rad, in (-pi, pi].
+
     Raises:
         InvalidParameters: a limb cannot reach the attitude (|C| > hypot(A, B): the u-v arc leaves
             [|alpha1 - alpha2|, alpha1 + alpha2]), or a branch is not +-1.
@@ -158,7 +223,16 @@ def inverse_kinematics(p: Geometry, phi: Sequence[float], branches: Sequence[int
 
 
 def constraint(p: Geometry, theta: Sequence[float], phi: Sequence[float]) -> np.ndarray:
-    """Residuals ``w_i . v_i - cos(alpha2)`` (2,) of eq. (7)."""
+    """Residuals ``w_i . v_i - cos(alpha2)`` (2,) of eq. (7).
+
+    Args:
+        p: the structural parameters.
+        theta: motor angles (2,), rad.
+        phi: attitude (roll, pitch), rad.
+
+    Returns:
+        (2,) residuals (-).
+    """
     return np.array(
         [
             middle_axis(p, i, theta[k]) @ platform_axis(p, i, phi) - np.cos(p.alpha2)
@@ -177,6 +251,11 @@ def constraint_jacobians(
 ) -> tuple[np.ndarray, np.ndarray]:
     """The matrices of eq. (10), ``A theta' + B phi' = 0``.
 
+    Args:
+        p: the structural parameters.
+        theta: motor angles (2,), rad.
+        phi: attitude (roll, pitch), rad.
+
     Returns:
         A (2, 2), diagonal: ``d f_i / d theta_i1 = (u_i x w_i) . v_i``;
         B (2, 2): ``d f_i / d phi_j = w_i . (h_j x v_i)``, h_j the Hooke axes (X0, Rx(phi_x) e_y).
@@ -191,7 +270,15 @@ def constraint_jacobians(
     return a, b
 
 
-def _cond(m: np.ndarray) -> float:
+def condition(m: np.ndarray) -> float:
+    """The 2-norm condition number of a matrix (inf when singular).
+
+    Args:
+        m: a square matrix.
+
+    Returns:
+        Its largest singular value over its smallest (-).
+    """
     sv = np.linalg.svd(m, compute_uv=False)
     return float(sv[0] / sv[-1]) if sv[-1] > 0 else np.inf
 
@@ -199,11 +286,20 @@ def _cond(m: np.ndarray) -> float:
 def jacobian(p: Geometry, theta: Sequence[float], phi: Sequence[float], max_cond: float = 1e12) -> np.ndarray:
     """``J = -B^-1 A`` (eq. 12): ``phi' = J theta'`` (rad/s per rad/s).
 
+    Args:
+        p: the structural parameters.
+        theta: motor angles (2,), rad.
+        phi: attitude (roll, pitch), rad.
+        max_cond: the largest condition number of B accepted.
+
+    Returns:
+        J (2, 2).
+
     Raises:
         SingularConfiguration: B is singular (a forward-kinematics singularity).
     """
     a, b = constraint_jacobians(p, theta, phi)
-    cond = _cond(b)
+    cond = condition(b)
     if cond > max_cond:
         raise SingularConfiguration(cond, "matrix B of eq. (10) (forward kinematic singularity)")
     return -np.linalg.solve(b, a)
@@ -214,6 +310,15 @@ def limb_angles(p: Geometry, i: int, theta1: float, phi: Sequence[float]) -> tup
 
     theta_i2 turns link i2 about w_i so its distal axis is the closest to v_i (equal to it when
     eq. 7 holds); theta_i3 is the rotation about v_i from link i2 to the platform-side frame P_i.
+
+    Args:
+        p: the structural parameters.
+        i: the limb, 1 or 2.
+        theta1: limb i's motor angle, rad.
+        phi: attitude (roll, pitch), rad.
+
+    Returns:
+        (theta_i2, theta_i3), rad.
     """
     frame = base_frame(p, i) @ rot_z(theta1) @ rot_x(-p.alpha1)
     g = frame.T @ platform_axis(p, i, phi)
@@ -226,7 +331,16 @@ def limb_angles(p: Geometry, i: int, theta1: float, phi: Sequence[float]) -> tup
 def hooke_rates(
     phi: Sequence[float], phi_dot: Sequence[float], phi_ddot: Sequence[float]
 ) -> tuple[np.ndarray, np.ndarray]:
-    """Platform angular velocity and acceleration (rad/s, rad/s^2, base frame) from roll/pitch rates."""
+    """Platform angular velocity and acceleration (rad/s, rad/s^2, base frame) from roll/pitch rates.
+
+    Args:
+        phi: attitude (roll, pitch), rad.
+        phi_dot: its rates, rad/s.
+        phi_ddot: its accelerations, rad/s^2.
+
+    Returns:
+        (omega (3,), alpha (3,)).
+    """
     h = _hooke_axes(phi)
     omega = h @ np.asarray(phi_dot, dtype=float)
     # d/dt of the second axis Rx(phi_x) e_y is (phi_x' e_x) x that axis.
@@ -242,101 +356,26 @@ def limb_rates(
     Velocity loop ``theta1' u + theta2' w + theta3' v = omega_p`` and its time derivative
     ``[u w v] theta'' = alpha_p - (theta1' u) x (theta2' w) - (theta1' u + theta2' w) x (theta3' v)``.
 
+    Args:
+        p: the structural parameters.
+        i: the limb, 1 or 2.
+        theta1: limb i's motor angle, rad.
+        phi: attitude (roll, pitch), rad.
+        omega_p: the platform's angular velocity (3,), rad/s, base frame.
+        alpha_p: its angular acceleration (3,), rad/s^2.
+
+    Returns:
+        (rates (3,) rad/s, accelerations (3,) rad/s^2).
+
     Raises:
         SingularConfiguration: u, w, v coplanar (the limb is stretched or folded).
     """
     u, w, v = base_axis(p, i), middle_axis(p, i, theta1), platform_axis(p, i, phi)
     m = np.column_stack([u, w, v])
-    cond = _cond(m)
+    cond = condition(m)
     if cond > 1e12:
         raise SingularConfiguration(cond, f"limb {i} axes u, w, v coplanar")
     rate = np.linalg.solve(m, omega_p)
     w1, w2, w3 = rate[0] * u, rate[1] * w, rate[2] * v
     acc = np.linalg.solve(m, alpha_p - cross(w1, w2) - cross(w1 + w2, w3))
     return rate, acc
-
-
-@dataclass(frozen=True)
-class FKResult:
-    """A forward-kinematics solve.
-
-    Attributes:
-        phi: (roll, pitch), rad.
-        iterations: steps taken.
-        step: norm of the last step, rad.
-    """
-
-    phi: np.ndarray
-    iterations: int
-    step: float
-
-
-def fk_paper(
-    p: Geometry,
-    theta_d: Sequence[float],
-    phi0: Sequence[float],
-    branches: Sequence[int] = BRANCHES,
-    tol: float = 1e-13,
-    max_iter: int = 50,
-) -> FKResult:
-    """The paper's iterative forward kinematics (section 2.3.2).
-
-    ``theta_k = InvKin(P_k)``, ``S_k = J(theta_k, P_k) (theta_d - theta_k)``, ``P_k+1 = P_k + S_k`` until
-    ``|S_k| <= tol``. The paper prints ``S_k = -J^-1(theta_k) Delta theta_k``; with its own
-    ``phi' = J theta'`` (eq. 11) the step that makes ``InvKin(P_k+1) = theta_d`` to first order is
-    ``J Delta theta``: a Newton iteration on the closed-form inverse kinematics (the printed form does
-    not converge; the test suite shows it).
-
-    Raises:
-        ClosureNotConverged: no convergence within ``max_iter`` steps, or an iterate leaves the
-            workspace (InvKin undefined) or meets a singular B.
-    """
-    theta_d = np.asarray(theta_d, dtype=float)
-
-    def step(phi: np.ndarray) -> np.ndarray:
-        theta = inverse_kinematics(p, phi, branches)
-        return jacobian(p, theta, phi) @ ((theta_d - theta + np.pi) % (2 * np.pi) - np.pi)
-
-    return _iterate(step, phi0, tol, max_iter, "paper FK")
-
-
-def fk_newton(
-    p: Geometry, theta_d: Sequence[float], phi0: Sequence[float], tol: float = 1e-13, max_iter: int = 50
-) -> FKResult:
-    """Newton's method on the constraints (7) at fixed motor angles: ``phi -= B^-1 f(theta_d, phi)``.
-
-    Unlike the paper's iteration it never evaluates the inverse kinematics, so its iterates may
-    leave the workspace.
-
-    Raises:
-        ClosureNotConverged: no convergence within ``max_iter`` steps or a singular B.
-    """
-
-    def step(phi: np.ndarray) -> np.ndarray:
-        _, b = constraint_jacobians(p, theta_d, phi)
-        cond = _cond(b)
-        if cond > 1e12:
-            raise SingularConfiguration(cond, "matrix B of eq. (10)")
-        return -np.linalg.solve(b, constraint(p, theta_d, phi))
-
-    return _iterate(step, phi0, tol, max_iter, "Newton FK")
-
-
-def _iterate(
-    step: Callable[[np.ndarray], np.ndarray], phi0: Sequence[float], tol: float, max_iter: int, name: str
-) -> FKResult:
-    """``phi += step(phi)`` until ``|step| <= tol``; failures of ``step`` end it as non-converged."""
-    phi = np.array(phi0, dtype=float)
-    size = np.inf
-    for k in range(1, max_iter + 1):
-        try:
-            s = step(phi)
-        except (InvalidParameters, SingularConfiguration) as err:
-            raise ClosureNotConverged(size, tol, k - 1, f"{name}: {err}") from None
-        phi += s
-        size = float(np.linalg.norm(s))
-        if not np.isfinite(size):
-            break
-        if size <= tol:
-            return FKResult(phi, k, size)
-    raise ClosureNotConverged(size, tol, max_iter, name)

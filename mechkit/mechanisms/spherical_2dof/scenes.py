@@ -10,7 +10,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from mechkit.base.exceptions import InvalidParameters
-from mechkit.mechanisms.spherical_2dof.tree import state
+from mechkit.mechanisms.spherical_2dof.joint_state import state
 
 if TYPE_CHECKING:
     from mechkit.mechanism import Mechanism
@@ -37,6 +37,9 @@ def cone_attitude(
 
     Returns:
         phi, phi', phi'' as arrays (..., 2) (rad, rad/s, rad/s^2), columns (roll, pitch).
+
+    Raises:
+        InvalidParameters: a half angle outside [0, 90) deg, or a period not > 0.
     """
     if not 0.0 <= half_angle < math.pi / 2:
         raise InvalidParameters("half_angle", half_angle, "must lie in [0, 90) deg")
@@ -56,16 +59,38 @@ def cone_attitude(
 
 
 def cone_times(samples: int) -> np.ndarray:
-    """``samples`` instants over one turn of the cone scene (s)."""
+    """``samples`` instants over one turn of the cone scene (s).
+
+    Args:
+        samples: how many instants.
+
+    Returns:
+        (samples,) times, s, the period's end excluded.
+    """
     return np.linspace(0.0, CONE_PERIOD, samples, endpoint=False)
 
 
 def cone_scene(mech: Mechanism) -> list[np.ndarray]:
-    """One turn of the cone scene as assembled configurations (`mechkit snapshot spherical_2dof --scene cone`)."""
+    """One turn of the cone scene as assembled configurations (`mechkit snapshot spherical_2dof --scene cone`).
+
+    Args:
+        mech: the platform.
+
+    Returns:
+        The configurations (nq,).
+    """
     phi, phi_d, phi_dd = cone_attitude(np.linspace(0.0, CONE_PERIOD, 73))
     return [state(mech, *x)[0] for x in zip(phi, phi_d, phi_dd, strict=True)]
 
 
 def cone_scene_times(mech: Mechanism, poses: int) -> np.ndarray:
-    """Times (s) of the cone scene's poses: uniform over one turn, both ends included."""
+    """Times (s) of the cone scene's poses: uniform over one turn, both ends included.
+
+    Args:
+        mech: the platform.
+        poses: the number of poses.
+
+    Returns:
+        (poses,) times, s.
+    """
     return np.linspace(0.0, CONE_PERIOD, poses)

@@ -42,6 +42,12 @@ def body_inertias(p: kin.Geometry) -> dict[str, tuple[float, np.ndarray, np.ndar
     Limb links: a bar of square section ``link_width`` along the chord between the points where
     its two axes pierce the sphere of radius ``radius`` (as in the xacro). Platform: a disc at
     ``platform_height`` on its normal. Cross: a cube at O.
+
+    Args:
+        p: the structural parameters.
+
+    Returns:
+        Body -> (mass, COM (3,), inertia (3, 3)).
     """
     out = {}
     w = p.link_width
@@ -73,7 +79,15 @@ class BodyMotion:
     alpha: np.ndarray
 
     def load(self, name: str, jw: np.ndarray) -> BodyLoad:
-        """The body in an SKC whose virtual rotation of this body is ``jw`` (3, n)."""
+        """The body in an SKC whose virtual rotation of this body is ``jw`` (3, n).
+
+        Args:
+            name: the body's name.
+            jw: the SKC's virtual rotation of the body (3, n).
+
+        Returns:
+            The body for the SOC solver.
+        """
         c = self.com
         acc = kin.cross(self.alpha, c) + kin.cross(self.omega, kin.cross(self.omega, c))
         return BodyLoad(name, self.mass, self.inertia, acc, self.omega, self.alpha, -skew(c) @ jw, jw)
@@ -145,7 +159,18 @@ def body_motions(
     phi_dd: Sequence[float],
     branches: Sequence[int] = kin.BRANCHES,
 ) -> dict[str, BodyMotion]:
-    """Motion of every moving body (cross, platform, link11, link12, link21, link22) at one instant."""
+    """Motion of every moving body (cross, platform, link11, link12, link21, link22) at one instant.
+
+    Args:
+        p: the structural parameters.
+        phi: attitude (roll, pitch), rad.
+        phi_d: its rates, rad/s.
+        phi_dd: its accelerations, rad/s^2.
+        branches: the IK branch per limb.
+
+    Returns:
+        Body -> its motion (world).
+    """
     return _bodies(p, phi, phi_d, phi_dd, branches)[0]
 
 
@@ -160,8 +185,16 @@ def skcs(
     """The SKCs at one instant of a platform motion (rad, rad/s, rad/s^2), in solving order.
 
     Args:
-        efforts: motor torques (N m) solved by the first SKC; without them only the first SKC
-            (which solves them) is returned.
+        p: the structural parameters.
+        phi: attitude (roll, pitch), rad.
+        phi_d: its rates, rad/s.
+        phi_dd: its accelerations, rad/s^2.
+        efforts: motor torques (N m) solved by the first SKC; without them only the first SKC (which solves them)
+            is returned.
+        branches: the IK branch per limb.
+
+    Returns:
+        The SKCs in solving order.
     """
     body, axes = _bodies(p, phi, phi_d, phi_dd, branches)
     ex, pitch = np.eye(3)[0], kin.rot_x(phi[0])[:, 1]
@@ -237,6 +270,17 @@ def solve(
     """Motor torques r11, r21 (N m) and the moment about O of every joint's reaction (see module doc).
 
     ``gravity`` (m/s^2, world) defaults to 9.81 along -Z0.
+
+    Args:
+        p: the structural parameters.
+        phi: attitude (roll, pitch), rad.
+        phi_d: its rates, rad/s.
+        phi_dd: its accelerations, rad/s^2.
+        branches: the IK branch per limb.
+        gravity: (3,) m/s^2, world; 9.81 along -Z0 by default.
+
+    Returns:
+        Efforts (N m) and every joint's reaction (world wrench (6,)).
     """
     gravity = np.asarray(gravity, dtype=float)
     first = solve_soc(skcs(p, phi, phi_d, phi_dd, None, branches), gravity)

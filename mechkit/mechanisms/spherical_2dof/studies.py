@@ -19,11 +19,11 @@ from mechkit.base.exceptions import InvalidParameters
 from mechkit.mechanism import Mechanism
 from mechkit.mechanisms.spherical_2dof import kinematics as kin
 from mechkit.mechanisms.spherical_2dof import soc
-from mechkit.mechanisms.spherical_2dof.fk import NEAR_SINGULAR, REGULAR, BasinRow, basin_study
+from mechkit.mechanisms.spherical_2dof.fk import NEAR_SINGULAR, REGULAR, BasinRow, basin_study, fk_paper
+from mechkit.mechanisms.spherical_2dof.joint_state import state
 from mechkit.mechanisms.spherical_2dof.kinematics import BRANCHES, platform_normal
 from mechkit.mechanisms.spherical_2dof.params import Spherical2DofParams
 from mechkit.mechanisms.spherical_2dof.scenes import cone_attitude, cone_times
-from mechkit.mechanisms.spherical_2dof.tree import state
 
 #: Start distances (deg) from the answer in the basin study.
 RADII_DEG = (0.1, 0.3, 1.0, 2.0, 5.0, 10.0, 20.0, 30.0, 45.0, 60.0)
@@ -55,7 +55,15 @@ class Cone:
 
 
 def cone(mech: Mechanism, samples: int = 72) -> Cone:
-    """The cone scene at `samples` instants over its period: IK, the paper's FK, both dynamics methods."""
+    """The cone scene at `samples` instants over its period: IK, the paper's FK, both dynamics methods.
+
+    Args:
+        mech: the platform.
+        samples: instants over one turn.
+
+    Returns:
+        The study: times, attitudes, motor angles, FK, efforts and support moments by method.
+    """
     p = mech.params
     t = cone_times(samples)
     phi, phi_d, phi_dd = cone_attitude(t)
@@ -63,7 +71,7 @@ def cone(mech: Mechanism, samples: int = 72) -> Cone:
     fk = np.zeros_like(phi)
     start = np.zeros(2)  # the calibrated home pose P0
     for k, th in enumerate(theta):
-        start = fk[k] = kin.fk_paper(p, th, start, BRANCHES).phi
+        start = fk[k] = fk_paper(p, th, start, BRANCHES).phi
     efforts, support = {"pinocchio": [], "soc": []}, {"pinocchio": [], "soc": []}
     for k in range(samples):
         q, v, a = state(mech, phi[k], phi_d[k], phi_dd[k])
@@ -78,7 +86,14 @@ def cone(mech: Mechanism, samples: int = 72) -> Cone:
 
 
 def cone_summary(c: Cone) -> dict[str, float]:
-    """Worst differences (FK vs plan, Pinocchio vs SOC) and the peaks."""
+    """Worst differences (FK vs plan, Pinocchio vs SOC) and the peaks.
+
+    Args:
+        c: the cone study.
+
+    Returns:
+        Name -> value.
+    """
     pin_u, soc_u, pin_m, soc_m = c.efforts["pinocchio"], c.efforts["soc"], c.support["pinocchio"], c.support["soc"]
     return {
         "FK vs plan, attitude (rad)": float(np.abs(c.fk - c.phi).max()),
@@ -91,13 +106,28 @@ def cone_summary(c: Cone) -> dict[str, float]:
 
 
 def cone_lines(c: Cone) -> list[str]:
-    """`cone_summary` as text lines."""
+    """`cone_summary` as text lines.
+
+    Args:
+        c: the cone study.
+
+    Returns:
+        Text lines.
+    """
     return [f"{name:40s} {value:.3e}" for name, value in cone_summary(c).items()]
 
 
 def det_b_map(p: Spherical2DofParams, grid: np.ndarray) -> np.ndarray:
     """det B over a (roll, pitch) grid (rad), (n, n) indexed [roll, pitch]; nan where the IK (eq. 8) has
-    no solution."""
+    no solution.
+
+    Args:
+        p: the parameters.
+        grid: (n,) angles, rad, on both axes.
+
+    Returns:
+        (n, n) det B.
+    """
     out = np.full((grid.size, grid.size), np.nan)
     for a, roll in enumerate(grid):
         for b, pitch in enumerate(grid):
@@ -130,7 +160,16 @@ class Basin:
 
 def basin(mech: Mechanism, directions: int = 24, grid_points: int = 91) -> Basin:
     """`fk.basin_study` at the regular and the near-singular pose for `RADII_DEG`, and the det B map on a
-    `grid_points` grid over -30..60 deg."""
+    `grid_points` grid over -30..60 deg.
+
+    Args:
+        mech: the platform.
+        directions: starts per circle.
+        grid_points: points per axis of the det B map.
+
+    Returns:
+        The study.
+    """
     poses = {"regular": REGULAR, "near singular": NEAR_SINGULAR}
     rows = {name: basin_study(mech, pose, np.radians(RADII_DEG), directions) for name, pose in poses.items()}
     grid = np.radians(np.linspace(-30, 60, grid_points))
@@ -138,7 +177,14 @@ def basin(mech: Mechanism, directions: int = 24, grid_points: int = 91) -> Basin
 
 
 def basin_lines(b: Basin) -> list[str]:
-    """The basin table: per pose, method and radius, the fractions found / elsewhere / failed and iterations."""
+    """The basin table: per pose, method and radius, the fractions found / elsewhere / failed and iterations.
+
+    Args:
+        b: the basin study.
+
+    Returns:
+        Text lines.
+    """
     out = [f"{'pose':14s} {'method':8s} {'r (deg)':>8s} {'found':>6s} {'other':>6s} {'failed':>6s} {'iters':>6s}"]
     for name, rows in b.rows.items():
         out += [f"{name:14s} {r.method:8s} {np.degrees(r.radius):8.1f} {r.found:6.2f} {r.elsewhere:6.2f} "

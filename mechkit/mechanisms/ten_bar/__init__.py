@@ -37,8 +37,9 @@ The patent gives no dimension. The design below is ours (parameters in `params`,
 Modules (each imports only the core, `mechkit.validation` and the siblings listed before it):
 `params` (parameters, motor laws, spring), `geometry` (hinge layout, mass properties, closed-form
 pose), `lagrange_model` (the patent's Lagrange model, numpy tree kinematics), `kinematics` (full
-closure, the patent's dimension reduction), `soc` (SKC decomposition), `dynamics` (deployment, the simulator
-with projection), `limits` (where the methods fail), `checks` (cross-checks, report rows), `scenes`
+closure, the patent's dimension reduction), `soc` (SKC decomposition), `dynamics` (deployment: the
+Pinocchio route through the simulator's equations, stepped with projection), `lagrange_deployment` (its
+Lagrange route), `limits` (where the methods fail), `checks` (cross-checks, report rows), `scenes`
 (the deployment as poses and as an input law), `bench` (`mechkit bench` methods and references),
 `design` (the sweep's `deployment` metric), `studies` (the deployment's cross-checks and figures'
 data) and `figures` (drawn from them).

@@ -46,13 +46,29 @@ def _q(mech: Mechanism, angles: dict[str, float]) -> np.ndarray:
 
 
 def closed_form(mech: Mechanism, sample: Any) -> np.ndarray:
-    """Assembly by circle intersections (numpy), as a mechkit q (rad)."""
+    """Assembly by circle intersections (numpy), as a mechkit q (rad).
+
+    Args:
+        mech: the ten-bar.
+        sample: a bench sample (inputs R1, R3, R5 with rates and accelerations; q, v, a; `extra` for the cache).
+
+    Returns:
+        q (nq,).
+    """
     i = _inputs(mech, sample)
     return _q(mech, geo.pose(mech.params, i["R1"], i["R3"], i["R5"]).joint_angles())
 
 
 def dimension_reduction(mech: Mechanism, sample: Any) -> np.ndarray:
-    """Assembly by the patent's dimension reduction from the bench's guess (the units cached)."""
+    """Assembly by the patent's dimension reduction from the bench's guess (the units cached).
+
+    Args:
+        mech: the ten-bar.
+        sample: a bench sample (inputs R1, R3, R5 with rates and accelerations; q, v, a; `extra` for the cache).
+
+    Returns:
+        q (nq,).
+    """
     if "dimension_reduction" not in sample.extra:
         sample.extra["dimension_reduction"] = tk.DimensionReduction(mech)
     guess = {j: float(sample.extra["guess"][mech.q_index(j)]) for j in td.JOINT_ORDER}
@@ -60,7 +76,15 @@ def dimension_reduction(mech: Mechanism, sample: Any) -> np.ndarray:
 
 
 def link_motion(mech: Mechanism, sample: Any) -> tuple[Any, np.ndarray, np.ndarray, np.ndarray]:
-    """(linkage with a spring of zero stiffness, q_L, qd_L, motor accelerations) of the sample; cached."""
+    """(linkage with a spring of zero stiffness, q_L, qd_L, motor accelerations) of the sample; cached.
+
+    Args:
+        mech: the ten-bar.
+        sample: a bench sample (inputs R1, R3, R5 with rates and accelerations; q, v, a; `extra` for the cache).
+
+    Returns:
+        (the Lagrange linkage, q_L, qd_L (3 per link), motor accelerations (rad/s^2)).
+    """
     if "ten_bar_link_motion" not in sample.extra:
         linkage = lagrange_linkage(mech.params, lagrange.Spring(PASSIVE, 0.0, 0.0))
         qL, vL = td.lagrange_state(mech.params, sample.q, sample.v, mech)
@@ -70,7 +94,15 @@ def link_motion(mech: Mechanism, sample: Any) -> tuple[Any, np.ndarray, np.ndarr
 
 
 def lagrange_forward(mech: Mechanism, sample: Any) -> np.ndarray:
-    """Forward dynamics by the Lagrange equations under the sample's motor torques, as joint accelerations."""
+    """Forward dynamics by the Lagrange equations under the sample's motor torques, as joint accelerations.
+
+    Args:
+        mech: the ten-bar.
+        sample: a bench sample (inputs R1, R3, R5 with rates and accelerations; q, v, a; `extra` for the cache).
+
+    Returns:
+        a (nv,), rad/s^2.
+    """
     linkage, qL, vL, _ = link_motion(mech, sample)
     qdd = linkage.forward(qL, vL, [sample.tau[mech.v_index(j)] for j in MOTORS])
     relative = geo.relative_angles({b: qdd[3 * i + 2] for i, b in enumerate(geo.BODIES)})
@@ -86,14 +118,30 @@ def _wrenches(forces: dict[str, np.ndarray]) -> dict[str, np.ndarray]:
 
 
 def lagrange_inverse(mech: Mechanism, sample: Any) -> dict[str, Any]:
-    """The patent's A f = P at the sample's motor accelerations: motor torques and every pair's force."""
+    """The patent's A f = P at the sample's motor accelerations: motor torques and every pair's force.
+
+    Args:
+        mech: the ten-bar.
+        sample: a bench sample (inputs R1, R3, R5 with rates and accelerations; q, v, a; `extra` for the cache).
+
+    Returns:
+        {"efforts": motor -> torque (N m), "reactions": pair -> world wrench (6,)}.
+    """
     linkage, qL, vL, motor_acc = link_motion(mech, sample)
     sol = linkage.solve(qL, vL, motor_acc)
     return {"efforts": sol.efforts, "reactions": _wrenches(sol.forces)}
 
 
 def soc_inverse(mech: Mechanism, sample: Any) -> dict[str, Any]:
-    """SOC virtual work over the nine SKCs, with the link accelerations of the sample's motion."""
+    """SOC virtual work over the nine SKCs, with the link accelerations of the sample's motion.
+
+    Args:
+        mech: the ten-bar.
+        sample: a bench sample (inputs R1, R3, R5 with rates and accelerations; q, v, a; `extra` for the cache).
+
+    Returns:
+        {"efforts": motor -> torque (N m), "reactions": pair -> world wrench (6,)}.
+    """
     linkage, qL, vL, motor_acc = link_motion(mech, sample)
     if "ten_bar_link_acceleration" not in sample.extra:
         sample.extra["ten_bar_link_acceleration"] = linkage.solve(qL, vL, motor_acc).qdd

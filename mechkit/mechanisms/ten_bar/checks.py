@@ -19,6 +19,7 @@ from mechkit.mechanisms.ten_bar import dynamics as td
 from mechkit.mechanisms.ten_bar import geometry as geo
 from mechkit.mechanisms.ten_bar import kinematics as tk
 from mechkit.mechanisms.ten_bar import soc as ts
+from mechkit.mechanisms.ten_bar.lagrange_deployment import LagrangeJointDeployment
 from mechkit.mechanisms.ten_bar.lagrange_model import lagrange_linkage
 from mechkit.mechanisms.ten_bar.params import MOTORS, TenBarParams, motor_law
 
@@ -49,6 +50,15 @@ def reactions_three_ways(mechanism: Mechanism, t: float, q: np.ndarray, v: np.nd
     Pinocchio: accelerations from constrained ABA with the motor laws, then constrained RNEA (the R5
     spring is the mechanism's joint spring in both). Lagrange: A f = P from the same state mapped to
     reference-point coordinates. SOC: virtual work over the SKCs with the Lagrange motion.
+
+    Args:
+        mechanism: the ten-bar.
+        t: time, s.
+        q: configuration (nq,), on the manifold.
+        v: velocity (nv,).
+
+    Returns:
+        Method ("pinocchio", "lagrange", "soc") -> motor torques (N m) and the 12 pairs' in-plane forces (N).
     """
     deployment = td.PinocchioDeployment(mechanism)
     a, _, _ = deployment.rhs(t, q, v)
@@ -69,6 +79,11 @@ def reactions_along(
 ) -> tuple[np.ndarray, dict[str, list[Reactions]]]:
     """`reactions_three_ways` at every `every`-th sample of a Pinocchio-route trajectory.
 
+    Args:
+        mechanism: the ten-bar.
+        trajectory: a Pinocchio-route trajectory.
+        every: the sampling stride.
+
     Returns:
         (sample times (s), method -> list of `Reactions`).
     """
@@ -83,7 +98,14 @@ def reactions_along(
 
 
 def reaction_disagreement(results: dict[str, Reactions]) -> float:
-    """Largest difference between any two methods, relative to the largest value (all 26 numbers)."""
+    """Largest difference between any two methods, relative to the largest value (all 26 numbers).
+
+    Args:
+        results: method -> reactions (`reactions_three_ways`).
+
+    Returns:
+        The relative difference (-).
+    """
     vectors = [r.vector() for r in results.values()]
     scale = max(np.max(np.abs(x)) for x in vectors)
     return float(max(np.max(np.abs(x - y)) for x in vectors for y in vectors) / scale)
@@ -94,6 +116,13 @@ def kinematics_disagreement(mechanism: Mechanism, inputs_list: list[dict[str, fl
 
     Each solve starts from the previous instant's answer, so consecutive inputs must be close (a
     tracked path), or a route may land on another assembly branch.
+
+    Args:
+        mechanism: the ten-bar.
+        inputs_list: inputs R1, R3, R5 (rad) along a path.
+
+    Returns:
+        {"full_vs_reduction", "full_vs_closed_form"} -> worst difference (rad).
     """
     reduction = tk.DimensionReduction(mechanism)
     names = td.JOINT_ORDER
@@ -117,7 +146,15 @@ def kinematics_disagreement(mechanism: Mechanism, inputs_list: list[dict[str, fl
 
 
 def nominal_inputs(p: TenBarParams, n: int) -> list[dict[str, float]]:
-    """Inputs along the motor laws with the rocker moved linearly from stowed to 0 (a kinematic path)."""
+    """Inputs along the motor laws with the rocker moved linearly from stowed to 0 (a kinematic path).
+
+    Args:
+        p: the ten-bar's parameters.
+        n: how many instants.
+
+    Returns:
+        n input sets R1, R3, R5 (rad).
+    """
     out = []
     for t in np.linspace(0.0, p.deploy_time, n):
         pos, _, _ = motor_law(p, t)
@@ -126,11 +163,18 @@ def nominal_inputs(p: TenBarParams, n: int) -> list[dict[str, float]]:
 
 
 def self_checks(mechanism: Mechanism) -> dict[str, float]:
-    """Rows of `mechkit report ten_bar` (worst error of each check; smaller is better)."""
+    """Rows of `mechkit report ten_bar` (worst error of each check; smaller is better).
+
+    Args:
+        mechanism: the ten-bar.
+
+    Returns:
+        Check name -> worst error.
+    """
     p = mechanism.params
     kin = kinematics_disagreement(mechanism, nominal_inputs(p, 21))
     pin_run = td.PinocchioDeployment(mechanism)
-    lag_run = td.LagrangeJointDeployment(p)
+    lag_run = LagrangeJointDeployment(p)
     q0 = mechanism.home_q
     qj = pin_run.joint_angles(q0)
     stretch = {"t_end": 0.05, "dt": 0.01}

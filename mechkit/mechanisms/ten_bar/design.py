@@ -19,7 +19,14 @@ from mechkit.mechanisms.ten_bar.scenes import DEPLOY_STEP
 
 
 def deployment_metrics(mech: Mechanism) -> dict[str, float]:
-    """{"max_motor_torque": N m, "latch_speed": m/s} of the design's deployment (step `DEPLOY_STEP`)."""
+    """The design's deployment figures of merit (step `DEPLOY_STEP`).
+
+    Args:
+        mech: the ten-bar (one design).
+
+    Returns:
+        {"max_motor_torque": N m, "latch_speed": m/s}.
+    """
     trajectory = td.deploy(td.PinocchioDeployment(mech), mech.home_q, DEPLOY_STEP)
     data = mech.model.createData()
     pin.forwardKinematics(mech.model, data, trajectory.q[-1], trajectory.v[-1])

@@ -2,15 +2,15 @@
 
 Motors R1 and R3 are ideal servos on the cycloidal laws of `params.motor_law`; the passive DOF
 (R5) moves under the spring-damper, gravity and the linkage's inertia. Two independent models of
-the same motion share one integrator:
+the same motion (`DeploymentSystem`s) share one integrator:
 
-- `PinocchioDeployment`: Pinocchio's constrained ABA (`Mechanism.forward_dynamics`,
+- `PinocchioDeployment` (here): Pinocchio's constrained ABA (`Mechanism.forward_dynamics`,
   `pin.constraintDynamics`) in joint coordinates. It is affine in the joint torques, so three
   calls give the accelerations and the two motor torques that realise the prescribed motor
   accelerations.
-- `LagrangeDeployment`: the patent's Lagrange equations of the first kind
-  (`mechkit.validation.lagrange`) in reference-point coordinates, A f = P with the motor torques
-  among the unknowns.
+- `LagrangeDeployment`, `LagrangeJointDeployment` (`mechkit.mechanisms.ten_bar.lagrange_deployment`):
+  the patent's Lagrange equations of the first kind (`mechkit.validation.lagrange`), A f = P with
+  the motor torques among the unknowns.
 
 The Pinocchio route is the simulator itself (`mechkit.simulation`: its equations of motion with the
 motor laws as drives, `Mechanism.simulate` for a deployment); the Lagrange routes are integrated by
@@ -32,12 +32,9 @@ from mechkit import simulation as sim
 from mechkit.base.exceptions import ClosureNotConverged
 from mechkit.mechanisms.ten_bar import geometry as geo
 from mechkit.mechanisms.ten_bar.lagrange_model import (
-    TreeKinematics,
-    joint_angles_from_lagrange,
     lagrange_from_joints,
-    lagrange_linkage,
 )
-from mechkit.mechanisms.ten_bar.params import MOTORS, TenBarParams, motor_law
+from mechkit.mechanisms.ten_bar.params import MOTORS, TenBarParams, motor_law, spring_from_urdf
 
 if TYPE_CHECKING:
     from mechkit.mechanism import Mechanism
@@ -49,19 +46,60 @@ class DeploymentSystem(Protocol):
     p: TenBarParams
 
     def rhs(self, t: float, q: np.ndarray, v: np.ndarray) -> tuple[np.ndarray, np.ndarray, float]:
-        """(accelerations, motor torques (R1, R3) N m, net external power W)."""
+        """(accelerations, motor torques (R1, R3) N m, net external power W).
+
+        Args:
+            t: time, s.
+            q: the system's coordinates.
+            v: their rates.
+
+        Returns:
+            (accelerations, motor torques (R1, R3) N m, net external power W).
+        """
 
     def project(self, t: float, q: np.ndarray, v: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """(q, v) on the constraint manifold at t."""
+        """(q, v) on the constraint manifold at t.
+
+        Args:
+            t: time, s.
+            q: the system's coordinates.
+            v: their rates.
+
+        Returns:
+            (q, v) on the constraints and the motor laws at t.
+        """
 
     def residual(self, t: float, q: np.ndarray) -> float:
-        """Largest closure residual (m)."""
+        """Largest closure residual (m).
+
+        Args:
+            t: time, s.
+            q: the system's coordinates.
+
+        Returns:
+            The residual, m.
+        """
 
     def energy(self, q: np.ndarray, v: np.ndarray) -> float:
-        """Kinetic + gravity + spring energy (J)."""
+        """Kinetic + gravity + spring energy (J).
+
+        Args:
+            q: the system's coordinates.
+            v: their rates.
+
+        Returns:
+            The energy, J.
+        """
 
     def joint_angles(self, q: np.ndarray) -> np.ndarray:
-        """The 9 tree-joint angles in `JOINT_ORDER` (rad)."""
+        """The 9 tree-joint angles in `JOINT_ORDER` (rad).
+
+        Args:
+            q: the system's coordinates.
+
+        Returns:
+            (9,) angles, rad.
+        """
 
 
 JOINT_ORDER = geo.TREE_JOINTS
@@ -86,129 +124,95 @@ class PinocchioDeployment:
         self.system = sim.MechanismSystem(mechanism, [mechanism.springs], self.drives, method, baumgarte)
         self.projection = sim.Projection(mechanism)
         self.motor_v = np.array([mechanism.v_index(j) for j in MOTORS])
+        self.spring_v = mechanism.v_index(spring_from_urdf(mechanism.urdf).pin)
         self.order = np.array([mechanism.q_index(j) for j in JOINT_ORDER])
 
     def law(self, t: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """The motor laws at t (s): angles, rates, accelerations of (R1, R3)."""
+        """The motor laws at t.
+
+        Args:
+            t: time, s.
+
+        Returns:
+            (angles rad, rates rad/s, accelerations rad/s^2) of (R1, R3).
+        """
         return motor_law(self.p, t)
 
+    def spring_torque(self, q: np.ndarray, v: np.ndarray) -> float:
+        """The R5 spring-damper torque on l56 (N m): k (free angle - q) - c qdot (the mechanism's own joint
+        spring, `Mechanism.passive_forces`, which its dynamics apply).
+
+        Args:
+            q: configuration (nq,).
+            v: velocity (nv,).
+
+        Returns:
+            The torque, N m.
+        """
+        return float(self.m.passive_forces(q, v)[self.spring_v])
+
     def rhs(self, t: float, q: np.ndarray, v: np.ndarray) -> tuple[np.ndarray, np.ndarray, float]:
-        """(accelerations, motor torques (R1, R3) N m, net external power W) at time t (s)."""
+        """(accelerations, motor torques (R1, R3) N m, net external power W) at time t (s).
+
+        Args:
+            t: time, s.
+            q: configuration (nq,).
+            v: velocity (nv,).
+
+        Returns:
+            (accelerations, motor torques (R1, R3) N m, net external power W).
+        """
         ev = self.system.evaluate(t, q, v)
         return ev.a, ev.efforts, float(ev.efforts @ v[self.motor_v]) + float(ev.powers[0])
 
     def project(self, t: float, q: np.ndarray, v: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """(q, v) on the closures and the motor laws at time t (s)."""
+        """(q, v) on the closures and the motor laws at time t (s).
+
+        Args:
+            t: time, s.
+            q: configuration (nq,).
+            v: velocity (nv,).
+
+        Returns:
+            (q, v) on the constraints and the motor laws at t.
+        """
         q = self.projection.positions(q, self.drives, t)
         return q, self.projection.velocities(q, v, self.drives, t)
 
     def residual(self, t: float, q: np.ndarray) -> float:
-        """Largest closure residual (m) at q."""
+        """Largest closure residual (m) at q.
+
+        Args:
+            t: time, s.
+            q: configuration (nq,).
+
+        Returns:
+            The residual, m.
+        """
         return self.projection.residual(q)
 
     def energy(self, q: np.ndarray, v: np.ndarray) -> float:
-        """Kinetic + gravity + spring energy (J)."""
+        """Kinetic + gravity + spring energy (J).
+
+        Args:
+            q: configuration (nq,).
+            v: velocity (nv,).
+
+        Returns:
+            The energy, J.
+        """
         return self.system.kinetic(q, v) + float(np.sum(self.system.potentials(q)))
 
     def joint_angles(self, q: np.ndarray) -> np.ndarray:
-        """The 9 tree-joint angles in `JOINT_ORDER` (rad)."""
+        """The 9 tree-joint angles in `JOINT_ORDER` (rad).
+
+        Args:
+            q: configuration (nq,).
+
+        Returns:
+            (9,) angles, rad.
+        """
         return q[self.order]
-
-
-class LagrangeDeployment:
-    """Deployment dynamics by the patent's Lagrange first-kind method (numpy only)."""
-
-    def __init__(self, params: TenBarParams) -> None:
-        self.p = params
-        self.L = lagrange_linkage(params)
-
-    def rhs(self, t: float, q: np.ndarray, v: np.ndarray) -> tuple[np.ndarray, np.ndarray, float]:
-        """(reference-point accelerations, motor torques (R1, R3) N m, net external power W) at t (s)."""
-        _, _, acc = motor_law(self.p, t)
-        sol = self.L.solve(q, v, acc)
-        u = np.array([sol.efforts[m] for m in MOTORS])
-        power = self.L.power(q, v, sol.efforts)
-        return sol.qdd, u, power["motor"] - power["damper"]
-
-    def project(self, t: float, q: np.ndarray, v: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """(q, v) on the pin constraints and the motor laws at time t (s)."""
-        pos, rate, _ = motor_law(self.p, t)
-        return self.L.project(q, v, pos, rate)
-
-    def residual(self, t: float, q: np.ndarray) -> float:
-        """Largest pin-constraint residual (m) at q."""
-        return float(np.max(np.abs(self.L.constraints(q))))
-
-    def energy(self, q: np.ndarray, v: np.ndarray) -> float:
-        """Kinetic + gravity + spring energy (J)."""
-        return float(sum(self.L.energy(q, v).values()))
-
-    def joint_angles(self, q: np.ndarray) -> np.ndarray:
-        """The 9 tree-joint angles in `JOINT_ORDER` (rad) of reference-point coordinates q."""
-        angles = joint_angles_from_lagrange(q)
-        return np.array([angles[j] for j in JOINT_ORDER])
-
-
-class LagrangeJointDeployment:
-    """The same Lagrange first-kind dynamics with the state in tree-joint coordinates (`JOINT_ORDER`).
-
-    Each evaluation maps the joint state to reference-point coordinates by numpy forward
-    kinematics, solves A f = P, and returns the joint accelerations (differences of the links'
-    absolute angular accelerations). Integrated by `integrate` in the same coordinates as
-    `PinocchioDeployment`, the two discrete trajectories differ only by the solvers' round-off,
-    not by the integrator's truncation error.
-    """
-
-    def __init__(self, params: TenBarParams) -> None:
-        self.p = params
-        self.inner = LagrangeDeployment(params)
-        self.L = self.inner.L
-        hinges = geo.hinges(params)[: len(JOINT_ORDER)]
-        index = {b: i for i, b in enumerate(geo.BODIES)}
-        self.joint_rows = np.zeros((len(JOINT_ORDER), self.L.n))  # joint angle = row . q_L
-        for h in hinges:
-            k = JOINT_ORDER.index(h.name)
-            self.joint_rows[k, 3 * index[h.child] + 2] = 1.0
-            if h.parent is not None:
-                self.joint_rows[k, 3 * index[h.parent] + 2] = -1.0
-        self.motor_rows = np.array([JOINT_ORDER.index(m) for m in MOTORS])
-        self.fk = TreeKinematics(params)
-
-    def _state(self, q, v):
-        return self.fk(q, v)
-
-    def _map(self, q):
-        """(q_L, T) with T = d q_L / d q (the forward kinematics is linear in the rates)."""
-        return self.fk(q, np.eye(len(q)))
-
-    def rhs(self, t: float, q: np.ndarray, v: np.ndarray) -> tuple[np.ndarray, np.ndarray, float]:
-        """(joint accelerations, motor torques (R1, R3) N m, net external power W) at time t (s)."""
-        qL, vL = self._state(q, v)
-        qdd, u, power = self.inner.rhs(t, qL, vL)
-        return self.joint_rows @ qdd, u, power
-
-    def _rows(self, t, q):
-        pos, _, _ = motor_law(self.p, t)
-        qL, T = self._map(q)
-        e = np.concatenate([self.L.constraints(qL), q[self.motor_rows] - pos])
-        return e, np.vstack([self.L.jacobian(qL) @ T, np.eye(len(q))[self.motor_rows]])
-
-    def project(self, t: float, q: np.ndarray, v: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """(q, v) on the pin constraints and the motor laws at time t (s)."""
-        _, rate, _ = motor_law(self.p, t)
-        return project(lambda x: self._rows(t, x), q, v, rate, "ten-bar projection (Lagrange, joints)")
-
-    def residual(self, t: float, q: np.ndarray) -> float:
-        """Largest pin-constraint residual (m) at joint angles q."""
-        return self.inner.residual(t, self._state(q, 0 * q)[0])
-
-    def energy(self, q: np.ndarray, v: np.ndarray) -> float:
-        """Kinetic + gravity + spring energy (J)."""
-        return self.inner.energy(*self._state(q, v))
-
-    def joint_angles(self, q: np.ndarray) -> np.ndarray:
-        """The joint angles themselves (rad, `JOINT_ORDER`)."""
-        return q.copy()
 
 
 def project(rows: Callable[[np.ndarray], tuple[np.ndarray, np.ndarray]], q: np.ndarray, v: np.ndarray, motor_rates: np.ndarray, what: str, tol: float = 1e-13,
@@ -223,6 +227,9 @@ def project(rows: Callable[[np.ndarray], tuple[np.ndarray, np.ndarray]], q: np.n
         what: names the system in the error.
         tol: residual norm to reach.
         max_iter: Gauss-Newton steps allowed.
+
+    Returns:
+        (q, v) projected.
 
     Raises:
         ClosureNotConverged: the residual does not reach tol.
@@ -283,6 +290,9 @@ def integrate(
         dt: step (s).
         project: project (q, v) onto the closures and motor laws after every step.
         t0: start time (s).
+
+    Returns:
+        The trajectory: times, q, v, joint angles, motor torques, residuals, energy error.
     """
     n = len(q0)
 
@@ -308,7 +318,17 @@ def integrate(
 def lagrange_state(
     params: TenBarParams, q_pin: np.ndarray, v_pin: np.ndarray, mechanism: Mechanism
 ) -> tuple[np.ndarray, np.ndarray]:
-    """Reference-point coordinates and rates of a Pinocchio state (numpy forward kinematics)."""
+    """Reference-point coordinates and rates of a Pinocchio state (numpy forward kinematics).
+
+    Args:
+        params: the parameters.
+        q_pin: a Pinocchio configuration (nq,).
+        v_pin: its velocity (nv,).
+        mechanism: the ten-bar (joint indices).
+
+    Returns:
+        (q_L, qd_L), 3 per link.
+    """
     angles = {j: float(q_pin[mechanism.q_index(j)]) for j in JOINT_ORDER}
     rates = {j: float(v_pin[mechanism.v_index(j)]) for j in JOINT_ORDER}
     return lagrange_from_joints(params, angles, rates)
@@ -317,6 +337,17 @@ def lagrange_state(
 def deploy(
     system: DeploymentSystem, q0: np.ndarray, dt: float, t_end: float | None = None, project: bool = True
 ) -> Trajectory:
-    """Integrate from rest at q0 (stowed) to t_end (default: the end of the motor laws)."""
+    """Integrate from rest at q0 (stowed) to t_end (default: the end of the motor laws).
+
+    Args:
+        system: the dynamics model.
+        q0: the stowed configuration, in the system's coordinates.
+        dt: RK4 step, s.
+        t_end: end time, s.
+        project: project after every step.
+
+    Returns:
+        The trajectory.
+    """
     end = system.p.deploy_time if t_end is None else t_end
     return integrate(system, q0, np.zeros_like(q0), end, dt, project=project)

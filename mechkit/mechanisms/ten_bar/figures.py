@@ -68,7 +68,15 @@ def _over_time(fig: Any, ax: Any, path: Path, ylabel: str, legend: dict | None =
 
 
 def deployment_figures(d: Deployment, folder: Path) -> list[Path]:
-    """The five figures of the deployment; returns the files written."""
+    """The five figures of the deployment: poses, angles, torques, supports, drift.
+
+    Args:
+        d: the deployment study.
+        folder: where the PNGs go.
+
+    Returns:
+        The files written.
+    """
     plt = pyplot("ten_bar figures")
     traj, out = d.trajectory, []
     fig, ax = plt.subplots(figsize=(7, 6))

@@ -85,18 +85,39 @@ class Piece:
 
 
 def rot(phi: float) -> np.ndarray:
-    """2x2 rotation of the x-z plane by phi (rad, +x towards +z)."""
+    """2x2 rotation of the x-z plane by phi (rad, +x towards +z).
+
+    Args:
+        phi: the angle, rad.
+
+    Returns:
+        (2, 2) matrix.
+    """
     c, s = np.cos(phi), np.sin(phi)
     return np.array([[c, -s], [s, c]])
 
 
 def unit(phi: float) -> np.ndarray:
-    """Unit vector (2,) of the plane at angle phi (rad) from the x axis."""
+    """Unit vector (2,) of the plane at angle phi (rad) from the x axis.
+
+    Args:
+        phi: the angle, rad.
+
+    Returns:
+        (2,) unit vector.
+    """
     return np.array([np.cos(phi), np.sin(phi)])
 
 
 def hinge_points(p: TenBarParams) -> dict[str, dict[str, np.ndarray]]:
-    """Body-frame coordinates (m) of every hinge on every link (and the wall's, in world)."""
+    """Body-frame coordinates (m) of every hinge on every link (and the wall's, in world).
+
+    Args:
+        p: the ten-bar's parameters.
+
+    Returns:
+        Link -> hinge -> (2,) point (x, z), m.
+    """
     r2 = np.array([p.r2_along, p.r2_normal])
     return {
         "wall": {"R1": np.zeros(2), "R5": np.array([0.0, -p.wall_gap])},
@@ -118,7 +139,14 @@ def hinge_points(p: TenBarParams) -> dict[str, dict[str, np.ndarray]]:
 
 
 def hinges(p: TenBarParams) -> tuple[Hinge, ...]:
-    """The 12 revolute pairs in `PAIRS` order (parent side first; R7a/R7c/R10 are the cuts)."""
+    """The 12 revolute pairs in `PAIRS` order (parent side first; R7a/R7c/R10 are the cuts).
+
+    Args:
+        p: the ten-bar's parameters.
+
+    Returns:
+        The pairs: name, parent and child links, points in each.
+    """
     h = hinge_points(p)
     out = []
     for name in PAIRS:
@@ -130,7 +158,14 @@ def hinges(p: TenBarParams) -> tuple[Hinge, ...]:
 
 
 def pieces(p: TenBarParams) -> dict[str, tuple[Piece, ...]]:
-    """The bars and plates of every link (body frames); the xacro template builds the same ones."""
+    """The bars and plates of every link (body frames); the xacro template builds the same ones.
+
+    Args:
+        p: the ten-bar's parameters.
+
+    Returns:
+        Link -> its pieces (start, end, mass, width).
+    """
     h = hinge_points(p)
     rod = p.rod_width * p.rod_thickness * p.rod_density  # kg/m
 
@@ -158,7 +193,14 @@ def pieces(p: TenBarParams) -> dict[str, tuple[Piece, ...]]:
 
 
 def mass_properties(p: TenBarParams) -> dict[str, tuple[float, np.ndarray, float]]:
-    """Per link: mass (kg), COM (body frame, m), inertia about the COM normal to the plane (kg m^2)."""
+    """Per link: mass (kg), COM (body frame, m), inertia about the COM normal to the plane (kg m^2).
+
+    Args:
+        p: the ten-bar's parameters.
+
+    Returns:
+        Link -> (mass, COM (2,), inertia).
+    """
     out = {}
     for body, parts in pieces(p).items():
         m = sum(x.mass for x in parts)
@@ -173,7 +215,14 @@ def mass_properties(p: TenBarParams) -> dict[str, tuple[float, np.ndarray, float
 
 
 def relative_angles(angles: dict[str, float]) -> dict[str, float]:
-    """Tree-joint values (rad) from absolute link angles: child's minus parent's (the wall's is 0)."""
+    """Tree-joint values (rad) from absolute link angles: child's minus parent's (the wall's is 0).
+
+    Args:
+        angles: link -> absolute angle, rad.
+
+    Returns:
+        Tree joint -> value, rad.
+    """
     return {j: angles[PAIR_LINKS[j][1]] - angles.get(PAIR_LINKS[j][0], 0.0) for j in TREE_JOINTS}
 
 
@@ -182,8 +231,17 @@ def circle_intersection(
 ) -> tuple[np.ndarray, float]:
     """The point at distance r1 from c1 and r2 from c2, left of c1 -> c2 for branch +1.
 
-    Returns (point, sin of the angle at the point between the two radii): the unit's distance from
-    its singular (stretched or folded) pose.
+    Args:
+        c1: first centre (2,), m.
+        r1: first radius, m.
+        c2: second centre (2,), m.
+        r2: second radius, m.
+        branch: +1 or -1.
+        what: the loop, for the error.
+
+    Returns:
+        (point (2,), sin of the angle at the point between the two radii: the unit's distance from its singular
+            (stretched or folded) pose).
 
     Raises:
         ClosureNotConverged: the two circles do not meet (the loop cannot close).
@@ -226,6 +284,9 @@ def pose(p: TenBarParams, phi1: float, psi3: float, phi5: float) -> Pose:
         psi3: angle of panel 2 relative to panel 1 (R3 joint), rad.
         phi5: absolute angle of the wall rocker l56 (R5 joint, the passive DOF), rad.
 
+    Returns:
+        The link angles, the hinge points and each unit's margin (sine at its closing hinge).
+
     Raises:
         ClosureNotConverged: a loop cannot close at these inputs.
     """
@@ -259,5 +320,12 @@ def pose(p: TenBarParams, phi1: float, psi3: float, phi5: float) -> Pose:
 
 
 def stowed_pose(p: TenBarParams) -> Pose:
-    """Closed-form stowed assembly."""
+    """Closed-form stowed assembly.
+
+    Args:
+        p: the ten-bar's parameters.
+
+    Returns:
+        The pose.
+    """
     return pose(p, STOWED["R1"], STOWED["R3"], p.stowed_rocker)

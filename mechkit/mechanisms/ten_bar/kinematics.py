@@ -80,7 +80,14 @@ class DimensionReduction:
         self.units = [_ReducedUnit(mechanism, u) for u in UNITS]
 
     def unit_model(self, name: str) -> pin.Model:
-        """The reduced model of one unit ("five_bar", "four_bar", "six_bar")."""
+        """The reduced model of one unit ("five_bar", "four_bar", "six_bar").
+
+        Args:
+            name: "five_bar", "four_bar" or "six_bar".
+
+        Returns:
+            The Pinocchio model.
+        """
         return next(u.model for u in self.units if u.unit.name == name)
 
     def solve(
@@ -93,6 +100,9 @@ class DimensionReduction:
             guess: joint name -> value near the wanted branch (e.g. the previous instant).
             tol: closure residual of each unit (m).
 
+        Returns:
+            Joint name -> angle (rad).
+
         Raises:
             ClosureNotConverged: a unit cannot close.
         """
@@ -103,5 +113,15 @@ class DimensionReduction:
 
 
 def full_solve(mechanism: Mechanism, inputs: Mapping[str, float], guess: np.ndarray, tol: float = 1e-13) -> np.ndarray:
-    """The whole closure at once (the core's Gauss-Newton on all 6 rows) from R1, R3, R5."""
+    """The whole closure at once (the core's Gauss-Newton on all 6 rows) from R1, R3, R5.
+
+    Args:
+        mechanism: the ten-bar.
+        inputs: values of R1, R3, R5 (rad).
+        guess: configuration (nq,) near the wanted branch.
+        tol: closure residual to reach (m).
+
+    Returns:
+        q (nq,).
+    """
     return mechanism.assemble(dict(inputs), guess=guess, tol=tol)

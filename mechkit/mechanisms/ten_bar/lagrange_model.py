@@ -15,7 +15,15 @@ from mechkit.validation import lagrange
 
 
 def lagrange_linkage(p: TenBarParams, spring_: lagrange.Spring | None = None) -> lagrange.Linkage:
-    """The patent's Lagrange first-kind model of the ten-bar, from the parameters (numpy only)."""
+    """The patent's Lagrange first-kind model of the ten-bar, from the parameters (numpy only).
+
+    Args:
+        p: the ten-bar's parameters.
+        spring_: the R5 spring (default: the parameters').
+
+    Returns:
+        The linkage.
+    """
     props = geo.mass_properties(p)
     index = {b: i for i, b in enumerate(geo.BODIES)}
     bodies = [lagrange.Body(b, props[b][0], props[b][2], props[b][1]) for b in geo.BODIES]
@@ -33,7 +41,15 @@ def lagrange_linkage(p: TenBarParams, spring_: lagrange.Spring | None = None) ->
 
 
 def lagrange_coordinates(p: TenBarParams, pose: geo.Pose) -> np.ndarray:
-    """Reference-point coordinates (COM x, z, absolute angle per link) of a closed-form pose."""
+    """Reference-point coordinates (COM x, z, absolute angle per link) of a closed-form pose.
+
+    Args:
+        p: the ten-bar's parameters.
+        pose: a closed-form pose.
+
+    Returns:
+        (3 * 9,) coordinates: x, z (m), phi (rad) per link.
+    """
     props = geo.mass_properties(p)
     h = geo.hinge_points(p)
     q = np.empty(3 * len(geo.BODIES))
@@ -91,11 +107,27 @@ class TreeKinematics:
 def lagrange_from_joints(
     p: TenBarParams, angles: dict[str, float], rates: dict[str, float]
 ) -> tuple[np.ndarray, np.ndarray]:
-    """Reference-point coordinates and rates from tree-joint angles and rates (numpy forward kinematics)."""
+    """Reference-point coordinates and rates from tree-joint angles and rates (numpy forward kinematics).
+
+    Args:
+        p: the ten-bar's parameters.
+        angles: tree joint -> angle (rad).
+        rates: tree joint -> rate (rad/s).
+
+    Returns:
+        (q_L, qd_L), 3 per link.
+    """
     fk = TreeKinematics(p)
     return fk(np.array([angles[j] for j in geo.TREE_JOINTS]), np.array([rates[j] for j in geo.TREE_JOINTS]))
 
 
 def joint_angles_from_lagrange(q: np.ndarray) -> dict[str, float]:
-    """URDF tree-joint values from reference-point coordinates (relative absolute angles, rad)."""
+    """URDF tree-joint values from reference-point coordinates (relative absolute angles, rad).
+
+    Args:
+        q: reference-point coordinates (3 per link).
+
+    Returns:
+        Tree joint -> value (rad).
+    """
     return geo.relative_angles({b: q[3 * i + 2] for i, b in enumerate(geo.BODIES)})

@@ -43,7 +43,15 @@ class KinematicSplit:
 
 
 def kinematic_split(mechanism: Mechanism, q: np.ndarray) -> KinematicSplit:
-    """Null space of the closure Jacobian with the motor columns held (the patent's kinematic split)."""
+    """Null space of the closure Jacobian with the motor columns held (the patent's kinematic split).
+
+    Args:
+        mechanism: the ten-bar.
+        q: an assembled configuration (nq,).
+
+    Returns:
+        The null space's dimension, its direction (nv,) and the five-bar's own nullity.
+    """
     J = mechanism.closure_jacobian(q)
     motors = [mechanism.v_index(m) for m in MOTORS]
     free = np.setdiff1d(np.arange(J.shape[1]), motors)
@@ -73,6 +81,16 @@ def drift(
 
     Baumgarte gains stay set on the core's constraint models (see docs/core_requests.md), so a
     stabilised run uses its own copy of the mechanism and leaves the caller's untouched.
+
+    Args:
+        mechanism: the ten-bar.
+        t_end: end time, s.
+        dt: RK4 step, s.
+        baumgarte: Baumgarte gains (Kp, Kd), or None.
+        project: project after every step.
+
+    Returns:
+        The trajectory.
     """
     own = mechanism if baumgarte is None else from_params(mechanism.spec, mechanism.params)
     system = td.PinocchioDeployment(own, baumgarte=baumgarte)
@@ -83,7 +101,11 @@ def loop_margins(params: TenBarParams, angles: np.ndarray) -> dict[str, np.ndarr
     """Sine of the angle at each loop's closing hinge (R7, R9, R8) along a trajectory (0: singular).
 
     Args:
+        params: the parameters.
         angles: (N, 9) joint angles in `td.JOINT_ORDER`.
+
+    Returns:
+        Loop -> (N,) margins (-).
     """
     i1, i3, i5 = (td.JOINT_ORDER.index(j) for j in ("R1", "R3", "R5"))
     rows = [geo.pose(params, a[i1], a[i3], a[i5]).margins for a in angles]

@@ -88,7 +88,14 @@ class TenBarParams(MechanismParams):
 
 
 def spring(p: TenBarParams) -> lagrange.Spring:
-    """The R5 torsion spring-damper: torque = preload - k (angle - stowed) - c rate on l56."""
+    """The R5 torsion spring-damper: torque = preload - k (angle - stowed) - c rate on l56.
+
+    Args:
+        p: the ten-bar's parameters.
+
+    Returns:
+        The Lagrange model's spring.
+    """
     return lagrange.Spring(
         PASSIVE, p.spring_stiffness, p.stowed_rocker + p.spring_preload / p.spring_stiffness, p.spring_damping
     )
@@ -97,6 +104,12 @@ def spring(p: TenBarParams) -> lagrange.Spring:
 def spring_from_urdf(urdf: str) -> lagrange.Spring:
     """The `<mechkit:spring>` of the URDF (the xacro's spring arguments, `sources.urdf.parse_springs`) as
     the Lagrange model's spring: torque = stiffness (free angle - q) - damping qdot.
+
+    Args:
+        urdf: the ten-bar's URDF text.
+
+    Returns:
+        The spring.
 
     Raises:
         MalformedDescription: no spring element, or a malformed one.
@@ -112,6 +125,13 @@ def motor_law(p: TenBarParams, t: float) -> tuple[np.ndarray, np.ndarray, np.nda
     """Cycloidal motor laws stowed -> deployed over `deploy_time` (zero rate and acceleration at both ends).
 
     Returns (angles, rates, accelerations) of (R1, R3): rad, rad/s, rad/s^2.
+
+    Args:
+        p: the ten-bar's parameters.
+        t: time, s.
+
+    Returns:
+        (angles, rates, accelerations) of (R1, R3): rad, rad/s, rad/s^2.
     """
     T = p.deploy_time
     s = min(max(t / T, 0.0), 1.0)

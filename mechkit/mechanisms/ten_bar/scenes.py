@@ -19,20 +19,46 @@ def _picks(steps: int, frames: int) -> np.ndarray:
 
 
 def deployment_poses(mechanism: Mechanism, frames: int = 120, dt: float = DEPLOY_STEP) -> list[np.ndarray]:
-    """Stowed to deployed: the constrained-ABA deployment (fixed steps of the simulator with projection, step dt in s) sampled
-    at `frames` poses, for animations."""
+    """Stowed to deployed: the constrained-ABA deployment (fixed steps of the simulator with projection,
+    step dt in s) sampled at `frames` poses, for animations.
+
+    Args:
+        mechanism: the ten-bar.
+        frames: how many poses.
+        dt: step, s.
+
+    Returns:
+        The configurations (nq,).
+    """
     trajectory = td.deploy(td.PinocchioDeployment(mechanism), mechanism.home_q, dt)
     return [trajectory.q[i] for i in _picks(len(trajectory.q) - 1, frames)]
 
 
 def deployment_times(mechanism: Mechanism, poses: int, dt: float = DEPLOY_STEP) -> np.ndarray:
-    """Times (s) of the deployment scene's poses (the steps it picks)."""
+    """Times (s) of the deployment scene's poses (the steps it picks).
+
+    Args:
+        mechanism: the ten-bar.
+        poses: the number of poses.
+        dt: step, s.
+
+    Returns:
+        (poses,) times, s.
+    """
     return dt * _picks(round(mechanism.params.deploy_time / dt), poses)
 
 
 def deployment_law(mechanism: Mechanism, samples: int | None = None) -> SampledLaw:
     """The deployment as an input law of the motors and the rocker R5: every step (dt =
-    `DEPLOY_STEP`), or `samples` poses, each pose a warm start (`SPEC.motion_laws["deploy"]`)."""
+    `DEPLOY_STEP`), or `samples` poses, each pose a warm start (`SPEC.motion_laws["deploy"]`).
+
+    Args:
+        mechanism: the ten-bar.
+        samples: how many poses (default: every step).
+
+    Returns:
+        The law on R1, R3, R5 with the poses as guesses.
+    """
     every_step = round(mechanism.params.deploy_time / DEPLOY_STEP) + 1
     frames = samples or every_step
     poses = np.array(deployment_poses(mechanism, frames))

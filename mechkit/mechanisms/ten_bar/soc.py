@@ -68,7 +68,17 @@ def _site(
 
 
 def skc_instants(L: lagrange.Linkage, q: np.ndarray, qd: np.ndarray, qdd: np.ndarray) -> list[SKCInstant]:
-    """The nine SKCs at one instant of a Lagrange solution (q, qd, qdd in reference-point coordinates)."""
+    """The nine SKCs at one instant of a Lagrange solution (q, qd, qdd in reference-point coordinates).
+
+    Args:
+        L: the Lagrange linkage.
+        q: reference-point coordinates (3 per link).
+        qd: their rates.
+        qdd: their accelerations.
+
+    Returns:
+        The SKCs in solve order.
+    """
     index = {b.name: i for i, b in enumerate(L.bodies)}
     Cq = L.jacobian(q)
     spring = L.springs[0]
@@ -131,6 +141,15 @@ def solve(
     """SOC efforts (N m, +x towards +z) and the 12 pairs' in-plane forces (N, (fx, fz), parent on child).
 
     The R3 motor torque is the axis moment of the R3 reaction: u3 = -my.
+
+    Args:
+        L: the Lagrange linkage.
+        q: reference-point coordinates (3 per link).
+        qd: their rates.
+        qdd: their accelerations.
+
+    Returns:
+        (motor -> torque, pair -> (fx, fz), the SOC result).
     """
     result = solve_soc(skc_instants(L, q, qd, qdd), gravity=np.array([L.gravity[0], 0.0, L.gravity[1]]))
     efforts = {"R1": result.efforts["R1"], "R3": -float(result.reactions["R3"][4])}

@@ -26,6 +26,7 @@ from mechkit.mechanisms.ten_bar import geometry as geo
 from mechkit.mechanisms.ten_bar import lagrange_model as lm
 from mechkit.mechanisms.ten_bar import limits as tl
 from mechkit.mechanisms.ten_bar import params as tp
+from mechkit.mechanisms.ten_bar.lagrange_deployment import LagrangeDeployment, LagrangeJointDeployment
 from mechkit.mechanisms.ten_bar.params import TenBarParams
 
 #: The drift study: its duration and fixed step (s).
@@ -35,7 +36,14 @@ CONVERGENCE_STEPS, CONVERGENCE_END = (0.02, 0.01, 0.005), 0.4
 
 
 def drift_runs(mech: Mechanism) -> dict[str, td.Trajectory]:
-    """The first `DRIFT_END` s at `DRIFT_STEP` under each stabilisation of `limits.STABILISATIONS`, by label."""
+    """The first `DRIFT_END` s at `DRIFT_STEP` under each stabilisation of `limits.STABILISATIONS`, by label.
+
+    Args:
+        mech: the ten-bar.
+
+    Returns:
+        Label -> trajectory.
+    """
     return {label: tl.drift(mech, DRIFT_END, DRIFT_STEP, baumgarte, project)
             for label, baumgarte, project in tl.STABILISATIONS}
 
@@ -87,6 +95,9 @@ def cross_checks(mech: Mechanism, dt: float = 0.005, t_end: float | None = None,
         dt: fixed step (s).
         t_end: stop early (s); default: the whole deployment.
         samples: instants of the three-way reactions.
+
+    Returns:
+        Both trajectories, their agreement, the convergence order, the three-way reactions and the timings.
     """
     p = mech.params
     pin_run = td.PinocchioDeployment(mech)
@@ -94,9 +105,9 @@ def cross_checks(mech: Mechanism, dt: float = 0.005, t_end: float | None = None,
     a = td.deploy(pin_run, mech.home_q, dt, t_end)
     seconds = {"Pinocchio": time.perf_counter() - clock}
     clock = time.perf_counter()
-    b = td.deploy(td.LagrangeJointDeployment(p), pin_run.joint_angles(mech.home_q), dt, t_end)
+    b = td.deploy(LagrangeJointDeployment(p), pin_run.joint_angles(mech.home_q), dt, t_end)
     seconds["Lagrange"] = time.perf_counter() - clock
-    own = td.LagrangeDeployment(p)
+    own = LagrangeDeployment(p)
     q_own = lm.lagrange_coordinates(p, geo.stowed_pose(p))
     convergence = [(step, float(np.max(np.abs(td.deploy(pin_run, mech.home_q, step, CONVERGENCE_END).angles
                                               - td.deploy(own, q_own, step, CONVERGENCE_END).angles))))
@@ -117,7 +128,14 @@ def cross_checks(mech: Mechanism, dt: float = 0.005, t_end: float | None = None,
 
 
 def cross_check_lines(c: CrossChecks) -> list[str]:
-    """The cross-checks as text, one finding a line."""
+    """The cross-checks as text, one finding a line.
+
+    Args:
+        c: the cross-checks.
+
+    Returns:
+        Text lines.
+    """
     a, b, p = c.pinocchio, c.lagrange, c.params
     motors = [td.JOINT_ORDER.index(j) for j in tp.MOTORS]
     rocker = np.degrees(a.angles[:, td.JOINT_ORDER.index(tp.PASSIVE)])
@@ -185,7 +203,17 @@ class Deployment:
 
 def deployment(mech: Mechanism, dt: float = 0.005, t_end: float | None = None, reaction_instants: int = 100) -> Deployment:
     """The deployment (fixed step dt s, up to t_end s, default the whole), the reactions at about
-    `reaction_instants` instants, and the drift study."""
+    `reaction_instants` instants, and the drift study.
+
+    Args:
+        mech: the ten-bar.
+        dt: step, s.
+        t_end: end time, s (default: the whole deployment).
+        reaction_instants: about how many instants of the reactions.
+
+    Returns:
+        The trajectory, the reactions along it, and the drift runs.
+    """
     run = td.PinocchioDeployment(mech)
     traj = td.deploy(run, mech.home_q, dt, t_end)
     spring = np.array([run.spring_torque(q, v) for q, v in zip(traj.q, traj.v)])
@@ -194,7 +222,14 @@ def deployment(mech: Mechanism, dt: float = 0.005, t_end: float | None = None, r
 
 
 def deployment_lines(d: Deployment) -> list[str]:
-    """What the figures show, in numbers: the span, the rocker's range, the motor torques, the drift."""
+    """What the figures show, in numbers: the span, the rocker's range, the motor torques, the drift.
+
+    Args:
+        d: the deployment study.
+
+    Returns:
+        Text lines.
+    """
     a = d.trajectory
     rocker = np.degrees(a.angles[:, td.JOINT_ORDER.index(tp.PASSIVE)])
     torques = ", ".join(f"{j} up to {np.abs(a.torques[:, k]).max():.3f} N m" for k, j in enumerate(tp.MOTORS))

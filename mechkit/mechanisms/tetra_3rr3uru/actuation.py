@@ -12,5 +12,12 @@ ACTUATED = ("AH_H", "BH_B", "EH_H")
 
 
 def home(p: TetraParams) -> dict[str, float]:
-    """Zero on every drive (rad): the reference configuration, the paper's t = 0 of the fold."""
+    """Zero on every drive (rad): the reference configuration, the paper's t = 0 of the fold.
+
+    Args:
+        p: the unit's parameters.
+
+    Returns:
+        Drive -> 0.0.
+    """
     return {joint: 0.0 for joint in ACTUATED}

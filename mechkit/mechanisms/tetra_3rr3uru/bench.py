@@ -25,6 +25,13 @@ __all__ = ["METHODS", "REFERENCES"]
 def soc_along_the_fold(mech: Mechanism, sample: Any) -> SOCResult:
     """SOC inverse dynamics of the unit at the sample's time along the fold.
 
+    Args:
+        mech: the unit.
+        sample: a bench sample along the fold (its time in `extra["t"]`).
+
+    Returns:
+        Efforts and every joint's reaction.
+
     Raises:
         MethodUnavailable: the sample is not a state along the fold (no time).
     """

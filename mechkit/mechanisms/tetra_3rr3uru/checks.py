@@ -14,7 +14,15 @@ SOC_REACTIONS = "SOC vs constrained RNEA, reactions (rel)"
 
 def self_checks(mech: Mechanism, times: tuple[float, ...] = CHECK_TIMES) -> dict[str, float]:
     """Worst deviations along the fold at `times` (s): node positions against eq. (6)-(8) (m), closure
-    residual, and the SOC reactions against the constrained RNEA (relative to the largest)."""
+    residual, and the SOC reactions against the constrained RNEA (relative to the largest).
+
+    Args:
+        mech: the unit.
+        times: instants of the fold, s.
+
+    Returns:
+        Check name -> worst deviation.
+    """
     samples = fold(mech, np.asarray(times))
     worst = fold_deviations(mech, samples)
     worst[SOC_REACTIONS] = 0.0

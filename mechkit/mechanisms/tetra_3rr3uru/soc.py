@@ -1,7 +1,7 @@
 """Sequential SOC inverse dynamics of the 3RR-3URU unit along the paper's fold (numpy only).
 
 Independent of Pinocchio's kinematics and dynamics: the motion of every body comes from the
-paper's node positions (eq. 6-7), the web-joint map of `truss.motion.web_joint_motion` and a
+paper's node positions (eq. 6-7), the web-joint map of `truss.joint_state.web_joint_motion` and a
 closed-form closure of each URU rod; the tree (joint axes and points) is re-derived here from the
 same geometry, not read from the URDF. Only masses, COM offsets and inertias are read from the
 model description. Time derivatives: complex step (first), central differences of complex-step
@@ -96,12 +96,27 @@ class UnitMotion:
         self.index = {j.name: i for i, j in enumerate(joints)}
 
     def nodes(self, alpha: complex, gamma: complex) -> dict:
-        """Eq. (6)-(7): node positions of the unit, m (complex-safe)."""
+        """Eq. (6)-(7): node positions of the unit, m (complex-safe).
+
+        Args:
+            alpha: the fold angle, rad (complex for complex-step derivatives).
+            gamma: the tilt, rad.
+
+        Returns:
+            Node -> position (3,), m.
+        """
         local = self.geometry.unit_local(alpha)
         return {k: rot_y(gamma) @ v for k, v in local.items()}
 
     def poses(self, t: complex) -> tuple[dict, dict]:
-        """(rotation, origin) of every body at time t, world (complex-safe in t)."""
+        """(rotation, origin) of every body at time t, world (complex-safe in t).
+
+        Args:
+            t: time, s (complex for complex-step derivatives).
+
+        Returns:
+            (body -> rotation (3, 3), body -> origin (3,) m).
+        """
         p = self.p
         alpha, gamma = alpha_law(t), gamma_law(t)
         da, dg = alpha - p.alpha_ref, gamma - p.gamma_ref
@@ -153,6 +168,9 @@ def body_states(motion: UnitMotion, levers: dict[str, np.ndarray], t: float) -> 
         motion: the unit's analytic motion.
         levers: COM offset of each body in its frame (m), from the model description.
         t: time, s.
+
+    Returns:
+        (body -> `BodyState`, rod -> world point (3,) of its middle hinge).
     """
     def rates(tt: float) -> tuple[dict, dict, dict]:
         R, o = motion.poses(tt + 1j * _CS_STEP)
@@ -198,6 +216,9 @@ def skcs(motion: UnitMotion, inertias: dict[str, tuple[float, np.ndarray, np.nda
         inertias: body -> (mass kg, COM offset in the body frame m, inertia about the COM in the
             body frame kg m^2), the body frame being world-parallel in the reference.
         t: time, s.
+
+    Returns:
+        The SKCs in solve order.
     """
     states, hinges = body_states(motion, {k: v[1] for k, v in inertias.items()}, t)
     n = len(motion.joints)
@@ -235,7 +256,17 @@ def skcs(motion: UnitMotion, inertias: dict[str, tuple[float, np.ndarray, np.nda
 
 
 def model_inertias(mech: Mechanism) -> dict[str, tuple[float, np.ndarray, np.ndarray]]:
-    """Mass, COM offset and inertia of each body of the unit, read from the model description."""
+    """Mass, COM offset and inertia of each body of the unit, read from the model description.
+
+    Args:
+        mech: the unit.
+
+    Returns:
+        Body -> (mass kg, COM offset (3,) in the body frame m, inertia (3, 3) about the COM kg m^2).
+
+    Raises:
+        InvalidParameters: the mechanism is not the 3RR-3URU unit.
+    """
     motion_bodies = {j.name: j.child for j in UnitMotion(mech.params).joints}
     out = {}
     for j in range(1, mech.model.njoints):
@@ -248,6 +279,14 @@ def model_inertias(mech: Mechanism) -> dict[str, tuple[float, np.ndarray, np.nda
 
 
 def solve(mech: Mechanism, t: float) -> SOCResult:
-    """SOC inverse dynamics of the unit at time t of the paper's fold (gravity from the model)."""
+    """SOC inverse dynamics of the unit at time t of the paper's fold (gravity from the model).
+
+    Args:
+        mech: the unit.
+        t: time along the fold, s.
+
+    Returns:
+        Efforts (N m) and every joint's reaction (world wrench (6,)).
+    """
     motion = UnitMotion(mech.params)
     return solve_soc(skcs(motion, model_inertias(mech), t), np.array(mech.model.gravity.linear))

@@ -3,7 +3,7 @@ composite `deployable_9rr12uru` share.
 
 Modules, lowest first: `geometry` (the paper's eq. 6-13, numpy only), `drives` (the drive laws of
 section 3.2), `params` (`TetraParams`, the unit's parameters, which the composite extends),
-`motion` (the drive laws on the web-rod joints), `fold` (the 200 s fold on a model: continuation
+`joint_state` (the drive laws on the web-rod joints), `fold` (the 200 s fold on a model: continuation
 of the closure; the "fold" scene), `nodes` (node centres read from a model), `checks` (deviations
 along the fold, rows of `mechkit report`). No mechanism is declared here.
 """

@@ -29,7 +29,15 @@ TOL = 1e-12
 
 def fold_states(mech: Mechanism, count: int) -> list[MotionState]:
     """`count` instants spread over the fold (the last at its end), each preceded by the state `LEAD` s
-    before it: 2 `count` states in time order."""
+    before it: 2 `count` states in time order.
+
+    Args:
+        mech: `tetra_3rr3uru` or `deployable_9rr12uru`.
+        count: how many instants.
+
+    Returns:
+        The states (t, q, v, a) in time order.
+    """
     ends = np.linspace(FOLD_DURATION / count, FOLD_DURATION, count)
     times = np.ravel(np.column_stack([ends - LEAD, ends]))
     return [MotionState(s.t, s.q, s.v, s.a) for s in fold(mech, times)]
@@ -37,6 +45,13 @@ def fold_states(mech: Mechanism, count: int) -> list[MotionState]:
 
 def continuation_step(mech: Mechanism, sample: Any) -> np.ndarray:
     """Assembly by one fold step from the state before the sample (`fold.fold_step`).
+
+    Args:
+        mech: `tetra_3rr3uru` or `deployable_9rr12uru`.
+        sample: a bench sample along the fold (`extra["t"]`, `extra["previous"]`).
+
+    Returns:
+        q (nq,) at the sample's time.
 
     Raises:
         MethodUnavailable: the sample is not a state along the fold (no time, no state before it).

@@ -17,7 +17,15 @@ RESIDUAL = "fold: closure residual"
 
 
 def fold_deviations(mech: Mechanism, samples: list[FoldSample]) -> dict[str, float]:
-    """Worst deviations over fold samples: node positions against eq. (6)-(8) (m), closure residual."""
+    """Worst deviations over fold samples: node positions against eq. (6)-(8) (m), closure residual.
+
+    Args:
+        mech: `tetra_3rr3uru` or `deployable_9rr12uru`.
+        samples: fold samples.
+
+    Returns:
+        Check name -> worst deviation.
+    """
     g = mech.params.geometry()
     worst = {POSITIONS: 0.0, RESIDUAL: 0.0}
     for sample in samples:
@@ -30,5 +38,13 @@ def fold_deviations(mech: Mechanism, samples: list[FoldSample]) -> dict[str, flo
 
 
 def fold_checks(mech: Mechanism, times: tuple[float, ...] = CHECK_TIMES) -> dict[str, float]:
-    """`fold_deviations` along the fold at `times` (s): the composite's `mechkit report` rows."""
+    """`fold_deviations` along the fold at `times` (s): the composite's `mechkit report` rows.
+
+    Args:
+        mech: `tetra_3rr3uru` or `deployable_9rr12uru`.
+        times: instants of the fold, s.
+
+    Returns:
+        Check name -> worst deviation.
+    """
     return fold_deviations(mech, fold(mech, np.asarray(times)))

@@ -28,7 +28,14 @@ FOLD_DURATION = 200.0  # s, "200 s of simulation fold it fully"
 
 
 def alpha_law(t: ArrayLike) -> np.ndarray:
-    """alpha(t) = asin(0.490 cos xi), xi = 0.25 deg/s t + 23.171 deg (rad); complex-safe in t."""
+    """alpha(t) = asin(0.490 cos xi), xi = 0.25 deg/s t + 23.171 deg (rad); complex-safe in t.
+
+    Args:
+        t: time(s) since the start of the fold, s (complex for complex-step derivatives).
+
+    Returns:
+        alpha, rad, of the shape of t.
+    """
     xi = XI0 + XI_RATE * t
     return np.arcsin(ALPHA_GAIN * np.cos(xi))
 
@@ -45,7 +52,14 @@ def _gamma_cos(t):
 
 
 def gamma_law(t: ArrayLike) -> np.ndarray:
-    """gamma(t) = -acos(...) (rad; our sign reading, see the module docstring); complex-safe in t."""
+    """gamma(t) = -acos(...) (rad; our sign reading, see the module docstring); complex-safe in t.
+
+    Args:
+        t: time(s) since the start of the fold, s (complex for complex-step derivatives).
+
+    Returns:
+        gamma, rad, of the shape of t.
+    """
     return -np.arccos(_gamma_cos(t))
 
 
@@ -85,6 +99,12 @@ def drive_state(t: float) -> DriveState:
 
     Args:
         t: time since the start of the fold, s, in [0, `FOLD_DURATION`].
+
+    Returns:
+        alpha, gamma (rad) and their first and second derivatives at t.
+
+    Raises:
+        InvalidParameters: t outside [0, `FOLD_DURATION`] or not finite.
     """
     t = float(t)
     if not np.isfinite(t) or t < 0.0 or t > FOLD_DURATION:

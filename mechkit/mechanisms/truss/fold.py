@@ -14,7 +14,7 @@ import pinocchio as pin
 from mechkit.base.exceptions import ClosureNotConverged, InvalidParameters
 from mechkit.mechanism import Mechanism
 from mechkit.mechanisms.truss.drives import FOLD_DURATION, drive_state
-from mechkit.mechanisms.truss.motion import drive_inputs
+from mechkit.mechanisms.truss.joint_state import drive_inputs
 
 
 @dataclass(frozen=True)
@@ -29,7 +29,14 @@ class FoldSample:
 
 
 def apexes(mech: Mechanism) -> tuple[str, ...]:
-    """Unit apexes present in the model (H for the unit; H, J, I for the composite)."""
+    """Unit apexes present in the model (H for the unit; H, J, I for the composite).
+
+    Args:
+        mech: `tetra_3rr3uru` or `deployable_9rr12uru`.
+
+    Returns:
+        Apex letters.
+    """
     return tuple(a for a in ("H", "J", "I") if mech.model.existJointName(f"A{a}_{a}"))
 
 
@@ -46,6 +53,9 @@ def fold_step(mech: Mechanism, q: np.ndarray, v: np.ndarray, t_prev: float, t: f
         t: the time to solve at, s.
         tol: closure residual to reach (m / dimensionless).
         depth: halvings so far.
+
+    Returns:
+        The sample at t: q, v, a and the Newton iterations.
 
     Raises:
         ClosureNotConverged: still not converged after 8 halvings.
@@ -78,6 +88,12 @@ def fold(mech: Mechanism, times: np.ndarray, tol: float = 1e-12) -> list[FoldSam
         mech: `tetra_3rr3uru` or `deployable_9rr12uru`.
         times: increasing times in [0, 200] s.
         tol: closure residual to reach (m / dimensionless).
+
+    Returns:
+        One sample per time: t, q, v, a, iterations.
+
+    Raises:
+        InvalidParameters: times that are not a non-empty, strictly increasing 1-D array in [0, 200] s.
     """
     times = np.asarray(times, dtype=float)
     if times.ndim != 1 or times.size == 0 or np.any(np.diff(times) <= 0):
@@ -91,17 +107,42 @@ def fold(mech: Mechanism, times: np.ndarray, tol: float = 1e-12) -> list[FoldSam
 
 
 def fold_times(step: float = 1.0) -> np.ndarray:
-    """Sample times of the 200 s fold every `step` s (0 < step <= 200), s."""
+    """Sample times of the 200 s fold every `step` s (0 < step <= 200), s.
+
+    Args:
+        step: the step, s.
+
+    Returns:
+        The times, s, from 0 to 200.
+
+    Raises:
+        InvalidParameters: a step outside (0, 200] s.
+    """
     if not 0.0 < step <= FOLD_DURATION:
         raise InvalidParameters("step", step, f"must lie in (0, {FOLD_DURATION}] s")
     return np.linspace(0.0, FOLD_DURATION, round(FOLD_DURATION / step) + 1)
 
 
 def fold_poses(mech: Mechanism) -> list[np.ndarray]:
-    """The 200 s fold sampled every 1 s: 201 assembled configurations (the "fold" scene)."""
+    """The 200 s fold sampled every 1 s: 201 assembled configurations (the "fold" scene).
+
+    Args:
+        mech: `tetra_3rr3uru` or `deployable_9rr12uru`.
+
+    Returns:
+        The configurations (nq,).
+    """
     return [s.q for s in fold(mech, fold_times(1.0))]
 
 
 def fold_scene_times(mech: Mechanism, poses: int) -> np.ndarray:
-    """Times (s) of the fold scene's poses: uniform over the 200 s fold."""
+    """Times (s) of the fold scene's poses: uniform over the 200 s fold.
+
+    Args:
+        mech: `tetra_3rr3uru` or `deployable_9rr12uru`.
+        poses: the number of poses.
+
+    Returns:
+        (poses,) times, s.
+    """
     return np.linspace(0.0, FOLD_DURATION, poses)

@@ -41,26 +41,59 @@ UNIT_NODES = {"H": ("H", "B", "E"), "J": ("J", "C", "F"), "I": ("I", "D", "G")}
 
 
 def rot_axis(k: np.ndarray, angle: float) -> np.ndarray:
-    """Eq. (10): rotation by `angle` (rad) about the unit axis k (Rodrigues)."""
+    """Eq. (10): rotation by `angle` (rad) about the unit axis k (Rodrigues).
+
+    Args:
+        k: unit axis (3,).
+        angle: the angle, rad.
+
+    Returns:
+        (3, 3) rotation matrix.
+    """
     k = np.asarray(k, dtype=float)
     K = skew(k)
     return np.eye(3) + np.sin(angle) * K + (1.0 - np.cos(angle)) * (K @ K)
 
 
 def euler_xyz(angles: tuple[float, float, float]) -> np.ndarray:
-    """Rx(a) Ry(b) Rz(c): the reading of the paper's "Rot(x1, a)(y1, b)(z1, c)"."""
+    """Rx(a) Ry(b) Rz(c): the reading of the paper's "Rot(x1, a)(y1, b)(z1, c)".
+
+    Args:
+        angles: (a, b, c), rad.
+
+    Returns:
+        (3, 3) rotation matrix.
+    """
     return rot_x(angles[0]) @ rot_y(angles[1]) @ rot_z(angles[2])
 
 
 def rpy_angles(R: np.ndarray) -> np.ndarray:
-    """Eq. (13): (gamma_x, gamma_y, gamma_z) with R = Rot(z, gz) Rot(y, gy) Rot(x, gx), rad."""
+    """Eq. (13): (gamma_x, gamma_y, gamma_z) with R = Rot(z, gz) Rot(y, gy) Rot(x, gx), rad.
+
+    Args:
+        R: a rotation matrix (3, 3).
+
+    Returns:
+        (3,) angles (gamma_x, gamma_y, gamma_z), rad.
+    """
     return np.array([np.arctan2(R[2, 1], R[2, 2]),
                      np.arctan2(-R[2, 0], np.hypot(R[0, 0], R[1, 0])),
                      np.arctan2(R[1, 0], R[0, 0])])
 
 
 def half_angle_beta(l1: float, l2: float) -> float:
-    """beta = asin(l2 / (2 l1)) (eq. 6): half the angle B-A-E of the base triangle, rad."""
+    """beta = asin(l2 / (2 l1)) (eq. 6): half the angle B-A-E of the base triangle, rad.
+
+    Args:
+        l1: base link A-B (= A-E), m.
+        l2: base link B-E, m.
+
+    Returns:
+        beta, rad.
+
+    Raises:
+        InvalidParameters: l2 outside (0, 2 l1).
+    """
     if not (0.0 < l2 < 2.0 * l1):
         raise InvalidParameters("l2", l2, f"needs 0 < l2 < 2 l1 = {2 * l1} m for beta = asin(l2/(2 l1))")
     return float(np.arcsin(l2 / (2.0 * l1)))
@@ -80,31 +113,67 @@ class TrussGeometry:
         return half_angle_beta(self.l1, self.l2)
 
     def radial(self, which: str) -> np.ndarray:
-        """Unit vector from O1 to node A, B or E in O1-x1y1z1 (eq. 6 divided by L sin alpha)."""
+        """Unit vector from O1 to node A, B or E in O1-x1y1z1 (eq. 6 divided by L sin alpha).
+
+        Args:
+            which: "A", "B" or "E".
+
+        Returns:
+            (3,) unit vector.
+        """
         b2 = 2.0 * self.beta
         return {"A": np.array([1.0, 0, 0]), "B": np.array([-np.cos(b2), -np.sin(b2), 0]),
                 "E": np.array([-np.cos(b2), np.sin(b2), 0])}[which]
 
     def tangent(self, which: str) -> np.ndarray:
-        """z1 x r at node A, B or E (O1 frame): the axis of its web-rod joints; = y1, S4, -S6."""
+        """z1 x r at node A, B or E (O1 frame): the axis of its web-rod joints; = y1, S4, -S6.
+
+        Args:
+            which: "A", "B" or "E".
+
+        Returns:
+            (3,) unit vector.
+        """
         return np.cross([0.0, 0.0, 1.0], self.radial(which))
 
     def unit_local(self, alpha: float) -> dict[str, np.ndarray]:
-        """Eq. (6) shifted to the origin A: positions of A, B, E, H relative to A in O1 axes, m."""
+        """Eq. (6) shifted to the origin A: positions of A, B, E, H relative to A in O1 axes, m.
+
+        Args:
+            alpha: the fold angle, rad.
+
+        Returns:
+            Node -> position (3,), m.
+        """
         R = self.L * np.sin(alpha)
         o1 = np.array([-R, 0.0, 0.0])  # O1 relative to A, O1 axes
         return {"A": np.zeros(3), "B": o1 + R * self.radial("B"), "E": o1 + R * self.radial("E"),
                 "H": o1 + np.array([0.0, 0.0, self.L * np.cos(alpha)])}
 
     def unit_local_rate(self, alpha: float) -> dict[str, np.ndarray]:
-        """d/d alpha of `unit_local`, m/rad."""
+        """d/d alpha of `unit_local`, m/rad.
+
+        Args:
+            alpha: the fold angle, rad.
+
+        Returns:
+            Node -> derivative (3,), m/rad.
+        """
         dR = self.L * np.cos(alpha)
         d_o1 = np.array([-dR, 0.0, 0.0])
         return {"A": np.zeros(3), "B": d_o1 + dR * self.radial("B"), "E": d_o1 + dR * self.radial("E"),
                 "H": d_o1 + np.array([0.0, 0.0, -self.L * np.sin(alpha)])}
 
     def node_positions(self, alpha: float, gamma: float) -> dict[str, np.ndarray]:
-        """Eq. (6)-(8): every node A..J in A-xyz, m."""
+        """Eq. (6)-(8): every node A..J in A-xyz, m.
+
+        Args:
+            alpha: the fold angle, rad.
+            gamma: the tilt, rad.
+
+        Returns:
+            Node -> position (3,), m.
+        """
         local = self.unit_local(alpha)
         out = {"A": np.zeros(3)}
         for apex, (h, b, e) in UNIT_NODES.items():
@@ -113,7 +182,17 @@ class TrussGeometry:
         return out
 
     def node_velocities(self, alpha: float, gamma: float, alpha_rate: float, gamma_rate: float) -> dict[str, np.ndarray]:
-        """Time derivative of eq. (7)-(8), m/s."""
+        """Time derivative of eq. (7)-(8), m/s.
+
+        Args:
+            alpha: the fold angle, rad.
+            gamma: the tilt, rad.
+            alpha_rate: its rate, rad/s.
+            gamma_rate: its rate, rad/s.
+
+        Returns:
+            Node -> velocity (3,), m/s.
+        """
         local, dlocal = self.unit_local(alpha), self.unit_local_rate(alpha)
         dRy = np.array([[-np.sin(gamma), 0, np.cos(gamma)], [0, 0, 0], [-np.cos(gamma), 0, -np.sin(gamma)]])
         out = {"A": np.zeros(3)}
@@ -127,6 +206,17 @@ class TrussGeometry:
         """Eq. (9) under our reading: orientation of node B or E (unit H-ABE) in A-xyz.
 
         R = Rot(y, gamma) Rot(t, -(gamma - gamma0)) R_0 with t = S4 (B) or -S6 (E).
+
+        Args:
+            node: "B" or "E".
+            gamma: the tilt, rad.
+            gamma0: the tilt of the reference configuration, rad.
+
+        Returns:
+            (3, 3) rotation matrix, A-xyz.
+
+        Raises:
+            InvalidParameters: another node.
         """
         if node not in ("B", "E"):
             raise InvalidParameters("node", node, "eq. (9) gives the orientations of B and E")
@@ -134,5 +224,14 @@ class TrussGeometry:
         return rot_y(gamma) @ rot_axis(self.tangent(node), -(gamma - gamma0)) @ r0
 
     def node_rpy(self, node: str, gamma: float, gamma0: float = GAMMA0) -> np.ndarray:
-        """Eq. (11)-(13): RPY angles (gamma_x, gamma_y, gamma_z) of node B or E, rad."""
+        """Eq. (11)-(13): RPY angles (gamma_x, gamma_y, gamma_z) of node B or E, rad.
+
+        Args:
+            node: "B" or "E".
+            gamma: the tilt, rad.
+            gamma0: the tilt of the reference configuration, rad.
+
+        Returns:
+            (3,) angles, rad.
+        """
         return rpy_angles(self.node_rotation(node, gamma, gamma0))

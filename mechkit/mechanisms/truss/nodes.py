@@ -13,7 +13,15 @@ NODES = ("A", "B", "C", "D", "E", "F", "G", "H", "I", "J")
 
 
 def node_positions(mech: Mechanism, q: np.ndarray) -> dict[str, np.ndarray]:
-    """World positions (m) of the node centres in the model at q (Pinocchio forward kinematics)."""
+    """World positions (m) of the node centres in the model at q (Pinocchio forward kinematics).
+
+    Args:
+        mech: `tetra_3rr3uru` or `deployable_9rr12uru`.
+        q: a configuration (nq,).
+
+    Returns:
+        Node letter -> position (3,), m.
+    """
     pin.forwardKinematics(mech.model, mech.data, q)
     pin.updateFramePlacements(mech.model, mech.data)
     out = {}
@@ -25,7 +33,20 @@ def node_positions(mech: Mechanism, q: np.ndarray) -> dict[str, np.ndarray]:
 
 
 def node_velocity(mech: Mechanism, q: np.ndarray, v: np.ndarray, node: str) -> np.ndarray:
-    """World velocity (m/s) of a node centre in the model at (q, v)."""
+    """World velocity (m/s) of a node centre in the model at (q, v).
+
+    Args:
+        mech: `tetra_3rr3uru` or `deployable_9rr12uru`.
+        q: a configuration (nq,).
+        v: a velocity (nv,).
+        node: a node letter.
+
+    Returns:
+        (3,) velocity, m/s.
+
+    Raises:
+        InvalidParameters: no such node in the model.
+    """
     frame = f"node_{node}"
     if not mech.model.existFrame(frame):
         raise InvalidParameters("node", node, f"no node {node} in {mech.spec.name}")

@@ -45,6 +45,13 @@ SPRING_OFF, DAMPER_OFF = 1 << 5, 1 << 6  # mjtDisableBit: <flag spring="disable"
 def equalities(mm: MjModel, tree: Tree) -> tuple[tuple[LoopClosure, ...], tuple[Coupling, ...]]:
     """The loops (their frames added to `tree.model`) and couplings of the active equalities.
 
+    Args:
+        mm: the compiled MuJoCo model.
+        tree: its Pinocchio tree (`build_tree`).
+
+    Returns:
+        (the loop closures, the joint couplings).
+
     Raises:
         MalformedDescription: an equality kind or object mechkit does not read (named).
     """
@@ -119,6 +126,15 @@ def fixed_tendon(mm: MjModel, tree: Tree, t: int, where: str) -> tuple[tuple[str
     """A fixed tendon as ((joint, coefficient), ...): its length is the sum of coefficient * joint value
     (MuJoCo allows hinges and slides only).
 
+    Args:
+        mm: the compiled MuJoCo model.
+        tree: its Pinocchio tree (`build_tree`).
+        t: the tendon's MuJoCo id.
+        where: what uses it, for the error.
+
+    Returns:
+        (joint, coefficient) terms; the length in m or rad.
+
     Raises:
         MalformedDescription: a spatial tendon.
     """
@@ -132,7 +148,15 @@ def fixed_tendon(mm: MjModel, tree: Tree, t: int, where: str) -> tuple[tuple[str
 
 
 def check_tendons(mm: MjModel, tree: Tree) -> None:
-    """Refuse tendon springs, dampers, armature and friction loss, which no record carries."""
+    """Refuse tendon springs, dampers, armature and friction loss, which no record carries.
+
+    Args:
+        mm: the compiled MuJoCo model.
+        tree: its Pinocchio tree (`build_tree`).
+
+    Raises:
+        MalformedDescription: a tendon with any of them.
+    """
     for t in range(mm.ntendon):
         for field in ("tendon_stiffness", "tendon_damping", "tendon_armature", "tendon_frictionloss"):
             if np.any(np.asarray(getattr(mm, field)[t]) != 0):
@@ -142,6 +166,13 @@ def check_tendons(mm: MjModel, tree: Tree) -> None:
 
 def springs(mm: MjModel, tree: Tree) -> tuple[JointSpring, ...]:
     """Joint springs and dampers (stiffness N m/rad or N/m, springref, damping N m s/rad or N s/m).
+
+    Args:
+        mm: the compiled MuJoCo model.
+        tree: its Pinocchio tree (`build_tree`).
+
+    Returns:
+        The joint springs (MuJoCo's springref is the reference, no preload).
 
     Raises:
         MalformedDescription: polynomial stiffness or damping, a ball or free joint with stiffness,
@@ -166,6 +197,13 @@ def springs(mm: MjModel, tree: Tree) -> tuple[JointSpring, ...]:
 
 def actuation(mm: MjModel, tree: Tree) -> tuple[tuple[str, ...], tuple[Actuator, ...]]:
     """(actuated names in effort order, tendon actuators): see the module docstring.
+
+    Args:
+        mm: the compiled MuJoCo model.
+        tree: its Pinocchio tree (`build_tree`).
+
+    Returns:
+        (actuated joint or tendon names in effort order, tendon actuators).
 
     Raises:
         MalformedDescription: an actuator on a ball or free joint, a spatial tendon, a site, a body or

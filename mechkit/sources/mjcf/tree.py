@@ -51,18 +51,45 @@ class Tree:
     world: list[pin.SE3]
 
     def joint_index(self, name: str) -> int:
-        """The MuJoCo id of a joint by name."""
+        """The MuJoCo id of a joint by name.
+
+        Args:
+            name: the joint's name.
+
+        Returns:
+            Its MuJoCo id.
+        """
         return self.names["joint"].index(name)
 
 
 def se3(quat_wxyz: ArrayLike, pos: ArrayLike) -> pin.SE3:
-    """The placement of a MuJoCo (quaternion w, x, y, z; position) pair."""
+    """The placement of a MuJoCo (quaternion w, x, y, z; position) pair.
+
+    Args:
+        quat_wxyz: unit quaternion (w, x, y, z).
+        pos: position (3,), m.
+
+    Returns:
+        The placement.
+    """
     w, x, y, z = (float(c) for c in quat_wxyz)
     return pin.SE3(pin.Quaternion(w, x, y, z).normalized().matrix(), np.asarray(pos, dtype=float))
 
 
 def object_names(mujoco: ModuleType, mm: MjModel) -> dict[str, list[str]]:
-    """Names of MuJoCo's bodies, joints, sites, equalities, tendons and actuators (see `Tree.names`)."""
+    """Names of MuJoCo's bodies, joints, sites, equalities, tendons and actuators (see `Tree.names`); an
+    unnamed object is called <kind><id>.
+
+    Args:
+        mujoco: the mujoco module.
+        mm: the compiled model.
+
+    Returns:
+        Kind -> names in MuJoCo's id order (body 0 is "world").
+
+    Raises:
+        MalformedDescription: two objects of one kind share a name.
+    """
     obj = mujoco.mjtObj
     kinds = {"body": (obj.mjOBJ_BODY, mm.nbody), "joint": (obj.mjOBJ_JOINT, mm.njnt), "site": (obj.mjOBJ_SITE, mm.nsite),
              "equality": (obj.mjOBJ_EQUALITY, mm.neq), "tendon": (obj.mjOBJ_TENDON, mm.ntendon),
@@ -82,6 +109,14 @@ def object_names(mujoco: ModuleType, mm: MjModel) -> dict[str, list[str]]:
 
 def build_tree(mujoco: ModuleType, mm: MjModel, name: str) -> Tree:
     """The Pinocchio tree of a compiled MuJoCo model (see the module docstring).
+
+    Args:
+        mujoco: the mujoco module.
+        mm: the compiled model.
+        name: the model's name.
+
+    Returns:
+        The tree: the Pinocchio model (q = MuJoCo's qpos), MuJoCo's names, and where each MuJoCo body is.
 
     Raises:
         MalformedDescription: a body with gravity compensation (not read), a duplicate name.

@@ -1,0 +1,25 @@
+"""`mechkit.mechanisms.rocket_gimbal.scenes`: thrust through the swing centre loads the bearings, not
+the servos."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from mechkit.mechanisms.rocket_gimbal.joint_state import joint_state
+from mechkit.mechanisms.rocket_gimbal.scenes import SwingScene, thrust_fext
+
+
+def test_thrust_through_the_swing_centre_loads_the_bearings_not_the_servos(mech):
+    scene, idle = SwingScene(), SwingScene(thrust=0.0)
+    motion = scene.motion(mech.params, 0.2)
+    q, v, a = joint_state(mech, motion)
+    loaded = mech.inverse_dynamics(q, v, a, fext=thrust_fext(mech, q, scene))
+    free = mech.inverse_dynamics(q, v, a, fext=thrust_fext(mech, q, idle))
+    for name in mech.actuated:
+        assert np.isclose(loaded.efforts[name], free.efforts[name], rtol=1e-9)
+    nozzle = mech.data.oMi[mech.model.getJointId("engine_hinge")].rotation[:, 2]
+    thrust = -scene.thrust * nozzle
+    for joint in ("bracket_hinge", "engine_hinge"):
+        change = loaded.reactions[joint].wrench - free.reactions[joint].wrench
+        assert np.allclose(change[:3], -thrust, rtol=0, atol=1e-6 * scene.thrust)
+        assert np.allclose(change[3:], 0.0, atol=1e-6 * scene.thrust)
