@@ -88,7 +88,14 @@ def _body_joint(model: pin.Model, body: str, arg: str) -> int:
 
 def description_of(mech: Mechanism) -> Description:
     """What a file reader would give for the mechanism: its tree, closures, couplings, springs, actuators,
-    home inputs and guess."""
+    home inputs and guess.
+
+    Args:
+        mech: a loaded mechanism.
+
+    Returns:
+        Its `Description`.
+    """
     spec, params = mech.spec, mech.params
     return Description(spec.name, mech.urdf, tuple(mech.actuated), dict(spec.home(params)),
                        dict(spec.guess(params)) if spec.guess is not None else {}, model=mech.model,
@@ -98,6 +105,14 @@ def description_of(mech: Mechanism) -> Description:
 
 def reduce_description(mech: Mechanism, desc: Description, locked: Mapping[str, np.ndarray]) -> Description:
     """The description with the `locked` joints welded at their coordinates (`locked_joints`).
+
+    Args:
+        mech: the mechanism the description is of.
+        desc: its description (`description_of`, or a reader's).
+        locked: joint name -> its coordinates (nq of the joint,), rad or m.
+
+    Returns:
+        The reduced description (the same one when nothing is locked).
 
     Raises:
         MalformedDescription: a loop the locked joints leave open (its residual), a coupling touching
