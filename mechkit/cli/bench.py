@@ -74,7 +74,14 @@ def speed_sections(names: list[str], quick: bool) -> dict[str, list[str]]:
     Returns:
         Section title -> its markdown lines.
     """
-    from mechkit.bench import dynamics_speed, elastic_speed, ladder, load_speed, motion_speed, second_opinion_speed
+    from mechkit.bench import (
+        dynamics_speed,
+        elastic_speed,
+        ladder,
+        load_speed,
+        motion_speed,
+        second_opinion_speed,
+    )
     from mechkit.catalog import registry
     from mechkit.loading import load
 

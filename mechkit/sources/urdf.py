@@ -23,8 +23,8 @@ import pinocchio as pin
 
 from mechkit.base.exceptions import MalformedDescription
 from mechkit.core import LOOP_KINDS, ROW_SETS, Coupling, JointSpring, LoopClosure
-from mechkit.sources.urdf_checks import check_inertias, check_tree, number
 from mechkit.sources.description import Description, read_text
+from mechkit.sources.urdf_checks import check_inertias, check_tree, number
 
 LOOP_NAMESPACE = "https://mechkit.dev/loop"
 #: Elements of the loop namespace mechkit knows (`home`: an input value of the default assembly;

@@ -35,9 +35,9 @@ import numpy as np
 
 from mechkit.base.exceptions import MalformedDescription, MethodUnavailable
 from mechkit.core import Coupling
-from mechkit.sources.urdf_checks import check_tree, number
 from mechkit.sources.description import Description, read_text
 from mechkit.sources.urdf import LOOP_NAMESPACE, describe_urdf, parse_xml
+from mechkit.sources.urdf_checks import check_tree, number
 
 #: URDF+ loop types -> mechkit cut kinds.
 LOOP_TYPES = {"revolute": "revolute", "continuous": "revolute", "prismatic": "prismatic", "fixed": "weld"}

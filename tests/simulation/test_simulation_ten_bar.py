@@ -7,6 +7,7 @@ import numpy as np
 import pytest
 
 from mechkit.mechanisms.ten_bar import dynamics as td
+from mechkit.mechanisms.ten_bar import lagrange_deployment as tld
 from mechkit.mechanisms.ten_bar import params as tp
 
 
@@ -23,7 +24,7 @@ def test_spring_release_against_the_lagrange_model(mech):
     """The first 0.5 s (the spring swings the rocker): the simulator's adaptive steps against the patent's
     Lagrange first kind (numpy, reference-point coordinates mapped to joints) at 5 ms fixed steps."""
     run = mech.simulate(0.5, inputs=law(mech), input_names=tp.MOTORS, reactions=False)
-    lagrange = td.LagrangeJointDeployment(mech.params)
+    lagrange = tld.LagrangeJointDeployment(mech.params)
     order = [mech.q_index(j) for j in td.JOINT_ORDER]
     ref = td.deploy(lagrange, mech.home_q[order], 0.005, 0.5)
     assert ref.t[-1] == pytest.approx(run.t[-1])

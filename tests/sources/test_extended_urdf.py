@@ -17,7 +17,6 @@ from pathlib import Path
 import numpy as np
 import pinocchio as pin
 import pytest
-from independent import Cut, LoopsDoNotClose, cuts_of, gepetto_load, require_closed, study
 from tests_support import FIXTURES
 
 import mechkit
@@ -26,6 +25,8 @@ from mechkit.cli import main
 from mechkit.core.records import Coupling
 from mechkit.sources import read
 from mechkit.sources.extended_urdf import read_extended_urdf, sidecar_of
+
+from .independent import Cut, LoopsDoNotClose, cuts_of, gepetto_load, require_closed, study
 
 
 def test_sidecar_errors(tmp_path):

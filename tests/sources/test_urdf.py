@@ -16,7 +16,6 @@ from pathlib import Path
 import numpy as np
 import pinocchio as pin
 import pytest
-from independent import study
 from tests_support import FIXTURES, SLIDER_CRANK, written
 
 import mechkit
@@ -27,6 +26,8 @@ from mechkit.cli import main
 from mechkit.core.records import Coupling
 from mechkit.report import report
 from mechkit.sources.urdf import build_model, describe_urdf, parse_loops, read_urdf
+
+from .independent import study
 
 
 @pytest.mark.parametrize("name", list(specs()))

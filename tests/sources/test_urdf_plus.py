@@ -10,12 +10,13 @@ from pathlib import Path
 import numpy as np
 import pinocchio as pin
 import pytest
-from independent import Cut, cuts_of, require_closed, study
 
 from mechkit.cli import main
 from mechkit.core.records import Coupling
 from mechkit.sources import read
 from mechkit.sources.urdf_plus import read_urdf_plus
+
+from .independent import Cut, cuts_of, require_closed, study
 
 FIELD = Path(__file__).parent.parent / "fixtures" / "field" / "urdf_plus"
 
