@@ -5,8 +5,6 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
-import numpy as np
-
 from mechkit.base.atomic import resolve_output, write_text
 from mechkit.base.exceptions import OutputError
 from mechkit.cli.common import examples
@@ -32,34 +30,33 @@ def run(args: argparse.Namespace) -> None:
         resolve_output(args.markdown)  # refused before the run, not after it
     if args.charts and Path(args.charts).exists() and not Path(args.charts).is_dir():
         raise OutputError(args.charts, "--charts needs a folder")
-    with np.errstate(under="ignore"):
-        results, skipped = run.run(args.names, args.quick, progress=ProgressBars())
-        for b in results:
-            print(markdown.format_table(b))
-        for line in markdown.goals(results):
-            print(line)
-        for name, why in skipped.items():
-            print(f"{name}: not measured ({why})")
-        fits = scale.scale_fits(results)
-        for name, pts, slope in fits:
-            print(f"scale: {name}: t ~ nv^{slope:.2f} (" + ", ".join(f"{m} nv={n}: {t * 1e6:.1f} us" for m, n, t in pts) + ")")
-        sections = speed_sections(args.names, args.quick) if args.speed else {}
-        for title, body in sections.items():
-            print("\n".join([f"{title}:", *body]))
-        first = loadtime.first_load(runs=5 if args.quick else 15)
-        print("\n".join(["first load in a fresh process:", *markdown.first_load_lines(first)]))
-        figures = []
+    results, skipped = run.run(args.names, args.quick, progress=ProgressBars())
+    for b in results:
+        print(markdown.format_table(b))
+    for line in markdown.goals(results):
+        print(line)
+    for name, why in skipped.items():
+        print(f"{name}: not measured ({why})")
+    fits = scale.scale_fits(results)
+    for name, pts, slope in fits:
+        print(f"scale: {name}: t ~ nv^{slope:.2f} (" + ", ".join(f"{m} nv={n}: {t * 1e6:.1f} us" for m, n, t in pts) + ")")
+    sections = speed_sections(args.names, args.quick) if args.speed else {}
+    for title, body in sections.items():
+        print("\n".join([f"{title}:", *body]))
+    first = loadtime.first_load(runs=5 if args.quick else 15)
+    print("\n".join(["first load in a fresh process:", *markdown.first_load_lines(first)]))
+    figures = []
+    if args.charts:
+        figures = charts.draw_all(results, fits, Path(args.charts))
+        print(f"wrote {len(figures)} charts to {args.charts}")
+    if args.markdown:
+        failures = []
         if args.charts:
-            figures = charts.draw_all(results, fits, Path(args.charts))
-            print(f"wrote {len(figures)} charts to {args.charts}")
-        if args.markdown:
-            failures = []
-            if args.charts:
-                failures = failure_atlas.summary_lines(Path(args.charts), quick=args.quick)
-                figures += sorted(Path(args.charts).glob("bench_atlas_*.png"))
-            write_text(args.markdown, markdown.markdown_report(results, args.quick, figures, failures, skipped, fits, first,
-                                                                  sections))
-            print(f"wrote {args.markdown}")
+            failures = failure_atlas.summary_lines(Path(args.charts), quick=args.quick)
+            figures += sorted(Path(args.charts).glob("bench_atlas_*.png"))
+        write_text(args.markdown, markdown.markdown_report(results, args.quick, figures, failures, skipped, fits, first,
+                                                          sections))
+        print(f"wrote {args.markdown}")
 
 
 def speed_sections(names: list[str], quick: bool) -> dict[str, list[str]]:
