@@ -6,7 +6,7 @@ import argparse
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from mechkit.base.exceptions import MechkitError
+from mechkit.base.exceptions import ClosureNotConverged, MechkitError
 from mechkit.loading import load
 from mechkit.mechanism import Mechanism
 
@@ -33,6 +33,8 @@ def add_mechanism_arguments(parser: argparse.ArgumentParser) -> None:
                         help="lock a joint at a value (rad or m; a ball or free joint: comma-separated values); repeatable")
     parser.add_argument("--keep", metavar="B1,B2", help="keep only the subsystem of these bodies; lock every other joint at home")
     parser.add_argument("--fix", metavar="BODY", action="append", help="lock a body's own joint at home (a floating root); repeatable")
+    parser.add_argument("--freeflyer", action="store_true",
+                        help="put an Extended-URDF file's tree on a free-flyer root joint (as Gepetto's loader can)")
 
 
 def overrides(pairs: list[str] | None) -> dict[str, str]:
@@ -71,10 +73,17 @@ def locks(pairs: list[str] | None) -> dict[str, float | list[float]] | None:
 
 
 def load_mechanism(args: argparse.Namespace) -> Mechanism:
-    """The mechanism the command line names, with its overrides and reductions."""
+    """The mechanism the command line names, with its overrides and reductions.
+
+    Raises:
+        MechkitError: as `mechkit.load`; a home assembly that does not close names the source.
+    """
     keep = None if getattr(args, "keep", None) is None else [b.strip() for b in args.keep.split(",") if b.strip()]
-    return load(args.name, actuated=actuated(args.actuated), lock=locks(getattr(args, "lock", None)), keep=keep,
-                fix=getattr(args, "fix", None), **overrides(args.set))
+    try:
+        return load(args.name, actuated=actuated(args.actuated), lock=locks(getattr(args, "lock", None)), keep=keep,
+                    fix=getattr(args, "fix", None), freeflyer=getattr(args, "freeflyer", False), **overrides(args.set))
+    except ClosureNotConverged as err:
+        raise MechkitError(f"{args.name}: its loops do not close at home: {err}") from None
 
 
 def add_mesh_path_argument(parser: argparse.ArgumentParser) -> None:
