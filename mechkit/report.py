@@ -3,8 +3,9 @@
 Top-level keys (a contract for scripts): name, nq, nv, actuated, closures [{name, kind, rows}], dof,
 dof_gruebler, redundant_constraints, checks {name: worst residual or relative error}; and refused
 {check: why the core refused it there (e.g. a near-singular pose)}, holding {efforts: {actuator: effort
-holding gravity at rest, N m or N}, q: the configuration they hold, settled: {joint: its value there}
-for the joints that settled away from home} or {refused: why the actuators cannot}, idle {body: its
+holding gravity at rest, N m or N}, undetermined: [actuators whose effort statics does not fix], q:
+the configuration they hold, settled: {joint: its value there} for the joints that settled away from
+home} or {refused: why the actuators cannot}, idle {body: its
 idle freedoms}, loops [{cut, kind (planar / spherical / spatial), rows, full_rows, chosen}],
 rows_avoided, gruebler {kutzbach, declared}, home {joint: value}.
 
@@ -117,6 +118,11 @@ def self_checks(m: Mechanism) -> tuple[dict[str, float], dict[str, str]]:
         if back is not None:
             checks["inverse_forward_roundtrip"] = _relative(back, a)
     return checks | ({} if m.spec.self_checks is None else m.spec.self_checks(m)), refused
+
+
+def _plain(values: dict[str, Any]) -> dict[str, float | list[float]]:
+    """Joint values as JSON numbers: a float, or a list for a joint of several coordinates."""
+    return {j: float(v) if np.ndim(v) == 0 else [float(x) for x in np.ravel(v)] for j, v in values.items()}
 
 
 def held_joints(m: Mechanism) -> tuple[str, ...]:
@@ -242,9 +248,10 @@ def holding(m: Mechanism) -> dict[str, Any]:
     floating root, a load that does not settle, a pose where the inputs do not determine the motion.
 
     Returns:
-        {"efforts": {actuator: effort (N m or N)}, "q": the configuration held (nq,), "settled":
-        {joint: value (rad or m; a ball's rotation vector)} of the joints that moved from home}, or
-        {"refused": why}.
+        {"efforts": {actuator: effort (N m or N)}, "undetermined": the actuators whose effort statics
+        does not fix (redundant actuation: the efforts given are the least-norm ones), "q": the
+        configuration held (nq,), "settled": {joint: value (rad or m; a ball's rotation vector)} of
+        the joints that moved from home}, or {"refused": why}.
     """
     if not m.actuated:
         return {"refused": "unactuated: no actuator to hold it"}
@@ -263,15 +270,15 @@ def holding(m: Mechanism) -> dict[str, Any]:
         return {"refused": f"the joints no actuator drives settle against a stop: {stop} (mechkit does not model "
                            "joint stops)"}
     try:
-        efforts = m.inverse_dynamics(q, zero, zero, determinacy=False).efforts
+        result = m.inverse_dynamics(q, zero, zero)
     except SingularConfiguration as err:
         return {"refused": f"{err}: {_weakest_motion(m, q)}"}
     except MechkitError as err:
         return {"refused": str(err)}
-    home, there = m.joint_values(m.home_q), m.joint_values(q)
-    settled = {j: (float(v) if np.ndim(v) == 0 else [float(x) for x in v]) for j, v in there.items()
-               if np.max(np.abs(np.subtract(v, home[j]))) > SETTLED}
-    return {"efforts": efforts, "q": [float(x) for x in q], "settled": settled}
+    home, there = m.joint_values(m.home_q), _plain(m.joint_values(q))
+    settled = {j: v for j, v in there.items() if np.max(np.abs(np.subtract(v, home[j]))) > SETTLED}
+    return {"efforts": result.efforts, "undetermined": [a for a in m.actuated if not result.efforts_determinate[a]],
+            "q": [float(x) for x in q], "settled": settled}
 
 
 def report(m: Mechanism) -> dict[str, Any]:
@@ -295,7 +302,7 @@ def report(m: Mechanism) -> dict[str, Any]:
                   for lp in m.structure.loops],
         "rows_avoided": m.structure.rows_avoided,
         "gruebler": {"kutzbach": m.structure.kutzbach, "declared": declared},
-        "home": m.joint_values(m.home_q),
+        "home": _plain(m.joint_values(m.home_q)),
         "parameters": [{k: v for k, v in row.items() if k != "positive"} for row in m.params.describe()],
         "home_q": [float(x) for x in m.home_q],
         "checks": checks,
@@ -327,6 +334,8 @@ def format_report(r: dict[str, Any]) -> str:
     held = r["holding"]
     lines.append("  holding gravity at rest: " + (", ".join(f"{j} {u:.6g}" for j, u in held["efforts"].items())
                                                   if "efforts" in held else f"the actuators cannot ({held['refused']})"))
+    if held.get("undetermined"):
+        lines.append("    not fixed by statics (least-norm shares): " + ", ".join(held["undetermined"]))
     if held.get("settled"):
         lines.append("    with the undriven joints settled at: " + ", ".join(
             f"{j} {np.array2string(np.asarray(v), precision=6)}" for j, v in held["settled"].items()))
