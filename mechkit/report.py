@@ -256,10 +256,10 @@ def holding(m: Mechanism) -> dict[str, Any]:
     if not m.actuated:
         return {"refused": "unactuated: no actuator to hold it"}
     model = m.model
-    roots = [model.names[j] for j in range(1, model.njoints)
-             if model.parents[j] == 0 and model.joints[j].shortname() == "JointModelFreeFlyer"]
+    roots = [j for j in range(1, model.njoints) if model.parents[j] == 0 and model.joints[j].shortname() == "JointModelFreeFlyer"]
     if roots:
-        return {"refused": f"floating root {roots[0]!r}: nothing holds its weight (fix its body: --fix BODY)"}
+        body = core.body_name(model, roots[0])
+        return {"refused": f"floating root {model.names[roots[0]]!r}: nothing holds its weight (fix its body: --fix {body})"}
     zero = np.zeros(model.nv)
     try:
         q = settle(m, m.home_q)
