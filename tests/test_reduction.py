@@ -7,10 +7,10 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from sources.field_cli import report
 
 import mechkit
 from mechkit.base.exceptions import InvalidArgument, MalformedDescription
-from sources.field_cli import report
 
 CASSIE = Path(__file__).resolve().parent / "fixtures" / "field" / "menagerie" / "agility_cassie" / "cassie.xml"
 

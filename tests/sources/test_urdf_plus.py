@@ -102,8 +102,6 @@ def test_couplings_are_rows_over_the_joints_below_the_nearest_common_ancestor():
 @pytest.mark.parametrize("file, needle", [
     ("planar_leg_linkage.urdf", "link 'thigh': inertia"),
     ("mini_cheetah_leg.urdf", "link 'abduct': inertia"),
-    ("revolute_rotor_chain.urdf", "link 'rotor-0': mass 0 with a non-zero inertia"),
-    ("mit_humanoid_leg.urdf", "link 'hip_rz_rotor': mass 0. with a non-zero inertia"),
 ])
 def test_the_authors_files_no_body_can_have_are_one_named_line_from_the_cli(file, needle, capsys):
     assert main(["report", str(FIELD / file)]) == 2
