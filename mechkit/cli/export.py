@@ -20,8 +20,7 @@ def run(args: argparse.Namespace) -> None:
 def add_parser(sub: argparse._SubParsersAction) -> None:
     """Register `export`."""
     p = sub.add_parser("export", help="write the mechanism for other tools", **examples(
-        "mechkit export ten_bar --format mjcf -o ten_bar.xml", "mechkit export four_bar --format extended-urdf -o four_bar.urdf",
-        "mechkit export five_bar --format urdf+ -o five_bar.urdf"))
+        "mechkit export ten_bar --format mjcf -o ten_bar.xml", "mechkit export four_bar --format urdf+ -o four_bar.urdf"))
     add_mechanism_arguments(p)
     p.add_argument("--format", required=True, choices=["mjcf", "extended-urdf", "urdf+"],
                    help="target format: MJCF (MuJoCo), Extended URDF (URDF + YAML sidecar, Gepetto's), URDF+ (loops "
