@@ -16,6 +16,7 @@ import numpy as np
 import pinocchio as pin
 import pytest
 from description_reference import Statics
+from field_cli import refusal
 
 from mechkit.base.exceptions import MalformedDescription
 from mechkit.core.records import Coupling, JointSpring, LoopClosure
@@ -291,7 +292,7 @@ def test_malformed_sdf_is_refused_in_one_line_naming_the_element(text, needle, t
     path.write_text(text)
     with pytest.raises(MalformedDescription, match=re.escape(needle)) as err:
         read_sdf(path)
-    assert "\n" not in str(err.value)
+    assert refusal(path) == f"mechkit: error: {err.value}"  # the same one line from `mechkit report`
 
 
 def test_mechkit_report_on_a_broken_sdf_says_it_in_one_line(tmp_path):
