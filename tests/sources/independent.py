@@ -1,18 +1,21 @@
-"""Independent computations on closed-loop robots, with Pinocchio calls only (no mechkit core, no mechkit reader).
+"""Independent computations on closed-loop robots, with Pinocchio calls only (no mechkit core, no mechkit reader;
+mechkit's `Coupling` record only carries numbers).
 
-Two things live here:
+What lives here:
 
 - `gepetto_load`: an Extended-URDF pair read the way Gepetto's loader reads it (example-parallel-robots'
   `loader_tools.completeRobotLoader` then `simplifyModel`, toolbox-parallel-robots' `freezeJoints`),
   re-written from their semantics: joint substitutions by name, spherical triplets found by consecutive
   joint ids, constraints re-attached through frames named after their joints. A reader that builds a
   different model shows up as a disagreement with it.
+- `urdf_plus_load`, `urdf_mimics`: URDF+ loops and couplings and URDF mimic joints read with an XML parser.
 - `study`: on any model, its cuts and its coupling rows, the closure by damped least squares on the
   frame errors (3d: position error in the world frame, 6d: log6 of the relative placement), the
   numerical DOF from the rank of the constraint Jacobian at the closed configuration, and the motor
   torques holding gravity at rest from `[S, J^T] [tau; lambda] = g` (g = rnea(q, 0, 0)), least squares,
-  with whether g lies in the range (whether the motors can hold). Loops that do not close are refused
-  by `require_closed`, naming the robot, the worst cut and the residual.
+  with whether g lies in the range (whether the motors can hold) and which torques it fixes. Loops that
+  do not close are refused by `require_closed`, naming the robot, the worst cut and the residual.
+- `idle`: the idle freedoms at a closed configuration, body by body (welded bodies one body).
 """
 
 from __future__ import annotations
@@ -24,6 +27,10 @@ from pathlib import Path
 import numpy as np
 import pinocchio as pin
 import yaml
+
+from mechkit.core.records import (
+    Coupling,  # a plain record (name, follower, leader, polynomial): no computation
+)
 
 #: Rank judgement: singular values below this fraction of the largest one are zero.
 RANK_TOL = 1e-9
@@ -188,8 +195,6 @@ def _simplify(model: pin.Model, cuts: list[Cut]) -> tuple[pin.Model, list[Cut]]:
 def urdf_mimics(urdf: Path) -> list:
     """The URDF's `<mimic>` joints as coupling records (follower = offset + multiplier x leader), read from
     its XML here (Gepetto's loader ignores them: Pinocchio's mimic=False)."""
-    from mechkit.core.records import Coupling  # a plain record: name, follower, leader, polynomial
-
     out = []
     for joint in ET.parse(urdf).getroot().iter("joint"):
         mimic = joint.find("mimic")
@@ -197,6 +202,43 @@ def urdf_mimics(urdf: Path) -> list:
             out.append(Coupling(joint.get("name"), ((joint.get("name"), 1.0),), ((mimic.get("joint"), 1.0),),
                                 (float(mimic.get("offset", 0)), float(mimic.get("multiplier", 1)))))
     return out
+
+
+# --- URDF+, re-read --------------------------------------------------------------------------------
+
+def urdf_plus_load(path: Path) -> tuple[pin.Model, list[Cut], list[Coupling], list[str]]:
+    """A URDF+ file read with an XML parser and Pinocchio (not mechkit's reader): Pinocchio's tree of the URDF
+    (it ignores <loop> and <coupling>), each loop a cut between its links' frames moved by their <origin>,
+    each coupling the sums of the joints from the two links' nearest common ancestor (generalized_rbda's K
+    row), and the joints generalized_rbda takes as independent coordinates (`independent` not "false"),
+    used here as motors."""
+    root = ET.parse(path).getroot()
+    model = pin.buildModelFromUrdf(str(path))
+    parent = {j.find("child").get("link"): j for j in root.iter("joint")}
+    cuts, couplings = [], []
+    for loop in root.iter("loop"):
+        ends = []
+        for tag in ("predecessor", "successor"):
+            end = loop.find(tag)
+            frame = model.frames[model.getFrameId(end.get("link"), pin.FrameType.BODY)]
+            origin = end.find("origin")
+            xyz = np.array([float(x) for x in origin.get("xyz", "0 0 0").split()]) if origin is not None else np.zeros(3)
+            rpy = np.array([float(x) for x in origin.get("rpy", "0 0 0").split()]) if origin is not None else np.zeros(3)
+            ends.append((frame.parentJoint, frame.placement * pin.SE3(pin.rpy.rpyToMatrix(rpy), xyz)))
+        axis = np.array([float(x) for x in loop.find("axis").get("xyz").split()])
+        cuts.append(Cut(loop.get("name"), *ends[0], *ends[1], "revolute", axis))
+    for coupling in root.iter("coupling"):
+        paths = []
+        for tag in ("predecessor", "successor"):
+            path, link = [], coupling.find(tag).get("link")
+            while link in parent:
+                path.append(parent[link].get("name"))
+                link = parent[link].find("parent").get("link")
+            paths.append(path)
+        pred, succ = ([(j, 1.0) for j in p if j not in set(paths[0]) & set(paths[1])] for p in paths)
+        couplings.append(Coupling(coupling.get("name"), tuple(succ), tuple(pred), (0.0, float(coupling.find("ratio").get("value")))))
+    motors = [j.get("name") for j in root.iter("joint") if j.get("independent") != "false" and j.get("type") != "floating"]
+    return model, cuts, couplings, motors
 
 
 # --- closure, mobility, holding ------------------------------------------------------------------------
