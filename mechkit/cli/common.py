@@ -23,8 +23,9 @@ def examples(*commands: str) -> dict[str, Any]:
 def add_mechanism_arguments(parser: argparse.ArgumentParser) -> None:
     """The positional NAME or PATH, the repeatable `--set NAME=VALUE` and `--actuated`."""
     parser.add_argument("name", metavar="NAME|PATH",
-                        help="registered mechanism (see `mechkit list`) or a file: .urdf with <mechkit:loop>s "
-                             "or a .yaml sidecar (Extended URDF), .xacro, MJCF .xml")
+                        help="registered mechanism (see `mechkit list`) or a file: .urdf with <mechkit:loop>s (and "
+                             "<mimic> joints), with a .yaml sidecar (Extended URDF) or with URDF+ <loop>/<coupling>s; "
+                             ".xacro; MJCF .xml; SDFormat .sdf")
     parser.add_argument("--set", action="append", metavar="NAME=VALUE",
                         help="override a parameter (SI units, rad) or pass a xacro argument to a .xacro file; "
                              "rows=spatial closes every cut with its full rows")
