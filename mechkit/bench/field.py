@@ -130,16 +130,16 @@ def lines(rows: list[LoadTime]) -> list[str]:
     return table
 
 
-def add_section(page: Path, fixtures: Path, quick: bool = False) -> None:
-    """Measure `load_times` (3 repeats when `quick`, else 15) and write them as the section `SECTION` of the
-    benchmark page `page`: in place of the section of that title, else before "## First load", else at
-    the end; the rest of the page is left as it is."""
+def add_section(page: Path, fixtures: Path, quick: bool = False, robots: tuple[FieldRobot, ...] = ROBOTS) -> None:
+    """Measure `load_times` of `robots` (3 repeats when `quick`, else 15) and write them as the section
+    `SECTION` of the benchmark page `page`: in place of the section of that title, else before
+    "## First load", else at the end; the rest of the page is left as it is."""
     repeats = 3 if quick else 15
     body = [f"## {SECTION}", "", (f"`mechkit.load` of each robot of docs/field_robots.md, warm (after one untimed "
                                   f"load), median of {repeats} in one process: the reader parses and checks the file, "
                                   "the core analyses it and assembles its home every time. A file mechkit refuses "
                                   "shows the start of its reason."), "",
-            *lines(load_times(fixtures, repeats=repeats)), ""]
+            *lines(load_times(fixtures, repeats, robots)), ""]
     text = page.read_text().split("\n")
     heads = [i for i, line in enumerate(text) if line.startswith("## ")]
     mine = next((i for i in heads if text[i] == f"## {SECTION}"), None)
