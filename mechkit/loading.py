@@ -45,30 +45,40 @@ def resolve(source: str | Path) -> str | Path:
 
 def load(source: str | Path, *, actuated: Sequence[str] | None = None, home: Mapping[str, float] | None = None,
          guess: Mapping[str, float] | None = None, lock: Mapping[str, Any] | None = None,
-         keep: Sequence[str] | None = None, fix: Sequence[str] | None = None, **params: Any) -> Mechanism:
+         keep: Sequence[str] | None = None, fix: Sequence[str] | None = None, freeflyer: bool = False,
+         **params: Any) -> Mechanism:
     """Build a mechanism from a registered name or a description file.
 
+    The file formats (`mechkit.sources`): a `.urdf` with `<mechkit:loop>`s (and `<mimic>` joints,
+    read as coupling rows); a `.urdf` with an Extended-URDF `.yaml` sidecar beside it (Gepetto's
+    example-parallel-robots); a URDF+ `.urdf` (`<loop>` / `<coupling>` elements); a `.xacro`; an
+    MJCF `.xml` (MuJoCo Menagerie: ball and free joints, equalities, tendons, springs, the keyframe
+    "home"); an SDFormat `.sdf` (loops of ball, universal and gearbox joints).
+
     Args:
-        source: a registered name (`mechkit list`) or a path: a `.urdf` with `<mechkit:loop>`s, a
-            `.urdf` with an Extended-URDF `.yaml` sidecar, a `.xacro`, or an MJCF `.xml`.
+        source: a registered name (`mechkit list`) or a path to a file of one of those formats.
         actuated: actuated joints, overriding what the file (or the spec) declares.
         home: joint -> value (rad or m) of the default assembly's inputs (default: the file's
-            `<mechkit:home>` / MJCF qpos0, else none: every loop closed from the guess).
+            `<mechkit:home>`, MJCF keyframe "home" or qpos0, else none: every loop closed from the guess).
         guess: joint -> value near which the default assembly is sought.
         lock: joint -> value at which it is locked (welded; `mechkit.reduction`).
         keep: bodies whose subsystem alone stays free (every other joint locked at home).
         fix: bodies whose own joint is locked at home (a floating root, for statics).
+        freeflyer: put an Extended-URDF file's tree on a free-flyer root joint ("root_joint"), as
+            Gepetto's loader does when asked (its legged robots float).
         **params: the mechanism's parameters (a name) or xacro arguments (a xacro file);
             `rows="spatial"`, unless the mechanism has a parameter of that name, closes every cut
             with its full rows.
 
     Raises:
-        InvalidParameters: unknown name or parameter; MalformedDescription: a bad file.
+        InvalidParameters: unknown name or parameter; InvalidArgument: `freeflyer` for a source that
+        is not an Extended-URDF file; MalformedDescription: a bad file.
     """
     if not isinstance(source, (str, Path)):
         raise InvalidArgument("source", source, "expected a mechanism name or a path")
+    freeflyer = arguments.flag("freeflyer", freeflyer)
     if lock or keep is not None or fix:
-        whole = load(source, actuated=actuated, home=home, guess=guess, **params)
+        whole = load(source, actuated=actuated, home=home, guess=guess, freeflyer=freeflyer, **params)
         rows = params.get("rows") if "rows" not in {f.name for f in dataclasses.fields(whole.spec.params)} else None
         reduced = reduce_description(whole, description_of(whole), locked_joints(whole, lock, keep, fix))
         return from_description(reduced, rows=rows)
@@ -76,7 +86,10 @@ def load(source: str | Path, *, actuated: Sequence[str] | None = None, home: Map
     if isinstance(where, Path):
         declared = sources.xacro_args(where) if where.name.endswith(".xacro") else {}
         rows = None if "rows" in declared else params.pop("rows", None)
-        return from_description(sources.read(where, params), actuated, home, guess, rows)
+        return from_description(sources.read(where, params, freeflyer=freeflyer), actuated, home, guess, rows)
+    if freeflyer:
+        raise InvalidArgument("freeflyer", freeflyer, f"{where!r} is a registered mechanism: only an Extended-URDF "
+                              "file (a .urdf with a .yaml sidecar) takes a free-flyer root")
     spec = get_spec(where)
     rows = None if "rows" in {f.name for f in dataclasses.fields(spec.params)} else params.pop("rows", None)
     values = spec.params.from_overrides(**params)

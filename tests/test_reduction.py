@@ -7,6 +7,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from sources.field_cli import report
 
 import mechkit
 from mechkit.base.exceptions import InvalidArgument, MalformedDescription
@@ -30,10 +31,9 @@ def test_a_locked_crank_leaves_a_four_bar_with_the_same_effort(load_cached):
 
 
 def test_one_cassie_leg_kept_moves_as_in_the_whole_robot():
-    """Cassie with the pelvis fixed: the left leg kept alone (the right leg and the pelvis welded) has the
-    whole robot's left-leg accelerations under the same motor torques, and its inverse dynamics gives
-    those torques back where statics fixes them; the foot motor's is not fixed in either model (its
-    torque can load the plantar rod's loop without motion), and both say so."""
+    """Cassie with the pelvis fixed at its keyframe "home": the left leg kept alone (the right leg and the
+    pelvis welded) has the whole robot's left-leg accelerations under the same motor torques, and its
+    inverse dynamics gives those torques back (statics fixes every one there)."""
     whole = mechkit.load(CASSIE, fix=["cassie-pelvis"])
     left = [b for b in (f.name for f in whole.model.frames if f.type.name == "BODY") if b.startswith("left-")]
     leg = mechkit.load(CASSIE, fix=["cassie-pelvis"], keep=left)
@@ -50,10 +50,31 @@ def test_one_cassie_leg_kept_moves_as_in_the_whole_robot():
     back = leg.inverse_dynamics(leg.home_q, np.zeros(leg.model.nv), a_leg)
     whole_back = whole.inverse_dynamics(q, v, a_whole)
     for motor, torque in leg_torques.items():
-        assert back.efforts_determinate[motor] == whole_back.efforts_determinate[motor]
-        if back.efforts_determinate[motor]:
-            assert back.efforts[motor] == pytest.approx(torque, rel=1e-8, abs=1e-9)
-    assert not back.efforts_determinate["left-foot"]
+        assert back.efforts_determinate[motor] and whole_back.efforts_determinate[motor]
+        assert back.efforts[motor] == pytest.approx(torque, rel=1e-8, abs=1e-9)
+
+
+def test_one_cassie_leg_holds_with_the_whole_robots_efforts():
+    """`mechkit report` on Cassie with its pelvis fixed (--fix), on its left leg kept alone (--keep) and with
+    its right leg locked where the whole robot's home puts it (--lock, a ball joint by its rotation
+    vector): the left leg's springs and achilles rod settle the same way, and its motors hold it with
+    the same efforts, to 1e-8."""
+    whole = mechkit.load(CASSIE, fix=["cassie-pelvis"])
+    left = [f.name for f in whole.model.frames if f.type.name == "BODY" and f.name.startswith("left-")]
+    right = {j: np.atleast_1d(v) for j, v in whole.joint_values(whole.home_q).items() if j.startswith("right-")}
+    runs = {"fix": report(CASSIE, "--fix", "cassie-pelvis"),
+            "keep": report(CASSIE, "--fix", "cassie-pelvis", "--keep", ",".join(left)),
+            "lock": report(CASSIE, "--fix", "cassie-pelvis",
+                           *(f"--lock={j}={','.join(repr(float(x)) for x in v)}" for j, v in right.items()))}
+    motors = [a for a in whole.actuated if a.startswith("left-")]
+    assert runs["keep"]["actuated"] == runs["lock"]["actuated"] == motors
+    assert runs["keep"]["dof"] == runs["lock"]["dof"] == runs["fix"]["dof"] // 2 == 8
+    efforts = {name: r["holding"]["efforts"] for name, r in runs.items()}
+    for name in ("keep", "lock"):
+        assert runs[name]["holding"]["undetermined"] == []
+        assert sorted(runs[name]["holding"]["settled"]) == sorted(j for j in runs["fix"]["holding"]["settled"] if j.startswith("left-"))
+        for motor in motors:
+            assert efforts[name][motor] == pytest.approx(efforts["fix"][motor], abs=1e-8 * max(1.0, abs(efforts["fix"][motor])))
 
 
 def test_refusals_name_what_is_wrong(load_cached):

@@ -29,7 +29,8 @@ Modules, each one concept, each importing only modules listed before it: `sampli
 size), `loadtime` (first load in a fresh process), `charts`, `failure_atlas` (where each method
 fails: its own studies and those the mechanisms declare), `markdown` (tables, goals,
 docs/benchmarks.md), `run` (`bench_mechanism`, `run`); beside them, the rows of `bench --speed`
-(`dynamics_speed`, `ladder`, `motion_speed`, `load_speed`, `second_opinion_speed`, `sweep_speed`) and
+(`dynamics_speed`, `ladder`, `motion_speed`, `load_speed`, `second_opinion_speed`, `sweep_speed`), `field` (the
+field's robots of docs/field_robots.md and their load times, a section `tools/bench_all.py --speed` adds) and
 `core_cost` (the core's calls against the raw Pinocchio calls, `tools/bench_core.py`). Nothing here
 prints: `mechkit.cli` and the tools print the tables and write the files.
 """

@@ -6,7 +6,7 @@ import argparse
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from mechkit.base.exceptions import InvalidArgument
+from mechkit.base.exceptions import ClosureNotConverged, InvalidArgument, MechkitError
 from mechkit.loading import load
 from mechkit.mechanism import Mechanism
 
@@ -34,8 +34,9 @@ def add_mechanism_arguments(parser: argparse.ArgumentParser) -> None:
         parser: a command's parser.
     """
     parser.add_argument("name", metavar="NAME|PATH",
-                        help="registered mechanism (see `mechkit list`) or a file: .urdf with <mechkit:loop>s "
-                             "or a .yaml sidecar (Extended URDF), .xacro, MJCF .xml")
+                        help="registered mechanism (see `mechkit list`) or a file: .urdf with <mechkit:loop>s (and "
+                             "<mimic> joints), with a .yaml sidecar (Extended URDF) or with URDF+ <loop>/<coupling>s; "
+                             ".xacro; MJCF .xml; SDFormat .sdf")
     parser.add_argument("--set", action="append", metavar="NAME=VALUE",
                         help="override a parameter (SI units, rad) or pass a xacro argument to a .xacro file; "
                              "rows=spatial closes every cut with its full rows")
@@ -44,6 +45,8 @@ def add_mechanism_arguments(parser: argparse.ArgumentParser) -> None:
                         help="lock a joint at a value (rad or m; a ball or free joint: comma-separated values); repeatable")
     parser.add_argument("--keep", metavar="B1,B2", help="keep only the subsystem of these bodies; lock every other joint at home")
     parser.add_argument("--fix", metavar="BODY", action="append", help="lock a body's own joint at home (a floating root); repeatable")
+    parser.add_argument("--freeflyer", action="store_true",
+                        help="put an Extended-URDF file's tree on a free-flyer root joint (as Gepetto's loader can)")
 
 
 def overrides(pairs: list[str] | None) -> dict[str, str]:
@@ -118,18 +121,21 @@ def load_mechanism(args: argparse.Namespace) -> Mechanism:
     """The mechanism the command line names, with its overrides and reductions.
 
     Args:
-        args: the parsed command line (name, --set, --actuated, --lock, --keep, --fix).
+        args: the parsed command line (name, --set, --actuated, --lock, --keep, --fix, --freeflyer).
 
     Returns:
         The mechanism.
 
     Raises:
         InvalidArgument: a malformed --set, --actuated or --lock.
-        MechkitError: what `mechkit.load` refuses.
+        MechkitError: what `mechkit.load` refuses; a home assembly that does not close names the source.
     """
     keep = None if getattr(args, "keep", None) is None else [b.strip() for b in args.keep.split(",") if b.strip()]
-    return load(args.name, actuated=actuated(args.actuated), lock=locks(getattr(args, "lock", None)), keep=keep,
-                fix=getattr(args, "fix", None), **overrides(args.set))
+    try:
+        return load(args.name, actuated=actuated(args.actuated), lock=locks(getattr(args, "lock", None)), keep=keep,
+                    fix=getattr(args, "fix", None), freeflyer=getattr(args, "freeflyer", False), **overrides(args.set))
+    except ClosureNotConverged as err:
+        raise MechkitError(f"{args.name}: its loops do not close at home: {err}") from None
 
 
 def add_mesh_path_argument(parser: argparse.ArgumentParser) -> None:

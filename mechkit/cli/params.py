@@ -1,8 +1,9 @@
 """`mechkit params`: a mechanism's parameters with their defaults, units, accepted ranges and meaning.
 
 A registered name lists its parameter class (ranges measured by `mechkit.catalog.ranges`); a xacro
-file lists its `<xacro:arg>`s and their defaults (no unit or range is declared there); a URDF or
-MJCF file is a fixed description and has none.
+file lists its `<xacro:arg>`s and their defaults (no unit or range is declared there); a URDF
+(with `<mechkit:loop>`s, an Extended-URDF sidecar or URDF+ constraints), MJCF or SDFormat file is a
+fixed description and has none.
 """
 
 from __future__ import annotations
@@ -71,6 +72,7 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     """
     p = sub.add_parser("params", help="a mechanism's parameters: defaults, units, ranges",
                        **examples("mechkit params four_bar", "mechkit params ten_bar --json"))
-    p.add_argument("name", help="mechanism name (see `mechkit list`) or a description file (.xacro, .urdf, .xml)")
+    p.add_argument("name", help="mechanism name (see `mechkit list`) or a description file (.xacro; .urdf, Extended "
+                                "URDF or URDF+; MJCF .xml; SDFormat .sdf)")
     p.add_argument("--json", action="store_true", help="machine-readable output")
     p.set_defaults(func=run)

@@ -1,4 +1,5 @@
-"""Export a mechanism for other tools: MJCF (MuJoCo, `mjcf`) and Extended URDF (`extended_urdf`)."""
+"""Export a mechanism for other tools: MJCF (MuJoCo, `mjcf`), Extended URDF (`extended_urdf`) and URDF+
+(`urdf_plus`)."""
 
 from __future__ import annotations
 
@@ -8,34 +9,35 @@ from typing import TYPE_CHECKING
 from mechkit.base.exceptions import OutputError, UnknownOption
 from mechkit.export.extended_urdf import frame_b_vector, to_extended_urdf
 from mechkit.export.mjcf import body_name, to_mjcf
+from mechkit.export.urdf_plus import to_urdf_plus
 
 if TYPE_CHECKING:
     from mechkit.mechanism import Mechanism
 
 __all__ = ["FORMATS", "body_name", "export_command", "frame_b_vector", "to_extended_urdf",
-           "to_mjcf"]
+           "to_mjcf", "to_urdf_plus"]
 
-FORMATS = ("mjcf", "extended-urdf")
+FORMATS = ("mjcf", "extended-urdf", "urdf+")
 
 
 def export_command(mechanism: Mechanism, fmt: str, output: str | Path) -> list[Path]:
-    """Write the mechanism in `fmt` to `output`.
+    """Write the mechanism in `fmt` ("mjcf", "extended-urdf" or "urdf+") to `output`; returns the files written.
 
     extended-urdf also writes the YAML sidecar beside the URDF (same stem, `.yaml`); both files are
-    written as one step (neither is replaced unless both can be written). mjcf to `-` writes to
-    standard output.
+    written as one step (neither is replaced unless both can be written). mjcf and urdf+ to `-` write
+    to standard output.
 
     Args:
         mechanism: the mechanism.
-        fmt: "mjcf" or "extended-urdf".
-        output: the file (the URDF for extended-urdf), or `-` for mjcf.
+        fmt: "mjcf", "extended-urdf" or "urdf+".
+        output: the file (the URDF for extended-urdf), or `-` (standard output) for mjcf and urdf+.
 
     Returns:
         The files written.
 
     Raises:
         UnknownOption: an unknown format.
-        MethodUnavailable: a joint or cut the format cannot express.
+        MethodUnavailable: a joint, cut, coupling or actuator the format cannot express.
         OutputError: the output is refused (a directory, a device, the sidecar's own name, ...) or
             cannot be written.
     """
@@ -45,6 +47,8 @@ def export_command(mechanism: Mechanism, fmt: str, output: str | Path) -> list[P
         raise UnknownOption("format", fmt, FORMATS)
     if fmt == "mjcf":
         return [write_text(output, to_mjcf(mechanism))]
+    if fmt == "urdf+":
+        return [write_text(output, to_urdf_plus(mechanism))]
     sidecar = Path(output).with_suffix(".yaml")
     if Path(output) == sidecar:
         raise OutputError(output, "the Extended URDF needs a name whose .yaml sidecar is another file (e.g. robot.urdf)")

@@ -1,7 +1,9 @@
 """MJCF (MuJoCo) export of a mechanism: the tree, its geoms, limits, springs, motors and stiff closures.
 
 One `<body>` per Pinocchio joint (its frame is the joint frame), `<inertial>` from the model (MuJoCo
-then ignores the geoms' volume), every URDF frame as a `<site>`, and:
+then ignores the geoms' volume; a body whose mass or a principal moment is below MuJoCo's `mjMINVAL`,
+a massless link, a rotor or a thin rod, has no counterpart and is refused by name), every URDF frame
+as a `<site>`, and:
 
 - geoms: the URDF visuals (box, cylinder, sphere) at their placements; a body with no primitive
   visual (none, or meshes only) gets a capsule from its joint to each child joint and cut frame.
@@ -151,6 +153,10 @@ def springs(mech: Mechanism) -> dict[str, tuple[float, float, float]]:
             for s in mech.springs.springs}
 
 
+#: MuJoCo's smallest mass (kg) and principal moment (kg m^2) of a moving body (mjMINVAL).
+MJMINVAL = 1e-15
+
+
 def _visual_geoms(mech: Mechanism) -> list[tuple[int, str, dict[str, str]]]:
     """(joint, name, attributes) of the URDF's primitive visuals; none when they cannot be read."""
     try:
@@ -215,7 +221,7 @@ def to_mjcf(mech: Mechanism, q: np.ndarray | None = None) -> str:
         The MJCF text.
 
     Raises:
-        MethodUnavailable: a joint or cut with no MJCF counterpart.
+        MethodUnavailable: a joint, cut or body (massless, a rotor, a thin rod) with no MJCF counterpart.
         MalformedDescription: a `<mechkit:spring>` element that cannot be read.
     """
     model = mech.model
@@ -248,6 +254,11 @@ def to_mjcf(mech: Mechanism, q: np.ndarray | None = None) -> str:
         body = ET.SubElement(elements[model.parents[j]], "body", name=names[j], pos=_fmt(M.translation),
                              quat=_fmt(_quat_wxyz(M.rotation)))
         inertia = model.inertias[j]
+        moments = np.linalg.eigvalsh(inertia.inertia)
+        if inertia.mass < MJMINVAL or moments[0] < MJMINVAL:
+            raise MethodUnavailable("mjcf export", f"body {names[j]!r} has a mass of {inertia.mass:.6g} kg and principal "
+                                    f"moments {_fmt(moments)} kg m^2: MuJoCo needs both above {MJMINVAL:g} for a moving "
+                                    "body (a massless link, a rotor or a thin rod has no MJCF counterpart)")
         if inertia.mass > 0:
             I = inertia.inertia
             full = [I[0, 0], I[1, 1], I[2, 2], I[0, 1], I[0, 2], I[1, 2]]

@@ -13,7 +13,7 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any
 
-from mechkit.base.exceptions import InvalidParameters, MalformedDescription
+from mechkit.base.exceptions import InvalidArgument, InvalidParameters, MalformedDescription
 from mechkit.sources.description import Description, read_text
 from mechkit.sources.extended_urdf import read_extended_urdf, sidecar_of
 from mechkit.sources.mjcf import read_mjcf
@@ -27,23 +27,29 @@ __all__ = ["SUFFIXES", "Description", "describe_urdf", "read", "xacro_args"]
 SUFFIXES = (".urdf", ".xacro", ".xml", ".sdf")
 
 
-def read(path: Path, params: dict[str, Any] | None = None) -> Description:
+def read(path: Path, params: dict[str, Any] | None = None, freeflyer: bool = False) -> Description:
     """The description in a file, its format told by its suffix (and, for a URDF, a sidecar beside it or
     URDF+ constraints in it).
 
     Args:
         path: an existing file (see `resolve`).
         params: xacro arguments (only a xacro file takes any).
+        freeflyer: put an Extended-URDF file's tree on a free-flyer root (`read_extended_urdf`).
 
     Returns:
         The description.
 
     Raises:
         MalformedDescription: unknown suffix, unreadable, empty or invalid content.
-        InvalidParameters: parameters given to a format that takes none.
+        InvalidParameters: parameters given to a format that takes none; InvalidArgument: `freeflyer`
+            for a file that is not Extended URDF.
     """
     params = dict(params or {})
     name = path.name
+    if freeflyer and not (name.endswith(".urdf") and sidecar_of(path) is not None):
+        raise InvalidArgument("freeflyer", freeflyer, f"{name} is not an Extended-URDF file (a .urdf with a .yaml "
+                              "sidecar): only those take a free-flyer root (MJCF and SDFormat declare their own "
+                              "free joints)")
     if name.endswith(".xacro"):
         return read_xacro(path, params)
     if params:
@@ -56,7 +62,7 @@ def read(path: Path, params: dict[str, Any] | None = None) -> Description:
                 raise MalformedDescription(str(path), f"declares URDF+ loops or couplings and has an Extended-URDF "
                                            f"sidecar {sidecar.name}: one loop convention per file")
             return read_urdf_plus(path)
-        return read_extended_urdf(path, sidecar) if sidecar is not None else read_urdf(path)
+        return read_extended_urdf(path, sidecar, freeflyer) if sidecar is not None else read_urdf(path)
     if name.endswith((".xml", ".mjcf")):
         return read_mjcf(path)
     if name.endswith(".sdf"):

@@ -16,7 +16,8 @@ Then, as Gepetto's `simplifyModel` does, every chain of three revolutes about th
 pairwise not collinear (|a x b| > 1e-6) and whose origins lie within 1e-4 m at the zero configuration
 becomes one ball joint at the third: the first two are locked at zero (`balls=False` keeps the three
 revolutes: the same mechanism, parametrised by three angles). `freeflyer=True` puts the tree on a
-free-flyer root named "root_joint". The model is built directly (`Description.model`): a ball
+free-flyer root named "root_joint", held at the URDF's origin in the home assembly (a home input at
+position and rotation zero), so that fixing it gives the fixed-base robot's home. The model is built directly (`Description.model`): a ball
 joint has no URDF. Only where it is the URDF's own tree (no substitution, no ball, fixed base) does the
 description also carry the URDF text, with the pairs as `<mechkit:loop>` elements.
 
@@ -49,6 +50,8 @@ from mechkit.sources.description import Description, read_text
 from mechkit.sources.urdf import LOOP_NAMESPACE, build_model, describe_urdf
 
 SUBSTITUTIONS = ("SPHERICAL", "FIXED", "UJOINT_AB (A, B two of X, Y, Z)")
+#: The free-flyer root joint's name (`freeflyer=True`), as Pinocchio's URDF parser names it.
+ROOT = "root_joint"
 _UJOINT = re.compile(r"UJOINT_([XYZ])([XYZ])")
 _AXES = {"X": pin.JointModelRX, "Y": pin.JointModelRY, "Z": pin.JointModelRZ}
 _REVOLUTES = {"JointModelRX": 0, "JointModelRY": 1, "JointModelRZ": 2}
@@ -89,7 +92,8 @@ def read_extended_urdf(path: Path, sidecar: Path, freeflyer: bool = False, balls
     Args:
         path: the tree URDF.
         sidecar: its YAML sidecar.
-        freeflyer: put the tree on a free-flyer root joint ("root_joint") instead of the world.
+        freeflyer: put the tree on a free-flyer root joint ("root_joint") instead of the world; its home
+            value is the URDF's origin.
         balls: merge the spherical triplets into ball joints, as Gepetto's `simplifyModel` does.
 
     Returns:
@@ -125,7 +129,9 @@ def read_extended_urdf(path: Path, sidecar: Path, freeflyer: bool = False, balls
     closures = _closures(model, side, sidecar, path.name)
     if freeflyer or side.substitutions or triplets:
         own = tuple(_checked_frames(model, c, path.name) for c in base.closures or ())
-        return dataclasses.replace(base, urdf=None, actuated=tuple(motors), closures=own + tuple(closures), model=model)
+        home = {**base.home, ROOT: (0.0,) * 6} if freeflyer else base.home  # the root held where the URDF puts it
+        return dataclasses.replace(base, urdf=None, actuated=tuple(motors), closures=own + tuple(closures), model=model,
+                                   home=home)
     loops = "".join(f"\n  <mechkit:loop {' '.join(f'{k}={quoteattr(v)}' for k, v in _attributes(c).items())}/>"
                     for c in closures)
     end = urdf.rindex("</robot>")

@@ -179,7 +179,7 @@ def _numbers(values) -> str:
 
 
 def _link(name: str, inertia: pin.Inertia | None) -> list[str]:
-    if inertia is None or inertia.mass <= 0:
+    if inertia is None or (inertia.mass <= 0 and not np.any(inertia.inertia)):
         return [f'  <link name="{name}"/>']
     i = [[float(x) for x in row] for row in inertia.inertia]
     tensor = " ".join(f'{k}="{i[r][c]!r}"' for k, r, c in (("ixx", 0, 0), ("iyy", 1, 1), ("izz", 2, 2), ("ixy", 0, 1),

@@ -81,7 +81,8 @@ def check_inertias(root: ET.Element) -> None:
     and satisfy the triangle inequality (each at most the sum of the other two).
 
     Zero is valid: a massless link (all zero) is a frame, a point mass has a zero inertia, a thin rod a
-    zero principal moment. A mass of zero with a non-zero inertia is not (no mass, no moment of it).
+    zero principal moment, and a mass of zero with a non-zero inertia is a rotor whose mass the file
+    counts elsewhere (URDF+ files write motor rotors so: it adds rotational inertia, no weight).
     Moments are judged to `INERTIA_RTOL` of their sum (CAD exports print rounded values).
 
     Args:
@@ -103,9 +104,6 @@ def check_inertias(root: ET.Element) -> None:
              for k in ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")}
         if value < 0:
             raise MalformedDescription(where, f"mass {text} is negative (kg)")
-        if value == 0 and any(c.values()):
-            raise MalformedDescription(where, f"mass {text} with a non-zero inertia {c}: a massless link has no "
-                                       "moment of inertia (kg m^2)")
         moments = np.linalg.eigvalsh(np.array([[c["ixx"], c["ixy"], c["ixz"]], [c["ixy"], c["iyy"], c["iyz"]],
                                                [c["ixz"], c["iyz"], c["izz"]]]))
         slack = INERTIA_RTOL * float(np.sum(np.abs(moments)))

@@ -2,7 +2,8 @@
 
 Links are the URDF visuals in their URDF colours (a palette per limb when the URDF gives none):
 primitives, and meshes (STL, OBJ, DAE; found as `mechkit.viz.meshes` says, a missing one is a
-placeholder); joints are short cylinders along their axis, actuated ones red and
+placeholder); a body with no visual drawn (none in its file, a missing mesh, a reader's tree with no
+URDF) is a bar from its joint to each child joint and cut frame; joints are short cylinders along their axis, actuated ones red and
 thicker (spheres for multi-coordinate joints); loop cuts are yellow spheres; the ground is grey
 (anchors at the supports, joined by bars when the URDF draws no ground body). Sizes scale with the
 mechanism (its joint extent at home); placements are 4x4 world transforms (m).
@@ -71,8 +72,11 @@ class Drawing:
         g = StaticScene().geometry
         self.size = joint_extent(model, self.data, mechanism.home_q) if size is None else float(size)
         s = self.size
-        urdf, placeholders = resolve_meshes(mechanism.urdf, meshes or MeshSearch(), 0.04 * s)
-        self.visual = pin.buildGeomFromUrdfString(model, urdf, pin.GeometryType.VISUAL)
+        if mechanism.urdf is None:  # a reader's tree of joints URDF lacks (ball, free-flyer): no visuals
+            self.visual, placeholders = pin.GeometryModel(), set()
+        else:
+            urdf, placeholders = resolve_meshes(mechanism.urdf, meshes or MeshSearch(), 0.04 * s)
+            self.visual = pin.buildGeomFromUrdfString(model, urdf, pin.GeometryType.VISUAL)
         self.vdata = self.visual.createData()
         self.parts: list[Part] = []
         self._links: list[tuple[int, np.ndarray]] = []  # (geometry index, 4x4 local transform)
@@ -84,6 +88,11 @@ class Drawing:
                 colour = MISSING if obj.name in placeholders else colours[k]
                 self.parts.append(Part(f"links/{obj.name}", shape, colour, half, centre))
                 self._links.append((k, local))
+        drawn = {obj.parentJoint for obj in self.visual.geometryObjects if obj.name not in placeholders}
+        self._bars = _bars(model, mechanism.closures, drawn)  # (joint, 4x4 in its frame, half length)
+        for j, _, half_length in self._bars:
+            half = np.array([0.008, half_length / s, 0.008]) * s
+            self.parts.append(Part(f"links/bar_{model.names[j]}_{len(self.parts)}", g.Box(list(2 * half)), PASSIVE, half))
         self._joints: list[tuple[int, np.ndarray | None]] = []
         actuated = set(mechanism.actuated)
         axes = _local_axes(model, self.data)
@@ -147,6 +156,7 @@ class Drawing:
         pin.framesForwardKinematics(model, data, q)
         pin.updateGeometryPlacements(model, data, self.visual, self.vdata)
         out = [self.vdata.oMg[k].homogeneous @ local for k, local in self._links]
+        out.extend(data.oMi[j].homogeneous @ local for j, local, _ in self._bars)
         for j, axis in self._joints:
             oMi = data.oMi[j]
             rotation = np.eye(3) if axis is None else _rotation_y_to(oMi.rotation @ axis)
@@ -180,6 +190,28 @@ class Drawing:
                 continue
             rgba = (*part.rgba[:3], GHOST_OPACITY) if ghost else part.rgba
             scene.add(f"{prefix}/{part.path}", part.shape, rgba, placement)
+
+
+def _bars(model: pin.Model, closures, drawn: set[int]) -> list[tuple[int, np.ndarray, float]]:
+    """For each moving body without a drawn visual, a bar from its joint's origin to each child joint's
+    origin and each cut frame on it: (joint, 4x4 placement of the bar's centre in the joint frame, the
+    bar's half length (m)), the bar along its placement's y."""
+    ends: dict[int, list[np.ndarray]] = {j: [] for j in range(1, model.njoints) if j not in drawn}
+    for j in range(1, model.njoints):
+        if model.parents[j] in ends:
+            ends[model.parents[j]].append(model.jointPlacements[j].translation)
+    for closure in closures:
+        for frame in (closure.frame_a, closure.frame_b):
+            f = model.frames[model.getFrameId(frame)]
+            if f.parentJoint in ends:
+                ends[f.parentJoint].append(f.placement.translation)
+    out = []
+    for j, points in ends.items():
+        for end in points:
+            length = float(np.linalg.norm(end))
+            if length > 1e-9:
+                out.append((j, pin.SE3(_rotation_y_to(end), end / 2).homogeneous, length / 2))
+    return out
 
 
 def _link_colours(model: pin.Model, visual: pin.GeometryModel) -> list[tuple[float, float, float, float]]:

@@ -1,28 +1,36 @@
-"""Independent computations on closed-loop robots, with Pinocchio calls only (no mechkit core, no mechkit reader).
+"""Independent computations on closed-loop robots, with Pinocchio calls only (no mechkit core, no mechkit reader;
+mechkit's `Coupling` record only carries numbers).
 
-Two things live here:
+What lives here:
 
 - `gepetto_load`: an Extended-URDF pair read the way Gepetto's loader reads it (example-parallel-robots'
   `loader_tools.completeRobotLoader` then `simplifyModel`, toolbox-parallel-robots' `freezeJoints`),
   re-written from their semantics: joint substitutions by name, spherical triplets found by consecutive
   joint ids, constraints re-attached through frames named after their joints. A reader that builds a
   different model shows up as a disagreement with it.
+- `urdf_plus_load`, `urdf_mimics`: URDF+ loops and couplings and URDF mimic joints read with an XML parser.
 - `study`: on any model, its cuts and its coupling rows, the closure by damped least squares on the
   frame errors (3d: position error in the world frame, 6d: log6 of the relative placement), the
   numerical DOF from the rank of the constraint Jacobian at the closed configuration, and the motor
   torques holding gravity at rest from `[S, J^T] [tau; lambda] = g` (g = rnea(q, 0, 0)), least squares,
-  with whether g lies in the range (whether the motors can hold). Loops that do not close are refused
-  by `require_closed`, naming the robot, the worst cut and the residual.
+  with whether g lies in the range (whether the motors can hold) and which torques it fixes. Loops that
+  do not close are refused by `require_closed`, naming the robot, the worst cut and the residual.
+- `idle`: the idle freedoms at a closed configuration, body by body (welded bodies one body).
 """
 
 from __future__ import annotations
 
+import xml.etree.ElementTree as ET
 from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
 import pinocchio as pin
 import yaml
+
+from mechkit.core.records import (
+    Coupling,  # a plain record (name, follower, leader, polynomial): no computation
+)
 
 #: Rank judgement: singular values below this fraction of the largest one are zero.
 RANK_TOL = 1e-9
@@ -70,6 +78,7 @@ class Study:
     gravity_residual: float
     torques: dict[str, float] = field(default_factory=dict)
     torques_unique: bool = True
+    determined: tuple[str, ...] = ()
 
 
 def _frame_cut(model: pin.Model, name: str, frame_a: str, frame_b: str, rows: str, axis=None) -> Cut:
@@ -181,6 +190,55 @@ def _simplify(model: pin.Model, cuts: list[Cut]) -> tuple[pin.Model, list[Cut]]:
         if ends[0][0] != ends[1][0]:
             out.append(Cut(cut.name, ends[0][0], ends[0][1], ends[1][0], ends[1][1], cut.rows, cut.axis))
     return reduced, out
+
+
+def urdf_mimics(urdf: Path) -> list:
+    """The URDF's `<mimic>` joints as coupling records (follower = offset + multiplier x leader), read from
+    its XML here (Gepetto's loader ignores them: Pinocchio's mimic=False)."""
+    out = []
+    for joint in ET.parse(urdf).getroot().iter("joint"):
+        mimic = joint.find("mimic")
+        if mimic is not None and joint.get("type") != "fixed":
+            out.append(Coupling(joint.get("name"), ((joint.get("name"), 1.0),), ((mimic.get("joint"), 1.0),),
+                                (float(mimic.get("offset", 0)), float(mimic.get("multiplier", 1)))))
+    return out
+
+
+# --- URDF+, re-read --------------------------------------------------------------------------------
+
+def urdf_plus_load(path: Path) -> tuple[pin.Model, list[Cut], list[Coupling], list[str]]:
+    """A URDF+ file read with an XML parser and Pinocchio (not mechkit's reader): Pinocchio's tree of the URDF
+    (it ignores <loop> and <coupling>), each loop a cut between its links' frames moved by their <origin>,
+    each coupling the sums of the joints from the two links' nearest common ancestor (generalized_rbda's K
+    row), and the joints generalized_rbda takes as independent coordinates (`independent` not "false"),
+    used here as motors."""
+    root = ET.parse(path).getroot()
+    model = pin.buildModelFromUrdf(str(path))
+    parent = {j.find("child").get("link"): j for j in root.iter("joint")}
+    cuts, couplings = [], []
+    for loop in root.iter("loop"):
+        ends = []
+        for tag in ("predecessor", "successor"):
+            end = loop.find(tag)
+            frame = model.frames[model.getFrameId(end.get("link"), pin.FrameType.BODY)]
+            origin = end.find("origin")
+            xyz = np.array([float(x) for x in origin.get("xyz", "0 0 0").split()]) if origin is not None else np.zeros(3)
+            rpy = np.array([float(x) for x in origin.get("rpy", "0 0 0").split()]) if origin is not None else np.zeros(3)
+            ends.append((frame.parentJoint, frame.placement * pin.SE3(pin.rpy.rpyToMatrix(rpy), xyz)))
+        axis = np.array([float(x) for x in loop.find("axis").get("xyz").split()])
+        cuts.append(Cut(loop.get("name"), *ends[0], *ends[1], "revolute", axis))
+    for coupling in root.iter("coupling"):
+        paths = []
+        for tag in ("predecessor", "successor"):
+            path, link = [], coupling.find(tag).get("link")
+            while link in parent:
+                path.append(parent[link].get("name"))
+                link = parent[link].find("parent").get("link")
+            paths.append(path)
+        pred, succ = ([(j, 1.0) for j in p if j not in set(paths[0]) & set(paths[1])] for p in paths)
+        couplings.append(Coupling(coupling.get("name"), tuple(succ), tuple(pred), (0.0, float(coupling.find("ratio").get("value")))))
+    motors = [j.get("name") for j in root.iter("joint") if j.get("independent") != "false" and j.get("type") != "floating"]
+    return model, cuts, couplings, motors
 
 
 # --- closure, mobility, holding ------------------------------------------------------------------------
@@ -302,6 +360,60 @@ def study(model: pin.Model, cuts: list[Cut], motors: list[str], q0: np.ndarray |
     x, *_ = np.linalg.lstsq(A, g, rcond=None)
     gravity_residual = float(np.linalg.norm(A @ x - g) / max(np.linalg.norm(g), 1e-300))
     _, null_a = _rank(A)
+    free = np.max(np.abs(null_a[: len(motors)]), axis=1, initial=0.0) if motors else np.zeros(0)
     return Study(q, residual <= closure_tol, residual, model.nv - rank, rank, undriven, gravity_residual < 1e-9,
                  gravity_residual, dict(zip(motors, x[: len(motors)].tolist())),
-                 bool(not motors or null_a.size == 0 or np.max(np.abs(null_a[: len(motors)])) < 1e-9))
+                 bool(not motors or null_a.size == 0 or np.max(np.abs(null_a[: len(motors)])) < 1e-9),
+                 tuple(m for m, f in zip(motors, free) if f < 1e-9))
+
+
+def _loop_joints(model: pin.Model, cuts: list[Cut]) -> set[int]:
+    """The joints on some cut's loop: on the tree path between its two joints."""
+    out = set()
+    for c in cuts:
+        chains = []
+        for j in (c.joint_a, c.joint_b):
+            chain = []
+            while j > 0:
+                chain.append(j)
+                j = model.parents[j]
+            chains.append(chain)
+        out |= set(chains[0]) ^ set(chains[1])
+    return out
+
+
+def idle(model: pin.Model, cuts: list[Cut], q: np.ndarray, couplings=(), tol: float = 1e-9) -> dict[frozenset, int]:
+    """Idle freedoms at a closed q: for each rigid body on a loop (the joints' bodies, those a 6d cut welds
+    counted as one), the motions closing every cut (the null space of the frame errors' Jacobian) that
+    move it alone among the bodies with mass: rank(T over the massive bodies and it) - rank(T over the
+    massive bodies but it), T the world twists of the bodies' joints along those motions.
+
+    Returns:
+        {frozenset of the joint names of the body: count}, for the counts that are not zero.
+    """
+    group = {j: {j} for j in range(model.njoints)}
+    for c in cuts:
+        if c.rows == "6d":
+            merged = group[c.joint_a] | group[c.joint_b]
+            for j in merged:
+                group[j] = merged
+    _, J = _errors(model, model.createData(), cuts, q, couplings)
+    _, null = _rank(J)
+    data = model.createData()
+    pin.computeJointJacobians(model, data, q)
+    bodies = {frozenset(g) for j, g in group.items() if j > 0}
+    twist = {b: pin.getJointJacobian(model, data, min(b), pin.ReferenceFrame.WORLD) @ null for b in bodies}
+    heavy = {b for b in bodies if sum(model.inertias[j].mass for j in b) > 0}
+    looped = {b for b in bodies if b & _loop_joints(model, cuts)}
+    scale = max(1.0, max(float(np.max(np.abs(t), initial=0.0)) for t in twist.values()))
+
+    def rank(chosen) -> int:
+        return int(np.linalg.matrix_rank(np.vstack([twist[b] for b in chosen]), tol * scale)) if chosen else 0
+
+    out = {}
+    for b in looped:
+        others = [o for o in heavy if o != b]
+        count = rank(others + [b]) - rank(others)
+        if count and null.shape[1]:
+            out[frozenset(model.names[j] for j in b)] = count
+    return out

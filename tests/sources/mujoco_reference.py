@@ -111,6 +111,12 @@ class MujocoReference:
         x = np.linalg.lstsq(A, b, rcond=None)[0]
         return x[:self.mm.nu + len(held)], float(np.linalg.norm(A @ x - b))
 
+    def in_our_units(self, u_mujoco: np.ndarray) -> np.ndarray:
+        """MuJoCo's actuator forces (and, after them, stop forces) in the reader's convention: a joint
+        motor's effort is its joint's generalised force (gear times MuJoCo's), a tendon motor's is MuJoCo's."""
+        factor = np.where(np.isin(self.mm.actuator_trntype, (0, 1)), self.mm.actuator_gear[:, 0], 1.0)
+        return u_mujoco * np.concatenate([factor, np.ones(len(u_mujoco) - self.mm.nu)])
+
     def inertias(self) -> dict[str, dict[str, object]]:
         """Compiled inertias by body: mass (kg), com (body frame, m), inertia about the com (body frame)."""
         out = {}

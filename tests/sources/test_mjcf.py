@@ -30,6 +30,7 @@ from mechkit.sources.mjcf import read_mjcf
 from mechkit.sources.urdf import build_model
 
 from .description_reference import Statics
+from .field_cli import refusal
 from .mujoco_reference import MujocoReference
 
 MENAGERIE = FIXTURES / "field" / "menagerie"
@@ -54,13 +55,6 @@ def _cassie_pose(desc, st: Statics) -> np.ndarray:
     home = {j: v for j, v in key.joint_values(key.mm.key_qpos[0]).items() if desc.model.existJointName(j)}
     q = st.assemble(st.configuration(home), {})
     return st.equilibrium(q, {j: st.value(q, j) for j in desc.actuated})
-
-
-def _our_units(ref: MujocoReference, u_mujoco: np.ndarray) -> np.ndarray:
-    """MuJoCo's actuator forces in the reader's convention: a joint motor's effort is its joint's
-    generalised force (gear times MuJoCo's), a tendon motor's is MuJoCo's."""
-    factor = np.where(np.isin(ref.mm.actuator_trntype, (0, 1)), ref.mm.actuator_gear[:, 0], 1.0)
-    return u_mujoco * np.concatenate([factor, np.ones(len(u_mujoco) - ref.mm.nu)])
 
 
 @pytest.mark.parametrize("path", [CASSIE, GRIPPER], ids=["cassie", "2f85"])
@@ -147,7 +141,7 @@ def test_dof_closure_and_holding_efforts_agree_with_mujoco(robot, tmp_path):
     np.testing.assert_allclose(g, mj["generalised"], atol=TOL * max(1.0, np.max(np.abs(g))))
     u, left = st.efforts(q)
     u_mj, left_mj = ref.efforts(q, held)
-    np.testing.assert_allclose(u, _our_units(ref, u_mj), atol=TOL * max(1.0, np.max(np.abs(u))))
+    np.testing.assert_allclose(u, ref.in_our_units(u_mj), atol=TOL * max(1.0, np.max(np.abs(u))))
     assert left == pytest.approx(left_mj, rel=TOL, abs=TOL)
     if robot == "cassie-floating":  # nothing holds the whole robot's weight: the pelvis rows carry it
         weight = sum(float(i.mass) for i in desc.model.inertias) * np.linalg.norm(desc.model.gravity.linear)
@@ -215,7 +209,7 @@ def test_every_equality_kind_tendon_spring_and_armature_agree_with_mujoco(flags,
         for k, coupling in enumerate(desc.couplings):
             assert residual[-len(desc.couplings) + k] == pytest.approx(mj["residual"][ids == eq_id[coupling.name]][0],
                                                                         abs=1e-12)
-        np.testing.assert_allclose(st.S * _our_units(ref, np.ones(2)), mj["moment"].T, atol=1e-12)
+        np.testing.assert_allclose(st.S * ref.in_our_units(np.ones(2)), mj["moment"].T, atol=1e-12)
         np.testing.assert_allclose(st.generalised(q), mj["generalised"], atol=1e-10)
     armature = np.zeros(desc.model.nv)
     armature[desc.model.joints[desc.model.getJointId("c3")].idx_v] = 0.02
@@ -278,11 +272,12 @@ MALFORMED = {  # file text -> what the one-line error says
 
 @pytest.mark.parametrize("text, needle", MALFORMED.items(), ids=[f"m{i}" for i in range(len(MALFORMED))])
 def test_malformed_mjcf_is_refused_in_one_line_naming_the_element(text, needle, tmp_path):
+    """The reader's error, and the same one line from `mechkit report` (exit 2, no traceback)."""
     path = tmp_path / "broken.xml"
     path.write_text(text)
     with pytest.raises(MalformedDescription, match=re.escape(needle)) as err:
         read_mjcf(path)
-    assert "\n" not in str(err.value)
+    assert refusal(path) == f"mechkit: error: {err.value}"
 
 
 @pytest.mark.parametrize("case", ["no joint", "cassie"])

@@ -23,6 +23,7 @@ from mechkit.sources.description import Description
 from mechkit.sources.sdf import read_sdf
 
 from .description_reference import Statics
+from .field_cli import refusal
 
 FIXTURES = FIXTURES / "field" / "sdf"
 #: example-robot-data (a test dependency) ships its robots in the environment's cmeel prefix.
@@ -293,7 +294,7 @@ def test_malformed_sdf_is_refused_in_one_line_naming_the_element(text, needle, t
     path.write_text(text)
     with pytest.raises(MalformedDescription, match=re.escape(needle)) as err:
         read_sdf(path)
-    assert "\n" not in str(err.value)
+    assert refusal(path) == f"mechkit: error: {err.value}"  # the same one line from `mechkit report`
 
 
 def test_mechkit_report_on_a_broken_sdf_says_it_in_one_line(tmp_path):

@@ -27,7 +27,7 @@ from mechkit.core.records import Coupling
 from mechkit.report import report
 from mechkit.sources.urdf import build_model, describe_urdf, parse_loops, read_urdf
 
-from .independent import study
+from .independent import study, urdf_mimics
 
 
 @pytest.mark.parametrize("name", list(specs()))
@@ -154,24 +154,13 @@ def test_a_mimic_is_a_coupling_row_with_urdf_defaults():
     assert describe_urdf(_gripper(""), None, "urdf").couplings == ()
 
 
-def _independent_mimics(path: Path) -> list[Coupling]:
-    """The mimics of a URDF file, read here with an XML parser (URDF's defaults: multiplier 1, offset 0)."""
-    out = []
-    for joint in ET.parse(path).getroot().iter("joint"):
-        mimic = joint.find("mimic")
-        if mimic is not None and joint.get("type") != "fixed":
-            out.append(Coupling(joint.get("name"), ((joint.get("name"), 1.0),), ((mimic.get("joint"), 1.0),),
-                                (float(mimic.get("offset", 0)), float(mimic.get("multiplier", 1)))))
-    return out
-
-
 def test_panda_fingers_mimic_gives_pinocchios_own_mimic_model():
     """example-robot-data's Panda: finger_joint2 mimics finger_joint1. With the row, the tree of 9
     joints has 8 freedoms, as Pinocchio's mimic model has 8 velocities, and the 8 motors hold gravity
     with the torques Pinocchio's mimic model gives by RNEA: the fingers slide in opposite directions,
     so through the mimic their weights cancel on the finger motor."""
     desc = read_urdf(PANDA)
-    assert list(desc.couplings) == _independent_mimics(PANDA)
+    assert list(desc.couplings) == urdf_mimics(PANDA)
     model = pin.buildModelFromUrdf(str(PANDA))
     reduced = pin.buildModelFromUrdf(str(PANDA), mimic=True)
     motors = [n for n in model.names[1:] if n != "panda_finger_joint2"]

@@ -1,8 +1,8 @@
 """`mechkit.sources.urdf_checks`: a tree or inertias that urdfdom lets through are named errors.
 
-What the URDF format allows is accepted (massless links, point
-masses, thin rods), what no body can have is refused by name (negative mass, a negative principal
-moment, the triangle inequality violated, a moment without mass); the field's files agree.
+What the URDF format allows is accepted (massless links, point masses, thin rods, rotors: a moment
+without mass), what no body can have is refused by name (negative mass, a negative principal moment,
+the triangle inequality violated); the field's files agree.
 """
 
 from __future__ import annotations
@@ -27,7 +27,6 @@ URDF_CASES = {
     "link with two parents": (SLIDER_CRANK.replace('<parent link="ground"/><child link="slider_link"/>',
                                              '<parent link="ground"/><child link="rod_link"/>'), "two parent joints"),
     "negative mass": (SLIDER_CRANK.replace('<mass value="0.4"/>', '<mass value="-1"/>'), "mass -1"),
-    "zero mass with inertia": (SLIDER_CRANK.replace('<mass value="0.4"/>', '<mass value="0"/>'), "mass 0"),
     "inertia not positive definite": (SLIDER_CRANK.replace('ixx="2e-5"', 'ixx="-2e-5"'), "positive semi-definite"),
 }
 
@@ -61,6 +60,7 @@ def _rod(mass: float, length: float, radius: float) -> dict[str, str]:
     ("2.5", _rod(2.5, 0.4, 0.0)),                                # an ideal thin rod: one zero principal moment
     ("2.5", _rod(2.5, 0.4, 0.01)),                               # a solid rod
     ("1.0", {"ixx": "0.5", "iyy": "0.5", "izz": "1.0"}),         # a flat disc: the triangle inequality with equality
+    ("0", {"ixx": "1e-4", "iyy": "1e-4", "izz": "1.7e-4"}),      # a rotor: its inertia here, its mass counted elsewhere
 ])
 def test_physically_possible_inertias_are_accepted(mass, inertia):
     check_inertias(_link(mass, **inertia))
@@ -79,7 +79,7 @@ def test_every_field_fixture_of_gepetto_passes_and_many_links_are_massless():
 @pytest.mark.parametrize("mass, inertia, needle", [
     ("-1", {"ixx": "1", "iyy": "1", "izz": "1"}, "mass -1 is negative"),
     ("-1e-12", {}, "mass -1e-12 is negative"),
-    ("0", {"izz": "1e-3"}, "a massless link has no moment of inertia"),
+    ("0", {"izz": "1e-3"}, "triangle inequality"),                                               # a rotor, but no body
     ("1", {"ixx": "-2e-5", "iyy": "1e-4", "izz": "1e-4"}, "not positive semi-definite"),
     ("1", {"ixx": "1", "iyy": "1", "izz": "1", "ixy": "2"}, "not positive semi-definite"),       # eigenvalue -1
     ("1", {"ixx": "0.05", "iyy": "0.03", "izz": "0.01"}, "triangle inequality"),                # 0.01 + 0.03 < 0.05
@@ -113,12 +113,21 @@ def test_the_triangle_inequality_is_judged_on_principal_moments_not_on_the_writt
 @pytest.mark.parametrize("file, link, needle", [
     ("planar_leg_linkage.urdf", "thigh", "triangle inequality"),            # izz only: a planar model
     ("mini_cheetah_leg.urdf", "abduct", "triangle inequality"),
-    ("revolute_rotor_chain.urdf", "rotor-0", "a massless link has no moment of inertia"),
-    ("mit_humanoid_leg.urdf", "hip_rz_rotor", "a massless link has no moment of inertia"),
 ])
 def test_the_urdf_plus_authors_files_that_no_body_can_have_are_refused_by_name(file, link, needle):
-    """generalized_rbda's example models (URDF+'s authors) write planar bodies with izz alone and rotors
-    with an inertia but no mass (their mass counted in the link): MuJoCo refuses the first kind too."""
+    """generalized_rbda's example models (URDF+'s authors) write planar bodies with izz alone: no body has
+    that inertia (MuJoCo refuses it too)."""
     with pytest.raises(MalformedDescription, match=needle) as err:
         check_inertias(ET.parse(FIELD / "urdf_plus" / file).getroot())
     assert err.value.where == f"link {link!r}"
+
+
+@pytest.mark.parametrize("file, rotors", [("revolute_rotor_chain.urdf", 3), ("mit_humanoid_leg.urdf", 5)])
+def test_the_urdf_plus_authors_rotors_are_accepted(file, rotors):
+    """Their rotors have an inertia and no mass (the mass counted in the link): accepted, as the URDF
+    allows; Pinocchio gives those bodies their rotational inertia and no weight."""
+    root = ET.parse(FIELD / "urdf_plus" / file).getroot()
+    check_inertias(root)
+    massless = [link.get("name") for link in root.iter("link") if link.find("inertial") is not None
+                and float(link.find("inertial/mass").get("value")) == 0.0]
+    assert len(massless) == rotors

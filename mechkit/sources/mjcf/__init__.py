@@ -4,7 +4,9 @@ MuJoCo resolves the format (defaults, angle units, orientations, inertias from g
 this package reads the compiled model: its tree (`tree`: hinge, slide, ball and free joints, the
 compiled inertias, sites, armature, gravity), its equalities, springs and actuators (`constraints`).
 Pinocchio's q equals MuJoCo's qpos (a ball's and a free joint's quaternion reordered x, y, z, w).
-The home inputs and the guess are qpos0 (a ball's or free joint's rotation as a rotation vector).
+The guess is the keyframe named "home" when the file has one (Menagerie's convention for a robot's
+rest pose), else qpos0; the home inputs are the guess's values of the driven joints (a ball's or
+free joint's rotation as a rotation vector).
 A tree of hinges and slides is also written as URDF text (`Description.urdf`), else that is None.
 """
 
@@ -33,7 +35,8 @@ def read_mjcf(path: Path) -> Description:
 
     Returns:
         `Description` with `model` (and `urdf` for a tree of hinges and slides), closures,
-        couplings, springs, actuators, home (qpos0 of the actuated joints) and guess (qpos0).
+        couplings, springs, actuators, guess (the keyframe "home" if there is one, else qpos0) and
+        home (the guess's values of the driven joints).
 
     Raises:
         MethodUnavailable: MuJoCo is not installed (`pip install mechkit[peers]`).
@@ -58,19 +61,20 @@ def read_mjcf(path: Path) -> Description:
     closures, couplings = equalities(mm, tree)
     check_tendons(mm, tree)
     actuated, actuators = actuation(mm, tree)
-    guess = _qpos0(mm, tree)
+    key = mujoco.mj_name2id(mm, mujoco.mjtObj.mjOBJ_KEY, "home")
+    guess = _joint_values(mm, tree, mm.key_qpos[key] if key >= 0 else mm.qpos0)
     driven = [j for a in actuators for j, _ in a.joints] + [j for j in actuated if j in guess]
     return Description(tree.model.name, tree_urdf(tree.model, closures), actuated, {j: guess[j] for j in driven}, guess,
                        path, "mjcf", closures=closures, model=tree.model, couplings=couplings, springs=springs(mm, tree),
                        actuators=actuators)
 
 
-def _qpos0(mm, tree: Tree) -> dict[str, float | tuple[float, ...]]:
-    """MuJoCo's qpos0 by joint: a hinge's or slide's value, a ball's rotation vector, a free joint's
-    position and rotation vector."""
+def _joint_values(mm, tree: Tree, qpos: np.ndarray) -> dict[str, float | tuple[float, ...]]:
+    """A MuJoCo qpos (nq,) by joint: a hinge's or slide's value (rad or m, as MuJoCo counts it: the
+    tree's q), a ball's rotation vector, a free joint's position and rotation vector."""
     out: dict[str, float | tuple[float, ...]] = {}
     for j, name in enumerate(tree.names["joint"]):
-        q = np.asarray(mm.qpos0[mm.jnt_qposadr[j]:], dtype=float)
+        q = np.asarray(qpos[mm.jnt_qposadr[j]:], dtype=float)
         kind = int(mm.jnt_type[j])
         if kind in (2, 3):
             out[name] = float(q[0])

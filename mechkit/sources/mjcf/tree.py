@@ -6,8 +6,9 @@ q = 0 where MuJoCo's is at qpos0 (`ref`), its frame at the joint's anchor `pos`;
 MuJoCo's (reordered x, y, z, w); a free joint's q is the body's world position and orientation.
 Several joints in one body are a chain through the joints' frames. Each body's inertia is the one
 MuJoCo compiled (from `<inertial>`, or inferred from its geoms and meshes), body frames are BODY
-frames, sites OP_FRAMEs; armature goes to `model.armature`, the gravity to `model.gravity` (zero
-where `<flag gravity="disable">`).
+frames, sites OP_FRAMEs; armature goes to `model.armature`, a limited hinge's or slide's `range` to
+the model's position limits (else they stay unbounded), the gravity to `model.gravity` (zero where
+`<flag gravity="disable">`).
 """
 
 from __future__ import annotations
@@ -171,4 +172,7 @@ def _joint(model: pin.Model, mm: MjModel, name: str, j: int, parent: int, at: pi
     jid = add_joint(model, name, parent, joint_model(kind, axis), placement)
     dof, nv = int(mm.jnt_dofadr[j]), model.joints[jid].nv
     model.armature[model.joints[jid].idx_v:model.joints[jid].idx_v + nv] = mm.dof_armature[dof:dof + nv]
+    if kind in ("revolute", "prismatic") and mm.jnt_limited[j]:
+        iq = model.joints[jid].idx_q
+        model.lowerPositionLimit[iq], model.upperPositionLimit[iq] = (float(x) for x in mm.jnt_range[j])
     return jid, body
