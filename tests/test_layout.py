@@ -357,8 +357,6 @@ TESTED_ELSEWHERE = {
     "mechkit/motion/path.py": "the kinematics of every study: tests/motion/test_study.py",
     "mechkit/motion/plot.py": "drawn by `mechkit motion --plot` in tests/cli/test_motion.py",
     "mechkit/second_opinion/instant.py": "a part of every second opinion: tests/second_opinion/test_agreement.py",
-    "mechkit/second_opinion/opinion.py": "`SecondOpinion`, built in tests/second_opinion/test_decomposition.py and "
-                                         "tests/second_opinion/test_agreement.py",
     "mechkit/second_opinion/solve.py": "a part of every second opinion: tests/second_opinion/test_agreement.py",
     "mechkit/second_opinion/structure_graph.py": "what the decomposition reads: tests/second_opinion/test_decomposition.py",
     "mechkit/sources/description.py": "what every reader returns: tests/sources/test_mjcf.py, tests/sources/test_sdf.py",

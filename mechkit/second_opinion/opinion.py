@@ -6,6 +6,7 @@ import time
 
 import numpy as np
 
+from mechkit.base.exceptions import MethodUnavailable
 from mechkit.mechanism import Mechanism
 from mechkit.second_opinion.decomposition import SKC, decompose
 from mechkit.second_opinion.instant import instant
@@ -25,12 +26,26 @@ class SecondOpinion:
             bodies, released, actuated and known joints).
         level: the decomposition's granularity (`mechkit.second_opinion.decomposition.decompose`).
         decompose_seconds: wall time (s) the structure graph and the decomposition took.
+
+    Args:
+        mechanism: a mechanism with at least one loop closure.
+        level: the decomposition's granularity ("component", "body" or "skc": `decomposition.decompose`).
+
+    Raises:
+        MethodUnavailable: a mechanism without loop closures, or with joint couplings (mimic, gears,
+            tendons), which the decomposition does not model.
     """
 
     def __init__(self, mechanism: Mechanism, level: str = "skc"):
         start = time.perf_counter()
         self.mechanism, self.level = mechanism, level
         cm = mechanism.closure_model
+        if not mechanism.closures:
+            raise MethodUnavailable("second opinion", "the mechanism has no loop closure: its SOCs are its tree, whose "
+                                    "constrained RNEA is Pinocchio's RNEA; nothing to cross-check")
+        if cm.couplings:
+            raise MethodUnavailable("second opinion", f"joint couplings ({', '.join(c.name for c in cm.couplings)}) "
+                                    "are not part of the SOC decomposition")
         self._data, self._closure_data = cm.model.createData(), cm.create_data()
         self.structure: Structure = build_structure(cm, mechanism.home_q)
         zero = np.zeros(cm.nv)
