@@ -33,6 +33,11 @@ FLIP_TOL = 1e-6
 #: Largest iterations of the far phase, and its stopping residual (m and dimensionless, mixed; ours:
 #: near enough for Newton on the exact rows).
 FAR_ITERATIONS, FAR_TOL = 300, 1e-10
+#: A start where the far residual is stationary (a linkage written flat, every loop collinear): its
+#: gradient below this fraction of |J| |e| (ours). From there the far phase restarts from `RESTARTS`
+#: deterministic (seeded) perturbations of the free coordinates, each of at most `RESTART_SIZE` (rad or
+#: m; ours) per coordinate.
+STATIONARY_TOL, RESTARTS, RESTART_SIZE = 1e-9, 4, 0.3
 
 
 def _axes(cut) -> np.ndarray:
@@ -165,8 +170,9 @@ def assemble(cm: ClosureModel, cd: ClosureData, q0: np.ndarray, split: InputSpli
 
     The exact rows' solve (`_solve_rows`) from q0; where it does not converge, or converges with a
     cut's frames half a turn apart (the kernel's dot-product rows vanish there too: `assembly.flip`), a
-    far phase on residuals without flipped solutions (`mechkit.core.assembly.from_far`) from q0, then
-    the exact rows' solve again from there. Leaves `cd.pin` at q.
+    far phase on residuals without flipped solutions (`mechkit.core.assembly.from_far`) from q0 (and,
+    where q0 is a stationary point of it, from seeded perturbations of q0: `_far_starts`), then the
+    exact rows' solve again from there. Leaves `cd.pin` at q.
 
     Args:
         q0: (nq,) starting configuration; its given joints' coordinates are the inputs.
@@ -190,15 +196,35 @@ def assemble(cm: ClosureModel, cd: ClosureData, q0: np.ndarray, split: InputSpli
                                     "apart (a flipped closure), not closed")
     except ClosureNotConverged as err:
         first = err
-    try:
-        near = from_far(cm, cd, q0, split)
-        out = _solve_rows(cm, cd, near, split, tol=tol, max_iter=max_iter, method=method,
-                          jacobian_at_trials=jacobian_at_trials)
-    except (ClosureNotConverged, np.linalg.LinAlgError) as second:
-        raise (second if isinstance(second, ClosureNotConverged) and second.residual < first.residual else first) from None
-    if flip(cm, cd.pin) > FLIP_TOL:
-        raise first
-    return out
+    best = first
+    for start in _far_starts(cm, cd, q0, split):
+        try:
+            near = from_far(cm, cd, start, split)
+            out = _solve_rows(cm, cd, near, split, tol=tol, max_iter=max_iter, method=method,
+                              jacobian_at_trials=jacobian_at_trials)
+        except (ClosureNotConverged, np.linalg.LinAlgError) as err:
+            if isinstance(err, ClosureNotConverged) and err.residual < best.residual:
+                best = err
+            continue
+        if flip(cm, cd.pin) <= FLIP_TOL:
+            return out
+    raise best from None
+
+
+def _far_starts(cm: ClosureModel, cd: ClosureData, q0: np.ndarray, split: InputSplit) -> list[np.ndarray]:
+    """Where the far phase starts: q0, and where its residual is stationary there, `RESTARTS` seeded
+    perturbations of the free coordinates (the given joints keep q0's values)."""
+    e, J, _ = _far_rows(cm, cd.pin, q0)
+    Jf = J[:, split.free_v]
+    if np.linalg.norm(Jf.T @ e) > STATIONARY_TOL * np.linalg.norm(Jf) * np.linalg.norm(e):
+        return [q0]
+    rng = np.random.default_rng(0)
+    starts = [q0]
+    for _ in range(RESTARTS):
+        step = np.zeros(cm.model.nv)
+        step[split.free_v] = rng.uniform(-RESTART_SIZE, RESTART_SIZE, split.free_v.size)
+        starts.append(pin.integrate(cm.model, q0, step))
+    return starts
 
 
 def _solve_rows(cm: ClosureModel, cd: ClosureData, q0: np.ndarray, split: InputSplit, *, tol: float,

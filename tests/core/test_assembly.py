@@ -11,7 +11,8 @@ import pytest
 
 from mechkit import core, sources
 from mechkit.base.exceptions import ClosureNotConverged
-from mechkit.core.assembly import _solve_rows, flip, from_far
+from mechkit.core.assembly import RESTARTS, _far_starts, _solve_rows, flip, from_far
+from mechkit.sources.urdf import build_model
 
 GEPETTO = Path(__file__).resolve().parent.parent / "fixtures" / "field" / "gepetto"
 
@@ -54,3 +55,28 @@ def test_far_starts_of_the_fields_robots_close():
     assert np.linalg.norm(core.closure_residual(cm, cd, near)) < 1e-6
     closed = core.assemble(cm, cd, q0, split)
     assert closed.residual < 1e-12 and flip(cm, cd.pin) < 1e-9
+
+
+def test_a_linkage_written_flat_restarts_from_perturbed_starts():
+    """URDF+'s six-bar, written flat with its loop open by 0.3 m along the links: the far residual is
+    stationary there (no step reduces it, so the far phase alone cannot move), the seeded restarts close
+    it, every weld's frames together, and the closed pose is the same on every call (deterministic)."""
+    desc = sources.read(GEPETTO.parent / "urdf_plus" / "six_bar.urdf")
+    cm = core.ClosureModel(build_model(desc.urdf), desc.closures, desc.couplings, desc.actuated)
+    cd = cm.create_data()
+    q0, split = pin.neutral(cm.model), cm.split(())
+    assert np.linalg.norm(core.closure_residual(cm, cd, q0)) == pytest.approx(0.3, rel=1e-12)
+    assert np.linalg.norm(core.closure_residual(cm, cd, from_far(cm, cd, q0, split))) == pytest.approx(0.3, rel=1e-9)
+    starts = _far_starts(cm, cd, q0, split)
+    assert len(starts) == 1 + RESTARTS and all(np.array_equal(a, b) for a, b in zip(starts, _far_starts(cm, cd, q0, split)))
+    closed = core.assemble(cm, cd, q0, split)
+    assert closed.residual < 1e-12 and flip(cm, cd.pin) < 1e-9
+    np.testing.assert_array_equal(core.assemble(cm, cd, q0, split).q, closed.q)
+
+
+def test_a_start_that_is_not_stationary_is_not_perturbed():
+    """cassie_like's neutral pose is far but not stationary: the far phase starts from it alone."""
+    desc = sources.read(GEPETTO / "cassie_like" / "robot.urdf")
+    cm = core.ClosureModel(desc.model, desc.closures, desc.couplings, desc.actuated)
+    q0 = pin.neutral(cm.model)
+    assert len(_far_starts(cm, cm.create_data(), q0, cm.split(()))) == 1

@@ -1,9 +1,10 @@
 """URDF+'s authors' example models (generalized_rbda) through `mechkit report` (the command line, JSON),
 against the independent reading of `independent.urdf_plus_load` at the configuration the report holds:
 DOF (the four-bar is written at its flat pose, where a parallelogram has two freedoms), and the files
-mechkit refuses, each in one line: a planar body written with izz alone (no body has that inertia) and
-the six-bar, written flat with its loop open by 0.3 m along the links, where the closure residual is
-stationary (the rows' Jacobian has no component along the gap): no assembly starts from there."""
+mechkit refuses, each in one line: a planar body written with izz alone (no body has that inertia). The
+six-bar is written flat with its loop open by 0.3 m along the links, where the closure residual is
+stationary (the rows' Jacobian has no component along the gap): the assembly restarts from seeded
+perturbations (`mechkit.core.assembly`) and closes it."""
 
 from __future__ import annotations
 
@@ -17,9 +18,9 @@ from .independent import require_closed, study, urdf_plus_load
 
 FIELD = Path(__file__).resolve().parents[1] / "fixtures" / "field" / "urdf_plus"
 #: file -> its DOF at the report's home
-REPORTED = {"four_bar.urdf": 2, "mit_humanoid.urdf": 24, "revolute_rotor_chain.urdf": 3, "mit_humanoid_leg.urdf": 5}
-REFUSED = {"six_bar.urdf": "its loops do not close at home",
-           "planar_leg_linkage.urdf": "link 'thigh': inertia", "mini_cheetah_leg.urdf": "link 'abduct': inertia"}
+REPORTED = {"four_bar.urdf": 2, "six_bar.urdf": 3, "mit_humanoid.urdf": 24, "revolute_rotor_chain.urdf": 3,
+            "mit_humanoid_leg.urdf": 5}
+REFUSED = {"planar_leg_linkage.urdf": "link 'thigh': inertia", "mini_cheetah_leg.urdf": "link 'abduct': inertia"}
 
 
 def test_every_fixture_is_reported_or_refused():
