@@ -2,12 +2,19 @@
 
 from __future__ import annotations
 
+import contextlib
+import io
 import json
+import sysconfig
+from pathlib import Path
 
 import pytest
 from tests_support import FIXTURES
 
 from mechkit.cli import main
+
+PANDA = Path(sysconfig.get_paths()["purelib"], "cmeel.prefix", "share", "example-robot-data", "robots",
+             "panda_description", "urdf", "panda.urdf")
 
 KEYS = {"name", "skcs", "max_relative_difference", "samples", "us_per_sample"}
 SKC_KEYS = {"bodies", "released", "actuators", "unknowns", "equations"}
@@ -50,3 +57,12 @@ def test_validate_bad_input_is_one_line(args, what, capsys):
     assert main(["validate", *args]) == 2
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and what in err and "Traceback" not in err
+
+
+def test_validate_of_a_tree_with_no_loop_is_one_line():
+    """example-robot-data's Panda: nothing to cross-check, said in one line, exit 2, no traceback."""
+    out, err = io.StringIO(), io.StringIO()
+    with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
+        code = main(["validate", str(PANDA)])
+    lines = err.getvalue().strip().splitlines()
+    assert code == 2 and out.getvalue() == "" and len(lines) == 1 and "has no loop closure" in lines[0]
