@@ -165,7 +165,7 @@ def rest_load(m: Mechanism, q: np.ndarray) -> np.ndarray:
 def potential_energy(m: Mechanism, q: np.ndarray) -> float:
     """The potential energy (J) of gravity and the joint springs at q (nq,)."""
     gravity = float(pin.computePotentialEnergy(m.model, m.data, q))
-    return gravity + (float(m.springs.energy(q)) if m.springs else 0.0)
+    return gravity + (float(m.springs.potential(q)) if m.springs else 0.0)
 
 
 def settle(m: Mechanism, q: np.ndarray) -> np.ndarray:
