@@ -50,6 +50,7 @@ class Mechanism:
         self.closure_model = cm = closure_model
         self.closure_data = core_data = cm.create_data()
         self.model, self.data = cm.model, core_data.pin
+        self._nq, self._nv = cm.model.nq, cm.model.nv
         self.structure, self.closures, self.actuated = cm.structure, list(cm.closures), cm.actuated
         self.springs = JointSprings(self.model, springs)
         self.home_q = self.assemble(spec.home(params))
@@ -184,7 +185,7 @@ class Mechanism:
 
     @property
     def _sizes(self) -> dict[str, int]:
-        return {"q": self.model.nq, "v": self.model.nv, "a": self.model.nv, "tau": self.model.nv}
+        return {"q": self._nq, "v": self._nv, "a": self._nv, "tau": self._nv}
 
     def closure_residual(self, q: np.ndarray) -> np.ndarray:
         """Residual of every kept row at q (m for position rows, dimensionless for alignment rows)."""
@@ -296,7 +297,7 @@ class Mechanism:
             SingularConfiguration: accelerations not unique.
         """
         arguments.option("method", method, core.FORWARD_METHODS)
-        if not arguments.plain_state(q, v, tau, self.model.nq, self.model.nv):
+        if not arguments.plain_state(q, v, tau, self._nq, self._nv):
             q, v, tau = self._one(q=q, v=v, tau=tau)
         settings = arguments.solver_settings(mu, accuracy, max_iter, baumgarte)
         passive = self.passive_forces(q, v)
@@ -330,7 +331,8 @@ class Mechanism:
         """
         arguments.option("distribution", distribution, core.DISTRIBUTIONS)
         determinacy = arguments.flag("determinacy", determinacy)
-        q, v, a = self._one(q=q, v=v, a=a)
+        if not arguments.plain_state(q, v, a, self._nq, self._nv):
+            q, v, a = self._one(q=q, v=v, a=a)
         fext = arguments.external_forces("fext", fext, self.model.njoints)
         return core.inverse_dynamics(self.closure_model, self.closure_data, q, v, a, fext, self.passive_forces(q, v),
                                      determinacy_test=determinacy, distribution=distribution,

@@ -96,14 +96,26 @@ def _batched(value: Any) -> bool:
         return False
 
 
-def plain_state(q: Any, v: Any, tau: Any, nq: int, nv: int) -> bool:
-    """True for the common call that needs no conversion: float64 arrays of shapes (nq,), (nv,), (nv,),
-    all finite. Anything else (lists, other dtypes, batches, NaN or inf) goes through `sample`, which
-    converts it or names what is wrong."""
-    return (isinstance(q, np.ndarray) and isinstance(v, np.ndarray) and isinstance(tau, np.ndarray)
-            and q.dtype == np.float64 and v.dtype == np.float64 and tau.dtype == np.float64
-            and q.shape == (nq,) and v.shape == (nv,) and tau.shape == (nv,)
-            and bool(np.isfinite(q).all() and np.isfinite(v).all() and np.isfinite(tau).all()))
+def plain_state(q: Any, v: Any, x: Any, nq: int, nv: int) -> bool:
+    """True for the common call that needs no conversion: float64 arrays of shapes (nq,), (nv,), (nv,)
+    (q, v and tau or a), all finite. Anything else (lists, other dtypes, batches, NaN or inf) goes
+    through `sample`, which converts it or names what is wrong."""
+    return (type(q) is np.ndarray and type(v) is np.ndarray and type(x) is np.ndarray
+            and q.dtype is _FLOAT and v.dtype is _FLOAT and x.dtype is _FLOAT
+            and q.shape == (nq,) and v.shape == (nv,) and x.shape == (nv,) and _finite(q, v, x))
+
+
+#: The dtype of a plain float64 array (numpy keeps one instance of each built-in dtype).
+_FLOAT = np.dtype(np.float64)
+
+
+def _finite(q: np.ndarray, v: np.ndarray, x: np.ndarray) -> bool:
+    """Whether every entry of three 1-D float arrays is finite: first the sum of their entries as Python
+    floats (which turn any NaN or inf into a NaN or inf sum and never raise or warn), then, where
+    large finite entries overflow that sum, entry by entry."""
+    if math.isfinite(sum(q.tolist()) + sum(v.tolist()) + sum(x.tolist())):
+        return True
+    return bool(np.isfinite(q).all() and np.isfinite(v).all() and np.isfinite(x).all())
 
 
 def option(name: str, value: Any, choices: Sequence[str]) -> str:

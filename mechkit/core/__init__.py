@@ -18,8 +18,8 @@ one sample or, when its name ends in `_batch`, a leading sample axis N:
 
 Inside: `records` (closures, couplings, springs, actuators), `joints` (values of any joint type),
 `cuts` (rows each closure keeps), `kernel` (the closure-row mathematics), `rank` (the rank judge),
-`structure` (loops, Kutzbach count, idle freedoms), `model`, `kinematics`, `inverse`,
-`determinacy`, `forward`, `pin_constraints` (the one module that speaks Pinocchio's constraint
+`structure` (loops, Kutzbach count, idle freedoms), `model`, `kinematics`, `inverse`, `efforts`
+(its statics solve), `determinacy`, `forward`, `pin_constraints` (the one module that speaks Pinocchio's constraint
 API), `results`. Nothing outside this package imports those submodules: this face is the contract.
 """
 

@@ -1,0 +1,169 @@
+"""The statics of inverse dynamics: efforts and multipliers x = [u; lambda] with [S^T, J^T] x = b.
+
+S is the actuation, J the closure rows, b the generalised force the motion needs (rnea minus passive
+forces). Where every actuator is one joint's motor and the passive block B = J[:, passive] has more
+rows than columns (a redundant row), the system splits (`passive_solve`): B^T lambda = b_passive,
+u = b_actuated - J_actuated^T lambda, and one QR of B certifies the block regular and [S^T, J^T] of
+full row rank and gives the minimum-norm solution. Elsewhere `solve`: LAPACK gesv where [S^T, J^T]
+is square, QR where it has full rank, an SVD otherwise (moved to the least efforts for "min_effort").
+One sample goes through LAPACK directly; N through numpy's batched routines.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import scipy.linalg
+import scipy.linalg.lapack
+
+from mechkit.base.exceptions import SingularConfiguration
+from mechkit.core import rank
+from mechkit.core.model import ClosureModel
+
+
+def splits(cm: ClosureModel, rows: int, distribution: str) -> bool:
+    """Whether `passive_solve` applies: every actuator one joint's motor, a passive block with more rows
+    than columns (a redundant row), and the minimum-norm solution asked for."""
+    return cm.passive_v is not None and 0 < cm.passive_v.size < rows and distribution == "min_norm"
+
+
+def passive_solve(cm: ClosureModel, Jrows: np.ndarray, b: np.ndarray,
+                  residuals: np.ndarray) -> tuple[np.ndarray | None, np.ndarray]:
+    """The minimum-norm [u; lambda] of N samples through one QR of each passive block (`passive_one`),
+    and (N,) whether each block is certified resolvably regular; x is None where some sample's
+    [S^T, J^T] is not certified of full row rank."""
+    out = [passive_one(cm, Jrows[i], b[i], float(residuals[i])) for i in range(len(Jrows))]
+    regular = np.array([r for _, r in out], dtype=bool)
+    if any(x is None for x, _ in out):
+        return None, regular
+    return np.array([x for x, _ in out]).reshape(len(out), len(cm.actuated) + Jrows.shape[1]), regular
+
+
+def passive_one(cm: ClosureModel, J: np.ndarray, b: np.ndarray, residual: float) -> tuple[np.ndarray | None, bool]:
+    """One sample of `passive_solve`, LAPACK called directly: J (rows, nv), b (nv,) give x (na + rows,)
+    (None where [S^T, J^T] is not certified of full row rank) and whether the passive block is
+    certified resolvably regular (`rank.certified_regular`).
+
+    With every actuator one joint's motor, [S^T, J^T] x = b splits into B^T lambda = b_p and u = b_a -
+    J_a^T lambda, B = J[:, passive] (rows > columns). One QR, B = Q R, gives lambda = lambda_0 + Q_2 t,
+    lambda_0 = Q_1 R^-T b_p, and |u|^2 + |lambda|^2 is least at (I + K^T K) t = K^T (b_a - J_a^T lambda_0),
+    K = J_a^T Q_2. It also bounds sigma_min(B) >= 1 / |R^-1|_F, and [S^T, J^T] has the right inverse
+    [[I, -J_a^T Y], [0, Y]], Y = Q_1 R^-T: sigma_min >= (na + (1 + |J_a|_F^2) |R^-1|_F^2)^(-1/2) against
+    sigma_max <= (na + |J|_F^2)^(1/2), whose ratio above `rank.RANK_TOL` certifies full row rank.
+    """
+    lapack = scipy.linalg.lapack
+    act, free = cm.actuated_v, cm.passive_v
+    B, Ja = J[:, free], J[:, act]
+    m, k = B.shape
+    qr, tau, _, _ = lapack.dgeqrf(B)
+    Rinv = rank.triangular_inverse(qr, k)
+    if Rinv is None:
+        return None, False
+    inverse_size, size, actuated_size = rank.squared_norm(Rinv), rank.squared_norm(B), rank.squared_norm(Ja)
+    regular = bool(rank.certified_regular(inverse_size ** -0.5, size ** 0.5, residual))
+    if not rank.RANK_TOL ** 2 * (act.size + (1.0 + actuated_size) * inverse_size) * (act.size + size + actuated_size) < 1.0:
+        return None, regular
+    C = np.zeros((m, 1 + m - k))
+    C[:k, 0] = b[free].dot(Rinv)
+    C[k:, 1:] = np.eye(m - k)
+    QC = lapack.dormqr("L", "N", qr, tau, C, 1 + m - k)[0]
+    lam, ba, JaT, Q2 = QC[:, 0], b[act], Ja.T, QC[:, 1:]
+    K = JaT.dot(Q2)
+    lam = lam + Q2.dot(np.linalg.solve(np.eye(m - k) + K.T.dot(K), K.T.dot(ba - JaT.dot(lam))))
+    return np.concatenate([ba - JaT.dot(lam), lam]), regular
+
+
+def singular(A: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Singular values (N, k), numerical ranks (N,) and condition numbers s_max / s_rank (N,) of A (N, nv, cols)."""
+    s = rank.singular_values(A)
+    r = rank.ranks(s)
+    return s, r, s[:, 0] / s[np.arange(len(s)), np.maximum(r, 1) - 1]
+
+
+def solve(cm: ClosureModel, A: np.ndarray, b: np.ndarray, condition: bool, distribution: str):
+    """x (N, cols) with A x = b, and the condition numbers (N,) (nan when `condition` is False).
+
+    Square systems: gesv (with `condition`, after singular values that show every sample regular).
+    Otherwise, where every sample has full rank and the solution is unique (or minimum-norm is asked
+    for), the least-squares / minimum-norm solution by QR; else by SVD, moved to the least efforts
+    for "min_effort". Either way the same unique x, and b must be reachable.
+    """
+    n, nv, cols = A.shape
+    square = nv == cols
+    if square and not condition:
+        try:
+            return square_solution(A, b), np.full(n, np.nan)
+        except SingularConfiguration:
+            pass  # rank deficient (idle freedoms): the SVD below
+    s, r, cond = singular(A)
+    full = bool(np.all(r == min(nv, cols)))
+    if square and full:
+        return square_solution(A, b), cond
+    if full and (distribution == "min_norm" or cols < nv):
+        x, outside = full_rank_solution(A, b)
+        _check_reachable(s, outside, b)
+        return x, cond
+    U, s, Vt = np.linalg.svd(A, full_matrices=True)
+    k = s.shape[1]
+    keep = np.arange(k)[None, :] < r[:, None]
+    proj = np.einsum("nij,ni->nj", U, b)
+    _check_reachable(s, rank.outside_range(U, r, b), b)
+    coef = np.where(keep, proj[:, :k] / np.where(keep, s, 1.0), 0.0)
+    x = np.einsum("nij,ni->nj", Vt[:, :k], coef)
+    if distribution == "min_effort":
+        na = len(cm.actuated)
+        for i in np.flatnonzero(r < cols):
+            x[i] = _least_effort(x[i], Vt[i, r[i]:].T, na)
+    return x, cond
+
+
+def square_solution(A: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """x (N, n) with A x = b for square A (N, n, n) by gesv; `SingularConfiguration` where one is singular."""
+    n, cols = A.shape[0], A.shape[2]
+    if n == 1:  # LAPACK gesv directly: a fraction of np.linalg.solve's overhead on small systems
+        _, _, x, info = scipy.linalg.lapack.dgesv(A[0], b[0])
+        if info == 0 and (math.isfinite(x.dot(x)) or np.isfinite(x).all()):  # the sum of squares first: one call
+            return x[None]
+        x = np.full((1, cols), np.nan)
+    else:
+        try:
+            x = np.linalg.solve(A, b[..., None])[..., 0]
+        except np.linalg.LinAlgError:
+            x = np.full((n, cols), np.nan)
+    if not np.all(np.isfinite(x)):
+        raise SingularConfiguration(float("inf"), "[S^T, J^T]: efforts and multipliers undetermined")
+    return x
+
+
+def full_rank_solution(A: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The unique least-squares (full column rank) or minimum-norm (full row rank) solution x (N, cols)
+    of A x = b by QR, and the norm (N,) of the part of b outside the range of A."""
+    if A.shape[1] > A.shape[2]:  # A = Q R: x = R^-1 Q^T b
+        Q, R = np.linalg.qr(A)
+        c = np.einsum("nij,ni->nj", Q, b)
+        x = np.linalg.solve(R, c[..., None])[..., 0]
+        return x, np.linalg.norm(b - np.einsum("nij,nj->ni", Q, c), axis=1)
+    Q, R = np.linalg.qr(A.transpose(0, 2, 1))  # A^T = Q R: x = Q R^-T b, every b reachable
+    return (Q @ np.linalg.solve(R.transpose(0, 2, 1), b[..., None]))[..., 0], np.zeros(len(A))
+
+
+def _check_reachable(s: np.ndarray, outside: np.ndarray, b: np.ndarray) -> None:
+    """`SingularConfiguration` where the part of b outside the range of [S^T, J^T] (singular values s) is
+    not negligible: the actuators cannot hold the motion."""
+    bad = np.flatnonzero(outside > 1e-9 * np.maximum(np.linalg.norm(b, axis=1), 1.0))
+    if bad.size:
+        i = int(bad[0])
+        raise SingularConfiguration(float(s[i, 0] / s[i, -1]) if s[i, -1] > 0 else float("inf"),
+                                    f"[S^T, J^T] does not span the required generalised force (sample {i}): the "
+                                    "actuators cannot hold this motion")
+
+
+def _least_effort(x: np.ndarray, N: np.ndarray, na: int) -> np.ndarray:
+    """Move x along the null space N to the smallest efforts |u|, then the smallest multipliers."""
+    z = -np.linalg.lstsq(N[:na], x[:na], rcond=None)[0]
+    x = x + N @ z
+    keep = N @ scipy.linalg.null_space(N[:na]) if na else N
+    if keep.size:
+        x = x - keep @ np.linalg.lstsq(keep[na:], x[na:], rcond=None)[0]
+    return x
