@@ -16,7 +16,7 @@ import pinocchio as pin
 
 from mechkit import core
 from mechkit.base import arguments
-from mechkit.base.exceptions import InvalidParameters
+from mechkit.base.exceptions import InvalidParameters, SingularConfiguration
 from mechkit.catalog.contract import MechanismSpec
 from mechkit.catalog.params import MechanismParams
 from mechkit.forces import JointSprings
@@ -297,12 +297,19 @@ class Mechanism:
             SingularConfiguration: accelerations not unique.
         """
         arguments.option("method", method, core.FORWARD_METHODS)
-        if not arguments.plain_state(q, v, tau, self._nq, self._nv):
+        proximal = method == "proximal"  # a NaN or inf argument gives it non-finite accelerations: named on failure
+        if not arguments.plain_state(q, v, tau, self._nq, self._nv, finite=not proximal):
             q, v, tau = self._one(q=q, v=v, tau=tau)
-        settings = arguments.solver_settings(mu, accuracy, max_iter, baumgarte)
+        settings = {} if mu is None and accuracy is None and max_iter is None and baumgarte is None \
+            else arguments.solver_settings(mu, accuracy, max_iter, baumgarte)
         passive = self.passive_forces(q, v)
-        return core.forward_dynamics(self.closure_model, self.closure_data, q, v, tau if passive is None else tau + passive,
-                                     method, **settings)
+        try:
+            return core.forward_dynamics(self.closure_model, self.closure_data, q, v,
+                                         tau if passive is None else tau + passive, method, **settings)
+        except SingularConfiguration:
+            if proximal:
+                self._one(q=q, v=v, tau=tau)
+            raise
 
     def forward_dynamics_batch(self, q: np.ndarray, v: np.ndarray, tau: np.ndarray, method: str = "proximal", *,
                                mu: float | None = None, accuracy: float | None = None, max_iter: int | None = None,

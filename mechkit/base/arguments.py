@@ -96,13 +96,18 @@ def _batched(value: Any) -> bool:
         return False
 
 
-def plain_state(q: Any, v: Any, x: Any, nq: int, nv: int) -> bool:
+def plain_state(q: Any, v: Any, x: Any, nq: int, nv: int, *, finite: bool = True) -> bool:
     """True for the common call that needs no conversion: float64 arrays of shapes (nq,), (nv,), (nv,)
     (q, v and tau or a), all finite. Anything else (lists, other dtypes, batches, NaN or inf) goes
-    through `sample`, which converts it or names what is wrong."""
+    through `sample`, which converts it or names what is wrong.
+
+    Args:
+        finite: also test the values; False where a NaN or inf argument cannot give a result (the
+            caller's computation fails on it and the caller then names it through `sample`).
+    """
     return (type(q) is np.ndarray and type(v) is np.ndarray and type(x) is np.ndarray
             and q.dtype is _FLOAT and v.dtype is _FLOAT and x.dtype is _FLOAT
-            and q.shape == (nq,) and v.shape == (nv,) and x.shape == (nv,) and _finite(q, v, x))
+            and q.shape == (nq,) and v.shape == (nv,) and x.shape == (nv,) and (not finite or _finite(q, v, x)))
 
 
 #: The dtype of a plain float64 array (numpy keeps one instance of each built-in dtype).

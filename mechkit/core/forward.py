@@ -59,13 +59,20 @@ def check_acceleration(J: np.ndarray, a: np.ndarray, gamma: np.ndarray, what: st
             (called only when the tests without it fail).
 
     Raises:
+        SingularConfiguration: a not finite.
         InconsistentMotion: gamma leaves the range of J beyond `rank.RANGE_TOL` (no rigid answer).
         ConstraintViolated: max |J a + gamma| above the tolerance.
     """
-    if J.shape[0] == 0:
+    rows = J.shape[0]
+    if rows:
+        r = J.dot(a)
+        r += gamma
+        if _settled(r, gamma):
+            return
+    if not np.isfinite(a).all():
+        raise SingularConfiguration(float("inf"), f"{what} returned non-finite accelerations")
+    if not rows:
         return
-    r = J @ a
-    r += gamma
     residual = float(np.abs(r).max())
     g = float(np.abs(gamma).max())
     if residual <= ACCELERATION_TOL * g:  # below a part of the limit: the rest need not be computed
@@ -84,6 +91,15 @@ def check_acceleration(J: np.ndarray, a: np.ndarray, gamma: np.ndarray, what: st
         raise ConstraintViolated(residual, limit, what)
 
 
+def _settled(r: np.ndarray, gamma: np.ndarray) -> bool:
+    """Whether two dots show max |r| <= `ACCELERATION_TOL` max |gamma| for a residual r = J a + gamma (rows,)
+    (|r| <= TOL |gamma| / sqrt(rows) implies it; a NaN or inf fails it): the common case of the check."""
+    try:
+        return bool(r.dot(r) * r.size <= ACCELERATION_TOL ** 2 * gamma.dot(gamma))
+    except FloatingPointError:  # a square under- or overflowing under np.errstate(all="raise"): not shown
+        return False
+
+
 def _unconstrained_scale(cm: ClosureModel, data: pin.Data, q: np.ndarray, v: np.ndarray, tau: np.ndarray) -> float:
     """max |tau - nle| / M_jj: the accelerations the loads would cause with no closure (rad/s^2 or m/s^2)."""
     loads = np.abs(tau - pin.rnea(cm.model, data, q, v, np.zeros(cm.nv)))
@@ -98,35 +114,41 @@ def _legacy(cm: ClosureModel, cd: ClosureData, ordered: bool = False) -> LegacyC
     return cd.legacy[key]
 
 
-def _settings(cm: ClosureModel, cd: ClosureData, method: str, mu: float, accuracy: float, max_iter: int):
-    """Pinocchio's proximal settings of a method, made once per (method, mu, accuracy, max_iter): mu in
-    units of the Delassus scale; the accuracy divided by it ("proximal": Pinocchio tests its iterations on
-    the multipliers) or by the rows' lever arm and `LCABA_STEP_MARGIN` ("lcaba": it tests J delta a)."""
+def _settings(cm: ClosureModel, cd: ClosureData, method: str, mu: float | None, accuracy: float | None,
+              max_iter: int | None):
+    """Pinocchio's proximal settings of a method, made once per (method, mu, accuracy, max_iter) (None:
+    `DEFAULTS`): mu in units of the Delassus scale; the accuracy divided by it ("proximal": Pinocchio
+    tests its iterations on the multipliers) or by the rows' lever arm and `LCABA_STEP_MARGIN` ("lcaba":
+    it tests J delta a)."""
     key = (method, mu, accuracy, max_iter)
     prox = cd.settings.get(key)
     if prox is None:
+        mu, accuracy, max_iter = (d if x is None else x for x, d in zip((mu, accuracy, max_iter), DEFAULTS[method]))
         divisor = cm.delassus_scale if method == "proximal" else LCABA_STEP_MARGIN * max(cm.row_scale, 1.0)
         prox = cd.settings[key] = proximal_settings(accuracy / divisor, mu * cm.delassus_scale, max_iter)
     return prox
 
 
 def _proximal(cm, cd, q, v, tau, mu, accuracy, max_iter, baumgarte) -> ForwardDynamicsResult:
-    legacy = _legacy(cm, cd)
+    """Pinocchio's proximal constraintDynamics; the constraint force J^T lambda from its multipliers."""
+    legacy = cd.legacy.get("proximal") or _legacy(cm, cd)
     legacy.set_baumgarte(baumgarte)
     settings = _settings(cm, cd, "proximal", mu, accuracy, max_iter)
     a = legacy.dynamics(q, v, tau, settings).copy()
-    if not math.isfinite(a @ a):
-        raise SingularConfiguration(float("inf"), f"pin.constraintDynamics returned non-finite accelerations (mu={mu})")
     J = legacy.jacobian()
-    check_acceleration(J, a, legacy.drift(J.shape[0]), "forward dynamics (proximal)",
-                       lambda: _unconstrained_scale(cm, cd.pin, q, v, tau))
-    return ForwardDynamicsResult(a, pin.rnea(cm.model, legacy.data, q, v, a) - tau, settings.iter)
+    rhs = legacy.rhs(J.shape[0])  # -gamma
+    r = J.dot(a)
+    r -= rhs
+    if not _settled(r, rhs):
+        check_acceleration(J, a, -rhs, "forward dynamics (proximal)", lambda: _unconstrained_scale(cm, cd.pin, q, v, tau))
+    return ForwardDynamicsResult(a, J.T.dot(legacy.multipliers()), settings.iter)
 
 
 def _lcaba(cm, cd, q, v, tau, mu, accuracy, max_iter) -> ForwardDynamicsResult:
     """lcaba stops when the closure error, or else the last step |delta a|, falls below its one accuracy;
     it is given accuracy / max |J_i| (`_settings`), so that a step stop leaves J delta a within about
     `accuracy`; the final error (before the last step, plus J times that step) is checked against it."""
+    mu, accuracy, max_iter = (d if x is None else x for x, d in zip((mu, accuracy, max_iter), DEFAULTS["lcaba"]))
     if mu <= 0:
         raise SingularConfiguration(float("inf"), "lcaba needs a positive mu (its penalty is 1 / mu)")
     legacy = _legacy(cm, cd, ordered=True)
@@ -245,11 +267,6 @@ def forward_dynamics(cm: ClosureModel, cd: ClosureData, q: np.ndarray, v: np.nda
         InconsistentMotion: gamma leaves the range of J: no rigid answer at this state.
         MethodUnavailable: a cut or coupling Pinocchio's constraint models cannot express ("proximal", "lcaba").
     """
-    if method in DEFAULTS:
-        d_mu, d_acc, d_iter = DEFAULTS[method]
-        mu = d_mu if mu is None else mu
-        accuracy = d_acc if accuracy is None else accuracy
-        max_iter = d_iter if max_iter is None else max_iter
     if method == "proximal":
         return _proximal(cm, cd, q, v, tau, mu, accuracy, max_iter, baumgarte)
     if method == "lcaba":
