@@ -3,8 +3,8 @@
 S is the actuation, J the closure rows, b the generalised force the motion needs (rnea minus passive
 forces). Where every actuator is one joint's motor and the passive block B = J[:, passive] has more
 rows than columns (a redundant row), the system splits (`passive_solve`): B^T lambda = b_passive,
-u = b_actuated - J_actuated^T lambda, and one QR of B certifies the block regular and [S^T, J^T] of
-full row rank and gives the minimum-norm solution. Elsewhere `solve`: LAPACK gesv where [S^T, J^T]
+u = b_actuated - J_actuated^T lambda, and one LU of a square part of B certifies the block regular and
+[S^T, J^T] of full row rank and gives the minimum-norm solution. Elsewhere `solve`: LAPACK gesv where [S^T, J^T]
 is square, QR where it has full rank, an SVD otherwise (moved to the least efforts for "min_effort").
 One sample goes through LAPACK directly; N through numpy's batched routines.
 """
@@ -19,7 +19,7 @@ import scipy.linalg.lapack
 
 from mechkit.base.exceptions import SingularConfiguration
 from mechkit.core import rank
-from mechkit.core.model import ClosureModel
+from mechkit.core.model import ClosureData, ClosureModel
 
 
 def splits(cm: ClosureModel, rows: int, distribution: str) -> bool:
@@ -28,50 +28,80 @@ def splits(cm: ClosureModel, rows: int, distribution: str) -> bool:
     return cm.passive_v is not None and 0 < cm.passive_v.size < rows and distribution == "min_norm"
 
 
-def passive_solve(cm: ClosureModel, Jrows: np.ndarray, b: np.ndarray,
+def passive_solve(cm: ClosureModel, cd: ClosureData, Jrows: np.ndarray, b: np.ndarray,
                   residuals: np.ndarray) -> tuple[np.ndarray | None, np.ndarray]:
-    """The minimum-norm [u; lambda] of N samples through one QR of each passive block (`passive_one`),
-    and (N,) whether each block is certified resolvably regular; x is None where some sample's
-    [S^T, J^T] is not certified of full row rank."""
-    out = [passive_one(cm, Jrows[i], b[i], float(residuals[i])) for i in range(len(Jrows))]
+    """The minimum-norm [u; lambda] of N samples through one LU of each passive block's square part
+    (`passive_one`), and (N,) whether each block is certified resolvably regular; x is None where some
+    sample's [S^T, J^T] is not certified of full row rank."""
+    out = [passive_one(cm, cd, Jrows[i], b[i], float(residuals[i])) for i in range(len(Jrows))]
     regular = np.array([r for _, r in out], dtype=bool)
     if any(x is None for x, _ in out):
         return None, regular
     return np.array([x for x, _ in out]).reshape(len(out), len(cm.actuated) + Jrows.shape[1]), regular
 
 
-def passive_one(cm: ClosureModel, J: np.ndarray, b: np.ndarray, residual: float) -> tuple[np.ndarray | None, bool]:
+def passive_one(cm: ClosureModel, cd: ClosureData, J: np.ndarray, b: np.ndarray,
+                residual: float) -> tuple[np.ndarray | None, bool]:
     """One sample of `passive_solve`, LAPACK called directly: J (rows, nv), b (nv,) give x (na + rows,)
     (None where [S^T, J^T] is not certified of full row rank) and whether the passive block is
     certified resolvably regular (`rank.certified_regular`).
 
     With every actuator one joint's motor, [S^T, J^T] x = b splits into B^T lambda = b_p and u = b_a -
-    J_a^T lambda, B = J[:, passive] (rows > columns). One QR, B = Q R, gives lambda = lambda_0 + Q_2 t,
-    lambda_0 = Q_1 R^-T b_p, and |u|^2 + |lambda|^2 is least at (I + K^T K) t = K^T (b_a - J_a^T lambda_0),
-    K = J_a^T Q_2. It also bounds sigma_min(B) >= 1 / |R^-1|_F, and [S^T, J^T] has the right inverse
-    [[I, -J_a^T Y], [0, Y]], Y = Q_1 R^-T: sigma_min >= (na + (1 + |J_a|_F^2) |R^-1|_F^2)^(-1/2) against
-    sigma_max <= (na + |J|_F^2)^(1/2), whose ratio above `rank.RANK_TOL` certifies full row rank.
+    J_a^T lambda, B = J[:, passive] (rows > columns). Rows s of B forming a regular square block B_s
+    (independent at the first sample, kept on the data) give lambda = lambda_0 + N t: lambda_0 = B_s^-T b_p
+    on s, N = [-B_s^-T B_x^T; I] on (s, the others x). |u|^2 + |lambda|^2 is least at (K^T K + N^T N) t =
+    K^T (b_a - J_a^T lambda_0) - N^T lambda_0, K = J_a^T N: the minimum-norm solution. The inverse also
+    bounds sigma_min(B) >= sigma_min(B_s) >= 1 / |B_s^-1|_F, and [S^T, J^T] has the right inverse
+    [[I, -J_a^T Y], [0, Y]], Y = B_s^-T on s: sigma_min >= (na + (1 + |J_a|_F^2) |B_s^-1|_F^2)^(-1/2)
+    against sigma_max <= (na + |J|_F^2)^(1/2), whose ratio above `rank.RANK_TOL` certifies full row rank.
     """
     lapack = scipy.linalg.lapack
     act, free = cm.actuated_v, cm.passive_v
     B, Ja = J[:, free], J[:, act]
     m, k = B.shape
-    qr, tau, _, _ = lapack.dgeqrf(B)
-    Rinv = rank.triangular_inverse(qr, k)
-    if Rinv is None:
+    if cd.split_rows is None:
+        rows = rank.independent_rows(B)
+        cd.split_rows = rows, np.delete(np.arange(m), rows)
+    rows, others = cd.split_rows
+    if rows.size != k:
         return None, False
-    inverse_size, size, actuated_size = rank.squared_norm(Rinv), rank.squared_norm(B), rank.squared_norm(Ja)
+    lu, piv, info = lapack.dgetrf(B[rows])
+    if info:
+        return None, False
+    inverse = lapack.dgetri(lu, piv)[0]
+    inverse_size, size, actuated_size = rank.squared_norm(inverse), rank.squared_norm(B), rank.squared_norm(Ja)
     regular = bool(rank.certified_regular(inverse_size ** -0.5, size ** 0.5, residual))
     if not rank.RANK_TOL ** 2 * (act.size + (1.0 + actuated_size) * inverse_size) * (act.size + size + actuated_size) < 1.0:
         return None, regular
-    C = np.zeros((m, 1 + m - k))
-    C[:k, 0] = b[free].dot(Rinv)
-    C[k:, 1:] = np.eye(m - k)
-    QC = lapack.dormqr("L", "N", qr, tau, C, 1 + m - k)[0]
-    lam, ba, JaT, Q2 = QC[:, 0], b[act], Ja.T, QC[:, 1:]
-    K = JaT.dot(Q2)
-    lam = lam + Q2.dot(np.linalg.solve(np.eye(m - k) + K.T.dot(K), K.T.dot(ba - JaT.dot(lam))))
+    lam, N = np.zeros(m), np.zeros((m, m - k))
+    lam[rows] = b[free].dot(inverse)
+    N[rows] = -inverse.T.dot(B[others].T)
+    N[others] = np.eye(m - k)
+    ba, JaT = b[act], Ja.T
+    K = JaT.dot(N)
+    t = lapack.dgesv(K.T.dot(K) + N.T.dot(N), K.T.dot(ba - JaT.dot(lam)) - N.T.dot(lam))[2]
+    lam += N.dot(t)
     return np.concatenate([ba - JaT.dot(lam), lam]), regular
+
+
+def square_one(cm: ClosureModel, J: np.ndarray, b: np.ndarray, bound: bool) -> tuple[np.ndarray | None, float]:
+    """One sample of a square system [S^T, J^T] x = b (na + rows = nv), LAPACK called directly: gesv's
+    own steps (getrf, getrs; the numbers `square_solution` gives) and, with `bound`, 1 / |A^-1|_F.
+
+    That bounds sigma_min(A) and the passive block's smallest singular value: B^-T = [A^-1]_lambda U
+    (U the orthonormal unactuated basis), so sigma_min(B) >= 1 / |A^-1|_2 >= 1 / |A^-1|_F.
+
+    Returns:
+        x (nv,), None where A is singular or x not finite; the bound (0 without `bound` or where singular).
+    """
+    lapack = scipy.linalg.lapack
+    lu, piv, info = lapack.dgetrf(np.concatenate((cm.actuation.T, J.T), axis=1))
+    if info:
+        return None, 0.0
+    x, _ = lapack.dgetrs(lu, piv, b)
+    if not (math.isfinite(x.dot(x)) or np.isfinite(x).all()):
+        return None, 0.0
+    return x, (rank.squared_norm(lapack.dgetri(lu, piv)[0]) ** -0.5 if bound else 0.0)
 
 
 def singular(A: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:

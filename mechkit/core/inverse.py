@@ -165,7 +165,7 @@ def inverse_dynamics_batch(cm: ClosureModel, cd: ClosureData, Q: np.ndarray, V: 
         world = k.world(G)
         e, Jrows, W = k.rows(world, J, Q)
         residuals = np.linalg.norm(e, axis=-1)
-        x, regular = (efforts.passive_solve(cm, Jrows, b, residuals) if efforts.splits(cm, k.size, distribution)
+        x, regular = (efforts.passive_solve(cm, cd, Jrows, b, residuals) if efforts.splits(cm, k.size, distribution)
                       else (None, None))
         spins = {} if generic_rank is None else _check_regular(cm, Jrows, J, residuals, generic_rank, idle, regular)
         if spins:
@@ -224,22 +224,22 @@ def _one_sample(cm: ClosureModel, cd: ClosureData, q: np.ndarray, v: np.ndarray,
     world = k.world(G)
     e, Jrows, W = k.rows(world, Jw, q)
     residual = math.sqrt(e.dot(e))
-    x, regular = efforts.passive_one(cm, Jrows, b, residual) if efforts.splits(cm, k.size, distribution) \
-        else (None, None)
-    if generic_rank is not None:
-        basis = cm.unactuated
-        if regular is None and 0 < basis.shape[1] <= Jrows.shape[0]:
-            block = Jrows[:, cm.passive_v] if cm.passive_v is not None else Jrows @ basis  # the same numbers
-            regular = rank.certified_regular(*rank.block_bounds(block), residual)
-        if not regular:
-            _check_regular(cm, Jrows[None], Jw[None], np.array([residual]), generic_rank, False,
-                           None if regular is None else np.array([regular]))
+    na, judged = len(cm.actuated), generic_rank is not None
+    x, regular, cond = None, None, math.nan
+    if efforts.splits(cm, k.size, distribution):
+        x, regular = efforts.passive_one(cm, cd, Jrows, b, residual)
+    elif na + k.size == cm.nv and not determinacy_test:  # else `efforts.solve`, whose singular values give cond
+        x, rho = efforts.square_one(cm, Jrows, b, judged)
+        regular = judged and rank.certified_regular(rho, rank.squared_norm(Jrows) ** 0.5, residual)
+    if judged and not regular:
+        _check_regular(cm, Jrows[None], Jw[None], np.array([residual]), generic_rank, False,
+                       None if regular is None else np.array([regular]))
     if x is None:
         x, cond = efforts.solve(cm, system(cm, Jrows[None]), b[None], determinacy_test, distribution)
         x, cond = x[0], float(cond[0])
-    else:
-        cond = float(efforts.singular(system(cm, Jrows[None]))[2][0]) if determinacy_test else math.nan
-    na, P = len(cm.actuated), cd.oMi
+    elif determinacy_test:
+        cond = float(efforts.singular(system(cm, Jrows[None]))[2][0])
+    P = cd.oMi
     origins, cut_points = P[1:, :, 3], k.points(world)
     reactions = k.joint_loads(W, x[na:], origins, cut_points)
     reactions[:model.njoints - 1] += tree_wrenches(P, cd.f)

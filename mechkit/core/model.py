@@ -201,6 +201,7 @@ class ClosureData:
             (`used_placements`; a transposed view of a buffer, as `ClosureKernel.world` reads it).
         kkt_rows: the independent rows the KKT solve last used (None before the first).
         stress_rows: the rows of [S^T, J_full^T] `mechkit.core.determinacy.self_stresses` uses.
+        split_rows: the rows of the passive block `mechkit.core.efforts.passive_one` factors, and the others.
         settings: Pinocchio proximal settings by (mu, accuracy, max_iter), made on first use.
         legacy: Pinocchio's legacy constraints of the cuts (`mechkit.core.pin_constraints`), by method
             ("proximal", "lcaba": each needs its own Pinocchio data), made on first use.
@@ -228,6 +229,7 @@ class ClosureData:
         self.legacy: dict = {}
         self.settings: dict = {}
         self.stress_rows: np.ndarray | None = None
+        self.split_rows: tuple[np.ndarray, np.ndarray] | None = None
 
     def used_placements(self) -> np.ndarray:
         """`used` filled from the placements `pin.oMi` holds now (the buffer itself: copy to keep it)."""

@@ -34,18 +34,18 @@ def test_full_rank_qr_solution_is_the_svd_minimum_norm_solution(name, load_cache
 
 
 def test_the_split_gives_the_svd_minimum_norm_solution_and_certifies_what_the_svd_confirms(load_cached):
-    """The deployable (a redundant row): through one QR of the passive block, the minimum-norm [u; lambda]
+    """The deployable (a redundant row): through one LU of a square part of the passive block, the minimum-norm [u; lambda]
     of the whole system, one sample as N; the block certified regular where its singular values pass."""
     m = load_cached("deployable_9rr12uru")
     cm = m.closure_model
     Jrows, system, b, residuals = _systems(m)
     assert efforts.splits(cm, Jrows.shape[1], "min_norm") and not efforts.splits(cm, Jrows.shape[1], "min_effort")
-    x, regular = efforts.passive_solve(cm, Jrows, b, residuals)
+    x, regular = efforts.passive_solve(cm, cm.create_data(), Jrows, b, residuals)
     assert regular.all()
     for i in range(len(system)):
         want = np.linalg.lstsq(system[i], b[i], rcond=None)[0]
         assert np.max(np.abs(x[i] - want)) <= 1e-10 * max(1.0, np.max(np.abs(want)))
-        one, one_regular = efforts.passive_one(cm, Jrows[i], b[i], float(residuals[i]))
+        one, one_regular = efforts.passive_one(cm, cm.create_data(), Jrows[i], b[i], float(residuals[i]))
         np.testing.assert_array_equal(one, x[i])
         assert one_regular
         s = np.linalg.svd(Jrows[i][:, cm.passive_v], compute_uv=False)
@@ -61,6 +61,6 @@ def test_a_singular_passive_block_is_not_certified(load_cached):
     J = Jrows[0].copy()
     free = cm.passive_v
     J[:, free[0]] = J[:, free[1]]
-    x, regular = efforts.passive_one(cm, J, b[0], float(residuals[0]))
+    x, regular = efforts.passive_one(cm, cm.create_data(), J, b[0], float(residuals[0]))
     assert x is None and not regular
     assert rank.block_bounds(J[:, free])[0] < rank.RANK_TOL * np.linalg.norm(J[:, free])
