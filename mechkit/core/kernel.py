@@ -66,6 +66,16 @@ WRENCH_RESIDUAL_MAP[12:, :6] = WRENCH_MAP
 WRENCH_RESIDUAL_MAP[[0, 4, 8], 6], WRENCH_RESIDUAL_MAP[[12, 16, 20], 6] = -1.0, 1.0
 
 
+#: (6, 16) map of a twist [v_O, omega] to the transpose of Xi = [[omega x, v_O], [0, 0]], flattened: the
+#: rate of a placement is dG/dt = Xi G.
+TWIST_MATRIX_T = np.zeros((6, 16))
+for _k, (_row, _col, _sign) in enumerate(((0, 3, 1), (1, 3, 1), (2, 3, 1))):
+    TWIST_MATRIX_T[_k, 4 * _col + _row] = _sign
+for _k, _entries in ((3, ((2, 1, 1), (1, 2, -1))), (4, ((0, 2, 1), (2, 0, -1))), (5, ((1, 0, 1), (0, 1, -1)))):
+    for _row, _col, _sign in _entries:  # Xi[row, col] = sign omega_k
+        TWIST_MATRIX_T[_k, 4 * _col + _row] = _sign
+
+
 class ClosureKernel:
     """The rows of a set of cuts and couplings over one Pinocchio model, as numpy maps.
 
@@ -113,6 +123,9 @@ class ClosureKernel:
         self.support = np.array([support_columns(model, int(j)) for j in self.joints]).reshape(-1, model.nv)
         self.mask = self.support[self._ib] - self.support[self._ia]
         self.incidence = subtree_incidence(model, list(cuts))
+        self._relative = np.zeros((self.cut_size, self.joints.size))  # twists of frame_b's joint minus frame_a's
+        np.add.at(self._relative, (np.arange(self.cut_size), self._ib), 1.0)
+        np.add.at(self._relative, (np.arange(self.cut_size), self._ia), -1.0)
         # row wrenches times multipliers -> what every joint transmits (tree joints minus their subtree's cuts, then the cuts)
         self._transmission = np.concatenate([-(self.incidence[1:] @ row_sum), row_sum])
 
@@ -191,23 +204,30 @@ class ClosureKernel:
         (..., 6, nv) times velocities (..., nv) (also: with `data.dJ`, the accelerations at a = 0)."""
         return np.swapaxes(J @ np.swapaxes(self.support * v[..., None, :], -1, -2), -1, -2)
 
-    def drift(self, G: np.ndarray, V: np.ndarray, A: np.ndarray, q: np.ndarray, v: np.ndarray) -> np.ndarray:
+    def drift(self, G: np.ndarray, V: np.ndarray, A: np.ndarray, q: np.ndarray, v: np.ndarray,
+              world: np.ndarray | None = None, W: np.ndarray | None = None) -> np.ndarray:
         """(..., size) gamma with d2e/dt2 = J a + gamma.
+
+        A vector fixed in joint j's frame moves as its placement, dG/dt = Xi G with Xi = [[omega x, v_O],
+        [0, 0]] of the joint's twist: the vectors' rates are `world` of the rates of the placements, and
+        gamma = W . (A_b - A_a) + dW/dt . (V_b - V_a) (see the module docstring).
 
         Args:
             G: (..., n_used, 4, 4) placements of the used joints.
             V, A: (..., n_used, 6) their world twists and accelerations at a = 0 (`twists`).
             q, v: (..., nq), (..., nv) the state (coupling rows).
+            world, W: `world(G)` and the row wrenches, where the caller has them (`rows`).
         """
-        x, y, _ = self.vectors(G)
-        Va, Vb = V[..., self._ia, :], V[..., self._ib, :]
-        xdot = cross_batch(Va[..., 3:], x[..., :3])
-        ydot = y[..., 3:] * Vb[..., :3] + cross_batch(Vb[..., 3:], y[..., :3])
-        outer = ydot[..., :, None] * x[..., None, :3]
-        outer = np.concatenate([outer, np.zeros_like(outer[..., :1, :])], axis=-2) + y[..., :, None] * xdot[..., None, :]
-        Wdot = outer.reshape(*outer.shape[:-2], 12) @ WRENCH_MAP
-        Arel = A[..., self._ib, :] - A[..., self._ia, :]
-        cut = np.sum(self.wrenches(x, y) * Arel + Wdot * (Vb - Va), axis=-1)
+        world = self.world(G) if world is None else world
+        xzy = self._xzy(world)
+        x, y = xzy[..., 0, :], xzy[..., 2, :]
+        W = self.wrenches(x, y) if W is None else W
+        lead, n = G.shape[:-3], G.shape[-3]
+        rates = (np.swapaxes(G, -1, -2) @ (V @ TWIST_MATRIX_T).reshape(*lead, n, 4, 4)).reshape(*lead, 4 * n, 4)
+        dot = self._xzy(self._map @ rates)
+        outer = y[..., :, None] * dot[..., 0, None, :3] + dot[..., 2, :, None] * x[..., None, :3]
+        Wdot = outer.reshape(*lead, self.cut_size, 12) @ WRENCH_MAP
+        cut = np.sum(W * (self._relative @ A) + Wdot * (self._relative @ V), axis=-1)
         if not self.couplings:
             return cut
         return np.concatenate([cut, self._coupling_drift(q, v)], axis=-1)

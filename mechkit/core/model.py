@@ -202,6 +202,8 @@ class ClosureData:
         kkt_rows: the independent rows the KKT solve last used (None before the first).
         stress_rows: the rows of [S^T, J_full^T] `mechkit.core.determinacy.self_stresses` uses.
         split_rows: the rows of the passive block `mechkit.core.efforts.passive_one` factors, and the others.
+        partition: the rows, dependent and independent columns of the closure Jacobian the null-space
+            forward dynamics factors (`mechkit.core.forward`).
         settings: Pinocchio proximal settings by (mu, accuracy, max_iter), made on first use.
         legacy: Pinocchio's legacy constraints of the cuts (`mechkit.core.pin_constraints`), by method
             ("proximal", "lcaba": each needs its own Pinocchio data), made on first use.
@@ -230,6 +232,7 @@ class ClosureData:
         self.settings: dict = {}
         self.stress_rows: np.ndarray | None = None
         self.split_rows: tuple[np.ndarray, np.ndarray] | None = None
+        self.partition: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None
 
     def used_placements(self) -> np.ndarray:
         """`used` filled from the placements `pin.oMi` holds now (the buffer itself: copy to keep it)."""
