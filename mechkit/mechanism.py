@@ -340,7 +340,8 @@ class Mechanism:
         determinacy = arguments.flag("determinacy", determinacy)
         if not arguments.plain_state(q, v, a, self._nq, self._nv):
             q, v, a = self._one(q=q, v=v, a=a)
-        fext = arguments.external_forces("fext", fext, self.model.njoints)
+        if fext is not None:
+            fext = arguments.external_forces("fext", fext, self.model.njoints)
         return core.inverse_dynamics(self.closure_model, self.closure_data, q, v, a, fext, self.passive_forces(q, v),
                                      determinacy_test=determinacy, distribution=distribution,
                                      generic_rank=None if arguments.flag("allow_singular", allow_singular)

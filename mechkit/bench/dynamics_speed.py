@@ -247,11 +247,12 @@ def phases(mech: Mechanism, samples: list[Sample], missed: set[str], budget: flo
         total = min(w for _, w in t.values())
         named = sum(x for name, (x, _) in t.items() if name != "core" and not name.startswith("(for"))
         out += [Phase(call, f"whole call ({label})", total * 1e6, 1.0),
-                Phase(call, "argument checks and dispatch (the whole call minus the core's)", (total - t["core"][0]) * 1e6,
-                      1.0 - t["core"][0] / total)]
+                Phase(call, "argument checks and dispatch (the whole call minus the core's)",
+                      max(total - t["core"][0], 0.0) * 1e6, max(1.0 - t["core"][0] / total, 0.0))]
         out += [Phase(call, name, x * 1e6, x / total) for name, (x, _) in t.items() if name != "core"]
-        out.append(Phase(call, "the rest of the core: solve, certificates, results, glue between the steps",
-                         (t["core"][0] - named) * 1e6, (t["core"][0] - named) / total))
+        rest = max(t["core"][0] - named, 0.0)  # by difference: 0 where the steps' noise exceeds it
+        out.append(Phase(call, "the rest of the core (by difference): solve, certificates, results, glue",
+                         rest * 1e6, rest / total))
     return out
 
 

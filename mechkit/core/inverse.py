@@ -231,6 +231,9 @@ def _one_sample(cm: ClosureModel, cd: ClosureData, q: np.ndarray, v: np.ndarray,
     elif na + k.size == cm.nv and not determinacy_test:  # else `efforts.solve`, whose singular values give cond
         x, rho = efforts.square_one(cm, Jrows, b, judged)
         regular = judged and rank.certified_regular(rho, rank.squared_norm(Jrows) ** 0.5, residual)
+    if judged and regular is None and 0 < cm.unactuated.shape[1] <= k.size:
+        block = Jrows[:, cm.passive_v] if cm.passive_v is not None else Jrows @ cm.unactuated  # the same numbers
+        regular = rank.certified_regular(*rank.block_bounds(block), residual)
     if judged and not regular:
         _check_regular(cm, Jrows[None], Jw[None], np.array([residual]), generic_rank, False,
                        None if regular is None else np.array([regular]))
