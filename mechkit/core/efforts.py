@@ -49,7 +49,8 @@ def passive_one(cm: ClosureModel, cd: ClosureData, J: np.ndarray, b: np.ndarray,
     With every actuator one joint's motor, [S^T, J^T] x = b splits into B^T lambda = b_p and u = b_a -
     J_a^T lambda, B = J[:, passive] (rows > columns). Rows s of B forming a regular square block B_s
     (independent at the first sample, kept on the data) give lambda = lambda_0 + N t: lambda_0 = B_s^-T b_p
-    on s, N = [-B_s^-T B_x^T; I] on (s, the others x). |u|^2 + |lambda|^2 is least at (K^T K + N^T N) t =
+    on s, N = [-B_s^-T B_x^T; I] on (s, the others x), both by the LU's solves (backward stable; the
+    explicit inverse serves the bounds only). |u|^2 + |lambda|^2 is least at (K^T K + N^T N) t =
     K^T (b_a - J_a^T lambda_0) - N^T lambda_0, K = J_a^T N: the minimum-norm solution. The inverse also
     bounds sigma_min(B) >= sigma_min(B_s) >= 1 / |B_s^-1|_F, and [S^T, J^T] has the right inverse
     [[I, -J_a^T Y], [0, Y]], Y = B_s^-T on s: sigma_min >= (na + (1 + |J_a|_F^2) |B_s^-1|_F^2)^(-1/2)
@@ -74,8 +75,8 @@ def passive_one(cm: ClosureModel, cd: ClosureData, J: np.ndarray, b: np.ndarray,
     if not rank.RANK_TOL ** 2 * (act.size + (1.0 + actuated_size) * inverse_size) * (act.size + size + actuated_size) < 1.0:
         return None, regular
     lam, N = np.zeros(m), np.zeros((m, m - k))
-    lam[rows] = b[free].dot(inverse)
-    N[rows] = -inverse.T.dot(B[others].T)
+    solved = lapack.dgetrs(lu, piv, np.column_stack((b[free], -B[others].T)), trans=1)[0]  # B_s^-T [b_p, -B_x^T]
+    lam[rows], N[rows] = solved[:, 0], solved[:, 1:]
     N[others] = np.eye(m - k)
     ba, JaT = b[act], Ja.T
     K = JaT.dot(N)
@@ -111,7 +112,8 @@ def singular(A: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     return s, r, s[:, 0] / s[np.arange(len(s)), np.maximum(r, 1) - 1]
 
 
-def solve(cm: ClosureModel, A: np.ndarray, b: np.ndarray, condition: bool, distribution: str):
+def solve(cm: ClosureModel, A: np.ndarray, b: np.ndarray, condition: bool,
+          distribution: str) -> tuple[np.ndarray, np.ndarray]:
     """x (N, cols) with A x = b, and the condition numbers (N,) (nan when `condition` is False).
 
     Square systems: gesv (with `condition`, after singular values that show every sample regular).

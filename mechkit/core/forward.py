@@ -277,7 +277,7 @@ def _partitioned(cd: ClosureData, J: np.ndarray, gamma: np.ndarray,
         inverse = lapack.dgetri(lu, piv)[0]
         if not rank.RANK_TOL ** 2 * rank.squared_norm(inverse) * size < 1.0:
             return None
-        X = inverse.dot(np.column_stack((JR[:, ind], gamma[rows])))
+        X = lapack.dgetrs(lu, piv, np.column_stack((JR[:, ind], gamma[rows])))[0]  # the LU's solve: backward stable
         N[dep], a_p[dep] = -X[:, :-1], -X[:, -1]
     if not rank.squared_norm(J.dot(N)) * min(J.shape) <= rank.RANK_TOL ** 2 * size:
         return None
