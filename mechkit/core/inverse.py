@@ -220,8 +220,8 @@ def _one_sample(cm: ClosureModel, cd: ClosureData, q: np.ndarray, v: np.ndarray,
     b = pin.rnea(model, data, q, v, a) if fext is None else pin.rnea(model, data, q, v, a, fext)  # data.tau: no Pinocchio call below
     if passive is not None:
         b = b - passive
-    G, Jw = cd.used_placements(), cd.J
-    world = k.world(G)
+    Jw = cd.J
+    world = k.stacked_world(cd.stacked_placements())
     e, Jrows, W = k.rows(world, Jw, q)
     residual = math.sqrt(e.dot(e))
     na, judged = len(cm.actuated), generic_rank is not None
@@ -245,10 +245,10 @@ def _one_sample(cm: ClosureModel, cd: ClosureData, q: np.ndarray, v: np.ndarray,
     P = cd.oMi
     origins, cut_points = P[1:, :, 3], k.points(world)
     reactions = k.joint_loads(W, x[na:], origins, cut_points)
-    reactions[:model.njoints - 1] += tree_wrenches(P, cd.f)
+    reactions[:P.shape[0] - 1] += tree_wrenches(P, cd.f)
     flags = effort_flags = None
     if determinacy_test:
-        flags, effort_flags = determinacy(cm, cd, G[None], Jw[None], q[None], origins[None], cut_points[None])
+        flags, effort_flags = determinacy(cm, cd, cd.used[None], Jw[None], q[None], origins[None], cut_points[None])
         flags, effort_flags = flags[0], effort_flags[0]
     return InverseDynamicsResult(cm.joint_names, cm.actuated, x[:na], reactions, cm.supports, x[na:], cond, flags,
                                  effort_flags)

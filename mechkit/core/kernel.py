@@ -30,7 +30,7 @@ import itertools
 import numpy as np
 import pinocchio as pin
 
-from mechkit.base.spatial import LEVI_CIVITA, cross_batch
+from mechkit.base.spatial import LEVI_CIVITA
 from mechkit.core.cuts import CouplingRow, CutRows
 
 
@@ -66,6 +66,9 @@ WRENCH_RESIDUAL_MAP[12:, :6] = WRENCH_MAP
 WRENCH_RESIDUAL_MAP[[0, 4, 8], 6], WRENCH_RESIDUAL_MAP[[12, 16, 20], 6] = -1.0, 1.0
 
 
+#: (9, 6) map of (p outer f).reshape(9) to [0, -p x f]: a wrench [f, m] about the origin moved to p.
+MOMENT_SHIFT = np.zeros((9, 6))
+MOMENT_SHIFT[:, 3:] = -LEVI_CIVITA
 #: (6, 16) map of a twist [v_O, omega] to the transpose of Xi = [[omega x, v_O], [0, 0]], flattened: the
 #: rate of a placement is dG/dt = Xi G.
 TWIST_MATRIX_T = np.zeros((6, 16))
@@ -134,8 +137,11 @@ class ClosureKernel:
         """(..., 3 cut_size + ncuts, 4) every homogeneous world vector the rows read, from placements
         (..., n_used, 4, 4): X', Z', Y' of each cut row (row by row), then p_b' of each cut; one product
         of a fixed map with the placements transposed and stacked."""
-        stacked = np.swapaxes(G, -1, -2).reshape(*G.shape[:-3], 4 * G.shape[-3], 4)
-        return self._map @ stacked
+        return self.stacked_world(np.swapaxes(G, -1, -2).reshape(*G.shape[:-3], 4 * G.shape[-3], 4))
+
+    def stacked_world(self, T: np.ndarray) -> np.ndarray:
+        """`world` from the placements transposed and stacked, T (..., 4 n_used, 4) with T[4 j + c, a] = G_j[a, c]."""
+        return self._map @ T
 
     def _xzy(self, V: np.ndarray) -> np.ndarray:
         """(..., cut_size, 3, 4) X', Z', Y' of every cut row from `world` vectors."""
@@ -243,9 +249,10 @@ class ClosureKernel:
             W: (..., cut_size, 6) row wrenches; lam: (..., size) multipliers.
             origins: (..., njoints - 1, 3) tree joint origins; cut_points: (..., ncuts, 3) the cuts' p_b.
         """
-        loads = self._transmission @ (W * lam[..., :self.cut_size, None])
+        loads = (self._transmission * lam[..., None, :self.cut_size]) @ W  # about the world origin
         points = np.concatenate([origins, cut_points], axis=-2)
-        loads[..., 3:] -= cross_batch(points, loads[..., :3])
+        outer = points[..., :, :, None] * loads[..., :, None, :3]
+        loads += outer.reshape(*outer.shape[:-2], 9) @ MOMENT_SHIFT
         return loads
 
     # ------------------------------------------------------------ coupling rows

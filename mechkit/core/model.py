@@ -89,7 +89,8 @@ class ClosureModel:
             (every cut closed with its full rows).
 
     Attributes:
-        model: the tree. structure: loops and Kutzbach count (`mechkit.core.structure.Structure`).
+        model: the tree; nq, nv: its configuration and velocity sizes.
+        structure: loops and Kutzbach count (`mechkit.core.structure.Structure`).
         closures: the closures with the rows chosen. kernel: the rows kept (cuts, then couplings).
         full_kernel: every cut's full spatial rows (the physical joints), for the determinacy test.
         actuated: actuator names. actuation: (na, nv) S, generalised force S^T u of efforts u.
@@ -117,6 +118,7 @@ class ClosureModel:
         check_depth_first(model)
         check_body_masses(model)
         self.model = model
+        self.nq, self.nv = model.nq, model.nv
         self.structure = analyse(model, list(closures), rows, len(couplings))
         self.closures = tuple(self.structure.closures)
         cuts = [cut_rows(model, c) for c in self.closures]
@@ -135,16 +137,6 @@ class ClosureModel:
         self.massive_support = np.array([support_columns(model, int(j)) for j in self.massive]).reshape(-1, model.nv)
         self.row_scale, self.delassus_scale = _scales(self)
         self._split = cache(self._make_split)
-
-    @property
-    def nq(self) -> int:
-        """Configuration size."""
-        return self.model.nq
-
-    @property
-    def nv(self) -> int:
-        """Velocity size."""
-        return self.model.nv
 
     def with_actuation(self, actuated: Sequence[str], actuators: Sequence[Actuator] = ()) -> ClosureModel:
         """The same tree, closures, couplings and rows with another actuation (e.g. every driven joint of
@@ -226,7 +218,7 @@ class ClosureData:
         self._used, n = cm.kernel.joints, cm.kernel.joints.size
         stacked = np.zeros((n, 4, 4))  # each placement transposed: `ClosureKernel.world` stacks them without a copy
         stacked[:, 3, 3] = 1.0
-        self._stacked, self.used = stacked[:, :, :3], stacked.transpose(0, 2, 1)
+        self._stacked, self._flat, self.used = stacked[:, :, :3], stacked.reshape(4 * n, 4), stacked.transpose(0, 2, 1)
         self.kkt_rows: np.ndarray | None = None
         self.legacy: dict = {}
         self.settings: dict = {}
@@ -236,8 +228,13 @@ class ClosureData:
 
     def used_placements(self) -> np.ndarray:
         """`used` filled from the placements `pin.oMi` holds now (the buffer itself: copy to keep it)."""
-        self._stacked[:] = self.oMi.transpose(0, 2, 1)[self._used]
+        self.stacked_placements()
         return self.used
+
+    def stacked_placements(self) -> np.ndarray:
+        """(4 n_used, 4) the same buffer as `ClosureKernel.stacked_world` reads it, filled from `pin.oMi`."""
+        self._stacked[:] = self.oMi.transpose(0, 2, 1)[self._used]
+        return self._flat
 
 
 def _address(x: np.ndarray) -> int:
