@@ -302,10 +302,9 @@ class Mechanism:
             q, v, tau = self._one(q=q, v=v, tau=tau)
         settings = {} if mu is None and accuracy is None and max_iter is None and baumgarte is None \
             else arguments.solver_settings(mu, accuracy, max_iter, baumgarte)
-        passive = self.passive_forces(q, v)
         try:
             return core.forward_dynamics(self.closure_model, self.closure_data, q, v,
-                                         tau if passive is None else tau + passive, method, **settings)
+                                         tau + self.springs.forces(q, v) if self.springs else tau, method, **settings)
         except SingularConfiguration:
             if proximal:
                 self._one(q=q, v=v, tau=tau)

@@ -218,7 +218,7 @@ def phases(mech: Mechanism, samples: list[Sample], missed: set[str], budget: flo
 
         def check(_: Sample) -> bool:
             J = legacy.jacobian()
-            rhs = legacy.rhs(J.shape[0])
+            rhs = legacy.rhs()
             r = J.dot(a) - rhs
             return bool(r.dot(r) <= rhs.dot(rhs))
 

@@ -100,10 +100,12 @@ def _settled(r: np.ndarray, gamma: np.ndarray, J: np.ndarray, a: np.ndarray) -> 
     NaN or inf fails both): the common case of the check."""
     try:
         rr = r.dot(r) * r.size
-        return bool(rr <= ACCELERATION_TOL ** 2 * gamma.dot(gamma)
-                    or rr * a.size <= ACCELERATION_TOL ** 2 * rank.squared_norm(J) * a.dot(a))
+        return rr <= _TOL2 * gamma.dot(gamma) or rr * a.size <= _TOL2 * rank.squared_norm(J) * a.dot(a)
     except FloatingPointError:  # a square under- or overflowing under np.errstate(all="raise"): not shown
         return False
+
+
+_TOL2 = ACCELERATION_TOL ** 2
 
 
 def _unconstrained_scale(cm: ClosureModel, data: pin.Data, q: np.ndarray, v: np.ndarray, tau: np.ndarray) -> float:
@@ -141,8 +143,7 @@ def _proximal(cm, cd, q, v, tau, mu, accuracy, max_iter, baumgarte) -> ForwardDy
     legacy.set_baumgarte(baumgarte)
     settings = _settings(cm, cd, "proximal", mu, accuracy, max_iter)
     a = legacy.dynamics(q, v, tau, settings).copy()
-    J = legacy.jacobian()
-    rhs = legacy.rhs(J.shape[0])  # -gamma
+    J, rhs = legacy.jacobian(), legacy.rhs()  # rhs = -gamma
     r = J.dot(a)
     r -= rhs
     if not _settled(r, rhs, J, a):

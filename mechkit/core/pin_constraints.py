@@ -90,11 +90,12 @@ class LegacyConstraints:
 
     def drift(self, rows: int) -> np.ndarray:
         """(rows,) gamma (+ Baumgarte terms) of the anchors at the last `dynamics` call's state."""
-        return -self.rhs(rows)
+        return -self._rhs[:rows]
 
-    def rhs(self, rows: int) -> np.ndarray:
-        """(rows,) -gamma (- Baumgarte terms): `drift` negated, as Pinocchio holds it (a view of its buffer)."""
-        return self._rhs[:rows]
+    def rhs(self) -> np.ndarray:
+        """(rows,) -gamma (- Baumgarte terms) of every anchor row: `drift` negated, as Pinocchio holds it
+        (a view of its buffer, sized by `initConstraintDynamics` to the rows)."""
+        return self._rhs
 
     def lcaba_error(self) -> np.ndarray:
         """(rows,) the anchors' acceleration error before lcaba's last step (add J @ `last_step()`)."""
