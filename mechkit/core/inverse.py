@@ -55,7 +55,8 @@ def inverse_pass(cm: ClosureModel, cd: ClosureData, Q: np.ndarray, V: np.ndarray
         P[i] = cd.oMi
         tau[i] = rnea(model, data, q, V[i], A[i]) if fexts[i] is None else rnea(model, data, q, V[i], A[i], fexts[i])
         f[i] = cd.f
-    return P, J, tau, tree_wrenches(P, f)
+    with np.errstate(under="ignore"):
+        return P, J, tau, tree_wrenches(P, f)
 
 
 def used_placements(cm: ClosureModel, P: np.ndarray) -> np.ndarray:
