@@ -118,8 +118,10 @@ def solve(cm: ClosureModel, A: np.ndarray, b: np.ndarray, condition: bool,
 
     Square systems: gesv (with `condition`, after singular values that show every sample regular).
     Otherwise, where every sample has full rank and the solution is unique (or minimum-norm is asked
-    for), the least-squares / minimum-norm solution by QR; else by SVD, moved to the least efforts
-    for "min_effort". Either way the same unique x, and b must be reachable.
+    for), the least-squares / minimum-norm solution by QR (without `condition`, its R bounding
+    sigma_min(A) above `rank.RANK_TOL` |A|_F shows the full rank the singular values would); else by
+    SVD, moved to the least efforts for "min_effort". Either way the same unique x, and b must be
+    reachable.
     """
     n, nv, cols = A.shape
     square = nv == cols
@@ -128,19 +130,25 @@ def solve(cm: ClosureModel, A: np.ndarray, b: np.ndarray, condition: bool,
             return square_solution(A, b), np.full(n, np.nan)
         except SingularConfiguration:
             pass  # rank deficient (idle freedoms): the SVD below
+    unique = distribution == "min_norm" or cols < nv
+    if not square and not condition and unique:
+        x, outside, rho = full_rank_solution(A, b)
+        if np.all(rho > rank.RANK_TOL * np.sqrt(np.square(A).sum(axis=(1, 2)))):  # the SVD's rank: full
+            _check_reachable(A, outside, b)
+            return x, np.full(n, np.nan)
     s, r, cond = singular(A)
     full = bool(np.all(r == min(nv, cols)))
     if square and full:
         return square_solution(A, b), cond
-    if full and (distribution == "min_norm" or cols < nv):
-        x, outside = full_rank_solution(A, b)
-        _check_reachable(s, outside, b)
+    if full and unique:
+        x, outside, _ = full_rank_solution(A, b)
+        _check_reachable(A, outside, b)
         return x, cond
     U, s, Vt = np.linalg.svd(A, full_matrices=True)
     k = s.shape[1]
     keep = np.arange(k)[None, :] < r[:, None]
     proj = np.einsum("nij,ni->nj", U, b)
-    _check_reachable(s, rank.outside_range(U, r, b), b)
+    _check_reachable(A, rank.outside_range(U, r, b), b)
     coef = np.where(keep, proj[:, :k] / np.where(keep, s, 1.0), 0.0)
     x = np.einsum("nij,ni->nj", Vt[:, :k], coef)
     if distribution == "min_effort":
@@ -168,25 +176,29 @@ def square_solution(A: np.ndarray, b: np.ndarray) -> np.ndarray:
     return x
 
 
-def full_rank_solution(A: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+def full_rank_solution(A: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """The unique least-squares (full column rank) or minimum-norm (full row rank) solution x (N, cols)
-    of A x = b by QR, and the norm (N,) of the part of b outside the range of A."""
+    of A x = b by QR, the norm (N,) of the part of b outside the range of A, and (N,) 1 / |R^-1|_F <=
+    sigma_min(A) (0 where R is singular)."""
     if A.shape[1] > A.shape[2]:  # A = Q R: x = R^-1 Q^T b
         Q, R = np.linalg.qr(A)
         c = np.einsum("nij,ni->nj", Q, b)
         x = np.linalg.solve(R, c[..., None])[..., 0]
-        return x, np.linalg.norm(b - np.einsum("nij,nj->ni", Q, c), axis=1)
-    Q, R = np.linalg.qr(A.transpose(0, 2, 1))  # A^T = Q R: x = Q R^-T b, every b reachable
-    return (Q @ np.linalg.solve(R.transpose(0, 2, 1), b[..., None]))[..., 0], np.zeros(len(A))
+        outside = np.linalg.norm(b - np.einsum("nij,nj->ni", Q, c), axis=1)
+    else:
+        Q, R = np.linalg.qr(A.transpose(0, 2, 1))  # A^T = Q R: x = Q R^-T b, every b reachable
+        x, outside = (Q @ np.linalg.solve(R.transpose(0, 2, 1), b[..., None]))[..., 0], np.zeros(len(A))
+    return x, outside, rank.regularity_bounds(R)[0]
 
 
-def _check_reachable(s: np.ndarray, outside: np.ndarray, b: np.ndarray) -> None:
-    """`SingularConfiguration` where the part of b outside the range of [S^T, J^T] (singular values s) is
-    not negligible: the actuators cannot hold the motion."""
+def _check_reachable(A: np.ndarray, outside: np.ndarray, b: np.ndarray) -> None:
+    """`SingularConfiguration` where the part of b outside the range of [S^T, J^T] (A) is not
+    negligible: the actuators cannot hold the motion."""
     bad = np.flatnonzero(outside > 1e-9 * np.maximum(np.linalg.norm(b, axis=1), 1.0))
     if bad.size:
         i = int(bad[0])
-        raise SingularConfiguration(float(s[i, 0] / s[i, -1]) if s[i, -1] > 0 else float("inf"),
+        s = rank.singular_values(A[i][None])[0]
+        raise SingularConfiguration(float(s[0] / s[-1]) if s[-1] > 0 else float("inf"),
                                     f"[S^T, J^T] does not span the required generalised force (sample {i}): the "
                                     "actuators cannot hold this motion")
 

@@ -89,7 +89,8 @@ def _check_regular(cm: ClosureModel, Jrows: np.ndarray, Jw: np.ndarray, residual
     if min(columns, Jrows.shape[1], len(Jrows)) == 0:
         return found
     blocks = Jrows @ basis
-    if certified is None and Jrows.shape[1] >= basis.shape[1]:
+    if certified is None and (Jrows.shape[1] >= basis.shape[1] or (columns == Jrows.shape[1] and not idle)):
+        # a wide block's bound is on its smallest singular value, the verdict's; its null space, the idle spins' search
         certified = rank.certified_regular(*rank.regularity_bounds(blocks), residuals)
     if certified is not None and certified.all():
         return found

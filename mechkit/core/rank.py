@@ -104,12 +104,12 @@ def passive_verdict(s: np.ndarray, columns: int, residual: np.ndarray) -> tuple[
 
 
 def regularity_bounds(B: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Bounds on the extreme singular values of N blocks B (N, m, k), m >= k, without an SVD: (N,)
-    rho = 1 / |X|_F <= sigma_min (X = B^-1 where square, else R^-1 of B = Q R; 0 where singular) and
-    (N,) |B|_F >= sigma_max."""
+    """Bounds on the extreme singular values of N blocks B (N, m, k) without an SVD: (N,) rho = 1 / |X|_F
+    <= sigma_min(m, k) (X = B^-1 where square, else R^-1 of B = Q R, or of B^T = Q R where wide; 0 where
+    singular) and (N,) |B|_F >= sigma_max."""
     m, k = B.shape[1:]
     try:
-        X = np.linalg.inv(B if m == k else np.linalg.qr(B, mode="r"))
+        X = np.linalg.inv(B if m == k else np.linalg.qr(B if m > k else B.transpose(0, 2, 1), mode="r"))
     except np.linalg.LinAlgError:  # a singular block: one at a time
         rho, size = np.array([block_bounds(b) for b in B]).reshape(len(B), 2).T
         return rho, size
@@ -123,7 +123,7 @@ def block_bounds(B: np.ndarray) -> tuple[float, float]:
         lu, piv, info = scipy.linalg.lapack.dgetrf(B)
         X = None if info else scipy.linalg.lapack.dgetri(lu, piv)[0]
     else:
-        X = triangular_inverse(scipy.linalg.lapack.dgeqrf(B)[0], k)
+        X = triangular_inverse(scipy.linalg.lapack.dgeqrf(B if m > k else B.T)[0], min(m, k))
     return (0.0 if X is None else squared_norm(X) ** -0.5), squared_norm(B) ** 0.5
 
 

@@ -26,11 +26,12 @@ def _systems(m, count=4, seed=2):
 def test_full_rank_qr_solution_is_the_svd_minimum_norm_solution(name, load_cached):
     _, system, b, _ = _systems(load_cached(name))
     assert system.shape[1] != system.shape[2]
-    x, outside = efforts.full_rank_solution(system, b)
+    x, outside, rho = efforts.full_rank_solution(system, b)
     for i in range(len(system)):
         want = np.linalg.lstsq(system[i], b[i], rcond=None)[0]
         assert np.max(np.abs(x[i] - want)) <= 1e-10 * max(1.0, np.max(np.abs(want)))
         assert outside[i] <= 1e-9 * max(1.0, np.linalg.norm(b[i]))
+        assert 0 < rho[i] <= np.linalg.svd(system[i], compute_uv=False)[-1]
 
 
 def test_the_split_gives_the_svd_minimum_norm_solution_and_certifies_what_the_svd_confirms(load_cached):
