@@ -8,8 +8,8 @@ sample), determinacy off and on; velocities and accelerations; MuJoCo's `mj_forw
 called bare on a state written once (warm start: each repeated call starts from the previous call's
 `qacc_warmstart`, MuJoCo's best case; a cold row with `mjDSBL_WARMSTART`), and `mj_inverse` plus the
 least-squares split of its constraint forces into efforts (`MujocoPeer.inverse`). The targets are
-ratios of these rows; where one is missed, a breakdown times the steps of the call behind it, each
-alternately with the whole call, so that they read as shares of it.
+ratios of these rows; where one is missed, a breakdown times the steps of the call behind it in turn
+with the whole call, so that they read as shares of it.
 """
 
 from __future__ import annotations
@@ -189,8 +189,8 @@ def phases(mech: Mechanism, samples: list[Sample], missed: set[str], budget: flo
     """Where the time of the calls behind missed targets goes: the whole call, the same call in the core
     (its difference: the argument checks and dispatch), the steps that can be called alone (Pinocchio's
     passes, the closure kernel, the reactions, the J a + gamma check; the core's remainder is the solve and
-    the glue between steps), and MuJoCo's mj_forward beside the exact forward dynamics; each timed
-    alternately with the whole call on one state, its share the ratio of the two minima."""
+    the glue between steps), and MuJoCo's mj_forward beside the exact forward dynamics; all timed in turn
+    on one state (`_round_robin`), each step's share its minimum over the whole call's."""
     from mechkit import core
 
     cm, cd = mech.closure_model, mech.closure_model.create_data()
@@ -243,17 +243,28 @@ def phases(mech: Mechanism, samples: list[Sample], missed: set[str], budget: flo
             *((f"(for comparison) {label}", fn) for label, (fn, _) in _mujoco_calls(mech, s).items() if label == MJ_FORWARD)])
     out = []
     for call, ((label, whole), in_core, steps) in calls.items():
-        t = {name: _interleaved(fn, whole, samples, budget, repeats) for name, fn in [("core", in_core), *steps]}
-        total = min(w for _, w in t.values())
-        named = sum(x for name, (x, _) in t.items() if name != "core" and not name.startswith("(for"))
+        t = _round_robin({"whole": whole, "core": in_core, **dict(steps)}, samples, budget, repeats)
+        total, core_t = t["whole"], t["core"]
+        named = sum(x for name, x in t.items() if name not in ("whole", "core") and not name.startswith("(for"))
         out += [Phase(call, f"whole call ({label})", total * 1e6, 1.0),
                 Phase(call, "argument checks and dispatch (the whole call minus the core's)",
-                      max(total - t["core"][0], 0.0) * 1e6, max(1.0 - t["core"][0] / total, 0.0))]
-        out += [Phase(call, name, x * 1e6, x / total) for name, (x, _) in t.items() if name != "core"]
-        rest = max(t["core"][0] - named, 0.0)  # by difference: 0 where the steps' noise exceeds it
+                      max(total - core_t, 0.0) * 1e6, max(total - core_t, 0.0) / total)]
+        out += [Phase(call, name, x * 1e6, x / total) for name, x in t.items() if name not in ("whole", "core")]
+        rest = max(core_t - named, 0.0)  # by difference: 0 where the steps' noise exceeds it
         out.append(Phase(call, "the rest of the core (by difference): solve, certificates, results, glue",
                          rest * 1e6, rest / total))
     return out
+
+
+def _round_robin(fns: dict[str, Callable[[Sample], object]], samples: list[Sample], budget: float,
+                 repeats: int) -> dict[str, float]:
+    """Seconds per call of each function, all timed in turn `repeats` times (so that a disturbance hits
+    them alike); the minimum of each."""
+    best = dict.fromkeys(fns, float("inf"))
+    for _ in range(repeats):
+        for name, fn in fns.items():
+            best[name] = min(best[name], time_per_call(fn, samples, budget / repeats / len(fns), 1)[0])
+    return best
 
 
 def markdown(results: list[MechanismSpeed]) -> list[str]:
@@ -278,7 +289,7 @@ def markdown(results: list[MechanismSpeed]) -> list[str]:
         lines.append(f"| {label} | " + " | ".join(cells) + " |")
     for r in results:
         for call in dict.fromkeys(p.call for p in r.phases):
-            lines += ["", f"Where the time of `{call}` goes on {r.name} (each step timed alternately with the whole call):", "",
+            lines += ["", f"Where the time of `{call}` goes on {r.name} (the steps timed in turn with the whole call):", "",
                       "| step | us | share of the call |", "|---|---|---|"]
             lines += [f"| {p.label} | {p.us:.1f} | {p.share:.0%} |" for p in r.phases if p.call == call]
     return lines
