@@ -86,8 +86,8 @@ def passive_one(cm: ClosureModel, cd: ClosureData, J: np.ndarray, b: np.ndarray,
 
 
 def square_one(cm: ClosureModel, J: np.ndarray, b: np.ndarray, bound: bool) -> tuple[np.ndarray | None, float]:
-    """One sample of a square system [S^T, J^T] x = b (na + rows = nv), LAPACK called directly: gesv's
-    own steps (getrf, getrs; the numbers `square_solution` gives) and, with `bound`, 1 / |A^-1|_F.
+    """One sample of a square system [S^T, J^T] x = b (na + rows = nv), LAPACK called directly: gesv
+    (the numbers `square_solution` gives) and, with `bound`, 1 / |A^-1|_F from its LU (getri).
 
     That bounds sigma_min(A) and the passive block's smallest singular value: B^-T = [A^-1]_lambda U
     (U the orthonormal unactuated basis), so sigma_min(B) >= 1 / |A^-1|_2 >= 1 / |A^-1|_F.
@@ -96,11 +96,8 @@ def square_one(cm: ClosureModel, J: np.ndarray, b: np.ndarray, bound: bool) -> t
         x (nv,), None where A is singular or x not finite; the bound (0 without `bound` or where singular).
     """
     lapack = scipy.linalg.lapack
-    lu, piv, info = lapack.dgetrf(np.concatenate((cm.actuation.T, J.T), axis=1))
-    if info:
-        return None, 0.0
-    x, _ = lapack.dgetrs(lu, piv, b)
-    if not (math.isfinite(x.dot(x)) or np.isfinite(x).all()):
+    lu, piv, x, info = lapack.dgesv(np.concatenate((cm.actuation.T, J.T), axis=1), b)
+    if info or not (math.isfinite(x.dot(x)) or np.isfinite(x).all()):
         return None, 0.0
     return x, (rank.squared_norm(lapack.dgetri(lu, piv)[0]) ** -0.5 if bound else 0.0)
 
