@@ -6,7 +6,7 @@ rows than columns (a redundant row), the system splits (`passive_solve`): B^T la
 u = b_actuated - J_actuated^T lambda, and one LU of a square part of B certifies the block regular and
 [S^T, J^T] of full row rank and gives the minimum-norm solution. Elsewhere `solve`: LAPACK gesv where [S^T, J^T]
 is square, QR where it has full rank, an SVD otherwise (moved to the least efforts for "min_effort").
-One sample goes through LAPACK directly; N through numpy's batched routines.
+One sample and N samples give the same numbers.
 """
 
 from __future__ import annotations
@@ -42,7 +42,7 @@ def passive_solve(cm: ClosureModel, cd: ClosureData, Jrows: np.ndarray, b: np.nd
 
 def passive_one(cm: ClosureModel, cd: ClosureData, J: np.ndarray, b: np.ndarray,
                 residual: float) -> tuple[np.ndarray | None, bool]:
-    """One sample of `passive_solve`, LAPACK called directly: J (rows, nv), b (nv,) give x (na + rows,)
+    """One sample of `passive_solve`: J (rows, nv), b (nv,) give x (na + rows,)
     (None where [S^T, J^T] is not certified of full row rank) and whether the passive block is
     certified resolvably regular (`rank.certified_regular`).
 
@@ -86,7 +86,7 @@ def passive_one(cm: ClosureModel, cd: ClosureData, J: np.ndarray, b: np.ndarray,
 
 
 def square_one(cm: ClosureModel, J: np.ndarray, b: np.ndarray, bound: bool) -> tuple[np.ndarray | None, float]:
-    """One sample of a square system [S^T, J^T] x = b (na + rows = nv), LAPACK called directly: gesv
+    """One sample of a square system [S^T, J^T] x = b (na + rows = nv): gesv
     (the numbers `square_solution` gives) and, with `bound`, 1 / |A^-1|_F from its LU (getri).
 
     That bounds sigma_min(A) and the passive block's smallest singular value: B^-T = [A^-1]_lambda U

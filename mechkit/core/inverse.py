@@ -7,8 +7,7 @@ Pinocchio's (`computeJointJacobians`, `rnea`, whose placements and joint wrenche
 `ClosureData.oMi` and `.f`); the rest is the closure kernel, the regularity of the passive block
 (certified by a bound where it can be, else judged by singular values: `mechkit.core.rank`), the
 solve (`mechkit.core.efforts`), the reactions, and the determinacy test (`mechkit.core.determinacy`).
-`inverse_dynamics` is one sample (views and LAPACK directly), `inverse_dynamics_batch` N; they give
-the same numbers.
+`inverse_dynamics` is one sample, `inverse_dynamics_batch` N; they give the same numbers.
 """
 
 from __future__ import annotations
@@ -215,8 +214,7 @@ def inverse_dynamics(cm: ClosureModel, cd: ClosureData, q: np.ndarray, v: np.nda
 def _one_sample(cm: ClosureModel, cd: ClosureData, q: np.ndarray, v: np.ndarray, a: np.ndarray,
                 fext: pin.StdVec_Force | None, passive: np.ndarray | None, determinacy_test: bool, distribution: str,
                 generic_rank: int | None) -> InverseDynamicsResult:
-    """`inverse_dynamics` without idle spins: the batch's steps on one sample, Pinocchio's arrays read
-    as views, small systems through LAPACK directly."""
+    """`inverse_dynamics` without idle spins: the batch's steps on one sample."""
     model, data, k = cm.model, cd.pin, cm.kernel
     pin.computeJointJacobians(model, data, q)
     b = pin.rnea(model, data, q, v, a) if fext is None else pin.rnea(model, data, q, v, a, fext)  # data.tau: no Pinocchio call below

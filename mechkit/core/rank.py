@@ -117,7 +117,7 @@ def regularity_bounds(B: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
 
 
 def block_bounds(B: np.ndarray) -> tuple[float, float]:
-    """`regularity_bounds` of one block B (m, k), LAPACK called directly: (rho, |B|_F)."""
+    """`regularity_bounds` of one block B (m, k): (rho, |B|_F)."""
     m, k = B.shape
     if m == k:
         lu, piv, info = scipy.linalg.lapack.dgetrf(B)
@@ -138,7 +138,7 @@ def triangular_inverse(qr: np.ndarray, k: int) -> np.ndarray | None:
 
 
 def squared_norm(X: np.ndarray) -> float:
-    """|X|_F^2 of an array (one BLAS dot)."""
+    """|X|_F^2 of an array."""
     flat = X.ravel(order="K")
     return float(flat.dot(flat))
 
