@@ -8,7 +8,7 @@ from pathlib import Path
 from typing import Any
 
 from mechkit import core, sources
-from mechkit.base import arguments
+from mechkit.base import arguments, joint_arguments
 from mechkit.base.exceptions import InvalidArgument, InvalidParameters, MalformedDescription
 from mechkit.catalog.contract import MechanismSpec
 from mechkit.catalog.params import MechanismParams
@@ -139,7 +139,7 @@ def from_description(desc: sources.Description, actuated: Sequence[str] | None =
     model = desc.model if desc.model is not None else build_model(desc.urdf)
     if actuated is not None:
         known = list(model.names[1:]) + [a.name for a in desc.actuators]
-        arguments.joint_names("actuated", actuated, known, allow_empty=True)
+        joint_arguments.joint_names("actuated", actuated, known, allow_empty=True)
     closures = desc.closures if desc.closures is not None else parse_loops(desc.urdf)
     cm = core.ClosureModel(model, closures, desc.couplings, tuple(actuated) if actuated is not None else desc.actuated,
                            desc.actuators, rows)

@@ -15,8 +15,8 @@ import numpy as np
 import pinocchio as pin
 
 from mechkit import core
-from mechkit.base import arguments
-from mechkit.base.exceptions import InvalidParameters
+from mechkit.base import arguments, joint_arguments
+from mechkit.base.exceptions import InvalidParameters, SingularConfiguration
 from mechkit.catalog.contract import MechanismSpec
 from mechkit.catalog.params import MechanismParams
 from mechkit.forces import JointSprings
@@ -50,6 +50,7 @@ class Mechanism:
         self.closure_model = cm = closure_model
         self.closure_data = core_data = cm.create_data()
         self.model, self.data = cm.model, core_data.pin
+        self._nq, self._nv = cm.model.nq, cm.model.nv
         self.structure, self.closures, self.actuated = cm.structure, list(cm.closures), cm.actuated
         self.springs = JointSprings(self.model, springs)
         self.home_q = self.assemble(spec.home(params))
@@ -103,14 +104,14 @@ class Mechanism:
         if not isinstance(values, Mapping) and not names:
             self.require_actuators(f"{arg} given in actuated order")
         sizes = {n: core.joint_size(self.model, self.joint_id(n)) for n in names if self.model.existJointName(n)}
-        return arguments.joint_values(arg, values, names, list(self.model.names[1:]), sizes)
+        return joint_arguments.joint_values(arg, values, names, list(self.model.names[1:]), sizes)
 
     def _names(self, inputs: Sequence[str] | None, what: str) -> list[str]:
         """The given input joints (default: the actuated ones, which must exist), checked."""
         if inputs is None:
             self.require_actuators(what)
             return list(self.actuated)
-        return arguments.joint_names("inputs", inputs, list(self.model.names[1:]))
+        return joint_arguments.joint_names("inputs", inputs, list(self.model.names[1:]))
 
     def _given(self, values: Inputs, names: Sequence[str], arg: str) -> tuple[core.InputSplit, np.ndarray]:
         """The split of the given joints and their values (k,) in velocity order."""
@@ -121,7 +122,7 @@ class Mechanism:
     def _given_batch(self, values: Inputs, names: Sequence[str], n: int, arg: str) -> tuple[core.InputSplit, np.ndarray]:
         """The split of the given joints and their values (n, k): a mapping joint -> (n,) or an (n, k) array."""
         sizes = {j: core.joint_size(self.model, self.joint_id(j)) for j in self.model.names[1:]}
-        keys, given = arguments.sample_inputs(arg, values, names, n, list(self.model.names[1:]), sizes)
+        keys, given = joint_arguments.sample_inputs(arg, values, names, n, list(self.model.names[1:]), sizes)
         return self.closure_model.split(tuple(keys)), given
 
     # ---------------------------------------------------------------- kinematics
@@ -168,7 +169,7 @@ class Mechanism:
         """
         q0, = self._one(q=q0)
         arguments.option("method", method, core.ASSEMBLY_METHODS)
-        split = self.closure_model.split(tuple(arguments.joint_names("fixed", fixed, list(self.model.names[1:]),
+        split = self.closure_model.split(tuple(joint_arguments.joint_names("fixed", fixed, list(self.model.names[1:]),
                                                                      allow_empty=True)))
         return core.assemble(self.closure_model, self.closure_data, q0, split,
                              tol=arguments.number("tol", tol, positive=True),
@@ -184,7 +185,7 @@ class Mechanism:
 
     @property
     def _sizes(self) -> dict[str, int]:
-        return {"q": self.model.nq, "v": self.model.nv, "a": self.model.nv, "tau": self.model.nv}
+        return {"q": self._nq, "v": self._nv, "a": self._nv, "tau": self._nv}
 
     def closure_residual(self, q: np.ndarray) -> np.ndarray:
         """Residual of every kept row at q (m for position rows, dimensionless for alignment rows)."""
@@ -271,7 +272,7 @@ class Mechanism:
         """The generalised forces S^T u (nv,) of actuator efforts u (N m or N): by actuator name, or in
         `actuated` order (a joint motor acts on its joint; a transmission on its joints)."""
         self.require_actuators("generalised forces from efforts")
-        u = arguments.joint_values("efforts", efforts, self.actuated, self.actuated) if isinstance(efforts, Mapping) \
+        u = joint_arguments.joint_values("efforts", efforts, self.actuated, self.actuated) if isinstance(efforts, Mapping) \
             else dict(zip(self.actuated, arguments.array("efforts", efforts, len(self.actuated), batch=False)))
         return self.closure_model.actuation.T @ np.array([u.get(a, 0.0) for a in self.actuated], dtype=float)
 
@@ -296,12 +297,18 @@ class Mechanism:
             SingularConfiguration: accelerations not unique.
         """
         arguments.option("method", method, core.FORWARD_METHODS)
-        if not arguments.plain_state(q, v, tau, self.model.nq, self.model.nv):
+        proximal = method == "proximal"  # a NaN or inf argument gives it non-finite accelerations: named on failure
+        if not arguments.plain_state(q, v, tau, self._nq, self._nv, finite=not proximal):
             q, v, tau = self._one(q=q, v=v, tau=tau)
-        settings = arguments.solver_settings(mu, accuracy, max_iter, baumgarte)
-        passive = self.passive_forces(q, v)
-        return core.forward_dynamics(self.closure_model, self.closure_data, q, v, tau if passive is None else tau + passive,
-                                     method, **settings)
+        settings = {} if mu is None and accuracy is None and max_iter is None and baumgarte is None \
+            else arguments.solver_settings(mu, accuracy, max_iter, baumgarte)
+        try:
+            return core.forward_dynamics(self.closure_model, self.closure_data, q, v,
+                                         tau + self.springs.forces(q, v) if self.springs else tau, method, **settings)
+        except SingularConfiguration:
+            if proximal:
+                self._one(q=q, v=v, tau=tau)
+            raise
 
     def forward_dynamics_batch(self, q: np.ndarray, v: np.ndarray, tau: np.ndarray, method: str = "proximal", *,
                                mu: float | None = None, accuracy: float | None = None, max_iter: int | None = None,
@@ -330,8 +337,10 @@ class Mechanism:
         """
         arguments.option("distribution", distribution, core.DISTRIBUTIONS)
         determinacy = arguments.flag("determinacy", determinacy)
-        q, v, a = self._one(q=q, v=v, a=a)
-        fext = arguments.external_forces("fext", fext, self.model.njoints)
+        if not arguments.plain_state(q, v, a, self._nq, self._nv):
+            q, v, a = self._one(q=q, v=v, a=a)
+        if fext is not None:
+            fext = joint_arguments.external_forces("fext", fext, self.model.njoints)
         return core.inverse_dynamics(self.closure_model, self.closure_data, q, v, a, fext, self.passive_forces(q, v),
                                      determinacy_test=determinacy, distribution=distribution,
                                      generic_rank=None if arguments.flag("allow_singular", allow_singular)
@@ -345,7 +354,7 @@ class Mechanism:
         arguments.option("distribution", distribution, core.DISTRIBUTIONS)
         determinacy = arguments.flag("determinacy", determinacy)
         q, v, a = self._many(q=q, v=v, a=a)
-        fexts = arguments.sample_fext("fext", fext, len(q), self.model.njoints)
+        fexts = joint_arguments.sample_fext("fext", fext, len(q), self.model.njoints)
         return core.inverse_dynamics_batch(self.closure_model, self.closure_data, q, v, a, fexts,
                                            self.passive_forces(q, v), determinacy_test=determinacy,
                                            distribution=distribution,

@@ -21,7 +21,7 @@ import numpy as np
 import pinocchio as pin
 
 from mechkit import core
-from mechkit.base import arguments
+from mechkit.base import joint_arguments
 from mechkit.base.exceptions import InvalidArgument, MalformedDescription
 from mechkit.mechanism import Mechanism
 from mechkit.sources import Description
@@ -50,7 +50,7 @@ def locked_joints(mech: Mechanism, lock: Mapping[str, float | Sequence[float]] |
     names = list(model.names[1:])
     out: dict[str, np.ndarray] = {}
     if lock:
-        values = arguments.joint_values("lock", lock, list(lock), names)
+        values = joint_arguments.joint_values("lock", lock, list(lock), names)
         for joint, value in values.items():
             j = model.getJointId(joint)
             core.set_joint_value(model, q, j, value)

@@ -302,6 +302,8 @@ TESTED_ELSEWHERE = {
     "mechkit/__main__.py": "`python -m mechkit` runs `mechkit.cli.main`: every subprocess test of the command line "
                            "goes through it (tests/test_cli.py, tests/cli/)",
     "mechkit/base/arguments.py": "the argument checks of the Mechanism API: the bad-input campaign of tests/test_mechanism.py",
+    "mechkit/base/joint_arguments.py": ("the joint-naming argument checks of the Mechanism API: the bad-input campaign "
+                                        "of tests/test_mechanism.py"),
     "mechkit/base/exceptions.py": "the error classes: raised and matched by name throughout the tests",
     "mechkit/base/plotting.py": "matplotlib set up for every figure: drawn by the studies' and figures' tests",
     "mechkit/base/resources.py": "where the packaged templates and URDFs are: tests/catalog/test_contract.py reads every one",

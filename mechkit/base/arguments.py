@@ -13,7 +13,6 @@ from collections.abc import Mapping, Sequence
 from typing import Any
 
 import numpy as np
-import pinocchio as pin
 
 from mechkit.base.exceptions import InvalidArgument, UnknownOption
 
@@ -109,25 +108,40 @@ def _batched(value: Any) -> bool:
         return False
 
 
-def plain_state(q: Any, v: Any, tau: Any, nq: int, nv: int) -> bool:
-    """True for the common call that needs no conversion: float64 arrays of shapes (nq,), (nv,), (nv,),
-    all finite. Anything else (lists, other dtypes, batches, NaN or inf) goes through `sample`, which
-    converts it or names what is wrong.
+def plain_state(q: Any, v: Any, x: Any, nq: int, nv: int, *, finite: bool = True) -> bool:
+    """True for the common call that needs no conversion: float64 arrays of shapes (nq,), (nv,), (nv,)
+    (q, v and tau or a), all finite. Anything else (lists, other dtypes, batches, NaN or inf) goes
+    through `sample`, which converts it or names what is wrong.
 
     Args:
         q: a configuration, expected (nq,).
         v: a velocity, expected (nv,).
-        tau: generalised efforts, expected (nv,).
+        x: generalised efforts or accelerations, expected (nv,).
         nq: configuration size of the model.
         nv: velocity size of the model.
+        finite: also test the values; False where a NaN or inf argument cannot give a result (the
+            caller's computation fails on it and the caller then names it through `sample`).
 
     Returns:
-        Whether all three are finite float64 arrays of those shapes (so no conversion is needed).
+        Whether all three are float64 arrays of those shapes (and finite, with `finite`), so no
+        conversion is needed.
     """
-    return (isinstance(q, np.ndarray) and isinstance(v, np.ndarray) and isinstance(tau, np.ndarray)
-            and q.dtype == np.float64 and v.dtype == np.float64 and tau.dtype == np.float64
-            and q.shape == (nq,) and v.shape == (nv,) and tau.shape == (nv,)
-            and bool(np.isfinite(q).all() and np.isfinite(v).all() and np.isfinite(tau).all()))
+    return (type(q) is np.ndarray and type(v) is np.ndarray and type(x) is np.ndarray
+            and q.dtype is _FLOAT and v.dtype is _FLOAT and x.dtype is _FLOAT
+            and q.shape == (nq,) and v.shape == (nv,) and x.shape == (nv,) and (not finite or _finite(q, v, x)))
+
+
+#: The dtype of a plain float64 array (numpy keeps one instance of each built-in dtype).
+_FLOAT = np.dtype(np.float64)
+
+
+def _finite(q: np.ndarray, v: np.ndarray, x: np.ndarray) -> bool:
+    """Whether every entry of three 1-D float arrays is finite: first the sum of their entries as Python
+    floats (which turn any NaN or inf into a NaN or inf sum and never raise or warn), then, where
+    large finite entries overflow that sum, entry by entry."""
+    if math.isfinite(sum(q.tolist()) + sum(v.tolist()) + sum(x.tolist())):
+        return True
+    return bool(np.isfinite(q).all() and np.isfinite(v).all() and np.isfinite(x).all())
 
 
 def option(name: str, value: Any, choices: Sequence[str]) -> str:
@@ -234,165 +248,3 @@ def flag(name: str, value: Any) -> bool:
     if not isinstance(value, (bool, np.bool_)):
         raise InvalidArgument(name, value, "expected True or False")
     return bool(value)
-
-
-def joint_names(name: str, value: Any, known: Sequence[str], *, allow_empty: bool = False) -> list[str]:
-    """A sequence of distinct joint names, each one of `known`.
-
-    Args:
-        name: the argument's name (for the error).
-        value: a sequence of joint names.
-        known: the model's joint names.
-        allow_empty: accept an empty sequence.
-
-    Returns:
-        The names, in the order given.
-
-    Raises:
-        InvalidArgument: not a sequence of strings, an unknown or repeated name, or empty.
-    """
-    if isinstance(value, (str, bytes)) or not isinstance(value, Sequence | np.ndarray):
-        raise InvalidArgument(name, value, "expected a sequence of joint names")
-    names = list(value)
-    for joint in names:
-        if not isinstance(joint, str) or joint not in known:
-            raise InvalidArgument(name, value, f"{joint!r} is not a joint; joints: {list(known)}")
-    if len(set(names)) != len(names):
-        raise InvalidArgument(name, value, "a joint is named twice")
-    if not names and not allow_empty:
-        raise InvalidArgument(name, value, "give at least one joint")
-    return names
-
-
-def joint_values(name: str, value: Any, names: Sequence[str], known: Sequence[str],
-                 sizes: Mapping[str, int] | None = None) -> dict[str, float | np.ndarray]:
-    """Joint values as {joint: finite float, or array for a joint of several freedoms}: a mapping by
-    name, or numbers in the order of `names` (each joint taking `sizes[joint]` of them, default 1).
-
-    Args:
-        name: the argument's name (for the error).
-        value: a mapping joint -> value, or numbers in the order of `names`.
-        names: the joints a sequence of numbers is read for, in order.
-        known: the model's joint names (the keys a mapping may use).
-        sizes: joint -> how many numbers it takes (its freedoms; default 1).
-
-    Returns:
-        Joint -> value: a float (rad or m) for a joint of one freedom, a float array of its size otherwise.
-
-    Raises:
-        InvalidArgument: unknown joints, wrong count, non-numbers, NaN or inf.
-    """
-    if isinstance(value, Mapping):
-        joint_names(name, list(value), known, allow_empty=True)
-        out = {}
-        for joint, v in value.items():
-            if np.ndim(v) == 0:
-                out[joint] = number(f"{name}[{joint!r}]", v)
-            else:
-                out[joint] = array(f"{name}[{joint!r}]", v, int(np.size(v)), batch=False)
-        return out
-    widths = [1 if sizes is None else sizes.get(n, 1) for n in names]
-    flat = array(name, value, sum(widths), batch=False) if widths else array(name, value, 0, batch=False)
-    out, i = {}, 0
-    for joint, w in zip(names, widths):
-        out[joint] = float(flat[i]) if w == 1 else flat[i:i + w].copy()
-        i += w
-    return out
-
-
-def sample_inputs(name: str, values: Any, names: Sequence[str], n: int, known: Sequence[str],
-                  sizes: Mapping[str, int] | None = None) -> tuple[list[str], np.ndarray]:
-    """Batched input values: an (n, k) array in `names` order (k the sum of their `sizes`, default 1
-    each), or a mapping joint name -> (n,) values (or (n, size) for a joint of several freedoms).
-
-    Args:
-        name: the argument's name (for the error).
-        values: an (n, k) array in `names` order, or a mapping joint -> (n,) or (n, size) values (a scalar: the
-            same for every sample).
-        names: the joints, in the order of an array's columns.
-        n: number of samples.
-        known: the model's joint names (the keys a mapping may use).
-        sizes: joint -> how many columns it takes (its freedoms; default 1).
-
-    Returns:
-        The joint names and an (n, k) float array.
-
-    Raises:
-        InvalidArgument: unknown joints, wrong shape, non-numbers, NaN or inf.
-    """
-    width = {j: 1 if sizes is None else sizes.get(j, 1) for j in known}
-    if isinstance(values, Mapping):
-        keys = joint_names(name, list(values), known, allow_empty=True)
-        cols = []
-        for k in keys:
-            v = values[k]
-            if np.ndim(v) == 0 and width[k] == 1:
-                cols.append(np.full((n, 1), number(f"{name}[{k!r}]", v)))
-            else:
-                cols.append(array(f"{name}[{k!r}]", np.reshape(v, (n, width[k])) if np.size(v) == n * width[k] else v,
-                                  width[k]).reshape(n, width[k]))
-        return keys, (np.concatenate(cols, axis=1) if cols else np.zeros((n, 0)))
-    k = sum(width[j] for j in names)
-    x = array(name, values, k)
-    if x.shape != (n, k):
-        raise InvalidArgument(name, values, f"expected shape ({n}, {k}): one row per sample")
-    return list(names), x
-
-
-def sample_fext(name: str, fext: Any, n: int, njoints: int) -> list:
-    """Per-sample external forces.
-
-    Args:
-        name: the argument's name (for the error).
-        fext: None, an (n, njoints, 6) array of wrenches [f, m] (N, N m) in each joint's local frame, or n values
-            each as `external_forces` takes.
-        n: number of samples.
-        njoints: the model's joint count, universe included.
-
-    Returns:
-        n values as `external_forces` returns them (None where there are none).
-
-    Raises:
-        InvalidArgument: a wrong shape or count.
-    """
-    if fext is None:
-        return [None] * n
-    if isinstance(fext, np.ndarray):
-        if fext.shape != (n, njoints, 6):
-            raise InvalidArgument(name, fext, f"expected ({n}, {njoints}, 6) or {n} per-sample values")
-        return [external_forces(name, sample, njoints) for sample in fext]
-    if len(fext) != n:
-        raise InvalidArgument(name, fext, f"expected one value per sample ({n})")
-    return [external_forces(name, f, njoints) for f in fext]
-
-
-def external_forces(name: str, value: Any, njoints: int) -> Any:
-    """External forces for Pinocchio's RNEA: None, or one force per joint (universe first).
-
-    Args:
-        name: the argument's name (for the error).
-        value: None, a `pin.StdVec_Force` or a sequence of `pin.Force`, or an (njoints, 6) array of wrenches [f,
-            m] (N, N m) in each joint's local frame, universe first.
-        njoints: the model's joint count, universe included.
-
-    Returns:
-        None, or a `pin.StdVec_Force` of njoints forces.
-
-    Raises:
-        InvalidArgument: wrong count, wrong type, NaN or inf.
-    """
-    if value is None:
-        return None
-    if isinstance(value, (pin.StdVec_Force, list, tuple)) and all(isinstance(f, pin.Force) for f in value):
-        rows = np.array([f.vector for f in value]).reshape(-1, 6)
-    else:
-        rows = array(name, value, 6)
-        rows = rows.reshape(-1, 6)
-    if rows.shape[0] != njoints:
-        raise InvalidArgument(name, value, f"expected one force per joint ({njoints}, universe first), got {rows.shape[0]}")
-    if not np.all(np.isfinite(rows)):
-        raise InvalidArgument(name, value, "must be finite")
-    out = pin.StdVec_Force()
-    for row in rows:
-        out.append(pin.Force(row[:3].copy(), row[3:].copy()))
-    return out

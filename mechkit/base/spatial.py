@@ -41,20 +41,6 @@ for _i, _j, _k in ((0, 1, 2), (1, 2, 0), (2, 0, 1)):
     LEVI_CIVITA[3 * _i + _j, _k], LEVI_CIVITA[3 * _j + _i, _k] = 1.0, -1.0
 
 
-def cross_batch(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """a x b on the last axis of two broadcastable (..., 3) arrays, as one matrix product.
-
-    Args:
-        a: (..., 3) vectors.
-        b: (..., 3) vectors, broadcastable with `a`.
-
-    Returns:
-        a x b, shape (..., 3) (the broadcast shape).
-    """
-    outer = a[..., :, None] * b[..., None, :]
-    return outer.reshape(*outer.shape[:-2], 9) @ LEVI_CIVITA
-
-
 def skew(d: np.ndarray) -> np.ndarray:
     """[d]x, so that skew(d) @ b = d x b.
 

@@ -1,22 +1,24 @@
-"""Speed of the core's dynamics against one raw Pinocchio call and MuJoCo called bare (issue 13).
+"""Speed of the core's dynamics against one raw Pinocchio call and MuJoCo called bare (issues 13 and 21).
 
 For one mechanism, every row is timed alternately with one raw `pin.constraintDynamics`, repeat after
-repeat; each keeps its fastest repeat (the least disturbed on a shared machine) and the ratio is
-that of the two minima.
-Rows: the forward-dynamics wrapper; the inverse dynamics with every reaction, one sample and batched
-(`BATCH` samples per call, time per sample), determinacy off and on; velocities and accelerations;
-MuJoCo's `mj_forward` and `mj_inverse` called bare on a state written once (warm start: each
-repeated call starts from the previous call's `qacc_warmstart`, MuJoCo's best case; a cold row with
-`mjDSBL_WARMSTART`), and `mj_inverse` plus the least-squares split of its constraint forces into
-efforts (`MujocoPeer.inverse`). Each target of issue 13 is a ratio checked on these rows.
+repeat; each keeps its fastest repeat (the least disturbed on a shared machine) and the ratio is that
+of the two minima. Rows: the forward-dynamics wrapper (proximal) and the exact null-space method; the
+inverse dynamics with every reaction, one sample and batched (`BATCH` samples per call, time per
+sample), determinacy off and on; velocities and accelerations; MuJoCo's `mj_forward` and `mj_inverse`
+called bare on a state written once (warm start: each repeated call starts from the previous call's
+`qacc_warmstart`, MuJoCo's best case; a cold row with `mjDSBL_WARMSTART`), and `mj_inverse` plus the
+least-squares split of its constraint forces into efforts (`MujocoPeer.inverse`). The targets are
+ratios of these rows; where one is missed, a breakdown times the steps of the call behind it in turn
+with the whole call, so that they read as shares of it.
 """
 
 from __future__ import annotations
 
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
+import pinocchio as pin
 
 from mechkit.base.exceptions import MechkitError
 from mechkit.bench.raw import raw_constraint_dynamics
@@ -27,6 +29,17 @@ from mechkit.mechanism import Mechanism
 #: Samples per batched call (the states of `make_samples`, tiled).
 BATCH = 64
 RAW = "raw pin.constraintDynamics (mu=1e-9)"
+FORWARD = "forward_dynamics wrapper (proximal)"
+EXACT = "forward_dynamics (nullspace, exact)"
+ONE, ONE_DET = "inverse_dynamics, every reaction, determinacy off", "inverse_dynamics, every reaction, determinacy on"
+BATCHED, BATCHED_DET = (f"batched inverse_dynamics (N={BATCH}), determinacy off",
+                        f"batched inverse_dynamics (N={BATCH}), determinacy on")
+MJ_FORWARD, MJ_SPLIT = "MuJoCo mj_forward bare, warm start", "MuJoCo mj_inverse + split into efforts"
+#: Issue 21's limits on one sample of inverse dynamics / raw, by mechanism.
+ONE_SAMPLE_LIMITS = {"four_bar": 15.0, "parallel_2t1r": 10.0, "deployable_9rr12uru": 1.0}
+#: The large model where the core's dynamics must match the peer: exact forward dynamics no slower than
+#: MuJoCo's mj_forward, inverse dynamics per sample no slower than one raw constraintDynamics.
+LARGE = "deployable_9rr12uru"
 
 
 @dataclass(frozen=True)
@@ -40,7 +53,7 @@ class SpeedRow:
 
 @dataclass(frozen=True)
 class SpeedTarget:
-    """A target of issue 13: `value` (a ratio) against `limit` (met when value <= limit)."""
+    """A target of issue 13 or 21: `value` (a ratio) against `limit` (met when value <= limit)."""
 
     label: str
     value: float
@@ -53,13 +66,25 @@ class SpeedTarget:
 
 
 @dataclass(frozen=True)
+class Phase:
+    """One step of a call: microseconds and its share of the whole call (timed alternately with it)."""
+
+    call: str
+    label: str
+    us: float
+    share: float
+
+
+@dataclass(frozen=True)
 class MechanismSpeed:
-    """The rows of one mechanism (nv velocity coordinates) and its targets."""
+    """The rows of one mechanism (nv velocity coordinates), its targets and, where one is missed, the
+    breakdown of the calls behind it."""
 
     name: str
     nv: int
     rows: list[SpeedRow]
     targets: list[SpeedTarget]
+    phases: list[Phase] = field(default_factory=list)
 
 
 def _calls(mech: Mechanism, samples: list[Sample]) -> dict[str, tuple[Callable[[Sample], object], int]]:
@@ -72,13 +97,12 @@ def _calls(mech: Mechanism, samples: list[Sample]) -> dict[str, tuple[Callable[[
     Acc = np.array([s.accelerations for s in samples] * reps)[:BATCH]
     calls = {
         RAW: (lambda s: raw(s.q, s.v, s.tau), 1),
-        "forward_dynamics wrapper (proximal)": (lambda s: mech.forward_dynamics(s.q, s.v, s.tau), 1),
-        "inverse_dynamics, every reaction, determinacy off": (
-            lambda s: mech.inverse_dynamics(s.q, s.v, s.a, determinacy=False), 1),
-        "inverse_dynamics, every reaction, determinacy on": (lambda s: mech.inverse_dynamics(s.q, s.v, s.a), 1),
-        f"batched inverse_dynamics (N={BATCH}), determinacy off": (
-            lambda s: mech.inverse_dynamics_batch(Q, V, A, determinacy=False), BATCH),
-        f"batched inverse_dynamics (N={BATCH}), determinacy on": (lambda s: mech.inverse_dynamics_batch(Q, V, A), BATCH),
+        FORWARD: (lambda s: mech.forward_dynamics(s.q, s.v, s.tau), 1),
+        EXACT: (lambda s: mech.forward_dynamics(s.q, s.v, s.tau, "nullspace"), 1),
+        ONE: (lambda s: mech.inverse_dynamics(s.q, s.v, s.a, determinacy=False), 1),
+        ONE_DET: (lambda s: mech.inverse_dynamics(s.q, s.v, s.a), 1),
+        BATCHED: (lambda s: mech.inverse_dynamics_batch(Q, V, A, determinacy=False), BATCH),
+        BATCHED_DET: (lambda s: mech.inverse_dynamics_batch(Q, V, A), BATCH),
         "velocities": (lambda s: mech.velocities(s.q, s.rates, names), 1),
         "accelerations": (lambda s: mech.accelerations(s.q, s.v, s.accelerations, names), 1),
         f"batched velocities (N={BATCH})": (lambda s: mech.velocities_batch(Q, R, names), BATCH),
@@ -104,10 +128,10 @@ def _mujoco_calls(mech: Mechanism, s: Sample) -> dict[str, tuple[Callable[[Sampl
     inv = MujocoPeer(mech)
     inv.set_state(s.q, s.v, a=s.a)
     return {
-        "MuJoCo mj_forward bare, warm start": (lambda _: mj.mj_forward(warm.model, warm.data), 1),
+        MJ_FORWARD: (lambda _: mj.mj_forward(warm.model, warm.data), 1),
         "MuJoCo mj_forward bare, cold start": (lambda _: mj.mj_forward(cold.model, cold.data), 1),
         "MuJoCo mj_inverse bare": (lambda _: mj.mj_inverse(inv.model, inv.data), 1),
-        "MuJoCo mj_inverse + split into efforts": (lambda t: split.inverse(t.q, t.v, t.a), 1),
+        MJ_SPLIT: (lambda t: split.inverse(t.q, t.v, t.a), 1),
     }
 
 
@@ -121,7 +145,8 @@ def _interleaved(fn: Callable[[Sample], object], raw: Callable[[Sample], object]
 
 
 def measure(mech: Mechanism, budget: float = 0.3, repeats: int = 15) -> MechanismSpeed:
-    """Every row of one mechanism, each timed alternately with the raw call; then the targets of issue 13."""
+    """Every row of one mechanism, each timed alternately with the raw call; then the targets and, where
+    one is missed, the breakdown of the calls behind it (`phases`)."""
     samples = make_samples(mech, 3)
     calls = _calls(mech, samples)
     raw_fn = calls[RAW][0]
@@ -135,32 +160,115 @@ def measure(mech: Mechanism, budget: float = 0.3, repeats: int = 15) -> Mechanis
         except MechkitError:
             continue  # e.g. a cut Pinocchio's constraintDynamics cannot express: no row
         rows.append(SpeedRow(label, t / per * 1e6, t / per / t_raw))
-    return MechanismSpeed(mech.spec.name, mech.model.nv, rows, targets(rows))
+    found = targets(rows, mech.spec.name)
+    missed = {t.label for t in found if not t.met}
+    return MechanismSpeed(mech.spec.name, mech.model.nv, rows, found, phases(mech, samples, missed, budget, repeats))
 
 
-def targets(rows: list[SpeedRow]) -> list[SpeedTarget]:
-    """Issue 13's targets on a mechanism's rows (those whose rows were measured)."""
+def targets(rows: list[SpeedRow], name: str = "") -> list[SpeedTarget]:
+    """The targets of issues 13 and 21 on a mechanism's rows (those whose rows were measured)."""
     r = {row.label: row.ratio for row in rows}
     out = []
 
-    def add(label: str, num: str, den: str | None, limit: float) -> None:
-        if num in r and (den is None or den in r):
+    def add(label: str, num: str, den: str | None, limit: float | None) -> None:
+        if limit is not None and num in r and (den is None or den in r):
             out.append(SpeedTarget(label, r[num] / (r[den] if den else 1.0), limit))
 
-    one, one_det = ("inverse_dynamics, every reaction, determinacy off", "inverse_dynamics, every reaction, determinacy on")
-    batch, batch_det = (f"batched inverse_dynamics (N={BATCH}), determinacy off",
-                        f"batched inverse_dynamics (N={BATCH}), determinacy on")
-    add("one sample of inverse dynamics / raw", one, None, 10.0)
-    add("batched inverse dynamics per sample / raw", batch, None, 5.0)
-    add("batched per sample / (mj_inverse + split)", batch, "MuJoCo mj_inverse + split into efforts", 1.0)
-    add("determinacy on / off, one sample", one_det, one, 1.5)
-    add("determinacy on / off, batched", batch_det, batch, 1.5)
-    add("forward_dynamics wrapper / raw", "forward_dynamics wrapper (proximal)", None, 1.5)
+    add("one sample of inverse dynamics / raw", ONE, None, ONE_SAMPLE_LIMITS.get(name))
+    add("batched inverse dynamics per sample / raw", BATCHED, None, 1.0 if name == LARGE else 5.0)
+    add("forward_dynamics wrapper / raw", FORWARD, None, 3.0)
+    add("exact forward dynamics / MuJoCo mj_forward", EXACT, MJ_FORWARD, 1.0 if name == LARGE else None)
+    add("batched per sample / (mj_inverse + split)", BATCHED, MJ_SPLIT, 1.0)
+    add("determinacy on / off, one sample", ONE_DET, ONE, 1.5)
+    add("determinacy on / off, batched", BATCHED_DET, BATCHED, 1.5)
     return out
 
 
+def phases(mech: Mechanism, samples: list[Sample], missed: set[str], budget: float = 0.3,
+           repeats: int = 15) -> list[Phase]:
+    """Where the time of the calls behind missed targets goes: the whole call, the same call in the core
+    (its difference: the argument checks and dispatch), the steps that can be called alone (Pinocchio's
+    passes, the closure kernel, the reactions, the J a + gamma check; the core's remainder is the solve and
+    the glue between steps), and MuJoCo's mj_forward beside the exact forward dynamics; all timed in turn
+    on one state (`_round_robin`), each step's share its minimum over the whole call's."""
+    from mechkit import core
+
+    cm, cd = mech.closure_model, mech.closure_model.create_data()
+    model, data, k = cm.model, cd.pin, cm.kernel
+    s = samples[0]
+    q, v, a, tau = s.q, s.v, s.a, s.tau
+    calls: dict[str, tuple[tuple[str, Callable], Callable | None, list[tuple[str, Callable]]]] = {}
+    if "one sample of inverse dynamics / raw" in missed:
+        lam = mech.inverse_dynamics(q, v, a, determinacy=False).multipliers
+        world = k.world(cd.used_placements())
+        _, _, W = k.rows(world, cd.J, q)
+        origins, points = cd.oMi[1:, :, 3].copy(), k.points(world).copy()
+        calls[ONE] = (("Mechanism.inverse_dynamics", lambda _: mech.inverse_dynamics(q, v, a, determinacy=False)),
+                      lambda _: core.inverse_dynamics(cm, cd, q, v, a, None, None, determinacy_test=False,
+                                                      generic_rank=mech.independent_rows), [
+            ("Pinocchio: computeJointJacobians + rnea", lambda _: (pin.computeJointJacobians(model, data, q),
+                                                                  pin.rnea(model, data, q, v, a))),
+            ("closure rows: placements read, world vectors, rows", lambda _: k.rows(k.world(cd.used_placements()), cd.J, q)),
+            ("reactions: tree wrenches to world axes, the multipliers' loads",
+             lambda _: (core.tree_wrenches(cd.oMi, cd.f), k.joint_loads(W, lam, origins, points)))])
+    if "forward_dynamics wrapper / raw" in missed:
+        raw = raw_constraint_dynamics(mech)
+        legacy = core.LegacyConstraints(model, list(mech.cuts), len(k.couplings))
+        legacy.dynamics(q, v, tau, core.proximal_settings(1e-12, 1e-9, 20))
+
+        def check(_: Sample) -> bool:
+            J = legacy.jacobian()
+            rhs = legacy.rhs()
+            r = J.dot(a) - rhs
+            return bool(r.dot(r) <= rhs.dot(rhs))
+
+        calls[FORWARD] = (("Mechanism.forward_dynamics", lambda _: mech.forward_dynamics(q, v, tau)),
+                          lambda _: core.forward_dynamics(cm, cd, q, v, tau), [
+            ("Pinocchio: constraintDynamics (the raw call)", lambda _: raw(q, v, tau)),
+            ("J a + gamma check: constraint Jacobian, right-hand side, two dots", check)])
+    if "exact forward dynamics / MuJoCo mj_forward" in missed:
+        def rows_and_drift(_: Sample) -> np.ndarray:
+            G = cd.used_placements()
+            world = k.world(G)
+            _, _, W = k.rows(world, cd.J, q)
+            return k.drift(G, k.twists(cd.J, v), k.twists(cd.dJ, v), q, v, world, W)
+
+        pin.computeJointJacobiansTimeVariation(model, data, q, v)
+        calls[EXACT] = (("Mechanism.forward_dynamics, nullspace", lambda _: mech.forward_dynamics(q, v, tau, "nullspace")),
+                        lambda _: core.forward_dynamics(cm, cd, q, v, tau, "nullspace"), [
+            ("Pinocchio: computeJointJacobiansTimeVariation + crba + nonLinearEffects",
+             lambda _: (pin.computeJointJacobiansTimeVariation(model, data, q, v), pin.crba(model, data, q),
+                        pin.nonLinearEffects(model, data, q, v))),
+            ("closure rows and drift: placements read, world vectors, rows, twists, drift", rows_and_drift),
+            *((f"(for comparison) {label}", fn) for label, (fn, _) in _mujoco_calls(mech, s).items() if label == MJ_FORWARD)])
+    out = []
+    for call, ((label, whole), in_core, steps) in calls.items():
+        t = _round_robin({"whole": whole, "core": in_core, **dict(steps)}, samples, budget, repeats)
+        total, core_t = t["whole"], t["core"]
+        named = sum(x for name, x in t.items() if name not in ("whole", "core") and not name.startswith("(for"))
+        out += [Phase(call, f"whole call ({label})", total * 1e6, 1.0),
+                Phase(call, "argument checks and dispatch (the whole call minus the core's)",
+                      max(total - core_t, 0.0) * 1e6, max(total - core_t, 0.0) / total)]
+        out += [Phase(call, name, x * 1e6, x / total) for name, x in t.items() if name not in ("whole", "core")]
+        rest = max(core_t - named, 0.0)  # by difference: 0 where the steps' noise exceeds it
+        out.append(Phase(call, "the rest of the core (by difference): solve, certificates, results, glue",
+                         rest * 1e6, rest / total))
+    return out
+
+
+def _round_robin(fns: dict[str, Callable[[Sample], object]], samples: list[Sample], budget: float,
+                 repeats: int) -> dict[str, float]:
+    """Seconds per call of each function, all timed in turn `repeats` times (so that a disturbance hits
+    them alike); the minimum of each."""
+    best = dict.fromkeys(fns, float("inf"))
+    for _ in range(repeats):
+        for name, fn in fns.items():
+            best[name] = min(best[name], time_per_call(fn, samples, budget / repeats / len(fns), 1)[0])
+    return best
+
+
 def markdown(results: list[MechanismSpeed]) -> list[str]:
-    """The benchmark page's section: one table of rows per mechanism, then the targets."""
+    """The benchmark page's section: one table of rows per mechanism, the targets, and the breakdowns."""
     names = [r.name for r in results]
     labels = list(dict.fromkeys(row.label for r in results for row in r.rows))
     lines = ["| call | " + " | ".join(f"{n} (nv={r.nv})" for n, r in zip(names, results)) + " |",
@@ -179,4 +287,9 @@ def markdown(results: list[MechanismSpeed]) -> list[str]:
             t = next((x for x in r.targets if x.label == label), None)
             cells.append("-" if t is None else f"{t.value:.2f} (<= {t.limit:g}: {'met' if t.met else 'MISSED'})")
         lines.append(f"| {label} | " + " | ".join(cells) + " |")
+    for r in results:
+        for call in dict.fromkeys(p.call for p in r.phases):
+            lines += ["", f"Where the time of `{call}` goes on {r.name} (the steps timed in turn with the whole call):", "",
+                      "| step | us | share of the call |", "|---|---|---|"]
+            lines += [f"| {p.label} | {p.us:.1f} | {p.share:.0%} |" for p in r.phases if p.call == call]
     return lines

@@ -15,12 +15,13 @@ one sample or, when its name ends in `_batch`, a leading sample axis N:
 | forward dynamics | `forward_dynamics` | `forward_dynamics_batch` |
 | inverse dynamics, every joint's reaction | `inverse_dynamics` | `inverse_dynamics_batch` |
 | what multipliers alone transmit through the joints | `multiplier_reactions` | |
+| the tree joints' RNEA wrenches in world axes | `tree_wrenches` (any leading axes) | |
 
 Inside: `records` (closures, couplings, springs, actuators), `joints` (values of any joint type),
 `cuts` (rows each closure keeps), `kernel` (the closure-row mathematics), `rank` (the rank judge),
 `assembly` (closing loops, from near or far),
-`structure` (loops, Kutzbach count, idle freedoms), `model`, `kinematics`, `inverse`,
-`determinacy`, `forward`, `pin_constraints` (the one module that speaks Pinocchio's constraint
+`structure` (loops, Kutzbach count, idle freedoms), `model`, `kinematics`, `inverse`, `efforts`
+(its statics solve), `determinacy`, `forward`, `pin_constraints` (the one module that speaks Pinocchio's constraint
 API), `results`. Nothing outside this package imports those submodules: this face is the contract.
 """
 
@@ -29,7 +30,13 @@ from mechkit.core.cuts import CutRows
 from mechkit.core.forward import DEFAULTS as FORWARD_DEFAULTS
 from mechkit.core.forward import METHODS as FORWARD_METHODS
 from mechkit.core.forward import forward_dynamics, forward_dynamics_batch
-from mechkit.core.inverse import DISTRIBUTIONS, inverse_dynamics, inverse_dynamics_batch, multiplier_reactions
+from mechkit.core.inverse import (
+    DISTRIBUTIONS,
+    inverse_dynamics,
+    inverse_dynamics_batch,
+    multiplier_reactions,
+    tree_wrenches,
+)
 from mechkit.core.joints import set_value as set_joint_value
 from mechkit.core.joints import size as joint_size
 from mechkit.core.joints import value as joint_value
@@ -84,5 +91,5 @@ __all__ = [
     "forward_dynamics_batch", "idle_freedoms", "independent_rows", "inverse_dynamics", "inverse_dynamics_batch",
     "joint_size", "joint_value", "joint_values", "kinematic_pass", "loop_joints", "mobility", "multiplier_reactions",
     "numerical_rank", "passive_condition", "passive_verdict", "proximal_settings", "raw_constraint_dynamics", "second_order_inconsistency", "second_order_velocity",
-    "set_joint_value", "singular_error", "solve_passive", "velocities", "velocities_batch",
+    "set_joint_value", "singular_error", "solve_passive", "tree_wrenches", "velocities", "velocities_batch",
 ]

@@ -150,9 +150,9 @@ def _residual_and_jacobian(cm: ClosureModel, cd: ClosureData, q: np.ndarray,
 
 
 def _placements(cm: ClosureModel, cd: ClosureData, q: np.ndarray) -> np.ndarray:
-    """(1, n_used, 4, 4) placements of the used joints at q after `forwardKinematics` only."""
+    """(1, n_used, 4, 4) placements of the used joints at q after `forwardKinematics` only (the data's buffer)."""
     pin.forwardKinematics(cm.model, cd.pin, q)
-    return np.array([cd.placements[int(j)].homogeneous for j in cm.kernel.joints]).reshape(1, -1, 4, 4)
+    return cd.used_placements()[None]
 
 
 def _newton_step(J: np.ndarray, e: np.ndarray) -> np.ndarray:

@@ -7,7 +7,9 @@ J a + gamma = 0, by four methods with tolerances relative to the model.
   Lagrangian of O(n) sweeps: the method for many loops);
 - "kkt": a dense KKT solve on independent closure rows of mechkit's kernel, equilibrated before the LU;
 - "nullspace": the exact reference: the accelerations that satisfy every row, a = a_p + N z, with N a
-  basis of the null space of J (SVD) and the reduced mass matrix N^T M N.
+  basis of the null space of J and the reduced mass matrix N^T M N; N from one LU of a square block of
+  J where bounds certify the rank and the consistency the SVD would decide (the method for many
+  loops), else from the SVD.
 
 Every result is checked against J a + gamma = 0 on the rows its method solved: a violation beyond
 `ACCELERATION_TOL` is an error (`ConstraintViolated`), never a return value, and a state whose gamma
@@ -23,10 +25,11 @@ from collections.abc import Callable
 import numpy as np
 import pinocchio as pin
 import scipy.linalg
+import scipy.linalg.blas
+import scipy.linalg.lapack
 
 from mechkit.base.exceptions import ConstraintViolated, InconsistentMotion, SingularConfiguration
 from mechkit.core import rank
-from mechkit.core.kinematics import kinematic_pass
 from mechkit.core.model import ClosureData, ClosureModel
 from mechkit.core.pin_constraints import LegacyConstraints, proximal_settings
 from mechkit.core.results import ForwardDynamicsResult
@@ -59,13 +62,20 @@ def check_acceleration(J: np.ndarray, a: np.ndarray, gamma: np.ndarray, what: st
             (called only when the tests without it fail).
 
     Raises:
+        SingularConfiguration: a not finite.
         InconsistentMotion: gamma leaves the range of J beyond `rank.RANGE_TOL` (no rigid answer).
         ConstraintViolated: max |J a + gamma| above the tolerance.
     """
-    if J.shape[0] == 0:
+    rows = J.shape[0]
+    if rows:
+        r = J.dot(a)
+        r += gamma
+        if _settled(r, gamma, J, a):
+            return
+    if not np.isfinite(a).all():
+        raise SingularConfiguration(float("inf"), f"{what} returned non-finite accelerations")
+    if not rows:
         return
-    r = J @ a
-    r += gamma
     residual = float(np.abs(r).max())
     g = float(np.abs(gamma).max())
     if residual <= ACCELERATION_TOL * g:  # below a part of the limit: the rest need not be computed
@@ -84,6 +94,20 @@ def check_acceleration(J: np.ndarray, a: np.ndarray, gamma: np.ndarray, what: st
         raise ConstraintViolated(residual, limit, what)
 
 
+def _settled(r: np.ndarray, gamma: np.ndarray, J: np.ndarray, a: np.ndarray) -> bool:
+    """Whether dots show max |r| <= `ACCELERATION_TOL` (max_i |J_i| max |a| + max |gamma|) for r = J a +
+    gamma (rows,), as |r| <= TOL |gamma| / sqrt(rows) or |r| <= TOL |J|_F |a| / sqrt(rows nv) implies (a
+    NaN or inf fails both): the common case of the check."""
+    try:
+        rr = r.dot(r) * r.size
+        return rr <= _TOL2 * gamma.dot(gamma) or rr * a.size <= _TOL2 * rank.squared_norm(J) * a.dot(a)
+    except FloatingPointError:  # a square under- or overflowing under np.errstate(all="raise"): not shown
+        return False
+
+
+_TOL2 = ACCELERATION_TOL ** 2
+
+
 def _unconstrained_scale(cm: ClosureModel, data: pin.Data, q: np.ndarray, v: np.ndarray, tau: np.ndarray) -> float:
     """max |tau - nle| / M_jj: the accelerations the loads would cause with no closure (rad/s^2 or m/s^2)."""
     loads = np.abs(tau - pin.rnea(cm.model, data, q, v, np.zeros(cm.nv)))
@@ -98,35 +122,40 @@ def _legacy(cm: ClosureModel, cd: ClosureData, ordered: bool = False) -> LegacyC
     return cd.legacy[key]
 
 
-def _settings(cm: ClosureModel, cd: ClosureData, method: str, mu: float, accuracy: float, max_iter: int):
-    """Pinocchio's proximal settings of a method, made once per (method, mu, accuracy, max_iter): mu in
-    units of the Delassus scale; the accuracy divided by it ("proximal": Pinocchio tests its iterations on
-    the multipliers) or by the rows' lever arm and `LCABA_STEP_MARGIN` ("lcaba": it tests J delta a)."""
+def _settings(cm: ClosureModel, cd: ClosureData, method: str, mu: float | None, accuracy: float | None,
+              max_iter: int | None):
+    """Pinocchio's proximal settings of a method, made once per (method, mu, accuracy, max_iter) (None:
+    `DEFAULTS`): mu in units of the Delassus scale; the accuracy divided by it ("proximal": Pinocchio
+    tests its iterations on the multipliers) or by the rows' lever arm and `LCABA_STEP_MARGIN` ("lcaba":
+    it tests J delta a)."""
     key = (method, mu, accuracy, max_iter)
     prox = cd.settings.get(key)
     if prox is None:
+        mu, accuracy, max_iter = (d if x is None else x for x, d in zip((mu, accuracy, max_iter), DEFAULTS[method]))
         divisor = cm.delassus_scale if method == "proximal" else LCABA_STEP_MARGIN * max(cm.row_scale, 1.0)
         prox = cd.settings[key] = proximal_settings(accuracy / divisor, mu * cm.delassus_scale, max_iter)
     return prox
 
 
 def _proximal(cm, cd, q, v, tau, mu, accuracy, max_iter, baumgarte) -> ForwardDynamicsResult:
-    legacy = _legacy(cm, cd)
+    """Pinocchio's proximal constraintDynamics; the constraint force J^T lambda from its multipliers."""
+    legacy = cd.legacy.get("proximal") or _legacy(cm, cd)
     legacy.set_baumgarte(baumgarte)
     settings = _settings(cm, cd, "proximal", mu, accuracy, max_iter)
     a = legacy.dynamics(q, v, tau, settings).copy()
-    if not math.isfinite(a @ a):
-        raise SingularConfiguration(float("inf"), f"pin.constraintDynamics returned non-finite accelerations (mu={mu})")
-    J = legacy.jacobian()
-    check_acceleration(J, a, legacy.drift(J.shape[0]), "forward dynamics (proximal)",
-                       lambda: _unconstrained_scale(cm, cd.pin, q, v, tau))
-    return ForwardDynamicsResult(a, pin.rnea(cm.model, legacy.data, q, v, a) - tau, settings.iter)
+    J, rhs = legacy.jacobian(), legacy.rhs()  # rhs = -gamma
+    r = J.dot(a)
+    r -= rhs
+    if not _settled(r, rhs, J, a):
+        check_acceleration(J, a, -rhs, "forward dynamics (proximal)", lambda: _unconstrained_scale(cm, cd.pin, q, v, tau))
+    return ForwardDynamicsResult(a, J.T.dot(legacy.multipliers()), settings.iter)
 
 
 def _lcaba(cm, cd, q, v, tau, mu, accuracy, max_iter) -> ForwardDynamicsResult:
     """lcaba stops when the closure error, or else the last step |delta a|, falls below its one accuracy;
     it is given accuracy / max |J_i| (`_settings`), so that a step stop leaves J delta a within about
     `accuracy`; the final error (before the last step, plus J times that step) is checked against it."""
+    mu, accuracy, max_iter = (d if x is None else x for x, d in zip((mu, accuracy, max_iter), DEFAULTS["lcaba"]))
     if mu <= 0:
         raise SingularConfiguration(float("inf"), "lcaba needs a positive mu (its penalty is 1 / mu)")
     legacy = _legacy(cm, cd, ordered=True)
@@ -143,11 +172,13 @@ def _lcaba(cm, cd, q, v, tau, mu, accuracy, max_iter) -> ForwardDynamicsResult:
 
 def _rows_and_drift(cm: ClosureModel, cd: ClosureData, q: np.ndarray, v: np.ndarray,
                     baumgarte: tuple[float, float] | None) -> tuple[np.ndarray, np.ndarray]:
-    """mechkit's closure Jacobian (rows, nv) and drift (rows,) at (q, v), Baumgarte terms added."""
-    G, Jw, dJ = kinematic_pass(cm, cd, q[None], v[None])
-    k = cm.kernel
-    e, J, _ = k.evaluate(G[0], Jw[0], q)
-    gamma = k.drift(G[0], k.twists(Jw[0], v), k.twists(dJ[0], v), q, v)
+    """mechkit's closure Jacobian (rows, nv) and drift (rows,) at (q, v), Baumgarte terms added (one
+    Pinocchio pass, read as views: call before any other pass)."""
+    pin.computeJointJacobiansTimeVariation(cm.model, cd.pin, q, v)
+    k, Jw, G = cm.kernel, cd.J, cd.used_placements()
+    world = k.world(G)
+    e, J, W = k.rows(world, Jw, q)
+    gamma = k.drift(G, k.twists(Jw, v), k.twists(cd.dJ, v), q, v, world, W)
     if baumgarte is not None:
         kp, kd = baumgarte
         gamma = gamma + kd * (J @ v) + kp * e
@@ -160,15 +191,14 @@ def _power_of_two(x: float) -> float:
 
 
 def _mass_matrix(cm: ClosureModel, data: pin.Data, q: np.ndarray) -> np.ndarray:
-    """The symmetric joint-space mass matrix at q; refuse a coordinate with no inertia.
+    """The joint-space mass matrix at q as Pinocchio's crba fills it: its upper triangle (the lower one is
+    not read: BLAS symmetric products, or `np.triu`); refuse a coordinate with no inertia.
 
     Raises:
-        SingularConfiguration: a zero, negative or non-finite diagonal.
+        SingularConfiguration: a zero, negative or non-finite diagonal, or a non-finite entry.
     """
     M = pin.crba(cm.model, data, q)
-    M = np.triu(M) + np.triu(M, 1).T
-    d = np.diag(M)
-    if not np.all(np.isfinite(M)) or np.any(d <= 0):
+    if not (M.diagonal().min() > 0 and np.isfinite(M).all()):
         raise SingularConfiguration(float("inf"), "mass matrix: a coordinate carries no inertia (or the inertias are not finite)")
     return M
 
@@ -179,6 +209,7 @@ def _kkt(cm, cd, q, v, tau, baumgarte) -> ForwardDynamicsResult:
     1), so the pivot test is relative to the model's own scale."""
     J, gamma = _rows_and_drift(cm, cd, q, v, baumgarte)
     M = _mass_matrix(cm, cd.pin, q)
+    M = np.triu(M) + np.triu(M, 1).T
     nle = pin.nonLinearEffects(cm.model, cd.pin, q, v)
     for rows in ([cd.kkt_rows] if cd.kkt_rows is not None else []) + [None]:
         rows = rank.independent_rows(J) if rows is None else rows
@@ -204,10 +235,64 @@ def _kkt(cm, cd, q, v, tau, baumgarte) -> ForwardDynamicsResult:
 
 
 def _nullspace(cm, cd, q, v, tau, baumgarte) -> ForwardDynamicsResult:
-    """The exact solution on the constraint manifold's tangent space: a = a_p + N z."""
+    """The exact solution on the constraint manifold's tangent space, a = a_p + N z, N a basis of the
+    null space of J and the reduced mass matrix N^T M N: N from a partition of J where its bounds
+    certify the SVD's decisions (`_partitioned`), else from the SVD."""
     J, gamma = _rows_and_drift(cm, cd, q, v, baumgarte)
     M = _mass_matrix(cm, cd.pin, q)
     nle = pin.nonLinearEffects(cm.model, cd.pin, q, v)
+    split = _partitioned(cd, J, gamma) or _partitioned(cd, J, gamma, again=True)
+    a_p, N = split if split is not None else _svd_null_space(cm, J, gamma)
+    blas = scipy.linalg.blas
+    MN = blas.dsymm(1.0, M, N)
+    _, z, info = scipy.linalg.lapack.dposv(N.T.dot(MN), N.T.dot(tau - nle - blas.dsymv(1.0, M, a_p)))
+    if info:
+        raise SingularConfiguration(float("inf"), "reduced mass matrix N^T M N: a free motion carries no inertia")
+    a = a_p + N.dot(z)
+    check_acceleration(J, a, gamma, "forward dynamics (null space)")
+    return ForwardDynamicsResult(a, blas.dsymv(1.0, M, a) + nle - tau)
+
+
+def _partitioned(cd: ClosureData, J: np.ndarray, gamma: np.ndarray,
+                 again: bool = False) -> tuple[np.ndarray, np.ndarray] | None:
+    """(a_p (nv,), N (nv, nv - r)) with J a_p + gamma = 0 and J N = 0 through one LU of a square block
+    J[R, D] (independent rows R, then r independent columns D by pivoted QRs: chosen at the first call,
+    `again` at this one, kept on the data), where bounds give the SVD's decisions: rank r, as sigma_r(J)
+    >= sigma_min(J[R, D]) >= 1 / |J[R, D]^-1|_F > `rank.RANK_TOL` |J|_F and, N = [I; -J[R, D]^-1 J[R, I]]
+    spanning nv - r dimensions with sigma_min(N) >= 1, sigma_(r+1)(J) <= |J N|_F <= RANK_TOL |J|_F /
+    sqrt(min(rows, nv)) <= RANK_TOL sigma_1(J); and gamma inside the range of J to `rank.RANGE_TOL`
+    (|J a_p + gamma| bounds the part outside). None where a bound fails (the SVD decides)."""
+    lapack = scipy.linalg.lapack
+    if again or cd.partition is None:
+        rows = rank.independent_rows(J)
+        columns = np.sort(scipy.linalg.qr(J[rows], mode="r", pivoting=True)[1][:rows.size]) if rows.size else rows
+        cd.partition = rows, columns, np.delete(np.arange(J.shape[1]), columns)
+    rows, dep, ind = cd.partition
+    JR, size = J[rows], rank.squared_norm(J)
+    a_p, N = np.zeros(J.shape[1]), np.zeros((J.shape[1], ind.size))
+    N[ind] = np.eye(ind.size)
+    if rows.size:
+        lu, piv, info = lapack.dgetrf(JR[:, dep])
+        if info:
+            return None
+        inverse = lapack.dgetri(lu, piv)[0]
+        if not rank.RANK_TOL ** 2 * rank.squared_norm(inverse) * size < 1.0:
+            return None
+        X = lapack.dgetrs(lu, piv, np.column_stack((JR[:, ind], gamma[rows])))[0]  # the LU's solve: backward stable
+        N[dep], a_p[dep] = -X[:, :-1], -X[:, -1]
+    if not rank.squared_norm(J.dot(N)) * min(J.shape) <= rank.RANK_TOL ** 2 * size:
+        return None
+    outside = J.dot(a_p) + gamma
+    return (a_p, N) if outside.dot(outside) <= rank.RANGE_TOL ** 2 * gamma.dot(gamma) else None
+
+
+def _svd_null_space(cm: ClosureModel, J: np.ndarray, gamma: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """(a_p (nv,), N (nv, nv - rank J)): the minimum-norm particular solution of J a = -gamma and an
+    orthonormal basis of the null space of J, from its SVD.
+
+    Raises:
+        InconsistentMotion: gamma leaves the range of J beyond `rank.RANGE_TOL`.
+    """
     U, s, Vt = np.linalg.svd(J, full_matrices=True)
     r = rank.numerical_rank(s)
     outside = float(np.linalg.norm(U[:, r:].T @ gamma)) if J.size else 0.0
@@ -216,15 +301,7 @@ def _nullspace(cm, cd, q, v, tau, baumgarte) -> ForwardDynamicsResult:
                                  "the closure drift gamma leaves the range of J (the velocity moves along a freedom "
                                  "that exists only instantaneously)")
     a_p = -(Vt[:r].T @ ((U[:, :r].T @ gamma) / s[:r])) if r else np.zeros(cm.nv)
-    N = Vt[r:].T
-    reduced = N.T @ M @ N
-    try:
-        z = scipy.linalg.solve(reduced, N.T @ (tau - nle - M @ a_p), assume_a="pos")
-    except (np.linalg.LinAlgError, scipy.linalg.LinAlgError):
-        raise SingularConfiguration(float("inf"), "reduced mass matrix N^T M N: a free motion carries no inertia") from None
-    a = a_p + N @ z
-    check_acceleration(J, a, gamma, "forward dynamics (null space)")
-    return ForwardDynamicsResult(a, M @ a + nle - tau)
+    return a_p, Vt[r:].T
 
 
 def forward_dynamics(cm: ClosureModel, cd: ClosureData, q: np.ndarray, v: np.ndarray, tau: np.ndarray,
@@ -245,11 +322,6 @@ def forward_dynamics(cm: ClosureModel, cd: ClosureData, q: np.ndarray, v: np.nda
         InconsistentMotion: gamma leaves the range of J: no rigid answer at this state.
         MethodUnavailable: a cut or coupling Pinocchio's constraint models cannot express ("proximal", "lcaba").
     """
-    if method in DEFAULTS:
-        d_mu, d_acc, d_iter = DEFAULTS[method]
-        mu = d_mu if mu is None else mu
-        accuracy = d_acc if accuracy is None else accuracy
-        max_iter = d_iter if max_iter is None else max_iter
     if method == "proximal":
         return _proximal(cm, cd, q, v, tau, mu, accuracy, max_iter, baumgarte)
     if method == "lcaba":

@@ -30,7 +30,7 @@ import itertools
 import numpy as np
 import pinocchio as pin
 
-from mechkit.base.spatial import LEVI_CIVITA, cross_batch
+from mechkit.base.spatial import LEVI_CIVITA
 from mechkit.core.cuts import CouplingRow, CutRows
 
 
@@ -66,6 +66,19 @@ WRENCH_RESIDUAL_MAP[12:, :6] = WRENCH_MAP
 WRENCH_RESIDUAL_MAP[[0, 4, 8], 6], WRENCH_RESIDUAL_MAP[[12, 16, 20], 6] = -1.0, 1.0
 
 
+#: (9, 6) map of (p outer f).reshape(9) to [0, -p x f]: a wrench [f, m] about the origin moved to p.
+MOMENT_SHIFT = np.zeros((9, 6))
+MOMENT_SHIFT[:, 3:] = -LEVI_CIVITA
+#: (6, 16) map of a twist [v_O, omega] to the transpose of Xi = [[omega x, v_O], [0, 0]], flattened: the
+#: rate of a placement is dG/dt = Xi G.
+TWIST_MATRIX_T = np.zeros((6, 16))
+for _k, (_row, _col, _sign) in enumerate(((0, 3, 1), (1, 3, 1), (2, 3, 1))):
+    TWIST_MATRIX_T[_k, 4 * _col + _row] = _sign
+for _k, _entries in ((3, ((2, 1, 1), (1, 2, -1))), (4, ((0, 2, 1), (2, 0, -1))), (5, ((1, 0, 1), (0, 1, -1)))):
+    for _row, _col, _sign in _entries:  # Xi[row, col] = sign omega_k
+        TWIST_MATRIX_T[_k, 4 * _col + _row] = _sign
+
+
 class ClosureKernel:
     """The rows of a set of cuts and couplings over one Pinocchio model, as numpy maps.
 
@@ -85,41 +98,58 @@ class ClosureKernel:
         self.cuts, self.couplings = tuple(cuts), tuple(couplings)
         self.joints = np.array(sorted({frames[f].parentJoint for c in cuts for f in (c.frame_a, c.frame_b)}), dtype=int)
         where = {int(j): k for k, j in enumerate(self.joints)}
-        ia, ib, local, cut_of_row, force = [], [], [], [], []
+        ia, ib, local, cut_of_row = [], [], [], []
         for c, cut in enumerate(cuts):
             Ma, Mb = frames[cut.frame_a].placement.homogeneous, frames[cut.frame_b].placement.homogeneous
             ja, jb = where[frames[cut.frame_a].parentJoint], where[frames[cut.frame_b].parentJoint]
             for t in cut.positions.T:
-                ia.append(ja), ib.append(jb), cut_of_row.append(c), force.append(1.0)
+                ia.append(ja), ib.append(jb), cut_of_row.append(c)
                 local.append([Ma[:, :3] @ t, Ma[:, 3], Mb[:, 3]])
             for u, w in cut.alignments:
-                ia.append(ja), ib.append(jb), cut_of_row.append(c), force.append(0.0)
+                ia.append(ja), ib.append(jb), cut_of_row.append(c)
                 local.append([Ma[:, :3] @ u, np.zeros(4), Mb[:, :3] @ w])
         self.cut_size = len(ia)
         self.size = self.cut_size + len(self.couplings)
         self.ncuts = len(cuts)
         self._ia, self._ib = np.array(ia, dtype=int), np.array(ib, dtype=int)
-        self._local = np.array(local, dtype=float).reshape(-1, 4)  # (3 rows, 4): X, Z, Y of each row
-        self._joint = np.stack([self._ia, self._ia, self._ib], axis=1).reshape(-1)
-        self._slot = np.arange(3 * self.cut_size)
-        self._force = np.array(force).reshape(-1, 1)
-        self._row_sum = (np.array(cut_of_row, dtype=int)[None, :] == np.arange(self.ncuts)[:, None]).astype(float)
+        row_sum = (np.array(cut_of_row, dtype=int)[None, :] == np.arange(self.ncuts)[:, None]).astype(float)
         bounds = np.cumsum([0] + [c.size for c in cuts])
         self.cut_slices = tuple(slice(int(a), int(b)) for a, b in itertools.pairwise(bounds))
-        self._point_b = np.array([frames[c.frame_b].placement.homogeneous[:, 3] for c in cuts]).reshape(-1, 4)
-        self._joint_b = np.array([where[frames[c.frame_b].parentJoint] for c in cuts], dtype=int)
+        # every vector the rows read (X, Z, Y of each row, then p_b of each cut) as one map of the stacked placements
+        vectors = [*np.array(local, dtype=float).reshape(-1, 4),
+                   *(frames[c.frame_b].placement.homogeneous[:, 3] for c in cuts)]
+        owners = [*np.stack([self._ia, self._ia, self._ib], axis=1).reshape(-1),
+                  *(where[frames[c.frame_b].parentJoint] for c in cuts)]
+        self._map = np.zeros((len(vectors), 4 * self.joints.size))
+        for r, (j, vector) in enumerate(zip(owners, vectors)):
+            self._map[r, 4 * j:4 * j + 4] = vector
         self.support = np.array([support_columns(model, int(j)) for j in self.joints]).reshape(-1, model.nv)
         self.mask = self.support[self._ib] - self.support[self._ia]
         self.incidence = subtree_incidence(model, list(cuts))
+        self._relative = np.zeros((self.cut_size, self.joints.size))  # twists of frame_b's joint minus frame_a's
+        np.add.at(self._relative, (np.arange(self.cut_size), self._ib), 1.0)
+        np.add.at(self._relative, (np.arange(self.cut_size), self._ia), -1.0)
+        # row wrenches times multipliers -> what every joint transmits (tree joints minus their subtree's cuts, then the cuts)
+        self._transmission = np.concatenate([-(self.incidence[1:] @ row_sum), row_sum])
 
     # ------------------------------------------------------------ cut rows
-    def _xzy(self, G: np.ndarray) -> np.ndarray:
-        every = self._local @ np.swapaxes(G, -1, -2)  # (..., n_used, 3 rows, 4): each vector by each placement
-        return every[..., self._joint, self._slot, :].reshape(*G.shape[:-3], self.cut_size, 3, 4)
+    def world(self, G: np.ndarray) -> np.ndarray:
+        """(..., 3 cut_size + ncuts, 4) every homogeneous world vector the rows read, from placements
+        (..., n_used, 4, 4): X', Z', Y' of each cut row (row by row), then p_b' of each cut; one product
+        of a fixed map with the placements transposed and stacked."""
+        return self.stacked_world(np.swapaxes(G, -1, -2).reshape(*G.shape[:-3], 4 * G.shape[-3], 4))
+
+    def stacked_world(self, T: np.ndarray) -> np.ndarray:
+        """`world` from the placements transposed and stacked, T (..., 4 n_used, 4) with T[4 j + c, a] = G_j[a, c]."""
+        return self._map @ T
+
+    def _xzy(self, V: np.ndarray) -> np.ndarray:
+        """(..., cut_size, 3, 4) X', Z', Y' of every cut row from `world` vectors."""
+        return V[..., :3 * self.cut_size, :].reshape(*V.shape[:-2], self.cut_size, 3, 4)
 
     def vectors(self, G: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """X', Y', Z' (..., cut_size, 4) of every cut row, world (m or unit), from placements (..., n_used, 4, 4)."""
-        xzy = self._xzy(G)
+        xzy = self._xzy(self.world(G))
         return xzy[..., 0, :], xzy[..., 2, :], xzy[..., 1, :]
 
     def wrenches(self, x: np.ndarray, y: np.ndarray) -> np.ndarray:
@@ -132,9 +162,13 @@ class ClosureKernel:
         x, y, _ = self.vectors(G)
         return self.wrenches(x, y)
 
+    def points(self, V: np.ndarray) -> np.ndarray:
+        """(..., ncuts, 3) world origins p_b of frame_b of every cut (m), from `world` vectors."""
+        return V[..., 3 * self.cut_size:, :3]
+
     def cut_points(self, G: np.ndarray) -> np.ndarray:
-        """(..., ncuts, 3) world origins p_b of frame_b of every cut (m)."""
-        return (G[..., self._joint_b, :3, :] @ self._point_b[..., None])[..., 0]
+        """(..., ncuts, 3) world origins p_b of frame_b of every cut (m), from placements (..., n_used, 4, 4)."""
+        return self.points(self.world(G))
 
     # ------------------------------------------------------------ all rows
     def residual(self, G: np.ndarray, q: np.ndarray) -> np.ndarray:
@@ -148,10 +182,15 @@ class ClosureKernel:
 
     def evaluate(self, G: np.ndarray, J: np.ndarray, q: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Residuals (..., size), Jacobian (..., size, nv) and cut row wrenches (..., cut_size, 6) from
-        placements (..., n_used, 4, 4), `data.J` (..., 6, nv) and q (..., nq), in one product."""
-        xzy = self._xzy(G)
+        placements (..., n_used, 4, 4), `data.J` (..., 6, nv) and q (..., nq) (`rows` of `world`)."""
+        return self.rows(self.world(G), J, q)
+
+    def rows(self, V: np.ndarray, J: np.ndarray, q: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Residuals (..., size), Jacobian (..., size, nv) and cut row wrenches (..., cut_size, 6) from
+        `world` vectors (..., 3 cut_size + ncuts, 4), `data.J` (..., 6, nv) and q (..., nq), in one product."""
+        xzy = self._xzy(V)
         outer = xzy[..., 1:, :, None] * xzy[..., 0, None, None, :3]
-        we = outer.reshape(*outer.shape[:-3], 24) @ WRENCH_RESIDUAL_MAP
+        we = outer.reshape(*V.shape[:-2], self.cut_size, 24) @ WRENCH_RESIDUAL_MAP
         W, e = we[..., :6], we[..., 6]
         jac = (W @ J) * self.mask
         if self.couplings:
@@ -171,33 +210,35 @@ class ClosureKernel:
         (..., 6, nv) times velocities (..., nv) (also: with `data.dJ`, the accelerations at a = 0)."""
         return np.swapaxes(J @ np.swapaxes(self.support * v[..., None, :], -1, -2), -1, -2)
 
-    def drift(self, G: np.ndarray, V: np.ndarray, A: np.ndarray, q: np.ndarray, v: np.ndarray) -> np.ndarray:
+    def drift(self, G: np.ndarray, V: np.ndarray, A: np.ndarray, q: np.ndarray, v: np.ndarray,
+              world: np.ndarray | None = None, W: np.ndarray | None = None) -> np.ndarray:
         """(..., size) gamma with d2e/dt2 = J a + gamma.
+
+        A vector fixed in joint j's frame moves as its placement, dG/dt = Xi G with Xi = [[omega x, v_O],
+        [0, 0]] of the joint's twist: the vectors' rates are `world` of the rates of the placements, and
+        gamma = W . (A_b - A_a) + dW/dt . (V_b - V_a) (see the module docstring).
 
         Args:
             G: (..., n_used, 4, 4) placements of the used joints.
             V, A: (..., n_used, 6) their world twists and accelerations at a = 0 (`twists`).
             q, v: (..., nq), (..., nv) the state (coupling rows).
+            world, W: `world(G)` and the row wrenches, where the caller has them (`rows`).
         """
-        x, y, _ = self.vectors(G)
-        Va, Vb = V[..., self._ia, :], V[..., self._ib, :]
-        xdot = cross_batch(Va[..., 3:], x[..., :3])
-        ydot = y[..., 3:] * Vb[..., :3] + cross_batch(Vb[..., 3:], y[..., :3])
-        outer = ydot[..., :, None] * x[..., None, :3]
-        outer = np.concatenate([outer, np.zeros_like(outer[..., :1, :])], axis=-2) + y[..., :, None] * xdot[..., None, :]
-        Wdot = outer.reshape(*outer.shape[:-2], 12) @ WRENCH_MAP
-        Arel = A[..., self._ib, :] - A[..., self._ia, :]
-        cut = np.sum(self.wrenches(x, y) * Arel + Wdot * (Vb - Va), axis=-1)
+        world = self.world(G) if world is None else world
+        xzy = self._xzy(world)
+        x, y = xzy[..., 0, :], xzy[..., 2, :]
+        W = self.wrenches(x, y) if W is None else W
+        lead, n = G.shape[:-3], G.shape[-3]
+        rates = (np.swapaxes(G, -1, -2) @ (V @ TWIST_MATRIX_T).reshape(*lead, n, 4, 4)).reshape(*lead, 4 * n, 4)
+        dot = self._xzy(self._map @ rates)
+        outer = y[..., :, None] * dot[..., 0, None, :3] + dot[..., 2, :, None] * x[..., None, :3]
+        Wdot = outer.reshape(*lead, self.cut_size, 12) @ WRENCH_MAP
+        cut = np.sum(W * (self._relative @ A) + Wdot * (self._relative @ V), axis=-1)
         if not self.couplings:
             return cut
         return np.concatenate([cut, self._coupling_drift(q, v)], axis=-1)
 
     # ------------------------------------------------------------ what multipliers transmit
-    def cut_wrenches(self, W: np.ndarray, lam: np.ndarray) -> np.ndarray:
-        """(..., ncuts, 6) wrench [f, m about the world origin] frame_a's side exerts on frame_b's side of
-        each cut, from row wrenches (..., cut_size, 6) and multipliers (..., size) (coupling entries unused)."""
-        return self._row_sum @ (W * lam[..., :self.cut_size, None])
-
     def joint_loads(self, W: np.ndarray, lam: np.ndarray, origins: np.ndarray, cut_points: np.ndarray) -> np.ndarray:
         """What the multipliers transmit through every joint: (..., njoints - 1 + ncuts, 6).
 
@@ -208,10 +249,10 @@ class ClosureKernel:
             W: (..., cut_size, 6) row wrenches; lam: (..., size) multipliers.
             origins: (..., njoints - 1, 3) tree joint origins; cut_points: (..., ncuts, 3) the cuts' p_b.
         """
-        cuts = self.cut_wrenches(W, lam)
-        loads = np.concatenate([-(self.incidence[1:] @ cuts), cuts], axis=-2)
+        loads = (self._transmission * lam[..., None, :self.cut_size]) @ W  # about the world origin
         points = np.concatenate([origins, cut_points], axis=-2)
-        loads[..., 3:] -= cross_batch(points, loads[..., :3])
+        outer = points[..., :, :, None] * loads[..., :, None, :3]
+        loads += outer.reshape(*outer.shape[:-2], 9) @ MOMENT_SHIFT
         return loads
 
     # ------------------------------------------------------------ coupling rows

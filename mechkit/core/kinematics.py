@@ -29,13 +29,12 @@ def kinematic_pass(cm: ClosureModel, cd: ClosureData, Q: np.ndarray,
 
     Leaves `cd.pin` at the last sample, frame placements updated.
     """
-    model, used = cm.model, cm.kernel.joints.tolist()
+    model, used = cm.model, cm.kernel.joints
     n = len(Q)
-    G = np.empty((n, len(used), 4, 4))
+    G = np.empty((n, used.size, 4, 4))
     G[..., 3, :3], G[..., 3, 3] = 0.0, 1.0
     J = np.empty((n, 6, model.nv))
     dJ = None if V is None else np.empty((n, 6, model.nv))
-    R, t = cd.rotations, cd.translations
     for i in range(n):
         if V is None:
             pin.computeJointJacobians(model, cd.pin, Q[i])
@@ -43,9 +42,7 @@ def kinematic_pass(cm: ClosureModel, cd: ClosureData, Q: np.ndarray,
             pin.computeJointJacobiansTimeVariation(model, cd.pin, Q[i], V[i])
             dJ[i] = cd.dJ
         J[i] = cd.J
-        for k, j in enumerate(used):
-            G[i, k, :3, :3] = R[j]
-            G[i, k, :3, 3] = t[j]
+        G[i, :, :3] = cd.oMi[used]
     pin.updateFramePlacements(model, cd.pin)
     return G, J, dJ
 

@@ -89,7 +89,8 @@ class ClosureModel:
             (every cut closed with its full rows).
 
     Attributes:
-        model: the tree. structure: loops and Kutzbach count (`mechkit.core.structure.Structure`).
+        model: the tree; nq, nv: its configuration and velocity sizes.
+        structure: loops and Kutzbach count (`mechkit.core.structure.Structure`).
         couplings, actuators: the records it was built from.
         closures: the closures with the rows chosen. kernel: the rows kept (cuts, then couplings).
         full_kernel: every cut's full spatial rows (the physical joints), for the determinacy test.
@@ -97,6 +98,8 @@ class ClosureModel:
         actuated_v: (na,) velocity indices where every actuator is one joint's motor, else None.
         unactuated: (nv, nv - rank S) orthonormal basis of the motions no actuator drives (the
             unactuated coordinates' unit vectors where every actuator is a joint motor).
+        passive_v: (nv - na,) the velocity indices no motor drives where every actuator is one joint's
+            motor (the columns of `unactuated`), else None.
         joint_names: tree joints (model order), then cut joints: the order of reactions.
         supports: (n_joints,) True for joints to the ground.
         massive: ids of the joints whose body has mass; on_loops: ids of the joints on a loop;
@@ -118,6 +121,7 @@ class ClosureModel:
         check_depth_first(model)
         check_body_masses(model)
         self.model = model
+        self.nq, self.nv = model.nq, model.nv
         self.structure = analyse(model, list(closures), rows, len(couplings))
         self.closures = tuple(self.structure.closures)
         cuts = [cut_rows(model, c) for c in self.closures]
@@ -128,6 +132,7 @@ class ClosureModel:
         self.actuated = tuple(actuated)
         self.actuation, self.actuated_v = _actuation(model, self.actuated, {a.name: a for a in actuators})
         self.unactuated = _unactuated(model, self.actuation, self.actuated_v)
+        self.passive_v = _passive_v(model, self.actuated_v)
         self.joint_names = tuple(model.names[1:]) + tuple(c.name for c in self.closures)
         frames = model.frames
         self.supports = np.array([model.parents[j] == 0 for j in range(1, model.njoints)] + [
@@ -140,16 +145,6 @@ class ClosureModel:
         self.row_scale, self.delassus_scale = _scales(self)
         self._split = cache(self._make_split)
 
-    @property
-    def nq(self) -> int:
-        """Configuration size."""
-        return self.model.nq
-
-    @property
-    def nv(self) -> int:
-        """Velocity size."""
-        return self.model.nv
-
     def with_actuation(self, actuated: Sequence[str], actuators: Sequence[Actuator] = ()) -> ClosureModel:
         """The same tree, closures, couplings and rows with another actuation (e.g. every driven joint of
         a motion law).
@@ -161,6 +156,7 @@ class ClosureModel:
         out.actuated, out.actuators = tuple(actuated), tuple(actuators)
         out.actuation, out.actuated_v = _actuation(self.model, out.actuated, {a.name: a for a in actuators})
         out.unactuated = _unactuated(self.model, out.actuation, out.actuated_v)
+        out.passive_v = _passive_v(self.model, out.actuated_v)
         out._split = cache(out._make_split)
         return out
 
@@ -198,28 +194,72 @@ class ClosureData:
     Attributes:
         pin: the Pinocchio data every function works in.
         J, dJ: views of `pin.J` and `pin.dJ` (6, nv).
-        placements: `pin.oMi` as a list of SE3 (their `.rotation` and `.translation` alias its memory).
-        rotations, translations, forces: views of every joint's rotation (3, 3), translation (3,) and
-            `pin.f` (6,), in joint order.
+        oMi: (njoints, 3, 4) read-only view of every joint's placement `pin.oMi`, [R | p] (world).
+        f: (njoints, 6) read-only view of every joint's `pin.f` (local frame, about the joint origin).
+        used: (n_used, 4, 4) scratch: homogeneous placements of the joints carrying cut frames
+            (`used_placements`; a transposed view of a buffer, as `ClosureKernel.world` reads it).
         kkt_rows: the independent rows the KKT solve last used (None before the first).
         stress_rows: the rows of [S^T, J_full^T] `mechkit.core.determinacy.self_stresses` uses.
+        split_rows: the rows of the passive block `mechkit.core.efforts.passive_one` factors, and the others.
+        partition: the rows, dependent and independent columns of the closure Jacobian the null-space
+            forward dynamics factors (`mechkit.core.forward`).
         settings: Pinocchio proximal settings by (mu, accuracy, max_iter), made on first use.
         legacy: Pinocchio's legacy constraints of the cuts (`mechkit.core.pin_constraints`), by method
             ("proximal", "lcaba": each needs its own Pinocchio data), made on first use.
+
+    Raises:
+        RuntimeError: Pinocchio's data does not hold its joint placements and forces as contiguous
+            vectors (the layout of pin 4.1, which `oMi` and `f` view without a copy).
     """
 
     def __init__(self, cm: ClosureModel):
         data = cm.model.createData()
         self.pin = data
         self.J, self.dJ = data.J, data.dJ
-        self.placements = data.oMi.tolist()
-        self.rotations = [M.rotation for M in self.placements]
-        self.translations = [M.translation for M in self.placements]
-        self.forces = [F.np for F in data.f.tolist()]
+        placements = data.oMi.tolist()
+        rotations = [M.rotation for M in placements]
+        if any(_address(M.translation) != _address(R) + 9 * R.itemsize for M, R in zip(placements, rotations)):
+            raise RuntimeError("Pinocchio's SE3 does not hold its translation after its rotation (pin 4.1's layout)")
+        self.oMi = _stacked(rotations, (3, 4), (8, 24))
+        self.f = _stacked([F.np for F in data.f.tolist()], (6,), (8,))
+        self._used, n = cm.kernel.joints, cm.kernel.joints.size
+        stacked = np.zeros((n, 4, 4))  # each placement transposed: `ClosureKernel.world` stacks them without a copy
+        stacked[:, 3, 3] = 1.0
+        self._stacked, self._flat, self.used = stacked[:, :, :3], stacked.reshape(4 * n, 4), stacked.transpose(0, 2, 1)
         self.kkt_rows: np.ndarray | None = None
         self.legacy: dict = {}
         self.settings: dict = {}
         self.stress_rows: np.ndarray | None = None
+        self.split_rows: tuple[np.ndarray, np.ndarray] | None = None
+        self.partition: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None
+
+    def used_placements(self) -> np.ndarray:
+        """`used` filled from the placements `pin.oMi` holds now (the buffer itself: copy to keep it)."""
+        self.stacked_placements()
+        return self.used
+
+    def stacked_placements(self) -> np.ndarray:
+        """(4 n_used, 4) the same buffer as `ClosureKernel.stacked_world` reads it, filled from `pin.oMi`."""
+        self._stacked[:] = self.oMi.transpose(0, 2, 1)[self._used]
+        return self._flat
+
+
+def _address(x: np.ndarray) -> int:
+    return x.__array_interface__["data"][0]
+
+
+def _stacked(views: list[np.ndarray], shape: tuple[int, ...], strides: tuple[int, ...]) -> np.ndarray:
+    """One read-only (len(views), *shape) view, element strides `strides` (bytes), over views into one
+    buffer that start at equal steps (a Pinocchio std::vector): every element at once, without a copy.
+
+    Raises:
+        RuntimeError: the views do not start at equal steps (not one contiguous vector).
+    """
+    first = _address(views[0])
+    step = _address(views[1]) - first if len(views) > 1 else 0
+    if any(_address(x) != first + i * step or x.strides != strides[-x.ndim:] for i, x in enumerate(views)):
+        raise RuntimeError("Pinocchio's data does not hold its joint arrays as one contiguous vector (pin 4.1's layout)")
+    return np.lib.stride_tricks.as_strided(views[0], (len(views), *shape), (step, *strides), writeable=False)
 
 
 def _actuation(model: pin.Model, actuated: tuple[str, ...],
@@ -252,6 +292,11 @@ def _unactuated(model: pin.Model, S: np.ndarray, actuated_v: np.ndarray | None) 
     if actuated_v is not None:
         return np.delete(np.eye(model.nv), actuated_v, axis=1)
     return scipy.linalg.null_space(S) if S.size else np.eye(model.nv)
+
+
+def _passive_v(model: pin.Model, actuated_v: np.ndarray | None) -> np.ndarray | None:
+    """The velocity indices no motor drives (increasing), or None where an actuator is not one joint's motor."""
+    return None if actuated_v is None else np.delete(np.arange(model.nv), actuated_v)
 
 
 def _scales(cm: ClosureModel) -> tuple[float, float]:

@@ -54,6 +54,7 @@ class LegacyConstraints:
             self.datas.append(cm.createData())
         self.data = model.createData()
         pin.initConstraintDynamics(model, self.data, self.models, self.datas)
+        self._rhs, self._lambda = self.data.primal_rhs_contact, self.data.lambda_c  # views of the data's buffers
         self.sizes = [3 if cm.type == pin.ContactType.CONTACT_3D else 6 for cm in self.models]
         self._gains = (0.0, 0.0)
         self.ordered = ordered
@@ -83,9 +84,18 @@ class LegacyConstraints:
         """(rows, nv) the anchors' constraint Jacobian at the last call's state (fresh after either call)."""
         return pin.getConstraintsJacobian(self.model, self.data, self.models, self.datas)
 
+    def multipliers(self) -> np.ndarray:
+        """(rows,) the anchors' multipliers lambda of the last `dynamics` call (M a + nle = tau + J^T lambda)."""
+        return self._lambda
+
     def drift(self, rows: int) -> np.ndarray:
         """(rows,) gamma (+ Baumgarte terms) of the anchors at the last `dynamics` call's state."""
-        return -self.data.primal_rhs_contact[:rows]
+        return -self._rhs[:rows]
+
+    def rhs(self) -> np.ndarray:
+        """(rows,) -gamma (- Baumgarte terms) of every anchor row: `drift` negated, as Pinocchio holds it
+        (a view of its buffer, sized by `initConstraintDynamics` to the rows)."""
+        return self._rhs
 
     def lcaba_error(self) -> np.ndarray:
         """(rows,) the anchors' acceleration error before lcaba's last step (add J @ `last_step()`)."""

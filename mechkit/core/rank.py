@@ -10,6 +10,9 @@ the range (an acceleration drift no acceleration cancels) is measured by the lea
 
 from __future__ import annotations
 
+import math
+from functools import cache
+
 import numpy as np
 import scipy.linalg
 import scipy.linalg.lapack
@@ -72,8 +75,9 @@ def resolvable_singular_value(s_max: float | np.ndarray, residual: float | np.nd
         s_max: largest singular value of the passive block (the rows' scale).
         residual: closure residual norm reached at the configuration.
     """
-    out = SINGULAR_MARGIN * np.sqrt(np.maximum(residual, EPS * s_max) * s_max)
-    return float(out) if np.ndim(out) == 0 else out
+    if isinstance(s_max, float) and isinstance(residual, float):
+        return SINGULAR_MARGIN * math.sqrt(max(residual, EPS * s_max) * s_max)
+    return SINGULAR_MARGIN * np.sqrt(np.maximum(residual, EPS * s_max) * s_max)
 
 
 def passive_verdict(s: np.ndarray, columns: int, residual: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -97,6 +101,59 @@ def passive_verdict(s: np.ndarray, columns: int, residual: np.ndarray) -> tuple[
     cond = np.divide(s_max, s_min, out=np.full(n, np.inf), where=s_min > 0)
     bad = s_min < resolvable_singular_value(s_max, residual)
     return cond, bad
+
+
+def regularity_bounds(B: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Bounds on the extreme singular values of N blocks B (N, m, k) without an SVD: (N,) rho = 1 / |X|_F
+    <= sigma_min(m, k) (X = B^-1 where square, else R^-1 of B = Q R, or of B^T = Q R where wide; 0 where
+    singular) and (N,) |B|_F >= sigma_max."""
+    m, k = B.shape[1:]
+    try:
+        X = np.linalg.inv(B if m == k else np.linalg.qr(B if m > k else B.transpose(0, 2, 1), mode="r"))
+    except np.linalg.LinAlgError:  # a singular block: one at a time
+        rho, size = np.array([block_bounds(b) for b in B]).reshape(len(B), 2).T
+        return rho, size
+    return np.square(X).sum(axis=(1, 2)) ** -0.5, np.sqrt(np.square(B).sum(axis=(1, 2)))
+
+
+def block_bounds(B: np.ndarray) -> tuple[float, float]:
+    """`regularity_bounds` of one block B (m, k): (rho, |B|_F)."""
+    m, k = B.shape
+    if m == k:
+        lu, piv, info = scipy.linalg.lapack.dgetrf(B)
+        X = None if info else scipy.linalg.lapack.dgetri(lu, piv)[0]
+    else:
+        X = triangular_inverse(scipy.linalg.lapack.dgeqrf(B if m > k else B.T)[0], min(m, k))
+    return (0.0 if X is None else squared_norm(X) ** -0.5), squared_norm(B) ** 0.5
+
+
+def triangular_inverse(qr: np.ndarray, k: int) -> np.ndarray | None:
+    """R^-1 (k, k) of R, the upper triangle of the first k rows of LAPACK geqrf's first output; None
+    where R is singular."""
+    X, info = scipy.linalg.lapack.dtrtri(qr[:k])
+    if info:
+        return None
+    X *= upper(k)
+    return X
+
+
+def squared_norm(X: np.ndarray) -> float:
+    """|X|_F^2 of an array."""
+    flat = X.ravel(order="K")
+    return float(flat.dot(flat))
+
+
+def certified_regular(rho: np.ndarray, size: np.ndarray, residual: np.ndarray) -> np.ndarray:
+    """Where bounds rho <= sigma_min and size >= sigma_max of passive blocks (`regularity_bounds`)
+    show them resolvably regular and of full column rank: the verdict `passive_verdict` then gives on
+    their singular values (the resolvable limit grows with sigma_max). Floats, or element-wise on arrays."""
+    return (rho > resolvable_singular_value(size, residual)) & (rho > RANK_TOL * size)
+
+
+@cache
+def upper(k: int) -> np.ndarray:
+    """(k, k) ones on and above the diagonal: the mask of an upper-triangular LAPACK result."""
+    return np.triu(np.ones((k, k)))
 
 
 def singular_error(s: np.ndarray, columns: int, residual: float) -> SingularConfiguration:

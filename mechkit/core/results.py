@@ -10,6 +10,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from functools import cached_property
+from typing import NamedTuple
 
 import numpy as np
 
@@ -33,11 +34,10 @@ class Mobility:
     singular_values: np.ndarray
 
 
-@dataclass(frozen=True)
-class ForwardDynamicsResult:
+class ForwardDynamicsResult(NamedTuple):
     """Accelerations a (nv,) or (N, nv), the generalised constraint force J^T lambda of the same shape,
     and the iterations Pinocchio's proximal solver took ("proximal", "lcaba"; the largest over a batch;
-    0 for the direct methods)."""
+    0 for the direct methods). Immutable."""
 
     a: np.ndarray
     constraint_force: np.ndarray

@@ -17,9 +17,9 @@ def _arrays(m, samples):
     """Placements of the used joints, data.J, q and the joints' points of the samples (the inverse pass)."""
     cm, cd = m.closure_model, m.closure_model.create_data()
     Q, V, A = (np.array([getattr(s, k) for s in samples]) for k in "qva")
-    R, t, J, _, _ = inverse.inverse_pass(cm, cd, Q, V, A, [None] * len(Q))
-    G = inverse._used_placements(cm, R, t)
-    return cm, cd, G, J, Q, t[:, 1:], cm.kernel.cut_points(G)
+    P, J, _, _ = inverse.inverse_pass(cm, cd, Q, V, A, [None] * len(Q))
+    G = inverse.used_placements(cm, P)
+    return cm, cd, G, J, Q, P[:, 1:, :, 3], cm.kernel.cut_points(G)
 
 
 def _system(cm, G, J, Q):

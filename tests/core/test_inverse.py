@@ -1,6 +1,6 @@
 """Inverse dynamics (`mechkit.core.inverse`): the batch equals the single sample on every mechanism,
-the gather reads Pinocchio fresh, the QR solution is the SVD's, regularity is judged as the
-kinematics judge it, empty batches keep their shapes."""
+the gather reads Pinocchio fresh, regularity is judged as the kinematics judge it, empty batches keep
+their shapes."""
 
 from __future__ import annotations
 
@@ -10,7 +10,8 @@ import pytest
 from tests_support import DISTANCES, singular_inputs
 
 from mechkit import core
-from mechkit.base.exceptions import InvalidParameters, SingularConfiguration
+from mechkit.base.arguments import plain_state
+from mechkit.base.exceptions import InvalidArgument, InvalidParameters, SingularConfiguration
 from mechkit.bench.sampling import make_samples
 from mechkit.catalog import registry
 from mechkit.core import inverse
@@ -71,32 +72,16 @@ def test_the_pass_reads_each_sample_fresh_from_pinocchio(name, load_cached):
     model, cm = m.model, m.closure_model
     samples = make_samples(m, 3)
     Q, V, A = (np.array([getattr(s, k) for s in samples]) for k in "qva")
-    R, t, J, tau, _ = inverse.inverse_pass(cm, cm.create_data(), Q, V, A, [None] * len(Q))
+    P, J, tau, tree = inverse.inverse_pass(cm, cm.create_data(), Q, V, A, [None] * len(Q))
     for i in range(len(Q)):
         data = model.createData()
         pin.computeJointJacobians(model, data, Q[i])
-        np.testing.assert_array_equal(R[i], np.array([M.rotation for M in data.oMi.tolist()]))
-        np.testing.assert_array_equal(t[i], np.array([M.translation for M in data.oMi.tolist()]))
+        np.testing.assert_array_equal(P[i, :, :, :3], np.array([M.rotation for M in data.oMi.tolist()]))
+        np.testing.assert_array_equal(P[i, :, :, 3], np.array([M.translation for M in data.oMi.tolist()]))
         np.testing.assert_array_equal(J[i], data.J)
         np.testing.assert_array_equal(tau[i], pin.rnea(model, data, Q[i], V[i], A[i]))
-
-
-@pytest.mark.parametrize("name", ["ten_bar", "deployable_9rr12uru"])
-def test_full_rank_qr_solution_is_the_svd_minimum_norm_solution(name, load_cached):
-    m = load_cached(name)
-    cm = m.closure_model
-    samples = make_samples(m, 4, seed=2)
-    Q, V, A = (np.array([getattr(s, k) for s in samples]) for k in "qva")
-    R, t, J, b, _ = inverse.inverse_pass(cm, cm.create_data(), Q, V, A, [None] * len(Q))
-    b = b if not m.springs else b - m.passive_forces(Q, V)  # the ten-bar's spring
-    G = inverse._used_placements(cm, R, t)
-    system = inverse.system(cm, cm.kernel.evaluate(G, J, Q)[1])
-    assert system.shape[1] != system.shape[2]
-    x, outside = inverse._full_rank_solution(system, b)
-    for i in range(len(system)):
-        want = np.linalg.lstsq(system[i], b[i], rcond=None)[0]
-        assert np.max(np.abs(x[i] - want)) <= 1e-10 * max(1.0, np.max(np.abs(want)))
-        assert outside[i] <= 1e-9 * max(1.0, np.linalg.norm(b[i]))
+        world = [np.concatenate([M.rotation @ f.linear, M.rotation @ f.angular]) for M, f in zip(data.oMi.tolist()[1:], data.f.tolist()[1:])]
+        np.testing.assert_allclose(tree[i], np.array(world), rtol=0, atol=1e-14 * max(1.0, np.abs(world).max()))
 
 
 def test_regularity_is_judged_as_the_velocities_judge_it(load_cached):
@@ -153,3 +138,26 @@ def test_multiplier_reactions_are_the_reactions_of_the_multipliers(name, load_ca
     loads = core.multiplier_reactions(cm, cm.create_data(), m.home_q, out.multipliers)
     tree = len(m.model.names) - 1
     np.testing.assert_allclose(out.reaction_values[tree:], loads[tree:], atol=1e-12 * max(1.0, np.abs(loads).max()))
+
+
+def test_the_fast_path_gives_the_checked_path_numbers_and_still_refuses_bad_arrays(load_cached):
+    """Plain float64 arrays skip the conversion (`arguments.plain_state`); lists go through it and give
+    the same numbers; NaN, inf, another dtype or shape are refused by name, under the command line's
+    np.errstate(all="raise") too, where large finite entries still pass."""
+    m = load_cached("parallel_2t1r")
+    s = make_samples(m, 1)[0]
+    plain = m.inverse_dynamics(s.q, s.v, s.a, determinacy=False)
+    listed = m.inverse_dynamics(s.q.tolist(), s.v.tolist(), s.a.tolist(), determinacy=False)
+    np.testing.assert_array_equal(plain.reaction_values, listed.reaction_values)
+    np.testing.assert_array_equal(plain.effort_values, listed.effort_values)
+    with np.errstate(all="raise"):
+        for bad in (np.nan, np.inf, -np.inf):
+            a = s.a.copy()
+            a[-1] = bad
+            with pytest.raises(InvalidArgument, match="'a'"):
+                m.inverse_dynamics(s.q, s.v, a)
+        with pytest.raises(InvalidArgument, match="'v'"):
+            m.inverse_dynamics(s.q, s.v[:-1], s.a)
+        assert plain_state(s.q, s.v, np.full(m.model.nv, 1e300), m.model.nq, m.model.nv)
+        one = m.inverse_dynamics(s.q.astype(np.float32).astype(np.float64), s.v, s.a, determinacy=False)
+    assert np.all(np.isfinite(one.reaction_values))

@@ -11,7 +11,7 @@ import pytest
 from scipy.optimize import brentq
 
 from mechkit.base.exceptions import SingularConfiguration
-from mechkit.base.spatial import cross, cross_batch, skew
+from mechkit.base.spatial import cross, skew
 from mechkit.bench.sampling import make_samples
 from mechkit.catalog import registry
 
@@ -169,9 +169,3 @@ def test_row_wrenches_give_the_closure_jacobian_and_the_residuals(name, load_cac
             assert np.max(np.abs(kernel.jacobian(W, data.J[None], q[None]) - J), initial=0.0) == 0.0
             for c, cut in enumerate(kernel.cuts):
                 np.testing.assert_allclose(kernel.cut_points(G)[0, c], data.oMf[cut.frame_b].translation, atol=1e-14)
-
-
-def test_cross_batch_is_the_cross_product():
-    rng = np.random.default_rng(3)
-    a, b = rng.normal(size=(4, 5, 3)), rng.normal(size=(4, 5, 3))
-    assert np.max(np.abs(cross_batch(a, b) - np.cross(a, b))) < 1e-15

@@ -73,3 +73,20 @@ def test_scales_are_those_of_the_neutral_configuration(load_cached):
     M = pin.crba(cm.model, data, q)
     assert cm.row_scale == pytest.approx(np.max(np.linalg.norm(J, axis=1)), rel=1e-12)
     assert cm.delassus_scale == pytest.approx(cm.row_scale**2 / np.max(np.diag(M)), rel=1e-12)
+
+
+@pytest.mark.parametrize("name", ["four_bar", "deployable_9rr12uru"])
+def test_the_data_views_read_pinocchio_without_a_copy(name, load_cached):
+    """`ClosureData.oMi` and `.f` are every joint's placement [R | p] and wrench as Pinocchio holds them
+    now, and `used_placements` the homogeneous placements of the joints carrying cut frames."""
+    m = load_cached(name)
+    cm = m.closure_model
+    cd = cm.create_data()
+    rng = np.random.default_rng(0)
+    q, v, a = pin.randomConfiguration(m.model), rng.normal(size=m.model.nv), rng.normal(size=m.model.nv)
+    pin.rnea(m.model, cd.pin, q, v, a)
+    placements = cd.pin.oMi.tolist()
+    np.testing.assert_array_equal(cd.oMi, np.array([M.homogeneous[:3] for M in placements]))
+    np.testing.assert_array_equal(cd.f, np.array([f.vector for f in cd.pin.f.tolist()]))
+    np.testing.assert_array_equal(cd.used_placements(), np.array([placements[j].homogeneous for j in cm.kernel.joints]))
+    assert not cd.oMi.flags.writeable and not cd.f.flags.writeable

@@ -55,3 +55,26 @@ def test_outside_range_and_inconsistency():
         assert got == pytest.approx(want, abs=1e-12)
     assert rank.inconsistency(J, -inside) < 1e-12
     assert rank.inconsistency(J, -(inside + 0.5 * normal)) == pytest.approx(0.5 * np.abs(normal).max(), rel=1e-9)
+
+
+@pytest.mark.parametrize("shape", [(3, 3), (5, 3), (3, 5)])
+def test_regularity_bounds_bracket_the_singular_values_and_certify_only_what_they_pass(shape):
+    """1 / |X|_F <= sigma_min(m, k) and |B|_F >= sigma_max, one block (LAPACK) as N (numpy); a certified
+    block passes `passive_verdict`; a nearly singular one is not certified, an exactly singular one has rho
+    near 0."""
+    rng = np.random.default_rng(3)
+    B = rng.normal(size=(6, *shape))
+    lines = B if shape[0] >= shape[1] else B.transpose(0, 2, 1)  # the columns of a tall block, the rows of a wide one
+    lines[4, :, 0] = lines[4, :, 1] * (1 + 1e-13)  # nearly singular
+    lines[5, :, 0] = lines[5, :, 1]  # singular
+    rho, size = rank.regularity_bounds(B)
+    s = np.linalg.svd(B, compute_uv=False)
+    assert np.all(rho <= s[:, -1] * (1 + 1e-12) + 1e-12 * size) and np.all(size >= s[:, 0])  # to rounding
+    for i in range(len(B)):
+        one = rank.block_bounds(B[i])
+        assert one == pytest.approx((rho[i], size[i]), rel=1e-9, abs=1e-300)
+    residual = np.full(len(B), 1e-12)
+    certified = rank.certified_regular(rho, size, residual)
+    _, bad = rank.passive_verdict(s, min(shape), residual)
+    assert certified[:4].all() and not certified[4:].any() and not np.any(certified & bad)
+    assert rank.block_bounds(B[5])[0] <= 1e-3 * rho[0] and rank.certified_regular(*rank.block_bounds(B[0]), 1e-12)
