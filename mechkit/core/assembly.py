@@ -50,13 +50,13 @@ def _axes(cut) -> np.ndarray:
     return np.zeros((0, 3))
 
 
-def _far_rows(cm: ClosureModel, data: pin.Data, q: np.ndarray) -> tuple[np.ndarray, np.ndarray, float]:
+def _far_rows(cm: ClosureModel, cd: ClosureData, q: np.ndarray) -> tuple[np.ndarray, np.ndarray, float]:
     """The flip-free residual (rows,), its Jacobian (rows, nv), and the norm of its axis-difference rows
     alone, at q (`computeJointJacobians` run here)."""
-    model, kernel = cm.model, cm.kernel
+    model, kernel, data = cm.model, cm.kernel, cd.pin
     pin.computeJointJacobians(model, data, q)
     G = np.array([data.oMi[int(j)].homogeneous for j in kernel.joints]).reshape(-1, 4, 4)
-    e, J, _ = kernel.evaluate(G, data.J, q)
+    e, J, _ = kernel.evaluate(G, cd.J, q)
     keep = np.ones(kernel.size, dtype=bool)
     extra_e, extra_J = [], []
     support = {int(j): kernel.support[k] for k, j in enumerate(kernel.joints)}
@@ -68,7 +68,7 @@ def _far_rows(cm: ClosureModel, data: pin.Data, q: np.ndarray) -> tuple[np.ndarr
         fa, fb = model.frames[cut.frame_a], model.frames[cut.frame_b]
         Ra = data.oMi[fa.parentJoint].rotation @ fa.placement.rotation
         Rb = data.oMi[fb.parentJoint].rotation @ fb.placement.rotation
-        wa, wb = (data.J[3:] * support[f.parentJoint] for f in (fa, fb))
+        wa, wb = (cd.J[3:] * support[f.parentJoint] for f in (fa, fb))
         for axis in axes:
             ra, rb = Ra @ axis, Rb @ axis
             extra_e.append(rb - ra)
@@ -98,9 +98,8 @@ def from_far(cm: ClosureModel, cd: ClosureData, q0: np.ndarray, split: InputSpli
     """A configuration near closure from q0 (nq,), moving only the coordinates of `split.free_v`:
     Levenberg-Marquardt with Nielsen's damping update on the flip-free residual (see the module)."""
     model, free = cm.model, split.free_v
-    data = cd.pin
     q = q0.copy()
-    e, J, _ = _far_rows(cm, data, q)
+    e, J, _ = _far_rows(cm, cd, q)
     cost = float(e @ e)
     mu, nu = 1e-3 * float(np.max(np.sum(J[:, free] ** 2, axis=0), initial=1.0)), 2.0
     for _ in range(FAR_ITERATIONS):
@@ -116,7 +115,7 @@ def from_far(cm: ClosureModel, cd: ClosureData, q0: np.ndarray, split: InputSpli
         full = np.zeros(model.nv)
         full[free] = step
         trial = pin.integrate(model, q, full)
-        e_trial, J_trial, _ = _far_rows(cm, data, trial)
+        e_trial, J_trial, _ = _far_rows(cm, cd, trial)
         trial_cost = float(e_trial @ e_trial)
         predicted = float(step @ (mu * step - g))
         if np.isfinite(trial_cost) and trial_cost < cost and predicted > 0:
@@ -214,7 +213,7 @@ def assemble(cm: ClosureModel, cd: ClosureData, q0: np.ndarray, split: InputSpli
 def _far_starts(cm: ClosureModel, cd: ClosureData, q0: np.ndarray, split: InputSplit) -> list[np.ndarray]:
     """Where the far phase starts: q0, and where its residual is stationary there, `RESTARTS` seeded
     perturbations of the free coordinates (the given joints keep q0's values)."""
-    e, J, _ = _far_rows(cm, cd.pin, q0)
+    e, J, _ = _far_rows(cm, cd, q0)
     Jf = J[:, split.free_v]
     if np.linalg.norm(Jf.T @ e) > STATIONARY_TOL * np.linalg.norm(Jf) * np.linalg.norm(e):
         return [q0]

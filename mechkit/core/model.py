@@ -215,7 +215,7 @@ class ClosureData:
     def __init__(self, cm: ClosureModel):
         data = cm.model.createData()
         self.pin = data
-        self.J, self.dJ = data.J, data.dJ
+        self.J, self.dJ = data.J.reshape(6, -1), data.dJ.reshape(6, -1)  # views; Pinocchio gives (6,) when nv = 1
         placements = data.oMi.tolist()
         rotations = [M.rotation for M in placements]
         if any(_address(M.translation) != _address(R) + 9 * R.itemsize for M, R in zip(placements, rotations)):

@@ -6,6 +6,7 @@ import numpy as np
 import pinocchio as pin
 import pytest
 
+from mechkit import core
 from mechkit.base.exceptions import ClosureNotConverged, SingularConfiguration
 from mechkit.catalog.registry import specs
 
@@ -109,3 +110,23 @@ def test_under_determined_inputs_are_refused(load_cached):
     m = load_cached("five_bar")
     with pytest.raises(SingularConfiguration):
         m.velocities(m.home_q, [1.0], inputs=["prox1"])
+
+
+def test_a_model_of_one_velocity_gets_its_jacobian_as_a_column():
+    """Pinocchio gives `data.J` as a (6,) vector when nv = 1: a body on a revolute joint, closed to the
+    ground by a planar cut about the same axis through a point off it, has a (rows, 1) closure Jacobian
+    equal to the residual's central difference, and its loop closes where the two pins coincide (q = 0)."""
+    model = pin.Model()
+    j = model.addJoint(0, pin.JointModelRZ(), pin.SE3.Identity(), "hinge")
+    model.appendBodyToJoint(j, pin.Inertia.FromBox(1.0, 0.1, 0.1, 0.1), pin.SE3.Identity())
+    point = pin.SE3(np.eye(3), np.array([0.2, 0.0, 0.0]))
+    model.addFrame(pin.Frame("on_ground", 0, point, pin.FrameType.OP_FRAME))
+    model.addFrame(pin.Frame("on_body", j, point, pin.FrameType.OP_FRAME))
+    cm = core.ClosureModel(model, [core.LoopClosure("pin", "revolute", "on_ground", "on_body", axis=(0.0, 0.0, 1.0))])
+    cd = cm.create_data()
+    q, h = np.array([0.3]), 1e-6
+    jac = core.closure_jacobian(cm, cd, q)
+    numeric = (core.closure_residual(cm, cd, q + h) - core.closure_residual(cm, cd, q - h)) / (2 * h)
+    assert jac.shape == (numeric.size, 1) and np.abs(jac[:, 0] - numeric).max() < 1e-9
+    closed = core.assemble(cm, cd, q, cm.split(()))
+    assert closed.residual < 1e-12 and abs(closed.q[0]) < 1e-9
