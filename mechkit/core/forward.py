@@ -192,14 +192,15 @@ def _power_of_two(x: float) -> float:
 
 def _mass_matrix(cm: ClosureModel, data: pin.Data, q: np.ndarray) -> np.ndarray:
     """The joint-space mass matrix at q as Pinocchio's crba fills it: its upper triangle (the lower one is
-    not read: BLAS symmetric products, or `np.triu`); refuse a coordinate with no inertia.
+    not read: BLAS symmetric products, or `np.triu`). A coordinate without inertia (a massless link's) is
+    allowed: whether the closures fix its motion is decided by the solve (the KKT pivots, N^T M N).
 
     Raises:
-        SingularConfiguration: a zero, negative or non-finite diagonal, or a non-finite entry.
+        SingularConfiguration: a negative or non-finite diagonal, or a non-finite entry.
     """
     M = pin.crba(cm.model, data, q)
-    if not (M.diagonal().min() > 0 and np.isfinite(M).all()):
-        raise SingularConfiguration(float("inf"), "mass matrix: a coordinate carries no inertia (or the inertias are not finite)")
+    if not (M.diagonal().min() >= 0 and np.isfinite(M).all()):
+        raise SingularConfiguration(float("inf"), "mass matrix: a negative or non-finite inertia")
     return M
 
 
@@ -215,20 +216,21 @@ def _kkt(cm, cd, q, v, tau, baumgarte) -> ForwardDynamicsResult:
         rows = rank.independent_rows(J) if rows is None else rows
         Ji, gi = J[rows], gamma[rows]
         n, m = cm.nv, len(rows)
-        d = np.full(n, _power_of_two(float(np.min(1.0 / np.sqrt(np.diag(M))))))
+        inertias = np.diag(M)
+        d = np.full(n, _power_of_two(float(1.0 / np.sqrt(np.max(inertias, initial=0.0) or 1.0))))
         JD = Ji * d
         r = np.full(m, _power_of_two(1.0 / max(float(np.max(np.linalg.norm(JD, axis=1), initial=0.0)), 1e-300)))
         K = np.zeros((n + m, n + m))
         K[:n, :n], K[:n, n:], K[n:, :n] = d[:, None] * M * d, -(r[:, None] * JD).T, r[:, None] * JD
-        lu = scipy.linalg.lu_factor(K, check_finite=False)
-        pivots = np.abs(np.diag(lu[0]))
+        lu, piv, _ = scipy.linalg.lapack.dgetrf(K)  # an exactly zero pivot is judged below, not warned about
+        pivots = np.abs(np.diag(lu))
         if np.min(pivots, initial=np.inf) >= PIVOT_TOL * np.max(pivots, initial=0.0):
             cd.kkt_rows = rows
             break
     else:
         raise SingularConfiguration(float(np.linalg.cond(K)), "KKT matrix (equilibrated): dependent constraint rows "
                                     "or a coordinate without inertia")
-    x = scipy.linalg.lu_solve(lu, np.concatenate([d * (tau - nle), -r * gi]))
+    x = scipy.linalg.lapack.dgetrs(lu, piv, np.concatenate([d * (tau - nle), -r * gi]))[0]
     a, lam = d * x[:n], r * x[n:]
     check_acceleration(J, a, gamma, "forward dynamics (KKT)", lambda: float(np.max(np.abs(d * d * (tau - nle)))))
     return ForwardDynamicsResult(a, Ji.T @ lam)
