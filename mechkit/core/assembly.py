@@ -269,4 +269,14 @@ def _solve_rows(cm: ClosureModel, cd: ClosureData, q0: np.ndarray, split: InputS
     if norm <= tol:
         pin.forwardKinematics(model, cd.pin, q)
         return Assembly(q, it + 1, norm)
-    raise ClosureNotConverged(float(norm), tol, it + 1, "the loop cannot close from this guess, or at all, for these inputs")
+    raise ClosureNotConverged(float(norm), tol, it + 1, f"the loop cannot close from this guess, or at all, for these "
+                              f"inputs; the widest gap: {_widest_gap(cm, e)}")
+
+
+def _widest_gap(cm: ClosureModel, e: np.ndarray) -> str:
+    """The cut (or coupling) whose rows of the residual e (rows,) are largest, and their norm."""
+    kernel = cm.kernel
+    gaps = [(float(np.linalg.norm(e[rows])), f"loop {cut.closure.name!r}") for cut, rows in zip(kernel.cuts, kernel.cut_slices)]
+    gaps += [(abs(float(x)), f"coupling {c.coupling.name!r}") for c, x in zip(kernel.couplings, e[kernel.cut_size:])]
+    size, what = max(gaps, default=(0.0, "none"))
+    return f"{what} by {size:.3e}"

@@ -80,3 +80,16 @@ def test_a_start_that_is_not_stationary_is_not_perturbed():
     cm = core.ClosureModel(desc.model, desc.closures, desc.couplings, desc.actuated)
     q0 = pin.neutral(cm.model)
     assert len(_far_starts(cm, cm.create_data(), q0, cm.split(()))) == 1
+
+
+def test_a_loop_that_cannot_close_is_named_with_its_gap():
+    """A ball joint cannot move its body's frame 0.1 m onto a ground frame: the refusal names the loop and
+    its gap (the norm of its position rows)."""
+    model = pin.Model()
+    ball = model.addJoint(0, pin.JointModelSpherical(), pin.SE3.Identity(), "ball")
+    model.appendBodyToJoint(ball, pin.Inertia.FromBox(1.0, 0.2, 0.1, 0.05), pin.SE3.Identity())
+    model.addFrame(pin.Frame("ground_frame", 0, pin.SE3(np.eye(3), np.array([0.1, 0.0, 0.0])), pin.FrameType.OP_FRAME))
+    model.addFrame(pin.Frame("body_frame", ball, pin.SE3.Identity(), pin.FrameType.OP_FRAME))
+    cm = core.ClosureModel(model, [core.LoopClosure("out_of_reach", "weld", "ground_frame", "body_frame")])
+    with pytest.raises(ClosureNotConverged, match="widest gap: loop 'out_of_reach' by 1.000e-01"):
+        core.assemble(cm, cm.create_data(), pin.neutral(model), cm.split(()))
