@@ -451,18 +451,29 @@ SAME_CONCEPT = {
     "params": (("a mechanism's parameters: their base class (catalog/), each mechanism package's class, and `mechkit "
                "params` (cli/), which lists them"), ("mechkit/catalog/params.py", "mechkit/cli/params.py",
                                                     "mechkit/mechanisms/*/params.py")),
+    "modes": ("natural frequencies and mode shapes: elastic/modes.py computes them, `mechkit modes` (cli/) prints them",
+              ("mechkit/elastic/modes.py", "mechkit/cli/modes.py")),
+    "plot": ("the figure of a study over time: a motion study's (motion/) and a simulation's (simulation/)",
+             ("mechkit/motion/plot.py", "mechkit/simulation/plot.py")),
     "report": ("a mechanism's report: the library module, and `mechkit report` (cli/report.py)",
                ("mechkit/report.py", "mechkit/cli/report.py")),
     "results": (("a package's result types, what its functions return: the core's (mobility, dynamics), the bench's "
                 "(its rows)"), ("mechkit/core/results.py", "mechkit/bench/results.py")),
+    "result": (("the arrays and table of a study over time: a motion study's (motion/), and a simulation's, which "
+                "extends it with time, energies and events (simulation/)"),
+               ("mechkit/motion/result.py", "mechkit/simulation/result.py")),
     "scenes": (("a mechanism's scenes: the protocol with the generic sweep (scenes.py), and each mechanism package's "
                "own"), ("mechkit/scenes.py", "mechkit/mechanisms/*/scenes.py")),
+    "simulate": ("simulation in time: simulation/simulate.py runs it, `mechkit simulate` (cli/) prints and writes it",
+                 ("mechkit/simulation/simulate.py", "mechkit/cli/simulate.py")),
     "soc": (("sequential SOC virtual work: the solver (validation/soc.py) and each mechanism package's hand-written "
             "decomposition solved by it"), ("mechkit/validation/soc.py", "mechkit/mechanisms/*/soc.py")),
     "studies": ("a mechanism package's studies, returning data", ("mechkit/mechanisms/*/studies.py",)),
     "sweep": ("design sweeps: the package, and `mechkit sweep` (cli/sweep.py)", ("mechkit/sweep/", "mechkit/cli/sweep.py")),
     "urdf": ("URDF: sources/urdf.py reads it, `mechkit urdf` (cli/urdf.py) writes a mechanism's",
              ("mechkit/sources/urdf.py", "mechkit/cli/urdf.py")),
+    "urdf_plus": ("the URDF+ format: sources/ reads it, export/ writes it",
+                  ("mechkit/sources/urdf_plus.py", "mechkit/export/urdf_plus.py")),
 }
 
 

@@ -2,10 +2,10 @@
 frequencies, from the mechanism's own elasticity (beam sections per link, joint stiffness).
 """
 
-from mechkit.elastic.description import parse_elastic, with_elastic
-from mechkit.elastic.model import BodyStiffness, CompliantReactions, ElasticModel
+from mechkit.elastic.elastic_model import BodyStiffness, CompliantReactions, ElasticModel
 from mechkit.elastic.modes import Modes
 from mechkit.elastic.sections import ElasticData, JointElasticity, Section
+from mechkit.elastic.urdf_elements import parse_elastic, with_elastic
 
 __all__ = ["BodyStiffness", "CompliantReactions", "ElasticData", "ElasticModel", "JointElasticity", "Modes", "Section",
            "parse_elastic", "with_elastic"]

@@ -10,7 +10,7 @@ import numpy as np
 
 from mechkit.base.exceptions import ClosureNotConverged, InvalidParameters, SingularConfiguration
 from mechkit.base.plotting import pyplot, save_png
-from mechkit.elastic.model import ElasticModel
+from mechkit.elastic.elastic_model import ElasticModel
 
 DIRECTIONS = ("x", "y", "z", "rx", "ry", "rz")
 #: Largest change of any coordinate (rad or m) between neighbouring poses of one assembly branch (ours).

@@ -24,8 +24,8 @@ import pinocchio as pin
 import scipy.linalg
 
 from mechkit.base.exceptions import MethodUnavailable
-from mechkit.elastic.description import parse_elastic
 from mechkit.elastic.sections import ElasticData
+from mechkit.elastic.urdf_elements import parse_elastic
 from mechkit.mechanism import Mechanism
 from mechkit.second_opinion.opinion import SecondOpinion
 

@@ -1,6 +1,6 @@
 """Force elements: named objects giving the generalised forces and body wrenches a mechanism feels.
 
-Each element (`base.ForceElement`) gives, at a state, a `Load` (generalised forces at the joints,
+Each element (`element.ForceElement`) gives, at a state, a `Load` (generalised forces at the joints,
 body wrenches) and its part of the energy balance (a potential, or a dissipated or supplied power):
 
 | element | module | role |
@@ -17,10 +17,17 @@ limits, motor envelopes). `Mechanism` applies its own `JointSprings` in both dyn
 (`mechkit.simulation`) applies any list of elements.
 """
 
-from mechkit.forces.base import ROLES, ForceElement, ForceState, Load, generalized_of_wrenches, wrench_on_body
 from mechkit.forces.coulomb import SPEED_THRESHOLD, CoulombFriction, smooth_sign
 from mechkit.forces.described import Described
 from mechkit.forces.described import read as read_described
+from mechkit.forces.element import (
+    ROLES,
+    ForceElement,
+    ForceState,
+    Load,
+    generalized_of_wrenches,
+    wrench_on_body,
+)
 from mechkit.forces.gravity import Gravity
 from mechkit.forces.motors import TorqueMotor, envelope
 from mechkit.forces.reaction_friction import FrictionLocks, PinFriction, ReactionFriction

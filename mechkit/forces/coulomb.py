@@ -16,7 +16,7 @@ import numpy as np
 import pinocchio as pin
 
 from mechkit.base.exceptions import InvalidParameters
-from mechkit.forces.base import ForceElement, ForceState, Load
+from mechkit.forces.element import ForceElement, ForceState, Load
 
 #: Rate (rad/s or m/s) at which the regularised friction reaches tanh(1) = 0.76 of its size (ours:
 #: two orders below the ten-bar's motor rates, and a near-zero-speed damping F / threshold that an

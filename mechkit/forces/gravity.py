@@ -12,7 +12,7 @@ import numpy as np
 import pinocchio as pin
 
 from mechkit.base.exceptions import InvalidParameters
-from mechkit.forces.base import ForceElement, ForceState, Load
+from mechkit.forces.element import ForceElement, ForceState, Load
 
 
 class Gravity(ForceElement):

@@ -15,8 +15,8 @@ import numpy as np
 import pinocchio as pin
 
 from mechkit.base.exceptions import InvalidParameters
-from mechkit.forces.base import ForceElement, ForceState, Load
 from mechkit.forces.coulomb import one_freedom_joint
+from mechkit.forces.element import ForceElement, ForceState, Load
 
 Command = Callable[[float], float] | float
 

@@ -33,8 +33,8 @@ import numpy as np
 import pinocchio as pin
 
 from mechkit.base.exceptions import InvalidParameters, MechkitError
-from mechkit.forces.base import ForceElement, ForceState, Load
 from mechkit.forces.coulomb import SPEED_THRESHOLD, smooth_sign
+from mechkit.forces.element import ForceElement, ForceState, Load
 
 
 class FrictionLocks(MechkitError):

@@ -14,7 +14,7 @@ import pinocchio as pin
 
 from mechkit.base.exceptions import InvalidParameters
 from mechkit.core import JointSpring
-from mechkit.forces.base import ForceElement, ForceState, Load
+from mechkit.forces.element import ForceElement, ForceState, Load
 
 
 class JointSprings(ForceElement):

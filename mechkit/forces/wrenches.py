@@ -13,7 +13,7 @@ import numpy as np
 import pinocchio as pin
 
 from mechkit.base.exceptions import InvalidParameters
-from mechkit.forces.base import ForceElement, ForceState, Load, wrench_on_body
+from mechkit.forces.element import ForceElement, ForceState, Load, wrench_on_body
 
 Vector = Callable[[float], np.ndarray] | np.ndarray | tuple[float, float, float]
 

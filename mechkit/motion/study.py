@@ -217,7 +217,7 @@ def study(mech: Mechanism, law: InputLaw, *, determinacy: bool = False, loads: L
             flags[rows] = f
     done = np.concatenate(batches) if batches else np.zeros(0, dtype=int)
     if reactions == "compliant" and done.size:
-        from mechkit.elastic.model import ElasticModel
+        from mechkit.elastic.elastic_model import ElasticModel
 
         compliant = ElasticModel(mech).compatible(q[done], efforts[done], wrenches[done], driven.actuated)
         efforts[done], wrenches[done] = compliant.efforts, compliant.reactions

@@ -10,11 +10,11 @@ reactions, energies and works (`recorder`, `result`). `equilibrium` finds where 
 held inputs balance; `friction` gives inverse dynamics with joint friction from the reactions.
 """
 
-from mechkit.simulation.drives import Drives, law_of_samples, prescribed
 from mechkit.simulation.equilibrium import Equilibrium, equilibrium
 from mechkit.simulation.events import Impact, Latch, Limit, impact
 from mechkit.simulation.friction import FrictionInverse, inverse_dynamics
 from mechkit.simulation.integrator import ATOL, METHODS, RTOL, Event, IntegrationFailed, Options, Stepper, run
+from mechkit.simulation.prescribed import Drives, law_of_samples, prescribed
 from mechkit.simulation.projection import POSITION_TOL, Projection
 from mechkit.simulation.result import SimulationResult, write_csv, write_parquet
 from mechkit.simulation.simulate import default_forces, file_limits, simulate, torque_motors

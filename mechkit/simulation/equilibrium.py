@@ -24,7 +24,7 @@ import scipy.linalg
 from mechkit import core
 from mechkit.base.exceptions import ClosureNotConverged
 from mechkit.forces import ForceElement, ForceState, generalized_of_wrenches
-from mechkit.simulation.drives import Drives
+from mechkit.simulation.prescribed import Drives
 from mechkit.simulation.projection import Projection
 
 #: Largest step along the free motions (rad or m per coordinate, ours: a tenth of a radian).

@@ -19,7 +19,7 @@ import numpy as np
 from mechkit import core
 from mechkit.base.exceptions import ConstraintViolated
 from mechkit.forces import ForceElement, ForceState, FrictionLocks, generalized_of_wrenches
-from mechkit.simulation.drives import Drives
+from mechkit.simulation.prescribed import Drives
 from mechkit.simulation.system import FRICTION_ITERATIONS, FRICTION_TOL, MechanismSystem
 
 #: Largest |a(FD of the efforts found) - a| relative to max |a| (and 1 rad/s^2) the check accepts (ours).

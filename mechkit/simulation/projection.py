@@ -14,7 +14,7 @@ from __future__ import annotations
 import numpy as np
 
 from mechkit import core
-from mechkit.simulation.drives import Drives
+from mechkit.simulation.prescribed import Drives
 
 #: Closure residual (m for position rows) the position projection reaches (ours: below the 1e-10 m the
 #: simulation promises, above round-off for metre-sized mechanisms).

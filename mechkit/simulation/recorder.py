@@ -8,7 +8,7 @@ import pinocchio as pin
 
 from mechkit import core
 from mechkit.simulation.projection import Projection
-from mechkit.simulation.state import StateLayout
+from mechkit.simulation.state_layout import StateLayout
 from mechkit.simulation.system import MechanismSystem
 
 

@@ -22,7 +22,6 @@ from mechkit.base.exceptions import InvalidParameters
 from mechkit.forces import ForceElement, TorqueMotor, read_described
 from mechkit.motion.axes import JointAxes
 from mechkit.motion.result import MotionResult, coordinate_names
-from mechkit.simulation.drives import Drives, prescribed
 from mechkit.simulation.events import REST_RATE, Latch, Limit, impact
 from mechkit.simulation.integrator import (
     ATOL,
@@ -33,10 +32,11 @@ from mechkit.simulation.integrator import (
     Stepper,
     first_crossing,
 )
+from mechkit.simulation.prescribed import Drives, prescribed
 from mechkit.simulation.projection import Projection
 from mechkit.simulation.recorder import Recorder
 from mechkit.simulation.result import SimulationResult
-from mechkit.simulation.state import StateLayout
+from mechkit.simulation.state_layout import StateLayout
 from mechkit.simulation.system import MechanismSystem
 
 Progress = Callable[[float, float], None]

@@ -25,7 +25,7 @@ import pinocchio as pin
 
 from mechkit import core
 from mechkit.forces import ForceElement, ForceState, FrictionLocks, generalized_of_wrenches
-from mechkit.simulation.drives import Drives
+from mechkit.simulation.prescribed import Drives
 
 #: The friction fixed point stops when no friction torque changes by more than this, relative to the
 #: largest (ours: far below the integrator's tolerances).

@@ -19,7 +19,7 @@ from __future__ import annotations
 
 from mechkit.catalog.contract import MechanismSpec, MechanismStudy, MotionLaw
 from mechkit.mechanisms.parallel_2t1r import bench, figures, studies
-from mechkit.mechanisms.parallel_2t1r.assembly import EXAMPLE_INPUTS, INPUTS, assembled_pose
+from mechkit.mechanisms.parallel_2t1r.branch import EXAMPLE_INPUTS, INPUTS, assembled_pose
 from mechkit.mechanisms.parallel_2t1r.checks import self_checks
 from mechkit.mechanisms.parallel_2t1r.joint_state import joint_positions
 from mechkit.mechanisms.parallel_2t1r.motion_law import sampled_motion_law

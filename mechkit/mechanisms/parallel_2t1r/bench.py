@@ -15,7 +15,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from mechkit.catalog.contract import BenchMethod, BenchReference
-from mechkit.mechanisms.parallel_2t1r.assembly import INPUTS, assembled_pose
+from mechkit.mechanisms.parallel_2t1r.branch import INPUTS, assembled_pose
 from mechkit.mechanisms.parallel_2t1r.joint_state import configuration
 from mechkit.mechanisms.parallel_2t1r.motion_law import state_at
 from mechkit.mechanisms.parallel_2t1r.rates import State, at_rest

@@ -6,7 +6,7 @@ from __future__ import annotations
 import numpy as np
 
 from mechkit.mechanism import Mechanism
-from mechkit.mechanisms.parallel_2t1r.assembly import EXAMPLE_INPUTS
+from mechkit.mechanisms.parallel_2t1r.branch import EXAMPLE_INPUTS
 from mechkit.mechanisms.parallel_2t1r.compare import compare_along
 from mechkit.mechanisms.parallel_2t1r.kinematics import forward_kinematics, inverse_kinematics, loop_residuals
 from mechkit.mechanisms.parallel_2t1r.motion_law import MOTION_DURATION

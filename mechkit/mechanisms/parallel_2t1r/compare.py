@@ -15,7 +15,7 @@ import pinocchio as pin
 from mechkit.base.exceptions import MechkitError, SingularConfiguration
 from mechkit.core import InverseDynamicsResult
 from mechkit.mechanism import Mechanism
-from mechkit.mechanisms.parallel_2t1r.assembly import INPUTS
+from mechkit.mechanisms.parallel_2t1r.branch import INPUTS
 from mechkit.mechanisms.parallel_2t1r.joint_state import joint_coordinates, joint_positions
 from mechkit.mechanisms.parallel_2t1r.motion_law import motion_law, state_at
 from mechkit.mechanisms.parallel_2t1r.rates import State

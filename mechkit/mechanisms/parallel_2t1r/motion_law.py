@@ -11,7 +11,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from mechkit.catalog.contract import SampledLaw
-from mechkit.mechanisms.parallel_2t1r.assembly import INPUTS, assembled_pose
+from mechkit.mechanisms.parallel_2t1r.branch import INPUTS, assembled_pose
 from mechkit.mechanisms.parallel_2t1r.params import Parallel2T1RParams
 from mechkit.mechanisms.parallel_2t1r.rates import State, motion_state
 

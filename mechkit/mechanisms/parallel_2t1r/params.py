@@ -14,7 +14,7 @@ import numpy as np
 
 from mechkit.base.exceptions import InvalidParameters
 from mechkit.catalog.params import MechanismParams, param
-from mechkit.mechanisms.parallel_2t1r.assembly import EXAMPLE_INPUTS, assembled_pose
+from mechkit.mechanisms.parallel_2t1r.branch import EXAMPLE_INPUTS, assembled_pose
 from mechkit.mechanisms.parallel_2t1r.kinematics import BODIES, Dims
 
 

@@ -6,7 +6,7 @@ import numpy as np
 
 from mechkit.base.exceptions import InvalidParameters
 from mechkit.mechanism import Mechanism
-from mechkit.mechanisms.parallel_2t1r.assembly import EXAMPLE_INPUTS, assembled_pose
+from mechkit.mechanisms.parallel_2t1r.branch import EXAMPLE_INPUTS, assembled_pose
 from mechkit.mechanisms.parallel_2t1r.joint_state import configuration
 from mechkit.mechanisms.parallel_2t1r.kinematics import follower_angles, forward_kinematics
 from mechkit.mechanisms.parallel_2t1r.motion_law import MOTION_DURATION, motion_law

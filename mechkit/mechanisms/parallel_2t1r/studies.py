@@ -17,7 +17,7 @@ import numpy as np
 
 from mechkit.base.exceptions import MechkitError
 from mechkit.mechanism import Mechanism
-from mechkit.mechanisms.parallel_2t1r.assembly import EXAMPLE_INPUTS, INPUTS, assembled_pose
+from mechkit.mechanisms.parallel_2t1r.branch import EXAMPLE_INPUTS, INPUTS, assembled_pose
 from mechkit.mechanisms.parallel_2t1r.compare import (
     QUANTITIES,
     Comparison,

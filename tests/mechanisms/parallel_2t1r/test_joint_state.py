@@ -8,7 +8,7 @@ import pytest
 
 from mechkit.base.exceptions import ClosureNotConverged, InvalidParameters
 from mechkit.mechanisms.parallel_2t1r import kinematics as kin
-from mechkit.mechanisms.parallel_2t1r.assembly import EXAMPLE_INPUTS
+from mechkit.mechanisms.parallel_2t1r.branch import EXAMPLE_INPUTS
 from mechkit.mechanisms.parallel_2t1r.joint_state import joint_coordinates
 from mechkit.mechanisms.parallel_2t1r.rates import at_rest
 

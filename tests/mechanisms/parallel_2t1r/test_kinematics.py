@@ -7,7 +7,7 @@ import pytest
 
 from mechkit.base.exceptions import InvalidParameters
 from mechkit.mechanisms.parallel_2t1r import kinematics as kin
-from mechkit.mechanisms.parallel_2t1r.assembly import EXAMPLE_INPUTS, assembled_pose
+from mechkit.mechanisms.parallel_2t1r.branch import EXAMPLE_INPUTS, assembled_pose
 from mechkit.mechanisms.parallel_2t1r.params import Parallel2T1RParams
 
 P = Parallel2T1RParams()

@@ -1,11 +1,11 @@
-"""`mechkit.mechanisms.parallel_2t1r.assembly`: the sixteen configurations of the assembled pose."""
+"""`mechkit.mechanisms.parallel_2t1r.branch`: the sixteen configurations of the assembled pose."""
 
 from __future__ import annotations
 
 import numpy as np
 
 from mechkit.mechanisms.parallel_2t1r import kinematics as kin
-from mechkit.mechanisms.parallel_2t1r.assembly import EXAMPLE_INPUTS, assembled_pose
+from mechkit.mechanisms.parallel_2t1r.branch import EXAMPLE_INPUTS, assembled_pose
 from mechkit.mechanisms.parallel_2t1r.params import Parallel2T1RParams
 
 P = Parallel2T1RParams()

@@ -154,18 +154,6 @@ def test_motion_study_gains_the_compliant_reactions(four_bar):
     assert np.allclose(compliant.efforts, rigid.efforts, rtol=1e-9, atol=1e-9 * np.abs(rigid.efforts).max())
 
 
-def test_every_elastic_module_has_its_test_file():
-    """As for the core: the test of `mechkit/elastic/<module>.py` is `tests/elastic/test_<module>.py`."""
-    from pathlib import Path
-
-    import mechkit.elastic
-
-    package = Path(mechkit.elastic.__file__).parent
-    here = Path(__file__).parent
-    missing = [p.name for p in sorted(package.glob("*.py")) if p.name != "__init__.py" and not (here / f"test_{p.stem}.py").is_file()]
-    assert not missing, missing
-
-
 def test_joint_and_drive_stiffness_equal_the_frame_model(four_bar):
     """Bearings as 6x6 diagonal stiffness on every joint (their constrained directions) and a drive
     stiffness on the crank: reactions, compliance and frequencies against the frame model's springs."""

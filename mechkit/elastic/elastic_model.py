@@ -15,10 +15,10 @@ import pinocchio as pin
 from mechkit.base import arguments
 from mechkit.base.exceptions import InvalidArgument, InvalidParameters
 from mechkit.elastic import statics
-from mechkit.elastic.description import parse_elastic
 from mechkit.elastic.idealisation import Idealisation
 from mechkit.elastic.modes import Modes, modes
 from mechkit.elastic.sections import ElasticData, JointElasticity, Section
+from mechkit.elastic.urdf_elements import parse_elastic
 from mechkit.mechanism import Mechanism
 
 #: Compliance, relative to the largest, under which a body's direction counts as held rigidly.
