@@ -1,4 +1,4 @@
-"""Where a sweep's tasks run: the Dask client, its workers, a lost scheduler, TLS and the log file.
+"""Where a sweep's tasks run: the Dask client, its workers, a lost scheduler, TLS.
 
 - `dask_client`: a client to a running scheduler (`tls://` addresses use the certificates of Dask's
   configuration, `distributed.comm.tls.*`; `tls_config` turns explicit files into that configuration),
@@ -8,9 +8,6 @@
   workers serving it (reported to a callback whenever it changes), a cluster without a worker for
   longer than the allowed wait (`NoWorkers`), the scheduler's connection lost (`SchedulerLost`), a
   task that failed on the cluster rather than in a design (`TaskFailed`).
-- `log_to`: while a sweep runs, the records of distributed's (and tornado's, asyncio's) loggers and
-  Python's warnings go to a file in the results folder instead of the terminal, followed by the
-  traceback of whatever stopped it.
 """
 
 from __future__ import annotations
@@ -20,7 +17,6 @@ import math
 import os
 import queue
 import time
-import warnings
 from collections.abc import Callable, Iterable, Iterator
 from contextlib import contextmanager
 from dataclasses import dataclass
@@ -34,8 +30,6 @@ if TYPE_CHECKING:
 
 #: The environment variable naming the scheduler when no address is given.
 SCHEDULER_ENV = "MECHKIT_DASK_SCHEDULER"
-#: The log file of a sweep, in its results folder.
-LOG = "sweep.log"
 #: Default of how long (s) a sweep waits for a worker when its cluster has none.
 WAIT_WORKERS = 60.0
 #: Seconds allowed to reach a scheduler.
@@ -47,7 +41,6 @@ DASHBOARD_PORT = 8787
 _TLS_KEYS = {"tls_ca": "distributed.comm.tls.ca-file", "tls_cert": "distributed.comm.tls.client.cert",
              "tls_key": "distributed.comm.tls.client.key"}
 _LOST = "lost mid-sweep (the connection to it closed)"
-_LOGGERS = ("distributed", "tornado", "asyncio", "bokeh", "mechkit", "py.warnings")
 
 
 class ClusterError(MechkitError):
@@ -327,47 +320,3 @@ class Monitor:
                     self.look()  # the scheduler lost mid-fetch?
                     raise TaskFailed(self.address, f"a task failed on the cluster ({_text(err)})") from err
             yield future, result
-
-
-@contextmanager
-def log_to(path: str | Path) -> Iterator[Path]:
-    """Send the records of distributed's, tornado's, asyncio's, bokeh's and mechkit's loggers to a file.
-
-    For the duration, those loggers write to `path` (appended) instead of their handlers (distributed
-    installs one on stderr), and so do Python's warnings (distributed warns, e.g., when the dashboard's
-    port is taken); an exception leaving the block is written there with its traceback before it goes
-    on. The handlers and the warnings' destination are restored afterwards.
-
-    Args:
-        path: the log file.
-
-    Returns:
-        A context manager giving the log file's path.
-    """
-    import dask
-
-    path = Path(path)
-    handler = logging.FileHandler(path, delay=True)
-    handler.setFormatter(logging.Formatter(dask.config.get("distributed.admin.log-format")))
-    names = {n for n in logging.root.manager.loggerDict if n.split(".")[0] in _LOGGERS} | set(_LOGGERS)
-    loggers = [logging.getLogger(n) for n in sorted(names)]
-    saved = [(lg, lg.handlers[:], lg.propagate) for lg in loggers if lg.handlers or lg.name in _LOGGERS]
-    for lg, _, _ in saved:
-        lg.handlers, lg.propagate = [handler], False
-    try:
-        with warnings.catch_warnings():  # restores warnings.showwarning on leaving
-            warnings.showwarning = _log_warning
-            yield path
-    except BaseException:
-        logging.getLogger("mechkit.sweep").exception("the sweep stopped")
-        raise
-    finally:
-        for lg, handlers, propagate in saved:
-            lg.handlers, lg.propagate = handlers, propagate
-        handler.close()
-
-
-def _log_warning(message: Warning | str, category: type[Warning], filename: str, lineno: int,
-                 file: object = None, line: str | None = None) -> None:
-    """A `warnings.showwarning` that writes the warning to the "py.warnings" logger."""
-    logging.getLogger("py.warnings").warning("%s", warnings.formatwarning(message, category, filename, lineno, line))

@@ -23,16 +23,15 @@ from mechkit.catalog.registry import get_spec
 from mechkit.loading import load
 from mechkit.sweep import store
 from mechkit.sweep.cluster import (
-    LOG,
     WAIT_WORKERS,
     ClusterError,
     ClusterState,
     Monitor,
     check_options,
     dask_client,
-    log_to,
 )
 from mechkit.sweep.evaluate import STATUSES, Chunk, evaluate_chunk
+from mechkit.sweep.log_file import LOG, log_to
 from mechkit.sweep.metrics import Study
 from mechkit.sweep.space import DesignSpace
 from mechkit.sweep.specific import resolve

@@ -24,7 +24,8 @@ from tests_support import ROOT
 
 from mechkit.cli.sweep import EXIT_NO_WORKERS, EXIT_SCHEDULER_LOST, EXIT_TASK_FAILED, EXIT_UNREACHABLE
 from mechkit.sweep import read
-from mechkit.sweep.cluster import LOG, dask_client
+from mechkit.sweep.cluster import dask_client
+from mechkit.sweep.log_file import LOG
 
 DASK = Path(sys.executable).parent / "dask"
 FOUR_BAR = ("four_bar", "--grid", "crank=0.06:0.12", "--grid", "coupler=0.25:0.32", "--law", "turn")
