@@ -80,9 +80,16 @@ def _far_rows(cm: ClosureModel, cd: ClosureData, q: np.ndarray) -> tuple[np.ndar
 
 
 def flip(cm: ClosureModel, data: pin.Data) -> float:
-    """How far the cuts' frames disagree in orientation at the joint placements `data.oMi` holds (the norm
-    of their axis differences): 0 at a closed loop, about 2 where the kernel's rows vanish with a frame
-    turned half a turn."""
+    """How far the cuts' frames disagree in orientation at the joint placements `data.oMi` holds.
+
+    Args:
+        cm: the closure model whose cuts are checked.
+        data: Pinocchio data whose `oMi` holds the joint placements (after `forwardKinematics`).
+
+    Returns:
+        The norm of the cuts' axis differences (R_b n - R_a n over their axes n): 0 at a closed loop,
+        about 2 where the kernel's rows vanish with a frame turned half a turn.
+    """
     model, total = cm.model, 0.0
     for cut in cm.kernel.cuts:
         axes = _axes(cut)
@@ -95,8 +102,20 @@ def flip(cm: ClosureModel, data: pin.Data) -> float:
 
 
 def from_far(cm: ClosureModel, cd: ClosureData, q0: np.ndarray, split: InputSplit) -> np.ndarray:
-    """A configuration near closure from q0 (nq,), moving only the coordinates of `split.free_v`:
-    Levenberg-Marquardt with Nielsen's damping update on the flip-free residual (see the module)."""
+    """A configuration near closure from q0, moving only the coordinates of `split.free_v`.
+
+    Levenberg-Marquardt with Nielsen's damping update on the flip-free residual (see the module). Uses
+    `cd.pin` as workspace.
+
+    Args:
+        cm: the closure model.
+        cd: its data (workspace).
+        q0: (nq,) starting configuration.
+        split: which joints are given; only the coordinates of `split.free_v` move.
+
+    Returns:
+        (nq,) the configuration reached (near closure, not necessarily closed to tolerance).
+    """
     model, free = cm.model, split.free_v
     q = q0.copy()
     e, J, _ = _far_rows(cm, cd, q)
@@ -174,6 +193,8 @@ def assemble(cm: ClosureModel, cd: ClosureData, q0: np.ndarray, split: InputSpli
     exact rows' solve again from there. Leaves `cd.pin` at q.
 
     Args:
+        cm: the closure model.
+        cd: its data (workspace; left at the solution).
         q0: (nq,) starting configuration; its given joints' coordinates are the inputs.
         split: which joints are given (`ClosureModel.split`).
         tol: residual norm to reach (m for position rows).
@@ -181,6 +202,9 @@ def assemble(cm: ClosureModel, cd: ClosureData, q0: np.ndarray, split: InputSpli
         method: "newton" or "lm" for the exact rows.
         jacobian_at_trials: evaluate the Jacobian at every trial point (else only to step from an
             accepted one: cheaper when most steps are accepted at once, as along a path).
+
+    Returns:
+        The closed configuration q (nq,), the exact solve's iterations and its residual norm.
 
     Raises:
         ClosureNotConverged: the residual did not reach tol (the linkage may not assemble there).

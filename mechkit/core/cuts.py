@@ -31,7 +31,14 @@ from mechkit.core.records import Coupling, LoopClosure
 
 
 def perpendicular_pair(n: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Unit t1, t2 with (t1, t2, n) right-handed, for a unit 3-vector n."""
+    """Two unit vectors completing a unit vector to a right-handed orthonormal frame.
+
+    Args:
+        n: (3,) unit vector.
+
+    Returns:
+        (t1, t2), each (3,), unit, with (t1, t2, n) right-handed and orthonormal.
+    """
     helper = np.array([1.0, 0, 0]) if abs(n[0]) < 0.9 else np.array([0, 1.0, 0])
     t1 = cross(n, helper)
     t1 /= np.linalg.norm(t1)
@@ -64,6 +71,14 @@ class CutRows:
 def frame_id(model: pin.Model, closure: LoopClosure, frame: str) -> int:
     """The Pinocchio id of a closure's frame (any frame type).
 
+    Args:
+        model: the Pinocchio model.
+        closure: the closure naming the frame (for the error message).
+        frame: the frame's name.
+
+    Returns:
+        The frame's id in `model.frames`.
+
     Raises:
         MalformedDescription: no frame of that name.
     """
@@ -73,10 +88,18 @@ def frame_id(model: pin.Model, closure: LoopClosure, frame: str) -> int:
 
 
 def cut_rows(model: pin.Model, closure: LoopClosure, rows: str | None = None) -> CutRows:
-    """The rows a closure keeps (its own `rows` set unless `rows` overrides it).
+    """The rows a closure keeps, in its frames' coordinates.
+
+    Args:
+        model: the Pinocchio model holding the closure's frames.
+        closure: the loop closure.
+        rows: the row set ("spatial", "planar" or "spherical"); None: the closure's own `rows`.
+
+    Returns:
+        The cut's frame ids, position-row directions (3, k) in frame_a and alignment-row vector pairs.
 
     Raises:
-        MalformedDescription: a frame not in the model, or a row set the kind does not have.
+        MalformedDescription: a frame not in the model, or a prismatic cut with rows other than "spatial".
     """
     rows = rows or closure.rows
     ids = [frame_id(model, closure, f) for f in (closure.frame_a, closure.frame_b)]
@@ -135,6 +158,14 @@ class CouplingRow:
 
 def coupling_row(model: pin.Model, coupling: Coupling) -> CouplingRow:
     """Resolve a coupling's joints on the model.
+
+    Args:
+        model: the Pinocchio model.
+        coupling: the coupling declaration.
+
+    Returns:
+        The coupling's joint indices (configuration and velocity), continuity flags, follower and leader
+        coefficients and polynomial.
 
     Raises:
         MalformedDescription: an unknown joint, a joint with more than one freedom, no follower.

@@ -24,7 +24,15 @@ SMALL_SYSTEM = 1000
 
 
 def system(cm: ClosureModel, Jrows: np.ndarray) -> np.ndarray:
-    """(N, nv, na + rows) matrices [S^T, J^T] from closure Jacobians (N, rows, nv)."""
+    """The statics matrices [S^T, J^T] of N samples.
+
+    Args:
+        cm: the closure model (its actuation S, (na, nv)).
+        Jrows: (N, rows, nv) closure Jacobians.
+
+    Returns:
+        (N, nv, na + rows) the matrices [S^T, J^T].
+    """
     na = len(cm.actuated)
     A = np.empty((Jrows.shape[0], cm.nv, na + Jrows.shape[1]))
     A[:, :, :na] = cm.actuation.T
@@ -33,8 +41,15 @@ def system(cm: ClosureModel, Jrows: np.ndarray) -> np.ndarray:
 
 
 def svd_null_spaces(A: np.ndarray) -> np.ndarray:
-    """(N, cols, K) right singular vectors of A (N, nv, cols) past each sample's numerical rank,
-    zero columns where a sample's null space is smaller than the largest."""
+    """Orthonormal null-space bases of N matrices by SVD.
+
+    Args:
+        A: (N, nv, cols) matrices.
+
+    Returns:
+        (N, cols, K) the right singular vectors past each sample's numerical rank (`rank.ranks`), zero
+        columns where a sample's null space is smaller than the largest.
+    """
     if len(A) == 1:  # LAPACK directly: a fraction of np.linalg.svd's overhead on one small matrix
         _, s, Vt, _ = scipy.linalg.lapack.dgesdd(A[0], full_matrices=1)
         return Vt[int(ranks(s[None])[0]):].T[None]
@@ -45,8 +60,8 @@ def svd_null_spaces(A: np.ndarray) -> np.ndarray:
 
 
 def self_stresses(cd: ClosureData, A: np.ndarray) -> np.ndarray:
-    """(N, cols, K) orthonormal bases of the null spaces of A = [S^T, J_full^T] (N, nv, cols), zero-padded:
-    the space `svd_null_spaces` gives, mostly without an SVD.
+    """Orthonormal bases of the null spaces of A = [S^T, J_full^T]: the space `svd_null_spaces` gives,
+    mostly without an SVD.
 
     Rows R0 of A, independent at the first sample seen (cached on the data), give by one QR,
     A[R0]^T = Q R, the null space Q[:, r0:] of A[R0]. It is A's null space exactly when a sample
@@ -56,6 +71,13 @@ def self_stresses(cd: ClosureData, A: np.ndarray) -> np.ndarray:
     most r0). A sample that fails either (a special configuration) gets the SVD, and so does a single
     small sample (`SMALL_SYSTEM`). Either basis spans the same space, and the determinacy depends only
     on that space.
+
+    Args:
+        cd: the closure data (caches the independent rows R0 in `stress_rows`).
+        A: (N, nv, cols) the matrices [S^T, J_full^T].
+
+    Returns:
+        (N, cols, K) orthonormal null-space bases, zero-padded where a sample's null space is smaller.
     """
     n, nv, cols = A.shape
     if n == 0:
@@ -89,12 +111,21 @@ def self_stresses(cd: ClosureData, A: np.ndarray) -> np.ndarray:
 
 def determinacy(cm: ClosureModel, cd: ClosureData, G: np.ndarray, J: np.ndarray, q: np.ndarray,
                 origins: np.ndarray, cut_points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Which reaction components (N, joints, 6) and efforts (N, na) static equilibrium fixes.
+    """Which reaction components and efforts static equilibrium fixes.
 
     Args:
-        G: (N, n_used, 4, 4) placements of the joints carrying cut frames; J: (N, 6, nv) `data.J`.
+        cm: the closure model (its full-row kernel `full_kernel` and actuation).
+        cd: the closure data (caches the independent rows of `self_stresses`).
+        G: (N, n_used, 4, 4) world placements of the joints carrying cut frames.
+        J: (N, 6, nv) joint Jacobians (`data.J`, WORLD frame).
         q: (N, nq) configurations (coupling rows).
-        origins: (N, njoints - 1, 3) tree joint origins; cut_points: (N, ncuts, 3) the cuts' p_b.
+        origins: (N, njoints - 1, 3) tree joint origins, in the world frame (m).
+        cut_points: (N, ncuts, 3) the cuts' points p_b, in the world frame (m).
+
+    Returns:
+        (N, njoints - 1 + ncuts, 6) True where a reaction component is determinate (tree joints in
+        model order, then the cuts, as `ClosureKernel.joint_loads`), and (N, na) True where an
+        actuator's effort is.
     """
     na = len(cm.actuated)
     full = cm.full_kernel

@@ -23,16 +23,35 @@ from mechkit.core.model import ClosureData, ClosureModel
 
 
 def splits(cm: ClosureModel, rows: int, distribution: str) -> bool:
-    """Whether `passive_solve` applies: every actuator one joint's motor, a passive block with more rows
-    than columns (a redundant row), and the minimum-norm solution asked for."""
+    """Whether `passive_solve` applies.
+
+    Args:
+        cm: the closure model (its `passive_v`, set where every actuator is one joint's motor).
+        rows: number of closure rows.
+        distribution: "min_norm" or "min_effort".
+
+    Returns:
+        True where every actuator is one joint's motor, the passive block has more rows than columns
+        (a redundant row), and the minimum-norm solution is asked for.
+    """
     return cm.passive_v is not None and 0 < cm.passive_v.size < rows and distribution == "min_norm"
 
 
 def passive_solve(cm: ClosureModel, cd: ClosureData, Jrows: np.ndarray, b: np.ndarray,
                   residuals: np.ndarray) -> tuple[np.ndarray | None, np.ndarray]:
-    """The minimum-norm [u; lambda] of N samples through one LU of each passive block's square part
-    (`passive_one`), and (N,) whether each block is certified resolvably regular; x is None where some
-    sample's [S^T, J^T] is not certified of full row rank."""
+    """The minimum-norm [u; lambda] of N samples through one LU of each passive block's square part.
+
+    Args:
+        cm: the closure model.
+        cd: the closure data (caches the passive block's independent rows).
+        Jrows: (N, rows, nv) closure Jacobians.
+        b: (N, nv) generalised forces the motion needs.
+        residuals: (N,) closure residual norms (for `rank.certified_regular`).
+
+    Returns:
+        x (N, na + rows), None where some sample's [S^T, J^T] is not certified of full row rank; and
+        (N,) whether each passive block is certified resolvably regular (`passive_one`).
+    """
     out = [passive_one(cm, cd, Jrows[i], b[i], float(residuals[i])) for i in range(len(Jrows))]
     regular = np.array([r for _, r in out], dtype=bool)
     if any(x is None for x, _ in out):
@@ -42,9 +61,7 @@ def passive_solve(cm: ClosureModel, cd: ClosureData, Jrows: np.ndarray, b: np.nd
 
 def passive_one(cm: ClosureModel, cd: ClosureData, J: np.ndarray, b: np.ndarray,
                 residual: float) -> tuple[np.ndarray | None, bool]:
-    """One sample of `passive_solve`: J (rows, nv), b (nv,) give x (na + rows,)
-    (None where [S^T, J^T] is not certified of full row rank) and whether the passive block is
-    certified resolvably regular (`rank.certified_regular`).
+    """One sample of `passive_solve`.
 
     With every actuator one joint's motor, [S^T, J^T] x = b splits into B^T lambda = b_p and u = b_a -
     J_a^T lambda, B = J[:, passive] (rows > columns). Rows s of B forming a regular square block B_s
@@ -55,6 +72,17 @@ def passive_one(cm: ClosureModel, cd: ClosureData, J: np.ndarray, b: np.ndarray,
     bounds sigma_min(B) >= sigma_min(B_s) >= 1 / |B_s^-1|_F, and [S^T, J^T] has the right inverse
     [[I, -J_a^T Y], [0, Y]], Y = B_s^-T on s: sigma_min >= (na + (1 + |J_a|_F^2) |B_s^-1|_F^2)^(-1/2)
     against sigma_max <= (na + |J|_F^2)^(1/2), whose ratio above `rank.RANK_TOL` certifies full row rank.
+
+    Args:
+        cm: the closure model.
+        cd: the closure data (caches the independent rows of B in `split_rows`).
+        J: (rows, nv) closure Jacobian.
+        b: (nv,) generalised force the motion needs.
+        residual: closure residual norm (for `rank.certified_regular`).
+
+    Returns:
+        x (na + rows,), None where [S^T, J^T] is not certified of full row rank; and whether the passive
+        block is certified resolvably regular (`rank.certified_regular`).
     """
     lapack = scipy.linalg.lapack
     act, free = cm.actuated_v, cm.passive_v
@@ -92,6 +120,12 @@ def square_one(cm: ClosureModel, J: np.ndarray, b: np.ndarray, bound: bool) -> t
     That bounds sigma_min(A) and the passive block's smallest singular value: B^-T = [A^-1]_lambda U
     (U the orthonormal unactuated basis), so sigma_min(B) >= 1 / |A^-1|_2 >= 1 / |A^-1|_F.
 
+    Args:
+        cm: the closure model (its actuation S).
+        J: (rows, nv) closure Jacobian.
+        b: (nv,) generalised force the motion needs.
+        bound: also compute the bound 1 / |A^-1|_F.
+
     Returns:
         x (nv,), None where A is singular or x not finite; the bound (0 without `bound` or where singular).
     """
@@ -103,7 +137,14 @@ def square_one(cm: ClosureModel, J: np.ndarray, b: np.ndarray, bound: bool) -> t
 
 
 def singular(A: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Singular values (N, k), numerical ranks (N,) and condition numbers s_max / s_rank (N,) of A (N, nv, cols)."""
+    """Singular values, numerical ranks and condition numbers of N matrices.
+
+    Args:
+        A: (N, nv, cols) matrices.
+
+    Returns:
+        Singular values (N, k), numerical ranks (N,) and condition numbers s_max / s_rank (N,).
+    """
     s = rank.singular_values(A)
     r = rank.ranks(s)
     return s, r, s[:, 0] / s[np.arange(len(s)), np.maximum(r, 1) - 1]
@@ -119,6 +160,19 @@ def solve(cm: ClosureModel, A: np.ndarray, b: np.ndarray, condition: bool,
     sigma_min(A) above `rank.RANK_TOL` |A|_F shows the full rank the singular values would); else by
     SVD, moved to the least efforts for "min_effort". Either way the same unique x, and b must be
     reachable.
+
+    Args:
+        cm: the closure model (its number of actuators, for "min_effort").
+        A: (N, nv, cols) the matrices [S^T, J^T].
+        b: (N, nv) generalised forces the motion needs.
+        condition: compute the condition numbers (by an SVD).
+        distribution: "min_norm" or "min_effort": which solution where it is not unique.
+
+    Returns:
+        x (N, cols) = [u; lambda], and the condition numbers (N,) (nan when `condition` is False).
+
+    Raises:
+        SingularConfiguration: b is not reachable (outside the range of A) for some sample.
     """
     n, nv, cols = A.shape
     square = nv == cols
@@ -156,7 +210,18 @@ def solve(cm: ClosureModel, A: np.ndarray, b: np.ndarray, condition: bool,
 
 
 def square_solution(A: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """x (N, n) with A x = b for square A (N, n, n) by gesv; `SingularConfiguration` where one is singular."""
+    """Solve N square systems A x = b by gesv.
+
+    Args:
+        A: (N, n, n) square matrices.
+        b: (N, n) right-hand sides.
+
+    Returns:
+        (N, n) the solutions x.
+
+    Raises:
+        SingularConfiguration: some A is singular (or its solution is not finite).
+    """
     n, cols = A.shape[0], A.shape[2]
     if n == 1:  # LAPACK gesv directly: a fraction of np.linalg.solve's overhead on small systems
         _, _, x, info = scipy.linalg.lapack.dgesv(A[0], b[0])
@@ -174,9 +239,16 @@ def square_solution(A: np.ndarray, b: np.ndarray) -> np.ndarray:
 
 
 def full_rank_solution(A: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """The unique least-squares (full column rank) or minimum-norm (full row rank) solution x (N, cols)
-    of A x = b by QR, the norm (N,) of the part of b outside the range of A, and (N,) 1 / |R^-1|_F <=
-    sigma_min(A) (0 where R is singular)."""
+    """The unique least-squares (full column rank) or minimum-norm (full row rank) solution of A x = b by QR.
+
+    Args:
+        A: (N, nv, cols) matrices, each of full rank.
+        b: (N, nv) right-hand sides.
+
+    Returns:
+        x (N, cols); the norm (N,) of the part of b outside the range of A; and (N,) 1 / |R^-1|_F <=
+        sigma_min(A) (0 where R is singular).
+    """
     if A.shape[1] > A.shape[2]:  # A = Q R: x = R^-1 Q^T b
         Q, R = np.linalg.qr(A)
         c = np.einsum("nij,ni->nj", Q, b)

@@ -54,8 +54,9 @@ def check_acceleration(J: np.ndarray, a: np.ndarray, gamma: np.ndarray, what: st
     """Refuse accelerations that violate J a + gamma = 0 beyond `ACCELERATION_TOL` relative to the terms.
 
     Args:
-        J: (rows, nv) the rows the method solved; gamma: (rows,) their drift.
-        a: (nv,) the accelerations.
+        J: (rows, nv) the rows the method solved.
+        a: (nv,) the accelerations (rad/s^2 or m/s^2).
+        gamma: (rows,) their drift (J a + gamma = 0 on the constraint manifold).
         what: the method, for the error.
         a_scale: gives the size of the accelerations the loads would cause unconstrained (rad/s^2 or
             m/s^2): where the closures hold the mechanism still, a is rounding and this sets the scale
@@ -309,14 +310,25 @@ def _svd_null_space(cm: ClosureModel, J: np.ndarray, gamma: np.ndarray) -> tuple
 def forward_dynamics(cm: ClosureModel, cd: ClosureData, q: np.ndarray, v: np.ndarray, tau: np.ndarray,
                      method: str = "proximal", *, mu: float | None = None, accuracy: float | None = None,
                      max_iter: int | None = None, baumgarte: tuple[float, float] | None = None) -> ForwardDynamicsResult:
-    """Accelerations (nv,) of one state q (nq,), v (nv,) under joint efforts tau (nv,).
+    """Accelerations of one state under joint efforts.
 
     Args:
+        cm: the closure model.
+        cd: its data (workspace; caches rows, partitions and Pinocchio's constraint models).
+        q: (nq,) configuration.
+        v: (nv,) velocity.
+        tau: (nv,) joint efforts (N m or N).
         method: one of `METHODS` (see the module docstring).
-        mu, accuracy, max_iter: Pinocchio's settings for "proximal" and "lcaba" (None: `DEFAULTS`);
-            mu relative to `ClosureModel.delassus_scale`, accuracy in m/s^2 for position rows.
+        mu: proximal parameter of "proximal" and "lcaba", relative to `ClosureModel.delassus_scale`
+            (None: `DEFAULTS`).
+        accuracy: stopping accuracy of "proximal" and "lcaba", in m/s^2 for position rows (None: `DEFAULTS`).
+        max_iter: iteration cap of "proximal" and "lcaba" (None: `DEFAULTS`).
         baumgarte: (Kp (1/s^2), Kd (1/s)) closure stabilisation, J a + gamma + Kd J v + Kp e = 0
             (not for "lcaba").
+
+    Returns:
+        The accelerations a (nv,), the generalised constraint force J^T lambda (nv,) and the
+        iterations of Pinocchio's solver (0 for "kkt" and "nullspace").
 
     Raises:
         SingularConfiguration: accelerations not unique or not finite.
@@ -335,7 +347,20 @@ def forward_dynamics(cm: ClosureModel, cd: ClosureData, q: np.ndarray, v: np.nda
 
 def forward_dynamics_batch(cm: ClosureModel, cd: ClosureData, Q: np.ndarray, V: np.ndarray, T: np.ndarray,
                            method: str = "proximal", **settings: float | tuple | None) -> ForwardDynamicsResult:
-    """`forward_dynamics` of N states: Q (N, nq), V and T (N, nv) give arrays with that leading axis."""
+    """`forward_dynamics` of N states.
+
+    Args:
+        cm: the closure model.
+        cd: its data (workspace).
+        Q: (N, nq) configurations.
+        V: (N, nv) velocities.
+        T: (N, nv) joint efforts (N m or N).
+        method: one of `METHODS`.
+        **settings: keyword settings of `forward_dynamics` (mu, accuracy, max_iter, baumgarte).
+
+    Returns:
+        Accelerations (N, nv), generalised constraint forces (N, nv) and the largest iteration count.
+    """
     out = [forward_dynamics(cm, cd, q, v, t, method, **settings) for q, v, t in zip(Q, V, T)]
     return ForwardDynamicsResult(np.array([r.a for r in out]).reshape(len(Q), cm.nv),
                                  np.array([r.constraint_force for r in out]).reshape(len(Q), cm.nv),

@@ -29,17 +29,37 @@ DISTRIBUTIONS = ("min_norm", "min_effort")
 
 
 def tree_wrenches(P: np.ndarray, f: np.ndarray) -> np.ndarray:
-    """(..., nj - 1, 6) the tree joints' wrenches `data.f` in world axes about each joint origin, from
-    the placements [R | p] (..., nj, 3, 4) and the wrenches f (..., nj, 6) (local frames)."""
+    """The tree joints' wrenches `data.f` in world axes, about each joint origin.
+
+    Args:
+        P: (..., nj, 3, 4) joint placements [R | p] in the world (`data.oMi`).
+        f: (..., nj, 6) joint wrenches [f, m] in each joint's LOCAL frame (`data.f`).
+
+    Returns:
+        (..., nj - 1, 6) the wrenches of the tree joints (the universe left out), world axes, about
+        each joint origin.
+    """
     lead, nj = f.shape[:-2], f.shape[-2]
     return (f[..., 1:, :].reshape(*lead, nj - 1, 2, 3) @ P[..., 1:, :, :3].swapaxes(-1, -2)).reshape(*lead, nj - 1, 6)
 
 
 def inverse_pass(cm: ClosureModel, cd: ClosureData, Q: np.ndarray, V: np.ndarray, A: np.ndarray,
                  fexts: Sequence) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    """Per sample, Pinocchio's passes, read: every joint's placement [R | p] (N, nj, 3, 4), `data.J`
-    (N, 6, nv), rnea torques (N, nv), and the tree joints' wrenches in world axes about each joint
-    origin (N, nj - 1, 6, `tree_wrenches`): the reactions before the cut wrenches act."""
+    """Pinocchio's passes (`computeJointJacobians`, `rnea`) of N samples, read.
+
+    Args:
+        cm: the closure model.
+        cd: its data (workspace).
+        Q: (N, nq) configurations.
+        V: (N, nv) velocities.
+        A: (N, nv) accelerations.
+        fexts: N per-sample external forces per joint (`pin.StdVec_Force`, LOCAL frames) or None each.
+
+    Returns:
+        Every joint's placement [R | p] (N, nj, 3, 4), `data.J` (N, 6, nv, WORLD), rnea torques
+        (N, nv), and the tree joints' wrenches in world axes about each joint origin (N, nj - 1, 6,
+        `tree_wrenches`): the reactions before the cut wrenches act.
+    """
     model, data = cm.model, cd.pin
     n, nj = len(Q), model.njoints
     P = np.empty((n, nj, 3, 4))
@@ -59,7 +79,15 @@ def inverse_pass(cm: ClosureModel, cd: ClosureData, Q: np.ndarray, V: np.ndarray
 
 
 def used_placements(cm: ClosureModel, P: np.ndarray) -> np.ndarray:
-    """(N, n_used, 4, 4) homogeneous placements of the joints carrying cut frames, from [R | p] (N, nj, 3, 4)."""
+    """Homogeneous placements of the joints carrying cut frames.
+
+    Args:
+        cm: the closure model (its kernel's used joints).
+        P: (N, nj, 3, 4) every joint's placement [R | p] in the world.
+
+    Returns:
+        (N, n_used, 4, 4) the used joints' homogeneous placements in the world.
+    """
     G = np.zeros(P.shape[:1] + (cm.kernel.joints.size, 4, 4))
     G[..., :3, :], G[..., 3, 3] = P[:, cm.kernel.joints], 1.0
     return G
@@ -138,7 +166,11 @@ def inverse_dynamics_batch(cm: ClosureModel, cd: ClosureData, Q: np.ndarray, V: 
     """Actuator efforts and every joint's reaction for N motions (q, v, a) that satisfy the closures.
 
     Args:
-        Q: (N, nq) configurations; V, A: (N, nv) velocities and accelerations (J a + gamma = 0).
+        cm: the closure model.
+        cd: its data (workspace; caches row choices).
+        Q: (N, nq) configurations.
+        V: (N, nv) velocities.
+        A: (N, nv) accelerations (J a + gamma = 0).
         fexts: None or N per-sample external forces per joint (`pin.StdVec_Force`, local frames).
         passive: (N, nv) generalised passive forces (springs, dampers; N m or N), or None.
         determinacy_test: flag the components statics leaves undetermined (else the masks are None).
@@ -148,6 +180,10 @@ def inverse_dynamics_batch(cm: ClosureModel, cd: ClosureData, Q: np.ndarray, V: 
             samples whose passive block has lost rank to what the closure resolves, and give idle freedoms
             the accelerations their own dynamics gives (`_idle_accelerations`); None: neither.
         idle: the mechanism has idle freedoms (`mechkit.core.structure.idle_freedoms` at an assembly).
+
+    Returns:
+        Efforts (N, na), reactions (N, n_joints, 6: tree joints, then cut joints; [f, m] world axes,
+        about the joint origin), multipliers (N, rows), condition numbers and determinacy masks.
 
     Raises:
         SingularConfiguration: a passive block not resolvably regular (with `generic_rank`), or
@@ -192,11 +228,28 @@ def inverse_dynamics(cm: ClosureModel, cd: ClosureData, q: np.ndarray, v: np.nda
                      fext: pin.StdVec_Force | None = None, passive: np.ndarray | None = None, *,
                      determinacy_test: bool = True, distribution: str = "min_norm",
                      generic_rank: int | None = None, idle: bool = False) -> InverseDynamicsResult:
-    """One sample of `inverse_dynamics_batch` (the same numbers): q (nq,), v and a (nv,), fext per joint
-    or None, passive (nv,) or None.
+    """One sample of `inverse_dynamics_batch` (the same numbers).
+
+    Args:
+        cm: the closure model.
+        cd: its data (workspace; caches row choices).
+        q: (nq,) configuration.
+        v: (nv,) velocity.
+        a: (nv,) acceleration (J a + gamma = 0).
+        fext: external forces per joint (`pin.StdVec_Force`, LOCAL frames), or None.
+        passive: (nv,) generalised passive forces (springs, dampers; N m or N), or None.
+        determinacy_test: flag the components statics leaves undetermined (else the masks are None).
+        distribution: "min_norm" or "min_effort" (see `inverse_dynamics_batch`).
+        generic_rank: the closure's rank at regular configurations, or None (see `inverse_dynamics_batch`).
+        idle: the mechanism has idle freedoms (see `inverse_dynamics_batch`).
+
+    Returns:
+        Efforts (na,), reactions (n_joints, 6), multipliers (rows,), condition number and determinacy
+        masks; the dicts `efforts` and `reactions` are built on first use.
 
     Raises:
-        SingularConfiguration, InvalidParameters: as `inverse_dynamics_batch`.
+        SingularConfiguration: as `inverse_dynamics_batch`.
+        InvalidParameters: an unknown distribution.
     """
     if distribution not in DISTRIBUTIONS:
         raise InvalidParameters("distribution", distribution, f"expected one of {DISTRIBUTIONS}")
@@ -255,9 +308,18 @@ def _one_sample(cm: ClosureModel, cd: ClosureData, q: np.ndarray, v: np.ndarray,
 
 
 def multiplier_reactions(cm: ClosureModel, cd: ClosureData, q: np.ndarray, lam: np.ndarray) -> np.ndarray:
-    """(n_joints, 6) what closure-row multipliers lam (rows,) alone transmit through every joint at q
-    (nq,): the reactions of a self-stress, with no load and no motion (`ClosureModel.joint_names` order;
-    [f, m about the joint's point], world)."""
+    """What closure-row multipliers alone transmit through every joint: the reactions of a self-stress,
+    with no load and no motion.
+
+    Args:
+        cm: the closure model.
+        cd: its data (workspace).
+        q: (nq,) configuration.
+        lam: (rows,) closure-row multipliers.
+
+    Returns:
+        (n_joints, 6) [f, m about the joint's point], world axes, in `ClosureModel.joint_names` order.
+    """
     pin.computeJointJacobians(cm.model, cd.pin, q)
     G, k = cd.used_placements(), cm.kernel
     return k.joint_loads(k.row_wrenches(G), lam, cd.oMi[1:, :, 3], k.cut_points(G))

@@ -28,7 +28,15 @@ _QUATERNION = {"JointModelSpherical": 0, "JointModelFreeFlyer": 3}
 
 
 def size(model: pin.Model, joint: int) -> int:
-    """Number of values of a joint (its velocity dimension nv)."""
+    """Number of values of a joint.
+
+    Args:
+        model: the Pinocchio model.
+        joint: Pinocchio joint id.
+
+    Returns:
+        The joint's velocity dimension nv.
+    """
     return int(model.nvs[joint])
 
 
@@ -74,7 +82,15 @@ def set_value(model: pin.Model, q: np.ndarray, joint: int, value: float | np.nda
 
 
 def value(model: pin.Model, q: np.ndarray, joint: int) -> float | np.ndarray:
-    """A joint's value in q: a float for a one-freedom joint, else an array (see the module table).
+    """A joint's value in q (see the module table).
+
+    Args:
+        model: the Pinocchio model.
+        q: (nq,) configuration.
+        joint: Pinocchio joint id.
+
+    Returns:
+        A float for a one-freedom joint, else an array of `size(model, joint)` values (rad or m).
 
     Raises:
         InvalidParameters: a joint type this module does not know.
@@ -97,16 +113,40 @@ def value(model: pin.Model, q: np.ndarray, joint: int) -> float | np.ndarray:
 
 
 def values(model: pin.Model, q: np.ndarray) -> dict[str, float | np.ndarray]:
-    """Every joint's value in q, by joint name (model order)."""
+    """Every joint's value in q, by joint name.
+
+    Args:
+        model: the Pinocchio model.
+        q: (nq,) configuration.
+
+    Returns:
+        Joint name -> value (`value`), in model order, the universe left out.
+    """
     return {model.names[j]: value(model, q, j) for j in range(1, model.njoints)}
 
 
 def velocity_indices(model: pin.Model, joint: int) -> np.ndarray:
-    """(nv_joint,) indices of a joint's velocity coordinates in v."""
+    """Indices of a joint's velocity coordinates in v.
+
+    Args:
+        model: the Pinocchio model.
+        joint: Pinocchio joint id.
+
+    Returns:
+        (nv_joint,) the indices, ascending.
+    """
     start = model.joints[joint].idx_v
     return np.arange(start, start + size(model, joint))
 
 
 def is_one_freedom(model: pin.Model, joint: int) -> bool:
-    """True for a joint with one velocity coordinate (revolute, prismatic, continuous, helical)."""
+    """Whether a joint has one velocity coordinate (revolute, prismatic, continuous, helical).
+
+    Args:
+        model: the Pinocchio model.
+        joint: Pinocchio joint id.
+
+    Returns:
+        True for a joint with nv = 1.
+    """
     return size(model, joint) == 1

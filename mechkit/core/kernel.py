@@ -35,7 +35,15 @@ from mechkit.core.cuts import CouplingRow, CutRows
 
 
 def support_columns(model: pin.Model, joint: int) -> np.ndarray:
-    """(nv,) 1.0 on the velocity columns of the joints from the root to `joint` (0: none)."""
+    """The velocity columns that move a joint.
+
+    Args:
+        model: the Pinocchio model.
+        joint: Pinocchio joint id (0, the universe: none).
+
+    Returns:
+        (nv,) 1.0 on the velocity columns of the joints from the root to `joint`, else 0.
+    """
     out = np.zeros(model.nv)
     while joint > 0:
         jm = model.joints[joint]
@@ -45,7 +53,16 @@ def support_columns(model: pin.Model, joint: int) -> np.ndarray:
 
 
 def subtree_incidence(model: pin.Model, cuts: list[CutRows]) -> np.ndarray:
-    """(njoints, cuts): +1 where joint i has frame_b's body of a cut in its subtree, -1 for frame_a's."""
+    """Which cuts' frames lie in each joint's subtree.
+
+    Args:
+        model: the Pinocchio model.
+        cuts: the cuts, in order.
+
+    Returns:
+        (njoints, len(cuts)): +1 where joint i has frame_b's body of a cut in its subtree, -1 for
+        frame_a's (0 for both or neither).
+    """
     out = np.zeros((model.njoints, len(cuts)))
     for c, cut in enumerate(cuts):
         for sign, frame in ((1.0, cut.frame_b), (-1.0, cut.frame_a)):
@@ -134,13 +151,26 @@ class ClosureKernel:
 
     # ------------------------------------------------------------ cut rows
     def world(self, G: np.ndarray) -> np.ndarray:
-        """(..., 3 cut_size + ncuts, 4) every homogeneous world vector the rows read, from placements
-        (..., n_used, 4, 4): X', Z', Y' of each cut row (row by row), then p_b' of each cut; one product
-        of a fixed map with the placements transposed and stacked."""
+        """Every homogeneous world vector the rows read: one product of a fixed map with the placements
+        transposed and stacked.
+
+        Args:
+            G: (..., n_used, 4, 4) world placements of the used joints (`joints`).
+
+        Returns:
+            (..., 3 cut_size + ncuts, 4) X', Z', Y' of each cut row (row by row), then p_b' of each cut.
+        """
         return self.stacked_world(np.swapaxes(G, -1, -2).reshape(*G.shape[:-3], 4 * G.shape[-3], 4))
 
     def stacked_world(self, T: np.ndarray) -> np.ndarray:
-        """`world` from the placements transposed and stacked, T (..., 4 n_used, 4) with T[4 j + c, a] = G_j[a, c]."""
+        """`world` from the placements transposed and stacked.
+
+        Args:
+            T: (..., 4 n_used, 4) the used joints' world placements, T[4 j + c, a] = G_j[a, c].
+
+        Returns:
+            (..., 3 cut_size + ncuts, 4) the vectors of `world`.
+        """
         return self._map @ T
 
     def _xzy(self, V: np.ndarray) -> np.ndarray:
@@ -148,32 +178,76 @@ class ClosureKernel:
         return V[..., :3 * self.cut_size, :].reshape(*V.shape[:-2], self.cut_size, 3, 4)
 
     def vectors(self, G: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """X', Y', Z' (..., cut_size, 4) of every cut row, world (m or unit), from placements (..., n_used, 4, 4)."""
+        """The vectors X', Y', Z' every cut row reads, world (m or unit).
+
+        Args:
+            G: (..., n_used, 4, 4) world placements of the used joints.
+
+        Returns:
+            X', Y', Z', each (..., cut_size, 4), homogeneous.
+        """
         xzy = self._xzy(self.world(G))
         return xzy[..., 0, :], xzy[..., 2, :], xzy[..., 1, :]
 
     def wrenches(self, x: np.ndarray, y: np.ndarray) -> np.ndarray:
-        """(..., cut_size, 6) row wrenches [force, moment about the world origin] from X', Y' (..., cut_size, 4)."""
+        """The cut rows' wrenches [f X, Y x X].
+
+        Args:
+            x: (..., cut_size, 4) X' of every cut row (`vectors`).
+            y: (..., cut_size, 4) Y' of every cut row (`vectors`).
+
+        Returns:
+            (..., cut_size, 6) row wrenches [force, moment about the world origin], world axes.
+        """
         outer = y[..., :, None] * x[..., None, :3]
         return outer.reshape(*outer.shape[:-2], 12) @ WRENCH_MAP
 
     def row_wrenches(self, G: np.ndarray) -> np.ndarray:
-        """(..., cut_size, 6) row wrenches from placements (..., n_used, 4, 4)."""
+        """The cut rows' wrenches from placements.
+
+        Args:
+            G: (..., n_used, 4, 4) world placements of the used joints.
+
+        Returns:
+            (..., cut_size, 6) row wrenches [force, moment about the world origin], world axes.
+        """
         x, y, _ = self.vectors(G)
         return self.wrenches(x, y)
 
     def points(self, V: np.ndarray) -> np.ndarray:
-        """(..., ncuts, 3) world origins p_b of frame_b of every cut (m), from `world` vectors."""
+        """The origins p_b of frame_b of every cut, from `world` vectors.
+
+        Args:
+            V: (..., 3 cut_size + ncuts, 4) vectors of `world`.
+
+        Returns:
+            (..., ncuts, 3) the points, world (m).
+        """
         return V[..., 3 * self.cut_size:, :3]
 
     def cut_points(self, G: np.ndarray) -> np.ndarray:
-        """(..., ncuts, 3) world origins p_b of frame_b of every cut (m), from placements (..., n_used, 4, 4)."""
+        """The origins p_b of frame_b of every cut, from placements.
+
+        Args:
+            G: (..., n_used, 4, 4) world placements of the used joints.
+
+        Returns:
+            (..., ncuts, 3) the points, world (m).
+        """
         return self.points(self.world(G))
 
     # ------------------------------------------------------------ all rows
     def residual(self, G: np.ndarray, q: np.ndarray) -> np.ndarray:
-        """(..., size) residuals (m for position rows; dimensionless for alignment rows; rad or m for
-        couplings) from placements (..., n_used, 4, 4) and configurations q (..., nq)."""
+        """Every row's residual.
+
+        Args:
+            G: (..., n_used, 4, 4) world placements of the used joints.
+            q: (..., nq) configurations (coupling rows).
+
+        Returns:
+            (..., size) residuals: m for position rows, dimensionless for alignment rows, rad or m for
+            couplings.
+        """
         x, y, z = self.vectors(G)
         cut = np.sum(x * (y - z), axis=-1)
         if not self.couplings:
@@ -181,13 +255,29 @@ class ClosureKernel:
         return np.concatenate([cut, self._coupling_residual(q)], axis=-1)
 
     def evaluate(self, G: np.ndarray, J: np.ndarray, q: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """Residuals (..., size), Jacobian (..., size, nv) and cut row wrenches (..., cut_size, 6) from
-        placements (..., n_used, 4, 4), `data.J` (..., 6, nv) and q (..., nq) (`rows` of `world`)."""
+        """Residuals, Jacobian and cut row wrenches from placements (`rows` of `world`).
+
+        Args:
+            G: (..., n_used, 4, 4) world placements of the used joints.
+            J: (..., 6, nv) joint Jacobians `data.J` (WORLD, after `computeJointJacobians`).
+            q: (..., nq) configurations (coupling rows).
+
+        Returns:
+            Residuals (..., size), Jacobian (..., size, nv) and cut row wrenches (..., cut_size, 6).
+        """
         return self.rows(self.world(G), J, q)
 
     def rows(self, V: np.ndarray, J: np.ndarray, q: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """Residuals (..., size), Jacobian (..., size, nv) and cut row wrenches (..., cut_size, 6) from
-        `world` vectors (..., 3 cut_size + ncuts, 4), `data.J` (..., 6, nv) and q (..., nq), in one product."""
+        """Residuals, Jacobian and cut row wrenches from `world` vectors, in one product.
+
+        Args:
+            V: (..., 3 cut_size + ncuts, 4) vectors of `world`.
+            J: (..., 6, nv) joint Jacobians `data.J` (WORLD, after `computeJointJacobians`).
+            q: (..., nq) configurations (coupling rows).
+
+        Returns:
+            Residuals (..., size), Jacobian (..., size, nv) and cut row wrenches (..., cut_size, 6).
+        """
         xzy = self._xzy(V)
         outer = xzy[..., 1:, :, None] * xzy[..., 0, None, None, :3]
         we = outer.reshape(*V.shape[:-2], self.cut_size, 24) @ WRENCH_RESIDUAL_MAP
@@ -199,15 +289,31 @@ class ClosureKernel:
         return e, jac, W
 
     def jacobian(self, W: np.ndarray, J: np.ndarray, q: np.ndarray) -> np.ndarray:
-        """(..., size, nv) closure Jacobian from cut row wrenches (..., cut_size, 6), `data.J` (..., 6, nv) and q."""
+        """The closure Jacobian from the cut row wrenches.
+
+        Args:
+            W: (..., cut_size, 6) cut row wrenches.
+            J: (..., 6, nv) joint Jacobians `data.J` (WORLD).
+            q: (..., nq) configurations (coupling rows).
+
+        Returns:
+            (..., size, nv) the closure Jacobian.
+        """
         jac = (W @ J) * self.mask
         if not self.couplings:
             return jac
         return np.concatenate([jac, self._coupling_jacobian(q)], axis=-2)
 
     def twists(self, J: np.ndarray, v: np.ndarray) -> np.ndarray:
-        """(..., n_used, 6) world twists [v_O, omega] of the used joints from world Jacobian columns
-        (..., 6, nv) times velocities (..., nv) (also: with `data.dJ`, the accelerations at a = 0)."""
+        """World twists of the used joints (also: with `data.dJ`, their accelerations at a = 0).
+
+        Args:
+            J: (..., 6, nv) joint Jacobians `data.J` (or their rates `data.dJ`), WORLD.
+            v: (..., nv) velocities.
+
+        Returns:
+            (..., n_used, 6) [v_O, omega] of each used joint, world axes, at the world origin.
+        """
         return np.swapaxes(J @ np.swapaxes(self.support * v[..., None, :], -1, -2), -1, -2)
 
     def drift(self, G: np.ndarray, V: np.ndarray, A: np.ndarray, q: np.ndarray, v: np.ndarray,
@@ -219,10 +325,16 @@ class ClosureKernel:
         gamma = W . (A_b - A_a) + dW/dt . (V_b - V_a) (see the module docstring).
 
         Args:
-            G: (..., n_used, 4, 4) placements of the used joints.
-            V, A: (..., n_used, 6) their world twists and accelerations at a = 0 (`twists`).
-            q, v: (..., nq), (..., nv) the state (coupling rows).
-            world, W: `world(G)` and the row wrenches, where the caller has them (`rows`).
+            G: (..., n_used, 4, 4) world placements of the used joints.
+            V: (..., n_used, 6) their world twists (`twists`).
+            A: (..., n_used, 6) their world accelerations at a = 0 (`twists` of `data.dJ`).
+            q: (..., nq) configurations (coupling rows).
+            v: (..., nv) velocities (coupling rows).
+            world: `world(G)` where the caller has it (`rows`), else None.
+            W: (..., cut_size, 6) the row wrenches where the caller has them (`rows`), else None.
+
+        Returns:
+            (..., size) the drift gamma.
         """
         world = self.world(G) if world is None else world
         xzy = self._xzy(world)
@@ -246,8 +358,13 @@ class ClosureKernel:
         their subtree; then the cuts: their wrenches. Each [f, m about the joint's point], world.
 
         Args:
-            W: (..., cut_size, 6) row wrenches; lam: (..., size) multipliers.
-            origins: (..., njoints - 1, 3) tree joint origins; cut_points: (..., ncuts, 3) the cuts' p_b.
+            W: (..., cut_size, 6) row wrenches.
+            lam: (..., size) row multipliers.
+            origins: (..., njoints - 1, 3) tree joint origins, world (m).
+            cut_points: (..., ncuts, 3) the cuts' points p_b, world (m).
+
+        Returns:
+            (..., njoints - 1 + ncuts, 6) [f, m about the joint's point], world axes.
         """
         loads = (self._transmission * lam[..., None, :self.cut_size]) @ W  # about the world origin
         points = np.concatenate([origins, cut_points], axis=-2)

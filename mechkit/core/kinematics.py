@@ -24,10 +24,19 @@ from mechkit.core.structure import grouped, idle_counts
 
 def kinematic_pass(cm: ClosureModel, cd: ClosureData, Q: np.ndarray,
                    V: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray, np.ndarray | None]:
-    """One Pinocchio pass per sample: the used joints' placements (N, n_used, 4, 4), the world joint
-    Jacobians `data.J` (N, 6, nv) and, with V (N, nv), their time derivatives `data.dJ` (N, 6, nv).
+    """One Pinocchio pass per sample (`computeJointJacobians`, or its time variation with V).
 
     Leaves `cd.pin` at the last sample, frame placements updated.
+
+    Args:
+        cm: the closure model.
+        cd: its data (workspace).
+        Q: (N, nq) configurations.
+        V: (N, nv) velocities, or None (no time derivatives).
+
+    Returns:
+        The used joints' world placements (N, n_used, 4, 4), the WORLD joint Jacobians `data.J`
+        (N, 6, nv) and, with V, their time derivatives `data.dJ` (N, 6, nv), else None.
     """
     model, used = cm.model, cm.kernel.joints
     n = len(Q)
@@ -48,27 +57,63 @@ def kinematic_pass(cm: ClosureModel, cd: ClosureData, Q: np.ndarray,
 
 
 def closure_residual(cm: ClosureModel, cd: ClosureData, q: np.ndarray) -> np.ndarray:
-    """(rows,) residual of every kept row at q (m for position rows, dimensionless for alignment rows,
-    rad or m for couplings)."""
+    """The residual of every kept row.
+
+    Args:
+        cm: the closure model.
+        cd: its data (workspace; left at q).
+        q: (nq,) configuration.
+
+    Returns:
+        (rows,) residuals: m for position rows, dimensionless for alignment rows, rad or m for couplings.
+    """
     G, _, _ = kinematic_pass(cm, cd, q[None])
     return cm.kernel.residual(G[0], q)
 
 
 def closure_jacobian(cm: ClosureModel, cd: ClosureData, q: np.ndarray) -> np.ndarray:
-    """(rows, nv) Jacobian of the kept rows at q (q: (nq,))."""
+    """The Jacobian of the kept rows.
+
+    Args:
+        cm: the closure model.
+        cd: its data (workspace; left at q).
+        q: (nq,) configuration.
+
+    Returns:
+        (rows, nv) the closure Jacobian (de/dt = J v).
+    """
     G, J, _ = kinematic_pass(cm, cd, q[None])
     return cm.kernel.evaluate(G[0], J[0], q)[1]
 
 
 def closure_drift(cm: ClosureModel, cd: ClosureData, q: np.ndarray, v: np.ndarray) -> np.ndarray:
-    """(rows,) gamma(q, v) with d2e/dt2 = J a + gamma (q: (nq,), v: (nv,))."""
+    """The closure drift gamma(q, v), with d2e/dt2 = J a + gamma.
+
+    Args:
+        cm: the closure model.
+        cd: its data (workspace; left at q).
+        q: (nq,) configuration.
+        v: (nv,) velocity.
+
+    Returns:
+        (rows,) gamma.
+    """
     G, J, dJ = kinematic_pass(cm, cd, q[None], v[None])
     k = cm.kernel
     return k.drift(G[0], k.twists(J[0], v), k.twists(dJ[0], v), q, v)
 
 
 def mobility(cm: ClosureModel, cd: ClosureData, q: np.ndarray) -> Mobility:
-    """Degrees of freedom and redundant constraints from the rank of the closure Jacobian at q."""
+    """Degrees of freedom and redundant constraints from the rank of the closure Jacobian at q.
+
+    Args:
+        cm: the closure model.
+        cd: its data (workspace; left at q).
+        q: (nq,) configuration (assembled).
+
+    Returns:
+        The degrees of freedom, rows kept, rank, redundant rows and the Jacobian's singular values.
+    """
     J = closure_jacobian(cm, cd, q)
     s = np.linalg.svd(J, compute_uv=False) if J.size else np.zeros(0)
     r = rank.numerical_rank(s)
@@ -81,7 +126,13 @@ def idle_count(cm: ClosureModel, Jw: np.ndarray, N: np.ndarray, tol: float = 1e-
     that move one body on a loop and no other body with mass (`mechkit.core.structure.idle_counts`).
 
     Args:
-        Jw: the world joint Jacobians `data.J` (6, nv) at the configuration.
+        cm: the closure model (its tracked joints, masses, loops and rigid groups).
+        Jw: the WORLD joint Jacobians `data.J` (6, nv) at the configuration.
+        N: (nv, d) velocity directions closing every loop.
+        tol: relative threshold under which a body's motion counts as none.
+
+    Returns:
+        The number of idle freedoms among the directions.
     """
     if N.shape[1] == 0:
         return 0
@@ -99,7 +150,11 @@ def solve_passive(cm: ClosureModel, J: np.ndarray, Jw: np.ndarray, split: InputS
     thin SVD: its least-squares solution, with idle freedoms at their minimum-norm value.
 
     Args:
-        J: (N, rows, nv) closure Jacobians; Jw: (N, 6, nv) world joint Jacobians (idle freedoms).
+        cm: the closure model.
+        J: (N, rows, nv) closure Jacobians.
+        Jw: (N, 6, nv) WORLD joint Jacobians (to find idle freedoms).
+        split: which velocity coordinates are given (`input_v`) and solved for (`free_v`).
+        given: (N, k) the given coordinates' values.
         rhs: (N, rows) or None (velocities); gamma for accelerations.
         residual: (N,) closure residual norms (what the passive block can resolve).
         allow_singular: return a solution where the block is not resolvably regular (still refused
@@ -168,10 +223,23 @@ def solve_passive(cm: ClosureModel, J: np.ndarray, Jw: np.ndarray, split: InputS
 
 def velocities_batch(cm: ClosureModel, cd: ClosureData, Q: np.ndarray, split: InputSplit, rates: np.ndarray, *,
                      allow_singular: bool = False) -> np.ndarray:
-    """(N, nv) joint velocities with J v = 0 at N configurations Q (N, nq) from input rates (N, k).
+    """Joint velocities with J v = 0 at N configurations, from input rates.
+
+    Args:
+        cm: the closure model.
+        cd: its data (workspace).
+        Q: (N, nq) configurations (assembled).
+        split: which joints are given (`ClosureModel.split`).
+        rates: (N, k) the given joints' velocities (rad/s or m/s).
+        allow_singular: return a solution where the passive block is not resolvably regular (see
+            `solve_passive`).
+
+    Returns:
+        (N, nv) joint velocities.
 
     Raises:
-        SingularConfiguration, InconsistentMotion: see `solve_passive`.
+        SingularConfiguration: see `solve_passive`.
+        InconsistentMotion: see `solve_passive`.
     """
     G, Jw, _ = kinematic_pass(cm, cd, Q)
     e, J, _ = cm.kernel.evaluate(G, Jw, Q)
@@ -180,21 +248,48 @@ def velocities_batch(cm: ClosureModel, cd: ClosureData, Q: np.ndarray, split: In
 
 def velocities(cm: ClosureModel, cd: ClosureData, q: np.ndarray, split: InputSplit, rates: np.ndarray, *,
                allow_singular: bool = False) -> np.ndarray:
-    """(nv,) joint velocities with J v = 0 at q (nq,) from input rates (k,) (see `velocities_batch`)."""
+    """Joint velocities with J v = 0 at one configuration (see `velocities_batch`).
+
+    Args:
+        cm: the closure model.
+        cd: its data (workspace).
+        q: (nq,) configuration (assembled).
+        split: which joints are given (`ClosureModel.split`).
+        rates: (k,) the given joints' velocities (rad/s or m/s).
+        allow_singular: return a solution where the passive block is not resolvably regular.
+
+    Returns:
+        (nv,) joint velocities.
+
+    Raises:
+        SingularConfiguration: see `solve_passive`.
+        InconsistentMotion: see `solve_passive`.
+    """
     return velocities_batch(cm, cd, q[None], split, rates[None], allow_singular=allow_singular)[0]
 
 
 def accelerations_batch(cm: ClosureModel, cd: ClosureData, Q: np.ndarray, V: np.ndarray, split: InputSplit,
                         given: np.ndarray, *, allow_singular: bool = False, least_squares: bool = False) -> np.ndarray:
-    """(N, nv) joint accelerations with J a + gamma = 0 at N states (Q (N, nq), V (N, nv)) from input
-    accelerations (N, k).
+    """Joint accelerations with J a + gamma = 0 at N states, from input accelerations.
 
     Args:
+        cm: the closure model.
+        cd: its data (workspace).
+        Q: (N, nq) configurations (assembled).
+        V: (N, nv) velocities (J v = 0).
+        split: which joints are given (`ClosureModel.split`).
+        given: (N, k) the given joints' accelerations (rad/s^2 or m/s^2).
+        allow_singular: return a solution where the passive block is not resolvably regular (see
+            `solve_passive`).
         least_squares: where gamma leaves the range of J (no acceleration satisfies every row), return
             the least-squares accelerations (minimum |J a + gamma|, then minimum norm) instead of raising.
 
+    Returns:
+        (N, nv) joint accelerations.
+
     Raises:
-        SingularConfiguration, InconsistentMotion: see `solve_passive`.
+        SingularConfiguration: see `solve_passive`.
+        InconsistentMotion: see `solve_passive` (not with `least_squares`).
     """
     G, Jw, dJ = kinematic_pass(cm, cd, Q, V)
     k = cm.kernel
@@ -206,21 +301,59 @@ def accelerations_batch(cm: ClosureModel, cd: ClosureData, Q: np.ndarray, V: np.
 
 def accelerations(cm: ClosureModel, cd: ClosureData, q: np.ndarray, v: np.ndarray, split: InputSplit,
                   given: np.ndarray, *, allow_singular: bool = False, least_squares: bool = False) -> np.ndarray:
-    """(nv,) joint accelerations at one state (see `accelerations_batch`)."""
+    """Joint accelerations with J a + gamma = 0 at one state (see `accelerations_batch`).
+
+    Args:
+        cm: the closure model.
+        cd: its data (workspace).
+        q: (nq,) configuration (assembled).
+        v: (nv,) velocity (J v = 0).
+        split: which joints are given (`ClosureModel.split`).
+        given: (k,) the given joints' accelerations (rad/s^2 or m/s^2).
+        allow_singular: return a solution where the passive block is not resolvably regular.
+        least_squares: return the least-squares accelerations where gamma leaves the range of J.
+
+    Returns:
+        (nv,) joint accelerations.
+
+    Raises:
+        SingularConfiguration: see `solve_passive`.
+        InconsistentMotion: see `solve_passive` (not with `least_squares`).
+    """
     return accelerations_batch(cm, cd, q[None], v[None], split, given[None], allow_singular=allow_singular,
                                least_squares=least_squares)[0]
 
 
 def passive_condition(cm: ClosureModel, cd: ClosureData, q: np.ndarray, split: InputSplit) -> float:
-    """Condition number s_max / s_min of the passive block at q (inf: singular)."""
+    """Condition number of the passive block (the closure Jacobian on the free coordinates).
+
+    Args:
+        cm: the closure model.
+        cd: its data (workspace; left at q).
+        q: (nq,) configuration.
+        split: which joints are given (`ClosureModel.split`).
+
+    Returns:
+        s_max / s_min of the passive block (inf: singular to what `rank.CLOSURE_TOL` resolves).
+    """
     J = closure_jacobian(cm, cd, q)
     s = rank.singular_values(J[None][..., split.free_v])
     return float(rank.passive_verdict(s, split.free_v.size, np.array([rank.CLOSURE_TOL]))[0][0])
 
 
 def second_order_inconsistency(cm: ClosureModel, cd: ClosureData, q: np.ndarray, v: np.ndarray) -> float:
-    """min over a of max |J a + gamma| at (q, v): 0 (to rounding) where v is a motion of the mechanism at
-    second order, positive where it moves along a freedom that exists only instantaneously."""
+    """How far a velocity is from a motion of the mechanism at second order.
+
+    Args:
+        cm: the closure model.
+        cd: its data (workspace; left at q).
+        q: (nq,) configuration.
+        v: (nv,) velocity.
+
+    Returns:
+        min over a of max |J a + gamma| at (q, v): 0 (to rounding) where v is a motion of the mechanism
+        at second order, positive where it moves along a freedom that exists only instantaneously.
+    """
     return rank.inconsistency(closure_jacobian(cm, cd, q), closure_drift(cm, cd, q, v))
 
 
@@ -235,6 +368,17 @@ def second_order_velocity(cm: ClosureModel, cd: ClosureData, q: np.ndarray, v: n
     of v's projection, minimum-norm Gauss-Newton steps reach the nearest zero of every Q_k. Where J has
     no left null vector, or every Q_k vanishes (a redundancy that holds at every order), v's projection
     onto the null space of J is returned.
+
+    Args:
+        cm: the closure model.
+        cd: its data (workspace).
+        q: (nq,) assembled configuration.
+        v: (nv,) velocity to correct.
+        tol: relative tolerance on the quadratic conditions (relative to max |Q_k| |z|^2).
+        max_iter: Gauss-Newton iteration cap.
+
+    Returns:
+        (nv,) the velocity (J v = 0) along which the motion continues at second order.
 
     Raises:
         InconsistentMotion: no velocity near v satisfies the conditions (the cones do not meet near it).

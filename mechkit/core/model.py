@@ -32,6 +32,9 @@ def check_depth_first(model: pin.Model) -> None:
     them) take each joint's subtree as the velocity columns idx_v .. idx_v + nvSubtree, which only a
     depth-first numbering gives (URDF and MJCF parsers do; a model built joint by joint may not).
 
+    Args:
+        model: the Pinocchio model.
+
     Raises:
         MalformedDescription: the first joint whose subtree is not contiguous, by name.
     """
@@ -49,6 +52,9 @@ def check_body_masses(model: pin.Model) -> None:
     Pinocchio merges a link's inertia into its joint's body with lever = sum(m c) / max(sum m, eps),
     eps = 2.2e-16 kg, so a body of 1e-17 kg gets a centre of mass near the joint and wrong dynamics
     (the five-bar at density 1e-12 kg/m^3: accelerations 46 % off); above eps the sum is exact.
+
+    Args:
+        model: the Pinocchio model.
 
     Raises:
         InvalidParameters: the lightest such body, by joint name.
@@ -149,6 +155,14 @@ class ClosureModel:
         """The same tree, closures, couplings and rows with another actuation (e.g. every driven joint of
         a motion law).
 
+        Args:
+            actuated: the actuators in effort order: a one-freedom joint's name (a motor on it) or the
+                name of one of `actuators`.
+            actuators: transmissions other than one joint's motor (e.g. tendons).
+
+        Returns:
+            A shallow copy sharing the tree, kernels and structure, with the new actuation.
+
         Raises:
             InvalidParameters: an unknown or multi-freedom actuated joint.
         """
@@ -167,6 +181,12 @@ class ClosureModel:
     def joint_id(self, joint: str) -> int:
         """Pinocchio id of a joint by name.
 
+        Args:
+            joint: the joint's name.
+
+        Returns:
+            The joint's id in the Pinocchio model.
+
         Raises:
             InvalidParameters: no such joint.
         """
@@ -175,7 +195,17 @@ class ClosureModel:
         return self.model.getJointId(joint)
 
     def split(self, names: Sequence[str]) -> InputSplit:
-        """The velocity indices of the given joints and of the others (cached per tuple of names)."""
+        """The velocity indices of the given joints and of the others (cached per tuple of names).
+
+        Args:
+            names: the given joints, in order.
+
+        Returns:
+            The names, their velocity indices `input_v` (k,) and the others `free_v` (nv - k,), read-only.
+
+        Raises:
+            InvalidParameters: no such joint (`joint_id`).
+        """
         return self._split(tuple(names))
 
     def _make_split(self, names: tuple[str, ...]) -> InputSplit:

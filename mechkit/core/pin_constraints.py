@@ -62,7 +62,11 @@ class LegacyConstraints:
             pin.computeJointMinimalOrdering(model, self.data, self.models)
 
     def set_baumgarte(self, gains: tuple[float, float] | None) -> None:
-        """Set the Baumgarte gains (Kp 1/s^2, Kd 1/s; None: none) on every model, when they change."""
+        """Set the Baumgarte gains on every model, when they change.
+
+        Args:
+            gains: (Kp (1/s^2), Kd (1/s)), or None: none.
+        """
         gains = (0.0, 0.0) if gains is None else (float(gains[0]), float(gains[1]))
         if gains != self._gains:
             for cm in self.models:
@@ -70,13 +74,33 @@ class LegacyConstraints:
             self._gains = gains
 
     def dynamics(self, q: np.ndarray, v: np.ndarray, tau: np.ndarray, settings: pin.ProximalSettings) -> np.ndarray:
-        """Accelerations (nv,) by `pin.constraintDynamics` (a view: copy it before the next call)."""
+        """Accelerations by `pin.constraintDynamics` (not for a data set up with `ordered`).
+
+        Args:
+            q: (nq,) configuration.
+            v: (nv,) velocity.
+            tau: (nv,) joint efforts (N m or N).
+            settings: Pinocchio's proximal settings (`proximal_settings`); its outcome is written back.
+
+        Returns:
+            (nv,) accelerations: a view of the data's buffer, copy it before the next call.
+        """
         assert not self.ordered, "a data set up for lcaba"
         return pin.constraintDynamics(self.model, self.data, q, v, tau, self.models, self.datas, settings)
 
     def loop_constrained_aba(self, q: np.ndarray, v: np.ndarray, tau: np.ndarray,
                              settings: pin.ProximalSettings) -> np.ndarray:
-        """Accelerations (nv,) by `pin.lcaba` (needs `ordered`)."""
+        """Accelerations by `pin.lcaba` (needs `ordered`).
+
+        Args:
+            q: (nq,) configuration.
+            v: (nv,) velocity.
+            tau: (nv,) joint efforts (N m or N).
+            settings: Pinocchio's proximal settings (`proximal_settings`); its outcome is written back.
+
+        Returns:
+            (nv,) accelerations (copy them before the next call, as those of `dynamics`).
+        """
         assert self.ordered, "a data not set up for lcaba"
         return pin.lcaba(self.model, self.data, q, v, tau, self.models, self.datas, settings)
 
@@ -89,7 +113,14 @@ class LegacyConstraints:
         return self._lambda
 
     def drift(self, rows: int) -> np.ndarray:
-        """(rows,) gamma (+ Baumgarte terms) of the anchors at the last `dynamics` call's state."""
+        """The anchors' drift at the last `dynamics` call's state.
+
+        Args:
+            rows: how many anchor rows to read.
+
+        Returns:
+            (rows,) gamma (+ Baumgarte terms).
+        """
         return -self._rhs[:rows]
 
     def rhs(self) -> np.ndarray:
@@ -107,12 +138,28 @@ class LegacyConstraints:
 
 
 def proximal_settings(accuracy: float, mu: float, max_iter: int) -> pin.ProximalSettings:
-    """Pinocchio's proximal settings (absolute accuracy, regularisation mu, iteration limit)."""
+    """Pinocchio's proximal settings.
+
+    Args:
+        accuracy: absolute accuracy.
+        mu: proximal regularisation.
+        max_iter: iteration limit.
+
+    Returns:
+        A new `pin.ProximalSettings`.
+    """
     return pin.ProximalSettings(accuracy, mu, max_iter)
 
 
 def settings_outcome(settings: pin.ProximalSettings) -> tuple[float, int]:
-    """(absolute residual, iterations) Pinocchio reports after a call with these settings."""
+    """What Pinocchio reports after a call with these settings.
+
+    Args:
+        settings: the settings passed to the call.
+
+    Returns:
+        (absolute residual, iterations).
+    """
     return float(settings.absolute_residual), int(settings.iter)
 
 

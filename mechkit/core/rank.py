@@ -32,27 +32,54 @@ RANGE_TOL = 1e-8
 
 
 def singular_values(A: np.ndarray) -> np.ndarray:
-    """(N, k) descending singular values of A (N, m, n); one sample through LAPACK directly (a fraction
-    of np.linalg.svd's overhead on one small matrix)."""
+    """Singular values of N matrices (one sample through LAPACK gesdd directly).
+
+    Args:
+        A: (N, m, n) matrices.
+
+    Returns:
+        (N, min(m, n)) singular values, descending.
+    """
     if len(A) == 1 and A.shape[1] and A.shape[2]:
         return scipy.linalg.lapack.dgesdd(A[0], compute_uv=0)[1][None]
     return np.linalg.svd(A, compute_uv=False)
 
 
 def ranks(s: np.ndarray) -> np.ndarray:
-    """(N,) numerical ranks from descending singular values (N, k), relative to the largest."""
+    """Numerical ranks from singular values, relative to the largest (`RANK_TOL`).
+
+    Args:
+        s: (N, k) descending singular values.
+
+    Returns:
+        (N,) the ranks.
+    """
     if s.shape[-1] == 0:
         return np.zeros(len(s), dtype=int)
     return np.sum(s > RANK_TOL * np.maximum(s[:, :1], 1e-290), axis=1)  # a floor whose product does not underflow
 
 
 def numerical_rank(s: np.ndarray) -> int:
-    """Rank from one set of descending singular values (k,), relative to the largest."""
+    """Numerical rank from one set of singular values, relative to the largest (`RANK_TOL`).
+
+    Args:
+        s: (k,) descending singular values.
+
+    Returns:
+        The rank.
+    """
     return int(ranks(np.asarray(s)[None])[0])
 
 
 def independent_rows(J: np.ndarray) -> np.ndarray:
-    """Indices of a maximal set of linearly independent rows of J (pivoted QR of J^T), sorted."""
+    """A maximal set of linearly independent rows of J (pivoted QR of J^T).
+
+    Args:
+        J: (rows, n) matrix.
+
+    Returns:
+        The rows' indices, sorted (as many as J's numerical rank).
+    """
     if J.shape[0] == 0:
         return np.zeros(0, dtype=int)
     _, r, piv = scipy.linalg.qr(J.T, mode="economic", pivoting=True)
@@ -74,6 +101,9 @@ def resolvable_singular_value(s_max: float | np.ndarray, residual: float | np.nd
     Args:
         s_max: largest singular value of the passive block (the rows' scale).
         residual: closure residual norm reached at the configuration.
+
+    Returns:
+        `SINGULAR_MARGIN` sqrt(max(residual, eps s_max) s_max): a float for floats, else an array.
     """
     if isinstance(s_max, float) and isinstance(residual, float):
         return SINGULAR_MARGIN * math.sqrt(max(residual, EPS * s_max) * s_max)
@@ -104,9 +134,15 @@ def passive_verdict(s: np.ndarray, columns: int, residual: np.ndarray) -> tuple[
 
 
 def regularity_bounds(B: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Bounds on the extreme singular values of N blocks B (N, m, k) without an SVD: (N,) rho = 1 / |X|_F
-    <= sigma_min(m, k) (X = B^-1 where square, else R^-1 of B = Q R, or of B^T = Q R where wide; 0 where
-    singular) and (N,) |B|_F >= sigma_max."""
+    """Bounds on the extreme singular values of N blocks without an SVD.
+
+    Args:
+        B: (N, m, k) blocks.
+
+    Returns:
+        (N,) rho = 1 / |X|_F <= sigma_min(m, k) (X = B^-1 where square, else R^-1 of B = Q R, or of
+        B^T = Q R where wide; 0 where singular) and (N,) |B|_F >= sigma_max.
+    """
     m, k = B.shape[1:]
     try:
         X = np.linalg.inv(B if m == k else np.linalg.qr(B if m > k else B.transpose(0, 2, 1), mode="r"))
@@ -117,7 +153,14 @@ def regularity_bounds(B: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
 
 
 def block_bounds(B: np.ndarray) -> tuple[float, float]:
-    """`regularity_bounds` of one block B (m, k): (rho, |B|_F)."""
+    """`regularity_bounds` of one block.
+
+    Args:
+        B: (m, k) block.
+
+    Returns:
+        rho = 1 / |X|_F <= sigma_min (0 where singular) and |B|_F >= sigma_max.
+    """
     m, k = B.shape
     if m == k:
         lu, piv, info = scipy.linalg.lapack.dgetrf(B)
@@ -128,8 +171,15 @@ def block_bounds(B: np.ndarray) -> tuple[float, float]:
 
 
 def triangular_inverse(qr: np.ndarray, k: int) -> np.ndarray | None:
-    """R^-1 (k, k) of R, the upper triangle of the first k rows of LAPACK geqrf's first output; None
-    where R is singular."""
+    """The inverse of the R factor of a LAPACK QR.
+
+    Args:
+        qr: LAPACK geqrf's first output; R is the upper triangle of its first k rows.
+        k: the size of R.
+
+    Returns:
+        (k, k) R^-1, upper triangular; None where R is singular.
+    """
     X, info = scipy.linalg.lapack.dtrtri(qr[:k])
     if info:
         return None
@@ -138,26 +188,59 @@ def triangular_inverse(qr: np.ndarray, k: int) -> np.ndarray | None:
 
 
 def squared_norm(X: np.ndarray) -> float:
-    """|X|_F^2 of an array."""
+    """The squared Frobenius norm of an array.
+
+    Args:
+        X: an array of any shape.
+
+    Returns:
+        |X|_F^2, the sum of its squared entries.
+    """
     flat = X.ravel(order="K")
     return float(flat.dot(flat))
 
 
 def certified_regular(rho: np.ndarray, size: np.ndarray, residual: np.ndarray) -> np.ndarray:
-    """Where bounds rho <= sigma_min and size >= sigma_max of passive blocks (`regularity_bounds`)
-    show them resolvably regular and of full column rank: the verdict `passive_verdict` then gives on
-    their singular values (the resolvable limit grows with sigma_max). Floats, or element-wise on arrays."""
+    """Where bounds on the extreme singular values of passive blocks show them resolvably regular and of
+    full column rank: the verdict `passive_verdict` then gives on their singular values (the resolvable
+    limit grows with sigma_max). Floats, or element-wise on arrays.
+
+    Args:
+        rho: lower bounds on sigma_min (`regularity_bounds`).
+        size: upper bounds on sigma_max (`regularity_bounds`).
+        residual: closure residual norms at the configurations.
+
+    Returns:
+        True where rho exceeds both `resolvable_singular_value`(size, residual) and `RANK_TOL` size.
+    """
     return (rho > resolvable_singular_value(size, residual)) & (rho > RANK_TOL * size)
 
 
 @cache
 def upper(k: int) -> np.ndarray:
-    """(k, k) ones on and above the diagonal: the mask of an upper-triangular LAPACK result."""
+    """The mask of an upper-triangular LAPACK result (cached per size).
+
+    Args:
+        k: the size.
+
+    Returns:
+        (k, k) ones on and above the diagonal, zeros below.
+    """
     return np.triu(np.ones((k, k)))
 
 
 def singular_error(s: np.ndarray, columns: int, residual: float) -> SingularConfiguration:
-    """The error for a passive block with singular values s (k,) that `passive_verdict` rejects."""
+    """The error for a passive block that `passive_verdict` rejects (returned, not raised).
+
+    Args:
+        s: (k,) descending singular values of the passive block.
+        columns: the block's column count (coordinates solved for).
+        residual: closure residual norm at the configuration.
+
+    Returns:
+        A `SingularConfiguration` saying why: fewer rows than columns, a rank below the column count,
+        or a smallest singular value below what the residual resolves.
+    """
     if s.size < columns:
         return SingularConfiguration(float("inf"), f"{columns} coordinates to solve for but only {s.size} closure rows: "
                                      "the inputs do not determine the motion (give more inputs)")
@@ -175,8 +258,15 @@ def singular_error(s: np.ndarray, columns: int, residual: float) -> SingularConf
 
 
 def check_passive(s: np.ndarray, columns: int, residual: np.ndarray | float) -> np.ndarray:
-    """Condition numbers (N,) of N passive blocks with singular values s (N, k); raise at the first
-    sample `passive_verdict` rejects.
+    """Condition numbers of N passive blocks; raise at the first sample `passive_verdict` rejects.
+
+    Args:
+        s: (N, k) descending singular values of the passive blocks.
+        columns: the blocks' column count (coordinates solved for).
+        residual: (N,) closure residual norms, or one for every sample.
+
+    Returns:
+        (N,) condition numbers s_max / s_min.
 
     Raises:
         SingularConfiguration: naming the smallest singular value and what the residual resolves.
@@ -190,15 +280,30 @@ def check_passive(s: np.ndarray, columns: int, residual: np.ndarray | float) -> 
 
 
 def outside_range(U: np.ndarray, rank: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """(N,) norm of the part of b (N, m) outside the range of matrices with full left singular vectors
-    U (N, m, m) and ranks (N,)."""
+    """The size of the part of right-hand sides outside the range of N matrices.
+
+    Args:
+        U: (N, m, m) the matrices' full left singular vectors.
+        rank: (N,) their ranks.
+        b: (N, m) right-hand sides.
+
+    Returns:
+        (N,) the norms of the parts of b outside the ranges.
+    """
     proj = np.einsum("nij,ni->nj", U, b)
     return np.sqrt(np.square(np.where(np.arange(proj.shape[1])[None, :] >= rank[:, None], proj, 0.0)).sum(axis=1))
 
 
 def inconsistency(J: np.ndarray, gamma: np.ndarray) -> float:
-    """min over a of max |J a + gamma|: how far no acceleration satisfies every row (0 when gamma is in
-    the range of J), by a complete orthogonal factorisation (LAPACK gelsy)."""
+    """How far no acceleration satisfies every row, by a complete orthogonal factorisation (LAPACK gelsy).
+
+    Args:
+        J: (rows, nv) closure Jacobian.
+        gamma: (rows,) closure drift.
+
+    Returns:
+        max |J a + gamma| at the least-squares a: 0 (to rounding) when gamma is in the range of J.
+    """
     if J.shape[0] == 0:
         return 0.0
     x = scipy.linalg.lstsq(J, -gamma, cond=EPS * max(J.shape), lapack_driver="gelsy")[0]

@@ -130,7 +130,14 @@ class BatchInverseDynamicsResult:
         return self.efforts.shape[0]
 
     def sample(self, i: int) -> InverseDynamicsResult:
-        """Sample i as the single-sample result."""
+        """Sample i as the single-sample result.
+
+        Args:
+            i: the sample's index.
+
+        Returns:
+            The single-sample result of sample i (its reactions' dicts built on first use).
+        """
         det, eff = self.determinate, self.efforts_determinate
         return InverseDynamicsResult(self.joint_names, self.actuated, self.efforts[i], self.reactions[i], self.support,
                                      self.multipliers[i], float(self.condition[i]), None if det is None else det[i],

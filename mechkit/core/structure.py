@@ -91,11 +91,18 @@ class Structure:
 
 
 def joint_axis(model: pin.Model, data: pin.Data, joint: int) -> tuple[str, np.ndarray | None]:
-    """("revolute" | "prismatic" | "other", unit axis in the joint frame) of a tree joint.
+    """The kind and axis of a tree joint.
 
-    Read from the joint's motion subspace (its column of the local Jacobian; `data` after
-    `pin.computeJointJacobians`), so that every revolute or prismatic joint model (aligned,
-    unaligned, unbounded) is recognised alike.
+    Read from the joint's motion subspace (its column of the LOCAL joint Jacobian), so that every
+    revolute or prismatic joint model (aligned, unaligned, unbounded) is recognised alike.
+
+    Args:
+        model: the Pinocchio model.
+        data: its data, after `pin.computeJointJacobians`.
+        joint: Pinocchio joint id.
+
+    Returns:
+        "revolute", "prismatic" or "other", and the unit axis (3,) in the joint frame (None for "other").
     """
     if model.nvs[joint] != 1:
         return "other", None
@@ -110,7 +117,15 @@ def joint_axis(model: pin.Model, data: pin.Data, joint: int) -> tuple[str, np.nd
 
 
 def body_name(model: pin.Model, joint: int) -> str:
-    """The URDF link a joint carries (first body frame at identity on it), else the joint's name."""
+    """The URDF link a joint carries.
+
+    Args:
+        model: the Pinocchio model.
+        joint: Pinocchio joint id.
+
+    Returns:
+        The name of the first BODY frame on the joint at identity placement, else the joint's name.
+    """
     for frame in model.frames:
         if frame.parentJoint == joint and frame.type == pin.FrameType.BODY and frame.placement.isIdentity():
             return frame.name
@@ -118,7 +133,16 @@ def body_name(model: pin.Model, joint: int) -> str:
 
 
 def loop_joints(model: pin.Model, joint_a: int, joint_b: int) -> list[int]:
-    """Tree joints on the path between two bodies (through their common ancestor)."""
+    """Tree joints on the path between two bodies (through their common ancestor).
+
+    Args:
+        model: the Pinocchio model.
+        joint_a: Pinocchio id of the joint carrying the first body.
+        joint_b: Pinocchio id of the joint carrying the second body.
+
+    Returns:
+        Joint ids from joint_a up to (not including) the common ancestor, then down to joint_b.
+    """
     def chain(j: int) -> list[int]:
         out = []
         while j > 0:
@@ -133,10 +157,18 @@ def loop_joints(model: pin.Model, joint_a: int, joint_b: int) -> list[int]:
 def analyse(model: pin.Model, closures: list[LoopClosure], rows: str | None = None, couplings: int = 0) -> Structure:
     """Classify every loop, choose the rows of the cuts declared without rows, count the freedoms.
 
+    The geometry is read at the neutral configuration.
+
     Args:
+        model: the Pinocchio tree.
+        closures: the loop closures (one cut each).
         rows: None (declared rows, minimal rows where none are declared) or "spatial" (every cut
             closed with its full rows).
         couplings: the number of coupling rows (each takes one freedom).
+
+    Returns:
+        The loops (kind, motion space, rows chosen), the closures with their rows set, and the counts
+        for the Kutzbach formula.
 
     Raises:
         MalformedDescription: a cut whose frames are not in the model or sit on one body.
@@ -224,8 +256,16 @@ def _choose_rows(closure: LoopClosure, kind: str, normal, Ra: np.ndarray, rows: 
 
 
 def rigid_groups(model: pin.Model, closures: list[LoopClosure]) -> dict[int, int]:
-    """Joint id -> the id representing its rigid group: bodies a weld closure joins move as one body
-    (a rod split in two halves welded at its middle, as Gepetto's files write a rod between two balls)."""
+    """The rigid groups of bodies: bodies a weld closure joins move as one body (a rod split in two halves
+    welded at its middle, as Gepetto's files write a rod between two balls).
+
+    Args:
+        model: the Pinocchio model.
+        closures: the loop closures (the welds among them join bodies).
+
+    Returns:
+        Joint id -> the id representing its rigid group (the smallest id of the group), for every joint.
+    """
     parent = {j: j for j in range(model.njoints)}
 
     def find(j: int) -> int:
@@ -252,7 +292,9 @@ def idle_counts(twists: dict[int, np.ndarray], massive: set[int], on_loops: set[
     Args:
         twists: joint id -> (6, d) world twists of its body along the d modes, for every body with mass
             and every body on a loop.
-        massive: ids of the bodies with mass; on_loops: ids of the bodies on a loop.
+        massive: ids of the bodies with mass.
+        on_loops: ids of the bodies on a loop.
+        tol: rank tolerance, relative to the largest twist entry (at least 1).
 
     Returns:
         joint id -> count, for the bodies on loops with a non-zero count.
@@ -276,8 +318,18 @@ def idle_counts(twists: dict[int, np.ndarray], massive: set[int], on_loops: set[
 
 def grouped(twists: dict[int, np.ndarray], massive: set[int], on_loops: set[int],
             groups: dict[int, int]) -> tuple[dict[int, np.ndarray], set[int], set[int]]:
-    """The arguments of `idle_counts` with one entry per rigid group (`rigid_groups`): its twist (any
-    member's: welded bodies share one), whether it has mass, whether it is on a loop."""
+    """The arguments of `idle_counts` with one entry per rigid group (`rigid_groups`).
+
+    Args:
+        twists: joint id -> (6, d) world twists of its body along the modes.
+        massive: ids of the bodies with mass.
+        on_loops: ids of the bodies on a loop.
+        groups: joint id -> its group's representative (`rigid_groups`).
+
+    Returns:
+        The twists by group (any member's: welded bodies share one), the groups with mass, and the
+        groups on a loop.
+    """
     out: dict[int, np.ndarray] = {}
     for j, t in twists.items():
         out.setdefault(groups[j], t)
@@ -292,9 +344,15 @@ def idle_freedoms(model: pin.Model, q: np.ndarray, jacobian: np.ndarray, on_loop
     (`idle_counts`, over the null space of J).
 
     Args:
+        model: the Pinocchio model.
+        q: (nq,) assembled configuration.
         jacobian: the closure Jacobian at q (rows, nv).
         on_loops: joint ids of the bodies that are on some loop.
         groups: `rigid_groups` of the closures.
+        tol: relative tolerance of the null space of J (rcond) and of the ranks (`idle_counts`).
+
+    Returns:
+        Body name (`body_name`) -> number of idle modes, for the bodies that have any.
     """
     null = scipy.linalg.null_space(jacobian, rcond=tol) if jacobian.size else np.eye(model.nv)
     if null.shape[1] == 0:
