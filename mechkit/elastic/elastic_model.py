@@ -157,8 +157,7 @@ class ElasticModel:
             The `CompliantReactions` of the N samples.
 
         Raises:
-            SingularConfiguration: the rigid efforts are undetermined, or the locked mechanism cannot
-                hold the load.
+            SingularConfiguration: the rigid efforts are undetermined (see `allow_singular`).
         """
         rigid = self.mech.inverse_dynamics_batch(q, v, a, fext, determinacy=False, allow_singular=allow_singular)
         return self.compatible(np.asarray(q, dtype=float).reshape(len(rigid), -1), rigid.efforts, rigid.reactions)
@@ -271,6 +270,7 @@ class ElasticModel:
 
         Raises:
             InvalidParameters: no such link, or a pose that does not close the loops.
+            SingularConfiguration: with its actuators locked the mechanism still moves under a load there.
         """
         return self._compliance(q, link, point)[0]
 
@@ -301,6 +301,7 @@ class ElasticModel:
 
         Raises:
             InvalidParameters: no such link, or a pose that does not close the loops.
+            SingularConfiguration: with its actuators locked the mechanism still moves under a load there.
         """
         C, x = self._compliance(q, link, point)
         diagonal = np.diag(C)
