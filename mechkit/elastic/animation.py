@@ -29,7 +29,17 @@ def _part_bodies(drawing: Drawing, mech: Mechanism) -> list[int]:
 
 
 def write_mode_page(mech: Mechanism, q: np.ndarray, modes: Modes, mode: int, path: str | os.PathLike) -> str:
-    """Write (and return) the HTML animating mode `mode` (0-based) of `modes` at pose q (nq,).
+    """Write (and return) the HTML page animating one natural mode about a pose.
+
+    Args:
+        mech: the mechanism the modes are of.
+        q: (nq,) the pose the modes were computed at.
+        modes: the modes (`ElasticModel.modes`).
+        mode: the mode's index (0-based).
+        path: the HTML file to write.
+
+    Returns:
+        The page's HTML text.
 
     Raises:
         InvalidParameters: no such mode.

@@ -14,7 +14,15 @@ from mechkit.elastic.sections import Section
 
 
 def local_axes(start: np.ndarray, end: np.ndarray, axis1: np.ndarray) -> tuple[float, np.ndarray]:
-    """The beam's length (m) and its axes (3, 3), rows x (start to end), y (axis1 made normal to x), z = x cross y.
+    """The beam's length and axes.
+
+    Args:
+        start: (3,) the beam's start (m).
+        end: (3,) its end (m).
+        axis1: (3,) the direction I1 is about (its part along the beam is dropped).
+
+    Returns:
+        The length (m) and the axes (3, 3): rows x (start to end), y (axis1 made normal to x), z = x cross y.
 
     Raises:
         InvalidParameters: axis1 along the beam (no bending axis can be read from it).
@@ -30,7 +38,15 @@ def local_axes(start: np.ndarray, end: np.ndarray, axis1: np.ndarray) -> tuple[f
 
 
 def local_stiffness(length: float, s: Section) -> np.ndarray:
-    """(12, 12) stiffness in the beam's axes, degrees of freedom [u1, theta1, u2, theta2] (I1 about y, I2 about z)."""
+    """The beam's stiffness in its own axes (I1 about y, I2 about z).
+
+    Args:
+        length: the beam's length (m).
+        s: its section.
+
+    Returns:
+        (12, 12) stiffness, degrees of freedom [u1, theta1, u2, theta2] (m, rad; N, N m).
+    """
     L = length
     k = np.zeros((12, 12))
     axial, torsion = s.E * s.A / L, s.G * s.J / L
@@ -47,13 +63,36 @@ def local_stiffness(length: float, s: Section) -> np.ndarray:
 
 
 def stiffness(start: np.ndarray, end: np.ndarray, s: Section) -> np.ndarray:
-    """(12, 12) stiffness of the beam from `start` to `end` (m) in the given coordinates."""
+    """The stiffness of a beam in the coordinates its end points are given in.
+
+    Args:
+        start: (3,) the beam's start (m).
+        end: (3,) its end (m).
+        s: its section (`s.axis1` in the same coordinates).
+
+    Returns:
+        (12, 12) stiffness, degrees of freedom [u_start, theta_start, u_end, theta_end].
+
+    Raises:
+        InvalidParameters: `s.axis1` along the beam.
+    """
     length, axes = local_axes(start, end, s.axis1)
     T = np.kron(np.eye(4), axes)
     return T.T @ local_stiffness(length, s) @ T
 
 
 def cantilever_compliance(free: np.ndarray, clamp: np.ndarray, s: Section) -> np.ndarray:
-    """(6, 6) compliance of the beam clamped at `clamp`, loaded at `free` (m): the twist of the free end
-    (m, rad) per wrench [N, N m about the free end], in the given coordinates."""
+    """The compliance of a cantilever beam at its free end.
+
+    Args:
+        free: (3,) the loaded end (m).
+        clamp: (3,) the clamped end (m).
+        s: the section (`s.axis1` in the same coordinates).
+
+    Returns:
+        (6, 6) the free end's twist [m, rad] per wrench [N, N m about the free end], in the given coordinates.
+
+    Raises:
+        InvalidParameters: `s.axis1` along the beam.
+    """
     return np.linalg.inv(stiffness(clamp, free, s)[6:, 6:])

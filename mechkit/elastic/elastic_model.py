@@ -30,13 +30,14 @@ class CompliantReactions:
     """Inverse dynamics of N samples with the reactions compatibility fixes.
 
     Attributes:
-        joint_names: the reactions' joints (tree joints, then cuts); actuated: the drives (the actuators,
-            then any other driven joint, locked).
-        efforts: (N, n_drives) drive efforts (N m or N). reactions: (N, n_joints, 6) [f, m] about each
-            joint's origin (a cut: frame_b's origin), world.
+        joint_names: the reactions' joints (tree joints, then cuts).
+        actuated: the drives (the actuators, then any other driven joint, locked).
+        efforts: (N, n_drives) drive efforts (N m or N).
+        reactions: (N, n_joints, 6) [f, m] about each joint's origin (a cut: frame_b's origin), world.
         determinate: (N, n_joints, 6) components fixed by equilibrium and compatibility (all, where every
-            self-stress strains something elastic). rigid_determinate: (N, n_joints, 6) those rigid
-            statics fixes alone: there the values equal the rigid inverse dynamics'.
+            self-stress strains something elastic).
+        rigid_determinate: (N, n_joints, 6) those rigid statics fixes alone: there the values equal the
+            rigid inverse dynamics'.
         spring_efforts: (N, n_springs) increments of the joint springs treated as drives (N m or N).
     """
 
@@ -49,7 +50,13 @@ class CompliantReactions:
     spring_efforts: np.ndarray
 
     def reaction(self, joint: str) -> np.ndarray:
-        """(N, 6) reactions of one joint.
+        """The reactions of one joint.
+
+        Args:
+            joint: the joint's name (a tree joint or a cut).
+
+        Returns:
+            (N, 6) its reactions [f (N), m (N m)], world axes.
 
         Raises:
             InvalidParameters: no such joint.
@@ -64,11 +71,12 @@ class BodyStiffness:
     """The stiffness of one body at one point and pose (world axes at the point; [translation, rotation]).
 
     Attributes:
-        body: the body's link. point: (3,) the point (world, m).
+        body: the body's link.
+        point: (3,) the point (world, m).
         compliance: (6, 6) C: twist (m, rad) per wrench (N, N m).
         stiffness: (6, 6) K = C^-1 (inf on the diagonal where C is singular: a direction held rigidly).
-        held: (6,) K_ii (N/m, N m/rad) with every other direction held. free: (6,) 1 / C_ii with every
-            other direction free.
+        held: (6,) K_ii (N/m, N m/rad) with every other direction held.
+        free: (6,) 1 / C_ii with every other direction free.
     """
 
     body: str
@@ -88,7 +96,8 @@ class ElasticModel:
             its URDF (none: every body rigid, and no quantity here can be computed).
 
     Raises:
-        InvalidParameters, MalformedDescription: elastic data naming what the mechanism lacks.
+        InvalidParameters: elastic data naming what the mechanism lacks, or that its joints cannot take.
+        MalformedDescription: bad `<mechkit:beam>` or `<mechkit:elastic_joint>` elements in its URDF.
     """
 
     def __init__(self, mech: Mechanism, data: ElasticData | None = None):
@@ -99,34 +108,77 @@ class ElasticModel:
         self.links = {f.name: f for f in mech.model.frames if f.type == pin.FrameType.BODY}
 
     def with_section(self, link: str, section: Section | None) -> ElasticModel:
-        """The same mechanism with one link's section set (None: rigid)."""
+        """The same mechanism with one link's section set.
+
+        Args:
+            link: the URDF link.
+            section: its section (None: rigid).
+
+        Returns:
+            A new `ElasticModel`.
+
+        Raises:
+            InvalidParameters: no such link, or its body already has another link's section.
+        """
         return ElasticModel(self.mech, self.data.with_section(link, section))
 
     def with_joint(self, joint: str, elasticity: JointElasticity | None) -> ElasticModel:
-        """The same mechanism with one joint's elasticity set (None: ideal, and locked when actuated)."""
+        """The same mechanism with one joint's elasticity set.
+
+        Args:
+            joint: the joint (a tree joint or a cut).
+            elasticity: its elasticity (None: ideal, and locked when actuated).
+
+        Returns:
+            A new `ElasticModel`.
+
+        Raises:
+            InvalidParameters: no such joint, or elasticity the joint cannot take.
+        """
         return ElasticModel(self.mech, self.data.with_joint(joint, elasticity))
 
     # ------------------------------------------------------------------ reactions
     def inverse_dynamics_batch(self, q: np.ndarray, v: np.ndarray, a: np.ndarray, fext: Any = None, *,
                                allow_singular: bool = False) -> CompliantReactions:
-        """Efforts and reactions of N motions (q (N, nq), v and a (N, nv), fext as
-        `Mechanism.inverse_dynamics_batch`) with every reaction fixed by equilibrium and compatibility:
-        the rigid inverse dynamics moved along its self-stresses to the least complementary energy
-        (loads act on each body's centre of mass node as in the rigid model)."""
+        """Efforts and reactions of N motions with every reaction fixed by equilibrium and compatibility.
+
+        The rigid inverse dynamics moved along its self-stresses to the least complementary energy (loads
+        act on each body's centre of mass node as in the rigid model).
+
+        Args:
+            q: (N, nq) configurations closing the loops.
+            v: (N, nv) velocities.
+            a: (N, nv) accelerations.
+            fext: external forces as `Mechanism.inverse_dynamics_batch` takes them (None, (N, njoints, 6)
+                or N per-sample values).
+            allow_singular: skip the test that the inputs determine the motion.
+
+        Returns:
+            The `CompliantReactions` of the N samples.
+
+        Raises:
+            SingularConfiguration: the rigid efforts are undetermined (see `allow_singular`).
+        """
         rigid = self.mech.inverse_dynamics_batch(q, v, a, fext, determinacy=False, allow_singular=allow_singular)
         return self.compatible(np.asarray(q, dtype=float).reshape(len(rigid), -1), rigid.efforts, rigid.reactions)
 
     def compatible(self, q: np.ndarray, efforts: np.ndarray, reactions: np.ndarray,
                    drives: tuple[str, ...] | None = None) -> CompliantReactions:
-        """The compatible equilibrium nearest any rigid one: efforts (N, n_drives) and reactions (N, n_joints,
-        6) of the poses q (N, nq) (e.g. a motion study's), moved along the self-stresses.
+        """The compatible equilibrium nearest a rigid one, moved along the self-stresses.
 
         Args:
+            q: (N, nq) poses closing the loops (e.g. a motion study's).
+            efforts: (N, n_drives) the rigid equilibrium's drive efforts (N m or N).
+            reactions: (N, n_joints, 6) its reactions [f, m], world axes, `ClosureModel.joint_names` order.
             drives: the joints the efforts drive, the actuators first (default: the actuators); a drive
                 that is not an actuator is locked.
 
+        Returns:
+            The `CompliantReactions` of the N poses.
+
         Raises:
-            InvalidParameters: drives that do not start with the actuators.
+            InvalidParameters: drives that do not start with the actuators, or a pose that does not close
+                the loops.
             InvalidArgument: arrays of the wrong shape or not finite.
         """
         mech = self.mech
@@ -155,14 +207,31 @@ class ElasticModel:
 
     def inverse_dynamics(self, q: np.ndarray, v: np.ndarray, a: np.ndarray, fext: Any = None, *,
                          allow_singular: bool = False) -> CompliantReactions:
-        """`inverse_dynamics_batch` of one sample (q (nq,), v and a (nv,)), as a batch of one."""
+        """`inverse_dynamics_batch` of one sample, as a batch of one.
+
+        Args:
+            q: (nq,) configuration closing the loops.
+            v: (nv,) velocities.
+            a: (nv,) accelerations.
+            fext: external forces of the sample as `Mechanism.inverse_dynamics` takes them, or None.
+            allow_singular: skip the test that the inputs determine the motion.
+
+        Returns:
+            The `CompliantReactions`, N = 1.
+        """
         q, v, a = self.mech._one(q=q, v=v, a=a)
         return self.inverse_dynamics_batch(q[None], v[None], a[None], None if fext is None else [fext],
                                            allow_singular=allow_singular)
 
     # ------------------------------------------------------------------ stiffness
     def body(self, link: str) -> int:
-        """Pinocchio id of the body carrying a URDF link.
+        """The Pinocchio id of the body carrying a URDF link.
+
+        Args:
+            link: the URDF link.
+
+        Returns:
+            The body's joint id.
 
         Raises:
             InvalidParameters: no such link.
@@ -172,15 +241,37 @@ class ElasticModel:
         return int(self.links[link].parentJoint)
 
     def point(self, q: np.ndarray, link: str, point: np.ndarray | None = None) -> np.ndarray:
-        """A point (3,) given in a link's frame (m; default its origin), in the world at q."""
+        """A point given in a link's frame, in the world at a pose.
+
+        Args:
+            q: (nq,) configuration.
+            link: the URDF link.
+            point: (3,) the point in the link's frame (m); default its origin.
+
+        Returns:
+            (3,) the point in the world (m).
+        """
         data = self.mech.model.createData()
         pin.framesForwardKinematics(self.mech.model, data, q)
         local = np.zeros(3) if point is None else arguments.array("point", point, 3, batch=False)
         return data.oMf[self.mech.model.getFrameId(link)].act(local)
 
     def compliance(self, q: np.ndarray, link: str, point: np.ndarray | None = None) -> np.ndarray:
-        """(6, 6) compliance C of a body at a point (link frame, m; default the link's origin) at pose q:
-        its twist [translation (m), rotation (rad)] per wrench [N, N m] there, world axes."""
+        """The compliance C of a body at a point.
+
+        Args:
+            q: (nq,) an assembled pose.
+            link: the body's URDF link.
+            point: (3,) the point in the link's frame (m); default the link's origin.
+
+        Returns:
+            (6, 6) C: the body's twist [translation (m), rotation (rad)] per wrench [N, N m] at the
+            point, world axes.
+
+        Raises:
+            InvalidParameters: no such link, or a pose that does not close the loops.
+            SingularConfiguration: with its actuators locked the mechanism still moves under a load there.
+        """
         return self._compliance(q, link, point)[0]
 
     def _compliance(self, q: np.ndarray, link: str, point: np.ndarray | None) -> tuple[np.ndarray, np.ndarray]:
@@ -195,9 +286,23 @@ class ElasticModel:
             return self._flexibility(pose, np.array([body]), x[None, None])[0], x
 
     def stiffness(self, q: np.ndarray, link: str, point: np.ndarray | None = None) -> BodyStiffness:
-        """`BodyStiffness` of a body at a point (link frame; default its origin) at pose q. A direction
-        held rigidly (C_ii = 0 to 1e-12 of the largest) has K_ii = 1/C_ii = inf, and K is the inverse of C
-        over the other directions (all inf where that block is singular too)."""
+        """The stiffness of a body at a point.
+
+        A direction held rigidly (C_ii = 0 to 1e-12 of the largest) has K_ii = 1/C_ii = inf, and K is the
+        inverse of C over the other directions (all inf where that block is singular too).
+
+        Args:
+            q: (nq,) an assembled pose.
+            link: the body's URDF link.
+            point: (3,) the point in the link's frame (m); default its origin.
+
+        Returns:
+            The `BodyStiffness` (world axes at the point).
+
+        Raises:
+            InvalidParameters: no such link, or a pose that does not close the loops.
+            SingularConfiguration: with its actuators locked the mechanism still moves under a load there.
+        """
         C, x = self._compliance(q, link, point)
         diagonal = np.diag(C)
         soft = diagonal > RIGID * max(float(diagonal.max()), 1e-300)
@@ -212,11 +317,28 @@ class ElasticModel:
         return BodyStiffness(link, x, C, K, np.diag(K).copy(), free)
 
     def deflection(self, q: np.ndarray, link: str, wrench: np.ndarray, point: np.ndarray | None = None) -> np.ndarray:
-        """(6,) twist [m, rad] of a body at a point (link frame) under a wrench (6,) [N, N m] there, world axes."""
+        """A body's deflection at a point under a wrench there.
+
+        Args:
+            q: (nq,) an assembled pose.
+            link: the body's URDF link.
+            wrench: (6,) the wrench [N, N m] at the point, world axes.
+            point: (3,) the point in the link's frame (m); default its origin.
+
+        Returns:
+            (6,) the twist [translation (m), rotation (rad)], world axes.
+        """
         return self.compliance(q, link, point) @ arguments.array("wrench", wrench, 6, batch=False)
 
     def modes(self, q: np.ndarray, n: int = 6) -> Modes:
-        """The first n natural modes at pose q (nq,), actuators locked (`mechkit.elastic.modes`).
+        """The first natural modes at a pose, actuators locked (`mechkit.elastic.modes`).
+
+        Args:
+            q: (nq,) an assembled pose.
+            n: modes wanted (fewer come back where directions are held rigidly).
+
+        Returns:
+            The `Modes`, ascending in frequency.
 
         Raises:
             InvalidParameters: n < 1 or more than six per massive body.

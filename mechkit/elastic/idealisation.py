@@ -35,7 +35,8 @@ class ElasticBody:
     """An elastic body (a link idealised as beams).
 
     Attributes:
-        body: Pinocchio joint id of the body. link: its URDF link carrying the section.
+        body: Pinocchio joint id of the body.
+        link: its URDF link carrying the section.
         joints: the joints (indices into `ClosureModel.joint_names`) it carries.
         lengths: (len(joints),) length (m) of the beam from each joint's centre to the centre of mass.
     """
@@ -61,13 +62,15 @@ class Idealisation:
         data: its elastic data (sections by URDF link, elasticity by joint).
 
     Attributes:
-        elastic: the elastic bodies (`ElasticBody`). rigid_with_section: URDF links given a section but
-            rigid by the rule above (three or more joints, or the ground).
+        elastic: the elastic bodies (`ElasticBody`).
+        rigid_with_section: URDF links given a section but rigid by the rule above (three or more
+            joints, or the ground).
         sides: (n_joints, 2) bodies of each joint's parent (frame_a) and child (frame_b) sides.
         drives: the effort columns beyond the actuators: joints with a `mechkit:spring` (not actuated).
         drive_compliance: (na + len(drives),) compliance of each effort column (rad/(N m) or m/N; 0: locked).
-        pin_data: a Pinocchio data (scratch of `mechkit.elastic.statics.evaluate`); pin_rotations,
-            pin_translations: views of its joint placements.
+        pin_data: a Pinocchio data (scratch of `mechkit.elastic.statics.evaluate`).
+        pin_rotations: views of its joint placements' rotations.
+        pin_translations: views of its joint placements' translations.
 
     Raises:
         InvalidParameters: a section or elasticity naming what the mechanism lacks, a centre on a joint
@@ -190,13 +193,16 @@ class Idealisation:
         return tuple(s.joint for s in springs), np.array(compliance + [1.0 / s.stiffness for s in springs])
 
     def compliances(self, R: np.ndarray, t: np.ndarray, points: np.ndarray) -> np.ndarray:
-        """(N, n_joints, 6, 6) every joint's compliance (m/N, rad/(N m)) for its reaction about its
-        reporting point, world axes.
+        """Every joint's compliance for its reaction about its reporting point, at N poses.
 
         Args:
             R: (N, njoints, 3, 3) body rotations (world).
             t: (N, njoints, 3) body origins (world, m).
             points: (N, n_joints, 3) the reactions' points (joint origins, cut frame_b origins).
+
+        Returns:
+            (N, n_joints, 6, 6) compliances (m/N, rad/(N m)), world axes: the beams ending at each joint
+            and its own compliance, in series.
         """
         n, nj = len(R), len(self.names)
         out = np.zeros((n, nj, 6, 6))

@@ -22,10 +22,13 @@ class StiffnessMap:
     """A body's stiffness over a grid of two inputs.
 
     Attributes:
-        body: the body's link; point: (3,) the point in its frame (m).
-        inputs: the two input joints; values: their grids ((n1,), (n2,); rad or m).
+        body: the body's link.
+        point: (3,) the point in its frame (m).
+        inputs: the two input joints.
+        values: their grids ((n1,), (n2,); rad or m).
         held: (n1, n2, 6) K_ii (every other direction held; N/m, N m/rad); nan where the pose does not
-            assemble or is singular. free: (n1, n2, 6) 1 / C_ii (every other direction free).
+            assemble or is singular.
+        free: (n1, n2, 6) 1 / C_ii (every other direction free).
     """
 
     body: str
@@ -38,10 +41,20 @@ class StiffnessMap:
 
 def stiffness_map(elastic: ElasticModel, body: str, inputs: dict[str, np.ndarray],
                   point: np.ndarray | None = None) -> StiffnessMap:
-    """The stiffness of `body` at `point` (its frame; default its origin) over the grid of two input
-    joints' values (the other actuated joints at their home values), breadth first from the cell
-    nearest home, each pose assembled from an accepted neighbour's: a pose that does not assemble, is
-    singular or jumps to another assembly branch is left out (nan), and so is what lies beyond it.
+    """A body's stiffness over the grid of two input joints' values (the other actuators at home).
+
+    The grid is walked breadth first from the cell nearest home, each pose assembled from an accepted
+    neighbour's: a pose that does not assemble, is singular or jumps to another assembly branch is left
+    out (nan), and so is what lies beyond it.
+
+    Args:
+        elastic: the elastic model.
+        body: the body's URDF link.
+        inputs: two input joints -> their grids of values (rad or m).
+        point: (3,) the point in the link's frame (m); default its origin.
+
+    Returns:
+        The `StiffnessMap`.
 
     Raises:
         InvalidParameters: not exactly two inputs.
@@ -78,6 +91,14 @@ def stiffness_map(elastic: ElasticModel, body: str, inputs: dict[str, np.ndarray
 
 def plot_map(result: StiffnessMap, direction: str, path: Path) -> Path:
     """A PNG of the map in one direction: K_ii and 1/C_ii side by side (log colour scale).
+
+    Args:
+        result: the map.
+        direction: one of "x", "y", "z", "rx", "ry", "rz".
+        path: the PNG file to write.
+
+    Returns:
+        The path written.
 
     Raises:
         InvalidParameters: an unknown direction.

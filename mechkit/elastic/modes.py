@@ -29,7 +29,8 @@ class Modes:
         frequencies: (n,) natural frequencies (Hz), ascending.
         shapes: (n, bodies, 6) each mode's twist [translation (m), rotation (rad)] of every massive
             body at its centre of mass, world axes, mass-normalised (phi^T M phi = 1).
-        bodies: (bodies,) the Pinocchio ids of the massive bodies; names: their URDF links.
+        bodies: (bodies,) the Pinocchio ids of the massive bodies.
+        names: their URDF links.
         centres: (bodies, 3) their centres of mass (world, m).
     """
 
@@ -41,7 +42,16 @@ class Modes:
 
 
 def mass_matrix(model: pin.Model, R: np.ndarray, bodies: np.ndarray) -> np.ndarray:
-    """(6k, 6k) block-diagonal mass matrix of bodies at their centres of mass: [m I, 0; 0, R I_c R^T]."""
+    """The block-diagonal mass matrix of bodies at their centres of mass: [m I, 0; 0, R I_c R^T] per body.
+
+    Args:
+        model: the Pinocchio model (the bodies' masses and inertias).
+        R: (njoints, 3, 3) body rotations (world).
+        bodies: (k,) the bodies' ids.
+
+    Returns:
+        (6k, 6k) the mass matrix (kg, kg m^2), world axes.
+    """
     M = np.zeros((6 * len(bodies), 6 * len(bodies)))
     for k, b in enumerate(bodies):
         inertia = model.inertias[int(b)]
@@ -56,10 +66,16 @@ def modes(model: pin.Model, R: np.ndarray, bodies: np.ndarray, centres: np.ndarr
     bodies' centres of mass (`ElasticModel` computes it).
 
     Args:
-        model: the Pinocchio model (the bodies' masses and inertias). R: (njoints, 3, 3) body rotations.
-        bodies: (k,) the massive bodies' ids; centres: (k, 3) their centres of mass (world, m).
+        model: the Pinocchio model (the bodies' masses and inertias).
+        R: (njoints, 3, 3) body rotations (world).
+        bodies: (k,) the massive bodies' ids.
+        centres: (k, 3) their centres of mass (world, m).
+        F: (6k, 6k) the flexibility (m/N, rad/(N m)), world axes.
         n: modes wanted (fewer come back where directions are held rigidly).
         names: (k,) the bodies' names (their URDF links).
+
+    Returns:
+        The `Modes`, ascending in frequency.
     """
     M = mass_matrix(model, R, bodies)
     blocks = M.reshape(len(bodies), 6, len(bodies), 6)[np.arange(len(bodies)), :, np.arange(len(bodies))]

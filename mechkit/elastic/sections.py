@@ -31,9 +31,12 @@ class Section:
     """A uniform beam section and its material (axial, Euler-Bernoulli bending, St Venant torsion).
 
     Attributes:
-        E: Young's modulus (Pa). G: shear modulus (Pa).
-        A: area (m^2). I1, I2: second moments of area (m^4), I1 about `axis1`, I2 about the
-            direction normal to both the beam and `axis1`. J: torsion constant (m^4).
+        E: Young's modulus (Pa).
+        G: shear modulus (Pa).
+        A: area (m^2).
+        I1: second moment of area (m^4) about `axis1`.
+        I2: second moment of area (m^4) about the direction normal to both the beam and `axis1`.
+        J: torsion constant (m^4).
         axis1: (3,) the direction, in the link's frame, I1 is about (for a planar linkage its
             revolute axis); its part along each beam is dropped.
         density: material density (kg/m^3), for the mass of a design (`Section.mass`), not for the
@@ -67,7 +70,18 @@ class Section:
     @classmethod
     def tube(cls, outer: float, inner: float, E: float, G: float, axis1: object = (0.0, 0.0, 1.0),
              density: float = 0.0) -> Section:
-        """A round tube of outer and inner diameters (m); I1 = I2 = pi (D^4 - d^4) / 64, J = 2 I1.
+        """A round tube: I1 = I2 = pi (D^4 - d^4) / 64, J = 2 I1.
+
+        Args:
+            outer: outer diameter D (m).
+            inner: inner diameter d (m; 0: a solid rod).
+            E: Young's modulus (Pa).
+            G: shear modulus (Pa).
+            axis1: (3,) the direction I1 is about, in the link's frame.
+            density: material density (kg/m^3).
+
+        Returns:
+            The `Section`.
 
         Raises:
             InvalidParameters: not 0 <= inner < outer.
@@ -78,11 +92,25 @@ class Section:
         return cls(E, G, math.pi * (outer**2 - inner**2) / 4.0, inertia, inertia, 2.0 * inertia, np.asarray(axis1), density)
 
     def mass(self, length: float) -> float:
-        """Mass (kg) of a straight beam of this section, `length` (m) long."""
+        """The mass of a straight beam of this section.
+
+        Args:
+            length: the beam's length (m).
+
+        Returns:
+            Its mass (kg): density A length.
+        """
         return self.density * self.A * length
 
     def scaled(self, factor: float) -> Section:
-        """The same section with both moduli times `factor` (every stiffness times `factor`)."""
+        """The same section with both moduli times a factor (every stiffness times it).
+
+        Args:
+            factor: the factor (> 0).
+
+        Returns:
+            The scaled `Section`.
+        """
         return replace(self, E=self.E * factor, G=self.G * factor)
 
 
@@ -133,21 +161,44 @@ class ElasticData:
         return bool(self.sections or self.joints)
 
     def with_section(self, link: str, section: Section | None) -> ElasticData:
-        """A copy with `link`'s section set (None: the link rigid)."""
+        """A copy with one link's section set.
+
+        Args:
+            link: the URDF link.
+            section: its section (None: the link rigid).
+
+        Returns:
+            The new `ElasticData`.
+        """
         sections = {k: v for k, v in self.sections.items() if k != link}
         if section is not None:
             sections[link] = section
         return ElasticData(sections, dict(self.joints))
 
     def with_joint(self, joint: str, elasticity: JointElasticity | None) -> ElasticData:
-        """A copy with `joint`'s elasticity set (None: ideal and, when actuated, locked)."""
+        """A copy with one joint's elasticity set.
+
+        Args:
+            joint: the joint (a tree joint or a cut).
+            elasticity: its elasticity (None: ideal and, when actuated, locked).
+
+        Returns:
+            The new `ElasticData`.
+        """
         joints = {k: v for k, v in self.joints.items() if k != joint}
         if elasticity is not None:
             joints[joint] = elasticity
         return ElasticData(dict(self.sections), joints)
 
     def scaled(self, factor: float) -> ElasticData:
-        """Every section's moduli, joint stiffness and drive stiffness times `factor`."""
+        """A copy with every section's moduli, joint stiffness and drive stiffness times a factor.
+
+        Args:
+            factor: the factor (> 0).
+
+        Returns:
+            The scaled `ElasticData`.
+        """
         joints = {name: replace(j, stiffness=None if j.stiffness is None else j.stiffness * factor,
                                 drive=None if j.drive is None else j.drive * factor) for name, j in self.joints.items()}
         return ElasticData({name: s.scaled(factor) for name, s in self.sections.items()}, joints)

@@ -34,7 +34,9 @@ class Pose:
     """The rigid statics of N poses.
 
     Attributes:
-        q: (N, nq). R, t: (N, njoints, 3, 3), (N, njoints, 3) body rotations and origins (world).
+        q: (N, nq) the poses.
+        R: (N, njoints, 3, 3) body rotations (world).
+        t: (N, njoints, 3) body origins (world, m).
         J: (N, 6, nv) world joint Jacobians (Pinocchio's `data.J`).
         points: (N, n_joints, 3) the reactions' points (tree joint origins, then cut frame_b origins).
         A: (N, nv, m) equilibrium matrix [S^T, S_springs^T, J_full^T].
@@ -57,8 +59,16 @@ class Pose:
 
 
 def evaluate(ideal: Idealisation, Q: np.ndarray, actuation: np.ndarray | None = None) -> Pose:
-    """The rigid statics of the poses Q (N, nq), which must close the loops; `actuation` (na, nv): the
-    drives' S (default the mechanism's actuators), then the idealisation's spring drives.
+    """The rigid statics of N poses.
+
+    Args:
+        ideal: the idealisation (its mechanism and scratch data).
+        Q: (N, nq) poses, which must close the loops.
+        actuation: (na, nv) the drives' S (default the mechanism's actuators); the idealisation's spring
+            drives follow them.
+
+    Returns:
+        The `Pose`.
 
     Raises:
         InvalidParameters: a pose that does not close the loops (residual over `CLOSED_TOL`).
@@ -127,7 +137,14 @@ def _null_spaces(A: np.ndarray) -> np.ndarray:
 
 
 def particular(pose: Pose, b: np.ndarray) -> np.ndarray:
-    """x_p (N, m, k): the minimum-norm solutions of A x = b for right-hand sides b (N, nv, k).
+    """The minimum-norm solutions x_p of A x = b.
+
+    Args:
+        pose: the rigid statics (its A).
+        b: (N, nv, k) right-hand sides (generalised forces, N m or N).
+
+    Returns:
+        (N, m, k) x_p.
 
     Raises:
         SingularConfiguration: a load the locked mechanism cannot hold (it still moves under it).
@@ -147,7 +164,8 @@ class Compatible:
     """The compatible reactions and efforts of N samples and k load cases.
 
     Attributes:
-        reactions: (N, n_joints, 6, k). efforts: (N, ne, k) (actuators, then spring drives).
+        reactions: (N, n_joints, 6, k) reactions [f, m], world axes.
+        efforts: (N, ne, k) efforts (actuators, then spring drives).
         determinate: (N, n_joints, 6) components fixed by equilibrium and compatibility together.
         rigid_determinate: (N, n_joints, 6) components fixed by equilibrium alone.
     """
@@ -165,16 +183,37 @@ def _variation(Y: np.ndarray) -> np.ndarray:
 
 def energy_product(pose: Pose, drive_compliance: np.ndarray, A: np.ndarray, a: np.ndarray, B: np.ndarray,
                    b: np.ndarray) -> np.ndarray:
-    """(N, s, t) sum_j A_j^T F_j B_j + a^T diag(c) b: the complementary-energy product of two sets of
-    reactions A (N, n_joints, 6, s), B (N, n_joints, 6, t) with their efforts a (N, ne, s), b (N, ne, t)."""
+    """The complementary-energy product sum_j A_j^T F_j B_j + a^T diag(c) b of two sets of reactions.
+
+    Args:
+        pose: the rigid statics (its joint compliances F_j).
+        drive_compliance: (ne,) the effort columns' compliances c (rad/(N m) or m/N; 0: locked).
+        A: (N, n_joints, 6, s) the first set's reactions.
+        a: (N, ne, s) its efforts.
+        B: (N, n_joints, 6, t) the second set's reactions.
+        b: (N, ne, t) its efforts.
+
+    Returns:
+        (N, s, t) the products (J per unit of each column).
+    """
     n, rows = len(A), A.shape[1] * 6
     FB = (pose.compliance @ B).reshape(n, rows, B.shape[-1])
     return np.swapaxes(A.reshape(n, rows, A.shape[-1]), 1, 2) @ FB + np.swapaxes(a * drive_compliance[:, None], 1, 2) @ b
 
 
 def compatible(pose: Pose, drive_compliance: np.ndarray, reactions: np.ndarray, efforts: np.ndarray) -> Compatible:
-    """The compatible equilibrium nearest an equilibrium given by its reactions (N, n_joints, 6, k) and
-    efforts (N, ne, k): moved along the self-stresses to the least complementary energy."""
+    """The compatible equilibrium nearest a given one, moved along the self-stresses to the least
+    complementary energy.
+
+    Args:
+        pose: the rigid statics (self-stresses, compliances).
+        drive_compliance: (ne,) the effort columns' compliances (rad/(N m) or m/N; 0: locked).
+        reactions: (N, n_joints, 6, k) the equilibrium's reactions, world axes.
+        efforts: (N, ne, k) its efforts.
+
+    Returns:
+        The `Compatible` reactions and efforts, with the components they fix.
+    """
     ne = len(drive_compliance)
     YR = pose.reaction_map @ pose.null[:, None]  # (N, n_joints, 6, s)
     Yu = pose.null[:, :ne]
@@ -205,7 +244,10 @@ def unit_loads(model: pin.Model, pose: Pose, bodies: np.ndarray, points: np.ndar
     reactions they cause before any closure acts.
 
     Args:
-        bodies: (k,) Pinocchio ids of the loaded bodies; points: (N, k, 3) where (world, m).
+        model: the Pinocchio model.
+        pose: the rigid statics of the N poses.
+        bodies: (k,) Pinocchio ids of the loaded bodies.
+        points: (N, k, 3) where they are loaded (world, m).
 
     Returns:
         b (N, nv, 6k) = -J^T w (the generalised force the joints must balance) and R0 (N, n_joints, 6, 6k):

@@ -92,7 +92,16 @@ class UnitLoad:
         return joints
 
     def reactions(self, q: np.ndarray, v: np.ndarray, a: np.ndarray) -> dict[str, np.ndarray]:
-        """Joint name -> compatible reaction (6,) [f, m about its point], world, at the motion (q, v, a)."""
+        """The compatible reactions at one instant of a motion.
+
+        Args:
+            q: (nq,) configuration closing the loops.
+            v: (nv,) velocities.
+            a: (nv,) accelerations.
+
+        Returns:
+            Joint name (tree joints, then cuts) -> reaction (6,) [f (N), m (N m) about its point], world axes.
+        """
         model = self.mech.model
         pdata = model.createData()
         pin.framesForwardKinematics(model, pdata, q)

@@ -36,7 +36,13 @@ def _numbers(element: ET.Element, attr: str, where: str, size: int) -> np.ndarra
 
 
 def parse_elastic(urdf: str | ET.Element) -> ElasticData:
-    """The `<mechkit:beam>` and `<mechkit:elastic_joint>` elements of a URDF (text or parsed root).
+    """The `<mechkit:beam>` and `<mechkit:elastic_joint>` elements of a URDF.
+
+    Args:
+        urdf: the URDF text or its parsed root element.
+
+    Returns:
+        The `ElasticData` (empty where the URDF has no such element).
 
     Raises:
         MalformedDescription: a missing or bad attribute, a link or joint named twice or not in the URDF.
@@ -86,6 +92,13 @@ def _text(values: np.ndarray) -> str:
 
 def with_elastic(urdf: str, data: ElasticData) -> str:
     """The URDF text with its elastic elements replaced by `data`'s (the rest of the file unchanged).
+
+    Args:
+        urdf: the URDF text.
+        data: the elastic data to write.
+
+    Returns:
+        The new URDF text.
 
     Raises:
         MalformedDescription: `data` names a link or joint the URDF lacks (read back by `parse_elastic`).

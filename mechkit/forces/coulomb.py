@@ -25,12 +25,28 @@ SPEED_THRESHOLD = 1e-2
 
 
 def smooth_sign(rate: np.ndarray | float, threshold: float = SPEED_THRESHOLD) -> np.ndarray | float:
-    """tanh(rate / threshold): the regularised sign of a friction's rate (dimensionless, in [-1, 1])."""
+    """tanh(rate / threshold): the regularised sign of a friction's rate.
+
+    Args:
+        rate: the joint rate(s) (rad/s or m/s), a scalar or an array of any shape.
+        threshold: the regularisation's rate (rad/s or m/s, > 0).
+
+    Returns:
+        The regularised sign (dimensionless, in [-1, 1]), of the shape of `rate`.
+    """
     return np.tanh(np.asarray(rate) / threshold)
 
 
 def one_freedom_joint(model: pin.Model, joint: str, what: str) -> int:
     """The velocity index of a one-freedom joint, by name.
+
+    Args:
+        model: the tree's Pinocchio model.
+        joint: the joint's name.
+        what: what asks for the joint (named in the error).
+
+    Returns:
+        The joint's index into v (nv,).
 
     Raises:
         InvalidParameters: no such joint, or a joint of several freedoms.
@@ -73,7 +89,15 @@ class CoulombFriction(ForceElement):
         self._nv = model.nv
 
     def load(self, state: ForceState) -> Load:
-        """The friction efforts at a state and their (non-positive) power."""
+        """The friction efforts at a state and their power.
+
+        Args:
+            state: the state (its v is read).
+
+        Returns:
+            The `Load`: generalised forces (nv,) (N m or N) at the joints with friction, no wrenches, and
+            their power (W, <= 0).
+        """
         rate = state.v[self._v]
         effort = -self._f * smooth_sign(rate, self.threshold)
         tau = np.zeros(self._nv)

@@ -41,7 +41,15 @@ class Described:
     motors: dict[str, tuple[float, float]] = field(default_factory=dict)
 
     def elements(self, model: pin.Model) -> list:
-        """The dampers and the friction as force elements (none where the file declares none)."""
+        """The dampers and the friction as force elements.
+
+        Args:
+            model: the tree's Pinocchio model (the joints named here must be its).
+
+        Returns:
+            A `JointSprings` of the dampers and a `CoulombFriction` of the friction, each only where the
+            file declares some (an empty list where it declares neither).
+        """
         out: list = []
         if self.dampers:
             out.append(JointSprings(model, [JointSpring(j, damping=d) for j, d in self.dampers.items()], "joint dampers"))
@@ -63,6 +71,14 @@ def _float(element: ET.Element, attribute: str, default: float, where: str) -> f
 
 def from_urdf(urdf: str, model: pin.Model, actuated: tuple[str, ...] = ()) -> Described:
     """The dampers, friction, limits and motor envelopes of a URDF's moving joints that the model has.
+
+    Args:
+        urdf: the URDF text.
+        model: the tree's Pinocchio model (joints it lacks are skipped).
+        actuated: the actuated joints (their `<limit effort velocity>` give the motor envelopes).
+
+    Returns:
+        The `Described` forces and limits.
 
     Raises:
         MalformedDescription: a value that is not a finite number.
@@ -96,6 +112,13 @@ def from_mjcf(path: Path, model: pin.Model) -> Described:
     """The friction losses, limited ranges and actuator force ranges of an MJCF file (compiled by MuJoCo)
     of the one-freedom joints the model has.
 
+    Args:
+        path: the MJCF file.
+        model: the tree's Pinocchio model (joints it lacks are skipped).
+
+    Returns:
+        The `Described` forces and limits (motors: stall effort from `forcerange`, no-load rate inf).
+
     Raises:
         MethodUnavailable: MuJoCo is not installed.
         MalformedDescription: MuJoCo cannot compile the file.
@@ -127,8 +150,21 @@ def from_mjcf(path: Path, model: pin.Model) -> Described:
 
 
 def read(source: str | Path | None, urdf: str | None, model: pin.Model, actuated: tuple[str, ...] = ()) -> Described:
-    """What a mechanism's description says: from an MJCF file when `source` is one, else from its URDF text
-    (`Mechanism.urdf`); nothing without either."""
+    """What a mechanism's description says: from an MJCF file when `source` is one, else from its URDF text.
+
+    Args:
+        source: the description file (an `.xml` or `.mjcf` path is read as MJCF), or None.
+        urdf: the URDF text (`Mechanism.urdf`), or None.
+        model: the tree's Pinocchio model.
+        actuated: the actuated joints (URDF motor envelopes).
+
+    Returns:
+        The `Described` forces and limits; empty without either source.
+
+    Raises:
+        MethodUnavailable: an MJCF source and MuJoCo is not installed.
+        MalformedDescription: a value that is not a finite number, or an MJCF file MuJoCo cannot compile.
+    """
     if source is not None and str(source).endswith((".xml", ".mjcf")):
         return from_mjcf(Path(source), model)
     return from_urdf(urdf, model, actuated) if urdf else Described()

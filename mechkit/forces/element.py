@@ -25,9 +25,12 @@ class ForceState:
     """One state at which force elements are evaluated.
 
     Attributes:
-        model: the tree; data: its Pinocchio data after `forwardKinematics(q, v)`,
-            `computeJointJacobians(q)` and `updateFramePlacements` (world placements, velocities, J).
-        q: (nq,) configuration; v: (nv,) velocities; t: time (s).
+        model: the tree's Pinocchio model.
+        data: its Pinocchio data after `forwardKinematics(q, v)`, `computeJointJacobians(q)` and
+            `updateFramePlacements` (world placements, velocities, J).
+        q: (nq,) configuration.
+        v: (nv,) velocities.
+        t: time (s).
         reactions: (n_joints, 6) every joint's reaction [f (N), m (N m)], world axes, about the joint
             origin, parent side on child side, in `ClosureModel.joint_names` order (tree joints, then
             cut joints); None where no reaction is known yet.
@@ -42,7 +45,18 @@ class ForceState:
 
     @classmethod
     def at(cls, model: pin.Model, data: pin.Data, q: np.ndarray, v: np.ndarray, t: float = 0.0) -> ForceState:
-        """The state with its kinematics computed in `data`."""
+        """The state with its kinematics computed in `data`.
+
+        Args:
+            model: the tree's Pinocchio model.
+            data: a data of `model`, overwritten with the kinematics of (q, v).
+            q: (nq,) configuration.
+            v: (nv,) velocities.
+            t: time (s).
+
+        Returns:
+            The `ForceState` (no reactions).
+        """
         pin.forwardKinematics(model, data, q, v)
         pin.computeJointJacobians(model, data, q)
         pin.updateFramePlacements(model, data)
@@ -81,17 +95,45 @@ class ForceElement:
     friction: bool = False
 
     def load(self, state: ForceState) -> Load:
-        """The element's load at a state."""
+        """The element's load at a state.
+
+        Args:
+            state: the state, its kinematics computed (`ForceState.at`).
+
+        Returns:
+            The `Load`: generalised forces, body wrenches and non-conservative power.
+
+        Raises:
+            NotImplementedError: always here; each element defines its own.
+        """
         raise NotImplementedError
 
     def energy(self, model: pin.Model, data: pin.Data, q: np.ndarray) -> float:
-        """Potential energy (J) of the conservative part at q (`data` after `forwardKinematics(q)`); 0 if none."""
+        """Potential energy of the conservative part at q.
+
+        Args:
+            model: the tree's Pinocchio model.
+            data: its data after `forwardKinematics(q)`.
+            q: (nq,) configuration.
+
+        Returns:
+            The potential energy (J); 0 here (an element without a conservative part).
+        """
         return 0.0
 
 
 def generalized_of_wrenches(model: pin.Model, data: pin.Data, wrenches: np.ndarray) -> np.ndarray:
-    """(nv,) generalised forces J^T f of body wrenches (njoints, 6) in `fext` convention, from `data` after
-    `computeJointJacobians` (world Jacobians)."""
+    """Generalised forces J^T f of body wrenches.
+
+    Args:
+        model: the tree's Pinocchio model.
+        data: its data after `computeJointJacobians(q)` (world Jacobians and placements).
+        wrenches: (njoints, 6) body wrenches in Pinocchio's `fext` convention (joint frames, about the
+            joint origins; row 0, the ground, ignored).
+
+    Returns:
+        (nv,) the generalised forces (N m or N).
+    """
     out = np.zeros(model.nv)
     for j in np.flatnonzero(np.any(wrenches != 0.0, axis=1)):
         if j == 0:
@@ -103,8 +145,19 @@ def generalized_of_wrenches(model: pin.Model, data: pin.Data, wrenches: np.ndarr
 
 def wrench_on_body(model: pin.Model, data: pin.Data, joint: int, force: np.ndarray, moment: np.ndarray,
                    point: np.ndarray) -> np.ndarray:
-    """A world force (3,) through a world point (3,) plus a world moment (3,), acting on joint `joint`'s
-    body, as its (6,) `fext` row (joint frame, about the joint origin)."""
+    """A world force through a world point plus a world moment on one body, as its `fext` row.
+
+    Args:
+        model: the tree's Pinocchio model.
+        data: its data after `forwardKinematics(q)` (world placements `oMi`).
+        joint: the Pinocchio id of the joint whose body is loaded.
+        force: (3,) the force (N, world axes).
+        moment: (3,) the moment (N m, world axes).
+        point: (3,) the force's point (m, world).
+
+    Returns:
+        (6,) the wrench [f, m] in the joint's frame, about the joint origin.
+    """
     M = data.oMi[joint]
     arm = point - M.translation
     world = np.concatenate([force, moment + np.cross(arm, force)])  # about the joint origin, world axes

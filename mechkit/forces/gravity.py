@@ -20,7 +20,7 @@ class Gravity(ForceElement):
 
     Args:
         model: the tree.
-        g: (3,) the gravity vector (m/s^2, world); (0, 0, 0) for weightlessness.
+        g (ArrayLike): (3,) the gravity vector (m/s^2, world); (0, 0, 0) for weightlessness.
         name: the element's name.
 
     Raises:
@@ -39,7 +39,14 @@ class Gravity(ForceElement):
         self._coms = np.array([model.inertias[j].lever for j in range(model.njoints)])
 
     def load(self, state: ForceState) -> Load:
-        """m (g - g_model) at every centre of mass, as body wrenches."""
+        """m (g - g_model) at every centre of mass, as body wrenches.
+
+        Args:
+            state: the state (its world placements are read).
+
+        Returns:
+            The `Load`: body wrenches (njoints, 6) in `fext` convention, no generalised forces, power 0.
+        """
         out = np.zeros((state.model.njoints, 6))
         for j in np.flatnonzero(self._masses[1:] > 0) + 1:
             f = state.data.oMi[int(j)].rotation.T @ (self._masses[j] * self.delta)  # joint frame
@@ -47,7 +54,16 @@ class Gravity(ForceElement):
         return Load(None, out, 0.0)
 
     def energy(self, model: pin.Model, data: pin.Data, q: np.ndarray) -> float:
-        """-sum m (g - g_model) . c (J), c the centres of mass in the world."""
+        """The potential -sum m (g - g_model) . c, c the centres of mass in the world.
+
+        Args:
+            model: the tree's Pinocchio model.
+            data: its data after `forwardKinematics(q)`.
+            q: (nq,) configuration (unused beyond `data`).
+
+        Returns:
+            The potential energy (J) of the gravity difference.
+        """
         total = 0.0
         for j in np.flatnonzero(self._masses[1:] > 0) + 1:
             c = data.oMi[int(j)].act(self._coms[j])

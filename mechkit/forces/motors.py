@@ -22,8 +22,17 @@ Command = Callable[[float], float] | float
 
 
 def envelope(command: float, rate: float, stall: float, no_load: float) -> float:
-    """The effort (N m or N) a motor of stall effort `stall` and no-load rate `no_load` gives for `command`
-    at `rate` (rad/s or m/s): the command clipped to [-stall (1 + rate / no_load), stall (1 - rate / no_load)]."""
+    """The effort a motor gives for a command: the command clipped to its torque-speed envelope.
+
+    Args:
+        command: the commanded effort (N m or N).
+        rate: the actuator's rate (rad/s or m/s).
+        stall: the stall effort (N m or N; inf: no envelope).
+        no_load: the no-load rate (rad/s or m/s; inf: the bounds do not fall with the rate).
+
+    Returns:
+        The effort (N m or N): `command` clipped to [-stall (1 + rate / no_load), stall (1 - rate / no_load)].
+    """
     if math.isinf(stall):
         return command
     ratio = 0.0 if math.isinf(no_load) else rate / no_load
@@ -58,16 +67,45 @@ class TorqueMotor(ForceElement):
     @classmethod
     def on_joint(cls, model: pin.Model, joint: str, command: Command, stall: float = math.inf,
                  no_load: float = math.inf) -> TorqueMotor:
-        """A motor on a one-freedom joint, named after it."""
+        """A motor on a one-freedom joint, named after it.
+
+        Args:
+            model: the tree's Pinocchio model.
+            joint: the joint's name.
+            command: the commanded effort (N m or N), constant or a function of t (s).
+            stall: the largest effort at rest (N m or N, > 0; inf: none).
+            no_load: the rate at which the forward effort falls to zero (rad/s or m/s, > 0; inf: none).
+
+        Returns:
+            The `TorqueMotor`, its row a unit vector at the joint's velocity index.
+
+        Raises:
+            InvalidParameters: no such joint, a joint of several freedoms, stall or no_load not > 0.
+        """
         row = np.zeros(model.nv)
         row[one_freedom_joint(model, joint, "motor")] = 1.0
         return cls(row, command, stall, no_load, joint)
 
     def effort(self, t: float, v: np.ndarray) -> float:
-        """The effort (N m or N) at time t (s) and velocities v (nv,)."""
+        """The motor's effort at a time and velocities.
+
+        Args:
+            t: time (s).
+            v: (nv,) velocities.
+
+        Returns:
+            The effort (N m or N): the command at t within the envelope at the actuator's rate row . v.
+        """
         return envelope(float(self.command(t)), float(self.row @ v), self.stall, self.no_load)
 
     def load(self, state: ForceState) -> Load:
-        """row * effort, and its power."""
+        """row * effort, and its power.
+
+        Args:
+            state: the state (its t and v are read).
+
+        Returns:
+            The `Load`: generalised forces (nv,) row * effort, no wrenches, the power effort * (row . v) (W).
+        """
         u = self.effort(state.t, state.v)
         return Load(self.row * u, None, u * float(self.row @ state.v))

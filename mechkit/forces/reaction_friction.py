@@ -75,7 +75,15 @@ class PinFriction:
     threshold: float = SPEED_THRESHOLD
 
     def torque(self, wrench: np.ndarray, axis: np.ndarray) -> float:
-        """T (N m, >= 0) for a reaction wrench (6,) [f, m] (world, about the joint origin) and the unit axis (3,)."""
+        """The friction torque's size T for a reaction.
+
+        Args:
+            wrench: (6,) the joint's reaction [f (N), m (N m)], world axes, about the joint origin.
+            axis: (3,) the joint's unit axis (world).
+
+        Returns:
+            T (N m, >= 0).
+        """
         f, m = wrench[:3], wrench[3:]
         axial = float(f @ axis)
         radial = float(np.linalg.norm(f - axial * axis))
@@ -133,7 +141,15 @@ class ReactionFriction(ForceElement):
                 self._cuts.append((joint, k, spec, cut))
 
     def load(self, state: ForceState) -> Load:
-        """The friction torques at a state (none before the reactions are known) and their power."""
+        """The friction torques at a state and their power.
+
+        Args:
+            state: the state, with its reactions (none yet: no torque).
+
+        Returns:
+            The `Load`: generalised forces (nv,) at the tree joints, body wrenches (njoints, 6) (`fext`
+            convention) of the cut joints' torques, and their power (W, <= 0).
+        """
         model, data = state.model, state.data
         tau = np.zeros(model.nv)
         wrenches = np.zeros((model.njoints, 6))
@@ -160,7 +176,14 @@ class ReactionFriction(ForceElement):
         return Load(tau, wrenches, power)
 
     def torques(self, state: ForceState) -> dict[str, float]:
-        """Joint name -> the friction torque's size T (N m) at a state with reactions (no sign, no regularisation)."""
+        """The friction torques' sizes at a state with reactions (no sign, no regularisation).
+
+        Args:
+            state: the state; its reactions must be set.
+
+        Returns:
+            Joint name -> T (N m, >= 0).
+        """
         out = {name: spec.torque(state.reactions[k], state.data.J[3:, iv]) for name, k, spec, iv in self._tree}
         out.update({name: spec.torque(state.reactions[k], state.data.oMf[cut.frame_a].rotation @ cut.closure.axis)
                     for name, k, spec, cut in self._cuts})

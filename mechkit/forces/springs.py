@@ -65,32 +65,77 @@ class JointSprings(ForceElement):
         return bool(self.springs)
 
     def values(self, q: np.ndarray) -> np.ndarray:
-        """(..., k) the one-freedom springs' joint values x (rad or m; a continuous joint's angle) at q (..., nq)."""
+        """The one-freedom springs' joint values.
+
+        Args:
+            q: (..., nq) configurations.
+
+        Returns:
+            (..., k) the joint values x (rad or m; a continuous joint's angle), k the one-freedom springs.
+        """
         x = q[..., self._q]
         if self._unbounded.any():
             x = np.where(self._unbounded, np.arctan2(q[..., np.minimum(self._q + 1, q.shape[-1] - 1)], q[..., self._q]), x)
         return x
 
     def forces(self, q: np.ndarray, v: np.ndarray) -> np.ndarray:
-        """Generalised forces (..., nv) (N m or N) at q (..., nq), v (..., nv)."""
+        """The springs' and dampers' generalised forces.
+
+        Args:
+            q: (..., nq) configurations.
+            v: (..., nv) velocities.
+
+        Returns:
+            (..., nv) generalised forces (N m or N).
+        """
         out = np.zeros(np.shape(v))
         out[..., self._v] = self._pre - self._k * (self.values(q) - self._ref) - self._d * v[..., self._v]
         out[..., self._damped_v] -= self._damped * v[..., self._damped_v]
         return out
 
     def potential(self, q: np.ndarray) -> np.ndarray:
-        """(...,) the springs' potential energy (J): sum of stiffness (x - reference)^2 / 2 - preload (x - reference)."""
+        """The springs' potential energy: sum of stiffness (x - reference)^2 / 2 - preload (x - reference).
+
+        Args:
+            q: (..., nq) configurations.
+
+        Returns:
+            (...,) the potential energy (J).
+        """
         dx = self.values(q) - self._ref
         return np.sum(0.5 * self._k * dx**2 - self._pre * dx, axis=-1)
 
     def damper_power(self, v: np.ndarray) -> np.ndarray:
-        """(...,) the dampers' power (W, <= 0): -sum of damping v^2."""
+        """The dampers' power: -sum of damping v^2.
+
+        Args:
+            v: (..., nv) velocities.
+
+        Returns:
+            (...,) the power (W, <= 0).
+        """
         return -(np.sum(self._d * v[..., self._v] ** 2, axis=-1) + np.sum(self._damped * v[..., self._damped_v] ** 2, axis=-1))
 
     def load(self, state: ForceState) -> Load:
-        """Springs and dampers at a state: generalised forces, the dampers' power."""
+        """Springs and dampers at a state.
+
+        Args:
+            state: the state (its q and v are read).
+
+        Returns:
+            The `Load`: generalised forces (nv,), no wrenches, the dampers' power (W, <= 0).
+        """
         return Load(self.forces(state.q, state.v), None, float(self.damper_power(state.v)))
 
     def energy(self, model: pin.Model, data: pin.Data, q: np.ndarray) -> float:
-        """The springs' potential energy (J) at q."""
+        """The springs' potential energy at q.
+
+        Args:
+            model: the tree's Pinocchio model (unused: the springs are indexed already).
+            data: its data (unused).
+            q: (nq,) configuration.
+
+        Returns:
+            The potential energy (J).
+        """
         return float(self.potential(q))

@@ -39,7 +39,7 @@ class BodyWrench(ForceElement):
         joint: the joint whose body is loaded.
         force: (3,) N, world frame, or a function of t (s) giving it.
         moment: (3,) N m, world frame, or a function of t.
-        point: (3,) m, the force's point in the joint's frame (default: the joint origin).
+        point (ArrayLike): (3,) m, the force's point in the joint's frame (default: the joint origin).
         name: the element's name.
 
     Raises:
@@ -60,7 +60,15 @@ class BodyWrench(ForceElement):
         self.name = name or f"wrench on {joint}"
 
     def load(self, state: ForceState) -> Load:
-        """The wrench as the body's `fext` row, and its power."""
+        """The wrench as the body's `fext` row, and its power.
+
+        Args:
+            state: the state (its t, world placements and velocities are read).
+
+        Returns:
+            The `Load`: body wrenches (njoints, 6) in `fext` convention (only the loaded body's row
+            non-zero), no generalised forces, the power f . v_p + m . omega (W).
+        """
         M = state.data.oMi[self.id]
         f, m = self.force(state.t), self.moment(state.t)
         p = M.act(self.point)

@@ -67,6 +67,10 @@ def equilibrium(mech: Any, held: Mapping[str, float] | None = None, elements: Se
         tol: the reduced force to reach (N m or N).
         max_iter: steps allowed.
 
+    Returns:
+        The `Equilibrium`: the pose, its residual and the reduced stiffness's eigenvalues (a held pose
+        without free motion: residual 0 and no eigenvalue).
+
     Raises:
         ClosureNotConverged: no equilibrium reached within max_iter steps (the residual is reported).
     """

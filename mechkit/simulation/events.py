@@ -38,7 +38,8 @@ class Limit:
 
     Attributes:
         joint: the joint (one freedom).
-        lower, upper: its bounds (rad or m).
+        lower: its lower bound (rad or m).
+        upper: its upper bound (rad or m).
         restitution: 0 (stop and hold) to 1 (elastic bounce).
     """
 
@@ -85,9 +86,22 @@ class Impact:
 
 def impact(cm: core.ClosureModel, cd: core.ClosureData, q: np.ndarray, v: np.ndarray, drive_v: np.ndarray,
            drive_rates: np.ndarray, joint_v: int, rate: float) -> Impact:
-    """The velocity jump at q (nq,) from v (nv,) that keeps the closures, gives the driven joints
-    (velocity indices `drive_v`) the rates `drive_rates` and the impacting joint (velocity index
-    `joint_v`) the rate `rate` (see the module docstring)."""
+    """The velocity jump of least kinetic-energy change that keeps the closures and sets the driven and
+    impacting joints' rates (see the module docstring).
+
+    Args:
+        cm: the closure model.
+        cd: a data of it (scratch).
+        q: (nq,) the configuration at the impact.
+        v: (nv,) the velocities before it.
+        drive_v: (k,) velocity indices of the driven joints.
+        drive_rates: (k,) their rates after the impact (rad/s or m/s).
+        joint_v: velocity index of the impacting joint.
+        rate: its rate after the impact (rad/s or m/s).
+
+    Returns:
+        The `Impact`: velocities (nv,) after it, the drives' impulsive work and the energy dissipated (J).
+    """
     model = cm.model
     J = core.closure_jacobian(cm, cd, q)
     eye = np.eye(model.nv)

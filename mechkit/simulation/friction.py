@@ -33,7 +33,8 @@ class FrictionInverse:
     Attributes:
         result: the core's result at the fixed point (efforts of the actuators, every reaction).
         friction: joint -> the friction torque's size T (N m) at the fixed point, per friction element.
-        generalized: (nv,) the elements' generalised forces (friction included); wrenches: (njoints, 6).
+        generalized: (nv,) the elements' generalised forces (friction included; N m or N).
+        wrenches: (njoints, 6) the elements' body wrenches (`fext` convention).
         iterations: fixed-point iterations.
         check: the forward-dynamics check's largest acceleration difference (rad/s^2 or m/s^2).
     """
@@ -48,16 +49,23 @@ class FrictionInverse:
 
 def inverse_dynamics(mech: Any, q: np.ndarray, v: np.ndarray, a: np.ndarray, elements: list[ForceElement],
                      t: float = 0.0) -> FrictionInverse:
-    """The actuators' efforts and every reaction for a motion (q, v, a) under force elements, friction
+    """The actuators' efforts and every reaction for one state of a motion under force elements, friction
     from the reactions included (see the module docstring).
 
     Args:
         mech: the mechanism (`mechkit.Mechanism`); its actuators give the efforts.
-        q, v, a: (nq,), (nv,), (nv,) a motion satisfying the closures.
+        q: (nq,) configuration closing the loops.
+        v: (nv,) velocities satisfying the closures.
+        a: (nv,) accelerations satisfying the closures (J a + gamma = 0).
         elements: the force elements (the mechanism's springs are not added: pass `mech.springs`).
         t: the time (s) for elements that depend on it.
 
+    Returns:
+        The `FrictionInverse`: the core's result at the fixed point, the friction torques, the elements'
+        loads, the iterations and the forward-dynamics check.
+
     Raises:
+        InvalidParameters: a mechanism without actuators.
         FrictionLocks: the fixed point does not settle.
         ConstraintViolated: the forward-dynamics check fails.
     """

@@ -61,7 +61,8 @@ class Options:
 
     Attributes:
         method: one of `METHODS`.
-        rtol, atol: the adaptive steps' tolerances (scipy's meaning).
+        rtol: the adaptive steps' relative tolerance (scipy's meaning).
+        atol: their absolute tolerance (scipy's meaning).
         dt: a fixed step (s), or None for adaptive steps.
         max_step: the largest adaptive step (s).
     """
@@ -111,7 +112,12 @@ class Stepper:
         self.h: float | None = options.dt
 
     def restart(self, t: float, y: np.ndarray) -> None:
-        """Start again from (t, y) with the last step size (the first evaluation of fun is at (t, y))."""
+        """Start again from a state with the last step size (the first evaluation of fun is there).
+
+        Args:
+            t: the time (s).
+            y: the integrated vector at t.
+        """
         o, remaining = self.options, self.t_end - t
         first = None if self.h is None else min(self.h, remaining)
         if o.dt is None:
@@ -145,7 +151,20 @@ class Stepper:
 
 def first_crossing(events: Sequence[Event], dense: Callable[[float], np.ndarray], t0: float, y0: np.ndarray, t1: float,
                    y1: np.ndarray) -> tuple[int, float] | None:
-    """(index, time) of the earliest event crossing on (t0, t1], or None."""
+    """The earliest event crossing in a step, located by Brent's method on the step's dense output.
+
+    Args:
+        events: the events.
+        dense: the step's dense output, t -> y on [t0, t1].
+        t0: the step's start (s).
+        y0: the state there.
+        t1: the step's end (s).
+        y1: the state there.
+
+    Returns:
+        (index into `events`, crossing time (s)) of the earliest crossing on (t0, t1] in an event's
+        direction, or None.
+    """
     best = None
     for k, ev in enumerate(events):
         g0, g1 = ev.fn(t0, y0), ev.fn(t1, y1)
@@ -163,10 +182,22 @@ def first_crossing(events: Sequence[Event], dense: Callable[[float], np.ndarray]
 
 def run(fun: Function, t0: float, y0: np.ndarray, t_end: float, options: Options,
         project: Callable[[float, np.ndarray], np.ndarray] | None = None) -> tuple[list[float], list[np.ndarray]]:
-    """Every accepted step of dy/dt = fun(t, y) from (t0, y0) to t_end, each followed by `project` (no
-    events): the times and states, the initial ones first (y0 projected). The simulator's own loop
-    (`mechkit.simulation.simulate`) adds events; this one serves equations of motion written outside it
-    (the ten-bar's Lagrange model, integrated by the same method as its Pinocchio route).
+    """Every accepted step of dy/dt = fun(t, y) from (t0, y0) to t_end, each followed by `project` (no events).
+
+    The simulator's own loop (`mechkit.simulation.simulate`) adds events; this one serves equations of
+    motion written outside it (the ten-bar's Lagrange model, integrated by the same method as its
+    Pinocchio route).
+
+    Args:
+        fun: dy/dt = fun(t, y).
+        t0: the initial time (s).
+        y0: the initial state.
+        t_end: the end time (s).
+        options: how to step.
+        project: (t, y) -> y put back on the constraint manifold after each step, or None.
+
+    Returns:
+        The times (s) and the states of every accepted step, the initial ones first (y0 projected).
 
     Raises:
         IntegrationFailed: the step size collapsed.

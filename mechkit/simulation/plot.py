@@ -18,7 +18,16 @@ MAX_JOINTS = 12
 
 
 def figure(result: SimulationResult, title: str | None = None) -> Any:
-    """Joint values (top), energies and the balance's drift (middle), closure residual (bottom)."""
+    """The simulation's figure: joint values (top), energies and the balance's drift (middle), closure
+    residual (bottom).
+
+    Args:
+        result: the simulation.
+        title: the figure's title (default: the mechanism and the motion's source).
+
+    Returns:
+        The matplotlib figure.
+    """
     plt = pyplot()
     fig, (top, mid, bottom) = plt.subplots(3, 1, figsize=(10, 9), sharex=True)
     t, motion = result.t, result.motion
@@ -41,7 +50,15 @@ def figure(result: SimulationResult, title: str | None = None) -> Any:
 
 
 def write_plot(result: SimulationResult, path: str | Path) -> Path:
-    """Write `figure(result)` (.png, .svg, .pdf by suffix); atomic."""
+    """Write `figure(result)` (.png, .svg, .pdf by suffix); atomic.
+
+    Args:
+        result: the simulation.
+        path: the file to write (its suffix picks the format; none: PNG).
+
+    Returns:
+        The path written.
+    """
     plt = pyplot()
     fig = figure(result)
     buffer = io.BytesIO()

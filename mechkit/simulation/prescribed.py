@@ -22,9 +22,17 @@ Law = Callable[[float], tuple[np.ndarray, np.ndarray, np.ndarray]]
 
 
 def law_of_samples(law: Any) -> Law:
-    """The continuous law through a sampled input law (`mechkit.motion.InputLaw`: names, t, values,
-    rates, accelerations): a piecewise quintic matching values, rates and accelerations at every sample
-    (`scipy.interpolate.BPoly.from_derivatives`); constant outside the sampled span."""
+    """The continuous law through a sampled input law: a piecewise quintic matching values, rates and
+    accelerations at every sample (`scipy.interpolate.BPoly.from_derivatives`).
+
+    Args:
+        law: the sampled law (`mechkit.motion.InputLaw`: names, t (N,), values, rates and accelerations
+            (N, k)).
+
+    Returns:
+        The `Law`, t (s) -> (positions, rates, accelerations) (k,); outside the sampled span the end
+        values, at rest.
+    """
     t = np.asarray(law.t, dtype=float)
     pieces = [scipy.interpolate.BPoly.from_derivatives(t, np.stack([law.values[:, k], law.rates[:, k],
                                                                      law.accelerations[:, k]], axis=1))
@@ -64,7 +72,15 @@ class Drives:
         return self.names + tuple(self.held)
 
     def at(self, t: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """Positions, rates and accelerations (k,) of every driven joint at t (s), in `all` order."""
+        """The driven joints' law at a time.
+
+        Args:
+            t: the time (s).
+
+        Returns:
+            Positions (rad or m), rates and accelerations (k,) of every driven joint, in `all` order
+            (the held joints at rest).
+        """
         k = len(self.held)
         if self.law is None:
             return np.array(list(self.held.values()), dtype=float), np.zeros(k), np.zeros(k)
@@ -73,17 +89,39 @@ class Drives:
         return np.concatenate([pos, hold]), np.concatenate([rate, np.zeros(k)]), np.concatenate([acc, np.zeros(k)])
 
     def holding(self, joint: str, value: float) -> Drives:
-        """These drives with `joint` held at `value` as well."""
+        """These drives with one more joint held.
+
+        Args:
+            joint: the joint to hold.
+            value: where it is held (rad or m).
+
+        Returns:
+            The new `Drives`.
+        """
         return Drives(self.names, self.law, {**self.held, joint: float(value)})
 
     def releasing(self, joint: str) -> Drives:
-        """These drives without holding `joint`."""
+        """These drives without holding a joint.
+
+        Args:
+            joint: the joint to release.
+
+        Returns:
+            The new `Drives`.
+        """
         return Drives(self.names, self.law, {j: x for j, x in self.held.items() if j != joint})
 
 
 def prescribed(inputs: Any, names: Sequence[str] | None = None) -> Drives:
-    """Drives from what a user gives: None (no prescribed joint), a sampled input law
-    (`mechkit.motion.InputLaw`), a `Law` callable with `names`, or a mapping joint -> constant value.
+    """Drives from what a user gives.
+
+    Args:
+        inputs: None (no prescribed joint), a sampled input law (`mechkit.motion.InputLaw`), a `Law`
+            callable, or a mapping joint -> constant value (rad or m) held still.
+        names: the joints of a `Law` callable, in its order.
+
+    Returns:
+        The `Drives`.
 
     Raises:
         InvalidParameters: a callable without names, or an input of another kind.

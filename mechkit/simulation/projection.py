@@ -25,7 +25,7 @@ class Projection:
     """Projects states of one mechanism onto its closures and its drives.
 
     Args:
-        mech: the mechanism (`mechkit.Mechanism`).
+        mech (Mechanism): the mechanism (`mechkit.Mechanism`).
         tol: closure residual to reach (m).
     """
 
@@ -36,7 +36,15 @@ class Projection:
         self.model = self.cm.model
 
     def positions(self, q: np.ndarray, drives: Drives, t: float) -> np.ndarray:
-        """q (nq,) with the driven joints on their law at t (s) and every loop closed.
+        """A configuration with the driven joints on their law and every loop closed.
+
+        Args:
+            q: (nq,) the configuration to project.
+            drives: the driven joints.
+            t: the time (s) their law is taken at.
+
+        Returns:
+            (nq,) the projected configuration.
 
         Raises:
             ClosureNotConverged: the loops do not close near q.
@@ -49,7 +57,17 @@ class Projection:
         return core.assemble(self.cm, self.cd, q, split, tol=self.tol, jacobian_at_trials=False).q
 
     def velocities(self, q: np.ndarray, v: np.ndarray, drives: Drives, t: float) -> np.ndarray:
-        """v (nv,) with the driven joints' rates on their law at t (s) and J v = 0, at an assembled q."""
+        """Velocities with the driven joints' rates on their law and J v = 0.
+
+        Args:
+            q: (nq,) an assembled configuration.
+            v: (nv,) the velocities to project.
+            drives: the driven joints.
+            t: the time (s) their law is taken at.
+
+        Returns:
+            (nv,) the projected velocities (the undriven ones changed by the least-norm correction).
+        """
         v = np.array(v, dtype=float)
         split = self.cm.split(drives.all)
         _, rates, _ = drives.at(t)
@@ -61,6 +79,13 @@ class Projection:
         return v
 
     def residual(self, q: np.ndarray) -> float:
-        """Largest closure residual (m for position rows) at q."""
+        """The largest closure residual at a configuration.
+
+        Args:
+            q: (nq,) configuration.
+
+        Returns:
+            max |residual| (m for position rows).
+        """
         e = core.closure_residual(self.cm, self.cd, q)
         return float(np.max(np.abs(e), initial=0.0))

@@ -23,7 +23,8 @@ class Recorder:
     Attributes:
         effort_names: every joint driven at some time, in order of appearance (the effort columns).
         events: (t, event, what happened).
-        steps, evaluations: accepted steps and evaluations of the equations of motion.
+        steps: accepted steps.
+        evaluations: evaluations of the equations of motion.
     """
 
     def __init__(self, system: MechanismSystem, layout: StateLayout, projection: Projection):
@@ -37,21 +38,43 @@ class Recorder:
                                                        "drive_work", "impact_loss", "driven")}
 
     def impulse(self, drive_work: float, dissipated: float) -> None:
-        """Add an impact's impulsive drive work and dissipated energy (J)."""
+        """Add an impact's energies.
+
+        Args:
+            drive_work: the drives' impulsive work (J).
+            dissipated: the energy the impact dissipated (J).
+        """
         self._drive_impulses += drive_work
         self._impact_loss += dissipated
 
     def holding(self, joint: str) -> None:
-        """A joint is now driven (held): it gets an effort column."""
+        """A joint is now driven (held): it gets an effort column.
+
+        Args:
+            joint: the joint.
+        """
         if joint not in self.effort_names:
             self.effort_names.append(joint)
 
     def event(self, t: float, name: str, what: str) -> None:
-        """Log an event."""
+        """Log an event.
+
+        Args:
+            t: its time (s).
+            name: the event (e.g. "upper:joint").
+            what: what happened.
+        """
         self.events.append((float(t), name, what))
 
     def record(self, t: float, y: np.ndarray, cache: dict) -> None:
-        """One sample at (t, y), with the evaluation the integrator made there (or a new one)."""
+        """Record one sample, with the evaluation the integrator made there (or a new one).
+
+        Args:
+            t: the time (s).
+            y: the integrated vector at t.
+            cache: the integrator's last evaluation ("t", "y", "ev": an `Evaluation`), used when it
+                was made at (t, y).
+        """
         s, L = self.system, self.layout
         q, v = L.q(y), L.v(y).copy()
         if cache.get("t") == t and np.array_equal(cache.get("y"), y):
@@ -93,8 +116,17 @@ class Recorder:
         return {k: np.array(v, dtype=int) for k, v in out.items()}
 
     def system_reactions(self, driven: core.ClosureModel, rows: np.ndarray, r: dict) -> core.BatchInverseDynamicsResult:
-        """The core's inverse dynamics of samples `rows` with `driven` as the actuation: efforts (len, k) and
-        reactions (len, n_joints, 6), the elements' generalised forces passive, their wrenches external."""
+        """The core's inverse dynamics of some samples, the elements' generalised forces passive and their
+        wrenches external.
+
+        Args:
+            driven: the closure model with the samples' driven joints as its actuation.
+            rows: (n,) indices of the samples.
+            r: the samples' arrays (`arrays`).
+
+        Returns:
+            The core's batch result: efforts (n, k) of the driven joints and reactions (n, n_joints, 6).
+        """
         fexts = []
         for i in rows:
             f = pin.StdVec_Force()

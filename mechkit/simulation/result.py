@@ -37,11 +37,14 @@ class SimulationResult:
         motion: the motion-study arrays (`MotionResult`: q, v, a, efforts of the driven joints (NaN
             while a joint is not driven), reactions, axes).
         residual: (N,) largest closure residual (m for position rows).
-        kinetic: (N,) kinetic energy (J); gravity: (N,) the model's gravity potential (J).
-        element_names: the force elements; roles: their roles ("conservative", "dissipative", "source").
+        kinetic: (N,) kinetic energy (J).
+        gravity: (N,) the model's gravity potential (J).
+        element_names: the force elements.
+        roles: their roles ("conservative", "dissipative", "source").
         potentials: (N, n_elements) each element's potential (J).
         works: (N, n_elements) each element's non-conservative work since the start (J).
-        drive_work: (N,) the drives' work (J); impact_loss: (N,) energy taken by impacts (J).
+        drive_work: (N,) the drives' work (J).
+        impact_loss: (N,) energy taken by impacts (J).
         friction_power: (N,) power of the friction elements (W, <= 0).
         events: (t (s), event, what happened) in time order.
         integrator: how it was integrated (method, tolerances or step, steps, evaluations).
@@ -67,7 +70,14 @@ class SimulationResult:
         return self.motion.t
 
     def column(self, joint: str) -> int:
-        """The q (and v) column of a one-coordinate joint, by name."""
+        """The q (and v) column of a one-coordinate joint, by name.
+
+        Args:
+            joint: the joint.
+
+        Returns:
+            Its column in `motion.q` and `motion.v`.
+        """
         return self.motion.coordinates.index(joint)
 
     @property
@@ -145,7 +155,15 @@ class SimulationResult:
 
 
 def write_parquet(result: SimulationResult, path: str | Path) -> Path:
-    """Write the table as Parquet (pyarrow), metadata in the schema; atomic."""
+    """Write the table as Parquet (pyarrow), metadata in the schema; atomic.
+
+    Args:
+        result: the simulation.
+        path: the file to write.
+
+    Returns:
+        The path written.
+    """
     pyarrow()
     buffer = io.BytesIO()
     result.to_dataframe().to_parquet(buffer, engine="pyarrow", index=False)
@@ -153,6 +171,14 @@ def write_parquet(result: SimulationResult, path: str | Path) -> Path:
 
 
 def write_csv(result: SimulationResult, path: str | Path) -> Path:
-    """Write the table as CSV (full precision), metadata as leading `# key: value` lines; atomic."""
+    """Write the table as CSV (full precision), metadata as leading `# key: value` lines; atomic.
+
+    Args:
+        result: the simulation.
+        path: the file to write.
+
+    Returns:
+        The path written.
+    """
     header = "".join(f"# {k}: {v}\n" for k, v in result.metadata().items())
     return write_text(path, header + result.to_dataframe().to_csv(index=False))

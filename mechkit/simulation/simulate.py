@@ -47,23 +47,52 @@ MAX_STEPS = 2_000_000
 
 
 def default_forces(mech: Any, source: str | Path | None = None) -> list[ForceElement]:
-    """The force elements a mechanism's description declares: its joint springs (`Mechanism.springs`), and
-    the dampers and friction of its URDF `<dynamics>` or its MJCF `frictionloss` (`source`: the MJCF
-    file, whose URDF the mechanism does not keep)."""
+    """The force elements a mechanism's description declares.
+
+    Args:
+        mech: the mechanism (`mechkit.Mechanism`).
+        source: the MJCF file it came from (whose URDF the mechanism does not keep), or None: its URDF
+            is read.
+
+    Returns:
+        Its joint springs (`Mechanism.springs`), then the dampers and friction of its URDF `<dynamics>`
+        or its MJCF `frictionloss`.
+    """
     out: list[ForceElement] = [mech.springs] if mech.springs else []
     return out + read_described(source, mech.urdf, mech.model, tuple(mech.actuated)).elements(mech.model)
 
 
 def file_limits(mech: Any, source: str | Path | None = None, restitution: float = 0.0) -> list[Limit]:
-    """The joint limits the description declares (URDF `<limit>`, MJCF `range` of limited joints)."""
+    """The joint limits the description declares (URDF `<limit>`, MJCF `range` of limited joints).
+
+    Args:
+        mech: the mechanism (`mechkit.Mechanism`).
+        source: the MJCF file it came from, or None: its URDF is read.
+        restitution: the limits' restitution (0: stop and hold; 1: elastic).
+
+    Returns:
+        One `Limit` per limited joint.
+    """
     described = read_described(source, mech.urdf, mech.model, tuple(mech.actuated))
     return [Limit(j, lo, hi, restitution) for j, (lo, hi) in described.limits.items()]
 
 
 def torque_motors(mech: Any, torques: Any, source: str | Path | None = None) -> list[TorqueMotor]:
-    """Torque motors on the actuators from given efforts: a mapping actuator -> effort (N m or N; a
-    constant or a function of t) or a sampled law (`names`, `t`, `values`: linear between samples,
-    held after the last), each within the envelope its description gives (`mechkit.forces.motors`)."""
+    """Torque motors on the actuators from given efforts, each within the envelope its description gives
+    (`mechkit.forces.motors`).
+
+    Args:
+        mech: the mechanism (`mechkit.Mechanism`).
+        torques: a mapping actuator -> effort (N m or N; a constant or a function of t), a sampled law
+            (`names`, `t`, `values`: linear between samples, held after the last), or None.
+        source: the MJCF file it came from (its force ranges), or None: its URDF is read.
+
+    Returns:
+        One `TorqueMotor` per actuator given (none for None).
+
+    Raises:
+        InvalidParameters: a name that is not an actuator, or a mechanism without actuators.
+    """
     if torques is None:
         return []
     if not isinstance(torques, Mapping):
@@ -102,10 +131,13 @@ def simulate(mech: Any, duration: float, *, inputs: Any = None, input_names: Seq
         file_forces: include the description's own elements (`default_forces`).
         source: the description file where the mechanism came from an MJCF file (for its frictionloss,
             ranges and force ranges); else the mechanism's URDF is read.
-        q0, v0: the initial state (default: the home assembly, at rest); projected onto the closures
+        q0: (nq,) the initial configuration (default: the home assembly); projected onto the closures
             and the drives at t0.
+        v0: (nv,) the initial velocities (default: at rest); projected likewise.
         t0: the initial time (s).
         dt: a fixed step (s); None: adaptive steps to `rtol`, `atol` (`mechkit.simulation.integrator`).
+        rtol: the adaptive steps' relative tolerance (scipy's meaning).
+        atol: their absolute tolerance (scipy's meaning).
         method: the scipy one-step method ("RK45", "DOP853", "RK23", "Radau").
         max_step: the largest adaptive step (s).
         dynamics: the core's forward-dynamics method ("proximal", "lcaba", "kkt", "nullspace"); None:

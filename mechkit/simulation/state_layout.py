@@ -34,26 +34,65 @@ class StateLayout:
         self.base = pin.neutral(model)
 
     def pack(self, q: np.ndarray, v: np.ndarray, works: np.ndarray) -> np.ndarray:
-        """y of a state (and, off a vector space, q becomes the base: its offset is 0)."""
+        """The integrated vector of a state (off a vector space, q becomes the base: its offset is 0).
+
+        Args:
+            q: (nq,) configuration.
+            v: (nv,) velocities.
+            works: (n_work,) the works (J).
+
+        Returns:
+            y.
+        """
         if self.euclidean:
             return np.concatenate([q, v, works])
         self.base = np.array(q, dtype=float)
         return np.concatenate([np.zeros(self.model.nv), v, works])
 
     def q(self, y: np.ndarray) -> np.ndarray:
-        """The configuration (nq,) of y."""
+        """The configuration of y.
+
+        Args:
+            y: the integrated vector.
+
+        Returns:
+            (nq,) the configuration (a copy).
+        """
         return y[:self.npos].copy() if self.euclidean else pin.integrate(self.model, self.base, y[:self.npos])
 
     def v(self, y: np.ndarray) -> np.ndarray:
-        """The velocities (nv,) of y."""
+        """The velocities of y.
+
+        Args:
+            y: the integrated vector.
+
+        Returns:
+            (nv,) the velocities (a view into y).
+        """
         return y[self.npos:self.npos + self.model.nv]
 
     def works(self, y: np.ndarray) -> np.ndarray:
-        """The works (n_work,) of y (J)."""
+        """The works of y.
+
+        Args:
+            y: the integrated vector.
+
+        Returns:
+            (n_work,) the works (J; a view into y).
+        """
         return y[self.npos + self.model.nv:]
 
     def derivative(self, y: np.ndarray, a: np.ndarray, powers: np.ndarray) -> np.ndarray:
-        """dy/dt from the accelerations (nv,) and the powers (n_work,) (W)."""
+        """dy/dt at y.
+
+        Args:
+            y: the integrated vector.
+            a: (nv,) the accelerations.
+            powers: (n_work,) the powers (W).
+
+        Returns:
+            dy/dt.
+        """
         v = self.v(y)
         if self.euclidean:
             dpos = v

@@ -61,7 +61,7 @@ class MechanismSystem:
     """A mechanism's equations of motion under force elements and drives.
 
     Args:
-        mech: the mechanism (`mechkit.Mechanism`).
+        mech (Mechanism): the mechanism (`mechkit.Mechanism`).
         elements: the force elements (its springs among them where wanted: `Mechanism.springs`).
         drives: the driven joints.
         method: the core's forward-dynamics method ("proximal", "lcaba", "kkt", "nullspace").
@@ -88,7 +88,11 @@ class MechanismSystem:
 
     @drives.setter
     def drives(self, drives: Drives) -> None:
-        """Set the driven joints (their velocity indices follow)."""
+        """Set the driven joints (their velocity indices follow).
+
+        Args:
+            drives: the new driven joints.
+        """
         self._drives = drives
         self.drive_v = np.array([self.mech.v_index(j) for j in drives.all], dtype=int)
 
@@ -119,8 +123,18 @@ class MechanismSystem:
 
     def reactions(self, q: np.ndarray, v: np.ndarray, a: np.ndarray, generalized: np.ndarray,
                   wrenches: np.ndarray) -> core.InverseDynamicsResult:
-        """The core's inverse dynamics at (q, v, a) with the drives as actuators, the elements'
-        generalised forces as passive forces and their wrenches as external forces (no determinacy test)."""
+        """The core's inverse dynamics with the drives as actuators (no determinacy test).
+
+        Args:
+            q: (nq,) configuration.
+            v: (nv,) velocities.
+            a: (nv,) accelerations.
+            generalized: (nv,) the elements' generalised forces (N m or N), passive forces.
+            wrenches: (njoints, 6) their body wrenches (`fext` convention), external forces.
+
+        Returns:
+            The core's result: the driven joints' efforts and every joint's reaction.
+        """
         cm, cd = self.driven()
         fext = pin.StdVec_Force()
         for row in wrenches:
@@ -128,7 +142,16 @@ class MechanismSystem:
         return core.inverse_dynamics(cm, cd, q, v, a, fext, generalized, determinacy_test=False)
 
     def evaluate(self, t: float, q: np.ndarray, v: np.ndarray) -> Evaluation:
-        """The accelerations, drive efforts and element loads at (t, q, v).
+        """The equations of motion at a state.
+
+        Args:
+            t: the time (s).
+            q: (nq,) configuration.
+            v: (nv,) velocities.
+
+        Returns:
+            The `Evaluation`: accelerations, drive efforts, element loads and powers (and the reactions
+            where friction needed them).
 
         Raises:
             FrictionLocks: the friction fixed point does not converge.
@@ -175,10 +198,25 @@ class MechanismSystem:
         return Evaluation(a, u, tau_p + tau_f, fext_p + fext_f, powers, reactions, iterations)
 
     def kinetic(self, q: np.ndarray, v: np.ndarray) -> float:
-        """Kinetic energy (J)."""
+        """The kinetic energy.
+
+        Args:
+            q: (nq,) configuration.
+            v: (nv,) velocities.
+
+        Returns:
+            The kinetic energy (J).
+        """
         return float(pin.computeKineticEnergy(self.model, self.data, q, v))
 
     def potentials(self, q: np.ndarray) -> np.ndarray:
-        """(1 + n_elements,) the model's gravity potential, then each element's potential (J)."""
+        """The potential energies.
+
+        Args:
+            q: (nq,) configuration.
+
+        Returns:
+            (1 + n_elements,) the model's gravity potential, then each element's potential (J).
+        """
         gravity = float(pin.computePotentialEnergy(self.model, self.data, q))  # also places the joints
         return np.array([gravity] + [e.energy(self.model, self.data, q) for e in self.elements])
