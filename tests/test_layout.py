@@ -316,8 +316,6 @@ TESTED_ELSEWHERE = {
     "mechkit/bench/sampling.py": "the bench's states: tests/bench/test_methods.py measures every declared method on them",
     "mechkit/bench/scale.py": "the cost-against-size fit, printed by `mechkit bench` in tests/cli/test_bench.py",
     "mechkit/export/xmltext.py": "the XML text of the MJCF export: tests/export/test_mjcf.py compiles every file in MuJoCo",
-    "mechkit/forces/springs.py": "joint springs as forces (the forces package, being written alongside): applied in "
-                                 "tests/sources/test_mjcf.py, tests/sources/test_sdf.py and tests/export/test_mjcf.py",
     "mechkit/independent_inputs.py": "the joints a motion fixes: tests/motion/test_study.py (the ten-bar's passive input) "
                                      "and tests/second_opinion/test_agreement.py",
     "mechkit/mechanisms/deployable_9rr12uru/actuation.py": "the composite's actuators and home: its model tests, "

@@ -1,5 +1,6 @@
-"""Joint friction from the reactions: inverse dynamics against a hand computation on the planar four-bar,
-dissipation in simulation against the integral of the friction power, the energy balance with it."""
+"""`mechkit.simulation.friction`: inverse dynamics with joint friction from the reactions, against a hand
+computation on the planar four-bar; a friction that locks is refused by name. (Friction in simulation, the
+fixed point of `MechanismSystem`: tests/simulation/test_system.py.)"""
 
 from __future__ import annotations
 
@@ -11,20 +12,10 @@ import pytest
 from mechkit import forces, simulation
 from mechkit.mechanisms.four_bar.closed_form import motion
 
-MU, RADIUS = 0.2, 0.01
+from .pins import MU, RADIUS, friction
+
 #: Gravity in the x-z plane (m/s^2).
 GRAVITY = np.array([0.0, -9.81])
-
-
-@pytest.fixture(scope="module")
-def four_bar(load_cached):
-    return load_cached("four_bar")
-
-
-def friction(m, joints=None) -> forces.ReactionFriction:
-    cm = m.closure_model
-    spec = forces.PinFriction(MU, RADIUS)
-    return forces.ReactionFriction(m.model, cm.joint_names, cm.kernel.cuts, {j: spec for j in (joints or cm.joint_names)})
 
 
 def hand_newton_euler(state, gravity=GRAVITY) -> tuple[float, dict[str, float]]:
@@ -101,27 +92,3 @@ def test_friction_that_locks_is_refused_by_name(four_bar):
                                       {j: forces.PinFriction(80.0, 0.05) for j in cm.joint_names})
     with pytest.raises(forces.FrictionLocks, match="locks"):
         simulation.inverse_dynamics(m, q, v, a, [locking])
-
-
-@pytest.fixture(scope="module")
-def rubbing(four_bar):
-    """The four-bar released at home with friction at every pin, 0.4 s."""
-    return four_bar.simulate(0.4, forces=[friction(four_bar)])
-
-
-def test_friction_dissipates_what_its_power_integrates_to(rubbing):
-    """The dissipated energy integrated with the motion equals the integral of the recorded friction power
-    (Simpson's rule over the samples; the difference is that quadrature's error, measured 2e-7 relative)."""
-    import scipy.integrate
-
-    dissipated = rubbing.dissipated[-1]
-    quadrature = -scipy.integrate.simpson(rubbing.friction_power, x=rubbing.t)
-    assert dissipated > 1e-3
-    assert quadrature == pytest.approx(dissipated, rel=1e-5)
-
-
-def test_energy_balance_with_friction(rubbing):
-    """Kinetic + potential + dissipated stays constant to the integrator's tolerance, the loop closed."""
-    assert rubbing.energy_error <= 1e-7 * rubbing.energy_scale
-    assert rubbing.residual.max() <= 1e-10
-    assert np.all(np.diff(rubbing.dissipated) >= -1e-12)  # friction never gives energy back
