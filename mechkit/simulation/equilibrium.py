@@ -99,8 +99,12 @@ def equilibrium(mech: Any, held: Mapping[str, float] | None = None, elements: Se
     def move(q: np.ndarray, N: np.ndarray, z: np.ndarray) -> np.ndarray:
         return projection.positions(pin.integrate(model, q, N @ z), drives, 0.0)
 
+    def reduced(q: np.ndarray, N: np.ndarray) -> np.ndarray:  # the force along the motions at q, in N's frame
+        here = basis(q)
+        return N.T @ here @ (here.T @ force(q))
+
     def stiffness(q: np.ndarray, N: np.ndarray) -> np.ndarray:
-        cols = [(N.T @ force(move(q, N, DIFF_STEP * e)) - N.T @ force(move(q, N, -DIFF_STEP * e))) / (2 * DIFF_STEP)
+        cols = [(reduced(move(q, N, DIFF_STEP * e), N) - reduced(move(q, N, -DIFF_STEP * e), N)) / (2 * DIFF_STEP)
                 for e in np.eye(N.shape[1])]
         K = np.array(cols).T
         return 0.5 * (K + K.T)

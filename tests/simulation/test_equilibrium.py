@@ -60,9 +60,6 @@ def test_the_equilibrium_is_a_minimum_of_the_potential_along_the_motion(four_bar
     assert curvature > 0 and eq.stable
 
 
-@pytest.mark.xfail(strict=True, reason="the reduced stiffness differentiates N^T Q with N frozen at the pose: it "
-                   "leaves out the term of N's turning along the motion (the constraint forces' geometric "
-                   "stiffness), 1.7% of the potential's curvature here")
 def test_the_reported_stiffness_is_the_potentials_curvature(four_bar):
     """The potential's second difference along the motion, divided by |dq/dtheta|^2 (the solver's free
     motion is a unit vector of coordinates), is the reported stiffness."""
