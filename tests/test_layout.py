@@ -457,9 +457,9 @@ SAME_CONCEPT = {
                ("mechkit/report.py", "mechkit/cli/report.py")),
     "results": (("a package's result types, what its functions return: the core's (mobility, dynamics), the bench's "
                 "(its rows)"), ("mechkit/core/results.py", "mechkit/bench/results.py")),
-    "result": (("the arrays and table of a study over time: a motion study's (motion/), and a simulation's, which "
+    "result": (("the arrays and table of a study over time: a motion study's (history/), and a simulation's, which "
                 "extends it with time, energies and events (simulation/)"),
-               ("mechkit/motion/result.py", "mechkit/simulation/result.py")),
+               ("mechkit/history/result.py", "mechkit/simulation/result.py")),
     "scenes": (("a mechanism's scenes: the protocol with the generic sweep (scenes.py), and each mechanism package's "
                "own"), ("mechkit/scenes.py", "mechkit/mechanisms/*/scenes.py")),
     "simulate": ("simulation in time: simulation/simulate.py runs it, `mechkit simulate` (cli/) prints and writes it",

@@ -12,7 +12,7 @@ from mechkit.cli.common import add_mechanism_arguments, examples, load_mechanism
 from mechkit.cli.progress import ProgressBars
 
 if TYPE_CHECKING:
-    from mechkit.motion.result import MotionResult
+    from mechkit.history.result import MotionResult
 
 #: Motions of at least this many samples show a progress bar (`mechkit.cli.progress`: stderr, on a terminal).
 LONG_MOTION = 100
@@ -91,7 +91,8 @@ def run(args: argparse.Namespace) -> None:
 
 def _check_outputs(args: argparse.Namespace) -> None:
     """Refuse, before the study runs, an output that cannot be written or whose library is missing."""
-    from mechkit.motion import plot, result
+    from mechkit.base.plotting import pyplot
+    from mechkit.history import result
 
     if args.output:
         resolve_output(args.output)
@@ -100,7 +101,7 @@ def _check_outputs(args: argparse.Namespace) -> None:
             result.pyarrow()
     if args.plot:
         resolve_output(args.plot)
-        plot.pyplot()
+        pyplot("motion plots")
 
 
 def add_parser(sub: argparse._SubParsersAction) -> None:

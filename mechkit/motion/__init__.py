@@ -10,6 +10,7 @@ The entry point is this package's `study`, not a `Mechanism` method: `Mechanism`
 package sits above it (it reads scenes and writes tables), and the core never imports upwards.
 """
 
+from mechkit.history.result import MotionResult, read_csv, read_parquet, write_csv, write_parquet
 from mechkit.motion.inputs import (
     InputLaw,
     default_inputs,
@@ -21,7 +22,6 @@ from mechkit.motion.inputs import (
     resample,
 )
 from mechkit.motion.peaks import JointPeaks, peak_table, peaks
-from mechkit.motion.result import MotionResult, read_csv, read_parquet, write_csv, write_parquet
 from mechkit.motion.study import study
 
 __all__ = [

@@ -16,8 +16,8 @@ import pinocchio as pin
 
 from mechkit import core
 from mechkit.base.exceptions import SingularConfiguration
+from mechkit.history.axes import JointAxes
 from mechkit.mechanism import Mechanism
-from mechkit.motion.axes import JointAxes
 
 
 class PathKinematics:

@@ -13,7 +13,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from mechkit.motion.result import MotionResult
+from mechkit.history.result import MotionResult
 
 if TYPE_CHECKING:
     import pandas as pd
@@ -105,7 +105,7 @@ def peak_table(result: MotionResult) -> pd.DataFrame:
     Returns:
         The DataFrame.
     """
-    from mechkit.motion.result import pandas
+    from mechkit.history.result import pandas
 
     rows = [{"joint": p.joint, "support": p.support, "determinate": p.determinate,
              **{k: v for q in QUANTITIES for k, v in ((q, p.values[q]), (f"t_{q}", p.times[q]))}}

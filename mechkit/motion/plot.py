@@ -5,15 +5,14 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from pathlib import Path
-from types import ModuleType
 from typing import TYPE_CHECKING
 
 import numpy as np
 
 from mechkit.base.atomic import write_bytes
-from mechkit.base.exceptions import MethodUnavailable
+from mechkit.base.plotting import pyplot
+from mechkit.history.result import MotionResult
 from mechkit.motion.peaks import load_histories
-from mechkit.motion.result import MotionResult
 
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
@@ -39,18 +38,6 @@ def busiest_joints(result: MotionResult, count: int = DEFAULT_JOINTS) -> list[st
     return [result.joints[j] for j in np.argsort(-peak, kind="stable")[:count]]
 
 
-def pyplot() -> ModuleType:
-    """matplotlib's pyplot on the Agg backend, or a `MethodUnavailable` naming the install."""
-    try:
-        import matplotlib
-
-        matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
-    except ImportError:
-        raise MethodUnavailable("motion plots", "matplotlib is not installed: pip install 'mechkit[bench]'") from None
-    return plt
-
-
 def figure(result: MotionResult, joints: Sequence[str] | None = None, title: str | None = None) -> Figure:
     """A figure: efforts (top), reaction forces (middle) and moments (bottom) of `joints` over time.
 
@@ -63,7 +50,7 @@ def figure(result: MotionResult, joints: Sequence[str] | None = None, title: str
     Returns:
         The matplotlib figure.
     """
-    plt = pyplot()
+    plt = pyplot("motion plots")
     joints = list(joints) if joints else busiest_joints(result)
     for joint in joints:
         result.reaction(joint)  # an unknown joint is a named error

@@ -15,10 +15,10 @@ import numpy as np
 
 from mechkit import core
 from mechkit.base.exceptions import InvalidParameters, MechkitError
+from mechkit.history.result import MotionResult, coordinate_names
 from mechkit.mechanism import Mechanism
 from mechkit.motion.inputs import InputLaw
 from mechkit.motion.path import PathKinematics
-from mechkit.motion.result import MotionResult, coordinate_names
 
 Progress = Callable[[int, int], None]
 """(steps done, steps in all) -> None: each sample's kinematics is a step, the dynamics of all samples

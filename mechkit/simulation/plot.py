@@ -10,7 +10,7 @@ from typing import Any
 import numpy as np
 
 from mechkit.base.atomic import write_bytes
-from mechkit.motion.plot import pyplot
+from mechkit.base.plotting import pyplot
 from mechkit.simulation.result import SimulationResult
 
 #: One-coordinate joints drawn in the top panel (the first ones of the tree).
@@ -28,7 +28,7 @@ def figure(result: SimulationResult, title: str | None = None) -> Any:
     Returns:
         The matplotlib figure.
     """
-    plt = pyplot()
+    plt = pyplot("simulation plots")
     fig, (top, mid, bottom) = plt.subplots(3, 1, figsize=(10, 9), sharex=True)
     t, motion = result.t, result.motion
     for k, name in enumerate(motion.coordinates[:MAX_JOINTS]):
@@ -59,7 +59,7 @@ def write_plot(result: SimulationResult, path: str | Path) -> Path:
     Returns:
         The path written.
     """
-    plt = pyplot()
+    plt = pyplot("simulation plots")
     fig = figure(result)
     buffer = io.BytesIO()
     fig.savefig(buffer, format=Path(path).suffix.lstrip(".") or "png", dpi=110)

@@ -2,7 +2,7 @@
 residual, energies, works, friction power and events; its table form (Parquet, CSV) and its energy
 balance.
 
-Columns: those of `mechkit.motion.MotionResult` (`t`, `q/`, `v/`, `a/`, `effort/<driven joint>`,
+Columns: those of `mechkit.history.MotionResult` (`t`, `q/`, `v/`, `a/`, `effort/<driven joint>`,
 `reaction/<joint>/<component>`, `axis/<joint>/<x|y|z>`), then `closure_residual` (m),
 `energy/kinetic`, `energy/gravity`, `energy/<element>` (potentials, J), `work/drives`,
 `work/<element>` (non-conservative works, J), `dissipated/impacts` (J), `power/friction` (W) and
@@ -26,7 +26,7 @@ from typing import Any
 import numpy as np
 
 from mechkit.base.atomic import write_bytes, write_text
-from mechkit.motion.result import MotionResult, pandas, pyarrow
+from mechkit.history.result import MotionResult, pandas, pyarrow
 
 
 @dataclass(frozen=True)

@@ -20,8 +20,8 @@ import numpy as np
 from mechkit import core
 from mechkit.base.exceptions import InvalidParameters
 from mechkit.forces import ForceElement, TorqueMotor, read_described
-from mechkit.motion.axes import JointAxes
-from mechkit.motion.result import MotionResult, coordinate_names
+from mechkit.history.axes import JointAxes
+from mechkit.history.result import MotionResult, coordinate_names
 from mechkit.simulation.events import REST_RATE, Latch, Limit, impact
 from mechkit.simulation.integrator import (
     ATOL,

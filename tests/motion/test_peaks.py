@@ -6,8 +6,8 @@ import numpy as np
 import pytest
 
 from mechkit import motion
+from mechkit.history.result import AXES, COMPONENTS
 from mechkit.motion.peaks import QUANTITIES
-from mechkit.motion.result import AXES, COMPONENTS
 
 
 def test_peaks_are_the_table_maxima(two_t1r):

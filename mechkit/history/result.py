@@ -1,4 +1,4 @@
-"""The result of a motion study as arrays, and its table form: pandas DataFrame, Parquet, CSV.
+"""The result of a motion study (or a simulation) as arrays, and its table form: pandas DataFrame, Parquet, CSV.
 
 Columns of the table (SI units, world frame; see `MotionResult`):
 `t`; `q/<coord>`, `v/<coord>`, `a/<coord>` for every coordinate of the tree; `effort/<joint>` for

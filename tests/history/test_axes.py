@@ -1,4 +1,4 @@
-"""`mechkit.motion.axes`: the world axes of every joint along a motion, against what the motion itself shows:
+"""`mechkit.history.axes`: the world axes of every joint along a motion, against what the motion itself shows:
 a tree joint's axis is the direction its child body turns (or slides) when only that joint moves (finite
 differences of the placements), a revolute cut's axis the direction of the relative angular velocity of
 its two frames along any closed motion; a joint of several freedoms has none."""
@@ -10,7 +10,7 @@ import pinocchio as pin
 import pytest
 
 from mechkit import core
-from mechkit.motion.axes import JointAxes
+from mechkit.history.axes import JointAxes
 
 
 def _poses(m, offsets):

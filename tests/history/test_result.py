@@ -1,10 +1,20 @@
-"""`mechkit.motion.result`: the table round trips (DataFrame, Parquet, CSV), failures included."""
+"""`mechkit.history.result`: the table round trips (DataFrame, Parquet, CSV), failures included."""
 
 from __future__ import annotations
 
 import numpy as np
+import pytest
 
 from mechkit import motion
+from mechkit.mechanisms.parallel_2t1r.motion_law import MOTION_DURATION, motion_law
+
+
+@pytest.fixture(scope="module")
+def two_t1r(load_cached):
+    """The 2T1R along its paper's law, reaction determinacy flagged (every column of the table filled)."""
+    mech = load_cached("parallel_2t1r")
+    return motion.study(mech, motion.from_callable(mech, motion_law, np.linspace(0.2, MOTION_DURATION, 12)),
+                        determinacy=True)
 
 
 def _assert_same(a: motion.MotionResult, b: motion.MotionResult) -> None:
@@ -18,7 +28,7 @@ def _assert_same(a: motion.MotionResult, b: motion.MotionResult) -> None:
 
 
 def test_round_trips(two_t1r, tmp_path):
-    _, r = two_t1r
+    r = two_t1r
     _assert_same(r, motion.MotionResult.from_dataframe(r.to_dataframe()))
     motion.write_parquet(r, tmp_path / "m.parquet")
     _assert_same(r, motion.read_parquet(tmp_path / "m.parquet"))

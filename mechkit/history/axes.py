@@ -1,7 +1,6 @@
 """Unit axes (world frame) of every joint of a mechanism along a motion: what the reaction tables split
 into axial and radial parts. Takes any object with a mechanism's `model`, `home_q`, `closure_model` and
-`cuts` (the motion studies' and the simulator's), so that the simulator, which `Mechanism` reaches,
-needs nothing that imports `Mechanism`."""
+`cuts` (the motion studies' and the simulator's)."""
 
 from __future__ import annotations
 
