@@ -30,8 +30,12 @@ from mechkit.sources import Description
 LOCKED_LOOP_TOL = 1e-9
 
 
-def locked_joints(mech: Mechanism, lock: Mapping[str, float | Sequence[float]] | None = None,
-                  keep: Sequence[str] | None = None, fix: Sequence[str] | None = None) -> dict[str, np.ndarray]:
+def locked_joints(
+    mech: Mechanism,
+    lock: Mapping[str, float | Sequence[float]] | None = None,
+    keep: Sequence[str] | None = None,
+    fix: Sequence[str] | None = None,
+) -> dict[str, np.ndarray]:
     """The joints to lock and their configurations (their coordinates in q), from the three requests.
 
     Args:
@@ -54,7 +58,7 @@ def locked_joints(mech: Mechanism, lock: Mapping[str, float | Sequence[float]] |
         for joint, value in values.items():
             j = model.getJointId(joint)
             core.set_joint_value(model, q, j, value)
-            out[joint] = q[model.idx_qs[j]:model.idx_qs[j] + model.nqs[j]].copy()
+            out[joint] = q[model.idx_qs[j] : model.idx_qs[j] + model.nqs[j]].copy()
     if keep is not None:
         if isinstance(keep, str) or not keep:
             raise InvalidArgument("keep", keep, "expected a non-empty sequence of body names")
@@ -66,10 +70,10 @@ def locked_joints(mech: Mechanism, lock: Mapping[str, float | Sequence[float]] |
                 moving |= on_loop
         for j in range(1, model.njoints):
             if j not in moving and model.names[j] not in out:
-                out[model.names[j]] = q[model.idx_qs[j]:model.idx_qs[j] + model.nqs[j]].copy()
+                out[model.names[j]] = q[model.idx_qs[j] : model.idx_qs[j] + model.nqs[j]].copy()
     for body in fix or ():
         j = _body_joint(model, body, "fix")
-        out[model.names[j]] = q[model.idx_qs[j]:model.idx_qs[j] + model.nqs[j]].copy()
+        out[model.names[j]] = q[model.idx_qs[j] : model.idx_qs[j] + model.nqs[j]].copy()
     return out
 
 
@@ -97,10 +101,19 @@ def description_of(mech: Mechanism) -> Description:
         Its `Description`.
     """
     spec, params = mech.spec, mech.params
-    return Description(spec.name, mech.urdf, tuple(mech.actuated), dict(spec.home(params)),
-                       dict(spec.guess(params)) if spec.guess is not None else {}, model=mech.model,
-                       closures=tuple(mech.closures), couplings=mech.closure_model.couplings,
-                       springs=mech.springs.springs, actuators=mech.closure_model.actuators, format="mechkit")
+    return Description(
+        spec.name,
+        mech.urdf,
+        tuple(mech.actuated),
+        dict(spec.home(params)),
+        dict(spec.guess(params)) if spec.guess is not None else {},
+        model=mech.model,
+        closures=tuple(mech.closures),
+        couplings=mech.closure_model.couplings,
+        springs=mech.springs.springs,
+        actuators=mech.closure_model.actuators,
+        format="mechkit",
+    )
 
 
 def reduce_description(mech: Mechanism, desc: Description, locked: Mapping[str, np.ndarray]) -> Description:
@@ -124,7 +137,7 @@ def reduce_description(mech: Mechanism, desc: Description, locked: Mapping[str, 
     q = mech.home_q.copy()
     for joint, coordinates in locked.items():
         j = model.getJointId(joint)
-        q[model.idx_qs[j]:model.idx_qs[j] + model.nqs[j]] = coordinates
+        q[model.idx_qs[j] : model.idx_qs[j] + model.nqs[j]] = coordinates
     reduced = _reduced_model(model, [model.getJointId(j) for j in locked], q)
     closures = []
     for closure in mech.closures:
@@ -134,27 +147,42 @@ def reduce_description(mech: Mechanism, desc: Description, locked: Mapping[str, 
             continue
         residual = _locked_loop_residual(mech, closure, q)
         if residual > LOCKED_LOOP_TOL:
-            raise MalformedDescription(f"loop {closure.name!r}", f"every joint of it is locked and the locked values "
-                                       f"leave it open by {residual:.3e}")
+            raise MalformedDescription(
+                f"loop {closure.name!r}",
+                f"every joint of it is locked and the locked values leave it open by {residual:.3e}",
+            )
     couplings = []
     for coupling in desc.couplings:
         joints = [j for j, _ in coupling.follower + coupling.leader]
         if any(j in locked for j in joints):
             if not all(j in locked for j in joints):
-                raise MalformedDescription(f"coupling {coupling.name!r}", "couples a locked joint with a free one: lock "
-                                           f"all of {joints} or none")
+                raise MalformedDescription(
+                    f"coupling {coupling.name!r}",
+                    f"couples a locked joint with a free one: lock all of {joints} or none",
+                )
             continue
         couplings.append(coupling)
-    actuators = tuple(dataclasses.replace(a, joints=tuple((j, c) for j, c in a.joints if j not in locked))
-                      for a in desc.actuators)
+    actuators = tuple(
+        dataclasses.replace(a, joints=tuple((j, c) for j, c in a.joints if j not in locked)) for a in desc.actuators
+    )
     actuators = tuple(a for a in actuators if a.joints)
     names = {a.name for a in actuators}
     actuated = tuple(a for a in desc.actuated if a not in locked and (reduced.existJointName(a) or a in names))
     free = {k: v for k, v in desc.home.items() if k not in locked and reduced.existJointName(k)}
     guess = {k: v for k, v in desc.guess.items() if k not in locked and reduced.existJointName(k)}
-    return dataclasses.replace(desc, name=f"{desc.name} (reduced)", urdf=None, model=reduced, closures=tuple(closures),
-                               couplings=tuple(couplings), springs=tuple(s for s in desc.springs if s.joint not in locked),
-                               actuators=actuators, actuated=actuated, home=free, guess=guess)
+    return dataclasses.replace(
+        desc,
+        name=f"{desc.name} (reduced)",
+        urdf=None,
+        model=reduced,
+        closures=tuple(closures),
+        couplings=tuple(couplings),
+        springs=tuple(s for s in desc.springs if s.joint not in locked),
+        actuators=actuators,
+        actuated=actuated,
+        home=free,
+        guess=guess,
+    )
 
 
 def _reduced_model(model: pin.Model, joints: list[int], q: np.ndarray) -> pin.Model:

@@ -111,13 +111,15 @@ def scene_times(mechanism: Mechanism, name: str, poses: int) -> np.ndarray:
         return SCENE_STEP * np.arange(poses, dtype=float)
     t = np.asarray(declared(mechanism, poses), dtype=float)
     if t.shape != (poses,) or not np.all(np.isfinite(t)) or np.any(np.diff(t) <= 0):
-        raise MalformedDescription(f"{mechanism.spec.name} scene {name!r}",
-                                   f"time axis is not {poses} strictly increasing finite times")
+        raise MalformedDescription(
+            f"{mechanism.spec.name} scene {name!r}", f"time axis is not {poses} strictly increasing finite times"
+        )
     return t
 
 
-def sweep(mechanism: Mechanism, frames: int = SWEEP_FRAMES, angle: float = SWEEP_ANGLE,
-          stroke: float = SWEEP_STROKE) -> list[np.ndarray]:
+def sweep(
+    mechanism: Mechanism, frames: int = SWEEP_FRAMES, angle: float = SWEEP_ANGLE, stroke: float = SWEEP_STROKE
+) -> list[np.ndarray]:
     """Generic scene: each actuated input in turn goes home -> +A -> home -> -A -> home (one sine period,
     sampled at `frames` poses) while the others stay at home.
 
@@ -157,10 +159,13 @@ def sweep(mechanism: Mechanism, frames: int = SWEEP_FRAMES, angle: float = SWEEP
                 try:
                     q = mechanism.assemble(inputs, guess=q)
                 except (MechkitError, FloatingPointError) as err:
-                    warnings.warn(SweepStopped(
-                        f"{mechanism.spec.name} sweep of {name} stops at {inputs[i]:.6g} (home {start[i]:.6g}): "
-                        f"inputs {dict(zip(names, np.round(inputs, 6).tolist()))} do not assemble ({err})"),
-                        stacklevel=2)
+                    warnings.warn(
+                        SweepStopped(
+                            f"{mechanism.spec.name} sweep of {name} stops at {inputs[i]:.6g} (home {start[i]:.6g}): "
+                            f"inputs {dict(zip(names, np.round(inputs, 6).tolist()))} do not assemble ({err})"
+                        ),
+                        stacklevel=2,
+                    )
                     break
                 out.append(q)
             if out:

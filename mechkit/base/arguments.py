@@ -66,8 +66,12 @@ def sample(sizes: Mapping[str, int], **values: Any) -> list[np.ndarray]:
     out = []
     for name, value in values.items():
         if _batched(value):
-            raise InvalidArgument(name, value, f"one sample of shape ({sizes[name]},) expected; for N samples of shape "
-                                  f"(N, {sizes[name]}) call the method's *_batch form")
+            raise InvalidArgument(
+                name,
+                value,
+                f"one sample of shape ({sizes[name]},) expected; for N samples of shape "
+                f"(N, {sizes[name]}) call the method's *_batch form",
+            )
         out.append(array(name, value, sizes[name], batch=False))
     return out
 
@@ -89,12 +93,18 @@ def samples(sizes: Mapping[str, int], **values: Any) -> list[np.ndarray]:
     for name, value in values.items():
         x = array(name, value, sizes[name])
         if x.ndim != 2:
-            raise InvalidArgument(name, value, f"N samples of shape (N, {sizes[name]}) expected; for one sample call "
-                                  "the method without _batch")
+            raise InvalidArgument(
+                name,
+                value,
+                f"N samples of shape (N, {sizes[name]}) expected; for one sample call the method without _batch",
+            )
         out.append(x)
     if len({x.shape[0] for x in out}) > 1:
-        raise InvalidArgument(", ".join(values), {n: x.shape for n, x in zip(values, out)},
-                              "every state array must have the same number of samples N")
+        raise InvalidArgument(
+            ", ".join(values),
+            {n: x.shape for n, x in zip(values, out)},
+            "every state array must have the same number of samples N",
+        )
     return out
 
 
@@ -126,9 +136,18 @@ def plain_state(q: Any, v: Any, x: Any, nq: int, nv: int, *, finite: bool = True
         Whether all three are float64 arrays of those shapes (and finite, with `finite`), so no
         conversion is needed.
     """
-    return (type(q) is np.ndarray and type(v) is np.ndarray and type(x) is np.ndarray
-            and q.dtype is _FLOAT and v.dtype is _FLOAT and x.dtype is _FLOAT
-            and q.shape == (nq,) and v.shape == (nv,) and x.shape == (nv,) and (not finite or _finite(q, v, x)))
+    return (
+        type(q) is np.ndarray
+        and type(v) is np.ndarray
+        and type(x) is np.ndarray
+        and q.dtype is _FLOAT
+        and v.dtype is _FLOAT
+        and x.dtype is _FLOAT
+        and q.shape == (nq,)
+        and v.shape == (nv,)
+        and x.shape == (nv,)
+        and (not finite or _finite(q, v, x))
+    )
 
 
 #: The dtype of a plain float64 array (numpy keeps one instance of each built-in dtype).
@@ -205,10 +224,12 @@ def solver_settings(mu: Any, accuracy: Any, max_iter: Any, baumgarte: Any) -> di
     Raises:
         InvalidArgument: naming the first bad one.
     """
-    return {"mu": None if mu is None else number("mu", mu, minimum=0.0),
-            "accuracy": None if accuracy is None else number("accuracy", accuracy, positive=True),
-            "max_iter": None if max_iter is None else integer("max_iter", max_iter, minimum=1),
-            "baumgarte": None if baumgarte is None else tuple(array("baumgarte", baumgarte, 2, batch=False))}
+    return {
+        "mu": None if mu is None else number("mu", mu, minimum=0.0),
+        "accuracy": None if accuracy is None else number("accuracy", accuracy, positive=True),
+        "max_iter": None if max_iter is None else integer("max_iter", max_iter, minimum=1),
+        "baumgarte": None if baumgarte is None else tuple(array("baumgarte", baumgarte, 2, batch=False)),
+    }
 
 
 def integer(name: str, value: Any, *, minimum: int = 0) -> int:

@@ -53,8 +53,15 @@ def resolve_output(path: str | os.PathLike) -> Path:
     except OSError as err:
         raise OutputError(path, err.strerror or str(err)) from None
     if mode is not None and not stat.S_ISREG(mode):
-        kind = ("a directory" if stat.S_ISDIR(mode) else "a FIFO" if stat.S_ISFIFO(mode)
-                else "a device" if stat.S_ISCHR(mode) or stat.S_ISBLK(mode) else "not a regular file")
+        kind = (
+            "a directory"
+            if stat.S_ISDIR(mode)
+            else "a FIFO"
+            if stat.S_ISFIFO(mode)
+            else "a device"
+            if stat.S_ISCHR(mode) or stat.S_ISBLK(mode)
+            else "not a regular file"
+        )
         raise OutputError(path, f"is {kind}; mechkit writes regular files only (use '-' for standard output)")
     if target.parent.exists() and not target.parent.is_dir():
         raise OutputError(path, f"{target.parent} is not a directory")

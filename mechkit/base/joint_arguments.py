@@ -43,8 +43,9 @@ def joint_names(name: str, value: Any, known: Sequence[str], *, allow_empty: boo
     return names
 
 
-def joint_values(name: str, value: Any, names: Sequence[str], known: Sequence[str],
-                 sizes: Mapping[str, int] | None = None) -> dict[str, float | np.ndarray]:
+def joint_values(
+    name: str, value: Any, names: Sequence[str], known: Sequence[str], sizes: Mapping[str, int] | None = None
+) -> dict[str, float | np.ndarray]:
     """Joint values as {joint: finite float, or array for a joint of several freedoms}: a mapping by
     name, or numbers in the order of `names` (each joint taking `sizes[joint]` of them, default 1).
 
@@ -74,13 +75,14 @@ def joint_values(name: str, value: Any, names: Sequence[str], known: Sequence[st
     flat = array(name, value, sum(widths), batch=False) if widths else array(name, value, 0, batch=False)
     out, i = {}, 0
     for joint, w in zip(names, widths):
-        out[joint] = float(flat[i]) if w == 1 else flat[i:i + w].copy()
+        out[joint] = float(flat[i]) if w == 1 else flat[i : i + w].copy()
         i += w
     return out
 
 
-def sample_inputs(name: str, values: Any, names: Sequence[str], n: int, known: Sequence[str],
-                  sizes: Mapping[str, int] | None = None) -> tuple[list[str], np.ndarray]:
+def sample_inputs(
+    name: str, values: Any, names: Sequence[str], n: int, known: Sequence[str], sizes: Mapping[str, int] | None = None
+) -> tuple[list[str], np.ndarray]:
     """Batched input values: an (n, k) array in `names` order (k the sum of their `sizes`, default 1
     each), or a mapping joint name -> (n,) values (or (n, size) for a joint of several freedoms).
 
@@ -108,8 +110,11 @@ def sample_inputs(name: str, values: Any, names: Sequence[str], n: int, known: S
             if np.ndim(v) == 0 and width[k] == 1:
                 cols.append(np.full((n, 1), number(f"{name}[{k!r}]", v)))
             else:
-                cols.append(array(f"{name}[{k!r}]", np.reshape(v, (n, width[k])) if np.size(v) == n * width[k] else v,
-                                  width[k]).reshape(n, width[k]))
+                cols.append(
+                    array(
+                        f"{name}[{k!r}]", np.reshape(v, (n, width[k])) if np.size(v) == n * width[k] else v, width[k]
+                    ).reshape(n, width[k])
+                )
         return keys, (np.concatenate(cols, axis=1) if cols else np.zeros((n, 0)))
     k = sum(width[j] for j in names)
     x = array(name, values, k)
@@ -168,7 +173,9 @@ def external_forces(name: str, value: Any, njoints: int) -> Any:
         rows = array(name, value, 6)
         rows = rows.reshape(-1, 6)
     if rows.shape[0] != njoints:
-        raise InvalidArgument(name, value, f"expected one force per joint ({njoints}, universe first), got {rows.shape[0]}")
+        raise InvalidArgument(
+            name, value, f"expected one force per joint ({njoints}, universe first), got {rows.shape[0]}"
+        )
     if not np.all(np.isfinite(rows)):
         raise InvalidArgument(name, value, "must be finite")
     out = pin.StdVec_Force()

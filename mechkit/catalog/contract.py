@@ -316,8 +316,10 @@ class MechanismSpec:
         quantities = [r.quantity for r in self.bench_references]
         if len(set(quantities)) != len(quantities):
             raise InvalidParameters("bench_references", quantities, f"{self.name}: one reference per quantity")
-        for name, labels in (("failure_studies", [s.name for s in self.failure_studies]),
-                             ("design_metrics", [m.name for m in self.design_metrics])):
+        for name, labels in (
+            ("failure_studies", [s.name for s in self.failure_studies]),
+            ("design_metrics", [m.name for m in self.design_metrics]),
+        ):
             if len(set(labels)) != len(labels):
                 raise InvalidParameters(name, labels, f"{self.name}: names must be unique")
         if self.view is not None:

@@ -15,8 +15,7 @@ from typing import Any
 from mechkit.base.exceptions import InvalidParameters
 
 
-def param(default: float | bool | str, unit: str, doc: str, *, ours: bool = False,
-          positive: bool | None = None) -> Any:
+def param(default: float | bool | str, unit: str, doc: str, *, ours: bool = False, positive: bool | None = None) -> Any:
     """Declare one parameter.
 
     Args:

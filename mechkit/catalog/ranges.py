@@ -49,7 +49,9 @@ class ParamRange:
             return f"{'>=' if self.lower_closed else '>'} {self.lower:.6g}"
         if self.lower is None:
             return f"{'<=' if self.upper_closed else '<'} {self.upper:.6g}"
-        return f"{'[' if self.lower_closed else '('}{self.lower:.6g}, {self.upper:.6g}{']' if self.upper_closed else ')'}"
+        return (
+            f"{'[' if self.lower_closed else '('}{self.lower:.6g}, {self.upper:.6g}{']' if self.upper_closed else ')'}"
+        )
 
 
 def _accepts(cls: type[MechanismParams], name: str, value: float) -> bool:
@@ -60,7 +62,9 @@ def _accepts(cls: type[MechanismParams], name: str, value: float) -> bool:
     return True
 
 
-def _boundary(cls: type[MechanismParams], name: str, default: float, direction: int, kind: type) -> tuple[float | None, bool]:
+def _boundary(
+    cls: type[MechanismParams], name: str, default: float, direction: int, kind: type
+) -> tuple[float | None, bool]:
     """Boundary of the accepted values from `default` along `direction` (+1 / -1) and whether it is accepted."""
     scale = max(abs(default), MIN_SCALE)
     inside, step = default, scale

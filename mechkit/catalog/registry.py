@@ -25,21 +25,40 @@ class Entry:
 
 
 ENTRIES: tuple[Entry, ...] = (
-    Entry("deployable_9rr12uru", "mechkit.mechanisms.deployable_9rr12uru",
-          "9RR-12URU deployable composite element of a truss antenna (3 tetrahedral units + 3 URU chains)"),
+    Entry(
+        "deployable_9rr12uru",
+        "mechkit.mechanisms.deployable_9rr12uru",
+        "9RR-12URU deployable composite element of a truss antenna (3 tetrahedral units + 3 URU chains)",
+    ),
     Entry("five_bar", "mechkit.mechanisms.five_bar", "planar five-bar, 2-DOF calibration mechanism of the core"),
-    Entry("four_bar", "mechkit.mechanisms.four_bar",
-          "planar four-bar (crank-rocker), calibration mechanism of the core"),
-    Entry("parallel_2t1r", "mechkit.mechanisms.parallel_2t1r",
-          "spatial 2T1R parallel mechanism, five-bar limb + 2 RRR limbs, all axes along y (ref. 001)"),
-    Entry("rocket_gimbal", "mechkit.mechanisms.rocket_gimbal",
-          "launcher engine gimbal: frame-bracket-engine hinges at 45 deg, two U-P-S servo actuators"),
-    Entry("spherical_2dof", "mechkit.mechanisms.spherical_2dof",
-          "2-DOF spherical parallel platform (2 RRR limbs + central Hooke strut), vibration isolation"),
-    Entry("ten_bar", "mechkit.mechanisms.ten_bar",
-          "Radarsat-2 solar-array ten-bar (patent CN105975733): 9 links, 12 pairs, 2 motors + 1 spring DOF"),
-    Entry("tetra_3rr3uru", "mechkit.mechanisms.tetra_3rr3uru",
-          "3RR-3URU tetrahedral deployable unit H-ABE of a truss antenna, node A fixed"),
+    Entry(
+        "four_bar", "mechkit.mechanisms.four_bar", "planar four-bar (crank-rocker), calibration mechanism of the core"
+    ),
+    Entry(
+        "parallel_2t1r",
+        "mechkit.mechanisms.parallel_2t1r",
+        "spatial 2T1R parallel mechanism, five-bar limb + 2 RRR limbs, all axes along y (ref. 001)",
+    ),
+    Entry(
+        "rocket_gimbal",
+        "mechkit.mechanisms.rocket_gimbal",
+        "launcher engine gimbal: frame-bracket-engine hinges at 45 deg, two U-P-S servo actuators",
+    ),
+    Entry(
+        "spherical_2dof",
+        "mechkit.mechanisms.spherical_2dof",
+        "2-DOF spherical parallel platform (2 RRR limbs + central Hooke strut), vibration isolation",
+    ),
+    Entry(
+        "ten_bar",
+        "mechkit.mechanisms.ten_bar",
+        "Radarsat-2 solar-array ten-bar (patent CN105975733): 9 links, 12 pairs, 2 motors + 1 spring DOF",
+    ),
+    Entry(
+        "tetra_3rr3uru",
+        "mechkit.mechanisms.tetra_3rr3uru",
+        "3RR-3URU tetrahedral deployable unit H-ABE of a truss antenna, node A fixed",
+    ),
 )
 
 

@@ -7,5 +7,14 @@ from mechkit.elastic.modes import Modes
 from mechkit.elastic.sections import ElasticData, JointElasticity, Section
 from mechkit.elastic.urdf_elements import parse_elastic, with_elastic
 
-__all__ = ["BodyStiffness", "CompliantReactions", "ElasticData", "ElasticModel", "JointElasticity", "Modes", "Section",
-           "parse_elastic", "with_elastic"]
+__all__ = [
+    "BodyStiffness",
+    "CompliantReactions",
+    "ElasticData",
+    "ElasticModel",
+    "JointElasticity",
+    "Modes",
+    "Section",
+    "parse_elastic",
+    "with_elastic",
+]

@@ -32,7 +32,9 @@ def local_axes(start: np.ndarray, end: np.ndarray, axis1: np.ndarray) -> tuple[f
     x = x / length
     y = axis1 - np.dot(axis1, x) * x
     if np.linalg.norm(y) < 1e-6:
-        raise InvalidParameters("axis1", axis1, "lies along the beam: give the direction I1 is about, normal to the beam")
+        raise InvalidParameters(
+            "axis1", axis1, "lies along the beam: give the direction I1 is about, normal to the beam"
+        )
     y = y / np.linalg.norm(y)
     return length, np.array([x, y, np.cross(x, y)])
 
@@ -55,8 +57,14 @@ def local_stiffness(length: float, s: Section) -> np.ndarray:
     # bending in x-y (uy, theta_z; E I2) and in x-z (uz, theta_y; E I1): Hermite cubic, signs of theta_y flipped
     for dofs, EI, sign in (([1, 5, 7, 11], s.E * s.I2, 1.0), ([2, 4, 8, 10], s.E * s.I1, -1.0)):
         c = EI / L**3
-        m = c * np.array([[12.0, 6 * L, -12.0, 6 * L], [6 * L, 4 * L**2, -6 * L, 2 * L**2],
-                          [-12.0, -6 * L, 12.0, -6 * L], [6 * L, 2 * L**2, -6 * L, 4 * L**2]])
+        m = c * np.array(
+            [
+                [12.0, 6 * L, -12.0, 6 * L],
+                [6 * L, 4 * L**2, -6 * L, 2 * L**2],
+                [-12.0, -6 * L, 12.0, -6 * L],
+                [6 * L, 2 * L**2, -6 * L, 4 * L**2],
+            ]
+        )
         flip = np.array([1.0, sign, 1.0, sign])
         k[np.ix_(dofs, dofs)] = m * flip[:, None] * flip[None, :]
     return k

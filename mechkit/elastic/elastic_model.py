@@ -138,8 +138,9 @@ class ElasticModel:
         return ElasticModel(self.mech, self.data.with_joint(joint, elasticity))
 
     # ------------------------------------------------------------------ reactions
-    def inverse_dynamics_batch(self, q: np.ndarray, v: np.ndarray, a: np.ndarray, fext: Any = None, *,
-                               allow_singular: bool = False) -> CompliantReactions:
+    def inverse_dynamics_batch(
+        self, q: np.ndarray, v: np.ndarray, a: np.ndarray, fext: Any = None, *, allow_singular: bool = False
+    ) -> CompliantReactions:
         """Efforts and reactions of N motions with every reaction fixed by equilibrium and compatibility.
 
         The rigid inverse dynamics moved along its self-stresses to the least complementary energy (loads
@@ -162,8 +163,9 @@ class ElasticModel:
         rigid = self.mech.inverse_dynamics_batch(q, v, a, fext, determinacy=False, allow_singular=allow_singular)
         return self.compatible(np.asarray(q, dtype=float).reshape(len(rigid), -1), rigid.efforts, rigid.reactions)
 
-    def compatible(self, q: np.ndarray, efforts: np.ndarray, reactions: np.ndarray,
-                   drives: tuple[str, ...] | None = None) -> CompliantReactions:
+    def compatible(
+        self, q: np.ndarray, efforts: np.ndarray, reactions: np.ndarray, drives: tuple[str, ...] | None = None
+    ) -> CompliantReactions:
         """The compatible equilibrium nearest a rigid one, moved along the self-stresses.
 
         Args:
@@ -183,9 +185,9 @@ class ElasticModel:
         """
         mech = self.mech
         drives = tuple(mech.actuated) if drives is None else tuple(drives)
-        if drives[:len(mech.actuated)] != tuple(mech.actuated):
+        if drives[: len(mech.actuated)] != tuple(mech.actuated):
             raise InvalidParameters("drives", drives, f"must start with the actuators {list(mech.actuated)}")
-        q, = mech._many(q=q)
+        (q,) = mech._many(q=q)
         n, nj = len(q), len(mech.closure_model.joint_names)
         for name, value, shape in (("efforts", efforts, (n, len(drives))), ("reactions", reactions, (n, nj, 6))):
             if np.shape(value) != shape:
@@ -195,18 +197,27 @@ class ElasticModel:
         actuation = mech.closure_model.with_actuation(drives).actuation
         ideal = self.idealisation
         na = len(mech.actuated)
-        compliance = np.concatenate([ideal.drive_compliance[:na], np.zeros(len(drives) - na), ideal.drive_compliance[na:]])
+        compliance = np.concatenate(
+            [ideal.drive_compliance[:na], np.zeros(len(drives) - na), ideal.drive_compliance[na:]]
+        )
         n = len(q)
         with np.errstate(under="ignore"):  # products of tiny compliances and lever arms flush to zero harmlessly
             pose = statics.evaluate(ideal, q, actuation)
             full = np.concatenate([efforts, np.zeros((n, len(ideal.drives)))], axis=1)
             out = statics.compatible(pose, compliance, reactions[..., None], full[..., None])
-        return CompliantReactions(mech.closure_model.joint_names, drives, out.efforts[:, :len(drives), 0],
-                                  out.reactions[..., 0], out.determinate, out.rigid_determinate,
-                                  out.efforts[:, len(drives):, 0])
+        return CompliantReactions(
+            mech.closure_model.joint_names,
+            drives,
+            out.efforts[:, : len(drives), 0],
+            out.reactions[..., 0],
+            out.determinate,
+            out.rigid_determinate,
+            out.efforts[:, len(drives) :, 0],
+        )
 
-    def inverse_dynamics(self, q: np.ndarray, v: np.ndarray, a: np.ndarray, fext: Any = None, *,
-                         allow_singular: bool = False) -> CompliantReactions:
+    def inverse_dynamics(
+        self, q: np.ndarray, v: np.ndarray, a: np.ndarray, fext: Any = None, *, allow_singular: bool = False
+    ) -> CompliantReactions:
         """`inverse_dynamics_batch` of one sample, as a batch of one.
 
         Args:
@@ -220,8 +231,9 @@ class ElasticModel:
             The `CompliantReactions`, N = 1.
         """
         q, v, a = self.mech._one(q=q, v=v, a=a)
-        return self.inverse_dynamics_batch(q[None], v[None], a[None], None if fext is None else [fext],
-                                           allow_singular=allow_singular)
+        return self.inverse_dynamics_batch(
+            q[None], v[None], a[None], None if fext is None else [fext], allow_singular=allow_singular
+        )
 
     # ------------------------------------------------------------------ stiffness
     def body(self, link: str) -> int:
@@ -276,7 +288,7 @@ class ElasticModel:
 
     def _compliance(self, q: np.ndarray, link: str, point: np.ndarray | None) -> tuple[np.ndarray, np.ndarray]:
         """C (6, 6) and the point (3,) in the world, from one kinematic pass."""
-        q, = self.mech._one(q=q)
+        (q,) = self.mech._one(q=q)
         body = self.body(link)
         local = np.zeros(3) if point is None else arguments.array("point", point, 3, batch=False)
         placement = self.links[link].placement
@@ -344,7 +356,7 @@ class ElasticModel:
             InvalidParameters: n < 1 or more than six per massive body.
             SingularConfiguration: the locked mechanism still moves (a zero frequency).
         """
-        q, = self.mech._one(q=q)
+        (q,) = self.mech._one(q=q)
         model = self.mech.model
         bodies = np.array([j for j in range(1, model.njoints) if model.inertias[j].mass > 0], dtype=int)
         if not isinstance(n, (int, np.integer)) or n < 1 or n > 6 * len(bodies):
@@ -362,6 +374,6 @@ class ElasticModel:
         x = statics.particular(pose, b)
         reactions = R0 + pose.reaction_map @ x[:, None]
         c = self.idealisation.drive_compliance
-        out = statics.compatible(pose, c, reactions, x[:, :pose.efforts])
+        out = statics.compatible(pose, c, reactions, x[:, : pose.efforts])
         C = statics.energy_product(pose, c, out.reactions, out.efforts, out.reactions, out.efforts)
         return (C + np.swapaxes(C, 1, 2)) / 2

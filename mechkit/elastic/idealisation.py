@@ -104,12 +104,15 @@ class Idealisation:
         for name in data.joints:
             if name not in index:
                 raise InvalidParameters("elastic joint", name, f"no such joint or cut; joints: {list(self.names)}")
-        centres = [origins[k] + data.joints.get(name, JointElasticity()).centre * (axes[k] if axes[k] is not None else 0.0)
-                   for k, name in enumerate(self.names)]
+        centres = [
+            origins[k] + data.joints.get(name, JointElasticity()).centre * (axes[k] if axes[k] is not None else 0.0)
+            for k, name in enumerate(self.names)
+        ]
         for name, j in data.joints.items():
             if j.centre and axes[index[name]] is None:
                 raise InvalidParameters(f"centre of {name}", j.centre, "a centre along the axis needs a revolute joint")
         scale = max(max((np.linalg.norm(o) for o in origins), default=1.0), 1e-3)
+
         # a point of the world at home, in a body's frame
         def local(body: int, point: np.ndarray) -> np.ndarray:
             return home.oMi[body].actInv(point) if body else point
@@ -134,8 +137,13 @@ class Idealisation:
                 self.rigid_with_section.append(link)
                 continue
             axis1 = frame.placement.rotation @ section.axis1
-            beam_section = section if np.allclose(axis1, section.axis1) else type(section)(
-                section.E, section.G, section.A, section.I1, section.I2, section.J, axis1, section.density)
+            beam_section = (
+                section
+                if np.allclose(axis1, section.axis1)
+                else type(section)(
+                    section.E, section.G, section.A, section.I1, section.I2, section.J, axis1, section.density
+                )
+            )
             com = model.inertias[body].lever
             joints, lengths = [], []
             for k in np.flatnonzero((self.sides == body).any(axis=1)):
@@ -149,11 +157,16 @@ class Idealisation:
         every = self._beam_blocks + self._joint_blocks
         incidence = np.zeros((len(self.names), len(every)))  # joint <- block
         incidence[[j for j, _, _ in every], np.arange(len(every))] = 1.0
-        self._blocks = None if not every else (np.array([b for _, b, _ in every], dtype=int),
-                                               np.array([f for _, _, f in every]), incidence)
+        self._blocks = (
+            None
+            if not every
+            else (np.array([b for _, b, _ in every], dtype=int), np.array([f for _, _, f in every]), incidence)
+        )
         self.drives, self.drive_compliance = self._drives(mech, index)
 
-    def _joint_springs(self, mech: Mechanism, index: dict[str, int], home: pin.Data) -> list[tuple[int, int, np.ndarray]]:
+    def _joint_springs(
+        self, mech: Mechanism, index: dict[str, int], home: pin.Data
+    ) -> list[tuple[int, int, np.ndarray]]:
         """(joint, body whose frame holds the block, (6, 6) compliance at the joint's centre) of every joint
         given a stiffness: W (W^T K W)^-1 W^T, W an orthonormal basis of its constrained directions."""
         out = []
@@ -185,11 +198,18 @@ class Idealisation:
         actuated = set(mech.actuated)
         for name, j in self.data.joints.items():
             if j.drive is not None and name not in actuated:
-                raise InvalidParameters(f"drive of {name}", j.drive, f"not an actuated joint; actuated: {sorted(actuated)}")
-        compliance = [1.0 / self.data.joints[a].drive if a in self.data.joints and self.data.joints[a].drive else 0.0
-                      for a in mech.actuated]
-        springs = [s for s in (mech.springs.springs if mech.springs else ()) if s.stiffness > 0 and s.joint not in actuated
-                   and mech.model.nvs[mech.joint_id(s.joint)] == 1]
+                raise InvalidParameters(
+                    f"drive of {name}", j.drive, f"not an actuated joint; actuated: {sorted(actuated)}"
+                )
+        compliance = [
+            1.0 / self.data.joints[a].drive if a in self.data.joints and self.data.joints[a].drive else 0.0
+            for a in mech.actuated
+        ]
+        springs = [
+            s
+            for s in (mech.springs.springs if mech.springs else ())
+            if s.stiffness > 0 and s.joint not in actuated and mech.model.nvs[mech.joint_id(s.joint)] == 1
+        ]
         return tuple(s.joint for s in springs), np.array(compliance + [1.0 / s.stiffness for s in springs])
 
     def compliances(self, R: np.ndarray, t: np.ndarray, points: np.ndarray) -> np.ndarray:

@@ -39,8 +39,9 @@ class StiffnessMap:
     free: np.ndarray
 
 
-def stiffness_map(elastic: ElasticModel, body: str, inputs: dict[str, np.ndarray],
-                  point: np.ndarray | None = None) -> StiffnessMap:
+def stiffness_map(
+    elastic: ElasticModel, body: str, inputs: dict[str, np.ndarray], point: np.ndarray | None = None
+) -> StiffnessMap:
     """A body's stiffness over the grid of two input joints' values (the other actuators at home).
 
     The grid is walked breadth first from the cell nearest home, each pose assembled from an accepted
@@ -85,8 +86,9 @@ def stiffness_map(elastic: ElasticModel, body: str, inputs: dict[str, np.ndarray
             if 0 <= cell[0] < len(v1) and 0 <= cell[1] < len(v2) and cell not in seen:
                 seen.add(cell)
                 queue.append((cell, q))
-    return StiffnessMap(body, np.zeros(3) if point is None else np.asarray(point, dtype=float), (j1, j2), (v1, v2),
-                        held, free)
+    return StiffnessMap(
+        body, np.zeros(3) if point is None else np.asarray(point, dtype=float), (j1, j2), (v1, v2), held, free
+    )
 
 
 def plot_map(result: StiffnessMap, direction: str, path: Path) -> Path:
@@ -110,7 +112,10 @@ def plot_map(result: StiffnessMap, direction: str, path: Path) -> Path:
     plt = pyplot("stiffness maps")
     fig, axes = plt.subplots(1, 2, figsize=(10, 4))
     (j1, j2), (v1, v2) = result.inputs, result.values
-    for ax, values, title in ((axes[0], result.held, "K_ii (others held)"), (axes[1], result.free, "1/C_ii (others free)")):
+    for ax, values, title in (
+        (axes[0], result.held, "K_ii (others held)"),
+        (axes[1], result.free, "1/C_ii (others free)"),
+    ):
         image = ax.pcolormesh(np.degrees(v2), np.degrees(v1), np.log10(values[..., k]), shading="auto")
         ax.set_xlabel(f"{j2} (deg)")
         ax.set_ylabel(f"{j1} (deg)")

@@ -55,13 +55,20 @@ def mass_matrix(model: pin.Model, R: np.ndarray, bodies: np.ndarray) -> np.ndarr
     M = np.zeros((6 * len(bodies), 6 * len(bodies)))
     for k, b in enumerate(bodies):
         inertia = model.inertias[int(b)]
-        M[6 * k:6 * k + 3, 6 * k:6 * k + 3] = inertia.mass * np.eye(3)
-        M[6 * k + 3:6 * k + 6, 6 * k + 3:6 * k + 6] = R[int(b)] @ inertia.inertia @ R[int(b)].T
+        M[6 * k : 6 * k + 3, 6 * k : 6 * k + 3] = inertia.mass * np.eye(3)
+        M[6 * k + 3 : 6 * k + 6, 6 * k + 3 : 6 * k + 6] = R[int(b)] @ inertia.inertia @ R[int(b)].T
     return M
 
 
-def modes(model: pin.Model, R: np.ndarray, bodies: np.ndarray, centres: np.ndarray, F: np.ndarray, n: int,
-          names: tuple[str, ...]) -> Modes:
+def modes(
+    model: pin.Model,
+    R: np.ndarray,
+    bodies: np.ndarray,
+    centres: np.ndarray,
+    F: np.ndarray,
+    n: int,
+    names: tuple[str, ...],
+) -> Modes:
     """The first `n` natural modes from the flexibility F (6k, 6k) between unit wrenches at the massive
     bodies' centres of mass (`ElasticModel` computes it).
 

@@ -68,8 +68,9 @@ class Section:
         object.__setattr__(self, "axis1", _vector("axis1", axis / np.linalg.norm(axis), 3))
 
     @classmethod
-    def tube(cls, outer: float, inner: float, E: float, G: float, axis1: object = (0.0, 0.0, 1.0),
-             density: float = 0.0) -> Section:
+    def tube(
+        cls, outer: float, inner: float, E: float, G: float, axis1: object = (0.0, 0.0, 1.0), density: float = 0.0
+    ) -> Section:
         """A round tube: I1 = I2 = pi (D^4 - d^4) / 64, J = 2 I1.
 
         Args:
@@ -89,7 +90,9 @@ class Section:
         if not (math.isfinite(outer) and math.isfinite(inner) and 0.0 <= inner < outer):
             raise InvalidParameters("outer/inner", (outer, inner), "need 0 <= inner < outer (m)")
         inertia = math.pi * (outer**4 - inner**4) / 64.0
-        return cls(E, G, math.pi * (outer**2 - inner**2) / 4.0, inertia, inertia, 2.0 * inertia, np.asarray(axis1), density)
+        return cls(
+            E, G, math.pi * (outer**2 - inner**2) / 4.0, inertia, inertia, 2.0 * inertia, np.asarray(axis1), density
+        )
 
     def mass(self, length: float) -> float:
         """The mass of a straight beam of this section.
@@ -199,6 +202,12 @@ class ElasticData:
         Returns:
             The scaled `ElasticData`.
         """
-        joints = {name: replace(j, stiffness=None if j.stiffness is None else j.stiffness * factor,
-                                drive=None if j.drive is None else j.drive * factor) for name, j in self.joints.items()}
+        joints = {
+            name: replace(
+                j,
+                stiffness=None if j.stiffness is None else j.stiffness * factor,
+                drive=None if j.drive is None else j.drive * factor,
+            )
+            for name, j in self.joints.items()
+        }
         return ElasticData({name: s.scaled(factor) for name, s in self.sections.items()}, joints)

@@ -94,8 +94,12 @@ def evaluate(ideal: Idealisation, Q: np.ndarray, actuation: np.ndarray | None = 
     G[..., :3, :3], G[..., :3, 3], G[..., 3, 3] = R[:, used], t[:, used], 1.0
     residual = np.abs(full.residual(G, Q)).max(initial=0.0)
     if residual > CLOSED_TOL:
-        raise InvalidParameters("q", f"closure residual {residual:.3g}", f"the pose does not close the loops (over "
-                                f"{CLOSED_TOL:g}): the elastic model is linear about an assembled pose")
+        raise InvalidParameters(
+            "q",
+            f"closure residual {residual:.3g}",
+            f"the pose does not close the loops (over "
+            f"{CLOSED_TOL:g}): the elastic model is linear about an assembled pose",
+        )
     W = full.row_wrenches(G)
     rows = full.jacobian(W, J, Q)
     ne = na + len(ideal.drives)
@@ -149,13 +153,19 @@ def particular(pose: Pose, b: np.ndarray) -> np.ndarray:
     Raises:
         SingularConfiguration: a load the locked mechanism cannot hold (it still moves under it).
     """
-    x = np.linalg.lstsq(pose.A[0], b[0], rcond=None)[0][None] if len(b) == 1 else \
-        np.linalg.pinv(pose.A, rcond=core.RANK_TOL) @ b
+    x = (
+        np.linalg.lstsq(pose.A[0], b[0], rcond=None)[0][None]
+        if len(b) == 1
+        else np.linalg.pinv(pose.A, rcond=core.RANK_TOL) @ b
+    )
     residual = np.linalg.norm(pose.A @ x - b, axis=1)
     scale = np.maximum(np.linalg.norm(b, axis=1), 1e-300)
     if np.any(residual > HELD_TOL * scale):
-        raise SingularConfiguration(float("inf"), "with its actuators locked the mechanism still moves under this load "
-                                    "(an unactuated freedom no joint spring holds): no static answer")
+        raise SingularConfiguration(
+            float("inf"),
+            "with its actuators locked the mechanism still moves under this load "
+            "(an unactuated freedom no joint spring holds): no static answer",
+        )
     return x
 
 
@@ -181,8 +191,9 @@ def _variation(Y: np.ndarray) -> np.ndarray:
     return np.sqrt(np.square(Y).sum(axis=-1))
 
 
-def energy_product(pose: Pose, drive_compliance: np.ndarray, A: np.ndarray, a: np.ndarray, B: np.ndarray,
-                   b: np.ndarray) -> np.ndarray:
+def energy_product(
+    pose: Pose, drive_compliance: np.ndarray, A: np.ndarray, a: np.ndarray, B: np.ndarray, b: np.ndarray
+) -> np.ndarray:
     """The complementary-energy product sum_j A_j^T F_j B_j + a^T diag(c) b of two sets of reactions.
 
     Args:
@@ -198,7 +209,9 @@ def energy_product(pose: Pose, drive_compliance: np.ndarray, A: np.ndarray, a: n
     """
     n, rows = len(A), A.shape[1] * 6
     FB = (pose.compliance @ B).reshape(n, rows, B.shape[-1])
-    return np.swapaxes(A.reshape(n, rows, A.shape[-1]), 1, 2) @ FB + np.swapaxes(a * drive_compliance[:, None], 1, 2) @ b
+    return (
+        np.swapaxes(A.reshape(n, rows, A.shape[-1]), 1, 2) @ FB + np.swapaxes(a * drive_compliance[:, None], 1, 2) @ b
+    )
 
 
 def compatible(pose: Pose, drive_compliance: np.ndarray, reactions: np.ndarray, efforts: np.ndarray) -> Compatible:
@@ -260,7 +273,7 @@ def unit_loads(model: pin.Model, pose: Pose, bodies: np.ndarray, points: np.ndar
         j = int(body)
         while j > 0:
             path[c, j - 1] = True
-            mask[c, model.joints[j].idx_v:model.joints[j].idx_v + model.joints[j].nv] = 1.0
+            mask[c, model.joints[j].idx_v : model.joints[j].idx_v + model.joints[j].nv] = 1.0
             j = model.parents[j]
     W = _unit_wrenches(points)  # (N, k, 6, 6) columns: the unit wrenches at x, about the world origin
     b = -np.einsum("nav,kv,nkaw->nvkw", pose.J, mask, W).reshape(n, model.nv, 6 * k)

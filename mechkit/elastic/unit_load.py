@@ -66,8 +66,11 @@ class UnitLoad:
             raise MethodUnavailable("unit-load method", "joint stiffness is not covered: only beams and drives")
         self.opinion = SecondOpinion(mech)
         root = ET.fromstring(mech.urdf)
-        self.axes = {j.get("name"): np.array([float(x) for x in j.find("axis").get("xyz").split()])
-                     for j in root.findall("joint") if j.find("axis") is not None}
+        self.axes = {
+            j.get("name"): np.array([float(x) for x in j.find("axis").get("xyz").split()])
+            for j in root.findall("joint")
+            if j.find("axis") is not None
+        }
 
     def _joints(self, pdata: pin.Data) -> list[dict]:
         """Every joint (tree, then cuts): sides, point, centre, constrained directions (world)."""
@@ -81,14 +84,31 @@ class UnitLoad:
             axis = pdata.oMf[fa].rotation @ c.axis if c.axis is not None else None
             if c.kind == "hooke":
                 axis = np.cross(pdata.oMf[fa].rotation @ c.axis_a, pdata.oMf[fb].rotation @ c.axis_b)
-            out.append((c.name, model.frames[fa].parentJoint, model.frames[fb].parentJoint,
-                        pdata.oMf[fb].translation.copy(), axis, c.kind))
+            out.append(
+                (
+                    c.name,
+                    model.frames[fa].parentJoint,
+                    model.frames[fb].parentJoint,
+                    pdata.oMf[fb].translation.copy(),
+                    axis,
+                    c.kind,
+                )
+            )
         joints = []
         for name, a, b, point, axis, kind in out:
             offset = self.data.joints[name].centre if name in self.data.joints else 0.0
             centre = point + (offset * axis / np.linalg.norm(axis) if offset else 0.0)
-            joints.append({"name": name, "a": a, "b": b, "point": point, "centre": centre, "axis": axis,
-                           "W": _basis(axis, kind, name in self.mech.actuated)})
+            joints.append(
+                {
+                    "name": name,
+                    "a": a,
+                    "b": b,
+                    "point": point,
+                    "centre": centre,
+                    "axis": axis,
+                    "W": _basis(axis, kind, name in self.mech.actuated),
+                }
+            )
         return joints
 
     def reactions(self, q: np.ndarray, v: np.ndarray, a: np.ndarray) -> dict[str, np.ndarray]:
@@ -116,11 +136,11 @@ class UnitLoad:
             on_origin = _moment_about_origin(j["W"], j["point"])
             for body, sign in ((j["b"], 1.0), (j["a"], -1.0)):
                 if body:
-                    E[6 * (body - 1):6 * body, starts[k]:starts[k + 1]] += sign * on_origin
+                    E[6 * (body - 1) : 6 * body, starts[k] : starts[k + 1]] += sign * on_origin
         N = scipy.linalg.null_space(E)
         states = np.zeros((N.shape[1], len(joints), 6))
         for k, j in enumerate(joints):
-            states[:, k] = (j["W"] @ N[starts[k]:starts[k + 1]]).T
+            states[:, k] = (j["W"] @ N[starts[k] : starts[k + 1]]).T
         every = np.concatenate([Rp[None], states])  # state 0: the SOC equilibrium; then the unit self-stresses
         delta = self._flexibility(pdata, joints, every)
         X = -np.linalg.lstsq(delta[1:, 1:], delta[1:, 0], rcond=1e-12)[0]
@@ -158,8 +178,15 @@ class UnitLoad:
                 m_centre = sign * (states[:, k, 3:] + np.cross(j["point"] - j["centre"], states[:, k, :3]))
                 for weight, at in ((1.0, 0.0), (4.0, 0.5), (1.0, 1.0)):  # Simpson over s = at * length
                     m = m_centre - at * length * np.cross(e, f)
-                    parts = np.stack([f @ e / np.sqrt(s.E * s.A), m @ e / np.sqrt(s.G * s.J),
-                                      m @ y / np.sqrt(s.E * s.I1), m @ z / np.sqrt(s.E * s.I2)], axis=1)
+                    parts = np.stack(
+                        [
+                            f @ e / np.sqrt(s.E * s.A),
+                            m @ e / np.sqrt(s.G * s.J),
+                            m @ y / np.sqrt(s.E * s.I1),
+                            m @ z / np.sqrt(s.E * s.I2),
+                        ],
+                        axis=1,
+                    )
                     delta += weight * length / 6.0 * parts @ parts.T
         for name, j in self.data.joints.items():
             if j.drive is not None:

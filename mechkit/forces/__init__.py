@@ -35,7 +35,23 @@ from mechkit.forces.springs import JointSprings
 from mechkit.forces.wrenches import BodyWrench
 
 __all__ = [
-    "ROLES", "SPEED_THRESHOLD", "BodyWrench", "CoulombFriction", "Described", "ForceElement", "ForceState",
-    "FrictionLocks", "Gravity", "JointSprings", "Load", "PinFriction", "ReactionFriction", "TorqueMotor", "envelope",
-    "generalized_of_wrenches", "read_described", "smooth_sign", "wrench_on_body",
+    "ROLES",
+    "SPEED_THRESHOLD",
+    "BodyWrench",
+    "CoulombFriction",
+    "Described",
+    "ForceElement",
+    "ForceState",
+    "FrictionLocks",
+    "Gravity",
+    "JointSprings",
+    "Load",
+    "PinFriction",
+    "ReactionFriction",
+    "TorqueMotor",
+    "envelope",
+    "generalized_of_wrenches",
+    "read_described",
+    "smooth_sign",
+    "wrench_on_body",
 ]

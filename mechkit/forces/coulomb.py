@@ -75,8 +75,13 @@ class CoulombFriction(ForceElement):
     role = "dissipative"
     friction = True
 
-    def __init__(self, model: pin.Model, sizes: Mapping[str, float], threshold: float = SPEED_THRESHOLD,
-                 name: str = "joint friction"):
+    def __init__(
+        self,
+        model: pin.Model,
+        sizes: Mapping[str, float],
+        threshold: float = SPEED_THRESHOLD,
+        name: str = "joint friction",
+    ):
         if not threshold > 0:
             raise InvalidParameters("threshold", threshold, "the friction's speed threshold must be > 0")
         self.name, self.threshold = name, float(threshold)

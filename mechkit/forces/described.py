@@ -52,7 +52,9 @@ class Described:
         """
         out: list = []
         if self.dampers:
-            out.append(JointSprings(model, [JointSpring(j, damping=d) for j, d in self.dampers.items()], "joint dampers"))
+            out.append(
+                JointSprings(model, [JointSpring(j, damping=d) for j, d in self.dampers.items()], "joint dampers")
+            )
         if self.friction:
             out.append(CoulombFriction(model, self.friction))
         return out
@@ -103,8 +105,10 @@ def from_urdf(urdf: str, model: pin.Model, actuated: tuple[str, ...] = ()) -> De
             if lower < upper:
                 out.limits[name] = (lower, upper)
             if name in actuated:
-                out.motors[name] = (_float(limit, "effort", math.inf, where) or math.inf,
-                                    _float(limit, "velocity", math.inf, where) or math.inf)
+                out.motors[name] = (
+                    _float(limit, "effort", math.inf, where) or math.inf,
+                    _float(limit, "velocity", math.inf, where) or math.inf,
+                )
     return out
 
 
@@ -130,7 +134,9 @@ def from_mjcf(path: Path, model: pin.Model) -> Described:
     try:
         mm = mujoco.MjModel.from_xml_path(str(path))
     except ValueError as err:
-        raise MalformedDescription(str(path), f"MuJoCo could not compile it: {str(err).strip().splitlines()[0]}") from None
+        raise MalformedDescription(
+            str(path), f"MuJoCo could not compile it: {str(err).strip().splitlines()[0]}"
+        ) from None
     out = Described()
     one = (int(mujoco.mjtJoint.mjJNT_HINGE), int(mujoco.mjtJoint.mjJNT_SLIDE))
     for j in range(mm.njnt):
@@ -145,7 +151,10 @@ def from_mjcf(path: Path, model: pin.Model) -> Described:
     for a in range(mm.nu):
         name = mujoco.mj_id2name(mm, mujoco.mjtObj.mjOBJ_ACTUATOR, a) or f"actuator{a}"
         if mm.actuator_forcelimited[a]:
-            out.motors[name] = (float(max(abs(mm.actuator_forcerange[a, 0]), abs(mm.actuator_forcerange[a, 1]))), math.inf)
+            out.motors[name] = (
+                float(max(abs(mm.actuator_forcerange[a, 0]), abs(mm.actuator_forcerange[a, 1]))),
+                math.inf,
+            )
     return out
 
 

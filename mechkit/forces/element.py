@@ -143,8 +143,9 @@ def generalized_of_wrenches(model: pin.Model, data: pin.Data, wrenches: np.ndarr
     return out
 
 
-def wrench_on_body(model: pin.Model, data: pin.Data, joint: int, force: np.ndarray, moment: np.ndarray,
-                   point: np.ndarray) -> np.ndarray:
+def wrench_on_body(
+    model: pin.Model, data: pin.Data, joint: int, force: np.ndarray, moment: np.ndarray, point: np.ndarray
+) -> np.ndarray:
     """A world force through a world point plus a world moment on one body, as its `fext` row.
 
     Args:

@@ -56,8 +56,9 @@ class TorqueMotor(ForceElement):
 
     role = "source"
 
-    def __init__(self, row: np.ndarray, command: Command, stall: float = math.inf, no_load: float = math.inf,
-                 name: str = "motor"):
+    def __init__(
+        self, row: np.ndarray, command: Command, stall: float = math.inf, no_load: float = math.inf, name: str = "motor"
+    ):
         if not (stall > 0 and no_load > 0):
             raise InvalidParameters(f"motor {name}", (stall, no_load), "stall effort and no-load rate must be > 0")
         self.row = np.asarray(row, dtype=float)
@@ -65,8 +66,9 @@ class TorqueMotor(ForceElement):
         self.stall, self.no_load, self.name = float(stall), float(no_load), name
 
     @classmethod
-    def on_joint(cls, model: pin.Model, joint: str, command: Command, stall: float = math.inf,
-                 no_load: float = math.inf) -> TorqueMotor:
+    def on_joint(
+        cls, model: pin.Model, joint: str, command: Command, stall: float = math.inf, no_load: float = math.inf
+    ) -> TorqueMotor:
         """A motor on a one-freedom joint, named after it.
 
         Args:

@@ -49,9 +49,11 @@ class FrictionLocks(MechkitError):
 
     def __init__(self, change: float, tol: float, iterations: int, what: str = ""):
         self.change, self.tol, self.iterations = change, tol, iterations
-        super().__init__(f"joint friction locks the mechanism{': ' + what if what else ''} (the fixed point of "
-                         f"reactions and friction still changes by {change:.3g} N m > {tol:.3g} after {iterations} "
-                         "iterations)")
+        super().__init__(
+            f"joint friction locks the mechanism{': ' + what if what else ''} (the fixed point of "
+            f"reactions and friction still changes by {change:.3g} N m > {tol:.3g} after {iterations} "
+            "iterations)"
+        )
 
 
 @dataclass(frozen=True)
@@ -93,11 +95,20 @@ class PinFriction:
 
 
 def _check(joint: str, spec: PinFriction) -> None:
-    ok = (spec.mu >= 0 and spec.radius > 0 and spec.bending_arm > 0 and spec.collar_radius >= 0 and spec.preload >= 0
-          and spec.threshold > 0)
+    ok = (
+        spec.mu >= 0
+        and spec.radius > 0
+        and spec.bending_arm > 0
+        and spec.collar_radius >= 0
+        and spec.preload >= 0
+        and spec.threshold > 0
+    )
     if not ok:
-        raise InvalidParameters(f"friction on {joint}", spec, "needs mu >= 0, radius > 0, bending_arm > 0, "
-                                "collar_radius >= 0, preload >= 0, threshold > 0")
+        raise InvalidParameters(
+            f"friction on {joint}",
+            spec,
+            "needs mu >= 0, radius > 0, bending_arm > 0, collar_radius >= 0, preload >= 0, threshold > 0",
+        )
 
 
 class ReactionFriction(ForceElement):
@@ -118,8 +129,14 @@ class ReactionFriction(ForceElement):
     friction = True
     needs_reactions = True
 
-    def __init__(self, model: pin.Model, joint_names: Sequence[str], cuts: Sequence, joints: Mapping[str, PinFriction],
-                 name: str = "reaction friction"):
+    def __init__(
+        self,
+        model: pin.Model,
+        joint_names: Sequence[str],
+        cuts: Sequence,
+        joints: Mapping[str, PinFriction],
+        name: str = "reaction friction",
+    ):
         self.name, self.joints = name, dict(joints)
         n_tree = model.njoints - 1
         by_cut = {c.closure.name: c for c in cuts}
@@ -185,6 +202,10 @@ class ReactionFriction(ForceElement):
             Joint name -> T (N m, >= 0).
         """
         out = {name: spec.torque(state.reactions[k], state.data.J[3:, iv]) for name, k, spec, iv in self._tree}
-        out.update({name: spec.torque(state.reactions[k], state.data.oMf[cut.frame_a].rotation @ cut.closure.axis)
-                    for name, k, spec, cut in self._cuts})
+        out.update(
+            {
+                name: spec.torque(state.reactions[k], state.data.oMf[cut.frame_a].rotation @ cut.closure.axis)
+                for name, k, spec, cut in self._cuts
+            }
+        )
         return out

@@ -42,7 +42,9 @@ class JointSprings(ForceElement):
             if not model.existJointName(s.joint):
                 raise InvalidParameters("spring", s.joint, f"no such joint; joints: {list(model.names[1:])}")
             if s.stiffness < 0 or s.damping < 0:
-                raise InvalidParameters(f"spring on {s.joint}", (s.stiffness, s.damping), "stiffness and damping must be >= 0")
+                raise InvalidParameters(
+                    f"spring on {s.joint}", (s.stiffness, s.damping), "stiffness and damping must be >= 0"
+                )
             j = model.getJointId(s.joint)
             jm = model.joints[j]
             if jm.nv == 1:
@@ -51,14 +53,20 @@ class JointSprings(ForceElement):
                 unbounded.append(jm.nq == 2)
                 laws.append((s.stiffness, s.reference, s.preload, s.damping))
             elif s.stiffness or s.preload:
-                raise InvalidParameters(f"spring on {s.joint}", s, f"a {jm.shortname()} joint has {jm.nv} freedoms: "
-                                        "only a damper acts on it (stiffness and preload 0)")
+                raise InvalidParameters(
+                    f"spring on {s.joint}",
+                    s,
+                    f"a {jm.shortname()} joint has {jm.nv} freedoms: "
+                    "only a damper acts on it (stiffness and preload 0)",
+                )
             else:
                 damped_v += range(jm.idx_v, jm.idx_v + jm.nv)
                 damped += [s.damping] * jm.nv
         self._q, self._v = np.array(q_index, dtype=int), np.array(v_index, dtype=int)
         self._unbounded = np.array(unbounded, dtype=bool)
-        self._k, self._ref, self._pre, self._d = (np.array(c, dtype=float) for c in zip(*laws)) if laws else (np.zeros(0),) * 4
+        self._k, self._ref, self._pre, self._d = (
+            (np.array(c, dtype=float) for c in zip(*laws)) if laws else (np.zeros(0),) * 4
+        )
         self._damped_v, self._damped = np.array(damped_v, dtype=int), np.array(damped, dtype=float)
 
     def __bool__(self) -> bool:
@@ -75,7 +83,9 @@ class JointSprings(ForceElement):
         """
         x = q[..., self._q]
         if self._unbounded.any():
-            x = np.where(self._unbounded, np.arctan2(q[..., np.minimum(self._q + 1, q.shape[-1] - 1)], q[..., self._q]), x)
+            x = np.where(
+                self._unbounded, np.arctan2(q[..., np.minimum(self._q + 1, q.shape[-1] - 1)], q[..., self._q]), x
+            )
         return x
 
     def forces(self, q: np.ndarray, v: np.ndarray) -> np.ndarray:
@@ -114,7 +124,10 @@ class JointSprings(ForceElement):
         Returns:
             (...,) the power (W, <= 0).
         """
-        return -(np.sum(self._d * v[..., self._v] ** 2, axis=-1) + np.sum(self._damped * v[..., self._damped_v] ** 2, axis=-1))
+        return -(
+            np.sum(self._d * v[..., self._v] ** 2, axis=-1)
+            + np.sum(self._damped * v[..., self._damped_v] ** 2, axis=-1)
+        )
 
     def load(self, state: ForceState) -> Load:
         """Springs and dampers at a state.

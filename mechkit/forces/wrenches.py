@@ -48,8 +48,15 @@ class BodyWrench(ForceElement):
 
     role = "source"
 
-    def __init__(self, model: pin.Model, joint: str, force: Vector = (0.0, 0.0, 0.0),
-                 moment: Vector = (0.0, 0.0, 0.0), point=(0.0, 0.0, 0.0), name: str | None = None):
+    def __init__(
+        self,
+        model: pin.Model,
+        joint: str,
+        force: Vector = (0.0, 0.0, 0.0),
+        moment: Vector = (0.0, 0.0, 0.0),
+        point=(0.0, 0.0, 0.0),
+        name: str | None = None,
+    ):
         if not isinstance(joint, str) or not model.existJointName(joint):
             raise InvalidParameters("joint", joint, f"no such joint; joints: {list(model.names[1:])}")
         self.joint, self.id = joint, model.getJointId(joint)

@@ -27,13 +27,24 @@ class JointAxes:
         for j in range(1, model.njoints):
             if model.joints[j].nv == 1:
                 S = np.asarray(data.joints[j].S).reshape(6)
-                self.column[j - 1], self.angular[j - 1], self.single[j - 1] = model.joints[j].idx_v, np.linalg.norm(S[3:]) > 0, True
+                self.column[j - 1], self.angular[j - 1], self.single[j - 1] = (
+                    model.joints[j].idx_v,
+                    np.linalg.norm(S[3:]) > 0,
+                    True,
+                )
         used = mech.closure_model.kernel.joints
         frames = model.frames
-        self.cut_joint = np.array([int(np.searchsorted(used, frames[c.frame_a].parentJoint)) for c in mech.cuts], dtype=int)
-        self.cut_axis = np.array([frames[c.frame_a].placement.rotation @ np.asarray(c.closure.axis, dtype=float)
-                                  if c.closure.kind in ("revolute", "prismatic") else np.full(3, np.nan)
-                                  for c in mech.cuts]).reshape(-1, 3)
+        self.cut_joint = np.array(
+            [int(np.searchsorted(used, frames[c.frame_a].parentJoint)) for c in mech.cuts], dtype=int
+        )
+        self.cut_axis = np.array(
+            [
+                frames[c.frame_a].placement.rotation @ np.asarray(c.closure.axis, dtype=float)
+                if c.closure.kind in ("revolute", "prismatic")
+                else np.full(3, np.nan)
+                for c in mech.cuts
+            ]
+        ).reshape(-1, 3)
 
     def world(self, J: np.ndarray, G: np.ndarray) -> np.ndarray:
         """World joint axes of N samples.

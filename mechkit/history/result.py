@@ -123,7 +123,9 @@ class MotionResult:
             MalformedDescription: not a driven joint.
         """
         if joint not in self.effort_names:
-            raise MalformedDescription(f"motion of {self.mechanism}", f"no effort {joint!r}; driven: {self.effort_names}")
+            raise MalformedDescription(
+                f"motion of {self.mechanism}", f"no effort {joint!r}; driven: {self.effort_names}"
+            )
         return self.efforts[:, self.effort_names.index(joint)]
 
     def _joint(self, joint: str) -> int:
@@ -149,10 +151,15 @@ class MotionResult:
 
     def metadata(self) -> dict[str, str]:
         """The table's metadata (strings; lists as JSON)."""
-        return {"mechanism": self.mechanism, "source": self.source, "actuated": json.dumps(list(self.actuated)),
-                "coordinates": json.dumps(list(self.coordinates)), "joints": json.dumps(list(self.joints)),
-                "supports": json.dumps([bool(s) for s in self.supports]),
-                "failures": json.dumps([[t, why] for t, why in self.failures])}
+        return {
+            "mechanism": self.mechanism,
+            "source": self.source,
+            "actuated": json.dumps(list(self.actuated)),
+            "coordinates": json.dumps(list(self.coordinates)),
+            "joints": json.dumps(list(self.joints)),
+            "supports": json.dumps([bool(s) for s in self.supports]),
+            "failures": json.dumps([[t, why] for t, why in self.failures]),
+        }
 
     def to_dataframe(self) -> pd.DataFrame:
         """A pandas DataFrame, one row per sample (metadata in `attrs`)."""
@@ -194,12 +201,24 @@ class MotionResult:
         if any(c.startswith("determinate/") for c in df.columns):
             determinate = block("determinate", joints, COMPONENTS).astype(bool)
         effort_names = tuple(names("effort"))
-        return cls(meta["mechanism"], meta["source"], df["t"].to_numpy(dtype=float), tuple(meta["coordinates"]),
-                   block("q", names("q")).astype(float), block("v", names("v")).astype(float),
-                   block("a", names("a")).astype(float), effort_names, tuple(meta["actuated"]),
-                   block("effort", effort_names).astype(float), joints, np.array(meta["supports"], dtype=bool),
-                   block("reaction", joints, COMPONENTS).astype(float), block("axis", joints, AXES).astype(float),
-                   determinate, tuple((float(t), str(why)) for t, why in meta["failures"]))
+        return cls(
+            meta["mechanism"],
+            meta["source"],
+            df["t"].to_numpy(dtype=float),
+            tuple(meta["coordinates"]),
+            block("q", names("q")).astype(float),
+            block("v", names("v")).astype(float),
+            block("a", names("a")).astype(float),
+            effort_names,
+            tuple(meta["actuated"]),
+            block("effort", effort_names).astype(float),
+            joints,
+            np.array(meta["supports"], dtype=bool),
+            block("reaction", joints, COMPONENTS).astype(float),
+            block("axis", joints, AXES).astype(float),
+            determinate,
+            tuple((float(t), str(why)) for t, why in meta["failures"]),
+        )
 
 
 def pyarrow() -> ModuleType:

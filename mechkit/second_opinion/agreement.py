@@ -159,9 +159,11 @@ def agreement(opinion: SecondOpinion, states: list[State], timing: bool = True) 
                     key = f"reaction {name}.{label}"
                     values.setdefault(key, ("force" if k < 3 else "moment", [], []))[1].append(mine.reactions[name][k])
                     values[key][2].append(reaction.wrench[k])
-    largest = {"effort": max(max(np.abs(list(r.efforts.values())), default=0.0) for r in theirs),
-               "force": max(max(np.abs(x.wrench[:3]).max() for x in r.reactions.values()) for r in theirs),
-               "moment": max(max(np.abs(x.wrench[3:]).max() for x in r.reactions.values()) for r in theirs)}
+    largest = {
+        "effort": max(max(np.abs(list(r.efforts.values())), default=0.0) for r in theirs),
+        "force": max(max(np.abs(x.wrench[:3]).max() for x in r.reactions.values()) for r in theirs),
+        "moment": max(max(np.abs(x.wrench[3:]).max() for x in r.reactions.values()) for r in theirs),
+    }
     extent = joint_extent(mech.model, mech.model.createData(), states[0][0])
     largest["moment"] = max(largest["moment"], largest["force"] * extent)
     by_quantity = {}
@@ -171,7 +173,9 @@ def agreement(opinion: SecondOpinion, states: list[State], timing: bool = True) 
     label = max(by_quantity, key=by_quantity.__getitem__, default="")
     times = {}
     if timing:
-        times = {"second opinion (SOC virtual work)": _us_per_state(opinion.solve, states),
-                 "constrained RNEA + determinacy": _us_per_state(mech.inverse_dynamics, states)}
+        times = {
+            "second opinion (SOC virtual work)": _us_per_state(opinion.solve, states),
+            "constrained RNEA + determinacy": _us_per_state(mech.inverse_dynamics, states),
+        }
     consistency = max(max(o.consistency.values(), default=0.0) for o in ours)
     return Agreement(len(states), by_quantity.get(label, 0.0), label, mismatches, times, consistency, by_quantity)

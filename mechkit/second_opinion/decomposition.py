@@ -120,7 +120,9 @@ def unknowns_of(structure: Structure) -> list[Unknown]:
     return out
 
 
-def equilibrium_matrix(structure: Structure, home: Instant, generic: bool) -> tuple[list[Row], list[Unknown], np.ndarray]:
+def equilibrium_matrix(
+    structure: Structure, home: Instant, generic: bool
+) -> tuple[list[Row], list[Unknown], np.ndarray]:
     """The subtree-equilibrium matrix at ``home``: rows (body, component) x unknowns.
 
     Entry: the row's component of the unknown's unit wrench on the subtree of that body (+ where the
@@ -183,8 +185,10 @@ def _parts(rows: list[int], cols: list[int], pattern: sp.csr_matrix) -> list[tup
     m = len(rows)
     graph = sp.bmat([[sp.csr_matrix((m, m)), sub], [sub.T, sp.csr_matrix((len(cols), len(cols)))]], format="csr")
     count, labels = connected_components(graph, directed=False)
-    parts = [([rows[i] for i in range(m) if labels[i] == p], [cols[j] for j in range(len(cols)) if labels[m + j] == p])
-             for p in range(count)]
+    parts = [
+        ([rows[i] for i in range(m) if labels[i] == p], [cols[j] for j in range(len(cols)) if labels[m + j] == p])
+        for p in range(count)
+    ]
     return sorted(parts, key=lambda part: min(part[0], default=len(pattern.indptr)))
 
 
@@ -212,9 +216,12 @@ def block_triangular(pattern: sp.csr_matrix) -> list[tuple[str, list[int], list[
     v_rows, v_cols = _reach([r for r in range(m) if col_of_row[r] < 0], pattern, row_of_col)
     s_cols = [c for c in range(n) if c not in h_cols and c not in v_cols]
     index = {c: i for i, c in enumerate(s_cols)}
-    edges = [(index[c], index[int(w)]) for c in s_cols
-             for w in pattern.indices[pattern.indptr[row_of_col[c]] : pattern.indptr[row_of_col[c] + 1]]
-             if int(w) in index and int(w) != c]
+    edges = [
+        (index[c], index[int(w)])
+        for c in s_cols
+        for w in pattern.indices[pattern.indptr[row_of_col[c]] : pattern.indptr[row_of_col[c] + 1]]
+        if int(w) in index and int(w) != c
+    ]
     k = len(s_cols)
     digraph = sp.csr_matrix((np.ones(len(edges)), ([e[0] for e in edges], [e[1] for e in edges])), shape=(k, k))
     count, labels = connected_components(digraph, directed=True, connection="strong")
@@ -244,8 +251,12 @@ def _topological(needs: list[set[int]], first_row: list[int]) -> list[int]:
     return order
 
 
-def merge_by_body(blocks: list[tuple[str, list[int], list[int]]], rows: list[Row], pattern: sp.csr_matrix,
-                  joins: Sequence[tuple[int, int]] = ()) -> list[tuple[str, list[int], list[int]]]:
+def merge_by_body(
+    blocks: list[tuple[str, list[int], list[int]]],
+    rows: list[Row],
+    pattern: sp.csr_matrix,
+    joins: Sequence[tuple[int, int]] = (),
+) -> list[tuple[str, list[int], list[int]]]:
     """Coarsen the square blocks to whole bodies: the finest block-triangular form in which no body's
     rows are split between two square blocks (its rows in the over- or under-determined parts stay
     there) and the bodies of each pair in ``joins`` share a block. Blocks sharing a body merge;
@@ -282,10 +293,16 @@ def merge_by_body(blocks: list[tuple[str, list[int], list[int]]], rows: list[Row
                 group[find(by_body[a])] = find(by_body[b])
         roots = sorted({find(i) for i in square})
         slot = {root: n for n, root in enumerate(roots)}
-        edges = {(slot[find(i)], slot[find(owner[int(c)])]) for i in square for r in blocks[i][1]
-                 for c in pattern.indices[pattern.indptr[r] : pattern.indptr[r + 1]] if int(c) in owner}
-        graph = sp.csr_matrix((np.ones(len(edges)), tuple(np.array(sorted(edges)).T.reshape(2, -1))),
-                              shape=(len(roots), len(roots)))
+        edges = {
+            (slot[find(i)], slot[find(owner[int(c)])])
+            for i in square
+            for r in blocks[i][1]
+            for c in pattern.indices[pattern.indptr[r] : pattern.indptr[r + 1]]
+            if int(c) in owner
+        }
+        graph = sp.csr_matrix(
+            (np.ones(len(edges)), tuple(np.array(sorted(edges)).T.reshape(2, -1))), shape=(len(roots), len(roots))
+        )
         count, labels = connected_components(graph, directed=True, connection="strong")
         if count == len(roots):
             break
@@ -293,12 +310,17 @@ def merge_by_body(blocks: list[tuple[str, list[int], list[int]]], rows: list[Row
             if labels[a] == labels[b]:
                 group[find(roots[a])] = find(roots[b])
     members = {root: [i for i in square if find(i) == root] for root in roots}
-    merged = [("determined", sorted(r for i in members[root] for r in blocks[i][1]),
-               sorted(c for i in members[root] for c in blocks[i][2])) for root in roots]
+    merged = [
+        (
+            "determined",
+            sorted(r for i in members[root] for r in blocks[i][1]),
+            sorted(c for i in members[root] for c in blocks[i][2]),
+        )
+        for root in roots
+    ]
     needs = [{b for a, b in edges if a == n and b != n} for n in range(len(roots))]
     order = _topological(needs, [min(block[1]) for block in merged])
-    return ([b for b in blocks if b[0] == "over"] + [merged[n] for n in order]
-            + [b for b in blocks if b[0] == "under"])
+    return [b for b in blocks if b[0] == "over"] + [merged[n] for n in order] + [b for b in blocks if b[0] == "under"]
 
 
 LEVELS = ("skc", "body", "component")
@@ -328,8 +350,13 @@ def decompose(structure: Structure, home: Instant, level: str = "skc") -> list[S
     sparse = sp.csr_matrix(pattern)
     blocks = block_triangular(sparse)
     if level != "component":
-        joins = [(j.child, b) for j in structure.joints if j.actuated and level == "skc"
-                 for b, parent in structure.parents.items() if parent == j.child]
+        joins = [
+            (j.child, b)
+            for j in structure.joints
+            if j.actuated and level == "skc"
+            for b, parent in structure.parents.items()
+            if parent == j.child
+        ]
         blocks = merge_by_body(blocks, rows, sparse, joins)
     skcs = []
     order = [j.name for j in structure.joints]
@@ -338,9 +365,22 @@ def decompose(structure: Structure, home: Instant, level: str = "skc") -> list[S
         block_cols = tuple(cols[j] for j in c)
         body_ids = sorted({b for b, _ in block_rows})
         solved = sorted({name for name, k in block_cols if k >= 0}, key=order.index)
-        released = tuple(n for n in solved if any(b != 0 and b not in body_ids for b in
-                                                  (structure.joint(n).parent, structure.joint(n).child)))
+        released = tuple(
+            n
+            for n in solved
+            if any(b != 0 and b not in body_ids for b in (structure.joint(n).parent, structure.joint(n).child))
+        )
         rank = int(np.linalg.matrix_rank(numeric[np.ix_(r, c)])) if r and c else 0
-        skcs.append(SKC(kind, block_rows, block_cols, tuple(structure.bodies[b] for b in body_ids), tuple(solved),
-                        released, tuple(name for name, k in block_cols if k < 0), rank))
+        skcs.append(
+            SKC(
+                kind,
+                block_rows,
+                block_cols,
+                tuple(structure.bodies[b] for b in body_ids),
+                tuple(solved),
+                released,
+                tuple(name for name, k in block_cols if k < 0),
+                rank,
+            )
+        )
     return skcs

@@ -84,8 +84,16 @@ def joint_geometry(model: pin.Model, data: pin.Data, cuts: Cuts, structure: Stru
     return out
 
 
-def instant(cm: core.ClosureModel, cd: core.ClosureData, data: pin.Data, structure: Structure, q: np.ndarray,
-            v: np.ndarray, a: np.ndarray, passive: np.ndarray | None = None) -> Instant:
+def instant(
+    cm: core.ClosureModel,
+    cd: core.ClosureData,
+    data: pin.Data,
+    structure: Structure,
+    q: np.ndarray,
+    v: np.ndarray,
+    a: np.ndarray,
+    passive: np.ndarray | None = None,
+) -> Instant:
     """The instant (q, v, a) (rad, m; rad/s, m/s; rad/s^2, m/s^2) of a mechanism's tree.
 
     Args:
@@ -117,13 +125,20 @@ def instant(cm: core.ClosureModel, cd: core.ClosureData, data: pin.Data, structu
         a_origin = rot @ acc.linear + cross(omega, v_origin)
         lever = rot @ inertia.lever
         a_com = a_origin + cross(alpha, lever) + cross(omega, cross(omega, lever))
-        bodies[j] = BodyMotion(placement.translation.copy(), placement.translation + lever, float(inertia.mass),
-                               rot @ inertia.inertia @ rot.T, omega, alpha, a_com)
+        bodies[j] = BodyMotion(
+            placement.translation.copy(),
+            placement.translation + lever,
+            float(inertia.mass),
+            rot @ inertia.inertia @ rot.T,
+            omega,
+            alpha,
+            a_com,
+        )
     loads = {}
     if passive is not None:
         for j in range(1, model.njoints):
             jm = model.joints[j]
-            share = passive[jm.idx_v:jm.idx_v + jm.nv]
+            share = passive[jm.idx_v : jm.idx_v + jm.nv]
             if np.any(share != 0.0):
                 S = tree_motion(model, data, j)
                 loads[model.names[j]] = S @ np.linalg.solve(S.T @ S, share)

@@ -41,11 +41,16 @@ class SecondOpinion:
         self.mechanism, self.level = mechanism, level
         cm = mechanism.closure_model
         if not mechanism.closures:
-            raise MethodUnavailable("second opinion", "the mechanism has no loop closure: its SOCs are its tree, whose "
-                                    "constrained RNEA is Pinocchio's RNEA; nothing to cross-check")
+            raise MethodUnavailable(
+                "second opinion",
+                "the mechanism has no loop closure: its SOCs are its tree, whose "
+                "constrained RNEA is Pinocchio's RNEA; nothing to cross-check",
+            )
         if cm.couplings:
-            raise MethodUnavailable("second opinion", f"joint couplings ({', '.join(c.name for c in cm.couplings)}) "
-                                    "are not part of the SOC decomposition")
+            raise MethodUnavailable(
+                "second opinion",
+                f"joint couplings ({', '.join(c.name for c in cm.couplings)}) are not part of the SOC decomposition",
+            )
         self._data, self._closure_data = cm.model.createData(), cm.create_data()
         self.structure: Structure = build_structure(cm, mechanism.home_q)
         zero = np.zeros(cm.nv)
@@ -67,5 +72,7 @@ class SecondOpinion:
                 leaves free.
         """
         m = self.mechanism
-        state = instant(m.closure_model, self._closure_data, self._data, self.structure, q, v, a, m.passive_forces(q, v))
+        state = instant(
+            m.closure_model, self._closure_data, self._data, self.structure, q, v, a, m.passive_forces(q, v)
+        )
         return solve_instant(self.plans, self.structure, state)

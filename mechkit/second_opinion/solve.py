@@ -91,10 +91,13 @@ def plan(skcs: Sequence[SKC], structure: Structure, loaded: Sequence[str] = ()) 
         for name, k in skc.unknowns:
             if k >= 0:
                 parts.setdefault(name, []).append(k)
-        known = tuple(j.name for j in structure.joints if j.name in solved
-                      and (masks[j.child] != masks[j.parent]).any())
-        joints = {name: (masks[structure.joint(name).child], masks[structure.joint(name).parent])
-                  for name in (*parts, *skc.actuators, *known)}
+        known = tuple(
+            j.name for j in structure.joints if j.name in solved and (masks[j.child] != masks[j.parent]).any()
+        )
+        joints = {
+            name: (masks[structure.joint(name).child], masks[structure.joint(name).parent])
+            for name in (*parts, *skc.actuators, *known)
+        }
         bodies = tuple((b, masks[b]) for b in structure.bodies if masks[b].any())
         out.append(Plan(f"SKC{i + 1}", heads, axes, bodies, joints, parts, skc.actuators, known))
         solved.update(parts, skc.actuators)
@@ -110,8 +113,13 @@ def _site_jacobian(p: Plan, origins: np.ndarray, moved: np.ndarray, point: np.nd
     turning = rows[p.axes[rows] >= 3]
     d = point - origins[turning]
     unit = np.eye(3)[p.axes[turning] - 3]
-    jac[:3, turning] = np.stack([unit[:, 1] * d[:, 2] - unit[:, 2] * d[:, 1], unit[:, 2] * d[:, 0] - unit[:, 0] * d[:, 2],
-                                 unit[:, 0] * d[:, 1] - unit[:, 1] * d[:, 0]])
+    jac[:3, turning] = np.stack(
+        [
+            unit[:, 1] * d[:, 2] - unit[:, 2] * d[:, 1],
+            unit[:, 2] * d[:, 0] - unit[:, 0] * d[:, 2],
+            unit[:, 0] * d[:, 1] - unit[:, 1] * d[:, 0],
+        ]
+    )
     return jac
 
 
@@ -132,16 +140,19 @@ def skc_instant(p: Plan, structure: Structure, instant: Instant, known: dict[str
     for b, moved in p.bodies:
         m = instant.bodies[b]
         jac = _site_jacobian(p, origins, moved, m.com)
-        loads.append(BodyLoad(structure.bodies[b], m.mass, m.inertia, m.com_acceleration, m.omega, m.alpha,
-                              jac[:3], jac[3:]))
+        loads.append(
+            BodyLoad(structure.bodies[b], m.mass, m.inertia, m.com_acceleration, m.omega, m.alpha, jac[:3], jac[3:])
+        )
 
     def joint_jacobian(name: str) -> np.ndarray:
         child, parent = p.joints[name]
         point = instant.joints[name].point
         return _site_jacobian(p, origins, child, point) - _site_jacobian(p, origins, parent, point)
 
-    released = [WrenchSite(name, joint_jacobian(name), 1.0, basis=instant.joints[name].basis[:, ks])
-                for name, ks in p.parts.items()]
+    released = [
+        WrenchSite(name, joint_jacobian(name), 1.0, basis=instant.joints[name].basis[:, ks])
+        for name, ks in p.parts.items()
+    ]
     actuators = [(name, joint_jacobian(name).T @ instant.joints[name].effort) for name in p.actuators]
     external = [(known[name], joint_jacobian(name)) for name in p.known]
     return SKCInstant(p.name, len(p.heads), loads, actuators, released, external=external)

@@ -248,8 +248,15 @@ def build_structure(cm: core.ClosureModel, q: np.ndarray) -> Structure:
         span = constraint_span(model, data, full_rows, probe)
         joints.append(Joint(name, probe.parent, j, j, False, choose_components(span), probe.actuated))
     for c, cut in enumerate(cm.full_kernel.cuts):
-        probe = Joint(cut.closure.name, int(model.frames[cut.frame_a].parentJoint),
-                      int(model.frames[cut.frame_b].parentJoint), c, True, (), False)
+        probe = Joint(
+            cut.closure.name,
+            int(model.frames[cut.frame_a].parentJoint),
+            int(model.frames[cut.frame_b].parentJoint),
+            c,
+            True,
+            (),
+            False,
+        )
         span = constraint_span(model, data, full_rows, probe)
         joints.append(Joint(probe.name, probe.parent, probe.child, c, True, choose_components(span), False))
     return Structure(body_names(model), tuple(joints), {j: int(model.parents[j]) for j in range(1, model.njoints)})

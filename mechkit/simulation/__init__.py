@@ -10,6 +10,7 @@ reactions, energies and works (`recorder`, `result`). `equilibrium` finds where 
 held inputs balance; `friction` gives inverse dynamics with joint friction from the reactions.
 """
 
+from mechkit.simulation.declared import default_forces, file_limits, torque_motors
 from mechkit.simulation.equilibrium import Equilibrium, equilibrium
 from mechkit.simulation.events import Impact, Latch, Limit, impact
 from mechkit.simulation.friction import FrictionInverse, inverse_dynamics
@@ -17,12 +18,38 @@ from mechkit.simulation.integrator import ATOL, METHODS, RTOL, Event, Integratio
 from mechkit.simulation.prescribed import Drives, law_of_samples, prescribed
 from mechkit.simulation.projection import POSITION_TOL, Projection
 from mechkit.simulation.result import SimulationResult, write_csv, write_parquet
-from mechkit.simulation.simulate import default_forces, file_limits, simulate, torque_motors
+from mechkit.simulation.simulate import simulate
 from mechkit.simulation.system import Evaluation, MechanismSystem
 
 __all__ = [
-    "ATOL", "METHODS", "POSITION_TOL", "RTOL", "Drives", "Equilibrium", "Evaluation", "Event", "FrictionInverse", "Impact",
-    "IntegrationFailed", "Latch",
-    "Limit", "MechanismSystem", "Options", "Projection", "SimulationResult", "Stepper", "default_forces", "equilibrium",
-    "file_limits", "impact", "inverse_dynamics", "law_of_samples", "prescribed", "run", "simulate", "torque_motors", "write_csv", "write_parquet",
+    "ATOL",
+    "METHODS",
+    "POSITION_TOL",
+    "RTOL",
+    "Drives",
+    "Equilibrium",
+    "Evaluation",
+    "Event",
+    "FrictionInverse",
+    "Impact",
+    "IntegrationFailed",
+    "Latch",
+    "Limit",
+    "MechanismSystem",
+    "Options",
+    "Projection",
+    "SimulationResult",
+    "Stepper",
+    "default_forces",
+    "equilibrium",
+    "file_limits",
+    "impact",
+    "inverse_dynamics",
+    "law_of_samples",
+    "prescribed",
+    "run",
+    "simulate",
+    "torque_motors",
+    "write_csv",
+    "write_parquet",
 ]

@@ -55,8 +55,14 @@ class Equilibrium:
         return bool(np.all(self.stiffness > 0))
 
 
-def equilibrium(mech: Any, held: Mapping[str, float] | None = None, elements: Sequence[ForceElement] | None = None,
-                q0: np.ndarray | None = None, tol: float = 1e-10, max_iter: int = 200) -> Equilibrium:
+def equilibrium(
+    mech: Any,
+    held: Mapping[str, float] | None = None,
+    elements: Sequence[ForceElement] | None = None,
+    q0: np.ndarray | None = None,
+    tol: float = 1e-10,
+    max_iter: int = 200,
+) -> Equilibrium:
     """The static equilibrium near q0 with the `held` joints at their values.
 
     Args:
@@ -104,8 +110,10 @@ def equilibrium(mech: Any, held: Mapping[str, float] | None = None, elements: Se
         return N.T @ here @ (here.T @ force(q))
 
     def stiffness(q: np.ndarray, N: np.ndarray) -> np.ndarray:
-        cols = [(reduced(move(q, N, DIFF_STEP * e), N) - reduced(move(q, N, -DIFF_STEP * e), N)) / (2 * DIFF_STEP)
-                for e in np.eye(N.shape[1])]
+        cols = [
+            (reduced(move(q, N, DIFF_STEP * e), N) - reduced(move(q, N, -DIFF_STEP * e), N)) / (2 * DIFF_STEP)
+            for e in np.eye(N.shape[1])
+        ]
         K = np.array(cols).T
         return 0.5 * (K + K.T)
 
@@ -121,5 +129,6 @@ def equilibrium(mech: Any, held: Mapping[str, float] | None = None, elements: Se
         step = -np.linalg.solve(K, rho) if np.all(eig > 0) else rho / max(float(np.max(eig)), 1e-12)
         step *= min(1.0, MAX_STEP / max(float(np.max(np.abs(step))), 1e-300))
         q = move(q, N, step)
-    raise ClosureNotConverged(float(np.max(np.abs(rho))), tol, max_iter, "no static equilibrium found (the reduced "
-                              "force did not vanish)")
+    raise ClosureNotConverged(
+        float(np.max(np.abs(rho))), tol, max_iter, "no static equilibrium found (the reduced force did not vanish)"
+    )

@@ -50,8 +50,11 @@ class Limit:
 
     def __post_init__(self) -> None:
         if not self.lower < self.upper or not 0.0 <= self.restitution <= 1.0:
-            raise InvalidParameters(f"limit of {self.joint}", (self.lower, self.upper, self.restitution),
-                                    "needs lower < upper and a restitution in [0, 1]")
+            raise InvalidParameters(
+                f"limit of {self.joint}",
+                (self.lower, self.upper, self.restitution),
+                "needs lower < upper and a restitution in [0, 1]",
+            )
 
 
 @dataclass(frozen=True)
@@ -84,8 +87,16 @@ class Impact:
     dissipated: float
 
 
-def impact(cm: core.ClosureModel, cd: core.ClosureData, q: np.ndarray, v: np.ndarray, drive_v: np.ndarray,
-           drive_rates: np.ndarray, joint_v: int, rate: float) -> Impact:
+def impact(
+    cm: core.ClosureModel,
+    cd: core.ClosureData,
+    q: np.ndarray,
+    v: np.ndarray,
+    drive_v: np.ndarray,
+    drive_rates: np.ndarray,
+    joint_v: int,
+    rate: float,
+) -> Impact:
     """The velocity jump of least kinetic-energy change that keeps the closures and sets the driven and
     impacting joints' rates (see the module docstring).
 
@@ -113,6 +124,6 @@ def impact(cm: core.ClosureModel, cd: core.ClosureData, q: np.ndarray, v: np.nda
     L = np.linalg.lstsq(G @ Minv_Gt, c - G @ v, rcond=None)[0]
     after = v + Minv_Gt @ L
     k = J.shape[0]
-    drive_work = float(L[k:k + len(drive_v)] @ drive_rates)
+    drive_work = float(L[k : k + len(drive_v)] @ drive_rates)
     dissipated = -float(L[-1] * (v[joint_v] + after[joint_v]) / 2)
     return Impact(after, drive_work, dissipated)

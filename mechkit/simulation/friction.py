@@ -47,8 +47,9 @@ class FrictionInverse:
     check: float
 
 
-def inverse_dynamics(mech: Any, q: np.ndarray, v: np.ndarray, a: np.ndarray, elements: list[ForceElement],
-                     t: float = 0.0) -> FrictionInverse:
+def inverse_dynamics(
+    mech: Any, q: np.ndarray, v: np.ndarray, a: np.ndarray, elements: list[ForceElement], t: float = 0.0
+) -> FrictionInverse:
     """The actuators' efforts and every reaction for one state of a motion under force elements, friction
     from the reactions included (see the module docstring).
 
@@ -83,7 +84,9 @@ def inverse_dynamics(mech: Any, q: np.ndarray, v: np.ndarray, a: np.ndarray, ele
             break
         state.reactions = out.reaction_values
         new_tau, new_fext, _ = system._loads(state, system.friction)
-        change = max(float(np.max(np.abs(new_tau - tau_f), initial=0.0)), float(np.max(np.abs(new_fext - fext_f), initial=0.0)))
+        change = max(
+            float(np.max(np.abs(new_tau - tau_f), initial=0.0)), float(np.max(np.abs(new_fext - fext_f), initial=0.0))
+        )
         scale = max(float(np.max(np.abs(new_tau), initial=0.0)), float(np.max(np.abs(new_fext), initial=0.0)), 1e-300)
         tau_f, fext_f = new_tau, new_fext
         iterations += 1
@@ -94,8 +97,11 @@ def inverse_dynamics(mech: Any, q: np.ndarray, v: np.ndarray, a: np.ndarray, ele
         if iterations >= FRICTION_ITERATIONS:
             raise FrictionLocks(change, FRICTION_TOL * scale, iterations)
     generalized, wrenches = tau_p + tau_f, fext_p + fext_f
-    tau = mech.closure_model.actuation.T @ out.effort_values + generalized + generalized_of_wrenches(system.model,
-                                                                                                   state.data, wrenches)
+    tau = (
+        mech.closure_model.actuation.T @ out.effort_values
+        + generalized
+        + generalized_of_wrenches(system.model, state.data, wrenches)
+    )
     a_check = core.forward_dynamics(system.cm, system.cd, q, v, tau, "kkt").a
     check = float(np.max(np.abs(a_check - a)))
     limit = CHECK_TOL * max(float(np.max(np.abs(a))), 1.0)

@@ -33,8 +33,12 @@ import scipy.optimize
 from mechkit.base.exceptions import InvalidParameters, MechkitError
 
 #: The one-step methods offered (scipy.integrate classes).
-METHODS = {"RK45": scipy.integrate.RK45, "DOP853": scipy.integrate.DOP853, "RK23": scipy.integrate.RK23,
-           "Radau": scipy.integrate.Radau}
+METHODS = {
+    "RK45": scipy.integrate.RK45,
+    "DOP853": scipy.integrate.DOP853,
+    "RK23": scipy.integrate.RK23,
+    "Radau": scipy.integrate.Radau,
+}
 #: Default relative and absolute tolerances of the adaptive steps (ours: the energy balance of the
 #: registered mechanisms then holds to about 1e-8 of the energy exchanged).
 RTOL, ATOL = 1e-9, 1e-11
@@ -121,11 +125,13 @@ class Stepper:
         o, remaining = self.options, self.t_end - t
         first = None if self.h is None else min(self.h, remaining)
         if o.dt is None:
-            self.solver = METHODS[o.method](self.fun, t, y, self.t_end, first_step=first, max_step=o.max_step,
-                                            rtol=o.rtol, atol=o.atol)
+            self.solver = METHODS[o.method](
+                self.fun, t, y, self.t_end, first_step=first, max_step=o.max_step, rtol=o.rtol, atol=o.atol
+            )
         else:
-            self.solver = METHODS[o.method](self.fun, t, y, self.t_end, first_step=first, max_step=o.dt,
-                                            rtol=1.0, atol=FIXED_ATOL)
+            self.solver = METHODS[o.method](
+                self.fun, t, y, self.t_end, first_step=first, max_step=o.dt, rtol=1.0, atol=FIXED_ATOL
+            )
 
     def step(self) -> tuple[float, np.ndarray]:
         """One accepted step: (t, y) at its end.
@@ -149,8 +155,9 @@ class Stepper:
         return self.solver.dense_output()
 
 
-def first_crossing(events: Sequence[Event], dense: Callable[[float], np.ndarray], t0: float, y0: np.ndarray, t1: float,
-                   y1: np.ndarray) -> tuple[int, float] | None:
+def first_crossing(
+    events: Sequence[Event], dense: Callable[[float], np.ndarray], t0: float, y0: np.ndarray, t1: float, y1: np.ndarray
+) -> tuple[int, float] | None:
     """The earliest event crossing in a step, located by Brent's method on the step's dense output.
 
     Args:
@@ -180,8 +187,14 @@ def first_crossing(events: Sequence[Event], dense: Callable[[float], np.ndarray]
     return best
 
 
-def run(fun: Function, t0: float, y0: np.ndarray, t_end: float, options: Options,
-        project: Callable[[float, np.ndarray], np.ndarray] | None = None) -> tuple[list[float], list[np.ndarray]]:
+def run(
+    fun: Function,
+    t0: float,
+    y0: np.ndarray,
+    t_end: float,
+    options: Options,
+    project: Callable[[float, np.ndarray], np.ndarray] | None = None,
+) -> tuple[list[float], list[np.ndarray]]:
     """Every accepted step of dy/dt = fun(t, y) from (t0, y0) to t_end, each followed by `project` (no events).
 
     The simulator's own loop (`mechkit.simulation.simulate`) adds events; this one serves equations of

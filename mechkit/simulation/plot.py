@@ -36,8 +36,13 @@ def figure(result: SimulationResult, title: str | None = None) -> Any:
     top.set_ylabel("joint value (deg or m x 57.3)")
     top.legend(fontsize=7, ncol=4)
     T, V = result.kinetic, result.gravity + result.potentials.sum(axis=1)
-    for values, label in ((T, "kinetic"), (V - V[0], "potential (change)"), (result.supplied, "supplied"),
-                          (result.dissipated, "dissipated"), (result.balance - result.balance[0], "balance drift")):
+    for values, label in (
+        (T, "kinetic"),
+        (V - V[0], "potential (change)"),
+        (result.supplied, "supplied"),
+        (result.dissipated, "dissipated"),
+        (result.balance - result.balance[0], "balance drift"),
+    ):
         mid.plot(t, values, label=label)
     mid.set_ylabel("energy (J)")
     mid.legend(fontsize=8)

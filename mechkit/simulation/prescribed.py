@@ -34,9 +34,12 @@ def law_of_samples(law: Any) -> Law:
         values, at rest.
     """
     t = np.asarray(law.t, dtype=float)
-    pieces = [scipy.interpolate.BPoly.from_derivatives(t, np.stack([law.values[:, k], law.rates[:, k],
-                                                                     law.accelerations[:, k]], axis=1))
-              for k in range(len(law.names))]
+    pieces = [
+        scipy.interpolate.BPoly.from_derivatives(
+            t, np.stack([law.values[:, k], law.rates[:, k], law.accelerations[:, k]], axis=1)
+        )
+        for k in range(len(law.names))
+    ]
     derivatives = [(p, p.derivative(), p.derivative(2)) for p in pieces]
 
     def at(time: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -136,5 +139,8 @@ def prescribed(inputs: Any, names: Sequence[str] | None = None) -> Drives:
         return Drives(tuple(names), inputs)
     if all(hasattr(inputs, a) for a in ("names", "t", "values", "rates", "accelerations")):
         return Drives(tuple(inputs.names), law_of_samples(inputs))
-    raise InvalidParameters("inputs", type(inputs).__name__, "expected an InputLaw, a function of time with input_names, "
-                            "or a mapping joint -> value")
+    raise InvalidParameters(
+        "inputs",
+        type(inputs).__name__,
+        "expected an InputLaw, a function of time with input_names, or a mapping joint -> value",
+    )

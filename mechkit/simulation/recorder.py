@@ -33,9 +33,27 @@ class Recorder:
         self.events: list[tuple[float, str, str]] = []
         self.steps = self.evaluations = 0
         self._drive_impulses = self._impact_loss = 0.0
-        self._rows: dict[str, list] = {k: [] for k in ("t", "q", "v", "a", "efforts", "generalized", "wrenches", "powers",
-                                                       "works", "residual", "kinetic", "gravity", "potentials",
-                                                       "drive_work", "impact_loss", "driven")}
+        self._rows: dict[str, list] = {
+            k: []
+            for k in (
+                "t",
+                "q",
+                "v",
+                "a",
+                "efforts",
+                "generalized",
+                "wrenches",
+                "powers",
+                "works",
+                "residual",
+                "kinetic",
+                "gravity",
+                "potentials",
+                "drive_work",
+                "impact_loss",
+                "driven",
+            )
+        }
 
     def impulse(self, drive_work: float, dissipated: float) -> None:
         """Add an impact's energies.
@@ -88,23 +106,40 @@ class Recorder:
             efforts[self.effort_names.index(name)] = u
         works = L.works(y)
         potentials = s.potentials(q)
-        for key, value in (("t", t), ("q", q), ("v", v), ("a", ev.a), ("efforts", efforts),
-                           ("generalized", ev.generalized), ("wrenches", ev.wrenches), ("powers", ev.powers),
-                           ("works", works[1:]), ("residual", self.projection.residual(q)),
-                           ("kinetic", s.kinetic(q, v)), ("gravity", potentials[0]), ("potentials", potentials[1:]),
-                           ("drive_work", works[0] + self._drive_impulses), ("impact_loss", self._impact_loss),
-                           ("driven", s.drives.all)):
+        for key, value in (
+            ("t", t),
+            ("q", q),
+            ("v", v),
+            ("a", ev.a),
+            ("efforts", efforts),
+            ("generalized", ev.generalized),
+            ("wrenches", ev.wrenches),
+            ("powers", ev.powers),
+            ("works", works[1:]),
+            ("residual", self.projection.residual(q)),
+            ("kinetic", s.kinetic(q, v)),
+            ("gravity", potentials[0]),
+            ("potentials", potentials[1:]),
+            ("drive_work", works[0] + self._drive_impulses),
+            ("impact_loss", self._impact_loss),
+            ("driven", s.drives.all),
+        ):
             rows[key].append(value)
 
     def arrays(self) -> dict[str, np.ndarray]:
         """The samples as arrays (efforts padded with NaN to every effort column)."""
         out = {k: np.array(v) for k, v in self._rows.items() if k not in ("efforts", "driven")}
         width = len(self.effort_names)
-        out["efforts"] = np.array([np.pad(e, (0, width - len(e)), constant_values=np.nan) for e in self._rows["efforts"]])
+        out["efforts"] = np.array(
+            [np.pad(e, (0, width - len(e)), constant_values=np.nan) for e in self._rows["efforts"]]
+        )
         out["efforts"] = out["efforts"].reshape(len(out["t"]), width)
         n = len(out["t"])
-        for key, size in (("powers", self.system.elements), ("works", self.system.elements),
-                          ("potentials", self.system.elements)):
+        for key, size in (
+            ("powers", self.system.elements),
+            ("works", self.system.elements),
+            ("potentials", self.system.elements),
+        ):
             out[key] = out[key].reshape(n, len(size))
         return out
 
@@ -133,5 +168,13 @@ class Recorder:
             for w in r["wrenches"][i]:
                 f.append(pin.Force(w[:3].copy(), w[3:].copy()))
             fexts.append(f)
-        return core.inverse_dynamics_batch(driven, driven.create_data(), r["q"][rows], r["v"][rows], r["a"][rows], fexts,
-                                           r["generalized"][rows], determinacy_test=False)
+        return core.inverse_dynamics_batch(
+            driven,
+            driven.create_data(),
+            r["q"][rows],
+            r["v"][rows],
+            r["a"][rows],
+            fexts,
+            r["generalized"][rows],
+            determinacy_test=False,
+        )

@@ -113,13 +113,21 @@ class SimulationResult:
         """Lines for a person: samples, closure residual, the energy balance's terms and drift."""
         T, V = self.kinetic, self.gravity + self.potentials.sum(axis=1)
         info = self.integrator
-        lines = [(f"{len(self.t)} samples, t = {self.t[0]:.6g} .. {self.t[-1]:.6g} s, {info.get('method', '')} "
-                  f"{info.get('steps', '')} steps, {info.get('evaluations', '')} evaluations"),
-                 f"closure residual: max {self.residual.max():.3g} m",
-                 (f"energy (J): kinetic {T[-1]:.6g}, potential {V[-1] - V[0]:+.6g} (change), "
-                  f"supplied {self.supplied[-1]:.6g}, dissipated {self.dissipated[-1]:.6g} (impacts {self.impact_loss[-1]:.6g})"),
-                 (f"energy balance: drift {self.energy_error:.3g} J of {self.energy_scale:.6g} J exchanged "
-                  f"({self.energy_error / max(self.energy_scale, 1e-300):.2g})")]
+        lines = [
+            (
+                f"{len(self.t)} samples, t = {self.t[0]:.6g} .. {self.t[-1]:.6g} s, {info.get('method', '')} "
+                f"{info.get('steps', '')} steps, {info.get('evaluations', '')} evaluations"
+            ),
+            f"closure residual: max {self.residual.max():.3g} m",
+            (
+                f"energy (J): kinetic {T[-1]:.6g}, potential {V[-1] - V[0]:+.6g} (change), "
+                f"supplied {self.supplied[-1]:.6g}, dissipated {self.dissipated[-1]:.6g} (impacts {self.impact_loss[-1]:.6g})"
+            ),
+            (
+                f"energy balance: drift {self.energy_error:.3g} J of {self.energy_scale:.6g} J exchanged "
+                f"({self.energy_error / max(self.energy_scale, 1e-300):.2g})"
+            ),
+        ]
         lines += [f"t = {t:.6g} s: {name}: {what}" for t, name, what in self.events]
         return lines
 
@@ -142,9 +150,13 @@ class SimulationResult:
     def metadata(self) -> dict[str, str]:
         """The table's metadata (the motion table's, the elements, the events, the integrator)."""
         meta = self.motion.metadata()
-        meta.update({"elements": json.dumps(dict(zip(self.element_names, self.roles))),
-                     "events": json.dumps([list(e) for e in self.events]),
-                     "integrator": json.dumps(self.integrator, default=str)})
+        meta.update(
+            {
+                "elements": json.dumps(dict(zip(self.element_names, self.roles))),
+                "events": json.dumps([list(e) for e in self.events]),
+                "integrator": json.dumps(self.integrator, default=str),
+            }
+        )
         return meta
 
     def to_dataframe(self) -> Any:

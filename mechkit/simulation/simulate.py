@@ -11,7 +11,7 @@ dynamics found.
 from __future__ import annotations
 
 import math
-from collections.abc import Callable, Mapping, Sequence
+from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import Any
 
@@ -19,9 +19,10 @@ import numpy as np
 
 from mechkit import core
 from mechkit.base.exceptions import InvalidParameters
-from mechkit.forces import ForceElement, TorqueMotor, read_described
+from mechkit.forces import ForceElement
 from mechkit.history.axes import JointAxes
 from mechkit.history.result import MotionResult, coordinate_names
+from mechkit.simulation.declared import default_forces, file_limits, torque_motors
 from mechkit.simulation.events import REST_RATE, Latch, Limit, impact
 from mechkit.simulation.integrator import (
     ATOL,
@@ -46,77 +47,33 @@ Progress = Callable[[float, float], None]
 MAX_STEPS = 2_000_000
 
 
-def default_forces(mech: Any, source: str | Path | None = None) -> list[ForceElement]:
-    """The force elements a mechanism's description declares.
-
-    Args:
-        mech: the mechanism (`mechkit.Mechanism`).
-        source: the MJCF file it came from (whose URDF the mechanism does not keep), or None: its URDF
-            is read.
-
-    Returns:
-        Its joint springs (`Mechanism.springs`), then the dampers and friction of its URDF `<dynamics>`
-        or its MJCF `frictionloss`.
-    """
-    out: list[ForceElement] = [mech.springs] if mech.springs else []
-    return out + read_described(source, mech.urdf, mech.model, tuple(mech.actuated)).elements(mech.model)
-
-
-def file_limits(mech: Any, source: str | Path | None = None, restitution: float = 0.0) -> list[Limit]:
-    """The joint limits the description declares (URDF `<limit>`, MJCF `range` of limited joints).
-
-    Args:
-        mech: the mechanism (`mechkit.Mechanism`).
-        source: the MJCF file it came from, or None: its URDF is read.
-        restitution: the limits' restitution (0: stop and hold; 1: elastic).
-
-    Returns:
-        One `Limit` per limited joint.
-    """
-    described = read_described(source, mech.urdf, mech.model, tuple(mech.actuated))
-    return [Limit(j, lo, hi, restitution) for j, (lo, hi) in described.limits.items()]
-
-
-def torque_motors(mech: Any, torques: Any, source: str | Path | None = None) -> list[TorqueMotor]:
-    """Torque motors on the actuators from given efforts, each within the envelope its description gives
-    (`mechkit.forces.motors`).
-
-    Args:
-        mech: the mechanism (`mechkit.Mechanism`).
-        torques: a mapping actuator -> effort (N m or N; a constant or a function of t), a sampled law
-            (`names`, `t`, `values`: linear between samples, held after the last), or None.
-        source: the MJCF file it came from (its force ranges), or None: its URDF is read.
-
-    Returns:
-        One `TorqueMotor` per actuator given (none for None).
-
-    Raises:
-        InvalidParameters: a name that is not an actuator, or a mechanism without actuators.
-    """
-    if torques is None:
-        return []
-    if not isinstance(torques, Mapping):
-        t, values = np.asarray(torques.t, dtype=float), np.asarray(torques.values, dtype=float)
-        torques = {n: (lambda s, k=k: float(np.interp(s, t, values[:, k]))) for k, n in enumerate(torques.names)}
-    mech.require_actuators("given torques")
-    envelopes = read_described(source, mech.urdf, mech.model, tuple(mech.actuated)).motors
-    S = mech.closure_model.actuation
-    out = []
-    for name, command in torques.items():
-        if name not in mech.actuated:
-            raise InvalidParameters("torques", name, f"not an actuator; actuators: {list(mech.actuated)}")
-        stall, no_load = envelopes.get(name, (math.inf, math.inf))
-        out.append(TorqueMotor(S[mech.actuated.index(name)], command, stall, no_load, name))
-    return out
-
-
-def simulate(mech: Any, duration: float, *, inputs: Any = None, input_names: Sequence[str] | None = None, torques: Any = None,
-             forces: Sequence[ForceElement] = (), file_forces: bool = True, source: str | Path | None = None,
-             q0: np.ndarray | None = None, v0: np.ndarray | None = None,
-             t0: float = 0.0, dt: float | None = None, rtol: float = RTOL, atol: float = ATOL, method: str = "RK45",
-             max_step: float = math.inf, dynamics: str | None = None, baumgarte: tuple[float, float] | None = None,
-             project: bool = True, limits: str | Sequence[Limit] | None = "file", restitution: float = 0.0,
-             latches: Sequence[Latch] = (), reactions: bool = True, progress: Progress | None = None) -> SimulationResult:
+def simulate(
+    mech: Any,
+    duration: float,
+    *,
+    inputs: Any = None,
+    input_names: Sequence[str] | None = None,
+    torques: Any = None,
+    forces: Sequence[ForceElement] = (),
+    file_forces: bool = True,
+    source: str | Path | None = None,
+    q0: np.ndarray | None = None,
+    v0: np.ndarray | None = None,
+    t0: float = 0.0,
+    dt: float | None = None,
+    rtol: float = RTOL,
+    atol: float = ATOL,
+    method: str = "RK45",
+    max_step: float = math.inf,
+    dynamics: str | None = None,
+    baumgarte: tuple[float, float] | None = None,
+    project: bool = True,
+    limits: str | Sequence[Limit] | None = "file",
+    restitution: float = 0.0,
+    latches: Sequence[Latch] = (),
+    reactions: bool = True,
+    progress: Progress | None = None,
+) -> SimulationResult:
     """Simulate a mechanism for `duration` seconds.
 
     Args:
@@ -166,7 +123,9 @@ def simulate(mech: Any, duration: float, *, inputs: Any = None, input_names: Seq
         raise InvalidParameters("duration", duration, "must be a positive number of seconds")
     options = Options(method, rtol, atol, dt, max_step)
     drives = prescribed(inputs, input_names)
-    elements = (default_forces(mech, source) if file_forces else []) + list(forces) + torque_motors(mech, torques, source)
+    elements = (
+        (default_forces(mech, source) if file_forces else []) + list(forces) + torque_motors(mech, torques, source)
+    )
     names = [e.name for e in elements]
     if len(set(names)) != len(names):
         raise InvalidParameters("forces", names, "every force element needs its own name")
@@ -224,16 +183,26 @@ def simulate(mech: Any, duration: float, *, inputs: Any = None, input_names: Seq
         recorder.record(t, y, cache)
         if progress is not None:
             progress(t - t0, duration)
-    info = {"method": method if dt is None else f"{method}, fixed step {dt:g} s", "rtol": rtol, "atol": atol, "dt": dt,
-            "dynamics": dynamics, "projection": project, "steps": recorder.steps, "evaluations": recorder.evaluations}
+    info = {
+        "method": method if dt is None else f"{method}, fixed step {dt:g} s",
+        "rtol": rtol,
+        "atol": atol,
+        "dt": dt,
+        "dynamics": dynamics,
+        "projection": project,
+        "steps": recorder.steps,
+        "evaluations": recorder.evaluations,
+    }
     return _result(mech, recorder, elements, info, inputs, reactions)
 
 
 def _joint_value(mech: Any, layout: StateLayout) -> Callable[[str, np.ndarray], float]:
     """joint, y -> the one-freedom joint's value (rad or m)."""
+
     def value(joint: str, y: np.ndarray) -> float:
         k = mech.q_index(joint)
         return float(y[k]) if layout.euclidean else float(layout.q(y)[k])
+
     return value
 
 
@@ -248,13 +217,27 @@ def _events(drives: Drives, limits: Sequence[Limit], latches: Sequence[Latch], v
     for latch in latches:
         if latch.joint not in driven:
             sign = latch.direction or 1
-            out.append(Event(f"latch:{latch.joint}", lambda t, y, j=latch.joint, x=latch.value, s=sign: s * (value(j, y) - x),
-                             1 if latch.direction else 0))
+            out.append(
+                Event(
+                    f"latch:{latch.joint}",
+                    lambda t, y, j=latch.joint, x=latch.value, s=sign: s * (value(j, y) - x),
+                    1 if latch.direction else 0,
+                )
+            )
     return out
 
 
-def _act(event: str, system: MechanismSystem, recorder: Recorder, limits: Sequence[Limit], latches: Sequence[Latch],
-         t: float, q: np.ndarray, v: np.ndarray, stopped: set[str]) -> np.ndarray:
+def _act(
+    event: str,
+    system: MechanismSystem,
+    recorder: Recorder,
+    limits: Sequence[Limit],
+    latches: Sequence[Latch],
+    t: float,
+    q: np.ndarray,
+    v: np.ndarray,
+    stopped: set[str],
+) -> np.ndarray:
     """Apply an event at (t, q, v): the impact, and the joint held where it stops (a stop at a bound joins
     `stopped`); the velocities after it."""
     kind, joint = event.split(":", 1)
@@ -281,8 +264,15 @@ def _act(event: str, system: MechanismSystem, recorder: Recorder, limits: Sequen
     return jump.v
 
 
-def _release(system: MechanismSystem, recorder: Recorder, limits: Sequence[Limit], t: float, q: np.ndarray,
-             v: np.ndarray, stopped: set[str]) -> None:
+def _release(
+    system: MechanismSystem,
+    recorder: Recorder,
+    limits: Sequence[Limit],
+    t: float,
+    q: np.ndarray,
+    v: np.ndarray,
+    stopped: set[str],
+) -> None:
     """Release the joints stopped at a bound whose holding effort would pull them off it."""
     bounds = {x.joint: x for x in limits}
     held = sorted(stopped)
@@ -291,14 +281,21 @@ def _release(system: MechanismSystem, recorder: Recorder, limits: Sequence[Limit
     ev = system.evaluate(t, q, v)
     names = system.drives.all
     for joint in held:
-        side = 1.0 if abs(system.drives.held[joint] - bounds[joint].upper) < abs(system.drives.held[joint] - bounds[joint].lower) else -1.0
+        side = (
+            1.0
+            if abs(system.drives.held[joint] - bounds[joint].upper)
+            < abs(system.drives.held[joint] - bounds[joint].lower)
+            else -1.0
+        )
         if side * ev.efforts[names.index(joint)] > 0:
             system.drives = system.drives.releasing(joint)
             stopped.discard(joint)
             recorder.event(t, f"release:{joint}", "released from its bound")
 
 
-def _result(mech: Any, recorder: Recorder, elements: list[ForceElement], info: dict, inputs, with_reactions: bool) -> SimulationResult:
+def _result(
+    mech: Any, recorder: Recorder, elements: list[ForceElement], info: dict, inputs, with_reactions: bool
+) -> SimulationResult:
     """The recorded samples as a `SimulationResult`, every sample's reactions from the core's inverse dynamics."""
     r = recorder.arrays()
     cm = mech.closure_model
@@ -316,10 +313,35 @@ def _result(mech: Any, recorder: Recorder, elements: list[ForceElement], info: d
     G, Jw, _ = core.kinematic_pass(cm, cm.create_data(), r["q"])
     axes = JointAxes(mech).world(Jw, G)
     source = getattr(inputs, "source", "") or ("prescribed inputs" if inputs is not None else "free motion")
-    motion = MotionResult(mech.spec.name, f"simulation: {source}", r["t"], coordinate_names(mech.model), r["q"], r["v"],
-                          r["a"], tuple(recorder.effort_names), tuple(mech.actuated), r["efforts"], cm.joint_names,
-                          np.array(cm.supports, dtype=bool), reactions, axes)
+    motion = MotionResult(
+        mech.spec.name,
+        f"simulation: {source}",
+        r["t"],
+        coordinate_names(mech.model),
+        r["q"],
+        r["v"],
+        r["a"],
+        tuple(recorder.effort_names),
+        tuple(mech.actuated),
+        r["efforts"],
+        cm.joint_names,
+        np.array(cm.supports, dtype=bool),
+        reactions,
+        axes,
+    )
     friction = np.array([getattr(e, "friction", False) for e in elements], dtype=bool)
-    return SimulationResult(motion, r["residual"], r["kinetic"], r["gravity"], tuple(e.name for e in elements),
-                            tuple(e.role for e in elements), r["potentials"], r["works"], r["drive_work"],
-                            r["impact_loss"], r["powers"][:, friction].sum(axis=1), tuple(recorder.events), info)
+    return SimulationResult(
+        motion,
+        r["residual"],
+        r["kinetic"],
+        r["gravity"],
+        tuple(e.name for e in elements),
+        tuple(e.role for e in elements),
+        r["potentials"],
+        r["works"],
+        r["drive_work"],
+        r["impact_loss"],
+        r["powers"][:, friction].sum(axis=1),
+        tuple(recorder.events),
+        info,
+    )

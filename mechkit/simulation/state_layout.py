@@ -14,9 +14,21 @@ import numpy as np
 import pinocchio as pin
 
 #: Pinocchio joints whose configuration is a vector space with dq/dt = v.
-EUCLIDEAN = ("JointModelRX", "JointModelRY", "JointModelRZ", "JointModelRevoluteUnaligned", "JointModelPX",
-             "JointModelPY", "JointModelPZ", "JointModelPrismaticUnaligned", "JointModelTranslation",
-             "JointModelHX", "JointModelHY", "JointModelHZ", "JointModelHelicalUnaligned")
+EUCLIDEAN = (
+    "JointModelRX",
+    "JointModelRY",
+    "JointModelRZ",
+    "JointModelRevoluteUnaligned",
+    "JointModelPX",
+    "JointModelPY",
+    "JointModelPZ",
+    "JointModelPrismaticUnaligned",
+    "JointModelTranslation",
+    "JointModelHX",
+    "JointModelHY",
+    "JointModelHZ",
+    "JointModelHelicalUnaligned",
+)
 
 
 class StateLayout:
@@ -58,7 +70,7 @@ class StateLayout:
         Returns:
             (nq,) the configuration (a copy).
         """
-        return y[:self.npos].copy() if self.euclidean else pin.integrate(self.model, self.base, y[:self.npos])
+        return y[: self.npos].copy() if self.euclidean else pin.integrate(self.model, self.base, y[: self.npos])
 
     def v(self, y: np.ndarray) -> np.ndarray:
         """The velocities of y.
@@ -69,7 +81,7 @@ class StateLayout:
         Returns:
             (nv,) the velocities (a view into y).
         """
-        return y[self.npos:self.npos + self.model.nv]
+        return y[self.npos : self.npos + self.model.nv]
 
     def works(self, y: np.ndarray) -> np.ndarray:
         """The works of y.
@@ -80,7 +92,7 @@ class StateLayout:
         Returns:
             (n_work,) the works (J; a view into y).
         """
-        return y[self.npos + self.model.nv:]
+        return y[self.npos + self.model.nv :]
 
     def derivative(self, y: np.ndarray, a: np.ndarray, powers: np.ndarray) -> np.ndarray:
         """dy/dt at y.
@@ -97,5 +109,5 @@ class StateLayout:
         if self.euclidean:
             dpos = v
         else:
-            dpos = np.linalg.solve(pin.dIntegrate(self.model, self.base, y[:self.npos], pin.ARG1), v)
+            dpos = np.linalg.solve(pin.dIntegrate(self.model, self.base, y[: self.npos], pin.ARG1), v)
         return np.concatenate([dpos, a, powers])

@@ -68,8 +68,14 @@ class MechanismSystem:
         baumgarte: (Kp 1/s^2, Kd 1/s) closure stabilisation in the accelerations, or None.
     """
 
-    def __init__(self, mech, elements: list[ForceElement], drives: Drives, method: str = "proximal",
-                 baumgarte: tuple[float, float] | None = None):
+    def __init__(
+        self,
+        mech,
+        elements: list[ForceElement],
+        drives: Drives,
+        method: str = "proximal",
+        baumgarte: tuple[float, float] | None = None,
+    ):
         self.mech, self.elements, self.method = mech, list(elements), method
         self.cm = mech.closure_model
         self.cd = self.cm.create_data()
@@ -121,8 +127,9 @@ class MechanismSystem:
             powers[i] = load.power
         return tau, fext, powers
 
-    def reactions(self, q: np.ndarray, v: np.ndarray, a: np.ndarray, generalized: np.ndarray,
-                  wrenches: np.ndarray) -> core.InverseDynamicsResult:
+    def reactions(
+        self, q: np.ndarray, v: np.ndarray, a: np.ndarray, generalized: np.ndarray, wrenches: np.ndarray
+    ) -> core.InverseDynamicsResult:
         """The core's inverse dynamics with the drives as actuators (no determinacy test).
 
         Args:
@@ -167,7 +174,11 @@ class MechanismSystem:
         iterations, reactions = 0, None
         while True:
             generalized, wrenches = tau_p + tau_f, fext_p + fext_f
-            tau = generalized if state is None else generalized + generalized_of_wrenches(self.model, state.data, wrenches)
+            tau = (
+                generalized
+                if state is None
+                else generalized + generalized_of_wrenches(self.model, state.data, wrenches)
+            )
             a0 = self._fd(q, v, tau)
             if self.drive_v.size:
                 if P is None:
@@ -181,8 +192,13 @@ class MechanismSystem:
             reactions = self.reactions(q, v, a, generalized, wrenches).reaction_values
             state.reactions = reactions
             new_tau, new_fext, pow_f = self._loads(state, self.friction)
-            change = max(float(np.max(np.abs(new_tau - tau_f), initial=0.0)), float(np.max(np.abs(new_fext - fext_f), initial=0.0)))
-            scale = max(float(np.max(np.abs(new_tau), initial=0.0)), float(np.max(np.abs(new_fext), initial=0.0)), 1e-300)
+            change = max(
+                float(np.max(np.abs(new_tau - tau_f), initial=0.0)),
+                float(np.max(np.abs(new_fext - fext_f), initial=0.0)),
+            )
+            scale = max(
+                float(np.max(np.abs(new_tau), initial=0.0)), float(np.max(np.abs(new_fext), initial=0.0)), 1e-300
+            )
             tau_f, fext_f = new_tau, new_fext
             iterations += 1
             if change <= FRICTION_TOL * scale or change == 0.0:

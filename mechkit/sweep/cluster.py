@@ -38,8 +38,11 @@ CONNECT_TIMEOUT = 15.0
 POLL = 0.5
 #: The dashboard's port on 127.0.0.1 when asked for (Dask's default; a free port if it is taken).
 DASHBOARD_PORT = 8787
-_TLS_KEYS = {"tls_ca": "distributed.comm.tls.ca-file", "tls_cert": "distributed.comm.tls.client.cert",
-             "tls_key": "distributed.comm.tls.client.key"}
+_TLS_KEYS = {
+    "tls_ca": "distributed.comm.tls.ca-file",
+    "tls_cert": "distributed.comm.tls.client.cert",
+    "tls_key": "distributed.comm.tls.client.key",
+}
 _LOST = "lost mid-sweep (the connection to it closed)"
 
 
@@ -108,8 +111,9 @@ def scheduler_address(scheduler: str | None = None) -> str | None:
     return scheduler or os.environ.get(SCHEDULER_ENV) or None
 
 
-def tls_config(address: str | None, tls_ca: str | None = None, tls_cert: str | None = None,
-               tls_key: str | None = None) -> dict[str, str]:
+def tls_config(
+    address: str | None, tls_ca: str | None = None, tls_cert: str | None = None, tls_key: str | None = None
+) -> dict[str, str]:
     """Dask configuration entries naming a client's TLS files (for `dask.config.set`).
 
     Args:
@@ -124,19 +128,27 @@ def tls_config(address: str | None, tls_ca: str | None = None, tls_cert: str | N
     Raises:
         InvalidArgument: a file is given without a `tls://` address, or is not a file.
     """
-    given = {name: path for name, path in (("tls_ca", tls_ca), ("tls_cert", tls_cert), ("tls_key", tls_key))
-             if path is not None}
+    given = {
+        name: path
+        for name, path in (("tls_ca", tls_ca), ("tls_cert", tls_cert), ("tls_key", tls_key))
+        if path is not None
+    }
     for name, path in given.items():
         if not (address or "").startswith("tls://"):
-            raise InvalidArgument(name, path, "a TLS file is for a tls:// scheduler address; this sweep's is "
-                                  f"{address or 'none (the embedded cluster)'}")
+            raise InvalidArgument(
+                name,
+                path,
+                "a TLS file is for a tls:// scheduler address; this sweep's is "
+                f"{address or 'none (the embedded cluster)'}",
+            )
         if not Path(path).is_file():
             raise InvalidArgument(name, path, "no such file")
     return {_TLS_KEYS[name]: str(Path(path).resolve()) for name, path in given.items()}
 
 
-def check_options(scheduler: str | None = None, *, dashboard: bool = False,
-                  wait_workers: float = WAIT_WORKERS) -> str | None:
+def check_options(
+    scheduler: str | None = None, *, dashboard: bool = False, wait_workers: float = WAIT_WORKERS
+) -> str | None:
     """Check a cluster's options before any work is done.
 
     Args:
@@ -157,8 +169,11 @@ def check_options(scheduler: str | None = None, *, dashboard: bool = False,
     _check_wait(wait_workers)
     address = scheduler_address(scheduler)
     if address and dashboard:
-        raise InvalidArgument("dashboard", dashboard, "is for the embedded cluster; a running scheduler "
-                              "serves its own (dask scheduler --dashboard-address)")
+        raise InvalidArgument(
+            "dashboard",
+            dashboard,
+            "is for the embedded cluster; a running scheduler serves its own (dask scheduler --dashboard-address)",
+        )
     if dashboard:
         try:
             import bokeh  # noqa: F401 - Dask's dashboard is drawn with bokeh
@@ -166,15 +181,20 @@ def check_options(scheduler: str | None = None, *, dashboard: bool = False,
             raise MethodUnavailable("dashboard", "needs bokeh: pip install -e '.[sweep]'") from None
     security = Security()
     if address and address.startswith("tls://") and not (security.tls_ca_file and security.tls_client_cert):
-        raise InvalidArgument("scheduler", address, "a tls:// address needs the cluster's CA file and a client "
-                              "certificate: --tls-ca, --tls-cert (--tls-key), or Dask's configuration "
-                              "distributed.comm.tls.ca-file, distributed.comm.tls.client.cert (.key)")
+        raise InvalidArgument(
+            "scheduler",
+            address,
+            "a tls:// address needs the cluster's CA file and a client "
+            "certificate: --tls-ca, --tls-cert (--tls-key), or Dask's configuration "
+            "distributed.comm.tls.ca-file, distributed.comm.tls.client.cert (.key)",
+        )
     return address
 
 
 @contextmanager
-def dask_client(scheduler: str | None = None, workers: int | None = None, *,
-                dashboard: bool = False) -> Iterator[Client]:
+def dask_client(
+    scheduler: str | None = None, workers: int | None = None, *, dashboard: bool = False
+) -> Iterator[Client]:
     """A Dask client: to a running scheduler, else to an embedded LocalCluster.
 
     Args:
@@ -205,9 +225,18 @@ def dask_client(scheduler: str | None = None, workers: int | None = None, *,
         return
     # no dashboard: the scheduler's HTTP routes (health, metrics) on a free port of 127.0.0.1 only
     http = {"dashboard": dashboard, "dashboard_address": f"127.0.0.1:{DASHBOARD_PORT if dashboard else 0}"}
-    with LocalCluster(n_workers=workers or os.cpu_count() or 1, threads_per_worker=1, processes=True,
-                      host="127.0.0.1", dashboard_address=None, scheduler_kwargs=http,
-                      silence_logs=logging.ERROR) as cluster, Client(cluster) as client:
+    with (
+        LocalCluster(
+            n_workers=workers or os.cpu_count() or 1,
+            threads_per_worker=1,
+            processes=True,
+            host="127.0.0.1",
+            dashboard_address=None,
+            scheduler_kwargs=http,
+            silence_logs=logging.ERROR,
+        ) as cluster,
+        Client(cluster) as client,
+    ):
         yield client
 
 
@@ -235,8 +264,13 @@ class Monitor:
         InvalidArgument: `wait_workers` is negative or not finite.
     """
 
-    def __init__(self, client: Client, wait_workers: float = WAIT_WORKERS,
-                 watch: Callable[[ClusterState], None] | None = None, dashboard: str | None = None) -> None:
+    def __init__(
+        self,
+        client: Client,
+        wait_workers: float = WAIT_WORKERS,
+        watch: Callable[[ClusterState], None] | None = None,
+        dashboard: str | None = None,
+    ) -> None:
         _check_wait(wait_workers)
         self.client, self.wait_workers, self.watch, self.dashboard = client, wait_workers, watch, dashboard
         self.address = client.scheduler.address

@@ -78,17 +78,31 @@ def _check_axes(mechanism: str, space: DesignSpace, base: dict) -> None:
     for name in space.names:
         if name not in known or isinstance(known[name].default, (bool, str)):
             numeric = [n for n, f in known.items() if not isinstance(f.default, (bool, str))]
-            raise InvalidParameters("grid", name, f"not a numeric parameter of {mechanism}; they are {', '.join(numeric)}")
+            raise InvalidParameters(
+                "grid", name, f"not a numeric parameter of {mechanism}; they are {', '.join(numeric)}"
+            )
         if name in base:
             raise InvalidParameters("set", name, "is swept: it cannot also be fixed")
 
 
-def sweep(mechanism: str, space: DesignSpace, out: str | Path, study: Study | None = None,
-          metrics: tuple[str, ...] | None = None, *, base: dict | None = None, resume: bool = False,
-          scheduler: str | None = None, workers: int | None = None, chunk_size: int | None = None,
-          fast: bool = True, wait_workers: float = WAIT_WORKERS, dashboard: bool = False,
-          progress: Callable[[int], None] | None = None,
-          watch: Callable[[ClusterState], None] | None = None) -> SweepSummary:
+def sweep(
+    mechanism: str,
+    space: DesignSpace,
+    out: str | Path,
+    study: Study | None = None,
+    metrics: tuple[str, ...] | None = None,
+    *,
+    base: dict | None = None,
+    resume: bool = False,
+    scheduler: str | None = None,
+    workers: int | None = None,
+    chunk_size: int | None = None,
+    fast: bool = True,
+    wait_workers: float = WAIT_WORKERS,
+    dashboard: bool = False,
+    progress: Callable[[int], None] | None = None,
+    watch: Callable[[ClusterState], None] | None = None,
+) -> SweepSummary:
     """Evaluate every design of `space` on Dask and write one row per design to `out`.
 
     Args:
@@ -135,9 +149,16 @@ def sweep(mechanism: str, space: DesignSpace, out: str | Path, study: Study | No
     size = chunk_size or max(1, min(50, math.ceil(len(designs) / (4 * n_workers))))
     if size < 1:
         raise InvalidParameters("chunk_size", size, "must be >= 1")
-    manifest = {"mechanism": mechanism, "base": {k: str(v) for k, v in base.items()}, "space": space.to_dict(),
-                "study": asdict(study), "metrics": [m.name for m in chosen], "columns": list(columns),
-                "chunk_size": size, "designs": len(designs)}
+    manifest = {
+        "mechanism": mechanism,
+        "base": {k: str(v) for k, v in base.items()},
+        "space": space.to_dict(),
+        "study": asdict(study),
+        "metrics": [m.name for m in chosen],
+        "columns": list(columns),
+        "chunk_size": size,
+        "designs": len(designs),
+    }
     check_options(scheduler, dashboard=dashboard, wait_workers=wait_workers)
     out = Path(out)
     done = store.prepare(out, manifest, designs, resume)
@@ -153,8 +174,17 @@ def sweep(mechanism: str, space: DesignSpace, out: str | Path, study: Study | No
             futures = {}
             for k in pending:
                 idx = tuple(range(k * size, min((k + 1) * size, len(designs))))
-                task = Chunk(mechanism, base, space.names, idx, designs[list(idx)], study,
-                             tuple(m.name for m in chosen), columns, fast)
+                task = Chunk(
+                    mechanism,
+                    base,
+                    space.names,
+                    idx,
+                    designs[list(idx)],
+                    study,
+                    tuple(m.name for m in chosen),
+                    columns,
+                    fast,
+                )
                 futures[client.submit(evaluate_chunk, task, pure=False)] = k
             for future, rows in monitor.results(futures):
                 store.write_part(out, futures[future], rows, row_schema)

@@ -55,7 +55,13 @@ def log_to(path: str | Path) -> Iterator[Path]:
         handler.close()
 
 
-def _log_warning(message: Warning | str, category: type[Warning], filename: str, lineno: int,
-                 file: object = None, line: str | None = None) -> None:
+def _log_warning(
+    message: Warning | str,
+    category: type[Warning],
+    filename: str,
+    lineno: int,
+    file: object = None,
+    line: str | None = None,
+) -> None:
     """A `warnings.showwarning` that writes the warning to the "py.warnings" logger."""
     logging.getLogger("py.warnings").warning("%s", warnings.formatwarning(message, category, filename, lineno, line))

@@ -160,11 +160,15 @@ def motion_samples(mech: Mechanism, study: Study) -> Samples:
             a = mech.accelerations(q, v, xdd[k])
             result = mech.inverse_dynamics(q, v, a, determinacy=False)
         except SingularConfiguration as err:
-            raise SingularAlongMotion(getattr(err, "cond", float("inf")),
-                                      f"sample {k} (t = {t[k]:.4g} s): {err}") from None
+            raise SingularAlongMotion(
+                getattr(err, "cond", float("inf")), f"sample {k} (t = {t[k]:.4g} s): {err}"
+            ) from None
         except ClosureNotConverged as err:  # after home: the motion left the workspace
-            raise SingularAlongMotion(float("inf"), f"sample {k} (t = {t[k]:.4g} s) does not assemble from the "
-                                      f"previous pose (a dead point or the workspace's edge): {err}") from None
+            raise SingularAlongMotion(
+                float("inf"),
+                f"sample {k} (t = {t[k]:.4g} s) does not assemble from the "
+                f"previous pose (a dead point or the workspace's edge): {err}",
+            ) from None
         joints = tuple(result.reactions)
         qs.append(q)
         efforts.append([result.efforts[j] for j in mech.actuated])
@@ -173,8 +177,16 @@ def motion_samples(mech: Mechanism, study: Study) -> Samples:
         inv_cond.append(1.0 / cond)
         residual.append(float(np.max(np.abs(mech.closure_residual(q)), initial=0.0)))
         q_prev = q
-    return Samples(t, np.array(qs), np.array(efforts), np.array(forces), np.array(moments), joints,
-                   np.array(inv_cond), np.array(residual))
+    return Samples(
+        t,
+        np.array(qs),
+        np.array(efforts),
+        np.array(forces),
+        np.array(moments),
+        joints,
+        np.array(inv_cond),
+        np.array(residual),
+    )
 
 
 @dataclass(frozen=True)
@@ -265,32 +277,85 @@ def _mass(mech: Mechanism) -> float:
 STIFFNESS_COLUMNS = tuple(f"stiffness.{d}" for d in ("x", "y", "z", "rx", "ry", "rz"))
 
 GENERIC = (
-    Metric("assembles", "-", "1 when the design assembles at its home inputs (failed designs: status)",
-           lambda m: ["assembles"], lambda m, s: {"assembles": 1.0}, motion=False),
-    Metric("branch", "-", "assembly branch at home: sign of det of the passive block of the closure Jacobian "
-           "(0 when not square)", lambda m: ["branch"], _branch, motion=False),
-    Metric("peak_effort", "N m or N", "largest |effort| of each actuator along the motion",
-           _per("peak_effort", lambda m: m.actuated), _peaks("peak_effort", lambda s: s.efforts, lambda m: m.actuated)),
-    Metric("peak_force", "N", "largest reaction force norm of each joint along the motion",
-           _per("peak_force", joint_names), _peaks("peak_force", lambda s: s.forces, joint_names)),
-    Metric("peak_moment", "N m", "largest reaction moment norm of each joint (about its origin) along the motion",
-           _per("peak_moment", joint_names), _peaks("peak_moment", lambda s: s.moments, joint_names)),
-    Metric("singularity_distance", "-", "smallest inverse condition number of the passive block along the "
-           "motion (0: singular)", lambda m: ["singularity_distance"],
-           lambda m, s: {"singularity_distance": float(np.min(s.inv_cond))}),
-    Metric("closure_residual", "m", "largest closure residual along the motion",
-           lambda m: ["closure_residual"], lambda m, s: {"closure_residual": float(np.max(s.residual))}),
+    Metric(
+        "assembles",
+        "-",
+        "1 when the design assembles at its home inputs (failed designs: status)",
+        lambda m: ["assembles"],
+        lambda m, s: {"assembles": 1.0},
+        motion=False,
+    ),
+    Metric(
+        "branch",
+        "-",
+        "assembly branch at home: sign of det of the passive block of the closure Jacobian (0 when not square)",
+        lambda m: ["branch"],
+        _branch,
+        motion=False,
+    ),
+    Metric(
+        "peak_effort",
+        "N m or N",
+        "largest |effort| of each actuator along the motion",
+        _per("peak_effort", lambda m: m.actuated),
+        _peaks("peak_effort", lambda s: s.efforts, lambda m: m.actuated),
+    ),
+    Metric(
+        "peak_force",
+        "N",
+        "largest reaction force norm of each joint along the motion",
+        _per("peak_force", joint_names),
+        _peaks("peak_force", lambda s: s.forces, joint_names),
+    ),
+    Metric(
+        "peak_moment",
+        "N m",
+        "largest reaction moment norm of each joint (about its origin) along the motion",
+        _per("peak_moment", joint_names),
+        _peaks("peak_moment", lambda s: s.moments, joint_names),
+    ),
+    Metric(
+        "singularity_distance",
+        "-",
+        "smallest inverse condition number of the passive block along the motion (0: singular)",
+        lambda m: ["singularity_distance"],
+        lambda m, s: {"singularity_distance": float(np.min(s.inv_cond))},
+    ),
+    Metric(
+        "closure_residual",
+        "m",
+        "largest closure residual along the motion",
+        lambda m: ["closure_residual"],
+        lambda m, s: {"closure_residual": float(np.max(s.residual))},
+    ),
 )
 
 #: Metrics of the elastic model (`mechkit.elastic`), asked for by name (in no default set).
 ELASTIC = (
     Metric("mass", "kg", "total mass of the bodies", lambda m: ["mass"], lambda m, s: {"mass": _mass(m)}, motion=False),
-    Metric("first_frequency", "Hz", "first natural frequency at home, actuators locked (mechkit.elastic; nan "
-           "without sections)", lambda m: ["first_frequency"], lambda m, s: {"first_frequency": _first_frequency(m)},
-           motion=False),
-    Metric("frequency_per_mass", "Hz/kg", "first natural frequency per kilogram of the mechanism",
-           lambda m: ["frequency_per_mass"], lambda m, s: {"frequency_per_mass": _first_frequency(m) / _mass(m)},
-           motion=False),
-    Metric("stiffness", "N/m, N m/rad", "1/C_ii of the heaviest moving body at its centre of mass, home pose, "
-           "actuators locked (every other direction free)", lambda m: list(STIFFNESS_COLUMNS), _stiffness, motion=False),
+    Metric(
+        "first_frequency",
+        "Hz",
+        "first natural frequency at home, actuators locked (mechkit.elastic; nan without sections)",
+        lambda m: ["first_frequency"],
+        lambda m, s: {"first_frequency": _first_frequency(m)},
+        motion=False,
+    ),
+    Metric(
+        "frequency_per_mass",
+        "Hz/kg",
+        "first natural frequency per kilogram of the mechanism",
+        lambda m: ["frequency_per_mass"],
+        lambda m, s: {"frequency_per_mass": _first_frequency(m) / _mass(m)},
+        motion=False,
+    ),
+    Metric(
+        "stiffness",
+        "N/m, N m/rad",
+        "1/C_ii of the heaviest moving body at its centre of mass, home pose, "
+        "actuators locked (every other direction free)",
+        lambda m: list(STIFFNESS_COLUMNS),
+        _stiffness,
+        motion=False,
+    ),
 )

@@ -45,8 +45,17 @@ class Refined:
     message: str
 
 
-def optimise(out: str | Path, column: str, *, starts: int = 2, maximise: bool = False, method: str = "Nelder-Mead",
-             max_evaluations: int = 60, scheduler: str | None = None, workers: int | None = None) -> list[Refined]:
+def optimise(
+    out: str | Path,
+    column: str,
+    *,
+    starts: int = 2,
+    maximise: bool = False,
+    method: str = "Nelder-Mead",
+    max_evaluations: int = 60,
+    scheduler: str | None = None,
+    workers: int | None = None,
+) -> list[Refined]:
     """Refine `column` of the sweep in `out` from its `starts` best "ok" designs.
 
     Args:
@@ -81,6 +90,7 @@ def optimise(out: str | Path, column: str, *, starts: int = 2, maximise: bool = 
     study, metrics, columns = Study(**manifest["study"]), tuple(manifest["metrics"]), tuple(manifest["columns"])
 
     with dask_client(scheduler, workers) as client:
+
         def search(row) -> Refined:
             count = 0
 
@@ -93,10 +103,21 @@ def optimise(out: str | Path, column: str, *, starts: int = 2, maximise: bool = 
                 return sign * value if result["status"] == "ok" and math.isfinite(value) else math.inf
 
             x0 = np.array([row[n] for n in names], dtype=float)
-            found = minimize(objective, x0, method=method, bounds=bounds,
-                             options={"maxfev": max_evaluations} if method == "Nelder-Mead" else {"maxfun": max_evaluations})
-            return Refined(dict(zip(names, x0.tolist())), float(row[column]), dict(zip(names, found.x.tolist())),
-                           sign * float(found.fun), count, str(found.message))
+            found = minimize(
+                objective,
+                x0,
+                method=method,
+                bounds=bounds,
+                options={"maxfev": max_evaluations} if method == "Nelder-Mead" else {"maxfun": max_evaluations},
+            )
+            return Refined(
+                dict(zip(names, x0.tolist())),
+                float(row[column]),
+                dict(zip(names, found.x.tolist())),
+                sign * float(found.fun),
+                count,
+                str(found.message),
+            )
 
         with ThreadPoolExecutor(max_workers=len(best)) as pool:
             return list(pool.map(search, [r for _, r in best.iterrows()]))

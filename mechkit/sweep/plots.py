@@ -38,7 +38,9 @@ def pareto_mask(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     return mask
 
 
-def heat_map(frame: pd.DataFrame, x: str, y: str, metric: str, path: str | Path, title: str = "", unit: str = "") -> Path:
+def heat_map(
+    frame: pd.DataFrame, x: str, y: str, metric: str, path: str | Path, title: str = "", unit: str = ""
+) -> Path:
     """The metric over a grid of two parameters (one row per (x, y)); non-ok designs in grey.
 
     Args:
@@ -79,7 +81,9 @@ def heat_map(frame: pd.DataFrame, x: str, y: str, metric: str, path: str | Path,
     return Path(path)
 
 
-def pareto_plot(frame: pd.DataFrame, a: str, b: str, path: str | Path, title: str = "", highlight: dict | None = None) -> Path:
+def pareto_plot(
+    frame: pd.DataFrame, a: str, b: str, path: str | Path, title: str = "", highlight: dict | None = None
+) -> Path:
     """Every ok design in (a, b), its Pareto front (both minimised) joined; `highlight`: label -> (a, b).
 
     Args:

@@ -114,8 +114,12 @@ class DesignSpace:
 
     def to_dict(self) -> dict:
         """A JSON-ready description (what a resumed sweep compares)."""
-        return {"axes": [[a.name, a.lo, a.hi, a.n] for a in self.axes], "mode": self.mode,
-                "count": self.count if self.mode != "grid" else 0, "seed": self.seed}
+        return {
+            "axes": [[a.name, a.lo, a.hi, a.n] for a in self.axes],
+            "mode": self.mode,
+            "count": self.count if self.mode != "grid" else 0,
+            "seed": self.seed,
+        }
 
     @classmethod
     def from_dict(cls, data: dict) -> DesignSpace:
@@ -127,5 +131,6 @@ class DesignSpace:
         Returns:
             The design space.
         """
-        return cls(tuple(Axis(n, lo, hi, k) for n, lo, hi, k in data["axes"]), data["mode"], data["count"],
-                   data["seed"])
+        return cls(
+            tuple(Axis(n, lo, hi, k) for n, lo, hi, k in data["axes"]), data["mode"], data["count"], data["seed"]
+        )

@@ -19,8 +19,14 @@ DEFAULT_GENERIC = ("assembles", "branch")
 
 def _metric(declared: DesignMetric) -> Metric:
     """A mechanism's declared figure of merit as a sweep metric (computed without the motion study)."""
-    return Metric(declared.name, declared.unit, declared.doc, lambda mech: list(declared.columns),
-                  lambda mech, samples: declared.fn(mech), motion=False)
+    return Metric(
+        declared.name,
+        declared.unit,
+        declared.doc,
+        lambda mech: list(declared.columns),
+        lambda mech, samples: declared.fn(mech),
+        motion=False,
+    )
 
 
 def own(mechanism: str) -> tuple[Metric, ...]:

@@ -76,8 +76,9 @@ def prepare(out: Path, manifest: dict, designs: np.ndarray, resume: bool) -> set
     existing = out / MANIFEST
     if existing.exists():
         if not resume:
-            raise InvalidParameters("output", str(out), "already holds a sweep: pass --resume to continue it, "
-                                    "or choose another folder")
+            raise InvalidParameters(
+                "output", str(out), "already holds a sweep: pass --resume to continue it, or choose another folder"
+            )
         found = json.loads(existing.read_text())
         if found != manifest:
             changed = sorted(k for k in manifest if found.get(k) != manifest[k])
@@ -86,8 +87,12 @@ def prepare(out: Path, manifest: dict, designs: np.ndarray, resume: bool) -> set
     if out.exists() and any(out.iterdir()):
         raise InvalidParameters("output", str(out), "is not empty and holds no sweep")
     names = [a[0] for a in manifest["space"]["axes"]]
-    table = pa.table({"index": pa.array(np.arange(len(designs)), pa.int64()),
-                      **{n: pa.array(designs[:, i], pa.float64()) for i, n in enumerate(names)}})
+    table = pa.table(
+        {
+            "index": pa.array(np.arange(len(designs)), pa.int64()),
+            **{n: pa.array(designs[:, i], pa.float64()) for i, n in enumerate(names)},
+        }
+    )
     write_bytes(out / DESIGNS, _bytes(table))
     (out / PARTS).mkdir(parents=True, exist_ok=True)
     write_text(existing, json.dumps(manifest, indent=1, sort_keys=True))

@@ -112,9 +112,7 @@ class Linkage:
         if np.any(masses <= 0):
             raise InvalidParameters("bodies", masses.tolist(), "masses and inertias must be > 0")
         self.mass_diag = masses
-        self.S = np.array([self._relative_row(self.pins[self.pin_index[m]]) for m in self.motors]).reshape(
-            -1, self.n
-        )
+        self.S = np.array([self._relative_row(self.pins[self.pin_index[m]]) for m in self.motors]).reshape(-1, self.n)
 
     # ------------------------------------------------------------ geometry
     def _relative_row(self, pin: Pin) -> np.ndarray:
@@ -237,9 +235,7 @@ class Linkage:
         """
         kinetic = 0.5 * float(qd @ (self.mass_diag * qd))
         gravity = -sum(b.mass * float(self.gravity @ q[3 * i : 3 * i + 2]) for i, b in enumerate(self.bodies))
-        spring = sum(
-            0.5 * s.stiffness * (self.relative_angle(q, s.pin) - s.free_angle) ** 2 for s in self.springs
-        )
+        spring = sum(0.5 * s.stiffness * (self.relative_angle(q, s.pin) - s.free_angle) ** 2 for s in self.springs)
         return {"kinetic": kinetic, "gravity": gravity, "spring": spring}
 
     def power(self, q: np.ndarray, qd: np.ndarray, efforts: dict[str, float]) -> dict[str, float]:
@@ -357,9 +353,7 @@ class Linkage:
             G = np.vstack([self.jacobian(q), self.S])
             q -= np.linalg.lstsq(G, e, rcond=None)[0]
         else:
-            raise ClosureNotConverged(
-                float(np.linalg.norm(e)), tol, max_iter, "Lagrange coordinates projection"
-            )
+            raise ClosureNotConverged(float(np.linalg.norm(e)), tol, max_iter, "Lagrange coordinates projection")
         G = np.vstack([self.jacobian(q), self.S])
         err = G @ qd - np.concatenate([np.zeros(2 * len(self.pins)), np.asarray(motor_vel, dtype=float)])
         return q, qd - np.linalg.lstsq(G, err, rcond=None)[0]

@@ -215,8 +215,6 @@ def five_bar(
         PlanarJoint("dist2", "prox2", "dist2", prox2.tip),
         PlanarJoint("C", "dist1", "dist2", dist1.tip),
     )
-    coords = np.column_stack(
-        [motions[0], _relative(dist1_m, motions[0]), motions[1], _relative(dist2_m, motions[1])]
-    )
+    coords = np.column_stack([motions[0], _relative(dist1_m, motions[0]), motions[1], _relative(dist2_m, motions[1])])
     links = {link.name: link for link in (prox1, dist1, prox2, dist2)}
     return LinkageState(links, joints, ("prox1", "dist1", "prox2", "dist2"), *coords)

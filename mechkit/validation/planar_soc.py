@@ -52,8 +52,16 @@ def body_load(link: LinkState, chain: Chain) -> BodyLoad:
         The body for the SOC solver.
     """
     jac = point_jacobian(link.com, chain)
-    return BodyLoad(link.name, link.bar.mass, link.bar.inertia_world(link.angle), to_world(link.com_acceleration),
-                    link.omega * AXIS, link.alpha * AXIS, jac[:3], jac[3:])
+    return BodyLoad(
+        link.name,
+        link.bar.mass,
+        link.bar.inertia_world(link.angle),
+        to_world(link.com_acceleration),
+        link.omega * AXIS,
+        link.alpha * AXIS,
+        jac[:3],
+        jac[3:],
+    )
 
 
 def pin_site(joint: str, point: np.ndarray, chain: Chain, sign: float) -> WrenchSite:
@@ -127,7 +135,9 @@ def whole_skc(state: LinkageState) -> SKCInstant:
         for link in subtree(state, joint.child):
             chains[link][j] = joint.point
     cut = state.joint("C")
-    loop = (point_jacobian(cut.point, tuple(chains[cut.parent])) - point_jacobian(cut.point, tuple(chains[cut.child])))[[0, 2]]
+    loop = (point_jacobian(cut.point, tuple(chains[cut.parent])) - point_jacobian(cut.point, tuple(chains[cut.child])))[
+        [0, 2]
+    ]
     bodies = tuple(body_load(link, tuple(chains[name])) for name, link in state.links.items())
     motors = tuple((j.name, np.eye(n)[state.coordinates.index(j.name)]) for j in state.joints if j.actuated)
     return SKCInstant("whole", n, bodies, motors, loop_jacobian=loop)
@@ -175,12 +185,28 @@ def soc_skcs(state: LinkageState) -> list[SKCInstant]:
         chain = free(j.child)
         known = tuple(site(k, chain, -1.0) for k in st.joints if k.parent == j.child and k.name in solved)
         motors = ((j.name, motor_column(chain)),) if j.actuated else ()
-        skcs.append(SKCInstant(j.child, 3, (body_load(st.links[j.child], chain),), motors, (site(j, chain, 1.0),), known))
+        skcs.append(
+            SKCInstant(j.child, 3, (body_load(st.links[j.child], chain),), motors, (site(j, chain, 1.0),), known)
+        )
     chain = free(cut.parent)
-    skcs.append(SKCInstant(cut.parent, 3, (body_load(st.links[cut.parent], chain),), released=(site(cut, chain, -1.0),),
-                           known=(site(jp, chain, 1.0),)))
+    skcs.append(
+        SKCInstant(
+            cut.parent,
+            3,
+            (body_load(st.links[cut.parent], chain),),
+            released=(site(cut, chain, -1.0),),
+            known=(site(jp, chain, 1.0),),
+        )
+    )
     if jq.parent is None:
         chain = free(cut.child)
-        skcs.append(SKCInstant(cut.child, 3, (body_load(st.links[cut.child], chain),), released=(site(jq, chain, 1.0),),
-                               known=(site(cut, chain, 1.0),)))
+        skcs.append(
+            SKCInstant(
+                cut.child,
+                3,
+                (body_load(st.links[cut.child], chain),),
+                released=(site(jq, chain, 1.0),),
+                known=(site(cut, chain, 1.0),),
+            )
+        )
     return skcs

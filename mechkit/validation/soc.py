@@ -204,8 +204,9 @@ def _unknown_columns(skc: SKCInstant, directions: Sequence[np.ndarray]) -> np.nd
     return np.column_stack(cols) if cols else np.zeros((n, 0))
 
 
-def solve_soc(skcs: Sequence[SKCInstant], gravity: np.ndarray | Sequence[float] = STANDARD_GRAVITY,
-              indeterminate: bool = False) -> SOCResult:
+def solve_soc(
+    skcs: Sequence[SKCInstant], gravity: np.ndarray | Sequence[float] = STANDARD_GRAVITY, indeterminate: bool = False
+) -> SOCResult:
     """Inverse dynamics by sequential SOC virtual work.
 
     Per SKC, in order: Q = sum_bodies jv^T (m g - m a_c) + jw^T (-I alpha - omega x I omega)
@@ -320,9 +321,7 @@ def _record_free(result: SOCResult, skc: SKCInstant, directions: Sequence[np.nda
         result.free[site.joint] = v > threshold
 
 
-def classic_virtual_work(
-    skc: SKCInstant, gravity: np.ndarray | Sequence[float] = STANDARD_GRAVITY
-) -> dict[str, float]:
+def classic_virtual_work(skc: SKCInstant, gravity: np.ndarray | Sequence[float] = STANDARD_GRAVITY) -> dict[str, float]:
     """Classic whole-mechanism virtual work: one SKC holding every body and every actuator.
 
     Args:

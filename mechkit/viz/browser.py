@@ -19,9 +19,18 @@ from mechkit.base.atomic import resolve_output, write_bytes
 from mechkit.base.exceptions import ExternalToolFailed, InvalidArgument, MethodUnavailable
 
 CANDIDATES = ("chromium", "chromium-browser", "google-chrome", "google-chrome-stable")
-FLAGS = ("--headless", "--no-sandbox", "--disable-gpu", "--enable-unsafe-swiftshader", "--use-angle=swiftshader",
-         "--disable-background-networking", "--disable-component-update", "--no-first-run", "--hide-scrollbars",
-         "--mute-audio")
+FLAGS = (
+    "--headless",
+    "--no-sandbox",
+    "--disable-gpu",
+    "--enable-unsafe-swiftshader",
+    "--use-angle=swiftshader",
+    "--disable-background-networking",
+    "--disable-component-update",
+    "--no-first-run",
+    "--hide-scrollbars",
+    "--mute-audio",
+)
 
 
 def find_chromium() -> str:
@@ -40,12 +49,20 @@ def find_chromium() -> str:
         found = shutil.which(name)
         if found is not None:
             return found
-    raise MethodUnavailable("PNG screenshot", f"needs the Chromium browser, not found on PATH (looked for "
-                            f"{', '.join(CANDIDATES)}; or set MECHKIT_CHROMIUM); on Debian: apt-get install chromium")
+    raise MethodUnavailable(
+        "PNG screenshot",
+        f"needs the Chromium browser, not found on PATH (looked for "
+        f"{', '.join(CANDIDATES)}; or set MECHKIT_CHROMIUM); on Debian: apt-get install chromium",
+    )
 
 
-def screenshot(page: str | os.PathLike, png: str | os.PathLike, size: Sequence[int] = (800, 600),
-               budget_ms: int = 8000, timeout: float = 180.0) -> Path:
+def screenshot(
+    page: str | os.PathLike,
+    png: str | os.PathLike,
+    size: Sequence[int] = (800, 600),
+    budget_ms: int = 8000,
+    timeout: float = 180.0,
+) -> Path:
     """Render a local HTML file (or a page served on this machine) in headless Chromium and write its screenshot.
 
     A file is opened with `#capture` appended to its address (mechkit pages then hide their controls).
@@ -74,12 +91,19 @@ def screenshot(page: str | os.PathLike, png: str | os.PathLike, size: Sequence[i
     resolve_output(target)  # refuse a directory, a device, a FIFO before the browser runs
     with tempfile.TemporaryDirectory(prefix="mechkit-chromium-") as tmp:
         shot = Path(tmp) / "shot.png"
-        command = [executable, *FLAGS, f"--user-data-dir={Path(tmp) / 'profile'}",
-                   f"--window-size={int(size[0])},{int(size[1])}", f"--virtual-time-budget={int(budget_ms)}",
-                   f"--screenshot={shot}", str(page) if served else source.as_uri() + "#capture"]
+        command = [
+            executable,
+            *FLAGS,
+            f"--user-data-dir={Path(tmp) / 'profile'}",
+            f"--window-size={int(size[0])},{int(size[1])}",
+            f"--virtual-time-budget={int(budget_ms)}",
+            f"--screenshot={shot}",
+            str(page) if served else source.as_uri() + "#capture",
+        ]
         try:
-            run = subprocess.run(command, capture_output=True, text=True, timeout=timeout,
-                                 stdin=subprocess.DEVNULL, check=False)
+            run = subprocess.run(
+                command, capture_output=True, text=True, timeout=timeout, stdin=subprocess.DEVNULL, check=False
+            )
         except subprocess.TimeoutExpired:
             raise ExternalToolFailed(executable, f"the screenshot did not finish within {timeout:.0f} s") from None
         if not shot.is_file() or shot.stat().st_size == 0:

@@ -70,8 +70,9 @@ def camera_distance(points: np.ndarray, direction: Sequence[float]) -> tuple[flo
     return max(float(need.max()), float(depth.max()) + 0.05 * extent, 1e-3), back  # never inside the drawing
 
 
-def frame_camera(scene: StaticScene, points: np.ndarray, root: str = "/mechanism",
-                 direction: Sequence[float] = OBLIQUE) -> None:
+def frame_camera(
+    scene: StaticScene, points: np.ndarray, root: str = "/mechanism", direction: Sequence[float] = OBLIQUE
+) -> None:
     """Centre the drawing under `root` on the origin and place the scene's camera so every point is in view.
 
     Args:

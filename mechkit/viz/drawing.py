@@ -25,8 +25,14 @@ ACTUATED = (0.85, 0.08, 0.08, 1.0)
 PASSIVE = (0.15, 0.15, 0.18, 1.0)
 CUT = (1.0, 0.78, 0.0, 1.0)
 GROUND = (0.3, 0.3, 0.32, 1.0)
-LIMB_PALETTE = ((0.85, 0.33, 0.1), (0.2, 0.45, 0.8), (0.3, 0.65, 0.3), (0.6, 0.4, 0.7), (0.9, 0.6, 0.15),
-                (0.25, 0.65, 0.7))
+LIMB_PALETTE = (
+    (0.85, 0.33, 0.1),
+    (0.2, 0.45, 0.8),
+    (0.3, 0.65, 0.3),
+    (0.6, 0.4, 0.7),
+    (0.9, 0.6, 0.15),
+    (0.25, 0.65, 0.7),
+)
 GHOST_OPACITY = 0.22
 
 
@@ -92,7 +98,9 @@ class Drawing:
         self._bars = _bars(model, mechanism.closures, drawn)  # (joint, 4x4 in its frame, half length)
         for j, _, half_length in self._bars:
             half = np.array([0.008, half_length / s, 0.008]) * s
-            self.parts.append(Part(f"links/bar_{model.names[j]}_{len(self.parts)}", g.Box(list(2 * half)), PASSIVE, half))
+            self.parts.append(
+                Part(f"links/bar_{model.names[j]}_{len(self.parts)}", g.Box(list(2 * half)), PASSIVE, half)
+            )
         self._joints: list[tuple[int, np.ndarray | None]] = []
         actuated = set(mechanism.actuated)
         axes = _local_axes(model, self.data)
@@ -118,8 +126,9 @@ class Drawing:
         """Grey anchors under the supports (joints on the ground), joined by bars (a minimum spanning tree)
         unless the URDF draws a ground body itself; all fixed in the world."""
         model, s = self.model, self.size
-        supports = np.array([model.jointPlacements[j].translation for j in range(1, model.njoints)
-                             if model.parents[j] == 0])
+        supports = np.array(
+            [model.jointPlacements[j].translation for j in range(1, model.njoints) if model.parents[j] == 0]
+        )
         if len(supports) == 0:
             return []
         centre_z = (supports[:, 2].min() + supports[:, 2].max()) / 2
@@ -128,8 +137,12 @@ class Drawing:
         for i, p in enumerate(np.unique(np.round(supports, 9), axis=0)):
             below = -1.0 if p[2] <= centre_z + 1e-9 else 1.0  # anchors sit on the outer side of the supports
             centre = p + np.array([0.0, 0.0, below * side / 2])
-            out.append((Part(f"ground/anchor{i}", g.Box([side] * 3), GROUND, np.full(3, side / 2)),
-                        pin.SE3(np.eye(3), centre).homogeneous))
+            out.append(
+                (
+                    Part(f"ground/anchor{i}", g.Box([side] * 3), GROUND, np.full(3, side / 2)),
+                    pin.SE3(np.eye(3), centre).homogeneous,
+                )
+            )
         drawn = any(obj.parentJoint == 0 for obj in self.visual.geometryObjects)
         if drawn:
             return out
@@ -139,8 +152,12 @@ class Drawing:
             thick = 0.025 * s
             half = np.array([thick, np.linalg.norm(d) / 2, thick / 2])
             rotation = _rotation_y_to(d)
-            out.append((Part(f"ground/bar{i}", g.Box(list(2 * half)), GROUND, half),
-                        pin.SE3(rotation, (anchors[a] + anchors[b]) / 2).homogeneous))
+            out.append(
+                (
+                    Part(f"ground/bar{i}", g.Box(list(2 * half)), GROUND, half),
+                    pin.SE3(rotation, (anchors[a] + anchors[b]) / 2).homogeneous,
+                )
+            )
         return out
 
     def placements(self, q: np.ndarray) -> list[np.ndarray]:

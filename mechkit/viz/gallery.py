@@ -22,8 +22,10 @@ from mechkit.viz.pages import overlay, snapshot
 SIZE = (800, 600)  # pixels
 MAX_BYTES = 200_000
 MIN_COVERAGE = 0.02  # fraction of pixels the mechanism must cover
-LEGEND = ("Red: actuated joints; dark: passive joints; yellow spheres: loop cuts; dark grey: ground. "
-          "Regenerate with `python tools/gallery.py`.")
+LEGEND = (
+    "Red: actuated joints; dark: passive joints; yellow spheres: loop cuts; dark grey: ground. "
+    "Regenerate with `python tools/gallery.py`."
+)
 
 
 def picture(mechanism: Mechanism, png: Path) -> str:
@@ -88,9 +90,12 @@ def table(names: Iterable[str], captions: Mapping[str, str]) -> str:
     Returns:
         The markdown text.
     """
-    rows = [f"| `{name}` | ![{name}](docs/gallery/{name}.png) | {captions.get(name, '(not drawn yet)')} |"
-            for name in names]
-    return "\n".join(["## Gallery", "", LEGEND, "", "| mechanism | picture | what it shows |", "|---|---|---|", *rows, ""])
+    rows = [
+        f"| `{name}` | ![{name}](docs/gallery/{name}.png) | {captions.get(name, '(not drawn yet)')} |" for name in names
+    ]
+    return "\n".join(
+        ["## Gallery", "", LEGEND, "", "| mechanism | picture | what it shows |", "|---|---|---|", *rows, ""]
+    )
 
 
 def read_captions(text: str) -> dict[str, str]:

@@ -35,12 +35,19 @@ class InlineView:
 
     def _repr_html_(self) -> str:
         """The page in an iframe (its own document, so several views in one notebook do not clash)."""
-        return (f'<iframe srcdoc="{escape(self.html, quote=True)}" style="width: 100%; height: {self.height}px; '
-                f'border: 0" title="mechkit view"></iframe>')
+        return (
+            f'<iframe srcdoc="{escape(self.html, quote=True)}" style="width: 100%; height: {self.height}px; '
+            f'border: 0" title="mechkit view"></iframe>'
+        )
 
 
-def show(mechanism: Mechanism, q: np.ndarray | None = None, scene: str | None = None,
-         meshes: MeshSearch | None = None, height: int = HEIGHT) -> InlineView:
+def show(
+    mechanism: Mechanism,
+    q: np.ndarray | None = None,
+    scene: str | None = None,
+    meshes: MeshSearch | None = None,
+    height: int = HEIGHT,
+) -> InlineView:
     """The mechanism at q (default: its home assembly), or one of its scenes playing, for a notebook.
 
     Args:

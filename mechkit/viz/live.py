@@ -56,7 +56,9 @@ class LiveScene(StaticScene):
         self._socket.send_multipart([lowered["type"].encode(), lowered["path"].encode(), self._umsgpack.packb(lowered)])
         reply = self._socket.recv()
         if reply != b"ok":
-            raise ExternalToolFailed("the meshcat server", f"refused {lowered['type']!r}: {reply.decode(errors='replace')}")
+            raise ExternalToolFailed(
+                "the meshcat server", f"refused {lowered['type']!r}: {reply.decode(errors='replace')}"
+            )
 
 
 class LiveViewer:
@@ -77,8 +79,13 @@ class LiveViewer:
             import zmq
         except ImportError:
             raise MethodUnavailable("the live viewer", "meshcat is not installed: pip install 'mechkit[viz]'") from None
-        self._process = subprocess.Popen([sys.executable, "-u", "-c", _SERVER], stdout=subprocess.PIPE,
-                                         stderr=subprocess.DEVNULL, stdin=subprocess.DEVNULL, start_new_session=True)
+        self._process = subprocess.Popen(
+            [sys.executable, "-u", "-c", _SERVER],
+            stdout=subprocess.PIPE,
+            stderr=subprocess.DEVNULL,
+            stdin=subprocess.DEVNULL,
+            start_new_session=True,
+        )
         try:
             zmq_url, self.url = self._addresses()
         except MechkitError:
@@ -99,7 +106,9 @@ class LiveViewer:
             if select.select([fd], [], [], left)[0]:
                 chunk = os.read(fd, 4096)
                 if not chunk:  # the server ended
-                    raise ExternalToolFailed("the meshcat server", f"exited with {self._process.wait()} before listening")
+                    raise ExternalToolFailed(
+                        "the meshcat server", f"exited with {self._process.wait()} before listening"
+                    )
                 out += chunk
                 text = out.decode(errors="replace")
                 found = [re.search(rf"^{key}=(\S+)$", text, re.MULTILINE) for key in ("zmq_url", "web_url")]
@@ -107,8 +116,13 @@ class LiveViewer:
                     return found[0].group(1), found[1].group(1)
         raise ExternalToolFailed("the meshcat server", f"did not start within {START_TIMEOUT:.0f} s")
 
-    def show(self, mechanism: Mechanism, q: np.ndarray | None = None, scene: str | None = None,
-             meshes: MeshSearch | None = None) -> None:
+    def show(
+        self,
+        mechanism: Mechanism,
+        q: np.ndarray | None = None,
+        scene: str | None = None,
+        meshes: MeshSearch | None = None,
+    ) -> None:
         """Show the mechanism at q (default: its home assembly), or play one of its scenes; replaces
         whatever was shown.
 
@@ -124,8 +138,11 @@ class LiveViewer:
         """
         if q is not None and scene is not None:
             raise InvalidParameters("q", "given", "give either q (one pose) or scene (an animation), not both")
-        poses = scene_poses(mechanism, scene) if scene is not None else [
-            mechanism.home_q if q is None else np.asarray(q, dtype=float)]
+        poses = (
+            scene_poses(mechanism, scene)
+            if scene is not None
+            else [mechanism.home_q if q is None else np.asarray(q, dtype=float)]
+        )
         live = LiveScene(self._socket)
         try:
             if self._shown:
@@ -136,7 +153,9 @@ class LiveViewer:
         except Exception as err:  # zmq.Again: no reply within REPLY_TIMEOUT_MS
             if isinstance(err, MechkitError):
                 raise
-            raise ExternalToolFailed(f"the meshcat server at {self.url}", f"did not answer ({type(err).__name__})") from None
+            raise ExternalToolFailed(
+                f"the meshcat server at {self.url}", f"did not answer ({type(err).__name__})"
+            ) from None
 
     @property
     def running(self) -> bool:
@@ -166,12 +185,15 @@ class LiveViewer:
 
     def _repr_html_(self) -> str:
         """In Jupyter: the live viewer's page in a frame."""
-        return (f'<iframe src="{escape(self.url)}" style="width: 100%; height: 420px; border: 0" '
-                f'title="mechkit live viewer"></iframe>')
+        return (
+            f'<iframe src="{escape(self.url)}" style="width: 100%; height: 420px; border: 0" '
+            f'title="mechkit live viewer"></iframe>'
+        )
 
 
-def view(mechanism: Mechanism, q: np.ndarray | None = None, scene: str | None = None,
-         meshes: MeshSearch | None = None) -> LiveViewer:
+def view(
+    mechanism: Mechanism, q: np.ndarray | None = None, scene: str | None = None, meshes: MeshSearch | None = None
+) -> LiveViewer:
     """Start a live viewer showing the mechanism (see `LiveViewer.show`); close it when done.
 
     Args:

@@ -64,8 +64,9 @@ class StaticScene:
             rgba: the colour, each 0..1.
             transform: its 4x4 world transform (m).
         """
-        material = self.geometry.MeshPhongMaterial(color=_hex(rgba), opacity=float(rgba[3]),
-                                                   transparent=bool(rgba[3] < 1))
+        material = self.geometry.MeshPhongMaterial(
+            color=_hex(rgba), opacity=float(rgba[3]), transparent=bool(rgba[3] < 1)
+        )
         self._send(self._commands_module.SetObject(shape, material, self._path(path)).lower())
         self.set_transform(path, transform)
 

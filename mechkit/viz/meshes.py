@@ -68,7 +68,7 @@ class MeshSearch:
             The existing file, or None when it is nowhere to be found.
         """
         if filename.startswith("package://"):
-            package, _, rest = filename[len("package://"):].partition("/")
+            package, _, rest = filename[len("package://") :].partition("/")
             candidates = [d / package / rest for d in self.path] + [d / rest for d in self.path]
         else:
             name = Path(filename.removeprefix("file://"))
@@ -118,8 +118,12 @@ def resolve_meshes(urdf: str, search: MeshSearch, placeholder_radius: float) -> 
             if found is not None:
                 mesh.set("filename", str(found))
                 continue
-            warnings.warn(f"link {link.get('name')!r}: mesh {filename!r} not found (searched {search.where()}); "
-                          f"drawn as a placeholder", MissingMesh, stacklevel=3)
+            warnings.warn(
+                f"link {link.get('name')!r}: mesh {filename!r} not found (searched {search.where()}); "
+                f"drawn as a placeholder",
+                MissingMesh,
+                stacklevel=3,
+            )
             geometry.remove(mesh)
             ET.SubElement(geometry, "sphere", radius=repr(float(placeholder_radius)))
             placeholders.add(f"{link.get('name')}_{k}")

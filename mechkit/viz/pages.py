@@ -30,8 +30,16 @@ from mechkit.viz.meshes import MeshSearch
 MAX_FRAMES = 240  # poses kept in an animation (the page grows with frames x parts)
 
 
-def compose(scene: StaticScene, mechanism: Mechanism, poses: Sequence[np.ndarray], *, animate: bool = False,
-            ghosts: int = 0, meshes: MeshSearch | None = None, root: str = "/mechanism") -> None:
+def compose(
+    scene: StaticScene,
+    mechanism: Mechanism,
+    poses: Sequence[np.ndarray],
+    *,
+    animate: bool = False,
+    ghosts: int = 0,
+    meshes: MeshSearch | None = None,
+    root: str = "/mechanism",
+) -> None:
     """Draw the mechanism into a scene, framed: at poses[-1] (with `ghosts` faded earlier poses), or
     animated along poses (at most MAX_FRAMES of them).
 
@@ -68,16 +76,24 @@ def compose(scene: StaticScene, mechanism: Mechanism, poses: Sequence[np.ndarray
         scene.set_animation(tracks, fps)
 
 
-def _page(mechanism: Mechanism, poses: Sequence[np.ndarray], *, animate: bool = False, ghosts: int = 0,
-          caption: str = "", meshes: MeshSearch | None = None) -> str:
+def _page(
+    mechanism: Mechanism,
+    poses: Sequence[np.ndarray],
+    *,
+    animate: bool = False,
+    ghosts: int = 0,
+    caption: str = "",
+    meshes: MeshSearch | None = None,
+) -> str:
     """HTML of the mechanism (see `compose`)."""
     scene = StaticScene()
     compose(scene, mechanism, poses, animate=animate, ghosts=ghosts, meshes=meshes)
     return scene.html(mechanism.spec.name, caption)
 
 
-def mechanism_scene(mechanism: Mechanism, q: np.ndarray, prefix: str = "/mechanism",
-                    scene: StaticScene | None = None) -> tuple[StaticScene, np.ndarray, np.ndarray]:
+def mechanism_scene(
+    mechanism: Mechanism, q: np.ndarray, prefix: str = "/mechanism", scene: StaticScene | None = None
+) -> tuple[StaticScene, np.ndarray, np.ndarray]:
     """Draw a mechanism at q into a scene (new one by default).
 
     Args:
@@ -96,8 +112,13 @@ def mechanism_scene(mechanism: Mechanism, q: np.ndarray, prefix: str = "/mechani
     return scene, corners.min(axis=0), corners.max(axis=0)
 
 
-def snapshot(mechanism: Mechanism, q: np.ndarray | None = None, path: str | os.PathLike | None = None, *,
-             meshes: MeshSearch | None = None) -> str:
+def snapshot(
+    mechanism: Mechanism,
+    q: np.ndarray | None = None,
+    path: str | os.PathLike | None = None,
+    *,
+    meshes: MeshSearch | None = None,
+) -> str:
     """Self-contained HTML of the mechanism at q (default: its home assembly).
 
     Args:
@@ -119,8 +140,14 @@ def snapshot(mechanism: Mechanism, q: np.ndarray | None = None, path: str | os.P
     return html
 
 
-def animation(mechanism: Mechanism, scene: str, path: str | os.PathLike | None = None, *,
-              poses: Sequence[np.ndarray] | None = None, meshes: MeshSearch | None = None) -> str:
+def animation(
+    mechanism: Mechanism,
+    scene: str,
+    path: str | os.PathLike | None = None,
+    *,
+    poses: Sequence[np.ndarray] | None = None,
+    meshes: MeshSearch | None = None,
+) -> str:
     """Self-contained HTML animating one of the mechanism's scenes.
 
     Args:
@@ -138,15 +165,27 @@ def animation(mechanism: Mechanism, scene: str, path: str | os.PathLike | None =
         OutputError: `path` cannot be written.
     """
     poses = scene_poses(mechanism, scene) if poses is None else poses
-    html = _page(mechanism, poses, animate=True, caption=f"{mechanism.spec.name}, scene {scene!r}: "
-                                                          f"{len(poses)} poses", meshes=meshes)
+    html = _page(
+        mechanism,
+        poses,
+        animate=True,
+        caption=f"{mechanism.spec.name}, scene {scene!r}: {len(poses)} poses",
+        meshes=meshes,
+    )
     if path is not None:
         write_text(path, html)
     return html
 
 
-def overlay(mechanism: Mechanism, scene: str, ghosts: int = 3, path: str | os.PathLike | None = None, *,
-            poses: Sequence[np.ndarray] | None = None, meshes: MeshSearch | None = None) -> str:
+def overlay(
+    mechanism: Mechanism,
+    scene: str,
+    ghosts: int = 3,
+    path: str | os.PathLike | None = None,
+    *,
+    poses: Sequence[np.ndarray] | None = None,
+    meshes: MeshSearch | None = None,
+) -> str:
     """Self-contained HTML of a scene as one picture: its last pose, and `ghosts` earlier poses (evenly
     spread from the first) faded.
 
@@ -172,8 +211,9 @@ def overlay(mechanism: Mechanism, scene: str, ghosts: int = 3, path: str | os.Pa
     return html
 
 
-def side_by_side(mechanism: Mechanism, poses: Sequence[np.ndarray], path: str | os.PathLike | None = None,
-                 caption: str = "") -> str:
+def side_by_side(
+    mechanism: Mechanism, poses: Sequence[np.ndarray], path: str | os.PathLike | None = None, caption: str = ""
+) -> str:
     """Self-contained HTML of several configurations drawn next to each other along world x (e.g. every
     assembly of one set of inputs); written to `path` if given.
 
@@ -212,8 +252,14 @@ def side_by_side(mechanism: Mechanism, poses: Sequence[np.ndarray], path: str | 
     return html
 
 
-def snapshot_command(mechanism: Mechanism, q: str | None = None, scene: str | None = None,
-                     html: str | None = None, png: str | None = None, meshes: MeshSearch | None = None) -> list[Path]:
+def snapshot_command(
+    mechanism: Mechanism,
+    q: str | None = None,
+    scene: str | None = None,
+    html: str | None = None,
+    png: str | None = None,
+    meshes: MeshSearch | None = None,
+) -> list[Path]:
     """What `mechkit snapshot` does: the HTML of a pose or of an animated scene, and optionally a PNG
     screenshot (of the pose; of a scene, its overlay picture).
 

@@ -1,6 +1,5 @@
 """`mechkit.simulation.simulate`: a free motion's own checks (the energy balance, the closure), given torques
-whose work is integrated with the motion, the description's forces and limits, and bad options refused by
-name."""
+whose work is integrated with the motion, and bad options refused by name."""
 
 from __future__ import annotations
 
@@ -31,20 +30,6 @@ def test_given_torque_supplies_the_integral_of_its_power(four_bar):
     assert abs(run.supplied[-1]) > 1e-3
     assert run.supplied[-1] == pytest.approx(quadrature, rel=1e-5)
     assert run.energy_error <= 1e-6 * run.energy_scale and run.residual.max() <= 1e-10
-
-
-def test_the_descriptions_forces_and_limits(four_bar):
-    """The registered four-bar declares no damper, friction or spring (no element) and +-25 rad limits on
-    its joints, with the restitution asked for; a torque off the actuators is refused by name."""
-    assert simulation.default_forces(four_bar) == []
-    limits = simulation.file_limits(four_bar, restitution=0.3)
-    assert {lim.joint for lim in limits} <= set(four_bar.model.names[1:]) and "crank" in {lim.joint for lim in limits}
-    assert all((lim.lower, lim.upper, lim.restitution) == (-25.0, 25.0, 0.3) for lim in limits)
-    motors = simulation.torque_motors(four_bar, {"crank": 1.0})
-    assert [m.name for m in motors] == ["crank"] and (motors[0].stall, motors[0].no_load) == (1e6, 1e3)
-    with pytest.raises(InvalidParameters) as err:
-        simulation.torque_motors(four_bar, {"rocker": 1.0})
-    assert err.value.name == "torques"
 
 
 @pytest.mark.parametrize("options, name", [({"duration": -1.0}, "duration"), ({"duration": float("nan")}, "duration"),

@@ -43,7 +43,13 @@ SPEC = MechanismSpec(
     scene_captions={"fold": "the 200 s fold, deployed (faded) to folded (solid)"},
     bench_methods=(FOLD_STEP,),
     bench_states=fold_states,
-    studies={"fold": MechanismStudy("the 200 s fold against the paper's eq. (6)-(13): Fig. 7-9, drives, torques",
-                                    studies.fold_study, studies.fold_lines, figures.fold_figures)},
+    studies={
+        "fold": MechanismStudy(
+            "the 200 s fold against the paper's eq. (6)-(13): Fig. 7-9, drives, torques",
+            studies.fold_study,
+            studies.fold_lines,
+            figures.fold_figures,
+        )
+    },
     self_checks=fold_checks,
 )

@@ -36,16 +36,23 @@ def fold_figures(f: Fold, folder: Path) -> list[Path]:
     fig, ax = plt.subplots(figsize=(7, 3.8))
     for k, axis in enumerate("xyz"):
         ax.plot(t, [1e3 * r.node_f_eq[k] for r in rows], color=f"C{k}", label=f"{axis}, eq. (7)-(8)")
-        ax.plot(t[::10], [1e3 * r.node_f_model[k] for r in rows[::10]], "o", color=f"C{k}", mfc="none",
-                label=f"{axis}, model")
+        ax.plot(
+            t[::10],
+            [1e3 * r.node_f_model[k] for r in rows[::10]],
+            "o",
+            color=f"C{k}",
+            mfc="none",
+            label=f"{axis}, model",
+        )
     ax.set(xlabel="time t (s)", ylabel="position of node F (mm)", title="Node F centre (cf. paper Fig. 7)")
     ax.legend(ncol=2, fontsize=8), ax.grid(alpha=0.3)
     out.append(save_png(fig, folder / "deployable_node_F.png"))
 
     fig, ax = plt.subplots(figsize=(7, 3.6))
     ax.plot(t, [1e3 * r.node_i_speed_eq for r in rows], label="d/dt of eq. (8)")
-    ax.plot(t[::10], [1e3 * r.node_i_speed_model for r in rows[::10]], "o", mfc="none",
-            label="model (closure velocities)")
+    ax.plot(
+        t[::10], [1e3 * r.node_i_speed_model for r in rows[::10]], "o", mfc="none", label="model (closure velocities)"
+    )
     ax.set(xlabel="time t (s)", ylabel="speed of node I (mm/s)", title="Node I centre speed (cf. paper Fig. 8)")
     ax.legend(), ax.grid(alpha=0.3)
     out.append(save_png(fig, folder / "deployable_node_I_speed.png"))
@@ -67,8 +74,11 @@ def fold_figures(f: Fold, folder: Path) -> list[Path]:
     fig, ax = plt.subplots(figsize=(7, 3.8))
     for joint in f.actuated:
         ax.plot(t, [r.efforts[joint] for r in rows], label=joint)
-    ax.set(xlabel="time t (s)", ylabel="drive torque (N m)",
-           title="Drive torques along the fold, constrained RNEA (gravity -z, our masses)")
+    ax.set(
+        xlabel="time t (s)",
+        ylabel="drive torque (N m)",
+        title="Drive torques along the fold, constrained RNEA (gravity -z, our masses)",
+    )
     ax.legend(ncol=4, fontsize=8), ax.grid(alpha=0.3)
     out.append(save_png(fig, folder / "deployable_efforts.png"))
     return out

@@ -38,8 +38,11 @@ def indeterminate_reactions(result: core.InverseDynamicsResult) -> dict[str, tup
     """
     if any(r.determinate is None for r in result.reactions.values()):
         raise InvalidParameters("result", "determinacy=False", "run Mechanism.inverse_dynamics with determinacy=True")
-    return {joint: tuple(c for c, ok in zip(COMPONENTS, r.determinate) if not ok)
-            for joint, r in result.reactions.items() if not r.determinate.all()}
+    return {
+        joint: tuple(c for c, ok in zip(COMPONENTS, r.determinate) if not ok)
+        for joint, r in result.reactions.items()
+        if not r.determinate.all()
+    }
 
 
 @dataclass(frozen=True)
@@ -81,7 +84,7 @@ def redundancy(mech: Mechanism, q: np.ndarray) -> Redundancy:
             middle hinge) and the middle hinges' axes.
     """
     s, y = _self_stress(mech, q)
-    cuts = core.multiplier_reactions(mech.closure_model, mech.closure_data, q, y)[-len(mech.cuts):]
+    cuts = core.multiplier_reactions(mech.closure_model, mech.closure_data, q, y)[-len(mech.cuts) :]
     pin.framesForwardKinematics(mech.model, mech.data, q)
     stress = {cut.closure.name: (w[:3], w[3:]) for cut, w in zip(mech.cuts, cuts)}
     axes = {cut.closure.name: mech.data.oMf[cut.frame_a].rotation @ cut.closure.axis for cut in mech.cuts}

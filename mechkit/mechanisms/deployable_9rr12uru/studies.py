@@ -81,13 +81,20 @@ def fold_study(mech: Mechanism, step: float = 1.0) -> Fold:
         eq = g.node_positions(s.alpha, s.gamma)
         model = node_positions(mech, sample.q)
         printed = rpy_angles(rot_y(s.gamma) @ rot_axis(g.tangent("B"), s.gamma - p.gamma_ref) @ euler_xyz(R_B0_ANGLES))
-        rows.append(FoldRow(
-            eq["F"], model["F"], max(np.abs(model[k] - eq[k]).max() for k in model),
-            float(np.linalg.norm(g.node_velocities(s.alpha, s.gamma, s.alpha_rate, s.gamma_rate)["I"])),
-            float(np.linalg.norm(node_velocity(mech, sample.q, sample.v, "I"))),
-            g.node_rpy("B", s.gamma, p.gamma_ref), rpy_angles(mech.data.oMf[node_b].rotation @ b_initial), printed,
-            float(np.abs(mech.closure_residual(sample.q)).max()),
-            dict(mech.inverse_dynamics(sample.q, sample.v, sample.a, determinacy=False).efforts)))
+        rows.append(
+            FoldRow(
+                eq["F"],
+                model["F"],
+                max(np.abs(model[k] - eq[k]).max() for k in model),
+                float(np.linalg.norm(g.node_velocities(s.alpha, s.gamma, s.alpha_rate, s.gamma_rate)["I"])),
+                float(np.linalg.norm(node_velocity(mech, sample.q, sample.v, "I"))),
+                g.node_rpy("B", s.gamma, p.gamma_ref),
+                rpy_angles(mech.data.oMf[node_b].rotation @ b_initial),
+                printed,
+                float(np.abs(mech.closure_residual(sample.q)).max()),
+                dict(mech.inverse_dynamics(sample.q, sample.v, sample.a, determinacy=False).efforts),
+            )
+        )
     return Fold(t, states, rows, tuple(mech.actuated))
 
 

@@ -22,8 +22,9 @@ def geometry(params: FiveBarParams) -> FiveBarGeometry:
     return FiveBarGeometry(**{f.name: getattr(params, f.name) for f in fields(FiveBarGeometry)})
 
 
-def motion(params: FiveBarParams, inputs: Sequence[float], rates: Sequence[float],
-           accelerations: Sequence[float]) -> LinkageState:
+def motion(
+    params: FiveBarParams, inputs: Sequence[float], rates: Sequence[float], accelerations: Sequence[float]
+) -> LinkageState:
     """Exact motion from both proximal angles (rad), rates (rad/s) and accelerations (rad/s^2), C up.
 
     Args:

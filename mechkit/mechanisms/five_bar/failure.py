@@ -77,16 +77,26 @@ def _at_gap(m: Mechanism, gap: float, q_prev: np.ndarray, cases: list[FailureCas
         dyn = newton_euler(st)
     except MechkitError as e:
         st = dyn = None
-        cases.append(FailureCase(STUDY, "closed form + Newton-Euler (reference)", gap, float("nan"), type(e).__name__,
-                                 str(e)[:160]))
+        cases.append(
+            FailureCase(
+                STUDY, "closed form + Newton-Euler (reference)", gap, float("nan"), type(e).__name__, str(e)[:160]
+            )
+        )
     guess = q_prev
     if st is not None:
         guess = np.zeros(m.model.nq)
         guess[order] = st.q
     # error vs the closed form; with no reference (at or past the singular pose) the residual it reached
-    case = FailureCase.attempt(STUDY, "assembly (closure Newton)", gap,
-                               lambda: np.linalg.norm(m.closure_residual(m.assemble(th, guess=guess))) if st is None
-                               else _relative(m.assemble(th, guess=guess)[order], st.q))
+    case = FailureCase.attempt(
+        STUDY,
+        "assembly (closure Newton)",
+        gap,
+        lambda: (
+            np.linalg.norm(m.closure_residual(m.assemble(th, guess=guess)))
+            if st is None
+            else _relative(m.assemble(th, guess=guess)[order], st.q)
+        ),
+    )
     cases.append(case)
     if case.outcome != "ok":
         return q_prev
@@ -95,10 +105,18 @@ def _at_gap(m: Mechanism, gap: float, q_prev: np.ndarray, cases: list[FailureCas
     J = m.closure_jacobian(q)
     if st is None:  # at the singular pose itself: no reference; error = the method's own closure residual
         zero = np.zeros(m.model.nv)
-        cases.append(FailureCase.attempt(STUDY, "velocities (core)", gap, lambda: np.linalg.norm(J @ m.velocities(q, RATES))))
+        cases.append(
+            FailureCase.attempt(STUDY, "velocities (core)", gap, lambda: np.linalg.norm(J @ m.velocities(q, RATES)))
+        )
         for method, label in (("proximal", "forward dynamics, proximal"), ("kkt", "forward dynamics, dense KKT")):
-            cases.append(FailureCase.attempt(STUDY, label, gap,
-                                             lambda method=method: np.linalg.norm(J @ m.forward_dynamics(q, zero, zero, method).a)))
+            cases.append(
+                FailureCase.attempt(
+                    STUDY,
+                    label,
+                    gap,
+                    lambda method=method: np.linalg.norm(J @ m.forward_dynamics(q, zero, zero, method).a),
+                )
+            )
         return q
     v_ref, a_ref, tau = np.zeros(4), np.zeros(4), np.zeros(4)
     v_ref[order], a_ref[order] = st.qd, st.qdd
@@ -106,15 +124,31 @@ def _at_gap(m: Mechanism, gap: float, q_prev: np.ndarray, cases: list[FailureCas
     tau[[m.v_index("prox1"), m.v_index("prox2")]] = efforts
     cases.append(FailureCase.attempt(STUDY, "velocities (core)", gap, lambda: _relative(m.velocities(q, RATES), v_ref)))
     for method, label in (("proximal", "forward dynamics, proximal"), ("kkt", "forward dynamics, dense KKT")):
-        cases.append(FailureCase.attempt(STUDY, label, gap,
-                                         lambda method=method: _relative(m.forward_dynamics(q, v_ref, tau, method).a, a_ref)))
-    cases.append(FailureCase.attempt(STUDY, "inverse dynamics (efforts)", gap, lambda: _relative(
-        [m.inverse_dynamics(q, v_ref, a_ref, determinacy=False).efforts[j] for j in ("prox1", "prox2")], efforts)))
+        cases.append(
+            FailureCase.attempt(
+                STUDY, label, gap, lambda method=method: _relative(m.forward_dynamics(q, v_ref, tau, method).a, a_ref)
+            )
+        )
+    cases.append(
+        FailureCase.attempt(
+            STUDY,
+            "inverse dynamics (efforts)",
+            gap,
+            lambda: _relative(
+                [m.inverse_dynamics(q, v_ref, a_ref, determinacy=False).efforts[j] for j in ("prox1", "prox2")], efforts
+            ),
+        )
+    )
     return q
 
 
 FAILURE_STUDIES = (
-    FailureStudy(STUDY, singularity, condition="distance to the singular pose: dist1 + dist2 - |B1B2| (m)",
-                 error="relative error vs closed form (-); condition number for the cond row",
-                 towards_zero=True, note="x = 1e-16: at the singular pose; 1e-17: 1 mm past it"),
+    FailureStudy(
+        STUDY,
+        singularity,
+        condition="distance to the singular pose: dist1 + dist2 - |B1B2| (m)",
+        error="relative error vs closed form (-); condition number for the cond row",
+        towards_zero=True,
+        note="x = 1e-16: at the singular pose; 1e-17: 1 mm past it",
+    ),
 )

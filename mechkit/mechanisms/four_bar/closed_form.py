@@ -22,8 +22,9 @@ def geometry(params: FourBarParams) -> FourBarGeometry:
     return FourBarGeometry(**{f.name: getattr(params, f.name) for f in fields(FourBarGeometry)})
 
 
-def motion(params: FourBarParams, inputs: Sequence[float], rates: Sequence[float],
-           accelerations: Sequence[float]) -> LinkageState:
+def motion(
+    params: FourBarParams, inputs: Sequence[float], rates: Sequence[float], accelerations: Sequence[float]
+) -> LinkageState:
     """Exact motion from the crank's angle (rad), rate (rad/s) and acceleration (rad/s^2), open branch.
 
     Args:

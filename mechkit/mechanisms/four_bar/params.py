@@ -29,5 +29,8 @@ class FourBarParams(MechanismParams):
         """
         lengths = [self.ground, self.crank, self.coupler, self.rocker]
         if max(lengths) >= sum(lengths) - max(lengths):
-            raise InvalidParameters("ground/crank/coupler/rocker", lengths,
-                                    "the longest link must be shorter than the sum of the others, or the loop cannot close")
+            raise InvalidParameters(
+                "ground/crank/coupler/rocker",
+                lengths,
+                "the longest link must be shorter than the sum of the others, or the loop cannot close",
+            )

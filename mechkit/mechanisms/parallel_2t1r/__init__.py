@@ -60,10 +60,16 @@ SPEC = MechanismSpec(
     studies={
         "comparison": MechanismStudy(
             "SOC vs Pinocchio vs classic virtual work along the paper's motion law",
-            studies.comparison, studies.comparison_lines, figures.comparison_figure),
+            studies.comparison,
+            studies.comparison_lines,
+            figures.comparison_figure,
+        ),
         "singular": MechanismStudy(
             "the motion law's singular start; theta_1 driven onto theta_2, plain vs redundant actuation",
-            studies.singular, studies.singular_lines, figures.singular_figure),
+            studies.singular,
+            studies.singular_lines,
+            figures.singular_figure,
+        ),
     },
     self_checks=self_checks,
 )

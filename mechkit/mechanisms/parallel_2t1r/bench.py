@@ -45,8 +45,9 @@ def analytic_state(mech: Mechanism, sample: Any) -> State:
         The analytic state.
     """
     if "2t1r_state" not in sample.extra:
-        sample.extra["2t1r_state"] = state_at(mech.params, _motors(mech, sample.q, "q"), _motors(mech, sample.v),
-                                              _motors(mech, sample.a))
+        sample.extra["2t1r_state"] = state_at(
+            mech.params, _motors(mech, sample.q, "q"), _motors(mech, sample.v), _motors(mech, sample.a)
+        )
     return sample.extra["2t1r_state"]
 
 
@@ -96,6 +97,4 @@ METHODS = (
     BenchMethod("SOC, 3 SKCs (numpy, from the analytic state)", "inverse_dynamics", soc),
     BenchMethod("classic virtual work (numpy, from the analytic state)", "inverse_dynamics", classic),
 )
-REFERENCES = (
-    BenchReference("SOC over the paper's three SKCs (numpy, analytic motion)", "inverse_dynamics", soc),
-)
+REFERENCES = (BenchReference("SOC over the paper's three SKCs (numpy, analytic motion)", "inverse_dynamics", soc),)

@@ -32,8 +32,10 @@ def self_checks(mech: Mechanism) -> dict[str, float]:
         worst_trip = max(worst_trip, float(trip))
     cmp = compare_along(mech, np.linspace(0.2, MOTION_DURATION, 25))
     rel = lambda m: float(np.nanmax(cmp.relative_error(m)))
-    return {"analytic IK closure residual, paper example (m)": worst_residual,
-            "FK -> IK round trip, paper example (rad)": worst_trip,
-            "analytic vs Pinocchio joint angles, motion law (rad)": float(cmp.kinematics_error.max()),
-            "SOC vs Pinocchio, torques + in-plane R23/R43 (rel.)": rel("soc"),
-            "classic virtual work vs Pinocchio, torques (rel.)": rel("classic")}
+    return {
+        "analytic IK closure residual, paper example (m)": worst_residual,
+        "FK -> IK round trip, paper example (rad)": worst_trip,
+        "analytic vs Pinocchio joint angles, motion law (rad)": float(cmp.kinematics_error.max()),
+        "SOC vs Pinocchio, torques + in-plane R23/R43 (rel.)": rel("soc"),
+        "classic virtual work vs Pinocchio, torques (rel.)": rel("classic"),
+    }

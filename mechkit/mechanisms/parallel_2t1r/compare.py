@@ -27,8 +27,9 @@ _EFFORT_JOINT = {"M1": "R11", "M2": "R21", "M3": "R31", "M4": "R41"}
 METHODS = ("pinocchio", "soc", "classic")
 
 
-def pinocchio_motion(mech: Mechanism, theta: np.ndarray, rates: np.ndarray, acc: np.ndarray,
-                     guess: np.ndarray | dict[str, float] | None) -> tuple[np.ndarray, ...]:
+def pinocchio_motion(
+    mech: Mechanism, theta: np.ndarray, rates: np.ndarray, acc: np.ndarray, guess: np.ndarray | dict[str, float] | None
+) -> tuple[np.ndarray, ...]:
     """Pinocchio's own motion for the inputs: closure solve from ``guess``, then v and a (SI).
 
     Args:
@@ -49,8 +50,9 @@ def pinocchio_motion(mech: Mechanism, theta: np.ndarray, rates: np.ndarray, acc:
     return q, v, mech.accelerations(q, v, acc, inputs=INPUTS)
 
 
-def pinocchio_inverse_dynamics(mech: Mechanism, q: np.ndarray, v: np.ndarray, a: np.ndarray,
-                               m4: float | None = None, determinacy: bool = True) -> InverseDynamicsResult:
+def pinocchio_inverse_dynamics(
+    mech: Mechanism, q: np.ndarray, v: np.ndarray, a: np.ndarray, m4: float | None = None, determinacy: bool = True
+) -> InverseDynamicsResult:
     """`Mechanism.inverse_dynamics` of a non-redundant model, with R41's motor torque m4 (N m) as a
     known external torque on link41 when given (the redundant variant with a chosen distribution).
 
@@ -72,8 +74,9 @@ def pinocchio_inverse_dynamics(mech: Mechanism, q: np.ndarray, v: np.ndarray, a:
     return mech.inverse_dynamics(q, v, a, fext=fext, determinacy=determinacy)
 
 
-def evaluate(mech: Mechanism, s: State, motion: tuple[np.ndarray, ...] | None, redundant: bool = False,
-             determinacy: bool = False) -> tuple[dict[str, float], dict[str, str], dict[str, np.ndarray]]:
+def evaluate(
+    mech: Mechanism, s: State, motion: tuple[np.ndarray, ...] | None, redundant: bool = False, determinacy: bool = False
+) -> tuple[dict[str, float], dict[str, str], dict[str, np.ndarray]]:
     """Every method at one instant: values named "<method>:<quantity>", failures by method, and the
     determinacy flags (6,) of Pinocchio's R13, R23, R43 reactions (empty without ``determinacy``).
 
@@ -189,8 +192,7 @@ def compare_along(mech: Mechanism, times: np.ndarray, redundant: bool = False) -
         guess = joint_positions(p, s) if q is None else q + v * dt + 0.5 * a * dt * dt
         previous = t
         q, v, a = pinocchio_motion(mech, theta, rates, acc, guess)
-        kin_err.append(max(abs(np.angle(np.exp(1j * (q[mech.q_index(j)] - c[0]))))
-                           for j, c in coords.items()))
+        kin_err.append(max(abs(np.angle(np.exp(1j * (q[mech.q_index(j)] - c[0])))) for j, c in coords.items()))
         values, failed, determinate = evaluate(mech, s, (q, v, a), redundant, determinacy=not flags)
         if failed:
             method, why = next(iter(failed.items()))
@@ -198,5 +200,6 @@ def compare_along(mech: Mechanism, times: np.ndarray, redundant: bool = False) -
         flags = flags or determinate
         for m in METHODS:
             rows[m].append([values.get(f"{m}:{k}", np.nan) for k in QUANTITIES])
-    return Comparison(np.asarray(times, dtype=float), {m: np.array(r) for m, r in rows.items()},
-                      np.array(kin_err), flags)
+    return Comparison(
+        np.asarray(times, dtype=float), {m: np.array(r) for m, r in rows.items()}, np.array(kin_err), flags
+    )

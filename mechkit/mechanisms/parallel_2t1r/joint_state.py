@@ -14,9 +14,17 @@ from mechkit.mechanisms.parallel_2t1r.params import Parallel2T1RParams
 from mechkit.mechanisms.parallel_2t1r.rates import State, link_motion
 
 #: Tree joints: (joint, child body, parent body or None for the base).
-TREE = (("R11", "link11", None), ("R12", "link12", "link11"), ("R21", "link21", None),
-        ("R22", "link22", "link21"), ("R23", "platform", "link22"), ("R31", "link31", None),
-        ("R32", "link32", "link31"), ("R41", "link41", None), ("R42", "link42", "link41"))
+TREE = (
+    ("R11", "link11", None),
+    ("R12", "link12", "link11"),
+    ("R21", "link21", None),
+    ("R22", "link22", "link21"),
+    ("R23", "platform", "link22"),
+    ("R31", "link31", None),
+    ("R32", "link32", "link31"),
+    ("R41", "link41", None),
+    ("R42", "link42", "link41"),
+)
 
 
 def joint_coordinates(p: Parallel2T1RParams, s: State) -> dict[str, tuple[float, float, float]]:

@@ -236,8 +236,10 @@ def forward_kinematics(d: Dims, theta: np.ndarray) -> list[FKSolution]:
             roots, disc2 = solve_trig(*_alpha_coefficients(d, c1, theta[2]), "theta3")
         except InvalidParameters:
             continue
-        poses += [FKSolution(Pose(float(c1[0]), float(c1[2]), alpha), (i, j), min(disc1, disc2))
-                  for j, alpha in enumerate(roots)]
+        poses += [
+            FKSolution(Pose(float(c1[0]), float(c1[2]), alpha), (i, j), min(disc1, disc2))
+            for j, alpha in enumerate(roots)
+        ]
     if not poses:
         raise InvalidParameters("theta", theta, "limb II cannot reach the platform for either C1")
     return poses

@@ -102,16 +102,14 @@ def at_rest(pose: Pose, theta: np.ndarray, theta4: float) -> State:
     return State(pose, np.zeros(3), np.zeros(3), np.append(theta, theta4), np.zeros(4), np.zeros(4))
 
 
-def _point_motion(pose: Pose, x_dot: np.ndarray, x_ddot: np.ndarray,
-                  r: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+def _point_motion(pose: Pose, x_dot: np.ndarray, x_ddot: np.ndarray, r: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """In-plane velocity and acceleration (2,) of a platform point at in-plane offset r (2,) from p."""
     w, e = x_dot[2], x_ddot[2]
     turn = np.array([r[1], -r[0]])  # e_y x (r_x, 0, r_z) in (x, z)
     return x_dot[:2] + w * turn, x_ddot[:2] + e * turn - w * w * r
 
 
-def _end_motion(d: Dims, state_pose: Pose, x_dot: np.ndarray,
-                x_ddot: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+def _end_motion(d: Dims, state_pose: Pose, x_dot: np.ndarray, x_ddot: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Velocities and accelerations (4, 2) of C1, C1, C3, C4."""
     c = end_points(d, state_pose)[:, [0, 2]]
     vel, acc = zip(*(_point_motion(state_pose, x_dot, x_ddot, ci - c[0]) for ci in c))
@@ -153,8 +151,7 @@ def motion_state(
     sa, ca = np.sin(pose.alpha), np.cos(pose.alpha)
     jp_dot = np.zeros((3, 3))
     jp_dot[:, :2] = 2.0 * rel
-    jp_dot[2, 2] = d.l3 * (ca * x_dot[2] * r[2, 0] + sa * rel[2, 0]
-                           - sa * x_dot[2] * r[2, 1] + ca * rel[2, 1])
+    jp_dot[2, 2] = d.l3 * (ca * x_dot[2] * r[2, 0] + sa * rel[2, 0] - sa * x_dot[2] * r[2, 1] + ca * rel[2, 1])
     wdot = np.stack([np.cos(theta4_all[:3]), -np.sin(theta4_all[:3])], axis=1) * td[:, None]
     jq_dot = np.diag(2.0 * d.l2 * (np.einsum("ij,ij->i", wdot, r[:3]) + np.einsum("ij,ij->i", w[:3], rel)))
     x_ddot = _solve(jp, jq @ tdd + jq_dot @ td - jp_dot @ x_dot, "J_p of eq. (15)")
@@ -224,14 +221,22 @@ def link_motion(d: Dims, s: State) -> dict[str, BodyMotion]:
         w1, e1 = s.theta_dot[i] * EY, s.theta_ddot[i] * EY
         vb = cross(w1, c1)  # (16)
         ab = cross(e1, c1) + cross(w1, cross(w1, c1))  # (17)
-        out[f"link{i + 1}1"] = BodyMotion(float(np.pi + s.theta[i]), base[i] + c1 / 2.0, vb / 2.0, ab / 2.0,
-                                          w1, e1)  # (18)-(19)
+        out[f"link{i + 1}1"] = BodyMotion(
+            float(np.pi + s.theta[i]), base[i] + c1 / 2.0, vb / 2.0, ab / 2.0, w1, e1
+        )  # (18)-(19)
         c2 = direction(phi2[i])
         v_c, a_c = to3(vc[i]), to3(ac[i])
         w2 = cross(c2, v_c - vb) / d.l2  # (21), (28)
         e2 = cross(c2, a_c - ab) / d.l2  # (23), (29)
-        out[f"link{i + 1}2"] = BodyMotion(float(phi2[i]), base[i] + c1 + d.l2 / 2.0 * c2, (vb + v_c) / 2.0,
-                                          (ab + a_c) / 2.0, w2, e2)  # (26)-(27)
-    out["platform"] = BodyMotion(s.pose.alpha, platform_points(d, s.pose)["p"], to3(s.x_dot[:2]),
-                                 to3(s.x_ddot[:2]), s.x_dot[2] * EY, s.x_ddot[2] * EY)
+        out[f"link{i + 1}2"] = BodyMotion(
+            float(phi2[i]), base[i] + c1 + d.l2 / 2.0 * c2, (vb + v_c) / 2.0, (ab + a_c) / 2.0, w2, e2
+        )  # (26)-(27)
+    out["platform"] = BodyMotion(
+        s.pose.alpha,
+        platform_points(d, s.pose)["p"],
+        to3(s.x_dot[:2]),
+        to3(s.x_ddot[:2]),
+        s.x_dot[2] * EY,
+        s.x_ddot[2] * EY,
+    )
     return out

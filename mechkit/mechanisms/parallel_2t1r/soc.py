@@ -56,8 +56,12 @@ class Points:
         Returns:
             The points.
         """
-        return cls(kin.base_points(d), kin.elbow_points(d, s.theta), kin.end_points(d, s.pose),
-                   kin.platform_points(d, s.pose)["p"])
+        return cls(
+            kin.base_points(d),
+            kin.elbow_points(d, s.theta),
+            kin.end_points(d, s.pose),
+            kin.platform_points(d, s.pose)["p"],
+        )
 
 
 def _point_jacobian(point: np.ndarray, pivots: list[np.ndarray | None]) -> np.ndarray:
@@ -104,24 +108,36 @@ def skcs(p: Parallel2T1RParams, s: rates.State, m4: float | None = None) -> list
 
     ext3 = () if m4 is None else ((np.array([0, 0, 0, 0, m4, 0.0]), _site(a[3], [a[3], None])),)
     skc3 = SKCInstant(
-        "SKC3", 2, [body("link41", [a[3], None]), body("link42", [a[3], b[3]])],
-        released=[WrenchSite("R43", _site(c[3], [a[3], b[3]]), -1.0, PIN)], external=ext3)
+        "SKC3",
+        2,
+        [body("link41", [a[3], None]), body("link42", [a[3], b[3]])],
+        released=[WrenchSite("R43", _site(c[3], [a[3], b[3]]), -1.0, PIN)],
+        external=ext3,
+    )
     chain2 = [a[2], b[2], c[2]]
     skc2 = SKCInstant(
-        "SKC2", 3,
+        "SKC2",
+        3,
         [body("link31", [a[2], None, None]), body("link32", [a[2], b[2], None]), body("platform", chain2)],
         actuators=[("R31", np.array([1.0, 0.0, 0.0]))],
         released=[WrenchSite("R23", _site(c[0], chain2), 1.0, PIN)],
-        known=[WrenchSite("R43", _site(c[3], chain2), 1.0)])
+        known=[WrenchSite("R43", _site(c[3], chain2), 1.0)],
+    )
     tip1 = _point_jacobian(c[0], [a[0], b[0], None, None])
     tip2 = _point_jacobian(c[0], [None, None, a[1], b[1]])
     skc1 = SKCInstant(
-        "SKC1", 4,
-        [body("link11", [a[0], None, None, None]), body("link12", [a[0], b[0], None, None]),
-         body("link21", [None, None, a[1], None]), body("link22", [None, None, a[1], b[1]])],
+        "SKC1",
+        4,
+        [
+            body("link11", [a[0], None, None, None]),
+            body("link12", [a[0], b[0], None, None]),
+            body("link21", [None, None, a[1], None]),
+            body("link22", [None, None, a[1], b[1]]),
+        ],
         actuators=[("R11", np.array([1.0, 0, 0, 0])), ("R21", np.array([0, 0, 1.0, 0]))],
         known=[WrenchSite("R23", _site(c[0], [None, None, a[1], b[1]]), -1.0)],
-        loop_jacobian=(tip1 - tip2)[PIN, :])
+        loop_jacobian=(tip1 - tip2)[PIN, :],
+    )
     return [skc3, skc2, skc1]
 
 
@@ -167,8 +183,9 @@ def _whole_jacobians(p: Parallel2T1RParams, s: rates.State) -> tuple[dict[str, n
     return {name: np.column_stack(c) for name, c in cols.items()}, dtheta
 
 
-def classic_torques(p: Parallel2T1RParams, s: rates.State, actuated: tuple[str, ...] = ("R11", "R21", "R31"),
-                    max_cond: float = 1e10) -> tuple[dict[str, float], float]:
+def classic_torques(
+    p: Parallel2T1RParams, s: rates.State, actuated: tuple[str, ...] = ("R11", "R21", "R31"), max_cond: float = 1e10
+) -> tuple[dict[str, float], float]:
     """Driving torques by the classic whole-mechanism virtual work, eqs. (39)-(40).
 
     With the platform pose X as generalised coordinates: sum_bodies J_v^T F + J_w^T M + J_a^T u = 0,

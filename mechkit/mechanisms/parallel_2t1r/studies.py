@@ -110,8 +110,10 @@ def start_of_motion(mech: Mechanism, times: np.ndarray) -> Study:
     def sample(t: float):
         theta, rates, acc = motion_law(t)
         pose, theta4, disc = assembled_pose(p.dims, theta)
-        values = {"fk_discriminant": disc,
-                  "cond_Jp": float(np.linalg.cond(jacobians(p.dims, np.append(theta, theta4), pose)[0]))}
+        values = {
+            "fk_discriminant": disc,
+            "cond_Jp": float(np.linalg.cond(jacobians(p.dims, np.append(theta, theta4), pose)[0])),
+        }
         failed = {}
         try:
             s = state_at(p, theta, rates, acc)
@@ -163,8 +165,12 @@ def comparison_lines(cmp: Comparison) -> list[str]:
     """
     peak = np.max(np.abs(cmp.values["pinocchio"]), axis=0)
     soc, classic = cmp.relative_error("soc"), cmp.relative_error("classic")
-    out = [(f"{len(cmp.times)} samples, t = {cmp.times[0]:g}..{cmp.times[-1]:g} s; relative to each quantity's "
-            "largest magnitude:")]
+    out = [
+        (
+            f"{len(cmp.times)} samples, t = {cmp.times[0]:g}..{cmp.times[-1]:g} s; relative to each quantity's "
+            "largest magnitude:"
+        )
+    ]
     for k, name in enumerate(QUANTITIES):
         other = "-" if np.isnan(classic[k]) else f"{classic[k]:.1e}"
         out.append(f"  {name:7s} max {peak[k]:8.3f}: SOC vs Pinocchio {soc[k]:.1e}, classic vs Pinocchio {other}")
@@ -205,9 +211,13 @@ def singular_lines(s: SingularStudies) -> list[str]:
         Text lines.
     """
     out = []
-    for name, study, unit in (("motion law, t -> 0+", s.start, "t (s)"), ("theta_1 onto theta_2", s.approach,
-                                                                         "theta_2 - theta_1 (rad)")):
+    for name, study, unit in (
+        ("motion law, t -> 0+", s.start, "t (s)"),
+        ("theta_1 onto theta_2", s.approach, "theta_2 - theta_1 (rad)"),
+    ):
         out.append(f"{name}: {len(study.x)} samples, {unit} {study.x.min():.1e}..{study.x.max():.1e}")
-        out += [f"  {method} raises first at {failed[0][0]:.1e}: {failed[0][1][:120]}"
-                for method, failed in study.failures.items()]
+        out += [
+            f"  {method} raises first at {failed[0][0]:.1e}: {failed[0][1][:120]}"
+            for method, failed in study.failures.items()
+        ]
     return out

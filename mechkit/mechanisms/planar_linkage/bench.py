@@ -118,13 +118,17 @@ def bench_methods(motion: Motion) -> tuple[BenchMethod, ...]:
     """
     return (
         BenchMethod("closed form (circle intersection, numpy)", "assembly", partial(closed_form_q, motion)),
-        BenchMethod("Lagrange first kind, forward (numpy, from link motion)", "forward_dynamics",
-                    partial(lagrange_forward, motion)),
+        BenchMethod(
+            "Lagrange first kind, forward (numpy, from link motion)",
+            "forward_dynamics",
+            partial(lagrange_forward, motion),
+        ),
         BenchMethod("planar Newton-Euler (numpy, from link motion)", "inverse_dynamics", partial(newton_euler, motion)),
         BenchMethod("classic virtual work (numpy, from link motion)", "inverse_dynamics", partial(classic, motion)),
         BenchMethod("sequential SOC virtual work (numpy, from link motion)", "inverse_dynamics", partial(soc, motion)),
-        BenchMethod("Lagrange first kind (numpy, from link motion)", "inverse_dynamics",
-                    partial(lagrange_first_kind, motion)),
+        BenchMethod(
+            "Lagrange first kind (numpy, from link motion)", "inverse_dynamics", partial(lagrange_first_kind, motion)
+        ),
     )
 
 
@@ -140,6 +144,8 @@ def bench_references(motion: Motion) -> tuple[BenchReference, ...]:
     """
     return (
         BenchReference("closed form (circle intersection)", "assembly", partial(closed_form_q, motion)),
-        BenchReference("closed-form a, tau from planar Newton-Euler", "forward_dynamics", partial(closed_form_a, motion)),
+        BenchReference(
+            "closed-form a, tau from planar Newton-Euler", "forward_dynamics", partial(closed_form_a, motion)
+        ),
         BenchReference("planar Newton-Euler (numpy)", "inverse_dynamics", partial(newton_euler, motion)),
     )

@@ -17,7 +17,9 @@ from mechkit.mechanisms.planar_linkage.state import Motion, joint_vector, state
 from mechkit.validation import lagrange
 
 
-def lagrange_problem(motion: Motion, mech: Mechanism, sample: Any) -> tuple[lagrange.Linkage, np.ndarray, np.ndarray, list[float]]:
+def lagrange_problem(
+    motion: Motion, mech: Mechanism, sample: Any
+) -> tuple[lagrange.Linkage, np.ndarray, np.ndarray, list[float]]:
     """The linkage in reference-point coordinates and its state (q, qd, motor accelerations); cached.
 
     Args:
@@ -31,8 +33,12 @@ def lagrange_problem(motion: Motion, mech: Mechanism, sample: Any) -> tuple[lagr
     if "lagrange" not in sample.extra:
         st = state(motion, mech, sample)
         names = list(st.links)
-        bodies = [lagrange.Body(n, st.links[n].bar.mass, st.links[n].bar.inertia_planar,
-                                np.array([st.links[n].bar.length / 2.0, 0.0])) for n in names]
+        bodies = [
+            lagrange.Body(
+                n, st.links[n].bar.mass, st.links[n].bar.inertia_planar, np.array([st.links[n].bar.length / 2.0, 0.0])
+            )
+            for n in names
+        ]
         pins = []
         for j in st.joints:
             b = names.index(j.child)
@@ -40,7 +46,11 @@ def lagrange_problem(motion: Motion, mech: Mechanism, sample: Any) -> tuple[lagr
             if j.parent is None:
                 pins.append(lagrange.Pin(j.name, None, j.point, b, point_b))
             else:
-                pins.append(lagrange.Pin(j.name, names.index(j.parent), np.array([st.links[j.parent].bar.length, 0.0]), b, point_b))
+                pins.append(
+                    lagrange.Pin(
+                        j.name, names.index(j.parent), np.array([st.links[j.parent].bar.length, 0.0]), b, point_b
+                    )
+                )
         motors = [j.name for j in st.joints if j.actuated]
         linkage = lagrange.Linkage(bodies, pins, motors)
         q = np.concatenate([[*st.links[n].com, st.links[n].angle] for n in names])

@@ -48,15 +48,22 @@ SPEC = MechanismSpec(
     studies={
         "linearisation": MechanismStudy(
             "error map of the linear stroke-angle rule (110 mm <-> 6.5 deg)",
-            lambda mech: studies.linearisation(geometry(mech.params)), studies.linearisation_lines,
-            figures.linearisation_figure),
+            lambda mech: studies.linearisation(geometry(mech.params)),
+            studies.linearisation_lines,
+            figures.linearisation_figure,
+        ),
         "resultant": MechanismStudy(
             "conditioning of the resultant FK: the paper's example and a map over the strokes",
-            lambda mech: studies.conditioning(geometry(mech.params)), studies.conditioning_lines,
-            figures.conditioning_figure),
+            lambda mech: studies.conditioning(geometry(mech.params)),
+            studies.conditioning_lines,
+            figures.conditioning_figure,
+        ),
         "swing": MechanismStudy(
             "servo forces and support reactions over one period of the swing, Pinocchio vs SOC",
-            studies.swing, studies.swing_lines, figures.swing_figure),
+            studies.swing,
+            studies.swing_lines,
+            figures.swing_figure,
+        ),
     },
     self_checks=checks.self_checks,
 )

@@ -87,6 +87,9 @@ METHODS = (
     BenchMethod("SOC (numpy)", "inverse_dynamics", soc_inverse_dynamics),
 )
 REFERENCES = (
-    BenchReference("SOC virtual work (numpy) with the analytic motion of (alpha, beta); no thrust (as the bench).",
-                   "inverse_dynamics", soc_inverse_dynamics),
+    BenchReference(
+        "SOC virtual work (numpy) with the analytic motion of (alpha, beta); no thrust (as the bench).",
+        "inverse_dynamics",
+        soc_inverse_dynamics,
+    ),
 )

@@ -113,9 +113,7 @@ def _leg(frame_pivot: np.ndarray, point: np.ndarray, velocity: np.ndarray, acc: 
     )
 
 
-def gimbal_motion(
-    geo: GimbalGeometry, angles: np.ndarray, rates: np.ndarray, accs: np.ndarray
-) -> GimbalMotion:
+def gimbal_motion(geo: GimbalGeometry, angles: np.ndarray, rates: np.ndarray, accs: np.ndarray) -> GimbalMotion:
     """Every body's motion from (alpha, beta) and their derivatives (rad, rad/s, rad/s^2).
 
     Args:

@@ -34,9 +34,7 @@ __all__ = [
 ]
 
 
-def fk_closure(
-    mech: Mechanism, stroke: np.ndarray, guess: np.ndarray | None = None
-) -> tuple[np.ndarray, np.ndarray]:
+def fk_closure(mech: Mechanism, stroke: np.ndarray, guess: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
     """FK by the closure solver (`Mechanism.assemble`, the strokes as inputs).
 
     Args:

@@ -29,6 +29,7 @@ def rule_error(mech: Mechanism) -> dict[str, float]:
 
 
 DESIGN_METRICS = (
-    DesignMetric("rule_error", "rad", "the linear rule's worst error over the stroke square", ("rule_error",),
-                 rule_error),
+    DesignMetric(
+        "rule_error", "rad", "the linear rule's worst error over the stroke square", ("rule_error",), rule_error
+    ),
 )

@@ -41,22 +41,29 @@ def root_loss(mech: Mechanism, quick: bool = True) -> list[FailureCase]:
             eqs = res.half_angle_equations(geo, stroke)
             exact = res.pick_in_range(res.fk_resultant(geo, stroke))
         except MechkitError as e:
-            cases.append(FailureCase(STUDY, "resultant + polish (reference)", off, float("nan"), type(e).__name__,
-                                     str(e)[:160]))
+            cases.append(
+                FailureCase(STUDY, "resultant + polish (reference)", off, float("nan"), type(e).__name__, str(e)[:160])
+            )
             continue
-        for label, poly in (("degree-8 eliminant roots", res.sylvester_resultant(eqs)),
-                            ("degree-16 form roots", res.degree16_polynomial(eqs))):
+        for label, poly in (
+            ("degree-8 eliminant roots", res.sylvester_resultant(eqs)),
+            ("degree-16 form roots", res.degree16_polynomial(eqs)),
+        ):
             roots = poly.roots()
             real = roots[np.abs(roots.imag) <= REAL_TOL * (1 + np.abs(roots))].real
             if real.size == 0:
-                cases.append(FailureCase(STUDY, label, off, float("nan"), "root lost",
-                                         "no real root passed the 1e-7 imaginary-part test"))
+                cases.append(
+                    FailureCase(
+                        STUDY, label, off, float("nan"), "root lost", "no real root passed the 1e-7 imaginary-part test"
+                    )
+                )
                 continue
             cases.append(FailureCase(STUDY, label, off, float(np.min(np.abs(2 * np.arctan(real) - exact.alpha))), "ok"))
     return cases
 
 
 FAILURE_STUDIES = (
-    FailureStudy(STUDY, root_loss, condition="stroke difference dlA - dlB (m)",
-                 error="alpha error vs polished resultant (rad)"),
+    FailureStudy(
+        STUDY, root_loss, condition="stroke difference dlA - dlB (m)", error="alpha error vs polished resultant (rad)"
+    ),
 )

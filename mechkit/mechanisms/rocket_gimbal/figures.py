@@ -34,7 +34,9 @@ def linearisation_figure(study: Linearisation, folder: Path) -> list[Path]:
     for k, (ax, title) in enumerate(zip(axes[:2], ("pitch theta_x", "yaw theta_y"))):
         im = ax.pcolormesh(mm, mm, err[:, :, k].T, cmap="RdBu_r", vmin=-limit, vmax=limit, shading="auto")
         ax.contour(mm, mm, err[:, :, k].T, levels=np.arange(-0.5, 0.51, 0.1), colors="k", linewidths=0.5)
-        ax.set(xlabel="stroke dlA (mm)", ylabel="stroke dlB (mm)", title=f"{title}: exact - linear (deg)", aspect="equal")
+        ax.set(
+            xlabel="stroke dlA (mm)", ylabel="stroke dlB (mm)", title=f"{title}: exact - linear (deg)", aspect="equal"
+        )
         fig.colorbar(im, ax=ax, label="error (deg)")
     ax = axes[2]
     for (name, v), style in zip(study.lines.items(), ("-", "--")):
@@ -43,9 +45,11 @@ def linearisation_figure(study: Linearisation, folder: Path) -> list[Path]:
     ax.set(xlabel="swept stroke (mm)", ylabel="exact - linear (deg)", title="the paper's Table 1 lines")
     ax.grid(True, alpha=0.3)
     ax.legend(fontsize=8)
-    fig.suptitle(f"linear rule 110 mm <-> 6.5 deg: worst {deg(e.worst):.3f} deg ({100 * e.worst / RULE_ANGLE:.2f} % of "
-                 f"6.5 deg) at dlA, dlB = {1e3 * e.worst_at[0]:.0f}, {1e3 * e.worst_at[1]:.0f} mm; cross-talk "
-                 f"{deg(e.cross_talk):.3f} deg")
+    fig.suptitle(
+        f"linear rule 110 mm <-> 6.5 deg: worst {deg(e.worst):.3f} deg ({100 * e.worst / RULE_ANGLE:.2f} % of "
+        f"6.5 deg) at dlA, dlB = {1e3 * e.worst_at[0]:.0f}, {1e3 * e.worst_at[1]:.0f} mm; cross-talk "
+        f"{deg(e.cross_talk):.3f} deg"
+    )
     return [save_png(fig, folder / "rocket_gimbal_linearisation.png")]
 
 
@@ -64,8 +68,11 @@ def conditioning_figure(study: Conditioning, folder: Path) -> list[Path]:
     mm = 1e3 * grid.axis
     fig, axes = plt.subplots(1, 2, figsize=(11, 5.0))
     for ax, data, title in (
-        (axes[0], np.log10(np.where(np.isfinite(grid.condition), grid.condition, np.nan)),
-         "log10 condition of the in-range root"),
+        (
+            axes[0],
+            np.log10(np.where(np.isfinite(grid.condition), grid.condition, np.nan)),
+            "log10 condition of the in-range root",
+        ),
         (axes[1], np.log10(np.maximum(grid.raw_error, 1e-17)), "log10 |raw root - Newton FK| (rad)"),
     ):
         im = ax.pcolormesh(mm, mm, data.T, shading="auto", cmap="viridis")
@@ -100,8 +107,11 @@ def swing_figure(study: Swing, folder: Path) -> list[Path]:
         scale = 1e6 if name == "bracket_hinge" else 1e3
         axes[1].plot(times, norm_pin / scale, f"C{k}-", label=f"{name} Pinocchio ({'MN' if scale == 1e6 else 'kN'})")
         axes[1].plot(times[::5], norm_soc[::5] / scale, f"C{k}o", ms=4, label=f"{name} SOC")
-    axes[1].set(xlabel="time (s)", ylabel="|support force| (MN bearings, kN servo pivots)",
-                title="support reactions on the gimbal frame side")
+    axes[1].set(
+        xlabel="time (s)",
+        ylabel="|support force| (MN bearings, kN servo pivots)",
+        title="support reactions on the gimbal frame side",
+    )
     axes[2].semilogy(times, np.maximum(rel, 1e-17), "k-")
     axes[2].set(xlabel="time (s)", ylabel="max relative difference", title="Pinocchio vs SOC, every effort and joint")
     for ax in axes:

@@ -237,9 +237,7 @@ def pitch_yaw(alpha: float, beta: float) -> np.ndarray:
     return np.array([np.arctan2(-n[1], n[2]), np.arctan2(n[0], n[2])])
 
 
-def linear_rule(
-    stroke: np.ndarray, stroke_max: float = RULE_STROKE, angle_max: float = RULE_ANGLE
-) -> np.ndarray:
+def linear_rule(stroke: np.ndarray, stroke_max: float = RULE_STROKE, angle_max: float = RULE_ANGLE) -> np.ndarray:
     """The proportional rule used in practice: |stroke| = stroke_max <-> |angle| = angle_max.
 
     Actuator B (in the yOz plane) sets pitch theta_x, actuator A (xOz plane) sets yaw theta_y; the
@@ -320,6 +318,4 @@ def linear_rule_errors(
     i, j = np.unravel_index(np.argmax(err), err.shape)
     mid = n // 2
     talk = max(np.abs(exact[:, mid, 0]).max(), np.abs(exact[mid, :, 1]).max())
-    return LinearRuleErrors(
-        axis, axis, exact, linear, float(err[i, j]), (float(axis[i]), float(axis[j])), float(talk)
-    )
+    return LinearRuleErrors(axis, axis, exact, linear, float(err[i, j]), (float(axis[i]), float(axis[j])), float(talk))

@@ -26,8 +26,7 @@ class RocketGimbalParams(MechanismParams):
     pivot_radius: float = param(
         1.009116,
         "m",
-        "r: distance of the actuator lines from the nozzle axis "
-        "(reconstruction reproducing the paper's IK example)",
+        "r: distance of the actuator lines from the nozzle axis (reconstruction reproducing the paper's IK example)",
         ours=True,
     )
     pivot_offset: float = param(
@@ -38,13 +37,9 @@ class RocketGimbalParams(MechanismParams):
     )
     length_a: float = param(1.843, "m", "lA0, actuator A length at zero stroke (paper)")
     length_b: float = param(1.843, "m", "lB0, actuator B length at zero stroke (paper)")
-    engine_mass: float = param(
-        2000.0, "kg", "YF-100 class kerosene/LOX engine (about 1.2 MN, ~2 t)", ours=True
-    )
+    engine_mass: float = param(2000.0, "kg", "YF-100 class kerosene/LOX engine (about 1.2 MN, ~2 t)", ours=True)
     engine_com: float = param(1.2, "m", "engine COM on the nozzle axis, from O", ours=True)
-    engine_length: float = param(
-        3.0, "m", "engine envelope length (uniform solid cylinder inertia)", ours=True
-    )
+    engine_length: float = param(3.0, "m", "engine envelope length (uniform solid cylinder inertia)", ours=True)
     engine_radius: float = param(0.6, "m", "engine envelope radius", ours=True)
     bracket_mass: float = param(80.0, "kg", "moving bracket (thin ring inertia)", ours=True)
     bracket_radius: float = param(0.35, "m", "moving bracket ring radius", ours=True)

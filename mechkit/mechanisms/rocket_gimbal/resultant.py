@@ -252,9 +252,7 @@ def fk_resultant(
             if any(abs(alpha - m.alpha) + abs(beta - m.beta) < DUPLICATE for m in modes):
                 continue  # a double root of the resultant (two modes sharing alpha) seen twice
             modes.append(
-                AssemblyMode(
-                    alpha, beta, a, b, gap, root_condition(poly, a), float(attitude(alpha, beta)[2, 2])
-                )
+                AssemblyMode(alpha, beta, a, b, gap, root_condition(poly, a), float(attitude(alpha, beta)[2, 2]))
             )
     return sorted(modes, key=lambda m: abs(m.alpha) + abs(m.beta))
 

@@ -107,10 +107,7 @@ def swing_scene(mech: Mechanism) -> list[np.ndarray]:
         The configurations (nq,).
     """
     scene = SwingScene()
-    return [
-        joint_state(mech, scene.motion(mech.params, t))[0]
-        for t in np.linspace(0.0, 1.0 / scene.frequency, 120)
-    ]
+    return [joint_state(mech, scene.motion(mech.params, t))[0] for t in np.linspace(0.0, 1.0 / scene.frequency, 120)]
 
 
 def swing_times(mech: Mechanism, poses: int) -> np.ndarray:

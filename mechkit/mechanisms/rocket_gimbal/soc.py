@@ -151,9 +151,7 @@ def gimbal_skcs(
             jv[:, base : base + 2] = np.column_stack([cross(ei, c - pivot) for ei in e])
             if body.endswith("rod"):
                 jv[:, base + 2] = u
-            loads[body] = BodyLoad(
-                body, bodies[body][0], _axisymmetric(bodies[body], u), acc, w_leg, a_leg, jv, jw
-            )
+            loads[body] = BodyLoad(body, bodies[body][0], _axisymmetric(bodies[body], u), acc, w_leg, a_leg, jv, jw)
         loop_bodies += loads.values()
         actuators.append((f"{name}_stroke", np.eye(size)[base + 2]))
         # ball joint: engine (parent, frame_a) on rod (child); relative virtual displacement rod - engine
@@ -246,9 +244,7 @@ def _pad(body: BodyLoad, start: int, size: int) -> BodyLoad:
     jv, jw = np.zeros((3, size)), np.zeros((3, size))
     k = body.jv.shape[1]
     jv[:, start : start + k], jw[:, start : start + k] = body.jv, body.jw
-    return BodyLoad(
-        body.name, body.mass, body.inertia_com, body.com_acceleration, body.omega, body.alpha, jv, jw
-    )
+    return BodyLoad(body.name, body.mass, body.inertia_com, body.com_acceleration, body.omega, body.alpha, jv, jw)
 
 
 def _free(body: BodyLoad, com: np.ndarray, ref: np.ndarray) -> BodyLoad:

@@ -78,7 +78,9 @@ def linearisation(geo: GimbalGeometry, n: int = 45, line_points: int = 89) -> Li
     """
     sweep = np.linspace(-RULE_STROKE, RULE_STROKE, line_points)
     held = {"dlA = -10 mm": lambda s: np.array([-0.010, s]), "dlB = -8 mm": lambda s: np.array([s, -0.008])}
-    lines = {k: np.array([pitch_yaw(*fk_newton(geo, at(s))) - linear_rule(at(s)) for s in sweep]) for k, at in held.items()}
+    lines = {
+        k: np.array([pitch_yaw(*fk_newton(geo, at(s))) - linear_rule(at(s)) for s in sweep]) for k, at in held.items()
+    }
     return Linearisation(linear_rule_errors(geo, RULE_STROKE, RULE_ANGLE, n), sweep, lines)
 
 
@@ -143,9 +145,15 @@ def resultant_example(geo: GimbalGeometry, stroke: tuple[float, float] = EXAMPLE
     spurious = roots16[np.abs(np.abs(roots16.imag) - 1.0) < 1e-2]
     real16 = np.sort(roots16[np.abs(roots16.imag) < 1e-7].real)
     real8 = np.sort([m.a for m in fk_resultant(geo, stroke, polish=False)])
-    return ResultantExample(p8, p16, modes, pick_in_range(modes), spurious,
-                            float(np.abs(spurious - 1j * np.sign(spurious.imag)).max()),
-                            float(np.abs(real16 / real8 - 1).max()))
+    return ResultantExample(
+        p8,
+        p16,
+        modes,
+        pick_in_range(modes),
+        spurious,
+        float(np.abs(spurious - 1j * np.sign(spurious.imag)).max()),
+        float(np.abs(real16 / real8 - 1).max()),
+    )
 
 
 @dataclass(frozen=True)
@@ -225,25 +233,37 @@ def conditioning_lines(study: Conditioning) -> list[str]:
         Text lines.
     """
     ex, grid = study.example, study.grid
-    out = ["paper example {-60, 105} mm",
-           f"  degree-8 eliminant coefficients (a^0..a^8): {np.array2string(ex.eliminant.coef, precision=6)}",
-           f"  coefficient range max/min |c|: {np.abs(ex.eliminant.coef).max() / np.abs(ex.eliminant.coef).min():.3g}"]
+    out = [
+        "paper example {-60, 105} mm",
+        f"  degree-8 eliminant coefficients (a^0..a^8): {np.array2string(ex.eliminant.coef, precision=6)}",
+        f"  coefficient range max/min |c|: {np.abs(ex.eliminant.coef).max() / np.abs(ex.eliminant.coef).min():.3g}",
+    ]
     for m in ex.modes:
         side = "nozzle +z (as built)" if m.nozzle_z > 0.5 else ("flipped" if m.nozzle_z < 0 else "sideways")
-        out.append(f"  a = {m.a:+.10f}  alpha = {np.degrees(m.alpha):+11.6f} deg  beta = {np.degrees(m.beta):+11.6f} deg"
-                   f"  cond8 = {m.condition:6.2f}  cond16 = {root_condition(ex.degree16, m.a):6.2f}  {side}")
-    out.append(f"  in-range pick: alpha, beta = {np.degrees(ex.pick.alpha):.6f}, {np.degrees(ex.pick.beta):.6f} deg"
-               " (paper: 6.6336, -2.0624 deg)")
-    out.append(f"  degree-16 form: {ex.spurious_roots.size} roots near +-i (4-fold), scattered by {ex.scatter:.2e}"
-               f" (eps^(1/4) = {np.finfo(float).eps ** 0.25:.1e}): {-np.log10(ex.scatter):.1f} of 16 digits left")
+        out.append(
+            f"  a = {m.a:+.10f}  alpha = {np.degrees(m.alpha):+11.6f} deg  beta = {np.degrees(m.beta):+11.6f} deg"
+            f"  cond8 = {m.condition:6.2f}  cond16 = {root_condition(ex.degree16, m.a):6.2f}  {side}"
+        )
+    out.append(
+        f"  in-range pick: alpha, beta = {np.degrees(ex.pick.alpha):.6f}, {np.degrees(ex.pick.beta):.6f} deg"
+        " (paper: 6.6336, -2.0624 deg)"
+    )
+    out.append(
+        f"  degree-16 form: {ex.spurious_roots.size} roots near +-i (4-fold), scattered by {ex.scatter:.2e}"
+        f" (eps^(1/4) = {np.finfo(float).eps ** 0.25:.1e}): {-np.log10(ex.scatter):.1f} of 16 digits left"
+    )
     out.append(f"  real roots, degree 16 vs degree 8: max relative difference {ex.real_roots_difference:.1e}")
     n, off = len(grid.axis), grid.off_diagonal
     out.append(f"stroke square +-{1e3 * RULE_STROKE:.0f} mm, {n} x {n}:")
-    out.append(f"  in-range root condition number: median {np.nanmedian(grid.condition):.2f}, max off the diagonal"
-               f" {np.nanmax(grid.condition[off]):.3g}, on the diagonal dlA = dlB: {np.nanmax(grid.condition[~off]):.3g}"
-               " (double root)")
-    out.append(f"  raw (unpolished) root vs Newton FK: max {np.nanmax(grid.raw_error):.2e} rad off-diagonal"
-               f" {np.nanmax(grid.raw_error[off]):.2e} rad; polished: see the tests (< 1e-9 rad)")
+    out.append(
+        f"  in-range root condition number: median {np.nanmedian(grid.condition):.2f}, max off the diagonal"
+        f" {np.nanmax(grid.condition[off]):.3g}, on the diagonal dlA = dlB: {np.nanmax(grid.condition[~off]):.3g}"
+        " (double root)"
+    )
+    out.append(
+        f"  raw (unpolished) root vs Newton FK: max {np.nanmax(grid.raw_error):.2e} rad off-diagonal"
+        f" {np.nanmax(grid.raw_error[off]):.2e} rad; polished: see the tests (< 1e-9 rad)"
+    )
     return out
 
 
@@ -290,11 +310,18 @@ def swing(mech: Mechanism, n: int = 101) -> Swing:
         supports["pinocchio"].append([r.reactions[j].wrench for j in SUPPORTS])
         supports["soc"].append([s.reactions[j] for j in SUPPORTS])
         diffs = [abs(r.efforts[j] - s.efforts[j]) / abs(r.efforts[j]) for j in mech.actuated]
-        diffs += [np.abs(r.reactions[j].wrench - s.reactions[j]).max() / np.abs(r.reactions[j].wrench).max()
-                  for j in r.reactions]
+        diffs += [
+            np.abs(r.reactions[j].wrench - s.reactions[j]).max() / np.abs(r.reactions[j].wrench).max()
+            for j in r.reactions
+        ]
         rel.append(max(diffs))
-    return Swing(times, tuple(mech.actuated), {k: np.array(x) for k, x in efforts.items()}, {k: np.array(x) for k, x in supports.items()},
-                 np.array(rel))
+    return Swing(
+        times,
+        tuple(mech.actuated),
+        {k: np.array(x) for k, x in efforts.items()},
+        {k: np.array(x) for k, x in supports.items()},
+        np.array(rel),
+    )
 
 
 def swing_summary(study: Swing) -> dict[str, float]:

@@ -37,10 +37,18 @@ SPEC = MechanismSpec(
     bench_methods=bench.METHODS,
     bench_references=bench.REFERENCES,
     studies={
-        "cone": MechanismStudy("the cone scene: the paper's Figs. 5-7, plus its dynamics by two methods",
-                               studies.cone, studies.cone_lines, figures.cone_figure),
-        "basin": MechanismStudy("where the forward kinematics fails: convergence basins of three methods",
-                                studies.basin, studies.basin_lines, figures.basin_figure),
+        "cone": MechanismStudy(
+            "the cone scene: the paper's Figs. 5-7, plus its dynamics by two methods",
+            studies.cone,
+            studies.cone_lines,
+            figures.cone_figure,
+        ),
+        "basin": MechanismStudy(
+            "where the forward kinematics fails: convergence basins of three methods",
+            studies.basin,
+            studies.basin_lines,
+            figures.basin_figure,
+        ),
     },
     self_checks=checks.self_checks,
 )

@@ -79,6 +79,5 @@ METHODS = (
     BenchMethod("SOC (numpy)", "inverse_dynamics", soc_inverse_dynamics),
 )
 REFERENCES = (
-    BenchReference("SOC virtual work (numpy), every joint's moment about O.", "inverse_dynamics",
-                   soc_inverse_dynamics),
+    BenchReference("SOC virtual work (numpy), every joint's moment about O.", "inverse_dynamics", soc_inverse_dynamics),
 )

@@ -69,8 +69,7 @@ def jacobian_fd_error(p: kin.Geometry, samples: int = 12, h: float = 1e-5) -> fl
         theta = kin.inverse_kinematics(p, target, BRANCHES)
         fd = np.column_stack(
             [
-                (fk_newton(p, theta + h * e, target).phi - fk_newton(p, theta - h * e, target).phi)
-                / (2 * h)
+                (fk_newton(p, theta + h * e, target).phi - fk_newton(p, theta - h * e, target).phi) / (2 * h)
                 for e in np.eye(2)
             ]
         )

@@ -40,8 +40,12 @@ def cone_figure(c: Cone, folder: Path) -> list[Path]:
     n_plan, n_fk = platform_normal(c.phi), platform_normal(c.fk)
     ax[2].plot(n_plan[:, 0], n_plan[:, 1], "--", label="planned")
     ax[2].plot(n_fk[:, 0], n_fk[:, 1], "*", ms=4, label="from paper FK")
-    ax[2].set(xlabel="marker x (unit normal tip, -)", ylabel="marker y (-)", aspect="equal",
-              title="marker point, top view (paper Fig. 7)")
+    ax[2].set(
+        xlabel="marker x (unit normal tip, -)",
+        ylabel="marker y (-)",
+        aspect="equal",
+        title="marker point, top view (paper Fig. 7)",
+    )
     for k, name in enumerate(c.actuated):
         ax[3].plot(c.t, c.efforts["pinocchio"][:, k], color=f"C{k}", label=f"torque {name}, Pinocchio")
         ax[3].plot(c.t, c.efforts["soc"][:, k], "x", color=f"C{k}", ms=4, label=f"torque {name}, SOC")
@@ -76,7 +80,9 @@ def basin_figure(b: Basin, folder: Path) -> list[Path]:
     axes[0].plot(cone[:, 0], cone[:, 1], "k--", lw=1, label="cone scene (half angle 15 deg)")
     for (name, pose), marker in zip(b.poses.items(), ("o", "x")):
         axes[0].plot(*np.degrees(pose), marker, color="k", ms=8, label=f"{name} target")
-    axes[0].set(xlabel="roll phi_x (deg)", ylabel="pitch phi_y (deg)", title="det B (black: det B = 0; blank: IK undefined)")
+    axes[0].set(
+        xlabel="roll phi_x (deg)", ylabel="pitch phi_y (deg)", title="det B (black: det B = 0; blank: IK undefined)"
+    )
     axes[0].legend(fontsize=7, loc="lower right")
     fig.colorbar(im, ax=axes[0])
     styles = {"paper": "C0", "newton": "C1", "closure": "C2"}
@@ -84,12 +90,25 @@ def basin_figure(b: Basin, folder: Path) -> list[Path]:
         for method in METHODS:
             rows = [r for r in b.rows[name] if r.method == method]
             for ax, field in ((axes[1], "found"), (axes[2], "iterations")):
-                ax.semilogx(RADII_DEG, [getattr(r, field) for r in rows], ls, color=styles[method], marker="o", ms=3,
-                            label=f"{method}, {name}")
-    axes[1].set(xlabel="start distance from the answer (deg)", ylabel="fraction of starts finding the answer",
-                title=f"FK convergence basin ({b.directions} directions per radius)")
-    axes[2].set(xlabel="start distance from the answer (deg)", ylabel="mean iterations (successful starts)",
-                title="iterations to |step| (closure: |residual|) <= 1e-13")
+                ax.semilogx(
+                    RADII_DEG,
+                    [getattr(r, field) for r in rows],
+                    ls,
+                    color=styles[method],
+                    marker="o",
+                    ms=3,
+                    label=f"{method}, {name}",
+                )
+    axes[1].set(
+        xlabel="start distance from the answer (deg)",
+        ylabel="fraction of starts finding the answer",
+        title=f"FK convergence basin ({b.directions} directions per radius)",
+    )
+    axes[2].set(
+        xlabel="start distance from the answer (deg)",
+        ylabel="mean iterations (successful starts)",
+        title="iterations to |step| (closure: |residual|) <= 1e-13",
+    )
     axes[1].legend(fontsize=7)
     for ax in axes[1:]:
         ax.grid(True, which="both", alpha=0.3)

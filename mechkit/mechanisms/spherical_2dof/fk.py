@@ -23,8 +23,19 @@ from mechkit.mechanisms.spherical_2dof.scenes import cone_attitude
 if TYPE_CHECKING:
     from mechkit.mechanism import Mechanism
 
-__all__ = ["METHODS", "NEAR_SINGULAR", "REGULAR", "BasinRow", "FKResult", "basin_study", "fk_closure", "fk_newton", "fk_paper",
-           "solve_fk"]
+__all__ = [
+    "METHODS",
+    "NEAR_SINGULAR",
+    "REGULAR",
+    "BasinRow",
+    "FKResult",
+    "basin_study",
+    "fk_closure",
+    "fk_newton",
+    "fk_paper",
+    "solve_fk",
+]
+
 
 @dataclass(frozen=True)
 class FKResult:

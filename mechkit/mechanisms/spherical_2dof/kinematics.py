@@ -234,10 +234,7 @@ def constraint(p: Geometry, theta: Sequence[float], phi: Sequence[float]) -> np.
         (2,) residuals (-).
     """
     return np.array(
-        [
-            middle_axis(p, i, theta[k]) @ platform_axis(p, i, phi) - np.cos(p.alpha2)
-            for k, i in enumerate((1, 2))
-        ]
+        [middle_axis(p, i, theta[k]) @ platform_axis(p, i, phi) - np.cos(p.alpha2) for k, i in enumerate((1, 2))]
     )
 
 
@@ -246,9 +243,7 @@ def _hooke_axes(phi: Sequence[float]) -> np.ndarray:
     return np.column_stack([[1.0, 0.0, 0.0], rot_x(phi[0])[:, 1]])
 
 
-def constraint_jacobians(
-    p: Geometry, theta: Sequence[float], phi: Sequence[float]
-) -> tuple[np.ndarray, np.ndarray]:
+def constraint_jacobians(p: Geometry, theta: Sequence[float], phi: Sequence[float]) -> tuple[np.ndarray, np.ndarray]:
     """The matrices of eq. (10), ``A theta' + B phi' = 0``.
 
     Args:

@@ -23,9 +23,7 @@ class Spherical2DofParams(MechanismParams):
     """Link arcs and axis angles (rad), sizes (m) and masses of the 2-DOF spherical platform."""
 
     alpha1: float = param(math.radians(25.0), "rad", "arc between the motor axis u_i and the middle axis w_i")
-    alpha2: float = param(
-        math.radians(30.0), "rad", "arc between the middle axis w_i and the platform axis v_i"
-    )
+    alpha2: float = param(math.radians(30.0), "rad", "arc between the middle axis w_i and the platform axis v_i")
     beta: float = param(math.radians(53.13), "rad", "angle of the motor axes u_i from -Z0 (eq. 5)")
     beta_platform: float = param(
         math.radians(90.0),
@@ -33,9 +31,7 @@ class Spherical2DofParams(MechanismParams):
         "angle of the platform axes v_i from -Z (absent from the paper; 90 deg: in the platform plane)",
         ours=True,
     )
-    eta11: float = param(
-        0.0, "rad", "base azimuth of limb 1's motor axis u_1 (the reference: 0 by definition of X0)"
-    )
+    eta11: float = param(0.0, "rad", "base azimuth of limb 1's motor axis u_1 (the reference: 0 by definition of X0)")
     eta12: float = param(math.radians(90.0), "rad", "base azimuth of limb 2's motor axis u_2 from u_1")
     eta21: float = param(
         0.0, "rad", "platform azimuth of limb 1's platform axis v_1 (the reference: 0 by definition of X)"
@@ -69,9 +65,7 @@ class Spherical2DofParams(MechanismParams):
                 raise InvalidParameters(name, getattr(self, name), "a link arc must lie in (0, 90) deg")
         lo, hi = abs(self.alpha1 - self.alpha2), self.alpha1 + self.alpha2
         for i in (1, 2):
-            arc = math.acos(
-                float(np.clip(kin.base_axis(self, i) @ kin.platform_axis(self, i, (0.0, 0.0)), -1, 1))
-            )
+            arc = math.acos(float(np.clip(kin.base_axis(self, i) @ kin.platform_axis(self, i, (0.0, 0.0)), -1, 1)))
             if not lo < arc < hi:
                 why = (
                     f"limb {i} cannot assemble at home: the u-v arc {math.degrees(arc):.2f} deg is outside "

@@ -215,9 +215,7 @@ def skcs(
         n,
         [body[b].load(b, jw[b]) for b in body],
         actuators,
-        released=(
-            WrenchSite("hooke_roll", np.vstack([np.zeros((3, n)), jw["cross"]]), 1.0, components=(4, 5)),
-        ),
+        released=(WrenchSite("hooke_roll", np.vstack([np.zeros((3, n)), jw["cross"]]), 1.0, components=(4, 5)),),
         loop_jacobian=np.vstack(loop),
     )
     if efforts is None:

@@ -81,8 +81,15 @@ def cone(mech: Mechanism, samples: int = 72) -> Cone:
         efforts["soc"].append([ours.efforts[j] for j in mech.actuated])
         support["pinocchio"].append(ref.reactions[SUPPORT].wrench[3:])
         support["soc"].append(ours.reactions[SUPPORT][3:])
-    return Cone(t, tuple(mech.actuated), phi, theta, fk, {k: np.asarray(x) for k, x in efforts.items()},
-                {k: np.asarray(x) for k, x in support.items()})
+    return Cone(
+        t,
+        tuple(mech.actuated),
+        phi,
+        theta,
+        fk,
+        {k: np.asarray(x) for k, x in efforts.items()},
+        {k: np.asarray(x) for k, x in support.items()},
+    )
 
 
 def cone_summary(c: Cone) -> dict[str, float]:
@@ -97,7 +104,9 @@ def cone_summary(c: Cone) -> dict[str, float]:
     pin_u, soc_u, pin_m, soc_m = c.efforts["pinocchio"], c.efforts["soc"], c.support["pinocchio"], c.support["soc"]
     return {
         "FK vs plan, attitude (rad)": float(np.abs(c.fk - c.phi).max()),
-        "FK vs plan, marker point (-)": float(np.linalg.norm(platform_normal(c.fk) - platform_normal(c.phi), axis=1).max()),
+        "FK vs plan, marker point (-)": float(
+            np.linalg.norm(platform_normal(c.fk) - platform_normal(c.phi), axis=1).max()
+        ),
         "torques Pinocchio vs SOC (N m)": float(np.abs(pin_u - soc_u).max()),
         "support moment Pinocchio vs SOC (N m)": float(np.abs(pin_m - soc_m).max()),
         "peak |torque| (N m)": float(np.abs(pin_u).max()),
@@ -187,6 +196,9 @@ def basin_lines(b: Basin) -> list[str]:
     """
     out = [f"{'pose':14s} {'method':8s} {'r (deg)':>8s} {'found':>6s} {'other':>6s} {'failed':>6s} {'iters':>6s}"]
     for name, rows in b.rows.items():
-        out += [f"{name:14s} {r.method:8s} {np.degrees(r.radius):8.1f} {r.found:6.2f} {r.elsewhere:6.2f} "
-                f"{r.failed:6.2f} {r.iterations:6.2f}" for r in rows]
+        out += [
+            f"{name:14s} {r.method:8s} {np.degrees(r.radius):8.1f} {r.found:6.2f} {r.elsewhere:6.2f} "
+            f"{r.failed:6.2f} {r.iterations:6.2f}"
+            for r in rows
+        ]
     return out

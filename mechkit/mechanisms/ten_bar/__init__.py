@@ -84,10 +84,15 @@ SPEC = MechanismSpec(
     studies={
         "cross_checks": MechanismStudy(
             "the deployment, stowed to deployed, by two dynamics routes, with every cross-check",
-            studies.cross_checks, studies.cross_check_lines),
+            studies.cross_checks,
+            studies.cross_check_lines,
+        ),
         "deployment": MechanismStudy(
             "deployment figures: linkage snapshots, joint angles, torques, wall supports, drift",
-            studies.deployment, studies.deployment_lines, figures.deployment_figures),
+            studies.deployment,
+            studies.deployment_lines,
+            figures.deployment_figures,
+        ),
     },
     self_checks=self_checks,
 )

@@ -90,9 +90,7 @@ def reactions_along(
     idx = np.arange(0, len(trajectory.t), every)
     out: dict[str, list[Reactions]] = {}
     for k in idx:
-        for method, r in reactions_three_ways(
-            mechanism, trajectory.t[k], trajectory.q[k], trajectory.v[k]
-        ).items():
+        for method, r in reactions_three_ways(mechanism, trajectory.t[k], trajectory.q[k], trajectory.v[k]).items():
             out.setdefault(method, []).append(r)
     return trajectory.t[idx], out
 
@@ -134,9 +132,7 @@ def kinematics_disagreement(mechanism: Mechanism, inputs_list: list[dict[str, fl
         seq = reduction.solve(inputs, guess)
         closed = geo.pose(mechanism.params, inputs["R1"], inputs["R3"], inputs["R5"]).joint_angles()
         full = {j: q[mechanism.q_index(j)] for j in names}
-        worst["full_vs_reduction"] = max(
-            worst["full_vs_reduction"], max(abs(full[j] - seq[j]) for j in names)
-        )
+        worst["full_vs_reduction"] = max(worst["full_vs_reduction"], max(abs(full[j] - seq[j]) for j in names))
         worst["full_vs_closed_form"] = max(
             worst["full_vs_closed_form"],
             max(abs(np.angle(np.exp(1j * (full[j] - closed[j])))) for j in names),

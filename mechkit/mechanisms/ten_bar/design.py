@@ -30,12 +30,19 @@ def deployment_metrics(mech: Mechanism) -> dict[str, float]:
     trajectory = td.deploy(td.PinocchioDeployment(mech), mech.home_q, DEPLOY_STEP)
     data = mech.model.createData()
     pin.forwardKinematics(mech.model, data, trajectory.q[-1], trajectory.v[-1])
-    speeds = [np.linalg.norm(pin.getVelocity(mech.model, data, j, pin.LOCAL_WORLD_ALIGNED).linear)
-              for j in range(1, mech.model.njoints)]
+    speeds = [
+        np.linalg.norm(pin.getVelocity(mech.model, data, j, pin.LOCAL_WORLD_ALIGNED).linear)
+        for j in range(1, mech.model.njoints)
+    ]
     return {"max_motor_torque": float(np.max(np.abs(trajectory.torques))), "latch_speed": float(max(speeds))}
 
 
 DESIGN_METRICS = (
-    DesignMetric("deployment", "N m, m/s", "max_motor_torque (N m) and latch_speed (m/s) of the deployment",
-                 ("max_motor_torque", "latch_speed"), deployment_metrics),
+    DesignMetric(
+        "deployment",
+        "N m, m/s",
+        "max_motor_torque (N m) and latch_speed (m/s) of the deployment",
+        ("max_motor_torque", "latch_speed"),
+        deployment_metrics,
+    ),
 )

@@ -116,8 +116,9 @@ class PinocchioDeployment:
         method: forward-dynamics method of the core ("proximal" = pin.constraintDynamics, or "kkt").
     """
 
-    def __init__(self, mechanism: Mechanism, baumgarte: tuple[float, float] | None = None,
-                 method: str = "proximal") -> None:
+    def __init__(
+        self, mechanism: Mechanism, baumgarte: tuple[float, float] | None = None, method: str = "proximal"
+    ) -> None:
         self.m, self.baumgarte, self.method = mechanism, baumgarte, method
         self.p = mechanism.params
         self.drives = sim.Drives(MOTORS, self.law)
@@ -215,8 +216,15 @@ class PinocchioDeployment:
         return q[self.order]
 
 
-def project(rows: Callable[[np.ndarray], tuple[np.ndarray, np.ndarray]], q: np.ndarray, v: np.ndarray, motor_rates: np.ndarray, what: str, tol: float = 1e-13,
-            max_iter: int = 20) -> tuple[np.ndarray, np.ndarray]:
+def project(
+    rows: Callable[[np.ndarray], tuple[np.ndarray, np.ndarray]],
+    q: np.ndarray,
+    v: np.ndarray,
+    motor_rates: np.ndarray,
+    what: str,
+    tol: float = 1e-13,
+    max_iter: int = 20,
+) -> tuple[np.ndarray, np.ndarray]:
     """Minimum-norm Gauss-Newton projection of q onto e(q) = 0, then of v onto G v = (0, motor rates).
 
     Args:
@@ -297,20 +305,28 @@ def integrate(
     n = len(q0)
 
     def fun(t: float, y: np.ndarray) -> np.ndarray:
-        a, _, power = system.rhs(t, y[:n], y[n:2 * n])
-        return np.concatenate([y[n:2 * n], a, [power]])
+        a, _, power = system.rhs(t, y[:n], y[n : 2 * n])
+        return np.concatenate([y[n : 2 * n], a, [power]])
 
     def onto(t: float, y: np.ndarray) -> np.ndarray:
-        return np.concatenate([*system.project(t, y[:n], y[n:2 * n]), y[2 * n:]])
+        return np.concatenate([*system.project(t, y[:n], y[n : 2 * n]), y[2 * n :]])
 
-    times, states = sim.run(fun, t0, np.concatenate([q0, v0, [0.0]]), t_end, sim.Options(dt=dt),
-                            onto if project else None)
+    times, states = sim.run(
+        fun, t0, np.concatenate([q0, v0, [0.0]]), t_end, sim.Options(dt=dt), onto if project else None
+    )
     rows = {k: [] for k in ("t", "q", "v", "angles", "torques", "residual", "energy", "work")}
     for t, y in zip(times, states):
-        q, v = y[:n], y[n:2 * n]
-        for key, value in (("t", t), ("q", q), ("v", v), ("angles", system.joint_angles(q)),
-                           ("torques", system.rhs(t, q, v)[1]), ("residual", system.residual(t, q)),
-                           ("energy", system.energy(q, v)), ("work", y[2 * n])):
+        q, v = y[:n], y[n : 2 * n]
+        for key, value in (
+            ("t", t),
+            ("q", q),
+            ("v", v),
+            ("angles", system.joint_angles(q)),
+            ("torques", system.rhs(t, q, v)[1]),
+            ("residual", system.residual(t, q)),
+            ("energy", system.energy(q, v)),
+            ("work", y[2 * n]),
+        ):
             rows[key].append(value)
     return Trajectory(**{k: np.array(val) for k, val in rows.items()})
 

@@ -85,8 +85,12 @@ def deployment_figures(d: Deployment, folder: Path) -> list[Path]:
 
     fig, ax = plt.subplots(figsize=(8, 4.5))
     for j in td.JOINT_ORDER:
-        ax.plot(traj.t, np.degrees(traj.angles[:, td.JOINT_ORDER.index(j)]), lw=2.2 if j in ("R1", "R3", "R5") else 1,
-                label=j + (" (motor)" if j in tp.MOTORS else " (spring)" if j == "R5" else ""))
+        ax.plot(
+            traj.t,
+            np.degrees(traj.angles[:, td.JOINT_ORDER.index(j)]),
+            lw=2.2 if j in ("R1", "R3", "R5") else 1,
+            label=j + (" (motor)" if j in tp.MOTORS else " (spring)" if j == "R5" else ""),
+        )
     out.append(_over_time(fig, ax, folder / "ten_bar_angles.png", "joint angle (deg)", {"ncol": 3, "fontsize": 8}))
 
     fig, ax = plt.subplots(figsize=(8, 4.5))
@@ -100,8 +104,13 @@ def deployment_figures(d: Deployment, folder: Path) -> list[Path]:
     for ax, pair in zip(axes, ("R1", "R5")):
         for comp, name in ((0, "fx"), (1, "fz")):
             ax.plot(times, [r.forces[pair][comp] for r in results["pinocchio"]], label=f"{name} constrained RNEA")
-            ax.plot(times[::5], [r.forces[pair][comp] for r in results["lagrange"]][::5], "k.", ms=4,
-                    label=f"{name} Lagrange multiplier" if comp == 0 else None)
+            ax.plot(
+                times[::5],
+                [r.forces[pair][comp] for r in results["lagrange"]][::5],
+                "k.",
+                ms=4,
+                label=f"{name} Lagrange multiplier" if comp == 0 else None,
+            )
         ax.set_title(f"wall support {pair} (force of the wall on the link)")
         ax.set_xlabel("time (s)")
         ax.grid(alpha=0.3)

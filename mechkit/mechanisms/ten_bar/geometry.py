@@ -151,9 +151,7 @@ def hinges(p: TenBarParams) -> tuple[Hinge, ...]:
     out = []
     for name in PAIRS:
         parent, child, point = PAIR_LINKS[name]
-        out.append(
-            Hinge(name, None if parent == "wall" else parent, h[parent][point], child, h[child][point])
-        )
+        out.append(Hinge(name, None if parent == "wall" else parent, h[parent][point], child, h[child][point]))
     return tuple(out)
 
 

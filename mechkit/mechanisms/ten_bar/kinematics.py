@@ -90,9 +90,7 @@ class DimensionReduction:
         """
         return next(u.model for u in self.units if u.unit.name == name)
 
-    def solve(
-        self, inputs: Mapping[str, float], guess: Mapping[str, float], tol: float = 1e-13
-    ) -> dict[str, float]:
+    def solve(self, inputs: Mapping[str, float], guess: Mapping[str, float], tol: float = 1e-13) -> dict[str, float]:
         """Every tree-joint angle (rad) from R1, R3 (motors) and R5 (passive), unit after unit.
 
         Args:

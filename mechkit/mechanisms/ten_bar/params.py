@@ -75,10 +75,7 @@ class TenBarParams(MechanismParams):
         if self.spring_damping < 0:
             raise InvalidParameters("spring_damping", self.spring_damping, "must be >= 0")
         reach = math.hypot(self.r2_along, self.r2_normal) + self.l56
-        if (
-            not abs(self.l67 - self.l27) < self.wall_gap - reach
-            or not self.l67 + self.l27 > self.wall_gap + reach
-        ):
+        if not abs(self.l67 - self.l27) < self.wall_gap - reach or not self.l67 + self.l27 > self.wall_gap + reach:
             raise InvalidParameters(
                 "l27/l67",
                 (self.l27, self.l67),

@@ -63,6 +63,10 @@ def deployment_law(mechanism: Mechanism, samples: int | None = None) -> SampledL
     frames = samples or every_step
     poses = np.array(deployment_poses(mechanism, frames))
     joints = (*MOTORS, PASSIVE)
-    return SampledLaw(joints, deployment_times(mechanism, frames), poses[:, [mechanism.q_index(j) for j in joints]],
-                      guesses=poses,
-                      source="deployment, every step" if frames == every_step else f"deployment, {frames} poses")
+    return SampledLaw(
+        joints,
+        deployment_times(mechanism, frames),
+        poses[:, [mechanism.q_index(j) for j in joints]],
+        guesses=poses,
+        source="deployment, every step" if frames == every_step else f"deployment, {frames} poses",
+    )

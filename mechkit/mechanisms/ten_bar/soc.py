@@ -52,9 +52,7 @@ def _to3(v2: np.ndarray) -> np.ndarray:
     return np.array([v2[0], 0.0, v2[1]])
 
 
-def _site(
-    L: lagrange.Linkage, q: np.ndarray, slot: dict[int, int], pin_name: str, components=FORCE
-) -> WrenchSite:
+def _site(L: lagrange.Linkage, q: np.ndarray, slot: dict[int, int], pin_name: str, components=FORCE) -> WrenchSite:
     """A pin seen from the SKC whose links are `slot` (link index -> position in the SKC)."""
     pin = L.pins[L.pin_index[pin_name]]
     here, point, sign = (pin.b, pin.point_b, 1.0) if pin.b in slot else (pin.a, pin.point_a, -1.0)

@@ -44,8 +44,10 @@ def drift_runs(mech: Mechanism) -> dict[str, td.Trajectory]:
     Returns:
         Label -> trajectory.
     """
-    return {label: tl.drift(mech, DRIFT_END, DRIFT_STEP, baumgarte, project)
-            for label, baumgarte, project in tl.STABILISATIONS}
+    return {
+        label: tl.drift(mech, DRIFT_END, DRIFT_STEP, baumgarte, project)
+        for label, baumgarte, project in tl.STABILISATIONS
+    }
 
 
 @dataclass(frozen=True)
@@ -109,9 +111,20 @@ def cross_checks(mech: Mechanism, dt: float = 0.005, t_end: float | None = None,
     seconds["Lagrange"] = time.perf_counter() - clock
     own = LagrangeDeployment(p)
     q_own = lm.lagrange_coordinates(p, geo.stowed_pose(p))
-    convergence = [(step, float(np.max(np.abs(td.deploy(pin_run, mech.home_q, step, CONVERGENCE_END).angles
-                                              - td.deploy(own, q_own, step, CONVERGENCE_END).angles))))
-                   for step in CONVERGENCE_STEPS]
+    convergence = [
+        (
+            step,
+            float(
+                np.max(
+                    np.abs(
+                        td.deploy(pin_run, mech.home_q, step, CONVERGENCE_END).angles
+                        - td.deploy(own, q_own, step, CONVERGENCE_END).angles
+                    )
+                )
+            ),
+        )
+        for step in CONVERGENCE_STEPS
+    ]
     every = max(1, (len(a.t) - 1) // (samples - 1))
     times, results = tc.reactions_along(mech, a, every)
     worst = max(tc.reaction_disagreement({k: v[i] for k, v in results.items()}) for i in range(len(times)))
@@ -120,11 +133,23 @@ def cross_checks(mech: Mechanism, dt: float = 0.005, t_end: float | None = None,
     r5 = td.JOINT_ORDER.index(tp.PASSIVE)
     inputs = [{"R1": x[motors[0]], "R3": x[motors[1]], "R5": x[r5]} for x in a.angles[::20]]
     split = tl.kinematic_split(mech, mech.home_q)
-    return CrossChecks(p, a, b, dt, seconds, convergence, times, worst, float(peak),
-                       tc.kinematics_disagreement(mech, inputs), len(inputs), split,
-                       {j: float(split.direction[mech.v_index(j)]) for j in td.JOINT_ORDER},
-                       {label: float(run.residual.max()) for label, run in drift_runs(mech).items()},
-                       tl.loop_margins(p, a.angles[::10]))
+    return CrossChecks(
+        p,
+        a,
+        b,
+        dt,
+        seconds,
+        convergence,
+        times,
+        worst,
+        float(peak),
+        tc.kinematics_disagreement(mech, inputs),
+        len(inputs),
+        split,
+        {j: float(split.direction[mech.v_index(j)]) for j in td.JOINT_ORDER},
+        {label: float(run.residual.max()) for label, run in drift_runs(mech).items()},
+        tl.loop_margins(p, a.angles[::10]),
+    )
 
 
 def cross_check_lines(c: CrossChecks) -> list[str]:
@@ -139,7 +164,9 @@ def cross_check_lines(c: CrossChecks) -> list[str]:
     a, b, p = c.pinocchio, c.lagrange, c.params
     motors = [td.JOINT_ORDER.index(j) for j in tp.MOTORS]
     rocker = np.degrees(a.angles[:, td.JOINT_ORDER.index(tp.PASSIVE)])
-    torques = ", ".join(f"{j} [{a.torques[:, k].min():.3f}, {a.torques[:, k].max():.3f}]" for k, j in enumerate(tp.MOTORS))
+    torques = ", ".join(
+        f"{j} [{a.torques[:, k].min():.3f}, {a.torques[:, k].max():.3f}]" for k, j in enumerate(tp.MOTORS)
+    )
     out = [
         f"Deployment 0..{a.t[-1]:g} s (motor laws end at {p.deploy_time:g} s)",
         f"  fixed step dt = {c.dt * 1e3:g} ms, projection after each step",
@@ -148,12 +175,18 @@ def cross_check_lines(c: CrossChecks) -> list[str]:
         f"  motor torques (N m): {torques}",
         f"  closure residual max (m): Pinocchio {a.residual.max():.2e}, Lagrange {b.residual.max():.2e}",
         f"  energy balance |E - W - E0| max (J): Pinocchio {a.energy_error:.2e}, Lagrange {b.energy_error:.2e}",
-        (f"  energy E = kinetic + gravity + spring spans {np.ptp(a.energy):.2f} J; "
-         f"work of motors minus damper {a.work[-1]:.2f} J"),
-        ("  Pinocchio vs Lagrange (same step, joint coordinates): "
-         f"angles {np.max(np.abs(a.angles - b.angles)):.2e} rad, torques {np.max(np.abs(a.torques - b.torques)):.2e} N m"),
-        (f"  wall time: Pinocchio {c.seconds['Pinocchio']:.1f} s, Lagrange {c.seconds['Lagrange']:.1f} s "
-         f"({len(a.t) - 1} steps)"),
+        (
+            f"  energy E = kinetic + gravity + spring spans {np.ptp(a.energy):.2f} J; "
+            f"work of motors minus damper {a.work[-1]:.2f} J"
+        ),
+        (
+            "  Pinocchio vs Lagrange (same step, joint coordinates): "
+            f"angles {np.max(np.abs(a.angles - b.angles)):.2e} rad, torques {np.max(np.abs(a.torques - b.torques)):.2e} N m"
+        ),
+        (
+            f"  wall time: Pinocchio {c.seconds['Pinocchio']:.1f} s, Lagrange {c.seconds['Lagrange']:.1f} s "
+            f"({len(a.t) - 1} steps)"
+        ),
         f"Lagrange in its own coordinates (x, z, phi per link) vs Pinocchio, first {CONVERGENCE_END:g} s (spring release):",
     ]
     previous = None
@@ -166,17 +199,25 @@ def cross_check_lines(c: CrossChecks) -> list[str]:
         "  R1 and R5 the wall supports):",
         f"  Pinocchio RNEA vs Lagrange multipliers vs SOC, worst relative difference {c.reaction_disagreement:.2e}",
         f"  largest value {c.reaction_peak:.2f} (N or N m)",
-        (f"Kinematics along the deployment ({c.kinematic_instants} instants): full closure vs dimension reduction "
-         f"{c.kinematics['full_vs_reduction']:.2e} rad, vs closed form {c.kinematics['full_vs_closed_form']:.2e} rad"),
+        (
+            f"Kinematics along the deployment ({c.kinematic_instants} instants): full closure vs dimension reduction "
+            f"{c.kinematics['full_vs_reduction']:.2e} rad, vs closed form {c.kinematics['full_vs_closed_form']:.2e} rad"
+        ),
         "Where the methods fail:",
-        (f"  motors alone: {c.split.nullity} joint motion left free (five-bar unit with R1 only: "
-         f"{c.split.five_bar_nullity}); free direction (rad/s per unit): "
-         + ", ".join(f"{j} {rate:+.3f}" for j, rate in c.free_direction.items())),
+        (
+            f"  motors alone: {c.split.nullity} joint motion left free (five-bar unit with R1 only: "
+            f"{c.split.five_bar_nullity}); free direction (rad/s per unit): "
+            + ", ".join(f"{j} {rate:+.3f}" for j, rate in c.free_direction.items())
+        ),
     ]
-    out += [f"  0..{DRIFT_END:g} s at dt = {DRIFT_STEP * 1e3:g} ms, {label:28s}: closure residual max {residual:.2e} m"
-            for label, residual in c.drift.items()]
-    out.append("  distance from singular poses over the deployment (min sine of the angle at the closing hinge): "
-               + ", ".join(f"{k} {v.min():.3f} ({math.degrees(math.asin(v.min())):.1f} deg)" for k, v in c.margins.items()))
+    out += [
+        f"  0..{DRIFT_END:g} s at dt = {DRIFT_STEP * 1e3:g} ms, {label:28s}: closure residual max {residual:.2e} m"
+        for label, residual in c.drift.items()
+    ]
+    out.append(
+        "  distance from singular poses over the deployment (min sine of the angle at the closing hinge): "
+        + ", ".join(f"{k} {v.min():.3f} ({math.degrees(math.asin(v.min())):.1f} deg)" for k, v in c.margins.items())
+    )
     return out
 
 
@@ -201,7 +242,9 @@ class Deployment:
     drift: dict[str, td.Trajectory]
 
 
-def deployment(mech: Mechanism, dt: float = 0.005, t_end: float | None = None, reaction_instants: int = 100) -> Deployment:
+def deployment(
+    mech: Mechanism, dt: float = 0.005, t_end: float | None = None, reaction_instants: int = 100
+) -> Deployment:
     """The deployment (fixed step dt s, up to t_end s, default the whole), the reactions at about
     `reaction_instants` instants, and the drift study.
 
@@ -233,6 +276,10 @@ def deployment_lines(d: Deployment) -> list[str]:
     a = d.trajectory
     rocker = np.degrees(a.angles[:, td.JOINT_ORDER.index(tp.PASSIVE)])
     torques = ", ".join(f"{j} up to {np.abs(a.torques[:, k]).max():.3f} N m" for k, j in enumerate(tp.MOTORS))
-    return [(f"deployment 0..{a.t[-1]:g} s, {len(a.t) - 1} steps; rocker R5 {rocker.min():.2f}..{rocker.max():.2f} deg; "
-             f"motor torques {torques}"),
-            *(f"drift, {label}: closure residual max {run.residual.max():.2e} m" for label, run in d.drift.items())]
+    return [
+        (
+            f"deployment 0..{a.t[-1]:g} s, {len(a.t) - 1} steps; rocker R5 {rocker.min():.2f}..{rocker.max():.2f} deg; "
+            f"motor torques {torques}"
+        ),
+        *(f"drift, {label}: closure residual max {run.residual.max():.2e} m" for label, run in d.drift.items()),
+    ]

@@ -42,9 +42,12 @@ def soc_along_the_fold(mech: Mechanism, sample: Any) -> SOCResult:
 
 METHODS = (
     FOLD_STEP,
-    BenchMethod("SOC virtual work of the unit (numpy, the paper's fold motion)", "inverse_dynamics", soc_along_the_fold),
+    BenchMethod(
+        "SOC virtual work of the unit (numpy, the paper's fold motion)", "inverse_dynamics", soc_along_the_fold
+    ),
 )
 REFERENCES = (
-    BenchReference("SOC virtual work of the unit (numpy, the paper's fold motion)", "inverse_dynamics",
-                   soc_along_the_fold),
+    BenchReference(
+        "SOC virtual work of the unit (numpy, the paper's fold motion)", "inverse_dynamics", soc_along_the_fold
+    ),
 )

@@ -82,14 +82,21 @@ class UnitMotion:
             mid = 0.5 * (ref[a] + ref[b]) + np.sqrt(link**2 - c @ c / 4.0) * w
             self.rods[rod] = {"link": link, "n": n, "mid": mid, a: _unit(mid - ref[a]), b: _unit(mid - ref[b])}
         t = self.tangent
-        joints = [TreeJoint("AH_A", "ground", "rod_AH", t["A"], "A"), TreeJoint("AH_H", "rod_AH", "node_H", t["A"], "H"),
-                  TreeJoint("BH_H", "node_H", "rod_BH", t["B"], "H"), TreeJoint("BH_B", "rod_BH", "node_B", t["B"], "B"),
-                  TreeJoint("EH_H", "node_H", "rod_EH", t["E"], "H"), TreeJoint("EH_E", "rod_EH", "node_E", t["E"], "E")]
+        joints = [
+            TreeJoint("AH_A", "ground", "rod_AH", t["A"], "A"),
+            TreeJoint("AH_H", "rod_AH", "node_H", t["A"], "H"),
+            TreeJoint("BH_H", "node_H", "rod_BH", t["B"], "H"),
+            TreeJoint("BH_B", "rod_BH", "node_B", t["B"], "B"),
+            TreeJoint("EH_H", "node_H", "rod_EH", t["E"], "H"),
+            TreeJoint("EH_E", "rod_EH", "node_E", t["E"], "E"),
+        ]
         for rod, (a, b) in ROD_NODES.items():
             for node in (a, b):
                 parent = "ground" if node == "A" else f"node_{node}"
-                joints += [TreeJoint(f"{rod}_{node}1", parent, f"{rod}_{node}_cross", self.rods[rod][node], node),
-                           TreeJoint(f"{rod}_{node}2", f"{rod}_{node}_cross", f"{rod}_{node}_link", self.rods[rod]["n"], node)]
+                joints += [
+                    TreeJoint(f"{rod}_{node}1", parent, f"{rod}_{node}_cross", self.rods[rod][node], node),
+                    TreeJoint(f"{rod}_{node}2", f"{rod}_{node}_cross", f"{rod}_{node}_link", self.rods[rod]["n"], node),
+                ]
         self.joints = joints
         self.parent_joint = {j.child: j for j in joints}
         self.bodies = [j.child for j in joints]  # parents before children
@@ -126,15 +133,21 @@ class UnitMotion:
             R[f"rod_{k}H"] = R["node_H"] @ rot_axis(self.tangent[k], -da)
             R[f"node_{k}"] = R["node_H"] @ rot_axis(self.tangent[k], -dg)
         R["node_A"] = np.eye(3)
-        origin = {"rod_AH": nodes["A"], "node_H": nodes["H"], "rod_BH": nodes["H"], "rod_EH": nodes["H"],
-                  "node_B": nodes["B"], "node_E": nodes["E"]}
+        origin = {
+            "rod_AH": nodes["A"],
+            "node_H": nodes["H"],
+            "rod_BH": nodes["H"],
+            "rod_EH": nodes["H"],
+            "node_B": nodes["B"],
+            "node_E": nodes["E"],
+        }
         for rod, (a, b) in ROD_NODES.items():
             g = self.rods[rod]
             ua, ub = R[f"node_{a}"] @ g[a], R[f"node_{b}"] @ g[b]
             n = np.cross(ua, ub)
             n = n * np.sign(float(np.real(n @ g["n"]))) / np.sqrt(n @ n)
             c = nodes[b] - nodes[a]  # n x c points to the folded side, as w did in the reference (n = c x w)
-            mid = 0.5 * (nodes[a] + nodes[b]) + np.sqrt(g["link"]**2 - c @ c / 4.0) * _unit(np.cross(n, c))
+            mid = 0.5 * (nodes[a] + nodes[b]) + np.sqrt(g["link"] ** 2 - c @ c / 4.0) * _unit(np.cross(n, c))
             for node, u in ((a, ua), (b, ub)):
                 d_ref, d = _unit(g["mid"] - self.ref_nodes[node]), _unit(mid - nodes[node])
                 R[f"{rod}_{node}_cross"] = _frame(u, n) @ _frame(g[node], g["n"]).T
@@ -172,6 +185,7 @@ def body_states(motion: UnitMotion, levers: dict[str, np.ndarray], t: float) -> 
     Returns:
         (body -> `BodyState`, rod -> world point (3,) of its middle hinge).
     """
+
     def rates(tt: float) -> tuple[dict, dict, dict]:
         R, o = motion.poses(tt + 1j * _CS_STEP)
         Rr = {k: np.real(v) for k, v in R.items()}
@@ -182,8 +196,17 @@ def body_states(motion: UnitMotion, levers: dict[str, np.ndarray], t: float) -> 
     R, o, (omega, _) = rates(t)
     _, _, (w_plus, v_plus) = rates(t + _FD_STEP)
     _, _, (w_minus, v_minus) = rates(t - _FD_STEP)
-    states = {k: BodyState(R[k], o[k], o[k] + R[k] @ levers[k], omega[k], (w_plus[k] - w_minus[k]) / (2 * _FD_STEP),
-                           (v_plus[k] - v_minus[k]) / (2 * _FD_STEP)) for k in levers}
+    states = {
+        k: BodyState(
+            R[k],
+            o[k],
+            o[k] + R[k] @ levers[k],
+            omega[k],
+            (w_plus[k] - w_minus[k]) / (2 * _FD_STEP),
+            (v_plus[k] - v_minus[k]) / (2 * _FD_STEP),
+        )
+        for k in levers
+    }
     return states, {rod: o[f"{rod}_M"] for rod in ROD_NODES}
 
 
@@ -232,7 +255,9 @@ def skcs(motion: UnitMotion, inertias: dict[str, tuple[float, np.ndarray, np.nda
     cuts = []
     for rod, (a, b) in ROD_NODES.items():
         side_a, side_b = f"{rod}_{a}_link", f"{rod}_{b}_link"
-        jac = _point_jacobian(motion, states, side_b, hinges[rod]) - _point_jacobian(motion, states, side_a, hinges[rod])
+        jac = _point_jacobian(motion, states, side_b, hinges[rod]) - _point_jacobian(
+            motion, states, side_a, hinges[rod]
+        )
         axis = states[side_a].R @ motion.rods[rod]["n"]
         t1 = _unit(np.cross(axis, [1.0, 0, 0] if abs(axis[0]) < 0.9 else [0, 1.0, 0]))
         basis = np.zeros((6, 5))
@@ -246,7 +271,9 @@ def skcs(motion: UnitMotion, inertias: dict[str, tuple[float, np.ndarray, np.nda
         load = BodyLoad(body, mass, s.R @ inertia @ s.R.T, s.com_acceleration, s.omega, s.alpha, jv, jw)
         joint = motion.parent_joint[body]
         released = [WrenchSite(joint.name, _site(s.origin, s.com), 1.0)]
-        known = [WrenchSite(j.name, _site(states[j.child].origin, s.com), -1.0) for j in motion.joints if j.parent == body]
+        known = [
+            WrenchSite(j.name, _site(states[j.child].origin, s.com), -1.0) for j in motion.joints if j.parent == body
+        ]
         for rod, (a, b) in ROD_NODES.items():
             for node, sign in ((a, -1.0), (b, 1.0)):
                 if body == f"{rod}_{node}_link":

@@ -62,5 +62,6 @@ def continuation_step(mech: Mechanism, sample: Any) -> np.ndarray:
     return fold_step(mech, previous.q, previous.v, previous.t, sample.extra["t"], TOL).q
 
 
-FOLD_STEP = BenchMethod(f"fold step: predictor q + v dt, Newton on the passive joints ({LEAD:g} s)", "assembly",
-                        continuation_step)
+FOLD_STEP = BenchMethod(
+    f"fold step: predictor q + v dt, Newton on the passive joints ({LEAD:g} s)", "assembly", continuation_step
+)

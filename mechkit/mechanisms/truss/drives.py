@@ -109,5 +109,12 @@ def drive_state(t: float) -> DriveState:
     t = float(t)
     if not np.isfinite(t) or t < 0.0 or t > FOLD_DURATION:
         raise InvalidParameters("t", t, f"the paper's drive laws are stated for 0 <= t <= {FOLD_DURATION} s")
-    return DriveState(t, float(alpha_law(t)), float(gamma_law(t)), float(_alpha_rate_law(t)),
-                      float(_gamma_rate_law(t)), _complex_step(_alpha_rate_law, t), _complex_step(_gamma_rate_law, t))
+    return DriveState(
+        t,
+        float(alpha_law(t)),
+        float(gamma_law(t)),
+        float(_alpha_rate_law(t)),
+        float(_gamma_rate_law(t)),
+        _complex_step(_alpha_rate_law, t),
+        _complex_step(_gamma_rate_law, t),
+    )

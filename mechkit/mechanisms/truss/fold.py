@@ -40,8 +40,9 @@ def apexes(mech: Mechanism) -> tuple[str, ...]:
     return tuple(a for a in ("H", "J", "I") if mech.model.existJointName(f"A{a}_{a}"))
 
 
-def fold_step(mech: Mechanism, q: np.ndarray, v: np.ndarray, t_prev: float, t: float, tol: float,
-              depth: int = 0) -> FoldSample:
+def fold_step(
+    mech: Mechanism, q: np.ndarray, v: np.ndarray, t_prev: float, t: float, tol: float, depth: int = 0
+) -> FoldSample:
     """Closure solve at t (s) from the state (q, v) at t_prev (s): predictor q + v dt, then Newton on the
     passive coordinates; the interval is halved (up to 8 times) when Newton does not converge.
 

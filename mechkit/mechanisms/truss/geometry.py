@@ -76,9 +76,9 @@ def rpy_angles(R: np.ndarray) -> np.ndarray:
     Returns:
         (3,) angles (gamma_x, gamma_y, gamma_z), rad.
     """
-    return np.array([np.arctan2(R[2, 1], R[2, 2]),
-                     np.arctan2(-R[2, 0], np.hypot(R[0, 0], R[1, 0])),
-                     np.arctan2(R[1, 0], R[0, 0])])
+    return np.array(
+        [np.arctan2(R[2, 1], R[2, 2]), np.arctan2(-R[2, 0], np.hypot(R[0, 0], R[1, 0])), np.arctan2(R[1, 0], R[0, 0])]
+    )
 
 
 def half_angle_beta(l1: float, l2: float) -> float:
@@ -122,8 +122,11 @@ class TrussGeometry:
             (3,) unit vector.
         """
         b2 = 2.0 * self.beta
-        return {"A": np.array([1.0, 0, 0]), "B": np.array([-np.cos(b2), -np.sin(b2), 0]),
-                "E": np.array([-np.cos(b2), np.sin(b2), 0])}[which]
+        return {
+            "A": np.array([1.0, 0, 0]),
+            "B": np.array([-np.cos(b2), -np.sin(b2), 0]),
+            "E": np.array([-np.cos(b2), np.sin(b2), 0]),
+        }[which]
 
     def tangent(self, which: str) -> np.ndarray:
         """z1 x r at node A, B or E (O1 frame): the axis of its web-rod joints; = y1, S4, -S6.
@@ -147,8 +150,12 @@ class TrussGeometry:
         """
         R = self.L * np.sin(alpha)
         o1 = np.array([-R, 0.0, 0.0])  # O1 relative to A, O1 axes
-        return {"A": np.zeros(3), "B": o1 + R * self.radial("B"), "E": o1 + R * self.radial("E"),
-                "H": o1 + np.array([0.0, 0.0, self.L * np.cos(alpha)])}
+        return {
+            "A": np.zeros(3),
+            "B": o1 + R * self.radial("B"),
+            "E": o1 + R * self.radial("E"),
+            "H": o1 + np.array([0.0, 0.0, self.L * np.cos(alpha)]),
+        }
 
     def unit_local_rate(self, alpha: float) -> dict[str, np.ndarray]:
         """d/d alpha of `unit_local`, m/rad.
@@ -161,8 +168,12 @@ class TrussGeometry:
         """
         dR = self.L * np.cos(alpha)
         d_o1 = np.array([-dR, 0.0, 0.0])
-        return {"A": np.zeros(3), "B": d_o1 + dR * self.radial("B"), "E": d_o1 + dR * self.radial("E"),
-                "H": d_o1 + np.array([0.0, 0.0, -self.L * np.sin(alpha)])}
+        return {
+            "A": np.zeros(3),
+            "B": d_o1 + dR * self.radial("B"),
+            "E": d_o1 + dR * self.radial("E"),
+            "H": d_o1 + np.array([0.0, 0.0, -self.L * np.sin(alpha)]),
+        }
 
     def node_positions(self, alpha: float, gamma: float) -> dict[str, np.ndarray]:
         """Eq. (6)-(8): every node A..J in A-xyz, m.
@@ -181,7 +192,9 @@ class TrussGeometry:
             out.update({h: T @ local["H"], b: T @ local["B"], e: T @ local["E"]})
         return out
 
-    def node_velocities(self, alpha: float, gamma: float, alpha_rate: float, gamma_rate: float) -> dict[str, np.ndarray]:
+    def node_velocities(
+        self, alpha: float, gamma: float, alpha_rate: float, gamma_rate: float
+    ) -> dict[str, np.ndarray]:
         """Time derivative of eq. (7)-(8), m/s.
 
         Args:

@@ -33,13 +33,22 @@ def web_joint_motion(p: TetraParams, s: DriveState, apexes: tuple[str, ...] = ("
     for apex in apexes:
         x, b, e = UNIT_NODES[apex]
         for k in range(3):
-            out[k].update({f"A{x}_A": dg[k] - da[k], f"A{x}_{x}": da[k],
-                           f"{b}{x}_{x}": -da[k], f"{b}{x}_{b}": da[k] - dg[k],
-                           f"{e}{x}_{x}": -da[k], f"{e}{x}_{e}": da[k] - dg[k]})
+            out[k].update(
+                {
+                    f"A{x}_A": dg[k] - da[k],
+                    f"A{x}_{x}": da[k],
+                    f"{b}{x}_{x}": -da[k],
+                    f"{b}{x}_{b}": da[k] - dg[k],
+                    f"{e}{x}_{x}": -da[k],
+                    f"{e}{x}_{e}": da[k] - dg[k],
+                }
+            )
     return out
 
 
-def drive_inputs(p: TetraParams, s: DriveState, actuated: tuple[str, ...], apexes: tuple[str, ...]) -> tuple[dict, dict, dict]:
+def drive_inputs(
+    p: TetraParams, s: DriveState, actuated: tuple[str, ...], apexes: tuple[str, ...]
+) -> tuple[dict, dict, dict]:
     """The paper's motion s on the actuated joints: (angles, rates, accelerations) by joint name.
 
     Args:

@@ -51,5 +51,7 @@ def node_velocity(mech: Mechanism, q: np.ndarray, v: np.ndarray, node: str) -> n
     if not mech.model.existFrame(frame):
         raise InvalidParameters("node", node, f"no node {node} in {mech.spec.name}")
     pin.forwardKinematics(mech.model, mech.data, q, v)
-    velocity = pin.getFrameVelocity(mech.model, mech.data, mech.model.getFrameId(frame), pin.ReferenceFrame.LOCAL_WORLD_ALIGNED)
+    velocity = pin.getFrameVelocity(
+        mech.model, mech.data, mech.model.getFrameId(frame), pin.ReferenceFrame.LOCAL_WORLD_ALIGNED
+    )
     return velocity.linear.copy()

@@ -26,8 +26,9 @@ class TetraParams(MechanismParams):
     L: float = param(0.590, "m", "web rod length AH = BH = EH (Adams model, section 3.2)")
     l1: float = param(0.2504, "m", "each link of the folding rods AB, AE")
     l2: float = param(0.250, "m", "each link of the folding rod BE")
-    alpha_ref: float = param(_T0.alpha, "rad", "fold angle of the reference configuration: the drive law at t = 0",
-                             positive=True)
+    alpha_ref: float = param(
+        _T0.alpha, "rad", "fold angle of the reference configuration: the drive law at t = 0", positive=True
+    )
     gamma_ref: float = param(_T0.gamma, "rad", "tilt of the reference configuration: the drive law at t = 0 (= gamma0)")
     node_mass: float = param(0.20, "kg", "node hub (aluminium, about 60 mm across)", ours=True)
     web_mass: float = param(0.12, "kg", "web rod (CFRP tube, 0.2 kg/m)", ours=True)
@@ -35,8 +36,13 @@ class TetraParams(MechanismParams):
     cross_mass: float = param(0.01, "kg", "Hooke-joint cross", ours=True)
     tube_outer: float = param(0.020, "m", "outer diameter of the rods' CFRP tube (elastic section)", ours=True)
     tube_inner: float = param(0.016, "m", "inner diameter of the rods' CFRP tube (elastic section)", ours=True)
-    rod_masses: str = param("given", "-", "rods' masses: given (web_mass, link_mass) or from the tube (1600 kg/m^3 x "
-                            "area x length), for design studies of the section", ours=True)
+    rod_masses: str = param(
+        "given",
+        "-",
+        "rods' masses: given (web_mass, link_mass) or from the tube (1600 kg/m^3 x "
+        "area x length), for design studies of the section",
+        ours=True,
+    )
 
     def validate(self) -> None:
         """The folding rods can reach at the reference fold angle, in (0, 90) deg.
@@ -53,11 +59,18 @@ class TetraParams(MechanismParams):
             raise InvalidParameters("alpha_ref", self.alpha_ref, "the fold angle must lie in (0, 90) deg")
         geometry = self.geometry()
         local = geometry.unit_local(self.alpha_ref)
-        for rod, (a, b), link in (("AB", ("A", "B"), self.l1), ("AE", ("A", "E"), self.l1), ("BE", ("B", "E"), self.l2)):
+        for rod, (a, b), link in (
+            ("AB", ("A", "B"), self.l1),
+            ("AE", ("A", "E"), self.l1),
+            ("BE", ("B", "E"), self.l2),
+        ):
             chord = float(np.linalg.norm(local[b] - local[a]))
             if chord >= 2.0 * link:
-                raise InvalidParameters("alpha_ref", self.alpha_ref,
-                                        f"folding rod {rod} cannot reach: chord {chord:.4f} m >= 2 x link {2 * link:.4f} m")
+                raise InvalidParameters(
+                    "alpha_ref",
+                    self.alpha_ref,
+                    f"folding rod {rod} cannot reach: chord {chord:.4f} m >= 2 x link {2 * link:.4f} m",
+                )
 
     def geometry(self) -> TrussGeometry:
         """The paper's analytic geometry at these dimensions."""
