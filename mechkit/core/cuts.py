@@ -180,8 +180,9 @@ def coupling_row(model: pin.Model, coupling: Coupling) -> CouplingRow:
             raise MalformedDescription(where, f"joint {joint!r} not in the model")
         j = model.getJointId(joint)
         if model.nvs[j] != 1:
-            raise MalformedDescription(where, f"joint {joint!r} has {model.nvs[j]} freedoms: a coupling joins "
-                                       "one-freedom joints")
+            raise MalformedDescription(
+                where, f"joint {joint!r} has {model.nvs[j]} freedoms: a coupling joins one-freedom joints"
+            )
         q_index.append(model.joints[j].idx_q)
         v_index.append(model.joints[j].idx_v)
         unbounded.append(model.nqs[j] == 2)
@@ -190,5 +191,12 @@ def coupling_row(model: pin.Model, coupling: Coupling) -> CouplingRow:
     poly = np.asarray(coupling.polynomial, dtype=float)
     if poly.ndim != 1 or poly.size == 0 or not np.all(np.isfinite(poly)):
         raise MalformedDescription(where, f"polynomial {coupling.polynomial!r} is not a list of finite numbers")
-    return CouplingRow(coupling, np.array(q_index, dtype=int), np.array(v_index, dtype=int), np.array(unbounded, dtype=bool),
-                       np.array(follower), np.array(leader), poly)
+    return CouplingRow(
+        coupling,
+        np.array(q_index, dtype=int),
+        np.array(v_index, dtype=int),
+        np.array(unbounded, dtype=bool),
+        np.array(follower),
+        np.array(leader),
+        poly,
+    )

@@ -47,7 +47,7 @@ def support_columns(model: pin.Model, joint: int) -> np.ndarray:
     out = np.zeros(model.nv)
     while joint > 0:
         jm = model.joints[joint]
-        out[jm.idx_v:jm.idx_v + jm.nv] = 1.0
+        out[jm.idx_v : jm.idx_v + jm.nv] = 1.0
         joint = model.parents[joint]
     return out
 
@@ -133,13 +133,17 @@ class ClosureKernel:
         bounds = np.cumsum([0] + [c.size for c in cuts])
         self.cut_slices = tuple(slice(int(a), int(b)) for a, b in itertools.pairwise(bounds))
         # every vector the rows read (X, Z, Y of each row, then p_b of each cut) as one map of the stacked placements
-        vectors = [*np.array(local, dtype=float).reshape(-1, 4),
-                   *(frames[c.frame_b].placement.homogeneous[:, 3] for c in cuts)]
-        owners = [*np.stack([self._ia, self._ia, self._ib], axis=1).reshape(-1),
-                  *(where[frames[c.frame_b].parentJoint] for c in cuts)]
+        vectors = [
+            *np.array(local, dtype=float).reshape(-1, 4),
+            *(frames[c.frame_b].placement.homogeneous[:, 3] for c in cuts),
+        ]
+        owners = [
+            *np.stack([self._ia, self._ia, self._ib], axis=1).reshape(-1),
+            *(where[frames[c.frame_b].parentJoint] for c in cuts),
+        ]
         self._map = np.zeros((len(vectors), 4 * self.joints.size))
         for r, (j, vector) in enumerate(zip(owners, vectors)):
-            self._map[r, 4 * j:4 * j + 4] = vector
+            self._map[r, 4 * j : 4 * j + 4] = vector
         self.support = np.array([support_columns(model, int(j)) for j in self.joints]).reshape(-1, model.nv)
         self.mask = self.support[self._ib] - self.support[self._ia]
         self.incidence = subtree_incidence(model, list(cuts))
@@ -175,7 +179,7 @@ class ClosureKernel:
 
     def _xzy(self, V: np.ndarray) -> np.ndarray:
         """(..., cut_size, 3, 4) X', Z', Y' of every cut row from `world` vectors."""
-        return V[..., :3 * self.cut_size, :].reshape(*V.shape[:-2], self.cut_size, 3, 4)
+        return V[..., : 3 * self.cut_size, :].reshape(*V.shape[:-2], self.cut_size, 3, 4)
 
     def vectors(self, G: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """The vectors X', Y', Z' every cut row reads, world (m or unit).
@@ -223,7 +227,7 @@ class ClosureKernel:
         Returns:
             (..., ncuts, 3) the points, world (m).
         """
-        return V[..., 3 * self.cut_size:, :3]
+        return V[..., 3 * self.cut_size :, :3]
 
     def cut_points(self, G: np.ndarray) -> np.ndarray:
         """The origins p_b of frame_b of every cut, from placements.
@@ -316,8 +320,16 @@ class ClosureKernel:
         """
         return np.swapaxes(J @ np.swapaxes(self.support * v[..., None, :], -1, -2), -1, -2)
 
-    def drift(self, G: np.ndarray, V: np.ndarray, A: np.ndarray, q: np.ndarray, v: np.ndarray,
-              world: np.ndarray | None = None, W: np.ndarray | None = None) -> np.ndarray:
+    def drift(
+        self,
+        G: np.ndarray,
+        V: np.ndarray,
+        A: np.ndarray,
+        q: np.ndarray,
+        v: np.ndarray,
+        world: np.ndarray | None = None,
+        W: np.ndarray | None = None,
+    ) -> np.ndarray:
         """(..., size) gamma with d2e/dt2 = J a + gamma.
 
         A vector fixed in joint j's frame moves as its placement, dG/dt = Xi G with Xi = [[omega x, v_O],
@@ -366,7 +378,7 @@ class ClosureKernel:
         Returns:
             (..., njoints - 1 + ncuts, 6) [f, m about the joint's point], world axes.
         """
-        loads = (self._transmission * lam[..., None, :self.cut_size]) @ W  # about the world origin
+        loads = (self._transmission * lam[..., None, : self.cut_size]) @ W  # about the world origin
         points = np.concatenate([origins, cut_points], axis=-2)
         outer = points[..., :, :, None] * loads[..., :, None, :3]
         loads += outer.reshape(*outer.shape[:-2], 9) @ MOMENT_SHIFT
@@ -385,7 +397,9 @@ class ClosureKernel:
         for row in self.couplings:
             x = self._coupling_values(row, q)
             s = x @ row.leader - row.coupling.leader_ref
-            out.append(x @ row.follower - row.coupling.follower_ref - np.polynomial.polynomial.polyval(s, row.polynomial))
+            out.append(
+                x @ row.follower - row.coupling.follower_ref - np.polynomial.polynomial.polyval(s, row.polynomial)
+            )
         return np.stack(out, axis=-1)
 
     def _coupling_jacobian(self, q: np.ndarray) -> np.ndarray:

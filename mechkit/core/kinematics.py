@@ -22,8 +22,9 @@ from mechkit.core.results import Mobility
 from mechkit.core.structure import grouped, idle_counts
 
 
-def kinematic_pass(cm: ClosureModel, cd: ClosureData, Q: np.ndarray,
-                   V: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray, np.ndarray | None]:
+def kinematic_pass(
+    cm: ClosureModel, cd: ClosureData, Q: np.ndarray, V: np.ndarray | None = None
+) -> tuple[np.ndarray, np.ndarray, np.ndarray | None]:
     """One Pinocchio pass per sample (`computeJointJacobians`, or its time variation with V).
 
     Leaves `cd.pin` at the last sample, frame placements updated.
@@ -141,9 +142,19 @@ def idle_count(cm: ClosureModel, Jw: np.ndarray, N: np.ndarray, tol: float = 1e-
     return sum(idle_counts(twists, heavy, looped, tol).values())
 
 
-def solve_passive(cm: ClosureModel, J: np.ndarray, Jw: np.ndarray, split: InputSplit, given: np.ndarray,
-                  rhs: np.ndarray | None, residual: np.ndarray, *, allow_singular: bool = False,
-                  least_squares: bool = False, judged: bool = False) -> tuple[np.ndarray, np.ndarray]:
+def solve_passive(
+    cm: ClosureModel,
+    J: np.ndarray,
+    Jw: np.ndarray,
+    split: InputSplit,
+    given: np.ndarray,
+    rhs: np.ndarray | None,
+    residual: np.ndarray,
+    *,
+    allow_singular: bool = False,
+    least_squares: bool = False,
+    judged: bool = False,
+) -> tuple[np.ndarray, np.ndarray]:
     """x (N, nv) with x[input_v] = given (N, k) and J_free x_free = -(J_in given + rhs), judged.
 
     One batched LU where every passive block is square and resolvably regular; else, per sample, the
@@ -210,19 +221,30 @@ def solve_passive(cm: ClosureModel, J: np.ndarray, Jw: np.ndarray, split: InputS
     inconsistent = outside > rank.RANGE_TOL * np.maximum(scale, 1e-300)
     if inconsistent.any() and not least_squares:
         i = int(np.argmax(inconsistent))
-        raise InconsistentMotion(float(outside[i]), float(rank.RANGE_TOL * scale[i]), "the closure rows' right-hand side "
-                                 "leaves the range of the passive block: the given motion is not a motion of the "
-                                 "mechanism (at second order: the velocity moves along a freedom that exists only "
-                                 "instantaneously)")
+        raise InconsistentMotion(
+            float(outside[i]),
+            float(rank.RANGE_TOL * scale[i]),
+            "the closure rows' right-hand side "
+            "leaves the range of the passive block: the given motion is not a motion of the "
+            "mechanism (at second order: the velocity moves along a freedom that exists only "
+            "instantaneously)",
+        )
     k = np.arange(s.shape[1])
-    proj = np.einsum("nij,ni->nj", U[..., :s.shape[1]], b)
+    proj = np.einsum("nij,ni->nj", U[..., : s.shape[1]], b)
     coef = np.where(k[None, :] < r[:, None], proj / np.where(k[None, :] < r[:, None], s, 1.0), 0.0)
-    x[..., free_v] = -np.einsum("nij,ni->nj", Vt[:, :s.shape[1]], coef)
+    x[..., free_v] = -np.einsum("nij,ni->nj", Vt[:, : s.shape[1]], coef)
     return x, cond
 
 
-def velocities_batch(cm: ClosureModel, cd: ClosureData, Q: np.ndarray, split: InputSplit, rates: np.ndarray, *,
-                     allow_singular: bool = False) -> np.ndarray:
+def velocities_batch(
+    cm: ClosureModel,
+    cd: ClosureData,
+    Q: np.ndarray,
+    split: InputSplit,
+    rates: np.ndarray,
+    *,
+    allow_singular: bool = False,
+) -> np.ndarray:
     """Joint velocities with J v = 0 at N configurations, from input rates.
 
     Args:
@@ -246,8 +268,15 @@ def velocities_batch(cm: ClosureModel, cd: ClosureData, Q: np.ndarray, split: In
     return solve_passive(cm, J, Jw, split, rates, None, np.linalg.norm(e, axis=-1), allow_singular=allow_singular)[0]
 
 
-def velocities(cm: ClosureModel, cd: ClosureData, q: np.ndarray, split: InputSplit, rates: np.ndarray, *,
-               allow_singular: bool = False) -> np.ndarray:
+def velocities(
+    cm: ClosureModel,
+    cd: ClosureData,
+    q: np.ndarray,
+    split: InputSplit,
+    rates: np.ndarray,
+    *,
+    allow_singular: bool = False,
+) -> np.ndarray:
     """Joint velocities with J v = 0 at one configuration (see `velocities_batch`).
 
     Args:
@@ -268,8 +297,17 @@ def velocities(cm: ClosureModel, cd: ClosureData, q: np.ndarray, split: InputSpl
     return velocities_batch(cm, cd, q[None], split, rates[None], allow_singular=allow_singular)[0]
 
 
-def accelerations_batch(cm: ClosureModel, cd: ClosureData, Q: np.ndarray, V: np.ndarray, split: InputSplit,
-                        given: np.ndarray, *, allow_singular: bool = False, least_squares: bool = False) -> np.ndarray:
+def accelerations_batch(
+    cm: ClosureModel,
+    cd: ClosureData,
+    Q: np.ndarray,
+    V: np.ndarray,
+    split: InputSplit,
+    given: np.ndarray,
+    *,
+    allow_singular: bool = False,
+    least_squares: bool = False,
+) -> np.ndarray:
     """Joint accelerations with J a + gamma = 0 at N states, from input accelerations.
 
     Args:
@@ -295,12 +333,30 @@ def accelerations_batch(cm: ClosureModel, cd: ClosureData, Q: np.ndarray, V: np.
     k = cm.kernel
     e, J, _ = k.evaluate(G, Jw, Q)
     gamma = k.drift(G, k.twists(Jw, V), k.twists(dJ, V), Q, V)
-    return solve_passive(cm, J, Jw, split, given, gamma, np.linalg.norm(e, axis=-1), allow_singular=allow_singular,
-                         least_squares=least_squares)[0]
+    return solve_passive(
+        cm,
+        J,
+        Jw,
+        split,
+        given,
+        gamma,
+        np.linalg.norm(e, axis=-1),
+        allow_singular=allow_singular,
+        least_squares=least_squares,
+    )[0]
 
 
-def accelerations(cm: ClosureModel, cd: ClosureData, q: np.ndarray, v: np.ndarray, split: InputSplit,
-                  given: np.ndarray, *, allow_singular: bool = False, least_squares: bool = False) -> np.ndarray:
+def accelerations(
+    cm: ClosureModel,
+    cd: ClosureData,
+    q: np.ndarray,
+    v: np.ndarray,
+    split: InputSplit,
+    given: np.ndarray,
+    *,
+    allow_singular: bool = False,
+    least_squares: bool = False,
+) -> np.ndarray:
     """Joint accelerations with J a + gamma = 0 at one state (see `accelerations_batch`).
 
     Args:
@@ -320,8 +376,9 @@ def accelerations(cm: ClosureModel, cd: ClosureData, q: np.ndarray, v: np.ndarra
         SingularConfiguration: see `solve_passive`.
         InconsistentMotion: see `solve_passive` (not with `least_squares`).
     """
-    return accelerations_batch(cm, cd, q[None], v[None], split, given[None], allow_singular=allow_singular,
-                               least_squares=least_squares)[0]
+    return accelerations_batch(
+        cm, cd, q[None], v[None], split, given[None], allow_singular=allow_singular, least_squares=least_squares
+    )[0]
 
 
 def passive_condition(cm: ClosureModel, cd: ClosureData, q: np.ndarray, split: InputSplit) -> float:
@@ -357,8 +414,9 @@ def second_order_inconsistency(cm: ClosureModel, cd: ClosureData, q: np.ndarray,
     return rank.inconsistency(closure_jacobian(cm, cd, q), closure_drift(cm, cd, q, v))
 
 
-def second_order_velocity(cm: ClosureModel, cd: ClosureData, q: np.ndarray, v: np.ndarray, *, tol: float = 1e-12,
-                          max_iter: int = 30) -> np.ndarray:
+def second_order_velocity(
+    cm: ClosureModel, cd: ClosureData, q: np.ndarray, v: np.ndarray, *, tol: float = 1e-12, max_iter: int = 30
+) -> np.ndarray:
     """The velocity near v (nv,) at an assembled q (nq,) along which the motion continues at second order.
 
     A velocity with J v = 0 is a motion at second order only where gamma(q, v) lies in the range of J:
@@ -408,6 +466,10 @@ def second_order_velocity(cm: ClosureModel, cd: ClosureData, q: np.ndarray, v: n
         if np.abs(residual).max() <= tol * scale * max(z @ z, 1e-300):
             return N @ z
         z = z - np.linalg.lstsq(2.0 * (Q @ z), residual, rcond=None)[0]
-    raise InconsistentMotion(float(np.abs(residual).max()), tol * scale * float(z @ z), "no velocity near the given one "
-                             "continues at second order (the second-order cones of the redundant constraints do not "
-                             "meet near it)")
+    raise InconsistentMotion(
+        float(np.abs(residual).max()),
+        tol * scale * float(z @ z),
+        "no velocity near the given one "
+        "continues at second order (the second-order cones of the redundant constraints do not "
+        "meet near it)",
+    )

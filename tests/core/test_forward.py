@@ -18,8 +18,16 @@ from mechkit.core import forward
 PROXIMAL = ["four_bar", "five_bar", "parallel_2t1r", "ten_bar", "deployable_9rr12uru"]
 #: Where lcaba does not converge (measured; it refuses by name).
 LCABA_DIVERGES = ("tetra_3rr3uru", "deployable_9rr12uru", "spherical_2dof", "rocket_gimbal")
-EVERY = ["four_bar", "five_bar", "parallel_2t1r", "ten_bar", "tetra_3rr3uru", "deployable_9rr12uru", "spherical_2dof",
-         "rocket_gimbal"]
+EVERY = [
+    "four_bar",
+    "five_bar",
+    "parallel_2t1r",
+    "ten_bar",
+    "tetra_3rr3uru",
+    "deployable_9rr12uru",
+    "spherical_2dof",
+    "rocket_gimbal",
+]
 
 
 @pytest.mark.parametrize("name", PROXIMAL)
@@ -70,7 +78,7 @@ def _inconsistent_state(m):
     s = make_samples(m, 1)[0]
     J = m.closure_jacobian(s.q)
     _, sv, Vt = np.linalg.svd(J)
-    null = Vt[core.numerical_rank(sv):]
+    null = Vt[core.numerical_rank(sv) :]
     relative = [m.second_order_inconsistency(s.q, v) / np.max(np.abs(m.closure_drift(s.q, v))) for v in null]
     return s.q, null[int(np.argmax(relative))], s.tau, max(relative)
 
@@ -116,7 +124,9 @@ def test_off_manifold_result_is_checked_on_the_rows_solved(load_cached):
     legacy = m.closure_data.legacy["proximal"]
     J = legacy.jacobian()
     gamma = legacy.drift(J.shape[0])
-    assert np.max(np.abs(J @ res.a + gamma)) <= 1e-8 * (np.max(np.abs(J)) * np.max(np.abs(res.a)) + np.max(np.abs(gamma)))
+    assert np.max(np.abs(J @ res.a + gamma)) <= 1e-8 * (
+        np.max(np.abs(J)) * np.max(np.abs(res.a)) + np.max(np.abs(gamma))
+    )
     with pytest.raises(ConstraintViolated, match="J a \\+ gamma"):
         m.forward_dynamics(q, v, np.zeros(m.model.nv), mu=1e3, max_iter=1, baumgarte=(100.0, 20.0))
 
@@ -131,7 +141,9 @@ def test_batch_and_lists_give_the_per_sample_numbers(method, load_cached):
         plain = m.forward_dynamics(np.asarray(s.q, float), np.asarray(s.v, float), np.asarray(s.tau, float), method)
         listed = m.forward_dynamics(s.q.tolist(), s.v.tolist(), s.tau.tolist(), method)  # through arguments.sample
         assert np.max(np.abs(batch.a[i] - plain.a)) <= 1e-13 * np.max(np.abs(plain.a))
-        assert np.max(np.abs(batch.constraint_force[i] - plain.constraint_force)) <= 1e-13 * max(np.max(np.abs(plain.constraint_force)), 1.0)
+        assert np.max(np.abs(batch.constraint_force[i] - plain.constraint_force)) <= 1e-13 * max(
+            np.max(np.abs(plain.constraint_force)), 1.0
+        )
         assert np.max(np.abs(listed.a - plain.a)) <= 1e-13 * np.max(np.abs(plain.a))
     assert batch.a.shape == (3, m.model.nv) and batch.constraint_force.shape == (3, m.model.nv)
 

@@ -108,7 +108,9 @@ def test_batched_singular_sample_raises_and_allow_singular_passes(load_cached):
     b1 = p.prox1 * np.array([np.cos(2.6), np.sin(2.6)])
 
     def gap(t):
-        return np.linalg.norm(np.array([p.ground + p.prox2 * np.cos(t), p.prox2 * np.sin(t)]) - b1) - (p.dist1 + p.dist2)
+        return np.linalg.norm(np.array([p.ground + p.prox2 * np.cos(t), p.prox2 * np.sin(t)]) - b1) - (
+            p.dist1 + p.dist2
+        )
 
     root = brentq(gap, 0.5, 1.0, xtol=1e-16)
     Q = np.array([m.home_q, m.assemble({"prox1": 2.6, "prox2": root + 1e-12}, guess=m.home_q)])

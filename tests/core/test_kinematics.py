@@ -31,7 +31,9 @@ def test_closure_jacobian_is_the_derivative_of_the_residual(name, load_cached):
         J = m.closure_jacobian(q)
         for _ in range(3):
             dq = rng.normal(size=m.model.nv)
-            fd = (_residual(m, pin.integrate(m.model, q, h * dq)) - _residual(m, pin.integrate(m.model, q, -h * dq))) / (2 * h)
+            fd = (
+                _residual(m, pin.integrate(m.model, q, h * dq)) - _residual(m, pin.integrate(m.model, q, -h * dq))
+            ) / (2 * h)
             assert np.max(np.abs(J @ dq - fd)) < 1e-7 * max(1.0, np.max(np.abs(fd)))
 
 
@@ -43,8 +45,10 @@ def test_drift_is_the_derivative_of_jv(name, load_cached):
     rng = np.random.default_rng(5)
     for q in (m.home_q, _perturbed(m)):
         v = rng.normal(size=m.model.nv)
-        fd = (m.closure_jacobian(pin.integrate(m.model, q, h * v)) @ v
-              - m.closure_jacobian(pin.integrate(m.model, q, -h * v)) @ v) / (2 * h)
+        fd = (
+            m.closure_jacobian(pin.integrate(m.model, q, h * v)) @ v
+            - m.closure_jacobian(pin.integrate(m.model, q, -h * v)) @ v
+        ) / (2 * h)
         gamma = m.closure_drift(q, v)
         assert np.max(np.abs(gamma - fd)) < 1e-6 * max(1.0, np.max(np.abs(fd)))
 

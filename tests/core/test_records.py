@@ -37,9 +37,11 @@ def test_a_coupling_resolves_on_one_freedom_joints_only():
     np.testing.assert_array_equal(row.unbounded, [False, True])  # b is continuous: its value is an angle
     np.testing.assert_array_equal(row.follower, [1.0, 0.0])
     np.testing.assert_array_equal(row.leader, [0.0, -2.0])
-    for bad, words in ((core.Coupling("x", (("nope", 1.0),)), "not in the model"),
-                       (core.Coupling("x", (("ball", 1.0),)), "3 freedoms"),
-                       (core.Coupling("x", ()), "no follower"),
-                       (core.Coupling("x", (("a", 1.0),), polynomial=(np.nan,)), "finite")):
+    for bad, words in (
+        (core.Coupling("x", (("nope", 1.0),)), "not in the model"),
+        (core.Coupling("x", (("ball", 1.0),)), "3 freedoms"),
+        (core.Coupling("x", ()), "no follower"),
+        (core.Coupling("x", (("a", 1.0),), polynomial=(np.nan,)), "finite"),
+    ):
         with pytest.raises(MalformedDescription, match=words):
             coupling_row(model, bad)

@@ -35,16 +35,28 @@ def _without_rows(urdf: str) -> str:
     return re.sub(r' rows="[a-z]+"', "", urdf)
 
 
-@pytest.mark.parametrize("name, kind", [("four_bar", "planar"), ("ten_bar", "planar"), ("parallel_2t1r", "planar"),
-                                        ("spherical_2dof", "spherical"), ("tetra_3rr3uru", "spatial")])
+@pytest.mark.parametrize(
+    "name, kind",
+    [
+        ("four_bar", "planar"),
+        ("ten_bar", "planar"),
+        ("parallel_2t1r", "planar"),
+        ("spherical_2dof", "spherical"),
+        ("tetra_3rr3uru", "spatial"),
+    ],
+)
 def test_undeclared_rows_are_the_minimal_rows_the_mechanism_declares(name, kind, load_cached, tmp_path):
     """Strip the rows of a registered mechanism's loops: the detection picks what its author chose, and
     the mechanism is the same (mobility and closure rows)."""
     ref = load_cached(name)
     path = tmp_path / f"{name}.urdf"
     path.write_text(_without_rows(ref.urdf))
-    m = mechkit.load(path, actuated=ref.actuated, home={j: ref.home_q[ref.q_index(j)] for j in ref.actuated},
-                     guess=ref.joint_values(ref.home_q))
+    m = mechkit.load(
+        path,
+        actuated=ref.actuated,
+        home={j: ref.home_q[ref.q_index(j)] for j in ref.actuated},
+        guess=ref.joint_values(ref.home_q),
+    )
     assert {lp.kind for lp in m.structure.loops} == {kind}
     assert [c.rows for c in m.closures] == [c.rows for c in ref.closures]
     assert all(lp.chosen == "detected" for lp in m.structure.loops)
@@ -53,7 +65,10 @@ def test_undeclared_rows_are_the_minimal_rows_the_mechanism_declares(name, kind,
     forced = mechkit.load(path, actuated=ref.actuated, guess=ref.joint_values(ref.home_q), rows="spatial")
     assert all(lp.chosen == "forced" and lp.rows == lp.full_rows for lp in forced.structure.loops)
     assert forced.mobility().dof == ref.mobility().dof
-    assert forced.mobility().redundant == forced.closure_model.kernel.size - m.closure_model.kernel.size + m.mobility().redundant
+    assert (
+        forced.mobility().redundant
+        == forced.closure_model.kernel.size - m.closure_model.kernel.size + m.mobility().redundant
+    )
 
 
 def test_spherical_rows_of_a_spherical_loop_avoid_position_rows(load_cached, tmp_path):
