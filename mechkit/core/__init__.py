@@ -53,11 +53,11 @@ from mechkit.core.kinematics import (
     passive_condition,
     second_order_inconsistency,
     second_order_velocity,
-    solve_passive,
     velocities,
     velocities_batch,
 )
 from mechkit.core.model import ClosureData, ClosureModel, InputSplit
+from mechkit.core.passive_solve import solve_passive
 from mechkit.core.pin_constraints import (
     AXIS_ANCHOR_OFFSET,
     LegacyConstraints,

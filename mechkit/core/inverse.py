@@ -21,8 +21,8 @@ import pinocchio as pin
 from mechkit.base.exceptions import InvalidParameters
 from mechkit.core import efforts, rank
 from mechkit.core.determinacy import determinacy, system
-from mechkit.core.kinematics import idle_count
 from mechkit.core.model import ClosureData, ClosureModel
+from mechkit.core.passive_solve import idle_count
 from mechkit.core.results import BatchInverseDynamicsResult, InverseDynamicsResult
 
 DISTRIBUTIONS = ("min_norm", "min_effort")
@@ -106,7 +106,7 @@ def _check_regular(
     """Raise `SingularConfiguration` where a sample's passive block (the closure Jacobian on the
     unactuated motions, `ClosureModel.unactuated`) has lost rank, to what the closure residual resolves
     (`rank.passive_verdict` on its first min(generic rank, columns) singular values: an under-actuated
-    mechanism's block has more columns than independent rows), idle freedoms (`kinematics.idle_count`)
+    mechanism's block has more columns than independent rows), idle freedoms (`passive_solve.idle_count`)
     aside.
 
     Samples `certified` regular (by `efforts.passive_solve`, else here where the blocks have as many rows as

@@ -118,7 +118,7 @@ class ClosureModel:
         massive: ids of the joints whose body has mass; on_loops: ids of the joints on a loop;
         rigid_groups: joint id -> its welded group's representative (`mechkit.core.structure.rigid_groups`).
         tracked: the two together, sorted; tracked_support: (len(tracked), nv) the velocity columns
-            moving each (`mechkit.core.kinematics.idle_count`).
+            moving each (`mechkit.core.passive_solve.idle_count`).
         row_scale: max_i |J_i| at the neutral configuration (the closure rows' lever arm, m).
         delassus_scale: max_i |J_i|^2 / max_j M_jj there (1/kg for position rows): the unit of the
             proximal regularisation.

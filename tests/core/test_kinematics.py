@@ -7,7 +7,7 @@ import pinocchio as pin
 import pytest
 
 from mechkit import core
-from mechkit.base.exceptions import ClosureNotConverged, SingularConfiguration
+from mechkit.base.exceptions import ClosureNotConverged
 from mechkit.catalog.registry import specs
 
 NAMES = list(specs())
@@ -108,12 +108,6 @@ def test_unreachable_input_raises_with_residual(load_cached):
     with pytest.raises(ClosureNotConverged) as err:
         m.assemble([np.pi, 0.0])  # |B1 B2| = 0.49 > 0.44: the distal links cannot meet
     assert err.value.residual > 1e-3
-
-
-def test_under_determined_inputs_are_refused(load_cached):
-    m = load_cached("five_bar")
-    with pytest.raises(SingularConfiguration):
-        m.velocities(m.home_q, [1.0], inputs=["prox1"])
 
 
 def test_a_model_of_one_velocity_gets_its_jacobian_as_a_column():
