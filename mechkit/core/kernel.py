@@ -15,9 +15,8 @@ Y = p_b (a position row) or R_b w (an alignment row); Z = p_a (a position row) o
 - the wrench a cut transmits, frame_a's side on frame_b's side, from its rows' multipliers lambda
   (sign: J^T lambda is the generalised constraint force): sum of lambda W over its rows.
 
-Coupling rows (`mechkit.core.records.Coupling`) read joint values x: e = f . x - f_ref - P(l . x -
-l_ref), Jacobian f - P'(s) l, drift -P''(s) (l . v)^2. They transmit no wrench through the tree (a
-coupling acts along its joints' freedoms, as a motor does).
+Coupling rows (`mechkit.core.records.Coupling`) read joint values (`mechkit.core.coupling_rows`). They
+transmit no wrench through the tree (a coupling acts along its joints' freedoms, as a motor does).
 
 Rows are ordered cut by cut, then the couplings. Arrays carry any leading sample axes; placements
 G are (..., n_used, 4, 4) for `joints`, the joints carrying a cut frame.
@@ -31,7 +30,8 @@ import numpy as np
 import pinocchio as pin
 
 from mechkit.base.spatial import LEVI_CIVITA
-from mechkit.core.cuts import CouplingRow, CutRows
+from mechkit.core.coupling_rows import CouplingRow, coupling_drift, coupling_jacobian, coupling_residual
+from mechkit.core.cuts import CutRows
 
 
 def support_columns(model: pin.Model, joint: int) -> np.ndarray:
@@ -256,7 +256,7 @@ class ClosureKernel:
         cut = np.sum(x * (y - z), axis=-1)
         if not self.couplings:
             return cut
-        return np.concatenate([cut, self._coupling_residual(q)], axis=-1)
+        return np.concatenate([cut, coupling_residual(self.couplings, q)], axis=-1)
 
     def evaluate(self, G: np.ndarray, J: np.ndarray, q: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Residuals, Jacobian and cut row wrenches from placements (`rows` of `world`).
@@ -288,8 +288,8 @@ class ClosureKernel:
         W, e = we[..., :6], we[..., 6]
         jac = (W @ J) * self.mask
         if self.couplings:
-            e = np.concatenate([e, self._coupling_residual(q)], axis=-1)
-            jac = np.concatenate([jac, self._coupling_jacobian(q)], axis=-2)
+            e = np.concatenate([e, coupling_residual(self.couplings, q)], axis=-1)
+            jac = np.concatenate([jac, coupling_jacobian(self.couplings, q, self.nv)], axis=-2)
         return e, jac, W
 
     def jacobian(self, W: np.ndarray, J: np.ndarray, q: np.ndarray) -> np.ndarray:
@@ -306,7 +306,7 @@ class ClosureKernel:
         jac = (W @ J) * self.mask
         if not self.couplings:
             return jac
-        return np.concatenate([jac, self._coupling_jacobian(q)], axis=-2)
+        return np.concatenate([jac, coupling_jacobian(self.couplings, q, self.nv)], axis=-2)
 
     def twists(self, J: np.ndarray, v: np.ndarray) -> np.ndarray:
         """World twists of the used joints (also: with `data.dJ`, their accelerations at a = 0).
@@ -360,7 +360,7 @@ class ClosureKernel:
         cut = np.sum(W * (self._relative @ A) + Wdot * (self._relative @ V), axis=-1)
         if not self.couplings:
             return cut
-        return np.concatenate([cut, self._coupling_drift(q, v)], axis=-1)
+        return np.concatenate([cut, coupling_drift(self.couplings, q, v)], axis=-1)
 
     # ------------------------------------------------------------ what multipliers transmit
     def joint_loads(self, W: np.ndarray, lam: np.ndarray, origins: np.ndarray, cut_points: np.ndarray) -> np.ndarray:
@@ -383,38 +383,3 @@ class ClosureKernel:
         outer = points[..., :, :, None] * loads[..., :, None, :3]
         loads += outer.reshape(*outer.shape[:-2], 9) @ MOMENT_SHIFT
         return loads
-
-    # ------------------------------------------------------------ coupling rows
-    def _coupling_values(self, row: CouplingRow, q: np.ndarray) -> np.ndarray:
-        x = q[..., row.q_index]
-        if row.unbounded.any():
-            angle = np.arctan2(q[..., row.q_index + 1], q[..., row.q_index])
-            x = np.where(row.unbounded, angle, x)
-        return x
-
-    def _coupling_residual(self, q: np.ndarray) -> np.ndarray:
-        out = []
-        for row in self.couplings:
-            x = self._coupling_values(row, q)
-            s = x @ row.leader - row.coupling.leader_ref
-            out.append(
-                x @ row.follower - row.coupling.follower_ref - np.polynomial.polynomial.polyval(s, row.polynomial)
-            )
-        return np.stack(out, axis=-1)
-
-    def _coupling_jacobian(self, q: np.ndarray) -> np.ndarray:
-        out = np.zeros(q.shape[:-1] + (len(self.couplings), self.nv))
-        for k, row in enumerate(self.couplings):
-            s = self._coupling_values(row, q) @ row.leader - row.coupling.leader_ref
-            slope = np.polynomial.polynomial.polyval(s, np.polynomial.polynomial.polyder(row.polynomial))
-            for col, f, lead in zip(row.v_index, row.follower, row.leader):
-                out[..., k, col] += f - slope * lead
-        return out
-
-    def _coupling_drift(self, q: np.ndarray, v: np.ndarray) -> np.ndarray:
-        out = []
-        for row in self.couplings:
-            s = self._coupling_values(row, q) @ row.leader - row.coupling.leader_ref
-            curvature = np.polynomial.polynomial.polyval(s, np.polynomial.polynomial.polyder(row.polynomial, 2))
-            out.append(-curvature * (v[..., row.v_index] @ row.leader) ** 2)
-        return np.stack(out, axis=-1)

@@ -18,7 +18,8 @@ import scipy.linalg
 
 from mechkit.base.exceptions import InvalidParameters, MalformedDescription
 from mechkit.core import joints
-from mechkit.core.cuts import coupling_row, cut_rows
+from mechkit.core.coupling_rows import coupling_row
+from mechkit.core.cuts import cut_rows
 from mechkit.core.kernel import ClosureKernel, support_columns
 from mechkit.core.records import Actuator, Coupling, LoopClosure
 from mechkit.core.structure import analyse, rigid_groups
