@@ -20,9 +20,10 @@ from mechkit.base.exceptions import InvalidParameters, MalformedDescription
 from mechkit.core import joints
 from mechkit.core.coupling_rows import coupling_row
 from mechkit.core.cuts import cut_rows
-from mechkit.core.kernel import ClosureKernel, support_columns
+from mechkit.core.kernel import ClosureKernel
 from mechkit.core.records import Actuator, Coupling, LoopClosure
 from mechkit.core.structure import analyse, rigid_groups
+from mechkit.core.tree_paths import support_columns
 
 #: Lightest body (kg): Pinocchio's inertia sums are exact above its epsilon (2.2e-16 kg); ours, with a margin.
 MIN_BODY_MASS = 1e-14
