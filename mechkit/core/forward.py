@@ -9,7 +9,7 @@ J a + gamma = 0, by four methods with tolerances relative to the model.
 - "nullspace": the exact reference: the accelerations that satisfy every row, a = a_p + N z, with N a
   basis of the null space of J and the reduced mass matrix N^T M N; N from one LU of a square block of
   J where bounds certify the rank and the consistency the SVD would decide (the method for many
-  loops), else from the SVD.
+  loops), else from the SVD (`mechkit.core.null_space`).
 
 Every result is checked against J a + gamma = 0 on the rows its method solved: a violation beyond
 `ACCELERATION_TOL` is an error (`ConstraintViolated`), never a return value, and a state whose gamma
@@ -31,6 +31,7 @@ import scipy.linalg.lapack
 from mechkit.base.exceptions import ConstraintViolated, InconsistentMotion, SingularConfiguration
 from mechkit.core import rank
 from mechkit.core.model import ClosureData, ClosureModel
+from mechkit.core.null_space import null_space
 from mechkit.core.pin_constraints import LegacyConstraints, proximal_settings
 from mechkit.core.results import ForwardDynamicsResult
 
@@ -251,12 +252,11 @@ def _kkt(cm, cd, q, v, tau, baumgarte) -> ForwardDynamicsResult:
 def _nullspace(cm, cd, q, v, tau, baumgarte) -> ForwardDynamicsResult:
     """The exact solution on the constraint manifold's tangent space, a = a_p + N z, N a basis of the
     null space of J and the reduced mass matrix N^T M N: N from a partition of J where its bounds
-    certify the SVD's decisions (`_partitioned`), else from the SVD."""
+    certify the SVD's decisions, else from the SVD (`mechkit.core.null_space`)."""
     J, gamma = _rows_and_drift(cm, cd, q, v, baumgarte)
     M = _mass_matrix(cm, cd.pin, q)
     nle = pin.nonLinearEffects(cm.model, cd.pin, q, v)
-    split = _partitioned(cd, J, gamma) or _partitioned(cd, J, gamma, again=True)
-    a_p, N = split if split is not None else _svd_null_space(cm, J, gamma)
+    a_p, N = null_space(cd, J, gamma)
     blas = scipy.linalg.blas
     MN = blas.dsymm(1.0, M, N)
     _, z, info = scipy.linalg.lapack.dposv(N.T.dot(MN), N.T.dot(tau - nle - blas.dsymv(1.0, M, a_p)))
@@ -265,62 +265,6 @@ def _nullspace(cm, cd, q, v, tau, baumgarte) -> ForwardDynamicsResult:
     a = a_p + N.dot(z)
     check_acceleration(J, a, gamma, "forward dynamics (null space)")
     return ForwardDynamicsResult(a, blas.dsymv(1.0, M, a) + nle - tau)
-
-
-def _partitioned(
-    cd: ClosureData, J: np.ndarray, gamma: np.ndarray, again: bool = False
-) -> tuple[np.ndarray, np.ndarray] | None:
-    """(a_p (nv,), N (nv, nv - r)) with J a_p + gamma = 0 and J N = 0 through one LU of a square block
-    J[R, D] (independent rows R, then r independent columns D by pivoted QRs: chosen at the first call,
-    `again` at this one, kept on the data), where bounds give the SVD's decisions: rank r, as sigma_r(J)
-    >= sigma_min(J[R, D]) >= 1 / |J[R, D]^-1|_F > `rank.RANK_TOL` |J|_F and, N = [I; -J[R, D]^-1 J[R, I]]
-    spanning nv - r dimensions with sigma_min(N) >= 1, sigma_(r+1)(J) <= |J N|_F <= RANK_TOL |J|_F /
-    sqrt(min(rows, nv)) <= RANK_TOL sigma_1(J); and gamma inside the range of J to `rank.RANGE_TOL`
-    (|J a_p + gamma| bounds the part outside). None where a bound fails (the SVD decides)."""
-    lapack = scipy.linalg.lapack
-    if again or cd.partition is None:
-        rows = rank.independent_rows(J)
-        columns = np.sort(scipy.linalg.qr(J[rows], mode="r", pivoting=True)[1][: rows.size]) if rows.size else rows
-        cd.partition = rows, columns, np.delete(np.arange(J.shape[1]), columns)
-    rows, dep, ind = cd.partition
-    JR, size = J[rows], rank.squared_norm(J)
-    a_p, N = np.zeros(J.shape[1]), np.zeros((J.shape[1], ind.size))
-    N[ind] = np.eye(ind.size)
-    if rows.size:
-        lu, piv, info = lapack.dgetrf(JR[:, dep])
-        if info:
-            return None
-        inverse = lapack.dgetri(lu, piv)[0]
-        if not rank.RANK_TOL**2 * rank.squared_norm(inverse) * size < 1.0:
-            return None
-        X = lapack.dgetrs(lu, piv, np.column_stack((JR[:, ind], gamma[rows])))[0]  # the LU's solve: backward stable
-        N[dep], a_p[dep] = -X[:, :-1], -X[:, -1]
-    if not rank.squared_norm(J.dot(N)) * min(J.shape) <= rank.RANK_TOL**2 * size:
-        return None
-    outside = J.dot(a_p) + gamma
-    return (a_p, N) if outside.dot(outside) <= rank.RANGE_TOL**2 * gamma.dot(gamma) else None
-
-
-def _svd_null_space(cm: ClosureModel, J: np.ndarray, gamma: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """(a_p (nv,), N (nv, nv - rank J)): the minimum-norm particular solution of J a = -gamma and an
-    orthonormal basis of the null space of J, from its SVD.
-
-    Raises:
-        InconsistentMotion: gamma leaves the range of J beyond `rank.RANGE_TOL`.
-    """
-    U, s, Vt = np.linalg.svd(J, full_matrices=True)
-    r = rank.numerical_rank(s)
-    outside = float(np.linalg.norm(U[:, r:].T @ gamma)) if J.size else 0.0
-    if outside > rank.RANGE_TOL * max(float(np.linalg.norm(gamma)), 1e-300):
-        raise InconsistentMotion(
-            outside,
-            rank.RANGE_TOL * float(np.linalg.norm(gamma)),
-            "forward dynamics (null space): "
-            "the closure drift gamma leaves the range of J (the velocity moves along a freedom "
-            "that exists only instantaneously)",
-        )
-    a_p = -(Vt[:r].T @ ((U[:, :r].T @ gamma) / s[:r])) if r else np.zeros(cm.nv)
-    return a_p, Vt[r:].T
 
 
 def forward_dynamics(
