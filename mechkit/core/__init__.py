@@ -18,11 +18,13 @@ one sample or, when its name ends in `_batch`, a leading sample axis N:
 | the tree joints' RNEA wrenches in world axes | `tree_wrenches` (any leading axes) | |
 
 Inside: `records` (closures, couplings, springs, actuators), `joints` (values of any joint type),
-`cuts` (rows each closure keeps), `kernel` (the closure-row mathematics), `rank` (the rank judge),
-`assembly` (closing loops, from near or far),
-`structure` (loops, Kutzbach count, idle freedoms), `model`, `kinematics`, `inverse`, `efforts`
-(its statics solve), `determinacy`, `forward`, `pin_constraints` (the one module that speaks Pinocchio's constraint
-API), `results`. Nothing outside this package imports those submodules: this face is the contract.
+`cuts` (rows each closure keeps), `coupling_rows` (a coupling's row on joint values), `tree_paths` (the
+columns moving a joint, the cuts in its subtree), `kernel` (the closure-row mathematics), `rank` (the rank
+judge), `assembly` (closing loops, from near or far), `structure` (loops, Kutzbach count, idle freedoms),
+`model`, `kinematics`, `passive_solve` (the free coordinates from the given ones), `inverse`, `efforts`
+(its statics solve), `determinacy`, `forward`, `null_space` (the solutions of J a + gamma = 0),
+`pin_constraints` (the one module that speaks Pinocchio's constraint API), `results`. Nothing outside
+this package imports those submodules: this face is the contract.
 """
 
 from mechkit.core.assembly import ASSEMBLY_METHODS, Assembly, assemble
