@@ -18,11 +18,13 @@ one sample or, when its name ends in `_batch`, a leading sample axis N:
 | the tree joints' RNEA wrenches in world axes | `tree_wrenches` (any leading axes) | |
 
 Inside: `records` (closures, couplings, springs, actuators), `joints` (values of any joint type),
-`cuts` (rows each closure keeps), `kernel` (the closure-row mathematics), `rank` (the rank judge),
-`assembly` (closing loops, from near or far),
-`structure` (loops, Kutzbach count, idle freedoms), `model`, `kinematics`, `inverse`, `efforts`
-(its statics solve), `determinacy`, `forward`, `pin_constraints` (the one module that speaks Pinocchio's constraint
-API), `results`. Nothing outside this package imports those submodules: this face is the contract.
+`cuts` (rows each closure keeps), `coupling_rows` (a coupling's row on joint values), `tree_paths` (the
+columns moving a joint, the cuts in its subtree), `kernel` (the closure-row mathematics), `rank` (the rank
+judge), `assembly` (closing loops, from near or far), `structure` (loops, Kutzbach count, idle freedoms),
+`model`, `kinematics`, `passive_solve` (the free coordinates from the given ones), `inverse`, `efforts`
+(its statics solve), `determinacy`, `forward`, `null_space` (the solutions of J a + gamma = 0),
+`pin_constraints` (the one module that speaks Pinocchio's constraint API), `results`. Nothing outside
+this package imports those submodules: this face is the contract.
 """
 
 from mechkit.core.assembly import ASSEMBLY_METHODS, Assembly, assemble
@@ -53,11 +55,11 @@ from mechkit.core.kinematics import (
     passive_condition,
     second_order_inconsistency,
     second_order_velocity,
-    solve_passive,
     velocities,
     velocities_batch,
 )
 from mechkit.core.model import ClosureData, ClosureModel, InputSplit
+from mechkit.core.passive_solve import solve_passive
 from mechkit.core.pin_constraints import (
     AXIS_ANCHOR_OFFSET,
     LegacyConstraints,
@@ -83,13 +85,65 @@ from mechkit.core.results import (
 from mechkit.core.structure import Loop, Structure, analyse, body_name, idle_freedoms, loop_joints
 
 __all__ = [
-    "ASSEMBLY_METHODS", "AXIS_ANCHOR_OFFSET", "CLOSURE_TOL", "DISTRIBUTIONS", "FORWARD_DEFAULTS", "FORWARD_METHODS",
-    "LOOP_KINDS", "RANK_TOL", "ROW_SETS", "Actuator", "Assembly", "BatchInverseDynamicsResult", "ClosureData",
-    "ClosureKernel", "ClosureModel", "Coupling", "CutRows", "ForwardDynamicsResult", "InputSplit", "InverseDynamicsResult", "JointReaction",
-    "JointSpring", "LegacyConstraints", "Loop", "LoopClosure", "Mobility", "Structure", "accelerations", "accelerations_batch", "analyse",
-    "assemble", "body_name", "closure_drift", "closure_jacobian", "closure_residual", "forward_dynamics",
-    "forward_dynamics_batch", "idle_freedoms", "independent_rows", "inverse_dynamics", "inverse_dynamics_batch",
-    "joint_size", "joint_value", "joint_values", "kinematic_pass", "loop_joints", "mobility", "multiplier_reactions",
-    "numerical_rank", "passive_condition", "passive_verdict", "proximal_settings", "raw_constraint_dynamics", "second_order_inconsistency", "second_order_velocity",
-    "set_joint_value", "singular_error", "solve_passive", "tree_wrenches", "velocities", "velocities_batch",
+    "ASSEMBLY_METHODS",
+    "AXIS_ANCHOR_OFFSET",
+    "CLOSURE_TOL",
+    "DISTRIBUTIONS",
+    "FORWARD_DEFAULTS",
+    "FORWARD_METHODS",
+    "LOOP_KINDS",
+    "RANK_TOL",
+    "ROW_SETS",
+    "Actuator",
+    "Assembly",
+    "BatchInverseDynamicsResult",
+    "ClosureData",
+    "ClosureKernel",
+    "ClosureModel",
+    "Coupling",
+    "CutRows",
+    "ForwardDynamicsResult",
+    "InputSplit",
+    "InverseDynamicsResult",
+    "JointReaction",
+    "JointSpring",
+    "LegacyConstraints",
+    "Loop",
+    "LoopClosure",
+    "Mobility",
+    "Structure",
+    "accelerations",
+    "accelerations_batch",
+    "analyse",
+    "assemble",
+    "body_name",
+    "closure_drift",
+    "closure_jacobian",
+    "closure_residual",
+    "forward_dynamics",
+    "forward_dynamics_batch",
+    "idle_freedoms",
+    "independent_rows",
+    "inverse_dynamics",
+    "inverse_dynamics_batch",
+    "joint_size",
+    "joint_value",
+    "joint_values",
+    "kinematic_pass",
+    "loop_joints",
+    "mobility",
+    "multiplier_reactions",
+    "numerical_rank",
+    "passive_condition",
+    "passive_verdict",
+    "proximal_settings",
+    "raw_constraint_dynamics",
+    "second_order_inconsistency",
+    "second_order_velocity",
+    "set_joint_value",
+    "singular_error",
+    "solve_passive",
+    "tree_wrenches",
+    "velocities",
+    "velocities_batch",
 ]

@@ -64,7 +64,7 @@ def _far_rows(cm: ClosureModel, cd: ClosureData, q: np.ndarray) -> tuple[np.ndar
         axes = _axes(cut)
         if not len(axes):
             continue
-        keep[rows.start + cut.positions.shape[1]:rows.stop] = False  # its dot-product rows
+        keep[rows.start + cut.positions.shape[1] : rows.stop] = False  # its dot-product rows
         fa, fb = model.frames[cut.frame_a], model.frames[cut.frame_b]
         Ra = data.oMi[fa.parentJoint].rotation @ fa.placement.rotation
         Rb = data.oMi[fb.parentJoint].rotation @ fb.placement.rotation
@@ -157,8 +157,9 @@ class Assembly:
     residual: float
 
 
-def _residual_and_jacobian(cm: ClosureModel, cd: ClosureData, q: np.ndarray,
-                           jacobian: bool) -> tuple[np.ndarray, np.ndarray | None, float]:
+def _residual_and_jacobian(
+    cm: ClosureModel, cd: ClosureData, q: np.ndarray, jacobian: bool
+) -> tuple[np.ndarray, np.ndarray | None, float]:
     G, J, _ = kinematic_pass(cm, cd, q[None]) if jacobian else (_placements(cm, cd, q), None, None)
     if jacobian:
         e, Jc, _ = cm.kernel.evaluate(G[0], J[0], q)
@@ -182,8 +183,17 @@ def _newton_step(J: np.ndarray, e: np.ndarray) -> np.ndarray:
     return -np.linalg.lstsq(J, e, rcond=None)[0]
 
 
-def assemble(cm: ClosureModel, cd: ClosureData, q0: np.ndarray, split: InputSplit, *, tol: float = rank.CLOSURE_TOL,
-             max_iter: int = 60, method: str = "newton", jacobian_at_trials: bool = True) -> Assembly:
+def assemble(
+    cm: ClosureModel,
+    cd: ClosureData,
+    q0: np.ndarray,
+    split: InputSplit,
+    *,
+    tol: float = rank.CLOSURE_TOL,
+    max_iter: int = 60,
+    method: str = "newton",
+    jacobian_at_trials: bool = True,
+) -> Assembly:
     """Close every loop by moving the coordinates of `split.free_v`, keeping the given joints at q0's values.
 
     The exact rows' solve (`_solve_rows`) from q0; where it does not converge, or converges with a
@@ -210,21 +220,27 @@ def assemble(cm: ClosureModel, cd: ClosureData, q0: np.ndarray, split: InputSpli
         ClosureNotConverged: the residual did not reach tol (the linkage may not assemble there).
     """
     try:
-        out = _solve_rows(cm, cd, q0, split, tol=tol, max_iter=max_iter, method=method,
-                          jacobian_at_trials=jacobian_at_trials)
+        out = _solve_rows(
+            cm, cd, q0, split, tol=tol, max_iter=max_iter, method=method, jacobian_at_trials=jacobian_at_trials
+        )
         turned = flip(cm, cd.pin)  # the exact solve leaves the placements at its q
         if turned <= FLIP_TOL:
             return out
-        first = ClosureNotConverged(turned, FLIP_TOL, out.iterations, "the rows vanish with a cut's frames half a turn "
-                                    "apart (a flipped closure), not closed")
+        first = ClosureNotConverged(
+            turned,
+            FLIP_TOL,
+            out.iterations,
+            "the rows vanish with a cut's frames half a turn apart (a flipped closure), not closed",
+        )
     except ClosureNotConverged as err:
         first = err
     best = first
     for start in _far_starts(cm, cd, q0, split):
         try:
             near = from_far(cm, cd, start, split)
-            out = _solve_rows(cm, cd, near, split, tol=tol, max_iter=max_iter, method=method,
-                              jacobian_at_trials=jacobian_at_trials)
+            out = _solve_rows(
+                cm, cd, near, split, tol=tol, max_iter=max_iter, method=method, jacobian_at_trials=jacobian_at_trials
+            )
         except (ClosureNotConverged, np.linalg.LinAlgError) as err:
             if isinstance(err, ClosureNotConverged) and err.residual < best.residual:
                 best = err
@@ -250,8 +266,17 @@ def _far_starts(cm: ClosureModel, cd: ClosureData, q0: np.ndarray, split: InputS
     return starts
 
 
-def _solve_rows(cm: ClosureModel, cd: ClosureData, q0: np.ndarray, split: InputSplit, *, tol: float,
-                max_iter: int, method: str, jacobian_at_trials: bool) -> Assembly:
+def _solve_rows(
+    cm: ClosureModel,
+    cd: ClosureData,
+    q0: np.ndarray,
+    split: InputSplit,
+    *,
+    tol: float,
+    max_iter: int,
+    method: str,
+    jacobian_at_trials: bool,
+) -> Assembly:
     """The exact rows' solve: Gauss-Newton with a minimum-norm step (LAPACK gesv on a square regular
     block, else lstsq: redundant rows allowed) or Levenberg-Marquardt, both with a backtracking line
     search on |e|, stepping on the configuration manifold (`pin.integrate`), so any joint type works.
@@ -293,14 +318,21 @@ def _solve_rows(cm: ClosureModel, cd: ClosureData, q0: np.ndarray, split: InputS
     if norm <= tol:
         pin.forwardKinematics(model, cd.pin, q)
         return Assembly(q, it + 1, norm)
-    raise ClosureNotConverged(float(norm), tol, it + 1, f"the loop cannot close from this guess, or at all, for these "
-                              f"inputs; the widest gap: {_widest_gap(cm, e)}")
+    raise ClosureNotConverged(
+        float(norm),
+        tol,
+        it + 1,
+        f"the loop cannot close from this guess, or at all, for these inputs; the widest gap: {_widest_gap(cm, e)}",
+    )
 
 
 def _widest_gap(cm: ClosureModel, e: np.ndarray) -> str:
     """The cut (or coupling) whose rows of the residual e (rows,) are largest, and their norm."""
     kernel = cm.kernel
-    gaps = [(float(np.linalg.norm(e[rows])), f"loop {cut.closure.name!r}") for cut, rows in zip(kernel.cuts, kernel.cut_slices)]
-    gaps += [(abs(float(x)), f"coupling {c.coupling.name!r}") for c, x in zip(kernel.couplings, e[kernel.cut_size:])]
+    gaps = [
+        (float(np.linalg.norm(e[rows])), f"loop {cut.closure.name!r}")
+        for cut, rows in zip(kernel.cuts, kernel.cut_slices)
+    ]
+    gaps += [(abs(float(x)), f"coupling {c.coupling.name!r}") for c, x in zip(kernel.couplings, e[kernel.cut_size :])]
     size, what = max(gaps, default=(0.0, "none"))
     return f"{what} by {size:.3e}"

@@ -1,4 +1,4 @@
-"""Which constraint rows each loop closure and coupling keeps, in its own frames.
+"""Which constraint rows each loop closure keeps, in its own frames.
 
 Every cut row is one of two exact forms (`mechkit.core.kernel` evaluates them):
 
@@ -15,7 +15,8 @@ Rows kept per closure kind and row set (`LoopClosure.rows`):
 | weld | 6 | 2 position + 1 alignment | 3 alignment |
 | prismatic | 2 position normal to the axis + 3 alignment | - | - |
 
-A coupling keeps one row on joint values (`mechkit.core.records.Coupling`).
+A coupling keeps one row on joint values (`mechkit.core.records.Coupling`), resolved on a model by
+`mechkit.core.coupling_rows`.
 """
 
 from __future__ import annotations
@@ -27,7 +28,7 @@ import pinocchio as pin
 
 from mechkit.base.exceptions import MalformedDescription
 from mechkit.base.spatial import cross
-from mechkit.core.records import Coupling, LoopClosure
+from mechkit.core.records import LoopClosure
 
 
 def perpendicular_pair(n: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -132,63 +133,3 @@ def cut_rows(model: pin.Model, closure: LoopClosure, rows: str | None = None) ->
         positions, alignments = [t1, t2], frame_fixed
     pos = np.array(positions).T if positions else np.zeros((3, 0))
     return CutRows(closure, ids[0], ids[1], pos, tuple(alignments))
-
-
-@dataclass(frozen=True)
-class CouplingRow:
-    """One coupling resolved on a model: e = f . x - follower_ref - P(l . x - leader_ref).
-
-    Attributes:
-        coupling: the declaration.
-        q_index, v_index: (k,) configuration and velocity indices of the joints it names (followers
-            first), one-freedom joints only.
-        unbounded: (k,) True where the joint is continuous (its value is atan2 of two coordinates).
-        follower, leader: (k,) coefficients of each joint in x_f and in x_l (zero where it is not in it).
-        polynomial: P's coefficients (c0, c1, ...).
-    """
-
-    coupling: Coupling
-    q_index: np.ndarray
-    v_index: np.ndarray
-    unbounded: np.ndarray
-    follower: np.ndarray
-    leader: np.ndarray
-    polynomial: np.ndarray
-
-
-def coupling_row(model: pin.Model, coupling: Coupling) -> CouplingRow:
-    """Resolve a coupling's joints on the model.
-
-    Args:
-        model: the Pinocchio model.
-        coupling: the coupling declaration.
-
-    Returns:
-        The coupling's joint indices (configuration and velocity), continuity flags, follower and leader
-        coefficients and polynomial.
-
-    Raises:
-        MalformedDescription: an unknown joint, a joint with more than one freedom, no follower.
-    """
-    where = f"coupling {coupling.name!r}"
-    if not coupling.follower:
-        raise MalformedDescription(where, "names no follower joint")
-    terms = [(j, c, 0.0) for j, c in coupling.follower] + [(j, 0.0, c) for j, c in coupling.leader]
-    q_index, v_index, unbounded, follower, leader = [], [], [], [], []
-    for joint, f, lead in terms:
-        if not model.existJointName(joint):
-            raise MalformedDescription(where, f"joint {joint!r} not in the model")
-        j = model.getJointId(joint)
-        if model.nvs[j] != 1:
-            raise MalformedDescription(where, f"joint {joint!r} has {model.nvs[j]} freedoms: a coupling joins "
-                                       "one-freedom joints")
-        q_index.append(model.joints[j].idx_q)
-        v_index.append(model.joints[j].idx_v)
-        unbounded.append(model.nqs[j] == 2)
-        follower.append(float(f))
-        leader.append(float(lead))
-    poly = np.asarray(coupling.polynomial, dtype=float)
-    if poly.ndim != 1 or poly.size == 0 or not np.all(np.isfinite(poly)):
-        raise MalformedDescription(where, f"polynomial {coupling.polynomial!r} is not a list of finite numbers")
-    return CouplingRow(coupling, np.array(q_index, dtype=int), np.array(v_index, dtype=int), np.array(unbounded, dtype=bool),
-                       np.array(follower), np.array(leader), poly)

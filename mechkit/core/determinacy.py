@@ -52,7 +52,7 @@ def svd_null_spaces(A: np.ndarray) -> np.ndarray:
     """
     if len(A) == 1:  # LAPACK directly: a fraction of np.linalg.svd's overhead on one small matrix
         _, s, Vt, _ = scipy.linalg.lapack.dgesdd(A[0], full_matrices=1)
-        return Vt[int(ranks(s[None])[0]):].T[None]
+        return Vt[int(ranks(s[None])[0]) :].T[None]
     _, s, Vt = np.linalg.svd(A, full_matrices=True)
     r = ranks(s)
     k, first = Vt.shape[1], int(r.min())
@@ -97,20 +97,28 @@ def self_stresses(cd: ClosureData, A: np.ndarray) -> np.ndarray:
     try:
         inverse_size = np.sqrt(np.square(np.linalg.inv(R[:, :r0])).sum(axis=(1, 2)))
         ok = (inverse_size * size < 1.0 / RANK_TOL) & (
-            np.sqrt(np.square(A @ null).sum(axis=(1, 2))) <= RANK_TOL * size / np.sqrt(nv))
+            np.sqrt(np.square(A @ null).sum(axis=(1, 2))) <= RANK_TOL * size / np.sqrt(nv)
+        )
     except np.linalg.LinAlgError:
         ok = np.zeros(n, dtype=bool)
     if ok.all():
         return null
     fallback = svd_null_spaces(A[~ok])
     out = np.zeros((n, cols, max(cols - r0, fallback.shape[2])))
-    out[ok, :, :cols - r0] = null[ok]
-    out[~ok, :, :fallback.shape[2]] = fallback
+    out[ok, :, : cols - r0] = null[ok]
+    out[~ok, :, : fallback.shape[2]] = fallback
     return out
 
 
-def determinacy(cm: ClosureModel, cd: ClosureData, G: np.ndarray, J: np.ndarray, q: np.ndarray,
-                origins: np.ndarray, cut_points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+def determinacy(
+    cm: ClosureModel,
+    cd: ClosureData,
+    G: np.ndarray,
+    J: np.ndarray,
+    q: np.ndarray,
+    origins: np.ndarray,
+    cut_points: np.ndarray,
+) -> tuple[np.ndarray, np.ndarray]:
     """Which reaction components and efforts static equilibrium fixes.
 
     Args:

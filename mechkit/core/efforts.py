@@ -37,8 +37,9 @@ def splits(cm: ClosureModel, rows: int, distribution: str) -> bool:
     return cm.passive_v is not None and 0 < cm.passive_v.size < rows and distribution == "min_norm"
 
 
-def passive_solve(cm: ClosureModel, cd: ClosureData, Jrows: np.ndarray, b: np.ndarray,
-                  residuals: np.ndarray) -> tuple[np.ndarray | None, np.ndarray]:
+def passive_solve(
+    cm: ClosureModel, cd: ClosureData, Jrows: np.ndarray, b: np.ndarray, residuals: np.ndarray
+) -> tuple[np.ndarray | None, np.ndarray]:
     """The minimum-norm [u; lambda] of N samples through one LU of each passive block's square part.
 
     Args:
@@ -59,8 +60,9 @@ def passive_solve(cm: ClosureModel, cd: ClosureData, Jrows: np.ndarray, b: np.nd
     return np.array([x for x, _ in out]).reshape(len(out), len(cm.actuated) + Jrows.shape[1]), regular
 
 
-def passive_one(cm: ClosureModel, cd: ClosureData, J: np.ndarray, b: np.ndarray,
-                residual: float) -> tuple[np.ndarray | None, bool]:
+def passive_one(
+    cm: ClosureModel, cd: ClosureData, J: np.ndarray, b: np.ndarray, residual: float
+) -> tuple[np.ndarray | None, bool]:
     """One sample of `passive_solve`.
 
     With every actuator one joint's motor, [S^T, J^T] x = b splits into B^T lambda = b_p and u = b_a -
@@ -99,8 +101,11 @@ def passive_one(cm: ClosureModel, cd: ClosureData, J: np.ndarray, b: np.ndarray,
         return None, False
     inverse = lapack.dgetri(lu, piv)[0]
     inverse_size, size, actuated_size = rank.squared_norm(inverse), rank.squared_norm(B), rank.squared_norm(Ja)
-    regular = bool(rank.certified_regular(inverse_size ** -0.5, size ** 0.5, residual))
-    if not rank.RANK_TOL ** 2 * (act.size + (1.0 + actuated_size) * inverse_size) * (act.size + size + actuated_size) < 1.0:
+    regular = bool(rank.certified_regular(inverse_size**-0.5, size**0.5, residual))
+    if (
+        not rank.RANK_TOL**2 * (act.size + (1.0 + actuated_size) * inverse_size) * (act.size + size + actuated_size)
+        < 1.0
+    ):
         return None, regular
     lam, N = np.zeros(m), np.zeros((m, m - k))
     solved = lapack.dgetrs(lu, piv, np.column_stack((b[free], -B[others].T)), trans=1)[0]  # B_s^-T [b_p, -B_x^T]
@@ -150,8 +155,9 @@ def singular(A: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     return s, r, s[:, 0] / s[np.arange(len(s)), np.maximum(r, 1) - 1]
 
 
-def solve(cm: ClosureModel, A: np.ndarray, b: np.ndarray, condition: bool,
-          distribution: str) -> tuple[np.ndarray, np.ndarray]:
+def solve(
+    cm: ClosureModel, A: np.ndarray, b: np.ndarray, condition: bool, distribution: str
+) -> tuple[np.ndarray, np.ndarray]:
     """x (N, cols) with A x = b, and the condition numbers (N,) (nan when `condition` is False).
 
     Square systems: gesv (with `condition`, after singular values that show every sample regular).
@@ -205,7 +211,7 @@ def solve(cm: ClosureModel, A: np.ndarray, b: np.ndarray, condition: bool,
     if distribution == "min_effort":
         na = len(cm.actuated)
         for i in np.flatnonzero(r < cols):
-            x[i] = _least_effort(x[i], Vt[i, r[i]:].T, na)
+            x[i] = _least_effort(x[i], Vt[i, r[i] :].T, na)
     return x, cond
 
 
@@ -267,9 +273,11 @@ def _check_reachable(A: np.ndarray, outside: np.ndarray, b: np.ndarray) -> None:
     if bad.size:
         i = int(bad[0])
         s = rank.singular_values(A[i][None])[0]
-        raise SingularConfiguration(float(s[0] / s[-1]) if s[-1] > 0 else float("inf"),
-                                    f"[S^T, J^T] does not span the required generalised force (sample {i}): the "
-                                    "actuators cannot hold this motion")
+        raise SingularConfiguration(
+            float(s[0] / s[-1]) if s[-1] > 0 else float("inf"),
+            f"[S^T, J^T] does not span the required generalised force (sample {i}): the "
+            "actuators cannot hold this motion",
+        )
 
 
 def _least_effort(x: np.ndarray, N: np.ndarray, na: int) -> np.ndarray:

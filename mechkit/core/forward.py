@@ -9,7 +9,7 @@ J a + gamma = 0, by four methods with tolerances relative to the model.
 - "nullspace": the exact reference: the accelerations that satisfy every row, a = a_p + N z, with N a
   basis of the null space of J and the reduced mass matrix N^T M N; N from one LU of a square block of
   J where bounds certify the rank and the consistency the SVD would decide (the method for many
-  loops), else from the SVD.
+  loops), else from the SVD (`mechkit.core.null_space`).
 
 Every result is checked against J a + gamma = 0 on the rows its method solved: a violation beyond
 `ACCELERATION_TOL` is an error (`ConstraintViolated`), never a return value, and a state whose gamma
@@ -31,6 +31,7 @@ import scipy.linalg.lapack
 from mechkit.base.exceptions import ConstraintViolated, InconsistentMotion, SingularConfiguration
 from mechkit.core import rank
 from mechkit.core.model import ClosureData, ClosureModel
+from mechkit.core.null_space import null_space
 from mechkit.core.pin_constraints import LegacyConstraints, proximal_settings
 from mechkit.core.results import ForwardDynamicsResult
 
@@ -49,8 +50,9 @@ PIVOT_TOL = 1e-14
 ACCELERATION_TOL = 1e-8
 
 
-def check_acceleration(J: np.ndarray, a: np.ndarray, gamma: np.ndarray, what: str,
-                       a_scale: Callable[[], float] | None = None) -> None:
+def check_acceleration(
+    J: np.ndarray, a: np.ndarray, gamma: np.ndarray, what: str, a_scale: Callable[[], float] | None = None
+) -> None:
     """Refuse accelerations that violate J a + gamma = 0 beyond `ACCELERATION_TOL` relative to the terms.
 
     Args:
@@ -87,8 +89,12 @@ def check_acceleration(J: np.ndarray, a: np.ndarray, gamma: np.ndarray, what: st
         return
     delta = rank.inconsistency(J, gamma)
     if delta > rank.RANGE_TOL * max(g, c * float(np.abs(a).max(initial=0.0))):
-        raise InconsistentMotion(delta, rank.RANGE_TOL * g, f"{what}: the closure drift gamma leaves the range of J "
-                                 "(the velocity moves along a freedom that exists only instantaneously)")
+        raise InconsistentMotion(
+            delta,
+            rank.RANGE_TOL * g,
+            f"{what}: the closure drift gamma leaves the range of J "
+            "(the velocity moves along a freedom that exists only instantaneously)",
+        )
     if a_scale is not None:
         limit += ACCELERATION_TOL * c * a_scale()
     if not residual <= limit:
@@ -106,7 +112,7 @@ def _settled(r: np.ndarray, gamma: np.ndarray, J: np.ndarray, a: np.ndarray) -> 
         return False
 
 
-_TOL2 = ACCELERATION_TOL ** 2
+_TOL2 = ACCELERATION_TOL**2
 
 
 def _unconstrained_scale(cm: ClosureModel, data: pin.Data, q: np.ndarray, v: np.ndarray, tau: np.ndarray) -> float:
@@ -123,8 +129,9 @@ def _legacy(cm: ClosureModel, cd: ClosureData, ordered: bool = False) -> LegacyC
     return cd.legacy[key]
 
 
-def _settings(cm: ClosureModel, cd: ClosureData, method: str, mu: float | None, accuracy: float | None,
-              max_iter: int | None):
+def _settings(
+    cm: ClosureModel, cd: ClosureData, method: str, mu: float | None, accuracy: float | None, max_iter: int | None
+):
     """Pinocchio's proximal settings of a method, made once per (method, mu, accuracy, max_iter) (None:
     `DEFAULTS`): mu in units of the Delassus scale; the accuracy divided by it ("proximal": Pinocchio
     tests its iterations on the multipliers) or by the rows' lever arm and `LCABA_STEP_MARGIN` ("lcaba":
@@ -148,7 +155,9 @@ def _proximal(cm, cd, q, v, tau, mu, accuracy, max_iter, baumgarte) -> ForwardDy
     r = J.dot(a)
     r -= rhs
     if not _settled(r, rhs, J, a):
-        check_acceleration(J, a, -rhs, "forward dynamics (proximal)", lambda: _unconstrained_scale(cm, cd.pin, q, v, tau))
+        check_acceleration(
+            J, a, -rhs, "forward dynamics (proximal)", lambda: _unconstrained_scale(cm, cd.pin, q, v, tau)
+        )
     return ForwardDynamicsResult(a, J.T.dot(legacy.multipliers()), settings.iter)
 
 
@@ -171,8 +180,9 @@ def _lcaba(cm, cd, q, v, tau, mu, accuracy, max_iter) -> ForwardDynamicsResult:
     return ForwardDynamicsResult(a, pin.rnea(cm.model, legacy.data, q, v, a) - tau, prox.iter)
 
 
-def _rows_and_drift(cm: ClosureModel, cd: ClosureData, q: np.ndarray, v: np.ndarray,
-                    baumgarte: tuple[float, float] | None) -> tuple[np.ndarray, np.ndarray]:
+def _rows_and_drift(
+    cm: ClosureModel, cd: ClosureData, q: np.ndarray, v: np.ndarray, baumgarte: tuple[float, float] | None
+) -> tuple[np.ndarray, np.ndarray]:
     """mechkit's closure Jacobian (rows, nv) and drift (rows,) at (q, v), Baumgarte terms added (one
     Pinocchio pass, read as views: call before any other pass)."""
     pin.computeJointJacobiansTimeVariation(cm.model, cd.pin, q, v)
@@ -229,8 +239,10 @@ def _kkt(cm, cd, q, v, tau, baumgarte) -> ForwardDynamicsResult:
             cd.kkt_rows = rows
             break
     else:
-        raise SingularConfiguration(float(np.linalg.cond(K)), "KKT matrix (equilibrated): dependent constraint rows "
-                                    "or a coordinate without inertia")
+        raise SingularConfiguration(
+            float(np.linalg.cond(K)),
+            "KKT matrix (equilibrated): dependent constraint rows or a coordinate without inertia",
+        )
     x = scipy.linalg.lapack.dgetrs(lu, piv, np.concatenate([d * (tau - nle), -r * gi]))[0]
     a, lam = d * x[:n], r * x[n:]
     check_acceleration(J, a, gamma, "forward dynamics (KKT)", lambda: float(np.max(np.abs(d * d * (tau - nle)))))
@@ -240,12 +252,11 @@ def _kkt(cm, cd, q, v, tau, baumgarte) -> ForwardDynamicsResult:
 def _nullspace(cm, cd, q, v, tau, baumgarte) -> ForwardDynamicsResult:
     """The exact solution on the constraint manifold's tangent space, a = a_p + N z, N a basis of the
     null space of J and the reduced mass matrix N^T M N: N from a partition of J where its bounds
-    certify the SVD's decisions (`_partitioned`), else from the SVD."""
+    certify the SVD's decisions, else from the SVD (`mechkit.core.null_space`)."""
     J, gamma = _rows_and_drift(cm, cd, q, v, baumgarte)
     M = _mass_matrix(cm, cd.pin, q)
     nle = pin.nonLinearEffects(cm.model, cd.pin, q, v)
-    split = _partitioned(cd, J, gamma) or _partitioned(cd, J, gamma, again=True)
-    a_p, N = split if split is not None else _svd_null_space(cm, J, gamma)
+    a_p, N = null_space(cd, J, gamma)
     blas = scipy.linalg.blas
     MN = blas.dsymm(1.0, M, N)
     _, z, info = scipy.linalg.lapack.dposv(N.T.dot(MN), N.T.dot(tau - nle - blas.dsymv(1.0, M, a_p)))
@@ -256,60 +267,19 @@ def _nullspace(cm, cd, q, v, tau, baumgarte) -> ForwardDynamicsResult:
     return ForwardDynamicsResult(a, blas.dsymv(1.0, M, a) + nle - tau)
 
 
-def _partitioned(cd: ClosureData, J: np.ndarray, gamma: np.ndarray,
-                 again: bool = False) -> tuple[np.ndarray, np.ndarray] | None:
-    """(a_p (nv,), N (nv, nv - r)) with J a_p + gamma = 0 and J N = 0 through one LU of a square block
-    J[R, D] (independent rows R, then r independent columns D by pivoted QRs: chosen at the first call,
-    `again` at this one, kept on the data), where bounds give the SVD's decisions: rank r, as sigma_r(J)
-    >= sigma_min(J[R, D]) >= 1 / |J[R, D]^-1|_F > `rank.RANK_TOL` |J|_F and, N = [I; -J[R, D]^-1 J[R, I]]
-    spanning nv - r dimensions with sigma_min(N) >= 1, sigma_(r+1)(J) <= |J N|_F <= RANK_TOL |J|_F /
-    sqrt(min(rows, nv)) <= RANK_TOL sigma_1(J); and gamma inside the range of J to `rank.RANGE_TOL`
-    (|J a_p + gamma| bounds the part outside). None where a bound fails (the SVD decides)."""
-    lapack = scipy.linalg.lapack
-    if again or cd.partition is None:
-        rows = rank.independent_rows(J)
-        columns = np.sort(scipy.linalg.qr(J[rows], mode="r", pivoting=True)[1][:rows.size]) if rows.size else rows
-        cd.partition = rows, columns, np.delete(np.arange(J.shape[1]), columns)
-    rows, dep, ind = cd.partition
-    JR, size = J[rows], rank.squared_norm(J)
-    a_p, N = np.zeros(J.shape[1]), np.zeros((J.shape[1], ind.size))
-    N[ind] = np.eye(ind.size)
-    if rows.size:
-        lu, piv, info = lapack.dgetrf(JR[:, dep])
-        if info:
-            return None
-        inverse = lapack.dgetri(lu, piv)[0]
-        if not rank.RANK_TOL ** 2 * rank.squared_norm(inverse) * size < 1.0:
-            return None
-        X = lapack.dgetrs(lu, piv, np.column_stack((JR[:, ind], gamma[rows])))[0]  # the LU's solve: backward stable
-        N[dep], a_p[dep] = -X[:, :-1], -X[:, -1]
-    if not rank.squared_norm(J.dot(N)) * min(J.shape) <= rank.RANK_TOL ** 2 * size:
-        return None
-    outside = J.dot(a_p) + gamma
-    return (a_p, N) if outside.dot(outside) <= rank.RANGE_TOL ** 2 * gamma.dot(gamma) else None
-
-
-def _svd_null_space(cm: ClosureModel, J: np.ndarray, gamma: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """(a_p (nv,), N (nv, nv - rank J)): the minimum-norm particular solution of J a = -gamma and an
-    orthonormal basis of the null space of J, from its SVD.
-
-    Raises:
-        InconsistentMotion: gamma leaves the range of J beyond `rank.RANGE_TOL`.
-    """
-    U, s, Vt = np.linalg.svd(J, full_matrices=True)
-    r = rank.numerical_rank(s)
-    outside = float(np.linalg.norm(U[:, r:].T @ gamma)) if J.size else 0.0
-    if outside > rank.RANGE_TOL * max(float(np.linalg.norm(gamma)), 1e-300):
-        raise InconsistentMotion(outside, rank.RANGE_TOL * float(np.linalg.norm(gamma)), "forward dynamics (null space): "
-                                 "the closure drift gamma leaves the range of J (the velocity moves along a freedom "
-                                 "that exists only instantaneously)")
-    a_p = -(Vt[:r].T @ ((U[:, :r].T @ gamma) / s[:r])) if r else np.zeros(cm.nv)
-    return a_p, Vt[r:].T
-
-
-def forward_dynamics(cm: ClosureModel, cd: ClosureData, q: np.ndarray, v: np.ndarray, tau: np.ndarray,
-                     method: str = "proximal", *, mu: float | None = None, accuracy: float | None = None,
-                     max_iter: int | None = None, baumgarte: tuple[float, float] | None = None) -> ForwardDynamicsResult:
+def forward_dynamics(
+    cm: ClosureModel,
+    cd: ClosureData,
+    q: np.ndarray,
+    v: np.ndarray,
+    tau: np.ndarray,
+    method: str = "proximal",
+    *,
+    mu: float | None = None,
+    accuracy: float | None = None,
+    max_iter: int | None = None,
+    baumgarte: tuple[float, float] | None = None,
+) -> ForwardDynamicsResult:
     """Accelerations of one state under joint efforts.
 
     Args:
@@ -345,8 +315,15 @@ def forward_dynamics(cm: ClosureModel, cd: ClosureData, q: np.ndarray, v: np.nda
     return _nullspace(cm, cd, q, v, tau, baumgarte)
 
 
-def forward_dynamics_batch(cm: ClosureModel, cd: ClosureData, Q: np.ndarray, V: np.ndarray, T: np.ndarray,
-                           method: str = "proximal", **settings: float | tuple | None) -> ForwardDynamicsResult:
+def forward_dynamics_batch(
+    cm: ClosureModel,
+    cd: ClosureData,
+    Q: np.ndarray,
+    V: np.ndarray,
+    T: np.ndarray,
+    method: str = "proximal",
+    **settings: float | tuple | None,
+) -> ForwardDynamicsResult:
     """`forward_dynamics` of N states.
 
     Args:
@@ -362,6 +339,8 @@ def forward_dynamics_batch(cm: ClosureModel, cd: ClosureData, Q: np.ndarray, V: 
         Accelerations (N, nv), generalised constraint forces (N, nv) and the largest iteration count.
     """
     out = [forward_dynamics(cm, cd, q, v, t, method, **settings) for q, v, t in zip(Q, V, T)]
-    return ForwardDynamicsResult(np.array([r.a for r in out]).reshape(len(Q), cm.nv),
-                                 np.array([r.constraint_force for r in out]).reshape(len(Q), cm.nv),
-                                 max((r.iterations for r in out), default=0))
+    return ForwardDynamicsResult(
+        np.array([r.a for r in out]).reshape(len(Q), cm.nv),
+        np.array([r.constraint_force for r in out]).reshape(len(Q), cm.nv),
+        max((r.iterations for r in out), default=0),
+    )

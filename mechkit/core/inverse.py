@@ -21,8 +21,8 @@ import pinocchio as pin
 from mechkit.base.exceptions import InvalidParameters
 from mechkit.core import efforts, rank
 from mechkit.core.determinacy import determinacy, system
-from mechkit.core.kinematics import idle_count
 from mechkit.core.model import ClosureData, ClosureModel
+from mechkit.core.passive_solve import idle_count
 from mechkit.core.results import BatchInverseDynamicsResult, InverseDynamicsResult
 
 DISTRIBUTIONS = ("min_norm", "min_effort")
@@ -43,8 +43,9 @@ def tree_wrenches(P: np.ndarray, f: np.ndarray) -> np.ndarray:
     return (f[..., 1:, :].reshape(*lead, nj - 1, 2, 3) @ P[..., 1:, :, :3].swapaxes(-1, -2)).reshape(*lead, nj - 1, 6)
 
 
-def inverse_pass(cm: ClosureModel, cd: ClosureData, Q: np.ndarray, V: np.ndarray, A: np.ndarray,
-                 fexts: Sequence) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+def inverse_pass(
+    cm: ClosureModel, cd: ClosureData, Q: np.ndarray, V: np.ndarray, A: np.ndarray, fexts: Sequence
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """Pinocchio's passes (`computeJointJacobians`, `rnea`) of N samples, read.
 
     Args:
@@ -93,12 +94,19 @@ def used_placements(cm: ClosureModel, P: np.ndarray) -> np.ndarray:
     return G
 
 
-def _check_regular(cm: ClosureModel, Jrows: np.ndarray, Jw: np.ndarray, residuals: np.ndarray,
-                   generic_rank: int, idle: bool, certified: np.ndarray | None = None) -> dict[int, np.ndarray]:
+def _check_regular(
+    cm: ClosureModel,
+    Jrows: np.ndarray,
+    Jw: np.ndarray,
+    residuals: np.ndarray,
+    generic_rank: int,
+    idle: bool,
+    certified: np.ndarray | None = None,
+) -> dict[int, np.ndarray]:
     """Raise `SingularConfiguration` where a sample's passive block (the closure Jacobian on the
     unactuated motions, `ClosureModel.unactuated`) has lost rank, to what the closure residual resolves
     (`rank.passive_verdict` on its first min(generic rank, columns) singular values: an under-actuated
-    mechanism's block has more columns than independent rows), idle freedoms (`kinematics.idle_count`)
+    mechanism's block has more columns than independent rows), idle freedoms (`passive_solve.idle_count`)
     aside.
 
     Samples `certified` regular (by `efforts.passive_solve`, else here where the blocks have as many rows as
@@ -143,8 +151,9 @@ def _check_regular(cm: ClosureModel, Jrows: np.ndarray, Jw: np.ndarray, residual
     return found
 
 
-def _idle_accelerations(cm: ClosureModel, cd: ClosureData, Q: np.ndarray, A: np.ndarray, b: np.ndarray,
-                        idle: dict[int, np.ndarray]) -> np.ndarray:
+def _idle_accelerations(
+    cm: ClosureModel, cd: ClosureData, Q: np.ndarray, A: np.ndarray, b: np.ndarray, idle: dict[int, np.ndarray]
+) -> np.ndarray:
     """A with each idle freedom's acceleration set by its own dynamics, N^T (M a + nle - tau) = 0.
 
     No actuator drives an idle freedom and no closure row holds it (J N = 0), so its acceleration is not
@@ -159,10 +168,20 @@ def _idle_accelerations(cm: ClosureModel, cd: ClosureData, Q: np.ndarray, A: np.
     return A
 
 
-def inverse_dynamics_batch(cm: ClosureModel, cd: ClosureData, Q: np.ndarray, V: np.ndarray, A: np.ndarray,
-                           fexts: Sequence | None = None, passive: np.ndarray | None = None, *,
-                           determinacy_test: bool = True, distribution: str = "min_norm",
-                           generic_rank: int | None = None, idle: bool = False) -> BatchInverseDynamicsResult:
+def inverse_dynamics_batch(
+    cm: ClosureModel,
+    cd: ClosureData,
+    Q: np.ndarray,
+    V: np.ndarray,
+    A: np.ndarray,
+    fexts: Sequence | None = None,
+    passive: np.ndarray | None = None,
+    *,
+    determinacy_test: bool = True,
+    distribution: str = "min_norm",
+    generic_rank: int | None = None,
+    idle: bool = False,
+) -> BatchInverseDynamicsResult:
     """Actuator efforts and every joint's reaction for N motions (q, v, a) that satisfy the closures.
 
     Args:
@@ -202,8 +221,11 @@ def inverse_dynamics_batch(cm: ClosureModel, cd: ClosureData, Q: np.ndarray, V: 
         world = k.world(G)
         e, Jrows, W = k.rows(world, J, Q)
         residuals = np.linalg.norm(e, axis=-1)
-        x, regular = (efforts.passive_solve(cm, cd, Jrows, b, residuals) if efforts.splits(cm, k.size, distribution)
-                      else (None, None))
+        x, regular = (
+            efforts.passive_solve(cm, cd, Jrows, b, residuals)
+            if efforts.splits(cm, k.size, distribution)
+            else (None, None)
+        )
         spins = {} if generic_rank is None else _check_regular(cm, Jrows, J, residuals, generic_rank, idle, regular)
         if spins:
             A = _idle_accelerations(cm, cd, Q, A, b, spins)
@@ -216,18 +238,29 @@ def inverse_dynamics_batch(cm: ClosureModel, cd: ClosureData, Q: np.ndarray, V: 
             cond = efforts.singular(system(cm, Jrows))[2] if determinacy_test else np.full(n, np.nan)
         origins, cut_points = P[:, 1:, :, 3], k.points(world)
         reactions = k.joint_loads(W, x[:, na:], origins, cut_points)
-        reactions[:, :tree.shape[1]] += tree
+        reactions[:, : tree.shape[1]] += tree
         flags = effort_flags = None
         if determinacy_test:
             flags, effort_flags = determinacy(cm, cd, G, J, Q, origins, cut_points)
-    return BatchInverseDynamicsResult(cm.joint_names, cm.actuated, x[:, :na], reactions, cm.supports, x[:, na:],
-                                      cond, flags, effort_flags)
+    return BatchInverseDynamicsResult(
+        cm.joint_names, cm.actuated, x[:, :na], reactions, cm.supports, x[:, na:], cond, flags, effort_flags
+    )
 
 
-def inverse_dynamics(cm: ClosureModel, cd: ClosureData, q: np.ndarray, v: np.ndarray, a: np.ndarray,
-                     fext: pin.StdVec_Force | None = None, passive: np.ndarray | None = None, *,
-                     determinacy_test: bool = True, distribution: str = "min_norm",
-                     generic_rank: int | None = None, idle: bool = False) -> InverseDynamicsResult:
+def inverse_dynamics(
+    cm: ClosureModel,
+    cd: ClosureData,
+    q: np.ndarray,
+    v: np.ndarray,
+    a: np.ndarray,
+    fext: pin.StdVec_Force | None = None,
+    passive: np.ndarray | None = None,
+    *,
+    determinacy_test: bool = True,
+    distribution: str = "min_norm",
+    generic_rank: int | None = None,
+    idle: bool = False,
+) -> InverseDynamicsResult:
     """One sample of `inverse_dynamics_batch` (the same numbers).
 
     Args:
@@ -254,9 +287,19 @@ def inverse_dynamics(cm: ClosureModel, cd: ClosureData, q: np.ndarray, v: np.nda
     if distribution not in DISTRIBUTIONS:
         raise InvalidParameters("distribution", distribution, f"expected one of {DISTRIBUTIONS}")
     if idle:  # idle spins: their accelerations change the pass (`_idle_accelerations`)
-        return inverse_dynamics_batch(cm, cd, q[None], v[None], a[None], [fext], None if passive is None else passive[None],
-                                      determinacy_test=determinacy_test, distribution=distribution,
-                                      generic_rank=generic_rank, idle=idle).sample(0)
+        return inverse_dynamics_batch(
+            cm,
+            cd,
+            q[None],
+            v[None],
+            a[None],
+            [fext],
+            None if passive is None else passive[None],
+            determinacy_test=determinacy_test,
+            distribution=distribution,
+            generic_rank=generic_rank,
+            idle=idle,
+        ).sample(0)
     try:
         return _one_sample(cm, cd, q, v, a, fext, passive, determinacy_test, distribution, generic_rank)
     except FloatingPointError:  # an underflow under the caller's np.errstate(under="raise"): flushed, as the batch does
@@ -264,13 +307,24 @@ def inverse_dynamics(cm: ClosureModel, cd: ClosureData, q: np.ndarray, v: np.nda
             return _one_sample(cm, cd, q, v, a, fext, passive, determinacy_test, distribution, generic_rank)
 
 
-def _one_sample(cm: ClosureModel, cd: ClosureData, q: np.ndarray, v: np.ndarray, a: np.ndarray,
-                fext: pin.StdVec_Force | None, passive: np.ndarray | None, determinacy_test: bool, distribution: str,
-                generic_rank: int | None) -> InverseDynamicsResult:
+def _one_sample(
+    cm: ClosureModel,
+    cd: ClosureData,
+    q: np.ndarray,
+    v: np.ndarray,
+    a: np.ndarray,
+    fext: pin.StdVec_Force | None,
+    passive: np.ndarray | None,
+    determinacy_test: bool,
+    distribution: str,
+    generic_rank: int | None,
+) -> InverseDynamicsResult:
     """`inverse_dynamics` without idle spins: the batch's steps on one sample."""
     model, data, k = cm.model, cd.pin, cm.kernel
     pin.computeJointJacobians(model, data, q)
-    b = pin.rnea(model, data, q, v, a) if fext is None else pin.rnea(model, data, q, v, a, fext)  # data.tau: no Pinocchio call below
+    b = (
+        pin.rnea(model, data, q, v, a) if fext is None else pin.rnea(model, data, q, v, a, fext)
+    )  # data.tau: no Pinocchio call below
     if passive is not None:
         b = b - passive
     Jw = cd.J
@@ -288,8 +342,15 @@ def _one_sample(cm: ClosureModel, cd: ClosureData, q: np.ndarray, v: np.ndarray,
         block = Jrows[:, cm.passive_v] if cm.passive_v is not None else Jrows @ cm.unactuated  # the same numbers
         regular = rank.certified_regular(*rank.block_bounds(block), residual)
     if judged and not regular:
-        _check_regular(cm, Jrows[None], Jw[None], np.array([residual]), generic_rank, False,
-                       None if regular is None else np.array([regular]))
+        _check_regular(
+            cm,
+            Jrows[None],
+            Jw[None],
+            np.array([residual]),
+            generic_rank,
+            False,
+            None if regular is None else np.array([regular]),
+        )
     if x is None:
         x, cond = efforts.solve(cm, system(cm, Jrows[None]), b[None], determinacy_test, distribution)
         x, cond = x[0], float(cond[0])
@@ -298,13 +359,14 @@ def _one_sample(cm: ClosureModel, cd: ClosureData, q: np.ndarray, v: np.ndarray,
     P = cd.oMi
     origins, cut_points = P[1:, :, 3], k.points(world)
     reactions = k.joint_loads(W, x[na:], origins, cut_points)
-    reactions[:P.shape[0] - 1] += tree_wrenches(P, cd.f)
+    reactions[: P.shape[0] - 1] += tree_wrenches(P, cd.f)
     flags = effort_flags = None
     if determinacy_test:
         flags, effort_flags = determinacy(cm, cd, cd.used[None], Jw[None], q[None], origins[None], cut_points[None])
         flags, effort_flags = flags[0], effort_flags[0]
-    return InverseDynamicsResult(cm.joint_names, cm.actuated, x[:na], reactions, cm.supports, x[na:], cond, flags,
-                                 effort_flags)
+    return InverseDynamicsResult(
+        cm.joint_names, cm.actuated, x[:na], reactions, cm.supports, x[na:], cond, flags, effort_flags
+    )
 
 
 def multiplier_reactions(cm: ClosureModel, cd: ClosureData, q: np.ndarray, lam: np.ndarray) -> np.ndarray:

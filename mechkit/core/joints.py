@@ -64,19 +64,23 @@ def set_value(model: pin.Model, q: np.ndarray, joint: int, value: float | np.nda
     i, nq, nv = model.joints[joint].idx_q, int(model.nqs[joint]), size(model, joint)
     x = np.atleast_1d(np.asarray(value, dtype=float))
     if x.shape != (nv,):
-        raise InvalidParameters(model.names[joint], value, f"a {_kind(model, joint)} joint takes {nv} value(s) "
-                                f"({'rad or m' if nv == 1 else 'see mechkit.core.joints'}), got shape {x.shape}")
+        raise InvalidParameters(
+            model.names[joint],
+            value,
+            f"a {_kind(model, joint)} joint takes {nv} value(s) "
+            f"({'rad or m' if nv == 1 else 'see mechkit.core.joints'}), got shape {x.shape}",
+        )
     kind = _kind(model, joint)
     if nq == nv:
-        q[i:i + nq] = x
+        q[i : i + nq] = x
     elif _unbounded(model, joint):
-        q[i:i + 2] = np.cos(x[0]), np.sin(x[0])
+        q[i : i + 2] = np.cos(x[0]), np.sin(x[0])
     elif kind in _QUATERNION:
         lead = _QUATERNION[kind]
-        q[i:i + lead] = x[:lead]
-        q[i + lead:i + nq] = pin.Quaternion(pin.exp3(x[lead:])).coeffs()
+        q[i : i + lead] = x[:lead]
+        q[i + lead : i + nq] = pin.Quaternion(pin.exp3(x[lead:])).coeffs()
     elif kind == "JointModelPlanar":
-        q[i:i + 4] = x[0], x[1], np.cos(x[2]), np.sin(x[2])
+        q[i : i + 4] = x[0], x[1], np.cos(x[2]), np.sin(x[2])
     else:
         raise InvalidParameters(model.names[joint], value, f"values of a {kind} joint are not supported")
 
@@ -98,13 +102,13 @@ def value(model: pin.Model, q: np.ndarray, joint: int) -> float | np.ndarray:
     i, nq, nv = model.joints[joint].idx_q, int(model.nqs[joint]), size(model, joint)
     kind = _kind(model, joint)
     if nq == nv:
-        out = np.array(q[i:i + nq], dtype=float)
+        out = np.array(q[i : i + nq], dtype=float)
     elif _unbounded(model, joint):
         return float(np.arctan2(q[i + 1], q[i]))
     elif kind in _QUATERNION:
         lead = _QUATERNION[kind]
-        quat = pin.Quaternion(np.asarray(q[i + lead:i + nq], dtype=float)).normalized()
-        out = np.concatenate([q[i:i + lead], pin.log3(quat.matrix())])
+        quat = pin.Quaternion(np.asarray(q[i + lead : i + nq], dtype=float)).normalized()
+        out = np.concatenate([q[i : i + lead], pin.log3(quat.matrix())])
     elif kind == "JointModelPlanar":
         out = np.array([q[i], q[i + 1], np.arctan2(q[i + 3], q[i + 2])])
     else:

@@ -15,9 +15,8 @@ Y = p_b (a position row) or R_b w (an alignment row); Z = p_a (a position row) o
 - the wrench a cut transmits, frame_a's side on frame_b's side, from its rows' multipliers lambda
   (sign: J^T lambda is the generalised constraint force): sum of lambda W over its rows.
 
-Coupling rows (`mechkit.core.records.Coupling`) read joint values x: e = f . x - f_ref - P(l . x -
-l_ref), Jacobian f - P'(s) l, drift -P''(s) (l . v)^2. They transmit no wrench through the tree (a
-coupling acts along its joints' freedoms, as a motor does).
+Coupling rows (`mechkit.core.records.Coupling`) read joint values (`mechkit.core.coupling_rows`). They
+transmit no wrench through the tree (a coupling acts along its joints' freedoms, as a motor does).
 
 Rows are ordered cut by cut, then the couplings. Arrays carry any leading sample axes; placements
 G are (..., n_used, 4, 4) for `joints`, the joints carrying a cut frame.
@@ -31,47 +30,9 @@ import numpy as np
 import pinocchio as pin
 
 from mechkit.base.spatial import LEVI_CIVITA
-from mechkit.core.cuts import CouplingRow, CutRows
-
-
-def support_columns(model: pin.Model, joint: int) -> np.ndarray:
-    """The velocity columns that move a joint.
-
-    Args:
-        model: the Pinocchio model.
-        joint: Pinocchio joint id (0, the universe: none).
-
-    Returns:
-        (nv,) 1.0 on the velocity columns of the joints from the root to `joint`, else 0.
-    """
-    out = np.zeros(model.nv)
-    while joint > 0:
-        jm = model.joints[joint]
-        out[jm.idx_v:jm.idx_v + jm.nv] = 1.0
-        joint = model.parents[joint]
-    return out
-
-
-def subtree_incidence(model: pin.Model, cuts: list[CutRows]) -> np.ndarray:
-    """Which cuts' frames lie in each joint's subtree.
-
-    Args:
-        model: the Pinocchio model.
-        cuts: the cuts, in order.
-
-    Returns:
-        (njoints, len(cuts)): +1 where joint i has frame_b's body of a cut in its subtree, -1 for
-        frame_a's (0 for both or neither).
-    """
-    out = np.zeros((model.njoints, len(cuts)))
-    for c, cut in enumerate(cuts):
-        for sign, frame in ((1.0, cut.frame_b), (-1.0, cut.frame_a)):
-            j = model.frames[frame].parentJoint
-            while j > 0:
-                out[j, c] += sign
-                j = model.parents[j]
-    return out
-
+from mechkit.core.coupling_rows import CouplingRow, coupling_drift, coupling_jacobian, coupling_residual
+from mechkit.core.cuts import CutRows
+from mechkit.core.tree_paths import subtree_incidence, support_columns
 
 #: (12, 6) map of (Y' outer X).reshape(12), Y' = [Y, f], to the row wrench [f X, Y x X].
 WRENCH_MAP = np.zeros((12, 6))
@@ -133,13 +94,17 @@ class ClosureKernel:
         bounds = np.cumsum([0] + [c.size for c in cuts])
         self.cut_slices = tuple(slice(int(a), int(b)) for a, b in itertools.pairwise(bounds))
         # every vector the rows read (X, Z, Y of each row, then p_b of each cut) as one map of the stacked placements
-        vectors = [*np.array(local, dtype=float).reshape(-1, 4),
-                   *(frames[c.frame_b].placement.homogeneous[:, 3] for c in cuts)]
-        owners = [*np.stack([self._ia, self._ia, self._ib], axis=1).reshape(-1),
-                  *(where[frames[c.frame_b].parentJoint] for c in cuts)]
+        vectors = [
+            *np.array(local, dtype=float).reshape(-1, 4),
+            *(frames[c.frame_b].placement.homogeneous[:, 3] for c in cuts),
+        ]
+        owners = [
+            *np.stack([self._ia, self._ia, self._ib], axis=1).reshape(-1),
+            *(where[frames[c.frame_b].parentJoint] for c in cuts),
+        ]
         self._map = np.zeros((len(vectors), 4 * self.joints.size))
         for r, (j, vector) in enumerate(zip(owners, vectors)):
-            self._map[r, 4 * j:4 * j + 4] = vector
+            self._map[r, 4 * j : 4 * j + 4] = vector
         self.support = np.array([support_columns(model, int(j)) for j in self.joints]).reshape(-1, model.nv)
         self.mask = self.support[self._ib] - self.support[self._ia]
         self.incidence = subtree_incidence(model, list(cuts))
@@ -175,7 +140,7 @@ class ClosureKernel:
 
     def _xzy(self, V: np.ndarray) -> np.ndarray:
         """(..., cut_size, 3, 4) X', Z', Y' of every cut row from `world` vectors."""
-        return V[..., :3 * self.cut_size, :].reshape(*V.shape[:-2], self.cut_size, 3, 4)
+        return V[..., : 3 * self.cut_size, :].reshape(*V.shape[:-2], self.cut_size, 3, 4)
 
     def vectors(self, G: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """The vectors X', Y', Z' every cut row reads, world (m or unit).
@@ -223,7 +188,7 @@ class ClosureKernel:
         Returns:
             (..., ncuts, 3) the points, world (m).
         """
-        return V[..., 3 * self.cut_size:, :3]
+        return V[..., 3 * self.cut_size :, :3]
 
     def cut_points(self, G: np.ndarray) -> np.ndarray:
         """The origins p_b of frame_b of every cut, from placements.
@@ -252,7 +217,7 @@ class ClosureKernel:
         cut = np.sum(x * (y - z), axis=-1)
         if not self.couplings:
             return cut
-        return np.concatenate([cut, self._coupling_residual(q)], axis=-1)
+        return np.concatenate([cut, coupling_residual(self.couplings, q)], axis=-1)
 
     def evaluate(self, G: np.ndarray, J: np.ndarray, q: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Residuals, Jacobian and cut row wrenches from placements (`rows` of `world`).
@@ -284,8 +249,8 @@ class ClosureKernel:
         W, e = we[..., :6], we[..., 6]
         jac = (W @ J) * self.mask
         if self.couplings:
-            e = np.concatenate([e, self._coupling_residual(q)], axis=-1)
-            jac = np.concatenate([jac, self._coupling_jacobian(q)], axis=-2)
+            e = np.concatenate([e, coupling_residual(self.couplings, q)], axis=-1)
+            jac = np.concatenate([jac, coupling_jacobian(self.couplings, q, self.nv)], axis=-2)
         return e, jac, W
 
     def jacobian(self, W: np.ndarray, J: np.ndarray, q: np.ndarray) -> np.ndarray:
@@ -302,7 +267,7 @@ class ClosureKernel:
         jac = (W @ J) * self.mask
         if not self.couplings:
             return jac
-        return np.concatenate([jac, self._coupling_jacobian(q)], axis=-2)
+        return np.concatenate([jac, coupling_jacobian(self.couplings, q, self.nv)], axis=-2)
 
     def twists(self, J: np.ndarray, v: np.ndarray) -> np.ndarray:
         """World twists of the used joints (also: with `data.dJ`, their accelerations at a = 0).
@@ -316,8 +281,16 @@ class ClosureKernel:
         """
         return np.swapaxes(J @ np.swapaxes(self.support * v[..., None, :], -1, -2), -1, -2)
 
-    def drift(self, G: np.ndarray, V: np.ndarray, A: np.ndarray, q: np.ndarray, v: np.ndarray,
-              world: np.ndarray | None = None, W: np.ndarray | None = None) -> np.ndarray:
+    def drift(
+        self,
+        G: np.ndarray,
+        V: np.ndarray,
+        A: np.ndarray,
+        q: np.ndarray,
+        v: np.ndarray,
+        world: np.ndarray | None = None,
+        W: np.ndarray | None = None,
+    ) -> np.ndarray:
         """(..., size) gamma with d2e/dt2 = J a + gamma.
 
         A vector fixed in joint j's frame moves as its placement, dG/dt = Xi G with Xi = [[omega x, v_O],
@@ -348,7 +321,7 @@ class ClosureKernel:
         cut = np.sum(W * (self._relative @ A) + Wdot * (self._relative @ V), axis=-1)
         if not self.couplings:
             return cut
-        return np.concatenate([cut, self._coupling_drift(q, v)], axis=-1)
+        return np.concatenate([cut, coupling_drift(self.couplings, q, v)], axis=-1)
 
     # ------------------------------------------------------------ what multipliers transmit
     def joint_loads(self, W: np.ndarray, lam: np.ndarray, origins: np.ndarray, cut_points: np.ndarray) -> np.ndarray:
@@ -366,41 +339,8 @@ class ClosureKernel:
         Returns:
             (..., njoints - 1 + ncuts, 6) [f, m about the joint's point], world axes.
         """
-        loads = (self._transmission * lam[..., None, :self.cut_size]) @ W  # about the world origin
+        loads = (self._transmission * lam[..., None, : self.cut_size]) @ W  # about the world origin
         points = np.concatenate([origins, cut_points], axis=-2)
         outer = points[..., :, :, None] * loads[..., :, None, :3]
         loads += outer.reshape(*outer.shape[:-2], 9) @ MOMENT_SHIFT
         return loads
-
-    # ------------------------------------------------------------ coupling rows
-    def _coupling_values(self, row: CouplingRow, q: np.ndarray) -> np.ndarray:
-        x = q[..., row.q_index]
-        if row.unbounded.any():
-            angle = np.arctan2(q[..., row.q_index + 1], q[..., row.q_index])
-            x = np.where(row.unbounded, angle, x)
-        return x
-
-    def _coupling_residual(self, q: np.ndarray) -> np.ndarray:
-        out = []
-        for row in self.couplings:
-            x = self._coupling_values(row, q)
-            s = x @ row.leader - row.coupling.leader_ref
-            out.append(x @ row.follower - row.coupling.follower_ref - np.polynomial.polynomial.polyval(s, row.polynomial))
-        return np.stack(out, axis=-1)
-
-    def _coupling_jacobian(self, q: np.ndarray) -> np.ndarray:
-        out = np.zeros(q.shape[:-1] + (len(self.couplings), self.nv))
-        for k, row in enumerate(self.couplings):
-            s = self._coupling_values(row, q) @ row.leader - row.coupling.leader_ref
-            slope = np.polynomial.polynomial.polyval(s, np.polynomial.polynomial.polyder(row.polynomial))
-            for col, f, lead in zip(row.v_index, row.follower, row.leader):
-                out[..., k, col] += f - slope * lead
-        return out
-
-    def _coupling_drift(self, q: np.ndarray, v: np.ndarray) -> np.ndarray:
-        out = []
-        for row in self.couplings:
-            s = self._coupling_values(row, q) @ row.leader - row.coupling.leader_ref
-            curvature = np.polynomial.polynomial.polyval(s, np.polynomial.polynomial.polyder(row.polynomial, 2))
-            out.append(-curvature * (v[..., row.v_index] @ row.leader) ** 2)
-        return np.stack(out, axis=-1)

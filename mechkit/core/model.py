@@ -18,10 +18,12 @@ import scipy.linalg
 
 from mechkit.base.exceptions import InvalidParameters, MalformedDescription
 from mechkit.core import joints
-from mechkit.core.cuts import coupling_row, cut_rows
-from mechkit.core.kernel import ClosureKernel, support_columns
+from mechkit.core.coupling_rows import coupling_row
+from mechkit.core.cuts import cut_rows
+from mechkit.core.kernel import ClosureKernel
 from mechkit.core.records import Actuator, Coupling, LoopClosure
 from mechkit.core.structure import analyse, rigid_groups
+from mechkit.core.tree_paths import support_columns
 
 #: Lightest body (kg): Pinocchio's inertia sums are exact above its epsilon (2.2e-16 kg); ours, with a margin.
 MIN_BODY_MASS = 1e-14
@@ -41,9 +43,12 @@ def check_depth_first(model: pin.Model) -> None:
     for j in range(1, model.njoints):
         subtree = sorted(int(k) for k in model.subtrees[j])
         if subtree != list(range(j, j + len(subtree))):
-            raise MalformedDescription(f"joint {model.names[j]!r}", "the model's joints are not numbered depth first "
-                                       f"(its subtree is joints {subtree}): add each joint's children before its "
-                                       "siblings, as Pinocchio's algorithms assume")
+            raise MalformedDescription(
+                f"joint {model.names[j]!r}",
+                "the model's joints are not numbered depth first "
+                f"(its subtree is joints {subtree}): add each joint's children before its "
+                "siblings, as Pinocchio's algorithms assume",
+            )
 
 
 def check_body_masses(model: pin.Model) -> None:
@@ -62,8 +67,12 @@ def check_body_masses(model: pin.Model) -> None:
     for j in range(1, model.njoints):
         mass = model.inertias[j].mass
         if 0.0 < mass < MIN_BODY_MASS:
-            raise InvalidParameters(f"mass of {model.names[j]}", mass, f"below {MIN_BODY_MASS:g} kg, where Pinocchio's inertia "
-                                    "arithmetic (an epsilon of 2.2e-16 kg) misplaces the centre of mass; scale the units")
+            raise InvalidParameters(
+                f"mass of {model.names[j]}",
+                mass,
+                f"below {MIN_BODY_MASS:g} kg, where Pinocchio's inertia "
+                "arithmetic (an epsilon of 2.2e-16 kg) misplaces the centre of mass; scale the units",
+            )
 
 
 @dataclass(frozen=True)
@@ -111,7 +120,7 @@ class ClosureModel:
         massive: ids of the joints whose body has mass; on_loops: ids of the joints on a loop;
         rigid_groups: joint id -> its welded group's representative (`mechkit.core.structure.rigid_groups`).
         tracked: the two together, sorted; tracked_support: (len(tracked), nv) the velocity columns
-            moving each (`mechkit.core.kinematics.idle_count`).
+            moving each (`mechkit.core.passive_solve.idle_count`).
         row_scale: max_i |J_i| at the neutral configuration (the closure rows' lever arm, m).
         delassus_scale: max_i |J_i|^2 / max_j M_jj there (1/kg for position rows): the unit of the
             proximal regularisation.
@@ -122,8 +131,15 @@ class ClosureModel:
         InvalidParameters: an unknown or multi-freedom actuated joint, a body too light.
     """
 
-    def __init__(self, model: pin.Model, closures: Sequence[LoopClosure], couplings: Sequence[Coupling] = (),
-                 actuated: Sequence[str] = (), actuators: Sequence[Actuator] = (), rows: str | None = None):
+    def __init__(
+        self,
+        model: pin.Model,
+        closures: Sequence[LoopClosure],
+        couplings: Sequence[Coupling] = (),
+        actuated: Sequence[str] = (),
+        actuators: Sequence[Actuator] = (),
+        rows: str | None = None,
+    ):
         check_depth_first(model)
         check_body_masses(model)
         self.model = model
@@ -141,8 +157,11 @@ class ClosureModel:
         self.passive_v = _passive_v(model, self.actuated_v)
         self.joint_names = tuple(model.names[1:]) + tuple(c.name for c in self.closures)
         frames = model.frames
-        self.supports = np.array([model.parents[j] == 0 for j in range(1, model.njoints)] + [
-            frames[c.frame_a].parentJoint == 0 or frames[c.frame_b].parentJoint == 0 for c in cuts], dtype=bool)
+        self.supports = np.array(
+            [model.parents[j] == 0 for j in range(1, model.njoints)]
+            + [frames[c.frame_a].parentJoint == 0 or frames[c.frame_b].parentJoint == 0 for c in cuts],
+            dtype=bool,
+        )
         self.massive = np.array([j for j in range(1, model.njoints) if model.inertias[j].mass > 0], dtype=int)
         self.on_loops = frozenset(model.getJointId(j) for lp in self.structure.loops for j in lp.joints)
         self.rigid_groups = rigid_groups(model, list(self.closures))
@@ -287,13 +306,16 @@ def _stacked(views: list[np.ndarray], shape: tuple[int, ...], strides: tuple[int
     """
     first = _address(views[0])
     step = _address(views[1]) - first if len(views) > 1 else 0
-    if any(_address(x) != first + i * step or x.strides != strides[-x.ndim:] for i, x in enumerate(views)):
-        raise RuntimeError("Pinocchio's data does not hold its joint arrays as one contiguous vector (pin 4.1's layout)")
+    if any(_address(x) != first + i * step or x.strides != strides[-x.ndim :] for i, x in enumerate(views)):
+        raise RuntimeError(
+            "Pinocchio's data does not hold its joint arrays as one contiguous vector (pin 4.1's layout)"
+        )
     return np.lib.stride_tricks.as_strided(views[0], (len(views), *shape), (step, *strides), writeable=False)
 
 
-def _actuation(model: pin.Model, actuated: tuple[str, ...],
-               actuators: dict[str, Actuator]) -> tuple[np.ndarray, np.ndarray | None]:
+def _actuation(
+    model: pin.Model, actuated: tuple[str, ...], actuators: dict[str, Actuator]
+) -> tuple[np.ndarray, np.ndarray | None]:
     """(na, nv) S and, where every actuator is one joint's motor, their velocity indices."""
     S = np.zeros((len(actuated), model.nv))
     columns: list[int] | None = []
@@ -307,8 +329,12 @@ def _actuation(model: pin.Model, actuated: tuple[str, ...],
                 raise InvalidParameters(where, joint, f"no such joint; joints: {list(model.names[1:])}")
             j = model.getJointId(joint)
             if model.nvs[j] != 1:
-                raise InvalidParameters("actuated", joint, f"a {model.joints[j].shortname()} joint has {model.nvs[j]} "
-                                        "freedoms: a motor drives a one-freedom joint (declare an actuator transmission)")
+                raise InvalidParameters(
+                    "actuated",
+                    joint,
+                    f"a {model.joints[j].shortname()} joint has {model.nvs[j]} "
+                    "freedoms: a motor drives a one-freedom joint (declare an actuator transmission)",
+                )
             S[k, model.joints[j].idx_v] += coefficient
         if name in actuators or columns is None:
             columns = None

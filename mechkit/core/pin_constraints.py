@@ -44,7 +44,9 @@ class LegacyConstraints:
 
     def __init__(self, model: pin.Model, cuts: list[CutRows], couplings: int = 0, ordered: bool = False):
         if couplings:
-            raise MethodUnavailable("pin.constraintDynamics", "coupling rows have no RigidConstraintModel; use method='kkt'")
+            raise MethodUnavailable(
+                "pin.constraintDynamics", "coupling rows have no RigidConstraintModel; use method='kkt'"
+            )
         self.model = model
         self.models = pin.StdVec_RigidConstraintModel()
         for cm in _legacy_models(model, cuts):
@@ -88,8 +90,9 @@ class LegacyConstraints:
         assert not self.ordered, "a data set up for lcaba"
         return pin.constraintDynamics(self.model, self.data, q, v, tau, self.models, self.datas, settings)
 
-    def loop_constrained_aba(self, q: np.ndarray, v: np.ndarray, tau: np.ndarray,
-                             settings: pin.ProximalSettings) -> np.ndarray:
+    def loop_constrained_aba(
+        self, q: np.ndarray, v: np.ndarray, tau: np.ndarray, settings: pin.ProximalSettings
+    ) -> np.ndarray:
         """Accelerations by `pin.lcaba` (needs `ordered`).
 
         Args:
@@ -169,18 +172,32 @@ def _legacy_models(model: pin.Model, cuts: list[CutRows]) -> list[pin.RigidConst
         c = cut.closure
         fa, fb = model.frames[cut.frame_a], model.frames[cut.frame_b]
         if c.kind == "weld":
-            out.append(pin.RigidConstraintModel(pin.ContactType.CONTACT_6D, model, fa.parentJoint, fa.placement,
-                                                fb.parentJoint, fb.placement, pin.ReferenceFrame.LOCAL))
+            out.append(
+                pin.RigidConstraintModel(
+                    pin.ContactType.CONTACT_6D,
+                    model,
+                    fa.parentJoint,
+                    fa.placement,
+                    fb.parentJoint,
+                    fb.placement,
+                    pin.ReferenceFrame.LOCAL,
+                )
+            )
             continue
         if c.kind in ("hooke", "prismatic"):
-            raise MethodUnavailable("pin.constraintDynamics",
-                                    f"cut {c.name!r} is {c.kind}: no RigidConstraintModel expresses it; use method='kkt'")
+            raise MethodUnavailable(
+                "pin.constraintDynamics",
+                f"cut {c.name!r} is {c.kind}: no RigidConstraintModel expresses it; use method='kkt'",
+            )
         offsets = [np.zeros(3)]
         if c.kind == "revolute" and c.rows != "planar":
             offsets.append(AXIS_ANCHOR_OFFSET * c.axis)
         for offset in offsets:
             pa = fa.placement * pin.SE3(np.eye(3), offset)
             pb = fb.placement * pin.SE3(np.eye(3), offset)
-            out.append(pin.RigidConstraintModel(pin.ContactType.CONTACT_3D, model, fa.parentJoint, pa,
-                                                fb.parentJoint, pb, pin.ReferenceFrame.LOCAL))
+            out.append(
+                pin.RigidConstraintModel(
+                    pin.ContactType.CONTACT_3D, model, fa.parentJoint, pa, fb.parentJoint, pb, pin.ReferenceFrame.LOCAL
+                )
+            )
     return out

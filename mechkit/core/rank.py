@@ -242,19 +242,28 @@ def singular_error(s: np.ndarray, columns: int, residual: float) -> SingularConf
         or a smallest singular value below what the residual resolves.
     """
     if s.size < columns:
-        return SingularConfiguration(float("inf"), f"{columns} coordinates to solve for but only {s.size} closure rows: "
-                                     "the inputs do not determine the motion (give more inputs)")
+        return SingularConfiguration(
+            float("inf"),
+            f"{columns} coordinates to solve for but only {s.size} closure rows: "
+            "the inputs do not determine the motion (give more inputs)",
+        )
     cond, _ = passive_verdict(s[None], columns, np.array([residual]))
     s_min = s[columns - 1]
     rank = numerical_rank(s)
     if rank < columns:
-        return SingularConfiguration(float(cond[0]), f"the closure determines only {rank} of the {columns} coordinates "
-                                     "solved for: the inputs do not determine the motion (give more inputs, or the pose "
-                                     "is singular)")
+        return SingularConfiguration(
+            float(cond[0]),
+            f"the closure determines only {rank} of the {columns} coordinates "
+            "solved for: the inputs do not determine the motion (give more inputs, or the pose "
+            "is singular)",
+        )
     limit = resolvable_singular_value(s[0], residual)
-    return SingularConfiguration(float(cond[0]), f"passive block of the closure Jacobian: smallest singular value "
-                                 f"{s_min:.2e} below the {limit:.2e} a closure residual of {residual:.1e} resolves "
-                                 "(inputs do not determine the motion)")
+    return SingularConfiguration(
+        float(cond[0]),
+        f"passive block of the closure Jacobian: smallest singular value "
+        f"{s_min:.2e} below the {limit:.2e} a closure residual of {residual:.1e} resolves "
+        "(inputs do not determine the motion)",
+    )
 
 
 def check_passive(s: np.ndarray, columns: int, residual: np.ndarray | float) -> np.ndarray:

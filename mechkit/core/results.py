@@ -72,9 +72,18 @@ class InverseDynamicsResult:
         determinate: (n_joints, 6) or None; efforts_determinate_values: (na,) or None.
     """
 
-    def __init__(self, joint_names: tuple[str, ...], actuated: tuple[str, ...], efforts: np.ndarray,
-                 reactions: np.ndarray, support: np.ndarray, multipliers: np.ndarray, condition: float,
-                 determinate: np.ndarray | None = None, efforts_determinate: np.ndarray | None = None):
+    def __init__(
+        self,
+        joint_names: tuple[str, ...],
+        actuated: tuple[str, ...],
+        efforts: np.ndarray,
+        reactions: np.ndarray,
+        support: np.ndarray,
+        multipliers: np.ndarray,
+        condition: float,
+        determinate: np.ndarray | None = None,
+        efforts_determinate: np.ndarray | None = None,
+    ):
         self.joint_names, self.actuated = joint_names, actuated
         self.effort_values, self.reaction_values, self.support = efforts, reactions, support
         self.multipliers, self.condition = multipliers, condition
@@ -89,8 +98,10 @@ class InverseDynamicsResult:
     def reactions(self) -> dict[str, JointReaction]:
         """Joint name -> `JointReaction` (tree joints, then the cut joints)."""
         det = self.determinate
-        return {name: JointReaction(self.reaction_values[j], None if det is None else det[j], bool(self.support[j]))
-                for j, name in enumerate(self.joint_names)}
+        return {
+            name: JointReaction(self.reaction_values[j], None if det is None else det[j], bool(self.support[j]))
+            for j, name in enumerate(self.joint_names)
+        }
 
     @cached_property
     def efforts_determinate(self) -> dict[str, bool] | None:
@@ -139,6 +150,14 @@ class BatchInverseDynamicsResult:
             The single-sample result of sample i (its reactions' dicts built on first use).
         """
         det, eff = self.determinate, self.efforts_determinate
-        return InverseDynamicsResult(self.joint_names, self.actuated, self.efforts[i], self.reactions[i], self.support,
-                                     self.multipliers[i], float(self.condition[i]), None if det is None else det[i],
-                                     None if eff is None else eff[i])
+        return InverseDynamicsResult(
+            self.joint_names,
+            self.actuated,
+            self.efforts[i],
+            self.reactions[i],
+            self.support,
+            self.multipliers[i],
+            float(self.condition[i]),
+            None if det is None else det[i],
+            None if eff is None else eff[i],
+        )

@@ -37,11 +37,16 @@ GEOMETRY_TOL = 1e-9
 #: Rows of each cut kind with rows="spatial" (a free body has 6 freedoms, the cut joint leaves f).
 FULL_ROWS = {"revolute": 5, "prismatic": 5, "spherical": 3, "hooke": 4, "weld": 6}
 #: Freedoms of each cut kind within a planar / spherical / spatial loop's motion space.
-CUT_FREEDOMS = {"planar": {"revolute": 1, "prismatic": 1, "spherical": 1, "hooke": 1, "weld": 0},
-                "spherical": {"revolute": 1, "prismatic": 0, "spherical": 3, "hooke": 2, "weld": 0},
-                "spatial": {"revolute": 1, "prismatic": 1, "spherical": 3, "hooke": 2, "weld": 0}}
+CUT_FREEDOMS = {
+    "planar": {"revolute": 1, "prismatic": 1, "spherical": 1, "hooke": 1, "weld": 0},
+    "spherical": {"revolute": 1, "prismatic": 0, "spherical": 3, "hooke": 2, "weld": 0},
+    "spatial": {"revolute": 1, "prismatic": 1, "spherical": 3, "hooke": 2, "weld": 0},
+}
 #: Minimal rows of a cut kind in a planar / spherical loop (absent: the full rows are kept).
-MINIMAL_ROWS = {"planar": {"revolute": 2, "spherical": 2, "weld": 3}, "spherical": {"revolute": 2, "hooke": 1, "weld": 3}}
+MINIMAL_ROWS = {
+    "planar": {"revolute": 2, "spherical": 2, "weld": 3},
+    "spherical": {"revolute": 2, "hooke": 1, "weld": 3},
+}
 MOTION_DIM = {"planar": 3, "spherical": 3, "spatial": 6}
 
 
@@ -143,6 +148,7 @@ def loop_joints(model: pin.Model, joint_a: int, joint_b: int) -> list[int]:
     Returns:
         Joint ids from joint_a up to (not including) the common ancestor, then down to joint_b.
     """
+
     def chain(j: int) -> list[int]:
         out = []
         while j > 0:
@@ -187,15 +193,26 @@ def analyse(model: pin.Model, closures: list[LoopClosure], rows: str | None = No
             ids.append(model.getFrameId(frame))
         ja, jb = (model.frames[i].parentJoint for i in ids)
         if ja == jb:
-            raise MalformedDescription(f"mechkit:loop {closure.name!r}",
-                                       f"frames {closure.frame_a!r} and {closure.frame_b!r} are on one body")
+            raise MalformedDescription(
+                f"mechkit:loop {closure.name!r}", f"frames {closure.frame_a!r} and {closure.frame_b!r} are on one body"
+            )
         path = loop_joints(model, ja, jb)
         kind, normal = _classify(data, [(j, *axes[j]) for j in path], closure, ids)
         closure, chosen = _choose_rows(closure, kind, normal, data.oMf[ids[0]].rotation, rows)
         full = FULL_ROWS[closure.kind]
         kept = full if closure.rows == "spatial" else MINIMAL_ROWS[closure.rows][closure.kind]
-        loops.append(Loop(closure.name, tuple(model.names[j] for j in path), kind, MOTION_DIM[kind],
-                          CUT_FREEDOMS[kind][closure.kind], full, kept, chosen))
+        loops.append(
+            Loop(
+                closure.name,
+                tuple(model.names[j] for j in path),
+                kind,
+                MOTION_DIM[kind],
+                CUT_FREEDOMS[kind][closure.kind],
+                full,
+                kept,
+                chosen,
+            )
+        )
         out.append(closure)
     return Structure(tuple(loops), tuple(out), model.nv, couplings)
 
@@ -211,9 +228,14 @@ def _lines(data, path, closure, ids) -> tuple[list, list, bool]:
             (revolute if kind == "revolute" else prismatic).append((M.translation.copy(), M.rotation @ axis))
     oMa, oMb = data.oMf[ids[0]], data.oMf[ids[1]]
     if closure.kind in ("revolute", "prismatic"):
-        (revolute if closure.kind == "revolute" else prismatic).append((oMa.translation.copy(), oMa.rotation @ closure.axis))
+        (revolute if closure.kind == "revolute" else prismatic).append(
+            (oMa.translation.copy(), oMa.rotation @ closure.axis)
+        )
     elif closure.kind == "hooke":
-        revolute += [(oMa.translation.copy(), oMa.rotation @ closure.axis_a), (oMb.translation.copy(), oMb.rotation @ closure.axis_b)]
+        revolute += [
+            (oMa.translation.copy(), oMa.rotation @ closure.axis_a),
+            (oMb.translation.copy(), oMb.rotation @ closure.axis_b),
+        ]
     return revolute, prismatic, simple
 
 
@@ -223,8 +245,9 @@ def _classify(data, path, closure, ids) -> tuple[str, np.ndarray | None]:
     if not simple or not revolute:
         return "spatial", None
     n = revolute[0][1] / np.linalg.norm(revolute[0][1])
-    if all(np.linalg.norm(np.cross(a, n)) < GEOMETRY_TOL for _, a in revolute) \
-            and all(abs(a @ n) < GEOMETRY_TOL for _, a in prismatic):
+    if all(np.linalg.norm(np.cross(a, n)) < GEOMETRY_TOL for _, a in revolute) and all(
+        abs(a @ n) < GEOMETRY_TOL for _, a in prismatic
+    ):
         return "planar", n
     if prismatic:
         return "spatial", None
@@ -236,7 +259,10 @@ def _classify(data, path, closure, ids) -> tuple[str, np.ndarray | None]:
     c = np.linalg.solve(A, b)
     size = max(1.0, max(np.linalg.norm(p - c) for p, _ in revolute))
     if all(np.linalg.norm(np.cross(c - p, a)) < GEOMETRY_TOL * size for p, a in revolute):
-        if closure.kind in ("spherical", "hooke") and np.linalg.norm(data.oMf[ids[0]].translation - c) > GEOMETRY_TOL * size:
+        if (
+            closure.kind in ("spherical", "hooke")
+            and np.linalg.norm(data.oMf[ids[0]].translation - c) > GEOMETRY_TOL * size
+        ):
             return "spatial", None
         return "spherical", c
     return "spatial", None
@@ -281,7 +307,9 @@ def rigid_groups(model: pin.Model, closures: list[LoopClosure]) -> dict[int, int
     return {j: find(j) for j in range(model.njoints)}
 
 
-def idle_counts(twists: dict[int, np.ndarray], massive: set[int], on_loops: set[int], tol: float = 1e-9) -> dict[int, int]:
+def idle_counts(
+    twists: dict[int, np.ndarray], massive: set[int], on_loops: set[int], tol: float = 1e-9
+) -> dict[int, int]:
     """Per body on a loop, how many of a set of velocity modes move it alone: no other body with mass.
 
     count(b) = rank(T over the massive bodies and b) - rank(T over the massive bodies but b), T the
@@ -316,8 +344,9 @@ def idle_counts(twists: dict[int, np.ndarray], massive: set[int], on_loops: set[
     return out
 
 
-def grouped(twists: dict[int, np.ndarray], massive: set[int], on_loops: set[int],
-            groups: dict[int, int]) -> tuple[dict[int, np.ndarray], set[int], set[int]]:
+def grouped(
+    twists: dict[int, np.ndarray], massive: set[int], on_loops: set[int], groups: dict[int, int]
+) -> tuple[dict[int, np.ndarray], set[int], set[int]]:
     """The arguments of `idle_counts` with one entry per rigid group (`rigid_groups`).
 
     Args:
@@ -336,8 +365,9 @@ def grouped(twists: dict[int, np.ndarray], massive: set[int], on_loops: set[int]
     return out, {groups[j] for j in massive}, {groups[j] for j in on_loops}
 
 
-def idle_freedoms(model: pin.Model, q: np.ndarray, jacobian: np.ndarray, on_loops: set[int],
-                  groups: dict[int, int], tol: float = 1e-9) -> dict[str, int]:
+def idle_freedoms(
+    model: pin.Model, q: np.ndarray, jacobian: np.ndarray, on_loops: set[int], groups: dict[int, int], tol: float = 1e-9
+) -> dict[str, int]:
     """Idle freedoms at q: body (the URDF link a joint carries) -> how many velocity modes move it alone.
 
     A mode is a v with J v = 0; it is idle for body k on a loop when no other body with mass moves

@@ -68,7 +68,9 @@ def test_a_linkage_written_flat_restarts_from_perturbed_starts():
     assert np.linalg.norm(core.closure_residual(cm, cd, q0)) == pytest.approx(0.3, rel=1e-12)
     assert np.linalg.norm(core.closure_residual(cm, cd, from_far(cm, cd, q0, split))) == pytest.approx(0.3, rel=1e-9)
     starts = _far_starts(cm, cd, q0, split)
-    assert len(starts) == 1 + RESTARTS and all(np.array_equal(a, b) for a, b in zip(starts, _far_starts(cm, cd, q0, split)))
+    assert len(starts) == 1 + RESTARTS and all(
+        np.array_equal(a, b) for a, b in zip(starts, _far_starts(cm, cd, q0, split))
+    )
     closed = core.assemble(cm, cd, q0, split)
     assert closed.residual < 1e-12 and flip(cm, cd.pin) < 1e-9
     np.testing.assert_array_equal(core.assemble(cm, cd, q0, split).q, closed.q)

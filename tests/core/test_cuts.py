@@ -92,7 +92,9 @@ def test_forward_dynamics_methods_agree_or_say_why_not(kind):
         return
     prox = m.forward_dynamics(q, v, tau, "proximal")
     assert np.max(np.abs(prox.a - kkt.a)) < 1e-8 * max(1.0, np.max(np.abs(kkt.a)))
-    assert np.max(np.abs(prox.constraint_force - kkt.constraint_force)) < 1e-8 * max(1.0, np.max(np.abs(kkt.constraint_force)))
+    assert np.max(np.abs(prox.constraint_force - kkt.constraint_force)) < 1e-8 * max(
+        1.0, np.max(np.abs(kkt.constraint_force))
+    )
 
 
 @pytest.mark.parametrize("kind", list(KINDS))

@@ -32,11 +32,13 @@ def _exact_flags(cm, G, J, Q, origins, points):
     na, out, eff = len(cm.actuated), [], []
     full = cm.full_kernel
     for i in range(len(G)):
-        Wf = full.row_wrenches(G[i:i + 1])
-        A = det.system(cm, full.jacobian(Wf, J[i:i + 1], Q[i:i + 1]))
+        Wf = full.row_wrenches(G[i : i + 1])
+        A = det.system(cm, full.jacobian(Wf, J[i : i + 1], Q[i : i + 1]))
         _, s, Vt = np.linalg.svd(A[0])
-        null = Vt[int(np.sum(s > RANK_TOL * s[0])):].T[None]
-        loads = full.joint_loads(Wf[:, None], null[:, na:].transpose(0, 2, 1), origins[i:i + 1, None], points[i:i + 1, None])
+        null = Vt[int(np.sum(s > RANK_TOL * s[0])) :].T[None]
+        loads = full.joint_loads(
+            Wf[:, None], null[:, na:].transpose(0, 2, 1), origins[i : i + 1, None], points[i : i + 1, None]
+        )
         variation = np.sqrt(np.square(loads).sum(axis=1))[0]
         effort_variation = np.sqrt(np.square(null[0, :na]).sum(axis=1))
         tol = det.DETERMINACY_TOL * max(variation.max(initial=0.0), effort_variation.max(initial=0.0), 1e-300)
@@ -53,7 +55,7 @@ def test_self_stresses_span_the_svd_null_space_and_give_the_exact_flags(name, lo
     null = det.self_stresses(cd, A)
     for i in range(len(A)):
         _, s, Vt = np.linalg.svd(A[i])
-        exact = Vt[int(np.sum(s > RANK_TOL * s[0])):].T
+        exact = Vt[int(np.sum(s > RANK_TOL * s[0])) :].T
         basis = null[i][:, np.linalg.norm(null[i], axis=0) > 0]
         assert basis.shape == exact.shape
         np.testing.assert_allclose(basis.T @ basis, np.eye(basis.shape[1]), atol=1e-12)

@@ -34,7 +34,9 @@ def test_kkt_and_proximal_agree(name, rows, load_cached):
     prox = m.forward_dynamics(q, v, tau, "proximal")
     kkt = m.forward_dynamics(q, v, tau, "kkt")
     assert np.max(np.abs(prox.a - kkt.a)) < 1e-9 * max(1.0, np.max(np.abs(kkt.a)))
-    assert np.max(np.abs(prox.constraint_force - kkt.constraint_force)) < 1e-9 * max(1.0, np.max(np.abs(kkt.constraint_force)))
+    assert np.max(np.abs(prox.constraint_force - kkt.constraint_force)) < 1e-9 * max(
+        1.0, np.max(np.abs(kkt.constraint_force))
+    )
     # both satisfy the acceleration-level closure
     J, gamma = m.closure_jacobian(q), m.closure_drift(q, v)
     assert np.max(np.abs(J @ kkt.a + gamma)) < 1e-9
@@ -139,7 +141,9 @@ def _example_robot(relative: str) -> str:
     return path.read_text()
 
 
-@pytest.mark.parametrize("robot", ["ur_description/urdf/ur5_robot.urdf", "double_pendulum_description/urdf/double_pendulum.urdf"])
+@pytest.mark.parametrize(
+    "robot", ["ur_description/urdf/ur5_robot.urdf", "double_pendulum_description/urdf/double_pendulum.urdf"]
+)
 def test_reactions_equal_pinocchio_rnea_forces_on_a_third_party_tree(robot):
     urdf = _example_robot(robot)
     joints = [j.get("name") for j in ET.fromstring(urdf).findall("joint") if j.get("type") != "fixed"]

@@ -50,7 +50,7 @@ def test_the_split_gives_the_svd_minimum_norm_solution_and_certifies_what_the_sv
         np.testing.assert_array_equal(one, x[i])
         assert one_regular
         s = np.linalg.svd(Jrows[i][:, cm.passive_v], compute_uv=False)
-        assert not rank.passive_verdict(s[None], s.size, residuals[i:i + 1])[1][0]
+        assert not rank.passive_verdict(s[None], s.size, residuals[i : i + 1])[1][0]
 
 
 def test_a_singular_passive_block_is_not_certified(load_cached):

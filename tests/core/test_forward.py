@@ -4,7 +4,6 @@ check on the rows each method solved, the refusal of states with no rigid answer
 from __future__ import annotations
 
 import numpy as np
-import pinocchio as pin
 import pytest
 
 from mechkit import core
@@ -13,13 +12,22 @@ from mechkit.base.exceptions import ConstraintViolated, InconsistentMotion, Inva
 from mechkit.bench.ladder import exact_accelerations
 from mechkit.bench.ladder_model import ladder
 from mechkit.bench.sampling import make_samples
-from mechkit.core import forward
+
+from .no_rigid_answer import inconsistent_state
 
 PROXIMAL = ["four_bar", "five_bar", "parallel_2t1r", "ten_bar", "deployable_9rr12uru"]
 #: Where lcaba does not converge (measured; it refuses by name).
 LCABA_DIVERGES = ("tetra_3rr3uru", "deployable_9rr12uru", "spherical_2dof", "rocket_gimbal")
-EVERY = ["four_bar", "five_bar", "parallel_2t1r", "ten_bar", "tetra_3rr3uru", "deployable_9rr12uru", "spherical_2dof",
-         "rocket_gimbal"]
+EVERY = [
+    "four_bar",
+    "five_bar",
+    "parallel_2t1r",
+    "ten_bar",
+    "tetra_3rr3uru",
+    "deployable_9rr12uru",
+    "spherical_2dof",
+    "rocket_gimbal",
+]
 
 
 @pytest.mark.parametrize("name", PROXIMAL)
@@ -63,24 +71,12 @@ def test_every_method_agrees_with_the_exact_null_space_solve(name, load_cached):
             assert np.max(np.abs(J @ a + gamma)) <= 1e-8 * (np.max(np.abs(J)) * scale + np.max(np.abs(gamma))), method
 
 
-def _inconsistent_state(m):
-    """A deployable state whose velocity moves along the freedom that exists only instantaneously: of
-    the null-space directions of J (a basis LAPACK chooses), the one farthest off the second-order cone
-    relative to its drift; and that distance."""
-    s = make_samples(m, 1)[0]
-    J = m.closure_jacobian(s.q)
-    _, sv, Vt = np.linalg.svd(J)
-    null = Vt[core.numerical_rank(sv):]
-    relative = [m.second_order_inconsistency(s.q, v) / np.max(np.abs(m.closure_drift(s.q, v))) for v in null]
-    return s.q, null[int(np.argmax(relative))], s.tau, max(relative)
-
-
 def test_no_rigid_answer_is_refused_by_every_method(load_cached):
     """On the deployable, a velocity in the null space of J but off the second-order cone: gamma has a
     part outside the range of J; accelerations and every forward-dynamics method refuse by name, and
     the least-squares accelerations are returned only when asked for."""
     m = load_cached("deployable_9rr12uru")
-    q, v, tau, relative = _inconsistent_state(m)
+    q, v, tau, relative = inconsistent_state(m)
     assert relative > 1e-6, "every null direction continues at second order"
     delta = m.second_order_inconsistency(q, v)
     for method in core.FORWARD_METHODS:
@@ -116,7 +112,9 @@ def test_off_manifold_result_is_checked_on_the_rows_solved(load_cached):
     legacy = m.closure_data.legacy["proximal"]
     J = legacy.jacobian()
     gamma = legacy.drift(J.shape[0])
-    assert np.max(np.abs(J @ res.a + gamma)) <= 1e-8 * (np.max(np.abs(J)) * np.max(np.abs(res.a)) + np.max(np.abs(gamma)))
+    assert np.max(np.abs(J @ res.a + gamma)) <= 1e-8 * (
+        np.max(np.abs(J)) * np.max(np.abs(res.a)) + np.max(np.abs(gamma))
+    )
     with pytest.raises(ConstraintViolated, match="J a \\+ gamma"):
         m.forward_dynamics(q, v, np.zeros(m.model.nv), mu=1e3, max_iter=1, baumgarte=(100.0, 20.0))
 
@@ -131,7 +129,9 @@ def test_batch_and_lists_give_the_per_sample_numbers(method, load_cached):
         plain = m.forward_dynamics(np.asarray(s.q, float), np.asarray(s.v, float), np.asarray(s.tau, float), method)
         listed = m.forward_dynamics(s.q.tolist(), s.v.tolist(), s.tau.tolist(), method)  # through arguments.sample
         assert np.max(np.abs(batch.a[i] - plain.a)) <= 1e-13 * np.max(np.abs(plain.a))
-        assert np.max(np.abs(batch.constraint_force[i] - plain.constraint_force)) <= 1e-13 * max(np.max(np.abs(plain.constraint_force)), 1.0)
+        assert np.max(np.abs(batch.constraint_force[i] - plain.constraint_force)) <= 1e-13 * max(
+            np.max(np.abs(plain.constraint_force)), 1.0
+        )
         assert np.max(np.abs(listed.a - plain.a)) <= 1e-13 * np.max(np.abs(plain.a))
     assert batch.a.shape == (3, m.model.nv) and batch.constraint_force.shape == (3, m.model.nv)
 
@@ -198,38 +198,3 @@ def test_lcaba_measures_the_closure_error_of_its_final_accelerations(loops, max_
     J = check.jacobian()
     true = np.max(np.abs(J @ a + check.drift(J.shape[0])))
     assert abs(err.value.residual - true) <= 1e-9 * true + 1e-14 * np.max(np.abs(J)) * np.max(np.abs(a))
-
-
-@pytest.mark.parametrize("name", EVERY)
-def test_the_partitioned_null_space_is_certified_and_gives_the_svd_numbers(name, load_cached):
-    """At the bench's states the null-space method's LU partition certifies the SVD's rank and
-    consistency decisions (`forward._partitioned` returns), and its a_p, N give the accelerations the SVD's
-    orthonormal basis gives."""
-    m = load_cached(name)
-    cm, cd = m.closure_model, m.closure_model.create_data()
-    for s in make_samples(m, 3):
-        J, gamma = forward._rows_and_drift(cm, cd, s.q, s.v, None)
-        split = forward._partitioned(cd, J, gamma)
-        assert split is not None
-        a_p, N = split
-        scale = np.abs(J).max() * max(np.abs(a_p).max(), 1.0) + np.abs(gamma).max()
-        assert np.abs(J @ a_p + gamma).max() <= 1e-10 * scale and np.abs(J @ N).max() <= 1e-10 * np.abs(J).max()
-        a_svd, N_svd = forward._svd_null_space(cm, J, gamma)
-        assert N.shape == N_svd.shape
-        M = pin.crba(m.model, m.model.createData(), s.q)
-        M = np.triu(M) + np.triu(M, 1).T
-        b = s.tau - pin.nonLinearEffects(m.model, m.model.createData(), s.q, s.v)
-        exact = [a0 + B @ np.linalg.solve(B.T @ M @ B, B.T @ (b - M @ a0)) for a0, B in ((a_p, N), (a_svd, N_svd))]
-        assert np.abs(exact[0] - exact[1]).max() <= 1e-9 * np.abs(exact[1]).max()
-        a = core.forward_dynamics(cm, cm.create_data(), s.q, s.v, s.tau, "nullspace").a  # no springs: tau alone
-        np.testing.assert_allclose(a, exact[0], rtol=0, atol=1e-9 * np.abs(exact[0]).max())
-
-
-def test_the_partition_leaves_a_state_with_no_rigid_answer_to_the_svd(load_cached):
-    m = load_cached("deployable_9rr12uru")
-    cm, cd = m.closure_model, m.closure_model.create_data()
-    q, v, _, _ = _inconsistent_state(m)
-    J, gamma = forward._rows_and_drift(cm, cd, q, v, None)
-    assert forward._partitioned(cd, J, gamma) is None
-    with pytest.raises(InconsistentMotion):
-        forward._svd_null_space(cm, J, gamma)

@@ -21,7 +21,9 @@ TOL = 1e-13
 
 
 def _close(batched: np.ndarray, single: np.ndarray) -> bool:
-    return float(np.max(np.abs(batched - single), initial=0.0)) <= TOL * max(1.0, float(np.max(np.abs(single), initial=0.0)))
+    return float(np.max(np.abs(batched - single), initial=0.0)) <= TOL * max(
+        1.0, float(np.max(np.abs(single), initial=0.0))
+    )
 
 
 @pytest.fixture(scope="module", params=registry.names())
@@ -80,7 +82,10 @@ def test_the_pass_reads_each_sample_fresh_from_pinocchio(name, load_cached):
         np.testing.assert_array_equal(P[i, :, :, 3], np.array([M.translation for M in data.oMi.tolist()]))
         np.testing.assert_array_equal(J[i], data.J)
         np.testing.assert_array_equal(tau[i], pin.rnea(model, data, Q[i], V[i], A[i]))
-        world = [np.concatenate([M.rotation @ f.linear, M.rotation @ f.angular]) for M, f in zip(data.oMi.tolist()[1:], data.f.tolist()[1:])]
+        world = [
+            np.concatenate([M.rotation @ f.linear, M.rotation @ f.angular])
+            for M, f in zip(data.oMi.tolist()[1:], data.f.tolist()[1:])
+        ]
         np.testing.assert_allclose(tree[i], np.array(world), rtol=0, atol=1e-14 * max(1.0, np.abs(world).max()))
 
 
@@ -100,7 +105,10 @@ def test_regularity_is_judged_as_the_velocities_judge_it(load_cached):
             except SingularConfiguration:
                 singular = True
             zeros = np.zeros((2, m.model.nv))
-            for call, state in ((m.inverse_dynamics, (q, z, z)), (m.inverse_dynamics_batch, (np.array([regular, q]), zeros, zeros))):
+            for call, state in (
+                (m.inverse_dynamics, (q, z, z)),
+                (m.inverse_dynamics_batch, (np.array([regular, q]), zeros, zeros)),
+            ):
                 if singular:
                     with pytest.raises(SingularConfiguration):
                         call(*state)
@@ -116,9 +124,17 @@ def test_zero_samples_give_empty_results(name, determinacy, load_cached):
     m = load_cached(name)
     cm, nv = m.closure_model, m.model.nv
     for distribution in core.DISTRIBUTIONS:
-        out = core.inverse_dynamics_batch(cm, cm.create_data(), np.zeros((0, m.model.nq)), np.zeros((0, nv)),
-                                          np.zeros((0, nv)), [], determinacy_test=determinacy, distribution=distribution,
-                                          generic_rank=m.independent_rows)
+        out = core.inverse_dynamics_batch(
+            cm,
+            cm.create_data(),
+            np.zeros((0, m.model.nq)),
+            np.zeros((0, nv)),
+            np.zeros((0, nv)),
+            [],
+            determinacy_test=determinacy,
+            distribution=distribution,
+            generic_rank=m.independent_rows,
+        )
         assert out.efforts.shape == (0, len(m.actuated)) and out.reactions.shape == (0, len(cm.joint_names), 6)
         assert (out.determinate is None) != determinacy
 

@@ -70,8 +70,10 @@ def test_closure_identities_and_the_drift(mech):
     assert np.max(np.abs(J @ v)) < 1e-12 * max(1.0, np.max(np.abs(v)))
     assert np.max(np.abs(J @ a + gamma)) < 1e-12 * max(1.0, np.max(np.abs(gamma)))
     h = 1e-6  # gamma = d/dt (J v) along q exp(t v): on the configuration manifold (quaternions)
-    fd = (mech.closure_jacobian(pin.integrate(mech.model, q, h * v)) @ v
-          - mech.closure_jacobian(pin.integrate(mech.model, q, -h * v)) @ v) / (2 * h)
+    fd = (
+        mech.closure_jacobian(pin.integrate(mech.model, q, h * v)) @ v
+        - mech.closure_jacobian(pin.integrate(mech.model, q, -h * v)) @ v
+    ) / (2 * h)
     assert np.max(np.abs(gamma - fd)) < 1e-7 * max(1.0, np.max(np.abs(fd)))
 
 

@@ -8,9 +8,7 @@ from __future__ import annotations
 import numpy as np
 import pinocchio as pin
 import pytest
-from scipy.optimize import brentq
 
-from mechkit.base.exceptions import SingularConfiguration
 from mechkit.base.spatial import cross, skew
 from mechkit.bench.sampling import make_samples
 from mechkit.catalog import registry
@@ -98,30 +96,6 @@ def test_drift_is_the_second_derivative(load_cached):
 
     fd = (e(h) - 2 * e(0.0) + e(-h)) / h**2
     assert np.abs(fd - (m.closure_jacobian(q) @ a + m.closure_drift(q, v))).max() < 1e-5
-
-
-def test_batched_singular_sample_raises_and_allow_singular_passes(load_cached):
-    """Five-bar 1e-12 rad from its collinear input (tests/test_bad_inputs_singular.py) beside a regular
-    sample: the batch raises as the single call does; with `allow_singular` both equal their single calls."""
-    m = load_cached("five_bar")
-    p = m.params
-    b1 = p.prox1 * np.array([np.cos(2.6), np.sin(2.6)])
-
-    def gap(t):
-        return np.linalg.norm(np.array([p.ground + p.prox2 * np.cos(t), p.prox2 * np.sin(t)]) - b1) - (p.dist1 + p.dist2)
-
-    root = brentq(gap, 0.5, 1.0, xtol=1e-16)
-    Q = np.array([m.home_q, m.assemble({"prox1": 2.6, "prox2": root + 1e-12}, guess=m.home_q)])
-    rates = np.ones((2, 2))
-    with pytest.raises(SingularConfiguration):
-        m.velocities(Q[1], rates[1])
-    with pytest.raises(SingularConfiguration):
-        m.velocities_batch(Q, rates)
-    V = m.velocities_batch(Q, rates, allow_singular=True)
-    for i in range(2):
-        v = m.velocities(Q[i], rates[i], allow_singular=True)
-        assert np.abs(V[i] - v).max() <= 1e-13 * np.abs(v).max()
-    assert m.singularity(Q[1]) > 1e5
 
 
 def test_motion_study_kinematics_equal_the_mechanism_calls(load_cached):

@@ -24,15 +24,25 @@ def test_anchor_rows_span_the_kernel_rows_on_the_manifold(name, load_cached):
         J_pin, gamma_pin = legacy.jacobian(), legacy.drift(legacy.jacobian().shape[0])
         J = m.closure_jacobian(s.q)
         r = np.linalg.matrix_rank
-        assert r(np.vstack([J, J_pin]), 1e-9 * np.abs(J).max()) == r(J, 1e-9 * np.abs(J).max()) == r(J_pin, 1e-9 * np.abs(J_pin).max())
-        a = m.accelerations(s.q, s.v, s.accelerations, list(s.input_names)) if len(s.input_names) == len(m.actuated) else s.a
+        assert (
+            r(np.vstack([J, J_pin]), 1e-9 * np.abs(J).max())
+            == r(J, 1e-9 * np.abs(J).max())
+            == r(J_pin, 1e-9 * np.abs(J_pin).max())
+        )
+        a = (
+            m.accelerations(s.q, s.v, s.accelerations, list(s.input_names))
+            if len(s.input_names) == len(m.actuated)
+            else s.a
+        )
         assert np.max(np.abs(J_pin @ a + gamma_pin)) < 1e-9 * max(1.0, np.abs(J_pin).max() * np.abs(a).max())
 
 
 def test_what_the_anchors_cannot_express_is_refused(load_cached):
     four = load_cached("four_bar")
     c = four.closures[0]
-    hooke = core.LoopClosure("H", "hooke", c.frame_a, c.frame_b, axis_a=np.array([1.0, 0, 0]), axis_b=np.array([0, 0, 1.0]))
+    hooke = core.LoopClosure(
+        "H", "hooke", c.frame_a, c.frame_b, axis_a=np.array([1.0, 0, 0]), axis_b=np.array([0, 0, 1.0])
+    )
     with pytest.raises(MethodUnavailable, match="hooke"):
         LegacyConstraints(four.model, list(core.ClosureModel(four.model, [hooke]).kernel.cuts))
     with pytest.raises(MethodUnavailable, match="coupling"):

@@ -35,16 +35,28 @@ def _without_rows(urdf: str) -> str:
     return re.sub(r' rows="[a-z]+"', "", urdf)
 
 
-@pytest.mark.parametrize("name, kind", [("four_bar", "planar"), ("ten_bar", "planar"), ("parallel_2t1r", "planar"),
-                                        ("spherical_2dof", "spherical"), ("tetra_3rr3uru", "spatial")])
+@pytest.mark.parametrize(
+    "name, kind",
+    [
+        ("four_bar", "planar"),
+        ("ten_bar", "planar"),
+        ("parallel_2t1r", "planar"),
+        ("spherical_2dof", "spherical"),
+        ("tetra_3rr3uru", "spatial"),
+    ],
+)
 def test_undeclared_rows_are_the_minimal_rows_the_mechanism_declares(name, kind, load_cached, tmp_path):
     """Strip the rows of a registered mechanism's loops: the detection picks what its author chose, and
     the mechanism is the same (mobility and closure rows)."""
     ref = load_cached(name)
     path = tmp_path / f"{name}.urdf"
     path.write_text(_without_rows(ref.urdf))
-    m = mechkit.load(path, actuated=ref.actuated, home={j: ref.home_q[ref.q_index(j)] for j in ref.actuated},
-                     guess=ref.joint_values(ref.home_q))
+    m = mechkit.load(
+        path,
+        actuated=ref.actuated,
+        home={j: ref.home_q[ref.q_index(j)] for j in ref.actuated},
+        guess=ref.joint_values(ref.home_q),
+    )
     assert {lp.kind for lp in m.structure.loops} == {kind}
     assert [c.rows for c in m.closures] == [c.rows for c in ref.closures]
     assert all(lp.chosen == "detected" for lp in m.structure.loops)
@@ -53,7 +65,10 @@ def test_undeclared_rows_are_the_minimal_rows_the_mechanism_declares(name, kind,
     forced = mechkit.load(path, actuated=ref.actuated, guess=ref.joint_values(ref.home_q), rows="spatial")
     assert all(lp.chosen == "forced" and lp.rows == lp.full_rows for lp in forced.structure.loops)
     assert forced.mobility().dof == ref.mobility().dof
-    assert forced.mobility().redundant == forced.closure_model.kernel.size - m.closure_model.kernel.size + m.mobility().redundant
+    assert (
+        forced.mobility().redundant
+        == forced.closure_model.kernel.size - m.closure_model.kernel.size + m.mobility().redundant
+    )
 
 
 def test_spherical_rows_of_a_spherical_loop_avoid_position_rows(load_cached, tmp_path):
@@ -86,24 +101,6 @@ def test_idle_rod_spins_are_found_and_move_nothing_else():
             assert np.allclose(twist, [0.05, -0.06, 0, 0, 0, 1], atol=1e-15)
         elif m.model.inertias[j].mass > 0:
             assert np.max(np.abs(twist)) < 1e-15, m.model.names[j]
-
-
-def test_idle_spins_take_their_minimum_norm_rates():
-    """With the two motors given, the rods' spins are idle freedoms: the velocities get the
-    minimum-norm spin rates (orthogonal to each spin), every other joint the rates the motors fix, and
-    adding a spin changes no other joint's rate."""
-    m = mechkit.load(FIXTURES / "leg.urdf")
-    J = m.closure_jacobian(m.home_q)
-    motors_only = m.velocities(m.home_q, [1.0, -0.5])
-    assert np.max(np.abs(J @ motors_only)) < 1e-12
-    for rod in ("rod1_top_z", "rod2_top_z"):  # each rod is vertical at q = 0: its spin is its ball's z rate
-        spin = np.zeros(m.model.nv)
-        spin[m.v_index(rod) + 2] = 1.0
-        assert np.max(np.abs(J @ spin)) < 1e-15
-        assert abs(spin @ motors_only) <= 1e-12 * np.linalg.norm(motors_only)
-        spun = motors_only + 3.0 * spin
-        for joint in ("knee", "ankle", "hip", "knee_motor"):
-            assert spun[m.v_index(joint)] == motors_only[m.v_index(joint)]
 
 
 def test_no_idle_freedom_in_the_registered_mechanisms(load_cached):
