@@ -127,6 +127,30 @@ def test_core_imports_nothing_above_it():
     assert not upward, upward
 
 
+def _reached(graph: dict[Path, set[Path]], start: Path) -> set[Path]:
+    """Every file that importing `start` runs: what it imports, directly or through others, and the face
+    (`__init__.py`) of every package on the way but mechkit's own."""
+    seen, todo = set(), [start]
+    while todo:
+        path = todo.pop()
+        faces = [p / "__init__.py" for p in path.parents if PACKAGE in p.parents]
+        for target in graph[path] | set(faces):
+            if target not in seen:
+                seen.add(target)
+                todo.append(target)
+    return seen
+
+
+def test_the_simulator_sits_below_the_mechanism():
+    """`Mechanism.simulate` and `.equilibrium` import the simulator: importing it or the history it writes
+    never runs `mechanism.py` (no circle between folders, no import running back up)."""
+    graph = _graph()
+    mechanism = PACKAGE / "mechanism.py"
+    assert any(_module_name(t).startswith("mechkit.simulation") for t in graph[mechanism])
+    below = [p for p in graph if p.parent.name in ("simulation", "history")]
+    assert below and not [str(p.relative_to(ROOT)) for p in below if mechanism in _reached(graph, p)]
+
+
 def test_only_the_command_line_reaches_the_top_floors():
     """The bench measures the library and the command line prints it: no library module imports either
     (the second opinion once took its input joints from the bench)."""
