@@ -128,6 +128,17 @@ class MechanismClosure:
             return list(self.actuated)
         return joint_arguments.joint_names("inputs", inputs, list(self.model.names[1:]))
 
+    def _one(self, **values: Any) -> list[np.ndarray]:
+        """State arrays of one sample checked by name (q: nq; v, a, tau: nv)."""
+        return arguments.sample(self._sizes, **values)
+
+    def _many(self, **values: Any) -> list[np.ndarray]:
+        """State arrays of N samples checked by name ((N, nq), (N, nv)), one N for all."""
+        return arguments.samples(self._sizes, **values)
+
+    @property
+    def _sizes(self) -> dict[str, int]:
+        return {"q": self._nq, "v": self._nv, "a": self._nv, "tau": self._nv}
 
     # ---------------------------------------------------------------- the closure
     def assemble(self, inputs: Inputs, guess: Inputs | np.ndarray | None = None, *, tol: float = core.CLOSURE_TOL,
@@ -191,18 +202,6 @@ class MechanismClosure:
         return core.assemble(self.closure_model, self.closure_data, q0, split,
                              tol=arguments.number("tol", tol, positive=True),
                              max_iter=arguments.integer("max_iter", max_iter, minimum=1), method=method)
-
-    def _one(self, **values: Any) -> list[np.ndarray]:
-        """State arrays of one sample checked by name (q: nq; v, a, tau: nv)."""
-        return arguments.sample(self._sizes, **values)
-
-    def _many(self, **values: Any) -> list[np.ndarray]:
-        """State arrays of N samples checked by name ((N, nq), (N, nv)), one N for all."""
-        return arguments.samples(self._sizes, **values)
-
-    @property
-    def _sizes(self) -> dict[str, int]:
-        return {"q": self._nq, "v": self._nv, "a": self._nv, "tau": self._nv}
 
     def closure_residual(self, q: np.ndarray) -> np.ndarray:
         """Residual of every kept closure row.
