@@ -25,6 +25,12 @@ def resolve(source: str | Path) -> str | Path:
     A string is a name when it is registered; otherwise, or when it is a `Path` or looks like a path
     (a separator or a known suffix), it must be a readable file.
 
+    Args:
+        source: a registered name (`mechkit list`) or a path to a description file.
+
+    Returns:
+        The name as `str`, or the file as a `Path` (`~` expanded).
+
     Raises:
         InvalidParameters: neither a registered name nor a path (the message lists the names).
         MalformedDescription: the path does not exist or is a directory.
@@ -70,9 +76,14 @@ def load(source: str | Path, *, actuated: Sequence[str] | None = None, home: Map
             `rows="spatial"`, unless the mechanism has a parameter of that name, closes every cut
             with its full rows.
 
+    Returns:
+        The assembled mechanism, at its home assembly (`Mechanism.home_q`).
+
     Raises:
-        InvalidParameters: unknown name or parameter; InvalidArgument: `freeflyer` for a source that
-        is not an Extended-URDF file; MalformedDescription: a bad file.
+        InvalidParameters: unknown name or parameter.
+        InvalidArgument: `source` neither a name nor a path; `freeflyer` for a source that is not an
+            Extended-URDF file.
+        MalformedDescription: a bad file.
     """
     if not isinstance(source, (str, Path)):
         raise InvalidArgument("source", source, "expected a mechanism name or a path")
@@ -108,8 +119,17 @@ def _constant(value: dict[str, float]) -> Callable[[Any], dict[str, float]]:
 def from_params(spec: MechanismSpec, params: MechanismParams, rows: str | None = None) -> Mechanism:
     """Build a mechanism from a parameter instance: its template expanded, the tree and its loops read.
 
+    Args:
+        spec: the registry entry (its template and actuated joints).
+        params: the parameter values the template is expanded at.
+        rows: "spatial" closes every cut with its full rows (None: the rows the loops declare).
+
+    Returns:
+        The assembled mechanism.
+
     Raises:
-        MalformedDescription: the expanded URDF is invalid; InvalidParameters: an unknown actuated joint.
+        MalformedDescription: the expanded URDF is invalid.
+        InvalidParameters: an unknown actuated joint.
     """
     return from_expanded(spec, params, render_urdf(spec.template_path, params.xacro_args()), rows)
 
@@ -117,8 +137,18 @@ def from_params(spec: MechanismSpec, params: MechanismParams, rows: str | None =
 def from_expanded(spec: MechanismSpec, params: MechanismParams, urdf: str, rows: str | None = None) -> Mechanism:
     """Build a registered mechanism from its template already expanded at `params` (e.g. by a sweep's cache).
 
+    Args:
+        spec: the registry entry (its actuated joints).
+        params: the parameter values the template was expanded at.
+        urdf: the expanded URDF text (tree and `<mechkit:loop>`s).
+        rows: "spatial" closes every cut with its full rows (None: the rows the loops declare).
+
+    Returns:
+        The assembled mechanism.
+
     Raises:
-        MalformedDescription: the URDF is invalid; InvalidParameters: an unknown actuated joint.
+        MalformedDescription: the URDF is invalid.
+        InvalidParameters: an unknown actuated joint.
     """
     root = parse_xml(urdf)
     model = build_model(urdf)
@@ -129,9 +159,22 @@ def from_expanded(spec: MechanismSpec, params: MechanismParams, urdf: str, rows:
 def from_description(desc: sources.Description, actuated: Sequence[str] | None = None,
                      home: Mapping[str, float] | None = None, guess: Mapping[str, float] | None = None,
                      rows: str | None = None) -> Mechanism:
-    """Build a mechanism from what a file reader gave (see `load` for the arguments).
+    """Build a mechanism from what a file reader gave.
 
     Its spec's `gruebler_dof` is the Kutzbach count of its topology (`mechkit.core.structure`).
+
+    Args:
+        desc: the file's description (`mechkit.sources.Description`).
+        actuated: actuated joints, overriding the file's (see `load`).
+        home: joint -> value (rad or m) of the home assembly's inputs (default: the file's).
+        guess: joint -> value near which the home assembly is sought (default: the file's).
+        rows: "spatial" closes every cut with its full rows (None: the rows the file declares).
+
+    Returns:
+        The assembled mechanism, named after the file.
+
+    Raises:
+        InvalidArgument: `home` or `guess` not a mapping.
     """
     for arg, value in (("home", home), ("guess", guess)):
         if value is not None and not isinstance(value, Mapping):
@@ -175,6 +218,12 @@ def from_urdf(urdf: str | Path, actuated: Sequence[str] | None = None, name: str
         guess: see `load`.
         home: see `load`.
         rows: see `load`.
+
+    Returns:
+        The assembled mechanism.
+
+    Raises:
+        InvalidArgument: `urdf` neither non-empty text nor a path.
     """
     if not isinstance(urdf, (str, Path)) or not str(urdf).strip():
         raise InvalidArgument("urdf", urdf, "expected URDF text or a path to a description file")

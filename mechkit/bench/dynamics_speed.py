@@ -146,7 +146,16 @@ def _interleaved(fn: Callable[[Sample], object], raw: Callable[[Sample], object]
 
 def measure(mech: Mechanism, budget: float = 0.3, repeats: int = 15) -> MechanismSpeed:
     """Every row of one mechanism, each timed alternately with the raw call; then the targets and, where
-    one is missed, the breakdown of the calls behind it (`phases`)."""
+    one is missed, the breakdown of the calls behind it (`phases`).
+
+    Args:
+        mech: the mechanism.
+        budget: seconds of timing per row.
+        repeats: timed repeats per row (the minimum is kept).
+
+    Returns:
+        The mechanism's rows (us per sample, ratio to the raw call), targets and breakdowns.
+    """
     samples = make_samples(mech, 3)
     calls = _calls(mech, samples)
     raw_fn = calls[RAW][0]
@@ -166,7 +175,15 @@ def measure(mech: Mechanism, budget: float = 0.3, repeats: int = 15) -> Mechanis
 
 
 def targets(rows: list[SpeedRow], name: str = "") -> list[SpeedTarget]:
-    """The targets of issues 13 and 21 on a mechanism's rows (those whose rows were measured)."""
+    """The targets of issues 13 and 21 on a mechanism's rows (those whose rows were measured).
+
+    Args:
+        rows: the mechanism's measured rows.
+        name: the mechanism's name (some limits are per mechanism).
+
+    Returns:
+        One target per limit that applies, with its value and whether it is met.
+    """
     r = {row.label: row.ratio for row in rows}
     out = []
 
@@ -190,7 +207,18 @@ def phases(mech: Mechanism, samples: list[Sample], missed: set[str], budget: flo
     (its difference: the argument checks and dispatch), the steps that can be called alone (Pinocchio's
     passes, the closure kernel, the reactions, the J a + gamma check; the core's remainder is the solve and
     the glue between steps), and MuJoCo's mj_forward beside the exact forward dynamics; all timed in turn
-    on one state (`_round_robin`), each step's share its minimum over the whole call's."""
+    on one state (`_round_robin`), each step's share its minimum over the whole call's.
+
+    Args:
+        mech: the mechanism.
+        samples: the bench's states (the first is timed).
+        missed: the labels of the missed targets (a call behind one is broken down).
+        budget: seconds of timing per call.
+        repeats: rounds of timing (the minimum is kept).
+
+    Returns:
+        The steps of each broken-down call, us and share of the call.
+    """
     from mechkit import core
 
     cm, cd = mech.closure_model, mech.closure_model.create_data()
@@ -268,7 +296,14 @@ def _round_robin(fns: dict[str, Callable[[Sample], object]], samples: list[Sampl
 
 
 def markdown(results: list[MechanismSpeed]) -> list[str]:
-    """The benchmark page's section: one table of rows per mechanism, the targets, and the breakdowns."""
+    """The benchmark page's section: one table of rows per mechanism, the targets, and the breakdowns.
+
+    Args:
+        results: what `measure` gave, one per mechanism.
+
+    Returns:
+        The section's markdown lines.
+    """
     names = [r.name for r in results]
     labels = list(dict.fromkeys(row.label for r in results for row in r.rows))
     lines = ["| call | " + " | ".join(f"{n} (nv={r.nv})" for n, r in zip(names, results)) + " |",

@@ -46,7 +46,16 @@ def _states(mech: Mechanism) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
 
 def reaction_rows(names: tuple[str, ...] = ("four_bar", "parallel_2t1r", "deployable_9rr12uru"), budget_s: float = 0.3,
                   repeats: int = 5) -> list[ElasticSpeedRow]:
-    """Compliant against rigid batched inverse dynamics (states near home, moving), us per sample."""
+    """Compliant against rigid batched inverse dynamics (states near home, moving), us per sample.
+
+    Args:
+        names: the registered mechanisms timed.
+        budget_s: seconds of timing per call.
+        repeats: timed repeats (the minimum is kept).
+
+    Returns:
+        One row per mechanism.
+    """
     out = []
     for name in names:
         mech = load(name, rows="spatial") if name == "four_bar" else load(name)
@@ -62,7 +71,15 @@ def reaction_rows(names: tuple[str, ...] = ("four_bar", "parallel_2t1r", "deploy
 
 
 def stiffness_row(budget_s: float = 0.3, repeats: int = 5) -> ElasticSpeedRow:
-    """The 2T1R's platform stiffness (6x6, at its centroid) at the home pose."""
+    """The 2T1R's platform stiffness (6x6, at its centroid) at the home pose.
+
+    Args:
+        budget_s: seconds of timing.
+        repeats: timed repeats (the minimum is kept).
+
+    Returns:
+        The row.
+    """
     mech = load("parallel_2t1r")
     elastic = ElasticModel(mech)
     s = time_per_call(lambda _: elastic.stiffness(mech.home_q, "platform", PLATFORM_CENTROID), [None], budget_s,
@@ -71,7 +88,15 @@ def stiffness_row(budget_s: float = 0.3, repeats: int = 5) -> ElasticSpeedRow:
 
 
 def modes_row(budget_s: float = 0.3, repeats: int = 5) -> ElasticSpeedRow:
-    """The deployable truss's first 6 modes at its deployed pose."""
+    """The deployable truss's first 6 modes at its deployed pose.
+
+    Args:
+        budget_s: seconds of timing.
+        repeats: timed repeats (the minimum is kept).
+
+    Returns:
+        The row.
+    """
     mech = load("deployable_9rr12uru")
     elastic = ElasticModel(mech)
     s = time_per_call(lambda _: elastic.modes(mech.home_q, 6), [None], budget_s, repeats).min()
@@ -79,13 +104,28 @@ def modes_row(budget_s: float = 0.3, repeats: int = 5) -> ElasticSpeedRow:
 
 
 def rows(budget_s: float = 0.3, repeats: int = 5) -> list[ElasticSpeedRow]:
-    """Every row of this page section."""
+    """Every row of this page section.
+
+    Args:
+        budget_s: seconds of timing per call.
+        repeats: timed repeats (the minimum is kept).
+
+    Returns:
+        The reaction rows, the stiffness row and the modes row.
+    """
     return [*reaction_rows(budget_s=budget_s, repeats=repeats), stiffness_row(budget_s, repeats),
             modes_row(budget_s, repeats)]
 
 
 def lines(measured: list[ElasticSpeedRow]) -> list[str]:
-    """A markdown table of the rows."""
+    """A markdown table of the rows.
+
+    Args:
+        measured: what `rows` gave.
+
+    Returns:
+        The table's lines.
+    """
     table = ["| quantity | us | rigid batched (us/sample) | ratio | target | met |", "|---|---|---|---|---|---|"]
     for r in measured:
         ratio = "" if np.isnan(r.reference_us) else f"{r.us / r.reference_us:.2f}"

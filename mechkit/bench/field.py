@@ -49,7 +49,14 @@ class FieldRobot:
     license: str = ""
 
     def file(self, fixtures: Path) -> Path:
-        """The robot's file, `fixtures` being the repository's tests/fixtures/field folder."""
+        """The robot's file.
+
+        Args:
+            fixtures: the repository's tests/fixtures/field folder.
+
+        Returns:
+            The path of its file (under `fixtures` or example-robot-data's).
+        """
         return (fixtures if self.root == "fixtures" else example_robot_data()) / self.path
 
     def options(self) -> list[str]:
@@ -101,7 +108,16 @@ class LoadTime:
 
 
 def load_times(fixtures: Path, repeats: int = 7, robots: tuple[FieldRobot, ...] = ROBOTS) -> list[LoadTime]:
-    """Median warm load times (see the module docstring), `fixtures` the repository's tests/fixtures/field."""
+    """Median warm load times (see the module docstring).
+
+    Args:
+        fixtures: the repository's tests/fixtures/field folder.
+        repeats: timed loads per robot.
+        robots: the robots timed.
+
+    Returns:
+        One row per robot: its median (s), or why mechkit refuses its file.
+    """
     out = []
     for robot in robots:
         path, fix = robot.file(fixtures), list(robot.fix) or None
@@ -120,7 +136,14 @@ def load_times(fixtures: Path, repeats: int = 7, robots: tuple[FieldRobot, ...] 
 
 
 def lines(rows: list[LoadTime]) -> list[str]:
-    """A markdown table of the rows (refused files with the start of their reason)."""
+    """A markdown table of the rows (refused files with the start of their reason).
+
+    Args:
+        rows: what `load_times` gave.
+
+    Returns:
+        The table's lines.
+    """
     table = ["| robot | nv | loops | median load (ms) |", "|---|---|---|---|"]
     for r in rows:
         if r.median_s is None:
@@ -131,9 +154,16 @@ def lines(rows: list[LoadTime]) -> list[str]:
 
 
 def add_section(page: Path, fixtures: Path, quick: bool = False, robots: tuple[FieldRobot, ...] = ROBOTS) -> None:
-    """Measure `load_times` of `robots` (3 repeats when `quick`, else 15) and write them as the section
-    `SECTION` of the benchmark page `page`: in place of the section of that title, else before
-    "## First load", else at the end; the rest of the page is left as it is."""
+    """Measure `load_times` of `robots` and write them as the section `SECTION` of the benchmark page:
+    in place of the section of that title, else before "## First load", else at the end; the rest of the
+    page is left as it is.
+
+    Args:
+        page: the benchmark page (markdown), rewritten in place.
+        fixtures: the repository's tests/fixtures/field folder.
+        quick: 3 repeats per robot instead of 15.
+        robots: the robots timed.
+    """
     repeats = 3 if quick else 15
     body = [f"## {SECTION}", "", (f"`mechkit.load` of each robot of docs/field_robots.md, warm (after one untimed "
                                   f"load), median of {repeats} in one process: the reader parses and checks the file, "

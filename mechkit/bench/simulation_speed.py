@@ -48,7 +48,18 @@ class SimulationSpeed:
 
 
 def mujoco_run(mech: Mechanism, duration: float) -> tuple[float, np.ndarray, float]:
-    """(step s, qpos at every step (steps + 1, nq), seconds per step) of MuJoCo on the exported MJCF."""
+    """MuJoCo on the exported MJCF, released at home for `duration`.
+
+    Args:
+        mech: the mechanism (exported with `mechkit.export.to_mjcf`).
+        duration: simulated time (s), rounded to whole MuJoCo steps.
+
+    Returns:
+        MuJoCo's step (s), qpos at every step (steps + 1, nq), and the seconds per step.
+
+    Raises:
+        MethodUnavailable: MuJoCo is not installed.
+    """
     try:
         import mujoco
     except ImportError:
@@ -69,7 +80,15 @@ def mujoco_run(mech: Mechanism, duration: float) -> tuple[float, np.ndarray, flo
 
 
 def simulation_speed(mech: Mechanism, duration: float = 0.1) -> SimulationSpeed:
-    """Both simulators on the free motion of `mech` for `duration` s at MuJoCo's step (see the module docstring)."""
+    """Both simulators on the free motion of `mech` at MuJoCo's step (see the module docstring).
+
+    Args:
+        mech: the mechanism.
+        duration: simulated time (s).
+
+    Returns:
+        The row: step times, both closure errors, the largest joint difference.
+    """
     dt, qpos, mj_seconds = mujoco_run(mech, duration)
     mech.simulate(2 * dt, dt=dt, reactions=False, limits=None)  # warm: imports and first-call caches out of the timing
     start = time.perf_counter()
@@ -88,7 +107,14 @@ HEADING = "## Simulation against MuJoCo"
 
 
 def markdown(rows: list[SimulationSpeed]) -> str:
-    """The section: one row per mechanism (step times, their ratio, both closure errors, the difference)."""
+    """The section: one row per mechanism (step times, their ratio, both closure errors, the difference).
+
+    Args:
+        rows: what `simulation_speed` gave, one per mechanism.
+
+    Returns:
+        The section's markdown text, heading first.
+    """
     lines = [HEADING, "",
              ("Free motion released at home under gravity, MuJoCo on the exported MJCF (stiff equality settings, "
              "its RK4, bare `mj_step`) and `Mechanism.simulate` at the same fixed step (RK45 with its error control "
@@ -103,7 +129,12 @@ def markdown(rows: list[SimulationSpeed]) -> str:
 
 
 def write_section(path: str | Path, rows: list[SimulationSpeed]) -> None:
-    """Put the section into a Markdown file: in place of its former text, else at the end."""
+    """Put the section into a Markdown file: in place of its former text, else at the end.
+
+    Args:
+        path: the Markdown file, rewritten in place.
+        rows: what `simulation_speed` gave, one per mechanism.
+    """
     from mechkit.base.atomic import write_text
 
     text = Path(path).read_text()

@@ -11,7 +11,18 @@ from mechkit.cli.stiffness import pose
 
 
 def report(args: argparse.Namespace) -> dict:
-    """The modes as the JSON contract: frequencies (Hz), and each mode's largest body motion."""
+    """The modes as the JSON contract: frequencies (Hz), and each mode's largest body motion.
+
+    Args:
+        args: the parsed command line (`-n`, `--at`, `--animate`, `--mode`).
+
+    Returns:
+        {"name", "modes": [{"mode", "frequency_hz", "largest_motion_body"}], "animation": the page
+        written, or None}.
+
+    Raises:
+        InvalidParameters: `-n` below 1.
+    """
     from mechkit.elastic import ElasticModel
 
     if args.n < 1:
@@ -32,7 +43,11 @@ def report(args: argparse.Namespace) -> dict:
 
 
 def run(args: argparse.Namespace) -> None:
-    """Print the modes."""
+    """Print the modes (text, or the JSON contract with `--json`).
+
+    Args:
+        args: the parsed command line.
+    """
     r = report(args)
     if args.json:
         print(json.dumps(r, indent=2))
@@ -45,7 +60,11 @@ def run(args: argparse.Namespace) -> None:
 
 
 def add_parser(sub: argparse._SubParsersAction) -> None:
-    """Register `modes`."""
+    """Register `modes`.
+
+    Args:
+        sub: the command line's sub-parsers.
+    """
     p = sub.add_parser("modes", help="natural frequencies and mode shapes (elastic links, locked actuators)", **examples(
         "mechkit modes deployable_9rr12uru -n 6", "mechkit modes parallel_2t1r --animate mode1.html --json"))
     add_mechanism_arguments(p)

@@ -60,7 +60,14 @@ def _elements(mech, args: argparse.Namespace) -> list:
 
 
 def run(args: argparse.Namespace) -> None:
-    """Simulate, print the summary, write what was asked."""
+    """Simulate, print the summary, write what was asked.
+
+    Args:
+        args: the parsed command line.
+
+    Raises:
+        InvalidParameters: a duration not above 0 s, an output that is neither .parquet nor .csv.
+    """
     from mechkit import motion, simulation
     from mechkit.simulation.plot import write_plot
 
@@ -114,7 +121,11 @@ def run(args: argparse.Namespace) -> None:
 
 
 def add_parser(sub: argparse._SubParsersAction) -> None:
-    """Register `simulate`."""
+    """Register `simulate`.
+
+    Args:
+        sub: the command line's sub-parsers.
+    """
     p = sub.add_parser("simulate", help="motion in time under forces, prescribed inputs or torques: energy balance, "
                                         "closure residual, Parquet/CSV, plot, animation",
                        **examples("mechkit simulate four_bar --duration 2 -o free.parquet --plot free.png",

@@ -15,7 +15,19 @@ DIRECTIONS = ("x", "y", "z", "rx", "ry", "rz")
 
 
 def numbers(text: str | None, what: str, size: int | None = None) -> list[float] | None:
-    """Comma-separated numbers (None when not given)."""
+    """Comma-separated numbers.
+
+    Args:
+        text: the option's text (None: not given).
+        what: the option's name, for the error.
+        size: how many numbers are expected (None: any).
+
+    Returns:
+        The numbers, or None when `text` is None.
+
+    Raises:
+        InvalidParameters: not numbers, or not `size` of them.
+    """
     if text is None:
         return None
     try:
@@ -28,7 +40,18 @@ def numbers(text: str | None, what: str, size: int | None = None) -> list[float]
 
 
 def pose(mech: Mechanism, text: str | None) -> np.ndarray:
-    """The assembled pose of `--at J=V,...` (rad or m), the home pose without it."""
+    """The assembled pose of `--at J=V,...`.
+
+    Args:
+        mech: the mechanism.
+        text: the option's text, joint=value pairs (rad or m); None or empty: the home pose.
+
+    Returns:
+        (nq,) the configuration, every loop closed.
+
+    Raises:
+        InvalidParameters: a pair without "=" or a value that is not a number.
+    """
     if not text:
         return mech.home_q
     given = {}
@@ -42,7 +65,14 @@ def pose(mech: Mechanism, text: str | None) -> np.ndarray:
 
 def report(args: argparse.Namespace) -> dict:
     """The stiffness as the JSON contract: body, point (world, m), compliance and stiffness (6x6, SI),
-    held (K_ii) and free (1/C_ii) per direction."""
+    held (K_ii) and free (1/C_ii) per direction.
+
+    Args:
+        args: the parsed command line (`--body`, `--point`, `--at`).
+
+    Returns:
+        The report (an infinite stiffness entry as None).
+    """
     from mechkit.elastic import ElasticModel
 
     mech = load_mechanism(args)
@@ -55,7 +85,14 @@ def report(args: argparse.Namespace) -> dict:
 
 
 def format_text(r: dict) -> str:
-    """K_ii and 1/C_ii per direction for a reader."""
+    """K_ii and 1/C_ii per direction for a reader.
+
+    Args:
+        r: what `report` gave.
+
+    Returns:
+        The text, lines joined.
+    """
     lines = [f"{r['name']}: body {r['body']} at ({', '.join(f'{x:.4f}' for x in r['point'])}) m, world axes",
              f"{'direction':>9} {'K_ii (others held)':>20} {'1/C_ii (others free)':>22}"]
     for d in DIRECTIONS:
@@ -65,13 +102,21 @@ def format_text(r: dict) -> str:
 
 
 def run(args: argparse.Namespace) -> None:
-    """Print the stiffness."""
+    """Print the stiffness (text, or the JSON contract with `--json`).
+
+    Args:
+        args: the parsed command line.
+    """
     r = report(args)
     print(json.dumps(r, indent=2) if args.json else format_text(r))
 
 
 def add_parser(sub: argparse._SubParsersAction) -> None:
-    """Register `stiffness`."""
+    """Register `stiffness`.
+
+    Args:
+        sub: the command line's sub-parsers.
+    """
     p = sub.add_parser("stiffness", help="6x6 stiffness and compliance of a body (elastic links, locked actuators)", **examples(
         "mechkit stiffness parallel_2t1r --body platform", "mechkit stiffness four_bar --body coupler_link --point 0.14,0,0 --at crank=0.8 --json"))
     add_mechanism_arguments(p)

@@ -37,6 +37,12 @@ _WRITTEN_AGAIN = ("loop", "home")
 def to_urdf_plus(mech: Mechanism) -> str:
     """URDF+ text of the mechanism (see the module).
 
+    Args:
+        mech: the mechanism.
+
+    Returns:
+        The URDF+ document (its tree, `<loop>` and `<coupling>` elements, home and actuators).
+
     Raises:
         MethodUnavailable: no URDF tree (ball or free joints), a spherical or Hooke cut, a cut frame that
             is not a URDF link or joint, a coupling neither a mimic nor a URDF+ coupling can write, a

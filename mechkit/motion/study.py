@@ -183,6 +183,7 @@ def study(mech: Mechanism, law: InputLaw, *, determinacy: bool = False, loads: L
     Raises:
         ClosureNotConverged: a sample does not assemble near its warm start (the message says which).
         SingularConfiguration: the inputs do not determine the motion, or the drives cannot hold it.
+        InvalidParameters: `reactions` neither "rigid" nor "compliant".
     """
     if reactions not in REACTIONS:
         raise InvalidParameters("reactions", reactions, f"one of {REACTIONS}")

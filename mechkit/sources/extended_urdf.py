@@ -91,7 +91,7 @@ def read_extended_urdf(path: Path, sidecar: Path, freeflyer: bool = False, balls
 
     Args:
         path: the tree URDF.
-        sidecar: its YAML sidecar.
+        sidecar: its YAML sidecar (`closed_loop`, `type`, `name_mot`).
         freeflyer: put the tree on a free-flyer root joint ("root_joint") instead of the world; its home
             value is the URDF's origin.
         balls: merge the spherical triplets into ball joints, as Gepetto's `simplifyModel` does.
@@ -100,13 +100,6 @@ def read_extended_urdf(path: Path, sidecar: Path, freeflyer: bool = False, balls
         The description: `model` the Pinocchio model (any joint), `closures` the pairs as cuts,
         `actuated` the motors (else the URDF's transmissions), `urdf` the URDF with its loops only
         where the model is the URDF's own tree, else None.
-
-    Args:
-        path: the tree URDF.
-        sidecar: its YAML sidecar (`closed_loop`, `type`, `name_mot`).
-
-    Returns:
-        The description.
 
     Raises:
         MalformedDescription: a malformed URDF or sidecar, a substitution, motor or frame that names

@@ -8,7 +8,7 @@ name a link or a joint of the URDF (Pinocchio gives both a frame).
 
 A joint's `<mimic joint="leader" multiplier="m" offset="o"/>` (defaults 1 and 0) is the coupling row
 x_joint = m x_leader + o (rad or m); the tree keeps the mimic joint as an ordinary joint (Pinocchio's
-`mimic=False`), so the row is what ties it (see `parse_mimics`).
+`mimic=False`), so the row is what ties it (`mechkit.sources.urdf_mimics`).
 """
 
 from __future__ import annotations
@@ -22,9 +22,10 @@ import numpy as np
 import pinocchio as pin
 
 from mechkit.base.exceptions import MalformedDescription
-from mechkit.core import LOOP_KINDS, ROW_SETS, Coupling, JointSpring, LoopClosure
+from mechkit.core import LOOP_KINDS, ROW_SETS, JointSpring, LoopClosure
 from mechkit.sources.description import Description, read_text
-from mechkit.sources.urdf_checks import check_inertias, check_tree, number
+from mechkit.sources.urdf_checks import check_inertias, check_tree
+from mechkit.sources.urdf_mimics import parse_mimics
 
 LOOP_NAMESPACE = "https://mechkit.dev/loop"
 #: Elements of the loop namespace mechkit knows (`home`: an input value of the default assembly;
@@ -64,7 +65,7 @@ def describe_urdf(urdf: str, source: Path | None, fmt: str, params: dict[str, st
 
     Raises:
         MalformedDescription: see `mechkit.sources.urdf_checks`, `mechkit.sources.urdf.parse_loops`,
-            `mechkit.sources.urdf.parse_mimics`.
+            `mechkit.sources.urdf_mimics.parse_mimics`.
     """
     where = str(source) if source is not None else "urdf"
     root = parse_xml(urdf, where)
@@ -86,53 +87,15 @@ def describe_urdf(urdf: str, source: Path | None, fmt: str, params: dict[str, st
 
 
 def moving_joints(root: ET.Element) -> set[str]:
-    """Names of the URDF's joints that are not fixed."""
-    return {j.get("name") for j in root.findall("joint") if j.get("type") != "fixed"}
+    """Names of the URDF's joints that are not fixed.
 
+    Args:
+        root: the URDF's `<robot>` element.
 
-def parse_mimics(root: ET.Element) -> tuple[Coupling, ...]:
-    """The `<mimic>` of every joint as a coupling row x_joint = multiplier x_leader + offset (rad or m).
-
-    A mimic on a fixed joint couples nothing (no consumer moves a fixed joint): skipped. A mimic of a
-    fixed joint follows its value, zero: the row fixes x_joint = offset.
-
-    Raises:
-        MalformedDescription: a mimic of a joint the URDF lacks or of itself, on or of a joint of more
-            than one freedom (floating, planar), a multiplier or offset that is not a finite number, or
-            mimics that form a cycle.
+    Returns:
+        The joint names.
     """
-    types = {j.get("name"): j.get("type") for j in root.findall("joint")}
-    leader_of: dict[str, str] = {}
-    out = []
-    for joint in root.findall("joint"):
-        mimic = joint.find("mimic")
-        name = joint.get("name")
-        if mimic is None or types[name] == "fixed":
-            continue
-        leader, where = mimic.get("joint"), f"joint {name!r} <mimic>"
-        if leader not in types:
-            raise MalformedDescription(where, f"joint={leader!r} is not a joint of the URDF")
-        if leader == name:
-            raise MalformedDescription(where, "a joint cannot mimic itself")
-        for joint_name in (name, leader):
-            if types[joint_name] in ("floating", "planar"):
-                raise MalformedDescription(where, f"joint {joint_name!r} is {types[joint_name]}: a mimic couples "
-                                           "one-freedom joints")
-        multiplier, offset = (number(mimic.get(k, default), where, k) for k, default in (("multiplier", "1"), ("offset", "0")))
-        if types[leader] == "fixed":
-            out.append(Coupling(name, ((name, 1.0),), (), (offset,)))
-            continue
-        leader_of[name] = leader
-        out.append(Coupling(name, ((name, 1.0),), ((leader, 1.0),), (offset, multiplier)))
-    for start, first in leader_of.items():
-        chain, joint = [start], first
-        while joint in leader_of and joint not in chain:
-            chain.append(joint)
-            joint = leader_of[joint]
-        if joint in chain:
-            cycle = chain[chain.index(joint):] + [joint]
-            raise MalformedDescription(f"joint {joint!r} <mimic>", f"the mimics form a cycle {' -> '.join(cycle)}")
-    return tuple(out)
+    return {j.get("name") for j in root.findall("joint") if j.get("type") != "fixed"}
 
 
 def transmissions(root: ET.Element, joints: set[str]) -> tuple[str, ...]:
@@ -237,6 +200,12 @@ def frame_names(root: ET.Element) -> dict[str, str | None]:
 
     A link and a joint each give Pinocchio a frame of their name; one name for a joint and a link that
     is not that joint's child names two frames at different places.
+
+    Args:
+        root: the URDF's `<robot>` element.
+
+    Returns:
+        Name -> None (one frame), or the reason it names two.
     """
     out: dict[str, str | None] = {link.get("name"): None for link in root.findall("link")}
     for joint in root.findall("joint"):

@@ -116,7 +116,19 @@ def check_inertias(root: ET.Element) -> None:
 
 
 def number(text: str | None, where: str, what: str) -> float:
-    """A finite number from an attribute's text; anything else is a `MalformedDescription` naming `where`."""
+    """A finite number from an attribute's text.
+
+    Args:
+        text: the attribute's text (None: absent).
+        where: the element, named in the error.
+        what: the attribute, named in the error.
+
+    Returns:
+        The number.
+
+    Raises:
+        MalformedDescription: absent, not a number, or not finite.
+    """
     try:
         value = float(text)
     except (TypeError, ValueError):

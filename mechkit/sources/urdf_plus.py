@@ -45,7 +45,14 @@ LOOP_TYPES = {"revolute": "revolute", "continuous": "revolute", "prismatic": "pr
 
 def is_urdf_plus(root: ET.Element) -> bool:
     """Whether a URDF's root declares URDF+ constraints: a `<coupling>`, or a `<loop>` with a
-    `<predecessor>` or `<successor>` (a bare `<loop frame_a=...>` is a mistyped `<mechkit:loop>`)."""
+    `<predecessor>` or `<successor>` (a bare `<loop frame_a=...>` is a mistyped `<mechkit:loop>`).
+
+    Args:
+        root: the URDF's `<robot>` element.
+
+    Returns:
+        Whether it is a URDF+ file.
+    """
     return any(child.tag == "coupling" or (child.tag == "loop" and (child.find("predecessor") is not None
                                                                     or child.find("successor") is not None))
                for child in root)
@@ -53,6 +60,9 @@ def is_urdf_plus(root: ET.Element) -> bool:
 
 def read_urdf_plus(path: Path) -> Description:
     """The mechanism of a URDF+ file: its tree, its loops as cuts, its couplings as coupling rows.
+
+    Args:
+        path: the URDF+ file.
 
     Returns:
         The description; `urdf` the tree with `<mechkit:loop>` elements (and added loop frames),
