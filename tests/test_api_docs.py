@@ -110,11 +110,6 @@ def test_every_core_module_is_in_the_reference():
         assert f"::: mechkit.{package}\n" in pages, package
 
 
-#: Modules whose docstrings others are completing while they rewrite them (the core being optimised,
-#: `Mechanism` and its loader, the speed pages, the packages being written); an entry whose module has
-#: become complete fails, so that the list only shrinks.
-BEING_REWRITTEN = ("mechkit/mechanism.py", "mechkit/loading.py", "mechkit/bench/dynamics_speed.py",
-                   "mechkit/bench/markdown.py")
 SECTIONS = ("Args", "Arguments", "Returns", "Yields", "Raises", "Attributes", "Examples", "Example", "Note", "Notes",
             "Warns", "See Also", "References")
 ENTRY = re.compile(r"^ {4}(\*{0,2}\w+)(?: \([^)]*\))?:(?: |$)")
@@ -190,14 +185,11 @@ def _undocumented(fn: ast.FunctionDef | ast.AsyncFunctionDef, method: bool) -> l
     return lacks
 
 
-def docs_audit() -> tuple[list[str], list[str], int]:
-    """(what public functions' docstrings lack, modules listed as being rewritten that are complete,
-    public functions with parameters counted)."""
+def docs_audit() -> tuple[list[str], int]:
+    """(what public functions' docstrings lack, public functions with parameters counted)."""
     lacking, count = [], 0
-    pending: dict[str, bool] = {}
     for path in _modules():
         where = path.relative_to(PACKAGE.parent).as_posix()
-        rewritten = where.startswith(BEING_REWRITTEN)
         tree = ast.parse(path.read_text(), filename=where)
         functions = [(node, False, node.name) for node in tree.body
                      if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef)) and not node.name.startswith("_")]
@@ -208,20 +200,15 @@ def docs_audit() -> tuple[list[str], list[str], int]:
         for fn, method, name in functions:
             lacks = _undocumented(fn, method)
             count += bool(_parameters(fn, method))
-            if rewritten:
-                prefix = next(p for p in BEING_REWRITTEN if where.startswith(p))
-                pending[prefix] = pending.get(prefix, False) or bool(lacks)
-            elif lacks:
+            if lacks:
                 lacking.append(f"{where}:{fn.lineno} {name}: {'; '.join(lacks)}")
-    complete = [p for p, lacks in pending.items() if not lacks]
-    return lacking, complete, count
+    return lacking, count
 
 
 def test_every_public_function_documents_its_parameters_returns_and_raises():
-    lacking, complete, count = docs_audit()
+    lacking, count = docs_audit()
     print(f"\n{count} public functions and methods with parameters; {len(lacking)} lacking a section")
     assert not lacking, "\n".join(lacking)
-    assert not complete, f"complete now: drop from BEING_REWRITTEN: {complete}"
 
 
 def test_the_docs_audit_sees_what_it_claims():
