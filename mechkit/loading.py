@@ -49,10 +49,18 @@ def resolve(source: str | Path) -> str | Path:
     return path
 
 
-def load(source: str | Path, *, actuated: Sequence[str] | None = None, home: Mapping[str, float] | None = None,
-         guess: Mapping[str, float] | None = None, lock: Mapping[str, Any] | None = None,
-         keep: Sequence[str] | None = None, fix: Sequence[str] | None = None, freeflyer: bool = False,
-         **params: Any) -> Mechanism:
+def load(
+    source: str | Path,
+    *,
+    actuated: Sequence[str] | None = None,
+    home: Mapping[str, float] | None = None,
+    guess: Mapping[str, float] | None = None,
+    lock: Mapping[str, Any] | None = None,
+    keep: Sequence[str] | None = None,
+    fix: Sequence[str] | None = None,
+    freeflyer: bool = False,
+    **params: Any,
+) -> Mechanism:
     """Build a mechanism from a registered name or a description file.
 
     The file formats (`mechkit.sources`): a `.urdf` with `<mechkit:loop>`s (and `<mimic>` joints,
@@ -99,8 +107,12 @@ def load(source: str | Path, *, actuated: Sequence[str] | None = None, home: Map
         rows = None if "rows" in declared else params.pop("rows", None)
         return from_description(sources.read(where, params, freeflyer=freeflyer), actuated, home, guess, rows)
     if freeflyer:
-        raise InvalidArgument("freeflyer", freeflyer, f"{where!r} is a registered mechanism: only an Extended-URDF "
-                              "file (a .urdf with a .yaml sidecar) takes a free-flyer root")
+        raise InvalidArgument(
+            "freeflyer",
+            freeflyer,
+            f"{where!r} is a registered mechanism: only an Extended-URDF "
+            "file (a .urdf with a .yaml sidecar) takes a free-flyer root",
+        )
     spec = get_spec(where)
     rows = None if "rows" in {f.name for f in dataclasses.fields(spec.params)} else params.pop("rows", None)
     values = spec.params.from_overrides(**params)
@@ -156,9 +168,13 @@ def from_expanded(spec: MechanismSpec, params: MechanismParams, urdf: str, rows:
     return Mechanism(spec, params, cm, urdf, parse_springs(root))
 
 
-def from_description(desc: sources.Description, actuated: Sequence[str] | None = None,
-                     home: Mapping[str, float] | None = None, guess: Mapping[str, float] | None = None,
-                     rows: str | None = None) -> Mechanism:
+def from_description(
+    desc: sources.Description,
+    actuated: Sequence[str] | None = None,
+    home: Mapping[str, float] | None = None,
+    guess: Mapping[str, float] | None = None,
+    rows: str | None = None,
+) -> Mechanism:
     """Build a mechanism from what a file reader gave.
 
     Its spec's `gruebler_dof` is the Kutzbach count of its topology (`mechkit.core.structure`).
@@ -184,30 +200,49 @@ def from_description(desc: sources.Description, actuated: Sequence[str] | None =
         known = list(model.names[1:]) + [a.name for a in desc.actuators]
         joint_arguments.joint_names("actuated", actuated, known, allow_empty=True)
     closures = desc.closures if desc.closures is not None else parse_loops(desc.urdf)
-    cm = core.ClosureModel(model, closures, desc.couplings, tuple(actuated) if actuated is not None else desc.actuated,
-                           desc.actuators, rows)
+    cm = core.ClosureModel(
+        model,
+        closures,
+        desc.couplings,
+        tuple(actuated) if actuated is not None else desc.actuated,
+        desc.actuators,
+        rows,
+    )
     home_values = dict(home) if home is not None else dict(desc.home)
     guess_values = dict(guess) if guess is not None else dict(desc.guess)
     where = f" {desc.source}" if desc.source is not None else ""
     params = _xacro_params(desc)
-    spec = MechanismSpec(name=desc.name, params=type(params), template="", actuated=cm.actuated,
-                         gruebler_dof=cm.structure.kutzbach, home=_constant(home_values),
-                         guess=_constant(guess_values) if guess_values else None,
-                         summary=f"read from the {desc.format} file{where}")
+    spec = MechanismSpec(
+        name=desc.name,
+        params=type(params),
+        template="",
+        actuated=cm.actuated,
+        gruebler_dof=cm.structure.kutzbach,
+        home=_constant(home_values),
+        guess=_constant(guess_values) if guess_values else None,
+        summary=f"read from the {desc.format} file{where}",
+    )
     return Mechanism(spec, params, cm, desc.urdf, desc.springs)
 
 
 def _xacro_params(desc: sources.Description) -> MechanismParams:
     """The file's xacro arguments as a parameter instance (strings; shown by `report`), else none."""
-    fields = [(k, str, dataclasses.field(default=v, metadata={"unit": "-", "doc": "xacro argument", "ours": False}))
-              for k, v in desc.params.items()]
+    fields = [
+        (k, str, dataclasses.field(default=v, metadata={"unit": "-", "doc": "xacro argument", "ours": False}))
+        for k, v in desc.params.items()
+    ]
     cls = dataclasses.make_dataclass("XacroArguments", fields, bases=(MechanismParams,), frozen=True)
     return cls()
 
 
-def from_urdf(urdf: str | Path, actuated: Sequence[str] | None = None, name: str | None = None,
-              guess: Mapping[str, float] | None = None, home: Mapping[str, float] | None = None,
-              rows: str | None = None) -> Mechanism:
+def from_urdf(
+    urdf: str | Path,
+    actuated: Sequence[str] | None = None,
+    name: str | None = None,
+    guess: Mapping[str, float] | None = None,
+    home: Mapping[str, float] | None = None,
+    rows: str | None = None,
+) -> Mechanism:
     """Wrap a URDF (text, or a path to any description file) as a Mechanism.
 
     Args:

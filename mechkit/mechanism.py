@@ -50,8 +50,14 @@ class Mechanism(MechanismRates):
         ClosureNotConverged, SingularConfiguration: the home assembly cannot be found.
     """
 
-    def __init__(self, spec: MechanismSpec, params: MechanismParams, closure_model: core.ClosureModel,
-                 urdf: str | None = None, springs: Sequence[core.JointSpring] = ()):
+    def __init__(
+        self,
+        spec: MechanismSpec,
+        params: MechanismParams,
+        closure_model: core.ClosureModel,
+        urdf: str | None = None,
+        springs: Sequence[core.JointSpring] = (),
+    ):
         self.spec, self.params, self.urdf = spec, params, urdf
         self.closure_model = cm = closure_model
         self.closure_data = core_data = cm.create_data()
@@ -62,13 +68,20 @@ class Mechanism(MechanismRates):
         self.home_q = self.assemble(spec.home(params))
         self.home_mobility = core.mobility(cm, core_data, self.home_q)
         self.independent_rows = self.home_mobility.rank
-        self.idle = core.idle_freedoms(self.model, self.home_q, core.closure_jacobian(cm, core_data, self.home_q),
-                                       set(cm.on_loops), cm.rigid_groups)
+        self.idle = core.idle_freedoms(
+            self.model,
+            self.home_q,
+            core.closure_jacobian(cm, core_data, self.home_q),
+            set(cm.on_loops),
+            cm.rigid_groups,
+        )
 
     def __repr__(self) -> str:
         """One line: name, coordinates, degrees of freedom, loops, actuators."""
-        return (f"<Mechanism {self.spec.name}: nq={self.model.nq}, dof={self.home_mobility.dof}, "
-                f"loops={len(self.closures)}, actuators={list(self.actuated)}>")
+        return (
+            f"<Mechanism {self.spec.name}: nq={self.model.nq}, dof={self.home_mobility.dof}, "
+            f"loops={len(self.closures)}, actuators={list(self.actuated)}>"
+        )
 
     @property
     def cuts(self) -> tuple:
@@ -90,8 +103,11 @@ class Mechanism(MechanismRates):
             InvalidParameters: the mechanism is unactuated.
         """
         self.require_actuators("generalised forces from efforts")
-        u = joint_arguments.joint_values("efforts", efforts, self.actuated, self.actuated) if isinstance(efforts, Mapping) \
+        u = (
+            joint_arguments.joint_values("efforts", efforts, self.actuated, self.actuated)
+            if isinstance(efforts, Mapping)
             else dict(zip(self.actuated, arguments.array("efforts", efforts, len(self.actuated), batch=False)))
+        )
         return self.closure_model.actuation.T @ np.array([u.get(a, 0.0) for a in self.actuated], dtype=float)
 
     def passive_forces(self, q: np.ndarray, v: np.ndarray) -> np.ndarray | None:
@@ -106,9 +122,18 @@ class Mechanism(MechanismRates):
         """
         return self.springs.forces(q, v) if self.springs else None
 
-    def forward_dynamics(self, q: np.ndarray, v: np.ndarray, tau: np.ndarray, method: str = "proximal", *,
-                         mu: float | None = None, accuracy: float | None = None, max_iter: int | None = None,
-                         baumgarte: tuple[float, float] | None = None) -> core.ForwardDynamicsResult:
+    def forward_dynamics(
+        self,
+        q: np.ndarray,
+        v: np.ndarray,
+        tau: np.ndarray,
+        method: str = "proximal",
+        *,
+        mu: float | None = None,
+        accuracy: float | None = None,
+        max_iter: int | None = None,
+        baumgarte: tuple[float, float] | None = None,
+    ) -> core.ForwardDynamicsResult:
         """Constrained forward dynamics: the accelerations under joint efforts (and the springs).
 
         Args:
@@ -135,19 +160,38 @@ class Mechanism(MechanismRates):
         proximal = method == "proximal"  # a NaN or inf argument gives it non-finite accelerations: named on failure
         if not arguments.plain_state(q, v, tau, self._nq, self._nv, finite=not proximal):
             q, v, tau = self._one(q=q, v=v, tau=tau)
-        settings = {} if mu is None and accuracy is None and max_iter is None and baumgarte is None \
+        settings = (
+            {}
+            if mu is None and accuracy is None and max_iter is None and baumgarte is None
             else arguments.solver_settings(mu, accuracy, max_iter, baumgarte)
+        )
         try:
-            return core.forward_dynamics(self.closure_model, self.closure_data, q, v,
-                                         tau + self.springs.forces(q, v) if self.springs else tau, method, **settings)
+            return core.forward_dynamics(
+                self.closure_model,
+                self.closure_data,
+                q,
+                v,
+                tau + self.springs.forces(q, v) if self.springs else tau,
+                method,
+                **settings,
+            )
         except SingularConfiguration:
             if proximal:
                 self._one(q=q, v=v, tau=tau)
             raise
 
-    def forward_dynamics_batch(self, q: np.ndarray, v: np.ndarray, tau: np.ndarray, method: str = "proximal", *,
-                               mu: float | None = None, accuracy: float | None = None, max_iter: int | None = None,
-                               baumgarte: tuple[float, float] | None = None) -> core.ForwardDynamicsResult:
+    def forward_dynamics_batch(
+        self,
+        q: np.ndarray,
+        v: np.ndarray,
+        tau: np.ndarray,
+        method: str = "proximal",
+        *,
+        mu: float | None = None,
+        accuracy: float | None = None,
+        max_iter: int | None = None,
+        baumgarte: tuple[float, float] | None = None,
+    ) -> core.ForwardDynamicsResult:
         """`forward_dynamics` of N states at once.
 
         Args:
@@ -167,11 +211,21 @@ class Mechanism(MechanismRates):
         q, v, tau = self._many(q=q, v=v, tau=tau)
         settings = arguments.solver_settings(mu, accuracy, max_iter, baumgarte)
         passive = self.passive_forces(q, v)
-        return core.forward_dynamics_batch(self.closure_model, self.closure_data, q, v,
-                                           tau if passive is None else tau + passive, method, **settings)
+        return core.forward_dynamics_batch(
+            self.closure_model, self.closure_data, q, v, tau if passive is None else tau + passive, method, **settings
+        )
 
-    def inverse_dynamics(self, q: np.ndarray, v: np.ndarray, a: np.ndarray, fext: Any = None, determinacy: bool = True,
-                         distribution: str = "min_norm", *, allow_singular: bool = False) -> core.InverseDynamicsResult:
+    def inverse_dynamics(
+        self,
+        q: np.ndarray,
+        v: np.ndarray,
+        a: np.ndarray,
+        fext: Any = None,
+        determinacy: bool = True,
+        distribution: str = "min_norm",
+        *,
+        allow_singular: bool = False,
+    ) -> core.InverseDynamicsResult:
         """Constrained RNEA of one sample: actuator efforts and the reaction of every joint (tree and cut).
 
         Args:
@@ -197,14 +251,31 @@ class Mechanism(MechanismRates):
             q, v, a = self._one(q=q, v=v, a=a)
         if fext is not None:
             fext = joint_arguments.external_forces("fext", fext, self.model.njoints)
-        return core.inverse_dynamics(self.closure_model, self.closure_data, q, v, a, fext, self.passive_forces(q, v),
-                                     determinacy_test=determinacy, distribution=distribution,
-                                     generic_rank=None if arguments.flag("allow_singular", allow_singular)
-                                     else self.independent_rows, idle=bool(self.idle))
+        return core.inverse_dynamics(
+            self.closure_model,
+            self.closure_data,
+            q,
+            v,
+            a,
+            fext,
+            self.passive_forces(q, v),
+            determinacy_test=determinacy,
+            distribution=distribution,
+            generic_rank=None if arguments.flag("allow_singular", allow_singular) else self.independent_rows,
+            idle=bool(self.idle),
+        )
 
-    def inverse_dynamics_batch(self, q: np.ndarray, v: np.ndarray, a: np.ndarray, fext: Any = None,
-                               determinacy: bool = True, distribution: str = "min_norm", *,
-                               allow_singular: bool = False) -> core.BatchInverseDynamicsResult:
+    def inverse_dynamics_batch(
+        self,
+        q: np.ndarray,
+        v: np.ndarray,
+        a: np.ndarray,
+        fext: Any = None,
+        determinacy: bool = True,
+        distribution: str = "min_norm",
+        *,
+        allow_singular: bool = False,
+    ) -> core.BatchInverseDynamicsResult:
         """`inverse_dynamics` of N samples at once (the same numbers as one at a time).
 
         Args:
@@ -224,11 +295,19 @@ class Mechanism(MechanismRates):
         determinacy = arguments.flag("determinacy", determinacy)
         q, v, a = self._many(q=q, v=v, a=a)
         fexts = joint_arguments.sample_fext("fext", fext, len(q), self.model.njoints)
-        return core.inverse_dynamics_batch(self.closure_model, self.closure_data, q, v, a, fexts,
-                                           self.passive_forces(q, v), determinacy_test=determinacy,
-                                           distribution=distribution,
-                                           generic_rank=None if arguments.flag("allow_singular", allow_singular)
-                                     else self.independent_rows, idle=bool(self.idle))
+        return core.inverse_dynamics_batch(
+            self.closure_model,
+            self.closure_data,
+            q,
+            v,
+            a,
+            fexts,
+            self.passive_forces(q, v),
+            determinacy_test=determinacy,
+            distribution=distribution,
+            generic_rank=None if arguments.flag("allow_singular", allow_singular) else self.independent_rows,
+            idle=bool(self.idle),
+        )
 
     # ---------------------------------------------------------------- in time
     def simulate(self, duration: float, **options: Any) -> Any:
@@ -242,6 +321,7 @@ class Mechanism(MechanismRates):
             The motion, energies and closure residual (`mechkit.simulation.SimulationResult`).
         """
         from mechkit.simulation import simulate
+
         return simulate(self, duration, **options)
 
     def equilibrium(self, held: Mapping[str, float] | None = None, **options: Any) -> Any:
@@ -255,4 +335,5 @@ class Mechanism(MechanismRates):
             The pose, its residual and its stability (`mechkit.simulation.Equilibrium`).
         """
         from mechkit.simulation import equilibrium
+
         return equilibrium(self, held, **options)

@@ -108,9 +108,13 @@ class MechanismClosure:
             InvalidParameters: the mechanism is unactuated.
         """
         if not self.actuated:
-            raise InvalidParameters("actuated", (), f"{self.spec.name} is unactuated (its file declares no "
-                                    f"<transmission>, name_mot or MJCF actuator): {what} needs actuators; "
-                                    "pass actuated=[...] (command line: --actuated J1,J2)")
+            raise InvalidParameters(
+                "actuated",
+                (),
+                f"{self.spec.name} is unactuated (its file declares no "
+                f"<transmission>, name_mot or MJCF actuator): {what} needs actuators; "
+                "pass actuated=[...] (command line: --actuated J1,J2)",
+            )
 
     def _values(self, values: Inputs | None, names: Sequence[str], arg: str) -> dict[str, Any]:
         """Joint values by name (a mapping, or values in the order of `names`), checked."""
@@ -141,8 +145,15 @@ class MechanismClosure:
         return {"q": self._nq, "v": self._nv, "a": self._nv, "tau": self._nv}
 
     # ---------------------------------------------------------------- the closure
-    def assemble(self, inputs: Inputs, guess: Inputs | np.ndarray | None = None, *, tol: float = core.CLOSURE_TOL,
-                 method: str = "newton", max_iter: int = 60) -> np.ndarray:
+    def assemble(
+        self,
+        inputs: Inputs,
+        guess: Inputs | np.ndarray | None = None,
+        *,
+        tol: float = core.CLOSURE_TOL,
+        method: str = "newton",
+        max_iter: int = 60,
+    ) -> np.ndarray:
         """Configuration q (nq,) that closes every loop with the given joints at the given values.
 
         Args:
@@ -175,10 +186,19 @@ class MechanismClosure:
         for joint, value in given.items():
             core.set_joint_value(self.model, q0, self.joint_id(joint), value)
         split = self.closure_model.split(tuple(given))
-        return core.assemble(self.closure_model, self.closure_data, q0, split, tol=tol, max_iter=max_iter, method=method).q
+        return core.assemble(
+            self.closure_model, self.closure_data, q0, split, tol=tol, max_iter=max_iter, method=method
+        ).q
 
-    def solve_closure(self, q0: np.ndarray, fixed: Sequence[str], *, tol: float = core.CLOSURE_TOL, max_iter: int = 60,
-                      method: str = "newton") -> core.Assembly:
+    def solve_closure(
+        self,
+        q0: np.ndarray,
+        fixed: Sequence[str],
+        *,
+        tol: float = core.CLOSURE_TOL,
+        max_iter: int = 60,
+        method: str = "newton",
+    ) -> core.Assembly:
         """Close every loop from a full configuration, keeping some joints at their values there
         (`assemble` with a full start).
 
@@ -195,13 +215,20 @@ class MechanismClosure:
         Raises:
             ClosureNotConverged: no assembly found near q0.
         """
-        q0, = self._one(q=q0)
+        (q0,) = self._one(q=q0)
         arguments.option("method", method, core.ASSEMBLY_METHODS)
-        split = self.closure_model.split(tuple(joint_arguments.joint_names("fixed", fixed, list(self.model.names[1:]),
-                                                                     allow_empty=True)))
-        return core.assemble(self.closure_model, self.closure_data, q0, split,
-                             tol=arguments.number("tol", tol, positive=True),
-                             max_iter=arguments.integer("max_iter", max_iter, minimum=1), method=method)
+        split = self.closure_model.split(
+            tuple(joint_arguments.joint_names("fixed", fixed, list(self.model.names[1:]), allow_empty=True))
+        )
+        return core.assemble(
+            self.closure_model,
+            self.closure_data,
+            q0,
+            split,
+            tol=arguments.number("tol", tol, positive=True),
+            max_iter=arguments.integer("max_iter", max_iter, minimum=1),
+            method=method,
+        )
 
     def closure_residual(self, q: np.ndarray) -> np.ndarray:
         """Residual of every kept closure row.
@@ -261,6 +288,6 @@ class MechanismClosure:
         Returns:
             The condition number of the passive block of the closure Jacobian (inf: singular).
         """
-        q, = self._one(q=q)
+        (q,) = self._one(q=q)
         split = self.closure_model.split(tuple(self._names(inputs, "the singularity measure")))
         return core.passive_condition(self.closure_model, self.closure_data, q, split)

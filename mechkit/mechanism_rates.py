@@ -25,17 +25,22 @@ class MechanismRates(MechanismClosure):
         """The split of the given joints and their values (k,) in velocity order."""
         given = self._values(values, names, arg)
         split = self.closure_model.split(tuple(given))
-        return split, np.concatenate([np.atleast_1d(np.asarray(x, dtype=float)) for x in given.values()] or [np.zeros(0)])
+        return split, np.concatenate(
+            [np.atleast_1d(np.asarray(x, dtype=float)) for x in given.values()] or [np.zeros(0)]
+        )
 
-    def _given_batch(self, values: Inputs, names: Sequence[str], n: int, arg: str) -> tuple[core.InputSplit, np.ndarray]:
+    def _given_batch(
+        self, values: Inputs, names: Sequence[str], n: int, arg: str
+    ) -> tuple[core.InputSplit, np.ndarray]:
         """The split of the given joints and their values (n, k): a mapping joint -> (n,) or an (n, k) array."""
         sizes = {j: core.joint_size(self.model, self.joint_id(j)) for j in self.model.names[1:]}
         keys, given = joint_arguments.sample_inputs(arg, values, names, n, list(self.model.names[1:]), sizes)
         return self.closure_model.split(tuple(keys)), given
 
     # ---------------------------------------------------------------- velocities and accelerations
-    def velocities(self, q: np.ndarray, input_rates: Inputs, inputs: Sequence[str] | None = None, *,
-                   allow_singular: bool = False) -> np.ndarray:
+    def velocities(
+        self, q: np.ndarray, input_rates: Inputs, inputs: Sequence[str] | None = None, *, allow_singular: bool = False
+    ) -> np.ndarray:
         """Joint velocities from the input rates, J v = 0.
 
         Args:
@@ -54,12 +59,13 @@ class MechanismRates(MechanismClosure):
             InvalidParameters: rates in input order on an unactuated mechanism, an unknown joint.
         """
         allow_singular = arguments.flag("allow_singular", allow_singular)
-        q, = self._one(q=q)
+        (q,) = self._one(q=q)
         split, rates = self._given(input_rates, self._names(inputs, "velocities from input rates"), "input_rates")
         return core.velocities(self.closure_model, self.closure_data, q, split, rates, allow_singular=allow_singular)
 
-    def velocities_batch(self, q: np.ndarray, input_rates: Inputs, inputs: Sequence[str] | None = None, *,
-                         allow_singular: bool = False) -> np.ndarray:
+    def velocities_batch(
+        self, q: np.ndarray, input_rates: Inputs, inputs: Sequence[str] | None = None, *, allow_singular: bool = False
+    ) -> np.ndarray:
         """`velocities` of N samples at once (the same numbers).
 
         Args:
@@ -73,13 +79,24 @@ class MechanismRates(MechanismClosure):
             (N, nv) the joint velocities.
         """
         allow_singular = arguments.flag("allow_singular", allow_singular)
-        q, = self._many(q=q)
-        split, rates = self._given_batch(input_rates, self._names(inputs, "velocities from input rates"), len(q),
-                                         "input_rates")
-        return core.velocities_batch(self.closure_model, self.closure_data, q, split, rates, allow_singular=allow_singular)
+        (q,) = self._many(q=q)
+        split, rates = self._given_batch(
+            input_rates, self._names(inputs, "velocities from input rates"), len(q), "input_rates"
+        )
+        return core.velocities_batch(
+            self.closure_model, self.closure_data, q, split, rates, allow_singular=allow_singular
+        )
 
-    def accelerations(self, q: np.ndarray, v: np.ndarray, input_accelerations: Inputs, inputs: Sequence[str] | None = None,
-                      *, allow_singular: bool = False, least_squares: bool = False) -> np.ndarray:
+    def accelerations(
+        self,
+        q: np.ndarray,
+        v: np.ndarray,
+        input_accelerations: Inputs,
+        inputs: Sequence[str] | None = None,
+        *,
+        allow_singular: bool = False,
+        least_squares: bool = False,
+    ) -> np.ndarray:
         """Joint accelerations from the input accelerations, J a + gamma = 0.
 
         Args:
@@ -105,12 +122,27 @@ class MechanismRates(MechanismClosure):
         q, v = self._one(q=q, v=v)
         names = self._names(inputs, "accelerations from input accelerations")
         split, acc = self._given(input_accelerations, names, "input_accelerations")
-        return core.accelerations(self.closure_model, self.closure_data, q, v, split, acc, allow_singular=allow_singular,
-                                  least_squares=least_squares)
+        return core.accelerations(
+            self.closure_model,
+            self.closure_data,
+            q,
+            v,
+            split,
+            acc,
+            allow_singular=allow_singular,
+            least_squares=least_squares,
+        )
 
-    def accelerations_batch(self, q: np.ndarray, v: np.ndarray, input_accelerations: Inputs,
-                            inputs: Sequence[str] | None = None, *, allow_singular: bool = False,
-                            least_squares: bool = False) -> np.ndarray:
+    def accelerations_batch(
+        self,
+        q: np.ndarray,
+        v: np.ndarray,
+        input_accelerations: Inputs,
+        inputs: Sequence[str] | None = None,
+        *,
+        allow_singular: bool = False,
+        least_squares: bool = False,
+    ) -> np.ndarray:
         """`accelerations` of N samples at once (the same numbers).
 
         Args:
@@ -129,8 +161,16 @@ class MechanismRates(MechanismClosure):
         q, v = self._many(q=q, v=v)
         names = self._names(inputs, "accelerations from input accelerations")
         split, acc = self._given_batch(input_accelerations, names, len(q), "input_accelerations")
-        return core.accelerations_batch(self.closure_model, self.closure_data, q, v, split, acc,
-                                        allow_singular=allow_singular, least_squares=least_squares)
+        return core.accelerations_batch(
+            self.closure_model,
+            self.closure_data,
+            q,
+            v,
+            split,
+            acc,
+            allow_singular=allow_singular,
+            least_squares=least_squares,
+        )
 
     # ---------------------------------------------------------------- at second order
     def second_order_inconsistency(self, q: np.ndarray, v: np.ndarray) -> float:

@@ -102,18 +102,23 @@ def self_checks(m: Mechanism) -> tuple[dict[str, float], dict[str, str]]:
             v, a = state
             J, gamma = m.closure_jacobian(q), m.closure_drift(q, v)
             checks["velocity_constraint"] = _scaled(J @ v, np.max(np.abs(J), initial=0.0) * np.max(np.abs(v)))
-            checks["acceleration_constraint"] = _scaled(J @ a + gamma, np.max(np.abs(J @ a), initial=0.0),
-                                                        np.max(np.abs(gamma), initial=0.0))
+            checks["acceleration_constraint"] = _scaled(
+                J @ a + gamma, np.max(np.abs(J @ a), initial=0.0), np.max(np.abs(gamma), initial=0.0)
+            )
     if a is None:
         a = attempt("forward_dynamics", lambda: m.forward_dynamics(q, v, np.zeros(m.model.nv), "kkt").a)
     tau0 = np.zeros(m.model.nv)
-    both = attempt("kkt_vs_proximal", lambda: (m.forward_dynamics(q, v, tau0, "proximal").a,
-                                               m.forward_dynamics(q, v, tau0, "kkt").a))
+    both = attempt(
+        "kkt_vs_proximal",
+        lambda: (m.forward_dynamics(q, v, tau0, "proximal").a, m.forward_dynamics(q, v, tau0, "kkt").a),
+    )
     if both is not None:
         checks["kkt_vs_proximal"] = _relative(*both)
     if a is not None:
-        back = attempt("inverse_forward_roundtrip", lambda: m.forward_dynamics(
-            q, v, m.generalized_forces(m.inverse_dynamics(q, v, a).efforts), "kkt").a)
+        back = attempt(
+            "inverse_forward_roundtrip",
+            lambda: m.forward_dynamics(q, v, m.generalized_forces(m.inverse_dynamics(q, v, a).efforts), "kkt").a,
+        )
         if back is not None:
             checks["inverse_forward_roundtrip"] = _relative(back, a)
     return checks | ({} if m.spec.self_checks is None else m.spec.self_checks(m)), refused
@@ -130,8 +135,10 @@ def _weakest_motion(m: Mechanism, q: np.ndarray) -> str:
     _, s, vt = np.linalg.svd(m.closure_jacobian(q) @ basis)
     k = min(len(s), m.independent_rows) - 1
     v = basis @ vt[k]
-    size = {m.model.names[j]: float(np.linalg.norm(v[m.model.joints[j].idx_v:m.model.joints[j].idx_v + m.model.nvs[j]]))
-            for j in range(1, m.model.njoints)}
+    size = {
+        m.model.names[j]: float(np.linalg.norm(v[m.model.joints[j].idx_v : m.model.joints[j].idx_v + m.model.nvs[j]]))
+        for j in range(1, m.model.njoints)
+    }
     top = sorted((n for n, x in size.items() if x > 0.1 * max(size.values())), key=lambda n: -size[n])
     return f"the weakest passive motion (singular value {s[k]:.2e}) turns {', '.join(top)}"
 
@@ -154,10 +161,16 @@ def holding(m: Mechanism) -> dict[str, Any]:
     if not m.actuated:
         return {"refused": "unactuated: no actuator to hold it"}
     model = m.model
-    roots = [j for j in range(1, model.njoints) if model.parents[j] == 0 and model.joints[j].shortname() == "JointModelFreeFlyer"]
+    roots = [
+        j
+        for j in range(1, model.njoints)
+        if model.parents[j] == 0 and model.joints[j].shortname() == "JointModelFreeFlyer"
+    ]
     if roots:
         body = core.body_name(model, roots[0])
-        return {"refused": f"floating root {model.names[roots[0]]!r}: nothing holds its weight (fix its body: --fix {body})"}
+        return {
+            "refused": f"floating root {model.names[roots[0]]!r}: nothing holds its weight (fix its body: --fix {body})"
+        }
     zero = np.zeros(model.nv)
     try:
         q = settle(m, m.home_q)
@@ -165,8 +178,10 @@ def holding(m: Mechanism) -> dict[str, Any]:
         return {"refused": str(err)}
     stop = outside_range(m, q, m.home_q)
     if stop:
-        return {"refused": f"the joints no actuator drives settle against a stop: {stop} (mechkit does not model "
-                           "joint stops)"}
+        return {
+            "refused": f"the joints no actuator drives settle against a stop: {stop} (mechkit does not model "
+            "joint stops)"
+        }
     try:
         result = m.inverse_dynamics(q, zero, zero)
     except SingularConfiguration as err:
@@ -175,8 +190,12 @@ def holding(m: Mechanism) -> dict[str, Any]:
         return {"refused": str(err)}
     home, there = m.joint_values(m.home_q), _plain(m.joint_values(q))
     settled = {j: v for j, v in there.items() if np.max(np.abs(np.subtract(v, home[j]))) > SETTLED}
-    return {"efforts": result.efforts, "undetermined": [a for a in m.actuated if not result.efforts_determinate[a]],
-            "q": [float(x) for x in q], "settled": settled}
+    return {
+        "efforts": result.efforts,
+        "undetermined": [a for a in m.actuated if not result.efforts_determinate[a]],
+        "q": [float(x) for x in q],
+        "settled": settled,
+    }
 
 
 def report(m: Mechanism) -> dict[str, Any]:
@@ -197,14 +216,17 @@ def report(m: Mechanism) -> dict[str, Any]:
         "nq": m.model.nq,
         "nv": m.model.nv,
         "actuated": list(m.actuated),
-        "closures": [{"name": c.closure.name, "kind": c.closure.kind, "rows": c.size, "row_set": c.closure.rows}
-                     for c in m.cuts],
+        "closures": [
+            {"name": c.closure.name, "kind": c.closure.kind, "rows": c.size, "row_set": c.closure.rows} for c in m.cuts
+        ],
         "dof": mob.dof,
         "dof_gruebler": m.structure.kutzbach,
         "redundant_constraints": mob.redundant,
         "idle": dict(m.idle),
-        "loops": [{"cut": lp.cut, "kind": lp.kind, "rows": lp.rows, "full_rows": lp.full_rows, "chosen": lp.chosen}
-                  for lp in m.structure.loops],
+        "loops": [
+            {"cut": lp.cut, "kind": lp.kind, "rows": lp.rows, "full_rows": lp.full_rows, "chosen": lp.chosen}
+            for lp in m.structure.loops
+        ],
         "rows_avoided": m.structure.rows_avoided,
         "gruebler": {"kutzbach": m.structure.kutzbach, "declared": declared},
         "home": _plain(m.joint_values(m.home_q)),
@@ -225,14 +247,24 @@ def format_report(r: dict[str, Any]) -> str:
     Returns:
         The text, lines joined.
     """
-    lines = [f"{r['name']}: {r['summary']}",
-             f"  nq {r['nq']}, nv {r['nv']}, actuated: {', '.join(r['actuated']) or 'none (unactuated)'}",
-             "  closures: " + ", ".join(f"{c['name']} ({c['kind']}, {c['rows']} {c['row_set']} rows)" for c in r["closures"]),
-             f"  DOF numerical {r['dof']}, Gruebler {r['dof_gruebler']}, redundant constraints {r['redundant_constraints']}"
-             + (f" (declared Gruebler {r['gruebler']['declared']})" if r["gruebler"]["declared"] not in (None, r["dof_gruebler"]) else ""),
-             "  idle freedoms: " + (", ".join(f"{j} {n}" for j, n in r["idle"].items()) or "none"),
-             "  loops: " + ", ".join(f"{lp['cut']} {lp['kind']} {lp['rows']}/{lp['full_rows']} rows ({lp['chosen']})"
-                                     for lp in r["loops"]) + f"; {r['rows_avoided']} rows avoided"]
+    lines = [
+        f"{r['name']}: {r['summary']}",
+        f"  nq {r['nq']}, nv {r['nv']}, actuated: {', '.join(r['actuated']) or 'none (unactuated)'}",
+        "  closures: "
+        + ", ".join(f"{c['name']} ({c['kind']}, {c['rows']} {c['row_set']} rows)" for c in r["closures"]),
+        f"  DOF numerical {r['dof']}, Gruebler {r['dof_gruebler']}, redundant constraints {r['redundant_constraints']}"
+        + (
+            f" (declared Gruebler {r['gruebler']['declared']})"
+            if r["gruebler"]["declared"] not in (None, r["dof_gruebler"])
+            else ""
+        ),
+        "  idle freedoms: " + (", ".join(f"{j} {n}" for j, n in r["idle"].items()) or "none"),
+        "  loops: "
+        + ", ".join(
+            f"{lp['cut']} {lp['kind']} {lp['rows']}/{lp['full_rows']} rows ({lp['chosen']})" for lp in r["loops"]
+        )
+        + f"; {r['rows_avoided']} rows avoided",
+    ]
     if r["parameters"]:
         lines.append("  parameters:")
     for p in r["parameters"]:
@@ -244,11 +276,19 @@ def format_report(r: dict[str, Any]) -> str:
     for name, why in r["refused"].items():
         lines.append(f"    {name:<32} refused: {why}")
     held = r["holding"]
-    lines.append("  holding gravity at rest: " + (", ".join(f"{j} {u:.6g}" for j, u in held["efforts"].items())
-                                                  if "efforts" in held else f"the actuators cannot ({held['refused']})"))
+    lines.append(
+        "  holding gravity at rest: "
+        + (
+            ", ".join(f"{j} {u:.6g}" for j, u in held["efforts"].items())
+            if "efforts" in held
+            else f"the actuators cannot ({held['refused']})"
+        )
+    )
     if held.get("undetermined"):
         lines.append("    not fixed by statics (least-norm shares): " + ", ".join(held["undetermined"]))
     if held.get("settled"):
-        lines.append("    with the undriven joints settled at: " + ", ".join(
-            f"{j} {np.array2string(np.asarray(v), precision=6)}" for j, v in held["settled"].items()))
+        lines.append(
+            "    with the undriven joints settled at: "
+            + ", ".join(f"{j} {np.array2string(np.asarray(v), precision=6)}" for j, v in held["settled"].items())
+        )
     return "\n".join(lines)

@@ -134,8 +134,12 @@ def settle(m: Mechanism, q: np.ndarray) -> np.ndarray:
             scale = max(1.0, float(np.max(np.abs(load))))
             if U.shape[1] == 0 or np.max(np.abs(G)) <= SETTLE_TOL * scale:
                 return q
-            H = np.column_stack([(along(U, moved(q, SETTLE_STEP * u)) - along(U, moved(q, -SETTLE_STEP * u)))
-                                 / (2 * SETTLE_STEP) for u in U.T])
+            H = np.column_stack(
+                [
+                    (along(U, moved(q, SETTLE_STEP * u)) - along(U, moved(q, -SETTLE_STEP * u))) / (2 * SETTLE_STEP)
+                    for u in U.T
+                ]
+            )
             w, V = np.linalg.eigh(0.5 * (H + H.T))
             w = np.maximum(np.abs(w), 1e-9 * max(float(np.max(np.abs(w))), scale))
             dz = -V @ ((V.T @ G) / w)
@@ -152,10 +156,15 @@ def settle(m: Mechanism, q: np.ndarray) -> np.ndarray:
                 t *= 0.5
             else:
                 break
-    joints = [m.model.names[j] for j in range(1, m.model.njoints)
-              if np.max(np.abs(U[m.model.joints[j].idx_v:m.model.joints[j].idx_v + m.model.nvs[j]]), initial=0.0) > 0.1]
-    raise MechkitError(f"the motions no actuator drives do not settle: after {SETTLE_STEPS} steps they still carry "
-                       f"{np.max(np.abs(G)):.3e} (N m or N) of load, moving {', '.join(joints)}")
+    joints = [
+        m.model.names[j]
+        for j in range(1, m.model.njoints)
+        if np.max(np.abs(U[m.model.joints[j].idx_v : m.model.joints[j].idx_v + m.model.nvs[j]]), initial=0.0) > 0.1
+    ]
+    raise MechkitError(
+        f"the motions no actuator drives do not settle: after {SETTLE_STEPS} steps they still carry "
+        f"{np.max(np.abs(G)):.3e} (N m or N) of load, moving {', '.join(joints)}"
+    )
 
 
 def outside_range(m: Mechanism, q: np.ndarray, start: np.ndarray) -> str:

@@ -42,8 +42,9 @@ def rssr() -> Mechanism:
     _frame(model, "rocker_end", rocker, np.array([0.0, 0.0, 0.15]))
     ball = core.LoopClosure("ball_b", "spherical", "rocker_end", "coupler_end")
     guess = {"ball_a": (0.1, -0.2, 0.3), "rocker": 0.2}
-    return from_description(Description("rssr", None, ("crank",), {"crank": 0.3}, guess, model=model, closures=(ball,),
-                                        format="pinocchio"))
+    return from_description(
+        Description("rssr", None, ("crank",), {"crank": 0.3}, guess, model=model, closures=(ball,), format="pinocchio")
+    )
 
 
 def floating_five_bar() -> Mechanism:
@@ -67,5 +68,15 @@ def floating_five_bar() -> Mechanism:
     weld = core.LoopClosure("ground_weld", "weld", "ground_anchor", "base_anchor")
     pin_joint = core.LoopClosure("C", "revolute", "tip_a", "tip_b", axis=np.array([0.0, 1.0, 0.0]), rows="planar")
     guess = {"dist1": 0.6, "dist2": -0.6}
-    return from_description(Description("floating_five_bar", None, ("prox1", "prox2"), {"prox1": -0.3, "prox2": 0.3},
-                                        guess, model=model, closures=(weld, pin_joint), format="pinocchio"))
+    return from_description(
+        Description(
+            "floating_five_bar",
+            None,
+            ("prox1", "prox2"),
+            {"prox1": -0.3, "prox2": 0.3},
+            guess,
+            model=model,
+            closures=(weld, pin_joint),
+            format="pinocchio",
+        )
+    )

@@ -35,8 +35,12 @@ def _modules() -> list[Path]:
 def _unannotated(fn: ast.FunctionDef | ast.AsyncFunctionDef, method: bool) -> list[str]:
     a = fn.args
     params = [*a.posonlyargs, *a.args, *a.kwonlyargs]
-    if method and params and params[0].arg in ("self", "cls") and not any(
-            isinstance(d, ast.Name) and d.id == "staticmethod" for d in fn.decorator_list):
+    if (
+        method
+        and params
+        and params[0].arg in ("self", "cls")
+        and not any(isinstance(d, ast.Name) and d.id == "staticmethod" for d in fn.decorator_list)
+    ):
         params = params[1:]
     params += [p for p in (a.vararg, a.kwarg) if p is not None]
     missing = [p.arg for p in params if p.annotation is None]
@@ -55,7 +59,9 @@ def audit() -> tuple[list[str], list[str], int]:
         if ast.get_docstring(tree) is None:
             no_doc.append(f"{where} (module)")
         for node in tree.body:
-            if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef, ast.ClassDef)) and not node.name.startswith("_"):
+            if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef, ast.ClassDef)) and not node.name.startswith(
+                "_"
+            ):
                 count += 1
                 if ast.get_docstring(node) is None:
                     no_doc.append(f"{where}:{node.lineno} {node.name}")
@@ -74,8 +80,10 @@ def audit() -> tuple[list[str], list[str], int]:
 
 def test_every_public_object_has_a_docstring_and_annotations():
     no_doc, no_ann, count = audit()
-    print(f"\n{count} public modules, classes and functions; {len(no_doc)} without a docstring, "
-          f"{len(no_ann)} not fully annotated")
+    print(
+        f"\n{count} public modules, classes and functions; {len(no_doc)} without a docstring, "
+        f"{len(no_ann)} not fully annotated"
+    )
     assert count > 300
     assert not no_doc and not no_ann, "\n".join(["no docstring:", *no_doc, "not fully annotated:", *no_ann])
 
@@ -110,8 +118,21 @@ def test_every_core_module_is_in_the_reference():
         assert f"::: mechkit.{package}\n" in pages, package
 
 
-SECTIONS = ("Args", "Arguments", "Returns", "Yields", "Raises", "Attributes", "Examples", "Example", "Note", "Notes",
-            "Warns", "See Also", "References")
+SECTIONS = (
+    "Args",
+    "Arguments",
+    "Returns",
+    "Yields",
+    "Raises",
+    "Attributes",
+    "Examples",
+    "Example",
+    "Note",
+    "Notes",
+    "Warns",
+    "See Also",
+    "References",
+)
 ENTRY = re.compile(r"^ {4}(\*{0,2}\w+)(?: \([^)]*\))?:(?: |$)")
 
 
@@ -150,8 +171,12 @@ def _parameters(fn: ast.FunctionDef | ast.AsyncFunctionDef, method: bool) -> lis
     """A function's parameters as its Args section names them (`self`/`cls` of a method aside)."""
     a = fn.args
     params = [p.arg for p in [*a.posonlyargs, *a.args, *a.kwonlyargs]]
-    if method and params and params[0] in ("self", "cls") and not any(
-            isinstance(d, ast.Name) and d.id == "staticmethod" for d in fn.decorator_list):
+    if (
+        method
+        and params
+        and params[0] in ("self", "cls")
+        and not any(isinstance(d, ast.Name) and d.id == "staticmethod" for d in fn.decorator_list)
+    ):
         params = params[1:]
     return params + ([f"*{a.vararg.arg}"] if a.vararg else []) + ([f"**{a.kwarg.arg}"] if a.kwarg else [])
 
@@ -173,8 +198,11 @@ def _undocumented(fn: ast.FunctionDef | ast.AsyncFunctionDef, method: bool) -> l
     if extra or len(named) != len(set(named)):
         lacks.append("Args names no parameter or twice: " + ", ".join(extra or named))
     returns = fn.returns
-    nothing = returns is None or (isinstance(returns, ast.Constant) and returns.value is None) or (
-        isinstance(returns, ast.Name) and returns.id in ("None", "NoReturn"))
+    nothing = (
+        returns is None
+        or (isinstance(returns, ast.Constant) and returns.value is None)
+        or (isinstance(returns, ast.Name) and returns.id in ("None", "NoReturn"))
+    )
     prop = any(isinstance(d, ast.Name) and d.id == "property" for d in fn.decorator_list)
     if not nothing and not prop and not ({"Returns", "Yields"} & set(sections)):
         lacks.append("Returns")
@@ -191,12 +219,18 @@ def docs_audit() -> tuple[list[str], int]:
     for path in _modules():
         where = path.relative_to(PACKAGE.parent).as_posix()
         tree = ast.parse(path.read_text(), filename=where)
-        functions = [(node, False, node.name) for node in tree.body
-                     if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef)) and not node.name.startswith("_")]
+        functions = [
+            (node, False, node.name)
+            for node in tree.body
+            if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef)) and not node.name.startswith("_")
+        ]
         for cls in tree.body:
             if isinstance(cls, ast.ClassDef) and not cls.name.startswith("_"):
-                functions += [(sub, True, f"{cls.name}.{sub.name}") for sub in cls.body
-                              if isinstance(sub, (ast.FunctionDef, ast.AsyncFunctionDef)) and not sub.name.startswith("_")]
+                functions += [
+                    (sub, True, f"{cls.name}.{sub.name}")
+                    for sub in cls.body
+                    if isinstance(sub, (ast.FunctionDef, ast.AsyncFunctionDef)) and not sub.name.startswith("_")
+                ]
         for fn, method, name in functions:
             lacks = _undocumented(fn, method)
             count += bool(_parameters(fn, method))
@@ -214,15 +248,23 @@ def test_every_public_function_documents_its_parameters_returns_and_raises():
 def test_the_docs_audit_sees_what_it_claims():
     """The audit flags a parameter missing from Args, a name there that is no parameter, a missing
     Returns and an exception raised but not listed; a complete docstring passes."""
-    code = ('''def f(x: int, y: int) -> int:\n    """Sum.\n\n    Args:\n        x: one.\n        z: none.\n    """\n'''
-            '''    if x < 0:\n        raise ValueError(x)\n    return x + y\n''')
+    code = (
+        '''def f(x: int, y: int) -> int:\n    """Sum.\n\n    Args:\n        x: one.\n        z: none.\n    """\n'''
+        """    if x < 0:\n        raise ValueError(x)\n    return x + y\n"""
+    )
     fn = ast.parse(code).body[0]
-    assert _undocumented(fn, method=False) == ["Args: y", "Args names no parameter or twice: z", "Returns",
-                                               "Raises: ValueError"]
-    good = ('''def f(x: int, *rest: int) -> int:\n    """Sum.\n\n    Args:\n        x (int): one.\n'''
-            '''        *rest: the others,\n            continued.\n\n    Returns:\n        The sum.\n\n'''
-            '''    Raises:\n        ValueError: x < 0.\n    """\n    if x < 0:\n        raise ValueError(x)\n'''
-            '''    return x + sum(rest)\n''')
+    assert _undocumented(fn, method=False) == [
+        "Args: y",
+        "Args names no parameter or twice: z",
+        "Returns",
+        "Raises: ValueError",
+    ]
+    good = (
+        '''def f(x: int, *rest: int) -> int:\n    """Sum.\n\n    Args:\n        x (int): one.\n'''
+        """        *rest: the others,\n            continued.\n\n    Returns:\n        The sum.\n\n"""
+        '''    Raises:\n        ValueError: x < 0.\n    """\n    if x < 0:\n        raise ValueError(x)\n'''
+        """    return x + sum(rest)\n"""
+    )
     assert _undocumented(ast.parse(good).body[0], method=False) == []
     method = ast.parse("class A:\n    @property\n    def p(self) -> int:\n        'The p.'\n").body[0].body[0]
     assert _undocumented(method, method=True) == []

@@ -25,8 +25,10 @@ def test_every_command_ends_its_help_with_two_examples_that_parse():
     assert len(subs) == len(COMMANDS)
     for name, sub in subs.items():
         lines = sub.format_help().rstrip().splitlines()
-        assert lines[-3] == "examples:", (f"`mechkit {name} --help` must end with two examples: pass "
-                                          f"**mechkit.cli.common.examples(cmd1, cmd2) to its sub.add_parser")
+        assert lines[-3] == "examples:", (
+            f"`mechkit {name} --help` must end with two examples: pass "
+            f"**mechkit.cli.common.examples(cmd1, cmd2) to its sub.add_parser"
+        )
         for line in lines[-2:]:
             argv = shlex.split(line.split("|")[0])
             assert argv[:2] == ["mechkit", name], line
@@ -34,35 +36,46 @@ def test_every_command_ends_its_help_with_two_examples_that_parse():
             assert args.command == name
 
 
-@pytest.mark.parametrize("args, needle", [
-    (["report", "four_bar", "--set", "crank=-1"], "'crank'"),
-    (["report", "four_bar", "--set", "wheels=3"], "'wheels'"),
-    (["report", "four_bar", "--set", "crank"], "name=value"),
-    (["report", "nine_bar"], "no such mechanism"),
-])
+@pytest.mark.parametrize(
+    "args, needle",
+    [
+        (["report", "four_bar", "--set", "crank=-1"], "'crank'"),
+        (["report", "four_bar", "--set", "wheels=3"], "'wheels'"),
+        (["report", "four_bar", "--set", "crank"], "name=value"),
+        (["report", "nine_bar"], "no such mechanism"),
+    ],
+)
 def test_bad_input_is_one_line_and_exit_2(args, needle):
     refused(run_mechkit(*args), needle)
 
 
 def test_broken_pipe_ends_quietly():
-    proc = subprocess.Popen(f"{sys.executable} -m mechkit urdf deployable_9rr12uru | head -c 10", shell=True,
-                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, env={**os.environ, "PYTHONPATH": str(ROOT)})
+    proc = subprocess.Popen(
+        f"{sys.executable} -m mechkit urdf deployable_9rr12uru | head -c 10",
+        shell=True,
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        env={**os.environ, "PYTHONPATH": str(ROOT)},
+    )
     out, err = proc.communicate(timeout=300)
     assert out == b"<?xml vers" and b"Traceback" not in err and err == b""
 
 
-@pytest.mark.parametrize("args,words", [
-    (("bench", "nope", "--quick"), ("nope",)),
-    (("urdf", "nope"), ("nope",)),
-    (("urdf", "five_bar", "--set", "bogus=1"), ("bogus",)),
-    (("urdf", "five_bar", "--set", "prox1=nan"), ("prox1",)),
-    (("urdf", "five_bar", "--set", "prox1=-1"), ("prox1",)),
-    (("urdf", "five_bar", "--set", "density=1e-12"), ("mass",)),
-    (("urdf", "five_bar", "--set", "prox1"), ("name=value",)),
-    (("report", "tetra_3rr3uru", "--set", "gamma_ref=0.0623"), ("fold: node positions",)),
-    (("report", "five_bar", "--set", "rows=spherical"), ("kkt_vs_proximal",)),
-    (("report", "ten_bar", "--set", "deploy_time=1e-300"), ("numerical failure",)),
-    (("bench", "--quick", "--markdown", "/dev/null", "four_bar"), ("device",)),
-])
+@pytest.mark.parametrize(
+    "args,words",
+    [
+        (("bench", "nope", "--quick"), ("nope",)),
+        (("urdf", "nope"), ("nope",)),
+        (("urdf", "five_bar", "--set", "bogus=1"), ("bogus",)),
+        (("urdf", "five_bar", "--set", "prox1=nan"), ("prox1",)),
+        (("urdf", "five_bar", "--set", "prox1=-1"), ("prox1",)),
+        (("urdf", "five_bar", "--set", "density=1e-12"), ("mass",)),
+        (("urdf", "five_bar", "--set", "prox1"), ("name=value",)),
+        (("report", "tetra_3rr3uru", "--set", "gamma_ref=0.0623"), ("fold: node positions",)),
+        (("report", "five_bar", "--set", "rows=spherical"), ("kkt_vs_proximal",)),
+        (("report", "ten_bar", "--set", "deploy_time=1e-300"), ("numerical failure",)),
+        (("bench", "--quick", "--markdown", "/dev/null", "four_bar"), ("device",)),
+    ],
+)
 def test_named_refusals(args, words):
     refused(run_mechkit(*args), *words)

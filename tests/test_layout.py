@@ -170,8 +170,13 @@ def _mechanism_imports(path: Path) -> list[str]:
     """The `mechkit.mechanisms...` modules a file imports anywhere (absolute imports)."""
     found = []
     for node in ast.walk(ast.parse(path.read_text(), str(path))):
-        names = [a.name for a in node.names] if isinstance(node, ast.Import) else \
-            [node.module or ""] if isinstance(node, ast.ImportFrom) and not node.level else []
+        names = (
+            [a.name for a in node.names]
+            if isinstance(node, ast.Import)
+            else [node.module or ""]
+            if isinstance(node, ast.ImportFrom) and not node.level
+            else []
+        )
         found += [n for n in names if n == "mechkit.mechanisms" or n.startswith("mechkit.mechanisms.")]
     return found
 
@@ -188,14 +193,18 @@ def test_only_the_contract_leads_to_a_mechanism():
 
 def test_a_bypass_of_the_contract_is_detected(tmp_path):
     """The detector itself, on the kinds of import statement a bypass takes."""
-    code = ("import mechkit.mechanisms.ten_bar.dynamics as td\n"
-            "from mechkit.mechanisms.rocket_gimbal import resultant\n"
-            "def f():\n    from mechkit.mechanisms.parallel_2t1r.motion_law import motion_law\n"
-            "from mechkit.catalog.registry import get_spec\n")
+    code = (
+        "import mechkit.mechanisms.ten_bar.dynamics as td\n"
+        "from mechkit.mechanisms.rocket_gimbal import resultant\n"
+        "def f():\n    from mechkit.mechanisms.parallel_2t1r.motion_law import motion_law\n"
+        "from mechkit.catalog.registry import get_spec\n"
+    )
     (tmp_path / "m.py").write_text(code)
-    assert _mechanism_imports(tmp_path / "m.py") == ["mechkit.mechanisms.ten_bar.dynamics",
-                                                     "mechkit.mechanisms.rocket_gimbal",
-                                                     "mechkit.mechanisms.parallel_2t1r.motion_law"]
+    assert _mechanism_imports(tmp_path / "m.py") == [
+        "mechkit.mechanisms.ten_bar.dynamics",
+        "mechkit.mechanisms.rocket_gimbal",
+        "mechkit.mechanisms.parallel_2t1r.motion_law",
+    ]
 
 
 def test_no_test_runs_a_tool():
@@ -209,8 +218,11 @@ def test_no_test_runs_a_tool():
                 found.append(f"{path.relative_to(ROOT)}:{node.lineno} {node.attr}")
             elif isinstance(node, (ast.Import, ast.ImportFrom)):
                 names = [a.name for a in node.names] if isinstance(node, ast.Import) else [node.module or ""]
-                found += [f"{path.relative_to(ROOT)}:{node.lineno} import {n}" for n in names
-                          if n.split(".")[0] == "tools" or n in ("runpy",)]
+                found += [
+                    f"{path.relative_to(ROOT)}:{node.lineno} import {n}"
+                    for n in names
+                    if n.split(".")[0] == "tools" or n in ("runpy",)
+                ]
     assert not found, found
 
 
@@ -224,9 +236,14 @@ def test_every_mechanism_has_its_files_and_no_file_is_orphaned():
     templates = {p.name.removesuffix(".urdf.xacro") for p in (ROOT / "xacro").glob("*.urdf.xacro")}
     urdfs = {p.stem for p in (ROOT / "urdf").glob("*.urdf")}
     pages = {p.stem for p in (ROOT / "docs" / "mechanisms").glob("*.md")}
-    for kind, found in (("xacro/<name>.urdf.xacro", templates), ("urdf/<name>.urdf", urdfs),
-                        ("docs/mechanisms/<name>.md", pages)):
-        assert found == registered, f"{kind}: missing {sorted(registered - found)}, orphaned {sorted(found - registered)}"
+    for kind, found in (
+        ("xacro/<name>.urdf.xacro", templates),
+        ("urdf/<name>.urdf", urdfs),
+        ("docs/mechanisms/<name>.md", pages),
+    ):
+        assert found == registered, (
+            f"{kind}: missing {sorted(registered - found)}, orphaned {sorted(found - registered)}"
+        )
     texts = "".join(p.read_text() for p in (ROOT / "xacro").glob("*.xacro"))
     macros = [p.name for p in (ROOT / "xacro").glob("*.xacro") if not p.name.endswith(".urdf.xacro")]
     assert all(f"/{m}" in texts or f"'{m}'" in texts or f'"{m}"' in texts for m in macros), macros
@@ -240,15 +257,26 @@ def test_a_circle_is_detected():
 
 
 def test_no_module_over_the_line_limit():
-    long = {str(p.relative_to(PACKAGE.parent)): n for p in PACKAGE.rglob("*.py")
-            if (n := len(p.read_text().splitlines())) > MAX_LINES}
+    long = {
+        str(p.relative_to(PACKAGE.parent)): n
+        for p in PACKAGE.rglob("*.py")
+        if (n := len(p.read_text().splitlines())) > MAX_LINES
+    }
     assert not long, f"modules over {MAX_LINES} lines: {long}"
 
 
 def _modules_after(code: str) -> list[str]:
-    out = subprocess.run([sys.executable, "-c", code + "\nimport sys, json\n"
-                          "print(json.dumps(sorted(m for m in sys.modules if m.startswith('mechkit.mechanisms'))))"],
-                         capture_output=True, text=True, check=True)
+    out = subprocess.run(
+        [
+            sys.executable,
+            "-c",
+            code + "\nimport sys, json\n"
+            "print(json.dumps(sorted(m for m in sys.modules if m.startswith('mechkit.mechanisms'))))",
+        ],
+        capture_output=True,
+        text=True,
+        check=True,
+    )
     return json.loads(out.stdout.splitlines()[-1])
 
 
@@ -283,19 +311,40 @@ def test_nothing_outside_the_core_imports_a_core_submodule():
     for path, targets in _graph().items():
         if _module_name(path).startswith("mechkit.core"):
             continue
-        inside += [f"{_module_name(path)} -> {_module_name(t)}" for t in targets
-                   if _module_name(t).startswith("mechkit.core.") and t != face]
+        inside += [
+            f"{_module_name(path)} -> {_module_name(t)}"
+            for t in targets
+            if _module_name(t).startswith("mechkit.core.") and t != face
+        ]
     assert not inside, inside
 
 
 #: Pinocchio's constraint API (legacy and newer): only `mechkit/core/pin_constraints.py` names it.
 CONSTRAINT_API = {
-    "RigidConstraintModel", "RigidConstraintData", "StdVec_RigidConstraintModel", "StdVec_RigidConstraintData",
-    "ProximalSettings", "constraintDynamics", "initConstraintDynamics", "lcaba", "computeJointMinimalOrdering",
-    "getConstraintsJacobian", "BaumgarteCorrectorParameters", "ContactType", "PointAnchorConstraintModel",
-    "FrameAnchorConstraintModel", "ConstraintModel", "ConstraintData", "ConstraintCholeskyDecomposition",
-    "ContactCholeskyDecomposition", "ADMMConstraintSolver", "PGSConstraintSolver", "contactInverseDynamics",
-    "convertToRigidConstraintModel", "buildModelAndConstraintsFromMJCF", "buildModelAndLegacyConstraintsFromMJCF",
+    "RigidConstraintModel",
+    "RigidConstraintData",
+    "StdVec_RigidConstraintModel",
+    "StdVec_RigidConstraintData",
+    "ProximalSettings",
+    "constraintDynamics",
+    "initConstraintDynamics",
+    "lcaba",
+    "computeJointMinimalOrdering",
+    "getConstraintsJacobian",
+    "BaumgarteCorrectorParameters",
+    "ContactType",
+    "PointAnchorConstraintModel",
+    "FrameAnchorConstraintModel",
+    "ConstraintModel",
+    "ConstraintData",
+    "ConstraintCholeskyDecomposition",
+    "ContactCholeskyDecomposition",
+    "ADMMConstraintSolver",
+    "PGSConstraintSolver",
+    "contactInverseDynamics",
+    "convertToRigidConstraintModel",
+    "buildModelAndConstraintsFromMJCF",
+    "buildModelAndLegacyConstraintsFromMJCF",
 }
 
 
@@ -324,15 +373,16 @@ def test_the_constraint_api_scan_sees_attributes_and_imports(tmp_path):
 #: Modules without a test file at their mirrored path, and where their behaviour is tested instead.
 TESTED_ELSEWHERE = {
     "mechkit/__main__.py": "`python -m mechkit` runs `mechkit.cli.main`: every subprocess test of the command line "
-                           "goes through it (tests/test_cli.py, tests/cli/)",
+    "goes through it (tests/test_cli.py, tests/cli/)",
     "mechkit/base/arguments.py": "the argument checks of the Mechanism API: the bad-input campaign of tests/test_mechanism.py",
-    "mechkit/base/joint_arguments.py": ("the joint-naming argument checks of the Mechanism API: the bad-input campaign "
-                                        "of tests/test_mechanism.py"),
+    "mechkit/base/joint_arguments.py": (
+        "the joint-naming argument checks of the Mechanism API: the bad-input campaign of tests/test_mechanism.py"
+    ),
     "mechkit/base/exceptions.py": "the error classes: raised and matched by name throughout the tests",
     "mechkit/base/plotting.py": "matplotlib set up for every figure: drawn by the studies' and figures' tests",
     "mechkit/base/resources.py": "where the packaged templates and URDFs are: tests/catalog/test_contract.py reads every one",
     "mechkit/base/spatial.py": "rotation and cross-product helpers of the mechanisms' kinematics, tested with them "
-                               "(tests/mechanisms/truss/test_geometry.py checks the paper's rotations)",
+    "(tests/mechanisms/truss/test_geometry.py checks the paper's rotations)",
     "mechkit/bench/charts.py": "drawn by `mechkit bench` in tests/cli/test_bench.py",
     "mechkit/bench/markdown.py": "the benchmark page, written by `mechkit bench` in tests/cli/test_bench.py",
     "mechkit/bench/raw.py": "the raw constraintDynamics rows, measured in tests/bench/test_run.py and tests/cli/test_bench.py",
@@ -341,34 +391,34 @@ TESTED_ELSEWHERE = {
     "mechkit/bench/scale.py": "the cost-against-size fit, printed by `mechkit bench` in tests/cli/test_bench.py",
     "mechkit/export/xmltext.py": "the XML text of the MJCF export: tests/export/test_mjcf.py compiles every file in MuJoCo",
     "mechkit/independent_inputs.py": "the joints a motion fixes: tests/motion/test_study.py (the ten-bar's passive input) "
-                                     "and tests/second_opinion/test_agreement.py",
+    "and tests/second_opinion/test_agreement.py",
     "mechkit/mechanisms/deployable_9rr12uru/actuation.py": "the composite's actuators and home: its model tests, "
-                                                           "tests/mechanisms/test_deployable_9rr12uru.py",
+    "tests/mechanisms/test_deployable_9rr12uru.py",
     "mechkit/mechanisms/deployable_9rr12uru/figures.py": "drawn in tests/mechanisms/deployable_9rr12uru/test_studies.py",
     "mechkit/mechanisms/deployable_9rr12uru/params.py": "bad parameters named in tests/mechanisms/test_deployable_9rr12uru.py",
     "mechkit/mechanisms/five_bar/__init__.py": "its SPEC: tests/catalog/test_contract.py; its model against the closed "
-                                               "form: tests/test_mechanism.py",
+    "form: tests/test_mechanism.py",
     "mechkit/mechanisms/five_bar/closed_form.py": "the bench's reference: tests/bench/test_methods.py, tests/bench/test_run.py",
     "mechkit/mechanisms/five_bar/params.py": "checked by the property campaign, tests/catalog/test_params.py",
     "mechkit/mechanisms/four_bar/__init__.py": "its SPEC: tests/catalog/test_contract.py; its model against the closed "
-                                               "form: tests/test_mechanism.py",
+    "form: tests/test_mechanism.py",
     "mechkit/mechanisms/four_bar/closed_form.py": "the bench's reference: tests/bench/test_methods.py, tests/bench/test_run.py",
     "mechkit/mechanisms/planar_linkage/bench.py": "the planar linkages' bench methods and references: "
-                                                  "tests/bench/test_methods.py, tests/bench/test_run.py",
+    "tests/bench/test_methods.py, tests/bench/test_run.py",
     "mechkit/mechanisms/planar_linkage/lagrange.py": "a bench method of the planar linkages: tests/bench/test_methods.py",
     "mechkit/mechanisms/planar_linkage/state.py": "the planar linkages' bench states: tests/bench/test_methods.py",
     "mechkit/mechanisms/rocket_gimbal/__init__.py": "its SPEC: tests/catalog/test_contract.py; its parts: "
-                                                    "tests/mechanisms/rocket_gimbal/",
+    "tests/mechanisms/rocket_gimbal/",
     "mechkit/mechanisms/rocket_gimbal/design.py": "its metric is `kinematics.linear_rule_errors` on a grid, which "
-                                                  "tests/mechanisms/rocket_gimbal/test_studies.py runs through the "
-                                                  "linearisation study; the sweep hook itself has no test of its own",
+    "tests/mechanisms/rocket_gimbal/test_studies.py runs through the "
+    "linearisation study; the sweep hook itself has no test of its own",
     "mechkit/mechanisms/rocket_gimbal/figures.py": "drawn in tests/mechanisms/rocket_gimbal/test_studies.py",
     "mechkit/mechanisms/spherical_2dof/figures.py": "drawn in tests/mechanisms/spherical_2dof/test_studies.py",
     "mechkit/mechanisms/ten_bar/design.py": "the deployment metric, read through the sweep: tests/sweep/test_specific.py",
     "mechkit/mechanisms/ten_bar/lagrange_deployment.py": "the Lagrange route of the deployment, against the Pinocchio "
-                                                         "route in tests/mechanisms/ten_bar/test_dynamics.py",
+    "route in tests/mechanisms/ten_bar/test_dynamics.py",
     "mechkit/mechanisms/ten_bar/lagrange_model.py": "the patent's Lagrange model: tests/mechanisms/ten_bar/test_dynamics.py "
-                                                    "and tests/mechanisms/ten_bar/test_checks.py",
+    "and tests/mechanisms/ten_bar/test_checks.py",
     "mechkit/mechanisms/ten_bar/scenes.py": "the deployment scene: tests/mechanisms/test_ten_bar.py (the deployment law)",
     "mechkit/mechanisms/ten_bar/soc.py": "reactions three ways: tests/mechanisms/ten_bar/test_checks.py",
     "mechkit/mechanisms/tetra_3rr3uru/actuation.py": "the unit's actuators and home: tests/mechanisms/test_tetra_3rr3uru.py",
@@ -377,7 +427,7 @@ TESTED_ELSEWHERE = {
     "mechkit/mechanisms/truss/checks.py": "the truss mechanisms' report rows: tests/test_report.py",
     "mechkit/mechanisms/truss/joint_state.py": "the web-joint laws the fold follows: tests/mechanisms/truss/test_fold.py",
     "mechkit/mechanisms/truss/nodes.py": "node centres along the fold: tests/mechanisms/truss/test_fold.py and "
-                                         "tests/mechanisms/test_deployable_9rr12uru.py",
+    "tests/mechanisms/test_deployable_9rr12uru.py",
     "mechkit/motion/path.py": "the kinematics of every study: tests/motion/test_study.py",
     "mechkit/motion/plot.py": "drawn by `mechkit motion --plot` in tests/cli/test_motion.py",
     "mechkit/second_opinion/instant.py": "a part of every second opinion: tests/second_opinion/test_agreement.py",
@@ -387,7 +437,7 @@ TESTED_ELSEWHERE = {
     "mechkit/sources/mjcf/constraints.py": "a part of the MJCF reader: tests/sources/test_mjcf.py",
     "mechkit/sources/mjcf/tree.py": "a part of the MJCF reader: tests/sources/test_mjcf.py",
     "mechkit/sources/pinocchio_tree.py": "the trees of the MJCF and SDFormat readers: tests/sources/test_mjcf.py, "
-                                         "tests/sources/test_sdf.py",
+    "tests/sources/test_sdf.py",
     "mechkit/sweep/store.py": "written, resumed and read in tests/sweep/test_engine.py",
     "mechkit/validation/planar_motion.py": "the planar linkages' state: tests/validation/test_planar_closed_form.py",
     "mechkit/viz/browser.py": "the screenshots of every real-browser test (tests/viz/in_browser.py)",
@@ -401,7 +451,8 @@ def _has_code(init: Path) -> bool:
     """Whether a package's face defines something (beyond its docstring, imports and `__all__`)."""
     for node in ast.parse(init.read_text()).body:
         if isinstance(node, (ast.Import, ast.ImportFrom)) or (
-                isinstance(node, ast.Expr) and isinstance(node.value, ast.Constant)):
+            isinstance(node, ast.Expr) and isinstance(node.value, ast.Constant)
+        ):
             continue
         if isinstance(node, ast.Assign) and all(isinstance(t, ast.Name) and t.id == "__all__" for t in node.targets):
             continue
@@ -430,7 +481,9 @@ def test_every_module_has_its_test_file():
         name = str(path.relative_to(ROOT))
         if name in TESTED_ELSEWHERE:
             listed.append(name)
-            assert test is None or not test.is_file(), f"{name} has {test.relative_to(ROOT)}: drop it from TESTED_ELSEWHERE"
+            assert test is None or not test.is_file(), (
+                f"{name} has {test.relative_to(ROOT)}: drop it from TESTED_ELSEWHERE"
+            )
         elif test is not None and not test.is_file():
             missing.append(f"{name} -> {test.relative_to(ROOT)}")
     assert not missing, missing
@@ -441,61 +494,131 @@ def test_the_mirror_of_a_module_and_of_a_face():
     """The rule itself: a module's test is beside its folder's mirror, a face's is named after its package."""
     assert _mirrored_test(PACKAGE / "sweep" / "engine.py") == ROOT / "tests" / "sweep" / "test_engine.py"
     assert _mirrored_test(PACKAGE / "cli" / "__init__.py") == ROOT / "tests" / "test_cli.py"
-    assert _mirrored_test(PACKAGE / "mechanisms" / "ten_bar" / "__init__.py") == ROOT / "tests" / "mechanisms" / "test_ten_bar.py"
-    assert _mirrored_test(PACKAGE / "__init__.py") is None and _mirrored_test(PACKAGE / "validation" / "__init__.py") is None
+    assert (
+        _mirrored_test(PACKAGE / "mechanisms" / "ten_bar" / "__init__.py")
+        == ROOT / "tests" / "mechanisms" / "test_ten_bar.py"
+    )
+    assert (
+        _mirrored_test(PACKAGE / "__init__.py") is None
+        and _mirrored_test(PACKAGE / "validation" / "__init__.py") is None
+    )
 
 
 #: Module names found in several folders of mechkit, each one concept wherever it appears: why, and where
 #: it may appear (a package is its folder, with a trailing slash). Any other repeated name fails.
 SAME_CONCEPT = {
     "actuation": ("a mechanism package's actuators and home", ("mechkit/mechanisms/*/actuation.py",)),
-    "bench": (("the bench: mechkit/bench/ measures, cli/bench.py is `mechkit bench`, a mechanism package's bench.py "
-              "declares the methods it adds to it"), ("mechkit/bench/", "mechkit/cli/bench.py", "mechkit/mechanisms/*/bench.py")),
+    "bench": (
+        (
+            "the bench: mechkit/bench/ measures, cli/bench.py is `mechkit bench`, a mechanism package's bench.py "
+            "declares the methods it adds to it"
+        ),
+        ("mechkit/bench/", "mechkit/cli/bench.py", "mechkit/mechanisms/*/bench.py"),
+    ),
     "checks": ("a mechanism package's self-checks (the rows of `mechkit report`)", ("mechkit/mechanisms/*/checks.py",)),
     "closed_form": ("a planar calibration linkage's closed form", ("mechkit/mechanisms/*/closed_form.py",)),
-    "design": ("a mechanism's figures of merit for a sweep (`MechanismSpec.design_metrics`)",
-               ("mechkit/mechanisms/*/design.py",)),
-    "export": ("exporting a mechanism: the package, and `mechkit export` (cli/export.py)",
-               ("mechkit/export/", "mechkit/cli/export.py")),
-    "extended_urdf": ("the Extended URDF format: sources/ reads it, export/ writes it",
-                      ("mechkit/sources/extended_urdf.py", "mechkit/export/extended_urdf.py")),
-    "failure": ("a mechanism's failure-atlas study (`MechanismSpec.failure_studies`)", ("mechkit/mechanisms/*/failure.py",)),
+    "design": (
+        "a mechanism's figures of merit for a sweep (`MechanismSpec.design_metrics`)",
+        ("mechkit/mechanisms/*/design.py",),
+    ),
+    "export": (
+        "exporting a mechanism: the package, and `mechkit export` (cli/export.py)",
+        ("mechkit/export/", "mechkit/cli/export.py"),
+    ),
+    "extended_urdf": (
+        "the Extended URDF format: sources/ reads it, export/ writes it",
+        ("mechkit/sources/extended_urdf.py", "mechkit/export/extended_urdf.py"),
+    ),
+    "failure": (
+        "a mechanism's failure-atlas study (`MechanismSpec.failure_studies`)",
+        ("mechkit/mechanisms/*/failure.py",),
+    ),
     "figures": ("a mechanism's figures, drawn from its studies' data", ("mechkit/mechanisms/*/figures.py",)),
     "geometry": ("a mechanism package's paper geometry (numpy only)", ("mechkit/mechanisms/*/geometry.py",)),
-    "joint_state": ("a mechanism's analytic state written on (and read from) its URDF tree's joints",
-                    ("mechkit/mechanisms/*/joint_state.py",)),
-    "kinematics": (("a mechanism's kinematics: the core's numerical closure kinematics, and each mechanism package's "
-                   "from its paper"), ("mechkit/core/kinematics.py", "mechkit/mechanisms/*/kinematics.py")),
-    "lagrange": (("Lagrange's equations of the first kind: the method (validation/) and the planar linkages written "
-                 "in it"), ("mechkit/validation/lagrange.py", "mechkit/mechanisms/planar_linkage/lagrange.py")),
-    "mjcf": ("the MJCF format: sources/mjcf/ reads it, export/ writes it", ("mechkit/sources/mjcf/", "mechkit/export/mjcf.py")),
-    "motion": ("motion studies: the package, and `mechkit motion` (cli/motion.py)", ("mechkit/motion/", "mechkit/cli/motion.py")),
-    "params": (("a mechanism's parameters: their base class (catalog/), each mechanism package's class, and `mechkit "
-               "params` (cli/), which lists them"), ("mechkit/catalog/params.py", "mechkit/cli/params.py",
-                                                    "mechkit/mechanisms/*/params.py")),
-    "modes": ("natural frequencies and mode shapes: elastic/modes.py computes them, `mechkit modes` (cli/) prints them",
-              ("mechkit/elastic/modes.py", "mechkit/cli/modes.py")),
-    "plot": ("the figure of a study over time: a motion study's (motion/) and a simulation's (simulation/)",
-             ("mechkit/motion/plot.py", "mechkit/simulation/plot.py")),
-    "report": ("a mechanism's report: the library module, and `mechkit report` (cli/report.py)",
-               ("mechkit/report.py", "mechkit/cli/report.py")),
-    "results": (("a package's result types, what its functions return: the core's (mobility, dynamics), the bench's "
-                "(its rows)"), ("mechkit/core/results.py", "mechkit/bench/results.py")),
-    "result": (("the arrays and table of a study over time: a motion study's (history/), and a simulation's, which "
-                "extends it with time, energies and events (simulation/)"),
-               ("mechkit/history/result.py", "mechkit/simulation/result.py")),
-    "scenes": (("a mechanism's scenes: the protocol with the generic sweep (scenes.py), and each mechanism package's "
-               "own"), ("mechkit/scenes.py", "mechkit/mechanisms/*/scenes.py")),
-    "simulate": ("simulation in time: simulation/simulate.py runs it, `mechkit simulate` (cli/) prints and writes it",
-                 ("mechkit/simulation/simulate.py", "mechkit/cli/simulate.py")),
-    "soc": (("sequential SOC virtual work: the solver (validation/soc.py) and each mechanism package's hand-written "
-            "decomposition solved by it"), ("mechkit/validation/soc.py", "mechkit/mechanisms/*/soc.py")),
+    "joint_state": (
+        "a mechanism's analytic state written on (and read from) its URDF tree's joints",
+        ("mechkit/mechanisms/*/joint_state.py",),
+    ),
+    "kinematics": (
+        (
+            "a mechanism's kinematics: the core's numerical closure kinematics, and each mechanism package's "
+            "from its paper"
+        ),
+        ("mechkit/core/kinematics.py", "mechkit/mechanisms/*/kinematics.py"),
+    ),
+    "lagrange": (
+        ("Lagrange's equations of the first kind: the method (validation/) and the planar linkages written in it"),
+        ("mechkit/validation/lagrange.py", "mechkit/mechanisms/planar_linkage/lagrange.py"),
+    ),
+    "mjcf": (
+        "the MJCF format: sources/mjcf/ reads it, export/ writes it",
+        ("mechkit/sources/mjcf/", "mechkit/export/mjcf.py"),
+    ),
+    "motion": (
+        "motion studies: the package, and `mechkit motion` (cli/motion.py)",
+        ("mechkit/motion/", "mechkit/cli/motion.py"),
+    ),
+    "params": (
+        (
+            "a mechanism's parameters: their base class (catalog/), each mechanism package's class, and `mechkit "
+            "params` (cli/), which lists them"
+        ),
+        ("mechkit/catalog/params.py", "mechkit/cli/params.py", "mechkit/mechanisms/*/params.py"),
+    ),
+    "modes": (
+        "natural frequencies and mode shapes: elastic/modes.py computes them, `mechkit modes` (cli/) prints them",
+        ("mechkit/elastic/modes.py", "mechkit/cli/modes.py"),
+    ),
+    "plot": (
+        "the figure of a study over time: a motion study's (motion/) and a simulation's (simulation/)",
+        ("mechkit/motion/plot.py", "mechkit/simulation/plot.py"),
+    ),
+    "report": (
+        "a mechanism's report: the library module, and `mechkit report` (cli/report.py)",
+        ("mechkit/report.py", "mechkit/cli/report.py"),
+    ),
+    "results": (
+        (
+            "a package's result types, what its functions return: the core's (mobility, dynamics), the bench's "
+            "(its rows)"
+        ),
+        ("mechkit/core/results.py", "mechkit/bench/results.py"),
+    ),
+    "result": (
+        (
+            "the arrays and table of a study over time: a motion study's (history/), and a simulation's, which "
+            "extends it with time, energies and events (simulation/)"
+        ),
+        ("mechkit/history/result.py", "mechkit/simulation/result.py"),
+    ),
+    "scenes": (
+        ("a mechanism's scenes: the protocol with the generic sweep (scenes.py), and each mechanism package's own"),
+        ("mechkit/scenes.py", "mechkit/mechanisms/*/scenes.py"),
+    ),
+    "simulate": (
+        "simulation in time: simulation/simulate.py runs it, `mechkit simulate` (cli/) prints and writes it",
+        ("mechkit/simulation/simulate.py", "mechkit/cli/simulate.py"),
+    ),
+    "soc": (
+        (
+            "sequential SOC virtual work: the solver (validation/soc.py) and each mechanism package's hand-written "
+            "decomposition solved by it"
+        ),
+        ("mechkit/validation/soc.py", "mechkit/mechanisms/*/soc.py"),
+    ),
     "studies": ("a mechanism package's studies, returning data", ("mechkit/mechanisms/*/studies.py",)),
-    "sweep": ("design sweeps: the package, and `mechkit sweep` (cli/sweep.py)", ("mechkit/sweep/", "mechkit/cli/sweep.py")),
-    "urdf": ("URDF: sources/urdf.py reads it, `mechkit urdf` (cli/urdf.py) writes a mechanism's",
-             ("mechkit/sources/urdf.py", "mechkit/cli/urdf.py")),
-    "urdf_plus": ("the URDF+ format: sources/ reads it, export/ writes it",
-                  ("mechkit/sources/urdf_plus.py", "mechkit/export/urdf_plus.py")),
+    "sweep": (
+        "design sweeps: the package, and `mechkit sweep` (cli/sweep.py)",
+        ("mechkit/sweep/", "mechkit/cli/sweep.py"),
+    ),
+    "urdf": (
+        "URDF: sources/urdf.py reads it, `mechkit urdf` (cli/urdf.py) writes a mechanism's",
+        ("mechkit/sources/urdf.py", "mechkit/cli/urdf.py"),
+    ),
+    "urdf_plus": (
+        "the URDF+ format: sources/ reads it, export/ writes it",
+        ("mechkit/sources/urdf_plus.py", "mechkit/export/urdf_plus.py"),
+    ),
 }
 
 
@@ -516,8 +639,11 @@ def test_a_module_name_in_several_folders_is_one_concept():
     """No two modules share a name unless they are one concept (listed in `SAME_CONCEPT`, with where)."""
     repeated = _repeated_names()
     unexplained = {name: where for name, where in repeated.items() if name not in SAME_CONCEPT}
-    astray = {name: [w for w in where if not any(fnmatch(w, p) for p in SAME_CONCEPT[name][1])]
-              for name, where in repeated.items() if name in SAME_CONCEPT}
+    astray = {
+        name: [w for w in where if not any(fnmatch(w, p) for p in SAME_CONCEPT[name][1])]
+        for name, where in repeated.items()
+        if name in SAME_CONCEPT
+    }
     assert not unexplained, f"rename, or add to SAME_CONCEPT with the reason: {unexplained}"
     assert not any(astray.values()), {name: where for name, where in astray.items() if where}
     assert set(SAME_CONCEPT) <= set(repeated), f"no longer repeated: {sorted(set(SAME_CONCEPT) - set(repeated))}"

@@ -40,9 +40,16 @@ def test_load_refuses_bad_names_and_parameters(case):
         mechkit.load(*args, **kwargs)
 
 
-@pytest.mark.parametrize("urdf,kind", [(None, InvalidArgument), ("", InvalidArgument), (42, InvalidArgument),
-                                       ("<robot name='x'><link name='a'/>", MalformedDescription),
-                                       ("/no/such/file.urdf", MalformedDescription)])
+@pytest.mark.parametrize(
+    "urdf,kind",
+    [
+        (None, InvalidArgument),
+        ("", InvalidArgument),
+        (42, InvalidArgument),
+        ("<robot name='x'><link name='a'/>", MalformedDescription),
+        ("/no/such/file.urdf", MalformedDescription),
+    ],
+)
 def test_from_urdf_refuses_what_is_not_urdf(urdf, kind):
     with pytest.raises(kind):
         mechkit.from_urdf(urdf)

@@ -66,22 +66,47 @@ def _calls(m):
         "closure_jacobian": {"q": lambda x: m.closure_jacobian(x)},
         "closure_drift": {"q": lambda x: m.closure_drift(x, z), "v": lambda x: m.closure_drift(q, x)},
         "velocities": {"q": lambda x: m.velocities(x, [1.0, 0.5])},
-        "accelerations": {"q": lambda x: m.accelerations(x, z, [1.0, 0.5]), "v": lambda x: m.accelerations(q, x, [1.0, 0.5])},
+        "accelerations": {
+            "q": lambda x: m.accelerations(x, z, [1.0, 0.5]),
+            "v": lambda x: m.accelerations(q, x, [1.0, 0.5]),
+        },
         "mobility": {"q": lambda x: m.mobility(x)},
         "singularity": {"q": lambda x: m.singularity(x)},
-        "forward_dynamics": {"q": lambda x: m.forward_dynamics(x, z, z), "v": lambda x: m.forward_dynamics(q, x, z),
-                             "tau": lambda x: m.forward_dynamics(q, z, x)},
-        "forward_dynamics_kkt": {"q": lambda x: m.forward_dynamics(x, z, z, "kkt"), "tau": lambda x: m.forward_dynamics(q, z, x, "kkt")},
-        "inverse_dynamics": {"q": lambda x: m.inverse_dynamics(x, z, z), "v": lambda x: m.inverse_dynamics(q, x, z),
-                             "a": lambda x: m.inverse_dynamics(q, z, x)},
+        "forward_dynamics": {
+            "q": lambda x: m.forward_dynamics(x, z, z),
+            "v": lambda x: m.forward_dynamics(q, x, z),
+            "tau": lambda x: m.forward_dynamics(q, z, x),
+        },
+        "forward_dynamics_kkt": {
+            "q": lambda x: m.forward_dynamics(x, z, z, "kkt"),
+            "tau": lambda x: m.forward_dynamics(q, z, x, "kkt"),
+        },
+        "inverse_dynamics": {
+            "q": lambda x: m.inverse_dynamics(x, z, z),
+            "v": lambda x: m.inverse_dynamics(q, x, z),
+            "a": lambda x: m.inverse_dynamics(q, z, x),
+        },
     }
 
 
-ARRAY_CASES = [(method, arg, kind) for method, args in {
-    "closure_residual": ["q"], "closure_jacobian": ["q"], "closure_drift": ["q", "v"], "velocities": ["q"],
-    "accelerations": ["q", "v"], "mobility": ["q"], "singularity": ["q"], "forward_dynamics": ["q", "v", "tau"],
-    "forward_dynamics_kkt": ["q", "tau"], "inverse_dynamics": ["q", "v", "a"]}.items()
-    for arg in args for kind in BAD_VECTORS if not (method == "mobility" and kind == "none")]  # None: home
+ARRAY_CASES = [
+    (method, arg, kind)
+    for method, args in {
+        "closure_residual": ["q"],
+        "closure_jacobian": ["q"],
+        "closure_drift": ["q", "v"],
+        "velocities": ["q"],
+        "accelerations": ["q", "v"],
+        "mobility": ["q"],
+        "singularity": ["q"],
+        "forward_dynamics": ["q", "v", "tau"],
+        "forward_dynamics_kkt": ["q", "tau"],
+        "inverse_dynamics": ["q", "v", "a"],
+    }.items()
+    for arg in args
+    for kind in BAD_VECTORS
+    if not (method == "mobility" and kind == "none")
+]  # None: home
 
 
 @pytest.mark.parametrize("method,arg,kind", ARRAY_CASES, ids=[f"{a}-{b}-{c}" for a, b, c in ARRAY_CASES])
@@ -108,15 +133,31 @@ def _option_cases(m):
         "assemble-inputs-string": (lambda: m.assemble("2.0, 1.1"), InvalidArgument, "inputs"),
         "assemble-inputs-unknown-joint": (lambda: m.assemble({"nope": 1.0}), InvalidArgument, "inputs"),
         "assemble-inputs-mapping-nan": (lambda: m.assemble({"prox1": np.nan, "prox2": 1.1}), InvalidArgument, "prox1"),
-        "assemble-guess-nan": (lambda: m.assemble([2.0, 1.1], guess=np.full(m.model.nq, np.nan)), InvalidArgument, "guess"),
+        "assemble-guess-nan": (
+            lambda: m.assemble([2.0, 1.1], guess=np.full(m.model.nq, np.nan)),
+            InvalidArgument,
+            "guess",
+        ),
         "assemble-guess-shape": (lambda: m.assemble([2.0, 1.1], guess=np.zeros(3)), InvalidArgument, "guess"),
         "assemble-guess-string": (lambda: m.assemble([2.0, 1.1], guess="home"), InvalidArgument, "guess"),
         "velocities-rates-nan": (lambda: m.velocities(q, [np.nan, 1.0]), InvalidArgument, "input_rates"),
         "velocities-rates-count": (lambda: m.velocities(q, [1.0, 2.0, 3.0]), InvalidArgument, "input_rates"),
-        "velocities-inputs-unknown": (lambda: m.velocities(q, [1.0, 2.0], inputs=["nope", "prox2"]), InvalidArgument, "inputs"),
-        "velocities-inputs-repeated": (lambda: m.velocities(q, [1.0, 2.0], inputs=["prox1", "prox1"]), InvalidArgument, "inputs"),
+        "velocities-inputs-unknown": (
+            lambda: m.velocities(q, [1.0, 2.0], inputs=["nope", "prox2"]),
+            InvalidArgument,
+            "inputs",
+        ),
+        "velocities-inputs-repeated": (
+            lambda: m.velocities(q, [1.0, 2.0], inputs=["prox1", "prox1"]),
+            InvalidArgument,
+            "inputs",
+        ),
         "velocities-inputs-string": (lambda: m.velocities(q, [1.0], inputs="prox1"), InvalidArgument, "inputs"),
-        "velocities-allow-singular-string": (lambda: m.velocities(q, [1.0, 2.0], allow_singular="yes"), InvalidArgument, "allow_singular"),
+        "velocities-allow-singular-string": (
+            lambda: m.velocities(q, [1.0, 2.0], allow_singular="yes"),
+            InvalidArgument,
+            "allow_singular",
+        ),
         "accelerations-nan": (lambda: m.accelerations(q, z, [np.inf, 1.0]), InvalidArgument, "input_accelerations"),
         "forward-method-bogus": (lambda: m.forward_dynamics(q, z, z, "bogus"), UnknownOption, "method"),
         "forward-method-bogus-bad-q": (lambda: m.forward_dynamics(None, z, z, "bogus"), UnknownOption, "method"),
@@ -125,19 +166,45 @@ def _option_cases(m):
         "forward-mu-string": (lambda: m.forward_dynamics(q, z, z, mu="small"), InvalidArgument, "mu"),
         "forward-accuracy-zero": (lambda: m.forward_dynamics(q, z, z, accuracy=0.0), InvalidArgument, "accuracy"),
         "forward-max-iter-zero": (lambda: m.forward_dynamics(q, z, z, max_iter=0), InvalidArgument, "max_iter"),
-        "forward-baumgarte-short": (lambda: m.forward_dynamics(q, z, z, baumgarte=(1.0,)), InvalidArgument, "baumgarte"),
-        "forward-baumgarte-nan": (lambda: m.forward_dynamics(q, z, z, "kkt", baumgarte=(np.nan, 1.0)), InvalidArgument, "baumgarte"),
+        "forward-baumgarte-short": (
+            lambda: m.forward_dynamics(q, z, z, baumgarte=(1.0,)),
+            InvalidArgument,
+            "baumgarte",
+        ),
+        "forward-baumgarte-nan": (
+            lambda: m.forward_dynamics(q, z, z, "kkt", baumgarte=(np.nan, 1.0)),
+            InvalidArgument,
+            "baumgarte",
+        ),
         "forward-kkt-mu-checked-too": (lambda: m.forward_dynamics(q, z, z, "kkt", mu=-1.0), InvalidArgument, "mu"),
-        "inverse-distribution-bogus": (lambda: m.inverse_dynamics(q, z, a, distribution="bogus"), UnknownOption, "distribution"),
-        "inverse-distribution-bogus-fast-path": (lambda: m.inverse_dynamics(q, z, a, determinacy=False, distribution="bogus"),
-                                                 UnknownOption, "distribution"),
-        "inverse-determinacy-string": (lambda: m.inverse_dynamics(q, z, a, determinacy="False"), InvalidArgument, "determinacy"),
+        "inverse-distribution-bogus": (
+            lambda: m.inverse_dynamics(q, z, a, distribution="bogus"),
+            UnknownOption,
+            "distribution",
+        ),
+        "inverse-distribution-bogus-fast-path": (
+            lambda: m.inverse_dynamics(q, z, a, determinacy=False, distribution="bogus"),
+            UnknownOption,
+            "distribution",
+        ),
+        "inverse-determinacy-string": (
+            lambda: m.inverse_dynamics(q, z, a, determinacy="False"),
+            InvalidArgument,
+            "determinacy",
+        ),
         "inverse-fext-list-of-numbers": (lambda: m.inverse_dynamics(q, z, a, fext=[1, 2, 3]), InvalidArgument, "fext"),
         "inverse-fext-count": (lambda: m.inverse_dynamics(q, z, a, fext=np.zeros((2, 6))), InvalidArgument, "fext"),
-        "inverse-fext-nan": (lambda: m.inverse_dynamics(q, z, a, fext=np.full((m.model.njoints, 6), np.nan)), InvalidArgument, "fext"),
+        "inverse-fext-nan": (
+            lambda: m.inverse_dynamics(q, z, a, fext=np.full((m.model.njoints, 6), np.nan)),
+            InvalidArgument,
+            "fext",
+        ),
         "inverse-fext-string": (lambda: m.inverse_dynamics(q, z, a, fext="thrust"), InvalidArgument, "fext"),
-        "inverse-state-batch-mismatch": (lambda: m.inverse_dynamics_batch(np.stack([q, q]), np.stack([z, z, z]), np.stack([a, a])),
-                                         InvalidArgument, "q, v, a"),
+        "inverse-state-batch-mismatch": (
+            lambda: m.inverse_dynamics_batch(np.stack([q, q]), np.stack([z, z, z]), np.stack([a, a])),
+            InvalidArgument,
+            "q, v, a",
+        ),
         "inverse-batch-to-one-sample": (lambda: m.inverse_dynamics(np.stack([q, q]), z, a), InvalidArgument, "_batch"),
         "velocities-batch-without-axis": (lambda: m.velocities_batch(q, [1.0, 0.0]), InvalidArgument, "without _batch"),
         "q-index-none": (lambda: m.q_index(None), InvalidParameters, "joint"),
@@ -146,18 +213,55 @@ def _option_cases(m):
     }
 
 
-@pytest.mark.parametrize("case", [
-    "assemble-method-bogus", "assemble-method-none", "assemble-tol-negative", "assemble-tol-nan", "assemble-max-iter-zero",
-    "assemble-max-iter-float", "assemble-inputs-nan", "assemble-inputs-count", "assemble-inputs-string",
-    "assemble-inputs-unknown-joint", "assemble-inputs-mapping-nan", "assemble-guess-nan", "assemble-guess-shape",
-    "assemble-guess-string", "velocities-rates-nan", "velocities-rates-count", "velocities-inputs-unknown",
-    "velocities-inputs-repeated", "velocities-inputs-string", "velocities-allow-singular-string", "accelerations-nan",
-    "forward-method-bogus", "forward-method-bogus-bad-q", "forward-mu-negative", "forward-mu-nan", "forward-mu-string",
-    "forward-accuracy-zero", "forward-max-iter-zero", "forward-baumgarte-short", "forward-baumgarte-nan",
-    "forward-kkt-mu-checked-too", "inverse-distribution-bogus", "inverse-distribution-bogus-fast-path",
-    "inverse-determinacy-string", "inverse-fext-list-of-numbers", "inverse-fext-count", "inverse-fext-nan",
-    "inverse-fext-string", "inverse-state-batch-mismatch", "inverse-batch-to-one-sample",
-    "velocities-batch-without-axis", "q-index-none", "v-index-unknown", "singularity-inputs-unknown"])
+@pytest.mark.parametrize(
+    "case",
+    [
+        "assemble-method-bogus",
+        "assemble-method-none",
+        "assemble-tol-negative",
+        "assemble-tol-nan",
+        "assemble-max-iter-zero",
+        "assemble-max-iter-float",
+        "assemble-inputs-nan",
+        "assemble-inputs-count",
+        "assemble-inputs-string",
+        "assemble-inputs-unknown-joint",
+        "assemble-inputs-mapping-nan",
+        "assemble-guess-nan",
+        "assemble-guess-shape",
+        "assemble-guess-string",
+        "velocities-rates-nan",
+        "velocities-rates-count",
+        "velocities-inputs-unknown",
+        "velocities-inputs-repeated",
+        "velocities-inputs-string",
+        "velocities-allow-singular-string",
+        "accelerations-nan",
+        "forward-method-bogus",
+        "forward-method-bogus-bad-q",
+        "forward-mu-negative",
+        "forward-mu-nan",
+        "forward-mu-string",
+        "forward-accuracy-zero",
+        "forward-max-iter-zero",
+        "forward-baumgarte-short",
+        "forward-baumgarte-nan",
+        "forward-kkt-mu-checked-too",
+        "inverse-distribution-bogus",
+        "inverse-distribution-bogus-fast-path",
+        "inverse-determinacy-string",
+        "inverse-fext-list-of-numbers",
+        "inverse-fext-count",
+        "inverse-fext-nan",
+        "inverse-fext-string",
+        "inverse-state-batch-mismatch",
+        "inverse-batch-to-one-sample",
+        "velocities-batch-without-axis",
+        "q-index-none",
+        "v-index-unknown",
+        "singularity-inputs-unknown",
+    ],
+)
 def test_bad_options_and_scalars_are_refused_by_name(m, case, capfd):
     call, kind, name = _option_cases(m)[case]
     with pytest.raises(kind) as err:

@@ -45,5 +45,6 @@ def test_the_mobility_is_the_jacobians_nullity(four_bar):
     m = four_bar
     mob = m.mobility(m.home_q)
     assert mob.dof == m.model.nv - np.linalg.matrix_rank(m.closure_jacobian(m.home_q)) == 1
-    assert m.singularity(m.home_q) == pytest.approx(np.linalg.cond(np.delete(m.closure_jacobian(m.home_q),
-                                                                             m.v_index("crank"), axis=1)))
+    assert m.singularity(m.home_q) == pytest.approx(
+        np.linalg.cond(np.delete(m.closure_jacobian(m.home_q), m.v_index("crank"), axis=1))
+    )

@@ -46,7 +46,9 @@ def test_one_cassie_leg_kept_moves_as_in_the_whole_robot():
     leg_torques = {a: torques[a] for a in leg.actuated}
     a_leg = leg.forward_dynamics(leg.home_q, np.zeros(leg.model.nv), leg.generalized_forces(leg_torques), "kkt").a
     for joint in leg.model.names[1:]:
-        assert a_leg[leg.v_index(joint)] == pytest.approx(a_whole[whole.v_index(joint)], abs=1e-9 * np.abs(a_whole).max())
+        assert a_leg[leg.v_index(joint)] == pytest.approx(
+            a_whole[whole.v_index(joint)], abs=1e-9 * np.abs(a_whole).max()
+        )
     back = leg.inverse_dynamics(leg.home_q, np.zeros(leg.model.nv), a_leg)
     whole_back = whole.inverse_dynamics(q, v, a_whole)
     for motor, torque in leg_torques.items():
@@ -62,19 +64,29 @@ def test_one_cassie_leg_holds_with_the_whole_robots_efforts():
     whole = mechkit.load(CASSIE, fix=["cassie-pelvis"])
     left = [f.name for f in whole.model.frames if f.type.name == "BODY" and f.name.startswith("left-")]
     right = {j: np.atleast_1d(v) for j, v in whole.joint_values(whole.home_q).items() if j.startswith("right-")}
-    runs = {"fix": report(CASSIE, "--fix", "cassie-pelvis"),
-            "keep": report(CASSIE, "--fix", "cassie-pelvis", "--keep", ",".join(left)),
-            "lock": report(CASSIE, "--fix", "cassie-pelvis",
-                           *(f"--lock={j}={','.join(repr(float(x)) for x in v)}" for j, v in right.items()))}
+    runs = {
+        "fix": report(CASSIE, "--fix", "cassie-pelvis"),
+        "keep": report(CASSIE, "--fix", "cassie-pelvis", "--keep", ",".join(left)),
+        "lock": report(
+            CASSIE,
+            "--fix",
+            "cassie-pelvis",
+            *(f"--lock={j}={','.join(repr(float(x)) for x in v)}" for j, v in right.items()),
+        ),
+    }
     motors = [a for a in whole.actuated if a.startswith("left-")]
     assert runs["keep"]["actuated"] == runs["lock"]["actuated"] == motors
     assert runs["keep"]["dof"] == runs["lock"]["dof"] == runs["fix"]["dof"] // 2 == 8
     efforts = {name: r["holding"]["efforts"] for name, r in runs.items()}
     for name in ("keep", "lock"):
         assert runs[name]["holding"]["undetermined"] == []
-        assert sorted(runs[name]["holding"]["settled"]) == sorted(j for j in runs["fix"]["holding"]["settled"] if j.startswith("left-"))
+        assert sorted(runs[name]["holding"]["settled"]) == sorted(
+            j for j in runs["fix"]["holding"]["settled"] if j.startswith("left-")
+        )
         for motor in motors:
-            assert efforts[name][motor] == pytest.approx(efforts["fix"][motor], abs=1e-8 * max(1.0, abs(efforts["fix"][motor])))
+            assert efforts[name][motor] == pytest.approx(
+                efforts["fix"][motor], abs=1e-8 * max(1.0, abs(efforts["fix"][motor]))
+            )
 
 
 def test_refusals_name_what_is_wrong(load_cached):

@@ -46,8 +46,9 @@ def test_scene_protocol(load_cached):
     four_bar = load_cached("four_bar")
     good = [four_bar.assemble([a]) for a in np.linspace(0.5, 0.9, 5)]
     bad = [good[0], good[1] + 0.1]
-    spec = dataclasses.replace(four_bar.spec, scenes={"turn": lambda mech: good, "bad": lambda mech: bad,
-                                                      "short": lambda mech: good[:1]})
+    spec = dataclasses.replace(
+        four_bar.spec, scenes={"turn": lambda mech: good, "bad": lambda mech: bad, "short": lambda mech: good[:1]}
+    )
     m = from_params(spec, four_bar.params)
     assert list(scenes.scenes(m)) == ["turn", "bad", "short", "sweep"]
     assert all(np.array_equal(a, b) for a, b in zip(scenes.scene_poses(m, "turn"), good))
@@ -62,7 +63,11 @@ def test_scene_protocol(load_cached):
 def crank_law(t: float):
     """Four-bar crank: a smooth swing (rad, rad/s, rad/s^2)."""
     w = 2.0
-    return np.array([0.6 + 0.3 * np.sin(w * t)]), np.array([0.3 * w * np.cos(w * t)]), np.array([-0.3 * w * w * np.sin(w * t)])
+    return (
+        np.array([0.6 + 0.3 * np.sin(w * t)]),
+        np.array([0.3 * w * np.cos(w * t)]),
+        np.array([-0.3 * w * w * np.sin(w * t)]),
+    )
 
 
 @pytest.fixture(scope="module")

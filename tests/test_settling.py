@@ -29,8 +29,16 @@ def test_rest_load_is_the_gradient_of_the_potential_energy(load_cached):
     m = load_cached("ten_bar")
     q, h = m.home_q, 1e-6
     load = rest_load(m, q)
-    fd = np.array([(potential_energy(m, pin.integrate(m.model, q, h * e))
-                    - potential_energy(m, pin.integrate(m.model, q, -h * e))) / (2 * h) for e in np.eye(m.model.nv)])
+    fd = np.array(
+        [
+            (
+                potential_energy(m, pin.integrate(m.model, q, h * e))
+                - potential_energy(m, pin.integrate(m.model, q, -h * e))
+            )
+            / (2 * h)
+            for e in np.eye(m.model.nv)
+        ]
+    )
     assert np.max(np.abs(fd - load)) < 1e-6 * max(1.0, np.max(np.abs(load)))
 
 

@@ -16,8 +16,11 @@ from mechkit.report import report
 
 def _with_transmissions(mech: mechkit.Mechanism) -> str:
     """The registered mechanism's URDF, its actuators written as <transmission> and its home as <mechkit:home>."""
-    extra = "".join(f'<transmission name="{j}_motor"><joint name="{j}"/></transmission>'
-                    f'<mechkit:home joint="{j}" value="{float(mech.home_q[mech.q_index(j)])!r}"/>' for j in mech.actuated)
+    extra = "".join(
+        f'<transmission name="{j}_motor"><joint name="{j}"/></transmission>'
+        f'<mechkit:home joint="{j}" value="{float(mech.home_q[mech.q_index(j)])!r}"/>'
+        for j in mech.actuated
+    )
     return mech.urdf.replace("</robot>", extra + "</robot>")
 
 
@@ -31,9 +34,11 @@ def _four_ways(name: str, tmp_path: Path) -> tuple[mechkit.Mechanism, dict[str, 
     (tmp_path / "ext" / "tree.yaml").write_text(sidecar)
     (tmp_path / "model.xml").write_text(to_mjcf(ref))
     home = {j: ref.home_q[ref.q_index(j)] for j in ref.actuated}
-    return ref, {"urdf": mechkit.load(tmp_path / "loops.urdf", guess=guess),
-                 "extended-urdf": mechkit.load(tmp_path / "ext" / "tree.urdf", home=home, guess=guess),
-                 "mjcf": mechkit.load(tmp_path / "model.xml")}
+    return ref, {
+        "urdf": mechkit.load(tmp_path / "loops.urdf", guess=guess),
+        "extended-urdf": mechkit.load(tmp_path / "ext" / "tree.urdf", home=home, guess=guess),
+        "mjcf": mechkit.load(tmp_path / "model.xml"),
+    }
 
 
 def _close(a: np.ndarray, b: np.ndarray) -> float:
@@ -60,7 +65,12 @@ def test_four_ways_give_the_same_mobility_efforts_and_reactions(name, tmp_path):
         cuts = {c.name for c in ref.closures}
         for how, m in loaded.items():
             got = m.inverse_dynamics(q, v, a)
-            assert max(abs(got.efforts[j] - expected.efforts[j]) / max(1.0, abs(expected.efforts[j])) for j in ref.actuated) < 1e-12, how
+            assert (
+                max(
+                    abs(got.efforts[j] - expected.efforts[j]) / max(1.0, abs(expected.efforts[j])) for j in ref.actuated
+                )
+                < 1e-12
+            ), how
             assert len(got.reactions) == len(expected.reactions)
             for (j1, r1), (j2, r2) in zip(got.reactions.items(), expected.reactions.items()):
                 assert j1 == j2 or how == "extended-urdf"  # the sidecar names no cut: named after its frames
@@ -90,5 +100,3 @@ def test_fixtures_load_with_their_structure_and_pass_the_self_checks(file):
     assert [lp["kind"] for lp in r["loops"]] == kinds
     assert dof - sum(idle.values()) == len(actuated)  # the mobility that matters is driven
     assert all(value < 1e-9 for value in r["checks"].values()), r["checks"]
-
-

@@ -29,7 +29,9 @@ def singular_inputs(m) -> list[tuple[float, float]]:
     b1 = p.prox1 * np.array([np.cos(2.6), np.sin(2.6)])
 
     def gap(t):
-        return np.linalg.norm(np.array([p.ground + p.prox2 * np.cos(t), p.prox2 * np.sin(t)]) - b1) - (p.dist1 + p.dist2)
+        return np.linalg.norm(np.array([p.ground + p.prox2 * np.cos(t), p.prox2 * np.sin(t)]) - b1) - (
+            p.dist1 + p.dist2
+        )
 
     return [(brentq(gap, -1.5, -0.5, xtol=1e-16), -1.0), (brentq(gap, 0.5, 1.0, xtol=1e-16), 1.0)]
 
@@ -44,8 +46,15 @@ def written(folder: Path, text: str, name: str = "bad.urdf") -> Path:
 def run_mechkit(*args: str, cwd: Path | None = None) -> subprocess.CompletedProcess:
     """`python -m mechkit ARGS` in a subprocess, on this checkout, its output captured (300 s at most)."""
     env = {**os.environ, "PYTHONPATH": str(ROOT)}
-    return subprocess.run([sys.executable, "-m", "mechkit", *args], capture_output=True, text=True, env=env, cwd=cwd,
-                          check=False, timeout=300)
+    return subprocess.run(
+        [sys.executable, "-m", "mechkit", *args],
+        capture_output=True,
+        text=True,
+        env=env,
+        cwd=cwd,
+        check=False,
+        timeout=300,
+    )
 
 
 def refused(out: subprocess.CompletedProcess, *words: str) -> None:

@@ -28,5 +28,7 @@ if __name__ == "__main__":
     if code == 0 and "--speed" in sys.argv[1:]:
         from mechkit.bench import field
 
-        field.add_section(DOCS / "benchmarks.md", ROOT / "tests" / "fixtures" / "field", quick="--quick" in sys.argv[1:])
+        field.add_section(
+            DOCS / "benchmarks.md", ROOT / "tests" / "fixtures" / "field", quick="--quick" in sys.argv[1:]
+        )
     sys.exit(code)

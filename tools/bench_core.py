@@ -29,7 +29,9 @@ def main(argv: list[str] | None = None) -> int:
                 print(f"{label:<68} {us:9.2f} us  {comment}")
             if args.profile:
                 for determinacy in (False, True):
-                    print(f"-- profile of inverse_dynamics(determinacy={determinacy}), per call (cProfile adds overhead)")
+                    print(
+                        f"-- profile of inverse_dynamics(determinacy={determinacy}), per call (cProfile adds overhead)"
+                    )
                     for where, own, cum in profile(name, determinacy):
                         print(f"   {where:<78} own {own:8.2f} us  cum {cum:8.2f} us")
     except MechkitError as err:

@@ -62,8 +62,10 @@ def command(robot: field.FieldRobot) -> str:
 def main() -> int:
     PICTURES.mkdir(parents=True, exist_ok=True)
     times = {t.label: t for t in field.load_times(FIXTURES)}
-    rows = ["| robot | source (license) | DOF | loops | idle freedoms | holding gravity at rest | load (ms) |",
-            "|---|---|---|---|---|---|---|"]
+    rows = [
+        "| robot | source (license) | DOF | loops | idle freedoms | holding gravity at rest | load (ms) |",
+        "|---|---|---|---|---|---|---|",
+    ]
     sections = []
     for robot in field.ROBOTS:
         t = times[robot.label]
@@ -78,14 +80,19 @@ def main() -> int:
         held = r["holding"]
         idle = ", ".join(f"{b} {n}" for b, n in r["idle"].items()) or "none"
         kinds = ", ".join(f"{c['name']} ({c['kind']})" for c in r["closures"]) or "none"
-        rows.append(f"| {robot.label} | {source} | {r['dof']} | {len(r['closures'])} | {idle} | "
-                    f"{'holds' if 'efforts' in held else 'cannot'} | {t.median_s * 1e3:.1f} |")
+        rows.append(
+            f"| {robot.label} | {source} | {r['dof']} | {len(r['closures'])} | {idle} | "
+            f"{'holds' if 'efforts' in held else 'cannot'} | {t.median_s * 1e3:.1f} |"
+        )
         png = PICTURES / f"{slug(robot.label)}.png"
         with tempfile.TemporaryDirectory(prefix="mechkit-field-") as tmp:
             screenshot(write_text(Path(tmp) / "page.html", snapshot(mech)), png, size=SIZE)
-        lines += [f"![{robot.label}](field_robots/{png.name})", "",
-                  f"- DOF {r['dof']} (Kutzbach count {r['dof_gruebler']}), nv {r['nv']}; loops: {kinds}",
-                  f"- idle freedoms: {idle}"]
+        lines += [
+            f"![{robot.label}](field_robots/{png.name})",
+            "",
+            f"- DOF {r['dof']} (Kutzbach count {r['dof_gruebler']}), nv {r['nv']}; loops: {kinds}",
+            f"- idle freedoms: {idle}",
+        ]
         if "efforts" in held:
             efforts = ", ".join(f"{a} {u:.6g}" for a, u in held["efforts"].items())
             lines.append(f"- holding gravity at rest (N m or N): {efforts}")

@@ -40,8 +40,10 @@ def main(argv: list[str] | None = None) -> int:
         declared = mech.spec.studies
         unknown = [s for s in args.studies if s not in declared]
         if unknown:
-            print(f"{args.name} has the studies: {', '.join(declared) or 'none'} (not {', '.join(unknown)})",
-                  file=sys.stderr)
+            print(
+                f"{args.name} has the studies: {', '.join(declared) or 'none'} (not {', '.join(unknown)})",
+                file=sys.stderr,
+            )
             return 2
         for study in args.studies or declared:
             print(f"== {args.name} {study}: {declared[study].doc}")

@@ -27,8 +27,12 @@ def _label(i: int, skc) -> str:
     bodies = list(skc.bodies)
     shown = ", ".join(bodies[:3]) + (f", ... (+{len(bodies) - 3})" if len(bodies) > 3 else "")
     extra = len(skc.unknowns) - skc.equations
-    lines = [f"SKC{i} [{skc.kind}]", shown, f"{len(skc.unknowns)} unknowns, {len(skc.rows)} rows, "
-             f"{skc.equations} independent" + (f" ({extra} indet.)" if extra > 0 else "")]
+    lines = [
+        f"SKC{i} [{skc.kind}]",
+        shown,
+        f"{len(skc.unknowns)} unknowns, {len(skc.rows)} rows, "
+        f"{skc.equations} independent" + (f" ({extra} indet.)" if extra > 0 else ""),
+    ]
     if skc.actuators:
         lines.append("motors: " + ", ".join(skc.actuators))
     if skc.released:
@@ -54,20 +58,39 @@ def figure(name: str) -> Path:
     xs = [4.2 * i for i in range(n)]
     for (a, b), joints in sorted(edges.items()):
         rad = 0.0 if b == a + 1 else -0.35
-        ax.annotate("", xy=(xs[b] - 1.7, 0), xytext=(xs[a] + 1.7, 0),
-                    arrowprops={"arrowstyle": "->", "color": "#555", "connectionstyle": f"arc3,rad={rad}"})
+        ax.annotate(
+            "",
+            xy=(xs[b] - 1.7, 0),
+            xytext=(xs[a] + 1.7, 0),
+            arrowprops={"arrowstyle": "->", "color": "#555", "connectionstyle": f"arc3,rad={rad}"},
+        )
         text = ", ".join(sorted(joints)[:3]) + (" ..." if len(joints) > 3 else "")
-        ax.text((xs[a] + xs[b]) / 2, 0.55 + (0.0 if b == a + 1 else 0.5 + 0.15 * (b - a)), text, ha="center",
-                fontsize=7, color="#333")
+        ax.text(
+            (xs[a] + xs[b]) / 2,
+            0.55 + (0.0 if b == a + 1 else 0.5 + 0.15 * (b - a)),
+            text,
+            ha="center",
+            fontsize=7,
+            color="#333",
+        )
     for i, s in enumerate(skcs):
-        ax.text(xs[i], 0, _label(i + 1, s), ha="center", va="center", fontsize=7.5,
-                bbox={"boxstyle": "round,pad=0.4", "fc": COLOURS[s.kind], "ec": "#333"})
+        ax.text(
+            xs[i],
+            0,
+            _label(i + 1, s),
+            ha="center",
+            va="center",
+            fontsize=7.5,
+            bbox={"boxstyle": "round,pad=0.4", "fc": COLOURS[s.kind], "ec": "#333"},
+        )
     ax.set_xlim(-2.2, xs[-1] + 2.2)
     span = max((b - a for a, b in edges), default=1)
     ax.set_ylim(-1.2, 1.4 + 0.6 * span)
     ax.axis("off")
-    ax.set_title(f"{name}: automatic SOC decomposition, solve order left to right "
-                 f"(arrows: reactions passed on as known loads)", fontsize=9)
+    ax.set_title(
+        f"{name}: automatic SOC decomposition, solve order left to right (arrows: reactions passed on as known loads)",
+        fontsize=9,
+    )
     path = OUT / f"second_opinion_{name}.png"
     fig.savefig(path, dpi=110, bbox_inches="tight")
     plt.close(fig)

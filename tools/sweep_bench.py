@@ -20,18 +20,26 @@ def main() -> None:
     parser.add_argument("--samples", type=int, default=100)
     parser.add_argument("--runs", type=int, default=7)
     args = parser.parse_args()
-    print(f"# {time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())}, {platform.processor() or platform.machine()}, "
-          f"{os.cpu_count()} cores, load average {os.getloadavg()[0]:.1f}")
-    print("\n| mechanism | load via xacro (ms) | load via cache (ms) | URDF via xacro (ms) | URDF via cache (ms) "
-          "| one-off expansion (ms) |")
+    print(
+        f"# {time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())}, {platform.processor() or platform.machine()}, "
+        f"{os.cpu_count()} cores, load average {os.getloadavg()[0]:.1f}"
+    )
+    print(
+        "\n| mechanism | load via xacro (ms) | load via cache (ms) | URDF via xacro (ms) | URDF via cache (ms) "
+        "| one-off expansion (ms) |"
+    )
     print("|---|---|---|---|---|---|")
     for r in load_times(runs=args.runs):
-        print(f"| {r.name} | {r.xacro_ms:.1f} | {r.cache_ms:.1f} | {r.render_xacro_ms:.1f} | {r.render_cache_ms:.2f} "
-              f"| {r.expand_ms:.0f} |")
+        print(
+            f"| {r.name} | {r.xacro_ms:.1f} | {r.cache_ms:.1f} | {r.render_xacro_ms:.1f} | {r.render_cache_ms:.2f} "
+            f"| {r.expand_ms:.0f} |"
+        )
     s = sweep_speed(args.designs, args.samples)
-    print(f"\nfour-bar sweep: {s.designs} designs x {s.samples} samples; 1 worker {s.seconds[1]:.1f} s, "
-          f"2 workers {s.seconds[2]:.1f} s; parallel efficiency {100 * s.efficiency:.0f} %; statuses {s.statuses}; "
-          f"load average after {os.getloadavg()[0]:.1f}")
+    print(
+        f"\nfour-bar sweep: {s.designs} designs x {s.samples} samples; 1 worker {s.seconds[1]:.1f} s, "
+        f"2 workers {s.seconds[2]:.1f} s; parallel efficiency {100 * s.efficiency:.0f} %; statuses {s.statuses}; "
+        f"load average after {os.getloadavg()[0]:.1f}"
+    )
 
 
 if __name__ == "__main__":

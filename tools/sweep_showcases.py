@@ -41,12 +41,21 @@ def gimbal(work: Path, workers: int) -> None:
     frame = read(s.out)
     ok = frame[frame["status"] == "ok"]
     best = ok.loc[ok["rule_error"].idxmin()]
-    print(f"gimbal: {s.designs} designs in {time.perf_counter() - start:.1f} s, {s.statuses}; rule_error "
-          f"{np.degrees(ok['rule_error'].min()):.3f}..{np.degrees(ok['rule_error'].max()):.3f} deg; best at "
-          f"r={best['pivot_radius']:.3f} m, h={best['pivot_offset']:.3f} m: {np.degrees(best['rule_error']):.3f} deg")
+    print(
+        f"gimbal: {s.designs} designs in {time.perf_counter() - start:.1f} s, {s.statuses}; rule_error "
+        f"{np.degrees(ok['rule_error'].min()):.3f}..{np.degrees(ok['rule_error'].max()):.3f} deg; best at "
+        f"r={best['pivot_radius']:.3f} m, h={best['pivot_offset']:.3f} m: {np.degrees(best['rule_error']):.3f} deg"
+    )
     frame = frame.assign(rule_error_deg=np.degrees(frame["rule_error"]))
-    heat_map(frame, "pivot_radius", "pivot_offset", "rule_error_deg", FIGURES / "sweep_gimbal_rule_error.png",
-             "gimbal: linear rule's worst error", "deg")
+    heat_map(
+        frame,
+        "pivot_radius",
+        "pivot_offset",
+        "rule_error_deg",
+        FIGURES / "sweep_gimbal_rule_error.png",
+        "gimbal: linear rule's worst error",
+        "deg",
+    )
 
 
 def parallel(work: Path, workers: int) -> None:
@@ -55,21 +64,39 @@ def parallel(work: Path, workers: int) -> None:
     frames = {}
     for label, base in (("three motors", {}), ("four motors", {"redundant_actuation": "true"})):
         start = time.perf_counter()
-        s = sweep("parallel_2t1r", space, _fresh(work / f"p2t1r_{len(base)}"), study, ("peak_effort",), base=base,
-                  workers=workers)
+        s = sweep(
+            "parallel_2t1r",
+            space,
+            _fresh(work / f"p2t1r_{len(base)}"),
+            study,
+            ("peak_effort",),
+            base=base,
+            workers=workers,
+        )
         frame = read(s.out)
         efforts = [c for c in frame.columns if c.startswith("peak_effort.")]
         frames[label] = frame.assign(peak_motor_torque=frame[efforts].max(axis=1))
         ok = frames[label][frames[label]["status"] == "ok"]
-        print(f"2T1R {label}: {s.designs} designs in {time.perf_counter() - start:.1f} s, {s.statuses}; peak motor "
-              f"torque {ok['peak_motor_torque'].min():.2f}..{ok['peak_motor_torque'].max():.2f} N m")
-        heat_map(frames[label], "l1", "l2", "peak_motor_torque", FIGURES / f"sweep_2t1r_{len(base)}.png",
-                 f"2T1R, {label}: peak motor torque", "N m")
+        print(
+            f"2T1R {label}: {s.designs} designs in {time.perf_counter() - start:.1f} s, {s.statuses}; peak motor "
+            f"torque {ok['peak_motor_torque'].min():.2f}..{ok['peak_motor_torque'].max():.2f} N m"
+        )
+        heat_map(
+            frames[label],
+            "l1",
+            "l2",
+            "peak_motor_torque",
+            FIGURES / f"sweep_2t1r_{len(base)}.png",
+            f"2T1R, {label}: peak motor torque",
+            "N m",
+        )
     a, b = (frames[k].set_index("index") for k in ("three motors", "four motors"))
     both = (a["status"] == "ok") & (b["status"] == "ok")
     ratio = (b["peak_motor_torque"] / a["peak_motor_torque"])[both]
-    print(f"2T1R: four motors / three motors peak torque over {int(both.sum())} designs: {ratio.min():.3f}..{ratio.max():.3f}"
-          f" (median {ratio.median():.3f})")
+    print(
+        f"2T1R: four motors / three motors peak torque over {int(both.sum())} designs: {ratio.min():.3f}..{ratio.max():.3f}"
+        f" (median {ratio.median():.3f})"
+    )
 
 
 def ten_bar(work: Path, workers: int) -> None:
@@ -86,20 +113,28 @@ def ten_bar(work: Path, workers: int) -> None:
     ok = frame[frame["status"] == "ok"]
     gentle = ok[ok["latch_speed"] <= d["latch_speed"]]
     pick = (gentle if not gentle.empty else ok).sort_values("max_motor_torque").iloc[0]
-    print(f"ten_bar chosen from the sweep: {pick[list(space.names)].to_dict()} -> torque {pick['max_motor_torque']:.2f}"
-          f" N m, latch {pick['latch_speed']:.2e} m/s; Pareto designs "
-          f"{int(pareto_mask(ok['max_motor_torque'].to_numpy(), ok['latch_speed'].to_numpy()).sum())}")
+    print(
+        f"ten_bar chosen from the sweep: {pick[list(space.names)].to_dict()} -> torque {pick['max_motor_torque']:.2f}"
+        f" N m, latch {pick['latch_speed']:.2e} m/s; Pareto designs "
+        f"{int(pareto_mask(ok['max_motor_torque'].to_numpy(), ok['latch_speed'].to_numpy()).sum())}"
+    )
     start = time.perf_counter()
     refined = optimise(out, "max_motor_torque", starts=1, max_evaluations=24, workers=workers)[0]
-    print(f"ten_bar refined in {time.perf_counter() - start:.1f} s: {refined.start_value:.2f} -> {refined.value:.2f} N m at "
-          f"{refined.best} ({refined.evaluations} evaluations)")
+    print(
+        f"ten_bar refined in {time.perf_counter() - start:.1f} s: {refined.start_value:.2f} -> {refined.value:.2f} N m at "
+        f"{refined.best} ({refined.evaluations} evaluations)"
+    )
     chosen = mechkit.load("ten_bar", **refined.best)
     c = deployment_metrics(chosen)
     print(f"ten_bar refined design: torque {c['max_motor_torque']:.2f} N m, latch speed {c['latch_speed']:.2e} m/s")
-    pareto_plot(frame, "max_motor_torque", "latch_speed", FIGURES / "sweep_ten_bar_pareto.png",
-                "ten-bar: motor torque vs latch-up speed",
-                {"default": (d["max_motor_torque"], d["latch_speed"]),
-                 "refined": (c["max_motor_torque"], c["latch_speed"])})
+    pareto_plot(
+        frame,
+        "max_motor_torque",
+        "latch_speed",
+        FIGURES / "sweep_ten_bar_pareto.png",
+        "ten-bar: motor torque vs latch-up speed",
+        {"default": (d["max_motor_torque"], d["latch_speed"]), "refined": (c["max_motor_torque"], c["latch_speed"])},
+    )
     from mechkit.viz.pages import animation
 
     animation(chosen, "deploy", work / "ten_bar_refined.html")
@@ -111,17 +146,32 @@ def deployable_tubes(work: Path, workers: int) -> None:
     masses following their tubes (`rod_masses=tubes`)."""
     space = DesignSpace((parse_axis("tube_outer=0.014:0.030:5"), parse_axis("tube_inner=0.006:0.012:4")))
     start = time.perf_counter()
-    s = sweep("deployable_9rr12uru", space, _fresh(work / "deployable_tubes"),
-              metrics=("mass", "first_frequency", "frequency_per_mass"), base={"rod_masses": "tubes"}, workers=workers)
+    s = sweep(
+        "deployable_9rr12uru",
+        space,
+        _fresh(work / "deployable_tubes"),
+        metrics=("mass", "first_frequency", "frequency_per_mass"),
+        base={"rod_masses": "tubes"},
+        workers=workers,
+    )
     frame = read(s.out)
     ok = frame[frame["status"] == "ok"]
     best = ok.loc[ok["frequency_per_mass"].idxmax()]
-    print(f"deployable tubes: {s.designs} designs in {time.perf_counter() - start:.1f} s, {s.statuses}; first frequency "
-          f"{ok['first_frequency'].min():.2e}..{ok['first_frequency'].max():.2e} Hz, mass {ok['mass'].min():.2f}.."
-          f"{ok['mass'].max():.2f} kg; best per kg: {best['tube_outer'] * 1e3:.0f} / {best['tube_inner'] * 1e3:.0f} mm, "
-          f"{best['first_frequency']:.2e} Hz, {best['mass']:.2f} kg, {best['frequency_per_mass']:.2e} Hz/kg")
-    heat_map(frame, "tube_outer", "tube_inner", "frequency_per_mass", FIGURES / "sweep_deployable_tubes.png",
-             "deployable truss: first frequency per kilogram", "Hz/kg")
+    print(
+        f"deployable tubes: {s.designs} designs in {time.perf_counter() - start:.1f} s, {s.statuses}; first frequency "
+        f"{ok['first_frequency'].min():.2e}..{ok['first_frequency'].max():.2e} Hz, mass {ok['mass'].min():.2f}.."
+        f"{ok['mass'].max():.2f} kg; best per kg: {best['tube_outer'] * 1e3:.0f} / {best['tube_inner'] * 1e3:.0f} mm, "
+        f"{best['first_frequency']:.2e} Hz, {best['mass']:.2f} kg, {best['frequency_per_mass']:.2e} Hz/kg"
+    )
+    heat_map(
+        frame,
+        "tube_outer",
+        "tube_inner",
+        "frequency_per_mass",
+        FIGURES / "sweep_deployable_tubes.png",
+        "deployable truss: first frequency per kilogram",
+        "Hz/kg",
+    )
 
 
 def main() -> None:

@@ -81,13 +81,19 @@ def chart(b: MechanismBench, quantity: str, folder: Path) -> list[Path]:
         t = np.array([r.median_s * 1e6 for r in members])
         e = np.array([max(r.error, CHART_FLOOR) for r in members])
         peer = members[0].method.peer
-        style = {"marker": "s" if peer else markers[k % len(markers)], "markersize": 7,
-                 "linestyle": "--" if peer else "-", "markerfacecolor": "none" if peer else None}
+        style = {
+            "marker": "s" if peer else markers[k % len(markers)],
+            "markersize": 7,
+            "linestyle": "--" if peer else "-",
+            "markerfacecolor": "none" if peer else None,
+        }
         label = ("[peer] " if peer else "") + family
         if len(members) > 1:
             ax.plot(t, e, label=label, **style)
             for r, ti, ei in zip(members, t, e):
-                ax.annotate(r.method.knob or r.method.name, (ti, ei), fontsize=6, xytext=(3, 3), textcoords="offset points")
+                ax.annotate(
+                    r.method.knob or r.method.name, (ti, ei), fontsize=6, xytext=(3, 3), textcoords="offset points"
+                )
         else:
             style["linestyle"] = "none"
             ax.plot(t, e, label=label, **style)
@@ -99,7 +105,9 @@ def chart(b: MechanismBench, quantity: str, folder: Path) -> list[Path]:
     title = f"{b.name}: {quantity.replace('_', ' ')} (reference: {b.references.get(quantity, '?')})"
     ax.set_title(title if len(title) < 95 else title[:92] + "...", fontsize=9)
     if failed:
-        ax.text(0.01, 0.01, "raised: " + "; ".join(r.method.name for r in failed)[:150], transform=ax.transAxes, fontsize=6)
+        ax.text(
+            0.01, 0.01, "raised: " + "; ".join(r.method.name for r in failed)[:150], transform=ax.transAxes, fontsize=6
+        )
     return save_figure(fig, ax, folder, f"bench_{b.name}_{quantity}", legend_size=7)
 
 

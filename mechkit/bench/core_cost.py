@@ -48,8 +48,10 @@ def measure(name: str, budget: float) -> list[tuple[str, float, str]]:
         rows.append((label, _us(fn, s, budget), comment))
         return rows[-1][1]
 
-    t_kin = row("raw: computeJointJacobians + updateFramePlacements", lambda: (pin.computeJointJacobians(model, data, q),
-                                                                             pin.updateFramePlacements(model, data)))
+    t_kin = row(
+        "raw: computeJointJacobians + updateFramePlacements",
+        lambda: (pin.computeJointJacobians(model, data, q), pin.updateFramePlacements(model, data)),
+    )
     t_cd = row("raw: pin.constraintDynamics (mu=1e-9, 20 it)", lambda: raw(q, v, tau))
     t_rnea = row("raw: pin.rnea", lambda: pin.rnea(model, data, q, v, a))
     t_aba = row("raw: pin.aba (tree, no loop)", lambda: pin.aba(model, data, q, v, tau))
@@ -58,18 +60,46 @@ def measure(name: str, budget: float) -> list[tuple[str, float, str]]:
         q0[m.q_index(joint)] = value
     iters = m.solve_closure(q0, list(inputs)).iterations
     for label, fn, base, comment in [
-        ("assemble (closure Newton, from home)", lambda: m.assemble(inputs, guess=start), t_kin,
-         f"{iters} iterations; ratio to one kinematics update"),
-        ("forward_dynamics proximal (constrained ABA)", lambda: m.forward_dynamics(q, v, tau), t_cd, "ratio to raw constraintDynamics"),
-        ("forward_dynamics dense KKT", lambda: m.forward_dynamics(q, v, tau, "kkt"), t_cd, "ratio to raw constraintDynamics"),
-        ("inverse_dynamics, determinacy=False", lambda: m.inverse_dynamics(q, v, a, determinacy=False), t_cd,
-         "ratio to raw constraintDynamics (goal <= 5)"),
-        ("inverse_dynamics, determinacy=True", lambda: m.inverse_dynamics(q, v, a, determinacy=True), t_cd,
-         "ratio to raw constraintDynamics (goal <= 5)"),
+        (
+            "assemble (closure Newton, from home)",
+            lambda: m.assemble(inputs, guess=start),
+            t_kin,
+            f"{iters} iterations; ratio to one kinematics update",
+        ),
+        (
+            "forward_dynamics proximal (constrained ABA)",
+            lambda: m.forward_dynamics(q, v, tau),
+            t_cd,
+            "ratio to raw constraintDynamics",
+        ),
+        (
+            "forward_dynamics dense KKT",
+            lambda: m.forward_dynamics(q, v, tau, "kkt"),
+            t_cd,
+            "ratio to raw constraintDynamics",
+        ),
+        (
+            "inverse_dynamics, determinacy=False",
+            lambda: m.inverse_dynamics(q, v, a, determinacy=False),
+            t_cd,
+            "ratio to raw constraintDynamics (goal <= 5)",
+        ),
+        (
+            "inverse_dynamics, determinacy=True",
+            lambda: m.inverse_dynamics(q, v, a, determinacy=True),
+            t_cd,
+            "ratio to raw constraintDynamics (goal <= 5)",
+        ),
     ]:
         t = row(label, fn)
         rows[-1] = (label, t, f"x{t / base:.1f} {comment}")
-    rows.append(("inverse dynamics floor: 2 rnea + kinematics update", 2 * t_rnea + t_kin, f"x{(2 * t_rnea + t_kin) / t_cd:.1f} of raw constraintDynamics"))
+    rows.append(
+        (
+            "inverse dynamics floor: 2 rnea + kinematics update",
+            2 * t_rnea + t_kin,
+            f"x{(2 * t_rnea + t_kin) / t_cd:.1f} of raw constraintDynamics",
+        )
+    )
     rows.append(("aba (tree)", t_aba, ""))
 
     return rows

@@ -32,8 +32,10 @@ RAW = "raw pin.constraintDynamics (mu=1e-9)"
 FORWARD = "forward_dynamics wrapper (proximal)"
 EXACT = "forward_dynamics (nullspace, exact)"
 ONE, ONE_DET = "inverse_dynamics, every reaction, determinacy off", "inverse_dynamics, every reaction, determinacy on"
-BATCHED, BATCHED_DET = (f"batched inverse_dynamics (N={BATCH}), determinacy off",
-                        f"batched inverse_dynamics (N={BATCH}), determinacy on")
+BATCHED, BATCHED_DET = (
+    f"batched inverse_dynamics (N={BATCH}), determinacy off",
+    f"batched inverse_dynamics (N={BATCH}), determinacy on",
+)
 MJ_FORWARD, MJ_SPLIT = "MuJoCo mj_forward bare, warm start", "MuJoCo mj_inverse + split into efforts"
 #: Issue 21's limits on one sample of inverse dynamics / raw, by mechanism.
 ONE_SAMPLE_LIMITS = {"four_bar": 15.0, "parallel_2t1r": 10.0, "deployable_9rr12uru": 1.0}
@@ -135,12 +137,18 @@ def _mujoco_calls(mech: Mechanism, s: Sample) -> dict[str, tuple[Callable[[Sampl
     }
 
 
-def _interleaved(fn: Callable[[Sample], object], raw: Callable[[Sample], object], samples: list[Sample],
-                 budget: float, repeats: int) -> tuple[float, float]:
+def _interleaved(
+    fn: Callable[[Sample], object], raw: Callable[[Sample], object], samples: list[Sample], budget: float, repeats: int
+) -> tuple[float, float]:
     """Seconds per call of fn and of raw, timed alternately `repeats` times; the minimum of each (the
     least disturbed repeat on a shared machine)."""
-    pairs = [(time_per_call(fn, samples, budget / repeats / 2, 1)[0], time_per_call(raw, samples, budget / repeats / 2, 1)[0])
-             for _ in range(repeats)]
+    pairs = [
+        (
+            time_per_call(fn, samples, budget / repeats / 2, 1)[0],
+            time_per_call(raw, samples, budget / repeats / 2, 1)[0],
+        )
+        for _ in range(repeats)
+    ]
     return min(p[0] for p in pairs), min(p[1] for p in pairs)
 
 
@@ -201,8 +209,9 @@ def targets(rows: list[SpeedRow], name: str = "") -> list[SpeedTarget]:
     return out
 
 
-def phases(mech: Mechanism, samples: list[Sample], missed: set[str], budget: float = 0.3,
-           repeats: int = 15) -> list[Phase]:
+def phases(
+    mech: Mechanism, samples: list[Sample], missed: set[str], budget: float = 0.3, repeats: int = 15
+) -> list[Phase]:
     """Where the time of the calls behind missed targets goes: the whole call, the same call in the core
     (its difference: the argument checks and dispatch), the steps that can be called alone (Pinocchio's
     passes, the closure kernel, the reactions, the J a + gamma check; the core's remainder is the solve and
@@ -231,14 +240,26 @@ def phases(mech: Mechanism, samples: list[Sample], missed: set[str], budget: flo
         world = k.world(cd.used_placements())
         _, _, W = k.rows(world, cd.J, q)
         origins, points = cd.oMi[1:, :, 3].copy(), k.points(world).copy()
-        calls[ONE] = (("Mechanism.inverse_dynamics", lambda _: mech.inverse_dynamics(q, v, a, determinacy=False)),
-                      lambda _: core.inverse_dynamics(cm, cd, q, v, a, None, None, determinacy_test=False,
-                                                      generic_rank=mech.independent_rows), [
-            ("Pinocchio: computeJointJacobians + rnea", lambda _: (pin.computeJointJacobians(model, data, q),
-                                                                  pin.rnea(model, data, q, v, a))),
-            ("closure rows: placements read, world vectors, rows", lambda _: k.rows(k.world(cd.used_placements()), cd.J, q)),
-            ("reactions: tree wrenches to world axes, the multipliers' loads",
-             lambda _: (core.tree_wrenches(cd.oMi, cd.f), k.joint_loads(W, lam, origins, points)))])
+        calls[ONE] = (
+            ("Mechanism.inverse_dynamics", lambda _: mech.inverse_dynamics(q, v, a, determinacy=False)),
+            lambda _: core.inverse_dynamics(
+                cm, cd, q, v, a, None, None, determinacy_test=False, generic_rank=mech.independent_rows
+            ),
+            [
+                (
+                    "Pinocchio: computeJointJacobians + rnea",
+                    lambda _: (pin.computeJointJacobians(model, data, q), pin.rnea(model, data, q, v, a)),
+                ),
+                (
+                    "closure rows: placements read, world vectors, rows",
+                    lambda _: k.rows(k.world(cd.used_placements()), cd.J, q),
+                ),
+                (
+                    "reactions: tree wrenches to world axes, the multipliers' loads",
+                    lambda _: (core.tree_wrenches(cd.oMi, cd.f), k.joint_loads(W, lam, origins, points)),
+                ),
+            ],
+        )
     if "forward_dynamics wrapper / raw" in missed:
         raw = raw_constraint_dynamics(mech)
         legacy = core.LegacyConstraints(model, list(mech.cuts), len(k.couplings))
@@ -250,11 +271,16 @@ def phases(mech: Mechanism, samples: list[Sample], missed: set[str], budget: flo
             r = J.dot(a) - rhs
             return bool(r.dot(r) <= rhs.dot(rhs))
 
-        calls[FORWARD] = (("Mechanism.forward_dynamics", lambda _: mech.forward_dynamics(q, v, tau)),
-                          lambda _: core.forward_dynamics(cm, cd, q, v, tau), [
-            ("Pinocchio: constraintDynamics (the raw call)", lambda _: raw(q, v, tau)),
-            ("J a + gamma check: constraint Jacobian, right-hand side, two dots", check)])
+        calls[FORWARD] = (
+            ("Mechanism.forward_dynamics", lambda _: mech.forward_dynamics(q, v, tau)),
+            lambda _: core.forward_dynamics(cm, cd, q, v, tau),
+            [
+                ("Pinocchio: constraintDynamics (the raw call)", lambda _: raw(q, v, tau)),
+                ("J a + gamma check: constraint Jacobian, right-hand side, two dots", check),
+            ],
+        )
     if "exact forward dynamics / MuJoCo mj_forward" in missed:
+
         def rows_and_drift(_: Sample) -> np.ndarray:
             G = cd.used_placements()
             world = k.world(G)
@@ -262,30 +288,56 @@ def phases(mech: Mechanism, samples: list[Sample], missed: set[str], budget: flo
             return k.drift(G, k.twists(cd.J, v), k.twists(cd.dJ, v), q, v, world, W)
 
         pin.computeJointJacobiansTimeVariation(model, data, q, v)
-        calls[EXACT] = (("Mechanism.forward_dynamics, nullspace", lambda _: mech.forward_dynamics(q, v, tau, "nullspace")),
-                        lambda _: core.forward_dynamics(cm, cd, q, v, tau, "nullspace"), [
-            ("Pinocchio: computeJointJacobiansTimeVariation + crba + nonLinearEffects",
-             lambda _: (pin.computeJointJacobiansTimeVariation(model, data, q, v), pin.crba(model, data, q),
-                        pin.nonLinearEffects(model, data, q, v))),
-            ("closure rows and drift: placements read, world vectors, rows, twists, drift", rows_and_drift),
-            *((f"(for comparison) {label}", fn) for label, (fn, _) in _mujoco_calls(mech, s).items() if label == MJ_FORWARD)])
+        calls[EXACT] = (
+            ("Mechanism.forward_dynamics, nullspace", lambda _: mech.forward_dynamics(q, v, tau, "nullspace")),
+            lambda _: core.forward_dynamics(cm, cd, q, v, tau, "nullspace"),
+            [
+                (
+                    "Pinocchio: computeJointJacobiansTimeVariation + crba + nonLinearEffects",
+                    lambda _: (
+                        pin.computeJointJacobiansTimeVariation(model, data, q, v),
+                        pin.crba(model, data, q),
+                        pin.nonLinearEffects(model, data, q, v),
+                    ),
+                ),
+                ("closure rows and drift: placements read, world vectors, rows, twists, drift", rows_and_drift),
+                *(
+                    (f"(for comparison) {label}", fn)
+                    for label, (fn, _) in _mujoco_calls(mech, s).items()
+                    if label == MJ_FORWARD
+                ),
+            ],
+        )
     out = []
     for call, ((label, whole), in_core, steps) in calls.items():
         t = _round_robin({"whole": whole, "core": in_core, **dict(steps)}, samples, budget, repeats)
         total, core_t = t["whole"], t["core"]
         named = sum(x for name, x in t.items() if name not in ("whole", "core") and not name.startswith("(for"))
-        out += [Phase(call, f"whole call ({label})", total * 1e6, 1.0),
-                Phase(call, "argument checks and dispatch (the whole call minus the core's)",
-                      max(total - core_t, 0.0) * 1e6, max(total - core_t, 0.0) / total)]
+        out += [
+            Phase(call, f"whole call ({label})", total * 1e6, 1.0),
+            Phase(
+                call,
+                "argument checks and dispatch (the whole call minus the core's)",
+                max(total - core_t, 0.0) * 1e6,
+                max(total - core_t, 0.0) / total,
+            ),
+        ]
         out += [Phase(call, name, x * 1e6, x / total) for name, x in t.items() if name not in ("whole", "core")]
         rest = max(core_t - named, 0.0)  # by difference: 0 where the steps' noise exceeds it
-        out.append(Phase(call, "the rest of the core (by difference): solve, certificates, results, glue",
-                         rest * 1e6, rest / total))
+        out.append(
+            Phase(
+                call,
+                "the rest of the core (by difference): solve, certificates, results, glue",
+                rest * 1e6,
+                rest / total,
+            )
+        )
     return out
 
 
-def _round_robin(fns: dict[str, Callable[[Sample], object]], samples: list[Sample], budget: float,
-                 repeats: int) -> dict[str, float]:
+def _round_robin(
+    fns: dict[str, Callable[[Sample], object]], samples: list[Sample], budget: float, repeats: int
+) -> dict[str, float]:
     """Seconds per call of each function, all timed in turn `repeats` times (so that a disturbance hits
     them alike); the minimum of each."""
     best = dict.fromkeys(fns, float("inf"))
@@ -306,13 +358,17 @@ def markdown(results: list[MechanismSpeed]) -> list[str]:
     """
     names = [r.name for r in results]
     labels = list(dict.fromkeys(row.label for r in results for row in r.rows))
-    lines = ["| call | " + " | ".join(f"{n} (nv={r.nv})" for n, r in zip(names, results)) + " |",
-             "|---|" + "---|" * len(results)]
+    lines = [
+        "| call | " + " | ".join(f"{n} (nv={r.nv})" for n, r in zip(names, results)) + " |",
+        "|---|" + "---|" * len(results),
+    ]
     for label in labels:
         cells = []
         for r in results:
             row = next((x for x in r.rows if x.label == label), None)
-            cells.append("-" if row is None else (f"{row.us:.1f} us" if label == RAW else f"{row.us:.1f} us ({row.ratio:.2f}x)"))
+            cells.append(
+                "-" if row is None else (f"{row.us:.1f} us" if label == RAW else f"{row.us:.1f} us ({row.ratio:.2f}x)")
+            )
         lines.append(f"| {label} | " + " | ".join(cells) + " |")
     lines += ["", "| target | " + " | ".join(names) + " |", "|---|" + "---|" * len(results)]
     tlabels = list(dict.fromkeys(t.label for r in results for t in r.targets))
@@ -324,7 +380,12 @@ def markdown(results: list[MechanismSpeed]) -> list[str]:
         lines.append(f"| {label} | " + " | ".join(cells) + " |")
     for r in results:
         for call in dict.fromkeys(p.call for p in r.phases):
-            lines += ["", f"Where the time of `{call}` goes on {r.name} (the steps timed in turn with the whole call):", "",
-                      "| step | us | share of the call |", "|---|---|---|"]
+            lines += [
+                "",
+                f"Where the time of `{call}` goes on {r.name} (the steps timed in turn with the whole call):",
+                "",
+                "| step | us | share of the call |",
+                "|---|---|---|",
+            ]
             lines += [f"| {p.label} | {p.us:.1f} | {p.share:.0%} |" for p in r.phases if p.call == call]
     return lines

@@ -44,8 +44,11 @@ def _states(mech: Mechanism) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     return np.array([s.q for s in pick]), np.array([s.v for s in pick]), np.array([s.a for s in pick])
 
 
-def reaction_rows(names: tuple[str, ...] = ("four_bar", "parallel_2t1r", "deployable_9rr12uru"), budget_s: float = 0.3,
-                  repeats: int = 5) -> list[ElasticSpeedRow]:
+def reaction_rows(
+    names: tuple[str, ...] = ("four_bar", "parallel_2t1r", "deployable_9rr12uru"),
+    budget_s: float = 0.3,
+    repeats: int = 5,
+) -> list[ElasticSpeedRow]:
     """Compliant against rigid batched inverse dynamics (states near home, moving), us per sample.
 
     Args:
@@ -61,12 +64,21 @@ def reaction_rows(names: tuple[str, ...] = ("four_bar", "parallel_2t1r", "deploy
         mech = load(name, rows="spatial") if name == "four_bar" else load(name)
         elastic = ElasticModel(mech)
         Q, V, A = _states(mech)
-        rigid = time_per_call(lambda _, m=mech, s=(Q, V, A): m.inverse_dynamics_batch(*s), [None], budget_s,
-                              repeats).min() / len(Q)
-        compliant = time_per_call(lambda _, e=elastic, s=(Q, V, A): e.inverse_dynamics_batch(*s), [None], budget_s,
-                                  repeats).min() / len(Q)
-        out.append(ElasticSpeedRow(f"{name}: compliant reactions, batched ({BATCH})", compliant * 1e6, rigid * 1e6,
-                                   "<= 3 x rigid batched", compliant <= 3 * rigid))
+        rigid = time_per_call(
+            lambda _, m=mech, s=(Q, V, A): m.inverse_dynamics_batch(*s), [None], budget_s, repeats
+        ).min() / len(Q)
+        compliant = time_per_call(
+            lambda _, e=elastic, s=(Q, V, A): e.inverse_dynamics_batch(*s), [None], budget_s, repeats
+        ).min() / len(Q)
+        out.append(
+            ElasticSpeedRow(
+                f"{name}: compliant reactions, batched ({BATCH})",
+                compliant * 1e6,
+                rigid * 1e6,
+                "<= 3 x rigid batched",
+                compliant <= 3 * rigid,
+            )
+        )
     return out
 
 
@@ -82,8 +94,9 @@ def stiffness_row(budget_s: float = 0.3, repeats: int = 5) -> ElasticSpeedRow:
     """
     mech = load("parallel_2t1r")
     elastic = ElasticModel(mech)
-    s = time_per_call(lambda _: elastic.stiffness(mech.home_q, "platform", PLATFORM_CENTROID), [None], budget_s,
-                      repeats).min()
+    s = time_per_call(
+        lambda _: elastic.stiffness(mech.home_q, "platform", PLATFORM_CENTROID), [None], budget_s, repeats
+    ).min()
     return ElasticSpeedRow("parallel_2t1r: platform stiffness, one pose", s * 1e6, float("nan"), "< 1000 us", s < 1e-3)
 
 
@@ -113,8 +126,11 @@ def rows(budget_s: float = 0.3, repeats: int = 5) -> list[ElasticSpeedRow]:
     Returns:
         The reaction rows, the stiffness row and the modes row.
     """
-    return [*reaction_rows(budget_s=budget_s, repeats=repeats), stiffness_row(budget_s, repeats),
-            modes_row(budget_s, repeats)]
+    return [
+        *reaction_rows(budget_s=budget_s, repeats=repeats),
+        stiffness_row(budget_s, repeats),
+        modes_row(budget_s, repeats),
+    ]
 
 
 def lines(measured: list[ElasticSpeedRow]) -> list[str]:

@@ -115,7 +115,9 @@ def inverse_error(result: Any, ref: IDReference, actuated: Sequence[str]) -> tup
             some of them, else "").
     """
     efforts, reactions = id_parts(result)
-    scale = max([abs(u) for u in ref.efforts.values()] + [float(np.max(np.abs(w))) for w in ref.reactions.values()] + [1e-300])
+    scale = max(
+        [abs(u) for u in ref.efforts.values()] + [float(np.max(np.abs(w))) for w in ref.reactions.values()] + [1e-300]
+    )
     worst = max(abs(efforts[j] - u) for j, u in ref.efforts.items())
     if reactions is None:
         return worst / scale, "efforts only"

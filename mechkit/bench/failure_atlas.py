@@ -53,7 +53,9 @@ def proximal_mu(quick: bool = True) -> list[FailureCase]:
     Returns:
         The cases, one per method and mu (condition = mu).
     """
-    mus = [0.0, 1e-12, 1e-9, 1e-6, 1e-3, 1e-1] if quick else [0.0, 1e-14, 1e-12, 1e-10, 1e-8, 1e-6, 1e-4, 1e-2, 1e-1, 1.0]
+    mus = (
+        [0.0, 1e-12, 1e-9, 1e-6, 1e-3, 1e-1] if quick else [0.0, 1e-14, 1e-12, 1e-10, 1e-8, 1e-6, 1e-4, 1e-2, 1e-1, 1.0]
+    )
     return [c for rows in ("planar", "spatial") for c in _proximal_rows(rows, mus)]
 
 
@@ -61,11 +63,24 @@ def _proximal_rows(rows: str, mus: list[float]) -> list[FailureCase]:
     m = load("four_bar", rows=rows)
     s = make_samples(m, 1)[0]
     a_ref = references(m, [s]).a[0]  # sets s.tau to the reference efforts
-    cases = [FailureCase.attempt("proximal_mu", f"constraintDynamics rows={rows} it={it}", mu,
-                                 lambda mu=mu, it=it: _rel(m.forward_dynamics(s.q, s.v, s.tau, mu=mu, max_iter=it).a, a_ref))
-             for it in (1, 20) for mu in mus]
-    cases.append(FailureCase.attempt("proximal_mu", f"dense KKT rows={rows}", 0.0,
-                                     lambda: _rel(m.forward_dynamics(s.q, s.v, s.tau, "kkt").a, a_ref)))
+    cases = [
+        FailureCase.attempt(
+            "proximal_mu",
+            f"constraintDynamics rows={rows} it={it}",
+            mu,
+            lambda mu=mu, it=it: _rel(m.forward_dynamics(s.q, s.v, s.tau, mu=mu, max_iter=it).a, a_ref),
+        )
+        for it in (1, 20)
+        for mu in mus
+    ]
+    cases.append(
+        FailureCase.attempt(
+            "proximal_mu",
+            f"dense KKT rows={rows}",
+            0.0,
+            lambda: _rel(m.forward_dynamics(s.q, s.v, s.tau, "kkt").a, a_ref),
+        )
+    )
     return cases
 
 
@@ -97,10 +112,14 @@ def far_starts(quick: bool = True, seed: int = 3) -> list[FailureCase]:
                 try:
                     q = m.assemble(inputs, guess=guess, method=method)
                 except MechkitError as e:
-                    cases.append(FailureCase("far_starts", f"{name} {method}", k, float("nan"), type(e).__name__, str(e)[:160]))
+                    cases.append(
+                        FailureCase("far_starts", f"{name} {method}", k, float("nan"), type(e).__name__, str(e)[:160])
+                    )
                     continue
                 err = float(np.max(np.abs((q - m.home_q + np.pi) % (2 * np.pi) - np.pi)))
-                cases.append(FailureCase("far_starts", f"{name} {method}", k, err, "ok" if err < 1e-8 else "other branch"))
+                cases.append(
+                    FailureCase("far_starts", f"{name} {method}", k, err, "ok" if err < 1e-8 else "other branch")
+                )
     return cases
 
 
@@ -123,6 +142,7 @@ def integration(quick: bool = True, duration: float | None = None, dt: float = 1
     cases = []
     for scheme in ("RK4", "semi-implicit Euler"):
         for gains, label in (((0.0, 0.0), "no stabilisation"), (BAUMGARTE, "Baumgarte")):
+
             def acc(q, v, gains=gains):
                 return m.forward_dynamics(q, v, tau, baumgarte=gains).a
 
@@ -141,8 +161,11 @@ def integration(quick: bool = True, duration: float | None = None, dt: float = 1
                         v = v + dt * acc(q, v)
                         q = q + dt * v
                     if k % max(1, steps // 25) == 0:
-                        cases.append(FailureCase("integration", method, k * dt, float(np.linalg.norm(m.closure_residual(q))),
-                                                 "ok"))
+                        cases.append(
+                            FailureCase(
+                                "integration", method, k * dt, float(np.linalg.norm(m.closure_residual(q))), "ok"
+                            )
+                        )
             except MechkitError as e:
                 cases.append(FailureCase("integration", method, k * dt, float("nan"), type(e).__name__, str(e)[:160]))
     return cases
@@ -156,12 +179,22 @@ def _own(run):
 
 #: The atlas's own studies (of the core's methods, on the calibration mechanisms they load).
 OWN = (
-    FailureStudy("proximal_mu", _own(proximal_mu), condition="proximal regularisation mu (-)",
-                 error="max |a - a_ref| / max |a_ref| (-)"),
-    FailureStudy("far_starts", _own(far_starts), condition="mechanism and closure solver",
-                 error="number of random starts (-)", counts=True),
-    FailureStudy("integration", _own(integration), condition="time (s)", error="closure residual norm (m)",
-                 log_condition=False),
+    FailureStudy(
+        "proximal_mu",
+        _own(proximal_mu),
+        condition="proximal regularisation mu (-)",
+        error="max |a - a_ref| / max |a_ref| (-)",
+    ),
+    FailureStudy(
+        "far_starts",
+        _own(far_starts),
+        condition="mechanism and closure solver",
+        error="number of random starts (-)",
+        counts=True,
+    ),
+    FailureStudy(
+        "integration", _own(integration), condition="time (s)", error="closure residual norm (m)", log_condition=False
+    ),
 )
 
 
@@ -200,7 +233,9 @@ def run(study: FailureStudy, mechanism: str | None, quick: bool = True) -> list[
 def _conditions(study: FailureStudy, cases: list[FailureCase]) -> np.ndarray:
     """Where each case is drawn along the condition axis (a log axis cannot show 0 or less)."""
     if study.towards_zero:  # 0 (the failure itself) and < 0 (past it) drawn left of the data
-        return np.array([c.condition if c.condition > 0 else (10 * FLOOR if c.condition == 0 else FLOOR) for c in cases])
+        return np.array(
+            [c.condition if c.condition > 0 else (10 * FLOOR if c.condition == 0 else FLOOR) for c in cases]
+        )
     if study.log_condition:
         return np.array([max(abs(c.condition), FLOOR) for c in cases])
     return np.array([c.condition for c in cases])
@@ -226,7 +261,9 @@ def draw(study: FailureStudy, cases: list[FailureCase], folder: Path) -> list[Pa
         outcomes = sorted({c.outcome for c in cases})
         bottom = np.zeros(len(methods))
         for o in outcomes:
-            counts = np.array([sum(1 for c in cases if c.method == mm and c.outcome == o) for mm in methods], dtype=float)
+            counts = np.array(
+                [sum(1 for c in cases if c.method == mm and c.outcome == o) for mm in methods], dtype=float
+            )
             ax.bar(range(len(methods)), counts, bottom=bottom, label=o)
             bottom += counts
         ax.set_xticks(range(len(methods)), methods, rotation=20, fontsize=7)
@@ -238,7 +275,7 @@ def draw(study: FailureStudy, cases: list[FailureCase], folder: Path) -> list[Pa
             x = _conditions(study, pts)
             ok = [c.outcome == "ok" for c in pts]
             y = np.array([max(c.error, FLOOR) if o else np.nan for c, o in zip(pts, ok)])
-            line, = ax.plot(x, y, marker="o", label=mm, markersize=4)
+            (line,) = ax.plot(x, y, marker="o", label=mm, markersize=4)
             for xi, c in zip(x, pts):
                 if c.outcome != "ok":
                     ax.plot([xi], [FLOOR * 10], marker="x", color=line.get_color(), markersize=9)

@@ -69,24 +69,56 @@ def example_robot_data() -> Path:
     return Path(sysconfig.get_paths()["purelib"], "cmeel.prefix", "share", "example-robot-data", "robots")
 
 
-_GEPETTO_ROBOTS = ("5bar_linkage", "5bar_linkage_iso3d", "5bar_linkage_iso6d", "battobot_6d", "cassie_like",
-                   "digit_like", "digit_like_2legs", "digit_like_2legs_6D", "digit_like_2legs_old", "disney_like",
-                   "disney_robot", "kangaroo_like", "kangaroo_like_2legs", "robot_delta", "talos_like", "wl16_like")
+_GEPETTO_ROBOTS = (
+    "5bar_linkage",
+    "5bar_linkage_iso3d",
+    "5bar_linkage_iso6d",
+    "battobot_6d",
+    "cassie_like",
+    "digit_like",
+    "digit_like_2legs",
+    "digit_like_2legs_6D",
+    "digit_like_2legs_old",
+    "disney_like",
+    "disney_robot",
+    "kangaroo_like",
+    "kangaroo_like_2legs",
+    "robot_delta",
+    "talos_like",
+    "wl16_like",
+)
 _CASSIE_SDF = "cassie_description/robots/"
 #: The robots of docs/field_robots.md.
 ROBOTS: tuple[FieldRobot, ...] = (
     *(FieldRobot(r, f"gepetto/{r}/robot.urdf", "fixtures", (), *GEPETTO) for r in _GEPETTO_ROBOTS),
     FieldRobot("true_talos_2_legs", "gepetto/true_talos_2_legs/talos_full_v2.urdf", "fixtures", (), *GEPETTO),
     FieldRobot("menagerie cassie", "menagerie/agility_cassie/cassie.xml", "fixtures", (), MENAGERIE, "MIT"),
-    FieldRobot("menagerie cassie, pelvis fixed", "menagerie/agility_cassie/cassie.xml", "fixtures", ("cassie-pelvis",),
-               MENAGERIE, "MIT"),
+    FieldRobot(
+        "menagerie cassie, pelvis fixed",
+        "menagerie/agility_cassie/cassie.xml",
+        "fixtures",
+        ("cassie-pelvis",),
+        MENAGERIE,
+        "MIT",
+    ),
     FieldRobot("menagerie robotiq 2f85", "menagerie/robotiq_2f85/2f85.xml", "fixtures", (), MENAGERIE, "BSD-2-Clause"),
-    *(FieldRobot(f"cassie sdf {f}", _CASSIE_SDF + f"{f}.sdf", "example-robot-data", (), *ERD)
-      for f in ("cassie", "cassie_v2", "cassie_reduced", "cassie_simple", "cassie_wo_gearbox_spring")),
+    *(
+        FieldRobot(f"cassie sdf {f}", _CASSIE_SDF + f"{f}.sdf", "example-robot-data", (), *ERD)
+        for f in ("cassie", "cassie_v2", "cassie_reduced", "cassie_simple", "cassie_wo_gearbox_spring")
+    ),
     FieldRobot("cassie sdf cassie, pelvis fixed", _CASSIE_SDF + "cassie.sdf", "example-robot-data", ("pelvis",), *ERD),
-    *(FieldRobot(f"urdf+ {f}", f"urdf_plus/{f}.urdf", "fixtures", (), *URDF_PLUS)
-      for f in ("four_bar", "six_bar", "mit_humanoid", "mit_humanoid_leg", "revolute_rotor_chain", "planar_leg_linkage",
-                "mini_cheetah_leg")),
+    *(
+        FieldRobot(f"urdf+ {f}", f"urdf_plus/{f}.urdf", "fixtures", (), *URDF_PLUS)
+        for f in (
+            "four_bar",
+            "six_bar",
+            "mit_humanoid",
+            "mit_humanoid_leg",
+            "revolute_rotor_chain",
+            "planar_leg_linkage",
+            "mini_cheetah_leg",
+        )
+    ),
 )
 
 
@@ -165,11 +197,19 @@ def add_section(page: Path, fixtures: Path, quick: bool = False, robots: tuple[F
         robots: the robots timed.
     """
     repeats = 3 if quick else 15
-    body = [f"## {SECTION}", "", (f"`mechkit.load` of each robot of docs/field_robots.md, warm (after one untimed "
-                                  f"load), median of {repeats} in one process: the reader parses and checks the file, "
-                                  "the core analyses it and assembles its home every time. A file mechkit refuses "
-                                  "shows the start of its reason."), "",
-            *lines(load_times(fixtures, repeats, robots)), ""]
+    body = [
+        f"## {SECTION}",
+        "",
+        (
+            f"`mechkit.load` of each robot of docs/field_robots.md, warm (after one untimed "
+            f"load), median of {repeats} in one process: the reader parses and checks the file, "
+            "the core analyses it and assembles its home every time. A file mechkit refuses "
+            "shows the start of its reason."
+        ),
+        "",
+        *lines(load_times(fixtures, repeats, robots)),
+        "",
+    ]
     text = page.read_text().split("\n")
     heads = [i for i, line in enumerate(text) if line.startswith("## ")]
     mine = next((i for i in heads if text[i] == f"## {SECTION}"), None)

@@ -105,10 +105,23 @@ def measure(loops: int, budget: float = 0.2, repeats: int = 5) -> LadderPoint:
     result = lcaba(None)
     lcaba_error = float(np.max(np.abs(result.a - exact))) / scale
     iterations = result.iterations
-    pairs = [(time_per_call(raw, [None], budget / repeats / 2, 1)[0],
-              time_per_call(lcaba, [None], budget / repeats / 2, 1)[0]) for _ in range(repeats)]
-    return LadderPoint(loops, mech.model.nv, min(p[0] for p in pairs) * 1e6, raw_error,
-                       min(p[1] for p in pairs) * 1e6, lcaba_error, iterations, os.getloadavg()[0])
+    pairs = [
+        (
+            time_per_call(raw, [None], budget / repeats / 2, 1)[0],
+            time_per_call(lcaba, [None], budget / repeats / 2, 1)[0],
+        )
+        for _ in range(repeats)
+    ]
+    return LadderPoint(
+        loops,
+        mech.model.nv,
+        min(p[0] for p in pairs) * 1e6,
+        raw_error,
+        min(p[1] for p in pairs) * 1e6,
+        lcaba_error,
+        iterations,
+        os.getloadavg()[0],
+    )
 
 
 def growth(points: list[LadderPoint], attr: str) -> float:
@@ -152,19 +165,33 @@ def markdown(points: list[LadderPoint]) -> list[str]:
     Returns:
         Markdown lines.
     """
-    lines = ["| loops | nv | raw constraintDynamics us | its error | lcaba us | its error | lcaba / raw | lcaba iterations |",
-             "|---|---|---|---|---|---|---|---|"]
+    lines = [
+        "| loops | nv | raw constraintDynamics us | its error | lcaba us | its error | lcaba / raw | lcaba iterations |",
+        "|---|---|---|---|---|---|---|---|",
+    ]
     for p in points:
-        lines.append(f"| {p.loops} | {p.nv} | {p.raw_us:.1f} | {p.raw_error:.1e} | {p.lcaba_us:.1f} | "
-                     f"{p.lcaba_error:.1e} | {p.ratio:.2f} | {p.lcaba_iterations} |")
+        lines.append(
+            f"| {p.loops} | {p.nv} | {p.raw_us:.1f} | {p.raw_error:.1e} | {p.lcaba_us:.1f} | "
+            f"{p.lcaba_error:.1e} | {p.ratio:.2f} | {p.lcaba_iterations} |"
+        )
     raw_p, lc_p = growth(points, "raw_us"), growth(points, "lcaba_us")
     loads = [p.load for p in points]
-    lines += ["", (f"Growth (slope of log t on log N, N >= {FIT_FROM}): raw constraintDynamics N^{raw_p:.2f}, "
-              f"lcaba N^{lc_p:.2f}. Load average (1 min) during the run: {min(loads):.1f} to {max(loads):.1f}.")]
+    lines += [
+        "",
+        (
+            f"Growth (slope of log t on log N, N >= {FIT_FROM}): raw constraintDynamics N^{raw_p:.2f}, "
+            f"lcaba N^{lc_p:.2f}. Load average (1 min) during the run: {min(loads):.1f} to {max(loads):.1f}."
+        ),
+    ]
     last = max(points, key=lambda p: p.loops)
-    checks = [(f"lcaba at {last.loops} loops under 1 ms", last.lcaba_us < 1000.0, f"{last.lcaba_us:.0f} us"),
-              ("lcaba growth at most N^1.3", lc_p <= 1.3, f"N^{lc_p:.2f}"),
-              ("lcaba error at most 1e-10", max(p.lcaba_error for p in points) <= 1e-10,
-               f"worst {max(p.lcaba_error for p in points):.1e}")]
+    checks = [
+        (f"lcaba at {last.loops} loops under 1 ms", last.lcaba_us < 1000.0, f"{last.lcaba_us:.0f} us"),
+        ("lcaba growth at most N^1.3", lc_p <= 1.3, f"N^{lc_p:.2f}"),
+        (
+            "lcaba error at most 1e-10",
+            max(p.lcaba_error for p in points) <= 1e-10,
+            f"worst {max(p.lcaba_error for p in points):.1e}",
+        ),
+    ]
     lines += [""] + [f"- {label}: {value}: {'met' if ok else 'MISSED'}" for label, ok, value in checks]
     return lines

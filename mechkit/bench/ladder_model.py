@@ -18,6 +18,8 @@ from mechkit.mechanism import Mechanism
 
 #: Rail bar and rung lengths (m) and the mass of every bar (kg) of the ladder (ours).
 RAIL, RUNG, MASS = 0.2, 0.3, 0.1
+
+
 def _rod(name: str, length: float, axis: int) -> str:
     """A uniform rod link from its frame origin along +x (axis 0) or +z (axis 2)."""
     c = [0.0, 0.0, 0.0]
@@ -25,14 +27,20 @@ def _rod(name: str, length: float, axis: int) -> str:
     end = MASS * length**2 / 12
     inertia = [end, end, end]
     inertia[axis] = MASS * 1e-6  # thin rod: a small axial inertia keeps the inertia positive definite
-    return (f'<link name="{name}"><inertial><origin xyz="{c[0]} {c[1]} {c[2]}" rpy="0 0 0"/><mass value="{MASS}"/>'
-            f'<inertia ixx="{inertia[0]}" ixy="0" ixz="0" iyy="{inertia[1]}" iyz="0" izz="{inertia[2]}"/></inertial></link>')
+    return (
+        f'<link name="{name}"><inertial><origin xyz="{c[0]} {c[1]} {c[2]}" rpy="0 0 0"/><mass value="{MASS}"/>'
+        f'<inertia ixx="{inertia[0]}" ixy="0" ixz="0" iyy="{inertia[1]}" iyz="0" izz="{inertia[2]}"/></inertial></link>'
+    )
 
 
 def _joint(name: str, parent: str, child: str, xyz: tuple[float, float, float], kind: str = "revolute") -> str:
-    axis = '<axis xyz="0 1 0"/><limit effort="1e6" lower="-25" upper="25" velocity="1e3"/>' if kind == "revolute" else ""
-    return (f'<joint name="{name}" type="{kind}"><parent link="{parent}"/><child link="{child}"/>'
-            f'<origin xyz="{xyz[0]} {xyz[1]} {xyz[2]}" rpy="0 0 0"/>{axis}</joint>')
+    axis = (
+        '<axis xyz="0 1 0"/><limit effort="1e6" lower="-25" upper="25" velocity="1e3"/>' if kind == "revolute" else ""
+    )
+    return (
+        f'<joint name="{name}" type="{kind}"><parent link="{parent}"/><child link="{child}"/>'
+        f'<origin xyz="{xyz[0]} {xyz[1]} {xyz[2]}" rpy="0 0 0"/>{axis}</joint>'
+    )
 
 
 def ladder_urdf(n: int) -> str:
@@ -53,14 +61,22 @@ def ladder_urdf(n: int) -> str:
     for i in range(1, n + 1):
         left_parent, right_parent = ("ground", "ground") if i == 1 else (f"left_{i - 1}", f"right_{i - 1}")
         base = 0.0 if i == 1 else RAIL
-        parts += [_rod(f"left_{i}", RAIL, 2), _rod(f"right_{i}", RAIL, 2), _rod(f"rung_{i}", RUNG, 0),
-                  _joint(f"l{i}", left_parent, f"left_{i}", (0.0, 0.0, base)),
-                  _joint(f"r{i}", right_parent, f"right_{i}", (RUNG if i == 1 else 0.0, 0.0, base)),
-                  _joint(f"g{i}", f"left_{i}", f"rung_{i}", (0.0, 0.0, RAIL)),
-                  f'<link name="rung_{i}_end"/>', _joint(f"rung_{i}_end_fixed", f"rung_{i}", f"rung_{i}_end", (RUNG, 0.0, 0.0), "fixed"),
-                  f'<link name="right_{i}_top"/>', _joint(f"right_{i}_top_fixed", f"right_{i}", f"right_{i}_top", (0.0, 0.0, RAIL), "fixed"),
-                  (f'<mechkit:loop name="c{i}" type="revolute" rows="planar" axis="0 1 0" frame_a="rung_{i}_end" '
-                  f'frame_b="right_{i}_top"/>')]
+        parts += [
+            _rod(f"left_{i}", RAIL, 2),
+            _rod(f"right_{i}", RAIL, 2),
+            _rod(f"rung_{i}", RUNG, 0),
+            _joint(f"l{i}", left_parent, f"left_{i}", (0.0, 0.0, base)),
+            _joint(f"r{i}", right_parent, f"right_{i}", (RUNG if i == 1 else 0.0, 0.0, base)),
+            _joint(f"g{i}", f"left_{i}", f"rung_{i}", (0.0, 0.0, RAIL)),
+            f'<link name="rung_{i}_end"/>',
+            _joint(f"rung_{i}_end_fixed", f"rung_{i}", f"rung_{i}_end", (RUNG, 0.0, 0.0), "fixed"),
+            f'<link name="right_{i}_top"/>',
+            _joint(f"right_{i}_top_fixed", f"right_{i}", f"right_{i}_top", (0.0, 0.0, RAIL), "fixed"),
+            (
+                f'<mechkit:loop name="c{i}" type="revolute" rows="planar" axis="0 1 0" frame_a="rung_{i}_end" '
+                f'frame_b="right_{i}_top"/>'
+            ),
+        ]
     parts.append("</robot>")
     return "\n".join(parts)
 

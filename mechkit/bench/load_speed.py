@@ -56,17 +56,22 @@ def file_versions(mech: Mechanism, folder: Path) -> dict[str, tuple[Path, dict[s
     """
     guess = mech.joint_values(mech.home_q)
     home = {j: guess[j] for j in mech.actuated}
-    extra = "".join(f'<transmission name="{j}_motor"><joint name="{j}"/></transmission>'
-                    f'<mechkit:home joint="{j}" value="{float(v)!r}"/>' for j, v in home.items())
+    extra = "".join(
+        f'<transmission name="{j}_motor"><joint name="{j}"/></transmission>'
+        f'<mechkit:home joint="{j}" value="{float(v)!r}"/>'
+        for j, v in home.items()
+    )
     (folder / "loops.urdf").write_text(mech.urdf.replace("</robot>", extra + "</robot>"))
     (folder / "ext").mkdir(exist_ok=True)
     urdf, sidecar = to_extended_urdf(mech)
     (folder / "ext" / "tree.urdf").write_text(urdf)
     (folder / "ext" / "tree.yaml").write_text(sidecar)
     (folder / "model.xml").write_text(to_mjcf(mech))
-    return {"urdf": (folder / "loops.urdf", {"guess": guess}),
-            "extended-urdf": (folder / "ext" / "tree.urdf", {"home": home, "guess": guess}),
-            "mjcf": (folder / "model.xml", {})}
+    return {
+        "urdf": (folder / "loops.urdf", {"guess": guess}),
+        "extended-urdf": (folder / "ext" / "tree.urdf", {"home": home, "guess": guess}),
+        "mjcf": (folder / "model.xml", {}),
+    }
 
 
 def load_times(names: tuple[str, ...] = NAMES, repeats: int = 7) -> list[LoadTime]:

@@ -73,10 +73,14 @@ def _owner(module: str) -> str | None:
 
 def _one(name: str) -> tuple[float, float, list[str]]:
     start = time.perf_counter()
-    done = subprocess.run([sys.executable, "-c", _SCRIPT.format(name=name)], capture_output=True, text=True, check=False)
+    done = subprocess.run(
+        [sys.executable, "-c", _SCRIPT.format(name=name)], capture_output=True, text=True, check=False
+    )
     wall = time.perf_counter() - start
     if done.returncode != 0:
-        raise MethodUnavailable("first load", f"python -c 'mechkit.load({name!r})' failed: {done.stderr.strip()[-300:]}")
+        raise MethodUnavailable(
+            "first load", f"python -c 'mechkit.load({name!r})' failed: {done.stderr.strip()[-300:]}"
+        )
     found = json.loads(done.stdout.splitlines()[-1])
     return wall, float(found["seconds"]), list(found["modules"])
 

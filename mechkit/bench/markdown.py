@@ -66,8 +66,18 @@ def format_table(b: MechanismBench, markdown: bool = False) -> str:
         iqr = r.p75_s - r.p25_s
         outcome = r.outcome if r.outcome != "ok" else (r.note or "ok")
         name = ("[peer] " if r.method.peer else "") + r.method.name
-        body.append([r.method.quantity, name, _us(r.median_s), _us(iqr), _num(r.error), _num(r.x_fastest, ".2f"),
-                     _num(r.x_base, ".2f"), outcome])
+        body.append(
+            [
+                r.method.quantity,
+                name,
+                _us(r.median_s),
+                _us(iqr),
+                _num(r.error),
+                _num(r.x_fastest, ".2f"),
+                _num(r.x_base, ".2f"),
+                outcome,
+            ]
+        )
     if markdown:
         lines.append("| " + " | ".join(head) + " |")
         lines.append("|" + "---|" * len(head))
@@ -86,9 +96,15 @@ def format_table(b: MechanismBench, markdown: bool = False) -> str:
 
 def machine() -> dict[str, str]:
     """Machine and versions, for the record."""
-    info = {"python": platform.python_version(), "platform": platform.platform(), "processor": _cpu(),
-            "cores": str(os.cpu_count()), "pinocchio": pinocchio.__version__, "numpy": numpy.__version__,
-            "scipy": scipy.__version__}
+    info = {
+        "python": platform.python_version(),
+        "platform": platform.platform(),
+        "processor": _cpu(),
+        "cores": str(os.cpu_count()),
+        "pinocchio": pinocchio.__version__,
+        "numpy": numpy.__version__,
+        "scipy": scipy.__version__,
+    }
     for dist in ("mujoco", "drake", "matplotlib"):
         try:
             info[dist] = metadata.version(dist)
@@ -128,23 +144,46 @@ def goals(results: list[MechanismBench]) -> list[str]:
             id_ratio = p.get("id/mujoco", float("inf"))
             met = p["fd/mujoco"] <= 1.0 and id_ratio <= 1.0 and acc >= 1e6
             raw_ok = p.get("raw/mujoco", float("inf")) <= 1.0
-            missed = [what for what, bad in (
-                ("forward dynamics slower" + (": the raw Pinocchio call is faster than MuJoCo, the wrapper's Python overhead is not"
-                                              if raw_ok else ": the raw pin.constraintDynamics itself is slower here (legacy "
-                                              "proximal path, see the scale fit)"), p["fd/mujoco"] > 1.0),
-                ("reactions slower: Python overhead of the core's inverse dynamics, see tools/bench_core.py --profile",
-                 id_ratio > 1.0), ("accuracy < 1e6x", acc < 1e6)) if bad]
+            missed = [
+                what
+                for what, bad in (
+                    (
+                        "forward dynamics slower"
+                        + (
+                            ": the raw Pinocchio call is faster than MuJoCo, the wrapper's Python overhead is not"
+                            if raw_ok
+                            else ": the raw pin.constraintDynamics itself is slower here (legacy "
+                            "proximal path, see the scale fit)"
+                        ),
+                        p["fd/mujoco"] > 1.0,
+                    ),
+                    (
+                        "reactions slower: Python overhead of the core's inverse dynamics, see tools/bench_core.py --profile",
+                        id_ratio > 1.0,
+                    ),
+                    ("accuracy < 1e6x", acc < 1e6),
+                )
+                if bad
+            ]
             raw = f" (raw pin.constraintDynamics {p['raw/mujoco']:.2f})" if "raw/mujoco" in p else ""
-            out.append(f"{b.name}: time / MuJoCo mj_forward: constrained forward dynamics {p['fd/mujoco']:.2f}{raw}, inverse "
-                       f"dynamics with reactions {id_ratio:.2f}; error {fd.error:.1e} vs MuJoCo default {mj.error:.1e} "
-                       f"({acc:.1e}x): {'MET' if met else 'MISSED (' + ', '.join(missed) + ')'}")
+            out.append(
+                f"{b.name}: time / MuJoCo mj_forward: constrained forward dynamics {p['fd/mujoco']:.2f}{raw}, inverse "
+                f"dynamics with reactions {id_ratio:.2f}; error {fd.error:.1e} vs MuJoCo default {mj.error:.1e} "
+                f"({acc:.1e}x): {'MET' if met else 'MISSED (' + ', '.join(missed) + ')'}"
+            )
         if "id/raw" in p:
             det = f", with determinacy {p['id+det/raw']:.1f}x" if "id+det/raw" in p else ""
             err = f" (error {idr.error:.1e})" if idr else ""
-            out.append(f"{b.name}: inverse dynamics with every reaction / one raw pin.constraintDynamics: "
-                       f"{p['id/raw']:.1f}x{err}{det}: "
-                       + ("MET (goal 5x)" if p["id/raw"] <= 5 else "MISSED (goal 5x): Python-level numpy work around the "
-                          "Pinocchio calls dominates, see tools/bench_core.py --profile"))
+            out.append(
+                f"{b.name}: inverse dynamics with every reaction / one raw pin.constraintDynamics: "
+                f"{p['id/raw']:.1f}x{err}{det}: "
+                + (
+                    "MET (goal 5x)"
+                    if p["id/raw"] <= 5
+                    else "MISSED (goal 5x): Python-level numpy work around the "
+                    "Pinocchio calls dominates, see tools/bench_core.py --profile"
+                )
+            )
     return out
 
 
@@ -170,16 +209,18 @@ def goal_summary(results: list[MechanismBench]) -> str:
             inaccurate.append(b.name)
     acc = n - len(inaccurate)
     idr = sum(1 for x in p if x.get("id/raw", np.inf) <= 5.0)
-    return (f"Goal 1 (our constrained dynamics and reactions at least as fast as MuJoCo's forward step, 1e6x more "
-            f"accurate than its default soft constraints): accuracy met on {acc}/{n}"
-            + (f" (missed: {', '.join(inaccurate)}: see its table, our own methods disagree there)" if inaccurate else "")
-            + f"; speed of the forward-dynamics "
-            f"wrapper met on {fd}/{n} (the raw pin.constraintDynamics call on {raw}/{n}); inverse dynamics with every "
-            f"reaction as fast as mj_forward on {idm}/{n}. Goal 2 (inverse dynamics with every reaction within 5x of "
-            f"one raw pin.constraintDynamics): met on {idr}/{n}. Where speed is missed, the cost is Python-level work around "
-            f"the Pinocchio calls (see tools/bench_core.py --profile), except where the raw "
-            f"pin.constraintDynamics call is itself slower than mj_forward ({n - raw}/{n}: Pinocchio's legacy proximal "
-            f"path: see its exponent in the scale fit).")
+    return (
+        f"Goal 1 (our constrained dynamics and reactions at least as fast as MuJoCo's forward step, 1e6x more "
+        f"accurate than its default soft constraints): accuracy met on {acc}/{n}"
+        + (f" (missed: {', '.join(inaccurate)}: see its table, our own methods disagree there)" if inaccurate else "")
+        + f"; speed of the forward-dynamics "
+        f"wrapper met on {fd}/{n} (the raw pin.constraintDynamics call on {raw}/{n}); inverse dynamics with every "
+        f"reaction as fast as mj_forward on {idm}/{n}. Goal 2 (inverse dynamics with every reaction within 5x of "
+        f"one raw pin.constraintDynamics): met on {idr}/{n}. Where speed is missed, the cost is Python-level work around "
+        f"the Pinocchio calls (see tools/bench_core.py --profile), except where the raw "
+        f"pin.constraintDynamics call is itself slower than mj_forward ({n - raw}/{n}: Pinocchio's legacy proximal "
+        f"path: see its exponent in the scale fit)."
+    )
 
 
 def first_load_lines(first: FirstLoad) -> list[str]:
@@ -192,20 +233,39 @@ def first_load_lines(first: FirstLoad) -> list[str]:
         A markdown table and a sentence on the modules imported.
     """
     rows = []
-    for label, values in (("whole process (interpreter start, imports, load)", first.process_s),
-                          ("`import mechkit` + `mechkit.load`, timed inside the process", first.inside_s)):
+    for label, values in (
+        ("whole process (interpreter start, imports, load)", first.process_s),
+        ("`import mechkit` + `mechkit.load`, timed inside the process", first.inside_s),
+    ):
         median, p25, p75 = quartiles(values)
         rows.append(f"| {label} | {median * 1e3:.0f} | {p25 * 1e3:.0f} .. {p75 * 1e3:.0f} | {len(values)} |")
-    verdict = ("no other mechanism's module: MET" if not first.others
-               else f"other mechanisms' modules imported: {', '.join(first.others)}: MISSED")
-    return ["| first load | median ms | 25 .. 75 % ms | runs |", "|---|---|---|---|", *rows, "",
-            (f"Mechanism modules imported by `mechkit.load({first.name!r})`: {', '.join(first.modules) or 'none'} "
-             f"({verdict}).")]
+    verdict = (
+        "no other mechanism's module: MET"
+        if not first.others
+        else f"other mechanisms' modules imported: {', '.join(first.others)}: MISSED"
+    )
+    return [
+        "| first load | median ms | 25 .. 75 % ms | runs |",
+        "|---|---|---|---|",
+        *rows,
+        "",
+        (
+            f"Mechanism modules imported by `mechkit.load({first.name!r})`: {', '.join(first.modules) or 'none'} "
+            f"({verdict})."
+        ),
+    ]
 
 
-def markdown_report(results: list[MechanismBench], quick: bool, charts: list[Path], failures: list[str],
-                    skipped: dict[str, str], fits: list[ScaleFit], first: FirstLoad | None = None,
-                    sections: dict[str, list[str]] | None = None) -> str:
+def markdown_report(
+    results: list[MechanismBench],
+    quick: bool,
+    charts: list[Path],
+    failures: list[str],
+    skipped: dict[str, str],
+    fits: list[ScaleFit],
+    first: FirstLoad | None = None,
+    sections: dict[str, list[str]] | None = None,
+) -> str:
     """docs/benchmarks.md: machine, goals, per-mechanism tables, scale fits, extra sections, first load,
     skipped mechanisms, failure atlas, charts.
 
@@ -222,31 +282,63 @@ def markdown_report(results: list[MechanismBench], quick: bool, charts: list[Pat
     Returns:
         The page's markdown text.
     """
-    lines = ["# Benchmarks", "", "Generated by `mechkit bench" + (" --quick" if quick else "") +
-             " --markdown docs/benchmarks.md` (do not edit by hand). Times are medians over repeats in one",
-             "process on a shared machine: compare within a table, not across runs.", "", "## Machine", ""]
+    lines = [
+        "# Benchmarks",
+        "",
+        "Generated by `mechkit bench"
+        + (" --quick" if quick else "")
+        + " --markdown docs/benchmarks.md` (do not edit by hand). Times are medians over repeats in one",
+        "process on a shared machine: compare within a table, not across runs.",
+        "",
+        "## Machine",
+        "",
+    ]
     lines += [f"- {k}: {v}" for k, v in machine().items()]
     lines += ["", "## Goals", "", goal_summary(results), ""] + [f"- {g}" for g in goals(results)]
-    lines += ["", "## Peers and methods", "", PEER_NOTES, "## Columns", "",
-              (f"error: per quantity, {'; '.join(f'{q}: {e}' for q, e in ERROR_LABELS.items())}. "
-               f"x fastest: time / fastest method of equal or better accuracy (error within 10x, or both <= "
-               f"{EQUAL_ACCURACY_FLOOR:g}; efforts-only rows are not counted against rows with reactions). x base: time / the baseline ({'; '.join(f'{q}: {m}' for q, m in BASELINES.items())})."),
-              "", "## Results", ""]
+    lines += [
+        "",
+        "## Peers and methods",
+        "",
+        PEER_NOTES,
+        "## Columns",
+        "",
+        (
+            f"error: per quantity, {'; '.join(f'{q}: {e}' for q, e in ERROR_LABELS.items())}. "
+            f"x fastest: time / fastest method of equal or better accuracy (error within 10x, or both <= "
+            f"{EQUAL_ACCURACY_FLOOR:g}; efforts-only rows are not counted against rows with reactions). x base: time / the baseline ({'; '.join(f'{q}: {m}' for q, m in BASELINES.items())})."
+        ),
+        "",
+        "## Results",
+        "",
+    ]
     for b in results:
         lines.append(format_table(b, markdown=True))
     if fits:
-        lines += ["## Scale", "", ("Time per call against nv (mechanisms timed round-robin), least-squares fit of "
-                                   "log t = p log nv + c."), "",
-                  "| method | p | points (mechanism nv: us) |", "|---|---|---|"]
+        lines += [
+            "## Scale",
+            "",
+            ("Time per call against nv (mechanisms timed round-robin), least-squares fit of log t = p log nv + c."),
+            "",
+            "| method | p | points (mechanism nv: us) |",
+            "|---|---|---|",
+        ]
         for name, pts, slope in fits:
             lines.append(f"| {name} | {slope:.2f} | " + ", ".join(f"{m} {n}: {t * 1e6:.1f}" for m, n, t in pts) + " |")
         lines.append("")
     for title, body in (sections or {}).items():
         lines += [f"## {title}", "", *body, ""]
     if first is not None:
-        lines += ["## First load", "", (f"`python -c \"import mechkit; mechkit.load('{first.name}')\"` in fresh processes, "
-                                        "after one untimed run that warms the bytecode cache."), "",
-                  *first_load_lines(first), ""]
+        lines += [
+            "## First load",
+            "",
+            (
+                f"`python -c \"import mechkit; mechkit.load('{first.name}')\"` in fresh processes, "
+                "after one untimed run that warms the bytecode cache."
+            ),
+            "",
+            *first_load_lines(first),
+            "",
+        ]
     if skipped:
         lines += ["## Not measured", ""] + [f"- {k}: {v}" for k, v in skipped.items()] + [""]
     if failures:
@@ -254,5 +346,3 @@ def markdown_report(results: list[MechanismBench], quick: bool, charts: list[Pat
     if charts:
         lines += ["## Charts", ""] + [f"![{p.stem}](figures/{p.name})" for p in charts if p.suffix == ".png"] + [""]
     return "\n".join(lines)
-
-

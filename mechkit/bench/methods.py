@@ -29,8 +29,11 @@ if TYPE_CHECKING:
     from mechkit.mechanism import Mechanism
 
 #: Per quantity, the core's default method: the "x base" column divides by its time.
-BASELINES = {"assembly": "closure Newton tol=1e-12", "forward_dynamics": "constraintDynamics mu=1e-09 it=20",
-             "inverse_dynamics": "constrained RNEA + determinacy"}
+BASELINES = {
+    "assembly": "closure Newton tol=1e-12",
+    "forward_dynamics": "constraintDynamics mu=1e-09 it=20",
+    "inverse_dynamics": "constrained RNEA + determinacy",
+}
 
 
 @dataclass(frozen=True)
@@ -68,8 +71,11 @@ class References:
 
 def _core_inverse_reference(mech: Mechanism, s: Sample) -> IDReference:
     r = mech.inverse_dynamics(s.q, s.v, s.a, determinacy=True)
-    return IDReference(dict(s.extra.get("efforts", r.efforts)), {k: x.wrench for k, x in r.reactions.items()},
-                       {k: x.determinate for k, x in r.reactions.items()})
+    return IDReference(
+        dict(s.extra.get("efforts", r.efforts)),
+        {k: x.wrench for k, x in r.reactions.items()},
+        {k: x.determinate for k, x in r.reactions.items()},
+    )
 
 
 def references(mech: Mechanism, samples: list[Sample]) -> References:
@@ -83,9 +89,11 @@ def references(mech: Mechanism, samples: list[Sample]) -> References:
     Returns:
         The reference of every quantity at every sample, and their labels.
     """
-    labels = {"assembly": "closure Newton at 1e-14 (or the tightest reached, core)",
-              "forward_dynamics": "closure kinematics a, tau from the inverse-dynamics reference",
-              "inverse_dynamics": "core constrained RNEA (determinacy on)"}
+    labels = {
+        "assembly": "closure Newton at 1e-14 (or the tightest reached, core)",
+        "forward_dynamics": "closure kinematics a, tau from the inverse-dynamics reference",
+        "inverse_dynamics": "core constrained RNEA (determinacy on)",
+    }
     core = [_core_inverse_reference(mech, s) for s in samples]
     if "efforts" in samples[0].extra:
         labels["forward_dynamics"] = "core exact null-space solve (under-actuated, or kinematic a inconsistent)"
@@ -112,7 +120,9 @@ def references(mech: Mechanism, samples: list[Sample]) -> References:
         for s, c in zip(samples, core):
             efforts, reactions = id_parts(own.fn(mech, s))
             reactions = reactions or {}
-            inverse.append(IDReference(efforts, reactions, {k: c.determinate[k] for k in reactions if k in c.determinate}))
+            inverse.append(
+                IDReference(efforts, reactions, {k: c.determinate[k] for k in reactions if k in c.determinate})
+            )
     for s, ref in zip(samples, inverse):
         if "efforts" not in s.extra:
             s.tau = mech.generalized_forces(ref.efforts)
@@ -135,10 +145,17 @@ def core_methods(mech: Mechanism, quick: bool) -> list[Method]:
     tols = (1e-6, 1e-12) if quick else (1e-4, 1e-6, 1e-9, 1e-12)
     for algo, label in (("newton", "closure Newton"), ("lm", "closure LM")):
         for tol in tols:
-            methods.append(Method(f"{label} tol={tol:g}", "assembly",
-                                  lambda m, s, algo=algo, tol=tol: m.assemble(dict(zip(s.input_names, s.inputs)), guess=s.extra["guess"],
-                                                                              tol=tol, method=algo),
-                                  family=label, knob=f"tol={tol:g}"))
+            methods.append(
+                Method(
+                    f"{label} tol={tol:g}",
+                    "assembly",
+                    lambda m, s, algo=algo, tol=tol: m.assemble(
+                        dict(zip(s.input_names, s.inputs)), guess=s.extra["guess"], tol=tol, method=algo
+                    ),
+                    family=label,
+                    knob=f"tol={tol:g}",
+                )
+            )
     mus = (1e-9, 1e-3) if quick else (1e-12, 1e-9, 1e-6, 1e-3)
     iters = (1, 20) if quick else (1, 3, 20)
     try:
@@ -148,17 +165,41 @@ def core_methods(mech: Mechanism, quick: bool) -> list[Method]:
     if raw is not None:
         for it in iters:
             for mu in mus:
-                methods.append(Method(f"constraintDynamics mu={mu:g} it={it}", "forward_dynamics",
-                                      lambda m, s, mu=mu, it=it: m.forward_dynamics(s.q, s.v, s.tau, "proximal", mu=mu, max_iter=it).a,
-                                      family=f"constraintDynamics it={it}", knob=f"mu={mu:g}"))
-        methods.append(Method("raw pin.constraintDynamics (mu=1e-9)", "forward_dynamics",
-                              lambda m, s: raw(s.q, s.v, s.tau)))
-    methods.append(Method("dense KKT (independent rows)", "forward_dynamics",
-                          lambda m, s: m.forward_dynamics(s.q, s.v, s.tau, "kkt").a))
-    methods.append(Method("constrained RNEA + determinacy", "inverse_dynamics",
-                          lambda m, s: m.inverse_dynamics(s.q, s.v, s.a, determinacy=True)))
-    methods.append(Method("constrained RNEA, no determinacy", "inverse_dynamics",
-                          lambda m, s: m.inverse_dynamics(s.q, s.v, s.a, determinacy=False)))
+                methods.append(
+                    Method(
+                        f"constraintDynamics mu={mu:g} it={it}",
+                        "forward_dynamics",
+                        lambda m, s, mu=mu, it=it: (
+                            m.forward_dynamics(s.q, s.v, s.tau, "proximal", mu=mu, max_iter=it).a
+                        ),
+                        family=f"constraintDynamics it={it}",
+                        knob=f"mu={mu:g}",
+                    )
+                )
+        methods.append(
+            Method("raw pin.constraintDynamics (mu=1e-9)", "forward_dynamics", lambda m, s: raw(s.q, s.v, s.tau))
+        )
+    methods.append(
+        Method(
+            "dense KKT (independent rows)",
+            "forward_dynamics",
+            lambda m, s: m.forward_dynamics(s.q, s.v, s.tau, "kkt").a,
+        )
+    )
+    methods.append(
+        Method(
+            "constrained RNEA + determinacy",
+            "inverse_dynamics",
+            lambda m, s: m.inverse_dynamics(s.q, s.v, s.a, determinacy=True),
+        )
+    )
+    methods.append(
+        Method(
+            "constrained RNEA, no determinacy",
+            "inverse_dynamics",
+            lambda m, s: m.inverse_dynamics(s.q, s.v, s.a, determinacy=False),
+        )
+    )
     return methods
 
 

@@ -65,8 +65,9 @@ def _raw_call(mech: Mechanism, q: np.ndarray, v: np.ndarray) -> Callable[[], obj
     return lambda: raw(q, v, tau)
 
 
-def motion_law_speed(samples: int = 501, repeats: int = 5, name: str = "parallel_2t1r",
-                     law_name: str = "motion_law") -> MotionSpeed:
+def motion_law_speed(
+    samples: int = 501, repeats: int = 5, name: str = "parallel_2t1r", law_name: str = "motion_law"
+) -> MotionSpeed:
     """Time a motion study along a declared motion law (default: the 2T1R's, t in (0, 5] s, its singular
     start left out) at `samples` samples.
 
@@ -98,7 +99,8 @@ def motion_law_speed(samples: int = 501, repeats: int = 5, name: str = "parallel
 
     raw = _raw_call(mech, result.q[0], result.v[0])
     study_s, kinematics_s, dynamics_s, raw_s = _best_times(
-        [lambda: study(mech, law), kinematics, inverse, lambda: [raw() for _ in range(1000)]], repeats)
+        [lambda: study(mech, law), kinematics, inverse, lambda: [raw() for _ in range(1000)]], repeats
+    )
     return MotionSpeed(name, law_name, len(law.t), repeats, study_s, kinematics_s, dynamics_s, raw_s / 1000)
 
 
@@ -114,11 +116,15 @@ def lines(s: MotionSpeed) -> list[str]:
     per = {k: getattr(s, f"{k}_s") / s.samples for k in ("study", "kinematics", "dynamics")}
     raw = s.raw_constraint_dynamics_s
     out = [f"{s.name} {s.law.replace('_', ' ')}, {s.samples} samples (fastest of {s.repeats} runs in one process)"]
-    for k, label in (("study", "whole study (assembly, v, a, efforts, every reaction)"),
-                     ("kinematics", "  kinematics (closure solve from the predictor, v, a, axes)"),
-                     ("dynamics", "  efforts and every reaction (no determinacy)")):
-        out.append(f"{label}: {getattr(s, f'{k}_s') * 1e3:.1f} ms, {per[k] * 1e6:.0f} us/sample, "
-                   f"{per[k] / raw:.0f}x one raw constraintDynamics")
+    for k, label in (
+        ("study", "whole study (assembly, v, a, efforts, every reaction)"),
+        ("kinematics", "  kinematics (closure solve from the predictor, v, a, axes)"),
+        ("dynamics", "  efforts and every reaction (no determinacy)"),
+    ):
+        out.append(
+            f"{label}: {getattr(s, f'{k}_s') * 1e3:.1f} ms, {per[k] * 1e6:.0f} us/sample, "
+            f"{per[k] / raw:.0f}x one raw constraintDynamics"
+        )
     out.append(f"raw pin.constraintDynamics: {raw * 1e6:.1f} us")
     verdict = "met" if s.study_s <= GOAL_S else f"NOT met ({s.study_s / GOAL_S:.0f}x over)"
     out.append(f"goal: the whole study under {GOAL_S * 1e3:.0f} ms: {verdict}")

@@ -91,10 +91,12 @@ class MujocoPeer:
         J = np.zeros((nefc, self.nv))
         for r in range(nefc):
             adr, nnz = d.efc_J_rowadr[r], d.efc_J_rownnz[r]
-            J[r, d.efc_J_colind[adr:adr + nnz]] = d.efc_J[adr:adr + nnz]
+            J[r, d.efc_J_colind[adr : adr + nnz]] = d.efc_J[adr : adr + nnz]
         return J
 
-    def set_state(self, q: np.ndarray, v: np.ndarray, tau: np.ndarray | None = None, a: np.ndarray | None = None) -> None:
+    def set_state(
+        self, q: np.ndarray, v: np.ndarray, tau: np.ndarray | None = None, a: np.ndarray | None = None
+    ) -> None:
         """Write a state (mechkit order) into the MjData, for timing `mj_forward` / `mj_inverse` bare.
 
         Args:
@@ -146,7 +148,7 @@ class MujocoPeer:
         J = self._efc_jacobian()[:, self.vadr]
         A = np.zeros((self.nv, len(self.actuated_v) + nefc))
         A[self.actuated_v, np.arange(len(self.actuated_v))] = 1.0
-        A[:, len(self.actuated_v):] = J.T
+        A[:, len(self.actuated_v) :] = J.T
         x = np.linalg.lstsq(A, b, rcond=None)[0]
         return dict(zip(self.actuated, map(float, x[: len(self.actuated_v)])))
 
@@ -255,15 +257,35 @@ def peer_methods(mech: Mechanism) -> tuple[list[Method], list[str]]:
         except MechkitError as err:
             notes.append(f"MuJoCo {label}: {err}")
             continue
-        methods.append(Method(f"MuJoCo mj_forward ({label} solref/solimp)", "forward_dynamics",
-                              lambda m, s, p=p: p.forward(s.q, s.v, s.tau), family="MuJoCo", peer=True, knob=label))
+        methods.append(
+            Method(
+                f"MuJoCo mj_forward ({label} solref/solimp)",
+                "forward_dynamics",
+                lambda m, s, p=p: p.forward(s.q, s.v, s.tau),
+                family="MuJoCo",
+                peer=True,
+                knob=label,
+            )
+        )
         if not stiff:
-            methods.append(Method("MuJoCo mj_inverse + split on efc_J", "inverse_dynamics",
-                                  lambda m, s, p=p: {"efforts": p.inverse(s.q, s.v, s.a)}, peer=True))
+            methods.append(
+                Method(
+                    "MuJoCo mj_inverse + split on efc_J",
+                    "inverse_dynamics",
+                    lambda m, s, p=p: {"efforts": p.inverse(s.q, s.v, s.a)},
+                    peer=True,
+                )
+            )
     try:
         d = DrakePeer(mech)
-        methods.append(Method(f"Drake SAP step (dt={DRAKE_DT:g})", "forward_dynamics",
-                              lambda m, s, d=d: d.forward(s.q, s.v, s.tau), peer=True))
+        methods.append(
+            Method(
+                f"Drake SAP step (dt={DRAKE_DT:g})",
+                "forward_dynamics",
+                lambda m, s, d=d: d.forward(s.q, s.v, s.tau),
+                peer=True,
+            )
+        )
     except MechkitError as err:
         notes.append(f"Drake: {err}")
     return methods, notes

@@ -39,12 +39,15 @@ def _paired(mech: Mechanism, rows: list[Row], samples: list[Sample], budget: flo
     out = {}
     for key, (a, b) in GOAL_PAIRS.items():
         if a in ok and b in ok:
-            out[key] = paired_ratio(lambda s, f=ok[a].run: f(mech, s), lambda s, f=ok[b].run: f(mech, s), samples, budget, repeats)
+            out[key] = paired_ratio(
+                lambda s, f=ok[a].run: f(mech, s), lambda s, f=ok[b].run: f(mech, s), samples, budget, repeats
+            )
     return out
 
 
-def bench_mechanism(mech: Mechanism, quick: bool = True, with_peers: bool = True,
-                    progress: Progress | None = None) -> MechanismBench:
+def bench_mechanism(
+    mech: Mechanism, quick: bool = True, with_peers: bool = True, progress: Progress | None = None
+) -> MechanismBench:
     """Every method on one mechanism, measured in this process: the core's, the spec's own, the peers'.
 
     Args:
@@ -78,8 +81,9 @@ def bench_mechanism(mech: Mechanism, quick: bool = True, with_peers: bool = True
     return MechanismBench(name, mech.model.nv, mech.closure_model.kernel.size, labels, rows, paired, mech, samples)
 
 
-def run(names: Sequence[str] | None = None, quick: bool = True, with_peers: bool = True,
-        progress: Progress | None = None) -> tuple[list[MechanismBench], dict[str, str]]:
+def run(
+    names: Sequence[str] | None = None, quick: bool = True, with_peers: bool = True, progress: Progress | None = None
+) -> tuple[list[MechanismBench], dict[str, str]]:
     """Bench the named mechanisms; a mechanism that fails to load or to sample does not stop the others.
 
     Args:

@@ -68,8 +68,10 @@ def _closes(mech: Mechanism, q: np.ndarray, v: np.ndarray, a: np.ndarray) -> boo
     """Whether a satisfies the acceleration-level closure J a + gamma = 0 to 1e-9 (relative)."""
     J = mech.closure_jacobian(q)
     gamma = mech.closure_drift(q, v)
-    return bool(np.max(np.abs(J @ a + gamma), initial=0.0) <= 1e-9 * max(np.max(np.abs(J), initial=0.0) * np.max(np.abs(a)),
-                                                                             np.max(np.abs(gamma), initial=0.0), 1e-12))
+    return bool(
+        np.max(np.abs(J @ a + gamma), initial=0.0)
+        <= 1e-9 * max(np.max(np.abs(J), initial=0.0) * np.max(np.abs(a)), np.max(np.abs(gamma), initial=0.0), 1e-12)
+    )
 
 
 def motion_states(mech: Mechanism, count: int) -> list[tuple[MotionState, MotionState]]:
@@ -126,8 +128,9 @@ def make_samples(mech: Mechanism, count: int, seed: int = 7) -> list[Sample]:
     why = ""
     data = mech.model.createData()
 
-    def add(q: np.ndarray, guess: np.ndarray, state: MotionState | None = None,
-            previous: MotionState | None = None) -> None:
+    def add(
+        q: np.ndarray, guess: np.ndarray, state: MotionState | None = None, previous: MotionState | None = None
+    ) -> None:
         """Moving state at q: the motion's own rates (`state`), else random input rates; accelerations
         the motion's or from the closure, else from the dynamics. `guess` is where the assembly
         methods start from."""

@@ -9,8 +9,14 @@ from mechkit.bench.results import MechanismBench
 from mechkit.bench.timing import time_per_call
 
 #: Core methods timed for the cost-vs-size fit.
-SCALE_METHODS = (BASELINES["assembly"], BASELINES["forward_dynamics"], "raw pin.constraintDynamics (mu=1e-9)",
-                 "dense KKT (independent rows)", BASELINES["inverse_dynamics"], "constrained RNEA, no determinacy")
+SCALE_METHODS = (
+    BASELINES["assembly"],
+    BASELINES["forward_dynamics"],
+    "raw pin.constraintDynamics (mu=1e-9)",
+    "dense KKT (independent rows)",
+    BASELINES["inverse_dynamics"],
+    "constrained RNEA, no determinacy",
+)
 
 ScaleFit = tuple[str, list[tuple[str, int, float]], float]
 """(method, [(mechanism, nv, seconds per call)] sorted by nv, exponent p of t ~ nv^p)."""
@@ -33,7 +39,12 @@ def scale_fits(results: list[MechanismBench], budget_s: float = 0.02, rounds: in
     """
     out = []
     for name in SCALE_METHODS:
-        runs = [(b, r.method) for b in results for r in b.rows if r.method.name == name and r.outcome == "ok" and b.mech is not None]
+        runs = [
+            (b, r.method)
+            for b in results
+            for r in b.rows
+            if r.method.name == name and r.outcome == "ok" and b.mech is not None
+        ]
         if len(runs) < 3:
             continue
         times = np.empty((rounds, len(runs)))

@@ -42,8 +42,13 @@ class SecondOpinionRow:
     max_relative_difference: float
 
 
-def second_opinion_rows(mechanisms: list[str] | None = None, samples: int = 6, scene: str | None = None,
-                        budget_s: float = 1.0, repeats: int = 3) -> list[SecondOpinionRow]:
+def second_opinion_rows(
+    mechanisms: list[str] | None = None,
+    samples: int = 6,
+    scene: str | None = None,
+    budget_s: float = 1.0,
+    repeats: int = 3,
+) -> list[SecondOpinionRow]:
     """Decomposition cost and per-sample solve times of each mechanism (all registered by default).
 
     Args:
@@ -72,8 +77,19 @@ def second_opinion_rows(mechanisms: list[str] | None = None, samples: int = 6, s
         rnea = float(np.median(time_per_call(lambda s, m=mech: m.inverse_dynamics(*s), states, budget_s, repeats)))
         agree = agreement(opinion, states, timing=False)
         largest = max(len(s.unknowns) for s in opinion.skcs)
-        rows.append(SecondOpinionRow(name, len(opinion.skcs), largest, min(decompose) * 1e3, soc * 1e6, rnea * 1e6,
-                                     soc / rnea, agree.samples, agree.max_relative_difference))
+        rows.append(
+            SecondOpinionRow(
+                name,
+                len(opinion.skcs),
+                largest,
+                min(decompose) * 1e3,
+                soc * 1e6,
+                rnea * 1e6,
+                soc / rnea,
+                agree.samples,
+                agree.max_relative_difference,
+            )
+        )
     return rows
 
 
@@ -86,9 +102,16 @@ def lines(rows: list[SecondOpinionRow]) -> list[str]:
     Returns:
         Markdown lines.
     """
-    table = [("| mechanism | SKCs | largest SKC (unknowns) | decompose (ms, once) | SOC (us/sample) "
-              "| constrained RNEA + determinacy (us/sample) | SOC / RNEA | samples | max rel. difference |"),
-             "|---|---|---|---|---|---|---|---|---|"]
-    table += [f"| {r.name} | {r.skcs} | {r.largest} | {r.decompose_ms:.0f} | {r.soc_us:.0f} | {r.rnea_us:.0f} "
-              f"| {r.ratio:.1f} | {r.samples} | {r.max_relative_difference:.1e} |" for r in rows]
+    table = [
+        (
+            "| mechanism | SKCs | largest SKC (unknowns) | decompose (ms, once) | SOC (us/sample) "
+            "| constrained RNEA + determinacy (us/sample) | SOC / RNEA | samples | max rel. difference |"
+        ),
+        "|---|---|---|---|---|---|---|---|---|",
+    ]
+    table += [
+        f"| {r.name} | {r.skcs} | {r.largest} | {r.decompose_ms:.0f} | {r.soc_us:.0f} | {r.rnea_us:.0f} "
+        f"| {r.ratio:.1f} | {r.samples} | {r.max_relative_difference:.1e} |"
+        for r in rows
+    ]
     return table

@@ -96,8 +96,16 @@ def simulation_speed(mech: Mechanism, duration: float = 0.1) -> SimulationSpeed:
     ours = (time.perf_counter() - start) / max(result.integrator["steps"], 1)
     mj_closure = max(float(np.max(np.abs(mech.closure_residual(q)))) for q in qpos[:: max(1, len(qpos) // 200)])
     difference = float(np.max(np.abs(qpos - result.motion.q)))
-    return SimulationSpeed(mech.spec.name, dt, result.integrator["steps"], mj_seconds * 1e6, ours * 1e6, mj_closure,
-                           float(result.residual.max()), difference)
+    return SimulationSpeed(
+        mech.spec.name,
+        dt,
+        result.integrator["steps"],
+        mj_seconds * 1e6,
+        ours * 1e6,
+        mj_closure,
+        float(result.residual.max()),
+        difference,
+    )
 
 
 #: The small mechanisms of the speed goal (within 3x MuJoCo's step time).
@@ -115,16 +123,27 @@ def markdown(rows: list[SimulationSpeed]) -> str:
     Returns:
         The section's markdown text, heading first.
     """
-    lines = [HEADING, "",
-             ("Free motion released at home under gravity, MuJoCo on the exported MJCF (stiff equality settings, "
-             "its RK4, bare `mj_step`) and `Mechanism.simulate` at the same fixed step (RK45 with its error control "
-             "off, projection after every step; `mechkit.bench.simulation_speed`). Goal: within 3x MuJoCo's step "
-             "time with 1e-10 m closure."), "",
-             ("| mechanism | step (s) | steps | MuJoCo us/step | mechkit us/step | ratio | MuJoCo closure (m) | "
-             "mechkit closure (m) | max joint difference |"),
-             "|---|---|---|---|---|---|---|---|---|"]
-    lines += [f"| {r.name} | {r.dt:.3g} | {r.steps} | {r.mujoco_us:.1f} | {r.mechkit_us:.0f} | {r.ratio:.0f} | "
-              f"{r.mujoco_closure:.2g} | {r.mechkit_closure:.2g} | {r.difference:.2g} |" for r in rows]
+    lines = [
+        HEADING,
+        "",
+        (
+            "Free motion released at home under gravity, MuJoCo on the exported MJCF (stiff equality settings, "
+            "its RK4, bare `mj_step`) and `Mechanism.simulate` at the same fixed step (RK45 with its error control "
+            "off, projection after every step; `mechkit.bench.simulation_speed`). Goal: within 3x MuJoCo's step "
+            "time with 1e-10 m closure."
+        ),
+        "",
+        (
+            "| mechanism | step (s) | steps | MuJoCo us/step | mechkit us/step | ratio | MuJoCo closure (m) | "
+            "mechkit closure (m) | max joint difference |"
+        ),
+        "|---|---|---|---|---|---|---|---|---|",
+    ]
+    lines += [
+        f"| {r.name} | {r.dt:.3g} | {r.steps} | {r.mujoco_us:.1f} | {r.mechkit_us:.0f} | {r.ratio:.0f} | "
+        f"{r.mujoco_closure:.2g} | {r.mechkit_closure:.2g} | {r.difference:.2g} |"
+        for r in rows
+    ]
     return "\n".join(lines) + "\n"
 
 

@@ -56,7 +56,9 @@ def _variants(name: str, runs: int):
     return spec, [base.replace(**{k: getattr(base, k) * (1 + 1e-9 * (i + 1)) for k in floats}) for i in range(runs)]
 
 
-def load_times(names: tuple[str, ...] = ("four_bar", "ten_bar", "deployable_9rr12uru"), runs: int = 7) -> list[LoadTime]:
+def load_times(
+    names: tuple[str, ...] = ("four_bar", "ten_bar", "deployable_9rr12uru"), runs: int = 7
+) -> list[LoadTime]:
     """Median load times of each mechanism with new parameters, through xacro and through the cache.
 
     Args:
@@ -87,8 +89,17 @@ def load_times(names: tuple[str, ...] = ("four_bar", "ten_bar", "deployable_9rr1
             r_cache.append(time.perf_counter() - start)
             from_expanded(spec, params, text)
             t_cache.append(time.perf_counter() - start)
-        rows.append(LoadTime(name, 1e3 * float(np.median(t_xacro)), 1e3 * float(np.median(t_cache)),
-                             1e3 * float(np.median(r_xacro)), 1e3 * float(np.median(r_cache)), 1e3 * expand, runs))
+        rows.append(
+            LoadTime(
+                name,
+                1e3 * float(np.median(t_xacro)),
+                1e3 * float(np.median(t_cache)),
+                1e3 * float(np.median(r_xacro)),
+                1e3 * float(np.median(r_cache)),
+                1e3 * expand,
+                runs,
+            )
+        )
     return rows
 
 
@@ -149,9 +160,12 @@ def sweep_speed(designs: int = 1000, samples: int = 100, seed: int = 0) -> Sweep
     Returns:
         The wall times (s) on 1 and 2 workers, the efficiency T1 / (2 T2), and the statuses of the designs.
     """
-    space = DesignSpace(tuple(parse_axis(a) for a in ("crank=0.06:0.14", "coupler=0.24:0.32",
-                                                        "rocker=0.18:0.26", "ground=0.26:0.34")),
-                        "lhs", designs, seed)
+    space = DesignSpace(
+        tuple(parse_axis(a) for a in ("crank=0.06:0.14", "coupler=0.24:0.32", "rocker=0.18:0.26", "ground=0.26:0.34")),
+        "lhs",
+        designs,
+        seed,
+    )
     study = Study(law="turn", samples=samples)
     seconds, statuses = {}, {}
     for workers in (1, 2):

@@ -65,8 +65,9 @@ def time_per_call(fn: Callable[[Any], Any], samples: Sequence[Any], budget_s: fl
     return out
 
 
-def paired_ratio(fa: Callable[[Any], Any], fb: Callable[[Any], Any], samples: Sequence[Any],
-                 budget_s: float, repeats: int) -> float:
+def paired_ratio(
+    fa: Callable[[Any], Any], fb: Callable[[Any], Any], samples: Sequence[Any], budget_s: float, repeats: int
+) -> float:
     """Median over repeats of t(fa) / t(fb), the two timed back to back in each repeat (load cancels).
 
     Args:
@@ -79,12 +80,17 @@ def paired_ratio(fa: Callable[[Any], Any], fb: Callable[[Any], Any], samples: Se
     Returns:
         The median ratio (-).
     """
-    ratios = [time_per_call(fa, samples, budget_s / repeats / 2, 1)[0] / time_per_call(fb, samples, budget_s / repeats / 2, 1)[0]
-              for _ in range(repeats)]
+    ratios = [
+        time_per_call(fa, samples, budget_s / repeats / 2, 1)[0]
+        / time_per_call(fb, samples, budget_s / repeats / 2, 1)[0]
+        for _ in range(repeats)
+    ]
     return float(np.median(ratios))
 
 
-def measure(mech: Mechanism, method: Method, samples: list[Sample], refs: References, budget_s: float, repeats: int) -> Row:
+def measure(
+    mech: Mechanism, method: Method, samples: list[Sample], refs: References, budget_s: float, repeats: int
+) -> Row:
     """Error on every sample, then time per call; a raised MechkitError becomes the row's outcome.
 
     Args:

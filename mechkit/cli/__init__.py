@@ -31,8 +31,22 @@ from mechkit.cli import (
     view,
 )
 
-COMMANDS = (listing, urdf, report, snapshot, bench, export, params, sweep, motion, simulate, validate, view,
-            stiffness, modes)
+COMMANDS = (
+    listing,
+    urdf,
+    report,
+    snapshot,
+    bench,
+    export,
+    params,
+    sweep,
+    motion,
+    simulate,
+    validate,
+    view,
+    stiffness,
+    modes,
+)
 
 
 def build_parser() -> argparse.ArgumentParser:

@@ -39,7 +39,9 @@ def run(args: argparse.Namespace) -> None:
         print(f"{name}: not measured ({why})")
     fits = scale.scale_fits(results)
     for name, pts, slope in fits:
-        print(f"scale: {name}: t ~ nv^{slope:.2f} (" + ", ".join(f"{m} nv={n}: {t * 1e6:.1f} us" for m, n, t in pts) + ")")
+        print(
+            f"scale: {name}: t ~ nv^{slope:.2f} (" + ", ".join(f"{m} nv={n}: {t * 1e6:.1f} us" for m, n, t in pts) + ")"
+        )
     sections = speed_sections(args.names, args.quick) if args.speed else {}
     for title, body in sections.items():
         print("\n".join([f"{title}:", *body]))
@@ -54,8 +56,10 @@ def run(args: argparse.Namespace) -> None:
         if args.charts:
             failures = failure_atlas.summary_lines(Path(args.charts), quick=args.quick)
             figures += sorted(Path(args.charts).glob("bench_atlas_*.png"))
-        write_text(args.markdown, markdown.markdown_report(results, args.quick, figures, failures, skipped, fits, first,
-                                                          sections))
+        write_text(
+            args.markdown,
+            markdown.markdown_report(results, args.quick, figures, failures, skipped, fits, first, sections),
+        )
         print(f"wrote {args.markdown}")
 
 
@@ -90,14 +94,32 @@ def speed_sections(names: list[str], quick: bool) -> dict[str, list[str]]:
     def intro(module) -> str:
         return module.__doc__.split("\n\n")[0].replace("\n", " ")
 
-    return {"Dynamics speed": [dynamics_speed.__doc__.split("\n\n")[1].replace("\n", " "), "", *dynamics_speed.markdown(speed)],
-            "Ladder of four-bar loops": [ladder.__doc__.split("\n\n")[1].replace("\n", " "), "", *ladder.markdown(points)],
-            "Motion law": [intro(motion_speed), "",
-                           *motion_speed.lines(motion_speed.motion_law_speed(repeats=2 if quick else 5))],
-            "Loading from a file": [intro(load_speed), "", *load_speed.lines(load_speed.load_times(repeats=3 if quick else 15))],
-            "Second opinion": [intro(second_opinion_speed), "", *second_opinion_speed.lines(second_opinion_speed.second_opinion_rows(
-                chosen, samples=3 if quick else 6, budget_s=budget))],
-            "Elastic": [intro(elastic_speed), "", *elastic_speed.lines(elastic_speed.rows(budget, 3 if quick else 5))]}
+    return {
+        "Dynamics speed": [
+            dynamics_speed.__doc__.split("\n\n")[1].replace("\n", " "),
+            "",
+            *dynamics_speed.markdown(speed),
+        ],
+        "Ladder of four-bar loops": [ladder.__doc__.split("\n\n")[1].replace("\n", " "), "", *ladder.markdown(points)],
+        "Motion law": [
+            intro(motion_speed),
+            "",
+            *motion_speed.lines(motion_speed.motion_law_speed(repeats=2 if quick else 5)),
+        ],
+        "Loading from a file": [
+            intro(load_speed),
+            "",
+            *load_speed.lines(load_speed.load_times(repeats=3 if quick else 15)),
+        ],
+        "Second opinion": [
+            intro(second_opinion_speed),
+            "",
+            *second_opinion_speed.lines(
+                second_opinion_speed.second_opinion_rows(chosen, samples=3 if quick else 6, budget_s=budget)
+            ),
+        ],
+        "Elastic": [intro(elastic_speed), "", *elastic_speed.lines(elastic_speed.rows(budget, 3 if quick else 5))],
+    }
 
 
 def add_parser(sub: argparse._SubParsersAction) -> None:
@@ -106,11 +128,18 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     Args:
         sub: the command line's sub-parsers.
     """
-    p = sub.add_parser("bench", help="speed and accuracy of every method, per mechanism", **examples(
-        "mechkit bench four_bar --quick", "mechkit bench --charts docs/bench --markdown docs/benchmarks.md"))
+    p = sub.add_parser(
+        "bench",
+        help="speed and accuracy of every method, per mechanism",
+        **examples("mechkit bench four_bar --quick", "mechkit bench --charts docs/bench --markdown docs/benchmarks.md"),
+    )
     p.add_argument("names", nargs="*", help="mechanisms (default: all)")
     p.add_argument("--quick", action="store_true", help="few repetitions, smallest sweeps")
     p.add_argument("--charts", help="folder for the error-vs-time charts (PNG and SVG)")
     p.add_argument("--markdown", help="write the summary table (docs/benchmarks.md)")
-    p.add_argument("--speed", action="store_true", help="also the dynamics speed rows, the ladder of four-bar loops, the 2T1R motion law, loading from files and the second opinion")
+    p.add_argument(
+        "--speed",
+        action="store_true",
+        help="also the dynamics speed rows, the ladder of four-bar loops, the 2T1R motion law, loading from files and the second opinion",
+    )
     p.set_defaults(func=run)

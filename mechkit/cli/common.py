@@ -23,8 +23,10 @@ def examples(*commands: str) -> dict[str, Any]:
     Returns:
         `epilog` and `formatter_class` keywords for `add_parser`.
     """
-    return {"epilog": "examples:\n" + "\n".join(f"  {c}" for c in commands),
-            "formatter_class": argparse.RawDescriptionHelpFormatter}
+    return {
+        "epilog": "examples:\n" + "\n".join(f"  {c}" for c in commands),
+        "formatter_class": argparse.RawDescriptionHelpFormatter,
+    }
 
 
 def add_mechanism_arguments(parser: argparse.ArgumentParser) -> None:
@@ -33,20 +35,38 @@ def add_mechanism_arguments(parser: argparse.ArgumentParser) -> None:
     Args:
         parser: a command's parser.
     """
-    parser.add_argument("name", metavar="NAME|PATH",
-                        help="registered mechanism (see `mechkit list`) or a file: .urdf with <mechkit:loop>s (and "
-                             "<mimic> joints), with a .yaml sidecar (Extended URDF) or with URDF+ <loop>/<coupling>s; "
-                             ".xacro; MJCF .xml; SDFormat .sdf")
-    parser.add_argument("--set", action="append", metavar="NAME=VALUE",
-                        help="override a parameter (SI units, rad) or pass a xacro argument to a .xacro file; "
-                             "rows=spatial closes every cut with its full rows")
+    parser.add_argument(
+        "name",
+        metavar="NAME|PATH",
+        help="registered mechanism (see `mechkit list`) or a file: .urdf with <mechkit:loop>s (and "
+        "<mimic> joints), with a .yaml sidecar (Extended URDF) or with URDF+ <loop>/<coupling>s; "
+        ".xacro; MJCF .xml; SDFormat .sdf",
+    )
+    parser.add_argument(
+        "--set",
+        action="append",
+        metavar="NAME=VALUE",
+        help="override a parameter (SI units, rad) or pass a xacro argument to a .xacro file; "
+        "rows=spatial closes every cut with its full rows",
+    )
     parser.add_argument("--actuated", metavar="J1,J2", help="actuated joints, overriding what the file declares")
-    parser.add_argument("--lock", action="append", metavar="JOINT=VALUE",
-                        help="lock a joint at a value (rad or m; a ball or free joint: comma-separated values); repeatable")
-    parser.add_argument("--keep", metavar="B1,B2", help="keep only the subsystem of these bodies; lock every other joint at home")
-    parser.add_argument("--fix", metavar="BODY", action="append", help="lock a body's own joint at home (a floating root); repeatable")
-    parser.add_argument("--freeflyer", action="store_true",
-                        help="put an Extended-URDF file's tree on a free-flyer root joint (as Gepetto's loader can)")
+    parser.add_argument(
+        "--lock",
+        action="append",
+        metavar="JOINT=VALUE",
+        help="lock a joint at a value (rad or m; a ball or free joint: comma-separated values); repeatable",
+    )
+    parser.add_argument(
+        "--keep", metavar="B1,B2", help="keep only the subsystem of these bodies; lock every other joint at home"
+    )
+    parser.add_argument(
+        "--fix", metavar="BODY", action="append", help="lock a body's own joint at home (a floating root); repeatable"
+    )
+    parser.add_argument(
+        "--freeflyer",
+        action="store_true",
+        help="put an Extended-URDF file's tree on a free-flyer root joint (as Gepetto's loader can)",
+    )
 
 
 def overrides(pairs: list[str] | None) -> dict[str, str]:
@@ -112,7 +132,9 @@ def locks(pairs: list[str] | None) -> dict[str, float | list[float]] | None:
         try:
             values = [float(x) for x in text.split(",")]
         except ValueError:
-            raise InvalidArgument("--lock", pairs, f"{joint}: {text!r} is not a number (or comma-separated numbers)") from None
+            raise InvalidArgument(
+                "--lock", pairs, f"{joint}: {text!r} is not a number (or comma-separated numbers)"
+            ) from None
         out[joint] = values[0] if len(values) == 1 else values
     return out
 
@@ -132,8 +154,15 @@ def load_mechanism(args: argparse.Namespace) -> Mechanism:
     """
     keep = None if getattr(args, "keep", None) is None else [b.strip() for b in args.keep.split(",") if b.strip()]
     try:
-        return load(args.name, actuated=actuated(args.actuated), lock=locks(getattr(args, "lock", None)), keep=keep,
-                    fix=getattr(args, "fix", None), freeflyer=getattr(args, "freeflyer", False), **overrides(args.set))
+        return load(
+            args.name,
+            actuated=actuated(args.actuated),
+            lock=locks(getattr(args, "lock", None)),
+            keep=keep,
+            fix=getattr(args, "fix", None),
+            freeflyer=getattr(args, "freeflyer", False),
+            **overrides(args.set),
+        )
     except ClosureNotConverged as err:
         raise MechkitError(f"{args.name}: its loops do not close at home: {err}") from None
 
@@ -144,8 +173,12 @@ def add_mesh_path_argument(parser: argparse.ArgumentParser) -> None:
     Args:
         parser: a command's parser.
     """
-    parser.add_argument("--mesh-path", action="append", metavar="DIR",
-                        help="folder searched for mesh files and package:// addresses, after the file's own (repeatable)")
+    parser.add_argument(
+        "--mesh-path",
+        action="append",
+        metavar="DIR",
+        help="folder searched for mesh files and package:// addresses, after the file's own (repeatable)",
+    )
 
 
 def mesh_search(args: argparse.Namespace) -> MeshSearch:

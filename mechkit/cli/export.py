@@ -27,11 +27,21 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     Args:
         sub: the command line's sub-parsers.
     """
-    p = sub.add_parser("export", help="write the mechanism for other tools", **examples(
-        "mechkit export ten_bar --format mjcf -o ten_bar.xml", "mechkit export four_bar --format urdf+ -o four_bar.urdf"))
+    p = sub.add_parser(
+        "export",
+        help="write the mechanism for other tools",
+        **examples(
+            "mechkit export ten_bar --format mjcf -o ten_bar.xml",
+            "mechkit export four_bar --format urdf+ -o four_bar.urdf",
+        ),
+    )
     add_mechanism_arguments(p)
-    p.add_argument("--format", required=True, choices=["mjcf", "extended-urdf", "urdf+"],
-                   help="target format: MJCF (MuJoCo), Extended URDF (URDF + YAML sidecar, Gepetto's), URDF+ (loops "
-                        "and couplings inside the URDF)")
+    p.add_argument(
+        "--format",
+        required=True,
+        choices=["mjcf", "extended-urdf", "urdf+"],
+        help="target format: MJCF (MuJoCo), Extended URDF (URDF + YAML sidecar, Gepetto's), URDF+ (loops "
+        "and couplings inside the URDF)",
+    )
     p.add_argument("-o", "--output", required=True, help="file to write (extended-urdf also writes a .yaml beside it)")
     p.set_defaults(func=run)

@@ -24,4 +24,6 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     Args:
         sub: the command line's sub-parsers.
     """
-    sub.add_parser("list", help="registered mechanisms", **examples("mechkit list", "mechkit list | grep planar")).set_defaults(func=run)
+    sub.add_parser(
+        "list", help="registered mechanisms", **examples("mechkit list", "mechkit list | grep planar")
+    ).set_defaults(func=run)

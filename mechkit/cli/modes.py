@@ -65,8 +65,11 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     Args:
         sub: the command line's sub-parsers.
     """
-    p = sub.add_parser("modes", help="natural frequencies and mode shapes (elastic links, locked actuators)", **examples(
-        "mechkit modes deployable_9rr12uru -n 6", "mechkit modes parallel_2t1r --animate mode1.html --json"))
+    p = sub.add_parser(
+        "modes",
+        help="natural frequencies and mode shapes (elastic links, locked actuators)",
+        **examples("mechkit modes deployable_9rr12uru -n 6", "mechkit modes parallel_2t1r --animate mode1.html --json"),
+    )
     add_mechanism_arguments(p)
     p.add_argument("-n", type=int, default=6, help="number of modes (default 6)")
     p.add_argument("--at", metavar="J=V,...", help="the pose's input joints (rad or m; default the home pose)")

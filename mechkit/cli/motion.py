@@ -17,8 +17,14 @@ if TYPE_CHECKING:
 #: Motions of at least this many samples show a progress bar (`mechkit.cli.progress`: stderr, on a terminal).
 LONG_MOTION = 100
 #: Peak-table columns: header, quantity.
-PEAK_COLUMNS = (("|f| N", "force"), ("axial N", "axial_force"), ("radial N", "radial_force"),
-                ("|m| N m", "moment"), ("axial N m", "axial_moment"), ("radial N m", "radial_moment"))
+PEAK_COLUMNS = (
+    ("|f| N", "force"),
+    ("axial N", "axial_force"),
+    ("radial N", "radial_force"),
+    ("|m| N m", "moment"),
+    ("axial N m", "axial_moment"),
+    ("radial N m", "radial_moment"),
+)
 
 
 def format_peaks(result: MotionResult) -> list[str]:
@@ -72,8 +78,13 @@ def run(args: argparse.Namespace) -> None:
         raise InvalidParameters("-o", args.output, "write .parquet or .csv")
     _check_outputs(args)
     bars = ProgressBars(None if len(law.t) >= LONG_MOTION else False)
-    result = motion.study(mech, law, determinacy=args.determinacy, skip_failures=True,
-                          progress=lambda done, total: bars(f"{mech.spec.name} motion", done, total))
+    result = motion.study(
+        mech,
+        law,
+        determinacy=args.determinacy,
+        skip_failures=True,
+        progress=lambda done, total: bars(f"{mech.spec.name} motion", done, total),
+    )
     if len(result.failures) == len(law.t):
         raise MotionFailed(result.failures)
     print(f"{mech.spec.name}: {law.source}, {len(law.t)} samples, t = {law.t[0]:.6g} .. {law.t[-1]:.6g} s")
@@ -110,14 +121,22 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     Args:
         sub: the command line's sub-parsers.
     """
-    p = sub.add_parser("motion", help="efforts and every joint's reaction along a motion: peak table, Parquet/CSV, plot",
-                       **examples("mechkit motion parallel_2t1r --scene motion_law --samples 501 -o law.parquet --plot law.png",
-                                  "mechkit motion four_bar --inputs crank.csv -o loads.csv"))
+    p = sub.add_parser(
+        "motion",
+        help="efforts and every joint's reaction along a motion: peak table, Parquet/CSV, plot",
+        **examples(
+            "mechkit motion parallel_2t1r --scene motion_law --samples 501 -o law.parquet --plot law.png",
+            "mechkit motion four_bar --inputs crank.csv -o loads.csv",
+        ),
+    )
     add_mechanism_arguments(p)
     source = p.add_mutually_exclusive_group()
     source.add_argument("--scene", help="a scene of the mechanism (default: its first declared scene, else 'sweep')")
-    source.add_argument("--inputs", metavar="LAW.csv",
-                        help="CSV of t (s) and one column per driven joint (rad or m); optional <joint>_dot, <joint>_ddot")
+    source.add_argument(
+        "--inputs",
+        metavar="LAW.csv",
+        help="CSV of t (s) and one column per driven joint (rad or m); optional <joint>_dot, <joint>_ddot",
+    )
     p.add_argument("--samples", type=int, help="resample the law at N uniform times")
     p.add_argument("-o", "--output", help="write the table: .parquet or .csv")
     p.add_argument("--plot", help="write a plot of efforts and reactions (.png, .svg, .pdf)")

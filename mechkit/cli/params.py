@@ -35,13 +35,22 @@ def rows_of(source: str) -> tuple[list[dict[str, Any]], str]:
     if isinstance(found, str):
         cls = get_spec(found).params
         ranges = param_ranges(cls)
-        rows = [{**row, "range": ranges[row["name"]].text() if ranges[row["name"]] else None} for row in cls().describe()]
-        return rows, (f"range: what {cls.__name__} accepts for one parameter with the others at their defaults "
-                      "(SI units, rad); '(ours)': a value chosen by mechkit, not in the source.")
+        rows = [
+            {**row, "range": ranges[row["name"]].text() if ranges[row["name"]] else None} for row in cls().describe()
+        ]
+        return rows, (
+            f"range: what {cls.__name__} accepts for one parameter with the others at their defaults "
+            "(SI units, rad); '(ours)': a value chosen by mechkit, not in the source."
+        )
     if found.suffix == ".xacro":
-        rows = [{"name": k, "value": v, "unit": "-", "range": None, "ours": False, "doc": "xacro:arg"}
-                for k, v in xacro_args(found).items()]
-        return rows, f"{found.name}: its xacro arguments (set with --set NAME=VALUE); a xacro file declares no units or ranges."
+        rows = [
+            {"name": k, "value": v, "unit": "-", "range": None, "ours": False, "doc": "xacro:arg"}
+            for k, v in xacro_args(found).items()
+        ]
+        return (
+            rows,
+            f"{found.name}: its xacro arguments (set with --set NAME=VALUE); a xacro file declares no units or ranges.",
+        )
     return [], f"{found.name}: a fixed description, no parameters."
 
 
@@ -56,8 +65,10 @@ def run(args: argparse.Namespace) -> None:
         print(json.dumps([{k: row[k] for k in COLUMNS} for row in rows], indent=2))
         return
     table = [("name", "default", "unit", "range", "doc")]
-    table += [(r["name"], str(r["value"]), r["unit"], r["range"] or "-", r["doc"] + (" (ours)" if r["ours"] else ""))
-              for r in rows]
+    table += [
+        (r["name"], str(r["value"]), r["unit"], r["range"] or "-", r["doc"] + (" (ours)" if r["ours"] else ""))
+        for r in rows
+    ]
     widths = [max(len(row[i]) for row in table) for i in range(4)]
     for row in table if rows else []:
         print("  ".join(cell.ljust(w) for cell, w in zip(row[:4], widths)) + "  " + row[4])
@@ -70,9 +81,15 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     Args:
         sub: the command line's sub-parsers.
     """
-    p = sub.add_parser("params", help="a mechanism's parameters: defaults, units, ranges",
-                       **examples("mechkit params four_bar", "mechkit params ten_bar --json"))
-    p.add_argument("name", help="mechanism name (see `mechkit list`) or a description file (.xacro; .urdf, Extended "
-                                "URDF or URDF+; MJCF .xml; SDFormat .sdf)")
+    p = sub.add_parser(
+        "params",
+        help="a mechanism's parameters: defaults, units, ranges",
+        **examples("mechkit params four_bar", "mechkit params ten_bar --json"),
+    )
+    p.add_argument(
+        "name",
+        help="mechanism name (see `mechkit list`) or a description file (.xacro; .urdf, Extended "
+        "URDF or URDF+; MJCF .xml; SDFormat .sdf)",
+    )
     p.add_argument("--json", action="store_true", help="machine-readable output")
     p.set_defaults(func=run)

@@ -33,7 +33,11 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     Args:
         sub: the command line's sub-parsers.
     """
-    p = sub.add_parser("report", help="structure, mobility and self-checks", **examples("mechkit report five_bar", "mechkit report four_bar --set coupler=0.3 --json"))
+    p = sub.add_parser(
+        "report",
+        help="structure, mobility and self-checks",
+        **examples("mechkit report five_bar", "mechkit report four_bar --set coupler=0.3 --json"),
+    )
     add_mechanism_arguments(p)
     p.add_argument("--json", action="store_true", help="machine-readable output")
     p.set_defaults(func=run)

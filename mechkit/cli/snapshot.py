@@ -21,8 +21,9 @@ def run(args: argparse.Namespace) -> None:
     """
     from mechkit.viz import snapshot_command
 
-    for path in snapshot_command(load_mechanism(args), q=args.q, scene=args.scene, html=args.output, png=args.png,
-                                 meshes=mesh_search(args)):
+    for path in snapshot_command(
+        load_mechanism(args), q=args.q, scene=args.scene, html=args.output, png=args.png, meshes=mesh_search(args)
+    ):
         print(f"wrote {path}")
 
 
@@ -32,8 +33,14 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     Args:
         sub: the command line's sub-parsers.
     """
-    p = sub.add_parser("snapshot", help="self-contained meshcat HTML (and PNG) of a pose or an animated scene", **examples(
-        "mechkit snapshot four_bar --q 0.8 -o four_bar.html", "mechkit snapshot ten_bar --scene deploy -o deploy.html --png deploy.png"))
+    p = sub.add_parser(
+        "snapshot",
+        help="self-contained meshcat HTML (and PNG) of a pose or an animated scene",
+        **examples(
+            "mechkit snapshot four_bar --q 0.8 -o four_bar.html",
+            "mechkit snapshot ten_bar --scene deploy -o deploy.html --png deploy.png",
+        ),
+    )
     add_mechanism_arguments(p)
     p.add_argument("--q", help="input coordinates, comma-separated, in actuated order (rad or m)")
     p.add_argument("--scene", help="animate a scene of the mechanism (see `mechkit.scenes`), instead of one pose")

@@ -79,9 +79,15 @@ def report(args: argparse.Namespace) -> dict:
     e = ElasticModel(mech)
     q = pose(mech, args.at)
     s = e.stiffness(q, args.body, numbers(args.point, "--point", 3))
-    return {"name": mech.spec.name, "body": s.body, "point": s.point.tolist(), "compliance": s.compliance.tolist(),
-            "stiffness": np.where(np.isfinite(s.stiffness), s.stiffness, None).tolist(),
-            "held": dict(zip(DIRECTIONS, s.held.tolist())), "free": dict(zip(DIRECTIONS, s.free.tolist()))}
+    return {
+        "name": mech.spec.name,
+        "body": s.body,
+        "point": s.point.tolist(),
+        "compliance": s.compliance.tolist(),
+        "stiffness": np.where(np.isfinite(s.stiffness), s.stiffness, None).tolist(),
+        "held": dict(zip(DIRECTIONS, s.held.tolist())),
+        "free": dict(zip(DIRECTIONS, s.free.tolist())),
+    }
 
 
 def format_text(r: dict) -> str:
@@ -93,8 +99,10 @@ def format_text(r: dict) -> str:
     Returns:
         The text, lines joined.
     """
-    lines = [f"{r['name']}: body {r['body']} at ({', '.join(f'{x:.4f}' for x in r['point'])}) m, world axes",
-             f"{'direction':>9} {'K_ii (others held)':>20} {'1/C_ii (others free)':>22}"]
+    lines = [
+        f"{r['name']}: body {r['body']} at ({', '.join(f'{x:.4f}' for x in r['point'])}) m, world axes",
+        f"{'direction':>9} {'K_ii (others held)':>20} {'1/C_ii (others free)':>22}",
+    ]
     for d in DIRECTIONS:
         unit = "N/m" if len(d) == 1 else "N m/rad"
         lines.append(f"{d:>9} {r['held'][d]:>16.4g} {unit:<7} {r['free'][d]:>14.4g} {unit}")
@@ -117,8 +125,14 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     Args:
         sub: the command line's sub-parsers.
     """
-    p = sub.add_parser("stiffness", help="6x6 stiffness and compliance of a body (elastic links, locked actuators)", **examples(
-        "mechkit stiffness parallel_2t1r --body platform", "mechkit stiffness four_bar --body coupler_link --point 0.14,0,0 --at crank=0.8 --json"))
+    p = sub.add_parser(
+        "stiffness",
+        help="6x6 stiffness and compliance of a body (elastic links, locked actuators)",
+        **examples(
+            "mechkit stiffness parallel_2t1r --body platform",
+            "mechkit stiffness four_bar --body coupler_link --point 0.14,0,0 --at crank=0.8 --json",
+        ),
+    )
     add_mechanism_arguments(p)
     p.add_argument("--body", required=True, help="the body's URDF link")
     p.add_argument("--point", metavar="X,Y,Z", help="the point in the link's frame (m; default its origin)")

@@ -54,11 +54,21 @@ def _stop(message: str, status: int) -> NoReturn:
 def _resume_command(args: argparse.Namespace, address: str | None) -> str:
     """The command that resumes this sweep: the results folder and how it reaches its cluster."""
     words = ["mechkit", "sweep", args.name, "-o", args.output, "--resume"]
-    options = {"--scheduler": address, "--tls-ca": args.tls_ca, "--tls-cert": args.tls_cert,
-               "--tls-key": args.tls_key, "--workers": args.workers, "--wait-workers": args.wait_workers,
-               "--optimise": args.optimise}
-    words += [w for flag, value in options.items() if value is not None
-              for w in (flag, f"{value:g}" if isinstance(value, float) else str(value))]
+    options = {
+        "--scheduler": address,
+        "--tls-ca": args.tls_ca,
+        "--tls-cert": args.tls_cert,
+        "--tls-key": args.tls_key,
+        "--workers": args.workers,
+        "--wait-workers": args.wait_workers,
+        "--optimise": args.optimise,
+    }
+    words += [
+        w
+        for flag, value in options.items()
+        if value is not None
+        for w in (flag, f"{value:g}" if isinstance(value, float) else str(value))
+    ]
     flags = {"--xacro": args.xacro, "--dashboard": args.dashboard, "--maximise": args.maximise and args.optimise}
     words += [flag for flag, on in flags.items() if on]
     if args.optimise:
@@ -78,8 +88,11 @@ def _watcher(bar: tqdm, wait: float) -> Callable[[ClusterState], None]:
             dashboard_shown = True
             bar.write(f"mechkit: Dask dashboard at {state.dashboard}", file=sys.stderr)
         if state.workers == 0:
-            bar.write(f"mechkit: no worker serves the Dask scheduler {state.address}; waiting up to {wait:g} s "
-                      "for one (--wait-workers)", file=sys.stderr)
+            bar.write(
+                f"mechkit: no worker serves the Dask scheduler {state.address}; waiting up to {wait:g} s "
+                "for one (--wait-workers)",
+                file=sys.stderr,
+            )
 
     return watch
 
@@ -112,35 +125,64 @@ def run(args: argparse.Namespace) -> None:
             raise InvalidParameters("name", args.name, f"{args.output} holds a sweep of {manifest['mechanism']}")
     else:
         space = _space(args)
-        study = Study(law=args.law, samples=args.samples, period=args.period, amplitude=args.amplitude,
-                      scene=args.scene)
+        study = Study(
+            law=args.law, samples=args.samples, period=args.period, amplitude=args.amplitude, scene=args.scene
+        )
         metrics, base, size = tuple(args.metric or ()) or None, overrides(args.set), args.chunk_size
     wait = cluster.WAIT_WORKERS if args.wait_workers is None else args.wait_workers
-    codes = {cluster.SchedulerUnreachable: EXIT_UNREACHABLE, cluster.NoWorkers: EXIT_NO_WORKERS,
-             cluster.SchedulerLost: EXIT_SCHEDULER_LOST, cluster.TaskFailed: EXIT_TASK_FAILED}
+    codes = {
+        cluster.SchedulerUnreachable: EXIT_UNREACHABLE,
+        cluster.NoWorkers: EXIT_NO_WORKERS,
+        cluster.SchedulerLost: EXIT_SCHEDULER_LOST,
+        cluster.TaskFailed: EXIT_TASK_FAILED,
+    }
     with dask.config.set(tls):
         try:
             with tqdm(total=len(space.designs()), unit="design", file=sys.stderr, disable=args.quiet) as bar:
-                summary = engine.sweep(args.name, space, args.output, study, metrics, base=base, resume=args.resume,
-                                       scheduler=address, workers=args.workers, chunk_size=size,
-                                       fast=not args.xacro, wait_workers=wait, dashboard=args.dashboard,
-                                       progress=bar.update, watch=_watcher(bar, wait))
+                summary = engine.sweep(
+                    args.name,
+                    space,
+                    args.output,
+                    study,
+                    metrics,
+                    base=base,
+                    resume=args.resume,
+                    scheduler=address,
+                    workers=args.workers,
+                    chunk_size=size,
+                    fast=not args.xacro,
+                    wait_workers=wait,
+                    dashboard=args.dashboard,
+                    progress=bar.update,
+                    watch=_watcher(bar, wait),
+                )
         except engine.SweepStopped as err:
             _stop(f"{err}; resume with: {_resume_command(args, address)}", codes[type(err.cause)])
         counts = ", ".join(f"{k} {v}" for k, v in sorted(summary.statuses.items()))
-        print(f"{summary.designs} designs ({summary.evaluated} evaluated now) on {summary.workers} workers in "
-              f"{summary.seconds:.1f} s: {counts} -> {summary.out}")
+        print(
+            f"{summary.designs} designs ({summary.evaluated} evaluated now) on {summary.workers} workers in "
+            f"{summary.seconds:.1f} s: {counts} -> {summary.out}"
+        )
         if args.optimise:
             from mechkit.sweep.optimise import optimise
 
             try:
-                refined = optimise(args.output, args.optimise, starts=args.starts, maximise=args.maximise,
-                                   max_evaluations=args.evaluations, scheduler=address, workers=args.workers)
+                refined = optimise(
+                    args.output,
+                    args.optimise,
+                    starts=args.starts,
+                    maximise=args.maximise,
+                    max_evaluations=args.evaluations,
+                    scheduler=address,
+                    workers=args.workers,
+                )
             except cluster.ClusterError as err:
                 _stop(str(err), codes[type(err)])
             for r in refined:
-                print(f"{args.optimise}: {r.start_value:.6g} at {_show(r.start)} -> {r.value:.6g} at {_show(r.best)} "
-                      f"({r.evaluations} evaluations; {r.message})")
+                print(
+                    f"{args.optimise}: {r.start_value:.6g} at {_show(r.start)} -> {r.value:.6g} at {_show(r.best)} "
+                    f"({r.evaluations} evaluations; {r.message})"
+                )
 
 
 def add_parser(sub: argparse._SubParsersAction) -> None:
@@ -149,12 +191,21 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     Args:
         sub: the command line's sub-parsers.
     """
-    p = sub.add_parser("sweep", help="evaluate many designs on Dask (Parquet results, resumable)", **examples(
-        "mechkit sweep four_bar --grid crank=0.08:0.12:5 --grid coupler=0.26:0.30:5 -o sweep_fb",
-        "mechkit sweep five_bar --lhs 200 --grid dist1=0.2:0.25 --grid dist2=0.2:0.25 -o sweep_5b --resume"))
+    p = sub.add_parser(
+        "sweep",
+        help="evaluate many designs on Dask (Parquet results, resumable)",
+        **examples(
+            "mechkit sweep four_bar --grid crank=0.08:0.12:5 --grid coupler=0.26:0.30:5 -o sweep_fb",
+            "mechkit sweep five_bar --lhs 200 --grid dist1=0.2:0.25 --grid dist2=0.2:0.25 -o sweep_5b --resume",
+        ),
+    )
     p.add_argument("name", help="mechanism name (see `mechkit list`)")
-    p.add_argument("--grid", action="append", metavar="NAME=LO:HI[:N]",
-                   help="a swept parameter: N grid values from LO to HI (bounds only with --random/--lhs)")
+    p.add_argument(
+        "--grid",
+        action="append",
+        metavar="NAME=LO:HI[:N]",
+        help="a swept parameter: N grid values from LO to HI (bounds only with --random/--lhs)",
+    )
     p.add_argument("--random", type=int, default=0, metavar="N", help="N designs drawn uniformly in the bounds")
     p.add_argument("--lhs", type=int, default=0, metavar="N", help="N designs of a Latin hypercube in the bounds")
     p.add_argument("--seed", type=int, default=0, help="seed of --random / --lhs (default 0)")
@@ -167,24 +218,45 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--amplitude", type=float, default=0.3, help="swing amplitude, rad or m (default 0.3)")
     p.add_argument("-o", "--output", required=True, help="results folder (a Parquet dataset)")
     p.add_argument("--resume", action="store_true", help="continue the sweep in the results folder")
-    p.add_argument("--scheduler", help="address of a running Dask scheduler (default: $MECHKIT_DASK_SCHEDULER, "
-                   "else an embedded local cluster)")
+    p.add_argument(
+        "--scheduler",
+        help="address of a running Dask scheduler (default: $MECHKIT_DASK_SCHEDULER, else an embedded local cluster)",
+    )
     p.add_argument("--workers", type=int, help="workers of the embedded cluster (default: the CPU count)")
-    p.add_argument("--wait-workers", type=float, metavar="SECONDS",
-                   help="how long the cluster may have no worker (at the start or later) before the sweep stops, "
-                        "saying what is saved (default 60)")
-    p.add_argument("--dashboard", action="store_true",
-                   help="the embedded cluster serves Dask's dashboard on 127.0.0.1 (port 8787, or a free one)")
-    p.add_argument("--tls-ca", metavar="PEM", help="CA certificate of a tls:// scheduler "
-                   "(default: Dask's configuration, distributed.comm.tls.ca-file)")
-    p.add_argument("--tls-cert", metavar="PEM", help="this client's certificate for a tls:// scheduler "
-                   "(default: distributed.comm.tls.client.cert)")
-    p.add_argument("--tls-key", metavar="PEM", help="this client's private key, unless in --tls-cert's file "
-                   "(default: distributed.comm.tls.client.key)")
+    p.add_argument(
+        "--wait-workers",
+        type=float,
+        metavar="SECONDS",
+        help="how long the cluster may have no worker (at the start or later) before the sweep stops, "
+        "saying what is saved (default 60)",
+    )
+    p.add_argument(
+        "--dashboard",
+        action="store_true",
+        help="the embedded cluster serves Dask's dashboard on 127.0.0.1 (port 8787, or a free one)",
+    )
+    p.add_argument(
+        "--tls-ca",
+        metavar="PEM",
+        help="CA certificate of a tls:// scheduler (default: Dask's configuration, distributed.comm.tls.ca-file)",
+    )
+    p.add_argument(
+        "--tls-cert",
+        metavar="PEM",
+        help="this client's certificate for a tls:// scheduler (default: distributed.comm.tls.client.cert)",
+    )
+    p.add_argument(
+        "--tls-key",
+        metavar="PEM",
+        help="this client's private key, unless in --tls-cert's file (default: distributed.comm.tls.client.key)",
+    )
     p.add_argument("--chunk-size", type=int, help="designs per task (default: about 4 tasks per worker)")
     p.add_argument("--xacro", action="store_true", help="build every design through xacro (not the template cache)")
-    p.add_argument("--optimise", metavar="COLUMN", help="then refine this metric column from the best designs "
-                   "(scipy.optimize, evaluations on the same engine)")
+    p.add_argument(
+        "--optimise",
+        metavar="COLUMN",
+        help="then refine this metric column from the best designs (scipy.optimize, evaluations on the same engine)",
+    )
     p.add_argument("--maximise", action="store_true", help="maximise the --optimise column (default: minimise)")
     p.add_argument("--starts", type=int, default=2, help="searches started from the best designs (default 2)")
     p.add_argument("--evaluations", type=int, default=60, help="evaluations per search (default 60)")

@@ -23,7 +23,11 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     Args:
         sub: the command line's sub-parsers.
     """
-    p = sub.add_parser("urdf", help="print or write the URDF generated from the parameters", **examples("mechkit urdf four_bar --set crank=0.12", "mechkit urdf ten_bar -o ten_bar.urdf"))
+    p = sub.add_parser(
+        "urdf",
+        help="print or write the URDF generated from the parameters",
+        **examples("mechkit urdf four_bar --set crank=0.12", "mechkit urdf ten_bar -o ten_bar.urdf"),
+    )
     add_mechanism_arguments(p)
     p.add_argument("-o", "--output", help="file to write (default or -: standard output)")
     p.set_defaults(func=run)

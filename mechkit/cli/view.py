@@ -50,9 +50,14 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     Args:
         sub: the command line's sub-parsers.
     """
-    p = sub.add_parser("view", help="live meshcat viewer (a browser page) of a pose or a playing scene",
-                       **examples("mechkit view four_bar --scene sweep",
-                                  "mechkit view robot.urdf --mesh-path ~/ros/src --actuated shoulder,elbow"))
+    p = sub.add_parser(
+        "view",
+        help="live meshcat viewer (a browser page) of a pose or a playing scene",
+        **examples(
+            "mechkit view four_bar --scene sweep",
+            "mechkit view robot.urdf --mesh-path ~/ros/src --actuated shoulder,elbow",
+        ),
+    )
     add_mechanism_arguments(p)
     p.add_argument("--scene", help="play a scene of the mechanism (see `mechkit.scenes`); default: its home pose")
     add_mesh_path_argument(p)

@@ -48,7 +48,9 @@ def to_extended_urdf(mech: Mechanism) -> tuple[str, str]:
     for cut in mech.cuts:
         c = cut.closure
         if c.kind in ("hooke", "prismatic"):
-            raise MethodUnavailable("extended-urdf export", f"cut {c.name!r} is {c.kind}: the sidecar has only 3d and 6d pairs")
+            raise MethodUnavailable(
+                "extended-urdf export", f"cut {c.name!r} is {c.kind}: the sidecar has only 3d and 6d pairs"
+            )
         pairs.append((c.frame_a, c.frame_b))
         kinds.append("6d" if c.kind == "weld" else "3d")
         if c.kind == "revolute" and c.rows != "planar":
@@ -70,13 +72,19 @@ def to_extended_urdf(mech: Mechanism) -> tuple[str, str]:
     for loop in [el for el in robot if el.tag.endswith("}loop") or el.tag.endswith("}home") or el.tag == "loop"]:
         robot.remove(loop)
     for joint in mech.actuated:
-        ET.SubElement(robot, f"{{{LOOP_NAMESPACE}}}home", joint=joint,
-                      value=repr(float(mech.home_q[mech.q_index(joint)])))
+        ET.SubElement(
+            robot, f"{{{LOOP_NAMESPACE}}}home", joint=joint, value=repr(float(mech.home_q[mech.q_index(joint)]))
+        )
     ET.register_namespace("mechkit", LOOP_NAMESPACE)
     ET.indent(robot)
     urdf = '<?xml version="1.0" ?>\n' + ET.tostring(robot, encoding="unicode") + "\n"
-    sidecar = {"closed_loop": [list(p) for p in pairs], "type": kinds, "name_mot": list(mech.actuated),
-               "joint_name": [], "joint_type": []}
+    sidecar = {
+        "closed_loop": [list(p) for p in pairs],
+        "type": kinds,
+        "name_mot": list(mech.actuated),
+        "joint_name": [],
+        "joint_type": [],
+    }
     return urdf, yaml.safe_dump(sidecar, sort_keys=False, default_flow_style=None)
 
 

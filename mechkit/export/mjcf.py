@@ -76,11 +76,14 @@ def _joint_kind(model: pin.Model, joint: int) -> tuple[str, np.ndarray]:
     jm = model.joints[joint]
     short = jm.shortname()
     if model.nqs[joint] != 1 or model.nvs[joint] != 1:
-        raise MethodUnavailable("mjcf export", f"joint {model.names[joint]!r} ({short}) has {model.nqs[joint]} coordinates; "
-                                "only one-coordinate revolute and prismatic joints are exported")
+        raise MethodUnavailable(
+            "mjcf export",
+            f"joint {model.names[joint]!r} ({short}) has {model.nqs[joint]} coordinates; "
+            "only one-coordinate revolute and prismatic joints are exported",
+        )
     for kind, prefix in (("hinge", "JointModelR"), ("slide", "JointModelP")):
         if short.startswith(prefix):
-            if short[len(prefix):] in ("X", "Y", "Z"):
+            if short[len(prefix) :] in ("X", "Y", "Z"):
                 return kind, np.eye(3)["XYZ".index(short[-1])]
             return kind, np.asarray(jm.extract().axis, dtype=float)
     raise MethodUnavailable("mjcf export", f"joint {model.names[joint]!r} is {short}")
@@ -128,14 +131,26 @@ def _equalities(mech: Mechanism, names: dict[int, str], solref: str) -> list[tup
             out.append(("weld", {"name": c.name, "body1": body1, "body2": body2, **stiff}))
             continue
         if c.kind in ("hooke", "prismatic"):
-            raise MethodUnavailable("mjcf export", f"cut {c.name!r} is {c.kind}: MuJoCo has no equality constraint for it")
+            raise MethodUnavailable(
+                "mjcf export", f"cut {c.name!r} is {c.kind}: MuJoCo has no equality constraint for it"
+            )
         offsets = [np.zeros(3)]
         if c.kind == "revolute" and c.rows != "planar":
             offsets.append(AXIS_ANCHOR_OFFSET * c.axis)
         for k, offset in enumerate(offsets):
             anchor = fa.placement.act(offset)
-            out.append(("connect", {"name": f"{c.name}" + (f"_{k}" if k else ""), "body1": body1,
-                                    "body2": body2, "anchor": _fmt(anchor), **stiff}))
+            out.append(
+                (
+                    "connect",
+                    {
+                        "name": f"{c.name}" + (f"_{k}" if k else ""),
+                        "body1": body1,
+                        "body2": body2,
+                        "anchor": _fmt(anchor),
+                        **stiff,
+                    },
+                )
+            )
     return out
 
 
@@ -149,8 +164,10 @@ def springs(mech: Mechanism) -> dict[str, tuple[float, float, float]]:
         Joint -> (stiffness (N m/rad or N/m), spring reference (rad or m: where the spring's effort vanishes,
             reference + preload / stiffness), damping (N m s/rad or N s/m)).
     """
-    return {s.joint: (s.stiffness, s.reference + s.preload / s.stiffness if s.stiffness else s.reference, s.damping)
-            for s in mech.springs.springs}
+    return {
+        s.joint: (s.stiffness, s.reference + s.preload / s.stiffness if s.stiffness else s.reference, s.damping)
+        for s in mech.springs.springs
+    }
 
 
 #: MuJoCo's smallest mass (kg) and principal moment (kg m^2) of a moving body (mjMINVAL).
@@ -206,8 +223,15 @@ def _add_geoms(mech: Mechanism, elements: dict[int, ET.Element]) -> None:
         if joint in drawn:
             continue
         for k, end in enumerate(_capsule_ends(mech, joint)):
-            ET.SubElement(element, "geom", name=f"{element.get('name', ROOT_BODY)}_capsule_{k}", type="capsule",
-                          size=_fmt([CAPSULE_RADIUS]), fromto=_fmt([*np.zeros(3), *end]), **off)
+            ET.SubElement(
+                element,
+                "geom",
+                name=f"{element.get('name', ROOT_BODY)}_capsule_{k}",
+                type="capsule",
+                size=_fmt([CAPSULE_RADIUS]),
+                fromto=_fmt([*np.zeros(3), *end]),
+                **off,
+            )
 
 
 def to_mjcf(mech: Mechanism, q: np.ndarray | None = None) -> str:
@@ -230,13 +254,21 @@ def to_mjcf(mech: Mechanism, q: np.ndarray | None = None) -> str:
     timeconst = period / SOLREF_DIVISOR
     solref = _fmt([timeconst, 1.0])
     root = ET.Element("mujoco", model=mech.spec.name)
-    root.append(ET.Comment(
-        f" closures: solref = ({timeconst:.6g} s, 1) = smallest link period {period:.6g} s / {SOLREF_DIVISOR:g}"
-        f" (each link a compound pendulum about its joint), solimp {_fmt(SOLIMP)}, timestep = solref / "
-        f"{STEPS_PER_TIMECONST:g}, integrator RK4 "))
+    root.append(
+        ET.Comment(
+            f" closures: solref = ({timeconst:.6g} s, 1) = smallest link period {period:.6g} s / {SOLREF_DIVISOR:g}"
+            f" (each link a compound pendulum about its joint), solimp {_fmt(SOLIMP)}, timestep = solref / "
+            f"{STEPS_PER_TIMECONST:g}, integrator RK4 "
+        )
+    )
     ET.SubElement(root, "compiler", angle="radian", autolimits="true")
-    ET.SubElement(root, "option", gravity=_fmt(model.gravity.linear), timestep=repr(timeconst / STEPS_PER_TIMECONST),
-                  integrator="RK4")
+    ET.SubElement(
+        root,
+        "option",
+        gravity=_fmt(model.gravity.linear),
+        timestep=repr(timeconst / STEPS_PER_TIMECONST),
+        integrator="RK4",
+    )
     # one jointless root body holds every tree: Pinocchio's MJCF reader takes the first body only;
     # the ground's geoms go to the worldbody (Pinocchio asks a body with geoms for an inertia)
     worldbody = ET.SubElement(root, "worldbody")
@@ -248,21 +280,32 @@ def to_mjcf(mech: Mechanism, q: np.ndarray | None = None) -> str:
         kind, axis = _joint_kind(model, j)
         value = q[model.idx_qs[j]]
         motion = axis * value
-        M = model.jointPlacements[j] * (pin.exp6(pin.Motion(np.zeros(3), motion)) if kind == "hinge"
-                                        else pin.SE3(np.eye(3), motion))
+        M = model.jointPlacements[j] * (
+            pin.exp6(pin.Motion(np.zeros(3), motion)) if kind == "hinge" else pin.SE3(np.eye(3), motion)
+        )
         names[j] = body_name(model, j)
-        body = ET.SubElement(elements[model.parents[j]], "body", name=names[j], pos=_fmt(M.translation),
-                             quat=_fmt(_quat_wxyz(M.rotation)))
+        body = ET.SubElement(
+            elements[model.parents[j]],
+            "body",
+            name=names[j],
+            pos=_fmt(M.translation),
+            quat=_fmt(_quat_wxyz(M.rotation)),
+        )
         inertia = model.inertias[j]
         moments = np.linalg.eigvalsh(inertia.inertia)
         if inertia.mass < MJMINVAL or moments[0] < MJMINVAL:
-            raise MethodUnavailable("mjcf export", f"body {names[j]!r} has a mass of {inertia.mass:.6g} kg and principal "
-                                    f"moments {_fmt(moments)} kg m^2: MuJoCo needs both above {MJMINVAL:g} for a moving "
-                                    "body (a massless link, a rotor or a thin rod has no MJCF counterpart)")
+            raise MethodUnavailable(
+                "mjcf export",
+                f"body {names[j]!r} has a mass of {inertia.mass:.6g} kg and principal "
+                f"moments {_fmt(moments)} kg m^2: MuJoCo needs both above {MJMINVAL:g} for a moving "
+                "body (a massless link, a rotor or a thin rod has no MJCF counterpart)",
+            )
         if inertia.mass > 0:
             I = inertia.inertia
             full = [I[0, 0], I[1, 1], I[2, 2], I[0, 1], I[0, 2], I[1, 2]]
-            ET.SubElement(body, "inertial", pos=_fmt(inertia.lever), mass=repr(float(inertia.mass)), fullinertia=_fmt(full))
+            ET.SubElement(
+                body, "inertial", pos=_fmt(inertia.lever), mass=repr(float(inertia.mass)), fullinertia=_fmt(full)
+            )
         attrs = {"name": model.names[j], "type": kind, "axis": _fmt(axis), "ref": repr(float(value))}
         iq, iv = model.idx_qs[j], model.idx_vs[j]
         lower, upper = model.lowerPositionLimit[iq], model.upperPositionLimit[iq]
@@ -280,8 +323,13 @@ def to_mjcf(mech: Mechanism, q: np.ndarray | None = None) -> str:
     _add_geoms(mech, {0: worldbody, **{j: e for j, e in elements.items() if j}})
     for frame in model.frames:
         if frame.type == pin.FrameType.BODY and not frame.placement.isIdentity():
-            ET.SubElement(elements[frame.parentJoint], "site", name=frame.name, pos=_fmt(frame.placement.translation),
-                          quat=_fmt(_quat_wxyz(frame.placement.rotation)))
+            ET.SubElement(
+                elements[frame.parentJoint],
+                "site",
+                name=frame.name,
+                pos=_fmt(frame.placement.translation),
+                quat=_fmt(_quat_wxyz(frame.placement.rotation)),
+            )
     equality = ET.SubElement(root, "equality")
     for tag, attrs in _equalities(mech, names, solref):
         ET.SubElement(equality, tag, attrs)

@@ -49,8 +49,11 @@ def to_urdf_plus(mech: Mechanism) -> str:
             tendon actuator.
     """
     if mech.urdf is None:
-        raise MethodUnavailable("urdf+ export", f"{mech.spec.name} has no URDF tree (joints URDF has no element for: "
-                                "ball, free-flyer, a reader's substitutions or reductions): URDF+ is a URDF")
+        raise MethodUnavailable(
+            "urdf+ export",
+            f"{mech.spec.name} has no URDF tree (joints URDF has no element for: "
+            "ball, free-flyer, a reader's substitutions or reductions): URDF+ is a URDF",
+        )
     tendons = [a.name for a in mech.closure_model.actuators]
     if tendons:
         raise MethodUnavailable("urdf+ export", f"actuator {tendons[0]!r} drives a tendon: URDF+ drives joints")
@@ -70,9 +73,12 @@ def to_urdf_plus(mech: Mechanism) -> str:
     for name in mech.actuated:
         transmission = ET.SubElement(robot, "transmission", name=f"{name}_transmission")
         ET.SubElement(transmission, "type").text = "transmission_interface/SimpleTransmission"
-        ET.SubElement(ET.SubElement(transmission, "joint", name=name), "hardwareInterface").text = \
-            "hardware_interface/EffortJointInterface"
-        ET.SubElement(robot, f"{{{LOOP_NAMESPACE}}}home", joint=name, value=repr(float(mech.home_q[mech.q_index(name)])))
+        ET.SubElement(
+            ET.SubElement(transmission, "joint", name=name), "hardwareInterface"
+        ).text = "hardware_interface/EffortJointInterface"
+        ET.SubElement(
+            robot, f"{{{LOOP_NAMESPACE}}}home", joint=name, value=repr(float(mech.home_q[mech.q_index(name)]))
+        )
     ET.register_namespace("mechkit", LOOP_NAMESPACE)
     ET.indent(robot)
     return '<?xml version="1.0" ?>\n' + ET.tostring(robot, encoding="unicode") + "\n"
@@ -89,8 +95,10 @@ def _link_of(frame: str, joints: dict[str, ET.Element], links: set[str], cut: st
 
 def _loop(closure: LoopClosure, joints: dict[str, ET.Element], links: set[str]) -> ET.Element:
     if closure.kind not in LOOP_TYPES:
-        raise MethodUnavailable("urdf+ export", f"cut {closure.name!r} is {closure.kind}: URDF+ loops are revolute, "
-                                "prismatic, fixed or planar")
+        raise MethodUnavailable(
+            "urdf+ export",
+            f"cut {closure.name!r} is {closure.kind}: URDF+ loops are revolute, prismatic, fixed or planar",
+        )
     loop = ET.Element("loop", name=closure.name, type=LOOP_TYPES[closure.kind])
     ET.SubElement(loop, "predecessor", link=_link_of(closure.frame_a, joints, links, closure.name))
     ET.SubElement(loop, "successor", link=_link_of(closure.frame_b, joints, links, closure.name))
@@ -121,8 +129,13 @@ def _coupling(coupling: Coupling, robot: ET.Element, joints: dict[str, ET.Elemen
     follower, leader = coupling.follower, coupling.leader
     mimic = linear and len(follower) == len(leader) == 1 and follower[0][1] == leader[0][1] == 1.0
     if mimic and coupling.name == follower[0][0]:  # a mimic's row is named after its joint
-        ET.SubElement(joints[follower[0][0]], "mimic", joint=leader[0][0], multiplier=repr(float(poly[1])),
-                      offset=repr(float(poly[0])))
+        ET.SubElement(
+            joints[follower[0][0]],
+            "mimic",
+            joint=leader[0][0],
+            multiplier=repr(float(poly[1])),
+            offset=repr(float(poly[0])),
+        )
         return
     if linear and leader and poly[0] == 0.0 and all(c == 1.0 for _, c in follower + leader):
         succ, pred = _deepest(follower, joints), _deepest(leader, joints)
@@ -135,9 +148,17 @@ def _coupling(coupling: Coupling, robot: ET.Element, joints: dict[str, ET.Elemen
             ET.SubElement(element, "ratio", value=repr(float(poly[1])))
             return
     if mimic:
-        ET.SubElement(joints[follower[0][0]], "mimic", joint=leader[0][0], multiplier=repr(float(poly[1])),
-                      offset=repr(float(poly[0])))
+        ET.SubElement(
+            joints[follower[0][0]],
+            "mimic",
+            joint=leader[0][0],
+            multiplier=repr(float(poly[1])),
+            offset=repr(float(poly[0])),
+        )
         return
-    raise MethodUnavailable("urdf+ export", f"coupling {coupling.name!r} is neither a mimic (one joint, linear) nor a "
-                            "URDF+ coupling (linear, no offset, the sums of the joints below two links' nearest common "
-                            "ancestor)")
+    raise MethodUnavailable(
+        "urdf+ export",
+        f"coupling {coupling.name!r} is neither a mimic (one joint, linear) nor a "
+        "URDF+ coupling (linear, no offset, the sums of the joints below two links' nearest common "
+        "ancestor)",
+    )

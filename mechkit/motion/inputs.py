@@ -99,9 +99,16 @@ def _spline_derivatives(t: np.ndarray, values: np.ndarray) -> tuple[np.ndarray, 
     return spline(t, 1), spline(t, 2)
 
 
-def from_arrays(mech: Mechanism, t: np.ndarray, values: np.ndarray, rates: np.ndarray | None = None,
-                accelerations: np.ndarray | None = None, names: Sequence[str] | None = None,
-                guesses: np.ndarray | None = None, source: str = "arrays") -> InputLaw:
+def from_arrays(
+    mech: Mechanism,
+    t: np.ndarray,
+    values: np.ndarray,
+    rates: np.ndarray | None = None,
+    accelerations: np.ndarray | None = None,
+    names: Sequence[str] | None = None,
+    guesses: np.ndarray | None = None,
+    source: str = "arrays",
+) -> InputLaw:
     """A law from sampled arrays.
 
     Args:
@@ -139,8 +146,9 @@ def from_arrays(mech: Mechanism, t: np.ndarray, values: np.ndarray, rates: np.nd
     return InputLaw(names, t, values, np.asarray(rates, float), np.asarray(accelerations, float), guesses, source)
 
 
-def from_callable(mech: Mechanism, law: LawFunction, t: np.ndarray, names: Sequence[str] | None = None,
-                  source: str = "callable") -> InputLaw:
+def from_callable(
+    mech: Mechanism, law: LawFunction, t: np.ndarray, names: Sequence[str] | None = None, source: str = "callable"
+) -> InputLaw:
     """A law from a function of time, sampled at t (s).
 
     `law(t)` returns the values, or (values, rates, accelerations); with values only, rates and
@@ -261,10 +269,13 @@ def from_law(mech: Mechanism, name: str, samples: int | None = None) -> InputLaw
     """
     declared = mech.spec.motion_laws
     if name not in declared:
-        raise InvalidParameters("law", name, f"{mech.spec.name} declares the motion laws: {', '.join(declared) or 'none'}")
+        raise InvalidParameters(
+            "law", name, f"{mech.spec.name} declares the motion laws: {', '.join(declared) or 'none'}"
+        )
     law = declared[name].sample(mech, samples)
-    return from_arrays(mech, law.t, law.values, law.rates, law.accelerations, names=law.joints, guesses=law.guesses,
-                       source=law.source)
+    return from_arrays(
+        mech, law.t, law.values, law.rates, law.accelerations, names=law.joints, guesses=law.guesses, source=law.source
+    )
 
 
 def resample(law: InputLaw, samples: int) -> InputLaw:
@@ -284,8 +295,12 @@ def resample(law: InputLaw, samples: int) -> InputLaw:
     if samples < 2:
         raise InvalidParameters("samples", samples, "need at least 2")
     t = np.linspace(law.t[0], law.t[-1], samples)
-    parts = [scipy.interpolate.CubicSpline(law.t, x, axis=0)(t) if len(law.t) >= 4 else
-             scipy.interpolate.interp1d(law.t, x, axis=0)(t) for x in (law.values, law.rates, law.accelerations)]
+    parts = [
+        scipy.interpolate.CubicSpline(law.t, x, axis=0)(t)
+        if len(law.t) >= 4
+        else scipy.interpolate.interp1d(law.t, x, axis=0)(t)
+        for x in (law.values, law.rates, law.accelerations)
+    ]
     guesses = None
     if law.guesses is not None:
         after = np.clip(np.searchsorted(law.t, t), 1, len(law.t) - 1)

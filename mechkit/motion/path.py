@@ -117,8 +117,9 @@ class PathKinematics:
         i = int(np.argmax(bad))
         return i, core.singular_error(s[i], free_v.size, core.CLOSURE_TOL)
 
-    def motion(self, q: np.ndarray, J: np.ndarray, Jw: np.ndarray, G: np.ndarray, rates: np.ndarray,
-               accelerations: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    def motion(
+        self, q: np.ndarray, J: np.ndarray, Jw: np.ndarray, G: np.ndarray, rates: np.ndarray, accelerations: np.ndarray
+    ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Velocities, accelerations and joint axes of N assembled samples, batched (judged regular
         already).
 

@@ -107,7 +107,13 @@ def peak_table(result: MotionResult) -> pd.DataFrame:
     """
     from mechkit.history.result import pandas
 
-    rows = [{"joint": p.joint, "support": p.support, "determinate": p.determinate,
-             **{k: v for q in QUANTITIES for k, v in ((q, p.values[q]), (f"t_{q}", p.times[q]))}}
-            for p in peaks(result)]
+    rows = [
+        {
+            "joint": p.joint,
+            "support": p.support,
+            "determinate": p.determinate,
+            **{k: v for q in QUANTITIES for k, v in ((q, p.values[q]), (f"t_{q}", p.times[q]))},
+        }
+        for p in peaks(result)
+    ]
     return pandas().DataFrame(rows).set_index("joint")

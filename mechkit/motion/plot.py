@@ -84,8 +84,9 @@ def figure(result: MotionResult, joints: Sequence[str] | None = None, title: str
     return fig
 
 
-def write_plot(result: MotionResult, path: str | Path, joints: Sequence[str] | None = None,
-               title: str | None = None, dpi: int = 90) -> Path:
+def write_plot(
+    result: MotionResult, path: str | Path, joints: Sequence[str] | None = None, title: str | None = None, dpi: int = 90
+) -> Path:
     """Draw `figure` and write it (format from the suffix: .png, .svg, .pdf); atomic.
 
     Args:

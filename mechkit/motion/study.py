@@ -43,9 +43,16 @@ def driven_model(mech: Mechanism, names: Sequence[str]) -> core.ClosureModel:
     return mech.closure_model.with_actuation(driven)
 
 
-def inverse_batch(mech: Mechanism, cm: core.ClosureModel, cd: core.ClosureData, q: np.ndarray, v: np.ndarray,
-                  a: np.ndarray, fexts: Sequence | None,
-                  determinacy: bool) -> tuple[np.ndarray, np.ndarray, np.ndarray | None]:
+def inverse_batch(
+    mech: Mechanism,
+    cm: core.ClosureModel,
+    cd: core.ClosureData,
+    q: np.ndarray,
+    v: np.ndarray,
+    a: np.ndarray,
+    fexts: Sequence | None,
+    determinacy: bool,
+) -> tuple[np.ndarray, np.ndarray, np.ndarray | None]:
     """Efforts, reactions and determinacy flags of N samples of `mech` driven as `cm` says, with the
     mechanism's joint springs.
 
@@ -79,8 +86,13 @@ JUDGED_BLOCK = 32
 PREDICTOR_POINTS = 3
 
 
-def kinematics_along(path: PathKinematics, law: InputLaw, tol: float = 1e-12, skip_failures: bool = False,
-                     progress: Progress | None = None) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, list]:
+def kinematics_along(
+    path: PathKinematics,
+    law: InputLaw,
+    tol: float = 1e-12,
+    skip_failures: bool = False,
+    progress: Progress | None = None,
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, list]:
     """The kinematics of every sample of a law.
 
     The closure is solved sample by sample from the warm start, blocks of `JUDGED_BLOCK` samples are
@@ -123,7 +135,7 @@ def kinematics_along(path: PathKinematics, law: InputLaw, tol: float = 1e-12, sk
                 if law.guesses is not None:
                     guess = law.guesses[i]
                 elif done:
-                    last = done[:-PREDICTOR_POINTS - 1:-1]
+                    last = done[: -PREDICTOR_POINTS - 1 : -1]
                     guess = path.predict(q[last], law.t[last], law.t[i])
                 else:
                     guess = path.first_guess(law.values[i])
@@ -139,8 +151,8 @@ def kinematics_along(path: PathKinematics, law: InputLaw, tol: float = 1e-12, sk
         singular = path.singular(J[block]) if block else None
         if singular is not None:
             k, err = singular
-            q[block[k + 1:]] = np.nan
-            del done[len(done) - len(block) + k:]
+            q[block[k + 1 :]] = np.nan
+            del done[len(done) - len(block) + k :]
             fail(block[k], err)
             i = block[k] + 1
         elif error is not None:
@@ -153,14 +165,23 @@ def kinematics_along(path: PathKinematics, law: InputLaw, tol: float = 1e-12, sk
     a = np.full((n, model.nv), np.nan)
     axes = np.full((n, len(path.axes.column) + len(path.axes.cut_joint), 3), np.nan)
     if good.size:
-        v[good], a[good], axes[good] = path.motion(q[good], J[good], Jw[good], G[good], law.rates[good],
-                                                   law.accelerations[good])
+        v[good], a[good], axes[good] = path.motion(
+            q[good], J[good], Jw[good], G[good], law.rates[good], law.accelerations[good]
+        )
     return q, v, a, axes, failures
 
 
-def study(mech: Mechanism, law: InputLaw, *, determinacy: bool = False, loads: Loads | None = None,
-          progress: Progress | None = None, tol: float = 1e-12, skip_failures: bool = False,
-          reactions: str = "rigid") -> MotionResult:
+def study(
+    mech: Mechanism,
+    law: InputLaw,
+    *,
+    determinacy: bool = False,
+    loads: Loads | None = None,
+    progress: Progress | None = None,
+    tol: float = 1e-12,
+    skip_failures: bool = False,
+    reactions: str = "rigid",
+) -> MotionResult:
     """Efforts and every joint's reaction along an input law.
 
     Args:
@@ -207,7 +228,9 @@ def study(mech: Mechanism, law: InputLaw, *, determinacy: bool = False, loads: L
         for k, i in enumerate(good):
             one = None if fexts is None else [fexts[k]]
             try:
-                out.append(inverse_batch(mech, driven, driven_data, q[i:i + 1], v[i:i + 1], a[i:i + 1], one, determinacy))
+                out.append(
+                    inverse_batch(mech, driven, driven_data, q[i : i + 1], v[i : i + 1], a[i : i + 1], one, determinacy)
+                )
                 batches.append(np.array([i]))
             except MechkitError as err:
                 failures.append((float(law.t[i]), str(err)))
@@ -226,7 +249,21 @@ def study(mech: Mechanism, law: InputLaw, *, determinacy: bool = False, loads: L
             flags[done] = compliant.determinate
     if progress is not None:
         progress(2 * n, 2 * n)
-    return MotionResult(mech.spec.name, law.source, law.t.copy(), coordinate_names(model), q, v, a,
-                        driven.actuated, tuple(mech.actuated), efforts, driven.joint_names,
-                        np.array(driven.supports, dtype=bool), wrenches, axes, flags,
-                        tuple(sorted(failures)))
+    return MotionResult(
+        mech.spec.name,
+        law.source,
+        law.t.copy(),
+        coordinate_names(model),
+        q,
+        v,
+        a,
+        driven.actuated,
+        tuple(mech.actuated),
+        efforts,
+        driven.joint_names,
+        np.array(driven.supports, dtype=bool),
+        wrenches,
+        axes,
+        flags,
+        tuple(sorted(failures)),
+    )

@@ -47,25 +47,38 @@ def read(path: Path, params: dict[str, Any] | None = None, freeflyer: bool = Fal
     params = dict(params or {})
     name = path.name
     if freeflyer and not (name.endswith(".urdf") and sidecar_of(path) is not None):
-        raise InvalidArgument("freeflyer", freeflyer, f"{name} is not an Extended-URDF file (a .urdf with a .yaml "
-                              "sidecar): only those take a free-flyer root (MJCF and SDFormat declare their own "
-                              "free joints)")
+        raise InvalidArgument(
+            "freeflyer",
+            freeflyer,
+            f"{name} is not an Extended-URDF file (a .urdf with a .yaml "
+            "sidecar): only those take a free-flyer root (MJCF and SDFormat declare their own "
+            "free joints)",
+        )
     if name.endswith(".xacro"):
         return read_xacro(path, params)
     if params:
-        raise InvalidParameters(next(iter(params)), params[next(iter(params))],
-                                f"{path.name} is not a xacro file: only xacro files take parameters")
+        raise InvalidParameters(
+            next(iter(params)),
+            params[next(iter(params))],
+            f"{path.name} is not a xacro file: only xacro files take parameters",
+        )
     if name.endswith(".urdf"):
         sidecar = sidecar_of(path)
         if is_urdf_plus(parse_xml(read_text(path), str(path))):
             if sidecar is not None:
-                raise MalformedDescription(str(path), f"declares URDF+ loops or couplings and has an Extended-URDF "
-                                           f"sidecar {sidecar.name}: one loop convention per file")
+                raise MalformedDescription(
+                    str(path),
+                    f"declares URDF+ loops or couplings and has an Extended-URDF "
+                    f"sidecar {sidecar.name}: one loop convention per file",
+                )
             return read_urdf_plus(path)
         return read_extended_urdf(path, sidecar, freeflyer) if sidecar is not None else read_urdf(path)
     if name.endswith((".xml", ".mjcf")):
         return read_mjcf(path)
     if name.endswith(".sdf"):
         return read_sdf(path)
-    raise MalformedDescription(str(path), "unknown format: expected .urdf (with loops, URDF+ constraints or a .yaml "
-                                          "sidecar), .xacro / .urdf.xacro, MJCF .xml or SDFormat .sdf")
+    raise MalformedDescription(
+        str(path),
+        "unknown format: expected .urdf (with loops, URDF+ constraints or a .yaml "
+        "sidecar), .xacro / .urdf.xacro, MJCF .xml or SDFormat .sdf",
+    )

@@ -123,10 +123,12 @@ def read_extended_urdf(path: Path, sidecar: Path, freeflyer: bool = False, balls
     if freeflyer or side.substitutions or triplets:
         own = tuple(_checked_frames(model, c, path.name) for c in base.closures or ())
         home = {**base.home, ROOT: (0.0,) * 6} if freeflyer else base.home  # the root held where the URDF puts it
-        return dataclasses.replace(base, urdf=None, actuated=tuple(motors), closures=own + tuple(closures), model=model,
-                                   home=home)
-    loops = "".join(f"\n  <mechkit:loop {' '.join(f'{k}={quoteattr(v)}' for k, v in _attributes(c).items())}/>"
-                    for c in closures)
+        return dataclasses.replace(
+            base, urdf=None, actuated=tuple(motors), closures=own + tuple(closures), model=model, home=home
+        )
+    loops = "".join(
+        f"\n  <mechkit:loop {' '.join(f'{k}={quoteattr(v)}' for k, v in _attributes(c).items())}/>" for c in closures
+    )
     end = urdf.rindex("</robot>")
     text = urdf[:end] + loops + "\n" + urdf[end:]
     if f'xmlns:mechkit="{LOOP_NAMESPACE}"' not in text:
@@ -162,15 +164,22 @@ def _read_sidecar(sidecar: Path) -> Sidecar:
         if not (isinstance(value, list) and all(isinstance(v, str) for v in value)):
             raise MalformedDescription(f"{sidecar}: {key}", f"must be a list of strings, got {value!r}")
     if len(names) != len(types):
-        raise MalformedDescription(f"{sidecar}: joint_type", f"needs one type per joint_name: {len(types)} types "
-                                   f"for {len(names)} joints")
+        raise MalformedDescription(
+            f"{sidecar}: joint_type", f"needs one type per joint_name: {len(types)} types for {len(names)} joints"
+        )
     for name, kind in zip(names, types):
         if kind not in ("SPHERICAL", "FIXED") and not (_UJOINT.fullmatch(kind) and kind[-1] != kind[-2]):
-            raise MalformedDescription(f"{sidecar}: joint_type", f"{kind!r} (for joint {name!r}) is not one of {SUBSTITUTIONS}")
+            raise MalformedDescription(
+                f"{sidecar}: joint_type", f"{kind!r} (for joint {name!r}) is not one of {SUBSTITUTIONS}"
+            )
         if names.count(name) > 1:
             raise MalformedDescription(f"{sidecar}: joint_name", f"joint {name!r} is substituted twice")
-    return Sidecar([tuple(p) for p in pairs], [str(k).lower() for k in kinds],
-                   None if motors is None else tuple(motors), dict(zip(names, types)))
+    return Sidecar(
+        [tuple(p) for p in pairs],
+        [str(k).lower() for k in kinds],
+        None if motors is None else tuple(motors),
+        dict(zip(names, types)),
+    )
 
 
 def _substitute(tree: pin.Model, substitutions: dict[str, str], where: str, urdf: str) -> pin.Model:
@@ -179,10 +188,15 @@ def _substitute(tree: pin.Model, substitutions: dict[str, str], where: str, urdf
         if not tree.existJointName(name):
             kinds = {f.type for f in tree.frames if f.name == name}
             close = difflib.get_close_matches(name, list(tree.names), n=1, cutoff=0.8)
-            why = ("is a fixed joint of the URDF: it has no freedom to substitute" if pin.FrameType.FIXED_JOINT in kinds else
-                   f"is a link of {urdf}, not a joint" if pin.FrameType.BODY in kinds else
-                   f"is not a joint of {urdf}" + (f" (closest: {close[0]!r})" if close else "") +
-                   "; Gepetto's loader ignores it and keeps the joint unchanged")
+            why = (
+                "is a fixed joint of the URDF: it has no freedom to substitute"
+                if pin.FrameType.FIXED_JOINT in kinds
+                else f"is a link of {urdf}, not a joint"
+                if pin.FrameType.BODY in kinds
+                else f"is not a joint of {urdf}"
+                + (f" (closest: {close[0]!r})" if close else "")
+                + "; Gepetto's loader ignores it and keeps the joint unchanged"
+            )
             raise MalformedDescription(where, f"{name!r} {why}")
     if not substitutions:
         return tree
@@ -209,8 +223,11 @@ def _spherical_triplets(model: pin.Model) -> tuple[pin.Model, list[tuple[str, st
             continue
         axes = [data.oMi[k].rotation[:, c] for k, c in zip(chain, columns)]
         points = [data.oMi[k].translation for k in chain]
-        if (all(np.linalg.norm(np.cross(axes[a], axes[b])) > 1e-6 for a, b in ((0, 1), (0, 2), (1, 2)))
-                and np.linalg.norm(points[0] - points[1]) < 1e-4 and np.linalg.norm(points[2] - points[1]) < 1e-4):
+        if (
+            all(np.linalg.norm(np.cross(axes[a], axes[b])) > 1e-6 for a, b in ((0, 1), (0, 2), (1, 2)))
+            and np.linalg.norm(points[0] - points[1]) < 1e-4
+            and np.linalg.norm(points[2] - points[1]) < 1e-4
+        ):
             found.append(j)
     if not found:
         return model, []
@@ -219,8 +236,9 @@ def _spherical_triplets(model: pin.Model) -> tuple[pin.Model, list[tuple[str, st
     return _rebuild(model, {j + 2: pin.JointModelSpherical() for j in found}, {}, lock), triplets
 
 
-def _rebuild(model: pin.Model, replace: dict[int, pin.JointModel], split: dict[int, tuple[str, str]],
-             lock: list[int]) -> pin.Model:
+def _rebuild(
+    model: pin.Model, replace: dict[int, pin.JointModel], split: dict[int, tuple[str, str]], lock: list[int]
+) -> pin.Model:
     """A copy of `model` with joints replaced (same placement, body and frames), joints split into two
     revolutes (`<name>_A` at the placement, `<name>_B` on it with the body and frames), then the joints
     `lock` (ids in `model`) locked at the zero configuration. Kept joints keep their limits."""
@@ -239,24 +257,42 @@ def _rebuild(model: pin.Model, replace: dict[int, pin.JointModel], split: dict[i
         else:
             jm = model.joints[j]
             q, v = slice(jm.idx_q, jm.idx_q + jm.nq), slice(jm.idx_v, jm.idx_v + jm.nv)
-            added = new.addJoint(parent, jm, place, name, model.lowerEffortLimit[v], model.upperEffortLimit[v],
-                                 model.lowerVelocityLimit[v], model.upperVelocityLimit[v], model.lowerPositionLimit[q],
-                                 model.upperPositionLimit[q], model.lowerDryFrictionLimit[v],
-                                 model.upperDryFrictionLimit[v], model.damping[v])
+            added = new.addJoint(
+                parent,
+                jm,
+                place,
+                name,
+                model.lowerEffortLimit[v],
+                model.upperEffortLimit[v],
+                model.lowerVelocityLimit[v],
+                model.upperVelocityLimit[v],
+                model.lowerPositionLimit[q],
+                model.upperPositionLimit[q],
+                model.lowerDryFrictionLimit[v],
+                model.upperDryFrictionLimit[v],
+                model.damping[v],
+            )
         new.appendBodyToJoint(added, model.inertias[j], pin.SE3.Identity())
         ids[j] = added
     frames, parents = {0: 0}, []
     for f, frame in enumerate(model.frames):
         if f == 0:
             continue
-        if frame.type == pin.FrameType.JOINT and frame.parentJoint in split and frame.name == model.names[frame.parentJoint]:
+        if (
+            frame.type == pin.FrameType.JOINT
+            and frame.parentJoint in split
+            and frame.name == model.names[frame.parentJoint]
+        ):
             for axis in split[frame.parentJoint]:  # the joint's frame becomes the two revolutes' frames
                 sub = f"{frame.name}_{axis}"
-                frames[f] = new.addFrame(pin.Frame(sub, new.getJointId(sub), pin.SE3.Identity(), pin.FrameType.JOINT), False)
+                frames[f] = new.addFrame(
+                    pin.Frame(sub, new.getJointId(sub), pin.SE3.Identity(), pin.FrameType.JOINT), False
+                )
                 parents.append((frames[f], frame.parentFrame))
             continue
-        frames[f] = new.addFrame(pin.Frame(frame.name, ids[frame.parentJoint], frame.placement, frame.type, frame.inertia),
-                                 False)
+        frames[f] = new.addFrame(
+            pin.Frame(frame.name, ids[frame.parentJoint], frame.placement, frame.type, frame.inertia), False
+        )
         parents.append((frames[f], frame.parentFrame))
     for f, parent in parents:  # a reduced model's frames may name a parent frame listed after them
         new.frames[f].parentFrame = frames[parent]
@@ -267,8 +303,15 @@ def _one_freedom(model: pin.Model, joint: str, where: str, urdf: str) -> None:
     """`joint` is a one-freedom joint of the built model (a motor, a coupled or a home joint)."""
     if not model.existJointName(joint):
         gone = model.existFrame(joint) or any(model.existJointName(f"{joint}_{a}") for a in "XYZ")
-        raise MalformedDescription(where, f"{joint!r} is not a moving joint of {urdf}" + (
-            " once substituted (locked, split into a U-joint's two revolutes, or merged into a ball)" if gone else ""))
+        raise MalformedDescription(
+            where,
+            f"{joint!r} is not a moving joint of {urdf}"
+            + (
+                " once substituted (locked, split into a U-joint's two revolutes, or merged into a ball)"
+                if gone
+                else ""
+            ),
+        )
     shortname = model.joints[model.getJointId(joint)].shortname()
     if model.joints[model.getJointId(joint)].nv != 1:
         raise MalformedDescription(where, f"{joint!r} is a {shortname} joint: it needs one freedom")
@@ -278,11 +321,15 @@ def _frame(model: pin.Model, name: str, where: str, urdf: str) -> pin.Frame:
     """The frame `name` of the model; several frames of that name must be one place."""
     found = [f for f in model.frames if f.name == name]
     if not found:
-        raise MalformedDescription(where, f"frame {name!r} is not a frame of {urdf} (a link, a joint or a fixed "
-                                   "joint, after the substitutions)")
+        raise MalformedDescription(
+            where,
+            f"frame {name!r} is not a frame of {urdf} (a link, a joint or a fixed joint, after the substitutions)",
+        )
     for other in found[1:]:
         if other.parentJoint != found[0].parentJoint or not other.placement.isApprox(found[0].placement, 1e-12):
-            raise MalformedDescription(where, f"frame name {name!r} names {len(found)} frames of {urdf} at different places")
+            raise MalformedDescription(
+                where, f"frame name {name!r} names {len(found)} frames of {urdf} at different places"
+            )
     return found[0]
 
 
@@ -309,7 +356,11 @@ def _closures(model: pin.Model, side: Sidecar, sidecar: Path, urdf: str) -> list
         if kind == "3d":
             for k in range(i + 1, len(side.pairs)):
                 ga, gb = frames[k]
-                if used[k] or side.kinds[k] != "3d" or (ga.parentJoint, gb.parentJoint) != (fa.parentJoint, fb.parentJoint):
+                if (
+                    used[k]
+                    or side.kinds[k] != "3d"
+                    or (ga.parentJoint, gb.parentJoint) != (fa.parentJoint, fb.parentJoint)
+                ):
                     continue
                 offset = fa.placement.actInv(ga.placement.translation)  # second anchor in frame_a (m)
                 if np.linalg.norm(offset) > 1e-9:

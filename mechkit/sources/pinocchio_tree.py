@@ -16,8 +16,11 @@ from mechkit.core import LoopClosure
 from mechkit.sources.urdf import LOOP_NAMESPACE
 
 #: Pinocchio's one-freedom joints along a coordinate axis: short name -> (URDF type, unit axis).
-_ALIGNED = {f"JointModel{k}{a}": (kind, np.eye(3)[i]) for k, kind in (("R", "revolute"), ("P", "prismatic"))
-            for i, a in enumerate("XYZ")}
+_ALIGNED = {
+    f"JointModel{k}{a}": (kind, np.eye(3)[i])
+    for k, kind in (("R", "revolute"), ("P", "prismatic"))
+    for i, a in enumerate("XYZ")
+}
 _UNALIGNED = {"JointModelRevoluteUnaligned": "revolute", "JointModelPrismaticUnaligned": "prismatic"}
 
 
@@ -83,8 +86,9 @@ def add_body(model: pin.Model, name: str, joint: int, placement: pin.SE3, inerti
     _add(model, pin.Frame(name, joint, _parent_frame(model, joint), placement, pin.FrameType.BODY))
 
 
-def add_frame(model: pin.Model, name: str, joint: int, placement: pin.SE3,
-              kind: pin.FrameType = pin.FrameType.OP_FRAME) -> None:
+def add_frame(
+    model: pin.Model, name: str, joint: int, placement: pin.SE3, kind: pin.FrameType = pin.FrameType.OP_FRAME
+) -> None:
     """Add a frame (operational, or a fixed joint's).
 
     Args:
@@ -158,8 +162,14 @@ def tree_urdf(model: pin.Model, closures: tuple[LoopClosure, ...]) -> str | None
     frames = [f for f in list(model.frames)[1:] if f.type != pin.FrameType.JOINT]
     link = {0: "world"}
     for j in range(1, model.njoints):
-        link[j] = next((f.name for f in frames if f.parentJoint == j and f.type == pin.FrameType.BODY
-                        and f.placement.isIdentity()), f"{model.names[j]}__link")
+        link[j] = next(
+            (
+                f.name
+                for f in frames
+                if f.parentJoint == j and f.type == pin.FrameType.BODY and f.placement.isIdentity()
+            ),
+            f"{model.names[j]}__link",
+        )
     lines = [f'<robot name="{model.name or "tree"}" xmlns:mechkit="{LOOP_NAMESPACE}">']
     for j in range(model.njoints):
         lines += _link(link[j], model.inertias[j] if j else None)
@@ -182,21 +192,40 @@ def _link(name: str, inertia: pin.Inertia | None) -> list[str]:
     if inertia is None or (inertia.mass <= 0 and not np.any(inertia.inertia)):
         return [f'  <link name="{name}"/>']
     i = [[float(x) for x in row] for row in inertia.inertia]
-    tensor = " ".join(f'{k}="{i[r][c]!r}"' for k, r, c in (("ixx", 0, 0), ("iyy", 1, 1), ("izz", 2, 2), ("ixy", 0, 1),
-                                                          ("ixz", 0, 2), ("iyz", 1, 2)))
-    return [f'  <link name="{name}">', "    <inertial>", f'      <origin xyz="{_numbers(inertia.lever)}" rpy="0 0 0"/>',
-            f'      <mass value="{float(inertia.mass)!r}"/>', f"      <inertia {tensor}/>", "    </inertial>", "  </link>"]
+    tensor = " ".join(
+        f'{k}="{i[r][c]!r}"'
+        for k, r, c in (("ixx", 0, 0), ("iyy", 1, 1), ("izz", 2, 2), ("ixy", 0, 1), ("ixz", 0, 2), ("iyz", 1, 2))
+    )
+    return [
+        f'  <link name="{name}">',
+        "    <inertial>",
+        f'      <origin xyz="{_numbers(inertia.lever)}" rpy="0 0 0"/>',
+        f'      <mass value="{float(inertia.mass)!r}"/>',
+        f"      <inertia {tensor}/>",
+        "    </inertial>",
+        "  </link>",
+    ]
 
 
 def _joint(name: str, kind: str, parent: str, child: str, origin: pin.SE3, axis=None) -> list[str]:
-    lines = [f'  <joint name="{name}" type="{kind}">', f'    <parent link="{parent}"/>', f'    <child link="{child}"/>',
-             f'    <origin xyz="{_numbers(origin.translation)}" rpy="{_numbers(pin.rpy.matrixToRpy(origin.rotation))}"/>']
+    lines = [
+        f'  <joint name="{name}" type="{kind}">',
+        f'    <parent link="{parent}"/>',
+        f'    <child link="{child}"/>',
+        f'    <origin xyz="{_numbers(origin.translation)}" rpy="{_numbers(pin.rpy.matrixToRpy(origin.rotation))}"/>',
+    ]
     if axis is not None:
-        lines += [f'    <axis xyz="{_numbers(axis)}"/>', '    <limit effort="1e6" lower="-1e3" upper="1e3" velocity="1e3"/>']
+        lines += [
+            f'    <axis xyz="{_numbers(axis)}"/>',
+            '    <limit effort="1e6" lower="-1e3" upper="1e3" velocity="1e3"/>',
+        ]
     return lines + ["  </joint>"]
 
 
 def _loop(c: LoopClosure) -> str:
-    extra = "".join(f' {attr}="{_numbers(value)}"' for attr, value in (("axis", c.axis), ("axis_a", c.axis_a),
-                                                                       ("axis_b", c.axis_b)) if value is not None)
+    extra = "".join(
+        f' {attr}="{_numbers(value)}"'
+        for attr, value in (("axis", c.axis), ("axis_a", c.axis_a), ("axis_b", c.axis_b))
+        if value is not None
+    )
     return f'  <mechkit:loop name="{c.name}" type="{c.kind}" frame_a="{c.frame_a}" frame_b="{c.frame_b}"{extra}/>'

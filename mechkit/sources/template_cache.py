@@ -27,8 +27,15 @@ from typing import Any
 from mechkit.sources.xacro_file import document_text, render_urdf
 
 _TOKEN = re.compile(r"MkTrc(\d+)Z")
-_BINARY = {"add": operator.add, "sub": operator.sub, "mul": operator.mul, "truediv": operator.truediv,
-           "floordiv": operator.floordiv, "mod": operator.mod, "pow": operator.pow}
+_BINARY = {
+    "add": operator.add,
+    "sub": operator.sub,
+    "mul": operator.mul,
+    "truediv": operator.truediv,
+    "floordiv": operator.floordiv,
+    "mod": operator.mod,
+    "pow": operator.pow,
+}
 _PERTURB = 1e-3  # relative change of every float argument in the structure's self-check (ours)
 
 
@@ -176,10 +183,15 @@ def _tracing(trace: _Trace, leaves: dict[str, _Sym]):
     table.update(math_fns)
     if math_ns is not None:
         math_ns.update(math_fns)
-    table.update({"float": lambda x=0.0: x if isinstance(x, _Sym) else float(x),
-                  "str": lambda x="": str(x), "abs": _traced(abs),
-                  "int": lambda x=0: _refuse("int")() if isinstance(x, _Sym) else int(x),
-                  "round": lambda x, *n: _refuse("round")() if isinstance(x, _Sym) else round(x, *n)})
+    table.update(
+        {
+            "float": lambda x=0.0: x if isinstance(x, _Sym) else float(x),
+            "str": lambda x="": str(x),
+            "abs": _traced(abs),
+            "int": lambda x=0: _refuse("int")() if isinstance(x, _Sym) else int(x),
+            "round": lambda x, *n: _refuse("round")() if isinstance(x, _Sym) else round(x, *n),
+        }
+    )
     table.update({f"MkTrc{s.node}Z": s for s in leaves.values()})
     by_token = {f"MkTrc{s.node}Z": s for s in leaves.values()}
 
@@ -288,8 +300,10 @@ class TemplateCache:
         try:
             structure = _Structure(self.path, args, floats)
             for scale in (0.0, _PERTURB):  # the traced text must be xacro's, at these and other values
-                probe = {k: (repr(float(v) * (1 + scale * (1 + i / len(args))) + scale * 1e-3)
-                             if k in floats else v) for i, (k, v) in enumerate(args.items())}
+                probe = {
+                    k: (repr(float(v) * (1 + scale * (1 + i / len(args))) + scale * 1e-3) if k in floats else v)
+                    for i, (k, v) in enumerate(args.items())
+                }
                 if structure.render(probe) != render_urdf(self.path, probe):
                     return None
         except Exception:  # noqa: BLE001 - untraceable or failing: xacro renders (and reports) it each time

@@ -82,8 +82,19 @@ def describe_urdf(urdf: str, source: Path | None, fmt: str, params: dict[str, st
     for spring in springs:
         if spring.joint not in joints:
             raise MalformedDescription(f"mechkit:spring {spring.joint!r}", "not a moving joint of the URDF")
-    return Description(name, urdf, transmissions(root, joints), home, {}, source, fmt, dict(params or {}), closures,
-                       couplings=parse_mimics(root), springs=springs)
+    return Description(
+        name,
+        urdf,
+        transmissions(root, joints),
+        home,
+        {},
+        source,
+        fmt,
+        dict(params or {}),
+        closures,
+        couplings=parse_mimics(root),
+        springs=springs,
+    )
 
 
 def moving_joints(root: ET.Element) -> set[str]:
@@ -116,8 +127,9 @@ def transmissions(root: ET.Element, joints: set[str]) -> tuple[str, ...]:
         for joint in transmission.findall("joint"):
             name = joint.get("name")
             if name not in joints:
-                raise MalformedDescription(f"transmission {transmission.get('name')!r}",
-                                           f"joint {name!r} is not a moving joint of the URDF")
+                raise MalformedDescription(
+                    f"transmission {transmission.get('name')!r}", f"joint {name!r} is not a moving joint of the URDF"
+                )
             if name not in out:
                 out.append(name)
     return tuple(out)
@@ -159,14 +171,20 @@ def check_loop_elements(root: ET.Element) -> None:
         uri, _, local = element.tag[1:].partition("}") if element.tag.startswith("{") else ("", "", element.tag)
         if uri == LOOP_NAMESPACE:
             if local not in KNOWN_ELEMENTS:
-                raise MalformedDescription(f"mechkit:{local}", f"unknown element of the loop namespace; known: {KNOWN_ELEMENTS}")
+                raise MalformedDescription(
+                    f"mechkit:{local}", f"unknown element of the loop namespace; known: {KNOWN_ELEMENTS}"
+                )
         elif "mechkit" in uri.lower():
-            raise MalformedDescription(f"<{local}> in namespace {uri!r}",
-                                       f"the loop namespace is {LOOP_NAMESPACE!r} (mistyped URI?)")
+            raise MalformedDescription(
+                f"<{local}> in namespace {uri!r}", f"the loop namespace is {LOOP_NAMESPACE!r} (mistyped URI?)"
+            )
         elif local.lower() in LOOP_LIKE:
-            raise MalformedDescription(f"<{element.tag}>", f"a loop-like element outside the loop namespace "
-                                       f"{LOOP_NAMESPACE!r}: declare loops as <mechkit:loop>, or as URDF+ "
-                                       "<loop> with <predecessor> and <successor>")
+            raise MalformedDescription(
+                f"<{element.tag}>",
+                f"a loop-like element outside the loop namespace "
+                f"{LOOP_NAMESPACE!r}: declare loops as <mechkit:loop>, or as URDF+ "
+                "<loop> with <predecessor> and <successor>",
+            )
 
 
 def parse_loops(urdf: str | ET.Element) -> list[LoopClosure]:
@@ -247,8 +265,9 @@ def _parse_loop(element: ET.Element, frame_ok: dict[str, str | None]) -> LoopClo
         raise MalformedDescription(where, "a Hooke cut has no planar rows")
     if kind == "spherical" and rows == "spherical":
         raise MalformedDescription(where, "a spherical cut about a common centre has no rows left")
-    return LoopClosure(name, kind, frames["frame_a"], frames["frame_b"], axis, axis_a, axis_b, rows,
-                       element.get("rows") is not None)
+    return LoopClosure(
+        name, kind, frames["frame_a"], frames["frame_b"], axis, axis_a, axis_b, rows, element.get("rows") is not None
+    )
 
 
 def parse_springs(urdf: str | ET.Element) -> tuple[JointSpring, ...]:
@@ -271,8 +290,10 @@ def parse_springs(urdf: str | ET.Element) -> tuple[JointSpring, ...]:
         joint = element.get("joint")
         where = f"mechkit:spring {joint!r}"
         try:
-            values = {a: float(element.attrib[a]) if a in ("stiffness", "reference") else float(element.get(a, "0"))
-                      for a in ("stiffness", "reference", "preload", "damping")}
+            values = {
+                a: float(element.attrib[a]) if a in ("stiffness", "reference") else float(element.get(a, "0"))
+                for a in ("stiffness", "reference", "preload", "damping")
+            }
         except (KeyError, ValueError) as err:
             raise MalformedDescription(where, f"bad or missing attribute {err}") from None
         if not joint or not all(np.isfinite(list(values.values()))) or values["stiffness"] < 0 or values["damping"] < 0:

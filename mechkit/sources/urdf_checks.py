@@ -46,8 +46,11 @@ def check_tree(root: ET.Element) -> None:
             ends.append(link)
         parent, child = ends
         if child in parent_of:
-            raise MalformedDescription(f"link {child!r}", f"has two parent joints ({parent_of[child]!r}, {name!r}): "
-                                       "a tree has one; close the loop with a <mechkit:loop> instead")
+            raise MalformedDescription(
+                f"link {child!r}",
+                f"has two parent joints ({parent_of[child]!r}, {name!r}): "
+                "a tree has one; close the loop with a <mechkit:loop> instead",
+            )
         parent_of[child] = name
         children.setdefault(parent, []).append(child)
     roots = [link for link in links if link not in parent_of]
@@ -100,19 +103,28 @@ def check_inertias(root: ET.Element) -> None:
         text = None if mass is None else mass.get("value")
         value = number(text, where, "mass")
         element = inertial.find("inertia")
-        c = {k: number(element.get(k, "0") if element is not None else "0", where, k)
-             for k in ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")}
+        c = {
+            k: number(element.get(k, "0") if element is not None else "0", where, k)
+            for k in ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")
+        }
         if value < 0:
             raise MalformedDescription(where, f"mass {text} is negative (kg)")
-        moments = np.linalg.eigvalsh(np.array([[c["ixx"], c["ixy"], c["ixz"]], [c["ixy"], c["iyy"], c["iyz"]],
-                                               [c["ixz"], c["iyz"], c["izz"]]]))
+        moments = np.linalg.eigvalsh(
+            np.array([[c["ixx"], c["ixy"], c["ixz"]], [c["ixy"], c["iyy"], c["iyz"]], [c["ixz"], c["iyz"], c["izz"]]])
+        )
         slack = INERTIA_RTOL * float(np.sum(np.abs(moments)))
         if moments[0] < -slack:
-            raise MalformedDescription(where, f"inertia {c} is not positive semi-definite: principal moment "
-                                       f"{float(moments[0]):.6g} kg m^2 is negative")
+            raise MalformedDescription(
+                where,
+                f"inertia {c} is not positive semi-definite: principal moment "
+                f"{float(moments[0]):.6g} kg m^2 is negative",
+            )
         if moments[0] + moments[1] < moments[2] - slack:
-            raise MalformedDescription(where, f"inertia {c} violates the triangle inequality: principal moments "
-                                       f"{float(moments[0]):.6g} + {float(moments[1]):.6g} < {float(moments[2]):.6g} kg m^2")
+            raise MalformedDescription(
+                where,
+                f"inertia {c} violates the triangle inequality: principal moments "
+                f"{float(moments[0]):.6g} + {float(moments[1]):.6g} < {float(moments[2]):.6g} kg m^2",
+            )
 
 
 def number(text: str | None, where: str, what: str) -> float:

@@ -46,9 +46,12 @@ def parse_mimics(root: ET.Element) -> tuple[Coupling, ...]:
             raise MalformedDescription(where, "a joint cannot mimic itself")
         for joint_name in (name, leader):
             if types[joint_name] in ("floating", "planar"):
-                raise MalformedDescription(where, f"joint {joint_name!r} is {types[joint_name]}: a mimic couples "
-                                           "one-freedom joints")
-        multiplier, offset = (number(mimic.get(k, default), where, k) for k, default in (("multiplier", "1"), ("offset", "0")))
+                raise MalformedDescription(
+                    where, f"joint {joint_name!r} is {types[joint_name]}: a mimic couples one-freedom joints"
+                )
+        multiplier, offset = (
+            number(mimic.get(k, default), where, k) for k, default in (("multiplier", "1"), ("offset", "0"))
+        )
         if types[leader] == "fixed":
             out.append(Coupling(name, ((name, 1.0),), (), (offset,)))
             continue
@@ -60,6 +63,6 @@ def parse_mimics(root: ET.Element) -> tuple[Coupling, ...]:
             chain.append(joint)
             joint = leader_of[joint]
         if joint in chain:
-            cycle = chain[chain.index(joint):] + [joint]
+            cycle = chain[chain.index(joint) :] + [joint]
             raise MalformedDescription(f"joint {joint!r} <mimic>", f"the mimics form a cycle {' -> '.join(cycle)}")
     return tuple(out)

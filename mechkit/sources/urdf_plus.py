@@ -53,9 +53,11 @@ def is_urdf_plus(root: ET.Element) -> bool:
     Returns:
         Whether it is a URDF+ file.
     """
-    return any(child.tag == "coupling" or (child.tag == "loop" and (child.find("predecessor") is not None
-                                                                    or child.find("successor") is not None))
-               for child in root)
+    return any(
+        child.tag == "coupling"
+        or (child.tag == "loop" and (child.find("predecessor") is not None or child.find("successor") is not None))
+        for child in root
+    )
 
 
 def read_urdf_plus(path: Path) -> Description:
@@ -116,8 +118,9 @@ def _end(element: ET.Element, tag: str, where: str, links: set[str]) -> tuple[st
     return link, end.find("origin")
 
 
-def _loop(element: ET.Element, name: str, where: str, ends: list[tuple[str, ET.Element | None]],
-          taken: set[str]) -> list[ET.Element]:
+def _loop(
+    element: ET.Element, name: str, where: str, ends: list[tuple[str, ET.Element | None]], taken: set[str]
+) -> list[ET.Element]:
     """The elements a URDF+ loop becomes: the links and fixed joints of its frames (where a frame is not
     its link's own) and its `<mechkit:loop>`."""
     kind = element.get("type")
@@ -139,7 +142,9 @@ def _loop(element: ET.Element, name: str, where: str, ends: list[tuple[str, ET.E
         joint = ET.Element("joint", name=f"{frame}_fixed", type="fixed")
         ET.SubElement(joint, "parent", link=link)
         ET.SubElement(joint, "child", link=frame)
-        ET.SubElement(joint, "origin", xyz=" ".join(repr(float(x)) for x in xyz), rpy=" ".join(repr(float(x)) for x in rpy))
+        ET.SubElement(
+            joint, "origin", xyz=" ".join(repr(float(x)) for x in xyz), rpy=" ".join(repr(float(x)) for x in rpy)
+        )
         out += [ET.Element("link", name=frame), joint]
     if kind != "fixed":
         vector = _triple(element.find("axis"), "xyz", f"{where} <axis>", default="1 0 0")
@@ -149,8 +154,13 @@ def _loop(element: ET.Element, name: str, where: str, ends: list[tuple[str, ET.E
     return out + [ET.Element(f"{{{LOOP_NAMESPACE}}}loop", attrs)]
 
 
-def _coupling(element: ET.Element, name: str, where: str, ends: list[tuple[str, ET.Element | None]],
-              parent_joint: dict[str, ET.Element]) -> Coupling:
+def _coupling(
+    element: ET.Element,
+    name: str,
+    where: str,
+    ends: list[tuple[str, ET.Element | None]],
+    parent_joint: dict[str, ET.Element],
+) -> Coupling:
     """The coupling row of a URDF+ coupling: the sum of the moving joints from the links' nearest common
     ancestor to the successor = ratio x that sum to the predecessor (the fork's constraint, as its
     authors' dynamics library builds it)."""
@@ -167,11 +177,16 @@ def _coupling(element: ET.Element, name: str, where: str, ends: list[tuple[str, 
         joints = [j for j in path if id(j) not in common and j.get("type") != "fixed"]
         for joint in joints:
             if joint.get("type") not in ("revolute", "continuous", "prismatic"):
-                raise MalformedDescription(f"{where} <{tag}>", f"joint {joint.get('name')!r} on the way to {link!r} is "
-                                           f"{joint.get('type')}: a coupling sums one-freedom joints")
+                raise MalformedDescription(
+                    f"{where} <{tag}>",
+                    f"joint {joint.get('name')!r} on the way to {link!r} is "
+                    f"{joint.get('type')}: a coupling sums one-freedom joints",
+                )
         terms.append(tuple((j.get("name"), 1.0) for j in joints))
     if not terms[0] or not terms[1]:
-        raise MalformedDescription(where, "a link has no moving joint below the links' nearest common ancestor: nothing to couple")
+        raise MalformedDescription(
+            where, "a link has no moving joint below the links' nearest common ancestor: nothing to couple"
+        )
     ratio = element.find("ratio")
     value = 1.0 if ratio is None else number(ratio.get("value"), f"{where} <ratio>", "value")
     return Coupling(name, terms[1], terms[0], (0.0, value))

@@ -105,6 +105,7 @@ def test_failure_leaves_targets_and_no_temporary(tmp_path, monkeypatch, failing)
             if calls["n"] == 2:
                 boom()
             return real(target, data)
+
         monkeypatch.setattr(atomic, "_write_temp", second_fails)
     else:
         monkeypatch.setattr(atomic.os, failing, boom)

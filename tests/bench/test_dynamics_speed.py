@@ -10,18 +10,30 @@ from mechkit.bench import dynamics_speed
 from mechkit.bench.dynamics_speed import SpeedRow
 from mechkit.bench.sampling import make_samples
 
-ALL_MISSED = {"one sample of inverse dynamics / raw", "forward_dynamics wrapper / raw",
-              "exact forward dynamics / MuJoCo mj_forward"}
+ALL_MISSED = {
+    "one sample of inverse dynamics / raw",
+    "forward_dynamics wrapper / raw",
+    "exact forward dynamics / MuJoCo mj_forward",
+}
 
 
 def test_targets_carry_each_mechanisms_limits():
     """Issue 21's limits: one sample of inverse dynamics 15x raw on the four-bar, 10x on the 2T1R, 1x on
     the deployable (where batched is 1x too, and the exact forward dynamics is held to mj_forward)."""
-    rows = [SpeedRow(label, 1.0, ratio) for label, ratio in (
-        (dynamics_speed.ONE, 12.0), (dynamics_speed.BATCHED, 2.0), (dynamics_speed.FORWARD, 3.5),
-        (dynamics_speed.EXACT, 0.5), (dynamics_speed.MJ_FORWARD, 0.25))]
-    limits = {name: {t.label: (t.limit, t.met) for t in dynamics_speed.targets(rows, name)}
-              for name in ("four_bar", "parallel_2t1r", "deployable_9rr12uru", "tetra_3rr3uru")}
+    rows = [
+        SpeedRow(label, 1.0, ratio)
+        for label, ratio in (
+            (dynamics_speed.ONE, 12.0),
+            (dynamics_speed.BATCHED, 2.0),
+            (dynamics_speed.FORWARD, 3.5),
+            (dynamics_speed.EXACT, 0.5),
+            (dynamics_speed.MJ_FORWARD, 0.25),
+        )
+    ]
+    limits = {
+        name: {t.label: (t.limit, t.met) for t in dynamics_speed.targets(rows, name)}
+        for name in ("four_bar", "parallel_2t1r", "deployable_9rr12uru", "tetra_3rr3uru")
+    }
     assert limits["four_bar"]["one sample of inverse dynamics / raw"] == (15.0, True)
     assert limits["parallel_2t1r"]["one sample of inverse dynamics / raw"] == (10.0, False)
     assert "one sample of inverse dynamics / raw" not in limits["tetra_3rr3uru"]
@@ -52,4 +64,3 @@ def test_the_breakdown_times_every_step_of_the_missed_calls(name, load_cached):
         assert steps[0].share == 1.0 and steps[-1].label.startswith("the rest of the core")
         assert all(np.isfinite(p.us) for p in steps)
     print("\n".join(dynamics_speed.markdown([dynamics_speed.MechanismSpeed(name, m.model.nv, [], [], found)])))
-

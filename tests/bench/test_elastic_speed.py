@@ -33,6 +33,11 @@ def test_every_row_on_a_tiny_budget():
     """Every row of the page section: the compliant reactions against the rigid batch (four-bar, 2T1R,
     deployable truss), the 2T1R platform's stiffness, the deployable truss's modes."""
     rows = elastic_speed.rows(budget_s=0.02, repeats=1)
-    assert [r.label.split(":")[0] for r in rows] == ["four_bar", "parallel_2t1r", "deployable_9rr12uru",
-                                                     "parallel_2t1r", "deployable_9rr12uru"]
+    assert [r.label.split(":")[0] for r in rows] == [
+        "four_bar",
+        "parallel_2t1r",
+        "deployable_9rr12uru",
+        "parallel_2t1r",
+        "deployable_9rr12uru",
+    ]
     _check(rows)

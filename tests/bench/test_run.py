@@ -17,6 +17,7 @@ from mechkit.loading import from_params
 
 def test_spec_bench_methods_measure_a_wrong_method_and_a_raising_one():
     """A spec's bench_methods rows are measured like the core's: a 1 mrad bias shows as 1e-3 error."""
+
     def biased(m, s):
         return m.assemble(dict(zip(s.input_names, s.inputs)), guess=m.home_q) + 1e-3
 
@@ -24,11 +25,18 @@ def test_spec_bench_methods_measure_a_wrong_method_and_a_raising_one():
         raise SingularConfiguration(float("inf"), "test")
 
     spec = mechkit.get_spec("four_bar")
-    spec = dataclasses.replace(spec, bench_methods=(*spec.bench_methods, BenchMethod("biased", "assembly", biased),
-                                                    BenchMethod("refuses", "inverse_dynamics", refuses)))
+    spec = dataclasses.replace(
+        spec,
+        bench_methods=(
+            *spec.bench_methods,
+            BenchMethod("biased", "assembly", biased),
+            BenchMethod("refuses", "inverse_dynamics", refuses),
+        ),
+    )
     calls = []
-    result = run.bench_mechanism(from_params(spec, spec.params()), quick=True, with_peers=False,
-                                 progress=lambda *args: calls.append(args))
+    result = run.bench_mechanism(
+        from_params(spec, spec.params()), quick=True, with_peers=False, progress=lambda *args: calls.append(args)
+    )
     by = {r.method.name: r for r in result.rows}
     assert [c[1:3] for c in calls] == [(k, len(result.rows)) for k in range(1, len(result.rows) + 1)]
     assert by["biased"].error == pytest.approx(1e-3, rel=1e-6)

@@ -16,9 +16,12 @@ def _row(name: str, quantity: str, seconds: float, error: float) -> Row:
 
 
 def test_ratio_to_fastest_of_equal_or_better_accuracy():
-    rows = [_row("slow exact", "forward_dynamics", 10e-6, 1e-15), _row("fast exact", "forward_dynamics", 2e-6, 1e-13),
-            _row("fastest sloppy", "forward_dynamics", 1e-6, 1e-2),
-            _row(BASELINES["forward_dynamics"], "forward_dynamics", 4e-6, 1e-14)]
+    rows = [
+        _row("slow exact", "forward_dynamics", 10e-6, 1e-15),
+        _row("fast exact", "forward_dynamics", 2e-6, 1e-13),
+        _row("fastest sloppy", "forward_dynamics", 1e-6, 1e-2),
+        _row(BASELINES["forward_dynamics"], "forward_dynamics", 4e-6, 1e-14),
+    ]
     timing.ratios(rows)
     by = {r.method.name: r for r in rows}
     assert by["slow exact"].x_fastest == pytest.approx(5.0)  # both exact within the machine-precision class

@@ -28,7 +28,9 @@ def test_committed_urdf_matches_the_xacro_template(name):
 @pytest.mark.parametrize("name", NAMES)
 def test_urdfdom_accepts(name, tmp_path):
     # the venv's bin (where pip puts urdfdom's check_urdf) may not be on PATH
-    exe = shutil.which("check_urdf", path=os.pathsep.join([os.path.dirname(sys.executable), os.environ.get("PATH", "")]))
+    exe = shutil.which(
+        "check_urdf", path=os.pathsep.join([os.path.dirname(sys.executable), os.environ.get("PATH", "")])
+    )
     if exe is None:
         pytest.skip("check_urdf (urdfdom) not on PATH")
     out = subprocess.run([exe, str(urdf_dir() / f"{name}.urdf")], check=False, capture_output=True, text=True)
@@ -68,10 +70,14 @@ def test_contract(entry):
     assert spec.self_checks is None or callable(spec.self_checks)
     assert spec.bench_states is None or callable(spec.bench_states)
     assert all(callable(s.run) and s.name and s.condition and s.error for s in spec.failure_studies)
-    assert all(callable(law.sample) and all(isinstance(j, str) for j in law.reactions) for law in spec.motion_laws.values())
+    assert all(
+        callable(law.sample) and all(isinstance(j, str) for j in law.reactions) for law in spec.motion_laws.values()
+    )
     assert all(callable(m.fn) and m.columns and m.unit and m.doc for m in spec.design_metrics)
-    assert all(s.doc and callable(s.run) and callable(s.lines) and (s.figures is None or callable(s.figures))
-               for s in spec.studies.values())
+    assert all(
+        s.doc and callable(s.run) and callable(s.lines) and (s.figures is None or callable(s.figures))
+        for s in spec.studies.values()
+    )
 
 
 def test_the_contract_refuses_hooks_it_cannot_use():
@@ -80,11 +86,20 @@ def test_the_contract_refuses_hooks_it_cannot_use():
     from mechkit.catalog.contract import DesignMetric, FailureStudy
     from mechkit.catalog.params import MechanismParams
 
-    base = {"name": "m", "params": MechanismParams, "template": "m.urdf.xacro", "actuated": ("a",), "gruebler_dof": 1,
-            "home": lambda p: {"a": 0.0}}
+    base = {
+        "name": "m",
+        "params": MechanismParams,
+        "template": "m.urdf.xacro",
+        "actuated": ("a",),
+        "gruebler_dof": 1,
+        "home": lambda p: {"a": 0.0},
+    }
     study = FailureStudy("s", lambda m, quick: [], "condition (-)", "error (-)")
     metric = DesignMetric("d", "-", "a metric", ("d",), lambda m: {"d": 0.0})
-    for bad in ({"failure_studies": (study, study)}, {"design_metrics": (metric, metric)},
-                {"scene_captions": {"nowhere": "a scene not declared"}}):
+    for bad in (
+        {"failure_studies": (study, study)},
+        {"design_metrics": (metric, metric)},
+        {"scene_captions": {"nowhere": "a scene not declared"}},
+    ):
         with pytest.raises(InvalidParameters):
             MechanismSpec(**base, **bad)

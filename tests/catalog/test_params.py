@@ -22,8 +22,11 @@ from mechkit.report import CHECK_LIMIT, failing_checks, self_checks
 
 def _numeric_fields(name: str) -> list[tuple[str, float]]:
     params = get_spec(name).params()
-    return [(f.name, float(getattr(params, f.name))) for f in dataclasses.fields(params)
-            if isinstance(getattr(params, f.name), (int, float)) and not isinstance(getattr(params, f.name), bool)]
+    return [
+        (f.name, float(getattr(params, f.name)))
+        for f in dataclasses.fields(params)
+        if isinstance(getattr(params, f.name), (int, float)) and not isinstance(getattr(params, f.name), bool)
+    ]
 
 
 def _value(default: float):
@@ -31,7 +34,7 @@ def _value(default: float):
     scale = default if default != 0 else 1.0
     return st.one_of(
         st.floats(0.8, 1.25).map(lambda k: default * k if default else k - 1.0),
-        st.floats(-3, 3).map(lambda e: scale * 10.0 ** e),
+        st.floats(-3, 3).map(lambda e: scale * 10.0**e),
         st.sampled_from([0.0, -scale, math.nan, math.inf, -math.inf]),
     )
 
@@ -43,7 +46,9 @@ def overrides(draw, name: str):
     out = {}
     for field, default in chosen:
         value = draw(_value(default))
-        out[field] = int(value) if isinstance(getattr(get_spec(name).params(), field), int) and math.isfinite(value) else value
+        out[field] = (
+            int(value) if isinstance(getattr(get_spec(name).params(), field), int) and math.isfinite(value) else value
+        )
     return out
 
 
@@ -65,8 +70,9 @@ def check(name: str, params: dict, spec_checks: bool) -> str:
 
 
 def _test(name: str, examples: int, spec_checks: bool):
-    @settings(max_examples=examples, deadline=None, derandomize=True, database=None,
-              suppress_health_check=list(HealthCheck))
+    @settings(
+        max_examples=examples, deadline=None, derandomize=True, database=None, suppress_health_check=list(HealthCheck)
+    )
     @given(overrides(name))
     def run(params):
         check(name, params, spec_checks)

@@ -16,5 +16,9 @@ def test_registry_table_is_sorted_and_unique():
 
 def test_every_mechanism_package_is_registered():
     packages = {p.parent.name for p in (PACKAGE / "mechanisms").glob("*/__init__.py")}
-    declaring = {name for name in packages if "SPEC = MechanismSpec(" in (PACKAGE / "mechanisms" / name / "__init__.py").read_text()}
+    declaring = {
+        name
+        for name in packages
+        if "SPEC = MechanismSpec(" in (PACKAGE / "mechanisms" / name / "__init__.py").read_text()
+    }
     assert declaring == set(names())

@@ -31,18 +31,28 @@ def test_cli_takes_a_path_set_and_actuated(tmp_path, capsys):
     assert again.mobility().dof == 1 and again.actuated == ("crank",) and again.structure.kutzbach == 1
 
 
-@pytest.mark.parametrize("args, needle", [
-    (["report", "tests/fixtures/nowhere.urdf"], "no such file"),
-    (["report", "tests/fixtures"], "directory"),
-    (["snapshot", "UNACTUATED", "--q", "0.3"], "unactuated"),
-    (["urdf", "tests/fixtures/slider_crank.urdf", "--set", "crank=1"], "not a xacro file"),
-])
+@pytest.mark.parametrize(
+    "args, needle",
+    [
+        (["report", "tests/fixtures/nowhere.urdf"], "no such file"),
+        (["report", "tests/fixtures"], "directory"),
+        (["snapshot", "UNACTUATED", "--q", "0.3"], "unactuated"),
+        (["urdf", "tests/fixtures/slider_crank.urdf", "--set", "crank=1"], "not a xacro file"),
+    ],
+)
 def test_cli_errors_are_one_line(args, needle, tmp_path):
     if "UNACTUATED" in args:
-        text = SLIDER_CRANK[:SLIDER_CRANK.index("<transmission")] + SLIDER_CRANK[SLIDER_CRANK.index("</transmission>") + 15:]
-        args = [a if a != "UNACTUATED" else str(written(tmp_path, text)) for a in args] + ["-o", str(tmp_path / "s.html")]
-    out = subprocess.run([sys.executable, "-m", "mechkit", *args], capture_output=True, text=True, check=False,
-                         cwd=ROOT)
+        text = (
+            SLIDER_CRANK[: SLIDER_CRANK.index("<transmission")]
+            + SLIDER_CRANK[SLIDER_CRANK.index("</transmission>") + 15 :]
+        )
+        args = [a if a != "UNACTUATED" else str(written(tmp_path, text)) for a in args] + [
+            "-o",
+            str(tmp_path / "s.html"),
+        ]
+    out = subprocess.run(
+        [sys.executable, "-m", "mechkit", *args], capture_output=True, text=True, check=False, cwd=ROOT
+    )
     assert out.returncode == 2, out.stderr
     lines = out.stderr.strip().splitlines()
     assert len(lines) == 1 and needle in lines[0] and "Traceback" not in out.stderr

@@ -18,8 +18,13 @@ def test_cli_export_writes_both_formats(tmp_path, capsys):
     assert "fb.xml" in out and "fb.yaml" in out
     mujoco.MjModel.from_xml_path(str(tmp_path / "fb.xml"))
     sidecar = yaml.safe_load((tmp_path / "fb.yaml").read_text())
-    assert sidecar == {"closed_loop": [["coupler_C", "rocker_C"]], "type": ["3d"], "name_mot": ["crank"],
-                       "joint_name": [], "joint_type": []}
+    assert sidecar == {
+        "closed_loop": [["coupler_C", "rocker_C"]],
+        "type": ["3d"],
+        "name_mot": ["crank"],
+        "joint_name": [],
+        "joint_type": [],
+    }
 
 
 def test_extended_urdf_sidecar_cannot_overwrite_the_urdf(tmp_path):

@@ -39,13 +39,16 @@ def test_inputs_csv_and_csv_output(tmp_path, capsys):
     assert np.allclose(r.v[:, 0], 0.4 * t, atol=1e-12) and np.allclose(r.a[:, 0], 0.4, atol=1e-10)
 
 
-@pytest.mark.parametrize("args, needle", [
-    (["--inputs", "missing.csv"], "missing.csv"),
-    (["--scene", "dance"], "'scene'"),
-    (["--samples", "1"], "'samples'"),
-    (["-o", "OUT.txt"], "parquet"),
-    (["--plot", "OUT.png", "--joints", "nope"], "nope"),
-])
+@pytest.mark.parametrize(
+    "args, needle",
+    [
+        (["--inputs", "missing.csv"], "missing.csv"),
+        (["--scene", "dance"], "'scene'"),
+        (["--samples", "1"], "'samples'"),
+        (["-o", "OUT.txt"], "parquet"),
+        (["--plot", "OUT.png", "--joints", "nope"], "nope"),
+    ],
+)
 def test_bad_input(args, needle, tmp_path, capsys, monkeypatch):
     monkeypatch.chdir(tmp_path)
     samples = [] if "--samples" in args else ["--samples", "4"]
@@ -72,8 +75,9 @@ def test_a_file_mechanism(fixture, tmp_path, capsys):
         assert peak.values["axial_force"] < 1e-12 * peak.values["force"]
 
 
-@pytest.mark.parametrize("module, args", [("pandas", ["-o", "m.csv"]), ("pyarrow", ["-o", "m.parquet"]),
-                                          ("matplotlib", ["--plot", "m.png"])])
+@pytest.mark.parametrize(
+    "module, args", [("pandas", ["-o", "m.csv"]), ("pyarrow", ["-o", "m.parquet"]), ("matplotlib", ["--plot", "m.png"])]
+)
 def test_a_missing_library_is_refused_before_the_study(module, args, tmp_path, capsys, monkeypatch):
     """An output whose library is not installed is refused in one line before any sample is computed."""
     monkeypatch.setitem(__import__("sys").modules, module, None)  # import fails as if not installed

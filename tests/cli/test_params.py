@@ -21,7 +21,11 @@ def test_cli_params_table_and_json(capsys):
     row = next(r for r in rows if r["name"] == "length_a")
     expected = param_ranges(get_spec("rocket_gimbal").params)["length_a"]
     assert expected.lower is not None and expected.upper is not None  # bounded both ways by the class
-    assert row["unit"] == "m" and row["range"] == expected.text() and row["value"] == get_spec("rocket_gimbal").params().length_a
+    assert (
+        row["unit"] == "m"
+        and row["range"] == expected.text()
+        and row["value"] == get_spec("rocket_gimbal").params().length_a
+    )
     assert main(["params", "no_such"]) == 2
     assert "no such mechanism" in capsys.readouterr().err
 

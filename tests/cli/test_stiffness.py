@@ -23,8 +23,10 @@ def test_the_json_is_the_elastic_models_stiffness(load_cached, capsys):
     from mechkit.elastic import ElasticModel
 
     m = load_cached("four_bar")
-    assert main(["stiffness", "four_bar", "--body", "coupler_link", "--point", "0.14,0,0", "--at", "crank=0.8",
-                 "--json"]) == 0
+    assert (
+        main(["stiffness", "four_bar", "--body", "coupler_link", "--point", "0.14,0,0", "--at", "crank=0.8", "--json"])
+        == 0
+    )
     r = json.loads(capsys.readouterr().out)
     s = ElasticModel(m).stiffness(m.assemble({"crank": 0.8}), "coupler_link", [0.14, 0.0, 0.0])
     C = np.array(r["compliance"])
@@ -45,8 +47,10 @@ def test_the_text_has_one_line_per_direction(capsys):
     assert [line.split()[0] for line in lines[2:]] == ["x", "y", "z", "rx", "ry", "rz"]
 
 
-@pytest.mark.parametrize("args, message", [(["--body", "nowhere"], "no such link"),
-                                           (["--body", "coupler_link", "--point", "0.1,0"], "'--point'")])
+@pytest.mark.parametrize(
+    "args, message",
+    [(["--body", "nowhere"], "no such link"), (["--body", "coupler_link", "--point", "0.1,0"], "'--point'")],
+)
 def test_bad_input_is_refused_in_one_line(capsys, args, message):
     assert main(["stiffness", "four_bar", *args]) == 2
     err = capsys.readouterr().err

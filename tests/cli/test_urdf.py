@@ -38,8 +38,12 @@ def test_device_fifo_directory_and_file_parent_are_refused(tmp_path):
     fifo = tmp_path / "f"
     os.mkfifo(fifo)
     (tmp_path / "file").write_text("x")
-    for target, word in (("/dev/null", "device"), (str(fifo), "FIFO"), (str(tmp_path), "directory"),
-                         (str(tmp_path / "file" / "a.urdf"), "not a directory")):
+    for target, word in (
+        ("/dev/null", "device"),
+        (str(fifo), "FIFO"),
+        (str(tmp_path), "directory"),
+        (str(tmp_path / "file" / "a.urdf"), "not a directory"),
+    ):
         refused(run_mechkit("urdf", "five_bar", "-o", target), word)
     assert fifo.is_fifo() and (tmp_path / "file").read_text() == "x"
 

@@ -13,8 +13,16 @@ from tests_support import FIXTURES
 
 from mechkit.cli import main
 
-PANDA = Path(sysconfig.get_paths()["purelib"], "cmeel.prefix", "share", "example-robot-data", "robots",
-             "panda_description", "urdf", "panda.urdf")
+PANDA = Path(
+    sysconfig.get_paths()["purelib"],
+    "cmeel.prefix",
+    "share",
+    "example-robot-data",
+    "robots",
+    "panda_description",
+    "urdf",
+    "panda.urdf",
+)
 
 KEYS = {"name", "skcs", "max_relative_difference", "samples", "us_per_sample"}
 SKC_KEYS = {"bodies", "released", "actuators", "unknowns", "equations"}
@@ -50,9 +58,14 @@ def test_validate_files_from_the_sources_fixtures(file, capsys):
     assert r["max_relative_difference"] < 1e-8, (r["worst"], r["max_relative_difference"])
 
 
-@pytest.mark.parametrize("args, what", [(["four_bar", "--samples", "0"], "--samples"),
-                                        (["four_bar", "--scene", "nowhere"], "scene"),
-                                        (["no_such_mechanism"], "no_such_mechanism")])
+@pytest.mark.parametrize(
+    "args, what",
+    [
+        (["four_bar", "--samples", "0"], "--samples"),
+        (["four_bar", "--scene", "nowhere"], "scene"),
+        (["no_such_mechanism"], "no_such_mechanism"),
+    ],
+)
 def test_validate_bad_input_is_one_line(args, what, capsys):
     assert main(["validate", *args]) == 2
     err = capsys.readouterr().err

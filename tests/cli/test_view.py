@@ -22,8 +22,13 @@ def test_live_viewer_in_a_real_browser_and_ctrl_c(tmp_path):
     """`mechkit view five_bar --scene sweep`: the served page shows the mechanism framed, two moments of
     the scene differ (it plays), and Ctrl-C ends the command and its server without a traceback."""
     env = dict(os.environ, PYTHONPATH=str(ROOT))
-    command = subprocess.Popen([sys.executable, "-m", "mechkit", "view", "five_bar", "--scene", "sweep"],
-                               stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env)
+    command = subprocess.Popen(
+        [sys.executable, "-m", "mechkit", "view", "five_bar", "--scene", "sweep"],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+        env=env,
+    )
     try:
         line = command.stdout.readline()
         assert "http://127.0.0.1:" in line, line + command.stderr.read()

@@ -41,8 +41,18 @@ def scratch(tmp_path_factory) -> Path:
 
 def test_the_page_shows_each_format_and_command():
     commands = " ".join(c for c, _ in _commands())
-    for word in ("report", "urdf", "snapshot", "export", "slider_crank.urdf", "watt_six_bar.urdf.xacro", "rssr.xml",
-                 "urdf+", "four_bar_gearbox.sdf", "2f85.xml"):
+    for word in (
+        "report",
+        "urdf",
+        "snapshot",
+        "export",
+        "slider_crank.urdf",
+        "watt_six_bar.urdf.xacro",
+        "rssr.xml",
+        "urdf+",
+        "four_bar_gearbox.sdf",
+        "2f85.xml",
+    ):
         assert word in commands
     assert len(_blocks("python")) == 4
 

@@ -63,31 +63,49 @@ class FrameModel:
         pin.framesForwardKinematics(model, pdata, q)
         self.pdata = pdata
         root = ET.fromstring(mech.urdf)
-        urdf_axes = {j.get("name"): np.array([float(x) for x in (j.find("axis").get("xyz") if j.find("axis") is not None
-                                                                   else "1 0 0").split()]) for j in root.findall("joint")}
+        urdf_axes = {
+            j.get("name"): np.array(
+                [float(x) for x in (j.find("axis").get("xyz") if j.find("axis") is not None else "1 0 0").split()]
+            )
+            for j in root.findall("joint")
+        }
         # joints: name, sides (a, b), centre (world), reporting point, constrained directions (6, r)
         self.joints = []
         for j in range(1, model.njoints):
             name = model.names[j]
             axis = pdata.oMi[j].rotation @ urdf_axes[name]
             origin = pdata.oMi[j].translation.copy()
-            self.joints.append(self._joint(name, model.parents[j], j, origin, origin, axis, "revolute",
-                                           pdata.oMi[j].rotation))
+            self.joints.append(
+                self._joint(name, model.parents[j], j, origin, origin, axis, "revolute", pdata.oMi[j].rotation)
+            )
         for c in mech.closures:
             fa, fb = model.getFrameId(c.frame_a), model.getFrameId(c.frame_b)
             axis = pdata.oMf[fa].rotation @ c.axis if c.axis is not None else None
             if c.kind == "hooke":
                 axis = np.cross(pdata.oMf[fa].rotation @ c.axis_a, pdata.oMf[fb].rotation @ c.axis_b)
             origin = pdata.oMf[fb].translation.copy()
-            self.joints.append(self._joint(c.name, model.frames[fa].parentJoint, model.frames[fb].parentJoint,
-                                           origin, origin, axis, c.kind, pdata.oMf[fa].rotation))
+            self.joints.append(
+                self._joint(
+                    c.name,
+                    model.frames[fa].parentJoint,
+                    model.frames[fb].parentJoint,
+                    origin,
+                    origin,
+                    axis,
+                    c.kind,
+                    pdata.oMf[fa].rotation,
+                )
+            )
         bodies_of = {f.name: f.parentJoint for f in model.frames if f.type == pin.FrameType.BODY}
         count = np.zeros(model.njoints, dtype=int)
         for jt in self.joints:
             count[jt["a"]] += 1
             count[jt["b"]] += 1
-        self.sections = {bodies_of[link]: s for link, s in self.data.sections.items()
-                         if bodies_of[link] and 1 <= count[bodies_of[link]] <= 2}
+        self.sections = {
+            bodies_of[link]: s
+            for link, s in self.data.sections.items()
+            if bodies_of[link] and 1 <= count[bodies_of[link]] <= 2
+        }
         self._build(model, pdata)
 
     def _joint(self, name, a, b, origin, point, axis, kind, frame):
@@ -149,7 +167,7 @@ class FrameModel:
         self.ndof = 6 * len(nodes)
         self.K = np.zeros((self.ndof, self.ndof))
         for i, j, s in members:
-            dofs = np.r_[6 * self.index[i]:6 * self.index[i] + 6, 6 * self.index[j]:6 * self.index[j] + 6]
+            dofs = np.r_[6 * self.index[i] : 6 * self.index[i] + 6, 6 * self.index[j] : 6 * self.index[j] + 6]
             self.K[np.ix_(dofs, dofs)] += member_stiffness(nodes[i], nodes[j], s)
         rows = []
         self.slices = []
@@ -164,7 +182,7 @@ class FrameModel:
     def select(self, node: str) -> np.ndarray:
         out = np.zeros((6, self.ndof))
         i = 6 * self.index[node]
-        out[:, i:i + 6] = np.eye(6)
+        out[:, i : i + 6] = np.eye(6)
         return out
 
     def side(self, body: int, k: int, point: np.ndarray) -> np.ndarray:
@@ -184,7 +202,7 @@ class FrameModel:
         m = len(self.C)
         kkt = np.block([[self.K, self.C.T], [self.C, np.zeros((m, m))]])
         sol = np.linalg.solve(kkt, np.vstack([f, np.zeros((m, f.shape[1]))]))
-        return sol[:self.ndof], sol[self.ndof:]
+        return sol[: self.ndof], sol[self.ndof :]
 
     def loads(self, fext: dict | None = None) -> np.ndarray:
         """(ndof, 1) the weights of every body at its centre of mass, plus world forces {body: (6,) at its CoM}."""

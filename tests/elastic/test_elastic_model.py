@@ -72,8 +72,9 @@ def test_rigid_limit(four_bar):
     for k in (1e4, 1e6, 1e8, 1e10):
         soft = e
         for joint in m.closure_model.joint_names:
-            soft = soft.with_joint(joint, JointElasticity(stiffness=np.full(6, k),
-                                                          drive=k if joint in m.actuated else None))
+            soft = soft.with_joint(
+                joint, JointElasticity(stiffness=np.full(6, k), drive=k if joint in m.actuated else None)
+            )
         r = soft.inverse_dynamics(m.home_q, v, v, fext).reactions[0]
         assert np.abs(r[det] - rigid.reaction_values[det]).max() < 1e-9 * scale
         errors.append(np.abs(r - ideal).max() / scale)
@@ -91,14 +92,21 @@ def test_determinate_four_bar_reactions_do_not_depend_on_the_sections():
     rigid = m.inverse_dynamics(m.home_q, v, v).reaction_values
     section = e.data.sections["coupler_link"]
     for factor in (0.1, 10.0):
-        other = e.with_section("coupler_link", type(section).tube(0.05 * factor ** 0.25, 0.0, 2e11, 8e10, (0, -1, 0)))
+        other = e.with_section("coupler_link", type(section).tube(0.05 * factor**0.25, 0.0, 2e11, 8e10, (0, -1, 0)))
         r = other.inverse_dynamics(m.home_q, v, v).reactions[0]
         planar = np.ix_(range(len(r)), [0, 2, 4])
         assert np.abs(r[planar] - rigid[planar]).max() < 1e-9 * np.abs(rigid).max()
 
 
-@pytest.mark.parametrize("name, link", [("four_bar", "coupler_link"), ("five_bar", "dist1_link"),
-                                        ("parallel_2t1r", "platform"), ("spherical_2dof", "platform")])
+@pytest.mark.parametrize(
+    "name, link",
+    [
+        ("four_bar", "coupler_link"),
+        ("five_bar", "dist1_link"),
+        ("parallel_2t1r", "platform"),
+        ("spherical_2dof", "platform"),
+    ],
+)
 def test_body_compliance_equals_the_frame_model(name, link):
     m = mechkit.load(name)
     e = ElasticModel(m)
@@ -110,7 +118,9 @@ def test_body_compliance_equals_the_frame_model(name, link):
     s = e.stiffness(m.home_q, link, point)
     assert np.all(s.held >= s.free * (1 - 1e-9))  # holding the other directions never makes it softer
     wrench = np.array([10.0, -5.0, 20.0, 1.0, 0.5, -2.0])
-    assert np.allclose(e.deflection(m.home_q, link, wrench, point), Cf @ wrench, rtol=0, atol=TOL * np.abs(Cf @ wrench).max())
+    assert np.allclose(
+        e.deflection(m.home_q, link, wrench, point), Cf @ wrench, rtol=0, atol=TOL * np.abs(Cf @ wrench).max()
+    )
 
 
 def test_2t1r_limb_iii_reactions_equal_the_frame_model():
@@ -180,7 +190,11 @@ def test_compatible_checks_its_arguments(four_bar):
     e = ElasticModel(four_bar)
     q = four_bar.home_q[None]
     good = {"q": q, "efforts": np.zeros((1, 1)), "reactions": np.zeros((1, 4, 6))}
-    for bad in ({"efforts": np.zeros((1, 2))}, {"reactions": np.zeros((1, 3, 6))}, {"reactions": np.full((1, 4, 6), np.nan)}):
+    for bad in (
+        {"efforts": np.zeros((1, 2))},
+        {"reactions": np.zeros((1, 3, 6))},
+        {"reactions": np.full((1, 4, 6), np.nan)},
+    ):
         with pytest.raises(InvalidArgument):
             e.compatible(**{**good, **bad})
     with pytest.raises(InvalidParameters):

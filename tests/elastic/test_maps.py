@@ -13,7 +13,10 @@ def test_five_bar_map_cells_are_the_stiffness_at_their_poses(tmp_path):
     m = mechkit.load("five_bar")
     e = ElasticModel(m)
     home = m.joint_values(m.home_q)
-    grid = {"prox1": home["prox1"] + np.array([-0.05, 0.0, 0.05]), "prox2": home["prox2"] + np.array([-0.05, 0.0, 0.05])}
+    grid = {
+        "prox1": home["prox1"] + np.array([-0.05, 0.0, 0.05]),
+        "prox2": home["prox2"] + np.array([-0.05, 0.0, 0.05]),
+    }
     r = stiffness_map(e, "dist1_link", grid, [0.22, 0.0, 0.0])
     assert not np.isnan(r.held).any()
     q = m.assemble({"prox1": grid["prox1"][2], "prox2": grid["prox2"][0]})

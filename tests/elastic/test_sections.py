@@ -30,7 +30,11 @@ def test_joint_elasticity_and_scaling():
         JointElasticity(stiffness=[1, 2, 3])
     with pytest.raises(InvalidParameters):
         JointElasticity(drive=-1.0)
-    data = ElasticData().with_section("a", Section.tube(0.02, 0.0, 1e9, 4e8)).with_joint("j", JointElasticity(0.1, np.ones(6), 5.0))
+    data = (
+        ElasticData()
+        .with_section("a", Section.tube(0.02, 0.0, 1e9, 4e8))
+        .with_joint("j", JointElasticity(0.1, np.ones(6), 5.0))
+    )
     scaled = data.scaled(10.0)
     assert scaled.sections["a"].E == 1e10 and scaled.joints["j"].drive == 50.0 and scaled.joints["j"].centre == 0.1
     assert not ElasticData() and data.with_section("a", None).sections == {}

@@ -18,7 +18,7 @@ def test_compatible_solution_is_an_equilibrium_of_least_energy():
     x = statics.particular(pose, b)
     assert np.abs(pose.A @ x - b).max() < 1e-12 * np.abs(b).max()
     c = e.idealisation.drive_compliance
-    out = statics.compatible(pose, c, R0 + pose.reaction_map @ x[:, None], x[:, :pose.efforts])
+    out = statics.compatible(pose, c, R0 + pose.reaction_map @ x[:, None], x[:, : pose.efforts])
     # along every self-stress the energy gradient vanishes
     YR = pose.reaction_map @ pose.null[:, None]
     gradient = np.einsum("njas,njab,njbk->nsk", YR, pose.compliance, out.reactions)

@@ -18,7 +18,10 @@ def _agree(e: ElasticModel, unit: UnitLoad, q: np.ndarray) -> float:
     v = np.zeros(e.mech.model.nv)
     r = e.inverse_dynamics(q, v, v)
     u = unit.reactions(q, v, v)
-    return max(np.abs(r.reactions[0, k] - u[name]).max() for k, name in enumerate(r.joint_names)) / np.abs(r.reactions).max()
+    return (
+        max(np.abs(r.reactions[0, k] - u[name]).max() for k, name in enumerate(r.joint_names))
+        / np.abs(r.reactions).max()
+    )
 
 
 def test_four_bar_under_tilted_gravity():

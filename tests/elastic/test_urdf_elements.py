@@ -31,8 +31,7 @@ def test_the_rigid_pipeline_ignores_the_elements(tmp_path):
     other = mechkit.load(bare, actuated=list(m.actuated))
     v = np.zeros(m.model.nv)
     q = m.assemble([0.1, -0.1])
-    assert np.array_equal(m.inverse_dynamics(q, v, v).reaction_values,
-                          other.inverse_dynamics(q, v, v).reaction_values)
+    assert np.array_equal(m.inverse_dynamics(q, v, v).reaction_values, other.inverse_dynamics(q, v, v).reaction_values)
 
 
 def test_round_trip_and_errors():

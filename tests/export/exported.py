@@ -38,6 +38,9 @@ def load_extended_urdf(urdf: str, yaml_text: str) -> tuple[pin.Model, list[pin.R
     for (name_a, name_b), kind in zip(content["closed_loop"], content["type"], strict=True):
         fa, fb = (model.frames[model.getFrameId(n)] for n in (name_a, name_b))
         contact = pin.ContactType.CONTACT_3D if kind.lower() == "3d" else pin.ContactType.CONTACT_6D
-        constraints.append(pin.RigidConstraintModel(contact, model, fa.parentJoint, fa.placement, fb.parentJoint,
-                                                    fb.placement, pin.ReferenceFrame.LOCAL))
+        constraints.append(
+            pin.RigidConstraintModel(
+                contact, model, fa.parentJoint, fa.placement, fb.parentJoint, fb.placement, pin.ReferenceFrame.LOCAL
+            )
+        )
     return model, constraints, list(content["name_mot"])

@@ -59,10 +59,10 @@ def test_mjcf_reads_back_into_pinocchio(name, load_cached, tmp_path):
         assert d.oMi[i].isApprox(m.data.oMi[i], 1e-12)
     assert len(points) + len(frames) >= len(m.closures)
     for c in points:
-        gap = (d.oMi[c.joint1_id] * c.joint1_placement).translation - (d.oMi[c.joint2_id] * c.joint2_placement).translation
+        gap = (d.oMi[c.joint1_id] * c.joint1_placement).translation - (
+            d.oMi[c.joint2_id] * c.joint2_placement
+        ).translation
         assert np.linalg.norm(gap) < 1e-10
-
-
 
 
 DRIFT_BOUND = 1e-4  # m, the bound on the loop opening after 1 s under gravity
@@ -104,9 +104,11 @@ def test_loops_stay_closed_for_one_second_under_gravity(name, load_cached):
         worst = max(worst, _loop_gap(m, pdata, pairs, data.qpos.copy()))
         moved = max(moved, float(np.max(np.abs(data.qpos - m.home_q))))
     WORST[name] = worst
-    print(f"\n{name}: worst loop gap over 1 s {worst:.3g} m (bound {DRIFT_BOUND:g}); joints moved up to {moved:.3g}"
-          f" rad or m; timestep {model.opt.timestep:.3g} s; worst so far {max(WORST.values()):.3g} m"
-          f" ({max(WORST, key=WORST.get)})")
+    print(
+        f"\n{name}: worst loop gap over 1 s {worst:.3g} m (bound {DRIFT_BOUND:g}); joints moved up to {moved:.3g}"
+        f" rad or m; timestep {model.opt.timestep:.3g} s; worst so far {max(WORST.values()):.3g} m"
+        f" ({max(WORST, key=WORST.get)})"
+    )
     assert data.time >= 1.0
     assert moved > 1e-3  # the mechanism really moved under gravity
     assert worst < DRIFT_BOUND
@@ -130,8 +132,11 @@ def test_link_period_is_the_compound_pendulum_of_a_rod():
     model = pin.Model()
     L, mass = 0.7, 2.0
     j = model.addJoint(0, pin.JointModelRY(), pin.SE3.Identity(), "j")
-    model.appendBodyToJoint(j, pin.Inertia(mass, np.array([L / 2, 0, 0]), np.diag([0, mass * L**2 / 12, mass * L**2 / 12])),
-                            pin.SE3.Identity())
+    model.appendBodyToJoint(
+        j,
+        pin.Inertia(mass, np.array([L / 2, 0, 0]), np.diag([0, mass * L**2 / 12, mass * L**2 / 12])),
+        pin.SE3.Identity(),
+    )
     expected = 2 * np.pi * np.sqrt(2 * L / (3 * 9.81))
     assert smallest_link_period(model) == pytest.approx(expected, rel=1e-12)
 
@@ -147,12 +152,16 @@ def test_geoms_ranges_and_motors(name, load_cached):
         jid = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_JOINT, m.model.names[j])
         iq = m.model.idx_qs[j]
         assert model.jnt_limited[jid]
-        np.testing.assert_array_equal(model.jnt_range[jid], [m.model.lowerPositionLimit[iq], m.model.upperPositionLimit[iq]])
+        np.testing.assert_array_equal(
+            model.jnt_range[jid], [m.model.lowerPositionLimit[iq], m.model.upperPositionLimit[iq]]
+        )
     assert model.nu == len(m.actuated)
     for k, joint in enumerate(m.actuated):
         assert model.actuator_trnid[k, 0] == mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_JOINT, joint)
     # every mass is the model's: the geoms carry none
-    np.testing.assert_allclose(model.body_mass[2:], [m.model.inertias[j].mass for j in range(1, m.model.njoints)], rtol=1e-12)
+    np.testing.assert_allclose(
+        model.body_mass[2:], [m.model.inertias[j].mass for j in range(1, m.model.njoints)], rtol=1e-12
+    )
 
 
 def test_ten_bar_spring_gives_the_spring_torque(load_cached):

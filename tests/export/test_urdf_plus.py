@@ -26,16 +26,29 @@ from mechkit.report import holding
 from mechkit.sources import read
 
 FIELD = Path(__file__).resolve().parents[1] / "fixtures" / "field"
-PANDA = Path(sysconfig.get_paths()["purelib"], "cmeel.prefix", "share", "example-robot-data", "robots",
-             "panda_description", "urdf", "panda.urdf")
+PANDA = Path(
+    sysconfig.get_paths()["purelib"],
+    "cmeel.prefix",
+    "share",
+    "example-robot-data",
+    "robots",
+    "panda_description",
+    "urdf",
+    "panda.urdf",
+)
 #: What URDF+ cannot write, and what the refusal says.
-REFUSED = {"rocket_gimbal": "cut 'a_ball_joint' is spherical",
-           str(FIELD / "menagerie" / "agility_cassie" / "cassie.xml"): "has no URDF tree",
-           str(FIELD / "gepetto" / "cassie_like" / "robot.urdf"): "has no URDF tree",
-           str(FIELD / "menagerie" / "robotiq_2f85" / "2f85.xml"): "actuator 'fingers_actuator' drives a tendon"}
-SOURCES = [n for n in registry.names() if n not in REFUSED] + [
-    str(FIELD / "urdf_plus" / f) for f in ("four_bar.urdf", "mit_humanoid.urdf", "revolute_rotor_chain.urdf")] + [
-    str(FIELD / "gepetto" / r / "robot.urdf") for r in ("5bar_linkage", "robot_delta")] + [str(PANDA)]
+REFUSED = {
+    "rocket_gimbal": "cut 'a_ball_joint' is spherical",
+    str(FIELD / "menagerie" / "agility_cassie" / "cassie.xml"): "has no URDF tree",
+    str(FIELD / "gepetto" / "cassie_like" / "robot.urdf"): "has no URDF tree",
+    str(FIELD / "menagerie" / "robotiq_2f85" / "2f85.xml"): "actuator 'fingers_actuator' drives a tendon",
+}
+SOURCES = (
+    [n for n in registry.names() if n not in REFUSED]
+    + [str(FIELD / "urdf_plus" / f) for f in ("four_bar.urdf", "mit_humanoid.urdf", "revolute_rotor_chain.urdf")]
+    + [str(FIELD / "gepetto" / r / "robot.urdf") for r in ("5bar_linkage", "robot_delta")]
+    + [str(PANDA)]
+)
 
 
 def _export(source: str, path: Path) -> tuple[int, str]:
@@ -46,17 +59,22 @@ def _export(source: str, path: Path) -> tuple[int, str]:
 
 
 def _by_name(m, values: np.ndarray) -> dict[str, np.ndarray]:
-    return {m.model.names[j]: values[m.model.idx_vs[j]:m.model.idx_vs[j] + m.model.nvs[j]] for j in range(1, m.model.njoints)}
+    return {
+        m.model.names[j]: values[m.model.idx_vs[j] : m.model.idx_vs[j] + m.model.nvs[j]]
+        for j in range(1, m.model.njoints)
+    }
 
 
 def _in_order(m, named: dict[str, np.ndarray]) -> np.ndarray:
     out = np.zeros(m.model.nv)
     for name, value in named.items():
-        out[m.v_index(name):m.v_index(name) + len(value)] = value
+        out[m.v_index(name) : m.v_index(name) + len(value)] = value
     return out
 
 
-@pytest.mark.parametrize("source", SOURCES, ids=[Path(s).parent.name + "/" + Path(s).name if "/" in s else s for s in SOURCES])
+@pytest.mark.parametrize(
+    "source", SOURCES, ids=[Path(s).parent.name + "/" + Path(s).name if "/" in s else s for s in SOURCES]
+)
 def test_export_then_load_gives_the_same_mechanism(source, tmp_path):
     m = mechkit.load(source)
     path = tmp_path / "exported.urdf"
@@ -76,7 +94,9 @@ def test_export_then_load_gives_the_same_mechanism(source, tmp_path):
     for effort in efforts:
         ours = m.forward_dynamics(m.home_q, np.zeros(m.model.nv), effort, "kkt").a
         theirs = r.forward_dynamics(m.home_q, np.zeros(r.model.nv), _in_order(r, _by_name(m, effort)), "kkt").a
-        np.testing.assert_allclose(_in_order(m, _by_name(r, theirs)), ours, atol=1e-8 * max(1.0, float(np.max(np.abs(ours)))))
+        np.testing.assert_allclose(
+            _in_order(m, _by_name(r, theirs)), ours, atol=1e-8 * max(1.0, float(np.max(np.abs(ours))))
+        )
     held, again = holding(m), holding(r)
     assert held.keys() == again.keys()
     if "efforts" in held:

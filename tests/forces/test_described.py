@@ -12,8 +12,9 @@ LIMIT = '<limit effort="1e6" lower="-25.0" upper="25.0" velocity="1e3"/>'
 
 
 def test_a_file_declares_dampers_friction_and_limits(four_bar):
-    urdf = four_bar.urdf.replace(LIMIT, '<limit effort="7" lower="-2" upper="2.5" velocity="3"/>'
-                                        '<dynamics damping="0.05" friction="0.02"/>', 1)
+    urdf = four_bar.urdf.replace(
+        LIMIT, '<limit effort="7" lower="-2" upper="2.5" velocity="3"/><dynamics damping="0.05" friction="0.02"/>', 1
+    )
     d = forces.described.from_urdf(urdf, four_bar.model, ("crank",))
     first = next(iter(d.limits))
     assert d.limits[first] == (-2.0, 2.5) and d.dampers == {first: 0.05} and d.friction == {first: 0.02}

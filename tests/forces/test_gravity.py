@@ -23,7 +23,8 @@ def test_gravity_element_replaces_the_models(four_bar):
     other = m.model.copy()
     other.gravity.linear = g
     expected = -pin.computeGeneralizedGravity(other, other.createData(), s.q) + pin.computeGeneralizedGravity(
-        m.model, m.model.createData(), s.q)
+        m.model, m.model.createData(), s.q
+    )
     assert np.allclose(tau, expected, atol=1e-12)
     total = pin.computePotentialEnergy(m.model, m.model.createData(), s.q) + element.energy(m.model, s.data, s.q)
     assert total == pytest.approx(pin.computePotentialEnergy(other, other.createData(), s.q), abs=1e-12)

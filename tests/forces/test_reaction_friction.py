@@ -39,7 +39,7 @@ def test_torques_oppose_the_relative_rates_on_tree_and_cut_joints(four_bar):
     load = f.load(s)
     sizes = f.torques(s)
     assert set(sizes) == set(cm.joint_names) and min(sizes.values()) > 0
-    for joint in cm.joint_names[:m.model.njoints - 1]:
+    for joint in cm.joint_names[: m.model.njoints - 1]:
         rate = s.v[m.v_index(joint)]
         assert load.generalized[m.v_index(joint)] == pytest.approx(-sizes[joint] * np.tanh(rate / 0.5), rel=1e-12)
     total = forces.generalized_of_wrenches(m.model, s.data, load.wrenches)
@@ -56,8 +56,11 @@ def test_a_joint_that_is_not_revolute_is_refused():
 
     m = mechkit.load(tests_support.FIXTURES / "slider_crank.urdf")
     cm = m.closure_model
-    prismatic = [j for j in cm.joint_names[:m.model.njoints - 1]
-                 if m.model.joints[m.joint_id(j)].shortname().startswith("JointModelP")]
+    prismatic = [
+        j
+        for j in cm.joint_names[: m.model.njoints - 1]
+        if m.model.joints[m.joint_id(j)].shortname().startswith("JointModelP")
+    ]
     assert prismatic
     with pytest.raises(InvalidParameters, match="revolute joints only"):
         forces.ReactionFriction(m.model, cm.joint_names, cm.kernel.cuts, {prismatic[0]: forces.PinFriction(0.1, 0.01)})

@@ -23,8 +23,10 @@ def test_joint_springs_keep_their_behaviour_and_split_their_power(four_bar):
     assert load.generalized[m.v_index("crank")] == pytest.approx(0.5 - 2.0 * (x - 0.3) - 0.1 * rate)
     assert load.power == pytest.approx(-0.1 * rate**2)
     h = 1e-6
-    dV = (springs.energy(m.model, None, pin.integrate(m.model, s.q, h * s.v))
-          - springs.energy(m.model, None, pin.integrate(m.model, s.q, -h * s.v))) / (2 * h)
+    dV = (
+        springs.energy(m.model, None, pin.integrate(m.model, s.q, h * s.v))
+        - springs.energy(m.model, None, pin.integrate(m.model, s.q, -h * s.v))
+    ) / (2 * h)
     spring_power = (0.5 - 2.0 * (x - 0.3)) * rate
     assert dV == pytest.approx(-spring_power, rel=1e-8)
 

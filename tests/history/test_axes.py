@@ -25,7 +25,9 @@ def _world_axes(m, Q):
     return JointAxes(m).world(J, G)
 
 
-@pytest.mark.parametrize("name, offsets", [("spherical_2dof", (0.0, 0.1, -0.15)), ("rocket_gimbal", (0.0, 0.01, -0.02))])
+@pytest.mark.parametrize(
+    "name, offsets", [("spherical_2dof", (0.0, 0.1, -0.15)), ("rocket_gimbal", (0.0, 0.01, -0.02))]
+)
 def test_tree_axes_are_the_directions_their_bodies_move(load_cached, name, offsets):
     m = load_cached(name)
     Q = _poses(m, offsets)
@@ -33,7 +35,7 @@ def test_tree_axes_are_the_directions_their_bodies_move(load_cached, name, offse
     model, data = m.model, m.model.createData()
     h = 1e-7
     for q, found in zip(Q, axes):
-        assert np.allclose(np.linalg.norm(found[:model.njoints - 1], axis=1), 1.0, atol=1e-12)
+        assert np.allclose(np.linalg.norm(found[: model.njoints - 1], axis=1), 1.0, atol=1e-12)
         for j in range(1, model.njoints):
             jm = model.joints[j]
             moved = q.copy()
@@ -75,4 +77,4 @@ def test_ball_joints_have_no_axis(load_cached):
     m = load_cached("rocket_gimbal")
     axes = _world_axes(m, _poses(m, (0.0,)))
     assert [c.closure.kind for c in m.cuts] == ["spherical", "spherical"]
-    assert np.all(np.isnan(axes[:, m.model.njoints - 1:]))
+    assert np.all(np.isnan(axes[:, m.model.njoints - 1 :]))

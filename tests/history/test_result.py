@@ -13,8 +13,9 @@ from mechkit.mechanisms.parallel_2t1r.motion_law import MOTION_DURATION, motion_
 def two_t1r(load_cached):
     """The 2T1R along its paper's law, reaction determinacy flagged (every column of the table filled)."""
     mech = load_cached("parallel_2t1r")
-    return motion.study(mech, motion.from_callable(mech, motion_law, np.linspace(0.2, MOTION_DURATION, 12)),
-                        determinacy=True)
+    return motion.study(
+        mech, motion.from_callable(mech, motion_law, np.linspace(0.2, MOTION_DURATION, 12)), determinacy=True
+    )
 
 
 def _assert_same(a: motion.MotionResult, b: motion.MotionResult) -> None:

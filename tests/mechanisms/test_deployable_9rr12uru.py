@@ -52,7 +52,9 @@ def test_full_fold_with_dynamics(mech):
     for sample in samples:
         s = drive_state(sample.t)
         expected = g.node_positions(s.alpha, s.gamma)
-        worst_pos = max(worst_pos, max(np.abs(p - expected[n]).max() for n, p in node_positions(mech, sample.q).items()))
+        worst_pos = max(
+            worst_pos, max(np.abs(p - expected[n]).max() for n, p in node_positions(mech, sample.q).items())
+        )
         worst_res = max(worst_res, np.abs(mech.closure_residual(sample.q)).max())
         result = mech.inverse_dynamics(sample.q, sample.v, sample.a)
         assert all(np.isfinite(u) for u in result.efforts.values())

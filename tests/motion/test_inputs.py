@@ -30,7 +30,9 @@ def test_csv_law(load_cached, tmp_path):
     exact = motion.from_callable(mech, crank_law, np.linspace(0.0, 1.0, 5))
     path = tmp_path / "law.csv"
     rows = ["t,crank,crank_dot,crank_ddot"] + [
-        f"{float(t)!r},{float(x[0])!r},{float(v[0])!r},{float(a[0])!r}" for t, x, v, a in zip(exact.t, exact.values, exact.rates, exact.accelerations)]
+        f"{float(t)!r},{float(x[0])!r},{float(v[0])!r},{float(a[0])!r}"
+        for t, x, v, a in zip(exact.t, exact.values, exact.rates, exact.accelerations)
+    ]
     path.write_text("# a crank swing\n" + "\n".join(rows) + "\n")
     law = motion.from_csv(mech, path)
     assert law.names == ("crank",)
@@ -38,9 +40,15 @@ def test_csv_law(load_cached, tmp_path):
         assert np.array_equal(getattr(law, field), getattr(exact, field))
 
 
-@pytest.mark.parametrize("text, needle", [("crank\n0.1\n0.2\n", "'t' column"), ("t,crank\n0,0.6\n1,x\n", "not a number"),
-                                          ("t,crank\n0,0.6\n0,0.7\n1,0.8\n2,0.9\n", "strictly increasing"),
-                                          ("t,wheel\n0,0.6\n1,0.7\n2,0.8\n3,0.9\n", "'wheel'")])
+@pytest.mark.parametrize(
+    "text, needle",
+    [
+        ("crank\n0.1\n0.2\n", "'t' column"),
+        ("t,crank\n0,0.6\n1,x\n", "not a number"),
+        ("t,crank\n0,0.6\n0,0.7\n1,0.8\n2,0.9\n", "strictly increasing"),
+        ("t,wheel\n0,0.6\n1,0.7\n2,0.8\n3,0.9\n", "'wheel'"),
+    ],
+)
 def test_bad_csv_law_is_a_named_error(load_cached, tmp_path, text, needle):
     path = tmp_path / "law.csv"
     path.write_text(text)

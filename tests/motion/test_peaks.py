@@ -21,7 +21,11 @@ def test_peaks_are_the_table_maxima(two_t1r):
         for name, vec in (("force", f), ("moment", m)):
             axial = np.abs(np.sum(vec * n, axis=1))
             radial = np.sqrt(np.maximum(np.sum(vec**2, axis=1) - axial**2, 0.0))
-            for kind, values in ((name, np.linalg.norm(vec, axis=1)), (f"axial_{name}", axial), (f"radial_{name}", radial)):
+            for kind, values in (
+                (name, np.linalg.norm(vec, axis=1)),
+                (f"axial_{name}", axial),
+                (f"radial_{name}", radial),
+            ):
                 assert peaks.loc[joint, kind] == pytest.approx(values.max(), rel=1e-9, abs=1e-9)
                 at_peak = values[(df["t"] == peaks.loc[joint, f"t_{kind}"]).to_numpy()]
                 assert at_peak == pytest.approx([values.max()], rel=1e-9, abs=1e-9)

@@ -48,7 +48,9 @@ def test_passive_input_effort_closes_the_power_balance(load_cached):
     r = motion.study(mech, motion.from_callable(mech, law, np.linspace(0.0, 1.0, 6)))
     assert r.effort_names == ("R1", "R3", "R5") and r.actuated == ("R1", "R3")
     for i in range(len(r.t)):
-        power = r.efforts[i] @ r.v[i, [mech.v_index(j) for j in r.effort_names]] + r.v[i] @ mech.passive_forces(r.q[i], r.v[i])
+        power = r.efforts[i] @ r.v[i, [mech.v_index(j) for j in r.effort_names]] + r.v[i] @ mech.passive_forces(
+            r.q[i], r.v[i]
+        )
         assert power == pytest.approx(r.v[i] @ pin.rnea(mech.model, mech.data, r.q[i], r.v[i], r.a[i]), rel=1e-9)
 
 
@@ -65,8 +67,9 @@ def test_ten_bar_efforts_equal_the_deployment_dynamics(load_cached):
     idx = [mech.v_index(j) for j in names]
     states = [system.rhs(t, q, v) for t, q, v in zip(trajectory.t, trajectory.q, trajectory.v)]
     acc = np.array([s[0] for s in states])
-    law = motion.from_arrays(mech, trajectory.t, trajectory.q[:, idx], trajectory.v[:, idx], acc[:, idx], names=names,
-                             guesses=trajectory.q)
+    law = motion.from_arrays(
+        mech, trajectory.t, trajectory.q[:, idx], trajectory.v[:, idx], acc[:, idx], names=names, guesses=trajectory.q
+    )
     r = motion.study(mech, law)
     assert np.allclose(r.v, trajectory.v, atol=1e-12) and np.allclose(r.a, acc, atol=1e-10)
     # the R5 input's driven force is what the spring does not supply: nothing, the motion is the spring's own

@@ -25,9 +25,16 @@ def test_component_level_is_finer_and_agrees():
 # name -> (samples, scene) of the default run; the scenes of ten_bar, tetra and deployable take
 # seconds to minutes to build (a simulated deployment, 201-pose folds), so the default run uses their
 # generic sweep; the slow test runs every mechanism's own first scene.
-FAST = {"four_bar": (6, None), "five_bar": (6, None), "parallel_2t1r": (6, None), "rocket_gimbal": (6, None),
-        "spherical_2dof": (6, None), "ten_bar": (4, "sweep"), "tetra_3rr3uru": (2, "sweep"),
-        "deployable_9rr12uru": (2, "sweep")}
+FAST = {
+    "four_bar": (6, None),
+    "five_bar": (6, None),
+    "parallel_2t1r": (6, None),
+    "rocket_gimbal": (6, None),
+    "spherical_2dof": (6, None),
+    "ten_bar": (4, "sweep"),
+    "tetra_3rr3uru": (2, "sweep"),
+    "deployable_9rr12uru": (2, "sweep"),
+}
 
 
 def _check(name: str, samples: int, scene: str | None) -> None:

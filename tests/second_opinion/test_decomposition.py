@@ -160,10 +160,16 @@ def test_2t1r_body_level_splits_the_driving_links_off():
     the motor links last, each from its own equilibrium."""
     opinion = SecondOpinion(mechkit.load("parallel_2t1r"), level="body")
     groups = _bodies(opinion)
-    assert groups[:3] == [({"link41", "link42"}, {"R43"}, set()), ({"link32", "platform"}, {"R23", "R32"}, set()),
-                          ({"link12", "link22"}, {"R12", "R22"}, set())]
-    assert sorted(groups[3:], key=lambda g: sorted(g[0])) == [({"link11"}, set(), {"R11"}), ({"link21"}, set(), {"R21"}),
-                                                              ({"link31"}, set(), {"R31"})]
+    assert groups[:3] == [
+        ({"link41", "link42"}, {"R43"}, set()),
+        ({"link32", "platform"}, {"R23", "R32"}, set()),
+        ({"link12", "link22"}, {"R12", "R22"}, set()),
+    ]
+    assert sorted(groups[3:], key=lambda g: sorted(g[0])) == [
+        ({"link11"}, set(), {"R11"}),
+        ({"link21"}, set(), {"R21"}),
+        ({"link31"}, set(), {"R31"}),
+    ]
 
 
 def test_unknown_level_is_a_named_error():

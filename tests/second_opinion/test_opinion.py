@@ -33,11 +33,16 @@ def test_a_mechanism_with_a_coupling_is_refused(load_cached, tmp_path):
     it disagreed with constrained RNEA by 70 %): refused, naming the coupling."""
     four_bar = load_cached("four_bar")
     assert SecondOpinion(four_bar).skcs  # the same kind of mechanism without a coupling is decomposed
-    urdf = four_bar.urdf.replace("</robot>", GRIPPER.split(">", 1)[1].split("</robot>")[0]
-                                 .replace('<link name="base"/>', "").replace('link="base"', 'link="ground"')
-                                 .replace("MIMIC", '<mimic joint="j1"/>')
-                                 + f'<mechkit:home joint="crank" value="{float(four_bar.home_q[four_bar.q_index("crank")])!r}"/>'
-                                 + "</robot>")
+    urdf = four_bar.urdf.replace(
+        "</robot>",
+        GRIPPER.split(">", 1)[1]
+        .split("</robot>")[0]
+        .replace('<link name="base"/>', "")
+        .replace('link="base"', 'link="ground"')
+        .replace("MIMIC", '<mimic joint="j1"/>')
+        + f'<mechkit:home joint="crank" value="{float(four_bar.home_q[four_bar.q_index("crank")])!r}"/>'
+        + "</robot>",
+    )
     mech = mechkit.load(written(tmp_path, urdf), actuated=[*four_bar.actuated, "j1"])
     assert mech.closures and mech.closure_model.couplings
     with pytest.raises(MethodUnavailable, match="couplings \\(j2\\)"):

@@ -12,4 +12,6 @@ def friction(m, joints=None) -> forces.ReactionFriction:
     """Friction from the reactions on `joints` (default: every joint, the loop cut included) of mechanism `m`."""
     cm = m.closure_model
     spec = forces.PinFriction(MU, RADIUS)
-    return forces.ReactionFriction(m.model, cm.joint_names, cm.kernel.cuts, {j: spec for j in (joints or cm.joint_names)})
+    return forces.ReactionFriction(
+        m.model, cm.joint_names, cm.kernel.cuts, {j: spec for j in (joints or cm.joint_names)}
+    )

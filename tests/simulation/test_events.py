@@ -22,7 +22,9 @@ def test_latch_stops_the_joint_with_a_plastic_impact(four_bar):
     assert np.max(np.abs(run.motion.v[after])) < 1e-9
     assert run.impact_loss[-1] > 0.01
     assert run.energy_error <= 1e-6 * run.energy_scale
-    assert np.all(np.isnan(run.motion.effort("crank")[~after])) and np.all(np.isfinite(run.motion.effort("crank")[after]))
+    assert np.all(np.isnan(run.motion.effort("crank")[~after])) and np.all(
+        np.isfinite(run.motion.effort("crank")[after])
+    )
 
 
 @pytest.mark.parametrize("restitution", [1.0, 0.5])
@@ -62,8 +64,9 @@ def test_impact_keeps_the_closures_and_its_energy_identity(load_cached, restitut
     v = m.velocities(q, [1.0, -1.5])
     jv = m.v_index("prox2")
     arrived = v[jv]
-    jump = simulation.impact(cm, cm.create_data(), q, v, np.array([m.v_index("prox1")]), np.array([1.0]), jv,
-                             -restitution * arrived)
+    jump = simulation.impact(
+        cm, cm.create_data(), q, v, np.array([m.v_index("prox1")]), np.array([1.0]), jv, -restitution * arrived
+    )
     assert np.max(np.abs(m.closure_jacobian(q) @ jump.v)) < 1e-12
     assert jump.v[m.v_index("prox1")] == pytest.approx(1.0) and jump.v[jv] == pytest.approx(-restitution * arrived)
     assert _kinetic(m, q, jump.v) - _kinetic(m, q, v) == pytest.approx(jump.drive_work - jump.dissipated, rel=1e-10)

@@ -37,14 +37,14 @@ def hand_newton_euler(state, gravity=GRAVITY) -> tuple[float, dict[str, float]]:
                     continue
                 r = j.point - links[side].com
                 i = row[side]
-                A[i:i + 2, 2 * k:2 * k + 2] += sign * np.eye(2)
-                A[i + 2, 2 * k:2 * k + 2] += sign * np.array([-r[1], r[0]])
+                A[i : i + 2, 2 * k : 2 * k + 2] += sign * np.eye(2)
+                A[i + 2, 2 * k : 2 * k + 2] += sign * np.array([-r[1], r[0]])
                 if j.actuated:
                     A[i + 2, 8] += sign
         for n in names:
             i = row[n]
             link = links[n]
-            b[i:i + 2] = link.bar.mass * (link.com_acceleration - gravity)
+            b[i : i + 2] = link.bar.mass * (link.com_acceleration - gravity)
             b[i + 2] = link.bar.inertia_planar * link.alpha
         for j in joints:  # friction moments: known loads, moved to the right-hand side
             w_rel = omega[j.child] - (omega[j.parent] if j.parent else 0.0)
@@ -53,7 +53,7 @@ def hand_newton_euler(state, gravity=GRAVITY) -> tuple[float, dict[str, float]]:
             if j.parent:
                 b[row[j.parent] + 2] += moment
         x = np.linalg.solve(A, b)
-        new = {j.name: MU * RADIUS * float(np.linalg.norm(x[2 * k:2 * k + 2])) for k, j in enumerate(joints)}
+        new = {j.name: MU * RADIUS * float(np.linalg.norm(x[2 * k : 2 * k + 2])) for k, j in enumerate(joints)}
         change = max(abs(new[n] - T[n]) for n in T)
         T = new
         if change < 1e-15:
@@ -88,7 +88,8 @@ def test_friction_that_locks_is_refused_by_name(four_bar):
     v = m.velocities(q, [2.0])
     a = m.accelerations(q, v, [5.0])
     cm = m.closure_model
-    locking = forces.ReactionFriction(m.model, cm.joint_names, cm.kernel.cuts,
-                                      {j: forces.PinFriction(80.0, 0.05) for j in cm.joint_names})
+    locking = forces.ReactionFriction(
+        m.model, cm.joint_names, cm.kernel.cuts, {j: forces.PinFriction(80.0, 0.05) for j in cm.joint_names}
+    )
     with pytest.raises(forces.FrictionLocks, match="locks"):
         simulation.inverse_dynamics(m, q, v, a, [locking])

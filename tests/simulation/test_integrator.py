@@ -55,8 +55,9 @@ def test_the_earliest_crossing_in_its_direction_is_located():
     assert k == 1 and t0 < te < hit[1]
 
 
-@pytest.mark.parametrize("options, name", [({"method": "BDF"}, "method"), ({"dt": -1.0}, "dt"),
-                                           ({"rtol": 0.0}, "rtol/atol/max_step")])
+@pytest.mark.parametrize(
+    "options, name", [({"method": "BDF"}, "method"), ({"dt": -1.0}, "dt"), ({"rtol": 0.0}, "rtol/atol/max_step")]
+)
 def test_bad_options_are_refused_by_name(options, name):
     with pytest.raises(InvalidParameters) as err:
         simulation.Options(**options)

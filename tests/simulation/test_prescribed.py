@@ -31,8 +31,9 @@ def test_a_sampled_law_is_its_quintic_between_samples_and_held_outside():
     law = simulation.law_of_samples(Sampled())
     for t in np.linspace(0.01, 1.49, 17):
         p, r, a = law(t)
-        assert (p[0], r[0], a[0]) == pytest.approx((t**5 - 2 * t**3 + t, 5 * t**4 - 6 * t**2 + 1, 20 * t**3 - 12 * t),
-                                                   rel=1e-9, abs=1e-12)
+        assert (p[0], r[0], a[0]) == pytest.approx(
+            (t**5 - 2 * t**3 + t, 5 * t**4 - 6 * t**2 + 1, 20 * t**3 - 12 * t), rel=1e-9, abs=1e-12
+        )
     p, r, a = law(2.0)
     assert p[0] == pytest.approx(Sampled.values[-1, 0]) and r[0] == 0.0 and a[0] == 0.0
 
@@ -62,7 +63,11 @@ def test_what_cannot_be_a_law_is_refused_by_name(inputs, names, name):
 
 def test_prescribed_inputs_are_followed_and_their_work_balances(four_bar):
     """A crank driven by a law: it follows the law exactly, and the motor's work closes the balance."""
-    law = (lambda t: (np.array([0.6 + 0.5 * np.sin(3 * t)]), np.array([1.5 * np.cos(3 * t)]), np.array([-4.5 * np.sin(3 * t)])))
+    law = lambda t: (
+        np.array([0.6 + 0.5 * np.sin(3 * t)]),
+        np.array([1.5 * np.cos(3 * t)]),
+        np.array([-4.5 * np.sin(3 * t)]),
+    )
     run = four_bar.simulate(1.0, inputs=law, input_names=["crank"])
     crank = run.motion.q[:, four_bar.q_index("crank")]
     assert np.allclose(crank, 0.6 + 0.5 * np.sin(3 * run.t), atol=1e-12)

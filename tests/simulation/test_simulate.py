@@ -32,8 +32,15 @@ def test_given_torque_supplies_the_integral_of_its_power(four_bar):
     assert run.energy_error <= 1e-6 * run.energy_scale and run.residual.max() <= 1e-10
 
 
-@pytest.mark.parametrize("options, name", [({"duration": -1.0}, "duration"), ({"duration": float("nan")}, "duration"),
-                                           ({"method": "Euler"}, "method"), ({"dt": 0.0}, "dt")])
+@pytest.mark.parametrize(
+    "options, name",
+    [
+        ({"duration": -1.0}, "duration"),
+        ({"duration": float("nan")}, "duration"),
+        ({"method": "Euler"}, "method"),
+        ({"dt": 0.0}, "dt"),
+    ],
+)
 def test_bad_options_are_refused_by_name(four_bar, options, name):
     duration = options.pop("duration", 0.1)
     with pytest.raises(InvalidParameters) as err:

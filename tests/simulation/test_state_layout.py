@@ -38,9 +38,9 @@ def test_a_free_flyers_offset_moves_the_configuration_at_its_velocity():
     q0 = pin.randomConfiguration(model, -np.ones(model.nq), np.ones(model.nq))
     v = rng.normal(size=model.nv)
     y = layout.pack(q0, v, np.zeros(1))
-    assert not layout.euclidean and np.array_equal(y[:model.nv], np.zeros(model.nv))
+    assert not layout.euclidean and np.array_equal(y[: model.nv], np.zeros(model.nv))
     assert np.allclose(layout.q(y), q0, atol=1e-15)
-    y[:model.nv] = rng.normal(size=model.nv) * 0.5  # an offset the integrator has built up
+    y[: model.nv] = rng.normal(size=model.nv) * 0.5  # an offset the integrator has built up
     q = layout.q(y)
     dy = layout.derivative(y, np.zeros(model.nv), np.zeros(1))
     errors = []

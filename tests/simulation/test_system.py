@@ -76,8 +76,9 @@ def test_friction_fixed_point_is_the_friction_of_its_own_reactions(four_bar):
 def test_friction_that_locks_stops_the_evaluation_by_name(four_bar):
     m = four_bar
     cm = m.closure_model
-    locking = forces.ReactionFriction(m.model, cm.joint_names, cm.kernel.cuts,
-                                      {j: forces.PinFriction(80.0, 0.05) for j in cm.joint_names})
+    locking = forces.ReactionFriction(
+        m.model, cm.joint_names, cm.kernel.cuts, {j: forces.PinFriction(80.0, 0.05) for j in cm.joint_names}
+    )
     system = simulation.MechanismSystem(m, [locking], simulation.Drives(), "kkt")
     q, v = _moving(m)
     with pytest.raises(forces.FrictionLocks, match="t = 0.25 s"):

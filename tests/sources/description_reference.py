@@ -28,12 +28,16 @@ class Statics:
         column each, after the actuators)."""
         self.desc, self.model = desc, desc.model
         self.data = self.model.createData()
-        self.frames = {c.name: (self.model.getFrameId(c.frame_a), self.model.getFrameId(c.frame_b)) for c in desc.closures}
+        self.frames = {
+            c.name: (self.model.getFrameId(c.frame_a), self.model.getFrameId(c.frame_b)) for c in desc.closures
+        }
         for a, b in self.frames.values():
             assert a < self.model.nframes and b < self.model.nframes
         tendons = {a.name: a for a in desc.actuators}
-        columns = [sum(c * self._unit(j) for j, c in tendons[name].joints) if name in tendons else self._unit(name)
-                   for name in desc.actuated] + [self._unit(j) for j in held]
+        columns = [
+            sum(c * self._unit(j) for j, c in tendons[name].joints) if name in tendons else self._unit(name)
+            for name in desc.actuated
+        ] + [self._unit(j) for j in held]
         self.S = np.column_stack(columns) if columns else np.zeros((self.model.nv, 0))
 
     def _unit(self, joint: str) -> np.ndarray:
@@ -55,10 +59,10 @@ class Statics:
             jm = self.model.joints[self.model.getJointId(name)]
             v = np.atleast_1d(np.asarray(value, dtype=float))
             if jm.nq == len(v):
-                q[jm.idx_q:jm.idx_q + jm.nq] = v
+                q[jm.idx_q : jm.idx_q + jm.nq] = v
             else:  # a ball (rotation vector) or a free-flyer (position, rotation vector)
-                q[jm.idx_q:jm.idx_q + jm.nq - 4] = v[:-3]
-                q[jm.idx_q + jm.nq - 4:jm.idx_q + jm.nq] = pin.Quaternion(pin.exp3(v[-3:])).coeffs()
+                q[jm.idx_q : jm.idx_q + jm.nq - 4] = v[:-3]
+                q[jm.idx_q + jm.nq - 4 : jm.idx_q + jm.nq] = pin.Quaternion(pin.exp3(v[-3:])).coeffs()
         return q
 
     def value(self, q: np.ndarray, joint: str) -> float:
@@ -102,10 +106,11 @@ class Statics:
         for k in self.desc.couplings:
             x_l = sum(c * self.value(q, j) for j, c in k.leader) - k.leader_ref
             dP = sum(i * p * x_l ** (i - 1) for i, p in enumerate(k.polynomial) if i)
-            row = sum(c * self._unit(j) for j, c in k.follower) - dP * sum((c * self._unit(j) for j, c in k.leader),
-                                                                             np.zeros(self.model.nv))
+            row = sum(c * self._unit(j) for j, c in k.follower) - dP * sum(
+                (c * self._unit(j) for j, c in k.leader), np.zeros(self.model.nv)
+            )
             x_f = sum(c * self.value(q, j) for j, c in k.follower) - k.follower_ref
-            res.append([x_f - sum(p * x_l ** i for i, p in enumerate(k.polynomial))])
+            res.append([x_f - sum(p * x_l**i for i, p in enumerate(k.polynomial))])
             jac.append([row])
         if not res:
             return np.zeros(0), np.zeros((0, self.model.nv))
@@ -138,7 +143,7 @@ class Statics:
         A = np.hstack([self.S, J.T])
         b = self.generalised(q)
         x = np.linalg.lstsq(A, b, rcond=None)[0]
-        return x[:self.S.shape[1]], float(np.linalg.norm(A @ x - b))
+        return x[: self.S.shape[1]], float(np.linalg.norm(A @ x - b))
 
     def equilibrium(self, q: np.ndarray, fixed: dict[str, float], tol: float = 1e-12, iters: int = 60) -> np.ndarray:
         """A closed configuration, the `fixed` joints at their values, where the efforts hold (Newton on
@@ -160,8 +165,16 @@ class Statics:
             if np.max(np.abs(F)) < tol * scale:
                 return q
             h = 1e-7
-            Jq = np.column_stack([(residual(pin.integrate(self.model, q, h * e), x)
-                                   - residual(pin.integrate(self.model, q, -h * e), x)) / (2 * h) for e in np.eye(n)])
+            Jq = np.column_stack(
+                [
+                    (
+                        residual(pin.integrate(self.model, q, h * e), x)
+                        - residual(pin.integrate(self.model, q, -h * e), x)
+                    )
+                    / (2 * h)
+                    for e in np.eye(n)
+                ]
+            )
             Jx = np.vstack([np.zeros((ncons + len(fixed), nu + ncons)), np.hstack([self.S, self.rows(q)[1].T])])
             K = np.hstack([Jq, Jx])
             step = -np.linalg.lstsq(K, F, rcond=1e-12)[0]
@@ -184,7 +197,9 @@ class Statics:
         for f in self.model.frames:
             if f.type == pin.FrameType.BODY and f.parentJoint > 0 and self.model.inertias[f.parentJoint].mass > 0:
                 names.setdefault(f.parentJoint, f.name)
-        twists = {names[j]: pin.getJointJacobian(self.model, self.data, j, pin.ReferenceFrame.WORLD) @ null for j in names}
+        twists = {
+            names[j]: pin.getJointJacobian(self.model, self.data, j, pin.ReferenceFrame.WORLD) @ null for j in names
+        }
         scale = max(1.0, max(float(np.max(np.abs(t))) for t in twists.values()))
 
         def rank(bodies):

@@ -60,8 +60,10 @@ class LoopsDoNotClose(Exception):
 
     def __init__(self, robot: str, cut: str, residual: float):
         self.robot, self.cut, self.residual = robot, cut, residual
-        super().__init__(f"{robot}: the loops do not close: cut {cut!r} keeps an error of {residual:.2e} (m, rad) "
-                         "at the damped least-squares minimum")
+        super().__init__(
+            f"{robot}: the loops do not close: cut {cut!r} keeps an error of {residual:.2e} (m, rad) "
+            "at the damped least-squares minimum"
+        )
 
 
 @dataclass
@@ -104,7 +106,9 @@ def gepetto_load(urdf: Path, sidecar: Path, freeflyer: bool = False) -> tuple[pi
     Raises:
         KeyError / IndexError: where Gepetto's loader fails too (a frame or a joint it cannot find).
     """
-    tree = pin.buildModelFromUrdf(str(urdf), pin.JointModelFreeFlyer()) if freeflyer else pin.buildModelFromUrdf(str(urdf))
+    tree = (
+        pin.buildModelFromUrdf(str(urdf), pin.JointModelFreeFlyer()) if freeflyer else pin.buildModelFromUrdf(str(urdf))
+    )
     content = yaml.safe_load(Path(sidecar).read_text())
     names = list(content.get("joint_name") or [])
     types = list(content.get("joint_type") or []) if names else []
@@ -176,7 +180,9 @@ def _simplify(model: pin.Model, cuts: list[Cut]) -> tuple[pin.Model, list[Cut]]:
         added = new.addJoint(parent, joint, model.jointPlacements[jid], model.names[jid])
         new.appendBodyToJoint(added, model.inertias[jid], pin.SE3.Identity())
     for frame in list(model.frames)[1:]:
-        new.addFrame(pin.Frame(frame.name, new.getJointId(model.names[frame.parentJoint]), frame.placement, frame.type), False)
+        new.addFrame(
+            pin.Frame(frame.name, new.getJointId(model.names[frame.parentJoint]), frame.placement, frame.type), False
+        )
     reduced = pin.buildReducedModel(new, frozen, pin.neutral(new))
     out = []
     for cut in cuts:
@@ -199,12 +205,19 @@ def urdf_mimics(urdf: Path) -> list:
     for joint in ET.parse(urdf).getroot().iter("joint"):
         mimic = joint.find("mimic")
         if mimic is not None and joint.get("type") != "fixed":
-            out.append(Coupling(joint.get("name"), ((joint.get("name"), 1.0),), ((mimic.get("joint"), 1.0),),
-                                (float(mimic.get("offset", 0)), float(mimic.get("multiplier", 1)))))
+            out.append(
+                Coupling(
+                    joint.get("name"),
+                    ((joint.get("name"), 1.0),),
+                    ((mimic.get("joint"), 1.0),),
+                    (float(mimic.get("offset", 0)), float(mimic.get("multiplier", 1))),
+                )
+            )
     return out
 
 
 # --- URDF+, re-read --------------------------------------------------------------------------------
+
 
 def urdf_plus_load(path: Path) -> tuple[pin.Model, list[Cut], list[Coupling], list[str]]:
     """A URDF+ file read with an XML parser and Pinocchio (not mechkit's reader): Pinocchio's tree of the URDF
@@ -222,8 +235,12 @@ def urdf_plus_load(path: Path) -> tuple[pin.Model, list[Cut], list[Coupling], li
             end = loop.find(tag)
             frame = model.frames[model.getFrameId(end.get("link"), pin.FrameType.BODY)]
             origin = end.find("origin")
-            xyz = np.array([float(x) for x in origin.get("xyz", "0 0 0").split()]) if origin is not None else np.zeros(3)
-            rpy = np.array([float(x) for x in origin.get("rpy", "0 0 0").split()]) if origin is not None else np.zeros(3)
+            xyz = (
+                np.array([float(x) for x in origin.get("xyz", "0 0 0").split()]) if origin is not None else np.zeros(3)
+            )
+            rpy = (
+                np.array([float(x) for x in origin.get("rpy", "0 0 0").split()]) if origin is not None else np.zeros(3)
+            )
             ends.append((frame.parentJoint, frame.placement * pin.SE3(pin.rpy.rpyToMatrix(rpy), xyz)))
         axis = np.array([float(x) for x in loop.find("axis").get("xyz").split()])
         cuts.append(Cut(loop.get("name"), *ends[0], *ends[1], "revolute", axis))
@@ -236,12 +253,17 @@ def urdf_plus_load(path: Path) -> tuple[pin.Model, list[Cut], list[Coupling], li
                 link = parent[link].find("parent").get("link")
             paths.append(path)
         pred, succ = ([(j, 1.0) for j in p if j not in set(paths[0]) & set(paths[1])] for p in paths)
-        couplings.append(Coupling(coupling.get("name"), tuple(succ), tuple(pred), (0.0, float(coupling.find("ratio").get("value")))))
-    motors = [j.get("name") for j in root.iter("joint") if j.get("independent") != "false" and j.get("type") != "floating"]
+        couplings.append(
+            Coupling(coupling.get("name"), tuple(succ), tuple(pred), (0.0, float(coupling.find("ratio").get("value"))))
+        )
+    motors = [
+        j.get("name") for j in root.iter("joint") if j.get("independent") != "false" and j.get("type") != "floating"
+    ]
     return model, cuts, couplings, motors
 
 
 # --- closure, mobility, holding ------------------------------------------------------------------------
+
 
 def _value(model: pin.Model, joint: str, q: np.ndarray) -> tuple[float, int]:
     """(value, velocity index) of a one-freedom joint: its angle or position (a continuous joint's
@@ -272,7 +294,9 @@ def _coupling_rows(model: pin.Model, couplings, q: np.ndarray) -> tuple[list[np.
     return rows, jac
 
 
-def _errors(model: pin.Model, data: pin.Data, cuts: list[Cut], q: np.ndarray, couplings=()) -> tuple[np.ndarray, np.ndarray]:
+def _errors(
+    model: pin.Model, data: pin.Data, cuts: list[Cut], q: np.ndarray, couplings=()
+) -> tuple[np.ndarray, np.ndarray]:
     """Stacked frame errors of the cuts (and coupling residuals) at q and their Jacobian (rows x nv)."""
     pin.computeJointJacobians(model, data, q)
     rows, jac = _coupling_rows(model, couplings, q)
@@ -302,7 +326,9 @@ def _errors(model: pin.Model, data: pin.Data, cuts: list[Cut], q: np.ndarray, co
     return np.concatenate(rows), np.vstack(jac)
 
 
-def close(model: pin.Model, cuts: list[Cut], q0: np.ndarray, couplings=(), iters: int = 200) -> tuple[np.ndarray, float]:
+def close(
+    model: pin.Model, cuts: list[Cut], q0: np.ndarray, couplings=(), iters: int = 200
+) -> tuple[np.ndarray, float]:
     """Damped least squares (Levenberg-Marquardt, damping |e|^2 + 1e-12) from q0 on the cuts' frame
     errors and the coupling residuals, until closed, or stalled at a least-squares minimum (|e| down by
     less than 1e-12 of itself in a step); returns (q, largest error component reached)."""
@@ -339,8 +365,14 @@ def _rank(matrix: np.ndarray) -> tuple[int, np.ndarray]:
     return rank, vt[rank:].T
 
 
-def study(model: pin.Model, cuts: list[Cut], motors: list[str], q0: np.ndarray | None = None,
-          closure_tol: float = 1e-9, couplings=()) -> Study:
+def study(
+    model: pin.Model,
+    cuts: list[Cut],
+    motors: list[str],
+    q0: np.ndarray | None = None,
+    closure_tol: float = 1e-9,
+    couplings=(),
+) -> Study:
     """Close the loops from q0 (default neutral), then the DOF and the holding torques there.
 
     Args:
@@ -361,10 +393,19 @@ def study(model: pin.Model, cuts: list[Cut], motors: list[str], q0: np.ndarray |
     gravity_residual = float(np.linalg.norm(A @ x - g) / max(np.linalg.norm(g), 1e-300))
     _, null_a = _rank(A)
     free = np.max(np.abs(null_a[: len(motors)]), axis=1, initial=0.0) if motors else np.zeros(0)
-    return Study(q, residual <= closure_tol, residual, model.nv - rank, rank, undriven, gravity_residual < 1e-9,
-                 gravity_residual, dict(zip(motors, x[: len(motors)].tolist())),
-                 bool(not motors or null_a.size == 0 or np.max(np.abs(null_a[: len(motors)])) < 1e-9),
-                 tuple(m for m, f in zip(motors, free) if f < 1e-9))
+    return Study(
+        q,
+        residual <= closure_tol,
+        residual,
+        model.nv - rank,
+        rank,
+        undriven,
+        gravity_residual < 1e-9,
+        gravity_residual,
+        dict(zip(motors, x[: len(motors)].tolist())),
+        bool(not motors or null_a.size == 0 or np.max(np.abs(null_a[: len(motors)])) < 1e-9),
+        tuple(m for m, f in zip(motors, free) if f < 1e-9),
+    )
 
 
 def _loop_joints(model: pin.Model, cuts: list[Cut]) -> set[int]:

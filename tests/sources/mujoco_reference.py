@@ -27,8 +27,9 @@ class MujocoReference:
         self.mm.opt.disableflags |= mujoco.mjtDisableBit.mjDSBL_CONTACT | mujoco.mjtDisableBit.mjDSBL_LIMIT
         self.md = mujoco.MjData(self.mm)
         self.model = model
-        self.joints = [(mujoco.mj_id2name(self.mm, mujoco.mjtObj.mjOBJ_JOINT, j) or f"joint{j}", j)
-                       for j in range(self.mm.njnt)]
+        self.joints = [
+            (mujoco.mj_id2name(self.mm, mujoco.mjtObj.mjOBJ_JOINT, j) or f"joint{j}", j) for j in range(self.mm.njnt)
+        ]
 
     def qpos(self, q: np.ndarray) -> np.ndarray:
         """MuJoCo's qpos of the Pinocchio configuration q."""
@@ -38,12 +39,12 @@ class MujocoReference:
             a, iq = int(self.mm.jnt_qposadr[j]), pj.idx_q
             kind = int(self.mm.jnt_type[j])
             if kind == FREE:
-                out[a:a + 3] = q[iq:iq + 3]
-                x, y, z, w = q[iq + 3:iq + 7]
-                out[a + 3:a + 7] = (w, x, y, z)
+                out[a : a + 3] = q[iq : iq + 3]
+                x, y, z, w = q[iq + 3 : iq + 7]
+                out[a + 3 : a + 7] = (w, x, y, z)
             elif kind == BALL:
-                x, y, z, w = q[iq:iq + 4]
-                out[a:a + 4] = (w, x, y, z)
+                x, y, z, w = q[iq : iq + 4]
+                out[a : a + 4] = (w, x, y, z)
             else:
                 out[a] = q[iq]
         return out
@@ -56,9 +57,9 @@ class MujocoReference:
             a, kind = int(self.mm.jnt_qposadr[j]), int(self.mm.jnt_type[j])
             if kind in (FREE, BALL):
                 at = a + 3 if kind == FREE else a
-                w, x, y, z = qpos[at:at + 4]
+                w, x, y, z = qpos[at : at + 4]
                 rotation = tuple(pin.log3(pin.Quaternion(w, x, y, z).normalized().matrix()))
-                out[name] = tuple(qpos[a:a + 3]) + rotation if kind == FREE else rotation
+                out[name] = tuple(qpos[a : a + 3]) + rotation if kind == FREE else rotation
             else:
                 out[name] = float(qpos[a])
         return out
@@ -69,10 +70,10 @@ class MujocoReference:
         for name, j in self.joints:
             pj = self.model.joints[self.model.getJointId(name)]
             d, iv, nv = int(self.mm.jnt_dofadr[j]), pj.idx_v, pj.nv
-            T[d:d + nv, iv:iv + nv] = np.eye(nv)
+            T[d : d + nv, iv : iv + nv] = np.eye(nv)
             if int(self.mm.jnt_type[j]) == FREE:
-                x, y, z, w = q[pj.idx_q + 3:pj.idx_q + 7]
-                T[d:d + 3, iv:iv + 3] = pin.Quaternion(w, x, y, z).normalized().matrix()
+                x, y, z, w = q[pj.idx_q + 3 : pj.idx_q + 7]
+                T[d : d + 3, iv : iv + 3] = pin.Quaternion(w, x, y, z).normalized().matrix()
         return T
 
     def at(self, q: np.ndarray) -> dict[str, np.ndarray]:
@@ -83,14 +84,19 @@ class MujocoReference:
         self.md.qvel[:] = 0.0
         mujoco.mj_forward(self.mm, self.md)
         T = self.velocity_map(q)
-        rows = np.flatnonzero(self.md.efc_type[:self.md.nefc] == mujoco.mjtConstraint.mjCNSTR_EQUALITY)
-        J = self.md.efc_J[:self.md.nefc * self.mm.nv].reshape(self.md.nefc, self.mm.nv)[rows]
+        rows = np.flatnonzero(self.md.efc_type[: self.md.nefc] == mujoco.mjtConstraint.mjCNSTR_EQUALITY)
+        J = self.md.efc_J[: self.md.nefc * self.mm.nv].reshape(self.md.nefc, self.mm.nv)[rows]
         moment = np.zeros((self.mm.nu, self.mm.nv))
-        mujoco.mju_sparse2dense(moment, self.md.actuator_moment, self.md.moment_rownnz, self.md.moment_rowadr,
-                                self.md.moment_colind)
-        return {"residual": self.md.efc_pos[rows].copy(), "J": J @ T,
-                "generalised": T.T @ (self.md.qfrc_bias - self.md.qfrc_passive), "moment": moment @ T,
-                "gear": self.mm.actuator_gear[:, 0].copy()}
+        mujoco.mju_sparse2dense(
+            moment, self.md.actuator_moment, self.md.moment_rownnz, self.md.moment_rowadr, self.md.moment_colind
+        )
+        return {
+            "residual": self.md.efc_pos[rows].copy(),
+            "J": J @ T,
+            "generalised": T.T @ (self.md.qfrc_bias - self.md.qfrc_passive),
+            "moment": moment @ T,
+            "gear": self.mm.actuator_gear[:, 0].copy(),
+        }
 
     def efforts(self, q: np.ndarray, held: tuple[str, ...] = ()) -> tuple[np.ndarray, float]:
         """MuJoCo's own holding efforts at q: the least-squares solution of
@@ -98,18 +104,19 @@ class MujocoReference:
         coordinates, and the norm of what is left unbalanced."""
         self.at(q)
         nv = self.mm.nv
-        rows = np.flatnonzero(self.md.efc_type[:self.md.nefc] == mujoco.mjtConstraint.mjCNSTR_EQUALITY)
-        J = self.md.efc_J[:self.md.nefc * nv].reshape(self.md.nefc, nv)[rows]
+        rows = np.flatnonzero(self.md.efc_type[: self.md.nefc] == mujoco.mjtConstraint.mjCNSTR_EQUALITY)
+        J = self.md.efc_J[: self.md.nefc * nv].reshape(self.md.nefc, nv)[rows]
         moment = np.zeros((self.mm.nu, nv))
-        mujoco.mju_sparse2dense(moment, self.md.actuator_moment, self.md.moment_rownnz, self.md.moment_rowadr,
-                                self.md.moment_colind)
+        mujoco.mju_sparse2dense(
+            moment, self.md.actuator_moment, self.md.moment_rownnz, self.md.moment_rowadr, self.md.moment_colind
+        )
         stops = np.zeros((len(held), nv))
         for i, name in enumerate(held):
             stops[i, self.mm.jnt_dofadr[mujoco.mj_name2id(self.mm, mujoco.mjtObj.mjOBJ_JOINT, name)]] = 1.0
         A = np.hstack([moment.T, stops.T, J.T])
         b = self.md.qfrc_bias - self.md.qfrc_passive
         x = np.linalg.lstsq(A, b, rcond=None)[0]
-        return x[:self.mm.nu + len(held)], float(np.linalg.norm(A @ x - b))
+        return x[: self.mm.nu + len(held)], float(np.linalg.norm(A @ x - b))
 
     def in_our_units(self, u_mujoco: np.ndarray) -> np.ndarray:
         """MuJoCo's actuator forces (and, after them, stop forces) in the reader's convention: a joint
@@ -125,6 +132,8 @@ class MujocoReference:
             mujoco.mju_quat2Mat(R, self.mm.body_iquat[b])
             R = R.reshape(3, 3)
             out[mujoco.mj_id2name(self.mm, mujoco.mjtObj.mjOBJ_BODY, b)] = {
-                "mass": float(self.mm.body_mass[b]), "com": self.mm.body_ipos[b].copy(),
-                "inertia": R @ np.diag(self.mm.body_inertia[b]) @ R.T}
+                "mass": float(self.mm.body_mass[b]),
+                "com": self.mm.body_ipos[b].copy(),
+                "inertia": R @ np.diag(self.mm.body_inertia[b]) @ R.T,
+            }
         return out

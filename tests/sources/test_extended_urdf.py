@@ -47,6 +47,7 @@ def test_sidecar_errors(tmp_path):
         with pytest.raises(MalformedDescription, match=needle):
             mechkit.load(folder / "leg.urdf")
 
+
 GEPETTO = Path(__file__).parent.parent / "fixtures" / "field" / "gepetto"
 ROBOTS = sorted(p.name for p in GEPETTO.iterdir() if p.is_dir())
 #: robot -> (cuts, numerical DOF, undriven freedoms, motors hold gravity at rest), fixed base, at the
@@ -58,11 +59,20 @@ ROBOTS = sorted(p.name for p in GEPETTO.iterdir() if p.is_dir())
 #: the leg by 1e-4 of its turn: not idle). Where gravity loads one of them (a rod's centre of mass off
 #: its axis), the motors cannot hold there (test_field_gepetto: they hold once it has settled).
 FACTS = {
-    "5bar_linkage": (1, 3, 1, True), "5bar_linkage_iso3d": (1, 2, 0, True), "5bar_linkage_iso6d": (1, 2, 0, True),
-    "battobot_6d": (6, 12, 0, True), "cassie_like": (2, 7, 2, True), "digit_like": (3, 9, 3, True),
-    "digit_like_2legs": (6, 12, 0, True), "digit_like_2legs_6D": (6, 12, 0, True),
-    "digit_like_2legs_old": (6, 12, 0, True), "disney_like": (3, 9, 3, False), "robot_delta": (3, 5, 3, True),
-    "talos_like": (1, 7, 1, False), "true_talos_2_legs": (2, 34, 2, True), "wl16_like": (5, 12, 6, False),
+    "5bar_linkage": (1, 3, 1, True),
+    "5bar_linkage_iso3d": (1, 2, 0, True),
+    "5bar_linkage_iso6d": (1, 2, 0, True),
+    "battobot_6d": (6, 12, 0, True),
+    "cassie_like": (2, 7, 2, True),
+    "digit_like": (3, 9, 3, True),
+    "digit_like_2legs": (6, 12, 0, True),
+    "digit_like_2legs_6D": (6, 12, 0, True),
+    "digit_like_2legs_old": (6, 12, 0, True),
+    "disney_like": (3, 9, 3, False),
+    "robot_delta": (3, 5, 3, True),
+    "talos_like": (1, 7, 1, False),
+    "true_talos_2_legs": (2, 34, 2, True),
+    "wl16_like": (5, 12, 6, False),
 }
 #: Published loops that do not close (best frame errors over many starts: m, rad mixed as in `study`).
 UNCLOSABLE = {"kangaroo_like": (0.07, 0.09), "kangaroo_like_2legs": (0.035, 0.045)}
@@ -90,12 +100,16 @@ def _mimics(robot: str) -> list[Coupling]:
 
 
 def _frames(model: pin.Model) -> list[tuple]:
-    return sorted((f.name, str(f.type), model.names[f.parentJoint], tuple(np.round(f.placement.homogeneous.ravel(), 12)))
-                  for f in model.frames if f.name != "universe")
+    return sorted(
+        (f.name, str(f.type), model.names[f.parentJoint], tuple(np.round(f.placement.homogeneous.ravel(), 12)))
+        for f in model.frames
+        if f.name != "universe"
+    )
 
 
-@pytest.mark.parametrize("robot, freeflyer", [(r, False) for r in ROBOTS if r != "disney_robot"]
-                         + [(r, True) for r in FREE_FLYING])
+@pytest.mark.parametrize(
+    "robot, freeflyer", [(r, False) for r in ROBOTS if r != "disney_robot"] + [(r, True) for r in FREE_FLYING]
+)
 def test_the_reader_builds_the_model_gepettos_loader_builds(robot, freeflyer):
     """Same joints (names, types, parents, placements), same bodies, same frames, same motors."""
     ours, (theirs, _, motors) = _ours(robot, freeflyer).model, _gepettos(robot, freeflyer)
@@ -154,11 +168,15 @@ def test_a_misspelt_substitution_is_refused_where_gepettos_loader_keeps_the_revo
     """disney_robot's sidecar substitutes 'left_spherical_free_foot'; the URDF spells the joint with a
     circumflex. Gepetto's loader ignores the line: its left foot keeps a revolute where the right has a
     ball, so its two legs differ (14 freedoms, not the mirror images' count)."""
-    with pytest.raises(MalformedDescription, match="'left_spherical_free_foot' is not a joint of robot.urdf "
-                       "\\(closest: 'left_sĥerical_free_foot'\\)"):
+    with pytest.raises(
+        MalformedDescription,
+        match="'left_spherical_free_foot' is not a joint of robot.urdf \\(closest: 'left_sĥerical_free_foot'\\)",
+    ):
         _ours("disney_robot")
     theirs, cuts, motors = _gepettos("disney_robot")
-    kinds = {n: theirs.joints[theirs.getJointId(n)].shortname() for n in ("spherical_free_foot", "left_sĥerical_free_foot")}
+    kinds = {
+        n: theirs.joints[theirs.getJointId(n)].shortname() for n in ("spherical_free_foot", "left_sĥerical_free_foot")
+    }
     assert kinds == {"spherical_free_foot": "JointModelSpherical", "left_sĥerical_free_foot": "JointModelRZ"}
     assert study(theirs, cuts, motors).dof == 14
 
@@ -180,7 +198,7 @@ def _as_three_revolutes(balls: pin.Model, kept: pin.Model, q: np.ndarray) -> np.
         if jm.shortname() != "JointModelSpherical":
             out[kept.joints[kept.getJointId(name)].idx_q] = q[jm.idx_q]
             continue
-        R = pin.Quaternion(q[jm.idx_q:jm.idx_q + 4]).matrix()  # = Rx(a) Ry(b) Rz(c)
+        R = pin.Quaternion(q[jm.idx_q : jm.idx_q + 4]).matrix()  # = Rx(a) Ry(b) Rz(c)
         angles = (np.arctan2(-R[1, 2], R[2, 2]), np.arcsin(R[0, 2]), np.arctan2(-R[0, 1], R[0, 0]))
         for k, angle in enumerate(angles):
             out[kept.joints[kept.getJointId(name[:-1] + str(k))].idx_q] = angle
@@ -217,41 +235,99 @@ def _case(robot: str, sidecar: dict[str, str] | None = None, urdf: dict[str, str
 
 #: Broken files in the style of the field's: each is a real robot with one realistic slip.
 MALFORMED = {
-    "a pair naming a frame the URDF lacks": (_case("cassie_like", {"'closedloop2_B'": "'closedloop2_C'"}),
-                                             "frame 'closedloop2_C' is not a frame of robot.urdf"),
-    "a substitution naming a joint the URDF lacks": (_case("disney_robot"), "'left_spherical_free_foot' is not a joint"),
-    "an unknown joint_type": (_case("digit_like_2legs", {'    "SPHERICAL",\n    "SPHERICAL",\n    "SPHERICAL",\n    "SPHERICAL",\n    "SPHERICAL",\n    "SPHERICAL",':
-                                                         '    "BALL",\n    "SPHERICAL",\n    "SPHERICAL",\n    "SPHERICAL",\n    "SPHERICAL",\n    "SPHERICAL",'}),
-                              "'BALL' (for joint 'spherical_free_hip') is not one of"),
-    "a U-joint about one axis twice": (_case("battobot_6d", {'"UJOINT_YZ",\n    "UJOINT_YZ",': '"UJOINT_YY",\n    "UJOINT_YZ",'}),
-                                       "'UJOINT_YY' (for joint 'free_knee_left') is not one of"),
-    "joint_type shorter than joint_name": (_case("disney_robot", {"'SPHERICAL','SPHERICAL', 'SPHERICAL'": "'SPHERICAL', 'SPHERICAL'"}),
-                                           "needs one type per joint_name: 9 types for 10 joints"),
-    "a substitution of a fixed joint": (_case("digit_like_2legs_6D", {"joint_name: ['foot_part_toe_b_1/2_2_rev2'": "joint_name: ['closedloop1_A_frame'"}),
-                                        "'closedloop1_A_frame' is a fixed joint of the URDF"),
-    "a substitution of a link": (_case("digit_like_2legs_6D", {"joint_name: ['foot_part_toe_b_1/2_2_rev2'": "joint_name: ['closedloop1_A'"}),
-                                 "'closedloop1_A' is a link of robot.urdf, not a joint"),
-    "a joint substituted twice": (_case("disney_like", {"name_mot:": "joint_name: [motor_ankle, motor_ankle]\njoint_type: [FIXED, SPHERICAL]\nname_mot:"}),
-                                  "joint 'motor_ankle' is substituted twice"),
-    "one type for two pairs": (_case("cassie_like", {"type: ['6d', '6d']": "type: ['6d']"}), "needs one type per closed_loop pair"),
+    "a pair naming a frame the URDF lacks": (
+        _case("cassie_like", {"'closedloop2_B'": "'closedloop2_C'"}),
+        "frame 'closedloop2_C' is not a frame of robot.urdf",
+    ),
+    "a substitution naming a joint the URDF lacks": (
+        _case("disney_robot"),
+        "'left_spherical_free_foot' is not a joint",
+    ),
+    "an unknown joint_type": (
+        _case(
+            "digit_like_2legs",
+            {
+                '    "SPHERICAL",\n    "SPHERICAL",\n    "SPHERICAL",\n    "SPHERICAL",\n    "SPHERICAL",\n    "SPHERICAL",': '    "BALL",\n    "SPHERICAL",\n    "SPHERICAL",\n    "SPHERICAL",\n    "SPHERICAL",\n    "SPHERICAL",'
+            },
+        ),
+        "'BALL' (for joint 'spherical_free_hip') is not one of",
+    ),
+    "a U-joint about one axis twice": (
+        _case("battobot_6d", {'"UJOINT_YZ",\n    "UJOINT_YZ",': '"UJOINT_YY",\n    "UJOINT_YZ",'}),
+        "'UJOINT_YY' (for joint 'free_knee_left') is not one of",
+    ),
+    "joint_type shorter than joint_name": (
+        _case("disney_robot", {"'SPHERICAL','SPHERICAL', 'SPHERICAL'": "'SPHERICAL', 'SPHERICAL'"}),
+        "needs one type per joint_name: 9 types for 10 joints",
+    ),
+    "a substitution of a fixed joint": (
+        _case(
+            "digit_like_2legs_6D", {"joint_name: ['foot_part_toe_b_1/2_2_rev2'": "joint_name: ['closedloop1_A_frame'"}
+        ),
+        "'closedloop1_A_frame' is a fixed joint of the URDF",
+    ),
+    "a substitution of a link": (
+        _case("digit_like_2legs_6D", {"joint_name: ['foot_part_toe_b_1/2_2_rev2'": "joint_name: ['closedloop1_A'"}),
+        "'closedloop1_A' is a link of robot.urdf, not a joint",
+    ),
+    "a joint substituted twice": (
+        _case(
+            "disney_like",
+            {"name_mot:": "joint_name: [motor_ankle, motor_ankle]\njoint_type: [FIXED, SPHERICAL]\nname_mot:"},
+        ),
+        "joint 'motor_ankle' is substituted twice",
+    ),
+    "one type for two pairs": (
+        _case("cassie_like", {"type: ['6d', '6d']": "type: ['6d']"}),
+        "needs one type per closed_loop pair",
+    ),
     "a 4d pair": (_case("talos_like", {"type: ['6d']": "type: ['4d']"}), "'4d' is not '3d' or '6d'"),
-    "a pair of three frames": (_case("talos_like", {"['closedloop1_B', 'closedloop1_A']": "['closedloop1_B', 'closedloop1_A', 'pelvis']"}),
-                               "is not a pair of frame names"),
-    "a motor the URDF lacks": (_case("wl16_like", {"'motor_6'": "'motor_7'"}), "name_mot: 'motor_7' is not a moving joint of robot.urdf"),
-    "a motor turned into a ball": (_case("disney_like", {"name_mot:": "joint_name: [motor_ankle]\njoint_type: [SPHERICAL]\nname_mot:"}),
-                                   "'motor_ankle' is a JointModelSpherical joint: it needs one freedom"),
-    "a motor locked by FIXED": (_case("disney_like", {"name_mot:": "joint_name: [motor_ankle]\njoint_type: [FIXED]\nname_mot:"}),
-                                "'motor_ankle' is not a moving joint of robot.urdf once substituted"),
-    "a pair declared twice": (_case("talos_like", {"[['closedloop1_B', 'closedloop1_A']]": "[['closedloop1_B', 'closedloop1_A'], ['closedloop1_B', 'closedloop1_A']]",
-                                                   "type: ['6d']": "type: ['6d', '6d']"}), "the pair is declared twice"),
-    "a pair on one body": (_case("5bar_linkage", {"[['closedloop1_A', 'closedloop1_B']]": "[['closedloop1_A', 'sphere']]"}),
-                           "both frames are on one body"),
-    "a U-joint's own frame as a loop frame": (_case("battobot_6d", {'["closedloop_knee_left_A", "closedloop_knee_left_B"]': '["free_knee_left", "closedloop_knee_left_B"]'}),
-                                               "frame 'free_knee_left' is not a frame of robot.urdf"),
+    "a pair of three frames": (
+        _case("talos_like", {"['closedloop1_B', 'closedloop1_A']": "['closedloop1_B', 'closedloop1_A', 'pelvis']"}),
+        "is not a pair of frame names",
+    ),
+    "a motor the URDF lacks": (
+        _case("wl16_like", {"'motor_6'": "'motor_7'"}),
+        "name_mot: 'motor_7' is not a moving joint of robot.urdf",
+    ),
+    "a motor turned into a ball": (
+        _case("disney_like", {"name_mot:": "joint_name: [motor_ankle]\njoint_type: [SPHERICAL]\nname_mot:"}),
+        "'motor_ankle' is a JointModelSpherical joint: it needs one freedom",
+    ),
+    "a motor locked by FIXED": (
+        _case("disney_like", {"name_mot:": "joint_name: [motor_ankle]\njoint_type: [FIXED]\nname_mot:"}),
+        "'motor_ankle' is not a moving joint of robot.urdf once substituted",
+    ),
+    "a pair declared twice": (
+        _case(
+            "talos_like",
+            {
+                "[['closedloop1_B', 'closedloop1_A']]": "[['closedloop1_B', 'closedloop1_A'], ['closedloop1_B', 'closedloop1_A']]",
+                "type: ['6d']": "type: ['6d', '6d']",
+            },
+        ),
+        "the pair is declared twice",
+    ),
+    "a pair on one body": (
+        _case("5bar_linkage", {"[['closedloop1_A', 'closedloop1_B']]": "[['closedloop1_A', 'sphere']]"}),
+        "both frames are on one body",
+    ),
+    "a U-joint's own frame as a loop frame": (
+        _case(
+            "battobot_6d",
+            {'["closedloop_knee_left_A", "closedloop_knee_left_B"]': '["free_knee_left", "closedloop_knee_left_B"]'},
+        ),
+        "frame 'free_knee_left' is not a frame of robot.urdf",
+    ),
     "not YAML": (_case("robot_delta", {"closed_loop: [[": "closed_loop: [[[["}), "not YAML"),
-    "a negative mass in the URDF": (_case("robot_delta", urdf={'<mass value="0.0197': '<mass value="-0.0197'}), "is negative"),
-    "an inertia that is not positive semi-definite": (_case("5bar_linkage", urdf={'ixx="0.68085505004432478326"': 'ixx="-0.68085505004432478326"'}),
-                                                      "not positive semi-definite"),
+    "a negative mass in the URDF": (
+        _case("robot_delta", urdf={'<mass value="0.0197': '<mass value="-0.0197'}),
+        "is negative",
+    ),
+    "an inertia that is not positive semi-definite": (
+        _case("5bar_linkage", urdf={'ixx="0.68085505004432478326"': 'ixx="-0.68085505004432478326"'}),
+        "not positive semi-definite",
+    ),
 }
 
 
@@ -266,8 +342,12 @@ def test_a_malformed_extended_urdf_is_one_named_line_from_the_cli(case, tmp_path
 
 
 def test_in_a_real_process_the_field_file_mechkit_refuses_is_one_line_and_exit_status_2():
-    out = subprocess.run([sys.executable, "-m", "mechkit", "report", str(_urdf("disney_robot"))], capture_output=True,
-                         text=True, check=False)
+    out = subprocess.run(
+        [sys.executable, "-m", "mechkit", "report", str(_urdf("disney_robot"))],
+        capture_output=True,
+        text=True,
+        check=False,
+    )
     assert out.returncode == 2 and out.stdout == ""
     lines = out.stderr.strip().splitlines()
     assert len(lines) == 1 and "left_spherical_free_foot" in lines[0] and "Traceback" not in out.stderr

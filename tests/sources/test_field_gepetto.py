@@ -21,8 +21,11 @@ from .independent import Cut, gepetto_load, idle, require_closed, study, urdf_mi
 GEPETTO = Path(__file__).resolve().parents[1] / "fixtures" / "field" / "gepetto"
 ROBOTS = sorted(p.name for p in GEPETTO.iterdir() if p.is_dir())
 #: robot -> what its one-line refusal says.
-REFUSED = {"kangaroo_like": "its loops do not close at home", "kangaroo_like_2legs": "its loops do not close at home",
-           "disney_robot": "'left_spherical_free_foot' is not a joint of robot.urdf"}
+REFUSED = {
+    "kangaroo_like": "its loops do not close at home",
+    "kangaroo_like_2legs": "its loops do not close at home",
+    "disney_robot": "'left_spherical_free_foot' is not a joint of robot.urdf",
+}
 #: Gepetto's `robot_options`: these float on a free-flyer root by default.
 FREE_FLYING = ("battobot_6d", "digit_like_2legs", "digit_like_2legs_6D", "disney_like", "true_talos_2_legs")
 #: Robots whose unsettled home leaves load on the motions no motor drives (rods whose centre of mass is off
@@ -85,8 +88,12 @@ def test_on_a_free_flyer_root_the_report_says_nothing_holds_it(robot):
     model, cuts, motors = _gepettos(robot, True)
     found = study(model, cuts, motors, np.array(r["home_q"]), couplings=urdf_mimics(_urdf(robot)))
     assert r["dof"] == found.dof and not found.holds
-    body = model.frames[next(i for i, f in enumerate(model.frames) if f.type == pin.FrameType.BODY and f.parentJoint == 1)].name
-    assert r["holding"] == {"refused": f"floating root 'root_joint': nothing holds its weight (fix its body: --fix {body})"}
+    body = model.frames[
+        next(i for i, f in enumerate(model.frames) if f.type == pin.FrameType.BODY and f.parentJoint == 1)
+    ].name
+    assert r["holding"] == {
+        "refused": f"floating root 'root_joint': nothing holds its weight (fix its body: --fix {body})"
+    }
 
 
 def test_a_fixed_free_flyer_root_gives_the_fixed_base_robot():

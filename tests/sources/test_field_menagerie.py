@@ -42,7 +42,7 @@ def _on(model: pin.Model, q: np.ndarray, other: pin.Model) -> np.ndarray:
     for j in range(1, model.njoints):
         if other.existJointName(model.names[j]):
             a, b = model.joints[j], other.joints[other.getJointId(model.names[j])]
-            out[b.idx_q:b.idx_q + b.nq] = q[a.idx_q:a.idx_q + a.nq]
+            out[b.idx_q : b.idx_q + b.nq] = q[a.idx_q : a.idx_q + a.nq]
     return out
 
 
@@ -51,7 +51,9 @@ def test_floating_cassie_reports_its_dof_and_idle_rods_and_that_nothing_holds_it
     ref = MujocoReference(CASSIE, read_mjcf(CASSIE).model)
     assert r["dof"] == _dof(ref, np.array(r["home_q"])) == 22
     assert r["idle"] == {"left-achilles-rod": 1, "right-achilles-rod": 1}
-    assert r["holding"] == {"refused": "floating root 'joint0': nothing holds its weight (fix its body: --fix cassie-pelvis)"}
+    assert r["holding"] == {
+        "refused": "floating root 'joint0': nothing holds its weight (fix its body: --fix cassie-pelvis)"
+    }
 
 
 def test_cassie_with_its_pelvis_fixed_holds_with_mujocos_efforts_where_its_springs_settle(tmp_path):
@@ -59,15 +61,18 @@ def test_cassie_with_its_pelvis_fixed_holds_with_mujocos_efforts_where_its_sprin
     settled; MuJoCo's efforts on the file with its pelvis welded (no free joint) there, ours to 1e-8."""
     r = report(CASSIE, "--fix", "cassie-pelvis")
     fixed = tmp_path / "cassie_fixed.xml"
-    fixed.write_text(re.sub(r"<keyframe>.*</keyframe>", "", CASSIE.read_text().replace("<freejoint/>", ""), flags=re.DOTALL))
+    fixed.write_text(
+        re.sub(r"<keyframe>.*</keyframe>", "", CASSIE.read_text().replace("<freejoint/>", ""), flags=re.DOTALL)
+    )
     theirs = read_mjcf(fixed).model
     ours = mechkit.load(CASSIE, fix=["cassie-pelvis"]).model
     ref = MujocoReference(fixed, theirs)
     held = r["holding"]
     q = _on(ours, np.array(held["q"]), theirs)
     assert r["dof"] == _dof(ref, q) == 16
-    assert sorted(held["settled"]) == sorted(f"{s}-{j}" for s in ("left", "right")
-                                             for j in ("achilles-rod", "shin", "tarsus", "heel-spring"))
+    assert sorted(held["settled"]) == sorted(
+        f"{s}-{j}" for s in ("left", "right") for j in ("achilles-rod", "shin", "tarsus", "heel-spring")
+    )
     u_mj, left = ref.efforts(q)
     assert left < TOL  # MuJoCo agrees that the motors hold there
     u = np.array([held["efforts"][a] for a in r["actuated"]])
@@ -82,5 +87,7 @@ def test_the_2f85_reports_its_dof_and_that_its_fingers_rest_on_their_stops():
     r = report(GRIPPER)
     ref = MujocoReference(GRIPPER, read_mjcf(GRIPPER).model)
     assert r["dof"] == _dof(ref, np.array(r["home_q"])) == 3 and r["idle"] == {}
-    assert r["holding"]["refused"].startswith("the joints no actuator drives settle against a stop: right_coupler_joint")
+    assert r["holding"]["refused"].startswith(
+        "the joints no actuator drives settle against a stop: right_coupler_joint"
+    )
     assert "outside its range [-1.57, 0]" in r["holding"]["refused"]

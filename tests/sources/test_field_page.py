@@ -20,7 +20,7 @@ PAGE = (DOCS / "field_robots.md").read_text()
 
 
 def _rows() -> dict[str, list[str]]:
-    table = PAGE[PAGE.index("| robot |"):PAGE.index("## Each robot")].strip().splitlines()[2:]
+    table = PAGE[PAGE.index("| robot |") : PAGE.index("## Each robot")].strip().splitlines()[2:]
     return {cells[0]: cells[1:] for cells in ([c.strip() for c in line.strip("|").split("|")] for line in table)}
 
 

@@ -30,16 +30,25 @@ from .field_cli import report
 
 FIXTURES = Path(__file__).resolve().parents[1] / "fixtures" / "field" / "sdf"
 #: example-robot-data (a test dependency) ships its robots in the environment's cmeel prefix.
-CASSIE = Path(sysconfig.get_paths()["purelib"], "cmeel.prefix", "share", "example-robot-data", "robots",
-              "cassie_description", "robots")
+CASSIE = Path(
+    sysconfig.get_paths()["purelib"],
+    "cmeel.prefix",
+    "share",
+    "example-robot-data",
+    "robots",
+    "cassie_description",
+    "robots",
+)
 #: file -> what the report says of holding gravity (its efforts are compared where it gives them).
-FILES = {CASSIE / "cassie.sdf": "floating root 'root_joint': nothing holds its weight (fix its body: --fix pelvis)",
-         CASSIE / "cassie_v2.sdf": "unactuated: no actuator to hold it",
-         CASSIE / "cassie_reduced.sdf": "unactuated: no actuator to hold it",
-         CASSIE / "cassie_simple.sdf": "unactuated: no actuator to hold it",
-         CASSIE / "cassie_wo_gearbox_spring.sdf": "unactuated: no actuator to hold it",
-         FIXTURES / "four_bar_gearbox.sdf": None,
-         FIXTURES / "rssr_universal.sdf": "unactuated: no actuator to hold it"}
+FILES = {
+    CASSIE / "cassie.sdf": "floating root 'root_joint': nothing holds its weight (fix its body: --fix pelvis)",
+    CASSIE / "cassie_v2.sdf": "unactuated: no actuator to hold it",
+    CASSIE / "cassie_reduced.sdf": "unactuated: no actuator to hold it",
+    CASSIE / "cassie_simple.sdf": "unactuated: no actuator to hold it",
+    CASSIE / "cassie_wo_gearbox_spring.sdf": "unactuated: no actuator to hold it",
+    FIXTURES / "four_bar_gearbox.sdf": None,
+    FIXTURES / "rssr_universal.sdf": "unactuated: no actuator to hold it",
+}
 
 
 @pytest.mark.parametrize("path", list(FILES), ids=[p.name for p in FILES])
@@ -57,14 +66,22 @@ def test_the_report_agrees_with_the_independent_statics(path):
     u, left = st.efforts(q)
     assert left < 1e-10 * max(1.0, np.max(np.abs(st.generalised(q))))
     assert held["undetermined"] == []
-    np.testing.assert_allclose([held["efforts"][a] for a in desc.actuated], u, rtol=0, atol=1e-8 * max(1.0, np.max(np.abs(u))))
+    np.testing.assert_allclose(
+        [held["efforts"][a] for a in desc.actuated], u, rtol=0, atol=1e-8 * max(1.0, np.max(np.abs(u)))
+    )
 
 
 def _welded(tmp_path: Path) -> Path:
     """cassie.sdf with its pelvis welded to the world where the file puts it."""
     out = tmp_path / "cassie_welded.sdf"
-    out.write_text((CASSIE / "cassie.sdf").read_text().replace(
-        "</model>", '<joint name="weld_pelvis" type="fixed"><parent>world</parent><child>pelvis</child></joint></model>'))
+    out.write_text(
+        (CASSIE / "cassie.sdf")
+        .read_text()
+        .replace(
+            "</model>",
+            '<joint name="weld_pelvis" type="fixed"><parent>world</parent><child>pelvis</child></joint></model>',
+        )
+    )
     return out
 
 
@@ -77,9 +94,14 @@ def test_cassie_sdf_with_its_pelvis_fixed_is_refused_naming_its_weakest_passive_
     assert r["dof"] == Statics(desc).mobility(np.array(r["home_q"])) == 10
     why = r["holding"]["refused"]
     assert why.startswith("singular configuration: passive block of the closure Jacobian")
-    weakest = why[why.index("turns ") + len("turns "):].split(", ")
-    assert set(weakest) == {"right-shin-tarsus-joint", "right-tarsus-spring-joint", "right-knee-shin-joint",
-                            "right-knee-spring-joint", "right-pitch-rod-joint"}
+    weakest = why[why.index("turns ") + len("turns ") :].split(", ")
+    assert set(weakest) == {
+        "right-shin-tarsus-joint",
+        "right-tarsus-spring-joint",
+        "right-knee-shin-joint",
+        "right-knee-spring-joint",
+        "right-pitch-rod-joint",
+    }
 
 
 def test_why_cassie_sdf_is_near_singular_at_every_pose(tmp_path):
@@ -96,9 +118,15 @@ def test_why_cassie_sdf_is_near_singular_at_every_pose(tmp_path):
     cut = next(c for c in desc.closures if c.name == "right-shin-spring-joint")
     fa, fb = (model.frames[model.getFrameId(f)] for f in (cut.frame_a, cut.frame_b))
     axis = data.oMf[model.getFrameId(cut.frame_a)].rotation @ cut.axis
-    assert {model.names[fa.parentJoint], model.names[fb.parentJoint]} == {"right-knee-shin-joint", "right-knee-spring-joint"}
+    assert {model.names[fa.parentJoint], model.names[fb.parentJoint]} == {
+        "right-knee-shin-joint",
+        "right-knee-spring-joint",
+    }
     omega = data.oMi[fa.parentJoint].rotation @ _revolute_axis(model, fa.parentJoint)
-    assert np.linalg.norm(np.cross(omega, data.oMi[fb.parentJoint].rotation @ _revolute_axis(model, fb.parentJoint))) < 1e-12
+    assert (
+        np.linalg.norm(np.cross(omega, data.oMi[fb.parentJoint].rotation @ _revolute_axis(model, fb.parentJoint)))
+        < 1e-12
+    )
     centres = [data.oMi[j].translation for j in (fa.parentJoint, fb.parentJoint)]
     relative = np.cross(omega, centres[1] - centres[0])  # velocity of b's point from a's, both turning at omega
     assert np.linalg.norm(np.cross(axis, relative / np.linalg.norm(relative))) < 1e-4
@@ -115,7 +143,9 @@ def test_why_cassie_sdf_is_near_singular_at_every_pose(tmp_path):
 
     efforts = []
     for _ in range(4):
-        q = st.assemble(pin.integrate(model, q0, rng.normal(scale=1e-5, size=model.nv)), {j: 0.0 for j in desc.actuated})
+        q = st.assemble(
+            pin.integrate(model, q0, rng.normal(scale=1e-5, size=model.nv)), {j: 0.0 for j in desc.actuated}
+        )
         assert np.max(np.abs(st.rows(q)[0])) < 1e-12
         efforts.append(st.efforts(q)[0])
     assert np.ptp(np.array(efforts), axis=0).max() > 1e-6

@@ -18,8 +18,13 @@ from .independent import require_closed, study, urdf_plus_load
 
 FIELD = Path(__file__).resolve().parents[1] / "fixtures" / "field" / "urdf_plus"
 #: file -> its DOF at the report's home
-REPORTED = {"four_bar.urdf": 2, "six_bar.urdf": 3, "mit_humanoid.urdf": 24, "revolute_rotor_chain.urdf": 3,
-            "mit_humanoid_leg.urdf": 5}
+REPORTED = {
+    "four_bar.urdf": 2,
+    "six_bar.urdf": 3,
+    "mit_humanoid.urdf": 24,
+    "revolute_rotor_chain.urdf": 3,
+    "mit_humanoid_leg.urdf": 5,
+}
 REFUSED = {"planar_leg_linkage.urdf": "link 'thigh': inertia", "mini_cheetah_leg.urdf": "link 'abduct': inertia"}
 
 

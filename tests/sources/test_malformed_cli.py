@@ -7,6 +7,7 @@ from . import test_extended_urdf, test_mjcf, test_sdf, test_urdf_plus
 
 
 def test_the_readers_refuse_at_least_30_broken_files_through_the_command_line():
-    counts = {module.__name__: len(module.MALFORMED) for module in (test_extended_urdf, test_mjcf, test_sdf, test_urdf_plus)}
+    counts = {
+        module.__name__: len(module.MALFORMED) for module in (test_extended_urdf, test_mjcf, test_sdf, test_urdf_plus)
+    }
     assert sum(counts.values()) >= 30 and min(counts.values()) >= 10, counts
-

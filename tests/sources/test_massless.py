@@ -26,13 +26,18 @@ from mechkit.sources import read
 from .description_reference import Statics
 
 SLIDER = (Path(__file__).resolve().parents[1] / "fixtures" / "slider_crank.urdf").read_text()
-ROD = re.compile(r'(<link name="rod_link">\s*<inertial><origin xyz="0.15 0 0"/>)<mass value="0.4"/>(\s*<inertia [^/]*/>)')
+ROD = re.compile(
+    r'(<link name="rod_link">\s*<inertial><origin xyz="0.15 0 0"/>)<mass value="0.4"/>(\s*<inertia [^/]*/>)'
+)
 VARIANTS = {
     "massless rod": ROD.sub(r'\1<mass value="0"/><inertia ixx="0" ixy="0" ixz="0" iyy="0" iyz="0" izz="0"/>', SLIDER),
     "rotor rod": ROD.sub(r'\1<mass value="0"/>\2', SLIDER),
-    "massless pendulum": SLIDER.replace("</robot>", '<link name="tip"/><joint name="tip" type="revolute"><parent '
-                                        'link="crank_link"/><child link="tip"/><origin xyz="0.05 0 0"/><axis xyz="0 -1 0"/>'
-                                        '<limit effort="1" lower="-3" upper="3" velocity="1"/></joint></robot>'),
+    "massless pendulum": SLIDER.replace(
+        "</robot>",
+        '<link name="tip"/><joint name="tip" type="revolute"><parent '
+        'link="crank_link"/><child link="tip"/><origin xyz="0.05 0 0"/><axis xyz="0 -1 0"/>'
+        '<limit effort="1" lower="-3" upper="3" velocity="1"/></joint></robot>',
+    ),
 }
 
 
@@ -55,8 +60,8 @@ def test_inverse_dynamics_with_a_massless_subtree_agrees_with_an_independent_com
     m, desc = _loaded(path)
     inputs = list(m.actuated) + (["tip"] if name == "massless pendulum" else [])
     q = m.home_q
-    v = m.velocities(q, [0.7, -0.4][:len(inputs)], inputs)
-    a = m.accelerations(q, v, [0.3, 0.8][:len(inputs)], inputs)
+    v = m.velocities(q, [0.7, -0.4][: len(inputs)], inputs)
+    a = m.accelerations(q, v, [0.3, 0.8][: len(inputs)], inputs)
     ours = m.inverse_dynamics(q, v, a)
     st = Statics(desc, tuple(inputs[1:]))  # the pendulum's joint held like a motor (it carries nothing)
     A = np.hstack([st.S, st.rows(q)[1].T])

@@ -69,15 +69,25 @@ def test_the_fixture_compiles_to_the_original_inertias_and_the_reader_keeps_them
         was = recorded[body]
         assert now["mass"] == pytest.approx(was["mass"], rel=1e-12, abs=1e-15), body
         np.testing.assert_allclose(now["com"], was["com"], atol=1e-12)
-        np.testing.assert_allclose(now["inertia"], was["inertia"], atol=1e-12 * max(1e-9, np.max(np.abs(was["inertia"]))))
+        np.testing.assert_allclose(
+            now["inertia"], was["inertia"], atol=1e-12 * max(1e-9, np.max(np.abs(was["inertia"])))
+        )
     q = Statics(desc).configuration(desc.guess)
     ref.at(q)
     data = desc.model.createData()
     pin.forwardKinematics(desc.model, data, q)
     mm, md = ref.mm, ref.md
     for j in range(1, desc.model.njoints):
-        bodies = [b for b in range(1, mm.nbody) if desc.model.frames[desc.model.getFrameId(
-            mujoco.mj_id2name(mm, mujoco.mjtObj.mjOBJ_BODY, int(mm.body_weldid[b])), pin.FrameType.BODY)].parentJoint == j]
+        bodies = [
+            b
+            for b in range(1, mm.nbody)
+            if desc.model.frames[
+                desc.model.getFrameId(
+                    mujoco.mj_id2name(mm, mujoco.mjtObj.mjOBJ_BODY, int(mm.body_weldid[b])), pin.FrameType.BODY
+                )
+            ].parentJoint
+            == j
+        ]
         if not bodies:
             continue
         mass = sum(mm.body_mass[b] for b in bodies)
@@ -86,9 +96,15 @@ def test_the_fixture_compiles_to_the_original_inertias_and_the_reader_keeps_them
         if mass == 0:
             continue
         com = sum(mm.body_mass[b] * md.xipos[b] for b in bodies) / mass
-        inertia = sum(md.ximat[b].reshape(3, 3) @ np.diag(mm.body_inertia[b]) @ md.ximat[b].reshape(3, 3).T
-                      + mm.body_mass[b] * (np.dot(md.xipos[b] - com, md.xipos[b] - com) * np.eye(3)
-                                           - np.outer(md.xipos[b] - com, md.xipos[b] - com)) for b in bodies)
+        inertia = sum(
+            md.ximat[b].reshape(3, 3) @ np.diag(mm.body_inertia[b]) @ md.ximat[b].reshape(3, 3).T
+            + mm.body_mass[b]
+            * (
+                np.dot(md.xipos[b] - com, md.xipos[b] - com) * np.eye(3)
+                - np.outer(md.xipos[b] - com, md.xipos[b] - com)
+            )
+            for b in bodies
+        )
         np.testing.assert_allclose(ours.lever, com, atol=1e-12)
         np.testing.assert_allclose(ours.inertia, inertia, atol=1e-12 * max(1e-6, np.max(np.abs(inertia))))
 
@@ -97,22 +113,32 @@ def test_what_the_reader_finds_in_the_menagerie_files():
     cassie, gripper = read_mjcf(CASSIE), read_mjcf(GRIPPER)
     assert cassie.urdf is None and gripper.urdf is not None  # ball and free joints: no URDF tree
     assert [c.kind for c in cassie.closures] == ["spherical"] * 4 and not cassie.couplings and not cassie.actuators
-    assert cassie.actuated == tuple(f"{s}-{j}" for s in ("left", "right") for j in ("hip-roll", "hip-yaw", "hip-pitch",
-                                                                                       "knee", "foot"))
+    assert cassie.actuated == tuple(
+        f"{s}-{j}" for s in ("left", "right") for j in ("hip-roll", "hip-yaw", "hip-pitch", "knee", "foot")
+    )
     stiff = {s.joint: (s.stiffness, s.reference) for s in cassie.springs if s.stiffness}
-    assert stiff == {"left-shin": (1500.0, 0.0), "left-heel-spring": (1250.0, 0.0), "right-shin": (1500.0, 0.0),
-                     "right-heel-spring": (1250.0, 0.0)}
+    assert stiff == {
+        "left-shin": (1500.0, 0.0),
+        "left-heel-spring": (1250.0, 0.0),
+        "right-shin": (1500.0, 0.0),
+        "right-heel-spring": (1250.0, 0.0),
+    }
     assert {s.joint: s.damping for s in cassie.springs}["left-achilles-rod"] == 0.01  # a ball joint's damper
     assert cassie.model.joints[1].shortname() == "JointModelFreeFlyer"
     assert [c.kind for c in gripper.closures] == ["spherical"] * 2
     (coupling,) = gripper.couplings
-    assert (coupling.follower, coupling.leader, coupling.polynomial[:2]) == ((("right_driver_joint", 1.0),),
-                                                                               (("left_driver_joint", 1.0),), (0.0, 1.0))
+    assert (coupling.follower, coupling.leader, coupling.polynomial[:2]) == (
+        (("right_driver_joint", 1.0),),
+        (("left_driver_joint", 1.0),),
+        (0.0, 1.0),
+    )
     (tendon,) = gripper.actuators
     assert gripper.actuated == ("fingers_actuator",)
     assert tendon.joints == (("right_driver_joint", 0.5), ("left_driver_joint", 0.5))
     assert {s.joint: (s.stiffness, s.reference) for s in gripper.springs if s.stiffness} == {
-        "right_spring_link_joint": (0.05, 2.62), "left_spring_link_joint": (0.05, 2.62)}
+        "right_spring_link_joint": (0.05, 2.62),
+        "left_spring_link_joint": (0.05, 2.62),
+    }
 
 
 @pytest.mark.parametrize("robot", ["cassie-fixed", "cassie-floating", "2f85"])
@@ -132,7 +158,7 @@ def test_dof_closure_and_holding_efforts_agree_with_mujoco(robot, tmp_path):
         q = st.configuration(desc.guess)
         for j in range(1, fixed.model.njoints):
             mine, theirs = desc.model.joints[desc.model.getJointId(fixed.model.names[j])], fixed.model.joints[j]
-            q[mine.idx_q:mine.idx_q + mine.nq] = settled[theirs.idx_q:theirs.idx_q + theirs.nq]
+            q[mine.idx_q : mine.idx_q + mine.nq] = settled[theirs.idx_q : theirs.idx_q + theirs.nq]
     mj = ref.at(q)
     assert np.max(np.abs(mj["residual"])) < TOL
     dof = {"cassie-fixed": 16, "cassie-floating": 22, "2f85": 3}[robot]
@@ -187,8 +213,11 @@ SYNTHETIC = """<mujoco model="kinds">
 """
 
 
-@pytest.mark.parametrize("flags", ["", '<option><flag gravity="disable" spring="disable"/></option>'],
-                         ids=["as-written", "no-gravity-no-springs"])
+@pytest.mark.parametrize(
+    "flags",
+    ["", '<option><flag gravity="disable" spring="disable"/></option>'],
+    ids=["as-written", "no-gravity-no-springs"],
+)
 def test_every_equality_kind_tendon_spring_and_armature_agree_with_mujoco(flags, tmp_path):
     """Welds (explicit relpose, sites), a site connect, a polynomial joint equality, a tendon equality,
     a tendon actuator, springs on a hinge and a slide, armature: at random configurations the
@@ -205,10 +234,11 @@ def test_every_equality_kind_tendon_spring_and_armature_agree_with_mujoco(flags,
         q = pin.integrate(desc.model, st.configuration(desc.guess), rng.normal(scale=0.7, size=desc.model.nv))
         mj = ref.at(q)
         residual, _ = st.rows(q)
-        ids = ref.md.efc_id[:ref.md.nefc][ref.md.efc_type[:ref.md.nefc] == mujoco.mjtConstraint.mjCNSTR_EQUALITY]
+        ids = ref.md.efc_id[: ref.md.nefc][ref.md.efc_type[: ref.md.nefc] == mujoco.mjtConstraint.mjCNSTR_EQUALITY]
         for k, coupling in enumerate(desc.couplings):
-            assert residual[-len(desc.couplings) + k] == pytest.approx(mj["residual"][ids == eq_id[coupling.name]][0],
-                                                                        abs=1e-12)
+            assert residual[-len(desc.couplings) + k] == pytest.approx(
+                mj["residual"][ids == eq_id[coupling.name]][0], abs=1e-12
+            )
         np.testing.assert_allclose(st.S * ref.in_our_units(np.ones(2)), mj["moment"].T, atol=1e-12)
         np.testing.assert_allclose(st.generalised(q), mj["generalised"], atol=1e-10)
     armature = np.zeros(desc.model.nv)
@@ -220,8 +250,7 @@ def test_every_equality_kind_tendon_spring_and_armature_agree_with_mujoco(flags,
     assert st.mobility(q) == desc.model.nv - np.linalg.matrix_rank(mj["J"], 1e-9 * np.max(np.abs(mj["J"])))
 
 
-@pytest.mark.parametrize("path", [FIXTURES / "rssr.xml", GRIPPER],
-                         ids=["rssr", "2f85"])
+@pytest.mark.parametrize("path", [FIXTURES / "rssr.xml", GRIPPER], ids=["rssr", "2f85"])
 def test_the_urdf_text_builds_the_readers_model(path):
     """Where URDF holds the tree, Pinocchio's URDF parser on `desc.urdf` gives the reader's model:
     the same joints, and every frame of the reader's model at the same place at random q."""
@@ -241,29 +270,40 @@ def test_the_urdf_text_builds_the_readers_model(path):
                 np.testing.assert_allclose(d1.oMf[i].homogeneous, there.homogeneous, atol=1e-12)
         for j in range(1, desc.model.njoints):
             k = other.getJointId(desc.model.names[j])
-            np.testing.assert_allclose(d1.oMi[j].act(desc.model.inertias[j]).matrix(),
-                                       d2.oMi[k].act(other.inertias[k]).matrix(), atol=1e-12)
+            np.testing.assert_allclose(
+                d1.oMi[j].act(desc.model.inertias[j]).matrix(), d2.oMi[k].act(other.inertias[k]).matrix(), atol=1e-12
+            )
 
 
-BASE = ('<mujoco><worldbody><body name="b"><joint name="h" axis="0 0 1"/><geom size="0.1"/><site name="s"/>'
-        '<body name="c" pos="1 0 0"><joint name="k" type="ball"/><geom size="0.1"/><site name="s2"/></body></body></worldbody>{}</mujoco>')
+BASE = (
+    '<mujoco><worldbody><body name="b"><joint name="h" axis="0 0 1"/><geom size="0.1"/><site name="s"/>'
+    '<body name="c" pos="1 0 0"><joint name="k" type="ball"/><geom size="0.1"/><site name="s2"/></body></body></worldbody>{}</mujoco>'
+)
 MALFORMED = {  # file text -> what the one-line error says
     "": "empty",
     "<mujoco><worldbody>": "not well-formed",
     "<robot/>": "starts with <mujoco>",
     "<mujoco><worldbody><body><geom size='1'/></body></worldbody></mujoco>": "no joint",
-    BASE.format('<tendon><fixed name="t"><joint joint="nope" coef="1"/></fixed></tendon>'): "joint 'nope' not found in tendon",
+    BASE.format(
+        '<tendon><fixed name="t"><joint joint="nope" coef="1"/></fixed></tendon>'
+    ): "joint 'nope' not found in tendon",
     BASE.format('<equality><joint joint1="nope"/></equality>'): "unknown element 'nope' in equality",
     BASE.replace('type="ball"', 'type="screw"'): "invalid keyword: 'screw'",
     BASE.format('<equality><connect body1="b" body2="b" anchor="0 0 0"/></equality>'): "repeated in equality",
     BASE.format('<equality><joint joint1="k" joint2="h"/></equality>'): "only HINGE and SLIDE joint allowed",
     BASE.replace('type="ball"', 'type="ball" stiffness="2"'): "ball or free joint's stiffness",
     BASE.replace('<body name="b">', '<body name="b" gravcomp="1">'): "gravity compensation",
-    BASE.format('<tendon><fixed name="t" stiffness="5"><joint joint="h" coef="1"/></fixed></tendon>'): "stiffness on a tendon",
-    BASE.format('<tendon><spatial name="t"><site site="s"/><site site="s2"/></spatial></tendon>'
-                '<actuator><motor name="m" tendon="t"/></actuator>'): "tendon 't' is spatial",
-    BASE.format('<tendon><fixed name="t"><joint joint="h" coef="1"/></fixed></tendon>'
-                '<actuator><motor name="h" tendon="t"/></actuator>'): "tendon actuator named like a joint",
+    BASE.format(
+        '<tendon><fixed name="t" stiffness="5"><joint joint="h" coef="1"/></fixed></tendon>'
+    ): "stiffness on a tendon",
+    BASE.format(
+        '<tendon><spatial name="t"><site site="s"/><site site="s2"/></spatial></tendon>'
+        '<actuator><motor name="m" tendon="t"/></actuator>'
+    ): "tendon 't' is spatial",
+    BASE.format(
+        '<tendon><fixed name="t"><joint joint="h" coef="1"/></fixed></tendon>'
+        '<actuator><motor name="h" tendon="t"/></actuator>'
+    ): "tendon actuator named like a joint",
     BASE.format('<actuator><motor name="m1" joint="h"/><motor name="m2" joint="h"/></actuator>'): "driven by another",
     BASE.format('<actuator><motor name="m" site="s"/></actuator>'): "acts on a site",
     BASE.format('<actuator><motor name="m" joint="k" gear="1 0 0 0 0 0"/></actuator>'): "drives the ball or free joint",
@@ -288,8 +328,9 @@ def test_mechkit_report_through_the_command_line(case, tmp_path):
     if case == "no joint":
         path = tmp_path / "none.xml"
         path.write_text(next(t for t, n in MALFORMED.items() if n == case))
-    out = subprocess.run([sys.executable, "-m", "mechkit", "report", str(path)], capture_output=True, text=True,
-                         check=False)
+    out = subprocess.run(
+        [sys.executable, "-m", "mechkit", "report", str(path)], capture_output=True, text=True, check=False
+    )
     assert "Traceback" not in out.stderr
     if case == "no joint":
         lines = out.stderr.strip().splitlines()
@@ -299,12 +340,16 @@ def test_mechkit_report_through_the_command_line(case, tmp_path):
         assert "DOF numerical 22, Gruebler 22" in out.stdout
         assert "left-achilles-rod 1, right-achilles-rod 1" in out.stdout
 
+
 def test_a_ball_joint_loads_as_the_three_hinges_do():
     """The RSSR fixture writes its ball as three hinges; written as a ball it loads (the core takes any
     joint) with the same mobility and the same assembly of its crank and rocker."""
     rssr = (FIXTURES / "rssr.xml").read_text()
-    ball = (rssr.replace('type="hinge" axis="1 0 0"/>', 'type="ball"/>').replace('<joint name="By" type="hinge" axis="0 1 0"/>', "")
-            .replace('<joint name="Bz" type="hinge" axis="0 0 1"/>', ""))
+    ball = (
+        rssr.replace('type="hinge" axis="1 0 0"/>', 'type="ball"/>')
+        .replace('<joint name="By" type="hinge" axis="0 1 0"/>', "")
+        .replace('<joint name="Bz" type="hinge" axis="0 0 1"/>', "")
+    )
     with tempfile.TemporaryDirectory() as folder:
         path = Path(folder) / "rssr_ball.xml"
         path.write_text(ball)
@@ -313,7 +358,9 @@ def test_a_ball_joint_loads_as_the_three_hinges_do():
     assert m_ball.model.nq == m_hinges.model.nq + 1 and m_ball.model.nv == m_hinges.model.nv
     assert m_ball.mobility().dof == m_hinges.mobility().dof
     for joint in m_hinges.actuated:
-        assert m_ball.home_q[m_ball.q_index(joint)] == pytest.approx(m_hinges.home_q[m_hinges.q_index(joint)], abs=1e-12)
+        assert m_ball.home_q[m_ball.q_index(joint)] == pytest.approx(
+            m_hinges.home_q[m_hinges.q_index(joint)], abs=1e-12
+        )
 
 
 def test_mjcf_errors(tmp_path):

@@ -27,8 +27,15 @@ from .field_cli import refusal
 
 FIXTURES = FIXTURES / "field" / "sdf"
 #: example-robot-data (a test dependency) ships its robots in the environment's cmeel prefix.
-CASSIE = Path(sysconfig.get_paths()["purelib"], "cmeel.prefix", "share", "example-robot-data", "robots",
-              "cassie_description", "robots")
+CASSIE = Path(
+    sysconfig.get_paths()["purelib"],
+    "cmeel.prefix",
+    "share",
+    "example-robot-data",
+    "robots",
+    "cassie_description",
+    "robots",
+)
 Y, Z = np.array([0.0, 1.0, 0.0]), np.array([0.0, 0.0, 1.0])
 
 
@@ -45,7 +52,9 @@ def _inertia(mass, com, diagonal, rpy=(0.0, 0.0, 0.0), ixy=0.0) -> pin.Inertia:
 def _four_bar_by_hand() -> Description:
     """The four-bar fixture built from its dimensions, each joint frame at its link's frame (the
     reader puts them elsewhere: only world placements may agree)."""
-    W = pin.SE3(pin.rpy.rpyToMatrix(0, 0, np.pi / 2), np.array([1.0, 2.0, 0.0])) * pin.SE3(np.eye(3), np.array([0, 0, 0.5]))
+    W = pin.SE3(pin.rpy.rpyToMatrix(0, 0, np.pi / 2), np.array([1.0, 2.0, 0.0])) * pin.SE3(
+        np.eye(3), np.array([0, 0, 0.5])
+    )
     a, b, c, psi = 0.1, 0.23134365934659912, 0.2, 39.43868642253353
     B = a * np.array([np.cos(np.radians(30)), 0.0, np.sin(np.radians(30))])
     m = pin.Model()
@@ -55,21 +64,34 @@ def _four_bar_by_hand() -> Description:
     m.appendBodyToJoint(crank, _inertia(0.05, [0.05, 0, 0], [1e-5, 5e-5, 5e-5]), pin.SE3.Identity())
     coupler_frame = W * pin.SE3(_ry(-psi), B)
     coupler = m.addJoint(crank, pin.JointModelRY(), crank_frame.actInv(coupler_frame), "coupler_joint")
-    m.appendBodyToJoint(coupler, _inertia(0.12, [0.115671829673, 0, 0.01], [2e-5, 6e-4, 6e-4], (0, 0, np.radians(20)), 1e-6),
-                        pin.SE3.Identity())
+    m.appendBodyToJoint(
+        coupler,
+        _inertia(0.12, [0.115671829673, 0, 0.01], [2e-5, 6e-4, 6e-4], (0, 0, np.radians(20)), 1e-6),
+        pin.SE3.Identity(),
+    )
     rocker = m.addJoint(0, pin.JointModelRY(), W * pin.SE3(_ry(-100), np.array([0.3, 0, 0])), "rocker_joint")
     m.appendBodyToJoint(rocker, _inertia(0.09, [0.1, 0, 0], [1e-5, 3e-4, 3e-4]), pin.SE3.Identity())
     rotor = m.addJoint(0, pin.JointModelRY(), W, "motor")
     m.appendBodyToJoint(rotor, _inertia(0.02, [0, 0, 0], [1e-6, 2e-6, 1e-6]), pin.SE3.Identity())
     for name, joint in (("crank", crank), ("coupler", coupler), ("rocker", rocker), ("rotor", rotor)):
         m.addFrame(pin.Frame(name, joint, 0, pin.SE3.Identity(), pin.FrameType.BODY), False)
-    m.addFrame(pin.Frame("C_on_coupler", coupler, 0, pin.SE3(np.eye(3), np.array([b, 0, 0])), pin.FrameType.OP_FRAME), False)
-    m.addFrame(pin.Frame("C_on_rocker", rocker, 0, pin.SE3(_ry(100 - psi), np.array([c, 0, 0])), pin.FrameType.OP_FRAME),
-               False)
+    m.addFrame(
+        pin.Frame("C_on_coupler", coupler, 0, pin.SE3(np.eye(3), np.array([b, 0, 0])), pin.FrameType.OP_FRAME), False
+    )
+    m.addFrame(
+        pin.Frame("C_on_rocker", rocker, 0, pin.SE3(_ry(100 - psi), np.array([c, 0, 0])), pin.FrameType.OP_FRAME), False
+    )
     cut = LoopClosure("C", "revolute", "C_on_coupler", "C_on_rocker", Y)
     gear = Coupling("gear", (("crank_joint", 1.0),), (("motor", 1.0),), (0.0, -0.1))
-    return Description("by hand", None, ("motor",), closures=(cut,), model=m, couplings=(gear,),
-                       springs=(JointSpring("rocker_joint", 2.0, 0.1, 0.0, 0.05),))
+    return Description(
+        "by hand",
+        None,
+        ("motor",),
+        closures=(cut,),
+        model=m,
+        couplings=(gear,),
+        springs=(JointSpring("rocker_joint", 2.0, 0.1, 0.0, 0.05),),
+    )
 
 
 def _rssr_by_hand() -> Description:
@@ -77,20 +99,34 @@ def _rssr_by_hand() -> Description:
     crank = m.addJoint(0, pin.JointModelRZ(), pin.SE3.Identity(), "crank_joint")
     m.appendBodyToJoint(crank, _inertia(0.06, [0.05, 0, 0], [2e-6, 6e-5, 6e-5]), pin.SE3.Identity())
     coupler = m.addJoint(crank, pin.JointModelUniversal(Z, Y), pin.SE3(np.eye(3), np.array([0.1, 0, 0])), "B")
-    m.appendBodyToJoint(coupler, _inertia(0.21, [0.125, 0.05, 0.06], [7e-6, 2.7e-3, 2.7e-3], (0.3, -0.4, 0.2)),
-                        pin.SE3.Identity())
+    m.appendBodyToJoint(
+        coupler, _inertia(0.21, [0.125, 0.05, 0.06], [7e-6, 2.7e-3, 2.7e-3], (0.3, -0.4, 0.2)), pin.SE3.Identity()
+    )
     rocker = m.addJoint(0, pin.JointModelRY(), pin.SE3(np.eye(3), np.array([0.35, 0.1, 0])), "rocker_joint")
     m.appendBodyToJoint(rocker, _inertia(0.09, [0, 0, 0.06], [1e-4, 1e-4, 3e-6]), pin.SE3.Identity())
     for name, joint in (("crank", crank), ("coupler", coupler), ("rocker", rocker)):
         m.addFrame(pin.Frame(name, joint, 0, pin.SE3.Identity(), pin.FrameType.BODY), False)
-    m.addFrame(pin.Frame("Ca", coupler, 0, pin.SE3(np.eye(3), np.array([0.25, 0.1, 0.12])), pin.FrameType.OP_FRAME), False)
+    m.addFrame(
+        pin.Frame("Ca", coupler, 0, pin.SE3(np.eye(3), np.array([0.25, 0.1, 0.12])), pin.FrameType.OP_FRAME), False
+    )
     m.addFrame(pin.Frame("Cb", rocker, 0, pin.SE3(np.eye(3), np.array([0, 0, 0.12])), pin.FrameType.OP_FRAME), False)
-    return Description("by hand", None, (), closures=(LoopClosure("C", "spherical", "Ca", "Cb"),), model=m,
-                       springs=(JointSpring("rocker_joint", 0.0, 0.0, 0.0, 0.02),))
+    return Description(
+        "by hand",
+        None,
+        (),
+        closures=(LoopClosure("C", "spherical", "Ca", "Cb"),),
+        model=m,
+        springs=(JointSpring("rocker_joint", 0.0, 0.0, 0.0, 0.02),),
+    )
 
 
-@pytest.mark.parametrize("file, by_hand, driven", [("four_bar_gearbox.sdf", _four_bar_by_hand, {"motor": 0.3}),
-                                                    ("rssr_universal.sdf", _rssr_by_hand, {"crank_joint": 0.4})])
+@pytest.mark.parametrize(
+    "file, by_hand, driven",
+    [
+        ("four_bar_gearbox.sdf", _four_bar_by_hand, {"motor": 0.3}),
+        ("rssr_universal.sdf", _rssr_by_hand, {"crank_joint": 0.4}),
+    ],
+)
 def test_small_sdf_loops_agree_with_models_built_by_hand(file, by_hand, driven):
     """Frames of every link and inertias in the world at random coordinates, the closure, the gearbox
     coupling, the DOF, and the efforts holding gravity (and the rocker's spring) after assembly."""
@@ -99,22 +135,32 @@ def test_small_sdf_loops_agree_with_models_built_by_hand(file, by_hand, driven):
     assert [c.kind for c in desc.closures] == [c.kind for c in hand.closures]
     assert desc.couplings == hand.couplings and desc.springs == hand.springs and desc.actuated == hand.actuated
     rng = np.random.default_rng(7)
-    ours, theirs = Statics(desc, tuple(j for j in driven if j not in desc.actuated)), \
-        Statics(hand, tuple(j for j in driven if j not in hand.actuated))
+    ours, theirs = (
+        Statics(desc, tuple(j for j in driven if j not in desc.actuated)),
+        Statics(hand, tuple(j for j in driven if j not in hand.actuated)),
+    )
     for _ in range(4):
-        values = {hand.model.names[j]: (tuple(rng.uniform(-1, 1, 2)) if hand.model.joints[j].nq == 2 else rng.uniform(-1, 1))
-                  for j in range(1, hand.model.njoints)}
+        values = {
+            hand.model.names[j]: (tuple(rng.uniform(-1, 1, 2)) if hand.model.joints[j].nq == 2 else rng.uniform(-1, 1))
+            for j in range(1, hand.model.njoints)
+        }
         q1, q2 = ours.configuration(values), theirs.configuration(values)
         d1, d2 = desc.model.createData(), hand.model.createData()
         pin.framesForwardKinematics(desc.model, d1, q1)
         pin.framesForwardKinematics(hand.model, d2, q2)
         for link in [f.name for f in hand.model.frames if f.type == pin.FrameType.BODY]:
-            np.testing.assert_allclose(d1.oMf[desc.model.getFrameId(link, pin.FrameType.BODY)].homogeneous,
-                                       d2.oMf[hand.model.getFrameId(link)].homogeneous, atol=1e-12)
+            np.testing.assert_allclose(
+                d1.oMf[desc.model.getFrameId(link, pin.FrameType.BODY)].homogeneous,
+                d2.oMf[hand.model.getFrameId(link)].homogeneous,
+                atol=1e-12,
+            )
         for j in range(1, hand.model.njoints):
             k = desc.model.getJointId(hand.model.names[j])
-            np.testing.assert_allclose(d1.oMi[k].act(desc.model.inertias[k]).matrix(),
-                                       d2.oMi[j].act(hand.model.inertias[j]).matrix(), atol=1e-12)
+            np.testing.assert_allclose(
+                d1.oMi[k].act(desc.model.inertias[k]).matrix(),
+                d2.oMi[j].act(hand.model.inertias[j]).matrix(),
+                atol=1e-12,
+            )
         np.testing.assert_allclose(ours.rows(q1)[0], theirs.rows(q2)[0], atol=1e-12)
         np.testing.assert_allclose(ours.generalised(q1), _reorder(theirs.generalised(q2), hand, desc), atol=1e-12)
     q1 = ours.assemble(ours.configuration(desc.guess), driven)
@@ -122,7 +168,7 @@ def test_small_sdf_loops_agree_with_models_built_by_hand(file, by_hand, driven):
     assert ours.mobility(q1) == theirs.mobility(q2) == 1 and ours.idle(q1) == theirs.idle(q2) == {}
     for j in range(1, hand.model.njoints):  # the same assembly
         k, a = desc.model.joints[desc.model.getJointId(hand.model.names[j])], hand.model.joints[j]
-        np.testing.assert_allclose(q1[k.idx_q:k.idx_q + k.nq], q2[a.idx_q:a.idx_q + a.nq], atol=1e-10)
+        np.testing.assert_allclose(q1[k.idx_q : k.idx_q + k.nq], q2[a.idx_q : a.idx_q + a.nq], atol=1e-10)
     u1, left1 = ours.efforts(q1)
     u2, left2 = theirs.efforts(q2)
     assert left1 < 1e-10 and left2 < 1e-10  # the driven joint holds it
@@ -134,7 +180,7 @@ def _reorder(values: np.ndarray, source: Description, target: Description) -> np
     out = np.zeros(target.model.nv)
     for j in range(1, source.model.njoints):
         a, k = source.model.joints[j], target.model.joints[target.model.getJointId(source.model.names[j])]
-        out[k.idx_v:k.idx_v + k.nv] = values[a.idx_v:a.idx_v + a.nv]
+        out[k.idx_v : k.idx_v + k.nv] = values[a.idx_v : a.idx_v + a.nv]
     return out
 
 
@@ -142,7 +188,9 @@ def test_a_universal_joint_cut_chosen_by_parent_guidance_gives_the_same_linkage(
     """The RSUR-S fixture rewritten with the ball joint running rocker -> coupler: the coupler then has
     two parent joints, and `parent_guidance` makes the ball its tree joint, so the universal joint is
     the cut (a Hooke closure). Same linkage: the same DOF, assembly and holding effort as the file."""
-    text = OLD.replace("<parent>coupler</parent>\n      <child>rocker</child>", "<parent>rocker</parent>\n      <child>coupler</child>")
+    text = OLD.replace(
+        "<parent>coupler</parent>\n      <child>rocker</child>", "<parent>rocker</parent>\n      <child>coupler</child>"
+    )
     text = text.replace("<pose>0 0 0.12 0 0 0</pose>", "<pose>0.25 0.1 0.12 0 0 0</pose>")
     path = tmp_path / "swapped.sdf"
     path.write_text(text)
@@ -159,8 +207,15 @@ def test_a_universal_joint_cut_chosen_by_parent_guidance_gives_the_same_linkage(
         assert st.mobility(q) == 1 and st.idle(q) == {}
         data = desc.model.createData()
         pin.framesForwardKinematics(desc.model, data, q)
-        efforts.append((st.efforts(q), {link: data.oMf[desc.model.getFrameId(link, pin.FrameType.BODY)].homogeneous
-                                         for link in ("crank", "coupler", "rocker")}))
+        efforts.append(
+            (
+                st.efforts(q),
+                {
+                    link: data.oMf[desc.model.getFrameId(link, pin.FrameType.BODY)].homogeneous
+                    for link in ("crank", "coupler", "rocker")
+                },
+            )
+        )
     (u1, left1), at1 = efforts[0]
     (u2, left2), at2 = efforts[1]
     for link in at1:
@@ -181,8 +236,12 @@ CASSIE_FACTS = {  # file -> (DOF floating or as written, DOF with the pelvis wel
 def _welded(path: Path, tmp_path: Path) -> Path:
     """The file with its pelvis welded to the world where it is written."""
     out = tmp_path / f"welded_{path.name}"
-    out.write_text(path.read_text().replace(
-        "</model>", '<joint name="weld_pelvis" type="fixed"><parent>world</parent><child>pelvis</child></joint></model>'))
+    out.write_text(
+        path.read_text().replace(
+            "</model>",
+            '<joint name="weld_pelvis" type="fixed"><parent>world</parent><child>pelvis</child></joint></model>',
+        )
+    )
     return out
 
 
@@ -208,8 +267,8 @@ def test_cassie_sdf_gearboxes_drive_its_outputs():
     ratios = {"roll": 0.04, "yaw": 0.04, "pitch": 0.0625, "knee": 0.0625, "foot": 0.02}
     assert desc.actuated == tuple(f"{s}-{j}-ip" for s in ("left", "right") for j in ratios)
     for k in desc.couplings:
-        (rotor, s1), = k.leader
-        (output, s2), = k.follower
+        ((rotor, s1),) = k.leader
+        ((output, s2),) = k.follower
         assert rotor.endswith("-ip") and output == rotor.replace("-ip", "-op") and s1 == s2 == 1.0
         assert k.polynomial == (0.0, -ratios[rotor.split("-")[1]])
 
@@ -256,34 +315,46 @@ MALFORMED = {  # file text -> what the one-line error says
     "<sdf version='1.9'><model>": "not well-formed",
     "<robot/>": "starts with <sdf>",
     "<sdf version='1.9'><world name='w'/></sdf>": "expected one <model>",
-    GOOD.replace("<link name=\"base\">", "<static>true</static><link name=\"base\">"): "<static> is true",
+    GOOD.replace('<link name="base">', '<static>true</static><link name="base">'): "<static> is true",
     GOOD.replace('version="1.9"', 'version="latest"'): "expected a version",
     GOOD.replace('<link name="rotor">', '<model name="inner"/><link name="rotor">'): "nested <model>",
     GOOD.replace('<link name="rocker">', '<link name="crank">'): "missing or repeated name",
-    GOOD.replace('type="revolute">\n      <pose relative_to="pivot_D"/>', 'type="screw">\n      <pose relative_to="pivot_D"/>'):
-        "type 'screw' is not read",
+    GOOD.replace(
+        'type="revolute">\n      <pose relative_to="pivot_D"/>', 'type="screw">\n      <pose relative_to="pivot_D"/>'
+    ): "type 'screw' is not read",
     GOOD.replace('<pose relative_to="pivot_D"/>', '<pose relative_to="pivot_E"/>'): "'pivot_E': no such frame",
-    GOOD.replace('<pose relative_to="base">0.3 0 0 0 0 0</pose>', '<pose relative_to="rocker_joint">0.3 0 0 0 0 0</pose>'):
-        "pose cycle: rocker_joint -> pivot_D -> rocker_joint",
+    GOOD.replace(
+        '<pose relative_to="base">0.3 0 0 0 0 0</pose>', '<pose relative_to="rocker_joint">0.3 0 0 0 0 0</pose>'
+    ): "pose cycle: rocker_joint -> pivot_D -> rocker_joint",
     GOOD.replace("<parent>crank</parent>", "<parent>crank_link</parent>"): "<parent> 'crank_link' is not a link",
     GOOD.replace("<child>rotor</child>", "<child>world</child>"): "<child> 'world' is not a link",
-    GOOD.replace("<gearbox_reference_body>base", "<gearbox_reference_body>ground"):
-        "gearbox_reference_body 'ground' is not a link",
-    GOOD.replace("<gearbox_reference_body>base", "<gearbox_reference_body>rocker"):
-        "no revolute tree joint between gearbox_reference_body 'rocker' and 'rotor'",
-    GOOD.replace("<axis2><xyz>0 1 0</xyz></axis2>", "<axis2><xyz>1 0 0</xyz></axis2>"): "<axis2> is not the axis of joint",
+    GOOD.replace(
+        "<gearbox_reference_body>base", "<gearbox_reference_body>ground"
+    ): "gearbox_reference_body 'ground' is not a link",
+    GOOD.replace(
+        "<gearbox_reference_body>base", "<gearbox_reference_body>rocker"
+    ): "no revolute tree joint between gearbox_reference_body 'rocker' and 'rotor'",
+    GOOD.replace(
+        "<axis2><xyz>0 1 0</xyz></axis2>", "<axis2><xyz>1 0 0</xyz></axis2>"
+    ): "<axis2> is not the axis of joint",
     GOOD.replace("<gearbox_ratio>0.1</gearbox_ratio>", ""): "missing <gearbox_ratio>",
-    GOOD.replace("<axis><xyz expressed_in=\"__model__\">0 1 0</xyz></axis>", ""): "missing <axis>",
-    GOOD.replace("<xyz>0 1 0</xyz></axis>\n    </joint>\n    <link name=\"rotor\">",
-                 "<xyz>0 0 0</xyz></axis>\n    </joint>\n    <link name=\"rotor\">"): "<axis><xyz> is zero",
-    GOOD.replace('<pose>0 0 0.5 0 0 0</pose>', '<pose>0 0 half 0 0 0</pose>'): "is not 6 numbers",
+    GOOD.replace('<axis><xyz expressed_in="__model__">0 1 0</xyz></axis>', ""): "missing <axis>",
+    GOOD.replace(
+        '<xyz>0 1 0</xyz></axis>\n    </joint>\n    <link name="rotor">',
+        '<xyz>0 0 0</xyz></axis>\n    </joint>\n    <link name="rotor">',
+    ): "<axis><xyz> is zero",
+    GOOD.replace("<pose>0 0 0.5 0 0 0</pose>", "<pose>0 0 half 0 0 0</pose>"): "is not 6 numbers",
     GOOD.replace("<mass>0.09</mass>", "<mass>heavy</mass>"): "<mass> 'heavy' is not 1 numbers",
     OLD.replace("<pose>0 0 0.12 0 0 0</pose>", '<pose frame="rocker">0 0 0.12 0 0 0</pose>'): "<pose frame> attribute",
-    OLD.replace("<pose>0 0 0.12 0 0 0</pose>", '<pose relative_to="rocker">0 0 0.12 0 0 0</pose>'): "needs SDFormat 1.7",
-    OLD.replace("<dynamics><damping>0.01</damping></dynamics>",
-                "<dynamics><spring_stiffness>3</spring_stiffness></dynamics>"): "a spring on a cut joint",
-    OLD.replace("<parent>world</parent>\n      <child>crank</child>", "<parent>coupler</parent>\n      <child>crank</child>"):
-        "reach neither the world nor a root",
+    OLD.replace(
+        "<pose>0 0 0.12 0 0 0</pose>", '<pose relative_to="rocker">0 0 0.12 0 0 0</pose>'
+    ): "needs SDFormat 1.7",
+    OLD.replace(
+        "<dynamics><damping>0.01</damping></dynamics>", "<dynamics><spring_stiffness>3</spring_stiffness></dynamics>"
+    ): "a spring on a cut joint",
+    OLD.replace(
+        "<parent>world</parent>\n      <child>crank</child>", "<parent>coupler</parent>\n      <child>crank</child>"
+    ): "reach neither the world nor a root",
 }
 
 
@@ -300,7 +371,8 @@ def test_malformed_sdf_is_refused_in_one_line_naming_the_element(text, needle, t
 def test_mechkit_report_on_a_broken_sdf_says_it_in_one_line(tmp_path):
     path = tmp_path / "cycle.sdf"
     path.write_text(next(t for t, n in MALFORMED.items() if n.startswith("pose cycle")))
-    out = subprocess.run([sys.executable, "-m", "mechkit", "report", str(path)], capture_output=True, text=True,
-                         check=False)
+    out = subprocess.run(
+        [sys.executable, "-m", "mechkit", "report", str(path)], capture_output=True, text=True, check=False
+    )
     lines = out.stderr.strip().splitlines()
     assert out.returncode == 2 and len(lines) == 1 and "Traceback" not in out.stderr and "pose cycle" in lines[0]

@@ -12,8 +12,10 @@ from mechkit.sources.xacro_file import render_urdf
 
 
 def _random_args(args: dict[str, str], floats: tuple[str, ...], rng: np.random.Generator) -> dict[str, str]:
-    return {k: repr(float(v) * (1 + 0.05 * rng.standard_normal()) + 1e-3 * rng.standard_normal())
-            if k in floats else v for k, v in args.items()}
+    return {
+        k: repr(float(v) * (1 + 0.05 * rng.standard_normal()) + 1e-3 * rng.standard_normal()) if k in floats else v
+        for k, v in args.items()
+    }
 
 
 @pytest.mark.parametrize("name", names())
@@ -47,7 +49,8 @@ def test_untraceable_template_falls_back_to_xacro(tmp_path):
         '  <xacro:arg name="a" default="1.0"/>\n'
         '  <xacro:property name="a" value="$(arg a)"/>\n'
         '  <link name="l${2 * a}"/>\n'
-        '  <xacro:if value="${a > 1.5}"><link name="big"/></xacro:if>\n</robot>\n')
+        '  <xacro:if value="${a > 1.5}"><link name="big"/></xacro:if>\n</robot>\n'
+    )
     cache = TemplateCache(template)
     assert not cache.traceable({"a": "1.0"})  # the comparison depends on the value
     for a in ("1.0", "2.0"):

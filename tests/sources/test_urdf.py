@@ -41,17 +41,22 @@ def test_loops_parse_into_typed_records(name):
 FOUR_BAR = (urdf_dir() / "four_bar.urdf").read_text()
 
 
-FOUR_BAR_LOOP = '<mechkit:loop axis="0 -1 0" frame_a="coupler_C" frame_b="rocker_C" name="C" rows="planar" type="revolute"/>'
+FOUR_BAR_LOOP = (
+    '<mechkit:loop axis="0 -1 0" frame_a="coupler_C" frame_b="rocker_C" name="C" rows="planar" type="revolute"/>'
+)
 
 
-@pytest.mark.parametrize("replacement, message", [
-    (FOUR_BAR_LOOP.replace('frame_b="rocker_C"', 'frame_b="nowhere"'), "frame_b 'nowhere' is not a link"),
-    (FOUR_BAR_LOOP.replace('type="revolute"', 'type="screw"'), "type 'screw'"),
-    (FOUR_BAR_LOOP.replace(' axis="0 -1 0"', ""), "missing attribute 'axis'"),
-    (FOUR_BAR_LOOP.replace('axis="0 -1 0"', 'axis="0 0"'), "not a non-zero 3-vector"),
-    (FOUR_BAR_LOOP.replace('rows="planar"', 'rows="some"'), "rows 'some'"),
-    (FOUR_BAR_LOOP.replace('frame_b="rocker_C"', 'frame_b="coupler_C"'), "the same link"),
-])
+@pytest.mark.parametrize(
+    "replacement, message",
+    [
+        (FOUR_BAR_LOOP.replace('frame_b="rocker_C"', 'frame_b="nowhere"'), "frame_b 'nowhere' is not a link"),
+        (FOUR_BAR_LOOP.replace('type="revolute"', 'type="screw"'), "type 'screw'"),
+        (FOUR_BAR_LOOP.replace(' axis="0 -1 0"', ""), "missing attribute 'axis'"),
+        (FOUR_BAR_LOOP.replace('axis="0 -1 0"', 'axis="0 0"'), "not a non-zero 3-vector"),
+        (FOUR_BAR_LOOP.replace('rows="planar"', 'rows="some"'), "rows 'some'"),
+        (FOUR_BAR_LOOP.replace('frame_b="rocker_C"', 'frame_b="coupler_C"'), "the same link"),
+    ],
+)
 def test_malformed_loop_declarations_are_named(replacement, message):
     assert FOUR_BAR_LOOP in FOUR_BAR
     with pytest.raises(MalformedDescription, match=message):
@@ -73,16 +78,29 @@ SLIDER_LOOP = '<mechkit:loop name="pin" type="revolute" frame_a="rod_tip" frame_
 
 
 URDF_CASES = {
-    "mistyped namespace URI": (SLIDER_CRANK.replace('xmlns:mechkit="https://mechkit.dev/loop"', 'xmlns:mechkit="https://mechkit.dev/loops"'),
-                               "mechkit.dev/loops"),
-    "unknown element of the loop namespace": (SLIDER_CRANK.replace("<mechkit:loop ", "<mechkit:closure "), "mechkit:closure"),
+    "mistyped namespace URI": (
+        SLIDER_CRANK.replace('xmlns:mechkit="https://mechkit.dev/loop"', 'xmlns:mechkit="https://mechkit.dev/loops"'),
+        "mechkit.dev/loops",
+    ),
+    "unknown element of the loop namespace": (
+        SLIDER_CRANK.replace("<mechkit:loop ", "<mechkit:closure "),
+        "mechkit:closure",
+    ),
     "loop outside the namespace": (SLIDER_CRANK.replace("<mechkit:loop ", "<loop "), "<loop>"),
-    "loop frame that does not exist": (SLIDER_CRANK.replace('frame_b="slider_pin"', 'frame_b="slider_pn"'), "slider_pn"),
+    "loop frame that does not exist": (
+        SLIDER_CRANK.replace('frame_b="slider_pin"', 'frame_b="slider_pn"'),
+        "slider_pn",
+    ),
     "both frames on one body": (SLIDER_CRANK.replace('frame_b="slider_pin"', 'frame_b="rod_link"'), "one body"),
     "same frame twice": (SLIDER_CRANK.replace('frame_b="slider_pin"', 'frame_b="rod_tip"'), "same link"),
-    "home of an unknown joint": (SLIDER_CRANK.replace('<mechkit:home joint="crank"', '<mechkit:home joint="crnk"'), "crnk"),
-    "transmission of an unknown joint": (SLIDER_CRANK.replace('<joint name="crank"><hardwareInterface>', '<joint name="crnk"><hardwareInterface>'),
-                                         "crnk"),
+    "home of an unknown joint": (
+        SLIDER_CRANK.replace('<mechkit:home joint="crank"', '<mechkit:home joint="crnk"'),
+        "crnk",
+    ),
+    "transmission of an unknown joint": (
+        SLIDER_CRANK.replace('<joint name="crank"><hardwareInterface>', '<joint name="crnk"><hardwareInterface>'),
+        "crnk",
+    ),
     "not XML": ("this is not a URDF", "not well-formed"),
     "empty": ("   \n", "empty"),
 }
@@ -103,18 +121,24 @@ def test_without_the_namespace_fix_the_loop_would_be_an_open_tree(tmp_path):
 
 def test_a_continuous_joint_is_an_angle_at_the_boundary(tmp_path):
     """Pinocchio gives a continuous joint (cos, sin); inputs, home and reports use the angle."""
-    text = (FIXTURES / "slider_crank.urdf").read_text().replace('name="crank" type="revolute"', 'name="crank" type="continuous"')
+    text = (
+        (FIXTURES / "slider_crank.urdf")
+        .read_text()
+        .replace('name="crank" type="revolute"', 'name="crank" type="continuous"')
+    )
     (tmp_path / "sc.urdf").write_text(text)
     m = mechkit.load(tmp_path / "sc.urdf")
     assert m.model.nq == m.model.nv + 1
     assert m.joint_values(m.home_q)["crank"] == pytest.approx(0.5, abs=1e-15)
     i = m.q_index("crank")
-    assert m.home_q[i:i + 2] == pytest.approx([np.cos(0.5), np.sin(0.5)], abs=1e-15)
+    assert m.home_q[i : i + 2] == pytest.approx([np.cos(0.5), np.sin(0.5)], abs=1e-15)
     q = m.assemble({"crank": 2.0}, guess=m.home_q)
     assert m.joint_values(q)["crank"] == pytest.approx(2.0, abs=1e-14)
     assert report(m)["home"]["crank"] == pytest.approx(0.5, abs=1e-15)
     ref = mechkit.load(FIXTURES / "slider_crank.urdf")  # the same linkage with a revolute crank
-    assert m.joint_values(q)["slider"] == pytest.approx(ref.joint_values(ref.assemble({"crank": 2.0}, guess=ref.home_q))["slider"], abs=1e-12)
+    assert m.joint_values(q)["slider"] == pytest.approx(
+        ref.joint_values(ref.assemble({"crank": 2.0}, guess=ref.home_q))["slider"], abs=1e-12
+    )
 
 
 def test_actuators_come_from_the_file_or_the_override_and_an_unactuated_model_says_so(tmp_path):
@@ -128,6 +152,7 @@ def test_actuators_come_from_the_file_or_the_override_and_an_unactuated_model_sa
     driven = mechkit.load(tmp_path / "bare.urdf", actuated=["slider"])
     assert driven.actuated == ("slider",)
     assert mechkit.load("four_bar", actuated=["rocker"]).actuated == ("rocker",)
+
 
 ROBOTS = Path(sysconfig.get_paths()["purelib"]) / "cmeel.prefix" / "share" / "example-robot-data" / "robots"
 PANDA = ROBOTS / "panda_description" / "urdf" / "panda.urdf"
@@ -174,18 +199,25 @@ def test_panda_fingers_mimic_gives_pinocchios_own_mimic_model():
     expected = pin.rnea(reduced, reduced.createData(), found.q[:8], np.zeros(8), np.zeros(8))
     got = np.array([found.torques[n] for n in motors])
     weights = pin.rnea(model, model.createData(), found.q, np.zeros(9), np.zeros(9))[7:]
-    assert abs(weights[0]) > 1e-3 and weights[1] == pytest.approx(-weights[0], abs=1e-12)  # tilted: each finger is loaded
+    assert abs(weights[0]) > 1e-3 and weights[1] == pytest.approx(
+        -weights[0], abs=1e-12
+    )  # tilted: each finger is loaded
     np.testing.assert_allclose(got, expected, rtol=0, atol=1e-10 * np.max(np.abs(expected)))
 
 
 def test_a_mimic_on_a_fixed_joint_couples_nothing_and_a_mimic_of_a_fixed_joint_holds_the_offset():
     """example-robot-data's talos_reduced.urdf keeps the mimics of grippers it fixed: no row. A moving
     joint mimicking a fixed one follows its value, zero: the row holds it at the offset."""
-    fixed = [j.get("name") for j in ET.parse(TALOS_REDUCED).getroot().iter("joint")
-             if j.find("mimic") is not None and j.get("type") == "fixed"]
+    fixed = [
+        j.get("name")
+        for j in ET.parse(TALOS_REDUCED).getroot().iter("joint")
+        if j.find("mimic") is not None and j.get("type") == "fixed"
+    ]
     assert len(fixed) == 12
     assert read_urdf(TALOS_REDUCED).couplings == ()
-    text = _gripper('<mimic joint="j1" multiplier="3" offset="0.02"/>').replace('name="j1" type="prismatic"', 'name="j1" type="fixed"')
+    text = _gripper('<mimic joint="j1" multiplier="3" offset="0.02"/>').replace(
+        'name="j1" type="prismatic"', 'name="j1" type="fixed"'
+    )
     assert describe_urdf(text, None, "urdf").couplings == (Coupling("j2", (("j2", 1.0),), (), (0.02,)),)
 
 
@@ -195,10 +227,13 @@ MIMIC_ERRORS = {
     "multiplier not a number": (_gripper('<mimic joint="j1" multiplier="two"/>'), "multiplier 'two' is not a number"),
     "offset not finite": (_gripper('<mimic joint="j1" offset="inf"/>'), "offset 'inf' is not finite"),
     "mimic on a floating joint": (_gripper('<mimic joint="j1"/>', "floating"), "joint 'j2' is floating"),
-    "mimics forming a cycle": (_gripper('<mimic joint="j1"/>').replace(
-        '<limit effort="10" lower="0" upper="0.04" velocity="1"/></joint>\n      <joint name="j2"',
-        '<limit effort="10" lower="0" upper="0.04" velocity="1"/><mimic joint="j2"/></joint>\n      <joint name="j2"'),
-        "cycle"),
+    "mimics forming a cycle": (
+        _gripper('<mimic joint="j1"/>').replace(
+            '<limit effort="10" lower="0" upper="0.04" velocity="1"/></joint>\n      <joint name="j2"',
+            '<limit effort="10" lower="0" upper="0.04" velocity="1"/><mimic joint="j2"/></joint>\n      <joint name="j2"',
+        ),
+        "cycle",
+    ),
 }
 
 
@@ -230,7 +265,11 @@ FOUR_BAR_AT_JOINTS = """<robot name="fb" xmlns:mechkit="https://mechkit.dev/loop
 def test_loop_frames_may_be_joints_as_pinocchio_names_them():
     """A loop between two fixed joints' frames (Gepetto's files close loops at joint frames) is the
     same loop as between their child links: Pinocchio puts both frames at one place."""
-    by_joint = parse_loops(FOUR_BAR_AT_JOINTS.replace("LOOP", '<mechkit:loop name="C" type="spherical" frame_a="C_on_coupler" frame_b="C_on_rocker"/>'))
+    by_joint = parse_loops(
+        FOUR_BAR_AT_JOINTS.replace(
+            "LOOP", '<mechkit:loop name="C" type="spherical" frame_a="C_on_coupler" frame_b="C_on_rocker"/>'
+        )
+    )
     assert [(c.frame_a, c.frame_b) for c in by_joint] == [("C_on_coupler", "C_on_rocker")]
     model = pin.buildModelFromXML(FOUR_BAR_AT_JOINTS.replace("LOOP", ""))
     for joint, link in (("C_on_coupler", "coupler_tip"), ("C_on_rocker", "rocker_tip")):
@@ -239,10 +278,14 @@ def test_loop_frames_may_be_joints_as_pinocchio_names_them():
 
 
 def test_a_name_of_both_a_link_and_an_unrelated_joint_is_refused_as_a_loop_frame():
-    text = FOUR_BAR_AT_JOINTS.replace('<link name="rocker_tip"/>', '<link name="rocker_tip"/><link name="B_x"/>'
-                            '<joint name="B_x_fixed" type="fixed"><parent link="rocker"/><child link="B_x"/></joint>')
-    text = text.replace('name="B" type="revolute"', 'name="rocker_tip" type="revolute"').replace("LOOP", (
-        '<mechkit:loop name="C" type="spherical" frame_a="C_on_coupler" frame_b="rocker_tip"/>'))
+    text = FOUR_BAR_AT_JOINTS.replace(
+        '<link name="rocker_tip"/>',
+        '<link name="rocker_tip"/><link name="B_x"/>'
+        '<joint name="B_x_fixed" type="fixed"><parent link="rocker"/><child link="B_x"/></joint>',
+    )
+    text = text.replace('name="B" type="revolute"', 'name="rocker_tip" type="revolute"').replace(
+        "LOOP", ('<mechkit:loop name="C" type="spherical" frame_a="C_on_coupler" frame_b="rocker_tip"/>')
+    )
     with pytest.raises(MalformedDescription, match="names both a link and a joint"):
         parse_loops(text)
 
@@ -251,7 +294,9 @@ def test_a_lever_mimic_loads_its_leader_by_the_multiplier():
     """Two vertical sliders, the second mimicking the first with multiplier 2.5 and offset 0.01 m: the
     motor of the first holds its own weight and 2.5 times the second's (virtual work), as Pinocchio's
     mimic model gives, and the closed configuration puts the second at 2.5 x + 0.01."""
-    text = _gripper('<mimic joint="j1" multiplier="2.5" offset="0.01"/>').replace('<axis xyz="0 1 0"/>', '<axis xyz="0 0 1"/>')
+    text = _gripper('<mimic joint="j1" multiplier="2.5" offset="0.01"/>').replace(
+        '<axis xyz="0 1 0"/>', '<axis xyz="0 0 1"/>'
+    )
     text = text.replace('<axis xyz="0 -1 0"/>', '<axis xyz="0 0 1"/>')
     desc = describe_urdf(text, None, "urdf")
     model, reduced = pin.buildModelFromXML(text), pin.buildModelFromXML(text, mimic=True)

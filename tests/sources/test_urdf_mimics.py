@@ -21,13 +21,16 @@ def _chain(mimic3: str = '<mimic joint="j2" multiplier="0.5"/>') -> str:
     joints = "".join(
         f'<link name="l{k}">{INERTIAL}</link><joint name="j{k}" type="prismatic"><parent link="base"/>'
         f'<child link="l{k}"/><axis xyz="0 {k} 1"/><limit effort="10" lower="-1" upper="1" velocity="1"/>{mimic}</joint>'
-        for k, mimic in ((1, ""), (2, '<mimic joint="j1" multiplier="-2" offset="0.01"/>'), (3, mimic3)))
+        for k, mimic in ((1, ""), (2, '<mimic joint="j1" multiplier="-2" offset="0.01"/>'), (3, mimic3))
+    )
     return f'<robot name="chain"><link name="base"/>{joints}</robot>'
 
 
 def test_a_chain_of_mimics_is_one_row_each_and_the_mechanism_obeys_both():
-    assert parse_mimics(parse_xml(_chain())) == (Coupling("j2", (("j2", 1.0),), (("j1", 1.0),), (0.01, -2.0)),
-                                                 Coupling("j3", (("j3", 1.0),), (("j2", 1.0),), (0.0, 0.5)))
+    assert parse_mimics(parse_xml(_chain())) == (
+        Coupling("j2", (("j2", 1.0),), (("j1", 1.0),), (0.01, -2.0)),
+        Coupling("j3", (("j3", 1.0),), (("j2", 1.0),), (0.0, 0.5)),
+    )
     m = mechkit.from_urdf(_chain(), actuated=["j1"])
     assert m.mobility().dof == 1
     q = m.assemble({"j1": 0.3})
@@ -40,7 +43,13 @@ def test_a_chain_of_mimics_is_one_row_each_and_the_mechanism_obeys_both():
 
 def test_a_mimic_closing_the_chain_is_a_cycle_named_joint_by_joint():
     with pytest.raises(MalformedDescription, match="cycle") as err:
-        parse_mimics(parse_xml(_chain().replace('<limit effort="10" lower="-1" upper="1" velocity="1"/></joint>',
-                                                '<limit effort="10" lower="-1" upper="1" velocity="1"/>'
-                                                '<mimic joint="j3"/></joint>', 1)))
+        parse_mimics(
+            parse_xml(
+                _chain().replace(
+                    '<limit effort="10" lower="-1" upper="1" velocity="1"/></joint>',
+                    '<limit effort="10" lower="-1" upper="1" velocity="1"/><mimic joint="j3"/></joint>',
+                    1,
+                )
+            )
+        )
     assert all(j in str(err.value) for j in ("j1", "j2", "j3"))

@@ -36,7 +36,9 @@ def test_a_loop_is_a_revolute_cut_at_its_frames_and_the_linkage_agrees(file, dof
         assert a.place_a.isApprox(b.place_a, 1e-14) and a.place_b.isApprox(b.place_b, 1e-14)
         np.testing.assert_allclose(a.axis, b.axis / np.linalg.norm(b.axis), atol=1e-15)
     q0 = pin.neutral(ours)
-    q0 = pin.integrate(ours, q0, np.linspace(0.4, -0.3, ours.nv))  # off the flat, singular pose the files are written at
+    q0 = pin.integrate(
+        ours, q0, np.linspace(0.4, -0.3, ours.nv)
+    )  # off the flat, singular pose the files are written at
     for model in (ours, theirs):
         model.gravity.linear = np.array([0.0, -9.81, 0.0])
     found, ref = study(ours, cuts, motors, q0), study(theirs, their_cuts, motors, q0)
@@ -64,10 +66,13 @@ def test_couplings_are_rows_over_the_joints_below_the_nearest_common_ancestor():
     assert found.closed and found.dof == 24
 
 
-@pytest.mark.parametrize("file, needle", [
-    ("planar_leg_linkage.urdf", "link 'thigh': inertia"),
-    ("mini_cheetah_leg.urdf", "link 'abduct': inertia"),
-])
+@pytest.mark.parametrize(
+    "file, needle",
+    [
+        ("planar_leg_linkage.urdf", "link 'thigh': inertia"),
+        ("mini_cheetah_leg.urdf", "link 'abduct': inertia"),
+    ],
+)
 def test_the_authors_files_no_body_can_have_are_one_named_line_from_the_cli(file, needle, capsys):
     assert main(["report", str(FIELD / file)]) == 2
     err = capsys.readouterr().err.strip().splitlines()
@@ -76,7 +81,7 @@ def test_the_authors_files_no_body_can_have_are_one_named_line_from_the_cli(file
 
 FOUR_BAR = (FIELD / "four_bar.urdf").read_text()
 HUMANOID = (FIELD / "mit_humanoid.urdf").read_text()
-LOOP = FOUR_BAR[FOUR_BAR.index("<loop"):FOUR_BAR.index("</loop>") + len("</loop>")]
+LOOP = FOUR_BAR[FOUR_BAR.index("<loop") : FOUR_BAR.index("</loop>") + len("</loop>")]
 
 
 def _edit(text: str, old: str, new: str) -> str:
@@ -86,29 +91,62 @@ def _edit(text: str, old: str, new: str) -> str:
 
 #: URDF+ files with one slip each, the style of the field's (ACDC4Robot's exporter writes <sucessor name=...>).
 MALFORMED = {
-    "a loop to a link the URDF lacks": (_edit(FOUR_BAR, '<successor link="link3">', '<successor link="link4">'),
-                                        "<loop name='loop1'> <successor>: link='link4' is not a link of the URDF"),
-    "a coupling to a link the URDF lacks": (_edit(HUMANOID, '<predecessor link="right_hip_rz_link"/>', '<predecessor link="right_hipz"/>'),
-                                            "<coupling name='right_hipz_transmission'> <predecessor>: link='right_hipz' is not a link"),
-    "the exporter's spelling of successor": (_edit(FOUR_BAR, '<successor link="link3">\n            <origin xyz="0.5 0.0 0.0"/>\n        </successor>',
-                                                   '<sucessor name="link3">\n            <origin xyz="0.5 0.0 0.0"/>\n        </sucessor>'),
-                                             "missing <successor link=...> (found <sucessor>"),
-    "an unknown loop type": (_edit(FOUR_BAR, 'type="revolute">\n        <predecessor', 'type="ball">\n        <predecessor'),
-                             "type 'ball' is not one of ('revolute', 'continuous', 'prismatic', 'fixed', 'planar')"),
-    "a planar loop": (_edit(FOUR_BAR, 'type="revolute">\n        <predecessor', 'type="planar">\n        <predecessor'),
-                      "URDF+ reader unavailable: <loop name='loop1'> is a planar loop"),
-    "two constraints of one name": (_edit(HUMANOID, '<coupling name="left_hipz_transmission">', '<coupling name="right_hipz_transmission">'),
-                                    "<coupling name='right_hipz_transmission'>: declared twice"),
-    "a ratio that is not a number": (_edit(HUMANOID, '<ratio value="12.0"/>', '<ratio value="twelve"/>'), "value 'twelve' is not a number"),
-    "a zero axis": (_edit(FOUR_BAR, '</successor>\n        <axis xyz="0 0 1"/>', '</successor>\n        <axis xyz="0 0 0"/>'),
-                    "<loop name='loop1'> <axis>: xyz is a zero vector"),
-    "an origin of two numbers": (_edit(FOUR_BAR, '<origin xyz="0.5 0.0 0.0"/>\n        </successor>', '<origin xyz="0.5 0.0"/>\n        </successor>'),
-                                 "xyz='0.5 0.0' is not three numbers"),
-    "a loop from a link to itself": (_edit(FOUR_BAR, '<successor link="link3">', '<successor link="link2">'),
-                                     "predecessor and successor are the same link 'link2'"),
-    "a coupling of a link and its own parent": (_edit(HUMANOID, '<predecessor link="right_hip_rz_link"/>\n    <successor link="right_hip_rz_rotor"/>',
-                                                      '<predecessor link="right_hip_rz_link"/>\n    <successor link="Floating Base"/>'),
-                                                "a link has no moving joint below the links' nearest common ancestor"),
+    "a loop to a link the URDF lacks": (
+        _edit(FOUR_BAR, '<successor link="link3">', '<successor link="link4">'),
+        "<loop name='loop1'> <successor>: link='link4' is not a link of the URDF",
+    ),
+    "a coupling to a link the URDF lacks": (
+        _edit(HUMANOID, '<predecessor link="right_hip_rz_link"/>', '<predecessor link="right_hipz"/>'),
+        "<coupling name='right_hipz_transmission'> <predecessor>: link='right_hipz' is not a link",
+    ),
+    "the exporter's spelling of successor": (
+        _edit(
+            FOUR_BAR,
+            '<successor link="link3">\n            <origin xyz="0.5 0.0 0.0"/>\n        </successor>',
+            '<sucessor name="link3">\n            <origin xyz="0.5 0.0 0.0"/>\n        </sucessor>',
+        ),
+        "missing <successor link=...> (found <sucessor>",
+    ),
+    "an unknown loop type": (
+        _edit(FOUR_BAR, 'type="revolute">\n        <predecessor', 'type="ball">\n        <predecessor'),
+        "type 'ball' is not one of ('revolute', 'continuous', 'prismatic', 'fixed', 'planar')",
+    ),
+    "a planar loop": (
+        _edit(FOUR_BAR, 'type="revolute">\n        <predecessor', 'type="planar">\n        <predecessor'),
+        "URDF+ reader unavailable: <loop name='loop1'> is a planar loop",
+    ),
+    "two constraints of one name": (
+        _edit(HUMANOID, '<coupling name="left_hipz_transmission">', '<coupling name="right_hipz_transmission">'),
+        "<coupling name='right_hipz_transmission'>: declared twice",
+    ),
+    "a ratio that is not a number": (
+        _edit(HUMANOID, '<ratio value="12.0"/>', '<ratio value="twelve"/>'),
+        "value 'twelve' is not a number",
+    ),
+    "a zero axis": (
+        _edit(FOUR_BAR, '</successor>\n        <axis xyz="0 0 1"/>', '</successor>\n        <axis xyz="0 0 0"/>'),
+        "<loop name='loop1'> <axis>: xyz is a zero vector",
+    ),
+    "an origin of two numbers": (
+        _edit(
+            FOUR_BAR,
+            '<origin xyz="0.5 0.0 0.0"/>\n        </successor>',
+            '<origin xyz="0.5 0.0"/>\n        </successor>',
+        ),
+        "xyz='0.5 0.0' is not three numbers",
+    ),
+    "a loop from a link to itself": (
+        _edit(FOUR_BAR, '<successor link="link3">', '<successor link="link2">'),
+        "predecessor and successor are the same link 'link2'",
+    ),
+    "a coupling of a link and its own parent": (
+        _edit(
+            HUMANOID,
+            '<predecessor link="right_hip_rz_link"/>\n    <successor link="right_hip_rz_rotor"/>',
+            '<predecessor link="right_hip_rz_link"/>\n    <successor link="Floating Base"/>',
+        ),
+        "a link has no moving joint below the links' nearest common ancestor",
+    ),
 }
 
 

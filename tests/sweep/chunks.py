@@ -17,7 +17,15 @@ def four_bar_rows(values, study=None, metrics=None):
     mech = mechkit.load("four_bar")
     chosen = resolve("four_bar", metrics)
     columns = tuple(c for m in chosen for c in m.columns(mech))
-    names = ("crank", "ground", "coupler", "rocker")[:len(values[0])]
-    chunk = Chunk("four_bar", {}, names, tuple(range(len(values))), np.array(values, float),
-                  study, tuple(m.name for m in chosen), columns)
+    names = ("crank", "ground", "coupler", "rocker")[: len(values[0])]
+    chunk = Chunk(
+        "four_bar",
+        {},
+        names,
+        tuple(range(len(values))),
+        np.array(values, float),
+        study,
+        tuple(m.name for m in chosen),
+        columns,
+    )
     return evaluate_chunk(chunk), columns

@@ -65,22 +65,57 @@ class Cluster:
             pytest.skip("the dask command is not installed")
         self.port = port or _free_port()
         self.address = f"{'tls' if tls else 'tcp'}://127.0.0.1:{self.port}"
-        self.tls = ["--tls-ca-file", str(tls / "cert.pem"), "--tls-cert", str(tls / "cert.pem"),
-                    "--tls-key", str(tls / "key.pem")] if tls else []
+        self.tls = (
+            [
+                "--tls-ca-file",
+                str(tls / "cert.pem"),
+                "--tls-cert",
+                str(tls / "cert.pem"),
+                "--tls-key",
+                str(tls / "key.pem"),
+            ]
+            if tls
+            else []
+        )
         self.workers: list[subprocess.Popen] = []
-        self.scheduler = self._start("scheduler", "--host", "127.0.0.1", "--port", str(self.port),
-                                     "--protocol", "tls" if tls else "tcp", "--no-dashboard",
-                                     "--dashboard-address", "127.0.0.1:0",  # its HTTP routes: loopback only
-                                     env=_env(**(config or {})))
+        self.scheduler = self._start(
+            "scheduler",
+            "--host",
+            "127.0.0.1",
+            "--port",
+            str(self.port),
+            "--protocol",
+            "tls" if tls else "tcp",
+            "--no-dashboard",
+            "--dashboard-address",
+            "127.0.0.1:0",  # its HTTP routes: loopback only
+            env=_env(**(config or {})),
+        )
 
     def _start(self, *args: str, env: dict | None = None) -> subprocess.Popen:
-        return subprocess.Popen([str(DASK), *args, *self.tls], env=env or _env(), stdout=subprocess.DEVNULL,
-                                stderr=subprocess.DEVNULL, start_new_session=True)
+        return subprocess.Popen(
+            [str(DASK), *args, *self.tls],
+            env=env or _env(),
+            stdout=subprocess.DEVNULL,
+            stderr=subprocess.DEVNULL,
+            start_new_session=True,
+        )
 
     def add_worker(self) -> subprocess.Popen:
         """Start one more worker process (with its nanny)."""
-        worker = self._start("worker", self.address, "--host", "127.0.0.1", "--nworkers", "1", "--nthreads", "1",
-                             "--no-dashboard", "--dashboard-address", "127.0.0.1:0")
+        worker = self._start(
+            "worker",
+            self.address,
+            "--host",
+            "127.0.0.1",
+            "--nworkers",
+            "1",
+            "--nthreads",
+            "1",
+            "--no-dashboard",
+            "--dashboard-address",
+            "127.0.0.1:0",
+        )
         self.workers.append(worker)
         return worker
 
@@ -90,8 +125,11 @@ class Cluster:
         from distributed.security import Security
 
         pem = self.tls[1::2]
-        security = Security(tls_ca_file=pem[0], tls_client_cert=pem[1], tls_client_key=pem[2],
-                            require_encryption=True) if self.tls else None
+        security = (
+            Security(tls_ca_file=pem[0], tls_client_cert=pem[1], tls_client_key=pem[2], require_encryption=True)
+            if self.tls
+            else None
+        )
         with Client(self.address, timeout="30s", security=security) as client:
             client.wait_for_workers(n, timeout=60)
 
@@ -128,8 +166,14 @@ def scheduler():
 
 
 def _cli(*args: str, quiet: bool = True, env: dict | None = None, **kw) -> subprocess.Popen:
-    return subprocess.Popen([sys.executable, "-m", "mechkit", "sweep", *args, *(["-q"] if quiet else [])],
-                            env=env or _env(), stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, **kw)
+    return subprocess.Popen(
+        [sys.executable, "-m", "mechkit", "sweep", *args, *(["-q"] if quiet else [])],
+        env=env or _env(),
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+        **kw,
+    )
 
 
 def _run(command: list[str]) -> subprocess.CompletedProcess:
@@ -168,8 +212,21 @@ def _one_error_line(stderr: str, notices: bool = False) -> str:
 
 def test_sweep_through_scheduler(scheduler, tmp_path):
     out = tmp_path / "r"
-    done = _cli("four_bar", "--grid", "crank=0.06:0.2:2", "--grid", "rocker=0.2:0.3:2", "--law", "turn",
-                "--samples", "20", "-o", str(out), "--scheduler", scheduler)
+    done = _cli(
+        "four_bar",
+        "--grid",
+        "crank=0.06:0.2:2",
+        "--grid",
+        "rocker=0.2:0.3:2",
+        "--law",
+        "turn",
+        "--samples",
+        "20",
+        "-o",
+        str(out),
+        "--scheduler",
+        scheduler,
+    )
     stdout, stderr = done.communicate(timeout=120)
     assert done.returncode == 0, stderr
     assert "on 1 workers" in stdout
@@ -180,8 +237,27 @@ def test_sweep_through_scheduler(scheduler, tmp_path):
 
 def test_killed_sweep_resumes_every_design_once(scheduler, tmp_path):
     out = tmp_path / "r"
-    args = ("four_bar", "--lhs", "40", "--seed", "7", "--grid", "crank=0.06:0.12", "--grid", "coupler=0.25:0.32",
-            "--law", "turn", "--samples", "30", "-o", str(out), "--scheduler", scheduler, "--chunk-size", "2")
+    args = (
+        "four_bar",
+        "--lhs",
+        "40",
+        "--seed",
+        "7",
+        "--grid",
+        "crank=0.06:0.12",
+        "--grid",
+        "coupler=0.25:0.32",
+        "--law",
+        "turn",
+        "--samples",
+        "30",
+        "-o",
+        str(out),
+        "--scheduler",
+        scheduler,
+        "--chunk-size",
+        "2",
+    )
     first = _cli(*args, start_new_session=True)
     _wait_for_parts(out, 3, first)
     os.killpg(first.pid, signal.SIGKILL)
@@ -200,8 +276,12 @@ def test_killed_sweep_resumes_every_design_once(scheduler, tmp_path):
 def _listening(pids: list[int]) -> set[tuple[str, int]]:
     import psutil
 
-    return {(c.laddr.ip, c.laddr.port) for pid in pids for c in psutil.Process(pid).net_connections("inet")
-            if c.status == psutil.CONN_LISTEN}
+    return {
+        (c.laddr.ip, c.laddr.port)
+        for pid in pids
+        for c in psutil.Process(pid).net_connections("inet")
+        if c.status == psutil.CONN_LISTEN
+    }
 
 
 def _http_status(url: str) -> int:
@@ -241,8 +321,21 @@ def test_scheduler_killed_mid_sweep_then_resumed_on_a_new_cluster(clusters, tmp_
     first.add_worker()
     first.wait_for_workers(1)
     out = tmp_path / "r"
-    sweep = _cli(*FOUR_BAR, "--lhs", "40", "--seed", "3", "--samples", "30", "--chunk-size", "2", "-o", str(out),
-                 "--scheduler", first.address)
+    sweep = _cli(
+        *FOUR_BAR,
+        "--lhs",
+        "40",
+        "--seed",
+        "3",
+        "--samples",
+        "30",
+        "--chunk-size",
+        "2",
+        "-o",
+        str(out),
+        "--scheduler",
+        first.address,
+    )
     _wait_for_parts(out, 3, sweep)
     os.killpg(first.scheduler.pid, signal.SIGKILL)
     killed = time.monotonic()
@@ -274,16 +367,33 @@ def test_empty_then_vanishing_cluster(clusters, tmp_path):
     worker the sweep runs; its only worker killed mid-sweep: the same; a new worker finishes it."""
     cluster = clusters()
     out = tmp_path / "r"
-    args = (*FOUR_BAR, "--lhs", "30", "--seed", "5", "--samples", "30", "--chunk-size", "2", "-o", str(out),
-            "--scheduler", cluster.address, "--wait-workers", "3")
+    args = (
+        *FOUR_BAR,
+        "--lhs",
+        "30",
+        "--seed",
+        "5",
+        "--samples",
+        "30",
+        "--chunk-size",
+        "2",
+        "-o",
+        str(out),
+        "--scheduler",
+        cluster.address,
+        "--wait-workers",
+        "3",
+    )
     started = time.monotonic()
     empty = _cli(*args)
     notice = empty.stderr.readline()
     noticed = time.monotonic() - started
     _, rest = empty.communicate(timeout=60)
     waited = time.monotonic() - started - noticed
-    print(f"\nno worker: notice after {noticed:.1f} s, exit status {empty.returncode} {waited:.1f} s later, "
-          f"{_rows(out)} of 30 designs on disk")
+    print(
+        f"\nno worker: notice after {noticed:.1f} s, exit status {empty.returncode} {waited:.1f} s later, "
+        f"{_rows(out)} of 30 designs on disk"
+    )
     assert notice.startswith(f"mechkit: no worker serves the Dask scheduler {cluster.address}; waiting up to 3 s")
     line = _one_error_line(rest)
     assert empty.returncode == EXIT_NO_WORKERS and 3 <= waited < 10
@@ -321,8 +431,21 @@ def test_task_that_kills_its_worker(clusters, tmp_path):
     worker = cluster.add_worker()
     cluster.wait_for_workers(1)
     out = tmp_path / "r"
-    sweep = _cli(*FOUR_BAR, "--lhs", "30", "--seed", "9", "--samples", "30", "--chunk-size", "2", "-o", str(out),
-                 "--scheduler", cluster.address)
+    sweep = _cli(
+        *FOUR_BAR,
+        "--lhs",
+        "30",
+        "--seed",
+        "9",
+        "--samples",
+        "30",
+        "--chunk-size",
+        "2",
+        "-o",
+        str(out),
+        "--scheduler",
+        cluster.address,
+    )
     _wait_for_parts(out, 3, sweep)
     _stop(worker, signal.SIGKILL)
     _, stderr = sweep.communicate(timeout=60)
@@ -352,18 +475,24 @@ def certificate(tmp_path) -> Path:
     key = ec.generate_private_key(ec.SECP256R1())
     name = x509.Name([x509.NameAttribute(NameOID.COMMON_NAME, "mechkit test cluster")])
     now = datetime.datetime.now(datetime.timezone.utc)
-    cert = (x509.CertificateBuilder().subject_name(name).issuer_name(name).public_key(key.public_key())
-            .serial_number(x509.random_serial_number())
-            .not_valid_before(now - datetime.timedelta(minutes=5)).not_valid_after(now + datetime.timedelta(days=1))
-            .add_extension(x509.BasicConstraints(ca=True, path_length=None), critical=True)
-            .add_extension(x509.SubjectAlternativeName([x509.IPAddress(ipaddress.ip_address("127.0.0.1"))]),
-                           critical=False)
-            .sign(key, hashes.SHA256()))
+    cert = (
+        x509.CertificateBuilder()
+        .subject_name(name)
+        .issuer_name(name)
+        .public_key(key.public_key())
+        .serial_number(x509.random_serial_number())
+        .not_valid_before(now - datetime.timedelta(minutes=5))
+        .not_valid_after(now + datetime.timedelta(days=1))
+        .add_extension(x509.BasicConstraints(ca=True, path_length=None), critical=True)
+        .add_extension(x509.SubjectAlternativeName([x509.IPAddress(ipaddress.ip_address("127.0.0.1"))]), critical=False)
+        .sign(key, hashes.SHA256())
+    )
     folder = tmp_path / "tls"
     folder.mkdir()
     (folder / "cert.pem").write_bytes(cert.public_bytes(serialization.Encoding.PEM))
-    (folder / "key.pem").write_bytes(key.private_bytes(serialization.Encoding.PEM, serialization.PrivateFormat.PKCS8,
-                                                       serialization.NoEncryption()))
+    (folder / "key.pem").write_bytes(
+        key.private_bytes(serialization.Encoding.PEM, serialization.PrivateFormat.PKCS8, serialization.NoEncryption())
+    )
     return folder
 
 
@@ -374,29 +503,55 @@ def test_tls_cluster(clusters, certificate, tmp_path):
     cluster = clusters(tls=certificate)
     cluster.add_worker()
     cluster.wait_for_workers(1)
-    pem = {"--tls-ca": certificate / "cert.pem", "--tls-cert": certificate / "cert.pem",
-           "--tls-key": certificate / "key.pem"}
+    pem = {
+        "--tls-ca": certificate / "cert.pem",
+        "--tls-cert": certificate / "cert.pem",
+        "--tls-key": certificate / "key.pem",
+    }
     out = tmp_path / "flags"
-    flags = _cli(*FOUR_BAR, "--lhs", "8", "--samples", "20", "-o", str(out), "--scheduler", cluster.address,
-                 *(str(w) for item in pem.items() for w in item), quiet=False)
+    flags = _cli(
+        *FOUR_BAR,
+        "--lhs",
+        "8",
+        "--samples",
+        "20",
+        "-o",
+        str(out),
+        "--scheduler",
+        cluster.address,
+        *(str(w) for item in pem.items() for w in item),
+        quiet=False,
+    )
     stdout, stderr = flags.communicate(timeout=120)
     assert flags.returncode == 0, stderr
     assert "on 1 workers" in stdout and "1 worker]" in stderr  # the progress line says who serves it
     assert sorted(read(out)["index"]) == list(range(8))
 
     out = tmp_path / "config"
-    config = {"DASK_DISTRIBUTED__COMM__TLS__CA_FILE": str(pem["--tls-ca"]),
-              "DASK_DISTRIBUTED__COMM__TLS__CLIENT__CERT": str(pem["--tls-cert"]),
-              "DASK_DISTRIBUTED__COMM__TLS__CLIENT__KEY": str(pem["--tls-key"])}
-    configured = _cli(*FOUR_BAR, "--lhs", "8", "--samples", "20", "-o", str(out), "--scheduler", cluster.address,
-                      env=_env(**config))
+    config = {
+        "DASK_DISTRIBUTED__COMM__TLS__CA_FILE": str(pem["--tls-ca"]),
+        "DASK_DISTRIBUTED__COMM__TLS__CLIENT__CERT": str(pem["--tls-cert"]),
+        "DASK_DISTRIBUTED__COMM__TLS__CLIENT__KEY": str(pem["--tls-key"]),
+    }
+    configured = _cli(
+        *FOUR_BAR, "--lhs", "8", "--samples", "20", "-o", str(out), "--scheduler", cluster.address, env=_env(**config)
+    )
     _, stderr = configured.communicate(timeout=120)
     assert configured.returncode == 0, stderr
     assert sorted(read(out)["index"]) == list(range(8))
 
     out = tmp_path / "plain"
-    plain = _cli(*FOUR_BAR, "--lhs", "8", "--samples", "20", "-o", str(out), "--scheduler",
-                 cluster.address.replace("tls://", "tcp://"))
+    plain = _cli(
+        *FOUR_BAR,
+        "--lhs",
+        "8",
+        "--samples",
+        "20",
+        "-o",
+        str(out),
+        "--scheduler",
+        cluster.address.replace("tls://", "tcp://"),
+    )
     _, stderr = plain.communicate(timeout=120)
     line = _one_error_line(stderr)
     print(f"\ntcp:// client to the TLS scheduler: exit status {plain.returncode}: {line}")

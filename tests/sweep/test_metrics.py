@@ -24,8 +24,9 @@ def test_motion_study_power_balance():
     energy = []
     for q in s.q:
         v = mech.velocities(q, [omega])
-        energy.append(pin.computeKineticEnergy(mech.model, mech.data, q, v)
-                      + pin.computePotentialEnergy(mech.model, mech.data, q))
+        energy.append(
+            pin.computeKineticEnergy(mech.model, mech.data, q, v) + pin.computePotentialEnergy(mech.model, mech.data, q)
+        )
     dE = (np.roll(energy, -1) - np.roll(energy, 1)) / (2 * study.period / study.samples)  # periodic motion
     power = s.efforts[:, 0] * omega
     assert np.max(np.abs(power - dE)) < 2e-3 * np.max(np.abs(power))

@@ -23,6 +23,16 @@ def test_optimise_improves_on_the_best_sweep_design(tmp_path):
     assert refined.value <= refined.start_value and 1 < refined.evaluations <= 16
     for axis in space.axes:
         assert axis.lo <= refined.best[axis.name] <= axis.hi
-    again = evaluate_chunk(Chunk("four_bar", {}, space.names, (0,), np.array([list(refined.best.values())]),
-                                 study, ("peak_effort",), ("peak_effort.crank",)))[0]
+    again = evaluate_chunk(
+        Chunk(
+            "four_bar",
+            {},
+            space.names,
+            (0,),
+            np.array([list(refined.best.values())]),
+            study,
+            ("peak_effort",),
+            ("peak_effort.crank",),
+        )
+    )[0]
     assert again["status"] == "ok" and again[column] == pytest.approx(refined.value, rel=1e-9)

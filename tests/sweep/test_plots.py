@@ -23,8 +23,15 @@ def test_pareto_front_and_plots(tmp_path):
         assert beaten.any() != front[i]
     import pandas as pd
 
-    frame = pd.DataFrame({"x": np.repeat([1.0, 2.0], 2), "y": np.tile([1.0, 2.0], 2), "m": [1.0, 2.0, 3.0, np.nan],
-                          "n": [4.0, 3.0, 1.0, np.nan], "status": ["ok", "ok", "ok", "singular"]})
+    frame = pd.DataFrame(
+        {
+            "x": np.repeat([1.0, 2.0], 2),
+            "y": np.tile([1.0, 2.0], 2),
+            "m": [1.0, 2.0, 3.0, np.nan],
+            "n": [4.0, 3.0, 1.0, np.nan],
+            "status": ["ok", "ok", "ok", "singular"],
+        }
+    )
     assert heat_map(frame, "x", "y", "m", tmp_path / "h.png").stat().st_size > 1000
     assert pareto_plot(frame, "m", "n", tmp_path / "p.png").stat().st_size > 1000
     with pytest.raises(InvalidParameters):

@@ -83,9 +83,7 @@ def test_spring_damper_torque_enters_like_a_motor():
     q, qd = pendulum_state(0.7, 1.5)
     torque = k * (free - 0.7) - c * 1.5
     inertia_pivot = 2.0 * 0.8**2 / 3
-    assert L.solve(q, qd).qdd[2] == pytest.approx(
-        (torque - 2.0 * G * 0.4 * np.cos(0.7)) / inertia_pivot, rel=1e-12
-    )
+    assert L.solve(q, qd).qdd[2] == pytest.approx((torque - 2.0 * G * 0.4 * np.cos(0.7)) / inertia_pivot, rel=1e-12)
     assert L.power(q, qd, {})["damper"] == pytest.approx(c * 1.5**2)
     assert L.energy(q, qd)["spring"] == pytest.approx(0.5 * k * (0.7 - free) ** 2)
 

@@ -27,14 +27,12 @@ def _balance_residuals(s: LinkageState) -> tuple[float, float, float]:
     moment = sum(cross(j.point, dyn.reactions[j.name][[0, 2]]) for j in ground)
     moment += sum(cross(link.com, link.bar.mass * g2) for link in links) + sum(dyn.efforts.values())
     d_angular = sum(
-        cross(link.com, link.bar.mass * link.com_acceleration) + link.bar.inertia_planar * link.alpha
-        for link in links
+        cross(link.com, link.bar.mass * link.com_acceleration) + link.bar.inertia_planar * link.alpha for link in links
     )
     power_in = sum(u * s.qd[s.coordinates.index(j)] for j, u in dyn.efforts.items())
     power_in += sum(link.bar.mass * g2 @ link.com_velocity for link in links)
     d_energy = sum(
-        link.bar.mass * link.com_acceleration @ link.com_velocity
-        + link.bar.inertia_planar * link.alpha * link.omega
+        link.bar.mass * link.com_acceleration @ link.com_velocity + link.bar.inertia_planar * link.alpha * link.omega
         for link in links
     )
     scale = max(np.abs(np.concatenate([*dyn.reactions.values(), list(dyn.efforts.values())])))

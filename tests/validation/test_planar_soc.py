@@ -40,20 +40,32 @@ def _four_bar_skcs(links: dict[str, LinkState]) -> list[SKCInstant]:
     dyad = (d, c)
     return [
         SKCInstant(
-            "rocker+coupler", 2, (body_load(rocker, (d, None)), body_load(coupler, dyad)),
+            "rocker+coupler",
+            2,
+            (body_load(rocker, (d, None)), body_load(coupler, dyad)),
             released=(_pin("coupler", b, dyad, +1.0),),
         ),
         SKCInstant(
-            "crank", 3, (body_load(crank, free_chain(a)),), (_motor("crank", free_chain(a)),),
-            released=(_pin("crank", a, free_chain(a), +1.0),), known=(_pin("coupler", b, free_chain(a), -1.0),),
+            "crank",
+            3,
+            (body_load(crank, free_chain(a)),),
+            (_motor("crank", free_chain(a)),),
+            released=(_pin("crank", a, free_chain(a), +1.0),),
+            known=(_pin("coupler", b, free_chain(a), -1.0),),
         ),
         SKCInstant(
-            "coupler", 3, (body_load(coupler, free_chain(b)),),
-            released=(_pin("C", c, free_chain(b), -1.0),), known=(_pin("coupler", b, free_chain(b), +1.0),),
+            "coupler",
+            3,
+            (body_load(coupler, free_chain(b)),),
+            released=(_pin("C", c, free_chain(b), -1.0),),
+            known=(_pin("coupler", b, free_chain(b), +1.0),),
         ),
         SKCInstant(
-            "rocker", 3, (body_load(rocker, free_chain(d)),),
-            released=(_pin("rocker", d, free_chain(d), +1.0),), known=(_pin("C", c, free_chain(d), +1.0),),
+            "rocker",
+            3,
+            (body_load(rocker, free_chain(d)),),
+            released=(_pin("rocker", d, free_chain(d), +1.0),),
+            known=(_pin("C", c, free_chain(d), +1.0),),
         ),
     ]
 
@@ -65,7 +77,9 @@ def _five_bar_skcs(links: dict[str, LinkState]) -> list[SKCInstant]:
     left, right = ("x", "z", b1, None), ("x", "z", b1, c)
     skcs = [
         SKCInstant(
-            "distal dyad", 4, (body_load(dist1, left), body_load(dist2, right)),
+            "distal dyad",
+            4,
+            (body_load(dist1, left), body_load(dist2, right)),
             released=(_pin("dist1", b1, left, +1.0), _pin("dist2", b2, right, +1.0)),
         )
     ]
@@ -73,14 +87,21 @@ def _five_bar_skcs(links: dict[str, LinkState]) -> list[SKCInstant]:
         a, chain = prox.origin, free_chain(prox.origin)
         skcs.append(
             SKCInstant(
-                prox.name, 3, (body_load(prox, chain),), (_motor(prox.name, chain),),
-                released=(_pin(prox.name, a, chain, +1.0),), known=(_pin(distal, prox.tip, chain, -1.0),),
+                prox.name,
+                3,
+                (body_load(prox, chain),),
+                (_motor(prox.name, chain),),
+                released=(_pin(prox.name, a, chain, +1.0),),
+                known=(_pin(distal, prox.tip, chain, -1.0),),
             )
         )
     skcs.append(
         SKCInstant(
-            "dist1", 3, (body_load(dist1, free_chain(b1)),),
-            released=(_pin("C", c, free_chain(b1), -1.0),), known=(_pin("dist1", b1, free_chain(b1), +1.0),),
+            "dist1",
+            3,
+            (body_load(dist1, free_chain(b1)),),
+            released=(_pin("C", c, free_chain(b1), -1.0),),
+            known=(_pin("dist1", b1, free_chain(b1), +1.0),),
         )
     )
     return skcs
@@ -100,12 +121,17 @@ def _five_bar_motion(t: float) -> LinkageState:
 
 
 # decompositions declared by hand per linkage, and the generic planar one (`planar_soc.soc_skcs`)
-CASES = [(_four_bar_motion, lambda st: _four_bar_skcs(st.links)), (_five_bar_motion, lambda st: _five_bar_skcs(st.links)),
-         (_four_bar_motion, soc_skcs), (_five_bar_motion, soc_skcs)]
+CASES = [
+    (_four_bar_motion, lambda st: _four_bar_skcs(st.links)),
+    (_five_bar_motion, lambda st: _five_bar_skcs(st.links)),
+    (_four_bar_motion, soc_skcs),
+    (_five_bar_motion, soc_skcs),
+]
 
 
-@pytest.mark.parametrize(("motion", "decompose"), CASES,
-                         ids=["four_bar", "five_bar", "four_bar-generic", "five_bar-generic"])
+@pytest.mark.parametrize(
+    ("motion", "decompose"), CASES, ids=["four_bar", "five_bar", "four_bar-generic", "five_bar-generic"]
+)
 def test_soc_matches_newton_euler(motion, decompose) -> None:
     for t in np.linspace(0.0, 1.0, 13)[:-1]:
         state = motion(t)

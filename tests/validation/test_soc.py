@@ -47,9 +47,7 @@ def test_pendulum_torque_by_hand(theta: float, free_pivot: bool) -> None:
     expected = mass * 9.81 * 0.5 * length * np.cos(theta) + i_pivot * acc
     result = solve_soc([skc], G)
     assert result.efforts["pin"] == pytest.approx(expected, rel=1e-12, abs=1e-12)
-    assert classic_virtual_work(_pendulum(theta, rate, acc, False)[0], G)["pin"] == pytest.approx(
-        expected, rel=1e-12
-    )
+    assert classic_virtual_work(_pendulum(theta, rate, acc, False)[0], G)["pin"] == pytest.approx(expected, rel=1e-12)
     if free_pivot:
         e = np.array([np.cos(theta), 0.0, np.sin(theta)])
         n_perp = np.array([-np.sin(theta), 0.0, np.cos(theta)])

@@ -16,11 +16,17 @@ INERTIAL = '<inertial><mass value="1"/><inertia ixx="1" iyy="1" izz="1" ixy="0" 
 
 def arm(first: str, second: str) -> str:
     """Two revolute links, each drawn by one mesh visual."""
+
     def link(name, filename):
-        return (f'<link name="{name}">{INERTIAL}<visual><origin xyz="{" ".join(map(str, ORIGIN))}" rpy="0 0 0.4"/>'
-                f'<geometry><mesh filename="{filename}" scale="{" ".join(map(str, SCALE))}"/></geometry></visual></link>')
-    return (f'<robot name="arm"><link name="base"/>{link("a", first)}{link("b", second)}'
-            '<joint name="j1" type="revolute"><parent link="base"/><child link="a"/><axis xyz="0 0 1"/>'
-            '<limit lower="-3" upper="3" effort="1" velocity="1"/></joint>'
-            '<joint name="j2" type="revolute"><parent link="a"/><child link="b"/><origin xyz="0.5 0 0"/>'
-            '<axis xyz="0 1 0"/><limit lower="-3" upper="3" effort="1" velocity="1"/></joint></robot>')
+        return (
+            f'<link name="{name}">{INERTIAL}<visual><origin xyz="{" ".join(map(str, ORIGIN))}" rpy="0 0 0.4"/>'
+            f'<geometry><mesh filename="{filename}" scale="{" ".join(map(str, SCALE))}"/></geometry></visual></link>'
+        )
+
+    return (
+        f'<robot name="arm"><link name="base"/>{link("a", first)}{link("b", second)}'
+        '<joint name="j1" type="revolute"><parent link="base"/><child link="a"/><axis xyz="0 0 1"/>'
+        '<limit lower="-3" upper="3" effort="1" velocity="1"/></joint>'
+        '<joint name="j2" type="revolute"><parent link="a"/><child link="b"/><origin xyz="0.5 0 0"/>'
+        '<axis xyz="0 1 0"/><limit lower="-3" upper="3" effort="1" velocity="1"/></joint></robot>'
+    )

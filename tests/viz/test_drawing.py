@@ -34,7 +34,8 @@ def test_one_colour_per_limb_when_the_urdf_gives_none(load_cached):
     visual = pin.buildGeomFromUrdfString(m.model, m.urdf, pin.GeometryType.VISUAL)
     for obj in visual.geometryObjects:
         obj.meshColor = np.array([0.9, 0.9, 0.9, 1.0])
-    colours = dict(zip((m.model.names[g.parentJoint] for g in visual.geometryObjects),
-                       drawing._link_colours(m.model, visual)))
+    colours = dict(
+        zip((m.model.names[g.parentJoint] for g in visual.geometryObjects), drawing._link_colours(m.model, visual))
+    )
     # five-bar limbs: prox1 -> dist1 and prox2 -> dist2, cut at C
     assert colours["prox1"] == colours["dist1"] != colours["prox2"] == colours["dist2"]

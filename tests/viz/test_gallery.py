@@ -19,7 +19,9 @@ def test_gallery_has_the_mechanism(name):
     """The committed gallery agrees with the registry (regenerate with tools/gallery.py)."""
     png = ROOT / "docs" / "gallery" / f"{name}.png"
     assert png.is_file() and png.stat().st_size < 200_000
-    rows = [line for line in (ROOT / "docs" / "gallery.md").read_text().splitlines() if line.startswith(f"| `{name}` |")]
+    rows = [
+        line for line in (ROOT / "docs" / "gallery.md").read_text().splitlines() if line.startswith(f"| `{name}` |")
+    ]
     assert len(rows) == 1 and f"(docs/gallery/{name}.png)" in rows[0] and "not drawn yet" not in rows[0]
 
 

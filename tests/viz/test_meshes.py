@@ -45,8 +45,11 @@ def test_meshes_resolved_and_placed_where_the_link_is():
 def test_snapshot_page_carries_the_mesh_files():
     html = snapshot(from_urdf(arm("box.stl", "box.obj"), name="arm"), meshes=MeshSearch.of(MESHES))
     objects = page_objects(html)
-    formats = {path.rsplit("/", 1)[-1]: obj["geometries"][0].get("format") for path, obj in objects.items()
-               if "/links/" in path}
+    formats = {
+        path.rsplit("/", 1)[-1]: obj["geometries"][0].get("format")
+        for path, obj in objects.items()
+        if "/links/" in path
+    }
     assert formats == {"a_0": "stl", "b_0": "obj"}
     stl = next(o for p, o in objects.items() if p.endswith("links/a_0"))["geometries"][0]["data"]
     assert stl.data == (MESHES / "box.stl").read_bytes()
@@ -80,7 +83,8 @@ def test_search_order():
 def test_mesh_drawing_in_a_real_browser(tmp_path):
     """A URDF drawn only by mesh visuals (STL and OBJ fixtures) shows them, framed."""
     page = tmp_path / "arm.html"
-    snapshot(from_urdf(arm("box.stl", "box.obj"), name="arm"), np.array([0.7, -0.5]), page,
-             meshes=MeshSearch.of(MESHES))
+    snapshot(
+        from_urdf(arm("box.stl", "box.obj"), name="arm"), np.array([0.7, -0.5]), page, meshes=MeshSearch.of(MESHES)
+    )
     mask = drawn_pixels(screenshot(page, tmp_path / "arm.png"))
     assert_framed(mask)

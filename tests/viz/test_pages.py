@@ -90,8 +90,11 @@ def test_snapshot_command_errors(load_cached, tmp_path, monkeypatch):
 def test_pose_from_the_command_line(load_cached, tmp_path, capsys):
     m = load_cached("four_bar")
     (path,) = viz.snapshot_command(m, q="1.3", html=str(tmp_path / "p.html"))
-    crank = next(c for c in commands(path.read_text()) if c.get("path") == "/mechanism/pose/joints/coupler"
-                 and c["type"] == "set_transform")
+    crank = next(
+        c
+        for c in commands(path.read_text())
+        if c.get("path") == "/mechanism/pose/joints/coupler" and c["type"] == "set_transform"
+    )
     q = m.assemble([1.3], guess=m.home_q)
     data = m.model.createData()
     pin.forwardKinematics(m.model, data, q)
@@ -114,8 +117,10 @@ def test_animation_plays(load_cached, tmp_path):
     """The animated page moves: two screenshots at different times differ, each showing the mechanism."""
     page = tmp_path / "sweep.html"
     viz.animation(load_cached("five_bar"), "sweep", page)
-    early, late = screenshot(page, tmp_path / "early.png", budget_ms=300), screenshot(page, tmp_path / "late.png",
-                                                                                       budget_ms=2500)
+    early, late = (
+        screenshot(page, tmp_path / "early.png", budget_ms=300),
+        screenshot(page, tmp_path / "late.png", budget_ms=2500),
+    )
     assert_shows_a_mechanism(early)
     assert_shows_a_mechanism(late)
     from PIL import Image, ImageChops

@@ -64,9 +64,20 @@ def read_mjcf(path: Path) -> Description:
     key = mujoco.mj_name2id(mm, mujoco.mjtObj.mjOBJ_KEY, "home")
     guess = _joint_values(mm, tree, mm.key_qpos[key] if key >= 0 else mm.qpos0)
     driven = [j for a in actuators for j, _ in a.joints] + [j for j in actuated if j in guess]
-    return Description(tree.model.name, tree_urdf(tree.model, closures), actuated, {j: guess[j] for j in driven}, guess,
-                       path, "mjcf", closures=closures, model=tree.model, couplings=couplings, springs=springs(mm, tree),
-                       actuators=actuators)
+    return Description(
+        tree.model.name,
+        tree_urdf(tree.model, closures),
+        actuated,
+        {j: guess[j] for j in driven},
+        guess,
+        path,
+        "mjcf",
+        closures=closures,
+        model=tree.model,
+        couplings=couplings,
+        springs=springs(mm, tree),
+        actuators=actuators,
+    )
 
 
 def _joint_values(mm, tree: Tree, qpos: np.ndarray) -> dict[str, float | tuple[float, ...]]:
@@ -74,13 +85,13 @@ def _joint_values(mm, tree: Tree, qpos: np.ndarray) -> dict[str, float | tuple[f
     tree's q), a ball's rotation vector, a free joint's position and rotation vector."""
     out: dict[str, float | tuple[float, ...]] = {}
     for j, name in enumerate(tree.names["joint"]):
-        q = np.asarray(qpos[mm.jnt_qposadr[j]:], dtype=float)
+        q = np.asarray(qpos[mm.jnt_qposadr[j] :], dtype=float)
         kind = int(mm.jnt_type[j])
         if kind in (2, 3):
             out[name] = float(q[0])
         else:
             at = 3 if kind == 0 else 0
-            w, x, y, z = q[at:at + 4]
+            w, x, y, z = q[at : at + 4]
             rotation = tuple(float(c) for c in pin.log3(pin.Quaternion(w, x, y, z).normalized().matrix()))
             out[name] = tuple(float(c) for c in q[:3]) + rotation if kind == 0 else rotation
     return out

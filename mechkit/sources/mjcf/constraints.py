@@ -79,8 +79,16 @@ def equalities(mm: MjModel, tree: Tree) -> tuple[tuple[LoopClosure, ...], tuple[
         elif kind == TENDON:
             first = fixed_tendon(mm, tree, o1, where)
             second = fixed_tendon(mm, tree, o2, where) if o2 >= 0 else ()
-            couplings.append(Coupling(name, first, second, tuple(float(c) for c in data[0:5]), float(mm.tendon_length0[o1]),
-                                      float(mm.tendon_length0[o2]) if o2 >= 0 else 0.0))
+            couplings.append(
+                Coupling(
+                    name,
+                    first,
+                    second,
+                    tuple(float(c) for c in data[0:5]),
+                    float(mm.tendon_length0[o1]),
+                    float(mm.tendon_length0[o2]) if o2 >= 0 else 0.0,
+                )
+            )
         else:
             raise MalformedDescription(where, "only connect, weld, joint and tendon equalities are read")
     for (b1, b2), anchors in connects.items():
@@ -99,8 +107,18 @@ def _connects(tree: Tree, b1: int, b2: int, anchors: list) -> list[LoopClosure]:
         if other is not None:
             anchors.remove(other)
         axis = None if other is None else (other[1] - p1) / np.linalg.norm(other[1] - p1)
-        out.append(_cut(tree, name, "spherical" if other is None else "revolute", b1, b2, at,
-                        tree.world[b2].actInv(tree.world[b1] * at), axis))
+        out.append(
+            _cut(
+                tree,
+                name,
+                "spherical" if other is None else "revolute",
+                b1,
+                b2,
+                at,
+                tree.world[b2].actInv(tree.world[b1] * at),
+                axis,
+            )
+        )
     return out
 
 
@@ -118,8 +136,14 @@ def _joint_coupling(mm: MjModel, tree: Tree, name: str, j1: int, j2: int, data: 
     allows hinges and slides only)."""
     leader = ((tree.names["joint"][j2], 1.0),) if j2 >= 0 else ()
     ref = float(mm.qpos0[mm.jnt_qposadr[j2]]) if j2 >= 0 else 0.0
-    return Coupling(name, ((tree.names["joint"][j1], 1.0),), leader, tuple(float(c) for c in data[0:5]),
-                    float(mm.qpos0[mm.jnt_qposadr[j1]]), ref)
+    return Coupling(
+        name,
+        ((tree.names["joint"][j1], 1.0),),
+        leader,
+        tuple(float(c) for c in data[0:5]),
+        float(mm.qpos0[mm.jnt_qposadr[j1]]),
+        ref,
+    )
 
 
 def fixed_tendon(mm: MjModel, tree: Tree, t: int, where: str) -> tuple[tuple[str, float], ...]:
@@ -141,8 +165,10 @@ def fixed_tendon(mm: MjModel, tree: Tree, t: int, where: str) -> tuple[tuple[str
     terms = []
     for w in range(int(mm.tendon_adr[t]), int(mm.tendon_adr[t]) + int(mm.tendon_num[t])):
         if int(mm.wrap_type[w]) != WRAP_JOINT:
-            raise MalformedDescription(where, f"tendon {tree.names['tendon'][t]!r} is spatial: only fixed tendons "
-                                       "(sums of joint values) are read")
+            raise MalformedDescription(
+                where,
+                f"tendon {tree.names['tendon'][t]!r} is spatial: only fixed tendons (sums of joint values) are read",
+            )
         terms.append((tree.names["joint"][int(mm.wrap_objid[w])], float(mm.wrap_prm[w])))
     return tuple(terms)
 
@@ -160,8 +186,10 @@ def check_tendons(mm: MjModel, tree: Tree) -> None:
     for t in range(mm.ntendon):
         for field in ("tendon_stiffness", "tendon_damping", "tendon_armature", "tendon_frictionloss"):
             if np.any(np.asarray(getattr(mm, field)[t]) != 0):
-                raise MalformedDescription(f"MJCF tendon {tree.names['tendon'][t]!r}",
-                                           f"{field.removeprefix('tendon_')} on a tendon is not read")
+                raise MalformedDescription(
+                    f"MJCF tendon {tree.names['tendon'][t]!r}",
+                    f"{field.removeprefix('tendon_')} on a tendon is not read",
+                )
 
 
 def springs(mm: MjModel, tree: Tree) -> tuple[JointSpring, ...]:
@@ -182,13 +210,17 @@ def springs(mm: MjModel, tree: Tree) -> tuple[JointSpring, ...]:
     for j, name in enumerate(tree.names["joint"]):
         dof, kind = int(mm.jnt_dofadr[j]), int(mm.jnt_type[j])
         nv = 1 if kind in ONE_FREEDOM else (3 if kind == 1 else 6)
-        damping = np.asarray(mm.dof_damping[dof:dof + nv], dtype=float) * (not mm.opt.disableflags & DAMPER_OFF)
+        damping = np.asarray(mm.dof_damping[dof : dof + nv], dtype=float) * (not mm.opt.disableflags & DAMPER_OFF)
         stiffness = float(mm.jnt_stiffness[j]) * (not mm.opt.disableflags & SPRING_OFF)
-        if np.any(mm.jnt_stiffnesspoly[j] != 0) or np.any(mm.dof_dampingpoly[dof:dof + nv] != 0):
-            raise MalformedDescription(f"MJCF joint {name!r}", "polynomial (nonlinear) stiffness or damping is not read")
+        if np.any(mm.jnt_stiffnesspoly[j] != 0) or np.any(mm.dof_dampingpoly[dof : dof + nv] != 0):
+            raise MalformedDescription(
+                f"MJCF joint {name!r}", "polynomial (nonlinear) stiffness or damping is not read"
+            )
         if kind not in ONE_FREEDOM and (stiffness != 0 or np.ptp(damping) != 0):
-            raise MalformedDescription(f"MJCF joint {name!r}", "a ball or free joint's stiffness (or unequal damping "
-                                       "on its freedoms) is not read")
+            raise MalformedDescription(
+                f"MJCF joint {name!r}",
+                "a ball or free joint's stiffness (or unequal damping on its freedoms) is not read",
+            )
         if stiffness != 0 or damping[0] != 0:
             reference = float(mm.qpos_spring[mm.jnt_qposadr[j]]) if kind in ONE_FREEDOM else 0.0
             out.append(JointSpring(name, stiffness, reference, 0.0, float(damping[0])))
@@ -228,6 +260,7 @@ def actuation(mm: MjModel, tree: Tree) -> tuple[tuple[str, ...], tuple[Actuator,
             actuators.append(Actuator(name, tuple((joint, gear * c) for joint, c in terms)))
             actuated.append(name)
         else:
-            raise MalformedDescription(where, "acts on a site, a body or a slider-crank: only joint and fixed-tendon "
-                                       "transmissions are read")
+            raise MalformedDescription(
+                where, "acts on a site, a body or a slider-crank: only joint and fixed-tendon transmissions are read"
+            )
     return tuple(actuated), tuple(actuators)

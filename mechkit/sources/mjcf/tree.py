@@ -92,17 +92,23 @@ def object_names(mujoco: ModuleType, mm: MjModel) -> dict[str, list[str]]:
         MalformedDescription: two objects of one kind share a name.
     """
     obj = mujoco.mjtObj
-    kinds = {"body": (obj.mjOBJ_BODY, mm.nbody), "joint": (obj.mjOBJ_JOINT, mm.njnt), "site": (obj.mjOBJ_SITE, mm.nsite),
-             "equality": (obj.mjOBJ_EQUALITY, mm.neq), "tendon": (obj.mjOBJ_TENDON, mm.ntendon),
-             "actuator": (obj.mjOBJ_ACTUATOR, mm.nu)}
+    kinds = {
+        "body": (obj.mjOBJ_BODY, mm.nbody),
+        "joint": (obj.mjOBJ_JOINT, mm.njnt),
+        "site": (obj.mjOBJ_SITE, mm.nsite),
+        "equality": (obj.mjOBJ_EQUALITY, mm.neq),
+        "tendon": (obj.mjOBJ_TENDON, mm.ntendon),
+        "actuator": (obj.mjOBJ_ACTUATOR, mm.nu),
+    }
     out = {}
     for kind, (code, count) in kinds.items():
         out[kind] = [mujoco.mj_id2name(mm, code, i) or f"{kind}{i}" for i in range(count)]
         taken = set()
         for name in out[kind]:
             if name in taken:
-                raise MalformedDescription(f"MJCF {kind} {name!r}", f"two {kind}s of that name (an unnamed one is "
-                                           f"called <{kind}><id>)")
+                raise MalformedDescription(
+                    f"MJCF {kind} {name!r}", f"two {kind}s of that name (an unnamed one is called <{kind}><id>)"
+                )
             taken.add(name)
     out["body"][0] = "world"
     return out
@@ -140,8 +146,11 @@ def build_tree(mujoco: ModuleType, mm: MjModel, name: str) -> Tree:
             joint, at = _joint(model, mm, names["joint"][j], j, joint, at)
         body_joint.append(joint)
         placement.append(at)
-        inertia = pin.Inertia(float(mm.body_mass[b]), np.asarray(mm.body_ipos[b], dtype=float),
-                              _principal(mm.body_iquat[b], mm.body_inertia[b]))
+        inertia = pin.Inertia(
+            float(mm.body_mass[b]),
+            np.asarray(mm.body_ipos[b], dtype=float),
+            _principal(mm.body_iquat[b], mm.body_inertia[b]),
+        )
         add_body(model, names["body"][b], joint, at, inertia)
     for s in range(mm.nsite):
         b = int(mm.site_bodyid[s])
@@ -171,7 +180,7 @@ def _joint(model: pin.Model, mm: MjModel, name: str, j: int, parent: int, at: pi
         placement, body = pin.SE3.Identity(), pin.SE3.Identity()
     jid = add_joint(model, name, parent, joint_model(kind, axis), placement)
     dof, nv = int(mm.jnt_dofadr[j]), model.joints[jid].nv
-    model.armature[model.joints[jid].idx_v:model.joints[jid].idx_v + nv] = mm.dof_armature[dof:dof + nv]
+    model.armature[model.joints[jid].idx_v : model.joints[jid].idx_v + nv] = mm.dof_armature[dof : dof + nv]
     if kind in ("revolute", "prismatic") and mm.jnt_limited[j]:
         iq = model.joints[jid].idx_q
         model.lowerPositionLimit[iq], model.upperPositionLimit[iq] = (float(x) for x in mm.jnt_range[j])

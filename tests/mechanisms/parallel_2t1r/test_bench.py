@@ -11,8 +11,12 @@ def test_bench_runs_every_method(mech):
 
     b = bench_mechanism(mech, quick=True, with_peers=False)
     by = {r.method.name: r for r in b.rows}
-    for name in ("constrained RNEA + determinacy", "constrained RNEA, no determinacy",
-                 "SOC, 3 SKCs (numpy, from the analytic state)", "classic virtual work (numpy, from the analytic state)",
-                 "paper FK (eqs. 7-9) + closed-form joints"):
+    for name in (
+        "constrained RNEA + determinacy",
+        "constrained RNEA, no determinacy",
+        "SOC, 3 SKCs (numpy, from the analytic state)",
+        "classic virtual work (numpy, from the analytic state)",
+        "paper FK (eqs. 7-9) + closed-form joints",
+    ):
         assert by[name].outcome == "ok" and by[name].median_s > 0 and by[name].error < 1e-9, name
     assert by["classic virtual work (numpy, from the analytic state)"].note == "efforts only"

@@ -24,9 +24,14 @@ def test_soc_equals_classic_virtual_work_at_one_instant():
 def test_skc_order_and_unknowns():
     p = Parallel2T1RParams()
     s = state_at(p, *motion_law(1.0))
-    names = [(k.name, [a for a, _ in k.actuators], [r.joint for r in k.released], [r.joint for r in k.known])
-             for k in skcs(p, s)]
-    assert names == [("SKC3", [], ["R43"], []), ("SKC2", ["R31"], ["R23"], ["R43"]),
-                     ("SKC1", ["R11", "R21"], [], ["R23"])]
+    names = [
+        (k.name, [a for a, _ in k.actuators], [r.joint for r in k.released], [r.joint for r in k.known])
+        for k in skcs(p, s)
+    ]
+    assert names == [
+        ("SKC3", [], ["R43"], []),
+        ("SKC2", ["R31"], ["R23"], ["R43"]),
+        ("SKC1", ["R11", "R21"], [], ["R23"]),
+    ]
     with pytest.raises(SingularConfiguration):
         classic_torques(p, s, ("R11", "R21"))  # two motors cannot hold three DOF

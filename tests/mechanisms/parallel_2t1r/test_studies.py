@@ -22,7 +22,11 @@ def test_start_of_motion_law(mech):
         m1 = v[f"{method}:M1"][:4]
         assert np.ptp(m1) < 1e-3 * np.abs(m1).max()
     assert {m for m, fails in study.failures.items() if [x for x, _ in fails] == [0.0]} == {
-        "analytic", "classic", "soc", "pinocchio"}
+        "analytic",
+        "classic",
+        "soc",
+        "pinocchio",
+    }
 
 
 def test_singular_approach_blows_up_only_without_redundant_actuation(mech):
@@ -33,8 +37,15 @@ def test_singular_approach_blows_up_only_without_redundant_actuation(mech):
         slope = np.polyfit(np.log(x[2:]), np.log(np.abs(v[key][2:-1])), 1)[0]
         assert slope == pytest.approx(-0.5, abs=0.02), key
         assert np.abs(v[key][3:-1]).max() / np.abs(v[key][:3]).max() > 20.0, key
-    for key in ("redundant/classic:M1", "redundant/classic:M2", "redundant/classic:M3", "redundant/classic:M4",
-                "redundant/classic:cond", "redundant/pinocchio:R13_fx", "redundant/soc:R23_fx"):
+    for key in (
+        "redundant/classic:M1",
+        "redundant/classic:M2",
+        "redundant/classic:M3",
+        "redundant/classic:M4",
+        "redundant/classic:cond",
+        "redundant/pinocchio:R13_fx",
+        "redundant/soc:R23_fx",
+    ):
         growth = np.abs(v[key][3:-1]).max() / np.abs(v[key][:3]).max()  # 31.6 for delta^-1/2
         assert growth < 1.5, key
     for q in ("M1", "M2", "M3", "M4"):  # converging like delta^1/2 to the value at the singular pose

@@ -50,10 +50,7 @@ def test_attitude_is_a_rotation_about_the_two_hinges():
 def test_length_jacobian_matches_finite_differences():
     x, h = np.array([0.07, -0.05]), 1e-6
     fd = np.column_stack(
-        [
-            (actuator_lengths(GEO, *(x + h * e)) - actuator_lengths(GEO, *(x - h * e))) / (2 * h)
-            for e in np.eye(2)
-        ]
+        [(actuator_lengths(GEO, *(x + h * e)) - actuator_lengths(GEO, *(x - h * e))) / (2 * h) for e in np.eye(2)]
     )
     assert np.allclose(length_jacobian(GEO, *x), fd, atol=1e-9)
 

@@ -13,7 +13,11 @@ def test_bench_runs_every_method(mech):
 
     b = bench_mechanism(mech, quick=True, with_peers=False)
     by = {r.method.name: r for r in b.rows}
-    for name in ("closure Newton tol=1e-12", "constrained RNEA + determinacy", "constrained RNEA, no determinacy",
-                 *(m.label for m in SPEC.bench_methods)):
+    for name in (
+        "closure Newton tol=1e-12",
+        "constrained RNEA + determinacy",
+        "constrained RNEA, no determinacy",
+        *(m.label for m in SPEC.bench_methods),
+    ):
         assert by[name].outcome == "ok" and by[name].median_s > 0, name
     assert by["IK eq. (8)"].method.quantity == "inverse_kinematics" and by["IK eq. (8)"].error < 1e-10

@@ -64,9 +64,7 @@ def test_cut_joint_angle_matches_pinocchio_frames(mech):
         q, _, _ = state(mech, phi, np.zeros(2), np.zeros(2))
         pin.framesForwardKinematics(mech.model, mech.data, q)
         for k, i in enumerate((1, 2)):
-            rot = [
-                mech.data.oMf[mech.model.getFrameId(f)].rotation for f in (f"link{i}2_C", f"platform_C{i}")
-            ]
+            rot = [mech.data.oMf[mech.model.getFrameId(f)].rotation for f in (f"link{i}2_C", f"platform_C{i}")]
             np.testing.assert_allclose(
                 rot[0].T @ rot[1], kin.rot_z(kin.limb_angles(P, i, theta[k], phi)[1]), atol=1e-14
             )

@@ -13,10 +13,7 @@ P = Spherical2DofParams()
 
 
 def test_defaults_are_the_papers_values():
-    deg = {
-        k: math.degrees(getattr(P, k))
-        for k in ("alpha1", "alpha2", "beta", "eta11", "eta12", "eta21", "eta22")
-    }
+    deg = {k: math.degrees(getattr(P, k)) for k in ("alpha1", "alpha2", "beta", "eta11", "eta12", "eta21", "eta22")}
     assert deg == pytest.approx(
         {"alpha1": 25, "alpha2": 30, "beta": 53.13, "eta11": 0, "eta12": 90, "eta21": 0, "eta22": 90},
         abs=1e-12,

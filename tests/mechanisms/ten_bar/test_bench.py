@@ -11,8 +11,11 @@ def test_bench_runs_every_route(mech):
 
     b = bench_mechanism(mech, quick=True, with_peers=False)
     by = {r.method.name: r for r in b.rows}
-    for name in ("raw pin.constraintDynamics (mu=1e-9)", "constrained RNEA, no determinacy",
-                 *(m.label for m in mech.spec.bench_methods)):
+    for name in (
+        "raw pin.constraintDynamics (mu=1e-9)",
+        "constrained RNEA, no determinacy",
+        *(m.label for m in mech.spec.bench_methods),
+    ):
         assert by[name].outcome == "ok" and by[name].median_s > 0, name
     for m in mech.spec.bench_methods:
         assert by[m.label].error < 1e-9, m.label

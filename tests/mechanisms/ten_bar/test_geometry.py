@@ -34,9 +34,7 @@ def test_every_loop_closes_for_every_input():
 def test_stowed_and_deployed_poses_and_the_wall():
     p = tp.TenBarParams()
     stowed = geo.stowed_pose(p)
-    assert np.allclose(geo.unit(stowed.angles["l123"]), [0, 1]) and np.allclose(
-        geo.unit(stowed.angles["l34"]), [0, -1]
-    )
+    assert np.allclose(geo.unit(stowed.angles["l123"]), [0, 1]) and np.allclose(geo.unit(stowed.angles["l34"]), [0, -1])
     deployed = geo.pose(p, tp.DEPLOYED["R1"], tp.DEPLOYED["R3"], 0.0)
     R2, R3, R4 = (deployed.points[k] for k in ("R2", "R3", "R4"))
     cross = (R3 - R2)[0] * (R4 - R3)[1] - (R3 - R2)[1] * (R4 - R3)[0]

@@ -16,8 +16,12 @@ def test_bench_measures_the_unit_along_its_fold(load_cached):
     b = bench_mechanism(mech, quick=True, with_peers=False)
     assert b.nv == 18 and b.rows_closure == 15
     by = {r.method.name: r for r in b.rows}
-    for name in ("closure Newton tol=1e-12", "constraintDynamics mu=1e-09 it=20", "constrained RNEA, no determinacy",
-                 *(m.label for m in mech.spec.bench_methods)):
+    for name in (
+        "closure Newton tol=1e-12",
+        "constraintDynamics mu=1e-09 it=20",
+        "constrained RNEA, no determinacy",
+        *(m.label for m in mech.spec.bench_methods),
+    ):
         assert by[name].outcome == "ok" and by[name].median_s > 0, name
     assert all("t" in s.extra for s in b.samples)
     assert by["dense KKT (independent rows)"].error < 0.1

@@ -23,7 +23,7 @@ def test_gamma_law_sign_reading_gives_the_printed_gamma0():
 def test_drive_derivatives_against_differences(t):
     h = 1e-3
     lo, mid, hi = (drive_state(min(max(x, 0.0), 200.0)) for x in (t - h, t, t + h))
-    span = (min(t + h, 200.0) - max(t - h, 0.0))
+    span = min(t + h, 200.0) - max(t - h, 0.0)
     assert mid.alpha_rate == pytest.approx((hi.alpha - lo.alpha) / span, rel=1e-6)
     assert mid.gamma_rate == pytest.approx((hi.gamma - lo.gamma) / span, rel=1e-6)
     assert mid.alpha_acc == pytest.approx((hi.alpha_rate - lo.alpha_rate) / span, rel=1e-5)
