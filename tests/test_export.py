@@ -23,11 +23,14 @@ def test_hooke_cut_has_no_export():
     """A Hooke cut has no MJCF equality nor sidecar pair: a clear MethodUnavailable, not a wrong file."""
     urdf = """<robot name="h" xmlns:mechkit="https://mechkit.dev/loop">
       <link name="base"/>
-      <link name="arm"><inertial><mass value="1"/><inertia ixx="0.1" iyy="0.1" izz="0.1" ixy="0" ixz="0" iyz="0"/></inertial></link>
+      <link name="arm"><inertial><mass value="1"/>
+        <inertia ixx="0.1" iyy="0.1" izz="0.1" ixy="0" ixz="0" iyz="0"/></inertial></link>
       <joint name="j1" type="revolute"><parent link="base"/><child link="arm"/><axis xyz="0 0 1"/>
         <limit effort="1" lower="-3" upper="3" velocity="1"/></joint>
-      <link name="arm2"><inertial><mass value="1"/><inertia ixx="0.1" iyy="0.1" izz="0.1" ixy="0" ixz="0" iyz="0"/></inertial></link>
-      <joint name="j2" type="revolute"><parent link="arm"/><child link="arm2"/><origin xyz="0.5 0 0"/><axis xyz="0 0 1"/>
+      <link name="arm2"><inertial><mass value="1"/>
+        <inertia ixx="0.1" iyy="0.1" izz="0.1" ixy="0" ixz="0" iyz="0"/></inertial></link>
+      <joint name="j2" type="revolute"><parent link="arm"/><child link="arm2"/>
+        <origin xyz="0.5 0 0"/><axis xyz="0 0 1"/>
         <limit effort="1" lower="-3" upper="3" velocity="1"/></joint>
       <link name="arm_tip"/><joint name="arm_tip_fixed" type="fixed"><parent link="arm2"/><child link="arm_tip"/>
         <origin xyz="0.5 0 0"/></joint>

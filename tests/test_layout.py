@@ -374,38 +374,62 @@ def test_the_constraint_api_scan_sees_attributes_and_imports(tmp_path):
 TESTED_ELSEWHERE = {
     "mechkit/__main__.py": "`python -m mechkit` runs `mechkit.cli.main`: every subprocess test of the command line "
     "goes through it (tests/test_cli.py, tests/cli/)",
-    "mechkit/base/arguments.py": "the argument checks of the Mechanism API: the bad-input campaign of tests/test_mechanism.py",
+    "mechkit/base/arguments.py": (
+        "the argument checks of the Mechanism API: the bad-input campaign of tests/test_mechanism.py"
+    ),
     "mechkit/base/joint_arguments.py": (
         "the joint-naming argument checks of the Mechanism API: the bad-input campaign of tests/test_mechanism.py"
     ),
     "mechkit/base/exceptions.py": "the error classes: raised and matched by name throughout the tests",
     "mechkit/base/plotting.py": "matplotlib set up for every figure: drawn by the studies' and figures' tests",
-    "mechkit/base/resources.py": "where the packaged templates and URDFs are: tests/catalog/test_contract.py reads every one",
+    "mechkit/base/resources.py": (
+        "where the packaged templates and URDFs are: tests/catalog/test_contract.py reads every one"
+    ),
     "mechkit/base/spatial.py": "rotation and cross-product helpers of the mechanisms' kinematics, tested with them "
     "(tests/mechanisms/truss/test_geometry.py checks the paper's rotations)",
     "mechkit/bench/charts.py": "drawn by `mechkit bench` in tests/cli/test_bench.py",
     "mechkit/bench/markdown.py": "the benchmark page, written by `mechkit bench` in tests/cli/test_bench.py",
-    "mechkit/bench/raw.py": "the raw constraintDynamics rows, measured in tests/bench/test_run.py and tests/cli/test_bench.py",
-    "mechkit/bench/results.py": "the bench's rows, built and read in tests/bench/test_timing.py and tests/bench/test_run.py",
-    "mechkit/bench/sampling.py": "the bench's states: tests/bench/test_methods.py measures every declared method on them",
+    "mechkit/bench/raw.py": (
+        "the raw constraintDynamics rows, measured in tests/bench/test_run.py and tests/cli/test_bench.py"
+    ),
+    "mechkit/bench/results.py": (
+        "the bench's rows, built and read in tests/bench/test_timing.py and tests/bench/test_run.py"
+    ),
+    "mechkit/bench/sampling.py": (
+        "the bench's states: tests/bench/test_methods.py measures every declared method on them"
+    ),
     "mechkit/bench/scale.py": "the cost-against-size fit, printed by `mechkit bench` in tests/cli/test_bench.py",
-    "mechkit/export/xmltext.py": "the XML text of the MJCF export: tests/export/test_mjcf.py compiles every file in MuJoCo",
-    "mechkit/independent_inputs.py": "the joints a motion fixes: tests/motion/test_study.py (the ten-bar's passive input) "
-    "and tests/second_opinion/test_agreement.py",
+    "mechkit/export/xmltext.py": (
+        "the XML text of the MJCF export: tests/export/test_mjcf.py compiles every file in MuJoCo"
+    ),
+    "mechkit/independent_inputs.py": (
+        "the joints a motion fixes: tests/motion/test_study.py (the ten-bar's passive input) and "
+        "tests/second_opinion/test_agreement.py"
+    ),
     "mechkit/mechanisms/deployable_9rr12uru/actuation.py": "the composite's actuators and home: its model tests, "
     "tests/mechanisms/test_deployable_9rr12uru.py",
-    "mechkit/mechanisms/deployable_9rr12uru/figures.py": "drawn in tests/mechanisms/deployable_9rr12uru/test_studies.py",
-    "mechkit/mechanisms/deployable_9rr12uru/params.py": "bad parameters named in tests/mechanisms/test_deployable_9rr12uru.py",
+    "mechkit/mechanisms/deployable_9rr12uru/figures.py": (
+        "drawn in tests/mechanisms/deployable_9rr12uru/test_studies.py"
+    ),
+    "mechkit/mechanisms/deployable_9rr12uru/params.py": (
+        "bad parameters named in tests/mechanisms/test_deployable_9rr12uru.py"
+    ),
     "mechkit/mechanisms/five_bar/__init__.py": "its SPEC: tests/catalog/test_contract.py; its model against the closed "
     "form: tests/test_mechanism.py",
-    "mechkit/mechanisms/five_bar/closed_form.py": "the bench's reference: tests/bench/test_methods.py, tests/bench/test_run.py",
+    "mechkit/mechanisms/five_bar/closed_form.py": (
+        "the bench's reference: tests/bench/test_methods.py, tests/bench/test_run.py"
+    ),
     "mechkit/mechanisms/five_bar/params.py": "checked by the property campaign, tests/catalog/test_params.py",
     "mechkit/mechanisms/four_bar/__init__.py": "its SPEC: tests/catalog/test_contract.py; its model against the closed "
     "form: tests/test_mechanism.py",
-    "mechkit/mechanisms/four_bar/closed_form.py": "the bench's reference: tests/bench/test_methods.py, tests/bench/test_run.py",
+    "mechkit/mechanisms/four_bar/closed_form.py": (
+        "the bench's reference: tests/bench/test_methods.py, tests/bench/test_run.py"
+    ),
     "mechkit/mechanisms/planar_linkage/bench.py": "the planar linkages' bench methods and references: "
     "tests/bench/test_methods.py, tests/bench/test_run.py",
-    "mechkit/mechanisms/planar_linkage/lagrange.py": "a bench method of the planar linkages: tests/bench/test_methods.py",
+    "mechkit/mechanisms/planar_linkage/lagrange.py": (
+        "a bench method of the planar linkages: tests/bench/test_methods.py"
+    ),
     "mechkit/mechanisms/planar_linkage/state.py": "the planar linkages' bench states: tests/bench/test_methods.py",
     "mechkit/mechanisms/rocket_gimbal/__init__.py": "its SPEC: tests/catalog/test_contract.py; its parts: "
     "tests/mechanisms/rocket_gimbal/",
@@ -414,26 +438,40 @@ TESTED_ELSEWHERE = {
     "linearisation study; the sweep hook itself has no test of its own",
     "mechkit/mechanisms/rocket_gimbal/figures.py": "drawn in tests/mechanisms/rocket_gimbal/test_studies.py",
     "mechkit/mechanisms/spherical_2dof/figures.py": "drawn in tests/mechanisms/spherical_2dof/test_studies.py",
-    "mechkit/mechanisms/ten_bar/design.py": "the deployment metric, read through the sweep: tests/sweep/test_specific.py",
+    "mechkit/mechanisms/ten_bar/design.py": (
+        "the deployment metric, read through the sweep: tests/sweep/test_specific.py"
+    ),
     "mechkit/mechanisms/ten_bar/lagrange_deployment.py": "the Lagrange route of the deployment, against the Pinocchio "
     "route in tests/mechanisms/ten_bar/test_dynamics.py",
-    "mechkit/mechanisms/ten_bar/lagrange_model.py": "the patent's Lagrange model: tests/mechanisms/ten_bar/test_dynamics.py "
-    "and tests/mechanisms/ten_bar/test_checks.py",
-    "mechkit/mechanisms/ten_bar/scenes.py": "the deployment scene: tests/mechanisms/test_ten_bar.py (the deployment law)",
+    "mechkit/mechanisms/ten_bar/lagrange_model.py": (
+        "the patent's Lagrange model: tests/mechanisms/ten_bar/test_dynamics.py and "
+        "tests/mechanisms/ten_bar/test_checks.py"
+    ),
+    "mechkit/mechanisms/ten_bar/scenes.py": (
+        "the deployment scene: tests/mechanisms/test_ten_bar.py (the deployment law)"
+    ),
     "mechkit/mechanisms/ten_bar/soc.py": "reactions three ways: tests/mechanisms/ten_bar/test_checks.py",
-    "mechkit/mechanisms/tetra_3rr3uru/actuation.py": "the unit's actuators and home: tests/mechanisms/test_tetra_3rr3uru.py",
+    "mechkit/mechanisms/tetra_3rr3uru/actuation.py": (
+        "the unit's actuators and home: tests/mechanisms/test_tetra_3rr3uru.py"
+    ),
     "mechkit/mechanisms/tetra_3rr3uru/checks.py": "its report rows: tests/test_report.py",
     "mechkit/mechanisms/truss/bench.py": "the fold states of the bench: tests/mechanisms/tetra_3rr3uru/test_bench.py",
     "mechkit/mechanisms/truss/checks.py": "the truss mechanisms' report rows: tests/test_report.py",
-    "mechkit/mechanisms/truss/joint_state.py": "the web-joint laws the fold follows: tests/mechanisms/truss/test_fold.py",
+    "mechkit/mechanisms/truss/joint_state.py": (
+        "the web-joint laws the fold follows: tests/mechanisms/truss/test_fold.py"
+    ),
     "mechkit/mechanisms/truss/nodes.py": "node centres along the fold: tests/mechanisms/truss/test_fold.py and "
     "tests/mechanisms/test_deployable_9rr12uru.py",
     "mechkit/motion/path.py": "the kinematics of every study: tests/motion/test_study.py",
     "mechkit/motion/plot.py": "drawn by `mechkit motion --plot` in tests/cli/test_motion.py",
     "mechkit/second_opinion/instant.py": "a part of every second opinion: tests/second_opinion/test_agreement.py",
     "mechkit/second_opinion/solve.py": "a part of every second opinion: tests/second_opinion/test_agreement.py",
-    "mechkit/second_opinion/structure_graph.py": "what the decomposition reads: tests/second_opinion/test_decomposition.py",
-    "mechkit/sources/description.py": "what every reader returns: tests/sources/test_mjcf.py, tests/sources/test_sdf.py",
+    "mechkit/second_opinion/structure_graph.py": (
+        "what the decomposition reads: tests/second_opinion/test_decomposition.py"
+    ),
+    "mechkit/sources/description.py": (
+        "what every reader returns: tests/sources/test_mjcf.py, tests/sources/test_sdf.py"
+    ),
     "mechkit/sources/mjcf/constraints.py": "a part of the MJCF reader: tests/sources/test_mjcf.py",
     "mechkit/sources/mjcf/tree.py": "a part of the MJCF reader: tests/sources/test_mjcf.py",
     "mechkit/sources/pinocchio_tree.py": "the trees of the MJCF and SDFormat readers: tests/sources/test_mjcf.py, "

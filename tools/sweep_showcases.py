@@ -1,9 +1,10 @@
 """The design studies of docs/sweeps.md: the gimbal's linear-rule error over its geometry (r, h), the
-2T1R's peak motor torque over (l1, l2) with and without its redundant limb, the ten-bar sized as
-the patent's step 4 asks, and the deployable truss's rod tubes for first frequency per kilogram. Writes the results folders under --work, the figures under docs/figures/,
-and prints the numbers the page quotes.
+2T1R's peak motor torque over (l1, l2) with and without its redundant limb, the ten-bar sized as the
+patent's step 4 asks, and the deployable truss's rod tubes for first frequency per kilogram. Writes the
+results folders under --work, the figures under docs/figures/, and prints the numbers the page quotes.
 
-    PYTHONPATH=. python tools/sweep_showcases.py [--work /tmp/showcases] [--workers 2] [--only gimbal,2t1r,ten_bar,deployable]
+    PYTHONPATH=. python tools/sweep_showcases.py [--work /tmp/showcases] [--workers 2] \\
+        [--only gimbal,2t1r,ten_bar,deployable]
 """
 
 from __future__ import annotations
@@ -94,8 +95,8 @@ def parallel(work: Path, workers: int) -> None:
     both = (a["status"] == "ok") & (b["status"] == "ok")
     ratio = (b["peak_motor_torque"] / a["peak_motor_torque"])[both]
     print(
-        f"2T1R: four motors / three motors peak torque over {int(both.sum())} designs: {ratio.min():.3f}..{ratio.max():.3f}"
-        f" (median {ratio.median():.3f})"
+        f"2T1R: four motors / three motors peak torque over {int(both.sum())} designs: "
+        f"{ratio.min():.3f}..{ratio.max():.3f} (median {ratio.median():.3f})"
     )
 
 
@@ -121,8 +122,8 @@ def ten_bar(work: Path, workers: int) -> None:
     start = time.perf_counter()
     refined = optimise(out, "max_motor_torque", starts=1, max_evaluations=24, workers=workers)[0]
     print(
-        f"ten_bar refined in {time.perf_counter() - start:.1f} s: {refined.start_value:.2f} -> {refined.value:.2f} N m at "
-        f"{refined.best} ({refined.evaluations} evaluations)"
+        f"ten_bar refined in {time.perf_counter() - start:.1f} s: {refined.start_value:.2f} -> {refined.value:.2f} "
+        f"N m at {refined.best} ({refined.evaluations} evaluations)"
     )
     chosen = mechkit.load("ten_bar", **refined.best)
     c = deployment_metrics(chosen)

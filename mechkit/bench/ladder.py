@@ -1,6 +1,13 @@
 """The ladder of N four-bar loops (`mechkit.bench.ladder_model`): forward dynamics cost and error against N.
 
-For each N: one state (q = 0, input rates ~ N(0, 1), efforts ~ N(0, 0.1) N m, seed 0), the exact accelerations from the dense KKT on mechkit's independent closure rows, solved by LU with iterative refinement (residual in extended precision, `exact_accelerations`); then microseconds per call of the raw `pin.constraintDynamics` (mu = 1e-9, the core's default) and of `Mechanism.forward_dynamics(method="lcaba")` (`pin.lcaba` at the core's defaults, its closure error certified), timed alternately repeat after repeat in one process, each keeping its fastest repeat (the least disturbed on a shared machine), and their ratio; the relative error of each against the exact accelerations. Growth: the least-squares slope of log t against log N over N >= `FIT_FROM`.
+For each N: one state (q = 0, input rates ~ N(0, 1), efforts ~ N(0, 0.1) N m, seed 0), the exact
+accelerations from the dense KKT on mechkit's independent closure rows, solved by LU with iterative
+refinement (residual in extended precision, `exact_accelerations`); then microseconds per call of
+the raw `pin.constraintDynamics` (mu = 1e-9, the core's default) and of
+`Mechanism.forward_dynamics(method="lcaba")` (`pin.lcaba` at the core's defaults, its closure error
+certified), timed alternately repeat after repeat in one process, each keeping its fastest repeat
+(the least disturbed on a shared machine), and their ratio; the relative error of each against the
+exact accelerations. Growth: the least-squares slope of log t against log N over N >= `FIT_FROM`.
 """
 
 from __future__ import annotations
@@ -166,7 +173,10 @@ def markdown(points: list[LadderPoint]) -> list[str]:
         Markdown lines.
     """
     lines = [
-        "| loops | nv | raw constraintDynamics us | its error | lcaba us | its error | lcaba / raw | lcaba iterations |",
+        (
+            "| loops | nv | raw constraintDynamics us | its error | lcaba us | its error | lcaba / raw "
+            "| lcaba iterations |"
+        ),
         "|---|---|---|---|---|---|---|---|",
     ]
     for p in points:

@@ -26,7 +26,8 @@ start = time.perf_counter()
 import mechkit
 mechkit.load({name!r})
 seconds = time.perf_counter() - start
-print(json.dumps({{"seconds": seconds, "modules": sorted(m for m in sys.modules if m.startswith("mechkit.mechanisms"))}}))
+modules = sorted(m for m in sys.modules if m.startswith("mechkit.mechanisms"))
+print(json.dumps({{"seconds": seconds, "modules": modules}}))
 """
 
 

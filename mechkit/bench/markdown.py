@@ -158,7 +158,10 @@ def goals(results: list[MechanismBench]) -> list[str]:
                         p["fd/mujoco"] > 1.0,
                     ),
                     (
-                        "reactions slower: Python overhead of the core's inverse dynamics, see tools/bench_core.py --profile",
+                        (
+                            "reactions slower: Python overhead of the core's inverse dynamics, see "
+                            "tools/bench_core.py --profile"
+                        ),
                         id_ratio > 1.0,
                     ),
                     ("accuracy < 1e6x", acc < 1e6),
@@ -216,8 +219,8 @@ def goal_summary(results: list[MechanismBench]) -> str:
         + f"; speed of the forward-dynamics "
         f"wrapper met on {fd}/{n} (the raw pin.constraintDynamics call on {raw}/{n}); inverse dynamics with every "
         f"reaction as fast as mj_forward on {idm}/{n}. Goal 2 (inverse dynamics with every reaction within 5x of "
-        f"one raw pin.constraintDynamics): met on {idr}/{n}. Where speed is missed, the cost is Python-level work around "
-        f"the Pinocchio calls (see tools/bench_core.py --profile), except where the raw "
+        f"one raw pin.constraintDynamics): met on {idr}/{n}. Where speed is missed, the cost is Python-level "
+        f"work around the Pinocchio calls (see tools/bench_core.py --profile), except where the raw "
         f"pin.constraintDynamics call is itself slower than mj_forward ({n - raw}/{n}: Pinocchio's legacy proximal "
         f"path: see its exponent in the scale fit)."
     )
@@ -305,7 +308,8 @@ def markdown_report(
         (
             f"error: per quantity, {'; '.join(f'{q}: {e}' for q, e in ERROR_LABELS.items())}. "
             f"x fastest: time / fastest method of equal or better accuracy (error within 10x, or both <= "
-            f"{EQUAL_ACCURACY_FLOOR:g}; efforts-only rows are not counted against rows with reactions). x base: time / the baseline ({'; '.join(f'{q}: {m}' for q, m in BASELINES.items())})."
+            f"{EQUAL_ACCURACY_FLOOR:g}; efforts-only rows are not counted against rows with reactions). "
+            f"x base: time / the baseline ({'; '.join(f'{q}: {m}' for q, m in BASELINES.items())})."
         ),
         "",
         "## Results",

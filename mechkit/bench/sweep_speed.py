@@ -3,8 +3,8 @@
 `load_times` builds a mechanism with new parameters each run (so xacro's own memo never answers),
 through xacro (`mechkit.mechanism.from_params`) and through `TemplateCache` + `Mechanism`, and
 reports medians. `sweep_speed` runs the same four-bar sweep on a LocalCluster of 1 and of 2 worker
-processes (cluster start not timed) and reports each wall time (each worker pinned to its own CPU, `pin_workers`) and the parallel efficiency
-T1 / (2 T2).
+processes (cluster start not timed) and reports each wall time (each worker pinned to its own CPU,
+`pin_workers`) and the parallel efficiency T1 / (2 T2).
 """
 
 from __future__ import annotations

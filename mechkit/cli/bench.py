@@ -140,6 +140,9 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     p.add_argument(
         "--speed",
         action="store_true",
-        help="also the dynamics speed rows, the ladder of four-bar loops, the 2T1R motion law, loading from files and the second opinion",
+        help=(
+            "also the dynamics speed rows, the ladder of four-bar loops, the 2T1R motion law, loading from files "
+            "and the second opinion"
+        ),
     )
     p.set_defaults(func=run)

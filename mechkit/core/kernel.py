@@ -111,7 +111,8 @@ class ClosureKernel:
         self._relative = np.zeros((self.cut_size, self.joints.size))  # twists of frame_b's joint minus frame_a's
         np.add.at(self._relative, (np.arange(self.cut_size), self._ib), 1.0)
         np.add.at(self._relative, (np.arange(self.cut_size), self._ia), -1.0)
-        # row wrenches times multipliers -> what every joint transmits (tree joints minus their subtree's cuts, then the cuts)
+        # row wrenches times multipliers -> what every joint transmits (tree joints minus their subtree's cuts,
+        # then the cuts)
         self._transmission = np.concatenate([-(self.incidence[1:] @ row_sum), row_sum])
 
     # ------------------------------------------------------------ cut rows

@@ -11,11 +11,12 @@ frames. A loop is
 - spatial otherwise: lambda = 6.
 
 Kutzbach-Gruebler count, loop by loop: M = sum of the tree joints' freedoms (nv) + sum of the cut
-joints' freedoms within their loop's motion space - sum of lambda - one per coupling row. A cut declared without `rows` is
-closed with the minimal rows of its loop (planar: 2 position rows normal to n, or 3 for a weld;
-spherical: 2 rotation rows for a revolute cut, 1 for a Hooke, 3 for a weld); `rows="spatial"`
-forces the full rows. The geometry is read at the neutral configuration: parallel axes stay
-parallel under planar motion, and axes through the centre stay through it under spherical motion.
+joints' freedoms within their loop's motion space - sum of lambda - one per coupling row. A cut
+declared without `rows` is closed with the minimal rows of its loop (planar: 2 position rows normal
+to n, or 3 for a weld; spherical: 2 rotation rows for a revolute cut, 1 for a Hooke, 3 for a weld);
+`rows="spatial"` forces the full rows. The geometry is read at the neutral configuration: parallel
+axes stay parallel under planar motion, and axes through the centre stay through it under spherical
+motion.
 
 Idle freedoms: velocities that close every loop (J v = 0) yet move one body on a loop and no other
 body with mass (a rod spinning about its own axis between two spherical joints).

@@ -3,17 +3,19 @@ URDF with its loops and couplings as URDF+ elements.
 
 | mechkit | URDF+ |
 |---|---|
-| revolute / prismatic / weld cut | `<loop type="revolute" / "prismatic" / "fixed">`, predecessor frame_a's link, successor frame_b's, `<axis>` in frame_a's frame |
+| revolute / prismatic / weld cut | `<loop type="revolute" / "prismatic" / "fixed">` |
 | spherical, Hooke cut | none exists: `MethodUnavailable` |
-| a mimic's row (named after its joint: x_f = m x_l + o) | the follower joint's `<mimic joint multiplier offset>` (URDF's own) |
-| a linear row without offset over the joints below two links' nearest common ancestor | `<coupling>` of those links, `<ratio>` |
+| a mimic's row (named after its joint: x_f = m x_l + o) | the follower joint's `<mimic joint multiplier offset>` |
+| a linear row without offset over the joints below two links' nearest common ancestor | `<coupling>`, `<ratio>` |
 | another row of one joint to another, linear | the follower joint's `<mimic>` (the row then takes the joint's name) |
-| actuated joint | `<transmission>`, and `<mechkit:home joint value>` (the home inputs, so that `mechkit.load` assembles the same default configuration, on the branch nearest its guess) |
+| actuated joint | `<transmission>`, and `<mechkit:home joint value>` (the home inputs) |
 
-A cut frame is a URDF link (or a joint: its child link's frame). The URDF keeps mechkit's other
-elements (`<mechkit:spring>`); its `<mechkit:loop>`, `<mechkit:home>`, `<mimic>` and `<transmission>`
-elements are written anew. A tree with joints URDF lacks (ball, free-flyer: no URDF text) and tendon
-actuators have no URDF+ counterpart.
+A `<loop>` has frame_a's link as predecessor, frame_b's as successor and its `<axis>` in frame_a's frame; a
+`<coupling>` is of those two links; `<mimic>` is URDF's own. The home inputs make `mechkit.load` assemble the
+same default configuration, on the branch nearest its guess. A cut frame is a URDF link (or a joint: its child
+link's frame). The URDF keeps mechkit's other elements (`<mechkit:spring>`); its `<mechkit:loop>`,
+`<mechkit:home>`, `<mimic>` and `<transmission>` elements are written anew. A tree with joints URDF lacks
+(ball, free-flyer: no URDF text) and tendon actuators have no URDF+ counterpart.
 """
 
 from __future__ import annotations

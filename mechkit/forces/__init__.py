@@ -5,12 +5,16 @@ body wrenches) and its part of the energy balance (a potential, or a dissipated 
 
 | element | module | role |
 |---|---|---|
-| `JointSprings`: springs and dampers a description declares (URDF `<mechkit:spring>`, MJCF stiffness, springref, damping; URDF `<dynamics damping>`) | `springs` | conservative + dissipative |
-| `CoulombFriction`: constant joint friction (URDF `<dynamics friction>`, MJCF frictionloss) | `coulomb` | dissipative |
-| `ReactionFriction`: friction torque from each revolute joint's reaction, tree and cut joints (Adams-like) | `reaction_friction` | dissipative |
+| `JointSprings`: springs and dampers a description declares | `springs` | conservative + dissipative |
+| `CoulombFriction`: constant joint friction | `coulomb` | dissipative |
+| `ReactionFriction`: friction torque from each revolute joint's reaction | `reaction_friction` | dissipative |
 | `TorqueMotor`: a commanded effort within a torque-speed envelope | `motors` | source |
 | `Gravity`: another gravity than the model's | `gravity` | conservative |
 | `BodyWrench`: a force through a body point and a moment, functions of time | `wrenches` | source |
+
+A description declares springs and dampers as URDF `<mechkit:spring>` and `<dynamics damping>`, MJCF stiffness,
+springref and damping; constant friction as URDF `<dynamics friction>` and MJCF frictionloss. `ReactionFriction` acts at
+tree and cut joints alike (Adams-like).
 
 `described.read` collects what a file says beyond the readers' springs (dampers, friction, joint
 limits, motor envelopes). `Mechanism` applies its own `JointSprings` in both dynamics; the simulator

@@ -1,10 +1,11 @@
 """Motion studies: efforts and every joint's reaction along a motion, as data, plots and peak loads.
 
 `study(mech, law)` assembles the mechanism along an input law (`inputs`: callables of time, arrays,
-a CSV file, a registered scene, a motion law the mechanism declares), then computes velocities, accelerations, the driven joints' efforts
-and every joint's reaction; the `MotionResult` converts to a pandas DataFrame and writes Parquet and
-CSV (`result`); `peaks` finds each joint's largest force and moment, axial and radial; `plot` draws
-efforts and chosen reactions over time (matplotlib, imported on use).
+a CSV file, a registered scene, a motion law the mechanism declares), then computes velocities,
+accelerations, the driven joints' efforts and every joint's reaction; the `MotionResult` converts to
+a pandas DataFrame and writes Parquet and CSV (`result`); `peaks` finds each joint's largest force
+and moment, axial and radial; `plot` draws efforts and chosen reactions over time (matplotlib,
+imported on use).
 
 The entry point is this package's `study`, not a `Mechanism` method: `Mechanism` is core and this
 package sits above it (it reads scenes and writes tables), and the core never imports upwards.

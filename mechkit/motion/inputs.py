@@ -5,9 +5,9 @@ the joints that fix the assembly (by default those of the mechanism's home input
 joints, plus a passive joint driven by a spring where the mechanism declares one, as the ten-bar's
 R5). It comes from a callable of time, from arrays, from a CSV file of time and inputs, from a
 registered scene (its poses as warm starts) or from a motion law the mechanism declares
-(`MechanismSpec.motion_laws`: the 2T1R's paper law, the ten-bar's deployment). Where rates or accelerations are not given they are
-the derivatives of a not-a-knot cubic spline through the values (arrays, CSV, scenes) or a
-fourth-order central difference (callables).
+(`MechanismSpec.motion_laws`: the 2T1R's paper law, the ten-bar's deployment). Where rates or
+accelerations are not given they are the derivatives of a not-a-knot cubic spline through the values
+(arrays, CSV, scenes) or a fourth-order central difference (callables).
 """
 
 from __future__ import annotations

@@ -121,7 +121,8 @@ class SimulationResult:
             f"closure residual: max {self.residual.max():.3g} m",
             (
                 f"energy (J): kinetic {T[-1]:.6g}, potential {V[-1] - V[0]:+.6g} (change), "
-                f"supplied {self.supplied[-1]:.6g}, dissipated {self.dissipated[-1]:.6g} (impacts {self.impact_loss[-1]:.6g})"
+                f"supplied {self.supplied[-1]:.6g}, dissipated {self.dissipated[-1]:.6g} "
+                f"(impacts {self.impact_loss[-1]:.6g})"
             ),
             (
                 f"energy balance: drift {self.energy_error:.3g} J of {self.energy_scale:.6g} J exchanged "

@@ -17,9 +17,10 @@ pairwise not collinear (|a x b| > 1e-6) and whose origins lie within 1e-4 m at t
 becomes one ball joint at the third: the first two are locked at zero (`balls=False` keeps the three
 revolutes: the same mechanism, parametrised by three angles). `freeflyer=True` puts the tree on a
 free-flyer root named "root_joint", held at the URDF's origin in the home assembly (a home input at
-position and rotation zero), so that fixing it gives the fixed-base robot's home. The model is built directly (`Description.model`): a ball
-joint has no URDF. Only where it is the URDF's own tree (no substitution, no ball, fixed base) does the
-description also carry the URDF text, with the pairs as `<mechkit:loop>` elements.
+position and rotation zero), so that fixing it gives the fixed-base robot's home. The model is built
+directly (`Description.model`): a ball joint has no URDF. Only where it is the URDF's own tree (no
+substitution, no ball, fixed base) does the description also carry the URDF text, with the pairs as
+`<mechkit:loop>` elements.
 
 Where Gepetto's loader is silent mechkit refuses by name: a substitution naming a joint the URDF lacks
 (it keeps the joint as it is: a different mechanism than the file means), an unknown joint_type (it

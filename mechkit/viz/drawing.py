@@ -3,10 +3,11 @@
 Links are the URDF visuals in their URDF colours (a palette per limb when the URDF gives none):
 primitives, and meshes (STL, OBJ, DAE; found as `mechkit.viz.meshes` says, a missing one is a
 placeholder); a body with no visual drawn (none in its file, a missing mesh, a reader's tree with no
-URDF) is a bar from its joint to each child joint and cut frame; joints are short cylinders along their axis, actuated ones red and
-thicker (spheres for multi-coordinate joints); loop cuts are yellow spheres; the ground is grey
-(anchors at the supports, joined by bars when the URDF draws no ground body). Sizes scale with the
-mechanism (its joint extent at home); placements are 4x4 world transforms (m).
+URDF) is a bar from its joint to each child joint and cut frame; joints are short cylinders along
+their axis, actuated ones red and thicker (spheres for multi-coordinate joints); loop cuts are
+yellow spheres; the ground is grey (anchors at the supports, joined by bars when the URDF draws no
+ground body). Sizes scale with the mechanism (its joint extent at home); placements are 4x4 world
+transforms (m).
 """
 
 from __future__ import annotations

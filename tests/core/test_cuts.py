@@ -26,7 +26,8 @@ def _branch(k: int, axes: list[str]) -> str:
         parent = link
     parts.append(f"""
   <link name="b{k}_tip"/>
-  <joint name="b{k}_tip_fixed" type="fixed"><parent link="{parent}"/><child link="b{k}_tip"/><origin xyz="0.1 0.05 0"/></joint>""")
+  <joint name="b{k}_tip_fixed" type="fixed"><parent link="{parent}"/><child link="b{k}_tip"/>
+    <origin xyz="0.1 0.05 0"/></joint>""")
     return "".join(parts)
 
 

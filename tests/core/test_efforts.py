@@ -35,8 +35,9 @@ def test_full_rank_qr_solution_is_the_svd_minimum_norm_solution(name, load_cache
 
 
 def test_the_split_gives_the_svd_minimum_norm_solution_and_certifies_what_the_svd_confirms(load_cached):
-    """The deployable (a redundant row): through one LU of a square part of the passive block, the minimum-norm [u; lambda]
-    of the whole system, one sample as N; the block certified regular where its singular values pass."""
+    """The deployable (a redundant row): through one LU of a square part of the passive block, the
+    minimum-norm [u; lambda] of the whole system, one sample as N; the block certified regular where its
+    singular values pass."""
     m = load_cached("deployable_9rr12uru")
     cm = m.closure_model
     Jrows, system, b, residuals = _systems(m)

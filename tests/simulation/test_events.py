@@ -54,9 +54,9 @@ def _kinetic(m, q, v):
 
 @pytest.mark.parametrize("restitution", [0.0, 0.4, 1.0])
 def test_impact_keeps_the_closures_and_its_energy_identity(load_cached, restitution):
-    """The five-bar (two freedoms) with prox1 driven at 1 rad/s (its law's rate before and after) and prox2
-    stopped (or bounced): after the jump the loop's velocity rows vanish, prox1 keeps its drive's rate and
-    prox2 has -restitution times the rate it arrived with; the kinetic energy changes by the drive's impulsive work minus what the impact
+    """The five-bar (two freedoms) with prox1 driven at 1 rad/s (its law's rate before and after) and prox2 stopped (or
+    bounced): after the jump the loop's velocity rows vanish, prox1 keeps its drive's rate and prox2 has -restitution
+    times the rate it arrived with; the kinetic energy changes by the drive's impulsive work minus what the impact
     dissipated, which is >= 0, and 0 for an elastic impact."""
     m = load_cached("five_bar")
     cm = m.closure_model

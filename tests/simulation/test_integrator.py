@@ -65,7 +65,8 @@ def test_bad_options_are_refused_by_name(options, name):
 
 
 def test_a_step_that_cannot_be_taken_says_when():
-    """A solution that blows up at t = 1 (y' = y^2 from 1): the step size collapses before it, reported with the time."""
+    """A solution that blows up at t = 1 (y' = y^2 from 1): the step size collapses before it, reported with the
+    time."""
     with pytest.raises(simulation.IntegrationFailed, match="the integrator stopped at t = ") as err:
         simulation.run(lambda t, y: y**2, 0.0, np.array([1.0]), 2.0, simulation.Options())
     assert 0.99 < err.value.t <= 1.0

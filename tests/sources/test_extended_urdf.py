@@ -247,7 +247,13 @@ MALFORMED = {
         _case(
             "digit_like_2legs",
             {
-                '    "SPHERICAL",\n    "SPHERICAL",\n    "SPHERICAL",\n    "SPHERICAL",\n    "SPHERICAL",\n    "SPHERICAL",': '    "BALL",\n    "SPHERICAL",\n    "SPHERICAL",\n    "SPHERICAL",\n    "SPHERICAL",\n    "SPHERICAL",'
+                (
+                    '    "SPHERICAL",\n    "SPHERICAL",\n    "SPHERICAL",\n'
+                    '    "SPHERICAL",\n    "SPHERICAL",\n    "SPHERICAL",'
+                ): (
+                    '    "BALL",\n    "SPHERICAL",\n    "SPHERICAL",\n'
+                    '    "SPHERICAL",\n    "SPHERICAL",\n    "SPHERICAL",'
+                )
             },
         ),
         "'BALL' (for joint 'spherical_free_hip') is not one of",
@@ -302,7 +308,9 @@ MALFORMED = {
         _case(
             "talos_like",
             {
-                "[['closedloop1_B', 'closedloop1_A']]": "[['closedloop1_B', 'closedloop1_A'], ['closedloop1_B', 'closedloop1_A']]",
+                "[['closedloop1_B', 'closedloop1_A']]": (
+                    "[['closedloop1_B', 'closedloop1_A'], ['closedloop1_B', 'closedloop1_A']]"
+                ),
                 "type: ['6d']": "type: ['6d', '6d']",
             },
         ),

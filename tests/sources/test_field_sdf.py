@@ -105,10 +105,10 @@ def test_cassie_sdf_with_its_pelvis_fixed_is_refused_naming_its_weakest_passive_
 
 
 def test_why_cassie_sdf_is_near_singular_at_every_pose(tmp_path):
-    """The cause, with Pinocchio calls on the reader's description: the shin-spring cut's slide axis is
-    within 1e-4 rad (4.3e-5) of the relative velocity of its two frames when the shin and the knee spring
-    turn together about their parallel axes (so that motion is free to first order); at assemblies with other motor angles the passive
-    block's smallest singular value stays under 1e-6 of its largest; and closures to 1e-12 from starts
+    """The cause, with Pinocchio calls on the reader's description: the shin-spring cut's slide axis is within
+    1e-4 rad (4.3e-5) of the relative velocity of its two frames when the shin and the knee spring turn together
+    about their parallel axes (so that motion is free to first order); at assemblies with other motor angles the
+    passive block's smallest singular value stays under 1e-6 of its largest; and closures to 1e-12 from starts
     1e-5 apart give efforts that differ by more than 1e-6 N m."""
     desc = read_sdf(_welded(tmp_path))
     st = Statics(desc)

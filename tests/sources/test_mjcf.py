@@ -277,7 +277,8 @@ def test_the_urdf_text_builds_the_readers_model(path):
 
 BASE = (
     '<mujoco><worldbody><body name="b"><joint name="h" axis="0 0 1"/><geom size="0.1"/><site name="s"/>'
-    '<body name="c" pos="1 0 0"><joint name="k" type="ball"/><geom size="0.1"/><site name="s2"/></body></body></worldbody>{}</mujoco>'
+    '<body name="c" pos="1 0 0"><joint name="k" type="ball"/><geom size="0.1"/><site name="s2"/></body>'
+    "</body></worldbody>{}</mujoco>"
 )
 MALFORMED = {  # file text -> what the one-line error says
     "": "empty",

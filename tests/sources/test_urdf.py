@@ -230,7 +230,10 @@ MIMIC_ERRORS = {
     "mimics forming a cycle": (
         _gripper('<mimic joint="j1"/>').replace(
             '<limit effort="10" lower="0" upper="0.04" velocity="1"/></joint>\n      <joint name="j2"',
-            '<limit effort="10" lower="0" upper="0.04" velocity="1"/><mimic joint="j2"/></joint>\n      <joint name="j2"',
+            (
+                '<limit effort="10" lower="0" upper="0.04" velocity="1"/><mimic joint="j2"/></joint>\n'
+                '      <joint name="j2"'
+            ),
         ),
         "cycle",
     ),
@@ -250,9 +253,11 @@ FOUR_BAR_AT_JOINTS = """<robot name="fb" xmlns:mechkit="https://mechkit.dev/loop
   <link name="ground"/><link name="crank">{i}</link><link name="coupler">{i}</link><link name="rocker">{i}</link>
   <joint name="A" type="revolute"><parent link="ground"/><child link="crank"/><axis xyz="0 0 1"/>
     <limit effort="1" lower="-3" upper="3" velocity="1"/></joint>
-  <joint name="B" type="revolute"><parent link="crank"/><child link="coupler"/><origin xyz="0.2 0 0"/><axis xyz="0 0 1"/>
+  <joint name="B" type="revolute"><parent link="crank"/><child link="coupler"/>
+    <origin xyz="0.2 0 0"/><axis xyz="0 0 1"/>
     <limit effort="1" lower="-3" upper="3" velocity="1"/></joint>
-  <joint name="D" type="revolute"><parent link="ground"/><child link="rocker"/><origin xyz="0.6 0 0"/><axis xyz="0 0 1"/>
+  <joint name="D" type="revolute"><parent link="ground"/><child link="rocker"/>
+    <origin xyz="0.6 0 0"/><axis xyz="0 0 1"/>
     <limit effort="1" lower="-3" upper="3" velocity="1"/></joint>
   <link name="coupler_tip"/><joint name="C_on_coupler" type="fixed"><parent link="coupler"/><child link="coupler_tip"/>
     <origin xyz="0.5 0 0"/></joint>

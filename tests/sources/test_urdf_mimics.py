@@ -20,7 +20,8 @@ def _chain(mimic3: str = '<mimic joint="j2" multiplier="0.5"/>') -> str:
     """Three sliders on a base: j2 mimics j1 (-2, offset 0.01), j3 carries `mimic3`."""
     joints = "".join(
         f'<link name="l{k}">{INERTIAL}</link><joint name="j{k}" type="prismatic"><parent link="base"/>'
-        f'<child link="l{k}"/><axis xyz="0 {k} 1"/><limit effort="10" lower="-1" upper="1" velocity="1"/>{mimic}</joint>'
+        f'<child link="l{k}"/><axis xyz="0 {k} 1"/><limit effort="10" lower="-1" upper="1" velocity="1"/>'
+        f"{mimic}</joint>"
         for k, mimic in ((1, ""), (2, '<mimic joint="j1" multiplier="-2" offset="0.01"/>'), (3, mimic3))
     )
     return f'<robot name="chain"><link name="base"/>{joints}</robot>'

@@ -1,8 +1,8 @@
-"""Sweeps on a real Dask cluster: `dask scheduler` and `dask worker` as separate processes on
-127.0.0.1, a sweep sent through `--scheduler`, a sweep killed with SIGKILL midway and resumed, and what
-the cluster itself can do to a sweep (marked slow: they wait on real processes): its scheduler killed
-mid-sweep, no worker at the start or all of them gone, a task that kills its worker, a TLS scheduler. The embedded cluster stays
-private (127.0.0.1, no dashboard unless asked for)."""
+"""Sweeps on a real Dask cluster: `dask scheduler` and `dask worker` as separate processes on 127.0.0.1,
+a sweep sent through `--scheduler`, a sweep killed with SIGKILL midway and resumed, and what the cluster
+itself can do to a sweep (marked slow: they wait on real processes): its scheduler killed mid-sweep, no
+worker at the start or all of them gone, a task that kills its worker, a TLS scheduler. The embedded
+cluster stays private (127.0.0.1, no dashboard unless asked for)."""
 
 from __future__ import annotations
 

@@ -52,7 +52,7 @@ class RocketGimbalParams(MechanismParams):
     cross_inertia: float = param(0.004, "kg m^2", "Hooke cross moment of inertia (isotropic)", ours=True)
 
     def validate(self) -> None:
-        """Rod and cylinder shorter than the shortest actuator, overlapping at full stroke; frame pivots off the plane of O.
+        """Rod and cylinder shorter than the shortest actuator, overlapping at full stroke; frame pivots off O's plane.
 
         Raises:
             InvalidParameters: one of them fails.

@@ -3,13 +3,13 @@
 A platform on a central strut through a Hooke joint at O, driven by two RRR limbs whose axes all
 pass through O (every point moves on a sphere about O). Motors at the base joints r11, r21.
 
-Modules, bottom up: `kinematics` (the paper's eqs. 4-12, numpy only), `params`, `joint_state` (the Pinocchio tree filled from the paper's kinematics), `scenes` (the cone
-scene), `fk` (forward kinematics three ways: the paper's iteration, Newton, the
-core's closure solver; and their basins), `soc` (the SOC decomposition),
-`checks` (`mechkit report` rows), `bench` (`mechkit bench` methods), `studies` (the cone scene as
-the paper's Figs. 5-7 with its dynamics, the FK's basins, as data) and `figures` (drawn from them). Conventions the source leaves
-out (roll/pitch, platform-side axes, the reading of "cone angle 30 deg") are derived in
-docs/mechanisms/spherical_2dof.md.
+Modules, bottom up: `kinematics` (the paper's eqs. 4-12, numpy only), `params`, `joint_state` (the
+Pinocchio tree filled from the paper's kinematics), `scenes` (the cone scene), `fk` (forward
+kinematics three ways: the paper's iteration, Newton, the core's closure solver; and their basins),
+`soc` (the SOC decomposition), `checks` (`mechkit report` rows), `bench` (`mechkit bench` methods),
+`studies` (the cone scene as the paper's Figs. 5-7 with its dynamics, the FK's basins, as data) and
+`figures` (drawn from them). Conventions the source leaves out (roll/pitch, platform-side axes, the
+reading of "cone angle 30 deg") are derived in docs/mechanisms/spherical_2dof.md.
 """
 
 from __future__ import annotations

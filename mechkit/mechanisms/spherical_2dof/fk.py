@@ -1,9 +1,9 @@
 """Forward kinematics of the 2-DOF spherical platform three ways, and where each one fails.
 
-Methods, all from a start attitude phi0 and the motor angles theta_d:
-``paper`` (`fk_paper`: the paper's iteration, Newton on the closed-form IK), ``newton``
-(`fk_newton`: Newton on the constraints (7)), ``closure`` (the core's closure solver on the Pinocchio tree, started from the tree
-pose nearest to phi0 with the motors at theta_d).
+Methods, all from a start attitude phi0 and the motor angles theta_d: ``paper`` (`fk_paper`: the
+paper's iteration, Newton on the closed-form IK), ``newton`` (`fk_newton`: Newton on the constraints
+(7)), ``closure`` (the core's closure solver on the Pinocchio tree, started from the tree pose
+nearest to phi0 with the motors at theta_d).
 """
 
 from __future__ import annotations

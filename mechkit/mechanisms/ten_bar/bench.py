@@ -1,13 +1,14 @@
 """The ten-bar's own methods in `mechkit bench` (`SPEC.bench_methods`, `SPEC.bench_references`).
 
 Assembly: the closed form (circle intersections, numpy) and the patent's dimension reduction (the
-three units solved in turn on reduced Pinocchio models), both from the motors' angles and the
-rocker R5 (the passive DOF) of the sample. Forward and inverse dynamics: the patent's Lagrange
-equations of the first kind in reference-point coordinates, and SOC virtual work over its nine SKCs
-(numpy). The bench applies no spring (its efforts are the actuators'), so these methods use the
-linkage with an R5 spring-damper of zero stiffness and damping. The numpy methods start from the link motion (the sample's
-state in reference-point coordinates, cached in `sample.extra`): their times exclude that conversion.
-The closed form and the Lagrange method are also the references (independent of Pinocchio).
+three units solved in turn on reduced Pinocchio models), both from the motors' angles and the rocker
+R5 (the passive DOF) of the sample. Forward and inverse dynamics: the patent's Lagrange equations of
+the first kind in reference-point coordinates, and SOC virtual work over its nine SKCs (numpy). The
+bench applies no spring (its efforts are the actuators'), so these methods use the linkage with an
+R5 spring-damper of zero stiffness and damping. The numpy methods start from the link motion (the
+sample's state in reference-point coordinates, cached in `sample.extra`): their times exclude that
+conversion. The closed form and the Lagrange method are also the references (independent of
+Pinocchio).
 """
 
 from __future__ import annotations

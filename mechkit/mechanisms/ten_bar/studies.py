@@ -2,11 +2,11 @@
 (`SPEC.studies`; figures in `figures`, numbers in docs/mechanisms/ten_bar.md).
 
 - `cross_checks`: the deployment, stowed to deployed, by Pinocchio's constrained ABA and by the
-  patent's Lagrange first-kind method from the same parameters (fixed steps of the simulator with projection); the Lagrange
-  method in its own coordinates converging at fourth order; reactions by constrained RNEA, Lagrange
-  multipliers and SOC at sampled instants; the full closure solve against the dimension reduction
-  and the closed form along the motion; where the methods fail (kinematic split, unstabilised drift,
-  distance from singular poses).
+  patent's Lagrange first-kind method from the same parameters (fixed steps of the simulator with
+  projection); the Lagrange method in its own coordinates converging at fourth order; reactions by
+  constrained RNEA, Lagrange multipliers and SOC at sampled instants; the full closure solve against
+  the dimension reduction and the closed form along the motion; where the methods fail (kinematic
+  split, unstabilised drift, distance from singular poses).
 - `deployment`: one Pinocchio-route deployment with the spring torque, the wall supports by
   constrained RNEA and the Lagrange multipliers, and the drift of each stabilisation.
 """
@@ -171,7 +171,10 @@ def cross_check_lines(c: CrossChecks) -> list[str]:
         f"Deployment 0..{a.t[-1]:g} s (motor laws end at {p.deploy_time:g} s)",
         f"  fixed step dt = {c.dt * 1e3:g} ms, projection after each step",
         f"  final motor angles (deg): {np.degrees(a.angles[-1, motors]).round(9)} (deployed: 0, 0)",
-        f"  rocker R5 (deg): stowed {rocker[0]:.2f}, range [{rocker.min():.2f}, {rocker.max():.2f}], final {rocker[-1]:.2f}",
+        (
+            f"  rocker R5 (deg): stowed {rocker[0]:.2f}, range [{rocker.min():.2f}, {rocker.max():.2f}], "
+            f"final {rocker[-1]:.2f}"
+        ),
         f"  motor torques (N m): {torques}",
         f"  closure residual max (m): Pinocchio {a.residual.max():.2e}, Lagrange {b.residual.max():.2e}",
         f"  energy balance |E - W - E0| max (J): Pinocchio {a.energy_error:.2e}, Lagrange {b.energy_error:.2e}",
@@ -181,13 +184,17 @@ def cross_check_lines(c: CrossChecks) -> list[str]:
         ),
         (
             "  Pinocchio vs Lagrange (same step, joint coordinates): "
-            f"angles {np.max(np.abs(a.angles - b.angles)):.2e} rad, torques {np.max(np.abs(a.torques - b.torques)):.2e} N m"
+            f"angles {np.max(np.abs(a.angles - b.angles)):.2e} rad, "
+            f"torques {np.max(np.abs(a.torques - b.torques)):.2e} N m"
         ),
         (
             f"  wall time: Pinocchio {c.seconds['Pinocchio']:.1f} s, Lagrange {c.seconds['Lagrange']:.1f} s "
             f"({len(a.t) - 1} steps)"
         ),
-        f"Lagrange in its own coordinates (x, z, phi per link) vs Pinocchio, first {CONVERGENCE_END:g} s (spring release):",
+        (
+            f"Lagrange in its own coordinates (x, z, phi per link) vs Pinocchio, first {CONVERGENCE_END:g} s "
+            "(spring release):"
+        ),
     ]
     previous = None
     for dt, diff in c.convergence:
