@@ -22,7 +22,7 @@ import pinocchio as pin
 
 from mechkit.base.exceptions import MechkitError
 from mechkit.bench.raw import raw_constraint_dynamics
-from mechkit.bench.sampling import Sample, make_samples
+from mechkit.bench.sampling import Sample, make_samples, rigid_mechanism
 from mechkit.bench.timing import time_per_call
 from mechkit.mechanism import Mechanism
 
@@ -157,13 +157,14 @@ def measure(mech: Mechanism, budget: float = 0.3, repeats: int = 15) -> Mechanis
     one is missed, the breakdown of the calls behind it (`phases`).
 
     Args:
-        mech: the mechanism.
+        mech: the mechanism (measured without its springs: `rigid_mechanism`).
         budget: seconds of timing per row.
         repeats: timed repeats per row (the minimum is kept).
 
     Returns:
         The mechanism's rows (us per sample, ratio to the raw call), targets and breakdowns.
     """
+    mech = rigid_mechanism(mech)
     samples = make_samples(mech, 3)
     calls = _calls(mech, samples)
     raw_fn = calls[RAW][0]

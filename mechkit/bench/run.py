@@ -15,7 +15,7 @@ from mechkit.base.exceptions import MechkitError
 from mechkit.bench.methods import BASELINES, core_methods, own_methods, references
 from mechkit.bench.peers import peer_methods
 from mechkit.bench.results import MechanismBench, Row
-from mechkit.bench.sampling import Sample, make_samples
+from mechkit.bench.sampling import Sample, make_samples, rigid_mechanism
 from mechkit.bench.timing import measure, paired_ratio, ratios
 from mechkit.catalog import registry
 from mechkit.loading import load
@@ -51,7 +51,7 @@ def bench_mechanism(
     """Every method on one mechanism, measured in this process: the core's, the spec's own, the peers'.
 
     Args:
-        mech: the mechanism.
+        mech: the mechanism (measured without its springs: `rigid_mechanism`).
         quick: 3 samples, 2 settings per accuracy knob, 0.03 s of timing per method (else 8, all, 0.3 s).
         with_peers: also MuJoCo and Drake (where installed).
         progress: called after each method (see `Progress`).
@@ -59,6 +59,7 @@ def bench_mechanism(
     Returns:
         Its rows (one per method: error, time, outcome), samples, references and notes.
     """
+    mech = rigid_mechanism(mech)
     name = mech.spec.name
     samples = make_samples(mech, 3 if quick else 8)
     refs = references(mech, samples)

@@ -1,6 +1,9 @@
-"""The bench's states: assembled configurations near home with random input rates and accelerations.
+"""The bench's mechanism and states: the rigid mechanism, and assembled configurations near home with
+random input rates and accelerations.
 
-Every method of a mechanism is measured on the same few `Sample`s, drawn by `make_samples`.
+Every method of a mechanism is measured on the same few `Sample`s, drawn by `make_samples`, of the
+mechanism `rigid_mechanism` gives: without its joint springs and dampers, so that its efforts are the
+actuators' alone, as the references, the raw Pinocchio call and the peers (their springs disabled) take them.
 """
 
 from __future__ import annotations
@@ -17,6 +20,21 @@ from mechkit.independent_inputs import input_joints
 
 if TYPE_CHECKING:
     from mechkit.mechanism import Mechanism
+
+
+def rigid_mechanism(mech: Mechanism) -> Mechanism:
+    """The mechanism the bench measures: the same, without its joint springs and dampers.
+
+    Args:
+        mech: the mechanism.
+
+    Returns:
+        `mech` itself when it has no spring, else a mechanism of the same closure model without them.
+    """
+    if not mech.springs:
+        return mech
+    return type(mech)(mech.spec, mech.params, mech.closure_model, mech.urdf)
+
 
 #: Largest offset of the sampled inputs from the home inputs (rad or m).
 INPUT_SPREAD = 0.05
