@@ -6,6 +6,7 @@ from __future__ import annotations
 import os
 import subprocess
 import sys
+import sysconfig
 from pathlib import Path
 
 import numpy as np
@@ -15,6 +16,10 @@ from scipy.optimize import brentq
 ROOT = Path(__file__).resolve().parents[1]
 #: The description files the tests read (tests/fixtures).
 FIXTURES = ROOT / "tests" / "fixtures"
+#: example-robot-data's robots, as its wheel installs them (a test dependency).
+ROBOTS = Path(sysconfig.get_paths()["purelib"]) / "cmeel.prefix" / "share" / "example-robot-data" / "robots"
+#: Franka's Panda: a tree with a mimic coupling on its fingers.
+PANDA = ROBOTS / "panda_description" / "urdf" / "panda.urdf"
 #: The slider-crank fixture's URDF text (loops, transmission, home), which many bad-file tests alter.
 SLIDER_CRANK = (FIXTURES / "slider_crank.urdf").read_text()
 

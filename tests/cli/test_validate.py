@@ -5,24 +5,11 @@ from __future__ import annotations
 import contextlib
 import io
 import json
-import sysconfig
-from pathlib import Path
 
 import pytest
-from tests_support import FIXTURES
+from tests_support import FIXTURES, PANDA
 
 from mechkit.cli import main
-
-PANDA = Path(
-    sysconfig.get_paths()["purelib"],
-    "cmeel.prefix",
-    "share",
-    "example-robot-data",
-    "robots",
-    "panda_description",
-    "urdf",
-    "panda.urdf",
-)
 
 KEYS = {"name", "skcs", "max_relative_difference", "samples", "us_per_sample"}
 SKC_KEYS = {"bodies", "released", "actuators", "unknowns", "equations"}

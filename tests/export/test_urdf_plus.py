@@ -13,11 +13,11 @@ from __future__ import annotations
 
 import contextlib
 import io
-import sysconfig
 from pathlib import Path
 
 import numpy as np
 import pytest
+from tests_support import PANDA
 
 import mechkit
 from mechkit.catalog import registry
@@ -26,16 +26,6 @@ from mechkit.report import holding
 from mechkit.sources import read
 
 FIELD = Path(__file__).resolve().parents[1] / "fixtures" / "field"
-PANDA = Path(
-    sysconfig.get_paths()["purelib"],
-    "cmeel.prefix",
-    "share",
-    "example-robot-data",
-    "robots",
-    "panda_description",
-    "urdf",
-    "panda.urdf",
-)
 #: What URDF+ cannot write, and what the refusal says.
 REFUSED = {
     "rocket_gimbal": "cut 'a_ball_joint' is spherical",

@@ -9,14 +9,12 @@ reduced model): the same mobility and the same motor torques holding gravity at 
 
 from __future__ import annotations
 
-import sysconfig
 import xml.etree.ElementTree as ET
-from pathlib import Path
 
 import numpy as np
 import pinocchio as pin
 import pytest
-from tests_support import FIXTURES, SLIDER_CRANK, written
+from tests_support import FIXTURES, PANDA, ROBOTS, SLIDER_CRANK, written
 
 import mechkit
 from mechkit.base.exceptions import MalformedDescription
@@ -154,8 +152,6 @@ def test_actuators_come_from_the_file_or_the_override_and_an_unactuated_model_sa
     assert mechkit.load("four_bar", actuated=["rocker"]).actuated == ("rocker",)
 
 
-ROBOTS = Path(sysconfig.get_paths()["purelib"]) / "cmeel.prefix" / "share" / "example-robot-data" / "robots"
-PANDA = ROBOTS / "panda_description" / "urdf" / "panda.urdf"
 TALOS_REDUCED = ROBOTS / "talos_data" / "robots" / "talos_reduced.urdf"
 INERTIAL = '<inertial><mass value="1"/><inertia ixx="0.01" iyy="0.01" izz="0.01" ixy="0" ixz="0" iyz="0"/></inertial>'
 
