@@ -165,6 +165,19 @@ def test_lcaba_on_the_ladder_against_the_exact_accelerations(loops):
         assert np.max(np.abs(J @ a + gamma)) <= 1e-9 * np.max(np.abs(J)) * np.max(np.abs(exact))
 
 
+def test_lcaba_certifies_the_long_ladder_at_its_first_margin():
+    """On 64 loops lcaba's final closure error passes at the first step margin, in about 30 iterations as
+    on one loop (the tighter margin alone takes 126 there: four times the time)."""
+    m = ladder(64)
+    rng = np.random.default_rng(0)
+    q = m.home_q
+    v, tau = m.velocities(q, rng.normal(size=64)), rng.normal(0.0, 0.1, m.model.nv)
+    result = m.forward_dynamics(q, v, tau, "lcaba")
+    exact = exact_accelerations(m, q, v, tau)
+    assert result.iterations <= 40
+    assert np.max(np.abs(result.a - exact)) <= 1e-9 * np.max(np.abs(exact))
+
+
 @pytest.mark.parametrize("name", ["four_bar", "five_bar", "parallel_2t1r", "ten_bar"])
 def test_lcaba_on_registered_mechanisms_against_the_kkt(name, load_cached):
     m = load_cached(name)
