@@ -16,12 +16,12 @@ the efforts are not determined to 1e-8 there, as the report's judge says.
 
 from __future__ import annotations
 
-import sysconfig
 from pathlib import Path
 
 import numpy as np
 import pinocchio as pin
 import pytest
+from tests_support import ROBOTS
 
 from mechkit.sources.sdf import read_sdf
 
@@ -29,16 +29,7 @@ from .description_reference import Statics
 from .field_cli import report
 
 FIXTURES = Path(__file__).resolve().parents[1] / "fixtures" / "field" / "sdf"
-#: example-robot-data (a test dependency) ships its robots in the environment's cmeel prefix.
-CASSIE = Path(
-    sysconfig.get_paths()["purelib"],
-    "cmeel.prefix",
-    "share",
-    "example-robot-data",
-    "robots",
-    "cassie_description",
-    "robots",
-)
+CASSIE = ROBOTS / "cassie_description" / "robots"
 #: file -> what the report says of holding gravity (its efforts are compared where it gives them).
 FILES = {
     CASSIE / "cassie.sdf": "floating root 'root_joint': nothing holds its weight (fix its body: --fix pelvis)",

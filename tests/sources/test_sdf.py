@@ -9,13 +9,12 @@ from __future__ import annotations
 import re
 import subprocess
 import sys
-import sysconfig
 from pathlib import Path
 
 import numpy as np
 import pinocchio as pin
 import pytest
-from tests_support import FIXTURES
+from tests_support import FIXTURES, ROBOTS
 
 from mechkit.base.exceptions import MalformedDescription
 from mechkit.core.records import Coupling, JointSpring, LoopClosure
@@ -26,16 +25,7 @@ from .description_reference import Statics
 from .field_cli import refusal
 
 FIXTURES = FIXTURES / "field" / "sdf"
-#: example-robot-data (a test dependency) ships its robots in the environment's cmeel prefix.
-CASSIE = Path(
-    sysconfig.get_paths()["purelib"],
-    "cmeel.prefix",
-    "share",
-    "example-robot-data",
-    "robots",
-    "cassie_description",
-    "robots",
-)
+CASSIE = ROBOTS / "cassie_description" / "robots"
 Y, Z = np.array([0.0, 1.0, 0.0]), np.array([0.0, 0.0, 1.0])
 
 
