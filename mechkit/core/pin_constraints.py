@@ -50,7 +50,7 @@ class LegacyConstraints:
         self.model = model
         self.models = pin.StdVec_RigidConstraintModel()
         for cm in _legacy_models(model, cuts):
-            self.models.append(cm)
+            self.models.append(_ground_side_second(model, cm) if ordered else cm)
         self.datas = pin.StdVec_RigidConstraintData()
         for cm in self.models:
             self.datas.append(cm.createData())
@@ -164,6 +164,18 @@ def settings_outcome(settings: pin.ProximalSettings) -> tuple[float, int]:
         (absolute residual, iterations).
     """
     return float(settings.absolute_residual), int(settings.iter)
+
+
+def _ground_side_second(model: pin.Model, cm: pin.RigidConstraintModel) -> pin.RigidConstraintModel:
+    """The same constraint with its sides swapped when its first side is the universe: Pinocchio 4.1's
+    `lcaba` ends the process (a segmentation fault) on a constraint whose `joint1_id` is 0. The swap
+    leaves the accelerations unchanged (the rows only change sign), and mechkit takes lcaba's constraint
+    force from them (`rnea(a) - tau`), not from its multipliers."""
+    if cm.joint1_id != 0:
+        return cm
+    return pin.RigidConstraintModel(
+        cm.type, model, cm.joint2_id, cm.joint2_placement, cm.joint1_id, cm.joint1_placement, cm.reference_frame
+    )
 
 
 def _legacy_models(model: pin.Model, cuts: list[CutRows]) -> list[pin.RigidConstraintModel]:

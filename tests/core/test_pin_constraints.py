@@ -4,12 +4,19 @@ cannot express is refused, and a data serves either constraintDynamics or lcaba.
 
 from __future__ import annotations
 
+import os
+import subprocess
+import sys
+from pathlib import Path
+
 import numpy as np
 import pytest
+from tests_support import FIXTURES, ROOT
 
 from mechkit import core
 from mechkit.base.exceptions import MethodUnavailable
 from mechkit.bench.sampling import make_samples
+from mechkit.catalog.registry import ENTRIES
 from mechkit.core.pin_constraints import LegacyConstraints
 
 
@@ -61,3 +68,58 @@ def test_one_data_serves_constraint_dynamics_or_lcaba_not_both(load_cached):
         ordered.dynamics(s.q, s.v, s.tau, settings)
     with pytest.raises(AssertionError):
         proximal.loop_constrained_aba(s.q, s.v, s.tau, settings)
+
+
+PROBE = Path(__file__).with_name("pin_entry_probe.py")
+GROUND_CUT = FIXTURES / "four_bar_ground_cut.urdf"
+
+
+def _run(*args: str, script: str | None = None) -> subprocess.CompletedProcess:
+    """A Python subprocess on this checkout (a script given as text, or the probe with its arguments)."""
+    command = [sys.executable, "-c", script] if script else [sys.executable, str(PROBE), *args]
+    env = {**os.environ, "PYTHONPATH": str(ROOT)}
+    return subprocess.run(command, capture_output=True, text=True, env=env, cwd=ROOT, timeout=600, check=False)
+
+
+def test_lcaba_with_a_loop_frame_on_the_ground_answers_and_agrees_with_kkt():
+    """A four-bar cut at its rocker's ground pivot (the loop's frame_a on the ground): pin.lcaba ended the
+    process there (a segmentation fault); it now answers, in a subprocess that exits cleanly, with the
+    accelerations and constraint force of the dense KKT solve."""
+    out = _run(
+        script=(
+            "import numpy as np, mechkit\n"
+            f"m = mechkit.load({str(GROUND_CUT)!r})\n"
+            "q = m.assemble({'crank': 0.6}); v = m.velocities(q, [1.5]); tau = np.array([0.2, 0.0, 0.0])\n"
+            "a, k = (m.forward_dynamics(q, v, tau, method=x) for x in ('lcaba', 'kkt'))\n"
+            "print(np.max(np.abs(a.a - k.a)) / np.max(np.abs(k.a)),"
+            " np.max(np.abs(a.constraint_force - k.constraint_force)) / np.max(np.abs(k.constraint_force)))\n"
+        )
+    )
+    assert out.returncode == 0, (out.returncode, out.stderr[-2000:])
+    accelerations, forces = (float(x) for x in out.stdout.split())
+    assert accelerations < 1e-8 and forces < 1e-8, out.stdout
+
+
+def _field_sources() -> list[str]:
+    from mechkit.bench.field import ROBOTS
+
+    return [str(r.file(FIXTURES / "field")) + (f"::{r.fix[0]}" if r.fix else "") for r in ROBOTS]
+
+
+def test_no_pinocchio_entry_point_ends_the_process():
+    """The survey: every entry point of the core into Pinocchio (mobility, closure Jacobian, velocities, the
+    four forward-dynamics methods, inverse dynamics, both batches) on every registered mechanism, the same
+    with every loop's sides swapped, the four-bar cut at its ground pivot and the field's robots, in one
+    subprocess that announces each call before it starts: the process must end cleanly (a refusal by name
+    is an answer), and a crash is reported by the call that caused it."""
+    names = [e.name for e in ENTRIES]
+    sources = [*names, *(f"{n}~swapped" for n in names), str(GROUND_CUT), *_field_sources()]
+    out = _run(*sources)
+    announced = [line for line in out.stdout.splitlines() if line.startswith("BEGIN ")]
+    assert out.returncode == 0, (
+        f"exit {out.returncode} during {announced[-1] if announced else 'start'}: {out.stderr[-2000:]}"
+    )
+    done = [line.split(" ", 1)[1] for line in out.stdout.splitlines() if line.startswith("DONE ")]
+    # every registered mechanism and its swapped twin ran every call (the deployable's twin does not assemble)
+    assert set(names) | {f"{n}~swapped" for n in names if n != "deployable_9rr12uru"} <= set(done), out.stdout
+    assert str(GROUND_CUT) in done
