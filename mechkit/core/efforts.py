@@ -181,6 +181,9 @@ def solve(
         SingularConfiguration: b is not reachable (outside the range of A) for some sample.
     """
     n, nv, cols = A.shape
+    if cols == 0:  # no actuator and no closure row: the motion must need no force at all
+        _check_reachable(A, np.linalg.norm(b, axis=1), b)
+        return np.zeros((n, 0)), np.full(n, np.nan)
     square = nv == cols
     if square and not condition:
         try:
@@ -272,7 +275,7 @@ def _check_reachable(A: np.ndarray, outside: np.ndarray, b: np.ndarray) -> None:
     bad = np.flatnonzero(outside > 1e-9 * np.maximum(np.linalg.norm(b, axis=1), 1.0))
     if bad.size:
         i = int(bad[0])
-        s = rank.singular_values(A[i][None])[0]
+        s = rank.singular_values(A[i][None])[0] if A.shape[2] else np.zeros(1)
         raise SingularConfiguration(
             float(s[0] / s[-1]) if s[-1] > 0 else float("inf"),
             f"[S^T, J^T] does not span the required generalised force (sample {i}): the "

@@ -109,7 +109,8 @@ class LegacyConstraints:
 
     def jacobian(self) -> np.ndarray:
         """(rows, nv) the anchors' constraint Jacobian at the last call's state (fresh after either call)."""
-        return pin.getConstraintsJacobian(self.model, self.data, self.models, self.datas)
+        J = pin.getConstraintsJacobian(self.model, self.data, self.models, self.datas)
+        return J.reshape(-1, self.model.nv)  # Pinocchio gives a vector when rows or nv is 1
 
     def multipliers(self) -> np.ndarray:
         """(rows,) the anchors' multipliers lambda of the last `dynamics` call (M a + nle = tau + J^T lambda)."""
@@ -133,7 +134,8 @@ class LegacyConstraints:
 
     def lcaba_error(self) -> np.ndarray:
         """(rows,) the anchors' acceleration error before lcaba's last step (add J @ `last_step()`)."""
-        return np.concatenate([cd.contact_acceleration_error.vector[:k] for cd, k in zip(self.datas, self.sizes)])
+        parts = [cd.contact_acceleration_error.vector[:k] for cd, k in zip(self.datas, self.sizes)]
+        return np.concatenate(parts) if parts else np.zeros(0)
 
     def last_step(self) -> np.ndarray:
         """(nv,) lcaba's last acceleration step (`data.g`)."""

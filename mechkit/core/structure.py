@@ -391,6 +391,9 @@ def idle_freedoms(
     data = model.createData()
     pin.computeJointJacobians(model, data, q)
     massive = {j for j in range(1, model.njoints) if model.inertias[j].mass > 0}
-    twists = {j: pin.getJointJacobian(model, data, j, pin.ReferenceFrame.WORLD) @ null for j in massive | on_loops}
+    twists = {
+        j: pin.getJointJacobian(model, data, j, pin.ReferenceFrame.WORLD).reshape(6, -1) @ null
+        for j in massive | on_loops
+    }
     twists, heavy, looped = grouped(twists, massive, on_loops, groups)
     return {body_name(model, j): n for j, n in idle_counts(twists, heavy, looped, tol).items()}

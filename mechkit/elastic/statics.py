@@ -85,7 +85,7 @@ def evaluate(ideal: Idealisation, Q: np.ndarray, actuation: np.ndarray | None = 
     rotations, translations = ideal.pin_rotations, ideal.pin_translations
     for i in range(n):
         pin.computeJointJacobians(model, data, Q[i])
-        J[i] = data.J
+        J[i] = data.J.reshape(6, -1)  # Pinocchio gives (6,) when nv = 1
         R[i] = rotations
         t[i] = translations
     full = cm.full_kernel

@@ -139,7 +139,7 @@ def generalized_of_wrenches(model: pin.Model, data: pin.Data, wrenches: np.ndarr
         if j == 0:
             continue
         f_world = data.oMi[int(j)].act(pin.Force(wrenches[j]))  # about the world origin, world axes
-        out += pin.getJointJacobian(model, data, int(j), pin.WORLD).T @ f_world.vector
+        out += pin.getJointJacobian(model, data, int(j), pin.WORLD).reshape(6, -1).T @ f_world.vector
     return out
 
 

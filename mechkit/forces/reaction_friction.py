@@ -174,7 +174,7 @@ class ReactionFriction(ForceElement):
         if state.reactions is None:
             return Load(tau, wrenches, 0.0)
         for _, k, spec, iv in self._tree:
-            axis = data.J[3:, iv]
+            axis = data.J.reshape(6, -1)[3:, iv]
             rate = float(state.v[iv])
             torque = -spec.torque(state.reactions[k], axis) * float(smooth_sign(rate, spec.threshold))
             tau[iv] += torque
@@ -201,7 +201,10 @@ class ReactionFriction(ForceElement):
         Returns:
             Joint name -> T (N m, >= 0).
         """
-        out = {name: spec.torque(state.reactions[k], state.data.J[3:, iv]) for name, k, spec, iv in self._tree}
+        out = {
+            name: spec.torque(state.reactions[k], state.data.J.reshape(6, -1)[3:, iv])
+            for name, k, spec, iv in self._tree
+        }
         out.update(
             {
                 name: spec.torque(state.reactions[k], state.data.oMf[cut.frame_a].rotation @ cut.closure.axis)

@@ -161,7 +161,7 @@ def tree_motion(model: pin.Model, data: pin.Data, joint: int) -> np.ndarray:
         (6, nv_j) motion subspace.
     """
     jm = model.joints[joint]
-    return pin.getJointJacobian(model, data, joint, LWA)[:, jm.idx_v : jm.idx_v + jm.nv]
+    return pin.getJointJacobian(model, data, joint, LWA).reshape(6, -1)[:, jm.idx_v : jm.idx_v + jm.nv]
 
 
 def constraint_span(model: pin.Model, data: pin.Data, cuts: Cuts, joint: Joint) -> np.ndarray:

@@ -22,7 +22,9 @@ import pinocchio as pin
 import scipy.linalg
 
 from mechkit import core
-from mechkit.base.exceptions import ClosureNotConverged
+from mechkit.base import arguments
+from mechkit.base.exceptions import ClosureNotConverged, InvalidArgument
+from mechkit.base.joint_arguments import joint_values
 from mechkit.forces import ForceElement, ForceState, generalized_of_wrenches
 from mechkit.simulation.prescribed import Drives
 from mechkit.simulation.projection import Projection
@@ -78,13 +80,23 @@ def equilibrium(
         without free motion: residual 0 and no eigenvalue).
 
     Raises:
+        InvalidArgument: a held joint unknown, of several freedoms or not a finite number; q0 not (nq,)
+            finite numbers; tol not > 0; max_iter not an integer >= 1; an element not a force element.
         ClosureNotConverged: no equilibrium reached within max_iter steps (the residual is reported).
     """
+    model = mech.model
+    held = _held(held, mech)
+    q0 = mech.home_q if q0 is None else arguments.array("q0", q0, model.nq, batch=False)
+    tol = arguments.number("tol", tol, positive=True)
+    max_iter = arguments.integer("max_iter", max_iter, minimum=1)
     elements = list(elements) if elements is not None else ([mech.springs] if mech.springs else [])
-    drives = Drives(held={j: float(x) for j, x in (held or {}).items()})
+    for k, e in enumerate(elements):
+        if not isinstance(e, ForceElement):
+            raise InvalidArgument(f"elements[{k}]", e, "expected a force element (mechkit.forces)")
+    drives = Drives(held=held)
     projection = Projection(mech)
-    model, data = mech.model, mech.model.createData()
-    q = projection.positions(mech.home_q if q0 is None else np.asarray(q0, dtype=float), drives, 0.0)
+    data = model.createData()
+    q = projection.positions(q0, drives, 0.0)
     zero = np.zeros(model.nv)
     split = mech.closure_model.split(drives.all)
 
@@ -132,3 +144,16 @@ def equilibrium(
     raise ClosureNotConverged(
         float(np.max(np.abs(rho))), tol, max_iter, "no static equilibrium found (the reduced force did not vanish)"
     )
+
+
+def _held(held: Any, mech: Any) -> dict[str, float]:
+    """`held` checked: joint -> finite value of a joint of one freedom (rad or m)."""
+    if held is None:
+        return {}
+    if not isinstance(held, Mapping):
+        raise InvalidArgument("held", held, "expected a mapping joint -> value (rad or m)")
+    values = joint_values("held", held, [], list(mech.model.names[1:]))
+    for joint, value in values.items():
+        if not isinstance(value, float):
+            raise InvalidArgument(f"held[{joint!r}]", held[joint], "a held joint takes one value (rad or m)")
+    return values

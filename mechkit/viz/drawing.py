@@ -286,7 +286,7 @@ def _local_axes(model: pin.Model, data: pin.Data) -> list[np.ndarray | None]:
         if joint.nv != 1:
             axes.append(None)
             continue
-        col = pin.getJointJacobian(model, data, j, pin.ReferenceFrame.LOCAL)[:, joint.idx_v]
+        col = pin.getJointJacobian(model, data, j, pin.ReferenceFrame.LOCAL).reshape(6, -1)[:, joint.idx_v]
         vec = col[3:] if np.linalg.norm(col[3:]) > 1e-12 else col[:3]
         axes.append(vec / np.linalg.norm(vec))
     return axes

@@ -113,7 +113,8 @@ def test_no_pinocchio_entry_point_ends_the_process():
     subprocess that announces each call before it starts: the process must end cleanly (a refusal by name
     is an answer), and a crash is reported by the call that caused it."""
     names = [e.name for e in ENTRIES]
-    sources = [*names, *(f"{n}~swapped" for n in names), str(GROUND_CUT), *_field_sources()]
+    sources = [*names, *(f"{n}~swapped" for n in names), str(GROUND_CUT), str(FIXTURES / "pendulum.urdf")]
+    sources += _field_sources()
     out = _run(*sources)
     announced = [line for line in out.stdout.splitlines() if line.startswith("BEGIN ")]
     assert out.returncode == 0, (

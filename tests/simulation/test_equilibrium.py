@@ -8,6 +8,7 @@ import numpy as np
 import pytest
 
 from mechkit import core, forces
+from mechkit.base.exceptions import InvalidArgument
 
 
 def test_released_passive_mechanism_settles_at_the_equilibrium(four_bar):
@@ -76,3 +77,28 @@ def test_held_joints_that_fix_the_pose_leave_nothing_to_balance(four_bar):
     eq = four_bar.equilibrium({"crank": 0.7})
     assert eq.iterations == 0 and eq.residual == 0.0 and eq.stiffness.size == 0
     assert np.allclose(eq.q, four_bar.assemble([0.7]), atol=1e-10)
+
+
+@pytest.mark.parametrize(
+    "options, named",
+    [
+        ({"q0": np.full(3, np.nan)}, "'q0': must be finite"),
+        ({"q0": [0.1, 0.2]}, "'q0': expected shape (3,)"),
+        ({"max_iter": 0}, "'max_iter': must be >= 1"),
+        ({"max_iter": 2.5}, "'max_iter': expected an integer"),
+        ({"tol": -1.0}, "'tol': must be > 0"),
+        ({"tol": float("nan")}, "'tol': must be finite"),
+        ({"elements": [1]}, "'elements[0]': expected a force element"),
+        ({"held": {"nope": 0.1}}, "'nope' is not a joint"),
+        ({"held": {"crank": float("nan")}}, "held['crank']\": must be finite"),
+        ({"held": {"crank": "a"}}, "held['crank']\": expected a real number"),
+        ({"held": [0.1]}, "'held': expected a mapping"),
+    ],
+)
+def test_malformed_arguments_are_refused_by_name_before_any_work(four_bar, options, named):
+    """A NaN start, no step allowed, a bad tolerance, element or held joint: refused by name (they used to
+    reach the solver: a NaN start, an UnboundLocalError at max_iter=0, a ValueError for a held string)."""
+    held = options.pop("held", None)
+    with pytest.raises(InvalidArgument) as err:
+        four_bar.equilibrium(held, **options)
+    assert named in str(err.value)
