@@ -20,6 +20,7 @@ from mechkit.cli import (
     listing,
     modes,
     motion,
+    output_guard,
     params,
     report,
     simulate,
@@ -73,6 +74,7 @@ def main(argv: list[str] | None = None) -> int:
     """
     args = build_parser().parse_args(argv)
     try:
+        output_guard.check(args)  # before any work: no output may be an input or another output
         with np.errstate(all="raise", under="ignore"):  # a result flushed to zero is not a failure
             args.func(args)
         sys.stdout.flush()

@@ -21,6 +21,15 @@ def run(args: argparse.Namespace) -> None:
             print(f"wrote {path}")
 
 
+def _sidecar(args: argparse.Namespace) -> dict[str, str]:
+    """The file the Extended-URDF export writes beside its -o (for the output guard)."""
+    from mechkit.export import sidecar_path
+
+    if args.format != "extended-urdf" or not args.output or args.output == "-":
+        return {}
+    return {"-o's .yaml sidecar": str(sidecar_path(args.output))}
+
+
 def add_parser(sub: argparse._SubParsersAction) -> None:
     """Register `export`.
 
@@ -44,4 +53,4 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
         "and couplings inside the URDF)",
     )
     p.add_argument("-o", "--output", required=True, help="file to write (extended-urdf also writes a .yaml beside it)")
-    p.set_defaults(func=run)
+    p.set_defaults(func=run, also_writes=_sidecar)

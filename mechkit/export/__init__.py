@@ -14,7 +14,16 @@ from mechkit.export.urdf_plus import to_urdf_plus
 if TYPE_CHECKING:
     from mechkit.mechanism import Mechanism
 
-__all__ = ["FORMATS", "body_name", "export_command", "frame_b_vector", "to_extended_urdf", "to_mjcf", "to_urdf_plus"]
+__all__ = [
+    "FORMATS",
+    "body_name",
+    "export_command",
+    "frame_b_vector",
+    "sidecar_path",
+    "to_extended_urdf",
+    "to_mjcf",
+    "to_urdf_plus",
+]
 
 FORMATS = ("mjcf", "extended-urdf", "urdf+")
 
@@ -48,10 +57,22 @@ def export_command(mechanism: Mechanism, fmt: str, output: str | Path) -> list[P
         return [write_text(output, to_mjcf(mechanism))]
     if fmt == "urdf+":
         return [write_text(output, to_urdf_plus(mechanism))]
-    sidecar = Path(output).with_suffix(".yaml")
+    sidecar = sidecar_path(output)
     if Path(output) == sidecar:
         raise OutputError(
             output, "the Extended URDF needs a name whose .yaml sidecar is another file (e.g. robot.urdf)"
         )
     urdf, sidecar_text = to_extended_urdf(mechanism)
     return write_files({output: urdf.encode(), sidecar: sidecar_text.encode()})
+
+
+def sidecar_path(output: str | Path) -> Path:
+    """The YAML sidecar an Extended-URDF export writes beside its URDF.
+
+    Args:
+        output: the URDF's file.
+
+    Returns:
+        The same name with the suffix `.yaml`.
+    """
+    return Path(output).with_suffix(".yaml")

@@ -1,0 +1,68 @@
+"""`mechkit.sources.input_files`: the files a description is read from, its sidecar and includes among
+them, references that are not local files left out, unreadable XML naming only itself."""
+
+from __future__ import annotations
+
+import shutil
+
+from tests_support import FIXTURES, ROOT
+
+from mechkit.sources.input_files import description_files
+
+
+def test_a_urdf_with_its_sidecar(tmp_path):
+    for name in ("leg.urdf", "leg.yaml"):
+        shutil.copy(FIXTURES / name, tmp_path / name)
+    assert description_files(tmp_path / "leg.urdf") == [tmp_path / "leg.urdf", tmp_path / "leg.yaml"]
+
+
+def test_a_xacro_with_its_includes_recursively(tmp_path):
+    (tmp_path / "inner").mkdir()
+    (tmp_path / "inner" / "deep.xacro").write_text('<robot xmlns:xacro="http://www.ros.org/wiki/xacro"/>')
+    (tmp_path / "macros.xacro").write_text(
+        '<robot xmlns:xacro="http://www.ros.org/wiki/xacro"><xacro:include filename="inner/deep.xacro"/></robot>'
+    )
+    (tmp_path / "top.urdf.xacro").write_text(
+        '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">'
+        '<xacro:include filename="macros.xacro"/>'
+        '<xacro:include filename="$(find some_pkg)/urdf/x.xacro"/>'
+        '<link name="a"><visual><geometry><mesh filename="package://p/m.stl"/></geometry></visual></link></robot>'
+    )
+    assert description_files(tmp_path / "top.urdf.xacro") == [
+        tmp_path / "top.urdf.xacro",
+        tmp_path / "macros.xacro",
+        tmp_path / "inner" / "deep.xacro",
+    ]
+
+
+def test_mjcf_includes_and_meshes_under_its_meshdir(tmp_path):
+    (tmp_path / "assets").mkdir()
+    (tmp_path / "assets" / "part.stl").write_bytes(b"solid x\nendsolid x\n")
+    (tmp_path / "body.xml").write_text("<mujoco/>")
+    (tmp_path / "model.xml").write_text(
+        '<mujoco><compiler meshdir="assets"/><include file="body.xml"/>'
+        '<asset><mesh name="p" file="part.stl"/><mesh name="q" file="missing.stl"/></asset></mujoco>'
+    )
+    assert description_files(tmp_path / "model.xml") == [
+        tmp_path / "model.xml",
+        tmp_path / "body.xml",
+        tmp_path / "assets" / "part.stl",
+    ]
+
+
+def test_sdformat_include_uri_and_a_link_followed(tmp_path):
+    (tmp_path / "part.sdf").write_text("<sdf/>")
+    (tmp_path / "world.sdf").write_text("<sdf><model name='m'><include><uri>part.sdf</uri></include></model></sdf>")
+    (tmp_path / "alias.sdf").symlink_to(tmp_path / "world.sdf")
+    assert description_files(tmp_path / "alias.sdf") == [tmp_path / "world.sdf", tmp_path / "part.sdf"]
+
+
+def test_unreadable_or_missing_files(tmp_path):
+    (tmp_path / "broken.urdf").write_text("<robot><link")
+    assert description_files(tmp_path / "broken.urdf") == [tmp_path / "broken.urdf"]
+    assert description_files(tmp_path / "none.urdf") == []
+
+
+def test_a_registered_template_names_its_macros():
+    files = description_files(ROOT / "xacro" / "four_bar.urdf.xacro")
+    assert files[0].name == "four_bar.urdf.xacro" and (ROOT / "xacro" / "macros.xacro").resolve() in files
