@@ -41,7 +41,7 @@ def test_every_command_ends_its_help_with_two_examples_that_parse():
     [
         (["report", "four_bar", "--set", "crank=-1"], "'crank'"),
         (["report", "four_bar", "--set", "wheels=3"], "'wheels'"),
-        (["report", "four_bar", "--set", "crank"], "name=value"),
+        (["report", "four_bar", "--set", "crank"], "expected NAME=VALUE"),
         (["report", "nine_bar"], "no such mechanism"),
     ],
 )
@@ -70,7 +70,7 @@ def test_broken_pipe_ends_quietly():
         (("urdf", "five_bar", "--set", "prox1=nan"), ("prox1",)),
         (("urdf", "five_bar", "--set", "prox1=-1"), ("prox1",)),
         (("urdf", "five_bar", "--set", "density=1e-12"), ("mass",)),
-        (("urdf", "five_bar", "--set", "prox1"), ("name=value",)),
+        (("urdf", "five_bar", "--set", "prox1"), ("--set", "expected NAME=VALUE")),
         (("report", "tetra_3rr3uru", "--set", "gamma_ref=0.0623"), ("fold: node positions",)),
         (("report", "five_bar", "--set", "rows=spherical"), ("kkt_vs_proximal",)),
         (("report", "ten_bar", "--set", "deploy_time=1e-300"), ("numerical failure",)),

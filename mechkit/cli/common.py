@@ -6,7 +6,8 @@ import argparse
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from mechkit.base.exceptions import ClosureNotConverged, InvalidArgument, MechkitError
+from mechkit.base.exceptions import ClosureNotConverged, MechkitError
+from mechkit.cli import option_values
 from mechkit.loading import load
 from mechkit.mechanism import Mechanism
 
@@ -79,15 +80,9 @@ def overrides(pairs: list[str] | None) -> dict[str, str]:
         Name -> value (a string; the parameter class converts it).
 
     Raises:
-        InvalidArgument: a pair without "=".
+        InvalidArgument: a pair without "=" or with an empty side, a name given twice.
     """
-    out = {}
-    for pair in pairs or []:
-        if "=" not in pair:
-            raise InvalidArgument("--set", pair, "expected name=value")
-        key, value = pair.split("=", 1)
-        out[key.strip()] = value.strip()
-    return out
+    return option_values.pairs("--set", pairs, empty=True)
 
 
 def actuated(text: str | None) -> list[str] | None:
@@ -100,14 +95,9 @@ def actuated(text: str | None) -> list[str] | None:
         The joint names, or None.
 
     Raises:
-        InvalidArgument: no name in it.
+        InvalidArgument: an empty name, or a name given twice.
     """
-    if text is None:
-        return None
-    names = [j.strip() for j in text.split(",") if j.strip()]
-    if not names:
-        raise InvalidArgument("--actuated", text, "expected joint names separated by commas")
-    return names
+    return None if text is None else option_values.names("--actuated", text)
 
 
 def locks(pairs: list[str] | None) -> dict[str, float | list[float]] | None:
@@ -120,23 +110,12 @@ def locks(pairs: list[str] | None) -> dict[str, float | list[float]] | None:
         joint -> value(s), or None when none is given.
 
     Raises:
-        InvalidArgument: a pair without '=' or a value that is not a number.
+        InvalidArgument: a pair without '=', a value that is not a finite number, a joint given twice.
     """
     if not pairs:
         return None
-    out: dict[str, float | list[float]] = {}
-    for pair in pairs:
-        if "=" not in pair:
-            raise InvalidArgument("--lock", pair, "expected JOINT=VALUE")
-        joint, text = (part.strip() for part in pair.split("=", 1))
-        try:
-            values = [float(x) for x in text.split(",")]
-        except ValueError:
-            raise InvalidArgument(
-                "--lock", pairs, f"{joint}: {text!r} is not a number (or comma-separated numbers)"
-            ) from None
-        out[joint] = values[0] if len(values) == 1 else values
-    return out
+    given = option_values.named_numbers("--lock", pairs, "JOINT=VALUE (comma-separated values for a ball joint)")
+    return {joint: values[0] if len(values) == 1 else values for joint, values in given.items()}
 
 
 def load_mechanism(args: argparse.Namespace) -> Mechanism:
@@ -152,7 +131,7 @@ def load_mechanism(args: argparse.Namespace) -> Mechanism:
         InvalidArgument: a malformed --set, --actuated or --lock.
         MechkitError: what `mechkit.load` refuses; a home assembly that does not close names the source.
     """
-    keep = None if getattr(args, "keep", None) is None else [b.strip() for b in args.keep.split(",") if b.strip()]
+    keep = None if getattr(args, "keep", None) is None else option_values.names("--keep", args.keep)
     try:
         return load(
             args.name,

@@ -5,7 +5,8 @@ from __future__ import annotations
 import argparse
 import json
 
-from mechkit.base.exceptions import InvalidParameters
+from mechkit.base.exceptions import InvalidArgument
+from mechkit.cli import option_values
 from mechkit.cli.common import add_mechanism_arguments, examples, load_mechanism
 from mechkit.cli.stiffness import pose
 
@@ -21,12 +22,15 @@ def report(args: argparse.Namespace) -> dict:
         written, or None}.
 
     Raises:
-        InvalidParameters: `-n` below 1.
+        InvalidArgument: `-n` below 1, `--mode` not among the modes, `--animate` not an .html file.
     """
     from mechkit.elastic import ElasticModel
 
     if args.n < 1:
-        raise InvalidParameters("-n", args.n, "must be at least 1")
+        raise InvalidArgument("-n", args.n, "must be at least 1")
+    if args.animate is not None and not 1 <= args.mode <= args.n:
+        raise InvalidArgument("--mode", args.mode, f"must be one of the {args.n} modes computed (-n)")
+    option_values.suffixed("--animate", args.animate, (".html",))
     mech = load_mechanism(args)
     q = pose(mech, args.at)
     modes = ElasticModel(mech).modes(q, args.n)

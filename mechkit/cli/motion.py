@@ -7,9 +7,12 @@ import argparse
 from typing import TYPE_CHECKING
 
 from mechkit.base.atomic import resolve_output
-from mechkit.base.exceptions import InvalidParameters, MotionFailed
+from mechkit.base.exceptions import MotionFailed
+from mechkit.base.joint_arguments import joint_names
+from mechkit.cli import option_values
 from mechkit.cli.common import add_mechanism_arguments, examples, load_mechanism
 from mechkit.cli.progress import ProgressBars
+from mechkit.cli.simulate import PLOT_SUFFIXES
 
 if TYPE_CHECKING:
     from mechkit.history.result import MotionResult
@@ -59,14 +62,20 @@ def run(args: argparse.Namespace) -> None:
         args: the parsed command line.
 
     Raises:
-        InvalidParameters: an output that is neither .parquet nor .csv, or one that cannot be written or whose
-            library is missing.
+        InvalidArgument: an output that is neither .parquet nor .csv, a plot of a format not written, a
+            malformed --joints.
+        InvalidParameters: an output that cannot be written or whose library is missing.
         MotionFailed: no sample of the motion succeeded.
     """
     from mechkit import motion
     from mechkit.motion.plot import write_plot
 
+    option_values.suffixed("-o", args.output, (".parquet", ".csv"))
+    option_values.suffixed("--plot", args.plot, PLOT_SUFFIXES)
+    joints = option_values.names("--joints", args.joints) if args.joints else None
     mech = load_mechanism(args)
+    if joints:
+        joint_names("--joints", joints, mech.closure_model.joint_names)
     if args.inputs:
         law = motion.from_csv(mech, args.inputs)
     else:
@@ -74,8 +83,6 @@ def run(args: argparse.Namespace) -> None:
         law = motion.from_scene(mech, scene)
     if args.samples is not None:
         law = motion.resample(law, args.samples)
-    if args.output and not args.output.endswith((".parquet", ".csv")):
-        raise InvalidParameters("-o", args.output, "write .parquet or .csv")
     _check_outputs(args)
     bars = ProgressBars(None if len(law.t) >= LONG_MOTION else False)
     result = motion.study(
@@ -96,7 +103,6 @@ def run(args: argparse.Namespace) -> None:
         writer = motion.write_parquet if args.output.endswith(".parquet") else motion.write_csv
         print(f"wrote {writer(result, args.output)}")
     if args.plot:
-        joints = [j.strip() for j in args.joints.split(",")] if args.joints else None
         print(f"wrote {write_plot(result, args.plot, joints)}")
 
 

@@ -5,10 +5,13 @@ from __future__ import annotations
 
 import argparse
 import math
+from collections.abc import Sequence
+from dataclasses import dataclass
 from pathlib import Path
 
 from mechkit.base.atomic import resolve_output
-from mechkit.base.exceptions import InvalidParameters
+from mechkit.base.exceptions import InvalidArgument, MethodUnavailable
+from mechkit.cli import option_values
 from mechkit.cli.common import add_mechanism_arguments, examples, load_mechanism
 from mechkit.cli.progress import ProgressBars
 
@@ -16,52 +19,93 @@ from mechkit.cli.progress import ProgressBars
 LONG_RUN = 1.0
 #: Ticks of the progress bar.
 TICKS = 1000
+#: The formats `--plot` writes (matplotlib's, those the help names).
+PLOT_SUFFIXES = (".png", ".svg", ".pdf")
 
 
-def _vector(text: str | None, what: str) -> tuple[float, ...] | None:
-    if text is None:
-        return None
-    try:
-        return tuple(float(x) for x in text.split(","))
-    except ValueError:
-        raise InvalidParameters(what, text, "expected numbers separated by commas") from None
+@dataclass(frozen=True)
+class _Added:
+    """What the command line adds to the run, parsed before the mechanism loads: friction (mu, pin radius m)
+    on every revolute joint, gravity (m/s^2, world), springs (joint -> stiffness, reference, damping),
+    latches (joint -> value, rad or m)."""
 
+    friction: list[float] | None
+    gravity: list[float] | None
+    springs: dict[str, list[float]]
+    latches: dict[str, list[float]]
 
-def _elements(mech, args: argparse.Namespace) -> list:
-    """The force elements the command line adds: reaction friction on every revolute joint, gravity, springs."""
-    from mechkit import forces
-    from mechkit.core import JointSpring
-
-    out = []
-    friction = _vector(args.friction, "--friction")
-    if friction is not None:
-        if len(friction) != 2:
-            raise InvalidParameters("--friction", args.friction, "expected MU,RADIUS (RADIUS in m)")
-        cm = mech.closure_model
-        revolute = [
-            j
-            for j in cm.joint_names[: mech.model.njoints - 1]
-            if mech.model.joints[mech.joint_id(j)].shortname().startswith(("JointModelR", "JointModelRevolute"))
-            and mech.model.joints[mech.joint_id(j)].nv == 1
-        ]
-        revolute += [c.name for c in cm.closures if c.kind == "revolute"]
-        spec = forces.PinFriction(friction[0], friction[1])
-        out.append(forces.ReactionFriction(mech.model, cm.joint_names, cm.kernel.cuts, {j: spec for j in revolute}))
-    gravity = _vector(args.gravity, "--gravity")
-    if gravity is not None:
-        out.append(forces.Gravity(mech.model, gravity))
-    springs = []
-    for item in args.spring or []:
-        joint, _, values = item.partition("=")
-        numbers = _vector(values, "--spring") or ()
-        if len(numbers) not in (2, 3):
-            raise InvalidParameters("--spring", item, "expected JOINT=STIFFNESS,REFERENCE[,DAMPING]")
-        springs.append(
-            JointSpring(joint.strip(), numbers[0], numbers[1], 0.0, numbers[2] if len(numbers) == 3 else 0.0)
+    @classmethod
+    def of(cls, args: argparse.Namespace) -> _Added:
+        """The values of --friction, --gravity, --spring and --latch (`mechkit.cli.option_values`)."""
+        return cls(
+            None if args.friction is None else option_values.numbers("--friction", args.friction, 2, what="MU,RADIUS"),
+            None if args.gravity is None else option_values.numbers("--gravity", args.gravity, 3, what="GX,GY,GZ"),
+            option_values.named_numbers("--spring", args.spring, "JOINT=STIFFNESS,REFERENCE[,DAMPING]", (2, 3)),
+            option_values.named_numbers("--latch", args.latch, "JOINT=VALUE (rad or m)", 1),
         )
-    if springs:
-        out.append(forces.JointSprings(mech.model, springs, "added springs"))
-    return out
+
+    def elements(self, mech) -> list:
+        """The force elements: reaction friction on every revolute joint, gravity, springs."""
+        from mechkit import forces
+        from mechkit.core import JointSpring
+
+        out = []
+        if self.friction is not None:
+            cm = mech.closure_model
+            revolute = [
+                j
+                for j in cm.joint_names[: mech.model.njoints - 1]
+                if mech.model.joints[mech.joint_id(j)].shortname().startswith(("JointModelR", "JointModelRevolute"))
+                and mech.model.joints[mech.joint_id(j)].nv == 1
+            ]
+            revolute += [c.name for c in cm.closures if c.kind == "revolute"]
+            spec = forces.PinFriction(self.friction[0], self.friction[1])
+            out.append(forces.ReactionFriction(mech.model, cm.joint_names, cm.kernel.cuts, {j: spec for j in revolute}))
+        if self.gravity is not None:
+            out.append(forces.Gravity(mech.model, self.gravity))
+        springs = [JointSpring(j, x[0], x[1], 0.0, x[2] if len(x) == 3 else 0.0) for j, x in self.springs.items()]
+        if springs:
+            out.append(forces.JointSprings(mech.model, springs, "added springs"))
+        return out
+
+
+def effort_line(name: str, u: Sequence[float]) -> str:
+    """One effort's range over the samples where its joint was driven or held (NaN elsewhere: free then).
+
+    Args:
+        name: the joint.
+        u: (samples,) its effort (N m or N), NaN where the joint was free.
+
+    Returns:
+        The line; a joint never driven says so instead of printing NaN.
+    """
+    driven = [float(x) for x in u if math.isfinite(x)]
+    if not driven:
+        return f"effort {name}: not computed (the joint was never driven or held in this run)"
+    part = "" if len(driven) == len(u) else f", driven at {len(driven)} of {len(u)} samples"
+    return f"effort {name}: {min(driven):.4g} .. {max(driven):.4g} (N m or N{part})"
+
+
+def _simulate(mech, args: argparse.Namespace, inputs, torques, added: _Added, source, bars):
+    """`simulation.simulate` with what the command line gives."""
+    from mechkit import simulation
+
+    return simulation.simulate(
+        mech,
+        args.duration,
+        inputs=inputs,
+        torques=torques,
+        forces=added.elements(mech),
+        source=source,
+        dt=args.dt,
+        rtol=args.rtol,
+        atol=args.rtol * 1e-2,
+        method=args.method,
+        dynamics=args.dynamics,
+        restitution=args.restitution,
+        latches=[simulation.Latch(joint, value[0]) for joint, value in added.latches.items()],
+        progress=lambda done, total: bars(f"{mech.spec.name} simulate", round(TICKS * done / total), TICKS),
+    )
 
 
 def run(args: argparse.Namespace) -> None:
@@ -71,14 +115,20 @@ def run(args: argparse.Namespace) -> None:
         args: the parsed command line.
 
     Raises:
-        InvalidParameters: a duration not above 0 s, an output that is neither .parquet nor .csv.
+        InvalidArgument: a duration not above 0 s, an output of a format not written, a malformed
+            option value (`mechkit.cli.option_values`).
+        MethodUnavailable: the --dynamics asked cannot run on this mechanism (the one that can is named).
     """
     from mechkit import motion, simulation
     from mechkit.simulation.plot import write_plot
 
+    if not args.duration > 0 or not math.isfinite(args.duration):
+        raise InvalidArgument("--duration", args.duration, "must be a finite time > 0 s")
+    option_values.suffixed("-o", args.output, (".parquet", ".csv"))
+    option_values.suffixed("--plot", args.plot, PLOT_SUFFIXES)
+    option_values.suffixed("--animate", args.animate, (".html",))
+    added = _Added.of(args)
     mech = load_mechanism(args)
-    if not args.duration > 0:
-        raise InvalidParameters("--duration", args.duration, "must be > 0 s")
     inputs = torques = None
     if args.inputs:
         inputs = motion.from_csv(mech, args.inputs)
@@ -96,41 +146,21 @@ def run(args: argparse.Namespace) -> None:
         )
     elif args.torques:
         torques = motion.from_csv(mech, args.torques)
-    if args.output and not args.output.endswith((".parquet", ".csv")):
-        raise InvalidParameters("-o", args.output, "write .parquet or .csv")
     for path in (args.output, args.plot, args.animate):
         if path:
             resolve_output(path)
-    latches = []
-    for item in args.latch or []:
-        joint, _, value = item.partition("=")
-        latches.append(simulation.Latch(joint.strip(), float(value)))
     source = Path(args.name) if Path(args.name).suffix in (".xml", ".mjcf") else None
     bars = ProgressBars(None if args.duration >= LONG_RUN else False)
-    result = simulation.simulate(
-        mech,
-        args.duration,
-        inputs=inputs,
-        torques=torques,
-        forces=_elements(mech, args),
-        source=source,
-        dt=args.dt,
-        rtol=args.rtol,
-        atol=args.rtol * 1e-2,
-        method=args.method,
-        dynamics=args.dynamics,
-        restitution=args.restitution,
-        latches=latches,
-        progress=lambda done, total: bars(f"{mech.spec.name} simulate", round(TICKS * done / total), TICKS),
-    )
+    try:
+        result = _simulate(mech, args, inputs, torques, added, source, bars)
+    except MethodUnavailable as err:
+        if args.dynamics not in ("proximal", "lcaba"):
+            raise
+        raise MethodUnavailable(err.method, f"{err.why} (on the command line: --dynamics kkt)") from None
     print(f"{mech.spec.name}: {result.motion.source}")
     print("\n".join(result.summary()))
     for name in result.motion.effort_names:
-        u = result.motion.effort(name)
-        print(
-            f"effort {name}: {math.nan if u.size == 0 else float(min(u, default=math.nan)):.4g} .. "
-            f"{float(max(u, default=math.nan)):.4g} (N m or N)"
-        )
+        print(effort_line(name, result.motion.effort(name)))
     if args.output:
         writer = simulation.write_parquet if args.output.endswith(".parquet") else simulation.write_csv
         print(f"wrote {writer(result, args.output)}")

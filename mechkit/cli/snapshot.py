@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import argparse
 
+from mechkit.cli import option_values
 from mechkit.cli.common import (
     add_mechanism_arguments,
     add_mesh_path_argument,
@@ -21,8 +22,11 @@ def run(args: argparse.Namespace) -> None:
     """
     from mechkit.viz import snapshot_command
 
+    q = None if args.q is None else option_values.numbers("--q", args.q, what="input values separated by commas")
+    option_values.suffixed("-o", args.output, (".html",))
+    option_values.suffixed("--png", args.png, (".png",))
     for path in snapshot_command(
-        load_mechanism(args), q=args.q, scene=args.scene, html=args.output, png=args.png, meshes=mesh_search(args)
+        load_mechanism(args), q=q, scene=args.scene, html=args.output, png=args.png, meshes=mesh_search(args)
     ):
         print(f"wrote {path}")
 

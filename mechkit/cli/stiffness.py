@@ -7,36 +7,11 @@ import json
 
 import numpy as np
 
-from mechkit.base.exceptions import InvalidParameters
+from mechkit.cli import option_values
 from mechkit.cli.common import add_mechanism_arguments, examples, load_mechanism
 from mechkit.mechanism import Mechanism
 
 DIRECTIONS = ("x", "y", "z", "rx", "ry", "rz")
-
-
-def numbers(text: str | None, what: str, size: int | None = None) -> list[float] | None:
-    """Comma-separated numbers.
-
-    Args:
-        text: the option's text (None: not given).
-        what: the option's name, for the error.
-        size: how many numbers are expected (None: any).
-
-    Returns:
-        The numbers, or None when `text` is None.
-
-    Raises:
-        InvalidParameters: not numbers, or not `size` of them.
-    """
-    if text is None:
-        return None
-    try:
-        values = [float(x) for x in text.split(",")]
-    except ValueError:
-        raise InvalidParameters(what, text, "expected numbers separated by commas") from None
-    if size is not None and len(values) != size:
-        raise InvalidParameters(what, text, f"expected {size} numbers")
-    return values
 
 
 def pose(mech: Mechanism, text: str | None) -> np.ndarray:
@@ -50,17 +25,12 @@ def pose(mech: Mechanism, text: str | None) -> np.ndarray:
         (nq,) the configuration, every loop closed.
 
     Raises:
-        InvalidParameters: a pair without "=" or a value that is not a number.
+        InvalidArgument: a pair without "=", a value that is not a finite number, a joint given twice.
     """
     if not text:
         return mech.home_q
-    given = {}
-    for pair in text.split(","):
-        if "=" not in pair:
-            raise InvalidParameters("--at", text, "expected joint=value pairs separated by commas")
-        joint, value = pair.split("=", 1)
-        given[joint.strip()] = numbers(value, "--at", 1)[0]
-    return mech.assemble(given)
+    given = option_values.named_numbers("--at", text.split(","), "JOINT=VALUE pairs separated by commas", 1)
+    return mech.assemble({joint: values[0] for joint, values in given.items()})
 
 
 def report(args: argparse.Namespace) -> dict:
@@ -78,7 +48,8 @@ def report(args: argparse.Namespace) -> dict:
     mech = load_mechanism(args)
     e = ElasticModel(mech)
     q = pose(mech, args.at)
-    s = e.stiffness(q, args.body, numbers(args.point, "--point", 3))
+    point = None if args.point is None else np.array(option_values.numbers("--point", args.point, 3, what="X,Y,Z"))
+    s = e.stiffness(q, args.body, point)
     return {
         "name": mech.spec.name,
         "body": s.body,

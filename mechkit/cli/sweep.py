@@ -14,7 +14,8 @@ import sys
 from collections.abc import Callable
 from typing import TYPE_CHECKING, NoReturn
 
-from mechkit.base.exceptions import InvalidParameters
+from mechkit.base.exceptions import InvalidArgument, InvalidParameters
+from mechkit.cli import option_values
 from mechkit.cli.common import examples, overrides
 
 if TYPE_CHECKING:
@@ -107,6 +108,7 @@ def run(args: argparse.Namespace) -> None:
         SystemExit: the cluster could not finish the sweep (status `EXIT_UNREACHABLE`, `EXIT_NO_WORKERS`,
             `EXIT_SCHEDULER_LOST` or `EXIT_TASK_FAILED`), after one line on stderr.
         InvalidParameters: --resume on a folder holding another mechanism's sweep, or what the engine refuses.
+        InvalidArgument: a metric named twice, an --optimise column the sweep will not have.
     """
     import dask
     from tqdm import tqdm
@@ -129,6 +131,14 @@ def run(args: argparse.Namespace) -> None:
             law=args.law, samples=args.samples, period=args.period, amplitude=args.amplitude, scene=args.scene
         )
         metrics, base, size = tuple(args.metric or ()) or None, overrides(args.set), args.chunk_size
+        if metrics:
+            option_values.names("--metric", ",".join(metrics))
+    if args.optimise:  # before the sweep runs, not after it
+        columns = (
+            manifest["columns"] if args.resume and not args.grid else engine.planned_columns(args.name, metrics, base)
+        )
+        if args.optimise not in columns:
+            raise InvalidArgument("--optimise", args.optimise, f"not a column of this sweep: {', '.join(columns)}")
     wait = cluster.WAIT_WORKERS if args.wait_workers is None else args.wait_workers
     codes = {
         cluster.SchedulerUnreachable: EXIT_UNREACHABLE,

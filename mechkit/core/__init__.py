@@ -31,7 +31,7 @@ from mechkit.core.assembly import ASSEMBLY_METHODS, Assembly, assemble
 from mechkit.core.cuts import CutRows
 from mechkit.core.forward import DEFAULTS as FORWARD_DEFAULTS
 from mechkit.core.forward import METHODS as FORWARD_METHODS
-from mechkit.core.forward import forward_dynamics, forward_dynamics_batch
+from mechkit.core.forward import forward_dynamics, forward_dynamics_batch, pinocchio_methods_apply
 from mechkit.core.inverse import (
     DISTRIBUTIONS,
     inverse_dynamics,
@@ -136,6 +136,7 @@ __all__ = [
     "numerical_rank",
     "passive_condition",
     "passive_verdict",
+    "pinocchio_methods_apply",
     "proximal_settings",
     "raw_constraint_dynamics",
     "second_order_inconsistency",

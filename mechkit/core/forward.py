@@ -32,7 +32,7 @@ from mechkit.base.exceptions import ConstraintViolated, InconsistentMotion, Sing
 from mechkit.core import rank
 from mechkit.core.model import ClosureData, ClosureModel
 from mechkit.core.null_space import null_space
-from mechkit.core.pin_constraints import LegacyConstraints, proximal_settings
+from mechkit.core.pin_constraints import LegacyConstraints, expresses, proximal_settings
 from mechkit.core.results import ForwardDynamicsResult
 
 #: Methods of `forward_dynamics`.
@@ -123,6 +123,19 @@ def _unconstrained_scale(cm: ClosureModel, data: pin.Data, q: np.ndarray, v: np.
     """max |tau - nle| / M_jj: the accelerations the loads would cause with no closure (rad/s^2 or m/s^2)."""
     loads = np.abs(tau - pin.rnea(cm.model, data, q, v, np.zeros(cm.nv)))
     return float(np.max(loads / np.diag(pin.crba(cm.model, data, q))))
+
+
+def pinocchio_methods_apply(cm: ClosureModel) -> bool:
+    """Whether "proximal" and "lcaba" (Pinocchio's legacy constraint models) can run on this model.
+
+    Args:
+        cm: the closure model.
+
+    Returns:
+        False where a coupling row or a Hooke or prismatic cut has no legacy model ("kkt" and
+        "nullspace" solve every model).
+    """
+    return expresses(list(cm.kernel.cuts), len(cm.kernel.couplings))
 
 
 def _legacy(cm: ClosureModel, cd: ClosureData, ordered: bool = False) -> LegacyConstraints:

@@ -45,7 +45,8 @@ class LegacyConstraints:
     def __init__(self, model: pin.Model, cuts: list[CutRows], couplings: int = 0, ordered: bool = False):
         if couplings:
             raise MethodUnavailable(
-                "pin.constraintDynamics", "coupling rows have no RigidConstraintModel; use method='kkt'"
+                "pin.constraintDynamics",
+                "coupling rows have no RigidConstraintModel; the kkt and nullspace methods solve them",
             )
         self.model = model
         self.models = pin.StdVec_RigidConstraintModel()
@@ -142,6 +143,23 @@ class LegacyConstraints:
         return self.data.g
 
 
+def expresses(cuts: list[CutRows], couplings: int) -> bool:
+    """Whether the legacy constraint models express these cuts and couplings ("proximal" and "lcaba" can run).
+
+    Args:
+        cuts: the cuts.
+        couplings: number of coupling rows.
+
+    Returns:
+        False for a coupling row or a Hooke or prismatic cut, else True.
+    """
+    return not couplings and all(cut.closure.kind not in _INEXPRESSIBLE for cut in cuts)
+
+
+#: Cut kinds no legacy constraint model expresses.
+_INEXPRESSIBLE = ("hooke", "prismatic")
+
+
 def proximal_settings(accuracy: float, mu: float, max_iter: int) -> pin.ProximalSettings:
     """Pinocchio's proximal settings.
 
@@ -198,10 +216,10 @@ def _legacy_models(model: pin.Model, cuts: list[CutRows]) -> list[pin.RigidConst
                 )
             )
             continue
-        if c.kind in ("hooke", "prismatic"):
+        if c.kind in _INEXPRESSIBLE:
             raise MethodUnavailable(
                 "pin.constraintDynamics",
-                f"cut {c.name!r} is {c.kind}: no RigidConstraintModel expresses it; use method='kkt'",
+                f"cut {c.name!r} is {c.kind}: no RigidConstraintModel expresses it; the kkt and nullspace methods do",
             )
         offsets = [np.zeros(3)]
         if c.kind == "revolute" and c.rows != "planar":

@@ -137,6 +137,9 @@ def from_arrays(
         raise InvalidParameters("rates/accelerations", None, "give both or neither")
     if values.shape != (len(t), len(names)):
         raise InvalidParameters("values", values.shape, f"expected ({len(t)}, {len(names)}) for {list(names)}")
+    for what, x in (("values", values), ("rates", rates), ("accelerations", accelerations)):
+        if x is not None and not np.all(np.isfinite(np.asarray(x, dtype=float))):
+            raise InvalidParameters(what, "NaN or inf", "every sample must be a finite number")
     if rates is None:
         rates, accelerations = _spline_derivatives(t, values)
     if guesses is not None:
@@ -204,7 +207,7 @@ def from_csv(mech: Mechanism, path: str | Path) -> InputLaw:
         The law (source: the file's name).
 
     Raises:
-        MalformedDescription: the file is missing, has no `t` column, or a value is not a number.
+        MalformedDescription: the file is missing, has no `t` column, or a value is not a finite number.
     """
     path = Path(path)
     try:
@@ -221,6 +224,11 @@ def from_csv(mech: Mechanism, path: str | Path) -> InputLaw:
         raise MalformedDescription(str(path), f"not a number: {err}") from None
     if data.shape[1] != len(header):
         raise MalformedDescription(str(path), "rows and header differ in length")
+    if not np.all(np.isfinite(data)):
+        row, column = np.argwhere(~np.isfinite(data))[0]
+        raise MalformedDescription(
+            str(path), f"data row {row + 1}, column {header[column]!r}: {data[row, column]} is not a finite number"
+        )
     col = {h: data[:, i] for i, h in enumerate(header)}
     names = tuple(h for h in header if h != "t" and not h.endswith((RATE_SUFFIX, ACC_SUFFIX)))
     has_rates = all(n + RATE_SUFFIX in col and n + ACC_SUFFIX in col for n in names)

@@ -101,7 +101,8 @@ def simulate(
             "proximal" (Pinocchio's constraint models), or "kkt" where friction needs the reactions: the
             core's inverse dynamics solves on mechkit's closure rows, and only accelerations from the
             same rows stay consistent with it at the integrator's off-manifold stages (the proximal
-            ones differ by O(closure residual) there, which the inverse dynamics refuses).
+            ones differ by O(closure residual) there, which the inverse dynamics refuses), or where
+            Pinocchio's constraint models cannot express a cut or coupling (`core.pinocchio_methods_apply`).
         baumgarte: (Kp 1/s^2, Kd 1/s) closure stabilisation in the accelerations, or None.
         project: project onto the closures and drives after every step (off: the drift shows).
         limits: "file" (the description's joint limits), a list of `Limit`, or None.
@@ -130,7 +131,8 @@ def simulate(
     if len(set(names)) != len(names):
         raise InvalidParameters("forces", names, "every force element needs its own name")
     if dynamics is None:
-        dynamics = "kkt" if any(e.needs_reactions for e in elements) else "proximal"
+        exact = any(e.needs_reactions for e in elements) or not core.pinocchio_methods_apply(mech.closure_model)
+        dynamics = "kkt" if exact else "proximal"
     system = MechanismSystem(mech, elements, drives, dynamics, baumgarte)
     layout = StateLayout(mech.model, 1 + len(elements))
     projection = Projection(mech)

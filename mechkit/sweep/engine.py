@@ -85,6 +85,24 @@ def _check_axes(mechanism: str, space: DesignSpace, base: dict) -> None:
             raise InvalidParameters("set", name, "is swept: it cannot also be fixed")
 
 
+def planned_columns(mechanism: str, metrics: tuple[str, ...] | None, base: dict) -> tuple[str, ...]:
+    """The metric columns a sweep of `mechanism` fills (known before any design is evaluated).
+
+    Args:
+        mechanism: registry name (or description file).
+        metrics: metric names (None: the mechanism's default set).
+        base: fixed parameter overrides of every design.
+
+    Returns:
+        The column names, in the order of the rows.
+
+    Raises:
+        InvalidParameters: an unknown metric or parameter.
+    """
+    reference = load(mechanism, **base)
+    return tuple(c for m in resolve(mechanism, metrics) for c in m.columns(reference))
+
+
 def sweep(
     mechanism: str,
     space: DesignSpace,
@@ -142,8 +160,7 @@ def sweep(
     study, base = study or Study(), dict(base or {})
     _check_axes(mechanism, space, base)
     chosen = resolve(mechanism, metrics)
-    reference = load(mechanism, **base)
-    columns = tuple(c for m in chosen for c in m.columns(reference))
+    columns = planned_columns(mechanism, metrics, base)
     designs = space.designs()
     n_workers = workers or os.cpu_count() or 1
     size = chunk_size or max(1, min(50, math.ceil(len(designs) / (4 * n_workers))))

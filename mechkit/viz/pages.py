@@ -254,7 +254,7 @@ def side_by_side(
 
 def snapshot_command(
     mechanism: Mechanism,
-    q: str | None = None,
+    q: Sequence[float] | None = None,
     scene: str | None = None,
     html: str | None = None,
     png: str | None = None,
@@ -265,7 +265,7 @@ def snapshot_command(
 
     Args:
         mechanism: the mechanism.
-        q: the inputs of the pose, comma-separated, in actuated order (rad or m).
+        q: the inputs of the pose, in actuated order (rad or m).
         scene: a scene to animate instead.
         html: the page's file.
         png: the screenshot's file.
@@ -276,7 +276,7 @@ def snapshot_command(
 
     Raises:
         InvalidArgument: neither html nor png.
-        InvalidParameters: both q and scene, inputs that are not numbers, an unknown scene.
+        InvalidParameters: both q and scene, inputs the assembly refuses, an unknown scene.
         MethodUnavailable: no Chromium for the PNG.
         OutputError: a file cannot be written.
     """
@@ -295,7 +295,7 @@ def snapshot_command(
             written.append(Path(html))
         page = overlay(mechanism, scene, poses=poses, meshes=meshes) if png is not None else None
     else:
-        pose = None if q is None else mechanism.assemble(_parse_inputs(q), guess=mechanism.home_q)
+        pose = None if q is None else mechanism.assemble(list(q), guess=mechanism.home_q)
         page = snapshot(mechanism, pose, html, meshes=meshes)
         if html is not None:
             written.append(Path(html))
@@ -304,11 +304,3 @@ def snapshot_command(
             source = Path(html) if html is not None and scene is None else write_text(Path(tmp) / "page.html", page)
             written.append(screenshot(source, png))
     return written
-
-
-def _parse_inputs(text: str) -> list[float]:
-    """Actuated inputs from the command line: numbers separated by commas (rad or m)."""
-    try:
-        return [float(x) for x in text.split(",")]
-    except ValueError:
-        raise InvalidParameters("q", text, "expected numbers separated by commas (rad or m)") from None

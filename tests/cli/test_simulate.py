@@ -69,3 +69,71 @@ def test_help_ends_with_two_examples(capsys):
         main(["simulate", "--help"])
     lines = capsys.readouterr().out.rstrip().splitlines()
     assert lines[-3] == "examples:" and all(line.startswith("  mechkit simulate") for line in lines[-2:])
+
+
+@pytest.mark.parametrize(
+    "option, needle",
+    [
+        (["--latch", "crank"], "argument '--latch': expected JOINT=VALUE"),
+        (["--latch", "crank=abc"], "'abc' is not a number"),
+        (["--latch", "crank=0.5", "--latch", "crank=0.7"], "'crank' is given twice"),
+        (["--spring", "crank=1"], "expected JOINT=STIFFNESS,REFERENCE[,DAMPING]: 1 number(s) given"),
+        (["--friction", "0.1,nan"], "'nan' is not finite"),
+        (["--gravity", "0,0"], "expected GX,GY,GZ"),
+        (["--plot", "run.xyz"], "argument '--plot': expected a .png or .svg or .pdf file"),
+        (["--animate", "run.png"], "argument '--animate': expected a .html file"),
+        (["-o", "run.json"], "argument '-o': expected a .parquet or .csv file"),
+        (["--duration", "nan"], "argument '--duration': must be a finite time > 0 s"),
+    ],
+)
+def test_malformed_options_are_refused_before_the_mechanism_loads(monkeypatch, capsys, option, needle):
+    """A malformed --latch was a ValueError traceback and a plot format was checked after the whole run: both
+    are refused in one line before any work (the mechanism is never loaded)."""
+    from mechkit.cli import simulate
+
+    def never(_args):
+        raise AssertionError("the mechanism was loaded")
+
+    monkeypatch.setattr(simulate, "load_mechanism", never)
+    args = ["simulate", "four_bar", "--duration", "0.1", *option]
+    if option[0] == "--duration":
+        args = ["simulate", "four_bar", *option]
+    assert main(args) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("mechkit: error:") and err.count("\n") == 1 and needle in err, err
+
+
+def test_a_nan_in_a_torques_csv_is_named_with_its_row_and_column(tmp_path, capsys):
+    law = tmp_path / "torques.csv"
+    law.write_text("t,crank\n0,0\n0.02,0.01\n0.04,nan\n0.06,0.01\n")
+    assert main(["simulate", "four_bar", "--duration", "0.05", "--torques", str(law)]) == 2
+    assert "data row 3, column 'crank': nan is not a finite number" in capsys.readouterr().err
+
+
+def test_an_effort_never_driven_is_not_printed_as_nan():
+    from mechkit.cli.simulate import effort_line
+
+    nan = float("nan")
+    assert (
+        effort_line("latch", [nan, nan])
+        == "effort latch: not computed (the joint was never driven or held in this run)"
+    )
+    assert effort_line("latch", [nan, 1.0, 3.0]) == "effort latch: 1 .. 3 (N m or N, driven at 2 of 3 samples)"
+    assert effort_line("crank", [0.5, -2.0]) == "effort crank: -2 .. 0.5 (N m or N)"
+
+
+def test_a_method_pinocchio_cannot_run_names_the_option_that_can(tmp_path, capsys):
+    """A five-bar whose second crank mimics the first (a coupling row, which no Pinocchio constraint model
+    expresses): by default kkt runs; asked for, proximal is refused with the option to type instead."""
+    import re
+
+    from tests_support import ROOT
+
+    text = (ROOT / "urdf" / "five_bar.urdf").read_text()
+    mimic = '<mimic joint="prox1" multiplier="1" offset="-0.9"/>'
+    path = tmp_path / "five_mimic.urdf"
+    path.write_text(re.sub(r'(<joint name="prox2" type="revolute">)', r"\1" + mimic, text))
+    assert main(["simulate", str(path), "--duration", "0.02"]) == 0
+    capsys.readouterr()
+    assert main(["simulate", str(path), "--duration", "0.02", "--dynamics", "proximal"]) == 2
+    assert "(on the command line: --dynamics kkt)" in capsys.readouterr().err

@@ -47,6 +47,9 @@ def test_csv_law(load_cached, tmp_path):
         ("t,crank\n0,0.6\n1,x\n", "not a number"),
         ("t,crank\n0,0.6\n0,0.7\n1,0.8\n2,0.9\n", "strictly increasing"),
         ("t,wheel\n0,0.6\n1,0.7\n2,0.8\n3,0.9\n", "'wheel'"),
+        ("t,crank\n0,0.6\n1,0.7\n2,nan\n3,0.9\n", r"data row 3, column 'crank': nan is not a finite number"),
+        ("t,crank\n0,0.6\n1,inf\n2,0.8\n3,0.9\n", r"data row 2, column 'crank': inf is not a finite"),
+        ("t,crank,crank_dot,crank_ddot\n0,0.6,0,0\n1,0.7,nan,0\n", r"column 'crank_dot'"),
     ],
 )
 def test_bad_csv_law_is_a_named_error(load_cached, tmp_path, text, needle):

@@ -74,9 +74,7 @@ def test_snapshot_command_errors(load_cached, tmp_path, monkeypatch):
     with pytest.raises(MechkitError, match="give -o"):
         viz.snapshot_command(m)
     with pytest.raises(InvalidParameters, match="not both"):
-        viz.snapshot_command(m, q="0.5", scene="sweep", html=str(tmp_path / "a.html"))
-    with pytest.raises(InvalidParameters, match="numbers separated by commas"):
-        viz.snapshot_command(m, q="0.5;1", html=str(tmp_path / "a.html"))
+        viz.snapshot_command(m, q=[0.5], scene="sweep", html=str(tmp_path / "a.html"))
     monkeypatch.delenv("MECHKIT_CHROMIUM", raising=False)
     monkeypatch.setenv("PATH", str(tmp_path))
     with pytest.raises(MethodUnavailable, match="Chromium browser, not found.*apt-get install chromium"):
@@ -89,7 +87,7 @@ def test_snapshot_command_errors(load_cached, tmp_path, monkeypatch):
 
 def test_pose_from_the_command_line(load_cached, tmp_path, capsys):
     m = load_cached("four_bar")
-    (path,) = viz.snapshot_command(m, q="1.3", html=str(tmp_path / "p.html"))
+    (path,) = viz.snapshot_command(m, q=[1.3], html=str(tmp_path / "p.html"))
     crank = next(
         c
         for c in commands(path.read_text())
