@@ -3,18 +3,20 @@
 from __future__ import annotations
 
 import dataclasses
+import warnings
 from collections.abc import Callable, Mapping, Sequence
 from pathlib import Path
 from typing import Any
 
 from mechkit import core, sources
 from mechkit.base import arguments, joint_arguments
-from mechkit.base.exceptions import InvalidArgument, InvalidParameters, MalformedDescription
+from mechkit.base.exceptions import IgnoredClosure, InvalidArgument, InvalidParameters, MalformedDescription
 from mechkit.catalog.contract import MechanismSpec
 from mechkit.catalog.params import MechanismParams
 from mechkit.catalog.registry import get_spec, names
 from mechkit.mechanism import Mechanism
 from mechkit.reduction import description_of, locked_joints, reduce_description
+from mechkit.sources.physical import check_model
 from mechkit.sources.urdf import build_model, parse_loops, parse_springs, parse_xml
 from mechkit.sources.xacro_file import render_urdf
 
@@ -59,6 +61,7 @@ def load(
     keep: Sequence[str] | None = None,
     fix: Sequence[str] | None = None,
     freeflyer: bool = False,
+    ignore_unknown_closures: bool = False,
     **params: Any,
 ) -> Mechanism:
     """Build a mechanism from a registered name or a description file.
@@ -80,6 +83,10 @@ def load(
         fix: bodies whose own joint is locked at home (a floating root, for statics).
         freeflyer: put an Extended-URDF file's tree on a free-flyer root joint ("root_joint"), as
             Gepetto's loader does when asked (its legged robots float).
+        ignore_unknown_closures: load a file holding another tool's loop closures that mechkit does not
+            read (Drake's constraints and bushings, a Gazebo joint: `mechkit.sources.closure_elements`)
+            as its tree without them, with one `IgnoredClosure` warning per element naming the mobility
+            left (default: refused by name).
         **params: the mechanism's parameters (a name) or xacro arguments (a xacro file);
             `rows="spatial"`, unless the mechanism has a parameter of that name, closes every cut
             with its full rows.
@@ -96,8 +103,17 @@ def load(
     if not isinstance(source, (str, Path)):
         raise InvalidArgument("source", source, "expected a mechanism name or a path")
     freeflyer = arguments.flag("freeflyer", freeflyer)
+    ignore = arguments.flag("ignore_unknown_closures", ignore_unknown_closures)
     if lock or keep is not None or fix:
-        whole = load(source, actuated=actuated, home=home, guess=guess, freeflyer=freeflyer, **params)
+        whole = load(
+            source,
+            actuated=actuated,
+            home=home,
+            guess=guess,
+            freeflyer=freeflyer,
+            ignore_unknown_closures=ignore,
+            **params,
+        )
         rows = params.get("rows") if "rows" not in {f.name for f in dataclasses.fields(whole.spec.params)} else None
         reduced = reduce_description(whole, description_of(whole), locked_joints(whole, lock, keep, fix))
         return from_description(reduced, rows=rows)
@@ -105,7 +121,17 @@ def load(
     if isinstance(where, Path):
         declared = sources.xacro_args(where) if where.name.endswith(".xacro") else {}
         rows = None if "rows" in declared else params.pop("rows", None)
-        return from_description(sources.read(where, params, freeflyer=freeflyer), actuated, home, guess, rows)
+        description = sources.read(where, params, freeflyer=freeflyer, ignore_unknown_closures=ignore)
+        mechanism = from_description(description, actuated, home, guess, rows)
+        for element in description.ignored_closures:
+            warnings.warn(
+                IgnoredClosure(
+                    f"{element}: ignored as asked; the model is left with {mechanism.home_mobility.dof} degree(s) "
+                    f"of freedom"
+                ),
+                stacklevel=2,
+            )
+        return mechanism
     if freeflyer:
         raise InvalidArgument(
             "freeflyer",
@@ -196,6 +222,7 @@ def from_description(
         if value is not None and not isinstance(value, Mapping):
             raise InvalidArgument(arg, value, "expected a mapping joint name -> value")
     model = desc.model if desc.model is not None else build_model(desc.urdf)
+    check_model(model)
     if actuated is not None:
         known = list(model.names[1:]) + [a.name for a in desc.actuators]
         joint_arguments.joint_names("actuated", actuated, known, allow_empty=True)

@@ -8,6 +8,7 @@ from tests_support import SLIDER_CRANK, written
 import mechkit
 from mechkit.base.exceptions import (
     ClosureNotConverged,
+    IgnoredClosure,
     InvalidArgument,
     InvalidParameters,
     MalformedDescription,
@@ -64,3 +65,30 @@ def test_paths_that_are_not_files(tmp_path):
         mechkit.load(written(tmp_path, SLIDER_CRANK, "linkage.txt"))
     with pytest.raises(InvalidParameters, match="no such mechanism"):
         mechkit.load("slider_crank")
+
+
+CLOSURE_FILES = ("four_bar_drake_ball.urdf", "four_bar_drake_bushing.urdf", "four_bar_gazebo_joint.urdf")
+
+
+@pytest.mark.parametrize("name", CLOSURE_FILES)
+def test_another_tool_s_closure_is_refused_by_name_never_an_open_tree(name):
+    """A four-bar closed by Drake's or Gazebo's element loads as nothing, not as a 3-DOF open tree."""
+    from tests_support import FIXTURES
+
+    with pytest.raises(MalformedDescription, match=rf"^{name}:\d+: <(drake:|gazebo/)"):
+        mechkit.load(FIXTURES / "closures" / name)
+
+
+@pytest.mark.parametrize("name", CLOSURE_FILES)
+def test_asked_to_ignore_it_the_tree_loads_with_one_warning_naming_the_mobility_left(name):
+    from tests_support import FIXTURES
+
+    with pytest.warns(IgnoredClosure) as caught:
+        m = mechkit.load(FIXTURES / "closures" / name, ignore_unknown_closures=True)
+    assert m.home_mobility.dof == 3 and len(caught) == 1
+    assert f"{name}:" in str(caught[0].message) and "left with 3 degree(s) of freedom" in str(caught[0].message)
+
+
+def test_the_option_to_ignore_is_a_flag():
+    with pytest.raises(InvalidArgument, match="ignore_unknown_closures"):
+        mechkit.load("four_bar", ignore_unknown_closures="yes")

@@ -190,3 +190,12 @@ def _summary(value: object) -> str:
         return f"{type(value).__name__} of shape {tuple(shape)}, dtype {getattr(value, 'dtype', '?')}"
     text = repr(value)
     return text if len(text) <= 80 else text[:77] + "..."
+
+
+class MechkitWarning(UserWarning):
+    """Base class of the warnings mechkit gives on purpose (the command line prints each as one line)."""
+
+
+class IgnoredClosure(MechkitWarning):
+    """An element that closes a loop in another tool was left out, as the caller asked; the message names it,
+    its file and line, and the mobility the model is left with."""

@@ -10,10 +10,11 @@ from __future__ import annotations
 import argparse
 import os
 import sys
+import warnings
 
 import numpy as np
 
-from mechkit.base.exceptions import MechkitError
+from mechkit.base.exceptions import MechkitError, MechkitWarning
 from mechkit.cli import (
     bench,
     export,
@@ -73,6 +74,14 @@ def main(argv: list[str] | None = None) -> int:
         The exit status: 0 done, 2 refused (one line on stderr), others as the command says (`mechkit sweep`).
     """
     args = build_parser().parse_args(argv)
+    with warnings.catch_warnings():  # restores the warning printer on leaving
+        warnings.simplefilter("always", MechkitWarning)
+        warnings.showwarning = _warning
+        return _run(args)
+
+
+def _run(args: argparse.Namespace) -> int:
+    """Run the parsed command (see `main`)."""
     try:
         output_guard.check(args)  # before any work: no output may be an input or another output
         with np.errstate(all="raise", under="ignore"):  # a result flushed to zero is not a failure
@@ -90,6 +99,17 @@ def main(argv: list[str] | None = None) -> int:
         where = f"{err.filename}: " if err.filename else ""
         return _error(f"{where}{err.strerror or err}")
     return 0
+
+
+def _warning(message: Warning | str, category: type[Warning], *args: object, **kwargs: object) -> None:
+    """Print a mechkit warning as one line on stderr (others as Python shows them)."""
+    if issubclass(category, MechkitWarning):
+        print(f"mechkit: warning: {message}", file=sys.stderr)
+    else:
+        _show_warning(message, category, *args, **kwargs)
+
+
+_show_warning = warnings.showwarning
 
 
 def _error(message: str) -> int:

@@ -64,6 +64,12 @@ def add_mechanism_arguments(parser: argparse.ArgumentParser) -> None:
         "--fix", metavar="BODY", action="append", help="lock a body's own joint at home (a floating root); repeatable"
     )
     parser.add_argument(
+        "--ignore-unknown-closures",
+        action="store_true",
+        help="load a file holding another tool's loop closures mechkit does not read (Drake constraints and "
+        "bushings, Gazebo joints) as its tree without them, one warning per element (default: refused)",
+    )
+    parser.add_argument(
         "--freeflyer",
         action="store_true",
         help="put an Extended-URDF file's tree on a free-flyer root joint (as Gepetto's loader can)",
@@ -140,6 +146,7 @@ def load_mechanism(args: argparse.Namespace) -> Mechanism:
             keep=keep,
             fix=getattr(args, "fix", None),
             freeflyer=getattr(args, "freeflyer", False),
+            ignore_unknown_closures=getattr(args, "ignore_unknown_closures", False),
             **overrides(args.set),
         )
     except ClosureNotConverged as err:

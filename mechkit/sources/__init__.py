@@ -10,24 +10,29 @@ arguments (`xacro_file`), an MJCF `.xml` (`mjcf`) and an SDFormat `.sdf` (`sdf`)
 
 from __future__ import annotations
 
+import dataclasses
 from pathlib import Path
 from typing import Any
 
 from mechkit.base.exceptions import InvalidArgument, InvalidParameters, MalformedDescription
+from mechkit.sources.closure_elements import ClosureElement, refusal, unread_closures
 from mechkit.sources.description import Description, read_text
 from mechkit.sources.extended_urdf import read_extended_urdf, sidecar_of
+from mechkit.sources.input_files import description_files
 from mechkit.sources.mjcf import read_mjcf
 from mechkit.sources.sdf import read_sdf
 from mechkit.sources.urdf import describe_urdf, parse_xml, read_urdf
 from mechkit.sources.urdf_plus import is_urdf_plus, read_urdf_plus
 from mechkit.sources.xacro_file import read_xacro, xacro_args
 
-__all__ = ["SUFFIXES", "Description", "describe_urdf", "read", "xacro_args"]
+__all__ = ["SUFFIXES", "ClosureElement", "Description", "describe_urdf", "read", "xacro_args"]
 
 SUFFIXES = (".urdf", ".xacro", ".xml", ".sdf")
 
 
-def read(path: Path, params: dict[str, Any] | None = None, freeflyer: bool = False) -> Description:
+def read(
+    path: Path, params: dict[str, Any] | None = None, freeflyer: bool = False, ignore_unknown_closures: bool = False
+) -> Description:
     """The description in a file, its format told by its suffix (and, for a URDF, a sidecar beside it or
     URDF+ constraints in it).
 
@@ -35,15 +40,28 @@ def read(path: Path, params: dict[str, Any] | None = None, freeflyer: bool = Fal
         path: an existing file (see `resolve`).
         params: xacro arguments (only a xacro file takes any).
         freeflyer: put an Extended-URDF file's tree on a free-flyer root (`read_extended_urdf`).
+        ignore_unknown_closures: read a file holding another tool's loop closures mechkit does not read
+            (`mechkit.sources.closure_elements`) as the tree without them; they are listed in the
+            description's `ignored_closures`.
 
     Returns:
         The description.
 
     Raises:
-        MalformedDescription: unknown suffix, unreadable, empty or invalid content.
+        MalformedDescription: unknown suffix, unreadable, empty or invalid content; an element that closes
+            a loop in another tool and that mechkit does not read, unless `ignore_unknown_closures`.
         InvalidParameters: parameters given to a format that takes none; InvalidArgument: `freeflyer`
             for a file that is not Extended URDF.
     """
+    unread = unread_closures(description_files(path))
+    if unread and not ignore_unknown_closures:
+        raise refusal(unread)
+    description = _read_format(path, params, freeflyer)
+    return dataclasses.replace(description, ignored_closures=tuple(unread)) if unread else description
+
+
+def _read_format(path: Path, params: dict[str, Any] | None, freeflyer: bool) -> Description:
+    """The reader of the file's format (see `read`)."""
     params = dict(params or {})
     name = path.name
     if freeflyer and not (name.endswith(".urdf") and sidecar_of(path) is not None):

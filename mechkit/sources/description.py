@@ -10,6 +10,7 @@ import pinocchio as pin
 
 from mechkit.base.exceptions import MalformedDescription
 from mechkit.core import Actuator, Coupling, JointSpring, LoopClosure
+from mechkit.sources.closure_elements import ClosureElement
 
 
 @dataclass(frozen=True)
@@ -33,6 +34,8 @@ class Description:
         couplings: coupling rows between joints (mimic, gearbox, joint and tendon equalities).
         springs: joint springs and dampers.
         actuators: the actuators that are not one joint's motor (tendon transmissions), by name.
+        ignored_closures: another tool's loop closures in the file, left out as asked
+            (`mechkit.sources.read`, ignore_unknown_closures).
     """
 
     name: str
@@ -48,6 +51,7 @@ class Description:
     couplings: tuple[Coupling, ...] = ()
     springs: tuple[JointSpring, ...] = ()
     actuators: tuple[Actuator, ...] = ()
+    ignored_closures: tuple[ClosureElement, ...] = ()
 
 
 def read_text(path: Path) -> str:

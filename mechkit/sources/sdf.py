@@ -42,7 +42,7 @@ from mechkit.base.exceptions import MalformedDescription
 from mechkit.core import Coupling, JointSpring, LoopClosure
 from mechkit.sources.description import Description, read_text
 from mechkit.sources.pinocchio_tree import add_body, add_frame, add_joint, joint_model, tree_urdf
-from mechkit.sources.sdf_frames import MODEL, SdfFrames, number, sdf_version
+from mechkit.sources.sdf_frames import MODEL, SdfFrames, boolean, number, sdf_version
 from mechkit.sources.urdf import parse_xml
 
 #: SDFormat joint type -> Pinocchio joint kind (tree) and cut kind.
@@ -107,7 +107,7 @@ class _Reader(SdfFrames):
             for link, options in parents.items()
             if options
         }
-        if (self.element.findtext("static") or "").strip() in ("1", "true"):
+        if boolean(self.element.findtext("static"), f"SDF model {self.name!r}", "<static>"):
             raise MalformedDescription(f"SDF model {self.name!r}", "<static> is true: nothing in it moves")
         roots = [link for link in self.items["link"] if link not in tree]
         model = pin.Model()

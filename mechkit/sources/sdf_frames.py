@@ -38,6 +38,29 @@ def sdf_version(root: ET.Element, where: str) -> tuple[int, int]:
     return major, minor
 
 
+def boolean(text: str | None, where: str, what: str, default: bool = False) -> bool:
+    """An SDFormat boolean as libsdformat reads it: "true" or "1", "false" or "0" (any case, spaces around).
+
+    Args:
+        text: the attribute's or element's text (None: absent).
+        where: what is read, for messages.
+        what: the attribute or element, for messages.
+        default: the value of an absent one.
+
+    Returns:
+        The value.
+
+    Raises:
+        MalformedDescription: any other text.
+    """
+    if text is None:
+        return default
+    word = text.strip().lower()
+    if word not in ("true", "1", "false", "0"):
+        raise MalformedDescription(where, f"{what}={text!r} is not a boolean (true, false, 1 or 0)")
+    return word in ("true", "1")
+
+
 def numbers(element: ET.Element | None, where: str, count: int, default: tuple[float, ...]) -> np.ndarray:
     """The whitespace-separated numbers of an element's text.
 
@@ -130,7 +153,8 @@ class SdfFrames:
         if quat:
             rotation = pin.Quaternion(v[6], v[3], v[4], v[5]).normalized().matrix()
         else:
-            rotation = pin.rpy.rpyToMatrix(*(np.radians(v[3:]) if element.get("degrees") == "true" else v[3:]))
+            degrees = boolean(element.get("degrees"), where, "<pose degrees>")
+            rotation = pin.rpy.rpyToMatrix(*(np.radians(v[3:]) if degrees else v[3:]))
         return pin.SE3(rotation, v[:3]), element.get("relative_to") or None
 
     def frame(self, name: str, stack: tuple[str, ...] = ()) -> pin.SE3:
@@ -228,7 +252,7 @@ class SdfFrames:
         if np.linalg.norm(vector) < 1e-12:
             raise MalformedDescription(where, f"<{tag}><xyz> is zero")
         if self.version < (1, 7):
-            model_frame = (element.findtext("use_parent_model_frame") or "").strip() in ("1", "true")
+            model_frame = boolean(element.findtext("use_parent_model_frame"), where, "<use_parent_model_frame>")
             frame = MODEL if model_frame else None
         else:
             frame = xyz.get("expressed_in") if xyz is not None else None

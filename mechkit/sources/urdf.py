@@ -337,8 +337,9 @@ def _vector(element: ET.Element, attr: str, where: str, required: bool) -> np.nd
         vec = np.array([float(x) for x in text.split()])
     except ValueError:
         raise MalformedDescription(where, f"{attr}={text!r} is not three numbers") from None
-    if vec.shape != (3,) or not np.all(np.isfinite(vec)) or np.linalg.norm(vec) < 1e-12:
-        raise MalformedDescription(where, f"{attr}={text!r} is not a non-zero 3-vector")
+    if vec.shape != (3,) or not np.all(np.isfinite(vec)) or not np.any(vec):
+        raise MalformedDescription(where, f"{attr}={text!r} is not a non-zero, finite 3-vector")
+    vec = vec / np.max(np.abs(vec))  # scaled first: the norm of 1e300 components would overflow
     return vec / np.linalg.norm(vec)
 
 

@@ -11,9 +11,7 @@ import xml.etree.ElementTree as ET
 import numpy as np
 
 from mechkit.base.exceptions import MalformedDescription
-
-#: Relative tolerance on principal moments (of their sum): far above rounding, far below anything physical.
-INERTIA_RTOL = 1e-12
+from mechkit.sources.physical import check_body
 
 
 def check_tree(root: ET.Element) -> None:
@@ -86,7 +84,7 @@ def check_inertias(root: ET.Element) -> None:
     Zero is valid: a massless link (all zero) is a frame, a point mass has a zero inertia, a thin rod a
     zero principal moment, and a mass of zero with a non-zero inertia is a rotor whose mass the file
     counts elsewhere (URDF+ files write motor rotors so: it adds rotational inertia, no weight).
-    Moments are judged to `INERTIA_RTOL` of their sum (CAD exports print rounded values).
+    Moments are judged as `mechkit.sources.physical.check_body` judges every format's bodies.
 
     Args:
         root: the URDF's <robot> element.
@@ -107,24 +105,10 @@ def check_inertias(root: ET.Element) -> None:
             k: number(element.get(k, "0") if element is not None else "0", where, k)
             for k in ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")
         }
-        if value < 0:
-            raise MalformedDescription(where, f"mass {text} is negative (kg)")
-        moments = np.linalg.eigvalsh(
-            np.array([[c["ixx"], c["ixy"], c["ixz"]], [c["ixy"], c["iyy"], c["iyz"]], [c["ixz"], c["iyz"], c["izz"]]])
+        matrix = np.array(
+            [[c["ixx"], c["ixy"], c["ixz"]], [c["ixy"], c["iyy"], c["iyz"]], [c["ixz"], c["iyz"], c["izz"]]]
         )
-        slack = INERTIA_RTOL * float(np.sum(np.abs(moments)))
-        if moments[0] < -slack:
-            raise MalformedDescription(
-                where,
-                f"inertia {c} is not positive semi-definite: principal moment "
-                f"{float(moments[0]):.6g} kg m^2 is negative",
-            )
-        if moments[0] + moments[1] < moments[2] - slack:
-            raise MalformedDescription(
-                where,
-                f"inertia {c} violates the triangle inequality: principal moments "
-                f"{float(moments[0]):.6g} + {float(moments[1]):.6g} < {float(moments[2]):.6g} kg m^2",
-            )
+        check_body(where, value, matrix, c)
 
 
 def number(text: str | None, where: str, what: str) -> float:

@@ -57,3 +57,14 @@ def test_cli_errors_are_one_line(args, needle, tmp_path):
     lines = out.stderr.strip().splitlines()
     assert len(lines) == 1 and needle in lines[0] and "Traceback" not in out.stderr
     assert not (tmp_path / "s.html").exists()
+
+
+def test_an_unread_closure_is_refused_and_with_the_option_warned_in_one_line():
+    from tests_support import FIXTURES, refused, run_mechkit
+
+    path = str(FIXTURES / "closures" / "leg_pair.urdf.xacro")
+    refused(run_mechkit("report", path), "leg_macro.xacro:", "<drake:ball_constraint>", "--ignore-unknown-closures")
+    out = run_mechkit("report", path, "--ignore-unknown-closures")
+    warnings = [line for line in out.stderr.splitlines() if line.startswith("mechkit: warning: ")]
+    assert out.returncode == 0 and "Traceback" not in out.stderr
+    assert len(warnings) == 1 and "left with 5 degree(s) of freedom" in warnings[0], out.stderr

@@ -23,6 +23,8 @@ import pinocchio as pin
 import pytest
 from tests_support import ROBOTS
 
+import mechkit
+from mechkit.base.exceptions import MalformedDescription
 from mechkit.sources.sdf import read_sdf
 
 from .description_reference import Statics
@@ -32,7 +34,6 @@ FIXTURES = Path(__file__).resolve().parents[1] / "fixtures" / "field" / "sdf"
 CASSIE = ROBOTS / "cassie_description" / "robots"
 #: file -> what the report says of holding gravity (its efforts are compared where it gives them).
 FILES = {
-    CASSIE / "cassie.sdf": "floating root 'root_joint': nothing holds its weight (fix its body: --fix pelvis)",
     CASSIE / "cassie_v2.sdf": "unactuated: no actuator to hold it",
     CASSIE / "cassie_reduced.sdf": "unactuated: no actuator to hold it",
     CASSIE / "cassie_simple.sdf": "unactuated: no actuator to hold it",
@@ -62,11 +63,41 @@ def test_the_report_agrees_with_the_independent_statics(path):
     )
 
 
+#: cassie.sdf's two 1 g foot-reference rotors have an inertia no body can have (izz 9.4e-6 > ixx + iyy =
+#: 1.88e-6 kg m^2): the file is refused; the tests of its kinematics read it with izz = 1.8e-6 (ours).
+IMPOSSIBLE_IZZ, POSSIBLE_IZZ = "<izz>9.4e-6</izz>", "<izz>1.8e-6</izz>"
+
+
+def test_cassie_sdf_is_refused_for_its_impossible_foot_rotor_inertia():
+    """It used to load: a body that violates the triangle inequality reached the dynamics in silence."""
+    assert (CASSIE / "cassie.sdf").read_text().count(IMPOSSIBLE_IZZ) == 2
+    with pytest.raises(MalformedDescription, match=r"link 'left-foot-reference': inertia .* violates the triangle"):
+        mechkit.load(CASSIE / "cassie.sdf")
+
+
+def _physical(tmp_path: Path) -> Path:
+    """cassie.sdf with its foot rotors' inertia made possible (`POSSIBLE_IZZ`)."""
+    out = tmp_path / "cassie_physical.sdf"
+    out.write_text((CASSIE / "cassie.sdf").read_text().replace(IMPOSSIBLE_IZZ, POSSIBLE_IZZ))
+    return out
+
+
+def test_cassie_sdf_made_physical_floats_and_agrees_with_the_independent_statics(tmp_path):
+    path = _physical(tmp_path)
+    r = report(path)
+    st = Statics(read_sdf(path))
+    q = np.array(r["home_q"])
+    assert np.max(np.abs(st.rows(q)[0]), initial=0.0) < 1e-10 and r["dof"] == st.mobility(q)
+    assert r["holding"] == {
+        "refused": "floating root 'root_joint': nothing holds its weight (fix its body: --fix pelvis)"
+    }
+
+
 def _welded(tmp_path: Path) -> Path:
-    """cassie.sdf with its pelvis welded to the world where the file puts it."""
+    """cassie.sdf (made physical) with its pelvis welded to the world where the file puts it."""
     out = tmp_path / "cassie_welded.sdf"
     out.write_text(
-        (CASSIE / "cassie.sdf")
+        _physical(tmp_path)
         .read_text()
         .replace(
             "</model>",
@@ -80,7 +111,7 @@ def test_cassie_sdf_with_its_pelvis_fixed_is_refused_naming_its_weakest_passive_
     """--fix pelvis: 10 DOF (the motors' alone), and the efforts refused: the weakest passive motion turns
     the right shin-spring loop's two joints together, and with them the shin against the tarsus, the heel
     spring and the achilles rod's ball (the achilles loop)."""
-    r = report(CASSIE / "cassie.sdf", "--fix", "pelvis")
+    r = report(_physical(tmp_path), "--fix", "pelvis")
     desc = read_sdf(_welded(tmp_path))
     assert r["dof"] == Statics(desc).mobility(np.array(r["home_q"])) == 10
     why = r["holding"]["refused"]

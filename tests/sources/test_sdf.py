@@ -366,3 +366,20 @@ def test_mechkit_report_on_a_broken_sdf_says_it_in_one_line(tmp_path):
     )
     lines = out.stderr.strip().splitlines()
     assert out.returncode == 2 and len(lines) == 1 and "Traceback" not in out.stderr and "pose cycle" in lines[0]
+
+
+def test_joints_listed_before_links_read_as_the_usual_order(tmp_path):
+    """SDFormat puts no order on a model's elements: the four-bar with every joint first is the same model."""
+    import mechkit
+
+    source = FIXTURES / "four_bar_gearbox.sdf"
+    text = source.read_text()
+    joints = "".join(re.findall(r"    <joint .*?\n    </joint>\n", text, re.DOTALL))
+    body = re.sub(r"    <joint .*?\n    </joint>\n", "", text, flags=re.DOTALL)
+    reordered = tmp_path / "joints_first.sdf"
+    reordered.write_text(
+        body.replace('<model name="four_bar_gearbox">\n', '<model name="four_bar_gearbox">\n' + joints, 1)
+    )
+    a, b = mechkit.load(source), mechkit.load(reordered)
+    assert b.model.nq == a.model.nq and b.home_mobility.dof == a.home_mobility.dof == 1
+    assert np.allclose(sorted(b.home_q), sorted(a.home_q), atol=1e-12)

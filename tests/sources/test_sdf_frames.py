@@ -65,8 +65,19 @@ def test_quaternions_and_degrees():
 
 
 @pytest.mark.parametrize(
+    "word, in_degrees", [("true", 1), ("1", 1), ("True", 1), (" TRUE ", 1), ("false", 0), ("0", 0)]
+)
+def test_degrees_is_read_as_libsdformat_reads_a_boolean(word, in_degrees):
+    """`degrees="1"` and `"True"` were read as radians (only the exact text "true" counted)."""
+    frames = _frames(f'<link name="a"><pose degrees="{word}">0 0 0 0 0 90</pose></link>')
+    angle = np.pi / 2 if in_degrees else 90.0
+    assert frames.frame("a").isApprox(_se3([0, 0, 0], [0, 0, angle]), 1e-12)
+
+
+@pytest.mark.parametrize(
     "body, why",
     [
+        ('<link name="a"><pose degrees="yes">0 0 0 0 0 90</pose></link>', "degrees>='yes' is not a boolean"),
         ('<link name="a"><pose relative_to="b"/></link><link name="b"><pose relative_to="a"/></link>', "pose cycle"),
         ('<link name="a"><pose relative_to="nowhere"/></link>', "no such frame"),
         ('<link name="a"/><link name="a"/>', "repeated name"),

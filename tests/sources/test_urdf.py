@@ -50,7 +50,7 @@ FOUR_BAR_LOOP = (
         (FOUR_BAR_LOOP.replace('frame_b="rocker_C"', 'frame_b="nowhere"'), "frame_b 'nowhere' is not a link"),
         (FOUR_BAR_LOOP.replace('type="revolute"', 'type="screw"'), "type 'screw'"),
         (FOUR_BAR_LOOP.replace(' axis="0 -1 0"', ""), "missing attribute 'axis'"),
-        (FOUR_BAR_LOOP.replace('axis="0 -1 0"', 'axis="0 0"'), "not a non-zero 3-vector"),
+        (FOUR_BAR_LOOP.replace('axis="0 -1 0"', 'axis="0 0"'), "not a non-zero, finite 3-vector"),
         (FOUR_BAR_LOOP.replace('rows="planar"', 'rows="some"'), "rows 'some'"),
         (FOUR_BAR_LOOP.replace('frame_b="rocker_C"', 'frame_b="coupler_C"'), "the same link"),
     ],

@@ -1,0 +1,90 @@
+"""What a description must be to be physical, whatever its format: finite geometry (placements, joint axes,
+gravity) and possible bodies (a mass that is finite and not negative; an inertia about the centre of mass
+that is positive semi-definite and satisfies the triangle inequality). Checked on the Pinocchio model every
+reader ends in, so a body no reader refused (SDFormat, MJCF, a tree built by hand) cannot reach the
+dynamics: a negative mass there gave a motor holding 1e12 N m.
+
+Zero is valid: a massless link (all zero) is a frame, a point mass has a zero inertia, a thin rod a zero
+principal moment, and a mass of zero with a non-zero inertia is a rotor whose weight the file counts
+elsewhere (URDF+ writes motor rotors so).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pinocchio as pin
+
+from mechkit.base.exceptions import MalformedDescription
+
+#: Relative slack of the principal-moment tests, of their sum (ours): far above rounding, far below anything
+#: physical.
+INERTIA_RTOL = 1e-12
+
+
+def check_body(where: str, mass: float, inertia: np.ndarray, shown: object) -> None:
+    """One body's mass and inertia about its centre of mass, judged.
+
+    Args:
+        where: the body, for the error (e.g. "link 'crank'").
+        mass: its mass (kg).
+        inertia: (3, 3) its inertia about its centre of mass (kg m^2).
+        shown: the values as the file gives them, for the error.
+
+    Raises:
+        MalformedDescription: a mass negative or not finite, an inertia not finite, not positive
+            semi-definite, or violating the triangle inequality (each principal moment at most the sum of the
+            other two), judged to `INERTIA_RTOL` of the moments' sum.
+    """
+    if not np.isfinite(mass) or mass < 0:
+        raise MalformedDescription(where, f"mass {mass:g} is negative or not finite (kg)")
+    if not np.all(np.isfinite(inertia)):
+        raise MalformedDescription(where, f"inertia {shown}: not finite")
+    moments = np.linalg.eigvalsh(0.5 * (inertia + inertia.T))
+    slack = INERTIA_RTOL * float(np.sum(np.abs(moments)))
+    if moments[0] < -slack:
+        raise MalformedDescription(
+            where, f"inertia {shown} is not positive semi-definite: principal moment {moments[0]:.6g} kg m^2"
+        )
+    if moments[0] + moments[1] < moments[2] - slack:
+        raise MalformedDescription(
+            where,
+            f"inertia {shown} violates the triangle inequality: principal moments "
+            f"{moments[0]:.6g} + {moments[1]:.6g} < {moments[2]:.6g} kg m^2",
+        )
+
+
+def check_model(model: pin.Model) -> None:
+    """Every body of a Pinocchio model possible and its geometry finite.
+
+    Args:
+        model: the tree, as a reader built it.
+
+    Raises:
+        MalformedDescription: naming the body, joint or frame and the value: a body `check_body` refuses, a
+            centre of mass, joint placement, joint axis, frame placement or gravity that is not finite.
+    """
+    if not np.all(np.isfinite(model.gravity.vector)):
+        raise MalformedDescription("gravity", f"{model.gravity.linear} m/s^2: not finite")
+    for j in range(1, model.njoints):
+        body = _body_name(model, j)
+        inertia = model.inertias[j]
+        if not np.all(np.isfinite(inertia.lever)):
+            raise MalformedDescription(body, f"centre of mass {inertia.lever} m: not finite")
+        check_body(body, float(inertia.mass), np.array(inertia.inertia), np.array(inertia.inertia).round(12).tolist())
+        if not np.all(np.isfinite(model.jointPlacements[j].homogeneous)):
+            raise MalformedDescription(f"joint {model.names[j]!r}", "its placement is not finite")
+    for frame in model.frames:
+        if not np.all(np.isfinite(frame.placement.homogeneous)):
+            raise MalformedDescription(f"frame {frame.name!r}", "its placement is not finite")
+    data = model.createData()
+    pin.computeJointJacobians(model, data, pin.neutral(model))
+    bad = np.flatnonzero(~np.all(np.isfinite(data.J.reshape(6, -1)), axis=0))
+    if bad.size:
+        joint = next(j for j in range(1, model.njoints) if model.idx_vs[j] <= bad[0] < model.idx_vs[j] + model.nvs[j])
+        raise MalformedDescription(f"joint {model.names[joint]!r}", "its axis is not finite")
+
+
+def _body_name(model: pin.Model, joint: int) -> str:
+    """The link a joint carries (its first body frame), for messages."""
+    link = next((f.name for f in model.frames if f.type == pin.FrameType.BODY and f.parentJoint == joint), None)
+    return f"link {link!r}" if link is not None else f"the body of joint {model.names[joint]!r}"

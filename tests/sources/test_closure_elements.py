@@ -1,0 +1,68 @@
+"""`mechkit.sources.closure_elements`: another tool's loop closures found in every file of a description,
+with their line, nested parts not counted twice, what cannot change the kinematics left alone."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+from tests_support import FIXTURES, ROOT
+
+from mechkit.sources.closure_elements import ClosureElement, refusal, unread_closures
+from mechkit.sources.input_files import description_files
+
+CLOSURES = FIXTURES / "closures"
+
+
+def _line_of(path: Path, text: str) -> int:
+    return next(k for k, line in enumerate(path.read_text().splitlines(), 1) if text in line)
+
+
+@pytest.mark.parametrize(
+    "name, element, opening",
+    [
+        ("four_bar_drake_ball.urdf", "drake:ball_constraint", "<drake:ball_constraint>"),
+        ("four_bar_drake_bushing.urdf", "drake:linear_bushing_rpy", "<drake:linear_bushing_rpy>"),
+        ("four_bar_gazebo_joint.urdf", "gazebo/joint", '<joint name="C"'),
+        ("four_bar_drake_ball.sdf", "drake:ball_constraint", "<drake:ball_constraint>"),
+    ],
+)
+def test_each_tool_s_closure_is_found_once_at_its_line(name, element, opening):
+    path = CLOSURES / name
+    (found,) = unread_closures([path])
+    assert (found.element, found.file, found.line) == (element, path, _line_of(path, opening))
+
+
+def test_a_closure_in_an_included_macro_is_found_in_its_own_file():
+    top = CLOSURES / "leg_pair.urdf.xacro"
+    (found,) = unread_closures(description_files(top))
+    macro = CLOSURES / "leg_macro.xacro"
+    assert found.file == macro.resolve() and found.line == _line_of(macro, "<drake:ball_constraint>")
+
+
+def test_what_mechkit_reads_or_what_cannot_close_a_loop_is_not_listed(tmp_path):
+    """The catalogue's own files (mechkit loops, beams, springs), an MJCF file with equalities, and Drake
+    or Gazebo elements that change no kinematics (collision properties, a plugin, materials)."""
+    files = [*sorted((ROOT / "urdf").glob("*.urdf")), FIXTURES / "rssr.xml"]
+    other = tmp_path / "other.urdf"
+    other.write_text(
+        '<robot name="r" xmlns:drake="http://drake.mit.edu"><link name="a"><collision><geometry><box size="1 1 1"/>'
+        "</geometry><drake:proximity_properties><drake:mu_static value='1'/></drake:proximity_properties></collision>"
+        '</link><gazebo reference="a"><material>Gazebo/Grey</material></gazebo><gazebo><plugin name="p" '
+        'filename="libp.so"/></gazebo></robot>'
+    )
+    assert unread_closures([*files, other]) == []
+
+
+def test_unparsable_files_and_sidecars_are_left_to_their_readers(tmp_path):
+    (tmp_path / "bad.urdf").write_text("<robot><drake:ball_constraint>")  # unbound prefix: not XML
+    (tmp_path / "x.yaml").write_text("closed_loop: []\n")
+    assert unread_closures([tmp_path / "bad.urdf", tmp_path / "x.yaml"]) == []
+
+
+def test_the_refusal_names_the_first_the_count_and_what_to_do():
+    found = [ClosureElement("drake:ball_constraint", Path("/a/leg.urdf"), 12, "a Drake constraint")] * 3
+    message = str(refusal(found))
+    assert message.startswith("leg.urdf:12: <drake:ball_constraint> (a Drake constraint): ")
+    assert "and 2 more such element(s)" in message and "<mechkit:loop>" in message
+    assert "--ignore-unknown-closures" in message
