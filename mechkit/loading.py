@@ -249,7 +249,7 @@ def from_description(
         guess=_constant(guess_values) if guess_values else None,
         summary=f"read from the {desc.format} file{where}",
     )
-    return Mechanism(spec, params, cm, desc.urdf, desc.springs)
+    return Mechanism(spec, params, cm, desc.urdf, desc.springs, desc.source_urdf)
 
 
 def _xacro_params(desc: sources.Description) -> MechanismParams:

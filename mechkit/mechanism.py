@@ -39,6 +39,8 @@ class Mechanism(MechanismRates):
         closure_model: the tree with its closures, couplings and actuation (`mechkit.core.ClosureModel`).
         urdf: the tree's URDF text, where it has one (None: its joints are not URDF's).
         springs: joint springs and dampers (passive forces in the dynamics, `mechkit.forces.JointSprings`).
+        source_urdf: the URDF it was reduced from (`mechkit.reduction`), when `urdf` is None: its elements
+            that name links and joints (beams, elastic joints) still apply to the mechanism.
 
     Attributes:
         model, data: the Pinocchio model of the tree and a data for it (scratch).
@@ -57,8 +59,9 @@ class Mechanism(MechanismRates):
         closure_model: core.ClosureModel,
         urdf: str | None = None,
         springs: Sequence[core.JointSpring] = (),
+        source_urdf: str | None = None,
     ):
-        self.spec, self.params, self.urdf = spec, params, urdf
+        self.spec, self.params, self.urdf, self.source_urdf = spec, params, urdf, source_urdf
         self.closure_model = cm = closure_model
         self.closure_data = core_data = cm.create_data()
         self.model, self.data = cm.model, core_data.pin

@@ -7,7 +7,9 @@ holding gravity at rest, N m or N}, undetermined: [actuators whose effort static
 the configuration they hold, settled: {joint: its value there} for the joints that settled away from
 home} or {refused: why the actuators cannot}, idle {body: its
 idle freedoms}, loops [{cut, kind (planar / spherical / spatial), rows, full_rows, chosen}],
-rows_avoided, gruebler {kutzbach, declared}, home {joint: value}.
+rows_avoided, gruebler {kutzbach, declared}, home {joint: value}, elastic {beams: [links idealised as
+beams], elastic_joints: [joints]} (the elastic elements are read and checked here too, so a malformed
+or inapplicable one is refused even by a command that does not use them).
 
 Holding at rest: the actuators hold their joints at home; what they do not drive (joints on springs,
 rods spinning about their own axes) settles where the load on it vanishes (`mechkit.settling`), and
@@ -235,7 +237,28 @@ def report(m: Mechanism) -> dict[str, Any]:
         "checks": checks,
         "refused": refused,
         "holding": holding(m),
+        "elastic": elastic_elements(m),
     }
+
+
+def elastic_elements(m: Mechanism) -> dict[str, list[str]]:
+    """The mechanism's elastic elements, read and idealised (`mechkit.elastic`).
+
+    Args:
+        m: the mechanism.
+
+    Returns:
+        {"beams": links idealised as beams, "elastic_joints": joints with an elasticity}.
+
+    Raises:
+        MalformedDescription: a malformed `<mechkit:beam>` or `<mechkit:elastic_joint>`.
+        InvalidParameters: a section on a body the idealisation keeps rigid, elasticity naming a joint the
+            mechanism lacks.
+    """
+    from mechkit.elastic import ElasticModel
+
+    e = ElasticModel(m)
+    return {"beams": [b.link for b in e.idealisation.elastic], "elastic_joints": sorted(e.data.joints)}
 
 
 def format_report(r: dict[str, Any]) -> str:
@@ -270,6 +293,12 @@ def format_report(r: dict[str, Any]) -> str:
     for p in r["parameters"]:
         mark = " (ours)" if p.get("ours") else ""
         lines.append(f"    {p['name']:<18} {p['value']!s:>12} {p['unit']:<8} {p['doc']}{mark}")
+    elastic = r["elastic"]
+    if elastic["beams"] or elastic["elastic_joints"]:
+        lines.append(
+            f"  elastic: {len(elastic['beams'])} beam(s), {len(elastic['elastic_joints'])} elastic joint(s) "
+            "(`mechkit stiffness`, `mechkit modes`)"
+        )
     lines.append("  self-checks (worst residual or relative error):")
     for name, value in r["checks"].items():
         lines.append(f"    {name:<32} {value:.3e}")

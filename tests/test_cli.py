@@ -3,15 +3,18 @@ refusal is one line on stderr and exit status 2, no traceback; a broken pipe end
 
 from __future__ import annotations
 
+import json
 import os
 import shlex
 import subprocess
 import sys
 
+import pinocchio as pin
 import pytest
 from tests_support import ROOT, refused, run_mechkit
 
-from mechkit.cli import COMMANDS, build_parser
+from mechkit.catalog.registry import ENTRIES
+from mechkit.cli import COMMANDS, build_parser, main
 
 
 def _subparsers() -> dict[str, object]:
@@ -79,3 +82,34 @@ def test_broken_pipe_ends_quietly():
 )
 def test_named_refusals(args, words):
     refused(run_mechkit(*args), *words)
+
+
+def _strict_json(text: str):
+    def refuse(constant):
+        raise ValueError(f"{constant} is not JSON")
+
+    return json.loads(text, parse_constant=refuse)
+
+
+def _heaviest_link(mech) -> str:
+    """The URDF link of the mechanism's heaviest moving body."""
+    model = mech.model
+    body = max(range(1, model.njoints), key=lambda j: model.inertias[j].mass)
+    return next(f.name for f in model.frames if f.type == pin.FrameType.BODY and f.parentJoint == body)
+
+
+@pytest.mark.parametrize("name", [e.name for e in ENTRIES])
+def test_every_json_output_is_strict_json_without_non_finite_numbers(name, load_cached, capsys):
+    """report, params, validate, modes and stiffness --json of every registered mechanism parse with a parser
+    that refuses Infinity and NaN (a stiffness used to print Infinity)."""
+    commands = [["report", name, "--json"], ["params", name, "--json"], ["validate", name, "--samples", "2", "--json"]]
+    if name != "rocket_gimbal":  # nothing elastic there: refused in one line (tests/elastic)
+        commands += [
+            ["modes", name, "-n", "2", "--json"],
+            ["stiffness", name, "--body", _heaviest_link(load_cached(name)), "--json"],
+        ]
+    for command in commands:
+        code = main(command)
+        out = capsys.readouterr().out
+        assert code == 0, command
+        _strict_json(out)

@@ -59,7 +59,8 @@ class SingularConfiguration(MechkitError):
 
     def __init__(self, cond: float, what: str):
         self.cond, self.what = cond, what
-        super().__init__(f"singular configuration: {what} (condition number {cond:.3e})")
+        condition = f"condition number {cond:.3e}" if cond < float("inf") else "no finite condition number"
+        super().__init__(f"singular configuration: {what} ({condition})")
 
 
 class ConstraintViolated(MechkitError):

@@ -3,9 +3,9 @@
 from __future__ import annotations
 
 import argparse
-import json
 
 from mechkit.base.exceptions import InvalidArgument
+from mechkit.base.json_text import dumps
 from mechkit.cli import option_values
 from mechkit.cli.common import add_mechanism_arguments, examples, load_mechanism
 from mechkit.cli.stiffness import pose
@@ -18,8 +18,8 @@ def report(args: argparse.Namespace) -> dict:
         args: the parsed command line (`-n`, `--at`, `--animate`, `--mode`).
 
     Returns:
-        {"name", "modes": [{"mode", "frequency_hz", "largest_motion_body"}], "animation": the page
-        written, or None}.
+        {"name", "modes": [{"mode", "frequency_hz", "largest_motion_body", "near_mechanism"}], "animation":
+        the page written, or None}; near_mechanism: below a gap (`mechkit.elastic.modes`).
 
     Raises:
         InvalidArgument: `-n` below 1, `--mode` not among the modes, `--animate` not an .html file.
@@ -42,7 +42,14 @@ def report(args: argparse.Namespace) -> dict:
     for k, f in enumerate(modes.frequencies):
         shape = modes.shapes[k]
         body = int(abs(shape[:, :3]).sum(axis=1).argmax())
-        out.append({"mode": k + 1, "frequency_hz": float(f), "largest_motion_body": modes.names[body]})
+        out.append(
+            {
+                "mode": k + 1,
+                "frequency_hz": float(f),
+                "largest_motion_body": modes.names[body],
+                "near_mechanism": bool(modes.near_mechanism[k]),
+            }
+        )
     return {"name": mech.spec.name, "modes": out, "animation": args.animate}
 
 
@@ -52,13 +59,20 @@ def run(args: argparse.Namespace) -> None:
     Args:
         args: the parsed command line.
     """
+    from mechkit.elastic.modes import NEAR_MECHANISM
+
     r = report(args)
     if args.json:
-        print(json.dumps(r, indent=2))
+        print(dumps(r, indent=2))
         return
     print(f"{r['name']}: natural frequencies, actuators locked")
     for m in r["modes"]:
-        print(f"  mode {m['mode']}: {m['frequency_hz']:.4g} Hz (largest motion: {m['largest_motion_body']})")
+        near = (
+            f" - near-mechanism (below a gap: a frequency under {NEAR_MECHANISM:g} of the next)"
+            if m["near_mechanism"]
+            else ""
+        )
+        print(f"  mode {m['mode']}: {m['frequency_hz']:.4g} Hz (largest motion: {m['largest_motion_body']}){near}")
     if r["animation"]:
         print(f"wrote {r['animation']}")
 

@@ -4,6 +4,7 @@ and a plot."""
 from __future__ import annotations
 
 import argparse
+import math
 from typing import TYPE_CHECKING
 
 from mechkit.base.atomic import resolve_output
@@ -37,8 +38,9 @@ def format_peaks(result: MotionResult) -> list[str]:
         result: the study.
 
     Returns:
-        Text lines: a header, one line per joint (whether it is a support, each peak and its time), and a note
-            when some components are statically indeterminate.
+        Text lines: a header, one line per joint (whether it is a support, each peak and its time; "-" for the
+            axial and radial parts of a joint without an axis), and notes for those and for components that are
+            statically indeterminate.
     """
     from mechkit.motion import peaks
 
@@ -47,9 +49,14 @@ def format_peaks(result: MotionResult) -> list[str]:
     head = f"{'joint':<{width}} sup " + " ".join(f"{h:>11} {'t (s)':>7}" for h, _ in PEAK_COLUMNS)
     lines = [head]
     for p in rows:
-        cells = " ".join(f"{p.values[q]:11.4g} {p.times[q]:7.3f}" for _, q in PEAK_COLUMNS)
+        cells = " ".join(
+            f"{p.values[q]:11.4g} {p.times[q]:7.3f}" if math.isfinite(p.values[q]) else f"{'-':>11} {'-':>7}"
+            for _, q in PEAK_COLUMNS
+        )
         mark = " *" if p.determinate is False else ""
         lines.append(f"{p.joint:<{width}} {'yes' if p.support else 'no ':>3} {cells}{mark}")
+    if any(not math.isfinite(p.values[q]) for p in rows for _, q in PEAK_COLUMNS):
+        lines.append("- no axial or radial part: the joint has no axis (a ball or free joint)")
     if any(p.determinate is False for p in rows):
         lines.append("* some components statically indeterminate (redundant constraints): minimum-norm values")
     return lines

@@ -9,9 +9,9 @@ fixed description and has none.
 from __future__ import annotations
 
 import argparse
-import json
 from typing import Any
 
+from mechkit.base.json_text import dumps
 from mechkit.cli.common import examples
 
 COLUMNS = ("name", "value", "unit", "range", "ours", "doc")
@@ -62,7 +62,7 @@ def run(args: argparse.Namespace) -> None:
     """
     rows, note = rows_of(args.name)
     if args.json:
-        print(json.dumps([{k: row[k] for k in COLUMNS} for row in rows], indent=2))
+        print(dumps([{k: row[k] for k in COLUMNS} for row in rows], indent=2))
         return
     table = [("name", "default", "unit", "range", "doc")]
     table += [

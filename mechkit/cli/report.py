@@ -3,8 +3,8 @@
 from __future__ import annotations
 
 import argparse
-import json
 
+from mechkit.base.json_text import dumps
 from mechkit.cli.common import add_mechanism_arguments, examples, load_mechanism
 
 
@@ -21,7 +21,7 @@ def run(args: argparse.Namespace) -> None:
     from mechkit.report import CHECK_LIMIT, failing_checks, format_report, report
 
     r = report(load_mechanism(args))
-    print(json.dumps(r, indent=2) if args.json else format_report(r))
+    print(dumps(r, indent=2) if args.json else format_report(r))
     failing = failing_checks(r["checks"])
     if failing:
         raise SelfCheckFailed(r["name"], failing, CHECK_LIMIT)

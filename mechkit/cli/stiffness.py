@@ -3,15 +3,17 @@
 from __future__ import annotations
 
 import argparse
-import json
 
 import numpy as np
 
+from mechkit.base.json_text import dumps, nulls
 from mechkit.cli import option_values
 from mechkit.cli.common import add_mechanism_arguments, examples, load_mechanism
 from mechkit.mechanism import Mechanism
 
 DIRECTIONS = ("x", "y", "z", "rx", "ry", "rz")
+#: Why an axis has no finite stiffness (`mechkit.elastic.body_stiffness`).
+RIGID_AXIS = "held rigidly: no elastic element yields along it (or it is stiffer than the computation resolves)"
 
 
 def pose(mech: Mechanism, text: str | None) -> np.ndarray:
@@ -34,14 +36,15 @@ def pose(mech: Mechanism, text: str | None) -> np.ndarray:
 
 
 def report(args: argparse.Namespace) -> dict:
-    """The stiffness as the JSON contract: body, point (world, m), compliance and stiffness (6x6, SI),
-    held (K_ii) and free (1/C_ii) per direction.
+    """The stiffness as the JSON contract: body, point (world, m), compliance and stiffness (6x6, SI; the
+    stiffness off the rigid directions), the directions held rigidly, held (K_ii) and free (1/C_ii) per
+    direction (null for an axis held rigidly, with the reason under `held_why` / `free_why`).
 
     Args:
         args: the parsed command line (`--body`, `--point`, `--at`).
 
     Returns:
-        The report (an infinite stiffness entry as None).
+        The report.
     """
     from mechkit.elastic import ElasticModel
 
@@ -50,19 +53,24 @@ def report(args: argparse.Namespace) -> dict:
     q = pose(mech, args.at)
     point = None if args.point is None else np.array(option_values.numbers("--point", args.point, 3, what="X,Y,Z"))
     s = e.stiffness(q, args.body, point)
+    held, held_why = nulls(dict(zip(DIRECTIONS, s.held)), RIGID_AXIS)
+    free, free_why = nulls(dict(zip(DIRECTIONS, s.free)), RIGID_AXIS)
     return {
         "name": mech.spec.name,
         "body": s.body,
         "point": s.point.tolist(),
         "compliance": s.compliance.tolist(),
-        "stiffness": np.where(np.isfinite(s.stiffness), s.stiffness, None).tolist(),
-        "held": dict(zip(DIRECTIONS, s.held.tolist())),
-        "free": dict(zip(DIRECTIONS, s.free.tolist())),
+        "stiffness": s.stiffness.tolist(),
+        "rigid_directions": s.rigid.T.tolist(),
+        "held": held,
+        "held_why": held_why,
+        "free": free,
+        "free_why": free_why,
     }
 
 
 def format_text(r: dict) -> str:
-    """K_ii and 1/C_ii per direction for a reader.
+    """K_ii and 1/C_ii per direction for a reader ("rigid" where a direction is held rigidly).
 
     Args:
         r: what `report` gave.
@@ -76,7 +84,12 @@ def format_text(r: dict) -> str:
     ]
     for d in DIRECTIONS:
         unit = "N/m" if len(d) == 1 else "N m/rad"
-        lines.append(f"{d:>9} {r['held'][d]:>16.4g} {unit:<7} {r['free'][d]:>14.4g} {unit}")
+        held, free = (
+            f"{v:>16.4g} {unit:<7}" if v is not None else f"{'rigid':>16} {'':<7}" for v in (r["held"][d], r["free"][d])
+        )
+        lines.append(f"{d:>9} {held} {free}".rstrip())
+    if r["rigid_directions"]:
+        lines.append(f"rigid: {len(r['rigid_directions'])} direction(s) {RIGID_AXIS}")
     return "\n".join(lines)
 
 
@@ -87,7 +100,7 @@ def run(args: argparse.Namespace) -> None:
         args: the parsed command line.
     """
     r = report(args)
-    print(json.dumps(r, indent=2) if args.json else format_text(r))
+    print(dumps(r, indent=2) if args.json else format_text(r))
 
 
 def add_parser(sub: argparse._SubParsersAction) -> None:

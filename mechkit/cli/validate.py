@@ -4,9 +4,9 @@ work over its automatic decomposition, compared with constrained RNEA over its s
 from __future__ import annotations
 
 import argparse
-import json
 
 from mechkit.base.exceptions import InvalidParameters
+from mechkit.base.json_text import dumps
 from mechkit.cli.common import add_mechanism_arguments, examples, load_mechanism
 
 
@@ -114,7 +114,7 @@ def run(args: argparse.Namespace) -> None:
         args: the parsed command line.
     """
     r = report(args)
-    print(json.dumps(r, indent=2) if args.json else format_text(r))
+    print(dumps(r, indent=2) if args.json else format_text(r))
 
 
 def add_parser(sub: argparse._SubParsersAction) -> None:

@@ -13,16 +13,14 @@ import numpy as np
 import pinocchio as pin
 
 from mechkit.base import arguments
-from mechkit.base.exceptions import InvalidArgument, InvalidParameters
+from mechkit.base.exceptions import InvalidArgument, InvalidParameters, MethodUnavailable
 from mechkit.elastic import statics
+from mechkit.elastic.body_stiffness import BodyStiffness, body_stiffness
 from mechkit.elastic.idealisation import Idealisation
 from mechkit.elastic.modes import Modes, modes
 from mechkit.elastic.sections import ElasticData, JointElasticity, Section
 from mechkit.elastic.urdf_elements import parse_elastic
 from mechkit.mechanism import Mechanism
-
-#: Compliance, relative to the largest, under which a body's direction counts as held rigidly.
-RIGID = 1e-12
 
 
 @dataclass(frozen=True)
@@ -66,27 +64,6 @@ class CompliantReactions:
         return self.reactions[:, self.joint_names.index(joint)]
 
 
-@dataclass(frozen=True)
-class BodyStiffness:
-    """The stiffness of one body at one point and pose (world axes at the point; [translation, rotation]).
-
-    Attributes:
-        body: the body's link.
-        point: (3,) the point (world, m).
-        compliance: (6, 6) C: twist (m, rad) per wrench (N, N m).
-        stiffness: (6, 6) K = C^-1 (inf on the diagonal where C is singular: a direction held rigidly).
-        held: (6,) K_ii (N/m, N m/rad) with every other direction held.
-        free: (6,) 1 / C_ii with every other direction free.
-    """
-
-    body: str
-    point: np.ndarray
-    compliance: np.ndarray
-    stiffness: np.ndarray
-    held: np.ndarray
-    free: np.ndarray
-
-
 class ElasticModel:
     """A mechanism and its elastic idealisation (`mechkit.elastic.idealisation`).
 
@@ -102,10 +79,39 @@ class ElasticModel:
 
     def __init__(self, mech: Mechanism, data: ElasticData | None = None):
         if data is None:
-            data = parse_elastic(mech.urdf) if mech.urdf is not None else ElasticData()
+            urdf = mech.urdf if mech.urdf is not None else mech.source_urdf
+            data = parse_elastic(urdf) if urdf is not None else ElasticData()
         self.mech, self.data = mech, data
         self.idealisation = Idealisation(mech, data)
         self.links = {f.name: f for f in mech.model.frames if f.type == pin.FrameType.BODY}
+        self._structure: ElasticModel | None = None
+
+    def structure(self) -> ElasticModel:
+        """The same idealisation with every section of unit moduli, area and moments (its directions held
+        rigidly are this model's: they depend on which elements yield, not on how much), made once.
+
+        Returns:
+            The `ElasticModel` of the structure.
+        """
+        if self._structure is None:
+            unit = {link: Section(1.0, 1.0, 1.0, 1.0, 1.0, 1.0, s.axis1) for link, s in self.data.sections.items()}
+            self._structure = ElasticModel(self.mech, ElasticData(unit, dict(self.data.joints)))
+        return self._structure
+
+    def require_elasticity(self) -> None:
+        """Refuse, naming what is missing, a mechanism in which nothing yields (no beam, joint stiffness,
+        drive stiffness or joint spring): every body rigid, no elastic quantity exists.
+
+        Raises:
+            MethodUnavailable: nothing elastic.
+        """
+        if not self.data and not self.idealisation.drives:
+            raise MethodUnavailable(
+                "the elastic model",
+                f"{self.mech.spec.name} has no <mechkit:beam>, <mechkit:elastic_joint> or <mechkit:spring>: every "
+                'body is rigid; give links sections (<mechkit:beam link="..." E= G= A= I1= I2= J= axis1=/>, '
+                "docs/elastic.md) or pass an ElasticData",
+            )
 
     def with_section(self, link: str, section: Section | None) -> ElasticModel:
         """The same mechanism with one link's section set.
@@ -298,10 +304,8 @@ class ElasticModel:
             return self._flexibility(pose, np.array([body]), x[None, None])[0], x
 
     def stiffness(self, q: np.ndarray, link: str, point: np.ndarray | None = None) -> BodyStiffness:
-        """The stiffness of a body at a point.
-
-        A direction held rigidly (C_ii = 0 to 1e-12 of the largest) has K_ii = 1/C_ii = inf, and K is the
-        inverse of C over the other directions (all inf where that block is singular too).
+        """The stiffness of a body at a point (`mechkit.elastic.body_stiffness`: the directions held rigidly
+        judged on the structure, the stiffness the inverse of the compliance off them).
 
         Args:
             q: (nq,) an assembled pose.
@@ -313,20 +317,13 @@ class ElasticModel:
 
         Raises:
             InvalidParameters: no such link, or a pose that does not close the loops.
+            MethodUnavailable: nothing in the mechanism is elastic (`require_elasticity`).
             SingularConfiguration: with its actuators locked the mechanism still moves under a load there.
         """
+        self.require_elasticity()
         C, x = self._compliance(q, link, point)
-        diagonal = np.diag(C)
-        soft = diagonal > RIGID * max(float(diagonal.max()), 1e-300)
-        K = np.full((6, 6), np.inf)
-        block = C[np.ix_(soft, soft)]
-        if soft.any():
-            s = np.linalg.svd(block, compute_uv=False)
-            if s[-1] > RIGID * s[0]:
-                inverse = np.linalg.inv(block)
-                K[np.ix_(soft, soft)] = (inverse + inverse.T) / 2
-        free = np.where(soft, 1.0 / np.where(soft, diagonal, 1.0), np.inf)
-        return BodyStiffness(link, x, C, K, np.diag(K).copy(), free)
+        size = self.idealisation.size
+        return body_stiffness(link, x, C, self.structure()._compliance(q, link, point)[0], min(size, size**3))
 
     def deflection(self, q: np.ndarray, link: str, wrench: np.ndarray, point: np.ndarray | None = None) -> np.ndarray:
         """A body's deflection at a point under a wrench there.
@@ -354,8 +351,10 @@ class ElasticModel:
 
         Raises:
             InvalidParameters: n < 1 or more than six per massive body.
+            MethodUnavailable: nothing in the mechanism is elastic (`require_elasticity`).
             SingularConfiguration: the locked mechanism still moves (a zero frequency).
         """
+        self.require_elasticity()
         (q,) = self.mech._one(q=q)
         model = self.mech.model
         bodies = np.array([j for j in range(1, model.njoints) if model.inertias[j].mass > 0], dtype=int)
@@ -365,8 +364,11 @@ class ElasticModel:
             pose = statics.evaluate(self.idealisation, q[None])
             centres = np.array([pose.R[0, b] @ model.inertias[int(b)].lever + pose.t[0, b] for b in bodies])
             F = self._flexibility(pose, bodies, centres[None])[0]
+            structure = self.structure()
+            rigid = structure._flexibility(statics.evaluate(structure.idealisation, q[None]), bodies, centres[None])[0]
             names = tuple(next(link for link, f in self.links.items() if f.parentJoint == b) for b in bodies)
-            return modes(model, pose.R[0], bodies, centres, F, n, names)
+            unit = min(self.idealisation.size, self.idealisation.size**3) * max(m.mass for m in model.inertias)
+            return modes(model, pose.R[0], bodies, centres, F, n, names, rigid, unit)
 
     def _flexibility(self, pose: statics.Pose, bodies: np.ndarray, points: np.ndarray) -> np.ndarray:
         """(N, 6k, 6k) flexibility between unit wrenches at the bodies' points (N, k, 3)."""

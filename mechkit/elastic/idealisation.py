@@ -63,18 +63,18 @@ class Idealisation:
 
     Attributes:
         elastic: the elastic bodies (`ElasticBody`).
-        rigid_with_section: URDF links given a section but rigid by the rule above (three or more
-            joints, or the ground).
         sides: (n_joints, 2) bodies of each joint's parent (frame_a) and child (frame_b) sides.
         drives: the effort columns beyond the actuators: joints with a `mechkit:spring` (not actuated).
         drive_compliance: (na + len(drives),) compliance of each effort column (rad/(N m) or m/N; 0: locked).
+        size: the mechanism's size (m): the farthest joint origin from the world origin at home (1 mm at least).
         pin_data: a Pinocchio data (scratch of `mechkit.elastic.statics.evaluate`).
         pin_rotations: views of its joint placements' rotations.
         pin_translations: views of its joint placements' translations.
 
     Raises:
-        InvalidParameters: a section or elasticity naming what the mechanism lacks, a centre on a joint
-            without an axis, a drive stiffness on a joint that is not actuated.
+        InvalidParameters: a section or elasticity naming what the mechanism lacks, a section on a body the
+            idealisation keeps rigid (three or more joints, or the ground: it would change nothing), a centre
+            on a joint without an axis, a drive stiffness on a joint that is not actuated.
     """
 
     def __init__(self, mech: Mechanism, data: ElasticData):
@@ -111,7 +111,7 @@ class Idealisation:
         for name, j in data.joints.items():
             if j.centre and axes[index[name]] is None:
                 raise InvalidParameters(f"centre of {name}", j.centre, "a centre along the axis needs a revolute joint")
-        scale = max(max((np.linalg.norm(o) for o in origins), default=1.0), 1e-3)
+        scale = self.size = max(max((np.linalg.norm(o) for o in origins), default=1.0), 1e-3)
 
         # a point of the world at home, in a body's frame
         def local(body: int, point: np.ndarray) -> np.ndarray:
@@ -122,7 +122,6 @@ class Idealisation:
         body_links = {f.name: f for f in frames if f.type == pin.FrameType.BODY}
         count = np.bincount(self.sides.reshape(-1), minlength=model.njoints)
         self.elastic: list[ElasticBody] = []
-        self.rigid_with_section: list[str] = []
         self._beam_blocks: list[tuple[int, int, np.ndarray]] = []  # (joint, body, (6, 6) compliance in the body frame)
         taken: dict[int, str] = {}
         for link, section in data.sections.items():
@@ -134,8 +133,15 @@ class Idealisation:
                 raise InvalidParameters("section", link, f"its body already has the section of {taken[body]!r}")
             taken[body] = link
             if body == 0 or not 1 <= count[body] <= 2:
-                self.rigid_with_section.append(link)
-                continue
+                beams = sorted(n for n, f in body_links.items() if f.parentJoint and 1 <= count[f.parentJoint] <= 2)
+                why = "is the ground" if body == 0 else f"carries {count[body]} joints"
+                raise InvalidParameters(
+                    "section",
+                    link,
+                    f"its body {why}, and a body of three or more joints (or the ground) is rigid in the elastic "
+                    f"idealisation: its section would change nothing. A beam is a body of one or two joints: give "
+                    f"the section to one of {beams}, or split the body into links of at most two joints each",
+                )
             axis1 = frame.placement.rotation @ section.axis1
             beam_section = (
                 section

@@ -36,6 +36,8 @@ class Description:
         actuators: the actuators that are not one joint's motor (tendon transmissions), by name.
         ignored_closures: another tool's loop closures in the file, left out as asked
             (`mechkit.sources.read`, ignore_unknown_closures).
+        source_urdf: the URDF a reduced description comes from (`mechkit.reduction`), whose elements that
+            name links and joints (beams, elastic joints) still apply; None otherwise.
     """
 
     name: str
@@ -52,6 +54,7 @@ class Description:
     springs: tuple[JointSpring, ...] = ()
     actuators: tuple[Actuator, ...] = ()
     ignored_closures: tuple[ClosureElement, ...] = ()
+    source_urdf: str | None = None
 
 
 def read_text(path: Path) -> str:

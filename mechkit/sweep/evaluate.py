@@ -8,6 +8,8 @@ A design that fails is a row with its status and message, never an exception:
 - "does_not_assemble": its loops do not close at the home inputs;
 - "singular": it assembles at home, but the motion reaches a pose where the inputs do not determine
   the motion (a singular passive block, or the edge of the workspace: a dead point);
+- "failed": measured, but a metric has no finite value (a direction held rigidly has no finite stiffness):
+  the columns are named in the message, and the values are left NaN rather than passed off as measured;
 - "error": anything else (invalid parameters, a numerical failure), with the exception's message.
 """
 
@@ -26,7 +28,7 @@ from mechkit.sources.xacro_file import render_urdf
 from mechkit.sweep.metrics import SingularAlongMotion, Study, motion_samples
 from mechkit.sweep.specific import resolve
 
-STATUSES = ("ok", "does_not_assemble", "singular", "error")
+STATUSES = ("ok", "does_not_assemble", "singular", "failed", "error")
 
 
 @dataclass(frozen=True)
@@ -64,6 +66,14 @@ def _status(err: Exception, assembled: bool) -> str:
     return "error"
 
 
+def _judged(values: dict[str, float]) -> dict[str, str]:
+    """The status and message of a measured design: "failed" naming the metric columns without a finite value."""
+    missing = [c for c, v in values.items() if not np.isfinite(v)]
+    if missing:
+        return {"status": "failed", "message": f"no finite value of {', '.join(missing)}"}
+    return {"status": "ok", "message": ""}
+
+
 def evaluate_chunk(chunk: Chunk) -> list[dict]:
     """Evaluate a chunk's designs (on a worker); a design that fails is a row with its status and
     message, not an error.
@@ -93,7 +103,7 @@ def evaluate_chunk(chunk: Chunk) -> list[dict]:
             samples = motion_samples(mech, chunk.study) if any(m.motion for m in metrics) else None
             for metric in metrics:
                 row.update(metric.fn(mech, samples))
-            row.update(status="ok", message="")
+            row.update(_judged({c: row[c] for c in chunk.columns}))
         except Exception as err:  # noqa: BLE001 - every failure is a row; the status says which kind
             row.update(status=_status(err, assembled), message=f"{type(err).__name__}: {err}")
         row["seconds"] = time.perf_counter() - start

@@ -254,11 +254,11 @@ def _elastic(mech: Mechanism):
 
 
 def _first_frequency(mech: Mechanism) -> float:
-    """The first natural frequency (Hz) at home, actuators locked; nan without elastic data."""
+    """The first natural frequency (Hz) at home, actuators locked (nan where every mode is held rigidly: the
+    design is then "failed"; `MethodUnavailable` where nothing is elastic)."""
     elastic, _ = _elastic(mech)
-    if not elastic.idealisation.elastic:
-        return float("nan")
-    return float(elastic.modes(mech.home_q, 1).frequencies[0])
+    frequencies = elastic.modes(mech.home_q, 1).frequencies
+    return float(frequencies[0]) if len(frequencies) else float("nan")
 
 
 def _stiffness(mech: Mechanism, _: Samples | None) -> dict[str, float]:
@@ -336,7 +336,7 @@ ELASTIC = (
     Metric(
         "first_frequency",
         "Hz",
-        "first natural frequency at home, actuators locked (mechkit.elastic; nan without sections)",
+        "first natural frequency at home, actuators locked (mechkit.elastic)",
         lambda m: ["first_frequency"],
         lambda m, s: {"first_frequency": _first_frequency(m)},
         motion=False,

@@ -55,3 +55,25 @@ def test_bad_input_is_refused_in_one_line(capsys, args, message):
     assert main(["stiffness", "four_bar", *args]) == 2
     err = capsys.readouterr().err
     assert err.startswith("mechkit: error:") and message in err and err.count("\n") == 1
+
+
+def test_a_body_held_rigidly_has_null_stiffness_with_the_reason_never_infinity(tmp_path, capsys):
+    """The four-bar with its crank's beam removed: the crank, on its locked actuator, yields in no direction.
+    JSON used to carry Infinity (not JSON); text printed inf."""
+    import json
+    import re
+
+    from tests_support import ROOT
+
+    from mechkit.cli import main
+
+    text = (ROOT / "urdf" / "four_bar.urdf").read_text()
+    path = tmp_path / "rigid_crank.urdf"
+    path.write_text(re.sub(r'  <mechkit:beam [^>]*link="crank_link"/>\n', "", text))
+    assert main(["stiffness", str(path), "--actuated", "crank", "--body", "crank_link", "--json"]) == 0
+    r = json.loads(capsys.readouterr().out, parse_constant=lambda c: pytest.fail(f"{c} in JSON"))
+    assert len(r["rigid_directions"]) == 6 and set(r["held"].values()) == {None} == set(r["free"].values())
+    assert set(r["held_why"]) == set(r["held"]) and r["held_why"]["x"].startswith("held rigidly")
+    assert main(["stiffness", str(path), "--actuated", "crank", "--body", "crank_link"]) == 0
+    out = capsys.readouterr().out
+    assert "rigid" in out and not re.search(r"\b(inf|nan)\b", out, re.IGNORECASE)

@@ -9,7 +9,9 @@ import scipy.linalg
 import mechkit
 from elastic.cantilever import INERTIA, MASS, SECTION, L, cantilever
 from elastic.frame_model import FrameModel
+from mechkit.base.exceptions import MethodUnavailable
 from mechkit.elastic import ElasticModel
+from mechkit.elastic.modes import NEAR_MECHANISM
 
 TOL = 1e-6
 
@@ -72,3 +74,35 @@ def test_deployable_frequencies_equal_the_frame_model_above_its_near_mechanism()
     expected = FrameModel(m, m.home_q).frequencies(8)
     assert modes.frequencies[1] < 0.01 < modes.frequencies[2]
     assert np.allclose(modes.frequencies[2:], expected[2:], rtol=TOL, atol=0)
+
+
+def test_a_spring_loaded_freedom_far_softer_than_the_rest_is_a_near_mechanism_mode(load_cached):
+    """The ten-bar's spring-loaded freedom (R5's torsion spring, 4 N m/rad) vibrates at 0.137 of the next
+    mode: not labelled; with the spring four times softer its frequency halves (f ~ sqrt(k)) to below 0.1 of
+    the next, and it is labelled a near-mechanism mode."""
+    m = load_cached("ten_bar")
+    modes = ElasticModel(m).modes(m.home_q, 3)
+    assert not modes.near_mechanism.any() and modes.frequencies[0] > NEAR_MECHANISM * modes.frequencies[1]
+    soft = mechkit.load("ten_bar", spring_stiffness=1.0)
+    softer = ElasticModel(soft).modes(soft.home_q, 3)
+    assert softer.frequencies[0] == pytest.approx(modes.frequencies[0] / 2, rel=1e-3)
+    assert softer.near_mechanism.tolist() == [True, False, False]
+
+
+def test_a_mechanism_locked_by_the_reduction_keeps_its_beams_and_its_modes(load_cached):
+    """The ten-bar with its actuator R1 locked at home by `lock` (a reduced tree without R1) has the modes of
+    the whole ten-bar, whose actuators the elastic model locks: its beams used to be dropped in silence (a
+    mode of 3e16 Hz from round-off)."""
+    m = load_cached("ten_bar")
+    reduced = mechkit.load("ten_bar", lock={"R1": float(m.home_q[m.q_index("R1")])})
+    whole = ElasticModel(m).modes(m.home_q, 4).frequencies
+    locked = ElasticModel(reduced).modes(reduced.home_q, 4).frequencies
+    assert np.allclose(locked, whole, rtol=1e-9)
+
+
+def test_nothing_elastic_is_refused_by_name(load_cached):
+    m = load_cached("rocket_gimbal")
+    with pytest.raises(MethodUnavailable, match="rocket_gimbal has no <mechkit:beam>.*every body is rigid"):
+        ElasticModel(m).modes(m.home_q, 2)
+    with pytest.raises(MethodUnavailable, match="<mechkit:beam link="):
+        ElasticModel(m).stiffness(m.home_q, "engine")

@@ -25,3 +25,39 @@ def test_failing_designs_are_rows_with_their_status():
         assert all(math.isnan(row[c]) for c in columns) and row["message"]
     assert "crank" in rows[3]["message"] and "longest link" in rows[4]["message"]
     assert "ClosureNotConverged" in rows[1]["message"] and "sample" in rows[2]["message"]
+
+
+def test_a_metric_without_a_finite_value_fails_the_design_naming_it():
+    """A sweep used to mark such a design `ok` with its metric NaN."""
+    from mechkit.sweep.evaluate import _judged
+
+    assert _judged({"a": 1.0, "b": 2.0}) == {"status": "ok", "message": ""}
+    assert _judged({"a": 1.0, "stiffness.x": math.inf, "b": math.nan}) == {
+        "status": "failed",
+        "message": "no finite value of stiffness.x, b",
+    }
+
+
+def test_an_elastic_metric_of_a_mechanism_with_nothing_elastic_is_an_error_saying_so():
+    """The rocket gimbal has no beam: its first frequency used to be NaN in an `ok` row."""
+    import numpy as np
+
+    import mechkit
+    from mechkit.sweep import Study
+    from mechkit.sweep.evaluate import Chunk, evaluate_chunk
+
+    mech = mechkit.load("rocket_gimbal")
+    name = next(iter(mech.params.__dataclass_fields__))
+    chunk = Chunk(
+        "rocket_gimbal",
+        {},
+        (name,),
+        (0,),
+        np.array([[getattr(mech.params, name)]], float),
+        Study(),
+        ("first_frequency",),
+        ("first_frequency",),
+    )
+    (row,) = evaluate_chunk(chunk)
+    assert row["status"] == "error" and math.isnan(row["first_frequency"])
+    assert "MethodUnavailable" in row["message"] and "no <mechkit:beam>" in row["message"]
