@@ -76,6 +76,23 @@ class PinFriction:
     preload: float = 0.0
     threshold: float = SPEED_THRESHOLD
 
+    def __post_init__(self) -> None:
+        """Refuse, by name, a value no pin can have (a negative coefficient, a pin of no radius, NaN)."""
+        limits = {
+            "mu": (self.mu, 0.0, False),
+            "radius": (self.radius, 0.0, True),
+            "bending_arm": (self.bending_arm, 0.0, True),
+            "collar_radius": (self.collar_radius, 0.0, False),
+            "preload": (self.preload, 0.0, False),
+            "threshold": (self.threshold, 0.0, True),
+        }
+        for name, (value, low, strict) in limits.items():
+            finite = math.isfinite(value) or (name == "bending_arm" and value == math.inf)
+            if not finite or value < low or (strict and value == low):
+                raise InvalidParameters(
+                    f"friction {name}", value, f"must be {'>' if strict else '>='} {low:g} and finite"
+                )
+
     def torque(self, wrench: np.ndarray, axis: np.ndarray) -> float:
         """The friction torque's size T for a reaction.
 
@@ -92,23 +109,6 @@ class PinFriction:
         bending = float(np.linalg.norm(m - (m @ axis) * axis))
         load = self.preload + radial + (0.0 if math.isinf(self.bending_arm) else bending / self.bending_arm)
         return self.mu * (self.radius * load + self.collar_radius * abs(axial))
-
-
-def _check(joint: str, spec: PinFriction) -> None:
-    ok = (
-        spec.mu >= 0
-        and spec.radius > 0
-        and spec.bending_arm > 0
-        and spec.collar_radius >= 0
-        and spec.preload >= 0
-        and spec.threshold > 0
-    )
-    if not ok:
-        raise InvalidParameters(
-            f"friction on {joint}",
-            spec,
-            "needs mu >= 0, radius > 0, bending_arm > 0, collar_radius >= 0, preload >= 0, threshold > 0",
-        )
 
 
 class ReactionFriction(ForceElement):
@@ -142,7 +142,6 @@ class ReactionFriction(ForceElement):
         by_cut = {c.closure.name: c for c in cuts}
         self._tree, self._cuts = [], []  # (name, reaction index, spec, velocity index) / (name, index, spec, cut rows)
         for joint, spec in self.joints.items():
-            _check(joint, spec)
             if joint not in joint_names:
                 raise InvalidParameters("friction", joint, f"no such joint; joints: {list(joint_names)}")
             k = list(joint_names).index(joint)

@@ -41,10 +41,6 @@ class JointSprings(ForceElement):
         for s in self.springs:
             if not model.existJointName(s.joint):
                 raise InvalidParameters("spring", s.joint, f"no such joint; joints: {list(model.names[1:])}")
-            if s.stiffness < 0 or s.damping < 0:
-                raise InvalidParameters(
-                    f"spring on {s.joint}", (s.stiffness, s.damping), "stiffness and damping must be >= 0"
-                )
             j = model.getJointId(s.joint)
             jm = model.joints[j]
             if jm.nv == 1:

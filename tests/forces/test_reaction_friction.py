@@ -64,3 +64,20 @@ def test_a_joint_that_is_not_revolute_is_refused():
     assert prismatic
     with pytest.raises(InvalidParameters, match="revolute joints only"):
         forces.ReactionFriction(m.model, cm.joint_names, cm.kernel.cuts, {prismatic[0]: forces.PinFriction(0.1, 0.01)})
+
+
+@pytest.mark.parametrize(
+    "args, named",
+    [
+        ((-0.1, 0.01), "friction mu"),
+        ((float("nan"), 0.01), "friction mu"),
+        ((0.1, 0.0), "friction radius"),
+        ((0.1, -1.0), "friction radius"),
+        ((0.1, 0.01, 0.0), "friction bending_arm"),
+        ((0.1, 0.01, float("inf"), -1.0), "friction collar_radius"),
+    ],
+)
+def test_friction_no_pin_can_have_is_refused_by_name(args, named):
+    """A negative coefficient was accepted and only checked, if at all, when the element was built."""
+    with pytest.raises(InvalidParameters, match=named):
+        forces.PinFriction(*args)

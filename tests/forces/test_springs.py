@@ -35,5 +35,5 @@ def test_a_bad_spring_is_refused_by_name(four_bar):
     """An unknown joint and a negative stiffness are named in the error."""
     with pytest.raises(InvalidParameters, match="nowhere"):
         forces.JointSprings(four_bar.model, [core.JointSpring("nowhere", 1.0)])
-    with pytest.raises(InvalidParameters, match="spring on crank"):
+    with pytest.raises(InvalidParameters, match="spring stiffness of 'crank'"):  # refused by the record itself
         forces.JointSprings(four_bar.model, [core.JointSpring("crank", -1.0)])
