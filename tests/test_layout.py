@@ -650,8 +650,8 @@ SAME_CONCEPT = {
         ("mechkit/sweep/", "mechkit/cli/sweep.py"),
     ),
     "urdf": (
-        "URDF: sources/urdf.py reads it, `mechkit urdf` (cli/urdf.py) writes a mechanism's",
-        ("mechkit/sources/urdf.py", "mechkit/cli/urdf.py"),
+        "URDF: sources/urdf.py reads it, export/urdf.py writes a mechanism's, cli/urdf.py is `mechkit urdf`",
+        ("mechkit/sources/urdf.py", "mechkit/export/urdf.py", "mechkit/cli/urdf.py"),
     ),
     "urdf_plus": (
         "the URDF+ format: sources/ reads it, export/ writes it",

@@ -1,4 +1,4 @@
-"""`mechkit export`: the mechanism for other tools (MJCF, Extended URDF, URDF+)."""
+"""`mechkit export`: the mechanism as a file (mechkit's URDF, MJCF, Extended URDF, URDF+)."""
 
 from __future__ import annotations
 
@@ -48,9 +48,9 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     p.add_argument(
         "--format",
         required=True,
-        choices=["mjcf", "extended-urdf", "urdf+"],
-        help="target format: MJCF (MuJoCo), Extended URDF (URDF + YAML sidecar, Gepetto's), URDF+ (loops "
-        "and couplings inside the URDF)",
+        choices=["urdf", "mjcf", "extended-urdf", "urdf-plus", "urdf+"],
+        help="target format: mechkit's URDF (<mechkit:loop>s), MJCF (MuJoCo), Extended URDF (URDF + YAML "
+        "sidecar, Gepetto's), URDF+ (loops and couplings inside the URDF; urdf+ is the same)",
     )
     p.add_argument("-o", "--output", required=True, help="file to write (extended-urdf also writes a .yaml beside it)")
     p.set_defaults(func=run, also_writes=_sidecar)

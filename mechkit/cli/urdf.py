@@ -9,12 +9,15 @@ from mechkit.cli.common import add_mechanism_arguments, examples, load_mechanism
 
 
 def run(args: argparse.Namespace) -> None:
-    """Build the mechanism (which checks that it assembles), then print or write its URDF.
+    """Build the mechanism (which checks that it assembles), then print or write its URDF (`mechkit.export.urdf`:
+    the description's own text with its actuators and home declared, or generated from the model).
 
     Args:
         args: the parsed command line.
     """
-    write_text(args.output or STDOUT, load_mechanism(args).urdf)
+    from mechkit.export import to_urdf
+
+    write_text(args.output or STDOUT, to_urdf(load_mechanism(args)))
 
 
 def add_parser(sub: argparse._SubParsersAction) -> None:

@@ -1,5 +1,5 @@
-"""Export a mechanism for other tools: MJCF (MuJoCo, `mjcf`), Extended URDF (`extended_urdf`) and URDF+
-(`urdf_plus`)."""
+"""Export a mechanism: mechkit's own URDF (`urdf`), MJCF (MuJoCo, `mjcf`), Extended URDF (`extended_urdf`) and
+URDF+ (`urdf_plus`)."""
 
 from __future__ import annotations
 
@@ -9,6 +9,7 @@ from typing import TYPE_CHECKING
 from mechkit.base.exceptions import OutputError, UnknownOption
 from mechkit.export.extended_urdf import frame_b_vector, to_extended_urdf
 from mechkit.export.mjcf import body_name, to_mjcf
+from mechkit.export.urdf import to_urdf
 from mechkit.export.urdf_plus import to_urdf_plus
 
 if TYPE_CHECKING:
@@ -25,19 +26,20 @@ __all__ = [
     "to_urdf_plus",
 ]
 
-FORMATS = ("mjcf", "extended-urdf", "urdf+")
+FORMATS = ("urdf", "mjcf", "extended-urdf", "urdf-plus", "urdf+")
 
 
 def export_command(mechanism: Mechanism, fmt: str, output: str | Path) -> list[Path]:
-    """Write the mechanism in `fmt` ("mjcf", "extended-urdf" or "urdf+") to `output`; returns the files written.
+    """Write the mechanism in `fmt` (`FORMATS`: "urdf", "mjcf", "extended-urdf", "urdf-plus" alias "urdf+") to
+    `output`; returns the files written.
 
     extended-urdf also writes the YAML sidecar beside the URDF (same stem, `.yaml`); both files are
-    written as one step (neither is replaced unless both can be written). mjcf and urdf+ to `-` write
-    to standard output.
+    written as one step (neither is replaced unless both can be written). The others to `-` write to
+    standard output.
 
     Args:
         mechanism: the mechanism.
-        fmt: "mjcf", "extended-urdf" or "urdf+".
+        fmt: one of `FORMATS`.
         output: the file (the URDF for extended-urdf), or `-` (standard output) for mjcf and urdf+.
 
     Returns:
@@ -55,8 +57,10 @@ def export_command(mechanism: Mechanism, fmt: str, output: str | Path) -> list[P
         raise UnknownOption("format", fmt, FORMATS)
     if fmt == "mjcf":
         return [write_text(output, to_mjcf(mechanism))]
-    if fmt == "urdf+":
+    if fmt in ("urdf-plus", "urdf+"):
         return [write_text(output, to_urdf_plus(mechanism))]
+    if fmt == "urdf":
+        return [write_text(output, to_urdf(mechanism))]
     sidecar = sidecar_path(output)
     if Path(output) == sidecar:
         raise OutputError(

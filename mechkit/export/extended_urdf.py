@@ -21,6 +21,7 @@ import yaml
 
 from mechkit.base.exceptions import MethodUnavailable
 from mechkit.core import AXIS_ANCHOR_OFFSET
+from mechkit.export.urdf import source_text
 from mechkit.export.xmltext import numbers as _fmt
 from mechkit.sources.urdf import LOOP_NAMESPACE
 
@@ -41,7 +42,7 @@ def to_extended_urdf(mech: Mechanism) -> tuple[str, str]:
     Raises:
         MethodUnavailable: a hooke or prismatic cut (no 3d/6d equivalent).
     """
-    robot = ET.fromstring(mech.urdf)
+    robot = ET.fromstring(source_text(mech, "extended-urdf export"))
     pairs: list[tuple[str, str]] = []
     kinds: list[str] = []
     frame_parent = {j.find("child").get("link"): j for j in robot.findall("joint")}

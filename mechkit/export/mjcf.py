@@ -50,6 +50,7 @@ import pinocchio as pin
 
 from mechkit.base.exceptions import MethodUnavailable
 from mechkit.core import AXIS_ANCHOR_OFFSET, body_name
+from mechkit.export.urdf import source_text
 from mechkit.export.xmltext import numbers as _fmt
 from mechkit.export.xmltext import quat_wxyz as _quat_wxyz
 
@@ -177,7 +178,7 @@ MJMINVAL = 1e-15
 def _visual_geoms(mech: Mechanism) -> list[tuple[int, str, dict[str, str]]]:
     """(joint, name, attributes) of the URDF's primitive visuals; none when they cannot be read."""
     try:
-        geometry = pin.buildGeomFromUrdfString(mech.model, mech.urdf, pin.GeometryType.VISUAL)
+        geometry = pin.buildGeomFromUrdfString(mech.model, source_text(mech, "mjcf export"), pin.GeometryType.VISUAL)
     except (RuntimeError, ValueError):  # mesh files that cannot be found: capsules instead
         return []
     out = []

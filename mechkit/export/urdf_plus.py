@@ -24,6 +24,7 @@ import xml.etree.ElementTree as ET
 from typing import TYPE_CHECKING
 
 from mechkit.base.exceptions import MethodUnavailable
+from mechkit.export.urdf import source_text
 from mechkit.export.xmltext import numbers as _fmt
 from mechkit.sources.urdf import LOOP_NAMESPACE
 
@@ -46,20 +47,14 @@ def to_urdf_plus(mech: Mechanism) -> str:
         The URDF+ document (its tree, `<loop>` and `<coupling>` elements, home and actuators).
 
     Raises:
-        MethodUnavailable: no URDF tree (ball or free joints), a spherical or Hooke cut, a cut frame that
-            is not a URDF link or joint, a coupling neither a mimic nor a URDF+ coupling can write, a
-            tendon actuator.
+        MethodUnavailable: no URDF tree (ball or free joints: `mechkit.export.urdf`), a spherical or Hooke
+            cut, a cut frame that is not a URDF link or joint, a coupling neither a mimic nor a URDF+ coupling
+            can write, a tendon actuator.
     """
-    if mech.urdf is None:
-        raise MethodUnavailable(
-            "urdf+ export",
-            f"{mech.spec.name} has no URDF tree (joints URDF has no element for: "
-            "ball, free-flyer, a reader's substitutions or reductions): URDF+ is a URDF",
-        )
     tendons = [a.name for a in mech.closure_model.actuators]
     if tendons:
         raise MethodUnavailable("urdf+ export", f"actuator {tendons[0]!r} drives a tendon: URDF+ drives joints")
-    robot = ET.fromstring(mech.urdf)
+    robot = ET.fromstring(source_text(mech, "urdf+ export"))
     for element in list(robot):
         if element.tag == "transmission" or element.tag in {f"{{{LOOP_NAMESPACE}}}{t}" for t in _WRITTEN_AGAIN}:
             robot.remove(element)

@@ -119,31 +119,35 @@ def _parent_frame(model: pin.Model, joint: int) -> int:
     return 0
 
 
-def one_freedom_axes(model: pin.Model) -> dict[int, tuple[str, np.ndarray]] | None:
+def one_freedom_axes(model: pin.Model) -> dict[int, tuple[str, np.ndarray | None]] | None:
     """Joint id -> (URDF type, unit axis in the joint frame) for every joint, or None when some joint
-    is not a one-freedom revolute or prismatic joint (URDF cannot hold it).
+    is neither a one-freedom revolute or prismatic joint nor a free-flyer on the world (URDF's
+    "floating", which Pinocchio's parser reads as a free-flyer): URDF cannot hold it.
 
     Args:
         model: the model.
 
     Returns:
-        Joint id -> ("revolute" or "prismatic", unit axis (3,) in the joint frame), or None.
+        Joint id -> ("revolute" or "prismatic", unit axis (3,) in the joint frame; or ("floating", None)),
+        or None.
     """
-    out = {}
+    out: dict[int, tuple[str, np.ndarray | None]] = {}
     for j in range(1, model.njoints):
         short = model.joints[j].shortname()
         if short in _ALIGNED:
             out[j] = _ALIGNED[short]
         elif short in _UNALIGNED:
             out[j] = (_UNALIGNED[short], np.asarray(model.joints[j].extract().axis, dtype=float))
+        elif short == "JointModelFreeFlyer" and model.parents[j] == 0:
+            out[j] = ("floating", None)
         else:
             return None
     return out
 
 
 def tree_urdf(model: pin.Model, closures: tuple[LoopClosure, ...]) -> str | None:
-    """URDF text of a tree of revolute and prismatic joints with its `<mechkit:loop>`s, or None when
-    URDF cannot hold the tree (ball, free-flyer, universal joints).
+    """URDF text of a tree of revolute and prismatic joints (and a floating root) with its `<mechkit:loop>`s, or
+    None when URDF cannot hold the tree (ball, universal joints, a free-flyer below the root).
 
     Each joint's link is named after the BODY frame at identity on it (else `<joint>__link`) and
     carries the joint's whole inertia; every other frame but the universe and JOINT frames is a

@@ -28,10 +28,11 @@ from mechkit.sources.urdf_checks import check_inertias, check_tree
 from mechkit.sources.urdf_mimics import parse_mimics
 
 LOOP_NAMESPACE = "https://mechkit.dev/loop"
-#: Elements of the loop namespace mechkit knows (`home`: an input value of the default assembly;
-#: `spring`: a joint spring; `beam`, `elastic_joint`: elastic data, read by `mechkit.elastic` and
-#: ignored by the rigid pipeline). Any other one is a `MalformedDescription`.
-KNOWN_ELEMENTS = ("loop", "home", "spring", "beam", "elastic_joint")
+#: Elements of the loop namespace mechkit knows (`home`: an input value of the default assembly; `guess`: a
+#: joint value near which it is sought, which picks the assembly branch; `spring`: a joint spring; `beam`,
+#: `elastic_joint`: elastic data, read by `mechkit.elastic` and ignored by the rigid pipeline). Any other one
+#: is a `MalformedDescription`.
+KNOWN_ELEMENTS = ("loop", "home", "guess", "spring", "beam", "elastic_joint")
 #: Local names that declare a loop in some convention; outside the loop namespace they are an error.
 LOOP_LIKE = ("loop", "loops", "closure", "closed_loop", "loop_closure", "constraint", "cut")
 
@@ -73,10 +74,11 @@ def describe_urdf(urdf: str, source: Path | None, fmt: str, params: dict[str, st
     check_inertias(root)
     closures = tuple(parse_loops(root))
     joints = moving_joints(root)
-    home = parse_home(root)
-    for joint in home:
-        if joint not in joints:
-            raise MalformedDescription(f"mechkit:home {joint!r}", "not a moving joint of the URDF")
+    home, guess = parse_home(root), parse_home(root, "guess")
+    for tag, values in (("home", home), ("guess", guess)):
+        for joint in values:
+            if joint not in joints:
+                raise MalformedDescription(f"mechkit:{tag} {joint!r}", "not a moving joint of the URDF")
     name = root.get("name") or (source.name.split(".")[0] if source else "urdf")
     springs = parse_springs(root)
     for spring in springs:
@@ -87,7 +89,7 @@ def describe_urdf(urdf: str, source: Path | None, fmt: str, params: dict[str, st
         urdf,
         transmissions(root, joints),
         home,
-        {},
+        guess,
         source,
         fmt,
         dict(params or {}),
@@ -302,11 +304,13 @@ def parse_springs(urdf: str | ET.Element) -> tuple[JointSpring, ...]:
     return tuple(out)
 
 
-def parse_home(urdf: str | ET.Element) -> dict[str, float]:
-    """The `<mechkit:home joint="..." value="..."/>` inputs of the default assembly (rad or m).
+def parse_home(urdf: str | ET.Element, tag: str = "home") -> dict[str, float]:
+    """The `<mechkit:home joint="..." value="..."/>` inputs of the default assembly (rad or m), or with
+    `tag="guess"` the `<mechkit:guess>` values near which it is sought (they pick its branch).
 
     Args:
         urdf: URDF text or its parsed root.
+        tag: "home" or "guess".
 
     Returns:
         Joint -> value (rad or m).
@@ -315,14 +319,14 @@ def parse_home(urdf: str | ET.Element) -> dict[str, float]:
         MalformedDescription: a value that is not a finite number, or no joint name.
     """
     out = {}
-    for element in (parse_xml(urdf) if isinstance(urdf, str) else urdf).findall(f"{{{LOOP_NAMESPACE}}}home"):
+    for element in (parse_xml(urdf) if isinstance(urdf, str) else urdf).findall(f"{{{LOOP_NAMESPACE}}}{tag}"):
         joint, text = element.get("joint"), element.get("value")
         try:
             value = float(text)
         except (TypeError, ValueError):
-            raise MalformedDescription(f"mechkit:home {joint!r}", f"value {text!r} is not a number") from None
+            raise MalformedDescription(f"mechkit:{tag} {joint!r}", f"value {text!r} is not a number") from None
         if not joint or not np.isfinite(value):
-            raise MalformedDescription(f"mechkit:home {joint!r}", "needs a joint name and a finite value")
+            raise MalformedDescription(f"mechkit:{tag} {joint!r}", "needs a joint name and a finite value")
         out[joint] = value
     return out
 

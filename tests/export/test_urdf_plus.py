@@ -29,8 +29,8 @@ FIELD = Path(__file__).resolve().parents[1] / "fixtures" / "field"
 #: What URDF+ cannot write, and what the refusal says.
 REFUSED = {
     "rocket_gimbal": "cut 'a_ball_joint' is spherical",
-    str(FIELD / "menagerie" / "agility_cassie" / "cassie.xml"): "has no URDF tree",
-    str(FIELD / "gepetto" / "cassie_like" / "robot.urdf"): "has no URDF tree",
+    str(FIELD / "menagerie" / "agility_cassie" / "cassie.xml"): "is a JointModelSpherical: URDF has no such joint",
+    str(FIELD / "gepetto" / "cassie_like" / "robot.urdf"): "is a JointModelSpherical: URDF has no such joint",
     str(FIELD / "menagerie" / "robotiq_2f85" / "2f85.xml"): "actuator 'fingers_actuator' drives a tendon",
 }
 SOURCES = (
