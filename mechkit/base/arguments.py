@@ -16,6 +16,10 @@ import numpy as np
 
 from mechkit.base.exceptions import InvalidArgument, UnknownOption
 
+#: Largest magnitude of a physical value a description or an option may give (ours): far beyond any
+#: mechanism's mass, length, stiffness or load, far inside what double precision can square and sum (1e154).
+LARGEST = 1e100
+
 
 def array(name: str, value: Any, size: int, *, batch: bool = True) -> np.ndarray:
     """A real, finite float array of shape (size,) or, when `batch`, (N, size).

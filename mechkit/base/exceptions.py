@@ -200,3 +200,7 @@ class MechkitWarning(UserWarning):
 class IgnoredClosure(MechkitWarning):
     """An element that closes a loop in another tool was left out, as the caller asked; the message names it,
     its file and line, and the mobility the model is left with."""
+
+
+class MuJoCoWarning(MechkitWarning):
+    """MuJoCo warned while compiling an MJCF file (what it said, with the file's name)."""

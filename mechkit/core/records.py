@@ -10,6 +10,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from mechkit.base.arguments import LARGEST
 from mechkit.base.exceptions import InvalidParameters
 
 LOOP_KINDS = ("revolute", "prismatic", "spherical", "hooke", "weld")
@@ -91,15 +92,17 @@ class JointSpring:
     damping: float = 0.0
 
     def __post_init__(self) -> None:
-        """Refuse, naming the joint, a value no spring has: NaN or inf, a negative stiffness or damping."""
+        """Refuse, naming the joint, a value no spring has: NaN, inf or beyond `LARGEST`, a negative stiffness or
+        damping."""
         values = {"stiffness": self.stiffness, "reference": self.reference, "preload": self.preload}
         values["damping"] = self.damping
         for name, value in values.items():
-            if not np.isfinite(value) or (name in ("stiffness", "damping") and value < 0):
+            if not abs(value) <= LARGEST or (name in ("stiffness", "damping") and value < 0):
                 raise InvalidParameters(
                     f"spring {name} of {self.joint!r}",
                     value,
-                    "must be finite" + (" and >= 0" if name in ("stiffness", "damping") else ""),
+                    f"must be finite, at most {LARGEST:g} in size"
+                    + (" and >= 0" if name in ("stiffness", "damping") else ""),
                 )
 
 

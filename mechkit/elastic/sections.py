@@ -26,6 +26,11 @@ def _vector(name: str, value: object, size: int) -> np.ndarray:
     return out
 
 
+#: Largest value of a section's property (SI, ours): far beyond any material or section (steel's E is 2e11 Pa),
+#: far inside what double precision can multiply in a beam's stiffness.
+LARGEST = 1e30
+
+
 @dataclass(frozen=True, eq=False)
 class Section:
     """A uniform beam section and its material (axial, Euler-Bernoulli bending, St Venant torsion).
@@ -58,13 +63,14 @@ class Section:
     def __post_init__(self) -> None:
         for name in ("E", "G", "A", "I1", "I2", "J"):
             value = getattr(self, name)
-            if not isinstance(value, (int, float)) or not math.isfinite(value) or value <= 0:
-                raise InvalidParameters(name, value, "must be a finite number > 0 (SI units)")
+            if not isinstance(value, (int, float)) or not math.isfinite(value) or not 0 < value <= LARGEST:
+                raise InvalidParameters(name, value, f"must be a number > 0 and <= {LARGEST:g} (SI units)")
         if not math.isfinite(self.density) or self.density < 0:
             raise InvalidParameters("density", self.density, "must be a finite number >= 0 (kg/m^3)")
         axis = _vector("axis1", self.axis1, 3)
-        if np.linalg.norm(axis) < 1e-12:
+        if not np.any(axis):
             raise InvalidParameters("axis1", self.axis1, "must be a non-zero direction")
+        axis = axis / np.max(np.abs(axis))  # scaled first: the norm of 1e300 components would overflow
         object.__setattr__(self, "axis1", _vector("axis1", axis / np.linalg.norm(axis), 3))
 
     @classmethod
@@ -138,8 +144,8 @@ class JointElasticity:
     drive: float | None = None
 
     def __post_init__(self) -> None:
-        if not math.isfinite(self.centre):
-            raise InvalidParameters("centre", self.centre, "must be finite (m)")
+        if not abs(self.centre) <= LARGEST:
+            raise InvalidParameters("centre", self.centre, f"must be finite, at most {LARGEST:g} m")
         if self.stiffness is not None:
             k = np.array(self.stiffness, dtype=float).reshape(-1)
             if k.shape != (6,) or np.any(np.isnan(k)) or np.any(k <= 0):

@@ -14,6 +14,7 @@ from __future__ import annotations
 import numpy as np
 import pinocchio as pin
 
+from mechkit.base.arguments import LARGEST
 from mechkit.base.exceptions import MalformedDescription
 
 #: Relative slack of the principal-moment tests, of their sum (ours): far above rounding, far below anything
@@ -21,7 +22,7 @@ from mechkit.base.exceptions import MalformedDescription
 INERTIA_RTOL = 1e-12
 
 
-def check_body(where: str, mass: float, inertia: np.ndarray, shown: object) -> None:
+def check_body(where: str, mass: float, inertia: np.ndarray, shown: object) -> np.ndarray:
     """One body's mass and inertia about its centre of mass, judged.
 
     Args:
@@ -30,15 +31,23 @@ def check_body(where: str, mass: float, inertia: np.ndarray, shown: object) -> N
         inertia: (3, 3) its inertia about its centre of mass (kg m^2).
         shown: the values as the file gives them, for the error.
 
+    Returns:
+        (3, 3) the inertia made symmetric with its round-off negative moments set to zero (Pinocchio refuses
+        a moment of -1e-300).
+
     Raises:
-        MalformedDescription: a mass negative or not finite, an inertia not finite, not positive
-            semi-definite, or violating the triangle inequality (each principal moment at most the sum of the
-            other two), judged to `INERTIA_RTOL` of the moments' sum.
+        MalformedDescription: a mass negative, not finite or beyond `LARGEST`, an inertia not finite, beyond
+            `LARGEST`, not positive semi-definite, or violating the triangle inequality (each principal moment
+            at most the sum of the other two), judged to `INERTIA_RTOL` of the moments' sum.
     """
     if not np.isfinite(mass) or mass < 0:
         raise MalformedDescription(where, f"mass {mass:g} is negative or not finite (kg)")
+    if mass > LARGEST:
+        raise MalformedDescription(where, f"mass {mass:g} kg is beyond {LARGEST:g}: not a mechanism's")
     if not np.all(np.isfinite(inertia)):
         raise MalformedDescription(where, f"inertia {shown}: not finite")
+    if np.max(np.abs(inertia)) > LARGEST:
+        raise MalformedDescription(where, f"inertia {shown} is beyond {LARGEST:g} kg m^2: not a mechanism's")
     moments = np.linalg.eigvalsh(0.5 * (inertia + inertia.T))
     slack = INERTIA_RTOL * float(np.sum(np.abs(moments)))
     if moments[0] < -slack:
@@ -51,6 +60,10 @@ def check_body(where: str, mass: float, inertia: np.ndarray, shown: object) -> N
             f"inertia {shown} violates the triangle inequality: principal moments "
             f"{moments[0]:.6g} + {moments[1]:.6g} < {moments[2]:.6g} kg m^2",
         )
+    if moments[0] >= 0:
+        return 0.5 * (inertia + inertia.T)
+    moments, axes = np.linalg.eigh(0.5 * (inertia + inertia.T))
+    return (axes * np.clip(moments, 0.0, None)) @ axes.T
 
 
 def check_model(model: pin.Model) -> None:
@@ -61,21 +74,24 @@ def check_model(model: pin.Model) -> None:
 
     Raises:
         MalformedDescription: naming the body, joint or frame and the value: a body `check_body` refuses, a
-            centre of mass, joint placement, joint axis, frame placement or gravity that is not finite.
+            centre of mass, joint placement, joint axis, frame placement or gravity that is not finite (a
+            position beyond `LARGEST` too).
     """
     if not np.all(np.isfinite(model.gravity.vector)):
         raise MalformedDescription("gravity", f"{model.gravity.linear} m/s^2: not finite")
     for j in range(1, model.njoints):
         body = _body_name(model, j)
         inertia = model.inertias[j]
-        if not np.all(np.isfinite(inertia.lever)):
-            raise MalformedDescription(body, f"centre of mass {inertia.lever} m: not finite")
+        if not np.all(np.abs(inertia.lever) <= LARGEST):
+            raise MalformedDescription(body, f"centre of mass {inertia.lever} m: not finite, or beyond {LARGEST:g}")
         check_body(body, float(inertia.mass), np.array(inertia.inertia), np.array(inertia.inertia).round(12).tolist())
-        if not np.all(np.isfinite(model.jointPlacements[j].homogeneous)):
-            raise MalformedDescription(f"joint {model.names[j]!r}", "its placement is not finite")
+        if not np.all(np.abs(model.jointPlacements[j].homogeneous) <= LARGEST):
+            raise MalformedDescription(
+                f"joint {model.names[j]!r}", f"its placement is not finite, or beyond {LARGEST:g} m"
+            )
     for frame in model.frames:
-        if not np.all(np.isfinite(frame.placement.homogeneous)):
-            raise MalformedDescription(f"frame {frame.name!r}", "its placement is not finite")
+        if not np.all(np.abs(frame.placement.homogeneous) <= LARGEST):
+            raise MalformedDescription(f"frame {frame.name!r}", f"its placement is not finite, or beyond {LARGEST:g} m")
     data = model.createData()
     pin.computeJointJacobians(model, data, pin.neutral(model))
     bad = np.flatnonzero(~np.all(np.isfinite(data.J.reshape(6, -1)), axis=0))

@@ -41,6 +41,7 @@ import pinocchio as pin
 from mechkit.base.exceptions import MalformedDescription
 from mechkit.core import Coupling, JointSpring, LoopClosure
 from mechkit.sources.description import Description, read_text
+from mechkit.sources.physical import check_body
 from mechkit.sources.pinocchio_tree import add_body, add_frame, add_joint, joint_model, tree_urdf
 from mechkit.sources.sdf_frames import MODEL, SdfFrames, boolean, number, sdf_version
 from mechkit.sources.urdf import parse_xml
@@ -186,6 +187,7 @@ class _Reader(SdfFrames):
             for k in ("ixx", "iyy", "izz", "ixy", "ixz", "iyz")
         }
         I = np.array([[i["ixx"], i["ixy"], i["ixz"]], [i["ixy"], i["iyy"], i["iyz"]], [i["ixz"], i["iyz"], i["izz"]]])
+        I = check_body(where, mass, I, i)  # before Pinocchio, which throws on a negative moment
         R = placement.rotation
         return pin.Inertia(mass, placement.translation, R @ I @ R.T)
 

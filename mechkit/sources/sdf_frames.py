@@ -249,8 +249,9 @@ class SdfFrames:
             raise MalformedDescription(where, f"missing <{tag}>")
         xyz = element.find("xyz")
         vector = numbers(xyz, where, 3, (0.0, 0.0, 1.0))
-        if np.linalg.norm(vector) < 1e-12:
+        if not np.any(vector):
             raise MalformedDescription(where, f"<{tag}><xyz> is zero")
+        vector = vector / np.max(np.abs(vector))  # scaled first: the norm of 1e300 components would overflow
         if self.version < (1, 7):
             model_frame = boolean(element.findtext("use_parent_model_frame"), where, "<use_parent_model_frame>")
             frame = MODEL if model_frame else None

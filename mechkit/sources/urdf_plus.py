@@ -148,8 +148,9 @@ def _loop(
         out += [ET.Element("link", name=frame), joint]
     if kind != "fixed":
         vector = _triple(element.find("axis"), "xyz", f"{where} <axis>", default="1 0 0")
-        if np.linalg.norm(vector) < 1e-12:
+        if not np.any(vector):
             raise MalformedDescription(f"{where} <axis>", "xyz is a zero vector")
+        vector = vector / np.max(np.abs(vector))  # scaled first: the norm of 1e300 components would overflow
         attrs["axis"] = " ".join(repr(float(x)) for x in vector / np.linalg.norm(vector))
     return out + [ET.Element(f"{{{LOOP_NAMESPACE}}}loop", attrs)]
 

@@ -65,7 +65,12 @@ def test_live_viewer_in_a_real_browser_and_ctrl_c(tmp_path):
             assert_framed(mask)
         assert np.mean(masks[0][CONTROLS:] != masks[-1][CONTROLS:]) > 0.002  # the scene plays
         command.send_signal(signal.SIGINT)
-        out, err = command.communicate(timeout=READY_WITHIN)
+        try:
+            out, err = command.communicate(timeout=READY_WITHIN)
+        except subprocess.TimeoutExpired:
+            command.kill()
+            out, err = command.communicate()
+            pytest.fail(f"mechkit view did not end within {READY_WITHIN:.0f} s of Ctrl-C; it printed {out!r}, {err!r}")
     finally:
         if command.poll() is None:
             command.kill()

@@ -12,12 +12,16 @@ A tree of hinges and slides is also written as URDF text (`Description.urdf`), e
 
 from __future__ import annotations
 
+import contextlib
+import warnings
+from collections.abc import Iterator
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 import pinocchio as pin
 
-from mechkit.base.exceptions import MalformedDescription, MethodUnavailable
+from mechkit.base.exceptions import MalformedDescription, MethodUnavailable, MuJoCoWarning
 from mechkit.sources.description import Description, read_text
 from mechkit.sources.mjcf.constraints import actuation, check_tendons, equalities, springs
 from mechkit.sources.mjcf.tree import Tree, build_tree
@@ -25,6 +29,19 @@ from mechkit.sources.pinocchio_tree import tree_urdf
 from mechkit.sources.urdf import parse_xml
 
 __all__ = ["read_mjcf"]
+
+
+@contextlib.contextmanager
+def _warnings_kept(mujoco: Any) -> Iterator[list[str]]:
+    """MuJoCo's warnings while compiling, kept in a list instead of printed on standard output (where they
+    would break `--json`) and appended to a MUJOCO_LOG.TXT in the working directory."""
+    said: list[str] = []
+    previous = mujoco.get_mju_user_warning()
+    mujoco.set_mju_user_warning(said.append)
+    try:
+        yield said
+    finally:
+        mujoco.set_mju_user_warning(previous)
 
 
 def read_mjcf(path: Path) -> Description:
@@ -42,6 +59,9 @@ def read_mjcf(path: Path) -> Description:
         MethodUnavailable: MuJoCo is not installed (`pip install mechkit[peers]`).
         MalformedDescription: not MJCF, MuJoCo cannot compile it, it has no joint, or it uses what
             mechkit does not read (`mechkit.sources.mjcf.constraints`), each named.
+
+    Warns:
+        MuJoCoWarning: each warning MuJoCo gave while compiling (one line each on the command line).
     """
     root = parse_xml(read_text(path), str(path))
     if root.tag != "mujoco":
@@ -51,10 +71,13 @@ def read_mjcf(path: Path) -> Description:
     except ImportError:
         raise MethodUnavailable("MJCF reading", "needs MuJoCo: pip install 'mechkit[peers]'") from None
     try:
-        mm = mujoco.MjModel.from_xml_path(str(path))
+        with _warnings_kept(mujoco) as said:
+            mm = mujoco.MjModel.from_xml_path(str(path))
     except ValueError as err:
         where = "; ".join(line.strip() for line in str(err).strip().splitlines()[:2])
         raise MalformedDescription(str(path), f"MuJoCo could not compile it: {where}") from None
+    for text in said:
+        warnings.warn(MuJoCoWarning(f"{path.name}: MuJoCo: {text.strip()}"), stacklevel=2)
     if mm.njnt == 0:
         raise MalformedDescription(str(path), "the model has no joint: nothing moves")
     tree = build_tree(mujoco, mm, root.get("model") or path.name.split(".")[0])

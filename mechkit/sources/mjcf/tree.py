@@ -21,6 +21,7 @@ import pinocchio as pin
 from numpy.typing import ArrayLike
 
 from mechkit.base.exceptions import MalformedDescription
+from mechkit.sources.physical import check_body
 from mechkit.sources.pinocchio_tree import add_body, add_frame, add_joint, joint_model
 
 if TYPE_CHECKING:
@@ -146,11 +147,9 @@ def build_tree(mujoco: ModuleType, mm: MjModel, name: str) -> Tree:
             joint, at = _joint(model, mm, names["joint"][j], j, joint, at)
         body_joint.append(joint)
         placement.append(at)
-        inertia = pin.Inertia(
-            float(mm.body_mass[b]),
-            np.asarray(mm.body_ipos[b], dtype=float),
-            _principal(mm.body_iquat[b], mm.body_inertia[b]),
-        )
+        principal = _principal(mm.body_iquat[b], mm.body_inertia[b])
+        principal = check_body(f"MJCF body {names['body'][b]!r}", float(mm.body_mass[b]), principal, principal.tolist())
+        inertia = pin.Inertia(float(mm.body_mass[b]), np.asarray(mm.body_ipos[b], dtype=float), principal)
         add_body(model, names["body"][b], joint, at, inertia)
     for s in range(mm.nsite):
         b = int(mm.site_bodyid[s])
