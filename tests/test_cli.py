@@ -5,12 +5,15 @@ from __future__ import annotations
 
 import json
 import os
+import re
 import shlex
 import subprocess
 import sys
 
 import pinocchio as pin
 import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
 from tests_support import ROOT, refused, run_mechkit
 
 from mechkit.catalog.registry import ENTRIES
@@ -113,3 +116,38 @@ def test_every_json_output_is_strict_json_without_non_finite_numbers(name, load_
         out = capsys.readouterr().out
         assert code == 0, command
         _strict_json(out)
+
+
+#: (command line on the four-bar, option taking a drawn value) of the cheap commands.
+OPTION_CASES = [
+    (["report", "four_bar"], "--set", "ground={}"),
+    (["report", "four_bar"], "--lock", "crank={}"),
+    (["report", "four_bar"], "--actuated", "{}"),
+    (["report", "four_bar"], "--keep", "{}"),
+    (["report", "four_bar"], "--fix", "{}"),
+    (["urdf", "four_bar", "-o", "-"], "--set", "coupler={}"),
+    (["stiffness", "four_bar", "--body", "coupler_link"], "--at", "crank={}"),
+    (["stiffness", "four_bar", "--body", "coupler_link"], "--point", "{}"),
+    (["modes", "four_bar", "-n", "2"], "--at", "crank={}"),
+    (["simulate", "four_bar", "--duration", "0.01"], "--friction", "{}"),
+    (["simulate", "four_bar", "--duration", "0.01"], "--gravity", "{}"),
+    (["simulate", "four_bar", "--duration", "0.01"], "--spring", "crank={}"),
+    (["simulate", "four_bar", "--duration", "0.01"], "--latch", "crank={}"),
+    (["snapshot", "four_bar", "-o", "-"], "--q", "{}"),
+]
+TOKENS = ["nan", "inf", "-inf", "1e300", "-1e300", "abc", "", ",", "1,2", "1,,2", "=", "crank", "0", "-1", "1e-300"]
+
+
+@settings(max_examples=120, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture])
+@given(case=st.sampled_from(OPTION_CASES), token=st.sampled_from(TOKENS))
+def test_a_malformed_option_value_is_one_line_or_a_finite_answer(capsys, case, token):
+    """The campaign on option values: every drawn value gives exit 0 with no nan or inf printed, or exit 2 with one
+    line naming what is wrong; never an exception out of `main` (a traceback)."""
+    command, option, form = case
+    code = main([*command, f"{option}={form.format(token)}"])
+    out, err = capsys.readouterr()
+    assert code in (0, 2), (case, token, code, err)
+    if code == 2:
+        assert err.startswith("mechkit: error: ") and err.count("\n") == 1, (case, token, err)
+    else:
+        assert not re.search(r"\b(nan|inf|infinity)\b", out, re.IGNORECASE), (case, token, out[-500:])

@@ -8,6 +8,8 @@ import os
 import shutil
 
 import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
 from tests_support import FIXTURES, ROOT, refused, run_mechkit
 
 from mechkit import cli
@@ -121,3 +123,37 @@ def test_the_command_line_refuses_in_one_line_with_exit_2(files):
     out = run_mechkit("urdf", str(files / "four_bar.urdf"), "-o", str(files / "four_bar.urdf"))
     refused(out, "-o would overwrite the description")
     assert (files / "four_bar.urdf").read_bytes() == before
+
+
+@settings(max_examples=60, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture])
+@given(
+    case=st.sampled_from([c for c in CASES if f"{c[2]} {{d}}/{c[1]}" in c[0]]),  # the output names the input
+    spelling=st.sampled_from(["plain", "dot", "parent", "double_slash", "link", "absolute_via_link_dir"]),
+)
+def test_any_spelling_of_an_input_is_still_the_input(files, monkeypatch, capsys, case, spelling):
+    """The same collisions, the output spelt otherwise: ./x, a detour through a folder and .., a doubled slash, a
+    link to the file, a path through a linked folder. Refused every time, the input untouched."""
+    line, victim, option, named = case
+    target = files / victim
+    spelt = {
+        "plain": str(target),
+        "dot": f"{files}/./{victim}",
+        "parent": f"{files}/sub/../{victim}",
+        "double_slash": f"{files}//{victim}",
+        "link": str(files / f"link_to_{victim}"),
+        "absolute_via_link_dir": str(files / "linked_dir" / victim),
+    }[spelling]
+    (files / "sub").mkdir(exist_ok=True)
+    if not (files / f"link_to_{victim}").exists():
+        (files / f"link_to_{victim}").symlink_to(target)
+    if not (files / "linked_dir").exists():
+        (files / "linked_dir").symlink_to(files)
+    args = _command(line, files)
+    position = next(k for k, a in enumerate(args) if a == str(target) and args[k - 1] == option)
+    args[position] = spelt
+    monkeypatch.setattr(getattr(cli, args[0]), "run", lambda _args: pytest.fail("the command started its work"))
+    before = target.read_bytes(), os.stat(target).st_mtime_ns
+    assert main(args) == 2
+    err = capsys.readouterr().err
+    assert option in err and named in err, (spelling, err)
+    assert (target.read_bytes(), os.stat(target).st_mtime_ns) == before
