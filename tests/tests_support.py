@@ -20,6 +20,20 @@ FIXTURES = ROOT / "tests" / "fixtures"
 ROBOTS = Path(sysconfig.get_paths()["purelib"]) / "cmeel.prefix" / "share" / "example-robot-data" / "robots"
 #: Franka's Panda: a tree with a mimic coupling on its fingers.
 PANDA = ROBOTS / "panda_description" / "urdf" / "panda.urdf"
+#: example-robot-data's Cassie SDFormat files.
+CASSIE_SDF = ROBOTS / "cassie_description" / "robots"
+#: cassie.sdf's two 1 g foot-reference rotors have an inertia no body can have (izz 9.4e-6 > ixx + iyy =
+#: 1.88e-6 kg m^2): mechkit refuses the file; its kinematics tests read it with izz = 1.8e-6 (ours).
+IMPOSSIBLE_IZZ, POSSIBLE_IZZ = "<izz>9.4e-6</izz>", "<izz>1.8e-6</izz>"
+
+
+def physical_cassie_sdf(folder: Path) -> Path:
+    """example-robot-data's cassie.sdf with its foot rotors' inertia made possible (`POSSIBLE_IZZ`), in folder."""
+    out = folder / "cassie.sdf"
+    out.write_text((CASSIE_SDF / "cassie.sdf").read_text().replace(IMPOSSIBLE_IZZ, POSSIBLE_IZZ))
+    return out
+
+
 #: The slider-crank fixture's URDF text (loops, transmission, home), which many bad-file tests alter.
 SLIDER_CRANK = (FIXTURES / "slider_crank.urdf").read_text()
 

@@ -23,15 +23,15 @@ def run(args: argparse.Namespace) -> None:
     try:
         viewer = _start(args)
     except KeyboardInterrupt:
-        print("stopped")
+        print("stopped", flush=True)
         return
     try:
         print(f"meshcat viewer of {args.name} at {viewer.url} (Ctrl-C to stop)", flush=True)
         while viewer.running:
             time.sleep(0.2)
-        print("the meshcat server stopped")
+        print("the meshcat server stopped", flush=True)
     except KeyboardInterrupt:
-        print("stopped")
+        print("stopped", flush=True)  # said at once, whatever closing the server takes
     finally:
         viewer.close()
 

@@ -165,8 +165,7 @@ class LiveViewer:
     def close(self) -> None:
         """Stop the server (its page stops updating) and release the socket."""
         if getattr(self, "_socket", None) is not None:
-            self._socket.close(linger=0)
-            self._context.term()
+            self._context.destroy(linger=0)  # every socket closed without waiting: term() alone can block
             self._socket = None
         if self._process.poll() is None:
             self._process.terminate()

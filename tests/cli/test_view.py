@@ -48,7 +48,7 @@ def _frames_until_it_plays(url: str, folder) -> list[np.ndarray]:
 def test_live_viewer_in_a_real_browser_and_ctrl_c(tmp_path):
     """`mechkit view five_bar --scene sweep`: the served page shows the mechanism framed, two moments of
     the scene differ (it plays), and Ctrl-C ends the command and its server without a traceback."""
-    env = dict(os.environ, PYTHONPATH=str(ROOT))
+    env = dict(os.environ, PYTHONPATH=str(ROOT), PYTHONFAULTHANDLER="1")  # SIGABRT dumps where it stands
     command = subprocess.Popen(
         [sys.executable, "-m", "mechkit", "view", "five_bar", "--scene", "sweep"],
         stdout=subprocess.PIPE,
@@ -68,7 +68,7 @@ def test_live_viewer_in_a_real_browser_and_ctrl_c(tmp_path):
         try:
             out, err = command.communicate(timeout=READY_WITHIN)
         except subprocess.TimeoutExpired:
-            command.kill()
+            command.send_signal(signal.SIGABRT)  # the fault handler prints every thread's stack, then it ends
             out, err = command.communicate()
             pytest.fail(f"mechkit view did not end within {READY_WITHIN:.0f} s of Ctrl-C; it printed {out!r}, {err!r}")
     finally:

@@ -21,7 +21,7 @@ from pathlib import Path
 import numpy as np
 import pinocchio as pin
 import pytest
-from tests_support import ROBOTS
+from tests_support import IMPOSSIBLE_IZZ, ROBOTS, physical_cassie_sdf
 
 import mechkit
 from mechkit.base.exceptions import MalformedDescription
@@ -63,23 +63,16 @@ def test_the_report_agrees_with_the_independent_statics(path):
     )
 
 
-#: cassie.sdf's two 1 g foot-reference rotors have an inertia no body can have (izz 9.4e-6 > ixx + iyy =
-#: 1.88e-6 kg m^2): the file is refused; the tests of its kinematics read it with izz = 1.8e-6 (ours).
-IMPOSSIBLE_IZZ, POSSIBLE_IZZ = "<izz>9.4e-6</izz>", "<izz>1.8e-6</izz>"
-
-
 def test_cassie_sdf_is_refused_for_its_impossible_foot_rotor_inertia():
     """It used to load: a body that violates the triangle inequality reached the dynamics in silence."""
     assert (CASSIE / "cassie.sdf").read_text().count(IMPOSSIBLE_IZZ) == 2
-    with pytest.raises(MalformedDescription, match=r"link 'left-foot-reference': inertia .* violates the triangle"):
+    with pytest.raises(MalformedDescription, match=r"link 'left-foot-reference': inertia .*violates the triangle"):
         mechkit.load(CASSIE / "cassie.sdf")
 
 
 def _physical(tmp_path: Path) -> Path:
-    """cassie.sdf with its foot rotors' inertia made possible (`POSSIBLE_IZZ`)."""
-    out = tmp_path / "cassie_physical.sdf"
-    out.write_text((CASSIE / "cassie.sdf").read_text().replace(IMPOSSIBLE_IZZ, POSSIBLE_IZZ))
-    return out
+    """cassie.sdf with its foot rotors' inertia made possible (`tests_support.physical_cassie_sdf`)."""
+    return physical_cassie_sdf(tmp_path)
 
 
 def test_cassie_sdf_made_physical_floats_and_agrees_with_the_independent_statics(tmp_path):

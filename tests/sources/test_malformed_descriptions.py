@@ -62,6 +62,7 @@ def malformed(draw):
     return "".join(path.suffixes), ET.tostring(root, encoding="unicode"), f"{path.name}: {what}"
 
 
+@pytest.mark.filterwarnings("ignore::mechkit.base.exceptions.MuJoCoWarning")  # said, as it should be
 @settings(max_examples=150, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture])
 @given(case=malformed())
 def test_a_malformed_description_is_refused_by_name_or_gives_finite_results(tmp_path, case):

@@ -14,7 +14,7 @@ from pathlib import Path
 import numpy as np
 import pinocchio as pin
 import pytest
-from tests_support import FIXTURES, ROBOTS
+from tests_support import FIXTURES, ROBOTS, physical_cassie_sdf
 
 from mechkit.base.exceptions import MalformedDescription
 from mechkit.core.records import Coupling, JointSpring, LoopClosure
@@ -235,12 +235,18 @@ def _welded(path: Path, tmp_path: Path) -> Path:
     return out
 
 
+def _cassie(file: str, tmp_path: Path) -> Path:
+    """An example-robot-data Cassie file; cassie.sdf made physical (`tests_support.physical_cassie_sdf`)."""
+    return physical_cassie_sdf(tmp_path) if file == "cassie.sdf" else CASSIE / file
+
+
 @pytest.mark.parametrize("file", list(CASSIE_FACTS))
 def test_example_robot_data_cassie_loads_closes_and_reports_its_dof(file, tmp_path):
     dof, welded_dof, loops, gearboxes = CASSIE_FACTS[file]
-    desc = read_sdf(CASSIE / file)
+    source = _cassie(file, tmp_path)
+    desc = read_sdf(source)
     assert sorted(c.kind for c in desc.closures) == sorted(loops) and len(desc.couplings) == gearboxes
-    for d, expected in ((desc, dof), (read_sdf(_welded(CASSIE / file, tmp_path)), welded_dof)):
+    for d, expected in ((desc, dof), (read_sdf(_welded(source, tmp_path)), welded_dof)):
         if expected is None:
             continue
         st = Statics(d)
@@ -250,10 +256,10 @@ def test_example_robot_data_cassie_loads_closes_and_reports_its_dof(file, tmp_pa
         assert st.mobility(q) == expected and st.idle(q) == {}
 
 
-def test_cassie_sdf_gearboxes_drive_its_outputs():
+def test_cassie_sdf_gearboxes_drive_its_outputs(tmp_path):
     """Each gearbox couples a rotor (`*-ip`, the actuated joint) to its output (`*-op`): output =
     -ratio * rotor (SDFormat's theta_2 = -gearbox_ratio theta_1)."""
-    desc = read_sdf(CASSIE / "cassie.sdf")
+    desc = read_sdf(_cassie("cassie.sdf", tmp_path))
     ratios = {"roll": 0.04, "yaw": 0.04, "pitch": 0.0625, "knee": 0.0625, "foot": 0.02}
     assert desc.actuated == tuple(f"{s}-{j}-ip" for s in ("left", "right") for j in ratios)
     for k in desc.couplings:
@@ -271,7 +277,7 @@ def test_cassie_sdf_with_the_pelvis_welded_holds_gravity_as_virtual_work_says(tm
     loops are nearly singular (closure Jacobian singular values down to 3e-7 of the largest), so an
     assembly closed to 1e-14 still places the passive joints to ~1e-8 rad, which the differences of
     the energy turn into ~1e-7 N m; the bound below is 1e-6 of the largest effort."""
-    desc = read_sdf(_welded(CASSIE / "cassie.sdf", tmp_path))
+    desc = read_sdf(_welded(_cassie("cassie.sdf", tmp_path), tmp_path))
     st = Statics(desc)
     q = st.configuration(desc.guess)
     u, left = st.efforts(q)
