@@ -14,13 +14,14 @@ import warnings
 
 import numpy as np
 
-from mechkit.base.exceptions import MechkitError, MechkitWarning
+from mechkit.base.exceptions import InvalidParameters, MechkitError, MechkitWarning
 from mechkit.cli import (
     bench,
     export,
     listing,
     modes,
     motion,
+    option_values,
     output_guard,
     params,
     report,
@@ -91,6 +92,8 @@ def _run(args: argparse.Namespace) -> int:
         # nobody reads any more: point stdout at /dev/null so the interpreter's final flush is silent
         os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
         return EXIT_BROKEN_PIPE
+    except InvalidParameters as err:  # named as the user typed it
+        return _error(option_values.as_typed(err, _options(args)))
     except MechkitError as err:
         return _error(str(err))
     except ArithmeticError as err:  # FloatingPointError under errstate, ZeroDivisionError in a law
@@ -99,6 +102,13 @@ def _run(args: argparse.Namespace) -> int:
         where = f"{err.filename}: " if err.filename else ""
         return _error(f"{where}{err.strerror or err}")
     return 0
+
+
+def _options(args: argparse.Namespace) -> set[str]:
+    """The options of the command that ran (as typed: "--lock", "-o"), from its parser."""
+    parser = build_parser()
+    commands = next(a for a in parser._actions if isinstance(a, argparse._SubParsersAction)).choices
+    return {s for action in commands[args.command]._actions for s in action.option_strings}
 
 
 def _warning(message: Warning | str, category: type[Warning], *args: object, **kwargs: object) -> None:

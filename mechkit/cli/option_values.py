@@ -10,7 +10,7 @@ import math
 from collections.abc import Sequence
 from pathlib import Path
 
-from mechkit.base.exceptions import InvalidArgument
+from mechkit.base.exceptions import InvalidArgument, InvalidParameters
 
 
 def pair(option: str, text: str, expected: str = "NAME=VALUE", empty: bool = False) -> tuple[str, str]:
@@ -158,3 +158,45 @@ def suffixed(option: str, path: str | None, suffixes: Sequence[str]) -> str | No
     if path is not None and Path(path).suffix.lower() not in suffixes:
         raise InvalidArgument(option, path, f"expected a {' or '.join(suffixes)} file")
     return path
+
+
+#: The library's name of an argument -> the option a command-line user types for it (names that are options).
+TYPED = {
+    "lock": "--lock",
+    "keep": "--keep",
+    "fix": "--fix",
+    "freeflyer": "--freeflyer",
+    "actuated": "--actuated",
+    "grid": "--grid",
+    "metric": "--metric",
+    "column": "--optimise",
+    "scene": "--scene",
+    "samples": "--samples",
+    "body": "--body",
+    "law": "--law",
+    "dt": "--dt",
+    "method": "--method",
+    "duration": "--duration",
+    "q": "--q",
+    "g": "--gravity",
+    "n": "-n",
+    "mode": "--mode",
+    "point": "--point",
+    "output": "-o",
+}
+
+
+def as_typed(err: InvalidParameters, given: set[str]) -> str:
+    """An error about an argument the command line gave, told with the option as typed.
+
+    Args:
+        err: the library's error (its `name` is the library's argument).
+        given: the options of the command (`--lock`, ...), so that only those are renamed.
+
+    Returns:
+        The message: "OPTION: why (got value)" where the argument is one of `given`, else the error as it is.
+    """
+    option = TYPED.get(err.name)
+    if option is None or option not in given:
+        return str(err)
+    return f"{option}: {err.why} (got {err.value!r})"

@@ -21,7 +21,7 @@ import yaml
 
 from mechkit.base.exceptions import MethodUnavailable
 from mechkit.core import AXIS_ANCHOR_OFFSET
-from mechkit.export.urdf import source_text
+from mechkit.export.urdf import add_mimics, source_text
 from mechkit.export.xmltext import numbers as _fmt
 from mechkit.sources.urdf import LOOP_NAMESPACE
 
@@ -70,6 +70,7 @@ def to_extended_urdf(mech: Mechanism) -> tuple[str, str]:
                 extra.append(name)
             pairs.append((extra[0], extra[1]))
             kinds.append("3d")
+    add_mimics(mech, robot, "extended-urdf export")  # couplings the text does not hold (an SDFormat gearbox)
     for loop in [el for el in robot if el.tag.endswith("}loop") or el.tag.endswith("}home") or el.tag == "loop"]:
         robot.remove(loop)
     for joint in mech.actuated:

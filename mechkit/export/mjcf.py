@@ -50,7 +50,7 @@ import pinocchio as pin
 
 from mechkit.base.exceptions import MethodUnavailable
 from mechkit.core import AXIS_ANCHOR_OFFSET, body_name
-from mechkit.export.urdf import source_text
+from mechkit.export.urdf import linear_coupling, source_text
 from mechkit.export.xmltext import numbers as _fmt
 from mechkit.export.xmltext import quat_wxyz as _quat_wxyz
 
@@ -334,6 +334,12 @@ def to_mjcf(mech: Mechanism, q: np.ndarray | None = None) -> str:
     equality = ET.SubElement(root, "equality")
     for tag, attrs in _equalities(mech, names, solref):
         ET.SubElement(equality, tag, attrs)
+    for coupling in mech.closure_model.couplings:  # joint1 - ref1 = a0 + a1 (joint2 - ref2): refs are the values at q
+        follower, leader, multiplier, offset = linear_coupling(coupling, "mjcf export")
+        x_f, x_l = (float(q[model.idx_qs[model.getJointId(j)]]) for j in (follower, leader))
+        polycoef = _fmt([multiplier * x_l + offset - x_f, multiplier, 0.0, 0.0, 0.0])
+        attrs = {"name": coupling.name, "joint1": follower, "joint2": leader, "polycoef": polycoef}
+        ET.SubElement(equality, "joint", {**attrs, "solref": solref, "solimp": _fmt(SOLIMP)})
     actuator = ET.SubElement(root, "actuator")
     for joint in mech.actuated:
         effort = float(model.effortLimit[model.idx_vs[model.getJointId(joint)]])

@@ -67,13 +67,15 @@ def to_urdf(mech: Mechanism) -> str:
     return '<?xml version="1.0" ?>\n' + ET.tostring(root, encoding="unicode") + "\n"
 
 
-def source_text(mech: Mechanism, writer: str) -> str:
-    """The URDF text another writer starts from: the mechanism's own where it has one (its loops, in any
-    convention the writer reads), else `to_urdf`'s (a reduced mechanism).
+def source_text(mech: Mechanism, writer: str, writes_couplings: bool = False) -> str:
+    """The URDF text another writer starts from: the mechanism's own where it describes the whole mechanism,
+    else `to_urdf`'s (a reduced mechanism, or one read from SDFormat or MJCF whose tree text lacks its
+    couplings, springs and actuators).
 
     Args:
         mech: the mechanism.
         writer: the writer's name, for a refusal (e.g. "urdf+ export").
+        writes_couplings: the writer writes the couplings itself (URDF+): a text without them as mimics will do.
 
     Returns:
         The URDF text.
@@ -81,7 +83,7 @@ def source_text(mech: Mechanism, writer: str) -> str:
     Raises:
         MethodUnavailable: see `to_urdf`, named for `writer`.
     """
-    if mech.urdf is not None:
+    if mech.urdf is not None and _describes(mech, parse_xml(mech.urdf), writes_couplings):
         return mech.urdf
     try:
         return to_urdf(mech)
@@ -89,13 +91,14 @@ def source_text(mech: Mechanism, writer: str) -> str:
         raise MethodUnavailable(writer, err.why) from None
 
 
-def _describes(mech: Mechanism, root: ET.Element) -> bool:
-    """Whether the URDF text holds the mechanism's tree and records (its loops, couplings and springs)."""
+def _describes(mech: Mechanism, root: ET.Element, without_couplings: bool = False) -> bool:
+    """Whether the URDF text holds the mechanism's tree and records (its loops, couplings and springs; the
+    couplings not asked `without_couplings`)."""
     joints = {j.get("name") for j in root.findall("joint") if j.get("type") != "fixed"}
     return (
         joints == set(mech.model.names[1:])
         and {c.name for c in parse_loops(root)} == {c.name for c in mech.closures}
-        and len(parse_mimics(root)) == len(mech.closure_model.couplings)
+        and (without_couplings or len(parse_mimics(root)) == len(mech.closure_model.couplings))
         and len(parse_springs(root)) == len(mech.springs.springs)
     )
 
@@ -134,13 +137,7 @@ def _generated(mech: Mechanism) -> ET.Element:
     for loop, closure in zip(root.iter(f"{{{LOOP_NAMESPACE}}}loop"), mech.closures):
         if closure.explicit_rows:
             loop.set("rows", closure.rows)
-    for coupling in mech.closure_model.couplings:
-        follower, multiplier, offset = _mimic(coupling)
-        if joints[follower].find("mimic") is not None:
-            raise MethodUnavailable("urdf export", f"joint {follower!r} follows two couplings: URDF has one mimic")
-        ET.SubElement(
-            joints[follower], "mimic", joint=coupling.leader[0][0], multiplier=repr(multiplier), offset=repr(offset)
-        )
+    add_mimics(mech, root, "urdf export")
     for spring in mech.springs.springs:
         ET.SubElement(
             root,
@@ -164,17 +161,50 @@ _ONE_FREEDOM = {
 }
 
 
-def _mimic(coupling: Coupling) -> tuple[str, float, float]:
-    """(follower, multiplier, offset) of a coupling x_f = multiplier x_l + offset; else refused."""
+def linear_coupling(coupling: Coupling, writer: str) -> tuple[str, str, float, float]:
+    """A coupling as one joint following another linearly: x_f = multiplier x_l + offset (URDF's mimic, MJCF's
+    joint equality of degree one); else refused.
+
+    Args:
+        coupling: the coupling.
+        writer: the writer's name, for the refusal.
+
+    Returns:
+        (follower, leader, multiplier, offset).
+
+    Raises:
+        MethodUnavailable: several joints on a side, none leading, or a polynomial of degree two or more.
+    """
     if len(coupling.follower) != 1 or len(coupling.leader) != 1 or len(coupling.polynomial) > 2:
         raise MethodUnavailable(
-            "urdf export",
-            f"coupling {coupling.name!r} is not one joint following another linearly: URDF's mimic cannot say it "
-            "(export --format mjcf keeps it)",
+            writer,
+            f"coupling {coupling.name!r} is not one joint following another linearly: the format cannot say it",
         )
-    (follower, cf), (_, cl) = coupling.follower[0], coupling.leader[0]
+    (follower, cf), (leader, cl) = coupling.follower[0], coupling.leader[0]
     c0, c1 = (tuple(coupling.polynomial) + (0.0,))[:2]
-    return follower, c1 * cl / cf, (coupling.follower_ref + c0 - c1 * coupling.leader_ref) / cf
+    return follower, leader, c1 * cl / cf, (coupling.follower_ref + c0 - c1 * coupling.leader_ref) / cf
+
+
+def add_mimics(mech: Mechanism, root: ET.Element, writer: str) -> None:
+    """A `<mimic>` on the follower joint of every coupling the URDF does not hold yet (`linear_coupling`).
+
+    Args:
+        mech: the mechanism.
+        root: the URDF's robot element, changed in place.
+        writer: the writer's name, for a refusal.
+
+    Raises:
+        MethodUnavailable: a coupling `linear_coupling` refuses, or a joint following two.
+    """
+    joints = {j.get("name"): j for j in root.findall("joint")}
+    held = {c.follower[0][0] for c in parse_mimics(root)}
+    for coupling in mech.closure_model.couplings:
+        follower, leader, multiplier, offset = linear_coupling(coupling, writer)
+        if follower in held:
+            continue
+        if joints[follower].find("mimic") is not None:
+            raise MethodUnavailable(writer, f"joint {follower!r} follows two couplings: URDF has one mimic per joint")
+        ET.SubElement(joints[follower], "mimic", joint=leader, multiplier=repr(multiplier), offset=repr(offset))
 
 
 def _carry(source: ET.Element, root: ET.Element, model: pin.Model) -> None:

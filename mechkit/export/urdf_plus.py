@@ -54,7 +54,7 @@ def to_urdf_plus(mech: Mechanism) -> str:
     tendons = [a.name for a in mech.closure_model.actuators]
     if tendons:
         raise MethodUnavailable("urdf+ export", f"actuator {tendons[0]!r} drives a tendon: URDF+ drives joints")
-    robot = ET.fromstring(source_text(mech, "urdf+ export"))
+    robot = ET.fromstring(source_text(mech, "urdf+ export", writes_couplings=True))
     for element in list(robot):
         if element.tag == "transmission" or element.tag in {f"{{{LOOP_NAMESPACE}}}{t}" for t in _WRITTEN_AGAIN}:
             robot.remove(element)

@@ -43,8 +43,8 @@ def test_inputs_csv_and_csv_output(tmp_path, capsys):
     "args, needle",
     [
         (["--inputs", "missing.csv"], "missing.csv"),
-        (["--scene", "dance"], "'scene'"),
-        (["--samples", "1"], "'samples'"),
+        (["--scene", "dance"], "--scene: "),
+        (["--samples", "1"], "--samples: "),
         (["-o", "OUT.txt"], "parquet"),
         (["--plot", "OUT.png", "--joints", "nope"], "nope"),
     ],

@@ -55,3 +55,13 @@ def test_suffixed():
     assert ov.suffixed("--plot", "a.PNG", (".png", ".svg")) == "a.PNG"
     assert ov.suffixed("--plot", None, (".png",)) is None
     _refused(lambda: ov.suffixed("--plot", "a.xyz", (".png", ".svg")), "'--plot'", "expected a .png or .svg file")
+
+
+def test_an_argument_is_named_as_typed_where_the_command_has_that_option():
+    """ "parameter 'lock'" named the library's keyword; the command line names its option."""
+    from mechkit.base.exceptions import InvalidParameters
+
+    err = InvalidParameters("lock", ["nope"], "'nope' is not a joint")
+    assert ov.as_typed(err, {"--lock", "-o"}) == "--lock: 'nope' is not a joint (got ['nope'])"
+    assert ov.as_typed(err, {"-o"}) == str(err)  # not an option of that command: as it is
+    assert ov.as_typed(InvalidParameters("ground", 2.0, "too long"), {"--lock"}).startswith("parameter 'ground'")

@@ -88,3 +88,20 @@ def test_a_reduced_mechanism_keeps_its_beams_limits_and_visuals(tmp_path):
 def test_what_urdf_cannot_say_is_refused_by_name(source, options, words):
     with pytest.raises(MethodUnavailable, match=words):
         to_urdf(mechkit.load(source, **options))
+
+
+@pytest.mark.parametrize(
+    "fmt, suffix", [("urdf", ".urdf"), ("extended-urdf", ".urdf"), ("urdf-plus", ".urdf"), ("mjcf", ".xml")]
+)
+def test_every_format_keeps_an_sdformat_gearbox_and_spring(tmp_path, fmt, suffix):
+    """The SDFormat four-bar's gearbox (a coupling) and rocker spring: the Extended-URDF and MJCF writers used
+    to drop both in silence (the file read back with DOF 2 for 1 and another holding effort)."""
+    from mechkit.export import export_command
+
+    m = mechkit.load(FIXTURES / "field" / "sdf" / "four_bar_gearbox.sdf")
+    (path, *_) = export_command(m, fmt, tmp_path / f"written{suffix}")
+    w = mechkit.load(path)
+    assert w.home_mobility.dof == 1 and len(w.closure_model.couplings) == 1
+    zero_m, zero_w = np.zeros(m.model.nv), np.zeros(w.model.nv)
+    held = m.inverse_dynamics(m.home_q, zero_m, zero_m).efforts["motor"]
+    assert w.inverse_dynamics(w.home_q, zero_w, zero_w).efforts["motor"] == pytest.approx(held, rel=1e-9)
