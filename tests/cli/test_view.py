@@ -49,6 +49,9 @@ def test_live_viewer_in_a_real_browser_and_ctrl_c(tmp_path):
     """`mechkit view five_bar --scene sweep`: the served page shows the mechanism framed, two moments of
     the scene differ (it plays), and Ctrl-C ends the command and its server without a traceback."""
     env = dict(os.environ, PYTHONPATH=str(ROOT), PYTHONFAULTHANDLER="1")  # SIGABRT dumps where it stands
+    # A test suite run as a background job (nohup ... &, some CI runners) has SIGINT ignored, its children
+    # inherit that, and Python then never raises KeyboardInterrupt: the child gets Ctrl-C as a terminal sends it.
+    inherited = signal.signal(signal.SIGINT, signal.default_int_handler)
     command = subprocess.Popen(
         [sys.executable, "-m", "mechkit", "view", "five_bar", "--scene", "sweep"],
         stdout=subprocess.PIPE,
@@ -56,6 +59,7 @@ def test_live_viewer_in_a_real_browser_and_ctrl_c(tmp_path):
         text=True,
         env=env,
     )
+    signal.signal(signal.SIGINT, inherited)
     try:
         line = command.stdout.readline()
         assert "http://127.0.0.1:" in line, line + command.stderr.read()
