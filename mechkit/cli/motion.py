@@ -8,11 +8,10 @@ import math
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from mechkit.base.atomic import resolve_output
 from mechkit.base.exceptions import InvalidArgument, MotionFailed
 from mechkit.base.joint_arguments import joint_names
 from mechkit.cli import option_values
-from mechkit.cli.common import add_mechanism_arguments, examples, load_mechanism
+from mechkit.cli.common import add_mechanism_arguments, check_writers, examples, load_mechanism
 from mechkit.cli.progress import ProgressBars
 from mechkit.cli.simulate import PLOT_SUFFIXES
 
@@ -93,7 +92,7 @@ def run(args: argparse.Namespace) -> None:
         law = motion.from_scene(mech, scene)
     if args.samples is not None:
         law = motion.resample(law, args.samples)
-    _check_outputs(args)
+    check_writers(args.output, args.plot, "motion plots")
     bars = ProgressBars(None if len(law.t) >= LONG_MOTION else False)
     result = motion.study(
         mech,
@@ -115,21 +114,6 @@ def run(args: argparse.Namespace) -> None:
         print(f"wrote {writer(result, args.output)}")
     if args.plot:
         print(f"wrote {write_plot(result, args.plot, joints)}")
-
-
-def _check_outputs(args: argparse.Namespace) -> None:
-    """Refuse, before the study runs, an output that cannot be written or whose library is missing."""
-    from mechkit.base.plotting import pyplot
-    from mechkit.history import result
-
-    if args.output:
-        resolve_output(args.output)
-        result.pandas()
-        if Path(args.output).suffix.lower() == ".parquet":
-            result.pyarrow()
-    if args.plot:
-        resolve_output(args.plot)
-        pyplot("motion plots")
 
 
 def add_parser(sub: argparse._SubParsersAction) -> None:

@@ -13,7 +13,7 @@ from mechkit.base.atomic import resolve_output
 from mechkit.base.exceptions import InvalidArgument, MethodUnavailable
 from mechkit.base.joint_arguments import joint_names
 from mechkit.cli import option_values
-from mechkit.cli.common import add_mechanism_arguments, examples, load_mechanism
+from mechkit.cli.common import add_mechanism_arguments, check_writers, examples, load_mechanism
 from mechkit.cli.progress import ProgressBars
 
 #: Simulations of at least this many simulated seconds show a progress bar (stderr, on a terminal).
@@ -132,6 +132,9 @@ def run(args: argparse.Namespace) -> None:
     if not 0 <= args.restitution <= 1:  # else refused per joint limit, or ignored where there is none
         raise InvalidArgument("--restitution", args.restitution, "must be in [0, 1]: 0 stops, 1 bounces back")
     added = _Added.of(args)
+    check_writers(args.output, args.plot, "simulation plots")
+    if args.animate:
+        resolve_output(args.animate)
     mech = load_mechanism(args)
     for option, given in (("--latch", added.latches), ("--spring", added.springs)):
         joint_names(option, list(given), mech.model.names[1:], allow_empty=True)
@@ -152,9 +155,6 @@ def run(args: argparse.Namespace) -> None:
         )
     elif args.torques:
         torques = motion.from_csv(mech, args.torques)
-    for path in (args.output, args.plot, args.animate):
-        if path:
-            resolve_output(path)
     source = Path(args.name) if Path(args.name).suffix in (".xml", ".mjcf") else None
     bars = ProgressBars(None if args.duration >= LONG_RUN else False)
     try:

@@ -162,3 +162,19 @@ def test_a_table_suffix_in_capitals_is_the_format_it_names(tmp_path, capsys):
     out = tmp_path / "run.PARQUET"
     assert main(["simulate", "four_bar", "--duration", "0.01", "-o", str(out)]) == 0
     assert out.read_bytes()[:4] == b"PAR1" and "q/crank" in pd.read_parquet(out).columns
+
+
+@pytest.mark.parametrize(
+    "module, args", [("pandas", ["-o", "s.csv"]), ("pyarrow", ["-o", "s.parquet"]), ("matplotlib", ["--plot", "s.png"])]
+)
+def test_a_missing_library_is_refused_before_the_run(module, args, tmp_path, capsys, monkeypatch):
+    """`-o run.parquet` without pyarrow was refused after the whole simulation; now before it loads."""
+    from mechkit.cli import simulate
+
+    monkeypatch.setitem(__import__("sys").modules, module, None)  # import fails as if not installed
+    monkeypatch.setattr(simulate, "load_mechanism", lambda _args: pytest.fail("the mechanism was loaded"))
+    monkeypatch.chdir(tmp_path)
+    assert main(["simulate", "four_bar", "--duration", "5", *args]) == 2
+    out, err = capsys.readouterr()
+    assert out == "" and err.count("\n") == 1 and "pip install" in err
+    assert list(tmp_path.iterdir()) == []
