@@ -181,3 +181,30 @@ def mesh_search(args: argparse.Namespace) -> MeshSearch:
 
     path = Path(args.name).expanduser()
     return MeshSearch.of(path.resolve().parent if path.is_file() else None, args.mesh_path or ())
+
+
+def check_writers(table: str | None, plot: str | None, what: str) -> None:
+    """Refuse, before any work, a `-o` table or a `--plot` that cannot be written or whose library is
+    missing (pandas, and pyarrow for Parquet; matplotlib).
+
+    Args:
+        table: the table's file (.parquet or .csv), or None.
+        plot: the plot's file, or None.
+        what: what the plot is, for the error.
+
+    Raises:
+        OutputError: a file that cannot be written (a directory, a device, ...).
+        MethodUnavailable: the library is not installed (the message says what to install).
+    """
+    from mechkit.base.atomic import resolve_output
+    from mechkit.base.plotting import pyplot
+    from mechkit.history import result
+
+    if table:
+        resolve_output(table)
+        result.pandas()
+        if Path(table).suffix.lower() == ".parquet":
+            result.pyarrow()
+    if plot:
+        resolve_output(plot)
+        pyplot(what)

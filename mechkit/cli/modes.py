@@ -22,14 +22,18 @@ def report(args: argparse.Namespace) -> dict:
         the page written, or None}; near_mechanism: below a gap (`mechkit.elastic.modes`).
 
     Raises:
-        InvalidArgument: `-n` below 1, `--mode` not among the modes, `--animate` not an .html file.
+        InvalidArgument: `-n` below 1, `--mode` not among the modes or without `--animate`, `--animate` not
+            an .html file.
     """
     from mechkit.elastic import ElasticModel
 
     if args.n < 1:
         raise InvalidArgument("-n", args.n, "must be at least 1")
-    if args.animate is not None and not 1 <= args.mode <= args.n:
-        raise InvalidArgument("--mode", args.mode, f"must be one of the {args.n} modes computed (-n)")
+    if args.mode is not None and args.animate is None:  # it chooses what the animation shows
+        raise InvalidArgument("--mode", args.mode, "chooses the mode --animate shows: give --animate too")
+    mode = 1 if args.mode is None else args.mode
+    if args.animate is not None and not 1 <= mode <= args.n:
+        raise InvalidArgument("--mode", mode, f"must be one of the {args.n} modes computed (-n)")
     option_values.suffixed("--animate", args.animate, (".html",))
     mech = load_mechanism(args)
     q = pose(mech, args.at)
@@ -37,7 +41,7 @@ def report(args: argparse.Namespace) -> dict:
     if args.animate:
         from mechkit.elastic.animation import write_mode_page
 
-        write_mode_page(mech, q, modes, args.mode - 1, args.animate)
+        write_mode_page(mech, q, modes, mode - 1, args.animate)
     out = []
     for k, f in enumerate(modes.frequencies):
         shape = modes.shapes[k]
@@ -92,6 +96,6 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     p.add_argument("-n", type=int, default=6, help="number of modes (default 6)")
     p.add_argument("--at", metavar="J=V,...", help="the pose's input joints (rad or m; default the home pose)")
     p.add_argument("--animate", metavar="F.html", help="write an animation of one mode (offline meshcat page)")
-    p.add_argument("--mode", type=int, default=1, help="the mode to animate (default 1)")
+    p.add_argument("--mode", type=int, help="the mode --animate shows (default 1)")
     p.add_argument("--json", action="store_true", help="machine-readable output")
     p.set_defaults(func=run)

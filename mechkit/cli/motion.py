@@ -5,13 +5,13 @@ from __future__ import annotations
 
 import argparse
 import math
+from pathlib import Path
 from typing import TYPE_CHECKING
 
-from mechkit.base.atomic import resolve_output
-from mechkit.base.exceptions import MotionFailed
+from mechkit.base.exceptions import InvalidArgument, MotionFailed
 from mechkit.base.joint_arguments import joint_names
 from mechkit.cli import option_values
-from mechkit.cli.common import add_mechanism_arguments, examples, load_mechanism
+from mechkit.cli.common import add_mechanism_arguments, check_writers, examples, load_mechanism
 from mechkit.cli.progress import ProgressBars
 from mechkit.cli.simulate import PLOT_SUFFIXES
 
@@ -70,7 +70,7 @@ def run(args: argparse.Namespace) -> None:
 
     Raises:
         InvalidArgument: an output that is neither .parquet nor .csv, a plot of a format not written, a
-            malformed --joints.
+            malformed --joints, or --joints without --plot.
         InvalidParameters: an output that cannot be written or whose library is missing.
         MotionFailed: no sample of the motion succeeded.
     """
@@ -80,6 +80,8 @@ def run(args: argparse.Namespace) -> None:
     option_values.suffixed("-o", args.output, (".parquet", ".csv"))
     option_values.suffixed("--plot", args.plot, PLOT_SUFFIXES)
     joints = option_values.names("--joints", args.joints) if args.joints else None
+    if joints and not args.plot:  # it chooses what the plot shows: without one it would be ignored
+        raise InvalidArgument("--joints", args.joints, "chooses the joints --plot shows: give --plot too")
     mech = load_mechanism(args)
     if joints:
         joint_names("--joints", joints, mech.closure_model.joint_names)
@@ -90,7 +92,7 @@ def run(args: argparse.Namespace) -> None:
         law = motion.from_scene(mech, scene)
     if args.samples is not None:
         law = motion.resample(law, args.samples)
-    _check_outputs(args)
+    check_writers(args.output, args.plot, "motion plots")
     bars = ProgressBars(None if len(law.t) >= LONG_MOTION else False)
     result = motion.study(
         mech,
@@ -107,25 +109,11 @@ def run(args: argparse.Namespace) -> None:
     print("peak reactions (world frame; axial/radial along the joint axis):")
     print("\n".join(format_peaks(result)))
     if args.output:
-        writer = motion.write_parquet if args.output.endswith(".parquet") else motion.write_csv
+        parquet = Path(args.output).suffix.lower() == ".parquet"  # the suffix was checked in any case
+        writer = motion.write_parquet if parquet else motion.write_csv
         print(f"wrote {writer(result, args.output)}")
     if args.plot:
         print(f"wrote {write_plot(result, args.plot, joints)}")
-
-
-def _check_outputs(args: argparse.Namespace) -> None:
-    """Refuse, before the study runs, an output that cannot be written or whose library is missing."""
-    from mechkit.base.plotting import pyplot
-    from mechkit.history import result
-
-    if args.output:
-        resolve_output(args.output)
-        result.pandas()
-        if args.output.endswith(".parquet"):
-            result.pyarrow()
-    if args.plot:
-        resolve_output(args.plot)
-        pyplot("motion plots")
 
 
 def add_parser(sub: argparse._SubParsersAction) -> None:

@@ -183,6 +183,16 @@ TYPED = {
     "mode": "--mode",
     "point": "--point",
     "output": "-o",
+    "inputs": "--at",  # a pose's input joints (stiffness, modes)
+    "spring": "--spring",
+    "rtol/atol/max_step": "--rtol",  # the integrator's tolerances (atol is 1e-2 rtol on the command line)
+    "scheduler": "--scheduler",
+    "workers": "--workers",
+    "wait_workers": "--wait-workers",
+    "dashboard": "--dashboard",
+    "tls_ca": "--tls-ca",
+    "tls_cert": "--tls-cert",
+    "tls_key": "--tls-key",
 }
 
 

@@ -61,13 +61,22 @@ def inputs(args: argparse.Namespace) -> dict[Path, str]:
     Returns:
         Resolved file -> what it is to the user (the description, a file it includes, an option's file).
     """
+    from mechkit.catalog.registry import get_spec
+    from mechkit.catalog.registry import names as registered
     from mechkit.sources.input_files import description_files  # the readers load only for a file given
 
     found: dict[Path, str] = {}
     names = [getattr(args, "name", None), *(getattr(args, "names", None) or [])]  # `bench` takes several
-    for name in (n for n in names if n and Path(n).expanduser().is_file()):
-        for k, path in enumerate(description_files(name)):
-            found.setdefault(path, f"the description {name}" if k == 0 else f"{path.name}, which {name} reads")
+    for name in (n for n in names if n):
+        if Path(name).expanduser().is_file():
+            source, first, reader = Path(name), f"the description {name}", name
+        elif name in registered():  # its xacro template (and the macros it includes) is read too
+            source = get_spec(name).template_path
+            first, reader = f"the xacro template of {name}", source.name
+        else:
+            continue
+        for k, path in enumerate(description_files(source)):
+            found.setdefault(path, first if k == 0 else f"{path.name}, which {reader} reads")
     for dest, option in INPUT_OPTIONS.items():
         value = getattr(args, dest, None)
         if value:

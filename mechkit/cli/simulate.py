@@ -11,8 +11,9 @@ from pathlib import Path
 
 from mechkit.base.atomic import resolve_output
 from mechkit.base.exceptions import InvalidArgument, MethodUnavailable
+from mechkit.base.joint_arguments import joint_names
 from mechkit.cli import option_values
-from mechkit.cli.common import add_mechanism_arguments, examples, load_mechanism
+from mechkit.cli.common import add_mechanism_arguments, check_writers, examples, load_mechanism
 from mechkit.cli.progress import ProgressBars
 
 #: Simulations of at least this many simulated seconds show a progress bar (stderr, on a terminal).
@@ -115,8 +116,9 @@ def run(args: argparse.Namespace) -> None:
         args: the parsed command line.
 
     Raises:
-        InvalidArgument: a duration not above 0 s, an output of a format not written, a malformed
-            option value (`mechkit.cli.option_values`).
+        InvalidArgument: a duration not above 0 s, a restitution outside [0, 1], an output of a format not
+            written, a malformed option value (`mechkit.cli.option_values`), a --latch or --spring naming no
+            joint of the mechanism.
         MethodUnavailable: the --dynamics asked cannot run on this mechanism (the one that can is named).
     """
     from mechkit import motion, simulation
@@ -127,8 +129,15 @@ def run(args: argparse.Namespace) -> None:
     option_values.suffixed("-o", args.output, (".parquet", ".csv"))
     option_values.suffixed("--plot", args.plot, PLOT_SUFFIXES)
     option_values.suffixed("--animate", args.animate, (".html",))
+    if not 0 <= args.restitution <= 1:  # else refused per joint limit, or ignored where there is none
+        raise InvalidArgument("--restitution", args.restitution, "must be in [0, 1]: 0 stops, 1 bounces back")
     added = _Added.of(args)
+    check_writers(args.output, args.plot, "simulation plots")
+    if args.animate:
+        resolve_output(args.animate)
     mech = load_mechanism(args)
+    for option, given in (("--latch", added.latches), ("--spring", added.springs)):
+        joint_names(option, list(given), mech.model.names[1:], allow_empty=True)
     inputs = torques = None
     if args.inputs:
         inputs = motion.from_csv(mech, args.inputs)
@@ -146,9 +155,6 @@ def run(args: argparse.Namespace) -> None:
         )
     elif args.torques:
         torques = motion.from_csv(mech, args.torques)
-    for path in (args.output, args.plot, args.animate):
-        if path:
-            resolve_output(path)
     source = Path(args.name) if Path(args.name).suffix in (".xml", ".mjcf") else None
     bars = ProgressBars(None if args.duration >= LONG_RUN else False)
     try:
@@ -162,7 +168,8 @@ def run(args: argparse.Namespace) -> None:
     for name in result.motion.effort_names:
         print(effort_line(name, result.motion.effort(name)))
     if args.output:
-        writer = simulation.write_parquet if args.output.endswith(".parquet") else simulation.write_csv
+        parquet = Path(args.output).suffix.lower() == ".parquet"  # the suffix was checked in any case
+        writer = simulation.write_parquet if parquet else simulation.write_csv
         print(f"wrote {writer(result, args.output)}")
     if args.plot:
         print(f"wrote {write_plot(result, args.plot)}")

@@ -31,6 +31,8 @@ EXIT_NO_WORKERS = 4
 EXIT_SCHEDULER_LOST = 5
 #: A task failed on the cluster itself (its workers died running it, or mechkit is not importable there).
 EXIT_TASK_FAILED = 6
+#: The refinement's searches (--starts) and evaluations per search (--evaluations) unless given.
+STARTS, EVALUATIONS = 2, 60
 
 
 def _space(args: argparse.Namespace):
@@ -40,6 +42,23 @@ def _space(args: argparse.Namespace):
         raise InvalidParameters("random/lhs", (args.random, args.lhs), "choose one sampling: --random N or --lhs N")
     mode, count = ("random", args.random) if args.random else ("lhs", args.lhs) if args.lhs else ("grid", 0)
     return DesignSpace(tuple(parse_axis(a) for a in args.grid or []), mode, count, args.seed)
+
+
+def _or(value: int | None, default: int) -> int:
+    return default if value is None else value
+
+
+def _refinement_options(args: argparse.Namespace) -> None:
+    """Refuse an option of the refinement given without --optimise: it would be ignored."""
+    if args.optimise:
+        return
+    for option, value in (
+        ("--maximise", args.maximise),
+        ("--starts", args.starts),
+        ("--evaluations", args.evaluations),
+    ):
+        if value not in (None, False):
+            raise InvalidArgument(option, value, "tunes the refinement: give --optimise COLUMN too")
 
 
 def _show(design: dict[str, float]) -> str:
@@ -73,7 +92,7 @@ def _resume_command(args: argparse.Namespace, address: str | None) -> str:
     flags = {"--xacro": args.xacro, "--dashboard": args.dashboard, "--maximise": args.maximise and args.optimise}
     words += [flag for flag, on in flags.items() if on]
     if args.optimise:
-        words += ["--starts", str(args.starts), "--evaluations", str(args.evaluations)]
+        words += ["--starts", str(_or(args.starts, STARTS)), "--evaluations", str(_or(args.evaluations, EVALUATIONS))]
     return shlex.join(words)
 
 
@@ -108,7 +127,8 @@ def run(args: argparse.Namespace) -> None:
         SystemExit: the cluster could not finish the sweep (status `EXIT_UNREACHABLE`, `EXIT_NO_WORKERS`,
             `EXIT_SCHEDULER_LOST` or `EXIT_TASK_FAILED`), after one line on stderr.
         InvalidParameters: --resume on a folder holding another mechanism's sweep, or what the engine refuses.
-        InvalidArgument: a metric named twice, an --optimise column the sweep will not have.
+        InvalidArgument: a metric named twice, an --optimise column the sweep will not have, --maximise,
+            --starts or --evaluations without --optimise.
     """
     import dask
     from tqdm import tqdm
@@ -117,6 +137,7 @@ def run(args: argparse.Namespace) -> None:
     from mechkit.sweep.metrics import Study
     from mechkit.sweep.space import DesignSpace
 
+    _refinement_options(args)
     address = cluster.scheduler_address(args.scheduler)
     tls = cluster.tls_config(address, args.tls_ca, args.tls_cert, args.tls_key)
     if args.resume and not args.grid:  # resume what the folder holds
@@ -180,9 +201,9 @@ def run(args: argparse.Namespace) -> None:
                 refined = optimise(
                     args.output,
                     args.optimise,
-                    starts=args.starts,
+                    starts=_or(args.starts, STARTS),
                     maximise=args.maximise,
-                    max_evaluations=args.evaluations,
+                    max_evaluations=_or(args.evaluations, EVALUATIONS),
                     scheduler=address,
                     workers=args.workers,
                 )
@@ -268,7 +289,7 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
         help="then refine this metric column from the best designs (scipy.optimize, evaluations on the same engine)",
     )
     p.add_argument("--maximise", action="store_true", help="maximise the --optimise column (default: minimise)")
-    p.add_argument("--starts", type=int, default=2, help="searches started from the best designs (default 2)")
-    p.add_argument("--evaluations", type=int, default=60, help="evaluations per search (default 60)")
+    p.add_argument("--starts", type=int, help=f"searches started from the best designs (default {STARTS})")
+    p.add_argument("--evaluations", type=int, help=f"evaluations per search (default {EVALUATIONS})")
     p.add_argument("-q", "--quiet", action="store_true", help="no progress bar")
     p.set_defaults(func=run)

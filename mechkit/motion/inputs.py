@@ -13,6 +13,7 @@ accelerations are not given they are the derivatives of a not-a-knot cubic splin
 from __future__ import annotations
 
 import csv
+import math
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from pathlib import Path
@@ -197,7 +198,8 @@ def from_callable(
 
 def from_csv(mech: Mechanism, path: str | Path) -> InputLaw:
     """A law from a CSV file: a header with `t` (s) and one column per driven joint (rad or m); optional
-    `<joint>_dot` and `<joint>_ddot` columns give rates and accelerations (else the spline's).
+    `<joint>_dot` and `<joint>_ddot` columns give rates and accelerations (else the spline's). Lines
+    starting with `#` are comments.
 
     Args:
         mech: the mechanism.
@@ -207,35 +209,71 @@ def from_csv(mech: Mechanism, path: str | Path) -> InputLaw:
         The law (source: the file's name).
 
     Raises:
-        MalformedDescription: the file is missing, has no `t` column, or a value is not a finite number.
+        MalformedDescription: the file is missing or not text, has no `t` column or no joint column, a
+            column twice, rate or acceleration columns not given for every joint column (or given for
+            none), a row of another length than the header, or a cell that is not a finite number (named
+            by its line and column).
     """
     path = Path(path)
     try:
         with path.open(newline="") as handle:
-            rows = list(csv.reader(line for line in handle if not line.startswith("#")))
-    except OSError as err:
-        raise MalformedDescription(str(path), f"cannot read the input law ({err.strerror})") from None
-    if len(rows) < 3 or "t" not in rows[0]:
+            lines = [(k, line) for k, line in enumerate(handle, 1) if line.strip() and not line.startswith("#")]
+    except (OSError, UnicodeDecodeError) as err:
+        why = getattr(err, "strerror", None) or f"not a text file ({err.reason})"
+        raise MalformedDescription(str(path), f"cannot read the input law: {why}") from None
+    rows = [(k, row) for (k, _), row in zip(lines, csv.reader(line for _, line in lines))]
+    if len(rows) < 3 or "t" not in [h.strip() for h in rows[0][1]]:
         raise MalformedDescription(str(path), "needs a header with a 't' column and at least 2 rows")
-    header = [h.strip() for h in rows[0]]
-    try:
-        data = np.array([[float(x) for x in row] for row in rows[1:] if row], dtype=float)
-    except ValueError as err:
-        raise MalformedDescription(str(path), f"not a number: {err}") from None
-    if data.shape[1] != len(header):
-        raise MalformedDescription(str(path), "rows and header differ in length")
-    if not np.all(np.isfinite(data)):
-        row, column = np.argwhere(~np.isfinite(data))[0]
-        raise MalformedDescription(
-            str(path), f"data row {row + 1}, column {header[column]!r}: {data[row, column]} is not a finite number"
-        )
+    header = _header(path, [h.strip() for h in rows[0][1]])
+    data = np.array([_row(path, k, row, header) for k, row in rows[1:]], dtype=float)
     col = {h: data[:, i] for i, h in enumerate(header)}
     names = tuple(h for h in header if h != "t" and not h.endswith((RATE_SUFFIX, ACC_SUFFIX)))
-    has_rates = all(n + RATE_SUFFIX in col and n + ACC_SUFFIX in col for n in names)
+    has_rates = names[0] + RATE_SUFFIX in col  # `_header`: for every joint or for none
     rates = np.column_stack([col[n + RATE_SUFFIX] for n in names]) if has_rates else None
     accs = np.column_stack([col[n + ACC_SUFFIX] for n in names]) if has_rates else None
-    values = np.column_stack([col[n] for n in names]) if names else np.zeros((len(data), 0))
-    return from_arrays(mech, col["t"], values, rates, accs, names=names or None, source=str(path))
+    values = np.column_stack([col[n] for n in names])
+    return from_arrays(mech, col["t"], values, rates, accs, names=names, source=str(path))
+
+
+def _header(path: Path, header: list[str]) -> list[str]:
+    """A law's header, checked: each column once, at least one joint, the rate and acceleration columns
+    of every joint or of none, none without its joint (a column nobody reads would be ignored)."""
+    for h in header:
+        if not h or header.count(h) > 1:
+            raise MalformedDescription(str(path), f"column {h!r} is {'empty' if not h else 'given twice'}")
+    names = [h for h in header if h != "t" and not h.endswith((RATE_SUFFIX, ACC_SUFFIX))]
+    if not names:
+        raise MalformedDescription(str(path), "needs a column per driven joint besides 't'")
+    derived = {h for h in header if h != "t" and h.endswith((RATE_SUFFIX, ACC_SUFFIX))}
+    expected = {n + s for n in names for s in (RATE_SUFFIX, ACC_SUFFIX)} if derived else set()
+    if derived != expected:
+        odd = sorted(derived - expected) or sorted(expected - derived)
+        raise MalformedDescription(
+            str(path),
+            f"rate and acceleration columns ({', '.join(odd)}): give <joint>{RATE_SUFFIX} and "
+            f"<joint>{ACC_SUFFIX} for every joint column, or none",
+        )
+    return header
+
+
+def _row(path: Path, line: int, row: list[str], header: list[str]) -> list[float]:
+    """One row of a law: as many cells as the header, each a finite number."""
+    if len(row) != len(header):
+        raise MalformedDescription(f"{path}: line {line}", f"{len(row)} cells, the header has {len(header)}")
+    out = []
+    for cell, column in zip(row, header):
+        try:
+            value = float(cell)
+        except ValueError:
+            raise MalformedDescription(
+                f"{path}: line {line}", f"column {column!r}: {cell.strip()!r} is not a number"
+            ) from None
+        if not math.isfinite(value):
+            raise MalformedDescription(
+                f"{path}: line {line}", f"column {column!r}: {cell.strip()!r} is not a finite number"
+            )
+        out.append(value)
+    return out
 
 
 def from_scene(mech: Mechanism, scene: str, names: Sequence[str] | None = None) -> InputLaw:

@@ -4,11 +4,14 @@ command can refuse to write over any of them (`mechkit.cli.output_guard`).
 
 A reference this module cannot resolve to a local file (a `package://` or `model://` address, a xacro
 substitution such as `$(find pkg)`, a network address) is left out: the readers resolve or refuse those;
-what is listed here is what a write could destroy.
+what is listed here is what a write could destroy. Names are resolved as the tools that read them do: a
+xacro include's glob pattern names every file it matches (xacro includes them all), and an MJCF include
+is looked for beside the main file first, then beside the including file (MuJoCo 4's order).
 """
 
 from __future__ import annotations
 
+import glob
 import re
 import xml.etree.ElementTree as ET
 from pathlib import Path
@@ -25,6 +28,8 @@ _FILE_ATTRIBUTES = {
 }
 #: Elements whose text names another file (SDFormat's include and mesh uri).
 _FILE_TEXT = ("uri",)
+#: A xacro include name xacro expands with glob (xacro's own test).
+_GLOB = re.compile(r"[*?[]")
 #: A reference that is not a plain local path: a URL scheme other than file://, or a xacro substitution.
 _NOT_LOCAL = re.compile(r"^[a-z][a-z0-9+.-]*://(?<!file://)|\$\{|\$\(", re.IGNORECASE)
 
@@ -50,12 +55,13 @@ def description_files(path: str | Path) -> list[Path]:
         if current.suffix == ".urdf" and (sidecar := sidecar_of(current)) is not None:
             pending.append(sidecar.resolve())
         if current.suffix in (".urdf", ".xacro", ".xml", ".sdf", ".mjcf"):
-            pending.extend(_named_files(current))
+            pending.extend(_named_files(current, first.parent))
     return seen
 
 
-def _named_files(path: Path) -> list[Path]:
-    """The local files an XML file names (relative to its folder), unparsable XML naming none."""
+def _named_files(path: Path, main_folder: Path) -> list[Path]:
+    """The local files an XML file names (relative to its folder; an MJCF include to the main file's
+    folder first), unparsable XML naming none."""
     try:
         root = ET.parse(path).getroot()
     except (ET.ParseError, OSError, UnicodeDecodeError):
@@ -72,5 +78,10 @@ def _named_files(path: Path) -> list[Path]:
         for name in names:
             if name and not _NOT_LOCAL.search(name.strip()):
                 local = Path(name.strip().removeprefix("file://")).expanduser()
-                out.append((local if local.is_absolute() else folder / local).resolve())
+                if tag == "include" and element.get("filename") and _GLOB.search(str(local)):
+                    out += [Path(p).resolve() for p in sorted(glob.glob(str(folder / local)))]
+                    continue
+                mjcf_main = tag == "include" and element.get("file") and (main_folder / local).is_file()
+                base = main_folder if mjcf_main else folder  # MuJoCo reads the main file's folder first
+                out.append((local if local.is_absolute() else base / local).resolve())
     return out

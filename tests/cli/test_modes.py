@@ -34,3 +34,12 @@ def test_a_bad_count_is_refused_in_one_line(capsys, n):
     assert main(["modes", "four_bar", "-n", n]) == 2
     err = capsys.readouterr().err
     assert err.startswith("mechkit: error:") and "'-n'" in err and err.count("\n") == 1
+
+
+def test_a_mode_without_an_animation_is_refused(capsys):
+    """`--mode` chooses what --animate shows: alone it was ignored in silence."""
+    assert main(["modes", "four_bar", "--mode", "2"]) == 2
+    err = capsys.readouterr().err
+    assert (
+        err.startswith("mechkit: error: argument '--mode': chooses the mode --animate shows") and err.count("\n") == 1
+    )

@@ -47,6 +47,7 @@ def test_inputs_csv_and_csv_output(tmp_path, capsys):
         (["--samples", "1"], "--samples: "),
         (["-o", "OUT.txt"], "parquet"),
         (["--plot", "OUT.png", "--joints", "nope"], "nope"),
+        (["--joints", "crank"], "'--joints': chooses the joints --plot shows: give --plot too"),  # was ignored
     ],
 )
 def test_bad_input(args, needle, tmp_path, capsys, monkeypatch):

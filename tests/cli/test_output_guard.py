@@ -157,3 +157,22 @@ def test_any_spelling_of_an_input_is_still_the_input(files, monkeypatch, capsys,
     err = capsys.readouterr().err
     assert option in err and named in err, (spelling, err)
     assert (target.read_bytes(), os.stat(target).st_mtime_ns) == before
+
+
+@pytest.mark.parametrize("file", ["four_bar.urdf.xacro", "macros.xacro"])
+def test_a_registered_mechanisms_template_is_an_input(file, tmp_path, monkeypatch, capsys):
+    """`mechkit urdf four_bar -o <the repository's template>` (here through a link, as it goes unnoticed)
+    wrote over the template: a registered name reads its xacro template and the macros it includes."""
+    template = ROOT / "xacro" / file
+    (tmp_path / "out.urdf").symlink_to(template)
+    monkeypatch.setattr(cli.urdf, "run", lambda _args: pytest.fail("the command started its work"))
+    before = template.read_bytes(), os.stat(template).st_mtime_ns
+    assert main(["urdf", "four_bar", "-o", str(tmp_path / "out.urdf")]) == 2
+    err = capsys.readouterr().err
+    named = (
+        "the xacro template of four_bar"
+        if file == "four_bar.urdf.xacro"
+        else f"{file}, which four_bar.urdf.xacro reads"
+    )
+    assert err.startswith("mechkit: error: ") and f"-o would overwrite {named}" in err, err
+    assert (template.read_bytes(), os.stat(template).st_mtime_ns) == before

@@ -84,6 +84,8 @@ def test_help_ends_with_two_examples(capsys):
         (["--animate", "run.png"], "argument '--animate': expected a .html file"),
         (["-o", "run.json"], "argument '-o': expected a .parquet or .csv file"),
         (["--duration", "nan"], "argument '--duration': must be a finite time > 0 s"),
+        (["--restitution", "nan"], "argument '--restitution': must be in [0, 1]"),  # was named 'limit of crank'
+        (["--restitution", "1.5"], "argument '--restitution': must be in [0, 1]"),
     ],
 )
 def test_malformed_options_are_refused_before_the_mechanism_loads(monkeypatch, capsys, option, needle):
@@ -107,7 +109,7 @@ def test_a_nan_in_a_torques_csv_is_named_with_its_row_and_column(tmp_path, capsy
     law = tmp_path / "torques.csv"
     law.write_text("t,crank\n0,0\n0.02,0.01\n0.04,nan\n0.06,0.01\n")
     assert main(["simulate", "four_bar", "--duration", "0.05", "--torques", str(law)]) == 2
-    assert "data row 3, column 'crank': nan is not a finite number" in capsys.readouterr().err
+    assert f"{law}: line 4: column 'crank': 'nan' is not a finite number" in capsys.readouterr().err
 
 
 def test_an_effort_never_driven_is_not_printed_as_nan():
@@ -137,3 +139,42 @@ def test_a_method_pinocchio_cannot_run_names_the_option_that_can(tmp_path, capsy
     capsys.readouterr()
     assert main(["simulate", str(path), "--duration", "0.02", "--dynamics", "proximal"]) == 2
     assert "(on the command line: --dynamics kkt)" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize(
+    "option, value, named",
+    [
+        (["--latch"], "nope=0.5", "argument '--latch': 'nope' is not a joint"),  # was 'joint'
+        (["--spring"], "nope=1,0", "argument '--spring': 'nope' is not a joint"),  # was 'spring'
+        (["--rtol"], "nan", "--rtol: must be > 0"),  # was 'rtol/atol/max_step'
+    ],
+)
+def test_values_the_mechanism_or_the_integrator_refuses_are_named_as_typed(option, value, named, capsys):
+    assert main(["simulate", "four_bar", "--duration", "0.01", *option, value]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith(f"mechkit: error: {named}") and err.count("\n") == 1, err
+
+
+def test_a_table_suffix_in_capitals_is_the_format_it_names(tmp_path, capsys):
+    """`-o run.PARQUET` passed the (case-blind) suffix check and was written as CSV."""
+    pd = pytest.importorskip("pandas")
+    pytest.importorskip("pyarrow")
+    out = tmp_path / "run.PARQUET"
+    assert main(["simulate", "four_bar", "--duration", "0.01", "-o", str(out)]) == 0
+    assert out.read_bytes()[:4] == b"PAR1" and "q/crank" in pd.read_parquet(out).columns
+
+
+@pytest.mark.parametrize(
+    "module, args", [("pandas", ["-o", "s.csv"]), ("pyarrow", ["-o", "s.parquet"]), ("matplotlib", ["--plot", "s.png"])]
+)
+def test_a_missing_library_is_refused_before_the_run(module, args, tmp_path, capsys, monkeypatch):
+    """`-o run.parquet` without pyarrow was refused after the whole simulation; now before it loads."""
+    from mechkit.cli import simulate
+
+    monkeypatch.setitem(__import__("sys").modules, module, None)  # import fails as if not installed
+    monkeypatch.setattr(simulate, "load_mechanism", lambda _args: pytest.fail("the mechanism was loaded"))
+    monkeypatch.chdir(tmp_path)
+    assert main(["simulate", "four_bar", "--duration", "5", *args]) == 2
+    out, err = capsys.readouterr()
+    assert out == "" and err.count("\n") == 1 and "pip install" in err
+    assert list(tmp_path.iterdir()) == []

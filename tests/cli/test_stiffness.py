@@ -49,7 +49,11 @@ def test_the_text_has_one_line_per_direction(capsys):
 
 @pytest.mark.parametrize(
     "args, message",
-    [(["--body", "nowhere"], "no such link"), (["--body", "coupler_link", "--point", "0.1,0"], "'--point'")],
+    [
+        (["--body", "nowhere"], "no such link"),
+        (["--body", "coupler_link", "--point", "0.1,0"], "'--point'"),
+        (["--body", "coupler_link", "--at", "nope=1"], "error: --at: 'nope' is not a joint"),  # was 'inputs'
+    ],
 )
 def test_bad_input_is_refused_in_one_line(capsys, args, message):
     assert main(["stiffness", "four_bar", *args]) == 2

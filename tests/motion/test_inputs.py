@@ -3,6 +3,8 @@
 
 from __future__ import annotations
 
+import re
+
 import numpy as np
 import pytest
 
@@ -47,13 +49,31 @@ def test_csv_law(load_cached, tmp_path):
         ("t,crank\n0,0.6\n1,x\n", "not a number"),
         ("t,crank\n0,0.6\n0,0.7\n1,0.8\n2,0.9\n", "strictly increasing"),
         ("t,wheel\n0,0.6\n1,0.7\n2,0.8\n3,0.9\n", "'wheel'"),
-        ("t,crank\n0,0.6\n1,0.7\n2,nan\n3,0.9\n", r"data row 3, column 'crank': nan is not a finite number"),
-        ("t,crank\n0,0.6\n1,inf\n2,0.8\n3,0.9\n", r"data row 2, column 'crank': inf is not a finite"),
-        ("t,crank,crank_dot,crank_ddot\n0,0.6,0,0\n1,0.7,nan,0\n", r"column 'crank_dot'"),
+        (
+            "# law\nt,crank\n0,0.6\n1,0.7\n\n2,nan\n3,0.9\n",
+            "law.csv: line 6: column 'crank': 'nan' is not a finite number",
+        ),
+        ("t,crank\n0,0.6\n1,inf\n2,0.8\n3,0.9\n", "line 3: column 'crank': 'inf' is not a finite number"),
+        ("t,crank,crank_dot,crank_ddot\n0,0.6,0,0\n1,0.7,nan,0\n", "line 3: column 'crank_dot'"),
+        ("t,crank\n0,0.6\n1,\n2,0.8\n3,0.9\n", "line 3: column 'crank': '' is not a number"),
+        ("t,crank\n0,0.6\n1,0.7,0\n2,0.8\n3,0.9\n", "line 3: 3 cells, the header has 2"),
+        ("t,crank,crank\n0,0.6,0\n1,0.7,0\n2,0.8,0\n", "column 'crank' is given twice"),
+        ("t,crank,\n0,0.6,0\n1,0.7,0\n2,0.8,0\n", "column '' is empty"),
+        ("t,x_dot\n0,0.6\n1,0.7\n2,0.8\n", "a column per driven joint besides 't'"),
+        ("t,crank,crank_dot\n0,0.6,0\n1,0.7,0\n2,0.8,0\n", "(crank_ddot): give <joint>_dot and <joint>_ddot"),
+        ("t,crank,rocker_dot\n0,0.6,0\n1,0.7,0\n2,0.8,0\n", "(rocker_dot): give"),
     ],
 )
 def test_bad_csv_law_is_a_named_error(load_cached, tmp_path, text, needle):
     path = tmp_path / "law.csv"
     path.write_text(text)
-    with pytest.raises((InvalidParameters, MalformedDescription), match=needle):
+    with pytest.raises((InvalidParameters, MalformedDescription), match=re.escape(needle)):
+        motion.from_csv(load_cached("four_bar"), path)
+
+
+def test_a_law_that_is_not_text_is_named(load_cached, tmp_path):
+    """A binary file given as a law was a UnicodeDecodeError traceback."""
+    path = tmp_path / "law.csv"
+    path.write_bytes(b"t,crank\n0,\xf0\x28\x8c\x28\n")
+    with pytest.raises(MalformedDescription, match="cannot read the input law: not a text file"):
         motion.from_csv(load_cached("four_bar"), path)

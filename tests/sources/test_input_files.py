@@ -4,7 +4,9 @@ them, references that are not local files left out, unreadable XML naming only i
 from __future__ import annotations
 
 import shutil
+from pathlib import Path
 
+import pytest
 from tests_support import FIXTURES, ROOT
 
 from mechkit.sources.input_files import description_files
@@ -66,3 +68,37 @@ def test_unreadable_or_missing_files(tmp_path):
 def test_a_registered_template_names_its_macros():
     files = description_files(ROOT / "xacro" / "four_bar.urdf.xacro")
     assert files[0].name == "four_bar.urdf.xacro" and (ROOT / "xacro" / "macros.xacro").resolve() in files
+
+
+def test_a_xacro_glob_include_names_every_file_xacro_opens(tmp_path):
+    """xacro includes every file a pattern matches; the list holds each, as xacro's own record does."""
+    xacro = pytest.importorskip("xacro")
+    (tmp_path / "parts").mkdir()
+    for name in ("g_1.xacro", "g_2.xacro"):
+        (tmp_path / "parts" / name).write_text('<robot xmlns:xacro="http://www.ros.org/wiki/xacro"/>')
+    (tmp_path / "top.urdf.xacro").write_text(
+        '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">'
+        '<xacro:include filename="parts/g_*.xacro"/><link name="a"/></robot>'
+    )
+    files = description_files(tmp_path / "top.urdf.xacro")
+    assert files == [tmp_path / "top.urdf.xacro", tmp_path / "parts" / "g_1.xacro", tmp_path / "parts" / "g_2.xacro"]
+    xacro.all_includes.clear()
+    xacro.process_file(str(tmp_path / "top.urdf.xacro"))
+    assert sorted(Path(p).resolve() for p in xacro.all_includes) == files[1:]
+
+
+def test_a_nested_mjcf_include_is_the_file_mujoco_reads(tmp_path):
+    """MuJoCo 4 reads a nested include beside the main file first, then beside the including file: with a
+    file of that name in both places the list names the one MuJoCo compiles (an empty one fails it)."""
+    mujoco = pytest.importorskip("mujoco")
+    (tmp_path / "sub").mkdir()
+    (tmp_path / "main.xml").write_text('<mujoco model="m"><include file="sub/a.xml"/></mujoco>')
+    (tmp_path / "sub" / "a.xml").write_text('<mujoco><include file="b.xml"/></mujoco>')
+    body = '<mujoco><worldbody><body><joint type="hinge"/><geom size="0.1"/></body></worldbody></mujoco>'
+    (tmp_path / "sub" / "b.xml").write_text(body)
+    assert mujoco.MjModel.from_xml_path(str(tmp_path / "main.xml")).njnt == 1
+    assert description_files(tmp_path / "main.xml")[2] == tmp_path / "sub" / "b.xml"
+    (tmp_path / "b.xml").write_text("<mujoco/>")  # now beside the main file: MuJoCo reads this one
+    with pytest.raises(ValueError, match="b.xml"):
+        mujoco.MjModel.from_xml_path(str(tmp_path / "main.xml"))
+    assert description_files(tmp_path / "main.xml")[2] == tmp_path / "b.xml"
