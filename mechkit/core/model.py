@@ -126,8 +126,8 @@ class ClosureModel:
             proximal regularisation.
 
     Raises:
-        MalformedDescription: a closure or coupling naming what the model lacks, joints not numbered
-            depth first.
+        MalformedDescription: no moving joint, a closure or coupling naming what the model lacks, joints
+            not numbered depth first.
         InvalidParameters: an unknown or multi-freedom actuated joint, a body too light.
     """
 
@@ -140,6 +140,10 @@ class ClosureModel:
         actuators: Sequence[Actuator] = (),
         rows: str | None = None,
     ):
+        if model.nv == 0:
+            raise MalformedDescription(
+                model.name or "model", "no joint moves (every joint is fixed): there is no mechanism to model"
+            )
         check_depth_first(model)
         check_body_masses(model)
         self.model = model

@@ -4,6 +4,9 @@ what it refuses (too light bodies, joints not numbered depth first, unknown or m
 
 from __future__ import annotations
 
+import subprocess
+import sys
+
 import numpy as np
 import pinocchio as pin
 import pytest
@@ -63,6 +66,25 @@ def test_joints_not_numbered_depth_first_are_refused():
     model.addJoint(a, pin.JointModelRY(), pin.SE3.Identity(), "a_child")
     with pytest.raises(MalformedDescription, match="depth first"):
         core.ClosureModel(model, ())
+
+
+def test_a_model_with_no_moving_joint_is_refused_by_name(tmp_path):
+    """Every joint fixed: no coordinate to solve or drive; refused before any array of width 0 is built
+    (it was a numpy reshape error), from the library and from the command line (exit 2, one line)."""
+    with pytest.raises(MalformedDescription, match="no joint moves"):
+        core.ClosureModel(pin.Model(), ())
+    still = tmp_path / "still.urdf"
+    still.write_text(
+        '<robot name="still"><link name="base"/><link name="a"><inertial><mass value="1"/>'
+        '<inertia ixx="1" iyy="1" izz="1" ixy="0" ixz="0" iyz="0"/></inertial></link>'
+        '<joint name="j" type="fixed"><parent link="base"/><child link="a"/></joint></robot>'
+    )
+    run = subprocess.run(
+        [sys.executable, "-m", "mechkit", "report", str(still)], check=False, capture_output=True, text=True
+    )
+    assert run.returncode == 2 and run.stderr.strip().splitlines() == [
+        "mechkit: error: still: no joint moves (every joint is fixed): there is no mechanism to model"
+    ]
 
 
 def test_scales_are_those_of_the_neutral_configuration(load_cached):
