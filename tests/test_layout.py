@@ -381,7 +381,6 @@ TESTED_ELSEWHERE = {
         "the joint-naming argument checks of the Mechanism API: the bad-input campaign of tests/test_mechanism.py"
     ),
     "mechkit/base/exceptions.py": "the error classes: raised and matched by name throughout the tests",
-    "mechkit/base/plotting.py": "matplotlib set up for every figure: drawn by the studies' and figures' tests",
     "mechkit/base/resources.py": (
         "where the packaged templates and URDFs are: tests/catalog/test_contract.py reads every one"
     ),

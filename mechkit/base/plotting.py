@@ -1,11 +1,14 @@
-"""matplotlib for files: pyplot on the Agg backend (no window), imported on use, with an install hint."""
+"""matplotlib for files: pyplot on the Agg backend (no window), imported on use, with an install hint;
+figures written atomically."""
 
 from __future__ import annotations
 
+import io
 from pathlib import Path
 from types import ModuleType
 from typing import Any
 
+from mechkit.base.atomic import write_bytes
 from mechkit.base.exceptions import MethodUnavailable
 
 
@@ -31,20 +34,43 @@ def pyplot(what: str = "figures") -> ModuleType:
     return plt
 
 
-def save_png(fig: Any, path: Path, dpi: int = 90) -> Path:
-    """Lay the figure out tightly, write it as PNG (creating the folder) and close it.
+def figure_bytes(fig: Any, fmt: str, dpi: int = 90) -> bytes:
+    """A figure rendered in memory.
+
+    Args:
+        fig: a matplotlib figure.
+        fmt: "png", "svg", "pdf" (what matplotlib's savefig takes).
+        dpi: resolution of a raster format, dots per inch.
+
+    Returns:
+        The file's bytes.
+    """
+    buffer = io.BytesIO()
+    fig.savefig(buffer, format=fmt, dpi=dpi)
+    return buffer.getvalue()
+
+
+def save_figure(fig: Any, path: str | Path, dpi: int = 90, tight: bool = True) -> Path:
+    """Lay the figure out, write it in the format its suffix names (none: PNG) atomically (creating the
+    folder; `mechkit.base.atomic`), and close it.
 
     Args:
         fig: a matplotlib figure.
         path: the file to write.
-        dpi: resolution, dots per inch.
+        dpi: resolution of a raster format, dots per inch.
+        tight: apply `tight_layout` first.
 
     Returns:
         The path written.
+
+    Raises:
+        OutputError: the file cannot be written.
     """
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fig.tight_layout()
-    fig.savefig(path, dpi=dpi)
-    pyplot().close(fig)
-    return path
+    try:
+        if tight:
+            fig.tight_layout()
+        data = figure_bytes(fig, Path(path).suffix.lstrip(".").lower() or "png", dpi)
+    finally:
+        pyplot().close(fig)
+    Path(path).parent.mkdir(parents=True, exist_ok=True)
+    return write_bytes(path, data)

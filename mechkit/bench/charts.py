@@ -9,6 +9,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from mechkit.base import plotting
+from mechkit.base.atomic import write_files
 from mechkit.bench.errors import ERROR_LABELS
 from mechkit.bench.results import MechanismBench, Row
 from mechkit.bench.scale import ScaleFit
@@ -47,12 +48,12 @@ def save_figure(fig: Figure, ax: Axes, folder: Path, stem: str, legend_size: int
     ax.grid(True, which="both", alpha=0.3)
     ax.legend(fontsize=legend_size)
     fig.tight_layout()
+    try:
+        rendered = {folder / f"{stem}.{ext}": plotting.figure_bytes(fig, ext) for ext in ("png", "svg")}
+    finally:
+        pyplot().close(fig)
     folder.mkdir(parents=True, exist_ok=True)
-    paths = [folder / f"{stem}.{ext}" for ext in ("png", "svg")]
-    for p in paths:
-        fig.savefig(p, dpi=90)
-    pyplot().close(fig)
-    return paths
+    return write_files(rendered)
 
 
 def chart(b: MechanismBench, quantity: str, folder: Path) -> list[Path]:

@@ -9,7 +9,7 @@ from pathlib import Path
 import numpy as np
 
 from mechkit.base.exceptions import ClosureNotConverged, InvalidParameters, SingularConfiguration
-from mechkit.base.plotting import pyplot, save_png
+from mechkit.base.plotting import pyplot, save_figure
 from mechkit.elastic.elastic_model import ElasticModel
 
 DIRECTIONS = ("x", "y", "z", "rx", "ry", "rz")
@@ -121,4 +121,4 @@ def plot_map(result: StiffnessMap, direction: str, path: Path) -> Path:
         ax.set_ylabel(f"{j1} (deg)")
         ax.set_title(f"{result.body}, {direction}: {title}")
         fig.colorbar(image, ax=ax, label=f"log10 stiffness ({unit})")
-    return save_png(fig, Path(path))
+    return save_figure(fig, Path(path))

@@ -9,8 +9,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from mechkit.base.atomic import write_bytes
-from mechkit.base.plotting import pyplot
+from mechkit.base.plotting import pyplot, save_figure
 from mechkit.history.result import MotionResult
 from mechkit.motion.peaks import load_histories
 
@@ -99,14 +98,4 @@ def write_plot(
     Returns:
         The path written.
     """
-    import io
-
-    import matplotlib.pyplot as plt
-
-    fig = figure(result, joints, title)
-    buffer = io.BytesIO()
-    try:
-        fig.savefig(buffer, format=Path(path).suffix.lstrip(".") or "png", dpi=dpi)
-    finally:
-        plt.close(fig)
-    return write_bytes(path, buffer.getvalue())
+    return save_figure(figure(result, joints, title), path, dpi=dpi, tight=False)

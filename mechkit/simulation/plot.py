@@ -3,14 +3,12 @@ drift, and the closure residual over time."""
 
 from __future__ import annotations
 
-import io
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
-from mechkit.base.atomic import write_bytes
-from mechkit.base.plotting import pyplot
+from mechkit.base.plotting import pyplot, save_figure
 from mechkit.simulation.result import SimulationResult
 
 #: One-coordinate joints drawn in the top panel (the first ones of the tree).
@@ -64,9 +62,4 @@ def write_plot(result: SimulationResult, path: str | Path) -> Path:
     Returns:
         The path written.
     """
-    plt = pyplot("simulation plots")
-    fig = figure(result)
-    buffer = io.BytesIO()
-    fig.savefig(buffer, format=Path(path).suffix.lstrip(".") or "png", dpi=110)
-    plt.close(fig)
-    return write_bytes(path, buffer.getvalue())
+    return save_figure(figure(result), path, dpi=110, tight=False)

@@ -12,6 +12,7 @@ import numpy as np
 import pandas as pd
 
 from mechkit.base.exceptions import InvalidParameters
+from mechkit.base.plotting import pyplot, save_figure
 
 
 def _columns(frame: pd.DataFrame, *names: str) -> None:
@@ -58,10 +59,7 @@ def heat_map(
     Raises:
         InvalidParameters: a column the table does not have.
     """
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    plt = pyplot("sweep plots")
 
     _columns(frame, x, y, metric)
     xs, ys = np.unique(frame[x]), np.unique(frame[y])
@@ -75,10 +73,7 @@ def heat_map(
     ax.set_xlabel(x)
     ax.set_ylabel(y)
     ax.set_title(title or f"{metric} (grey: not ok)")
-    fig.tight_layout()
-    fig.savefig(path, dpi=120)
-    plt.close(fig)
-    return Path(path)
+    return save_figure(fig, path, dpi=120)
 
 
 def pareto_plot(
@@ -100,10 +95,7 @@ def pareto_plot(
     Raises:
         InvalidParameters: a column the table does not have.
     """
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    plt = pyplot("sweep plots")
 
     _columns(frame, a, b)
     ok = frame[frame["status"] == "ok"]
@@ -119,7 +111,4 @@ def pareto_plot(
     ax.set_ylabel(b)
     ax.set_title(title or f"{a} vs {b}")
     ax.legend(fontsize=8)
-    fig.tight_layout()
-    fig.savefig(path, dpi=120)
-    plt.close(fig)
-    return Path(path)
+    return save_figure(fig, path, dpi=120)

@@ -10,7 +10,7 @@ from pathlib import Path
 
 import numpy as np
 
-from mechkit.base.plotting import pyplot, save_png
+from mechkit.base.plotting import pyplot, save_figure
 from mechkit.mechanisms.deployable_9rr12uru.studies import PAPER_END_GAMMA_X, Fold
 
 
@@ -31,7 +31,7 @@ def fold_figures(f: Fold, folder: Path) -> list[Path]:
     ax.plot(t, deg([s.gamma for s in f.drives]), label="tilt gamma(t) = -acos(...)")
     ax.set(xlabel="time t (s)", ylabel="angle (deg)", title="Drive laws of section 3.2 (our sign of gamma)")
     ax.legend(), ax.grid(alpha=0.3)
-    out.append(save_png(fig, folder / "deployable_drives.png"))
+    out.append(save_figure(fig, folder / "deployable_drives.png"))
 
     fig, ax = plt.subplots(figsize=(7, 3.8))
     for k, axis in enumerate("xyz"):
@@ -46,7 +46,7 @@ def fold_figures(f: Fold, folder: Path) -> list[Path]:
         )
     ax.set(xlabel="time t (s)", ylabel="position of node F (mm)", title="Node F centre (cf. paper Fig. 7)")
     ax.legend(ncol=2, fontsize=8), ax.grid(alpha=0.3)
-    out.append(save_png(fig, folder / "deployable_node_F.png"))
+    out.append(save_figure(fig, folder / "deployable_node_F.png"))
 
     fig, ax = plt.subplots(figsize=(7, 3.6))
     ax.plot(t, [1e3 * r.node_i_speed_eq for r in rows], label="d/dt of eq. (8)")
@@ -55,7 +55,7 @@ def fold_figures(f: Fold, folder: Path) -> list[Path]:
     )
     ax.set(xlabel="time t (s)", ylabel="speed of node I (mm/s)", title="Node I centre speed (cf. paper Fig. 8)")
     ax.legend(), ax.grid(alpha=0.3)
-    out.append(save_png(fig, folder / "deployable_node_I_speed.png"))
+    out.append(save_figure(fig, folder / "deployable_node_I_speed.png"))
 
     fig, axes = plt.subplots(3, 1, figsize=(7, 7.5), sharex=True)
     for k, name in enumerate(("gamma_x", "gamma_y", "gamma_z")):
@@ -69,7 +69,7 @@ def fold_figures(f: Fold, folder: Path) -> list[Path]:
     axes[0].legend(fontsize=7)
     axes[0].set_title("RPY angles of node B (cf. paper Fig. 9; R_B0 read as Rx Ry Rz)")
     axes[2].set_xlabel("time t (s)")
-    out.append(save_png(fig, folder / "deployable_node_B_rpy.png"))
+    out.append(save_figure(fig, folder / "deployable_node_B_rpy.png"))
 
     fig, ax = plt.subplots(figsize=(7, 3.8))
     for joint in f.actuated:
@@ -80,5 +80,5 @@ def fold_figures(f: Fold, folder: Path) -> list[Path]:
         title="Drive torques along the fold, constrained RNEA (gravity -z, our masses)",
     )
     ax.legend(ncol=4, fontsize=8), ax.grid(alpha=0.3)
-    out.append(save_png(fig, folder / "deployable_efforts.png"))
+    out.append(save_figure(fig, folder / "deployable_efforts.png"))
     return out

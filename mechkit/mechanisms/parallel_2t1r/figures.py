@@ -11,7 +11,7 @@ from pathlib import Path
 
 import numpy as np
 
-from mechkit.base.plotting import pyplot, save_png
+from mechkit.base.plotting import pyplot, save_figure
 from mechkit.mechanisms.parallel_2t1r.compare import QUANTITIES, Comparison
 from mechkit.mechanisms.parallel_2t1r.studies import SingularStudies
 
@@ -63,7 +63,7 @@ def comparison_figure(cmp: Comparison, folder: Path) -> list[Path]:
         "2T1R along theta = (pi t/18, pi t/15, pi t/10): Pinocchio constrained RNEA vs SOC vs classic "
         "virtual work (in-plane reaction forces, world frame)"
     )
-    return [save_png(fig, folder / "parallel_2t1r_comparison.png", DPI)]
+    return [save_figure(fig, folder / "parallel_2t1r_comparison.png", DPI)]
 
 
 def singular_figure(s: SingularStudies, folder: Path) -> list[Path]:
@@ -114,4 +114,4 @@ def singular_figure(s: SingularStudies, folder: Path) -> list[Path]:
     for ax in (left, right):
         ax.grid(alpha=0.3, which="both")
         ax.legend(fontsize=8)
-    return [save_png(fig, folder / "parallel_2t1r_singular.png", DPI)]
+    return [save_figure(fig, folder / "parallel_2t1r_singular.png", DPI)]

@@ -10,7 +10,7 @@ from pathlib import Path
 
 import numpy as np
 
-from mechkit.base.plotting import pyplot, save_png
+from mechkit.base.plotting import pyplot, save_figure
 from mechkit.mechanisms.rocket_gimbal.kinematics import RULE_ANGLE
 from mechkit.mechanisms.rocket_gimbal.studies import SUPPORTS, Conditioning, Linearisation, Swing
 
@@ -50,7 +50,7 @@ def linearisation_figure(study: Linearisation, folder: Path) -> list[Path]:
         f"6.5 deg) at dlA, dlB = {1e3 * e.worst_at[0]:.0f}, {1e3 * e.worst_at[1]:.0f} mm; cross-talk "
         f"{deg(e.cross_talk):.3f} deg"
     )
-    return [save_png(fig, folder / "rocket_gimbal_linearisation.png")]
+    return [save_figure(fig, folder / "rocket_gimbal_linearisation.png")]
 
 
 def conditioning_figure(study: Conditioning, folder: Path) -> list[Path]:
@@ -79,7 +79,7 @@ def conditioning_figure(study: Conditioning, folder: Path) -> list[Path]:
         ax.set(xlabel="stroke dlA (mm)", ylabel="stroke dlB (mm)", title=title, aspect="equal")
         fig.colorbar(im, ax=ax)
     fig.suptitle("resultant FK: digits are lost near dlA = dlB, where the in-range root meets a flipped mode's")
-    return [save_png(fig, folder / "rocket_gimbal_conditioning.png")]
+    return [save_figure(fig, folder / "rocket_gimbal_conditioning.png")]
 
 
 def swing_figure(study: Swing, folder: Path) -> list[Path]:
@@ -118,4 +118,4 @@ def swing_figure(study: Swing, folder: Path) -> list[Path]:
         ax.grid(True, alpha=0.3)
     for ax in axes[:2]:
         ax.legend(fontsize=7)
-    return [save_png(fig, folder / "rocket_gimbal_swing.png")]
+    return [save_figure(fig, folder / "rocket_gimbal_swing.png")]

@@ -10,7 +10,7 @@ from pathlib import Path
 
 import numpy as np
 
-from mechkit.base.plotting import pyplot, save_png
+from mechkit.base.plotting import pyplot, save_figure
 from mechkit.mechanisms.spherical_2dof.fk import METHODS
 from mechkit.mechanisms.spherical_2dof.kinematics import platform_normal
 from mechkit.mechanisms.spherical_2dof.scenes import cone_attitude
@@ -56,7 +56,7 @@ def cone_figure(c: Cone, folder: Path) -> list[Path]:
     for a in ax:
         a.grid(True, alpha=0.3)
         a.legend(fontsize=7)
-    return [save_png(fig, folder / "spherical_2dof_cone.png", dpi=80)]
+    return [save_figure(fig, folder / "spherical_2dof_cone.png", dpi=80)]
 
 
 def basin_figure(b: Basin, folder: Path) -> list[Path]:
@@ -112,4 +112,4 @@ def basin_figure(b: Basin, folder: Path) -> list[Path]:
     axes[1].legend(fontsize=7)
     for ax in axes[1:]:
         ax.grid(True, which="both", alpha=0.3)
-    return [save_png(fig, folder / "spherical_2dof_basin.png")]
+    return [save_figure(fig, folder / "spherical_2dof_basin.png")]

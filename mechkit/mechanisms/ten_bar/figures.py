@@ -12,7 +12,7 @@ from typing import Any
 
 import numpy as np
 
-from mechkit.base.plotting import pyplot, save_png
+from mechkit.base.plotting import pyplot, save_figure
 from mechkit.mechanisms.ten_bar import dynamics as td
 from mechkit.mechanisms.ten_bar import geometry as geo
 from mechkit.mechanisms.ten_bar import params as tp
@@ -64,7 +64,7 @@ def _over_time(fig: Any, ax: Any, path: Path, ylabel: str, legend: dict | None =
     ax.set_ylabel(ylabel)
     ax.legend(**(legend or {}))
     ax.grid(alpha=0.3)
-    return save_png(fig, path, DPI)
+    return save_figure(fig, path, DPI)
 
 
 def deployment_figures(d: Deployment, folder: Path) -> list[Path]:
@@ -81,7 +81,7 @@ def deployment_figures(d: Deployment, folder: Path) -> list[Path]:
     traj, out = d.trajectory, []
     fig, ax = plt.subplots(figsize=(7, 6))
     draw_poses(ax, d.params, traj.angles)
-    out.append(save_png(fig, folder / "ten_bar_poses.png", DPI))
+    out.append(save_figure(fig, folder / "ten_bar_poses.png", DPI))
 
     fig, ax = plt.subplots(figsize=(8, 4.5))
     for j in td.JOINT_ORDER:
@@ -116,7 +116,7 @@ def deployment_figures(d: Deployment, folder: Path) -> list[Path]:
         ax.grid(alpha=0.3)
         ax.legend(fontsize=8)
     axes[0].set_ylabel("force (N)")
-    out.append(save_png(fig, folder / "ten_bar_supports.png", DPI))
+    out.append(save_figure(fig, folder / "ten_bar_supports.png", DPI))
 
     fig, ax = plt.subplots(figsize=(8, 4.5))
     for label, run in d.drift.items():
