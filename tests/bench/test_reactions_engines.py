@@ -1,0 +1,42 @@
+"""mechkit's rigid reactions beside Drake's and MuJoCo's, in one convention."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from mechkit.bench import reactions_engines
+
+pytest.importorskip("pydrake", reason="Drake not installed: pip install 'mechkit[peers]'")
+pytest.importorskip("mujoco", reason="MuJoCo not installed: pip install 'mechkit[peers]'")
+
+
+def _state(m, moving: bool):
+    q = m.home_q
+    v = m.velocities(q, [0.5] * len(m.actuated)) if moving else np.zeros(m.model.nv)
+    return q, v, m.generalized_forces({j: 0.3 for j in m.actuated})
+
+
+@pytest.mark.parametrize("moving", [False, True])
+def test_drake_tree_reactions_equal_ours_on_the_four_bar(moving, load_cached):
+    """Drake's Newton-Euler of the open tree under our cut wrench: its accelerations and tree-joint
+    reactions (F_CJc_Jc rotated to world) are ours to round-off, static and moving."""
+    m = load_cached("four_bar")
+    q, v, tau = _state(m, moving)
+    ours = reactions_engines.rigid(m, q, v, tau)
+    ntree = m.model.njoints - 1
+    theirs = reactions_engines.drake_tree(m, q, v, tau, ours["reactions"][ntree:])
+    scale = np.max(np.abs(ours["reactions"][:ntree]))
+    assert np.max(np.abs(theirs["reactions"] - ours["reactions"][:ntree])) < 1e-9 * scale
+    assert np.max(np.abs(theirs["a"] - ours["a"])) < 1e-9 * np.max(np.abs(ours["a"]))
+
+
+def test_engines_closed_models_approach_ours(load_cached):
+    """Drake's SAP step and MuJoCo's soft closure: reactions near ours (SAP closer), closure errors finite
+    and in that order."""
+    m = load_cached("four_bar")
+    out = reactions_engines.compare(m, *_state(m, True))
+    scale = np.max(np.abs(out["rigid"]["reactions"]))
+    sap, mj = (np.max(np.abs(out[k]["diff"])) / scale for k in ("drake_sap", "mujoco"))
+    assert sap < 1e-2 and sap < mj < 0.2
+    assert out["drake_tree"]["closure"] < 1e-9 < out["drake_sap"]["closure"] < out["mujoco"]["closure"]
