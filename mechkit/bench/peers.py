@@ -23,15 +23,19 @@ v, a, tau are mechkit's vectors throughout.
 from __future__ import annotations
 
 import xml.etree.ElementTree as ET
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from mechkit.base.exceptions import MechkitError, MethodUnavailable
 from mechkit.bench.methods import Method
 from mechkit.core import AXIS_ANCHOR_OFFSET
-from mechkit.export import body_name, frame_b_vector, to_mjcf
+from mechkit.export import frame_b_vector, to_mjcf
 from mechkit.mechanism import Mechanism
 from mechkit.sources.urdf import LOOP_NAMESPACE
+
+if TYPE_CHECKING:
+    from pydrake.multibody.plant import MultibodyPlant
 
 #: MuJoCo equality solref (time constant s, damping ratio) and solimp for the "stiff" setting.
 STIFF_SOLREF = (0.002, 1.0)
@@ -174,6 +178,7 @@ class DrakePeer:
         root = mech.model.frames[1].name  # the URDF root link
         if root != "world":  # a URDF root link called "world" is Drake's world body already
             plant.WeldFrames(plant.world_frame(), plant.GetFrameByName(root))
+        add_armature(plant, mech)
         model, frames = mech.model, mech.model.frames
         for cut in mech.cuts:
             c = cut.closure
@@ -184,8 +189,8 @@ class DrakePeer:
                 offsets.append(AXIS_ANCHOR_OFFSET * c.axis)
             fa, fb = frames[cut.frame_a], frames[cut.frame_b]
             for offset in offsets:
-                body_a = plant.GetBodyByName(_link_of(model, fa.parentJoint))
-                body_b = plant.GetBodyByName(_link_of(model, fb.parentJoint))
+                body_a = _body_of(plant, model, fa.parentJoint)
+                body_b = _body_of(plant, model, fb.parentJoint)
                 p_a = fa.placement.act(offset)
                 p_b = fb.placement.act(frame_b_vector(mech, cut, offset))
                 plant.AddBallConstraint(body_a, p_a, body_b, p_b)
@@ -237,8 +242,30 @@ def _strip_loops(urdf: str) -> str:
     return ET.tostring(root, encoding="unicode")
 
 
-def _link_of(model, joint: int) -> str:
-    return body_name(model, joint) if joint else model.frames[1].name
+def add_armature(plant: MultibodyPlant, mech: Mechanism) -> None:
+    """Give Drake's joints mechkit's armature (the URDF has none) as actuators' rotor inertia, gear ratio 1.
+
+    Args:
+        plant: a `MultibodyPlant` parsed from `mech.urdf`, not finalised.
+        mech: the mechanism.
+
+    Raises:
+        MethodUnavailable: armature on a joint of more than one degree of freedom.
+    """
+    model = mech.model
+    for j in range(1, model.njoints):
+        arm = model.armature[model.idx_vs[j] : model.idx_vs[j] + model.nvs[j]]
+        if model.nvs[j] == 1 and arm[0] > 0:
+            act = plant.AddJointActuator(f"{model.names[j]}__armature", plant.GetJointByName(model.names[j]))
+            act.set_default_rotor_inertia(float(arm[0]))
+            act.set_default_gear_ratio(1.0)
+        elif np.any(arm > 0):
+            raise MethodUnavailable("drake", f"joint {model.names[j]!r}: armature on a multi-dof joint is not mapped")
+
+
+def _body_of(plant, model, joint: int):
+    """Drake's body moved by mechkit's joint index (0: the root link)."""
+    return plant.GetJointByName(model.names[joint]).child_body() if joint else plant.GetBodyByName(model.frames[1].name)
 
 
 def peer_methods(mech: Mechanism) -> tuple[list[Method], list[str]]:

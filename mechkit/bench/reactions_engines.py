@@ -24,7 +24,7 @@ import numpy as np
 import pinocchio as pin
 
 from mechkit.base.exceptions import MethodUnavailable
-from mechkit.bench.peers import DrakePeer, MujocoPeer, _link_of, _strip_loops
+from mechkit.bench.peers import DrakePeer, MujocoPeer, _body_of, _strip_loops, add_armature
 from mechkit.mechanism import Mechanism
 
 
@@ -79,6 +79,7 @@ def drake_tree(mech: Mechanism, q: np.ndarray, v: np.ndarray, tau: np.ndarray, c
     model, frames = mech.model, mech.model.frames
     if frames[1].name != "world":
         plant.WeldFrames(plant.world_frame(), plant.GetFrameByName(frames[1].name))
+    add_armature(plant, mech)
     plant.Finalize()
     ctx = plant.CreateDefaultContext()
     names = list(model.names[1:])
@@ -98,8 +99,9 @@ def drake_tree(mech: Mechanism, q: np.ndarray, v: np.ndarray, tau: np.ndarray, c
         p_w = data.oMf[cut.frame_b].translation
         for frame, sign in ((fa, -1.0), (fb, 1.0)):
             e = ExternallyAppliedSpatialForce()
-            e.body_index = plant.GetBodyByName(_link_of(model, frame.parentJoint)).index()
-            e.p_BoBq_B = data.oMi[frame.parentJoint].actInv(p_w)
+            body = _body_of(plant, model, frame.parentJoint)
+            e.body_index = body.index()
+            e.p_BoBq_B = body.EvalPoseInWorld(ctx).inverse().multiply(p_w)
             e.F_Bq_W = SpatialForce(sign * w[3:], sign * w[:3])
             forces.append(e)
     plant.get_applied_spatial_force_input_port().FixValue(ctx, forces)

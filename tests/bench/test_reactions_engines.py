@@ -2,13 +2,19 @@
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import numpy as np
+import pinocchio as pin
 import pytest
 
+import mechkit
 from mechkit.bench import reactions_engines
 
 pytest.importorskip("pydrake", reason="Drake not installed: pip install 'mechkit[peers]'")
 pytest.importorskip("mujoco", reason="MuJoCo not installed: pip install 'mechkit[peers]'")
+
+GRIPPER = Path(__file__).resolve().parents[1] / "fixtures" / "field" / "menagerie" / "robotiq_2f85" / "2f85.xml"
 
 
 def _state(m, moving: bool):
@@ -40,3 +46,13 @@ def test_engines_closed_models_approach_ours(load_cached):
     sap, mj = (np.max(np.abs(out[k]["diff"])) / scale for k in ("drake_sap", "mujoco"))
     assert sap < 1e-2 and sap < mj < 0.2
     assert out["drake_tree"]["closure"] < 1e-9 < out["drake_sap"]["closure"] < out["mujoco"]["closure"]
+
+
+def test_drake_tree_carries_our_armature():
+    """The Robotiq 2F-85 (MJCF armature on its joints): Drake's open tree, armature as rotor inertia, gives
+    Pinocchio's ABA accelerations."""
+    m = mechkit.load(GRIPPER)
+    zero = np.zeros(m.model.nv)
+    ours = pin.aba(m.model, m.model.createData(), m.home_q, zero, zero)
+    theirs = reactions_engines.drake_tree(m, m.home_q, zero, zero, np.zeros((len(m.cuts), 6)))["a"]
+    assert np.max(np.abs(theirs - ours)) < 1e-9 * np.max(np.abs(ours))
