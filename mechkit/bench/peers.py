@@ -201,11 +201,16 @@ class DrakePeer:
         self.qadr = np.array([plant.GetJointByName(n).position_start() for n in names])
         self.vadr = np.array([plant.GetJointByName(n).velocity_start() for n in names])
         self.nq, self.nv = plant.num_positions(), plant.num_velocities()
-        self._force_port = plant.get_applied_generalized_force_input_port()
+        self._force = plant.get_applied_generalized_force_input_port().FixValue(self.context, np.zeros(self.nv))
         self._simulator = Simulator(plant, self.context)  # steps the plant's per-step discrete update
+        self._simulator.Initialize()
 
     def forward(self, q: np.ndarray, v: np.ndarray, tau: np.ndarray) -> np.ndarray:
         """(v_next - v) / dt of one discrete step from (q, v) under efforts tau.
+
+        Drake's own calls: the state written by `SetPositionsAndVelocities`, the efforts fixed on the
+        applied-force port's fixed value, one `Simulator.AdvanceTo` (the clock runs on from call to call; the step
+        does not depend on the time). Python glue is the two vector copies.
 
         Args:
             q: a configuration (nq,), mechkit's order.
@@ -223,12 +228,10 @@ class DrakePeer:
         x[self.nq + self.vadr] = v
         f = np.zeros(self.nv)
         f[self.vadr] = tau
-        self._force_port.FixValue(self.context, f)
+        self._force.GetMutableData().get_mutable_value().SetFromVector(f)
         self.plant.SetPositionsAndVelocities(self.context, x)
-        self.context.SetTime(0.0)
-        self._simulator.Initialize()
         try:
-            self._simulator.AdvanceTo(self.dt)
+            self._simulator.AdvanceTo(self.context.get_time() + self.dt)
         except RuntimeError as err:
             raise SimulationFailed("drake", str(err).split(".")[0]) from None
         return (self.plant.GetVelocities(self.context)[self.vadr] - v) / self.dt
