@@ -13,8 +13,8 @@ Both are optional imports; a missing one raises `MethodUnavailable` with its ins
 - Drake (`pip install drake`): `MultibodyPlant` from the tree URDF, discrete (SAP) with time step
   `DRAKE_DT`, every point anchor as `AddBallConstraint`. It exposes no continuous acceleration: the
   forward dynamics is the one-step velocity change (v_next - v) / dt, which carries the implicit
-  step's O(dt) error and SAP's regularisation; it exposes no constraint force either (no inverse
-  dynamics with reactions).
+  step's O(dt) error and SAP's regularisation. Its joint reactions (the reaction-forces port) are
+  compared with ours in `mechkit.bench.reactions_engines`; it gives no inverse dynamics.
 
 Coordinates: the same joint names and zero as mechkit (MuJoCo via `ref`, Drake via the URDF), so q,
 v, a, tau are mechkit's vectors throughout.
