@@ -184,7 +184,9 @@ class DrakePeer:
             c = cut.closure
             if c.kind not in ("revolute", "spherical"):
                 raise MethodUnavailable("drake", f"cut {c.name!r} is {c.kind}: only ball constraints are mapped")
-            offsets = [np.zeros(3)]
+            # rows "spherical" keep the alignment rows only (the cut at the linkage's fixed centre, where a
+            # ball constraint's Jacobian is zero and SAP's Hessian turns NaN): the point along the axis alone
+            offsets = [] if c.rows == "spherical" else [np.zeros(3)]
             if c.kind == "revolute" and c.rows != "planar":
                 offsets.append(AXIS_ANCHOR_OFFSET * c.axis)
             fa, fb = frames[cut.frame_a], frames[cut.frame_b]
