@@ -14,4 +14,5 @@ ROOT = Path(__file__).resolve().parent.parent
 
 if __name__ == "__main__":
     mechanisms = {name: mechkit.load(name) for name in ("four_bar", "parallel_2t1r")}
+    mechanisms["robotiq_2f85 (menagerie)"] = mechkit.load(ROOT / "tests/fixtures/field/menagerie/robotiq_2f85/2f85.xml")
     reactions_page.write(ROOT / "docs" / "reactions_vs_engines.md", mechanisms)

@@ -175,6 +175,9 @@ def mujoco(mech: Mechanism, q: np.ndarray, v: np.ndarray, tau: np.ndarray) -> di
 def compare(mech: Mechanism, q: np.ndarray, v: np.ndarray, tau: np.ndarray) -> dict:
     """Every engine's tree-joint reactions and closure error beside mechkit's.
 
+    The description's joint springs act in mechkit's dynamics; the engines' models have none, so they get
+    the springs' torques added to tau.
+
     Args:
         mech: the mechanism.
         q: (nq,) an assembled configuration.
@@ -190,10 +193,12 @@ def compare(mech: Mechanism, q: np.ndarray, v: np.ndarray, tau: np.ndarray) -> d
     ntree = mech.model.njoints - 1
     out = {"rigid": ours, "joints": list(mech.model.names[1:])}
     J = mech.closure_jacobian(q)
+    passive = mech.passive_forces(q, v)  # the description's joint springs: ours act, the peers' models have none
+    total = tau if passive is None else tau + passive
     runs = {
-        "drake_tree": lambda: drake_tree(mech, q, v, tau, ours["reactions"][ntree:]),
-        "drake_sap": lambda: drake_sap(mech, q, v, tau),
-        "mujoco": lambda: mujoco(mech, q, v, tau),
+        "drake_tree": lambda: drake_tree(mech, q, v, total, ours["reactions"][ntree:]),
+        "drake_sap": lambda: drake_sap(mech, q, v, total),
+        "mujoco": lambda: mujoco(mech, q, v, total),
     }
     for name, run in runs.items():
         try:

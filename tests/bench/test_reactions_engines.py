@@ -56,3 +56,14 @@ def test_drake_tree_carries_our_armature():
     ours = pin.aba(m.model, m.model.createData(), m.home_q, zero, zero)
     theirs = reactions_engines.drake_tree(m, m.home_q, zero, zero, np.zeros((len(m.cuts), 6)))["a"]
     assert np.max(np.abs(theirs - ours)) < 1e-9 * np.max(np.abs(ours))
+
+
+def test_drake_tree_reactions_equal_ours_on_the_gripper():
+    """The Robotiq 2F-85 (armature, joint springs, two planar connect cuts): Drake's open tree under our cut
+    wrenches and the springs' torques, at rest, gives our accelerations and tree-joint reactions to round-off."""
+    m = mechkit.load(GRIPPER)
+    tau = m.generalized_forces({"fingers_actuator": 0.3})  # at rest: its actuator is no joint to give a rate to
+    out = reactions_engines.compare(m, m.home_q, np.zeros(m.model.nv), tau)
+    scale = np.max(np.abs(out["rigid"]["reactions"]))
+    assert np.max(np.abs(out["drake_tree"]["diff"])) < 1e-9 * scale
+    assert out["drake_tree"]["closure"] < 1e-9 * np.max(np.abs(out["rigid"]["a"]))
