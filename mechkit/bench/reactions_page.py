@@ -44,6 +44,11 @@ max |J (a - a_rigid)| = the acceleration-level closure residual J a + J'v of the
 (rad/s^2 or m/s^2 rows). States: home configuration, 0.3 N m (or N) on each actuated joint; "static"
 at rest, "moving" with 0.5 rad/s (or m/s) on each actuated joint.
 
+Cut forces: each cut's force f of ours (on frame_b's body, world axes) beside MuJoCo's `efc_force` of
+its `connect` rows (world axes), negated: MuJoCo's comes out with the opposite sign on every cut here
+(the sign found by comparison, not from MuJoCo's documentation); the engines' soft closure shows in
+their difference.
+
 The Robotiq 2F-85 (menagerie MJCF, tests/fixtures/field): its joint springs act in mechkit's dynamics;
 the engines' models have none (Drake's URDF; MuJoCo's springs off), so they get the springs' torques as
 efforts, and its MJCF armature goes to Drake as rotor inertia. MuJoCo is absent for it (its MJCF export
@@ -95,7 +100,18 @@ def section(name: str, mech: Mechanism) -> list[str]:
             )
         closure = ", ".join(f"{ENGINES[k]} {out[k]['closure']:.1e}" for k in ok)
         lines += ["", f"Closure error: rigid 0 (by construction), {closure}.", ""]
+        lines += _cut_forces(out, ntree)
     return lines
+
+
+def _cut_forces(out: dict, ntree: int) -> list[str]:
+    """Each cut's force, ours beside MuJoCo's equality rows (when they are one connect, 3 rows, per cut)."""
+    cuts = out["rigid"]["reactions"][ntree:, :3]
+    if isinstance(out["mujoco"], str) or out["mujoco"]["equality"].size != cuts.size:
+        return []
+    theirs = -out["mujoco"]["equality"].reshape(-1, 3)
+    pairs = "; ".join(f"{_vec(a)} vs {_vec(b)}" for a, b in zip(cuts, theirs))
+    return [f"Cut forces (N, world, ours vs MuJoCo's connect efc_force negated): {pairs}.", ""]
 
 
 def _vec(x: np.ndarray) -> str:
