@@ -43,7 +43,27 @@ def rigid(mech: Mechanism, q: np.ndarray, v: np.ndarray, tau: np.ndarray) -> dic
     a = mech.forward_dynamics(q, v, tau, "kkt").a
     r = mech.inverse_dynamics(q, v, a, determinacy=True, allow_singular=True)
     det = np.array([r.reactions[n].determinate for n in r.joint_names])
-    return {"a": a, "reactions": np.asarray(r.reaction_values), "determinate": det}
+    support = np.array([r.reactions[n].support for n in r.joint_names])
+    return {"a": a, "reactions": np.asarray(r.reaction_values), "determinate": det, "support": support}
+
+
+def resultant(mech: Mechanism, q: np.ndarray, reactions: np.ndarray, support: np.ndarray) -> np.ndarray:
+    """What the ground's joints exert in total: [f, m about the world origin], world axes.
+
+    Statics fixes it even where single components are indeterminate.
+
+    Args:
+        mech: the mechanism.
+        q: (nq,) configuration.
+        reactions: (njoints - 1, 6) tree-joint reactions, mechkit's convention.
+        support: (njoints - 1,) True for a joint whose parent side is the ground.
+
+    Returns:
+        (6,) the sum of the support reactions moved to the world origin.
+    """
+    _, points = _joint_points(mech, q)
+    f, m = reactions[support, :3], reactions[support, 3:]
+    return np.r_[f.sum(axis=0), (m + np.cross(points[support], f)).sum(axis=0)]
 
 
 def _joint_points(mech: Mechanism, q: np.ndarray) -> tuple[pin.Data, np.ndarray]:
@@ -186,11 +206,13 @@ def compare(mech: Mechanism, q: np.ndarray, v: np.ndarray, tau: np.ndarray) -> d
 
     Returns:
         {"rigid": `rigid`'s dict, "joints": tree joint names, engine name -> its dict plus "closure"
-        (|J (a - a_rigid)|, m/s^2 or rad/s^2) and "diff" ((n_tree, 6) engine - rigid); engines that are
+        (|J (a - a_rigid)|, m/s^2 or rad/s^2), "diff" ((n_tree, 6) engine - rigid) and "resultant" (`resultant`,
+        also in "rigid"); engines that are
         unavailable -> their reason (str)}.
     """
     ours = rigid(mech, q, v, tau)
     ntree = mech.model.njoints - 1
+    ours["resultant"] = resultant(mech, q, ours["reactions"][:ntree], ours["support"][:ntree])
     out = {"rigid": ours, "joints": list(mech.model.names[1:])}
     J = mech.closure_jacobian(q)
     passive = mech.passive_forces(q, v)  # the description's joint springs: ours act, the peers' models have none
@@ -208,5 +230,6 @@ def compare(mech: Mechanism, q: np.ndarray, v: np.ndarray, tau: np.ndarray) -> d
             continue
         r["closure"] = float(np.max(np.abs(J @ (r["a"] - ours["a"]))))
         r["diff"] = r["reactions"] - ours["reactions"][:ntree]
+        r["resultant"] = resultant(mech, q, r["reactions"], ours["support"][:ntree])
         out[name] = r
     return out

@@ -44,6 +44,9 @@ max |J (a - a_rigid)| = the acceleration-level closure residual J a + J'v of the
 (rad/s^2 or m/s^2 rows). States: home configuration, 0.3 N m (or N) on each actuated joint; "static"
 at rest, "moving" with 0.5 rad/s (or m/s) on each actuated joint.
 
+Resultant: the sum of the reactions of the joints on the ground, moved to the world origin (statics
+fixes it even where single components are indeterminate), each engine's relative difference from ours.
+
 Cut forces: each cut's force f of ours (on frame_b's body, world axes) beside MuJoCo's `efc_force` of
 its `connect` rows (world axes), negated: MuJoCo's comes out with the opposite sign on every cut here
 (the sign found by comparison, not from MuJoCo's documentation); the engines' soft closure shows in
@@ -53,8 +56,7 @@ The Robotiq 2F-85 (menagerie MJCF, tests/fixtures/field): its joint springs act 
 the engines' models have none (Drake's URDF; MuJoCo's springs off), so they get the springs' torques as
 efforts, and its MJCF armature goes to Drake as rotor inertia. MuJoCo is absent for it (its MJCF export
 is refused: one actuator drives two joints). Not here: Cassie loaded from MJCF (no URDF for Drake's
-parser), and a check of the resultant (the sum of the support reactions) where components are
-indeterminate.
+parser).
 """
 
 
@@ -100,6 +102,14 @@ def section(name: str, mech: Mechanism) -> list[str]:
             )
         closure = ", ".join(f"{ENGINES[k]} {out[k]['closure']:.1e}" for k in ok)
         lines += ["", f"Closure error: rigid 0 (by construction), {closure}.", ""]
+        res = out["rigid"]["resultant"]
+        rdiff = ", ".join(
+            f"{ENGINES[k]} {np.max(np.abs(out[k]['resultant'] - res)) / np.max(np.abs(res)):.1e}" for k in ok
+        )
+        lines += [
+            f"Resultant of the support reactions about the world origin: ours [f, m] {_vec(res)}; rel. diff {rdiff}.",
+            "",
+        ]
         lines += _cut_forces(out, ntree)
     return lines
 

@@ -46,6 +46,11 @@ def test_engines_closed_models_approach_ours(load_cached):
     sap, mj = (np.max(np.abs(out[k]["diff"])) / scale for k in ("drake_sap", "mujoco"))
     assert sap < 1e-2 and sap < mj < 0.2
     assert out["drake_tree"]["closure"] < 1e-9 < out["drake_sap"]["closure"] < out["mujoco"]["closure"]
+    res = out["rigid"]["resultant"]
+    off = [
+        np.max(np.abs(out[k]["resultant"] - res)) / np.max(np.abs(res)) for k in ("drake_tree", "drake_sap", "mujoco")
+    ]
+    assert off[0] < 1e-12 < off[1] < off[2] < 0.1
 
 
 def test_drake_tree_carries_our_armature():
