@@ -20,6 +20,8 @@ engine's accelerations, since J a_rigid = -J'v).
 
 from __future__ import annotations
 
+import xml.etree.ElementTree as ET
+
 import numpy as np
 import pinocchio as pin
 
@@ -95,7 +97,7 @@ def drake_tree(mech: Mechanism, q: np.ndarray, v: np.ndarray, tau: np.ndarray, c
     except ImportError:
         raise MethodUnavailable("drake", "not installed: pip install drake") from None
     plant = MultibodyPlant(time_step=0.0)
-    Parser(plant).AddModelsFromString(_strip_loops(mech.urdf), "urdf")
+    Parser(plant).AddModelsFromString(_without_limits(_strip_loops(mech.urdf)), "urdf")
     model, frames = mech.model, mech.model.frames
     if frames[1].name != "world":
         plant.WeldFrames(plant.world_frame(), plant.GetFrameByName(frames[1].name))
@@ -127,6 +129,15 @@ def drake_tree(mech: Mechanism, q: np.ndarray, v: np.ndarray, tau: np.ndarray, c
     plant.get_applied_spatial_force_input_port().FixValue(ctx, forces)
     a_all = plant.get_generalized_acceleration_output_port().Eval(ctx)
     return {"a": np.array([a_all[j.velocity_start()] for j in joints]), "reactions": _in_world(plant, ctx, joints)}
+
+
+def _without_limits(urdf: str) -> str:
+    """The URDF without joint limits (a continuous plant ignores them, and warns on every build)."""
+    root = ET.fromstring(urdf)
+    for joint in root.iter("joint"):
+        for limit in joint.findall("limit"):
+            joint.remove(limit)
+    return ET.tostring(root, encoding="unicode")
 
 
 def _in_world(plant, ctx, joints) -> np.ndarray:
