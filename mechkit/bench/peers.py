@@ -13,8 +13,8 @@ Both are optional imports; a missing one raises `MethodUnavailable` with its ins
 - Drake (`pip install drake`): `MultibodyPlant` from the tree URDF, discrete (SAP) with time step
   `DRAKE_DT`, every point anchor as `AddBallConstraint`. It exposes no continuous acceleration: the
   forward dynamics is the one-step velocity change (v_next - v) / dt, which carries the implicit
-  step's O(dt) error and SAP's regularisation; it exposes no constraint force either (no inverse
-  dynamics with reactions).
+  step's O(dt) error and SAP's regularisation. Its joint reactions (the reaction-forces port) are
+  compared with ours in `mechkit.bench.reactions_engines`; it gives no inverse dynamics.
 
 Coordinates: the same joint names and zero as mechkit (MuJoCo via `ref`, Drake via the URDF), so q,
 v, a, tau are mechkit's vectors throughout.
@@ -23,15 +23,19 @@ v, a, tau are mechkit's vectors throughout.
 from __future__ import annotations
 
 import xml.etree.ElementTree as ET
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from mechkit.base.exceptions import MechkitError, MethodUnavailable
 from mechkit.bench.methods import Method
 from mechkit.core import AXIS_ANCHOR_OFFSET
-from mechkit.export import body_name, frame_b_vector, to_mjcf
+from mechkit.export import frame_b_vector, to_mjcf
 from mechkit.mechanism import Mechanism
 from mechkit.sources.urdf import LOOP_NAMESPACE
+
+if TYPE_CHECKING:
+    from pydrake.multibody.plant import MultibodyPlant
 
 #: MuJoCo equality solref (time constant s, damping ratio) and solimp for the "stiff" setting.
 STIFF_SOLREF = (0.002, 1.0)
@@ -174,18 +178,21 @@ class DrakePeer:
         root = mech.model.frames[1].name  # the URDF root link
         if root != "world":  # a URDF root link called "world" is Drake's world body already
             plant.WeldFrames(plant.world_frame(), plant.GetFrameByName(root))
+        add_armature(plant, mech)
         model, frames = mech.model, mech.model.frames
         for cut in mech.cuts:
             c = cut.closure
             if c.kind not in ("revolute", "spherical"):
                 raise MethodUnavailable("drake", f"cut {c.name!r} is {c.kind}: only ball constraints are mapped")
-            offsets = [np.zeros(3)]
+            # rows "spherical" keep the alignment rows only (the cut at the linkage's fixed centre, where a
+            # ball constraint's Jacobian is zero and SAP's Hessian turns NaN): the point along the axis alone
+            offsets = [] if c.rows == "spherical" else [np.zeros(3)]
             if c.kind == "revolute" and c.rows != "planar":
                 offsets.append(AXIS_ANCHOR_OFFSET * c.axis)
             fa, fb = frames[cut.frame_a], frames[cut.frame_b]
             for offset in offsets:
-                body_a = plant.GetBodyByName(_link_of(model, fa.parentJoint))
-                body_b = plant.GetBodyByName(_link_of(model, fb.parentJoint))
+                body_a = _body_of(plant, model, fa.parentJoint)
+                body_b = _body_of(plant, model, fb.parentJoint)
                 p_a = fa.placement.act(offset)
                 p_b = fb.placement.act(frame_b_vector(mech, cut, offset))
                 plant.AddBallConstraint(body_a, p_a, body_b, p_b)
@@ -196,11 +203,16 @@ class DrakePeer:
         self.qadr = np.array([plant.GetJointByName(n).position_start() for n in names])
         self.vadr = np.array([plant.GetJointByName(n).velocity_start() for n in names])
         self.nq, self.nv = plant.num_positions(), plant.num_velocities()
-        self._force_port = plant.get_applied_generalized_force_input_port()
+        self._force = plant.get_applied_generalized_force_input_port().FixValue(self.context, np.zeros(self.nv))
         self._simulator = Simulator(plant, self.context)  # steps the plant's per-step discrete update
+        self._simulator.Initialize()
 
     def forward(self, q: np.ndarray, v: np.ndarray, tau: np.ndarray) -> np.ndarray:
         """(v_next - v) / dt of one discrete step from (q, v) under efforts tau.
+
+        Drake's own calls: the state written by `SetPositionsAndVelocities`, the efforts fixed on the
+        applied-force port's fixed value, one `Simulator.AdvanceTo` (the clock runs on from call to call; the step
+        does not depend on the time). Python glue is the two vector copies.
 
         Args:
             q: a configuration (nq,), mechkit's order.
@@ -218,12 +230,10 @@ class DrakePeer:
         x[self.nq + self.vadr] = v
         f = np.zeros(self.nv)
         f[self.vadr] = tau
-        self._force_port.FixValue(self.context, f)
+        self._force.GetMutableData().get_mutable_value().SetFromVector(f)
         self.plant.SetPositionsAndVelocities(self.context, x)
-        self.context.SetTime(0.0)
-        self._simulator.Initialize()
         try:
-            self._simulator.AdvanceTo(self.dt)
+            self._simulator.AdvanceTo(self.context.get_time() + self.dt)
         except RuntimeError as err:
             raise SimulationFailed("drake", str(err).split(".")[0]) from None
         return (self.plant.GetVelocities(self.context)[self.vadr] - v) / self.dt
@@ -237,8 +247,30 @@ def _strip_loops(urdf: str) -> str:
     return ET.tostring(root, encoding="unicode")
 
 
-def _link_of(model, joint: int) -> str:
-    return body_name(model, joint) if joint else model.frames[1].name
+def add_armature(plant: MultibodyPlant, mech: Mechanism) -> None:
+    """Give Drake's joints mechkit's armature (the URDF has none) as actuators' rotor inertia, gear ratio 1.
+
+    Args:
+        plant: a `MultibodyPlant` parsed from `mech.urdf`, not finalised.
+        mech: the mechanism.
+
+    Raises:
+        MethodUnavailable: armature on a joint of more than one degree of freedom.
+    """
+    model = mech.model
+    for j in range(1, model.njoints):
+        arm = model.armature[model.idx_vs[j] : model.idx_vs[j] + model.nvs[j]]
+        if model.nvs[j] == 1 and arm[0] > 0:
+            act = plant.AddJointActuator(f"{model.names[j]}__armature", plant.GetJointByName(model.names[j]))
+            act.set_default_rotor_inertia(float(arm[0]))
+            act.set_default_gear_ratio(1.0)
+        elif np.any(arm > 0):
+            raise MethodUnavailable("drake", f"joint {model.names[j]!r}: armature on a multi-dof joint is not mapped")
+
+
+def _body_of(plant, model, joint: int):
+    """Drake's body moved by mechkit's joint index (0: the root link)."""
+    return plant.GetJointByName(model.names[joint]).child_body() if joint else plant.GetBodyByName(model.frames[1].name)
 
 
 def peer_methods(mech: Mechanism) -> tuple[list[Method], list[str]]:
