@@ -373,3 +373,81 @@ def test_mjcf_errors(tmp_path):
     for i, (text, needle) in enumerate(cases.items()):
         with pytest.raises(MalformedDescription, match=needle):
             mechkit.load(written(tmp_path, text, f"m{i}.xml"))
+
+
+ONSHAPE_FOUR_BAR = FIXTURES / "onshape" / "four_bar.xml"
+
+
+def _anchor_form(text: str) -> str:
+    """The four-bar's two site connects as MuJoCo 2's body-and-anchor connects (anchors on the coupler)."""
+    for site in ("closing_C_1", "closing_C_1_z"):
+        pos = re.search(rf'name="{site}" pos="([^"]+)"', text).group(1)
+        text = text.replace(
+            f'site1="{site}" site2="{site.replace("_1", "_2")}"', f'body1="coupler" body2="rocker" anchor="{pos}"'
+        )
+    return text
+
+
+def _rocker_sites_turned(text: str, angle: float) -> str:
+    """The rocker's closing sites turned by `angle` (rad) about its hinge (y): the file opens at qpos0."""
+    R = pin.exp3(np.array([0.0, angle, 0.0]))
+    for site in ("closing_C_2", "closing_C_2_z"):
+        pos = re.search(rf'name="{site}" pos="([^"]+)"', text).group(1)
+        turned = " ".join(repr(float(x)) for x in R @ np.array([float(x) for x in pos.split()]))
+        text = text.replace(f'name="{site}" pos="{pos}"', f'name="{site}" pos="{turned}"')
+    return text
+
+
+def test_two_site_connects_are_one_hinge_closure_as_the_anchor_form(tmp_path):
+    """onshape-to-robot's hinge closure (two `connect`s by site, 0.1 m apart along the hinge) reads as one
+    revolute cut, as the same connects written by body and anchor: the Kutzbach count 1 (two balls
+    counted -1), the mobility 1 and MuJoCo's (nv - rank of its equality rows), and every frame of the
+    two models at the same place at assembled configurations."""
+    anchored = written(tmp_path, _anchor_form(ONSHAPE_FOUR_BAR.read_text()), "anchored.xml")
+    assert "site1" not in anchored.read_text()
+    sites, anchors = read_mjcf(ONSHAPE_FOUR_BAR), read_mjcf(anchored)
+    for desc in (sites, anchors):
+        assert [c.kind for c in desc.closures] == ["revolute"]
+        np.testing.assert_allclose(desc.closures[0].axis, [0.0, 1.0, 0.0], atol=1e-15)
+    assert mechkit.load(ONSHAPE_FOUR_BAR).structure.kutzbach == mechkit.load(anchored).structure.kutzbach == 1
+    ref = MujocoReference(ONSHAPE_FOUR_BAR, sites.model)
+    for crank in (0.0, 0.4, -0.7):
+        qs, qa = (Statics(d).assemble(Statics(d).configuration(d.guess), {"crank": crank}) for d in (sites, anchors))
+        np.testing.assert_allclose(qs, qa, atol=1e-12)
+        J = ref.at(qs)["J"]
+        assert np.max(np.abs(ref.at(qs)["residual"])) < 1e-12
+        assert Statics(sites).mobility(qs) == 1 == sites.model.nv - np.linalg.matrix_rank(J, 1e-9)
+        for d in (sites, anchors):
+            pin.framesForwardKinematics(d.model, data := d.model.createData(), qs)
+            c = d.closures[0]
+            np.testing.assert_allclose(
+                data.oMf[d.model.getFrameId(c.frame_a)].translation,
+                data.oMf[d.model.getFrameId(c.frame_b)].translation,
+                atol=1e-12,
+            )
+
+
+def test_site_connects_open_at_qpos0_are_closed_where_mujoco_closes_them(tmp_path):
+    """The rocker's closing sites turned 0.3 rad about its hinge: at qpos0 the connects are open. Where
+    Newton on MuJoCo's own equality rows closes them, the reader's hinge cut is closed too (its rows
+    vanish), and the mobility there is 1, as nv - rank of MuJoCo's rows."""
+    path = written(tmp_path, _rocker_sites_turned(ONSHAPE_FOUR_BAR.read_text(), 0.3), "open.xml")
+    desc = read_mjcf(path)
+    st, ref = Statics(desc), MujocoReference(path, desc.model)
+    q = st.configuration(desc.guess)
+    assert np.linalg.norm(ref.at(q)["residual"]) > 0.05 and np.linalg.norm(st.rows(q)[0]) > 0.05
+    for _ in range(30):
+        mj = ref.at(q)
+        q = q - np.linalg.pinv(mj["J"], rcond=1e-12) @ mj["residual"]
+    assert np.max(np.abs(ref.at(q)["residual"])) < 1e-13
+    assert np.max(np.abs(st.rows(q)[0])) < 1e-12
+    assert st.mobility(q) == 1 == desc.model.nv - np.linalg.matrix_rank(ref.at(q)["J"], 1e-9)
+
+
+def test_site_connects_whose_points_are_unequally_apart_are_refused(tmp_path):
+    """Two site connects 0.1 m apart on the coupler and 0.12 m on the rocker: no pose closes both (MuJoCo
+    would settle between them); the reader names both equalities."""
+    text = ONSHAPE_FOUR_BAR.read_text().replace('<site name="closing_C_2_z" pos="-0.038894251654084 0.1', "@")
+    text = text.replace("@", '<site name="closing_C_2_z" pos="-0.038894251654084 0.12')
+    with pytest.raises(MalformedDescription, match=r"0\.1 m apart on 'coupler' but 0\.12 m apart on 'rocker'"):
+        read_mjcf(written(tmp_path, text, "unequal.xml"))
