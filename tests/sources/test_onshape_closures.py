@@ -117,3 +117,43 @@ def test_without_the_z_pair_the_closure_is_a_ball_and_a_declared_loop_wins(tmp_p
 def test_closing_frames_mechkit_cannot_pair_are_refused_by_name(edit, needle, tmp_path):
     with pytest.raises(MalformedDescription, match=re.escape(needle)):
         read_urdf(written(tmp_path, edit(URDF), "bad.urdf"))
+
+
+def test_the_pages_hand_closings_of_a_cad_export_hold_as_onshapes(tmp_path):
+    """docs/your_own_mechanism.md closes a CAD export (the four-bar without closing frames) by hand, with a
+    <mechkit:loop> and with an Extended-URDF sidecar: each, pasted into the exporter's tree, loads with one
+    hinge loop, DOF 1, the rocker where the onshape closing frames put it and the crank held with their effort
+    (1e-12; their 1e-9 kg dummy links made massless, as the page's frames are)."""
+    from tests_support import ROOT
+
+    page = (ROOT / "docs" / "your_own_mechanism.md").read_text()
+    section = page[page.index("## CAD exports") :]
+    xml = re.search(r"```xml\n(.*?)```", section, re.DOTALL)[1]
+    sidecar = re.search(r"```yaml\n(.*?)```", section, re.DOTALL)[1]
+    tree = re.sub(r"  <!-- Frame closing_C.*?</joint>\n", "", URDF, flags=re.DOTALL)
+    assert 'link name="closing' not in tree
+    added = xml[xml.index("  <link name=") : xml.index("</robot>")]
+    hand = tree.replace('<robot name="onshape_four_bar">', xml.split("\n")[0]).replace("</robot>", added + "</robot>")
+    y_frames = "".join(
+        f'<link name="{name}_y"/><joint name="{name}_y_frame" type="fixed"><origin xyz="0 1 0"/>'
+        f'<parent link="{name}"/><child link="{name}_y"/></joint>'
+        for name in ("pin_C_coupler", "pin_C_rocker")
+    )
+    with_sidecar = re.sub(r"\s*<mechkit:loop .*?/>", y_frames, hand).replace(
+        ' xmlns:mechkit="https://mechkit.dev/loop"', ""
+    )
+    folder = tmp_path / "sidecar"
+    folder.mkdir()
+    (folder / "four_bar.yaml").write_text(sidecar)
+    massless = written(tmp_path, URDF.replace('<mass value="1e-9"/>', '<mass value="0"/>'), "massless.urdf")
+    onshape = mechkit.load(massless, actuated=["crank"])  # its dummy links weigh 1e-9 kg, the page's nothing
+    q_onshape = onshape.assemble({"crank": 0.5}, guess=onshape.home_q)
+    zero = np.zeros(onshape.model.nv)
+    held = onshape.inverse_dynamics(q_onshape, zero, zero).efforts["crank"]
+    for path in (written(tmp_path, hand, "four_bar.urdf"), written(folder, with_sidecar, "four_bar.urdf")):
+        m = mechkit.load(path, actuated=["crank"])
+        assert m.home_mobility.dof == 1 == m.structure.kutzbach and [c.closure.kind for c in m.cuts] == ["revolute"]
+        q = m.assemble({"crank": 0.5}, guess=m.home_q)
+        np.testing.assert_allclose(m.joint_values(q)["rocker"], onshape.joint_values(q_onshape)["rocker"], atol=1e-12)
+        assert m.inverse_dynamics(q, zero, zero).efforts["crank"] == pytest.approx(held, abs=1e-12)
+    assert abs(held) > 0.1
