@@ -451,3 +451,99 @@ def test_site_connects_whose_points_are_unequally_apart_are_refused(tmp_path):
     text = text.replace("@", '<site name="closing_C_2_z" pos="-0.038894251654084 0.12')
     with pytest.raises(MalformedDescription, match=r"0\.1 m apart on 'coupler' but 0\.12 m apart on 'rocker'"):
         read_mjcf(written(tmp_path, text, "unequal.xml"))
+
+
+#: Bricard's orthogonal 6R linkage (ours: links 0.1 m, twists +-90 degrees, no offsets): overconstrained,
+#: Kutzbach 5 + 1 - 6 = 0 with a hinge cut (-1 read as two balls), mobile with one freedom.
+BRICARD_A, BRICARD_TWISTS = 0.1, (np.pi / 2, -np.pi / 2) * 3
+
+
+def _bricard_step(i: int, theta: float) -> pin.SE3:
+    """Joint i's frame to joint i+1's (Denavit-Hartenberg: turn theta about z, a along x, twist about x)."""
+    turn = pin.SE3(pin.exp3(np.array([0.0, 0.0, theta])), np.zeros(3))
+    return turn * pin.SE3(pin.exp3(np.array([BRICARD_TWISTS[i], 0.0, 0.0])), np.array([BRICARD_A, 0.0, 0.0]))
+
+
+def _bricard_closed() -> np.ndarray:
+    """Joint angles (6,) closing the loop (the product of the six steps the identity), by Newton."""
+
+    def residual(theta):
+        product = pin.SE3.Identity()
+        for i, t in enumerate(theta):
+            product = product * _bricard_step(i, t)
+        return pin.log6(product).vector
+
+    theta = np.array([0.7, 2.0, 0.7, 2.0, 0.7, 2.0])
+    for _ in range(30):
+        J = np.column_stack([(residual(theta + h) - residual(theta - h)) / 2e-7 for h in 1e-7 * np.eye(6)])
+        theta = theta - np.linalg.pinv(J, 1e-9) @ residual(theta)
+    assert np.linalg.norm(residual(theta)) < 1e-14
+    return theta
+
+
+def _bricard_mjcf(theta: np.ndarray, closed: np.ndarray, form: str) -> str:
+    """The Bricard linkage as MJCF, its five tree joints at 0 where the angles are `theta`, its sixth
+    joint (link 5 to the ground) cut as two connects 0.1 m apart on its axis, on the ground where
+    `closed` puts it: by site, or by body and anchor (on link 5)."""
+    quat = lambda R: " ".join(repr(float(c)) for c in pin.Quaternion(R).coeffs()[[3, 0, 1, 2]])
+    vec = lambda v: " ".join(repr(float(c)) for c in v)
+    body = ""
+    for i in range(5):
+        place = pin.SE3(pin.exp3(np.array([0.0, 0.0, theta[0]])), np.zeros(3)) if i == 0 else _bricard_step(i - 1, 0.0)
+        if i > 0:
+            place = place * pin.SE3(pin.exp3(np.array([0.0, 0.0, theta[i]])), np.zeros(3))
+        body += (
+            f'<body name="L{i + 1}" pos="{vec(place.translation)}" quat="{quat(place.rotation)}">'
+            f'<joint name="j{i + 1}" axis="0 0 1"/><geom fromto="0 0 0 {BRICARD_A} 0 0"/>'
+        )
+    six = _bricard_step(4, 0.0)  # joint 6's frame on link 5
+    ground = (_bricard_step(5, closed[5])).inverse()  # joint 6's frame on the ground when closed
+    ends = [
+        (six.translation + s * six.rotation[:, 2], ground.translation + s * ground.rotation[:, 2]) for s in (0, 0.1)
+    ]
+    sites = "".join(f'<site name="on5_{k}" pos="{vec(p)}"/>' for k, (p, _) in enumerate(ends))
+    world = "".join(f'<site name="on0_{k}" pos="{vec(g)}"/>' for k, (_, g) in enumerate(ends))
+    if form == "site":
+        equality = "".join(f'<connect site1="on5_{k}" site2="on0_{k}"/>' for k in range(2))
+    else:
+        equality = "".join(f'<connect body1="L5" body2="world" anchor="{vec(p)}"/>' for p, _ in ends)
+    return (
+        '<mujoco model="bricard"><default><geom type="capsule" size="0.005" density="2700"/></default>'
+        f"<worldbody>{world}{body}{sites}{'</body>' * 5}</worldbody><equality>{equality}</equality></mujoco>"
+    )
+
+
+def test_bricards_linkage_cut_by_two_site_connects_is_one_hinge_with_one_freedom(tmp_path):
+    """Bricard's overconstrained 6R loop, its sixth hinge cut as two connects by site or by anchor: one
+    revolute cut either way, the Kutzbach count 0 (two balls counted -1), the numerical mobility 1 as
+    MuJoCo's (nv - rank of its equality rows), and both forms assemble to the same configuration."""
+    closed = _bricard_closed()
+    descs = [read_mjcf(written(tmp_path, _bricard_mjcf(closed, closed, f), f"{f}.xml")) for f in ("site", "anchor")]
+    for form, desc in zip(("site", "anchor"), descs, strict=True):
+        assert [c.kind for c in desc.closures] == ["revolute"]
+        assert mechkit.load(tmp_path / f"{form}.xml").structure.kutzbach == 0
+    ref = MujocoReference(tmp_path / "site.xml", descs[0].model)
+    for move in (0.0, 0.2, -0.3):
+        qs = [Statics(d).assemble(Statics(d).configuration(d.guess), {"j1": move}) for d in descs]
+        np.testing.assert_allclose(qs[0], qs[1], atol=1e-12)
+        mj = ref.at(qs[0])
+        assert np.max(np.abs(mj["residual"])) < 1e-12
+        assert Statics(descs[0]).mobility(qs[0]) == 1 == 5 - np.linalg.matrix_rank(mj["J"], 1e-9)
+
+
+def test_bricards_site_connects_written_open_close_where_mujoco_closes_them(tmp_path):
+    """The same linkage written at other angles (qpos0 open: link 5's hinge line off the ground's, in
+    place and direction): where Newton on MuJoCo's own rows closes the connects, the reader's hinge cut
+    (frame b turned onto the ground's line) is closed too, and the mobility there is MuJoCo's, 1."""
+    closed = _bricard_closed()
+    path = written(tmp_path, _bricard_mjcf(closed + np.array([0.1, -0.05, 0.08, 0.0, 0.06, 0.0]), closed, "site"))
+    desc = read_mjcf(path)
+    st, ref = Statics(desc), MujocoReference(path, desc.model)
+    q = st.configuration(desc.guess)
+    assert np.linalg.norm(ref.at(q)["residual"]) > 0.01
+    for _ in range(40):
+        mj = ref.at(q)
+        q = q - np.linalg.pinv(mj["J"], rcond=1e-10) @ mj["residual"]
+    assert np.max(np.abs(ref.at(q)["residual"])) < 1e-13
+    assert np.max(np.abs(st.rows(q)[0])) < 1e-12
+    assert st.mobility(q) == 1 == 5 - np.linalg.matrix_rank(ref.at(q)["J"], 1e-9)
