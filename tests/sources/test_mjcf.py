@@ -547,3 +547,15 @@ def test_bricards_site_connects_written_open_close_where_mujoco_closes_them(tmp_
     assert np.max(np.abs(ref.at(q)["residual"])) < 1e-13
     assert np.max(np.abs(st.rows(q)[0])) < 1e-12
     assert st.mobility(q) == 1 == 5 - np.linalg.matrix_rank(ref.at(q)["J"], 1e-9)
+
+
+def test_two_site_connects_naming_the_bodies_in_either_order_are_one_hinge(tmp_path):
+    """The four-bar's second connect written rocker first (site1 on the rocker): still one revolute cut,
+    closed at qpos0, about the hinge (y)."""
+    text = ONSHAPE_FOUR_BAR.read_text().replace(
+        'site1="closing_C_1_z" site2="closing_C_2_z"', 'site1="closing_C_2_z" site2="closing_C_1_z"'
+    )
+    desc = read_mjcf(written(tmp_path, text, "swapped.xml"))
+    assert [c.kind for c in desc.closures] == ["revolute"]
+    np.testing.assert_allclose(desc.closures[0].axis, [0.0, 1.0, 0.0], atol=1e-15)
+    assert np.max(np.abs(Statics(desc).rows(Statics(desc).configuration(desc.guess))[0])) < 1e-15
