@@ -4,6 +4,7 @@ equal to Drake's (its parser is libsdformat) at the same joint values."""
 
 from __future__ import annotations
 
+import re
 import xml.etree.ElementTree as ET
 from pathlib import Path
 
@@ -99,23 +100,27 @@ def test_the_nested_joints_first_four_bar_is_the_flat_one():
         np.testing.assert_allclose(poses[0], poses[1], atol=1e-12)
 
 
-def test_the_nested_arm_agrees_with_drakes_parser():
-    """nested_arm.sdf read by Drake (libsdformat): at random joint values every body's pose in the world
-    equals the reader's to 1e-12 (Drake names a nested body by its model instance, `nested_arm::arm::hand`,
-    and the joint by the instance of its child)."""
+@pytest.mark.parametrize("file, bodies", [("nested_arm.sdf", 5), ("four_bar_nested.sdf", 4)])
+def test_the_nested_files_agree_with_drakes_parser(file, bodies, tmp_path):
+    """nested_arm.sdf, and four_bar_nested.sdf opened at its cut pin_C (Drake's plant is a tree), read by
+    Drake (libsdformat): at random joint values every body's pose in the world equals the reader's to 1e-12
+    (Drake names a nested body by its model instance, `nested_arm::arm::hand`, and the joint by the instance
+    of its child)."""
     pytest.importorskip("pydrake")
     from pydrake.multibody.parsing import Parser
     from pydrake.multibody.plant import MultibodyPlant
 
-    path = FIXTURES / "nested_arm.sdf"
+    path = tmp_path / file
+    path.write_text(re.sub(r'\s*<joint name="pin_C".*?</joint>', "", (FIXTURES / file).read_text(), flags=re.DOTALL))
     desc = read_sdf(path)
+    assert desc.closures == ()
     plant = MultibodyPlant(0.0)
     top = Parser(plant).AddModels(str(path))[0]
     plant.Finalize()
     context = plant.CreateDefaultContext()
     joints = {plant.get_joint(j).name(): plant.get_joint(j) for j in plant.GetJointIndices()}
     links = [f.name for f in desc.model.frames if f.type == pin.FrameType.BODY and f.name != "world"]
-    assert len(links) == plant.num_bodies() - 1 == 5
+    assert len(links) == plant.num_bodies() - 1 == bodies
     rng = np.random.default_rng(7)
     for _ in range(5):
         q = rng.uniform(-1.5, 1.5, desc.model.nq)
