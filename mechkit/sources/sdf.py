@@ -1,8 +1,8 @@
 """An SDFormat file (`.sdf`), read with an XML parser (the PyPI build of Pinocchio has no SDF parser)
 into a Pinocchio model with closure records.
 
-The file holds one `<model>` of links, joints and `<frame>`s, in any order (SDFormat puts none on a
-model's elements), and nested `<model>`s, read as libsdformat reads them: flattened into it, their names
+The file holds one `<model>` of links, joints and `<frame>`s, in any order (the spec, sdformat.org/spec?ver=1.9&elem=model,
+puts none on a model's children), and nested `<model>`s, read as libsdformat reads them: flattened into it, their names
 scoped by `::` (`mechkit.sources.sdf_nested`; `<include>` and world files are refused by name). Its joints
 may form a graph; it becomes a spanning tree plus cut joints:
 

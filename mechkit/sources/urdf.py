@@ -67,7 +67,7 @@ def describe_urdf(urdf: str, source: Path | None, fmt: str, params: dict[str, st
 
     Raises:
         MalformedDescription: see `mechkit.sources.urdf_checks`, `mechkit.sources.urdf.parse_loops`,
-            `mechkit.sources.urdf_mimics.parse_mimics`.
+            `mechkit.sources.urdf_mimics.parse_mimics`, `mechkit.sources.onshape_closures.closing_frames`.
     """
     where = str(source) if source is not None else "urdf"
     root = parse_xml(urdf, where)
