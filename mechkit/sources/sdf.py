@@ -1,10 +1,11 @@
 """An SDFormat file (`.sdf`), read with an XML parser (the PyPI build of Pinocchio has no SDF parser)
 into a Pinocchio model with closure records.
 
-The file holds one `<model>` of links, joints and `<frame>`s, in any order (the spec, sdformat.org/spec?ver=1.9&elem=model,
-puts none on a model's children), and nested `<model>`s, read as libsdformat reads them: flattened into it, their names
-scoped by `::` (`mechkit.sources.sdf_nested`; `<include>` and world files are refused by name). Its joints
-may form a graph; it becomes a spanning tree plus cut joints:
+The file holds one `<model>` of links, joints and `<frame>`s, in any order (the spec,
+sdformat.org/spec?ver=1.9&elem=model, puts none on a model's children), and nested `<model>`s, read as
+libsdformat reads them: flattened into it, their names scoped by `::` (`mechkit.sources.sdf_nested`;
+`<include>` and world files are refused by name). Its joints may form a graph; it becomes a spanning tree
+plus cut joints:
 
 - the tree joint of a link is, among the joints whose child it is, the one named in
   `parent_guidance`, else the first in file order (Pinocchio's SDF parser chooses so); its other
