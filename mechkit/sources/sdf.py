@@ -1,8 +1,11 @@
 """An SDFormat file (`.sdf`), read with an XML parser (the PyPI build of Pinocchio has no SDF parser)
 into a Pinocchio model with closure records.
 
-The file holds one `<model>` of links and joints (nested models, `<include>` and world files are
-refused by name). Its joints may form a graph; it becomes a spanning tree plus cut joints:
+The file holds one `<model>` of links, joints and `<frame>`s, in any order (the spec,
+sdformat.org/spec?ver=1.9&elem=model, puts none on a model's children), and nested `<model>`s, read as
+libsdformat reads them: flattened into it, their names scoped by `::` (`mechkit.sources.sdf_nested`;
+`<include>` and world files are refused by name). Its joints may form a graph; it becomes a spanning tree
+plus cut joints:
 
 - the tree joint of a link is, among the joints whose child it is, the one named in
   `parent_guidance`, else the first in file order (Pinocchio's SDF parser chooses so); its other
@@ -44,6 +47,7 @@ from mechkit.sources.description import Description, read_text
 from mechkit.sources.physical import check_body
 from mechkit.sources.pinocchio_tree import add_body, add_frame, add_joint, joint_model, tree_urdf
 from mechkit.sources.sdf_frames import MODEL, SdfFrames, boolean, number, sdf_version
+from mechkit.sources.sdf_nested import flattened
 from mechkit.sources.urdf import parse_xml
 
 #: SDFormat joint type -> Pinocchio joint kind (tree) and cut kind.
@@ -83,7 +87,8 @@ def read_sdf(path: Path, parent_guidance: Sequence[str] = ()) -> Description:
             f"expected one <model> under <sdf>, found {len(models)}"
             + (" and a <world>" if root.find("world") is not None else ""),
         )
-    return _Reader(models[0], sdf_version(root, str(path)), tuple(parent_guidance)).description(path)
+    version = sdf_version(root, str(path))
+    return _Reader(flattened(models[0], version), version, tuple(parent_guidance)).description(path)
 
 
 class _Reader(SdfFrames):
@@ -116,21 +121,15 @@ class _Reader(SdfFrames):
         add_body(model, "world", 0, pin.SE3.Identity(), pin.Inertia.Zero())
         carrier: dict[str, tuple[int, pin.SE3]] = {"world": (0, pin.SE3.Identity())}
         guess: dict[str, float | tuple[float, ...]] = {}
-        queue = ["world", *roots]
-        for root in roots:
-            at = self.world * self.frame(root)
-            name = "root_joint" if len(roots) == 1 else f"{root}_root_joint"
-            carrier[root] = (
-                add_joint(model, name, 0, pin.JointModelFreeFlyer(), pin.SE3.Identity()),
-                pin.SE3.Identity(),
-            )
-            guess[name] = tuple(float(x) for x in at.translation) + tuple(float(x) for x in pin.log3(at.rotation))
-            add_body(model, root, *carrier[root], self._inertia(root))
         springs: list[JointSpring] = []
-        stack = list(reversed(queue))  # depth first: Pinocchio's algorithms take a subtree as contiguous joints
+        # depth first, a root's free-flyer just before its subtree: Pinocchio's algorithms take a subtree as
+        # contiguous joints
+        stack = list(reversed(["world", *roots]))
         while stack:
             link = stack.pop()
-            if link != "world" and link not in roots:
+            if link in roots:
+                self._root(model, link, "root_joint" if len(roots) == 1 else f"{link}_root_joint", carrier, guess)
+            elif link != "world":
                 self._tree_joint(model, tree[link], ends[tree[link]], carrier, springs, guess)
             stack += reversed([c for c, j in tree.items() if ends[j][0] == link])
         lost = [link for link in self.items["link"] if link not in carrier]
@@ -165,6 +164,13 @@ class _Reader(SdfFrames):
             couplings=tuple(couplings),
             springs=tuple(springs),
         )
+
+    def _root(self, model: pin.Model, link: str, name: str, carrier: dict, guess: dict) -> None:
+        """A free-flyer `name` from the world to a root link, its guess the link's pose in the world."""
+        at = self.world * self.frame(link)
+        carrier[link] = (add_joint(model, name, 0, pin.JointModelFreeFlyer(), pin.SE3.Identity()), pin.SE3.Identity())
+        guess[name] = tuple(float(x) for x in at.translation) + tuple(float(x) for x in pin.log3(at.rotation))
+        add_body(model, link, *carrier[link], self._inertia(link))
 
     def _in(self, carrier: dict, link: str, X: pin.SE3) -> pin.SE3:
         """A placement X in the model frame, as a placement in the frame of the joint carrying `link`."""

@@ -112,20 +112,17 @@ class SdfFrames:
     """The named frames of one SDFormat model (links, joints, `<frame>`s) and their poses.
 
     Args:
-        model: the `<model>` element.
+        model: the `<model>` element, its nested models flattened (`mechkit.sources.sdf_nested.flattened`).
         version: the file's SDFormat version (major, minor).
         guidance: the joints preferred as tree joints (kept for the reader).
 
     Raises:
-        MalformedDescription: nested models or includes, a missing or repeated name, no link.
+        MalformedDescription: a missing or repeated name, no link.
     """
 
     def __init__(self, model: ET.Element, version: tuple[int, int], guidance: tuple[str, ...]):
         self.element, self.version, self.guidance = model, version, guidance
         self.name = model.get("name") or "model"
-        for tag in ("model", "include"):
-            if model.find(tag) is not None:
-                raise MalformedDescription(f"SDF model {self.name!r}", f"nested <{tag}> is not read")
         self.items: dict[str, dict[str, ET.Element]] = {"link": {}, "joint": {}, "frame": {}}
         for kind, table in self.items.items():
             for element in model.findall(kind):

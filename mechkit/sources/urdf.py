@@ -24,6 +24,7 @@ import pinocchio as pin
 from mechkit.base.exceptions import MalformedDescription
 from mechkit.core import LOOP_KINDS, ROW_SETS, JointSpring, LoopClosure
 from mechkit.sources.description import Description, read_text
+from mechkit.sources.onshape_closures import closing_frames
 from mechkit.sources.urdf_checks import check_inertias, check_tree
 from mechkit.sources.urdf_mimics import parse_mimics
 
@@ -66,13 +67,14 @@ def describe_urdf(urdf: str, source: Path | None, fmt: str, params: dict[str, st
 
     Raises:
         MalformedDescription: see `mechkit.sources.urdf_checks`, `mechkit.sources.urdf.parse_loops`,
-            `mechkit.sources.urdf_mimics.parse_mimics`.
+            `mechkit.sources.urdf_mimics.parse_mimics`, `mechkit.sources.onshape_closures.closing_frames`.
     """
     where = str(source) if source is not None else "urdf"
     root = parse_xml(urdf, where)
     check_tree(root)
     check_inertias(root)
     closures = tuple(parse_loops(root))
+    closures += closing_frames(root, closures)  # onshape-to-robot's closing_* frames (fieldloops)
     joints = moving_joints(root)
     home, guess = parse_home(root), parse_home(root, "guess")
     for tag, values in (("home", home), ("guess", guess)):

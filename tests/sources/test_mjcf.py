@@ -373,3 +373,189 @@ def test_mjcf_errors(tmp_path):
     for i, (text, needle) in enumerate(cases.items()):
         with pytest.raises(MalformedDescription, match=needle):
             mechkit.load(written(tmp_path, text, f"m{i}.xml"))
+
+
+ONSHAPE_FOUR_BAR = FIXTURES / "onshape" / "four_bar.xml"
+
+
+def _anchor_form(text: str) -> str:
+    """The four-bar's two site connects as MuJoCo 2's body-and-anchor connects (anchors on the coupler)."""
+    for site in ("closing_C_1", "closing_C_1_z"):
+        pos = re.search(rf'name="{site}" pos="([^"]+)"', text).group(1)
+        text = text.replace(
+            f'site1="{site}" site2="{site.replace("_1", "_2")}"', f'body1="coupler" body2="rocker" anchor="{pos}"'
+        )
+    return text
+
+
+def _rocker_sites_turned(text: str, angle: float) -> str:
+    """The rocker's closing sites turned by `angle` (rad) about its hinge (y): the file opens at qpos0."""
+    R = pin.exp3(np.array([0.0, angle, 0.0]))
+    for site in ("closing_C_2", "closing_C_2_z"):
+        pos = re.search(rf'name="{site}" pos="([^"]+)"', text).group(1)
+        turned = " ".join(repr(float(x)) for x in R @ np.array([float(x) for x in pos.split()]))
+        text = text.replace(f'name="{site}" pos="{pos}"', f'name="{site}" pos="{turned}"')
+    return text
+
+
+def test_two_site_connects_are_one_hinge_closure_as_the_anchor_form(tmp_path):
+    """onshape-to-robot's hinge closure (two `connect`s by site, 0.1 m apart along the hinge) reads as one
+    revolute cut, as the same connects written by body and anchor: the Kutzbach count 1 (two balls
+    counted -1), the mobility 1 and MuJoCo's (nv - rank of its equality rows), and every frame of the
+    two models at the same place at assembled configurations."""
+    anchored = written(tmp_path, _anchor_form(ONSHAPE_FOUR_BAR.read_text()), "anchored.xml")
+    assert "site1" not in anchored.read_text()
+    sites, anchors = read_mjcf(ONSHAPE_FOUR_BAR), read_mjcf(anchored)
+    for desc in (sites, anchors):
+        assert [c.kind for c in desc.closures] == ["revolute"]
+        np.testing.assert_allclose(desc.closures[0].axis, [0.0, 1.0, 0.0], atol=1e-15)
+    assert mechkit.load(ONSHAPE_FOUR_BAR).structure.kutzbach == mechkit.load(anchored).structure.kutzbach == 1
+    ref = MujocoReference(ONSHAPE_FOUR_BAR, sites.model)
+    for crank in (0.0, 0.4, -0.7):
+        qs, qa = (Statics(d).assemble(Statics(d).configuration(d.guess), {"crank": crank}) for d in (sites, anchors))
+        np.testing.assert_allclose(qs, qa, atol=1e-12)
+        J = ref.at(qs)["J"]
+        assert np.max(np.abs(ref.at(qs)["residual"])) < 1e-12
+        assert Statics(sites).mobility(qs) == 1 == sites.model.nv - np.linalg.matrix_rank(J, 1e-9)
+        for d in (sites, anchors):
+            pin.framesForwardKinematics(d.model, data := d.model.createData(), qs)
+            c = d.closures[0]
+            np.testing.assert_allclose(
+                data.oMf[d.model.getFrameId(c.frame_a)].translation,
+                data.oMf[d.model.getFrameId(c.frame_b)].translation,
+                atol=1e-12,
+            )
+
+
+def test_site_connects_open_at_qpos0_are_closed_where_mujoco_closes_them(tmp_path):
+    """The rocker's closing sites turned 0.3 rad about its hinge: at qpos0 the connects are open. Where
+    Newton on MuJoCo's own equality rows closes them, the reader's hinge cut is closed too (its rows
+    vanish), and the mobility there is 1, as nv - rank of MuJoCo's rows."""
+    path = written(tmp_path, _rocker_sites_turned(ONSHAPE_FOUR_BAR.read_text(), 0.3), "open.xml")
+    desc = read_mjcf(path)
+    st, ref = Statics(desc), MujocoReference(path, desc.model)
+    q = st.configuration(desc.guess)
+    assert np.linalg.norm(ref.at(q)["residual"]) > 0.05 and np.linalg.norm(st.rows(q)[0]) > 0.05
+    for _ in range(30):
+        mj = ref.at(q)
+        q = q - np.linalg.pinv(mj["J"], rcond=1e-12) @ mj["residual"]
+    assert np.max(np.abs(ref.at(q)["residual"])) < 1e-13
+    assert np.max(np.abs(st.rows(q)[0])) < 1e-12
+    assert st.mobility(q) == 1 == desc.model.nv - np.linalg.matrix_rank(ref.at(q)["J"], 1e-9)
+
+
+def test_site_connects_whose_points_are_unequally_apart_are_refused(tmp_path):
+    """Two site connects 0.1 m apart on the coupler and 0.12 m on the rocker: no pose closes both (MuJoCo
+    would settle between them); the reader names both equalities."""
+    text = ONSHAPE_FOUR_BAR.read_text().replace('<site name="closing_C_2_z" pos="-0.038894251654084 0.1', "@")
+    text = text.replace("@", '<site name="closing_C_2_z" pos="-0.038894251654084 0.12')
+    with pytest.raises(MalformedDescription, match=r"0\.1 m apart on 'coupler' but 0\.12 m apart on 'rocker'"):
+        read_mjcf(written(tmp_path, text, "unequal.xml"))
+
+
+#: Bricard's orthogonal 6R linkage (ours: links 0.1 m, twists +-90 degrees, no offsets): overconstrained,
+#: Kutzbach 5 + 1 - 6 = 0 with a hinge cut (-1 read as two balls), mobile with one freedom.
+BRICARD_A, BRICARD_TWISTS = 0.1, (np.pi / 2, -np.pi / 2) * 3
+
+
+def _bricard_step(i: int, theta: float) -> pin.SE3:
+    """Joint i's frame to joint i+1's (Denavit-Hartenberg: turn theta about z, a along x, twist about x)."""
+    turn = pin.SE3(pin.exp3(np.array([0.0, 0.0, theta])), np.zeros(3))
+    return turn * pin.SE3(pin.exp3(np.array([BRICARD_TWISTS[i], 0.0, 0.0])), np.array([BRICARD_A, 0.0, 0.0]))
+
+
+def _bricard_closed() -> np.ndarray:
+    """Joint angles (6,) closing the loop (the product of the six steps the identity), by Newton."""
+
+    def residual(theta):
+        product = pin.SE3.Identity()
+        for i, t in enumerate(theta):
+            product = product * _bricard_step(i, t)
+        return pin.log6(product).vector
+
+    theta = np.array([0.7, 2.0, 0.7, 2.0, 0.7, 2.0])
+    for _ in range(30):
+        J = np.column_stack([(residual(theta + h) - residual(theta - h)) / 2e-7 for h in 1e-7 * np.eye(6)])
+        theta = theta - np.linalg.pinv(J, 1e-9) @ residual(theta)
+    assert np.linalg.norm(residual(theta)) < 1e-14
+    return theta
+
+
+def _bricard_mjcf(theta: np.ndarray, closed: np.ndarray, form: str) -> str:
+    """The Bricard linkage as MJCF, its five tree joints at 0 where the angles are `theta`, its sixth
+    joint (link 5 to the ground) cut as two connects 0.1 m apart on its axis, on the ground where
+    `closed` puts it: by site, or by body and anchor (on link 5)."""
+    quat = lambda R: " ".join(repr(float(c)) for c in pin.Quaternion(R).coeffs()[[3, 0, 1, 2]])
+    vec = lambda v: " ".join(repr(float(c)) for c in v)
+    body = ""
+    for i in range(5):
+        place = pin.SE3(pin.exp3(np.array([0.0, 0.0, theta[0]])), np.zeros(3)) if i == 0 else _bricard_step(i - 1, 0.0)
+        if i > 0:
+            place = place * pin.SE3(pin.exp3(np.array([0.0, 0.0, theta[i]])), np.zeros(3))
+        body += (
+            f'<body name="L{i + 1}" pos="{vec(place.translation)}" quat="{quat(place.rotation)}">'
+            f'<joint name="j{i + 1}" axis="0 0 1"/><geom fromto="0 0 0 {BRICARD_A} 0 0"/>'
+        )
+    six = _bricard_step(4, 0.0)  # joint 6's frame on link 5
+    ground = (_bricard_step(5, closed[5])).inverse()  # joint 6's frame on the ground when closed
+    ends = [
+        (six.translation + s * six.rotation[:, 2], ground.translation + s * ground.rotation[:, 2]) for s in (0, 0.1)
+    ]
+    sites = "".join(f'<site name="on5_{k}" pos="{vec(p)}"/>' for k, (p, _) in enumerate(ends))
+    world = "".join(f'<site name="on0_{k}" pos="{vec(g)}"/>' for k, (_, g) in enumerate(ends))
+    if form == "site":
+        equality = "".join(f'<connect site1="on5_{k}" site2="on0_{k}"/>' for k in range(2))
+    else:
+        equality = "".join(f'<connect body1="L5" body2="world" anchor="{vec(p)}"/>' for p, _ in ends)
+    return (
+        '<mujoco model="bricard"><default><geom type="capsule" size="0.005" density="2700"/></default>'
+        f"<worldbody>{world}{body}{sites}{'</body>' * 5}</worldbody><equality>{equality}</equality></mujoco>"
+    )
+
+
+def test_bricards_linkage_cut_by_two_site_connects_is_one_hinge_with_one_freedom(tmp_path):
+    """Bricard's overconstrained 6R loop, its sixth hinge cut as two connects by site or by anchor: one
+    revolute cut either way, the Kutzbach count 0 (two balls counted -1), the numerical mobility 1 as
+    MuJoCo's (nv - rank of its equality rows), and both forms assemble to the same configuration."""
+    closed = _bricard_closed()
+    descs = [read_mjcf(written(tmp_path, _bricard_mjcf(closed, closed, f), f"{f}.xml")) for f in ("site", "anchor")]
+    for form, desc in zip(("site", "anchor"), descs, strict=True):
+        assert [c.kind for c in desc.closures] == ["revolute"]
+        assert mechkit.load(tmp_path / f"{form}.xml").structure.kutzbach == 0
+    ref = MujocoReference(tmp_path / "site.xml", descs[0].model)
+    for move in (0.0, 0.2, -0.3):
+        qs = [Statics(d).assemble(Statics(d).configuration(d.guess), {"j1": move}) for d in descs]
+        np.testing.assert_allclose(qs[0], qs[1], atol=1e-12)
+        mj = ref.at(qs[0])
+        assert np.max(np.abs(mj["residual"])) < 1e-12
+        assert Statics(descs[0]).mobility(qs[0]) == 1 == 5 - np.linalg.matrix_rank(mj["J"], 1e-9)
+
+
+def test_bricards_site_connects_written_open_close_where_mujoco_closes_them(tmp_path):
+    """The same linkage written at other angles (qpos0 open: link 5's hinge line off the ground's, in
+    place and direction): where Newton on MuJoCo's own rows closes the connects, the reader's hinge cut
+    (frame b turned onto the ground's line) is closed too, and the mobility there is MuJoCo's, 1."""
+    closed = _bricard_closed()
+    path = written(tmp_path, _bricard_mjcf(closed + np.array([0.1, -0.05, 0.08, 0.0, 0.06, 0.0]), closed, "site"))
+    desc = read_mjcf(path)
+    st, ref = Statics(desc), MujocoReference(path, desc.model)
+    q = st.configuration(desc.guess)
+    assert np.linalg.norm(ref.at(q)["residual"]) > 0.01
+    for _ in range(40):
+        mj = ref.at(q)
+        q = q - np.linalg.pinv(mj["J"], rcond=1e-10) @ mj["residual"]
+    assert np.max(np.abs(ref.at(q)["residual"])) < 1e-13
+    assert np.max(np.abs(st.rows(q)[0])) < 1e-12
+    assert st.mobility(q) == 1 == 5 - np.linalg.matrix_rank(ref.at(q)["J"], 1e-9)
+
+
+def test_two_site_connects_naming_the_bodies_in_either_order_are_one_hinge(tmp_path):
+    """The four-bar's second connect written rocker first (site1 on the rocker): still one revolute cut,
+    closed at qpos0, about the hinge (y)."""
+    text = ONSHAPE_FOUR_BAR.read_text().replace(
+        'site1="closing_C_1_z" site2="closing_C_2_z"', 'site1="closing_C_2_z" site2="closing_C_1_z"'
+    )
+    desc = read_mjcf(written(tmp_path, text, "swapped.xml"))
+    assert [c.kind for c in desc.closures] == ["revolute"]
+    np.testing.assert_allclose(desc.closures[0].axis, [0.0, 1.0, 0.0], atol=1e-15)
+    assert np.max(np.abs(Statics(desc).rows(Statics(desc).configuration(desc.guess))[0])) < 1e-15

@@ -313,7 +313,15 @@ MALFORMED = {  # file text -> what the one-line error says
     "<sdf version='1.9'><world name='w'/></sdf>": "expected one <model>",
     GOOD.replace('<link name="base">', '<static>true</static><link name="base">'): "<static> is true",
     GOOD.replace('version="1.9"', 'version="latest"'): "expected a version",
-    GOOD.replace('<link name="rotor">', '<model name="inner"/><link name="rotor">'): "nested <model>",
+    GOOD.replace('<link name="rotor">', '<model name="inner"/><link name="rotor">'): "a nested model without a link",
+    GOOD.replace('<link name="rotor">', '<include><uri>arm</uri></include><link name="rotor">'): "<include> is not",
+    OLD.replace("</model>\n</sdf>", '<model name="inner"><link name="l"/></model></model></sdf>'): "from SDFormat 1.8",
+    GOOD.replace(
+        '<link name="rotor">', '<model name="inner" placement_frame="l"><link name="l"/></model><link name="rotor">'
+    ): "placement_frame is not read",
+    GOOD.replace(
+        '<link name="rotor">', '<model name="inner"><static>1</static><link name="l"/></model><link name="rotor">'
+    ): "a <static> nested model",
     GOOD.replace('<link name="rocker">', '<link name="crank">'): "missing or repeated name",
     GOOD.replace(
         'type="revolute">\n      <pose relative_to="pivot_D"/>', 'type="screw">\n      <pose relative_to="pivot_D"/>'
@@ -389,3 +397,27 @@ def test_joints_listed_before_links_read_as_the_usual_order(tmp_path):
     a, b = mechkit.load(source), mechkit.load(reordered)
     assert b.model.nq == a.model.nq and b.home_mobility.dof == a.home_mobility.dof == 1
     assert np.allclose(sorted(b.home_q), sorted(a.home_q), atol=1e-12)
+
+
+def test_several_free_roots_each_carry_their_subtree(tmp_path):
+    """Two chains nothing joins (joints first): a free-flyer per root, each just before its own subtree
+    (was: both free-flyers first, not depth first); 2 x 6 + 2 freedoms, and at the guess every link
+    where the file puts it."""
+    import mechkit
+
+    path = tmp_path / "two_roots.sdf"
+    path.write_text(
+        '<sdf version="1.9"><model name="m">'
+        '<joint name="jb" type="revolute"><parent>b</parent><child>b2</child><axis><xyz>0 0 1</xyz></axis></joint>'
+        '<joint name="ja" type="revolute"><parent>a</parent><child>a2</child><axis><xyz>0 0 1</xyz></axis></joint>'
+        '<link name="a"/><link name="b"><pose>1 0 0 0 0 0.5</pose></link><link name="a2"><pose>0 0 1 0 0 0</pose>'
+        '</link><link name="b2"><pose relative_to="b">0 2 0 0 0 0</pose></link></model></sdf>'
+    )
+    desc = read_sdf(path)
+    assert list(desc.model.names) == ["universe", "a_root_joint", "ja", "b_root_joint", "jb"]
+    assert mechkit.load(path).home_mobility.dof == 14
+    data = desc.model.createData()
+    pin.framesForwardKinematics(desc.model, data, Statics(desc).configuration(desc.guess))
+    where = {"a": (0, 0, 0), "b": (1, 0, 0), "a2": (0, 0, 1), "b2": (1 - 2 * np.sin(0.5), 2 * np.cos(0.5), 0)}
+    for link, xyz in where.items():
+        np.testing.assert_allclose(data.oMf[desc.model.getFrameId(link)].translation, xyz, atol=1e-15)

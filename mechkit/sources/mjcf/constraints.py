@@ -1,11 +1,13 @@
 """What a compiled MuJoCo model says besides its tree: loops, couplings, springs and actuators.
 
-- `<equality>` `connect` -> a spherical cut whose frames sit at the anchor on each body (MuJoCo's
-  anchor on body 2 is where the anchor on body 1 is at qpos0), two `connect`s between the same two
-  bodies at distinct points -> one revolute cut about the line through them; `weld` -> a weld cut
-  (as MuJoCo's: the point at relpose's position on body 1 meets the anchor on body 2, whose frame is
-  turned by relpose's rotation from body 1's; relpose is the qpos0 pose when the file gives none); on
-  sites: the site frames meet. `joint` -> a `Coupling` (joint1 - its qpos0 = polycoef(joint2 - its qpos0));
+- `<equality>` `connect` -> a spherical cut whose frames sit at the point on each body: the anchor on
+  body 1 and where it is on body 2 at qpos0 (MuJoCo's anchor on body 2), or the two sites (`site1`,
+  `site2`, MuJoCo 3's form); two `connect`s between the same two bodies (either form, either order) at
+  distinct points, as many points apart on each body -> one revolute cut about the line through them
+  (onshape-to-robot writes a hinge closure so); `weld` -> a weld cut (as MuJoCo's: the point at
+  relpose's position on body 1 meets the anchor on body 2, whose frame is turned by relpose's
+  rotation from body 1's; relpose is the qpos0 pose when the file gives none); on sites: the site
+  frames meet. `joint` -> a `Coupling` (joint1 - its qpos0 = polycoef(joint2 - its qpos0));
   `tendon` (fixed tendons) -> a `Coupling` of the tendon lengths about their qpos0 lengths.
 - joint `stiffness`, `springref` (MuJoCo's qpos_spring) and `damping` -> `JointSpring`s (none where
   `<flag spring="disable">` / `damper="disable"`); a ball or free joint carries damping only.
@@ -57,20 +59,27 @@ def equalities(mm: MjModel, tree: Tree) -> tuple[tuple[LoopClosure, ...], tuple[
     """
     closures: list[LoopClosure] = []
     couplings: list[Coupling] = []
-    connects: dict[tuple[int, int], list[tuple[str, np.ndarray]]] = {}
+    connects: dict[tuple[int, int], list[tuple[str, np.ndarray, np.ndarray]]] = {}
     for e in range(mm.neq):
         if not mm.eq_active0[e]:
             continue
         name, kind, data = tree.names["equality"][e], int(mm.eq_type[e]), np.asarray(mm.eq_data[e], dtype=float)
         o1, o2 = int(mm.eq_obj1id[e]), int(mm.eq_obj2id[e])
         where = f"MJCF equality {name!r}"
-        if kind in (CONNECT, WELD) and int(mm.eq_objtype[e]) == OBJ_SITE:
+        if kind == WELD and int(mm.eq_objtype[e]) == OBJ_SITE:
             a = se3(mm.site_quat[o1], mm.site_pos[o1])
             b = se3(mm.site_quat[o2], mm.site_pos[o2])
-            o1, o2 = int(mm.site_bodyid[o1]), int(mm.site_bodyid[o2])
-            closures.append(_cut(tree, name, "spherical" if kind == CONNECT else "weld", o1, o2, a, b))
+            closures.append(_cut(tree, name, "weld", int(mm.site_bodyid[o1]), int(mm.site_bodyid[o2]), a, b))
         elif kind == CONNECT:
-            connects.setdefault((o1, o2), []).append((name, data[0:3]))
+            if int(mm.eq_objtype[e]) == OBJ_SITE:
+                p1, p2 = (np.asarray(mm.site_pos[o], dtype=float) for o in (o1, o2))
+                o1, o2 = int(mm.site_bodyid[o1]), int(mm.site_bodyid[o2])
+            else:
+                p1 = data[0:3]
+                p2 = tree.world[o2].actInv(tree.world[o1].act(p1))
+            if (o2, o1) in connects:  # the same two bodies, named the other way round
+                o1, o2, p1, p2 = o2, o1, p2, p1
+            connects.setdefault((o1, o2), []).append((name, p1, p2))
         elif kind == WELD:  # MuJoCo's weld: relpose's point on body 1 meets the anchor on body 2, which is
             # turned by relpose's rotation from body 1
             closures.append(_cut(tree, name, "weld", o1, o2, se3(data[6:10], data[3:6]), pin.SE3(np.eye(3), data[0:3])))
@@ -96,17 +105,29 @@ def equalities(mm: MjModel, tree: Tree) -> tuple[tuple[LoopClosure, ...], tuple[
     return tuple(closures), tuple(couplings)
 
 
-def _connects(tree: Tree, b1: int, b2: int, anchors: list) -> list[LoopClosure]:
-    """Cuts of the connects between two bodies: a revolute one per pair at distinct points, else
-    spherical; frame b has frame a's pose at qpos0 (its origin is MuJoCo's anchor on body 2)."""
+def _connects(tree: Tree, b1: int, b2: int, points: list) -> list[LoopClosure]:
+    """Cuts of the connects between two bodies, each (name, point on b1, point on b2): a revolute one
+    per pair at distinct points, about the line through them, else spherical. Frame a is at the point on
+    b1, turned as b1; frame b at the point on b2, turned as frame a at qpos0 but for the least rotation
+    that takes the line on b1 onto the line on b2 (none when the connects are closed at qpos0)."""
     out = []
-    while anchors:
-        name, p1 = anchors.pop(0)
-        other = next((a for a in anchors if np.linalg.norm(a[1] - p1) > 1e-9), None)
-        at = pin.SE3(np.eye(3), p1)
+    relative = (tree.world[b2].inverse() * tree.world[b1]).rotation
+    while points:
+        name, p1, p2 = points.pop(0)
+        other = next((c for c in points if np.linalg.norm(c[1] - p1) > 1e-9), None)
+        R, axis = relative, None
         if other is not None:
-            anchors.remove(other)
-        axis = None if other is None else (other[1] - p1) / np.linalg.norm(other[1] - p1)
+            points.remove(other)
+            d1, d2 = other[1] - p1, other[2] - p2
+            if abs(np.linalg.norm(d1) - np.linalg.norm(d2)) > 1e-9 * max(1.0, np.linalg.norm(d1)):
+                raise MalformedDescription(
+                    f"MJCF equalities {name!r} and {other[0]!r}",
+                    f"connect the same two bodies at points {np.linalg.norm(d1):.9g} m apart on "
+                    f"{tree.names['body'][b1]!r} but {np.linalg.norm(d2):.9g} m apart on "
+                    f"{tree.names['body'][b2]!r}: no pose satisfies both",
+                )
+            axis = d1 / np.linalg.norm(d1)
+            R = _turning(R @ axis, d2 / np.linalg.norm(d2)) @ R
         out.append(
             _cut(
                 tree,
@@ -114,12 +135,22 @@ def _connects(tree: Tree, b1: int, b2: int, anchors: list) -> list[LoopClosure]:
                 "spherical" if other is None else "revolute",
                 b1,
                 b2,
-                at,
-                tree.world[b2].actInv(tree.world[b1] * at),
+                pin.SE3(np.eye(3), p1),
+                pin.SE3(R, p2),
                 axis,
             )
         )
     return out
+
+
+def _turning(u: np.ndarray, v: np.ndarray) -> np.ndarray:
+    """The least rotation taking unit vector u onto unit vector v (a half turn about an axis normal to u
+    when they are opposite)."""
+    w, c = np.cross(u, v), float(u @ v)
+    if c < -1 + 1e-12:
+        normal = np.cross(u, np.eye(3)[int(np.argmin(np.abs(u)))])
+        return pin.exp3(np.pi * normal / np.linalg.norm(normal))
+    return pin.exp3(w / max(np.linalg.norm(w), 1e-300) * np.arctan2(np.linalg.norm(w), c))
 
 
 def _cut(tree: Tree, name: str, kind: str, b1: int, b2: int, a: pin.SE3, b: pin.SE3, axis=None) -> LoopClosure:
