@@ -39,7 +39,11 @@ class Rule:
 
 RULES = (
     Rule(
-        lambda uri, local, parent: uri == DRAKE and local.endswith("_constraint"),
+        lambda uri, local, parent: (
+            uri == DRAKE
+            and local.endswith("_constraint")
+            and not (local == "ball_constraint" and parent in ("robot", "macro"))
+        ),  # a URDF's: read (mechkit.sources.drake_elements)
         "a Drake constraint, which closes a loop in Drake",
     ),
     Rule(
@@ -48,10 +52,6 @@ RULES = (
     ),
     Rule(
         lambda uri, local, parent: uri == DRAKE and local == "joint", "a Drake joint, which may close a loop in Drake"
-    ),
-    Rule(
-        lambda uri, local, parent: uri == "" and local == "joint" and parent == "gazebo",
-        "a joint declared for Gazebo, which closes a loop there",
     ),
 )
 

@@ -24,6 +24,7 @@ import pinocchio as pin
 from mechkit.base.exceptions import MalformedDescription
 from mechkit.core import LOOP_KINDS, ROW_SETS, JointSpring, LoopClosure
 from mechkit.sources.description import Description, read_text
+from mechkit.sources.drake_elements import read_tool_closures
 from mechkit.sources.urdf_checks import check_inertias, check_tree
 from mechkit.sources.urdf_mimics import parse_mimics
 
@@ -73,6 +74,9 @@ def describe_urdf(urdf: str, source: Path | None, fmt: str, params: dict[str, st
     check_tree(root)
     check_inertias(root)
     closures = tuple(parse_loops(root))
+    tool_closures = read_tool_closures(root)  # Drake's and Gazebo's closures (mechkit.sources.drake_elements)
+    if tool_closures:
+        closures, urdf = closures + tuple(tool_closures), ET.tostring(root, encoding="unicode")
     joints = moving_joints(root)
     home, guess = parse_home(root), parse_home(root, "guess")
     for tag, values in (("home", home), ("guess", guess)):

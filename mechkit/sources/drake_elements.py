@@ -1,0 +1,152 @@
+"""Loop closures written the way Drake and Gazebo write them in a URDF, read into `LoopClosure` records.
+
+- `<drake:ball_constraint>` (Drake's URDF extension): point P of body A (`p_AP`, in A's frame, m) and
+  point Q of body B (`p_BQ`) kept together: a spherical cut.
+- `<gazebo><joint type parent child pose axis>` (the Gazebo tutorials' way to close a URDF loop): an
+  SDFormat joint; its frame is `pose` in the child link's frame (SDFormat's default), its axis in that
+  frame; the parent side is where that frame is at the URDF's zero configuration (as Gazebo places it
+  when the model spawns). revolute, prismatic, ball and fixed are read; other types are refused by name.
+
+Each cut gets two frames, added to the tree as massless links fixed to the bodies (`<cut>_a`, `<cut>_b`),
+so the closure is the same record `<mechkit:loop>` gives (`mechkit.sources.urdf`).
+"""
+
+from __future__ import annotations
+
+import xml.etree.ElementTree as ET
+
+import numpy as np
+
+from mechkit.base.exceptions import MalformedDescription
+from mechkit.core import LoopClosure
+from mechkit.sources.closure_elements import DRAKE
+
+#: SDFormat joint type -> mechkit cut kind.
+GAZEBO_KINDS = {"revolute": "revolute", "prismatic": "prismatic", "ball": "spherical", "fixed": "weld"}
+
+
+def read_tool_closures(root: ET.Element) -> list[LoopClosure]:
+    """Read the Drake ball constraints and Gazebo joints of a URDF into closures, adding their frames.
+
+    Args:
+        root: the URDF's `<robot>` element; the cut frames are appended to it as links and fixed joints.
+
+    Returns:
+        The closures, Drake's then Gazebo's, each in document order.
+
+    Raises:
+        MalformedDescription: a missing or malformed attribute, a body that is not a link, or a Gazebo
+            joint of a type mechkit cannot cut.
+    """
+    links = {link.get("name") for link in root.findall("link")}
+    out = []
+    for k, element in enumerate(root.findall(f"{{{DRAKE}}}ball_constraint"), 1):
+        where = f"drake:ball_constraint #{k}"
+        body_a, body_b = (_name(element, f"ball_constraint_body_{s}", links, where) for s in "AB")
+        name = f"ball_{body_a}_{body_b}"
+        for side, body, p in (("a", body_a, "p_AP"), ("b", body_b, "p_BQ")):
+            _add_frame(root, f"{name}_{side}", body, _vec(element, f"ball_constraint_{p}", where), np.eye(3))
+        out.append(LoopClosure(name, "spherical", f"{name}_a", f"{name}_b", explicit_rows=False))
+    for gazebo in root.findall("gazebo"):
+        for element in gazebo.findall("joint"):
+            out.append(_gazebo_joint(root, element, links))
+    return out
+
+
+def _gazebo_joint(root: ET.Element, element: ET.Element, links: set[str]) -> LoopClosure:
+    name = element.get("name") or "gazebo_joint"
+    where = f"gazebo/joint {name!r}"
+    kind = GAZEBO_KINDS.get(element.get("type", ""))
+    if kind is None:
+        raise MalformedDescription(where, f"type {element.get('type')!r}: mechkit cuts {tuple(GAZEBO_KINDS)}")
+    ends = {}
+    for tag in ("parent", "child"):
+        text = (element.findtext(tag) or "").strip()
+        if text not in links:
+            raise MalformedDescription(where, f"{tag} {text!r} is not a link of the URDF")
+        ends[tag] = text
+    pose = np.zeros(6)
+    if element.find("pose") is not None:
+        pose = _numbers(element.findtext("pose"), 6, f"{where} pose")
+    joint_in_child = _transform(pose[:3], pose[3:])
+    world = _zero_poses(root)
+    joint_in_parent = np.linalg.solve(world[ends["parent"]], world[ends["child"]] @ joint_in_child)
+    axis = None
+    if kind in ("revolute", "prismatic"):
+        axis = _numbers(element.findtext("axis/xyz") or "", 3, f"{where} axis/xyz")
+        if np.linalg.norm(axis) == 0:
+            raise MalformedDescription(where, "axis/xyz is zero")
+        axis = axis / np.linalg.norm(axis)
+    _add_frame(root, f"{name}_a", ends["parent"], joint_in_parent[:3, 3], joint_in_parent[:3, :3])
+    _add_frame(root, f"{name}_b", ends["child"], joint_in_child[:3, 3], joint_in_child[:3, :3])
+    return LoopClosure(name, kind, f"{name}_a", f"{name}_b", axis, explicit_rows=False)
+
+
+def _name(element: ET.Element, tag: str, links: set[str], where: str) -> str:
+    child = element.find(f"{{{DRAKE}}}{tag}")
+    name = child.get("name") if child is not None else None
+    if name not in links:
+        raise MalformedDescription(where, f"drake:{tag} {name!r} is not a link of the URDF")
+    return name
+
+
+def _vec(element: ET.Element, tag: str, where: str) -> np.ndarray:
+    child = element.find(f"{{{DRAKE}}}{tag}")
+    if child is None:
+        raise MalformedDescription(where, f"missing drake:{tag}")
+    return _numbers(child.get("value", ""), 3, f"{where} drake:{tag}")
+
+
+def _numbers(text: str, n: int, where: str) -> np.ndarray:
+    try:
+        values = np.array([float(v) for v in text.split()])
+    except ValueError:
+        values = np.zeros(0)
+    if values.shape != (n,) or not np.all(np.isfinite(values)):
+        raise MalformedDescription(where, f"{text!r} is not {n} finite numbers")
+    return values
+
+
+def _transform(xyz: np.ndarray, rpy: np.ndarray) -> np.ndarray:
+    """Homogeneous transform of an `xyz rpy` origin (URDF and SDFormat: R = Rz(y) Ry(p) Rx(r))."""
+    c, s = np.cos(rpy), np.sin(rpy)
+    rx = np.array([[1, 0, 0], [0, c[0], -s[0]], [0, s[0], c[0]]])
+    ry = np.array([[c[1], 0, s[1]], [0, 1, 0], [-s[1], 0, c[1]]])
+    rz = np.array([[c[2], -s[2], 0], [s[2], c[2], 0], [0, 0, 1]])
+    out = np.eye(4)
+    out[:3, :3], out[:3, 3] = rz @ ry @ rx, xyz
+    return out
+
+
+def _zero_poses(root: ET.Element) -> dict[str, np.ndarray]:
+    """Each link's pose in the root link's frame at the zero configuration (the tree is already checked)."""
+    parent_of = {}
+    for joint in root.findall("joint"):
+        origin = joint.find("origin")
+        xyz, rpy = (
+            _numbers(origin.get(a, "0 0 0") if origin is not None else "0 0 0", 3, "origin") for a in ("xyz", "rpy")
+        )
+        parent_of[joint.find("child").get("link")] = (joint.find("parent").get("link"), _transform(xyz, rpy))
+    poses: dict[str, np.ndarray] = {}
+
+    def pose(link: str) -> np.ndarray:
+        if link not in poses:
+            parent, origin = parent_of.get(link, (None, None))
+            poses[link] = np.eye(4) if parent is None else pose(parent) @ origin
+        return poses[link]
+
+    return {link.get("name"): pose(link.get("name")) for link in root.findall("link")}
+
+
+def _add_frame(root: ET.Element, name: str, body: str, xyz: np.ndarray, rotation: np.ndarray) -> None:
+    """A massless link `name` fixed to `body` at `xyz` (m) with orientation `rotation`, both in body's frame."""
+    pitch = np.arcsin(np.clip(-rotation[2, 0], -1.0, 1.0))
+    roll, yaw = np.arctan2(rotation[2, 1], rotation[2, 2]), np.arctan2(rotation[1, 0], rotation[0, 0])
+    ET.SubElement(root, "link", name=name)
+    joint = ET.SubElement(root, "joint", name=f"{name}_fixed", type="fixed")
+    ET.SubElement(joint, "parent", link=body)
+    ET.SubElement(joint, "child", link=name)
+    fmt = " ".join
+    ET.SubElement(
+        joint, "origin", xyz=fmt(repr(float(v)) for v in xyz), rpy=fmt(repr(float(v)) for v in (roll, pitch, yaw))
+    )
