@@ -46,3 +46,56 @@ def test_a_gazebo_joint_of_a_type_mechkit_cannot_cut_or_of_an_unknown_link_is_re
         root = ET.fromstring(f'{robot}<child link="b"/></joint><gazebo>{inner}</gazebo></robot>')
         with pytest.raises(MalformedDescription, match=match):
             read_tool_closures(root)
+
+
+def _drake_holding_torque(path, q_of):
+    """The crank torque holding the four-bar under gravity, from Drake's own parse of the file: gravity's
+    generalised force, the ball's point Jacobians (its points P, Q as the fixture writes them) and a
+    least-squares KKT solve [B, J^T] [tau; lambda] = -tau_g (ours)."""
+    from pydrake.multibody.parsing import Parser
+    from pydrake.multibody.plant import MultibodyPlant
+    from pydrake.multibody.tree import JacobianWrtVariable
+
+    plant = MultibodyPlant(1e-3)
+    Parser(plant).AddModels(str(path))
+    plant.WeldFrames(plant.world_frame(), plant.GetFrameByName("ground"))
+    plant.Finalize()
+    assert plant.num_constraints() == 1  # Drake read the ball constraint too
+    ctx, world = plant.CreateDefaultContext(), plant.world_frame()
+    for name in ("crank", "coupler", "rocker"):
+        plant.GetJointByName(name).set_angle(ctx, q_of(name))
+    jac = [
+        plant.CalcJacobianTranslationalVelocity(
+            ctx, JacobianWrtVariable.kV, plant.GetBodyByName(body).body_frame(), point, world, world
+        )
+        for body, point in (("coupler_link", [0.28, 0, 0]), ("rocker_link", [0.22, 0, 0]))
+    ]
+    select = np.zeros((plant.num_velocities(), 1))
+    select[plant.GetJointByName("crank").velocity_start(), 0] = 1.0
+    kkt = np.hstack([select, (jac[0] - jac[1]).T])
+    return np.linalg.lstsq(kkt, -plant.CalcGravityGeneralizedForces(ctx), rcond=None)[0][0]
+
+
+def _assembled(m, crank):
+    """The assembly at `crank` (rad) reached from the one at 0 in small steps (one branch for both files)."""
+    q = m.assemble({"crank": 0.0})
+    for value in np.linspace(0.0, crank, 12)[1:]:
+        q = m.assemble({"crank": value}, q)
+    return q
+
+
+@pytest.mark.parametrize("crank", [0.3, 1.0, 2.2])
+def test_the_holding_torque_agrees_with_drake_and_with_the_gazebo_cut(crank):
+    pytest.importorskip("pydrake")
+    ball = mechkit.load(CLOSURES / "four_bar_drake_ball.urdf", actuated=["crank"])
+    gazebo = mechkit.load(CLOSURES / "four_bar_gazebo_joint.urdf", actuated=["crank"])
+    torques = []
+    for m in (ball, gazebo):
+        q = _assembled(m, crank)
+        torques.append(m.inverse_dynamics(q, np.zeros(m.model.nv), np.zeros(m.model.nv)).efforts["crank"])
+    q = _assembled(ball, crank)
+    drake = _drake_holding_torque(
+        CLOSURES / "four_bar_drake_ball.urdf", lambda n: q[ball.model.joints[ball.model.getJointId(n)].idx_q]
+    )
+    assert abs(torques[0] - drake) <= 1e-8 * abs(drake)
+    assert abs(torques[1] - drake) <= 1e-8 * abs(drake)
