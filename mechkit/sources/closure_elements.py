@@ -47,10 +47,6 @@ RULES = (
         "a Drake constraint, which closes a loop in Drake",
     ),
     Rule(
-        lambda uri, local, parent: uri == DRAKE and "bushing" in local and not local.startswith("bushing_"),
-        "a Drake bushing between two frames, which Drake's examples use to close loops",
-    ),
-    Rule(
         lambda uri, local, parent: uri == DRAKE and local == "joint", "a Drake joint, which may close a loop in Drake"
     ),
 )

@@ -2,6 +2,8 @@
 
 - `<drake:ball_constraint>` (Drake's URDF extension): point P of body A (`p_AP`, in A's frame, m) and
   point Q of body B (`p_BQ`) kept together: a spherical cut.
+- `<drake:linear_bushing_rpy>` between two frames (Drake's `<frame name link xyz rpy>` or links): read
+  as a rigid cut on its stiff directions, the others left free (`stiff_directions`).
 - `<gazebo><joint type parent child pose axis>` (the Gazebo tutorials' way to close a URDF loop): an
   SDFormat joint; its frame is `pose` in the child link's frame (SDFormat's default), its axis in that
   frame; the parent side is where that frame is at the URDF's zero configuration (as Gazebo places it
@@ -20,6 +22,12 @@ import numpy as np
 from mechkit.base.exceptions import MalformedDescription
 from mechkit.core import LoopClosure
 from mechkit.sources.closure_elements import DRAKE
+
+#: A bushing direction is stiff (closed) when its stiffness exceeds this fraction of the largest of its kind
+#: (torques in N m/rad, forces in N/m compared among themselves), else free (ours). Drake's examples stand
+#: a pin for a bushing stiff in five directions and zero (or orders of magnitude softer) in the sixth; a
+#: thousandth keeps any such stand-in a joint and a bushing meant to be compliant everywhere a weld.
+BUSHING_RATIO = 1e-3
 
 #: SDFormat joint type -> mechkit cut kind.
 GAZEBO_KINDS = {"revolute": "revolute", "prismatic": "prismatic", "ball": "spherical", "fixed": "weld"}
@@ -47,6 +55,8 @@ def read_tool_closures(root: ET.Element) -> list[LoopClosure]:
         for side, body, p in (("a", body_a, "p_AP"), ("b", body_b, "p_BQ")):
             _add_frame(root, f"{name}_{side}", body, _vec(element, f"ball_constraint_{p}", where), np.eye(3))
         out.append(LoopClosure(name, "spherical", f"{name}_a", f"{name}_b", explicit_rows=False))
+    for element in root.findall(f"{{{DRAKE}}}linear_bushing_rpy"):
+        out.append(_bushing(root, element, links))
     for gazebo in root.findall("gazebo"):
         for element in gazebo.findall("joint"):
             out.append(_gazebo_joint(root, element, links))
@@ -79,6 +89,61 @@ def _gazebo_joint(root: ET.Element, element: ET.Element, links: set[str]) -> Loo
         axis = axis / np.linalg.norm(axis)
     _add_frame(root, f"{name}_a", ends["parent"], joint_in_parent[:3, 3], joint_in_parent[:3, :3])
     _add_frame(root, f"{name}_b", ends["child"], joint_in_child[:3, 3], joint_in_child[:3, :3])
+    return LoopClosure(name, kind, f"{name}_a", f"{name}_b", axis, explicit_rows=False)
+
+
+def stiff_directions(torque: np.ndarray, force: np.ndarray) -> tuple[str, np.ndarray | None]:
+    """The cut a bushing stands for: its stiff directions closed, its free ones (`BUSHING_RATIO`) left free.
+
+    Args:
+        torque: (3,) torque stiffness about frame A's x, y, z (N m/rad, >= 0).
+        force: (3,) force stiffness along them (N/m, >= 0).
+
+    Returns:
+        (kind, axis): "weld", "spherical", ("revolute", free rotation axis) or ("prismatic", free
+        translation axis), the axis in frame A; None where the pattern is no such joint.
+    """
+    free_t, free_f = (k <= BUSHING_RATIO * k.max() for k in (torque, force))
+    if force.max() <= 0 or free_f.sum() > 1 or (free_f.any() and free_t.any()):
+        return "", None
+    if free_f.any():
+        return "prismatic", np.eye(3)[np.argmax(free_f)]
+    kinds = {0: "weld", 1: "revolute", 3: "spherical"}
+    kind = kinds.get(int(free_t.sum()), "")
+    return kind, np.eye(3)[np.argmax(free_t)] if kind == "revolute" else None
+
+
+def _bushing(root: ET.Element, element: ET.Element, links: set[str]) -> LoopClosure:
+    frames = {f.get("name"): f for f in root.findall("frame")}
+    ends, where = [], "drake:linear_bushing_rpy"
+    for side in "AC":
+        child = element.find(f"{{{DRAKE}}}bushing_frame{side}")
+        name = child.get("name") if child is not None else None
+        if name in frames:
+            frame = frames[name]
+            xyz, rpy = (_numbers(frame.get(a, "0 0 0"), 3, f"frame {name!r} {a}") for a in ("xyz", "rpy"))
+            ends.append((name, frame.get("link"), _transform(xyz, rpy)))
+        elif name in links:
+            ends.append((name, name, np.eye(4)))
+        else:
+            raise MalformedDescription(where, f"drake:bushing_frame{side} {name!r} is not a frame or link of the URDF")
+        if ends[-1][1] not in links:
+            raise MalformedDescription(where, f"frame {name!r}: link {ends[-1][1]!r} is not a link of the URDF")
+    where = f"drake:linear_bushing_rpy {ends[0][0]!r}-{ends[1][0]!r}"
+    torque, force = (_vec(element, f"bushing_{k}_stiffness", where) for k in ("torque", "force"))
+    if np.any(torque < 0) or np.any(force < 0):
+        raise MalformedDescription(where, "a negative stiffness")
+    kind, axis = stiff_directions(torque, force)
+    if not kind:
+        raise MalformedDescription(
+            where,
+            f"torque stiffness {torque.tolist()}, force stiffness {force.tolist()}: its stiff directions "
+            f"(above {BUSHING_RATIO} of the largest of their kind) make no joint mechkit closes (weld, "
+            "revolute, prismatic, spherical)",
+        )
+    name = f"bushing_{ends[0][0]}_{ends[1][0]}"
+    for side, (_, link, pose) in zip("ab", ends):
+        _add_frame(root, f"{name}_{side}", link, pose[:3, 3], pose[:3, :3])
     return LoopClosure(name, kind, f"{name}_a", f"{name}_b", axis, explicit_rows=False)
 
 

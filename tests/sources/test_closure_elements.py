@@ -21,7 +21,6 @@ def _line_of(path: Path, text: str) -> int:
 @pytest.mark.parametrize(
     "name, element, opening",
     [
-        ("four_bar_drake_bushing.urdf", "drake:linear_bushing_rpy", "<drake:linear_bushing_rpy>"),
         ("four_bar_drake_ball.sdf", "drake:ball_constraint", "<drake:ball_constraint>"),
     ],
 )
@@ -32,9 +31,9 @@ def test_each_tool_s_closure_is_found_once_at_its_line(name, element, opening):
 
 
 def test_what_mechkit_now_reads_is_not_listed():
-    """A URDF's Drake ball constraint (also inside an included macro) and a Gazebo joint are read
+    """A URDF's Drake ball constraint (also inside an included macro), Drake bushing and Gazebo joint are read
     (`mechkit.sources.drake_elements`)."""
-    files = [CLOSURES / "four_bar_drake_ball.urdf", CLOSURES / "four_bar_gazebo_joint.urdf"]
+    files = [CLOSURES / f"four_bar_{k}.urdf" for k in ("drake_ball", "drake_bushing", "gazebo_joint")]
     assert unread_closures([*files, *description_files(CLOSURES / "leg_pair.urdf.xacro")]) == []
 
 
