@@ -3,11 +3,12 @@ found with their file and line, so that a description never loads as an open tre
 silence. The loader refuses a file holding any (`refusal`), or, asked to ignore them, warns once per element
 with the mobility the model is left with (`mechkit.loading`).
 
-`RULES` is the list: an element another tool reads as a loop closure or a coupling (Drake's constraints,
-bushings and joints, a joint declared for Gazebo). The day a reader turns one into a closure, its rule goes
-(one change). What mechkit reads itself (`<mechkit:loop>`, `<mimic>`, URDF+ `<loop>`/`<coupling>`, the
+`RULES` is the list: an element another tool reads as a loop closure or a coupling (Drake's constraints
+other than a URDF's ball constraint, and Drake's joints). The day a reader turns one into a closure, its rule
+goes (one change). What mechkit reads itself (`<mechkit:loop>`, `<mimic>`, URDF+ `<loop>`/`<coupling>`, the
 Extended-URDF sidecar, SDFormat's joint graph, MJCF's equalities and tendons, whose unknown kinds the MJCF
-reader refuses by name) is not listed; an element that cannot change the kinematics (Drake's collision
+reader refuses by name, a URDF's Drake ball constraints and bushings and Gazebo joints,
+`mechkit.sources.drake_elements`) is not listed; an element that cannot change the kinematics (Drake's collision
 properties, Gazebo's materials, plugins) is ignored as before.
 """
 
