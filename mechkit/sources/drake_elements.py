@@ -9,8 +9,9 @@
   frame; the parent side is where that frame is at the URDF's zero configuration (as Gazebo places it
   when the model spawns). revolute, prismatic, ball and fixed are read; other types are refused by name.
 
-Each cut gets two frames, added to the tree as massless links fixed to the bodies (`<cut>_a`, `<cut>_b`),
-so the closure is the same record `<mechkit:loop>` gives (`mechkit.sources.urdf`).
+A link `world` joints name without declaring it is declared (`declare_world`): the implicit ground of
+Drake and Gazebo. Each cut gets two frames, added to the tree as massless links fixed to the bodies
+(`<cut>_a`, `<cut>_b`), so the closure is the same record `<mechkit:loop>` gives (`mechkit.sources.urdf`).
 """
 
 from __future__ import annotations
@@ -31,6 +32,17 @@ BUSHING_RATIO = 1e-3
 
 #: SDFormat joint type -> mechkit cut kind.
 GAZEBO_KINDS = {"revolute": "revolute", "prismatic": "prismatic", "ball": "spherical", "fixed": "weld"}
+
+
+def declare_world(root: ET.Element) -> None:
+    """Declare the link `world` when joints name it undeclared (Drake and Gazebo take it as the ground).
+
+    Args:
+        root: the URDF's `<robot>` element; a `<link name="world"/>` is prepended to it if needed.
+    """
+    named = {e.get("link") for joint in root.findall("joint") for e in (joint.find("parent"), joint.find("child"))}
+    if "world" in named and all(link.get("name") != "world" for link in root.findall("link")):
+        root.insert(0, ET.Element("link", name="world"))
 
 
 def read_tool_closures(root: ET.Element) -> list[LoopClosure]:

@@ -173,3 +173,18 @@ def test_the_bushing_read_as_a_pin_agrees_with_drake_s_compliant_bushing_to_its_
 def test_a_bushing_s_stiff_directions_make_its_joint(torque, force, kind, axis):
     got_kind, got_axis = stiff_directions(np.array(torque, float), np.array(force, float))
     assert got_kind == kind and (got_axis is None if axis is None else np.array_equal(got_axis, axis))
+
+
+def test_an_undeclared_world_is_the_ground(tmp_path):
+    """The Drake-ball four-bar with its ground renamed `world` and not declared (as Drake and Gazebo
+    allow) is the same mechanism: one freedom, the same holding torque."""
+    text = (CLOSURES / "four_bar_drake_ball.urdf").read_text()
+    path = tmp_path / "world.urdf"
+    path.write_text(text.replace('<link name="ground"/>', "").replace('link="ground"', 'link="world"'))
+    torques = []
+    for source in (path, CLOSURES / "four_bar_drake_ball.urdf"):
+        m = mechkit.load(source, actuated=["crank"])
+        assert m.home_mobility.dof == 1
+        q = _assembled(m, 1.0)
+        torques.append(m.inverse_dynamics(q, np.zeros(m.model.nv), np.zeros(m.model.nv)).efforts["crank"])
+    assert abs(torques[0] - torques[1]) <= 1e-12 * abs(torques[1])
