@@ -17,6 +17,7 @@ Drake and Gazebo. Each cut gets two frames, added to the tree as massless links 
 from __future__ import annotations
 
 import xml.etree.ElementTree as ET
+from collections.abc import Collection
 
 import numpy as np
 
@@ -60,12 +61,9 @@ def read_tool_closures(root: ET.Element) -> list[LoopClosure]:
     """
     links = {link.get("name") for link in root.findall("link")}
     out = []
-    for k, element in enumerate(root.findall(f"{{{DRAKE}}}ball_constraint"), 1):
-        where = f"drake:ball_constraint #{k}"
-        body_a, body_b = (_name(element, f"ball_constraint_body_{s}", links, where) for s in "AB")
-        name = f"ball_{body_a}_{body_b}"
-        for side, body, p in (("a", body_a, "p_AP"), ("b", body_b, "p_BQ")):
-            _add_frame(root, f"{name}_{side}", body, _vec(element, f"ball_constraint_{p}", where), np.eye(3))
+    for name, body_a, p_ap, body_b, p_bq in ball_constraints(root, links):
+        _add_frame(root, f"{name}_a", body_a, p_ap, np.eye(3))
+        _add_frame(root, f"{name}_b", body_b, p_bq, np.eye(3))
         out.append(LoopClosure(name, "spherical", f"{name}_a", f"{name}_b", explicit_rows=False))
     for element in root.findall(f"{{{DRAKE}}}linear_bushing_rpy"):
         out.append(_bushing(root, element, links))
@@ -102,6 +100,38 @@ def _gazebo_joint(root: ET.Element, element: ET.Element, links: set[str]) -> Loo
     _add_frame(root, f"{name}_a", ends["parent"], joint_in_parent[:3, 3], joint_in_parent[:3, :3])
     _add_frame(root, f"{name}_b", ends["child"], joint_in_child[:3, 3], joint_in_child[:3, :3])
     return LoopClosure(name, kind, f"{name}_a", f"{name}_b", axis, explicit_rows=False)
+
+
+def ball_constraints(parent: ET.Element, links: Collection[str]) -> list[tuple[str, str, np.ndarray, str, np.ndarray]]:
+    """The `drake:ball_constraint` children of a URDF `<robot>` (values in attributes `name`, `value`) or
+    an SDFormat `<model>` (values as text).
+
+    Args:
+        parent: the `<robot>` or `<model>` element.
+        links: the names of its links.
+
+    Returns:
+        (cut name "ball_<A>_<B>", body A, p_AP (3,) m in A's frame, body B, p_BQ (3,) m in B's frame) each.
+
+    Raises:
+        MalformedDescription: a body that is not a link, or a point that is not three finite numbers.
+    """
+    out = []
+    for k, element in enumerate(parent.findall(f"{{{DRAKE}}}ball_constraint"), 1):
+        where = f"drake:ball_constraint #{k}"
+        values = {}
+        for tag in ("body_A", "body_B", "p_AP", "p_BQ"):
+            child = element.find(f"{{{DRAKE}}}ball_constraint_{tag}")
+            if child is None:
+                raise MalformedDescription(where, f"missing drake:ball_constraint_{tag}")
+            values[tag] = (child.get("name" if tag.startswith("body") else "value") or child.text or "").strip()
+        for tag in ("body_A", "body_B"):
+            if values[tag] not in links:
+                raise MalformedDescription(where, f"drake:ball_constraint_{tag} {values[tag]!r} is not a link")
+        points = [_numbers(values[tag], 3, f"{where} drake:ball_constraint_{tag}") for tag in ("p_AP", "p_BQ")]
+        name = f"ball_{values['body_A']}_{values['body_B']}"
+        out.append((name, values["body_A"], points[0], values["body_B"], points[1]))
+    return out
 
 
 def stiff_directions(torque: np.ndarray, force: np.ndarray) -> tuple[str, np.ndarray | None]:
@@ -157,14 +187,6 @@ def _bushing(root: ET.Element, element: ET.Element, links: set[str]) -> LoopClos
     for side, (_, link, pose) in zip("ab", ends):
         _add_frame(root, f"{name}_{side}", link, pose[:3, 3], pose[:3, :3])
     return LoopClosure(name, kind, f"{name}_a", f"{name}_b", axis, explicit_rows=False)
-
-
-def _name(element: ET.Element, tag: str, links: set[str], where: str) -> str:
-    child = element.find(f"{{{DRAKE}}}{tag}")
-    name = child.get("name") if child is not None else None
-    if name not in links:
-        raise MalformedDescription(where, f"drake:{tag} {name!r} is not a link of the URDF")
-    return name
 
 
 def _vec(element: ET.Element, tag: str, where: str) -> np.ndarray:

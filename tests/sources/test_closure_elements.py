@@ -21,7 +21,7 @@ def _line_of(path: Path, text: str) -> int:
 @pytest.mark.parametrize(
     "name, element, opening",
     [
-        ("four_bar_drake_ball.sdf", "drake:ball_constraint", "<drake:ball_constraint>"),
+        ("four_bar_drake_bushing.sdf", "drake:linear_bushing_rpy", "<drake:linear_bushing_rpy>"),
     ],
 )
 def test_each_tool_s_closure_is_found_once_at_its_line(name, element, opening):
@@ -31,9 +31,10 @@ def test_each_tool_s_closure_is_found_once_at_its_line(name, element, opening):
 
 
 def test_what_mechkit_now_reads_is_not_listed():
-    """A URDF's Drake ball constraint (also inside an included macro), Drake bushing and Gazebo joint are read
+    """Drake's ball constraint (URDF, SDFormat, inside an included macro), a URDF's bushing and Gazebo joint are read
     (`mechkit.sources.drake_elements`)."""
     files = [CLOSURES / f"four_bar_{k}.urdf" for k in ("drake_ball", "drake_bushing", "gazebo_joint")]
+    files.append(CLOSURES / "four_bar_drake_ball.sdf")
     assert unread_closures([*files, *description_files(CLOSURES / "leg_pair.urdf.xacro")]) == []
 
 

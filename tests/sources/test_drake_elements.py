@@ -188,3 +188,16 @@ def test_an_undeclared_world_is_the_ground(tmp_path):
         q = _assembled(m, 1.0)
         torques.append(m.inverse_dynamics(q, np.zeros(m.model.nv), np.zeros(m.model.nv)).efforts["crank"])
     assert abs(torques[0] - torques[1]) <= 1e-12 * abs(torques[1])
+
+
+@pytest.mark.parametrize("motor", [-0.5, 0.4, 1.2])
+def test_the_sdformat_ball_constraint_holds_as_the_pin_it_replaces(motor):
+    """four_bar_drake_ball.sdf is four_bar_gearbox.sdf with its cut pin_C replaced by Drake's ball
+    constraint at C: one freedom, and the motor's holding torque under gravity is the same."""
+    torques = []
+    for path in (CLOSURES / "four_bar_drake_ball.sdf", FIXTURES / "field" / "sdf" / "four_bar_gearbox.sdf"):
+        m = mechkit.load(path)
+        assert m.home_mobility.dof == 1 and len(m.closures) == 1
+        q = m.assemble({"motor": motor})
+        torques.append(m.inverse_dynamics(q, np.zeros(m.model.nv), np.zeros(m.model.nv)).efforts["motor"])
+    assert abs(torques[0] - torques[1]) <= 1e-9 * abs(torques[1])
