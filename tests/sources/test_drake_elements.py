@@ -201,3 +201,90 @@ def test_the_sdformat_ball_constraint_holds_as_the_pin_it_replaces(motor):
         q = m.assemble({"motor": motor})
         torques.append(m.inverse_dynamics(q, np.zeros(m.model.nv), np.zeros(m.model.nv)).efforts["motor"])
     assert abs(torques[0] - torques[1]) <= 1e-9 * abs(torques[1])
+
+
+STRANDBEEST = FIXTURES / "drake" / "strandbeest"
+
+
+def _welded_strandbeest(tmp_path, name):
+    """Drake's Strandbeest rendered by mechkit's xacro reader, its crossbar welded 1 m above the world
+    (Drake leaves it free)."""
+    from mechkit.sources.xacro_file import render_urdf
+
+    text = render_urdf(STRANDBEEST / name, {}).replace(
+        "</robot>",
+        '<joint name="crossbar_weld" type="fixed"><parent link="world"/><child link="crossbar"/>'
+        '<origin xyz="0 0 1"/></joint></robot>',
+    )
+    path = tmp_path / f"{name}.urdf"
+    path.write_text(text)
+    return path
+
+
+@pytest.mark.parametrize(
+    "name, kind", [("StrandbeestConstraints.urdf.xacro", "spherical"), ("StrandbeestBushings.urdf.xacro", "revolute")]
+)
+def test_drake_s_strandbeest_welded_has_one_freedom_and_36_cuts(tmp_path, name, kind):
+    m = mechkit.load(_welded_strandbeest(tmp_path, name))
+    assert m.home_mobility.dof == 1 and len(m.closures) == 36 and {c.kind for c in m.closures} == {kind}
+
+
+def test_the_strandbeest_s_crank_holding_torque_agrees_with_drake(tmp_path):
+    """Drake parses the same rendered file (its 36 ball constraints); the crank torque holding the
+    welded Strandbeest under gravity from Drake's gravity force and ball point Jacobians (a KKT solve,
+    ours) equals mechkit's to 1e-8 relative at three crank angles reached by continuation."""
+    pytest.importorskip("pydrake")
+    from pydrake.multibody.parsing import Parser
+    from pydrake.multibody.plant import MultibodyPlant
+    from pydrake.multibody.tree import JacobianWrtVariable
+
+    path = _welded_strandbeest(tmp_path, "StrandbeestConstraints.urdf.xacro")
+    m = mechkit.load(path)
+    plant = MultibodyPlant(1e-3)
+    Parser(plant).AddModels(str(path))
+    plant.Finalize()
+    assert plant.num_constraints() == 36
+    ctx, world, drake = plant.CreateDefaultContext(), plant.world_frame(), "{http://drake.mit.edu}"
+    balls = [
+        [
+            (
+                e.find(f"{drake}ball_constraint_body_{s}").get("name"),
+                e.find(f"{drake}ball_constraint_p_{p}").get("value"),
+            )
+            for s, p in (("A", "AP"), ("B", "BQ"))
+        ]
+        for e in ET.parse(path).getroot().iter(f"{drake}ball_constraint")
+    ]
+    select = np.zeros((plant.num_velocities(), 1))
+    select[plant.GetJointByName("joint_crossbar_crank").velocity_start(), 0] = 1.0
+    q, compared = m.assemble({"joint_crossbar_crank": 0.0}), 0
+    for crank in np.arange(0.1, 1.01, 0.1):
+        q = m.assemble({"joint_crossbar_crank": crank}, q)
+        if not np.any(np.isclose(crank, [0.3, 0.6, 1.0])):
+            continue
+        ours = m.inverse_dynamics(q, np.zeros(m.model.nv), np.zeros(m.model.nv)).efforts["joint_crossbar_crank"]
+        for index in plant.GetJointIndices():
+            joint = plant.get_joint(index)
+            if joint.num_positions() == 1:
+                mj = m.model.joints[m.model.getJointId(joint.name())]
+                value = q[mj.idx_q : mj.idx_q + mj.nq]
+                joint.set_angle(ctx, value[0] if mj.nq == 1 else np.arctan2(value[1], value[0]))
+        rows = [
+            sign
+            * plant.CalcJacobianTranslationalVelocity(
+                ctx,
+                JacobianWrtVariable.kV,
+                plant.GetBodyByName(body).body_frame(),
+                np.fromstring(p, sep=" "),
+                world,
+                world,
+            )
+            for ball in balls
+            for sign, (body, p) in zip((1.0, -1.0), ball)
+        ]
+        jac = np.vstack([rows[k] + rows[k + 1] for k in range(0, len(rows), 2)])
+        kkt = np.hstack([select, jac.T])
+        theirs = np.linalg.lstsq(kkt, -plant.CalcGravityGeneralizedForces(ctx), rcond=None)[0][0]
+        assert abs(ours - theirs) <= 1e-8 * abs(theirs), (crank, ours, theirs)
+        compared += 1
+    assert compared == 3
