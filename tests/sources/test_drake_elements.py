@@ -25,6 +25,11 @@ def test_the_four_bar_closed_by_another_tool_has_one_freedom_and_one_cut(name, k
     assert cut.kind == kind and m.home_mobility.dof == 1
 
 
+def test_ball_constraints_in_a_xacro_macro_used_twice_close_both_legs():
+    m = mechkit.load(CLOSURES / "leg_pair.urdf.xacro")
+    assert m.home_mobility.dof == 1 and [c.kind for c in m.closures] == ["spherical", "spherical"]
+
+
 def test_the_ball_s_frames_are_the_points_the_constraint_names():
     root = ET.parse(CLOSURES / "four_bar_drake_ball.urdf").getroot()
     (cut,) = read_tool_closures(root)
