@@ -3,12 +3,13 @@ found with their file and line, so that a description never loads as an open tre
 silence. The loader refuses a file holding any (`refusal`), or, asked to ignore them, warns once per element
 with the mobility the model is left with (`mechkit.loading`).
 
-`RULES` is the list: an element another tool reads as a loop closure or a coupling (Drake's constraints,
-bushings and joints, a joint declared for Gazebo). The day a reader turns one into a closure, its rule goes
-(one change). What mechkit reads itself (`<mechkit:loop>`, `<mimic>`, URDF+ `<loop>`/`<coupling>`, the
-Extended-URDF sidecar, SDFormat's joint graph, MJCF's equalities and tendons, whose unknown kinds the MJCF
-reader refuses by name) is not listed; an element that cannot change the kinematics (Drake's collision
-properties, Gazebo's materials, plugins) is ignored as before.
+`RULES` is the list: an element another tool reads as a loop closure or a coupling (Drake's constraints
+other than the ball constraint, an SDFormat file's bushings, and Drake's joints). The day a reader turns
+one into a closure, its rule goes (one change). What mechkit reads itself (`<mechkit:loop>`, `<mimic>`,
+URDF+ `<loop>`/`<coupling>`, the Extended-URDF sidecar, SDFormat's joint graph, MJCF's equalities and
+tendons, whose unknown kinds the MJCF reader refuses by name, Drake's ball constraints, a URDF's Drake
+bushings and Gazebo joints, `mechkit.sources.drake_elements`) is not listed; an element that cannot
+change the kinematics (Drake's collision properties, Gazebo's materials, plugins) is ignored as before.
 """
 
 from __future__ import annotations
@@ -39,19 +40,17 @@ class Rule:
 
 RULES = (
     Rule(
-        lambda uri, local, parent: uri == DRAKE and local.endswith("_constraint"),
+        lambda uri, local, parent: (
+            uri == DRAKE and local.endswith("_constraint") and local != "ball_constraint"
+        ),  # the ball constraint is read (mechkit.sources.drake_elements)
         "a Drake constraint, which closes a loop in Drake",
     ),
     Rule(
-        lambda uri, local, parent: uri == DRAKE and "bushing" in local and not local.startswith("bushing_"),
-        "a Drake bushing between two frames, which Drake's examples use to close loops",
+        lambda uri, local, parent: uri == DRAKE and "bushing" in local and parent == "model",
+        "a Drake bushing in SDFormat, which Drake's examples use to close loops (a URDF's is read)",
     ),
     Rule(
         lambda uri, local, parent: uri == DRAKE and local == "joint", "a Drake joint, which may close a loop in Drake"
-    ),
-    Rule(
-        lambda uri, local, parent: uri == "" and local == "joint" and parent == "gazebo",
-        "a joint declared for Gazebo, which closes a loop there",
     ),
 )
 

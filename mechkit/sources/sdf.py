@@ -44,6 +44,7 @@ import pinocchio as pin
 from mechkit.base.exceptions import MalformedDescription
 from mechkit.core import Coupling, JointSpring, LoopClosure
 from mechkit.sources.description import Description, read_text
+from mechkit.sources.drake_elements import ball_constraints
 from mechkit.sources.physical import check_body
 from mechkit.sources.pinocchio_tree import add_body, add_frame, add_joint, joint_model, tree_urdf
 from mechkit.sources.sdf_frames import MODEL, SdfFrames, boolean, number, sdf_version
@@ -147,6 +148,11 @@ class _Reader(SdfFrames):
             for j, joint in joints.items()
             if joint.get("type") != "gearbox" and tree.get(ends[j][1]) != j
         ]
+        for cut, link_a, p_ap, link_b, p_bq in ball_constraints(self.element, self.items["link"]):  # Drake's
+            for side, link, p in (("a", link_a, p_ap), ("b", link_b, p_bq)):
+                at = self._in(carrier, link, self.frame(link) * pin.SE3(np.eye(3), p))
+                add_frame(model, f"{cut}_{side}", carrier[link][0], at)
+            closures.append(LoopClosure(cut, "spherical", f"{cut}_a", f"{cut}_b", explicit_rows=False))
         couplings = [
             self._gearbox(j, ends[j], tree, ends) for j, joint in joints.items() if joint.get("type") == "gearbox"
         ]

@@ -24,6 +24,7 @@ import pinocchio as pin
 from mechkit.base.exceptions import MalformedDescription
 from mechkit.core import LOOP_KINDS, ROW_SETS, JointSpring, LoopClosure
 from mechkit.sources.description import Description, read_text
+from mechkit.sources.drake_elements import declare_world, read_tool_closures
 from mechkit.sources.onshape_closures import closing_frames
 from mechkit.sources.urdf_checks import check_inertias, check_tree
 from mechkit.sources.urdf_mimics import parse_mimics
@@ -71,10 +72,15 @@ def describe_urdf(urdf: str, source: Path | None, fmt: str, params: dict[str, st
     """
     where = str(source) if source is not None else "urdf"
     root = parse_xml(urdf, where)
+    links = len(root.findall("link"))
+    declare_world(root)  # Drake's and Gazebo's implicit ground and closures (mechkit.sources.drake_elements)
     check_tree(root)
     check_inertias(root)
     closures = tuple(parse_loops(root))
-    closures += closing_frames(root, closures)  # onshape-to-robot's closing_* frames (fieldloops)
+    closures += closing_frames(root, closures)  # onshape-to-robot's closing_* frames
+    tool_closures = read_tool_closures(root)
+    if tool_closures or len(root.findall("link")) != links:
+        closures, urdf = closures + tuple(tool_closures), ET.tostring(root, encoding="unicode")
     joints = moving_joints(root)
     home, guess = parse_home(root), parse_home(root, "guess")
     for tag, values in (("home", home), ("guess", guess)):

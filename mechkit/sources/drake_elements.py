@@ -1,0 +1,251 @@
+"""Loop closures written the way Drake and Gazebo write them in a URDF, read into `LoopClosure` records.
+
+- `<drake:ball_constraint>` (Drake's URDF extension): point P of body A (`p_AP`, in A's frame, m) and
+  point Q of body B (`p_BQ`) kept together: a spherical cut.
+- `<drake:linear_bushing_rpy>` between two frames (Drake's `<frame name link xyz rpy>` or links): read
+  as a rigid cut on its stiff directions, the others left free (`stiff_directions`).
+- `<gazebo><joint type parent child pose axis>` (the Gazebo tutorials' way to close a URDF loop): an
+  SDFormat joint; its frame is `pose` in the child link's frame (SDFormat's default), its axis in that
+  frame; the parent side is where that frame is at the URDF's zero configuration (as Gazebo places it
+  when the model spawns). revolute, prismatic, ball and fixed are read; other types are refused by name.
+
+A link `world` joints name without declaring it is declared (`declare_world`): the implicit ground of
+Drake and Gazebo. Each cut gets two frames, added to the tree as massless links fixed to the bodies
+(`<cut>_a`, `<cut>_b`), so the closure is the same record `<mechkit:loop>` gives (`mechkit.sources.urdf`).
+"""
+
+from __future__ import annotations
+
+import xml.etree.ElementTree as ET
+from collections.abc import Collection
+
+import numpy as np
+
+from mechkit.base.exceptions import MalformedDescription
+from mechkit.core import LoopClosure
+from mechkit.sources.closure_elements import DRAKE
+
+#: A bushing direction is stiff (closed) when its stiffness exceeds this fraction of the largest of its kind
+#: (torques in N m/rad, forces in N/m compared among themselves), else free (ours). Drake's examples stand
+#: a pin for a bushing stiff in five directions and zero (or orders of magnitude softer) in the sixth; a
+#: thousandth keeps any such stand-in a joint and a bushing meant to be compliant everywhere a weld.
+BUSHING_RATIO = 1e-3
+
+#: SDFormat joint type -> mechkit cut kind.
+GAZEBO_KINDS = {"revolute": "revolute", "prismatic": "prismatic", "ball": "spherical", "fixed": "weld"}
+
+
+def declare_world(root: ET.Element) -> None:
+    """Declare the link `world` when joints name it undeclared (Drake and Gazebo take it as the ground).
+
+    Args:
+        root: the URDF's `<robot>` element; a `<link name="world"/>` is prepended to it if needed.
+    """
+    named = {e.get("link") for joint in root.findall("joint") for e in (joint.find("parent"), joint.find("child"))}
+    if "world" in named and all(link.get("name") != "world" for link in root.findall("link")):
+        root.insert(0, ET.Element("link", name="world"))
+
+
+def read_tool_closures(root: ET.Element) -> list[LoopClosure]:
+    """Read the Drake ball constraints and Gazebo joints of a URDF into closures, adding their frames.
+
+    Args:
+        root: the URDF's `<robot>` element; the cut frames are appended to it as links and fixed joints.
+
+    Returns:
+        The closures, Drake's then Gazebo's, each in document order.
+
+    Raises:
+        MalformedDescription: a missing or malformed attribute, a body that is not a link, or a Gazebo
+            joint of a type mechkit cannot cut.
+    """
+    links = {link.get("name") for link in root.findall("link")}
+    out = []
+    for name, body_a, p_ap, body_b, p_bq in ball_constraints(root, links):
+        _add_frame(root, f"{name}_a", body_a, p_ap, np.eye(3))
+        _add_frame(root, f"{name}_b", body_b, p_bq, np.eye(3))
+        out.append(LoopClosure(name, "spherical", f"{name}_a", f"{name}_b", explicit_rows=False))
+    for element in root.findall(f"{{{DRAKE}}}linear_bushing_rpy"):
+        out.append(_bushing(root, element, links))
+    for gazebo in root.findall("gazebo"):
+        for element in gazebo.findall("joint"):
+            out.append(_gazebo_joint(root, element, links))
+    return out
+
+
+def _gazebo_joint(root: ET.Element, element: ET.Element, links: set[str]) -> LoopClosure:
+    name = element.get("name") or "gazebo_joint"
+    where = f"gazebo/joint {name!r}"
+    kind = GAZEBO_KINDS.get(element.get("type", ""))
+    if kind is None:
+        raise MalformedDescription(where, f"type {element.get('type')!r}: mechkit cuts {tuple(GAZEBO_KINDS)}")
+    ends = {}
+    for tag in ("parent", "child"):
+        text = (element.findtext(tag) or "").strip()
+        if text not in links:
+            raise MalformedDescription(where, f"{tag} {text!r} is not a link of the URDF")
+        ends[tag] = text
+    pose = np.zeros(6)
+    if element.find("pose") is not None:
+        pose = _numbers(element.findtext("pose"), 6, f"{where} pose")
+    joint_in_child = _transform(pose[:3], pose[3:])
+    world = _zero_poses(root)
+    joint_in_parent = np.linalg.solve(world[ends["parent"]], world[ends["child"]] @ joint_in_child)
+    axis = None
+    if kind in ("revolute", "prismatic"):
+        axis = _numbers(element.findtext("axis/xyz") or "", 3, f"{where} axis/xyz")
+        if np.linalg.norm(axis) == 0:
+            raise MalformedDescription(where, "axis/xyz is zero")
+        axis = axis / np.linalg.norm(axis)
+    _add_frame(root, f"{name}_a", ends["parent"], joint_in_parent[:3, 3], joint_in_parent[:3, :3])
+    _add_frame(root, f"{name}_b", ends["child"], joint_in_child[:3, 3], joint_in_child[:3, :3])
+    return LoopClosure(name, kind, f"{name}_a", f"{name}_b", axis, explicit_rows=False)
+
+
+def ball_constraints(parent: ET.Element, links: Collection[str]) -> list[tuple[str, str, np.ndarray, str, np.ndarray]]:
+    """The `drake:ball_constraint` children of a URDF `<robot>` (values in attributes `name`, `value`) or
+    an SDFormat `<model>` (values as text).
+
+    Args:
+        parent: the `<robot>` or `<model>` element.
+        links: the names of its links.
+
+    Returns:
+        (cut name "ball_<A>_<B>", body A, p_AP (3,) m in A's frame, body B, p_BQ (3,) m in B's frame) each.
+
+    Raises:
+        MalformedDescription: a body that is not a link, or a point that is not three finite numbers.
+    """
+    out = []
+    for k, element in enumerate(parent.findall(f"{{{DRAKE}}}ball_constraint"), 1):
+        where = f"drake:ball_constraint #{k}"
+        values = {}
+        for tag in ("body_A", "body_B", "p_AP", "p_BQ"):
+            child = element.find(f"{{{DRAKE}}}ball_constraint_{tag}")
+            if child is None:
+                raise MalformedDescription(where, f"missing drake:ball_constraint_{tag}")
+            values[tag] = (child.get("name" if tag.startswith("body") else "value") or child.text or "").strip()
+        for tag in ("body_A", "body_B"):
+            if values[tag] not in links:
+                raise MalformedDescription(where, f"drake:ball_constraint_{tag} {values[tag]!r} is not a link")
+        points = [_numbers(values[tag], 3, f"{where} drake:ball_constraint_{tag}") for tag in ("p_AP", "p_BQ")]
+        name = f"ball_{values['body_A']}_{values['body_B']}"
+        out.append((name, values["body_A"], points[0], values["body_B"], points[1]))
+    return out
+
+
+def stiff_directions(torque: np.ndarray, force: np.ndarray) -> tuple[str, np.ndarray | None]:
+    """The cut a bushing stands for: its stiff directions closed, its free ones (`BUSHING_RATIO`) left free.
+
+    Args:
+        torque: (3,) torque stiffness about frame A's x, y, z (N m/rad, >= 0).
+        force: (3,) force stiffness along them (N/m, >= 0).
+
+    Returns:
+        (kind, axis): "weld", "spherical", ("revolute", free rotation axis) or ("prismatic", free
+        translation axis), the axis in frame A; None where the pattern is no such joint.
+    """
+    free_t, free_f = (k <= BUSHING_RATIO * k.max() for k in (torque, force))
+    if force.max() <= 0 or free_f.sum() > 1 or (free_f.any() and free_t.any()):
+        return "", None
+    if free_f.any():
+        return "prismatic", np.eye(3)[np.argmax(free_f)]
+    kinds = {0: "weld", 1: "revolute", 3: "spherical"}
+    kind = kinds.get(int(free_t.sum()), "")
+    return kind, np.eye(3)[np.argmax(free_t)] if kind == "revolute" else None
+
+
+def _bushing(root: ET.Element, element: ET.Element, links: set[str]) -> LoopClosure:
+    frames = {f.get("name"): f for f in root.findall("frame")}
+    ends, where = [], "drake:linear_bushing_rpy"
+    for side in "AC":
+        child = element.find(f"{{{DRAKE}}}bushing_frame{side}")
+        name = child.get("name") if child is not None else None
+        if name in frames:
+            frame = frames[name]
+            xyz, rpy = (_numbers(frame.get(a, "0 0 0"), 3, f"frame {name!r} {a}") for a in ("xyz", "rpy"))
+            ends.append((name, frame.get("link"), _transform(xyz, rpy)))
+        elif name in links:
+            ends.append((name, name, np.eye(4)))
+        else:
+            raise MalformedDescription(where, f"drake:bushing_frame{side} {name!r} is not a frame or link of the URDF")
+        if ends[-1][1] not in links:
+            raise MalformedDescription(where, f"frame {name!r}: link {ends[-1][1]!r} is not a link of the URDF")
+    where = f"drake:linear_bushing_rpy {ends[0][0]!r}-{ends[1][0]!r}"
+    torque, force = (_vec(element, f"bushing_{k}_stiffness", where) for k in ("torque", "force"))
+    if np.any(torque < 0) or np.any(force < 0):
+        raise MalformedDescription(where, "a negative stiffness")
+    kind, axis = stiff_directions(torque, force)
+    if not kind:
+        raise MalformedDescription(
+            where,
+            f"torque stiffness {torque.tolist()}, force stiffness {force.tolist()}: its stiff directions "
+            f"(above {BUSHING_RATIO} of the largest of their kind) make no joint mechkit closes (weld, "
+            "revolute, prismatic, spherical)",
+        )
+    name = f"bushing_{ends[0][0]}_{ends[1][0]}"
+    for side, (_, link, pose) in zip("ab", ends):
+        _add_frame(root, f"{name}_{side}", link, pose[:3, 3], pose[:3, :3])
+    return LoopClosure(name, kind, f"{name}_a", f"{name}_b", axis, explicit_rows=False)
+
+
+def _vec(element: ET.Element, tag: str, where: str) -> np.ndarray:
+    child = element.find(f"{{{DRAKE}}}{tag}")
+    if child is None:
+        raise MalformedDescription(where, f"missing drake:{tag}")
+    return _numbers(child.get("value", ""), 3, f"{where} drake:{tag}")
+
+
+def _numbers(text: str, n: int, where: str) -> np.ndarray:
+    try:
+        values = np.array([float(v) for v in text.split()])
+    except ValueError:
+        values = np.zeros(0)
+    if values.shape != (n,) or not np.all(np.isfinite(values)):
+        raise MalformedDescription(where, f"{text!r} is not {n} finite numbers")
+    return values
+
+
+def _transform(xyz: np.ndarray, rpy: np.ndarray) -> np.ndarray:
+    """Homogeneous transform of an `xyz rpy` origin (URDF and SDFormat: R = Rz(y) Ry(p) Rx(r))."""
+    c, s = np.cos(rpy), np.sin(rpy)
+    rx = np.array([[1, 0, 0], [0, c[0], -s[0]], [0, s[0], c[0]]])
+    ry = np.array([[c[1], 0, s[1]], [0, 1, 0], [-s[1], 0, c[1]]])
+    rz = np.array([[c[2], -s[2], 0], [s[2], c[2], 0], [0, 0, 1]])
+    out = np.eye(4)
+    out[:3, :3], out[:3, 3] = rz @ ry @ rx, xyz
+    return out
+
+
+def _zero_poses(root: ET.Element) -> dict[str, np.ndarray]:
+    """Each link's pose in the root link's frame at the zero configuration (the tree is already checked)."""
+    parent_of = {}
+    for joint in root.findall("joint"):
+        origin = joint.find("origin")
+        xyz, rpy = (
+            _numbers(origin.get(a, "0 0 0") if origin is not None else "0 0 0", 3, "origin") for a in ("xyz", "rpy")
+        )
+        parent_of[joint.find("child").get("link")] = (joint.find("parent").get("link"), _transform(xyz, rpy))
+    poses: dict[str, np.ndarray] = {}
+
+    def pose(link: str) -> np.ndarray:
+        if link not in poses:
+            parent, origin = parent_of.get(link, (None, None))
+            poses[link] = np.eye(4) if parent is None else pose(parent) @ origin
+        return poses[link]
+
+    return {link.get("name"): pose(link.get("name")) for link in root.findall("link")}
+
+
+def _add_frame(root: ET.Element, name: str, body: str, xyz: np.ndarray, rotation: np.ndarray) -> None:
+    """A massless link `name` fixed to `body` at `xyz` (m) with orientation `rotation`, both in body's frame."""
+    pitch = np.arcsin(np.clip(-rotation[2, 0], -1.0, 1.0))
+    roll, yaw = np.arctan2(rotation[2, 1], rotation[2, 2]), np.arctan2(rotation[1, 0], rotation[0, 0])
+    ET.SubElement(root, "link", name=name)
+    joint = ET.SubElement(root, "joint", name=f"{name}_fixed", type="fixed")
+    ET.SubElement(joint, "parent", link=body)
+    ET.SubElement(joint, "child", link=name)
+    fmt = " ".join
+    ET.SubElement(
+        joint, "origin", xyz=fmt(repr(float(v)) for v in xyz), rpy=fmt(repr(float(v)) for v in (roll, pitch, yaw))
+    )
