@@ -40,7 +40,11 @@ class JointSprings(ForceElement):
         q_index, v_index, unbounded, laws, damped_v, damped = [], [], [], [], [], []
         for s in self.springs:
             if not model.existJointName(s.joint):
-                raise InvalidParameters("spring", s.joint, f"no such joint; joints: {list(model.names[1:])}")
+                raise InvalidParameters(
+                    "spring",
+                    s.joint,
+                    f"no such tree joint; joints: {list(model.names[1:])} (a loop-cut joint's: CutJointSprings)",
+                )
             j = model.getJointId(s.joint)
             jm = model.joints[j]
             if jm.nv == 1:
