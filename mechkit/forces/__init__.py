@@ -12,7 +12,7 @@ body wrenches) and its part of the energy balance (a potential, or a dissipated 
 | `Gravity`: another gravity than the model's | `gravity` | conservative |
 | `BodyWrench`: a force through a body point and a moment, functions of time | `wrenches` | source |
 | `PointToPointForce`: spring, damper, force between two body points | `point_to_point` | any |
-| `CutJointSprings`, `CutJointFriction`: the same on loop-cut joints | `cut_joints` | conservative + dissipative |
+| `CutJointSprings`, `CutJointFriction`, `CutJointEffort`: on loop-cut joints | `cut_joints` | all three |
 
 A description declares springs and dampers as URDF `<mechkit:spring>` and `<dynamics damping>`, MJCF stiffness,
 springref and damping; constant friction as URDF `<dynamics friction>` and MJCF frictionloss. `ReactionFriction` acts at
@@ -24,7 +24,7 @@ limits, motor envelopes). `Mechanism` applies its own `JointSprings` in both dyn
 """
 
 from mechkit.forces.coulomb import SPEED_THRESHOLD, CoulombFriction, smooth_sign
-from mechkit.forces.cut_joints import CutJointFriction, CutJointSprings
+from mechkit.forces.cut_joints import CutJointEffort, CutJointFriction, CutJointSprings
 from mechkit.forces.described import Described
 from mechkit.forces.described import read as read_described
 from mechkit.forces.element import (
@@ -47,6 +47,7 @@ __all__ = [
     "SPEED_THRESHOLD",
     "BodyWrench",
     "CoulombFriction",
+    "CutJointEffort",
     "CutJointFriction",
     "CutJointSprings",
     "Described",

@@ -11,7 +11,7 @@ body wrenches, so that the joint reactions carry it.
 
 from __future__ import annotations
 
-from collections.abc import Iterable, Mapping, Sequence
+from collections.abc import Callable, Iterable, Mapping, Sequence
 
 import numpy as np
 import pinocchio as pin
@@ -223,3 +223,42 @@ class CutJointFriction(ForceElement):
             joint.wrenches(model, data, effort, out)
             power += effort * rate
         return Load(None, out, power)
+
+
+class CutJointEffort(ForceElement):
+    """A given effort on one loop-cut joint (a torque about a revolute cut's axis, a force along a prismatic
+    cut's), constant or a function of time: a source, its power effort x rate.
+
+    Args:
+        model: the tree's Pinocchio model (unused: the cut's frames are its).
+        cuts: the cuts' rows (`ClosureModel.kernel.cuts`).
+        joint: the cut joint's name.
+        effort: N m or N, or a function of t (s) giving it.
+        name: the element's name (default "effort on <joint>").
+
+    Raises:
+        InvalidParameters: a joint that is no revolute or prismatic cut.
+    """
+
+    role = "source"
+
+    def __init__(
+        self, model: pin.Model, cuts: Sequence, joint: str, effort: float | Callable[[float], float], name: str = ""
+    ):
+        self.joint = cut_joints(cuts, [joint], "effort")[0]
+        self.effort = effort if callable(effort) else (lambda t, e=float(effort): e)
+        self.name = name or f"effort on {joint}"
+
+    def load(self, state: ForceState) -> Load:
+        """The effort as body wrenches, and its power.
+
+        Args:
+            state: the state, its kinematics computed (its t is read).
+
+        Returns:
+            The `Load`: no generalised forces, body wrenches (njoints, 6), the power effort x rate (W).
+        """
+        out = np.zeros((state.model.njoints, 6))
+        effort = float(self.effort(state.t))
+        self.joint.wrenches(state.model, state.data, effort, out)
+        return Load(None, out, effort * self.joint.rate(state.model, state.data))

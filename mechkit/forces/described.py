@@ -22,7 +22,7 @@ import pinocchio as pin
 
 from mechkit.base.exceptions import MalformedDescription, MethodUnavailable
 from mechkit.core import JointSpring
-from mechkit.forces.coulomb import CoulombFriction
+from mechkit.forces.coulomb import SPEED_THRESHOLD, CoulombFriction
 from mechkit.forces.point_to_point import PointToPoint, point_to_point
 from mechkit.forces.springs import JointSprings
 
@@ -45,18 +45,19 @@ class Described:
     motors: dict[str, tuple[float, float]] = field(default_factory=dict)
     struts: list[PointToPoint] = field(default_factory=list)
 
-    def elements(self, model: pin.Model) -> list:
+    def elements(self, model: pin.Model, threshold: float = SPEED_THRESHOLD) -> list:
         """The dampers and the friction as force elements.
 
         Args:
             model: the tree's Pinocchio model (the joints named here must be its).
+            threshold: the friction's regularisation rate (rad/s or m/s, > 0; `mechkit.forces.coulomb`).
 
         Returns:
             A `JointSprings` of the dampers, a `CoulombFriction` of the friction, each only where the file
             declares some, and a `PointToPointForce` per strut (an empty list where it declares none).
 
         Raises:
-            InvalidParameters: a strut's frame the model does not have.
+            InvalidParameters: a strut's frame the model does not have, a threshold not > 0.
         """
         out: list = []
         if self.dampers:
@@ -64,7 +65,7 @@ class Described:
                 JointSprings(model, [JointSpring(j, damping=d) for j, d in self.dampers.items()], "joint dampers")
             )
         if self.friction:
-            out.append(CoulombFriction(model, self.friction))
+            out.append(CoulombFriction(model, self.friction, threshold))
         return out + point_to_point(model, self.struts)
 
 

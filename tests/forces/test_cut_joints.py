@@ -121,3 +121,17 @@ def test_bad_cut_joints_are_refused_by_name(four_bar):
         forces.CutJointFriction(four_bar.model, cuts, {"C": 0.1}, threshold=0.0)
     with pytest.raises(InvalidParameters, match="friction on C"):
         forces.CutJointFriction(four_bar.model, cuts, {"C": -0.1})
+
+
+def test_a_cut_joint_effort_supplies_effort_times_rate(four_bar):
+    """A 0.3 N m torque on C (a function of time, at t = 0.5 s: 0.3): its power is 0.3 x C's rate, and equals
+    the power of its generalised force J^T f (the wrenches' work on the tree's velocities), to 1e-12."""
+    m = four_bar
+    effort = forces.CutJointEffort(m.model, m.closure_model.kernel.cuts, "C", lambda t: 0.6 * t)
+    s = state(m, t=0.5)
+    load = effort.load(s)
+    exact = motion(m.params, [0.9], [1.5], [0.0]).links
+    assert effort.role == "source" and effort.name == "effort on C"
+    assert load.power == pytest.approx(0.3 * (exact["rocker"].omega - exact["coupler"].omega), rel=1e-9)
+    tau = forces.generalized_of_wrenches(m.model, s.data, load.wrenches)
+    assert float(tau @ s.v) == pytest.approx(load.power, rel=1e-12)
