@@ -135,3 +135,12 @@ def test_a_cut_joint_effort_supplies_effort_times_rate(four_bar):
     assert load.power == pytest.approx(0.3 * (exact["rocker"].omega - exact["coupler"].omega), rel=1e-9)
     tau = forces.generalized_of_wrenches(m.model, s.data, load.wrenches)
     assert float(tau @ s.v) == pytest.approx(load.power, rel=1e-12)
+
+
+def test_the_tree_joint_elements_point_to_the_cut_joint_ones(four_bar):
+    """A spring or friction on the cut pin C given to the tree-joint elements is refused, naming the element
+    that takes it."""
+    with pytest.raises(InvalidParameters, match="CutJointSprings"):
+        forces.JointSprings(four_bar.model, [core.JointSpring("C", 1.0)])
+    with pytest.raises(InvalidParameters, match="CutJointFriction"):
+        forces.CoulombFriction(four_bar.model, {"C": 0.1})

@@ -121,3 +121,23 @@ def test_a_law_is_a_source(four_bar):
     assert actuator.role == "source"
     assert load.power == pytest.approx(float(tau @ s.v), rel=1e-10)
     assert abs(load.power) > 1e-3
+
+
+def test_the_equilibrium_sees_the_strut(four_bar):
+    """The static equilibrium under gravity and a stiff strut (a pose the strut moves far from the one gravity
+    alone gives) is where the total potential's slope along the motion vanishes: central differences of
+    gravity + strut potential over assembled poses, to 1e-6 J/rad."""
+    m = four_bar
+    strut = _strut(m, stiffness=300.0, free_length=0.3, force=1.0)  # pushes the rocker up: crank near 0.6 rad
+    eq = m.equilibrium(elements=[strut])
+    assert eq.residual < 1e-9
+    assert np.max(np.abs(eq.q - m.equilibrium().q)) > 1.0
+    data = m.model.createData()
+
+    def potential(x):
+        q = m.assemble([x], guess=eq.q)
+        gravity = pin.computePotentialEnergy(m.model, data, q)
+        return gravity + strut.energy(m.model, data, q)
+
+    theta, h = eq.q[m.q_index("crank")], 1e-5
+    assert abs((potential(theta + h) - potential(theta - h)) / (2 * h)) < 1e-6
