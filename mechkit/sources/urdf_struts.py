@@ -5,7 +5,7 @@ force).
     <mechkit:strut name="isolator" frame_a="ground" point_a="0.1 0 0.15" frame_b="rocker_link"
                    point_b="0.11 0 0" stiffness="200" length="0.1" damping="3" force="0"/>
 
-`frame_a`, `frame_b`: links (or frames) the points are fixed in; `point_a`, `point_b`: the points in
+`frame_a`, `frame_b`: the links the points are fixed in; `point_a`, `point_b`: the points in
 them (m, default the frames' origins); `stiffness` (N/m), `length` the spring's free length (m, needed
 with a stiffness), `damping` (N s/m), `force` a constant force along the line (N, positive pushes the
 points apart). Every number but the names defaults to 0.
