@@ -78,11 +78,8 @@ class _Added:
         cuts = mech.closure_model.kernel.cuts
         cut_names = {c.closure.name for c in cuts}
         springs = [JointSpring(j, x[0], x[1], 0.0, x[2] if len(x) == 3 else 0.0) for j, x in self.springs.items()]
-        tree = [s for s in springs if s.joint not in cut_names]
-        if tree:
-            out.append(forces.JointSprings(mech.model, tree, "added springs"))
-        if len(tree) < len(springs):
-            out.append(forces.CutJointSprings(mech.model, cuts, [s for s in springs if s.joint in cut_names]))
+        if springs:
+            out.append(forces.JointSprings(mech.model, springs, "added springs", cuts))
         for joint, (value,) in self.torques.items():
             if joint in cut_names:
                 out.append(forces.CutJointEffort(mech.model, cuts, joint, value, f"torque on {joint}"))

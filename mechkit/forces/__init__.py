@@ -5,7 +5,7 @@ body wrenches) and its part of the energy balance (a potential, or a dissipated 
 
 | element | module | role |
 |---|---|---|
-| `JointSprings`: springs and dampers a description declares | `springs` | conservative + dissipative |
+| `JointSprings`: springs and dampers (loop-cut joints' given the cuts) | `springs` | conservative + dissipative |
 | `CoulombFriction`: constant joint friction | `coulomb` | dissipative |
 | `ReactionFriction`: friction torque from each revolute joint's reaction | `reaction_friction` | dissipative |
 | `TorqueMotor`: a commanded effort within a torque-speed envelope | `motors` | source |

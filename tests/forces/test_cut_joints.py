@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
 import pytest
 import scipy.integrate
 
@@ -138,9 +139,37 @@ def test_a_cut_joint_effort_supplies_effort_times_rate(four_bar):
 
 
 def test_the_tree_joint_elements_point_to_the_cut_joint_ones(four_bar):
-    """A spring or friction on the cut pin C given to the tree-joint elements is refused, naming the element
-    that takes it."""
-    with pytest.raises(InvalidParameters, match="CutJointSprings"):
+    """A spring on the cut pin C given to `JointSprings` without the cuts, or friction on it to
+    `CoulombFriction`, is refused, naming what takes it."""
+    with pytest.raises(InvalidParameters, match="pass the cuts"):
         forces.JointSprings(four_bar.model, [core.JointSpring("C", 1.0)])
     with pytest.raises(InvalidParameters, match="CutJointFriction"):
         forces.CoulombFriction(four_bar.model, {"C": 0.1})
+
+
+def test_joint_springs_with_the_cuts_take_the_cut_joints_springs(four_bar):
+    """`JointSprings` given the cuts: springs on a tree joint and on C in one element. Its batch generalised
+    forces and potential over two samples equal, sample by sample, its load (J^T f of the cut's wrenches
+    added) and `energy`, and the sum of a tree-only `JointSprings` and a `CutJointSprings` (1e-12)."""
+    m = four_bar
+    cuts = m.closure_model.kernel.cuts
+    tree, cut = core.JointSpring("rocker", 2.0, 1.0, damping=0.1), core.JointSpring("C", 3.0, 0.5, 0.2, 0.05)
+    both = forces.JointSprings(m.model, [tree, cut], cuts=cuts)
+    apart = [forces.JointSprings(m.model, [tree]), forces.CutJointSprings(m.model, cuts, [cut])]
+    qs = [m.assemble([x]) for x in (0.9, 1.7)]
+    vs = [m.velocities(q, [r]) for q, r in zip(qs, (1.5, -0.8))]
+    forces_batch, potential_batch = both.forces(np.array(qs), np.array(vs)), both.potential(np.array(qs))
+    for k, (q, v) in enumerate(zip(qs, vs)):
+        s = state(m, q, v)
+        loads = [both.load(s)] + [e.load(s) for e in apart]
+        tau = [
+            (x.generalized if x.generalized is not None else 0.0)
+            + (forces.generalized_of_wrenches(m.model, s.data, x.wrenches) if x.wrenches is not None else 0.0)
+            for x in loads
+        ]
+        assert np.allclose(forces_batch[k], tau[0], atol=1e-12) and np.allclose(tau[0], tau[1] + tau[2], atol=1e-12)
+        assert loads[0].power == pytest.approx(loads[1].power + loads[2].power, rel=1e-12)
+        energy = both.energy(m.model, s.data, q)
+        assert potential_batch[k] == pytest.approx(energy, rel=1e-12)
+        assert energy == pytest.approx(sum(e.energy(m.model, s.data, q) for e in apart), rel=1e-12)
+        assert abs(float(tau[0] @ v)) > 1e-3
