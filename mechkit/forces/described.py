@@ -3,7 +3,8 @@
 - URDF: `<dynamics damping friction>` of a moving joint (a viscous damper, N m s/rad or N s/m, and
   a constant friction, N m or N) and `<limit lower upper effort velocity>` (joint limits, rad or m,
   and an actuated joint's motor envelope: stall effort and no-load rate). The registered mechanisms'
-  limits are wide (+-25 rad, 1e6, 1e3): nothing stops or clips there.
+  limits are wide (+-25 rad, 1e6, 1e3; +-1e9 rad on a joint that turns fully, as the four-bar's crank):
+  no motion of their scenes reaches them.
 - MJCF (compiled by MuJoCo): `frictionloss` (constant friction), `range` of a limited joint, an
   actuator's `forcerange` (its stall effort; MJCF has no speed limit), and the spatial tendons between
   two sites with their springs, dampers and actuators (`mechkit.sources.mjcf.spatial_tendons`).
