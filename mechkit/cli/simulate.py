@@ -10,7 +10,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from mechkit.base.atomic import resolve_output
-from mechkit.base.exceptions import InvalidArgument, MethodUnavailable
+from mechkit.base.exceptions import InvalidArgument, InvalidParameters, MethodUnavailable
 from mechkit.base.joint_arguments import joint_names
 from mechkit.cli import option_values
 from mechkit.cli.common import add_mechanism_arguments, check_writers, examples, load_mechanism
@@ -34,19 +34,30 @@ class _Added:
     gravity: list[float] | None
     springs: dict[str, list[float]]
     latches: dict[str, list[float]]
+    torques: dict[str, list[float]]
+    threshold: float
 
     @classmethod
     def of(cls, args: argparse.Namespace) -> _Added:
-        """The values of --friction, --gravity, --spring and --latch (`mechkit.cli.option_values`)."""
+        """The values of --friction, --gravity, --spring, --latch, --torque and --friction-rate
+        (`mechkit.cli.option_values`)."""
+        from mechkit.forces import SPEED_THRESHOLD
+
+        rate = SPEED_THRESHOLD if args.friction_rate is None else args.friction_rate
+        if not (rate > 0 and math.isfinite(rate)):
+            raise InvalidArgument("--friction-rate", rate, "must be a finite rate > 0 (rad/s or m/s)")
         return cls(
             None if args.friction is None else option_values.numbers("--friction", args.friction, 2, what="MU,RADIUS"),
             None if args.gravity is None else option_values.numbers("--gravity", args.gravity, 3, what="GX,GY,GZ"),
             option_values.named_numbers("--spring", args.spring, "JOINT=STIFFNESS,REFERENCE[,DAMPING]", (2, 3)),
             option_values.named_numbers("--latch", args.latch, "JOINT=VALUE (rad or m)", 1),
+            option_values.named_numbers("--torque", args.torque, "JOINT=VALUE (N m or N)", 1),
+            rate,
         )
 
     def elements(self, mech) -> list:
-        """The force elements: reaction friction on every revolute joint, gravity, springs."""
+        """The force elements: reaction friction on every revolute joint, gravity, springs (loop-cut joints'
+        among them), constant efforts (a source each)."""
         from mechkit import forces
         from mechkit.core import JointSpring
 
@@ -60,13 +71,24 @@ class _Added:
                 and mech.model.joints[mech.joint_id(j)].nv == 1
             ]
             revolute += [c.name for c in cm.closures if c.kind == "revolute"]
-            spec = forces.PinFriction(self.friction[0], self.friction[1])
+            spec = forces.PinFriction(self.friction[0], self.friction[1], threshold=self.threshold)
             out.append(forces.ReactionFriction(mech.model, cm.joint_names, cm.kernel.cuts, {j: spec for j in revolute}))
         if self.gravity is not None:
             out.append(forces.Gravity(mech.model, self.gravity))
+        cuts = mech.closure_model.kernel.cuts
+        cut_names = {c.closure.name for c in cuts}
         springs = [JointSpring(j, x[0], x[1], 0.0, x[2] if len(x) == 3 else 0.0) for j, x in self.springs.items()]
         if springs:
-            out.append(forces.JointSprings(mech.model, springs, "added springs"))
+            out.append(forces.JointSprings(mech.model, springs, "added springs", cuts))
+        for joint, (value,) in self.torques.items():
+            if joint in cut_names:
+                out.append(forces.CutJointEffort(mech.model, cuts, joint, value, f"torque on {joint}"))
+            else:
+                try:
+                    row = forces.TorqueMotor.on_joint(mech.model, joint, value).row
+                except InvalidParameters as err:
+                    raise InvalidArgument("--torque", joint, err.why) from None
+                out.append(forces.TorqueMotor(row, value, name=f"torque on {joint}"))
         return out
 
 
@@ -96,7 +118,9 @@ def _simulate(mech, args: argparse.Namespace, inputs, torques, added: _Added, so
         args.duration,
         inputs=inputs,
         torques=torques,
-        forces=added.elements(mech),
+        forces=simulation.default_forces(mech, source, added.threshold) + added.elements(mech),
+        file_forces=False,
+        limits=None if args.no_limits else "file",
         source=source,
         dt=args.dt,
         rtol=args.rtol,
@@ -131,13 +155,20 @@ def run(args: argparse.Namespace) -> None:
     option_values.suffixed("--animate", args.animate, (".html",))
     if not 0 <= args.restitution <= 1:  # else refused per joint limit, or ignored where there is none
         raise InvalidArgument("--restitution", args.restitution, "must be in [0, 1]: 0 stops, 1 bounces back")
+    if args.no_limits and args.restitution:
+        raise InvalidArgument("--restitution", args.restitution, "applies at the joint limits, which --no-limits drops")
     added = _Added.of(args)
     check_writers(args.output, args.plot, "simulation plots")
     if args.animate:
         resolve_output(args.animate)
     mech = load_mechanism(args)
-    for option, given in (("--latch", added.latches), ("--spring", added.springs)):
-        joint_names(option, list(given), mech.model.names[1:], allow_empty=True)
+    cut_joints = [c.name for c in mech.closure_model.closures if c.kind in ("revolute", "prismatic")]
+    for option, given, cuts in (
+        ("--latch", added.latches, []),
+        ("--spring", added.springs, cut_joints),
+        ("--torque", added.torques, cut_joints),
+    ):
+        joint_names(option, list(given), list(mech.model.names[1:]) + cuts, allow_empty=True)
     inputs = torques = None
     if args.inputs:
         inputs = motion.from_csv(mech, args.inputs)
@@ -240,8 +271,25 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
         "--spring",
         action="append",
         metavar="JOINT=K,REF[,DAMPING]",
-        help="a joint spring: stiffness (N m/rad or N/m), reference (rad or m), damping (repeatable)",
+        help="a joint spring: stiffness (N m/rad or N/m), reference (rad or m), damping "
+        "(a loop-cut joint's too: its frames' relative angle or slide; repeatable)",
     )
+    # --- forces helper: constant efforts, limits off, the friction's regularisation
+    p.add_argument(
+        "--torque",
+        action="append",
+        metavar="JOINT=VALUE",
+        help="a constant torque or force on a joint, a loop-cut joint included (N m or N; repeatable)",
+    )
+    p.add_argument("--no-limits", action="store_true", help="ignore the file's joint limits (nothing stops a joint)")
+    p.add_argument(
+        "--friction-rate",
+        type=float,
+        metavar="RATE",
+        help="rate (rad/s or m/s) at which friction reaches tanh(1) = 0.76 of its size (default 0.01): "
+        "below it friction acts as a damper",
+    )
+    # --- end of the forces helper's options
     p.add_argument(
         "--restitution", type=float, default=0.0, help="at the file's joint limits: 0 stop (default) .. 1 bounce"
     )

@@ -5,12 +5,14 @@ body wrenches) and its part of the energy balance (a potential, or a dissipated 
 
 | element | module | role |
 |---|---|---|
-| `JointSprings`: springs and dampers a description declares | `springs` | conservative + dissipative |
+| `JointSprings`: springs and dampers (loop-cut joints' given the cuts) | `springs` | conservative + dissipative |
 | `CoulombFriction`: constant joint friction | `coulomb` | dissipative |
 | `ReactionFriction`: friction torque from each revolute joint's reaction | `reaction_friction` | dissipative |
 | `TorqueMotor`: a commanded effort within a torque-speed envelope | `motors` | source |
 | `Gravity`: another gravity than the model's | `gravity` | conservative |
 | `BodyWrench`: a force through a body point and a moment, functions of time | `wrenches` | source |
+| `PointToPointForce`: spring, damper, force between two body points | `point_to_point` | any |
+| `CutJointSprings`, `CutJointFriction`, `CutJointEffort`: on loop-cut joints | `cut_joints` | all three |
 
 A description declares springs and dampers as URDF `<mechkit:spring>` and `<dynamics damping>`, MJCF stiffness,
 springref and damping; constant friction as URDF `<dynamics friction>` and MJCF frictionloss. `ReactionFriction` acts at
@@ -22,6 +24,7 @@ limits, motor envelopes). `Mechanism` applies its own `JointSprings` in both dyn
 """
 
 from mechkit.forces.coulomb import SPEED_THRESHOLD, CoulombFriction, smooth_sign
+from mechkit.forces.cut_joints import CutJointEffort, CutJointFriction, CutJointSprings
 from mechkit.forces.described import Described
 from mechkit.forces.described import read as read_described
 from mechkit.forces.element import (
@@ -34,6 +37,7 @@ from mechkit.forces.element import (
 )
 from mechkit.forces.gravity import Gravity
 from mechkit.forces.motors import TorqueMotor, envelope
+from mechkit.forces.point_to_point import PointToPoint, PointToPointForce, point_to_point
 from mechkit.forces.reaction_friction import FrictionLocks, PinFriction, ReactionFriction
 from mechkit.forces.springs import JointSprings
 from mechkit.forces.wrenches import BodyWrench
@@ -43,6 +47,9 @@ __all__ = [
     "SPEED_THRESHOLD",
     "BodyWrench",
     "CoulombFriction",
+    "CutJointEffort",
+    "CutJointFriction",
+    "CutJointSprings",
     "Described",
     "ForceElement",
     "ForceState",
@@ -51,10 +58,13 @@ __all__ = [
     "JointSprings",
     "Load",
     "PinFriction",
+    "PointToPoint",
+    "PointToPointForce",
     "ReactionFriction",
     "TorqueMotor",
     "envelope",
     "generalized_of_wrenches",
+    "point_to_point",
     "read_described",
     "smooth_sign",
     "wrench_on_body",

@@ -89,6 +89,13 @@ class CoulombFriction(ForceElement):
         for joint, size in self.sizes.items():
             if not size >= 0:
                 raise InvalidParameters(f"friction on {joint}", size, "must be >= 0")
+        for joint in self.sizes:
+            if not isinstance(joint, str) or not model.existJointName(joint):
+                raise InvalidParameters(
+                    "friction",
+                    joint,
+                    f"no such tree joint; joints: {list(model.names[1:])} (a loop-cut joint's: CutJointFriction)",
+                )
         self._v = np.array([one_freedom_joint(model, j, "friction") for j in self.sizes], dtype=int)
         self._f = np.array(list(self.sizes.values()), dtype=float)
         self._nv = model.nv

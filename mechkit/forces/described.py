@@ -3,10 +3,13 @@
 - URDF: `<dynamics damping friction>` of a moving joint (a viscous damper, N m s/rad or N s/m, and
   a constant friction, N m or N) and `<limit lower upper effort velocity>` (joint limits, rad or m,
   and an actuated joint's motor envelope: stall effort and no-load rate). The registered mechanisms'
-  limits are wide (+-25 rad, 1e6, 1e3): nothing stops or clips there.
-- MJCF (compiled by MuJoCo): `frictionloss` (constant friction), `range` of a limited joint, and an
-  actuator's `forcerange` (its stall effort; MJCF has no speed limit). Stiffness, springref and
-  damping are the reader's joint springs (`Mechanism.springs`).
+  limits are wide (+-25 rad, 1e6, 1e3; +-1e9 rad on a joint that turns fully, as the four-bar's crank):
+  no motion of their scenes reaches them.
+- MJCF (compiled by MuJoCo): `frictionloss` (constant friction), `range` of a limited joint, an
+  actuator's `forcerange` (its stall effort; MJCF has no speed limit), and the spatial tendons between
+  two sites with their springs, dampers and actuators (`mechkit.sources.mjcf.spatial_tendons`).
+  Stiffness, springref and damping are the reader's joint springs (`Mechanism.springs`).
+- URDF: `<mechkit:strut>` point-to-point springs, dampers and forces (`mechkit.sources.urdf_struts`).
 """
 
 from __future__ import annotations
@@ -20,7 +23,8 @@ import pinocchio as pin
 
 from mechkit.base.exceptions import MalformedDescription, MethodUnavailable
 from mechkit.core import JointSpring
-from mechkit.forces.coulomb import CoulombFriction
+from mechkit.forces.coulomb import SPEED_THRESHOLD, CoulombFriction
+from mechkit.forces.point_to_point import PointToPoint, point_to_point
 from mechkit.forces.springs import JointSprings
 
 
@@ -33,22 +37,28 @@ class Described:
         friction: joint -> constant friction (N m or N).
         limits: joint -> (lower, upper) (rad or m).
         motors: joint or actuator -> (stall effort (N m or N), no-load rate (rad/s or m/s)); inf where none.
+        struts: point-to-point springs, dampers and forces (`PointToPoint`).
     """
 
     dampers: dict[str, float] = field(default_factory=dict)
     friction: dict[str, float] = field(default_factory=dict)
     limits: dict[str, tuple[float, float]] = field(default_factory=dict)
     motors: dict[str, tuple[float, float]] = field(default_factory=dict)
+    struts: list[PointToPoint] = field(default_factory=list)
 
-    def elements(self, model: pin.Model) -> list:
+    def elements(self, model: pin.Model, threshold: float = SPEED_THRESHOLD) -> list:
         """The dampers and the friction as force elements.
 
         Args:
             model: the tree's Pinocchio model (the joints named here must be its).
+            threshold: the friction's regularisation rate (rad/s or m/s, > 0; `mechkit.forces.coulomb`).
 
         Returns:
-            A `JointSprings` of the dampers and a `CoulombFriction` of the friction, each only where the
-            file declares some (an empty list where it declares neither).
+            A `JointSprings` of the dampers, a `CoulombFriction` of the friction, each only where the file
+            declares some, and a `PointToPointForce` per strut (an empty list where it declares none).
+
+        Raises:
+            InvalidParameters: a strut's frame the model does not have, a threshold not > 0.
         """
         out: list = []
         if self.dampers:
@@ -56,8 +66,8 @@ class Described:
                 JointSprings(model, [JointSpring(j, damping=d) for j, d in self.dampers.items()], "joint dampers")
             )
         if self.friction:
-            out.append(CoulombFriction(model, self.friction))
-        return out
+            out.append(CoulombFriction(model, self.friction, threshold))
+        return out + point_to_point(model, self.struts)
 
 
 def _float(element: ET.Element, attribute: str, default: float, where: str) -> float:
@@ -85,8 +95,10 @@ def from_urdf(urdf: str, model: pin.Model, actuated: tuple[str, ...] = ()) -> De
     Raises:
         MalformedDescription: a value that is not a finite number.
     """
-    out = Described()
+    from mechkit.sources.urdf_struts import parse_struts  # here: the URDF reader imports the forces
+
     root = ET.fromstring(urdf)
+    out = Described(struts=list(parse_struts(root)))
     for joint in root.findall("joint"):
         name, kind = joint.get("name"), joint.get("type")
         if kind == "fixed" or not model.existJointName(name or ""):
@@ -148,6 +160,9 @@ def from_mjcf(path: Path, model: pin.Model) -> Described:
             out.friction[name] = loss
         if mm.jnt_limited[j]:
             out.limits[name] = (float(mm.jnt_range[j, 0]), float(mm.jnt_range[j, 1]))
+    from mechkit.sources.mjcf import spatial_tendons  # here: the sources import the forces
+
+    out.struts.extend(spatial_tendons.read(mujoco, mm))
     for a in range(mm.nu):
         name = mujoco.mj_id2name(mm, mujoco.mjtObj.mjOBJ_ACTUATOR, a) or f"actuator{a}"
         if mm.actuator_forcelimited[a]:

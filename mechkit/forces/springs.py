@@ -2,7 +2,9 @@
 
 A one-freedom joint (revolute, prismatic, helical; a continuous joint by its angle): effort = preload
 - stiffness (x - reference) - damping dx/dt. A joint of several freedoms (ball, free-flyer): a damper
-only, -damping v on each of its velocity coordinates (MuJoCo's joint damping).
+only, -damping v on each of its velocity coordinates (MuJoCo's joint damping). A revolute or prismatic
+loop-cut joint (given the cuts): the same law on the cut's value, as body wrenches
+(`mechkit.forces.cut_joints`).
 """
 
 from __future__ import annotations
@@ -14,7 +16,8 @@ import pinocchio as pin
 
 from mechkit.base.exceptions import InvalidParameters
 from mechkit.core import JointSpring
-from mechkit.forces.element import ForceElement, ForceState, Load
+from mechkit.forces.cut_joints import CutJointSprings
+from mechkit.forces.element import ForceElement, ForceState, Load, generalized_of_wrenches
 
 
 class JointSprings(ForceElement):
@@ -27,20 +30,27 @@ class JointSprings(ForceElement):
         model: the tree's Pinocchio model.
         springs: the records.
         name: the element's name.
+        cuts: the cuts' rows (`ClosureModel.kernel.cuts`) where springs act on loop-cut joints.
 
     Raises:
-        InvalidParameters: an unknown joint, a negative stiffness or damping, or a spring (stiffness or
-            preload) on a joint of several freedoms.
+        InvalidParameters: an unknown joint, a negative stiffness or damping, a spring (stiffness or
+            preload) on a joint of several freedoms, or on a cut neither revolute nor prismatic.
     """
 
-    def __init__(self, model: pin.Model, springs: Sequence[JointSpring], name: str = "springs"):
+    def __init__(self, model: pin.Model, springs: Sequence[JointSpring], name: str = "springs", cuts: Sequence = ()):
         self.name = name
         self.springs = tuple(springs)
         self.role = "dissipative" if any(s.damping for s in self.springs) else "conservative"
+        cut_names = {c.closure.name for c in cuts}
+        on_cuts = [s for s in self.springs if s.joint in cut_names]
+        self._model, self._cuts = model, (CutJointSprings(model, cuts, on_cuts, name) if on_cuts else None)
         q_index, v_index, unbounded, laws, damped_v, damped = [], [], [], [], [], []
         for s in self.springs:
+            if s.joint in cut_names:
+                continue
             if not model.existJointName(s.joint):
-                raise InvalidParameters("spring", s.joint, f"no such joint; joints: {list(model.names[1:])}")
+                where = f"; cut joints: {sorted(cut_names)}" if cuts else " (a loop-cut joint's: pass the cuts)"
+                raise InvalidParameters("spring", s.joint, f"no such joint; joints: {list(model.names[1:])}{where}")
             j = model.getJointId(s.joint)
             jm = model.joints[j]
             if jm.nv == 1:
@@ -68,8 +78,24 @@ class JointSprings(ForceElement):
     def __bool__(self) -> bool:
         return bool(self.springs)
 
+    def _on_cuts(self, q: np.ndarray, v: np.ndarray | None, what: str) -> np.ndarray:
+        """The cut joints' springs' generalised forces (..., nv) (what "forces") or potential (...,) ("energy"),
+        sample by sample (each needs the kinematics of its q)."""
+        model, data = self._model, self._model.createData()
+        lead = np.shape(q)[:-1]
+        qs = np.reshape(q, (-1, model.nq))
+        vs = np.zeros((len(qs), model.nv)) if v is None else np.reshape(v, (-1, model.nv))
+        out = []
+        for qi, vi in zip(qs, vs):
+            state = ForceState.at(model, data, qi, vi)
+            if what == "energy":
+                out.append(self._cuts.energy(model, data, qi))
+            else:
+                out.append(generalized_of_wrenches(model, data, self._cuts.load(state).wrenches))
+        return np.reshape(np.array(out), lead + ((model.nv,) if what == "forces" else ()))
+
     def values(self, q: np.ndarray) -> np.ndarray:
-        """The one-freedom springs' joint values.
+        """The one-freedom tree joints' springs' joint values.
 
         Args:
             q: (..., nq) configurations.
@@ -94,6 +120,11 @@ class JointSprings(ForceElement):
         Returns:
             (..., nv) generalised forces (N m or N).
         """
+        out = self._tree_forces(q, v)
+        return out if self._cuts is None else out + self._on_cuts(q, v, "forces")
+
+    def _tree_forces(self, q: np.ndarray, v: np.ndarray) -> np.ndarray:
+        """The tree joints' springs' and dampers' generalised forces (..., nv)."""
         out = np.zeros(np.shape(v))
         out[..., self._v] = self._pre - self._k * (self.values(q) - self._ref) - self._d * v[..., self._v]
         out[..., self._damped_v] -= self._damped * v[..., self._damped_v]
@@ -109,10 +140,11 @@ class JointSprings(ForceElement):
             (...,) the potential energy (J).
         """
         dx = self.values(q) - self._ref
-        return np.sum(0.5 * self._k * dx**2 - self._pre * dx, axis=-1)
+        out = np.sum(0.5 * self._k * dx**2 - self._pre * dx, axis=-1)
+        return out if self._cuts is None else out + self._on_cuts(q, None, "energy")
 
     def damper_power(self, v: np.ndarray) -> np.ndarray:
-        """The dampers' power: -sum of damping v^2.
+        """The tree joints' dampers' power: -sum of damping v^2 (a cut's damper: `load`).
 
         Args:
             v: (..., nv) velocities.
@@ -132,19 +164,27 @@ class JointSprings(ForceElement):
             state: the state (its q and v are read).
 
         Returns:
-            The `Load`: generalised forces (nv,), no wrenches, the dampers' power (W, <= 0).
+            The `Load`: generalised forces (nv,) at the tree joints, body wrenches (njoints, 6) of the cut
+            joints' springs (or None), the dampers' power (W, <= 0).
         """
-        return Load(self.forces(state.q, state.v), None, float(self.damper_power(state.v)))
+        out = self._tree_forces(state.q, state.v)
+        power = float(self.damper_power(state.v))
+        if self._cuts is None:
+            return Load(out, None, power)
+        cut = self._cuts.load(state)
+        return Load(out, cut.wrenches, power + cut.power)
 
     def energy(self, model: pin.Model, data: pin.Data, q: np.ndarray) -> float:
         """The springs' potential energy at q.
 
         Args:
-            model: the tree's Pinocchio model (unused: the springs are indexed already).
-            data: its data (unused).
+            model: the tree's Pinocchio model.
+            data: its data after `forwardKinematics(q)` (read for the cut joints' springs).
             q: (nq,) configuration.
 
         Returns:
             The potential energy (J).
         """
-        return float(self.potential(q))
+        dx = self.values(q) - self._ref
+        tree = float(np.sum(0.5 * self._k * dx**2 - self._pre * dx))
+        return tree if self._cuts is None else tree + self._cuts.energy(model, data, q)

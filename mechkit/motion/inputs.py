@@ -94,8 +94,8 @@ def _check_names(mech: Mechanism, names: Sequence[str]) -> tuple[str, ...]:
 
 
 def _spline_derivatives(t: np.ndarray, values: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    if len(t) < 4:
-        raise InvalidParameters("t", len(t), "rates from a spline need at least 4 samples (or give the rates)")
+    """Rates and accelerations of scipy's not-a-knot cubic spline: through two samples the straight line
+    (a constant rate, no acceleration), through three the parabola."""
     spline = scipy.interpolate.CubicSpline(t, values, axis=0)
     return spline(t, 1), spline(t, 2)
 

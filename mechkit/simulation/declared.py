@@ -12,24 +12,31 @@ from typing import Any
 import numpy as np
 
 from mechkit.base.exceptions import InvalidParameters
-from mechkit.forces import ForceElement, TorqueMotor, read_described
+from mechkit.forces import SPEED_THRESHOLD, ForceElement, TorqueMotor, read_described
 from mechkit.simulation.events import Limit
 
 
-def default_forces(mech: Any, source: str | Path | None = None) -> list[ForceElement]:
+def default_forces(
+    mech: Any, source: str | Path | None = None, threshold: float = SPEED_THRESHOLD
+) -> list[ForceElement]:
     """The force elements a mechanism's description declares.
 
     Args:
         mech: the mechanism (`mechkit.Mechanism`).
         source: the MJCF file it came from (whose URDF the mechanism does not keep), or None: its URDF
             is read.
+        threshold: the regularisation rate of its constant friction (rad/s or m/s, > 0).
 
     Returns:
         Its joint springs (`Mechanism.springs`), then the dampers and friction of its URDF `<dynamics>`
-        or its MJCF `frictionloss`.
+        or its MJCF `frictionloss`, then its point-to-point elements (`<mechkit:strut>`, MJCF spatial
+        tendons).
+
+    Raises:
+        InvalidParameters: a threshold not > 0.
     """
     out: list[ForceElement] = [mech.springs] if mech.springs else []
-    return out + read_described(source, mech.urdf, mech.model, tuple(mech.actuated)).elements(mech.model)
+    return out + read_described(source, mech.urdf, mech.model, tuple(mech.actuated)).elements(mech.model, threshold)
 
 
 def file_limits(mech: Any, source: str | Path | None = None, restitution: float = 0.0) -> list[Limit]:

@@ -28,13 +28,15 @@ from mechkit.sources.drake_elements import declare_world, read_tool_closures
 from mechkit.sources.onshape_closures import closing_frames
 from mechkit.sources.urdf_checks import check_inertias, check_tree
 from mechkit.sources.urdf_mimics import parse_mimics
+from mechkit.sources.urdf_struts import parse_struts
 
 LOOP_NAMESPACE = "https://mechkit.dev/loop"
 #: Elements of the loop namespace mechkit knows (`home`: an input value of the default assembly; `guess`: a
-#: joint value near which it is sought, which picks the assembly branch; `spring`: a joint spring; `beam`,
+#: joint value near which it is sought, which picks the assembly branch; `spring`: a joint spring; `strut`: a
+#: point-to-point spring, damper and force (`mechkit.sources.urdf_struts`, read by the simulator); `beam`,
 #: `elastic_joint`: elastic data, read by `mechkit.elastic` and ignored by the rigid pipeline). Any other one
 #: is a `MalformedDescription`.
-KNOWN_ELEMENTS = ("loop", "home", "guess", "spring", "beam", "elastic_joint")
+KNOWN_ELEMENTS = ("loop", "home", "guess", "spring", "strut", "beam", "elastic_joint")
 #: Local names that declare a loop in some convention; outside the loop namespace they are an error.
 LOOP_LIKE = ("loop", "loops", "closure", "closed_loop", "loop_closure", "constraint", "cut")
 
@@ -89,6 +91,7 @@ def describe_urdf(urdf: str, source: Path | None, fmt: str, params: dict[str, st
                 raise MalformedDescription(f"mechkit:{tag} {joint!r}", "not a moving joint of the URDF")
     name = root.get("name") or (source.name.split(".")[0] if source else "urdf")
     springs = parse_springs(root)
+    parse_struts(root, {link.get("name") for link in root.findall("link")})  # refused at load, by name
     for spring in springs:
         if spring.joint not in joints:
             raise MalformedDescription(f"mechkit:spring {spring.joint!r}", "not a moving joint of the URDF")

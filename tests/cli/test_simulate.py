@@ -178,3 +178,95 @@ def test_a_missing_library_is_refused_before_the_run(module, args, tmp_path, cap
     out, err = capsys.readouterr()
     assert out == "" and err.count("\n") == 1 and "pip install" in err
     assert list(tmp_path.iterdir()) == []
+
+
+# --- the forces helper's options: --torque, --no-limits, --friction-rate, loop-cut joints, two-sample laws
+
+
+def _table(path):
+    """A written CSV table: column name -> (samples,) values."""
+    import numpy as np
+
+    lines = [line for line in path.read_text().splitlines() if not line.startswith("#")]
+    header = lines[0].split(",")
+    data = np.array([[float(x or "nan") for x in line.split(",")] for line in lines[1:]])  # empty: not computed
+    return {h: data[:, k] for k, h in enumerate(header)}
+
+
+def test_constant_torques_and_a_cut_joint_spring(tmp_path, capsys):
+    """0.2 N m on the crank and 0.01 N m on the loop-cut pin C, a spring-damper on C: each torque's work in the
+    table is the quadrature of torque x its joint's rate (C's: rocker - crank - coupler, planar, axes -y) to
+    1e-5, and the balance stays constant to 1e-8 of the work supplied."""
+    import scipy.integrate
+
+    out = tmp_path / "run.csv"
+    args = ["--torque", "crank=0.2", "--torque", "C=0.01", "--spring", "C=0.1,0,0.005", "--friction-rate", "0.05"]
+    assert main(["simulate", "four_bar", "--duration", "0.2", *args, "-o", str(out)]) == 0
+    capsys.readouterr()
+    c = _table(out)
+    rate_c = c["v/rocker"] - c["v/crank"] - c["v/coupler"]
+    for column, rate, torque in (("work/torque on crank", c["v/crank"], 0.2), ("work/torque on C", rate_c, 0.01)):
+        assert abs(c[column][-1]) > 1e-4
+        assert c[column][-1] == pytest.approx(scipy.integrate.simpson(torque * rate, x=c["t"]), rel=1e-5)
+    assert c["energy/balance"].max() - c["energy/balance"].min() <= 1e-8 * c["work/torque on crank"][-1]
+
+
+def test_a_two_sample_torque_law_is_the_constant_it_draws(tmp_path, capsys):
+    """A torque law of two samples (0.3 N m at 0 and 1 s) is the straight line between them: the run equals the
+    one with --torque crank=0.3 (to 1e-12 rad)."""
+    law = tmp_path / "torque.csv"
+    law.write_text("t,crank\n0,0.3\n1,0.3\n")
+    finals = []
+    for extra in (["--torques", str(law)], ["--torque", "crank=0.3"]):
+        out = tmp_path / "run.csv"
+        assert main(["simulate", "four_bar", "--duration", "0.1", *extra, "-o", str(out)]) == 0
+        finals.append(_table(out)["q/crank"][-1])
+    capsys.readouterr()
+    assert finals[0] > 0.6 + 1e-3 and finals[0] == pytest.approx(finals[1], abs=1e-12)
+
+
+@pytest.mark.parametrize(
+    "option, needle",
+    [
+        (["--torque", "crank"], "argument '--torque': expected JOINT=VALUE (N m or N)"),
+        (["--friction-rate", "0"], "argument '--friction-rate': must be a finite rate > 0"),
+        (["--friction-rate", "nan"], "argument '--friction-rate': must be a finite rate > 0"),
+        (["--no-limits", "--restitution", "0.5"], "argument '--restitution': applies at the joint limits"),
+    ],
+)
+def test_the_forces_options_are_checked_before_the_mechanism_loads(monkeypatch, capsys, option, needle):
+    from mechkit.cli import simulate
+
+    def never(_args):
+        raise AssertionError("the mechanism was loaded")
+
+    monkeypatch.setattr(simulate, "load_mechanism", never)
+    assert main(["simulate", "four_bar", "--duration", "0.1", *option]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("mechkit: error:") and err.count("\n") == 1 and needle in err, err
+
+
+def test_a_torque_on_no_joint_is_named_as_typed(capsys):
+    assert main(["simulate", "four_bar", "--duration", "0.01", "--torque", "nope=1"]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("mechkit: error: argument '--torque': 'nope' is not a joint") and err.count("\n") == 1, err
+
+
+# --- end of the forces helper's tests
+
+
+def test_no_limits_lets_a_joint_pass_the_files_stop(tmp_path, capsys):
+    """The four-bar with its crank's range cut to [-1, 0.7] rad, driven by 0.5 N m: the file's stop holds the
+    crank at 0.7 rad; with --no-limits it turns past."""
+    from tests_support import ROOT
+
+    full = 'lower="-1000000000.0" upper="1000000000.0"'
+    path = tmp_path / "stopped.urdf"
+    path.write_text((ROOT / "urdf" / "four_bar.urdf").read_text().replace(full, 'lower="-1" upper="0.7"', 1))
+    finals = []
+    for extra in ([], ["--no-limits"]):
+        out = tmp_path / "run.csv"
+        assert main(["simulate", str(path), "--duration", "0.3", "--torque", "crank=0.5", *extra, "-o", str(out)]) == 0
+        finals.append(_table(out)["q/crank"][-1])
+    capsys.readouterr()
+    assert finals[0] == pytest.approx(0.7, abs=1e-9) and finals[1] > 1.0

@@ -299,8 +299,8 @@ MALFORMED = {  # file text -> what the one-line error says
     ): "stiffness on a tendon",
     BASE.format(
         '<tendon><spatial name="t"><site site="s"/><site site="s2"/></spatial></tendon>'
-        '<actuator><motor name="m" tendon="t"/></actuator>'
-    ): "tendon 't' is spatial",
+        '<actuator><general name="m" tendon="t" dyntype="filter" dynprm="1"/></actuator>'
+    ): "only fixed-gain actuators without dynamics",
     BASE.format(
         '<tendon><fixed name="t"><joint joint="h" coef="1"/></fixed></tendon>'
         '<actuator><motor name="h" tendon="t"/></actuator>'

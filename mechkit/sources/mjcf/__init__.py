@@ -2,7 +2,8 @@
 
 MuJoCo resolves the format (defaults, angle units, orientations, inertias from geoms and meshes);
 this package reads the compiled model: its tree (`tree`: hinge, slide, ball and free joints, the
-compiled inertias, sites, armature, gravity), its equalities, springs and actuators (`constraints`).
+compiled inertias, sites, armature, gravity), its equalities, springs and actuators (`constraints`);
+the simulator reads spatial tendons between two sites as forces (`spatial_tendons`).
 Pinocchio's q equals MuJoCo's qpos (a ball's and a free joint's quaternion reordered x, y, z, w).
 The guess is the keyframe named "home" when the file has one (Menagerie's convention for a robot's
 rest pose), else qpos0; the home inputs are the guess's values of the driven joints (a ball's or
@@ -23,6 +24,7 @@ import pinocchio as pin
 
 from mechkit.base.exceptions import MalformedDescription, MethodUnavailable, MuJoCoWarning
 from mechkit.sources.description import Description, read_text
+from mechkit.sources.mjcf import spatial_tendons
 from mechkit.sources.mjcf.constraints import actuation, check_tendons, equalities, springs
 from mechkit.sources.mjcf.tree import Tree, build_tree
 from mechkit.sources.pinocchio_tree import tree_urdf
@@ -83,6 +85,7 @@ def read_mjcf(path: Path) -> Description:
     tree = build_tree(mujoco, mm, root.get("model") or path.name.split(".")[0])
     closures, couplings = equalities(mm, tree)
     check_tendons(mm, tree)
+    spatial_tendons.read(mujoco, mm)  # refuses, by name, the spatial tendons and actuators it cannot read
     actuated, actuators = actuation(mm, tree)
     key = mujoco.mj_name2id(mm, mujoco.mjtObj.mjOBJ_KEY, "home")
     guess = _joint_values(mm, tree, mm.key_qpos[key] if key >= 0 else mm.qpos0)

@@ -15,10 +15,12 @@
   force: MuJoCo's gear is not applied); on a fixed tendon -> an `Actuator` whose joint coefficients
   are the tendon's times the gear (the effort is MuJoCo's actuator force).
 
-Refused by name: inactive equalities aside, every other equality kind (flex, distance), equalities
-and actuators on spatial tendons, sites, bodies or slider-cranks, tendon springs, dampers and
-armature, ball-joint stiffness, nonlinear (polynomial) joint stiffness or damping. Not read:
-contacts, limits, friction loss, actuator dynamics and gains, solver parameters.
+Spatial tendons between two sites, their springs and dampers and the actuators on them are forces
+(`mechkit.sources.mjcf.spatial_tendons`). Refused by name: inactive equalities aside, every other
+equality kind (flex, distance), equalities on spatial tendons, actuators on sites, bodies or
+slider-cranks, fixed tendons' springs, dampers and armature, ball-joint stiffness, nonlinear
+(polynomial) joint stiffness or damping. Not read: contacts, limits, friction loss, actuator dynamics and
+gains, solver parameters.
 """
 
 from __future__ import annotations
@@ -30,6 +32,7 @@ import pinocchio as pin
 
 from mechkit.base.exceptions import MalformedDescription
 from mechkit.core import Actuator, Coupling, JointSpring, LoopClosure
+from mechkit.sources.mjcf.spatial_tendons import spatial
 from mechkit.sources.mjcf.tree import Tree, se3
 from mechkit.sources.pinocchio_tree import add_frame
 
@@ -215,6 +218,8 @@ def check_tendons(mm: MjModel, tree: Tree) -> None:
         MalformedDescription: a tendon with any of them.
     """
     for t in range(mm.ntendon):
+        if spatial(mm, t):
+            continue  # its spring and damper: `spatial_tendons`
         for field in ("tendon_stiffness", "tendon_damping", "tendon_armature", "tendon_frictionloss"):
             if np.any(np.asarray(getattr(mm, field)[t]) != 0):
                 raise MalformedDescription(
@@ -269,7 +274,7 @@ def actuation(mm: MjModel, tree: Tree) -> tuple[tuple[str, ...], tuple[Actuator,
         (actuated joint or tendon names in effort order, tendon actuators).
 
     Raises:
-        MalformedDescription: an actuator on a ball or free joint, a spatial tendon, a site, a body or
+        MalformedDescription: an actuator on a ball or free joint, a site, a body or
             a slider-crank; two actuators on one joint; a tendon actuator named like a joint.
     """
     actuated: list[str] = []
@@ -284,6 +289,8 @@ def actuation(mm: MjModel, tree: Tree) -> tuple[tuple[str, ...], tuple[Actuator,
             if joint in actuated:
                 raise MalformedDescription(where, f"joint {joint!r} is driven by another actuator already")
             actuated.append(joint)
+        elif trn == TRN_TENDON and spatial(mm, target):
+            continue  # a force along the tendon: `spatial_tendons`
         elif trn == TRN_TENDON:
             if name in tree.names["joint"]:
                 raise MalformedDescription(where, "a tendon actuator named like a joint: rename one of them")
