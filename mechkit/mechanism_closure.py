@@ -14,7 +14,7 @@ from typing import Any
 import numpy as np
 import pinocchio as pin
 
-from mechkit import core
+from mechkit import actuator_names, core
 from mechkit.base import arguments, joint_arguments
 from mechkit.base.exceptions import InvalidParameters
 from mechkit.catalog.contract import MechanismSpec
@@ -123,14 +123,31 @@ class MechanismClosure:
         if not isinstance(values, Mapping) and not names:
             self.require_actuators(f"{arg} given in actuated order")
         sizes = {n: core.joint_size(self.model, self.joint_id(n)) for n in names if self.model.existJointName(n)}
-        return joint_arguments.joint_values(arg, values, names, list(self.model.names[1:]), sizes)
+        aliases = self._aliases
+        known = actuator_names.known_names(self.closure_model, aliases)
+        return actuator_names.to_joints(
+            self.closure_model, arg, joint_arguments.joint_values(arg, values, names, known, sizes), aliases
+        )
 
     def _names(self, inputs: Sequence[str] | None, what: str) -> list[str]:
-        """The given input joints (default: the actuated ones, which must exist), checked."""
+        """The given input joints or actuators (default: the actuated ones, which must exist), checked."""
         if inputs is None:
             self.require_actuators(what)
             return list(self.actuated)
-        return joint_arguments.joint_names("inputs", inputs, list(self.model.names[1:]))
+        return joint_arguments.joint_names(
+            "inputs", inputs, actuator_names.known_names(self.closure_model, self._aliases)
+        )
+
+    def _joints(self, names: Sequence[str]) -> list[str]:
+        """The joints that input names (joints or actuators, checked) fix."""
+        return actuator_names.to_joint_names(self.closure_model, "inputs", names, self._aliases)
+
+    @property
+    def _aliases(self) -> dict[str, str]:
+        """The URDF's transmission names -> the joints they drive (parsed once)."""
+        if "_transmissions" not in self.__dict__:
+            self._transmissions = actuator_names.transmission_names(getattr(self, "urdf", None))
+        return self._transmissions
 
     def _one(self, **values: Any) -> list[np.ndarray]:
         """State arrays of one sample checked by name (q: nq; v, a, tau: nv)."""
@@ -289,5 +306,5 @@ class MechanismClosure:
             The condition number of the passive block of the closure Jacobian (inf: singular).
         """
         (q,) = self._one(q=q)
-        split = self.closure_model.split(tuple(self._names(inputs, "the singularity measure")))
+        split = self.closure_model.split(tuple(self._joints(self._names(inputs, "the singularity measure"))))
         return core.passive_condition(self.closure_model, self.closure_data, q, split)
