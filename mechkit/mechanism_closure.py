@@ -170,8 +170,12 @@ class MechanismClosure:
         tol: float = core.CLOSURE_TOL,
         method: str = "newton",
         max_iter: int = 60,
+        reference: np.ndarray | None = None,
     ) -> np.ndarray:
-        """Configuration q (nq,) that closes every loop with the given joints at the given values.
+        """Configuration q (nq,) that closes every loop with the given joints at the given values, on the
+        branch of a reference (`mechkit.core.continuation`), bounded revolute angles wrapped into their limits.
+
+        The branch taken and the joints left outside their limits: `last_assembly` (`core.Assembly`).
 
         Args:
             inputs: joint name -> value (rad or m; a ball joint's rotation vector), or values in
@@ -181,6 +185,9 @@ class MechanismClosure:
             tol: closure residual to reach (m for position rows).
             method: "newton" (minimum-norm Gauss-Newton) or "lm" (Levenberg-Marquardt).
             max_iter: iteration cap.
+            reference: (nq,) a closed configuration whose branch is kept, by continuation from it (default:
+                the home assembly when no guess is given; the previous sample along a motion). Where the
+                branch cannot be followed, Newton from the guess.
 
         Returns:
             (nq,) the assembled configuration.
@@ -192,6 +199,7 @@ class MechanismClosure:
         arguments.option("method", method, core.ASSEMBLY_METHODS)
         max_iter = arguments.integer("max_iter", max_iter, minimum=1)
         given = self._values(inputs, self.actuated, "inputs")
+        guess_given = guess
         if guess is None and self.spec.guess is not None:
             guess = self.spec.guess(self.params)
         if guess is None or isinstance(guess, Mapping):
@@ -203,9 +211,24 @@ class MechanismClosure:
         for joint, value in given.items():
             core.set_joint_value(self.model, q0, self.joint_id(joint), value)
         split = self.closure_model.split(tuple(given))
-        return core.assemble(
-            self.closure_model, self.closure_data, q0, split, tol=tol, max_iter=max_iter, method=method
-        ).q
+        out = None
+        if reference is None and guess_given is None:
+            reference = getattr(self, "home_q", None)  # the file's home, once assembled
+        if reference is not None:
+            (reference,) = self._one(q=reference)
+            out = core.continue_from(self.closure_model, self.closure_data, reference, q0, split, tol=tol)
+        if out is None:
+            out = core.assemble(
+                self.closure_model, self.closure_data, q0, split, tol=tol, max_iter=max_iter, method=method
+            )
+            where = "the guess's (Newton from it" + (
+                "; the reference's branch could not be followed)" if reference is not None else ")"
+            )
+        else:
+            where = "the reference's (continued from it)"
+        q, outside = core.wrap_into_limits(self.model, out.q)
+        self.last_assembly = core.Assembly(q, out.iterations, out.residual, where, outside)
+        return q
 
     def solve_closure(
         self,
