@@ -94,3 +94,30 @@ def test_wrap_into_limits_shifts_whole_turns_and_names_the_rest(gripper):
     assert back[i] == pytest.approx(q[i], abs=1e-12) and outside == ()
     turned[gripper.q_index("right_driver_joint")] = 1.5  # range [0, 0.8]: no whole turn brings it in
     assert wrap_into_limits(gripper.model, turned)[1] == ("right_driver_joint",)
+
+
+@pytest.mark.parametrize("opening", [0.1, 0.45, 0.75])
+def test_gripper_agrees_with_mujocos_settled_pose(gripper, opening):
+    """MuJoCo 4.0.0 settles the gripper (gravity off, its position actuator at the opening, 5000 steps
+    to |qvel| ~ 1e-11): each finger has a second freedom (the pad), which MuJoCo's spring holds against
+    the coupler's stop at 0. Given MuJoCo's actuator length and those coupler values, mechkit's assembly
+    gives the other six joints within MuJoCo's softness: its equalities settle with gaps |efc_pos| of
+    ~5e-6 m, an angle error of gap / link length, bounded by 50 * gap (links over 0.02 m; ours); measured
+    1.6e-4 rad at 0.1, 7e-5 at 0.45 and 0.75. The couplers sit 1e-4 rad past their stop (MuJoCo's soft
+    limit), which `last_assembly.outside` names."""
+    mujoco = pytest.importorskip("mujoco")
+    model = mujoco.MjModel.from_xml_path(str(GRIPPER))
+    model.opt.gravity[:] = 0
+    data = mujoco.MjData(model)
+    data.ctrl[0] = opening * 255 / 0.8  # the file's ctrlrange [0, 255] spans the drivers' [0, 0.8]
+    for _ in range(5000):
+        mujoco.mj_step(model, data)
+    assert np.max(np.abs(data.qvel)) < 1e-8
+    names = list(gripper.model.names[1:])
+    settled = np.array([data.qpos[model.joint(n).qposadr[0]] for n in names])
+    gap = float(np.max(np.abs(data.efc_pos[data.efc_type == mujoco.mjtConstraint.mjCNSTR_EQUALITY])))
+    couplers = {j: settled[names.index(j)] for j in ("right_coupler_joint", "left_coupler_joint")}
+    q = gripper.assemble({"fingers_actuator": float(data.actuator_length[0]), **couplers})
+    assert gripper.last_assembly.branch.startswith("the reference's")
+    assert np.max(np.abs(q - settled)) < 50 * gap
+    assert set(gripper.last_assembly.outside) == {j for j, v in couplers.items() if v > 1e-9}
