@@ -90,6 +90,32 @@ def known_names(cm: ClosureModel, aliases: Mapping[str, str]) -> list[str]:
     return joints + [a.name for a in cm.actuators if a.name not in joints] + [a for a in aliases if a not in joints]
 
 
+def check_known(cm: ClosureModel, arg: str, names: Any, aliases: Mapping[str, str]) -> None:
+    """Refuse a name that is neither a joint nor an actuator, listing both.
+
+    Args:
+        cm: the closure model.
+        arg: the argument's name (for the error).
+        names: the names given (a mapping's keys or a sequence; anything else is left to the joint checks).
+        aliases: other names of joints (`transmission_names`).
+
+    Raises:
+        InvalidArgument: an unknown name.
+    """
+    if isinstance(names, str) or not isinstance(names, Mapping | Sequence):
+        return
+    known = known_names(cm, aliases)
+    for name in names:
+        if isinstance(name, str) and name not in known:
+            joints = list(cm.model.names[1:])
+            raise InvalidArgument(
+                arg,
+                list(names),
+                f"{name!r} is neither a joint nor an actuator; joints: {joints}; actuators: "
+                f"{[n for n in known if n not in joints]}",
+            )
+
+
 def to_joints(cm: ClosureModel, arg: str, values: Mapping[str, Any], aliases: Mapping[str, str]) -> dict[str, Any]:
     """Input values keyed by joints or actuators, keyed by joints.
 

@@ -125,6 +125,8 @@ class MechanismClosure:
         sizes = {n: core.joint_size(self.model, self.joint_id(n)) for n in names if self.model.existJointName(n)}
         aliases = self._aliases
         known = actuator_names.known_names(self.closure_model, aliases)
+        if isinstance(values, Mapping):
+            actuator_names.check_known(self.closure_model, arg, values, aliases)
         return actuator_names.to_joints(
             self.closure_model, arg, joint_arguments.joint_values(arg, values, names, known, sizes), aliases
         )
@@ -134,6 +136,7 @@ class MechanismClosure:
         if inputs is None:
             self.require_actuators(what)
             return list(self.actuated)
+        actuator_names.check_known(self.closure_model, "inputs", inputs, self._aliases)
         return joint_arguments.joint_names(
             "inputs", inputs, actuator_names.known_names(self.closure_model, self._aliases)
         )

@@ -77,8 +77,11 @@ def test_sdf_gearbox_input_by_name():
 
 
 def test_unknown_name_lists_joints_and_actuators(gripper):
-    with pytest.raises(InvalidArgument, match="inputs.*'fingers_actuator'"):
+    """An unknown input name is refused naming the argument and listing the joints and the actuators."""
+    with pytest.raises(InvalidArgument, match=r"inputs.*'fingers' is neither.*actuators: \['fingers_actuator'\]"):
         gripper.assemble({"fingers": 0.4})
+    with pytest.raises(InvalidArgument, match="inputs.*'fingers' is neither a joint nor an actuator"):
+        gripper.velocities(gripper.home_q, [0.1], ["fingers"])
 
 
 def test_name_and_its_joint_twice_refused(gripper):
