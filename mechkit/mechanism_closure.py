@@ -189,8 +189,9 @@ class MechanismClosure:
             method: "newton" (minimum-norm Gauss-Newton) or "lm" (Levenberg-Marquardt).
             max_iter: iteration cap.
             reference: (nq,) a closed configuration whose branch is kept, by continuation from it (default:
-                the home assembly when no guess is given; the previous sample along a motion). Where the
-                branch cannot be followed, Newton from the guess.
+                the guess when it is a full configuration closing every loop, as the previous sample along
+                a motion; the home assembly when no guess is given). Where the branch cannot be followed,
+                Newton from the guess.
 
         Returns:
             (nq,) the assembled configuration.
@@ -211,6 +212,8 @@ class MechanismClosure:
                 core.set_joint_value(self.model, q0, self.joint_id(joint), value)
         else:
             q0 = arguments.array("guess", guess, self.model.nq, batch=False)
+            if reference is None and np.linalg.norm(self.closure_residual(q0)) <= tol:
+                reference = q0.copy()  # a closed guess (the previous sample): its branch is kept
         for joint, value in given.items():
             core.set_joint_value(self.model, q0, self.joint_id(joint), value)
         split = self.closure_model.split(tuple(given))

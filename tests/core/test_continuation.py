@@ -68,8 +68,8 @@ def test_gripper_motion_keeps_its_branch(gripper):
 
 
 def test_four_bar_keeps_the_reference_branch_not_the_guess():
-    """The four-bar's crossed and open assemblies: continued from a closed reference on either branch,
-    the result stays on that branch (the rocker angle's side), and both close the loop."""
+    """The four-bar's crossed and open assemblies: continued from a closed reference (or a closed guess) on
+    either branch, the result stays on that branch (the rocker angle's side), and both close the loop."""
     m = mechkit.load(FOUR_BAR)
     home = m.home_q
     rocker = m.q_index("rocker")
@@ -77,8 +77,9 @@ def test_four_bar_keeps_the_reference_branch_not_the_guess():
     assert np.linalg.norm(m.closure_residual(other)) < 1e-10
     if abs(other[rocker] - home[rocker]) < 1e-3:
         pytest.skip("the guess did not reach the other branch")
-    for reference in (home, other):
-        q = m.assemble({"crank": float(home[m.q_index("crank")]) + 0.3}, reference=reference)
+    for reference, how in [(r, how) for r in (home, other) for how in ("reference", "guess")]:
+        q = m.assemble({"crank": float(home[m.q_index("crank")]) + 0.3}, **{how: reference})  # a closed guess too
+        assert m.last_assembly.branch.startswith("the reference's")
         assert np.linalg.norm(m.closure_residual(q)) < 1e-10
         assert abs(q[rocker] - reference[rocker]) < abs(q[rocker] - (home if reference is other else other)[rocker])
 
