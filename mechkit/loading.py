@@ -8,7 +8,7 @@ from collections.abc import Callable, Mapping, Sequence
 from pathlib import Path
 from typing import Any
 
-from mechkit import core, sources
+from mechkit import actuator_names, core, sources
 from mechkit.base import arguments, joint_arguments
 from mechkit.base.exceptions import IgnoredClosure, InvalidArgument, InvalidParameters, MalformedDescription
 from mechkit.catalog.contract import MechanismSpec
@@ -224,8 +224,10 @@ def from_description(
     model = desc.model if desc.model is not None else build_model(desc.urdf)
     check_model(model)
     if actuated is not None:
-        known = list(model.names[1:]) + [a.name for a in desc.actuators]
+        transmissions = actuator_names.transmission_names(desc.urdf)  # a <transmission> by its name
+        known = list(model.names[1:]) + [a.name for a in desc.actuators] + list(transmissions)
         joint_arguments.joint_names("actuated", actuated, known, allow_empty=True)
+        actuated = [transmissions.get(a, a) for a in actuated]
     closures = desc.closures if desc.closures is not None else parse_loops(desc.urdf)
     cm = core.ClosureModel(
         model,

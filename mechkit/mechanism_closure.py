@@ -14,7 +14,7 @@ from typing import Any
 import numpy as np
 import pinocchio as pin
 
-from mechkit import core
+from mechkit import actuator_names, core
 from mechkit.base import arguments, joint_arguments
 from mechkit.base.exceptions import InvalidParameters
 from mechkit.catalog.contract import MechanismSpec
@@ -123,14 +123,34 @@ class MechanismClosure:
         if not isinstance(values, Mapping) and not names:
             self.require_actuators(f"{arg} given in actuated order")
         sizes = {n: core.joint_size(self.model, self.joint_id(n)) for n in names if self.model.existJointName(n)}
-        return joint_arguments.joint_values(arg, values, names, list(self.model.names[1:]), sizes)
+        aliases = self._aliases
+        known = actuator_names.known_names(self.closure_model, aliases)
+        if isinstance(values, Mapping):
+            actuator_names.check_known(self.closure_model, arg, values, aliases)
+        return actuator_names.to_joints(
+            self.closure_model, arg, joint_arguments.joint_values(arg, values, names, known, sizes), aliases
+        )
 
     def _names(self, inputs: Sequence[str] | None, what: str) -> list[str]:
-        """The given input joints (default: the actuated ones, which must exist), checked."""
+        """The given input joints or actuators (default: the actuated ones, which must exist), checked."""
         if inputs is None:
             self.require_actuators(what)
             return list(self.actuated)
-        return joint_arguments.joint_names("inputs", inputs, list(self.model.names[1:]))
+        actuator_names.check_known(self.closure_model, "inputs", inputs, self._aliases)
+        return joint_arguments.joint_names(
+            "inputs", inputs, actuator_names.known_names(self.closure_model, self._aliases)
+        )
+
+    def _joints(self, names: Sequence[str]) -> list[str]:
+        """The joints that input names (joints or actuators, checked) fix."""
+        return actuator_names.to_joint_names(self.closure_model, "inputs", names, self._aliases)
+
+    @property
+    def _aliases(self) -> dict[str, str]:
+        """The URDF's transmission names -> the joints they drive (parsed once)."""
+        if "_transmissions" not in self.__dict__:
+            self._transmissions = actuator_names.transmission_names(getattr(self, "urdf", None))
+        return self._transmissions
 
     def _one(self, **values: Any) -> list[np.ndarray]:
         """State arrays of one sample checked by name (q: nq; v, a, tau: nv)."""
@@ -153,8 +173,12 @@ class MechanismClosure:
         tol: float = core.CLOSURE_TOL,
         method: str = "newton",
         max_iter: int = 60,
+        reference: np.ndarray | None = None,
     ) -> np.ndarray:
-        """Configuration q (nq,) that closes every loop with the given joints at the given values.
+        """Configuration q (nq,) that closes every loop with the given joints at the given values, on the
+        branch of a reference (`mechkit.core.continuation`), bounded revolute angles wrapped into their limits.
+
+        The branch taken and the joints left outside their limits: `last_assembly` (`core.Assembly`).
 
         Args:
             inputs: joint name -> value (rad or m; a ball joint's rotation vector), or values in
@@ -164,6 +188,10 @@ class MechanismClosure:
             tol: closure residual to reach (m for position rows).
             method: "newton" (minimum-norm Gauss-Newton) or "lm" (Levenberg-Marquardt).
             max_iter: iteration cap.
+            reference: (nq,) a closed configuration whose branch is kept, by continuation from it (default:
+                the guess when it is a full configuration closing every loop, as the previous sample along
+                a motion; the home assembly when no guess is given). Where the branch cannot be followed,
+                Newton from the guess.
 
         Returns:
             (nq,) the assembled configuration.
@@ -175,6 +203,7 @@ class MechanismClosure:
         arguments.option("method", method, core.ASSEMBLY_METHODS)
         max_iter = arguments.integer("max_iter", max_iter, minimum=1)
         given = self._values(inputs, self.actuated, "inputs")
+        guess_given = guess
         if guess is None and self.spec.guess is not None:
             guess = self.spec.guess(self.params)
         if guess is None or isinstance(guess, Mapping):
@@ -183,12 +212,29 @@ class MechanismClosure:
                 core.set_joint_value(self.model, q0, self.joint_id(joint), value)
         else:
             q0 = arguments.array("guess", guess, self.model.nq, batch=False)
+            if reference is None and np.linalg.norm(self.closure_residual(q0)) <= tol:
+                reference = q0.copy()  # a closed guess (the previous sample): its branch is kept
         for joint, value in given.items():
             core.set_joint_value(self.model, q0, self.joint_id(joint), value)
         split = self.closure_model.split(tuple(given))
-        return core.assemble(
-            self.closure_model, self.closure_data, q0, split, tol=tol, max_iter=max_iter, method=method
-        ).q
+        out = None
+        if reference is None and guess_given is None:
+            reference = getattr(self, "home_q", None)  # the file's home, once assembled
+        if reference is not None:
+            (reference,) = self._one(q=reference)
+            out = core.continue_from(self.closure_model, self.closure_data, reference, q0, split, tol=tol)
+        if out is None:
+            out = core.assemble(
+                self.closure_model, self.closure_data, q0, split, tol=tol, max_iter=max_iter, method=method
+            )
+            where = "the guess's (Newton from it" + (
+                "; the reference's branch could not be followed)" if reference is not None else ")"
+            )
+        else:
+            where = "the reference's (continued from it)"
+        q, outside = core.wrap_into_limits(self.model, out.q)
+        self.last_assembly = core.Assembly(q, out.iterations, out.residual, where, outside)
+        return q
 
     def solve_closure(
         self,
@@ -289,5 +335,5 @@ class MechanismClosure:
             The condition number of the passive block of the closure Jacobian (inf: singular).
         """
         (q,) = self._one(q=q)
-        split = self.closure_model.split(tuple(self._names(inputs, "the singularity measure")))
+        split = self.closure_model.split(tuple(self._joints(self._names(inputs, "the singularity measure"))))
         return core.passive_condition(self.closure_model, self.closure_data, q, split)

@@ -12,7 +12,7 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from mechkit import core
+from mechkit import actuator_names, core
 from mechkit.base import arguments, joint_arguments
 from mechkit.mechanism_closure import Inputs, MechanismClosure
 
@@ -34,8 +34,11 @@ class MechanismRates(MechanismClosure):
     ) -> tuple[core.InputSplit, np.ndarray]:
         """The split of the given joints and their values (n, k): a mapping joint -> (n,) or an (n, k) array."""
         sizes = {j: core.joint_size(self.model, self.joint_id(j)) for j in self.model.names[1:]}
-        keys, given = joint_arguments.sample_inputs(arg, values, names, n, list(self.model.names[1:]), sizes)
-        return self.closure_model.split(tuple(keys)), given
+        known = actuator_names.known_names(self.closure_model, self._aliases)
+        keys, given = joint_arguments.sample_inputs(arg, values, names, n, known, sizes)
+        scale = actuator_names.to_joints(self.closure_model, arg, dict.fromkeys(keys, 1.0), self._aliases)  # actuators
+        given = given * np.repeat(list(scale.values()), [sizes[j] for j in scale])
+        return self.closure_model.split(tuple(scale)), given
 
     # ---------------------------------------------------------------- velocities and accelerations
     def velocities(

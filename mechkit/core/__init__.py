@@ -8,7 +8,7 @@ one sample or, when its name ends in `_batch`, a leading sample axis N:
 | quantity | one sample | N samples |
 |---|---|---|
 | closure residual, Jacobian, drift | `closure_residual`, `closure_jacobian`, `closure_drift` | |
-| assembly (loops closed from given joint values) | `assemble` | |
+| assembly (loops closed from given joint values) | `assemble`, `continue_from`, `wrap_into_limits` | |
 | velocities, J v = 0 | `velocities` | `velocities_batch` |
 | accelerations, J a + gamma = 0 | `accelerations` | `accelerations_batch` |
 | mobility, singularity | `mobility`, `passive_condition`, `second_order_inconsistency` | |
@@ -28,6 +28,7 @@ this package imports those submodules: this face is the contract.
 """
 
 from mechkit.core.assembly import ASSEMBLY_METHODS, Assembly, assemble
+from mechkit.core.continuation import continue_from, wrap_into_limits
 from mechkit.core.cuts import CutRows
 from mechkit.core.forward import DEFAULTS as FORWARD_DEFAULTS
 from mechkit.core.forward import METHODS as FORWARD_METHODS
@@ -120,6 +121,7 @@ __all__ = [
     "closure_drift",
     "closure_jacobian",
     "closure_residual",
+    "continue_from",
     "forward_dynamics",
     "forward_dynamics_batch",
     "idle_freedoms",
@@ -147,4 +149,5 @@ __all__ = [
     "tree_wrenches",
     "velocities",
     "velocities_batch",
+    "wrap_into_limits",
 ]

@@ -150,11 +150,15 @@ def from_far(cm: ClosureModel, cd: ClosureData, q0: np.ndarray, split: InputSpli
 
 @dataclass(frozen=True)
 class Assembly:
-    """A solved closure: configuration q (nq,), Newton steps taken, residual norm reached."""
+    """A solved closure: configuration q (nq,), Newton steps taken, residual norm reached, the branch
+    taken (how it was reached: from the start given, or continued from a reference), and the revolute
+    joints left outside their limits (`mechkit.core.continuation.wrap_into_limits`)."""
 
     q: np.ndarray
     iterations: int
     residual: float
+    branch: str = "the start's (Newton from the guess)"
+    outside: tuple[str, ...] = ()
 
 
 def _residual_and_jacobian(

@@ -52,7 +52,7 @@ def test_the_text_has_one_line_per_direction(capsys):
     [
         (["--body", "nowhere"], "no such link"),
         (["--body", "coupler_link", "--point", "0.1,0"], "'--point'"),
-        (["--body", "coupler_link", "--at", "nope=1"], "error: --at: 'nope' is not a joint"),  # was 'inputs'
+        (["--body", "coupler_link", "--at", "nope=1"], "error: --at: 'nope' is neither a joint nor an actuator"),
     ],
 )
 def test_bad_input_is_refused_in_one_line(capsys, args, message):

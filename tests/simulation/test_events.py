@@ -70,7 +70,7 @@ def test_impact_keeps_the_closures_and_its_energy_identity(load_cached, restitut
     assert np.max(np.abs(m.closure_jacobian(q) @ jump.v)) < 1e-12
     assert jump.v[m.v_index("prox1")] == pytest.approx(1.0) and jump.v[jv] == pytest.approx(-restitution * arrived)
     assert _kinetic(m, q, jump.v) - _kinetic(m, q, v) == pytest.approx(jump.drive_work - jump.dissipated, rel=1e-10)
-    assert jump.dissipated >= 0.0
+    assert jump.dissipated >= -1e-14 * _kinetic(m, q, v)  # round-off: an elastic impact's 0 came out -1e-17
     if restitution == 1.0:
         assert jump.dissipated == pytest.approx(0.0, abs=1e-12)
 

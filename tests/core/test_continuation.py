@@ -1,0 +1,124 @@
+"""The assembly branch: continuation from a reference, revolute angles wrapped into their limits.
+
+The Robotiq 2F-85 (MuJoCo Menagerie) closes each finger by an MJCF `connect` equality and ties the
+drivers by a joint equality; MuJoCo 4.0.0 computes its own residual of those equalities (`efc_pos` of
+the equality rows after `mj_forward`), an independent check of the poses mechkit assembles.
+"""
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import mechkit
+from mechkit.core.continuation import wrap_into_limits
+
+GRIPPER = Path(__file__).parents[1] / "fixtures" / "field" / "menagerie" / "robotiq_2f85" / "2f85.xml"
+FOUR_BAR = Path(mechkit.__file__).parent / "urdf" / "four_bar.urdf"
+
+
+@pytest.fixture(scope="module")
+def gripper():
+    return mechkit.load(GRIPPER)
+
+
+def _mujoco_equality_residual(m, q) -> tuple[float, float]:
+    """MuJoCo's own equality residual (m and rad) and actuator length at mechkit's configuration q."""
+    mujoco = pytest.importorskip("mujoco")
+    model = mujoco.MjModel.from_xml_path(str(GRIPPER))
+    data = mujoco.MjData(model)
+    for joint, value in m.joint_values(q).items():
+        data.qpos[model.joint(joint).qposadr[0]] = value
+    mujoco.mj_forward(model, data)
+    rows = data.efc_type == mujoco.mjtConstraint.mjCNSTR_EQUALITY
+    assert rows.sum() == 7  # two connects (3 rows each) and the drivers' joint equality
+    return float(np.max(np.abs(data.efc_pos[rows]))), float(data.actuator_length[0])
+
+
+@pytest.mark.parametrize("opening", [0.1, 0.45, 0.8])
+def test_gripper_by_its_actuator_in_range_on_the_home_branch(gripper, opening):
+    """At three openings (0.8 the driver's upper limit): every joint in its range, the home's branch
+    (continued from it), and MuJoCo's own equality residual at round-off (its equalities are soft at
+    solve time, but their residual is geometry: 1e-12 is round-off of 0.1 m links)."""
+    q = gripper.assemble({"fingers_actuator": opening})
+    assert gripper.last_assembly.branch.startswith("the reference's")
+    assert gripper.last_assembly.outside == ()
+    lo, hi = gripper.model.lowerPositionLimit, gripper.model.upperPositionLimit
+    assert np.all(q >= lo - 1e-9) and np.all(q <= hi + 1e-9)
+    residual, length = _mujoco_equality_residual(gripper, q)
+    assert residual < 1e-12
+    assert length == pytest.approx(opening, abs=1e-12)
+    # the home's branch: both fingers alike (the file is mirror-symmetric), coupler bent the home's way
+    values = gripper.joint_values(q)
+    for side in ("coupler", "spring_link", "follower"):
+        assert values[f"right_{side}_joint"] == pytest.approx(values[f"left_{side}_joint"], abs=1e-2)
+    assert values["right_coupler_joint"] < 0
+
+
+def test_gripper_motion_keeps_its_branch(gripper):
+    """Along openings 0 -> 0.8 by 0.02, each sample continued from the previous one: no joint moves more
+    than the input between samples (a branch jump moves the coupler by about a radian)."""
+    q, step = gripper.home_q, 0.02
+    for opening in np.arange(step, 0.8 + 1e-9, step):
+        new = gripper.assemble({"fingers_actuator": opening}, reference=q)
+        assert gripper.last_assembly.branch.startswith("the reference's")
+        assert np.max(np.abs(new - q)) <= step * (1 + 1e-6)
+        q = new
+    assert _mujoco_equality_residual(gripper, q)[0] < 1e-12
+
+
+def test_four_bar_keeps_the_reference_branch_not_the_guess():
+    """The four-bar's crossed and open assemblies: continued from a closed reference (or a closed guess) on
+    either branch, the result stays on that branch (the rocker angle's side), and both close the loop."""
+    m = mechkit.load(FOUR_BAR)
+    home = m.home_q
+    rocker = m.q_index("rocker")
+    other = m.assemble({"crank": float(home[m.q_index("crank")])}, guess={"rocker": -home[rocker]})
+    assert np.linalg.norm(m.closure_residual(other)) < 1e-10
+    if abs(other[rocker] - home[rocker]) < 1e-3:
+        pytest.skip("the guess did not reach the other branch")
+    for reference, how in [(r, how) for r in (home, other) for how in ("reference", "guess")]:
+        q = m.assemble({"crank": float(home[m.q_index("crank")]) + 0.3}, **{how: reference})  # a closed guess too
+        assert m.last_assembly.branch.startswith("the reference's")
+        assert np.linalg.norm(m.closure_residual(q)) < 1e-10
+        assert abs(q[rocker] - reference[rocker]) < abs(q[rocker] - (home if reference is other else other)[rocker])
+
+
+def test_wrap_into_limits_shifts_whole_turns_and_names_the_rest(gripper):
+    """An angle off by whole turns comes back into its range with the same placement; one no shift
+    brings in is named."""
+    q = gripper.assemble({"fingers_actuator": 0.45})
+    i = gripper.q_index("right_coupler_joint")
+    turned = q.copy()
+    turned[i] += 4 * np.pi
+    back, outside = wrap_into_limits(gripper.model, turned)
+    assert back[i] == pytest.approx(q[i], abs=1e-12) and outside == ()
+    turned[gripper.q_index("right_driver_joint")] = 1.5  # range [0, 0.8]: no whole turn brings it in
+    assert wrap_into_limits(gripper.model, turned)[1] == ("right_driver_joint",)
+
+
+@pytest.mark.parametrize("opening", [0.1, 0.45, 0.75])
+def test_gripper_agrees_with_mujocos_settled_pose(gripper, opening):
+    """MuJoCo 4.0.0 settles the gripper (gravity off, its position actuator at the opening, 5000 steps
+    to |qvel| ~ 1e-11): each finger has a second freedom (the pad), which MuJoCo's spring holds against
+    the coupler's stop at 0. Given MuJoCo's actuator length and those coupler values, mechkit's assembly
+    gives the other six joints within MuJoCo's softness: its equalities settle with gaps |efc_pos| of
+    ~5e-6 m, an angle error of gap / link length, bounded by 50 * gap (links over 0.02 m; ours); measured
+    1.6e-4 rad at 0.1, 7e-5 at 0.45 and 0.75. The couplers sit 1e-4 rad past their stop (MuJoCo's soft
+    limit), which `last_assembly.outside` names."""
+    mujoco = pytest.importorskip("mujoco")
+    model = mujoco.MjModel.from_xml_path(str(GRIPPER))
+    model.opt.gravity[:] = 0
+    data = mujoco.MjData(model)
+    data.ctrl[0] = opening * 255 / 0.8  # the file's ctrlrange [0, 255] spans the drivers' [0, 0.8]
+    for _ in range(5000):
+        mujoco.mj_step(model, data)
+    assert np.max(np.abs(data.qvel)) < 1e-8
+    names = list(gripper.model.names[1:])
+    settled = np.array([data.qpos[model.joint(n).qposadr[0]] for n in names])
+    gap = float(np.max(np.abs(data.efc_pos[data.efc_type == mujoco.mjtConstraint.mjCNSTR_EQUALITY])))
+    couplers = {j: settled[names.index(j)] for j in ("right_coupler_joint", "left_coupler_joint")}
+    q = gripper.assemble({"fingers_actuator": float(data.actuator_length[0]), **couplers})
+    assert gripper.last_assembly.branch.startswith("the reference's")
+    assert np.max(np.abs(q - settled)) < 50 * gap
+    assert set(gripper.last_assembly.outside) == {j for j, v in couplers.items() if v > 1e-9}
