@@ -1,17 +1,25 @@
 """Projection onto the constraint manifold after each accepted step: closures and driven joints.
 
-Positions: the driven joints are set to their law's values (held joints to theirs) and the core's
-closure solve (`mechkit.core.assemble`, minimum-norm Gauss-Newton over the other coordinates) closes
-every loop to `POSITION_TOL`. Velocities: the driven joints' rates are set to the law's, and the other
-coordinates get the minimum-norm correction dv_F = -J_F^+ (J v) that makes J v = 0 (J the closure
-Jacobian, F the undriven columns). Both are the smallest changes, in the coordinates, that put the
-state back on the manifold; what they change in the energy is part of the integrator's error, which
-the energy balance shows.
+Positions: the driven joints are set to their law's values (held joints to theirs) and the other
+coordinates are moved by Gauss-Newton steps of minimum norm, dq_F = -J_F^+ e, with J_F^+ the pseudo-inverse
+truncated where the singular values fall below `core.RANK_TOL` times the largest: dependent rows (a
+redundant constraint, as in Bricard's linkage, or the rows that coincide at a singular position) are
+dropped by the SVD instead of feeding rounding into the step. The loops close to `POSITION_TOL` in a few
+steps from a state one integrator step away; where they do not, the core's global closure solve
+(`mechkit.core.assemble`) is tried from there. Velocities: the driven joints' rates are set to the law's,
+and the other coordinates get the minimum-norm correction dv_F = -J_F^+ (J v) (same truncation), i.e. the
+orthogonal projection onto the null space of the rows J_F has. At a singular position (the null space
+grows: the four-bar chain lying flat) the velocity keeps its component along the directions that open
+there: the branch's own tangent the motion arrived with, not a least-norm choice among the new
+freedoms (`mechkit.simulation.crossing` watches the branch). Both are the smallest changes, in the
+coordinates, that put the state back on the manifold; what they change in the energy is part of the
+integrator's error, which the energy balance shows.
 """
 
 from __future__ import annotations
 
 import numpy as np
+import pinocchio as pin
 
 from mechkit import core
 from mechkit.simulation.prescribed import Drives
@@ -19,6 +27,27 @@ from mechkit.simulation.prescribed import Drives
 #: Closure residual (m for position rows) the position projection reaches (ours: below the 1e-10 m the
 #: simulation promises, above round-off for metre-sized mechanisms).
 POSITION_TOL = 1e-12
+#: Gauss-Newton steps of the local closure before the core's global solve is tried (ours: from one
+#: integrator step away the local steps converge quadratically in two or three).
+LOCAL_STEPS = 8
+
+
+def truncated_solve(J: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """The minimum-norm least-squares solution of J x = b, singular values below `core.RANK_TOL` times the
+    largest dropped (dependent rows, and the directions a singular position adds, left alone).
+
+    Args:
+        J: (rows, n) the matrix.
+        b: (rows,) the right-hand side.
+
+    Returns:
+        (n,) x.
+    """
+    if not J.size:
+        return np.zeros(J.shape[1])
+    U, s, Vt = np.linalg.svd(J, full_matrices=False)
+    r = core.numerical_rank(s)
+    return Vt[:r].T @ ((U[:, :r].T @ b) / s[:r])
 
 
 class Projection:
@@ -54,7 +83,26 @@ class Projection:
         for joint, value in zip(drives.all, values):
             core.set_joint_value(self.model, q, self.mech.joint_id(joint), float(value))
         split = self.cm.split(drives.all)
+        local = self._local(q, split.free_v)
+        if local is not None:
+            return local
         return core.assemble(self.cm, self.cd, q, split, tol=self.tol, jacobian_at_trials=False).q
+
+    def _local(self, q: np.ndarray, free: np.ndarray) -> np.ndarray | None:
+        """Truncated Gauss-Newton from q over the free coordinates; None where it does not reach `tol`."""
+        step = np.zeros(self.model.nv)
+        for _ in range(LOCAL_STEPS):
+            e = core.closure_residual(self.cm, self.cd, q)
+            if float(np.max(np.abs(e), initial=0.0)) <= self.tol:
+                return q
+            J = core.closure_jacobian(self.cm, self.cd, q)
+            step[:] = 0.0
+            step[free] = -truncated_solve(J[:, free], e)
+            if not np.isfinite(step).all():
+                return None
+            q = pin.integrate(self.model, q, step)
+        e = core.closure_residual(self.cm, self.cd, q)
+        return q if float(np.max(np.abs(e), initial=0.0)) <= self.tol else None
 
     def velocities(self, q: np.ndarray, v: np.ndarray, drives: Drives, t: float) -> np.ndarray:
         """Velocities with the driven joints' rates on their law and J v = 0.
@@ -66,7 +114,8 @@ class Projection:
             t: the time (s) their law is taken at.
 
         Returns:
-            (nv,) the projected velocities (the undriven ones changed by the least-norm correction).
+            (nv,) the projected velocities (the undriven ones changed by the least-norm correction, the
+            directions a singular position adds kept).
         """
         v = np.array(v, dtype=float)
         split = self.cm.split(drives.all)
@@ -75,7 +124,7 @@ class Projection:
         J = core.closure_jacobian(self.cm, self.cd, q)
         if J.shape[0]:
             free = split.free_v
-            v[free] -= np.linalg.lstsq(J[:, free], J @ v, rcond=None)[0]
+            v[free] -= truncated_solve(J[:, free], J @ v)
         return v
 
     def residual(self, q: np.ndarray) -> float:
