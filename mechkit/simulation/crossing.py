@@ -37,7 +37,13 @@ import scipy.linalg
 import scipy.optimize
 
 from mechkit import core
-from mechkit.base.exceptions import MechkitError, SingularConfiguration
+from mechkit.base.exceptions import (
+    ConstraintViolated,
+    InconsistentMotion,
+    MechkitError,
+    SingularConfiguration,
+)
+from mechkit.simulation.integrator import IntegrationFailed
 
 #: Ratio below which a state counts as near a singular position (ours: the stages are projected there).
 NEAR = 1e-2
@@ -51,9 +57,12 @@ LOST = 1e-2
 #: A crossing's ratio is below this fraction of the ratio at both ends of its step (ours).
 DIP = 0.1
 #: Rank threshold of the accelerations on the manifold, relative to the largest singular value (ours: on
-#: the manifold gamma lies in the range of J, and its part along a weak direction is resolved down to
-#: rounding; `core.RANK_TOL` would drop the branch's own acceleration within 1e-9 of a singular position).
-TIGHT = 1e-13
+#: the manifold gamma lies in the range of J and its part along a weak direction is resolved, so the
+#: threshold only has to drop a redundant row, whose singular value a state projected to `POSITION_TOL`
+#: leaves near 1e-12 (kept, it turned the stages' rounding into accelerations: the deployable 9RR-12URU's
+#: steps collapsed to 1e-6 s at 1e-13); a stage within 1e-10 of a singular position loses the branch's
+#: own acceleration there, which the step's error control sees).
+TIGHT = 1e-10
 
 
 class BranchChanged(MechkitError):
@@ -108,6 +117,8 @@ class BranchWatch:
         self.redundant = J.shape[0] - self.rank
         self.crossings: list[Crossing] = []
         self._last: tuple[float, float] | None = None
+        self.start = 1.0
+        self.start = self.ratio(q)[0]
 
     def ratio(self, q: np.ndarray) -> tuple[float, np.ndarray, np.ndarray]:
         """The distance to a singular position.
@@ -116,14 +127,14 @@ class BranchWatch:
             q: (nq,) configuration.
 
         Returns:
-            (sigma_rank / sigma_1 (1 without rows), the singular values, the right singular vector of
-            sigma_rank (nv,)).
+            (sigma_rank / sigma_1 relative to its value at the start (1 without rows), the singular values
+            over sigma_1, the right singular vector of sigma_rank (nv,)).
         """
         J = core.closure_jacobian(self.cm, self.cd, q)
         if not self.rank:
             return 1.0, np.zeros(0), np.zeros(self.cm.nv)
         _, s, Vt = np.linalg.svd(J)
-        return float(s[self.rank - 1] / s[0]), s, Vt[self.rank - 1]
+        return float(s[self.rank - 1] / s[0]) / self.start, s / s[0], Vt[self.rank - 1]
 
     def joint_of(self, dv: np.ndarray) -> str:
         """The joint with the largest component of a velocity-space vector.
@@ -168,10 +179,10 @@ class BranchWatch:
         if change > BRANCH_TOL:
             raise BranchChanged(t, self.joint_of(dv), change, "the velocity left the tangent of the branch")
 
-    def near(self, t: float, q: np.ndarray, h: float | None) -> bool:
-        """Whether the next step is to be taken in the near-singular mode: redundant rows, a ratio below
-        `NEAR` at q, or one the last two steps' trend brings below it within the next step (a step can
-        straddle a singular position between two states far from it).
+    def approaching(self, t: float, q: np.ndarray, h: float | None) -> bool:
+        """Whether the next step may reach a singular position: a ratio below `NEAR` at q, or one the last
+        two steps' trend brings below it within the next step (a step can straddle a singular position
+        between two states far from it).
 
         Args:
             t: the time (s).
@@ -179,11 +190,11 @@ class BranchWatch:
             h: the next step's size (s), or None.
 
         Returns:
-            True where the stages are to be projected.
+            True near a singular position.
         """
         r = self.ratio(q)[0]
         last, self._last = self._last, (t, r)
-        if self.redundant > 0 or r < NEAR:
+        if r < NEAR:
             return True
         if last is None or h is None or t <= last[0]:
             return False
@@ -216,7 +227,7 @@ class BranchWatch:
         ends = min(self.ratio(q_of(dense(t0)))[0], self.ratio(q_of(dense(t1)))[0])
         if not (r < LOST and r < DIP * ends):
             return None
-        crossing = Crossing(tc, self.joint_of(w), r, self.cm.nv - int(np.sum(s > LOST * s[0])))
+        crossing = Crossing(tc, self.joint_of(w), r, self.cm.nv - int(np.sum(s > LOST * self.start)))
         self.crossings.append(crossing)
         return crossing
 
@@ -227,6 +238,108 @@ def _joint_of_v(model, k: int) -> int:
         if model.joints[j].idx_v <= k < model.joints[j].idx_v + model.joints[j].nv:
             return j
     return 0
+
+
+#: Smallest ratio sigma_rank / sigma_1 at the start for which the near-singular mode is taken before the
+#: method asked fails (ours). Projecting the stages amplifies the projection's rounding by the inverse of
+#: the rows' smallest singular value: measured on the deployable 9RR-12URU (ratio 1.7e-5), a 1e-12 change
+#: of a stage's position moved its projected accelerations by 2e-3 of 41 rad/s^2 and the steps collapsed
+#: at rtol 1e-11; the benchmarks' ratios are 0.35 (N four-bar) and 0.62 (Bricard).
+CONDITIONED = 1e-3
+#: Failures of a step in the method asked that send it to the near-singular mode.
+FALLBACK = (InconsistentMotion, ConstraintViolated, SingularConfiguration, IntegrationFailed)
+
+
+class BranchMode:
+    """Which equations a simulation's steps integrate: the method asked, or the stages projected onto the
+    manifold with their null-space accelerations (`forward`, the system's method "branch").
+
+    The near-singular mode is taken where a step may reach a singular position (`BranchWatch.approaching`)
+    or the rows are redundant, on mechanisms whose rows are conditioned (`CONDITIONED`); elsewhere a step
+    runs in the method asked, and where it fails (`FALLBACK`: the core's checks refuse the accelerations
+    at the stages off the manifold, or the step size collapses) or lands off its branch
+    (`BranchChanged`), it is taken again in the near-singular mode: for the rest of the run where it
+    failed away from a singular position, else until the step's start is away from one again.
+
+    Args:
+        watch: the mechanism's `BranchWatch`, or None (no projection: the method asked only).
+        system (MechanismSystem): the equations (its `method` is switched).
+        dynamics: the method asked.
+        stepper (Stepper): the integrator (restarted where the mode changes).
+    """
+
+    def __init__(self, watch: BranchWatch | None, system: Any, dynamics: str, stepper: Any):
+        self.watch, self.system, self.dynamics, self.stepper = watch, system, dynamics, stepper
+        self.near = self.fallen = self.stay = self.searching = False
+
+    def _set(self, near: bool, t: float, y: np.ndarray) -> None:
+        """Switch the mode (an ill-conditioned mechanism's is the core's exact "nullspace" method, its
+        stages not projected) and restart the stepper at (t, y)."""
+        conditioned = self.watch is not None and self.watch.start >= CONDITIONED
+        self.fallen = near
+        self.near = near and conditioned
+        self.system.method = ("branch" if conditioned else "nullspace") if near else self.dynamics
+        self.stepper.restart(t, y)
+
+    def before(self, t: float, q: np.ndarray, y: np.ndarray) -> None:
+        """At a step's start: whether it may reach a singular position (`searching`: its crossing is then
+        looked for), and back to the method asked where the ratio has recovered.
+
+        Args:
+            t: the time (s).
+            q: (nq,) the configuration.
+            y: the integrated vector.
+        """
+        if self.watch is None:
+            return
+        self.searching = self.watch.approaching(t, q, self.stepper.h)
+        proactive = self.watch.start >= CONDITIONED and (self.searching or self.watch.redundant > 0)
+        near = self.stay or proactive
+        if near != self.fallen:
+            self._set(near, t, y)
+
+    def fallback(self, err: Exception, t: float, q: np.ndarray, y: np.ndarray) -> None:
+        """A step failed in the method asked: take it again in the near-singular mode.
+
+        Args:
+            err: the failure.
+            t: the step's start (s).
+            q: (nq,) the configuration there.
+            y: the integrated vector there.
+
+        Raises:
+            IntegrationFailed: the step size collapsed in the near-singular mode too (with the joint along
+                the closure rows' weakest direction), or there is no watch.
+            Exception: `err` itself where it is not a step size's collapse and the mode cannot help.
+        """
+        if self.watch is None or self.fallen:
+            if isinstance(err, IntegrationFailed):
+                joint = self.watch.joint_of(self.watch.ratio(q)[2]) if self.watch is not None else ""
+                raise IntegrationFailed(t, err.why, joint) from None
+            raise err
+        self.stay = self.watch.ratio(q)[0] >= NEAR or self.watch.start < CONDITIONED
+        self._set(True, t, y)
+
+    def retry(self, err: BranchChanged, last: bool, t: float, t1: float, y: np.ndarray) -> None:
+        """A step landed off its branch: again in the near-singular mode, then at a quarter of its size.
+
+        Args:
+            err: the branch change.
+            last: no retry is left.
+            t: the step's start (s).
+            t1: its end (s).
+            y: the integrated vector at its start.
+
+        Raises:
+            BranchChanged: `err`, where no retry is left.
+        """
+        if last:
+            raise err
+        if self.fallen:
+            self.stepper.h = (t1 - t) / 4
+            self.stepper.restart(t, y)
+        else:
+            self._set(True, t, y)
 
 
 def forward(cm: core.ClosureModel, cd: core.ClosureData, q: np.ndarray, v: np.ndarray, tau: np.ndarray) -> np.ndarray:
