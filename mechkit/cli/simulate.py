@@ -109,8 +109,8 @@ def effort_line(name: str, u: Sequence[float]) -> str:
     return f"effort {name}: {min(driven):.4g} .. {max(driven):.4g} (N m or N{part})"
 
 
-def _simulate(mech, args: argparse.Namespace, inputs, torques, added: _Added, source, bars):
-    """`simulation.simulate` with what the command line gives."""
+def _simulate(mech, args: argparse.Namespace, inputs, torques, added: _Added, source, bars, v0=None):
+    """`simulation.simulate` with what the command line gives (v0: the initial velocities, `_initial_velocity`)."""
     from mechkit import simulation
 
     return simulation.simulate(
@@ -128,9 +128,21 @@ def _simulate(mech, args: argparse.Namespace, inputs, torques, added: _Added, so
         method=args.method,
         dynamics=args.dynamics,
         restitution=args.restitution,
+        v0=v0,
         latches=[simulation.Latch(joint, value[0]) for joint, value in added.latches.items()],
         progress=lambda done, total: bars(f"{mech.spec.name} simulate", round(TICKS * done / total), TICKS),
     )
+
+
+def _initial_velocity(mech, rates: dict[str, list[float]], source):
+    """--v0's rates completed to a velocity of the closed loops at home, else an MJCF file's keyframe "home"
+    qvel, else None (at rest): `mechkit.simulation.initial`."""
+    from mechkit.simulation import initial
+
+    if rates:
+        joint_names("--v0", list(rates), mech.model.names[1:], allow_empty=True)
+        return initial.rates_velocity(mech, {j: x[0] for j, x in rates.items()}, mech.home_q, "--v0")
+    return initial.keyframe_velocity(mech, source, mech.home_q) if source is not None else None
 
 
 def run(args: argparse.Namespace) -> None:
@@ -142,7 +154,7 @@ def run(args: argparse.Namespace) -> None:
     Raises:
         InvalidArgument: a duration not above 0 s, a restitution outside [0, 1], an output of a format not
             written, a malformed option value (`mechkit.cli.option_values`), a --latch or --spring naming no
-            joint of the mechanism.
+            joint of the mechanism, --v0 rates of no joint or that the loops do not allow together.
         MethodUnavailable: the --dynamics asked cannot run on this mechanism (the one that can is named).
     """
     from mechkit import motion, simulation
@@ -158,6 +170,7 @@ def run(args: argparse.Namespace) -> None:
     if args.no_limits and args.restitution:
         raise InvalidArgument("--restitution", args.restitution, "applies at the joint limits, which --no-limits drops")
     added = _Added.of(args)
+    rates = option_values.named_numbers("--v0", args.v0, "JOINT=RATE (rad/s or m/s)", 1)
     check_writers(args.output, args.plot, "simulation plots")
     if args.animate:
         resolve_output(args.animate)
@@ -189,7 +202,7 @@ def run(args: argparse.Namespace) -> None:
     source = Path(args.name) if Path(args.name).suffix in (".xml", ".mjcf") else None
     bars = ProgressBars(None if args.duration >= LONG_RUN else False)
     try:
-        result = _simulate(mech, args, inputs, torques, added, source, bars)
+        result = _simulate(mech, args, inputs, torques, added, source, bars, _initial_velocity(mech, rates, source))
     except MethodUnavailable as err:
         if args.dynamics not in ("proximal", "lcaba"):
             raise
@@ -295,6 +308,13 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     )
     p.add_argument(
         "--latch", action="append", metavar="JOINT=VALUE", help="a joint that locks at a value (rad or m; repeatable)"
+    )
+    p.add_argument(
+        "--v0",
+        action="append",
+        metavar="JOINT=RATE",
+        help="an initial joint rate (rad/s or m/s; repeatable): the other joints get the rates the loops "
+        "need (default: an MJCF file's keyframe 'home' qvel, else at rest)",
     )
     p.add_argument("-o", "--output", help="write the table: .parquet or .csv")
     p.add_argument("--plot", help="write a plot of joints, energies and closure residual (.png, .svg, .pdf)")

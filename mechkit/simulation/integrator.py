@@ -52,11 +52,19 @@ Function = Callable[[float, np.ndarray], np.ndarray]
 
 
 class IntegrationFailed(MechkitError):
-    """The integrator could not take a step (scipy's message, the time reached)."""
+    """The integrator could not take a step: the step size collapsed (scipy's message) or the steps ran out.
 
-    def __init__(self, t: float, why: str):
-        self.t = t
-        super().__init__(f"the integrator stopped at t = {t:.6g} s: {why}")
+    Attributes:
+        t: the time reached (s).
+        why: scipy's message or the reason.
+        joint: the joint moving most along the freedom closest to opening there (the closure rows'
+            weakest direction), or "" where not known.
+    """
+
+    def __init__(self, t: float, why: str, joint: str = ""):
+        self.t, self.why, self.joint = t, why, joint
+        where = f" (joint {joint!r} along the closure rows' weakest direction)" if joint else ""
+        super().__init__(f"the integrator stopped at t = {t:.6g} s: {why}{where}")
 
 
 @dataclass(frozen=True)

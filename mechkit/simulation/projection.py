@@ -1,17 +1,26 @@
 """Projection onto the constraint manifold after each accepted step: closures and driven joints.
 
-Positions: the driven joints are set to their law's values (held joints to theirs) and the core's
-closure solve (`mechkit.core.assemble`, minimum-norm Gauss-Newton over the other coordinates) closes
-every loop to `POSITION_TOL`. Velocities: the driven joints' rates are set to the law's, and the other
-coordinates get the minimum-norm correction dv_F = -J_F^+ (J v) that makes J v = 0 (J the closure
-Jacobian, F the undriven columns). Both are the smallest changes, in the coordinates, that put the
-state back on the manifold; what they change in the energy is part of the integrator's error, which
-the energy balance shows.
+Positions: the driven joints are set to their law's values (held joints to theirs) and the other
+coordinates are moved by Gauss-Newton steps of minimum norm, dq_F = -J_F^+ e, with J_F^+ the pseudo-inverse
+truncated where the singular values fall below `core.RANK_TOL` times the largest (times the rows' own
+smallest ratio where the mechanism is ill-conditioned: `rank_floor`): dependent rows (a
+redundant constraint, as in Bricard's linkage, or the rows that coincide at a singular position) are
+dropped by the SVD instead of feeding rounding into the step. The loops close to `POSITION_TOL` in a few
+steps from a state one integrator step away; where they do not, the core's global closure solve
+(`mechkit.core.assemble`) is tried from there. Velocities: the driven joints' rates are set to the law's,
+and the other coordinates get the minimum-norm correction dv_F = -J_F^+ (J v) (same truncation), i.e. the
+orthogonal projection onto the null space of the rows J_F has. At a singular position (the null space
+grows: the four-bar chain lying flat) the velocity keeps its component along the directions that open
+there: the branch's own tangent the motion arrived with, not a least-norm choice among the new
+freedoms (`mechkit.simulation.crossing` watches the branch). Both are the smallest changes, in the
+coordinates, that put the state back on the manifold; what they change in the energy is part of the
+integrator's error, which the energy balance shows.
 """
 
 from __future__ import annotations
 
 import numpy as np
+import pinocchio as pin
 
 from mechkit import core
 from mechkit.simulation.prescribed import Drives
@@ -19,6 +28,50 @@ from mechkit.simulation.prescribed import Drives
 #: Closure residual (m for position rows) the position projection reaches (ours: below the 1e-10 m the
 #: simulation promises, above round-off for metre-sized mechanisms).
 POSITION_TOL = 1e-12
+#: Gauss-Newton steps of the local closure before the core's global solve is tried (ours: from one
+#: integrator step away the local steps converge quadratically in two or three).
+LOCAL_STEPS = 8
+#: Gain per step below which the local closure has reached rounding (ours: Newton's steps gain far more).
+POLISH = 4.0
+
+
+def truncated_solve(J: np.ndarray, b: np.ndarray, floor: float = core.RANK_TOL) -> np.ndarray:
+    """The minimum-norm least-squares solution of J x = b, singular values below `floor` times the largest
+    dropped (dependent rows, and the directions a singular position adds, left alone).
+
+    Args:
+        J: (rows, n) the matrix.
+        b: (rows,) the right-hand side.
+        floor: the relative threshold.
+
+    Returns:
+        (n,) x.
+    """
+    if not J.size:
+        return np.zeros(J.shape[1])
+    U, s, Vt = np.linalg.svd(J, full_matrices=False)
+    r = int(np.sum(s > floor * s[0]))
+    return Vt[:r].T @ ((U[:, :r].T @ b) / s[:r])
+
+
+def rank_floor(cm: core.ClosureModel, q: np.ndarray) -> float:
+    """The relative threshold of a mechanism's truncated solves: `core.RANK_TOL` times its rows' smallest
+    nonzero singular value over the largest at q, where below 1 (ours: an ill-conditioned mechanism's
+    own rows, the deployable 9RR-12URU's at 1.7e-5, are not dropped as a singular position's would be).
+
+    Args:
+        cm: the closure model.
+        q: (nq,) an assembled configuration where its rank is the generic one.
+
+    Returns:
+        The threshold, relative to the largest singular value.
+    """
+    J = core.closure_jacobian(cm, cm.create_data(), q)
+    if not J.size:
+        return core.RANK_TOL
+    s = np.linalg.svd(J, compute_uv=False)
+    r = core.numerical_rank(s)
+    return core.RANK_TOL * min(1.0, float(s[r - 1] / s[0])) if r else core.RANK_TOL
 
 
 class Projection:
@@ -34,6 +87,7 @@ class Projection:
         self.cm = mech.closure_model
         self.cd = self.cm.create_data()
         self.model = self.cm.model
+        self.floor = rank_floor(self.cm, mech.home_q)
 
     def positions(self, q: np.ndarray, drives: Drives, t: float) -> np.ndarray:
         """A configuration with the driven joints on their law and every loop closed.
@@ -54,7 +108,33 @@ class Projection:
         for joint, value in zip(drives.all, values):
             core.set_joint_value(self.model, q, self.mech.joint_id(joint), float(value))
         split = self.cm.split(drives.all)
+        local = self._local(q, split.free_v)
+        if local is not None:
+            return local
         return core.assemble(self.cm, self.cd, q, split, tol=self.tol, jacobian_at_trials=False).q
+
+    def _local(self, q: np.ndarray, free: np.ndarray) -> np.ndarray | None:
+        """Truncated Gauss-Newton from q over the free coordinates, on to rounding once `tol` is met (until a
+        step gains less than `POLISH`: a projection that stops anywhere below `tol` leaves noise of that size,
+        which the velocity projection amplifies by the inverse of the rows' smallest singular value);
+        None where it does not reach `tol`."""
+        step = np.zeros(self.model.nv)
+        previous, before = np.inf, q
+        for _ in range(LOCAL_STEPS):
+            r = float(np.max(np.abs(core.closure_residual(self.cm, self.cd, q)), initial=0.0))
+            if previous <= self.tol and r > previous / POLISH:
+                return q if r <= previous else before
+            if r == 0.0:
+                return q
+            J = core.closure_jacobian(self.cm, self.cd, q)
+            step[:] = 0.0
+            step[free] = -truncated_solve(J[:, free], core.closure_residual(self.cm, self.cd, q), self.floor)
+            if not np.isfinite(step).all():
+                return None
+            previous, before = r, q
+            q = pin.integrate(self.model, q, step)
+        r = float(np.max(np.abs(core.closure_residual(self.cm, self.cd, q)), initial=0.0))
+        return q if r <= self.tol else (before if previous <= self.tol else None)
 
     def velocities(self, q: np.ndarray, v: np.ndarray, drives: Drives, t: float) -> np.ndarray:
         """Velocities with the driven joints' rates on their law and J v = 0.
@@ -66,7 +146,8 @@ class Projection:
             t: the time (s) their law is taken at.
 
         Returns:
-            (nv,) the projected velocities (the undriven ones changed by the least-norm correction).
+            (nv,) the projected velocities (the undriven ones changed by the least-norm correction, the
+            directions a singular position adds kept).
         """
         v = np.array(v, dtype=float)
         split = self.cm.split(drives.all)
@@ -75,7 +156,7 @@ class Projection:
         J = core.closure_jacobian(self.cm, self.cd, q)
         if J.shape[0]:
             free = split.free_v
-            v[free] -= np.linalg.lstsq(J[:, free], J @ v, rcond=None)[0]
+            v[free] -= truncated_solve(J[:, free], J @ v, self.floor)
         return v
 
     def residual(self, q: np.ndarray) -> float:

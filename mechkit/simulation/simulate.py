@@ -22,6 +22,7 @@ from mechkit.base.exceptions import InvalidParameters
 from mechkit.forces import ForceElement
 from mechkit.history.axes import JointAxes
 from mechkit.history.result import MotionResult, coordinate_names
+from mechkit.simulation.crossing import FALLBACK, BranchChanged, BranchMode, BranchWatch, on_manifold
 from mechkit.simulation.declared import default_forces, file_limits, torque_motors
 from mechkit.simulation.events import REST_RATE, Latch, Limit, impact
 from mechkit.simulation.integrator import (
@@ -45,6 +46,8 @@ Progress = Callable[[float, float], None]
 
 #: Accepted steps allowed to one run (ours: a guard against a step size collapsing without failing).
 MAX_STEPS = 2_000_000
+#: Times a step that left its branch is taken again, each a quarter of the last (ours).
+BRANCH_RETRIES = 6
 
 
 def simulate(
@@ -145,6 +148,9 @@ def simulate(
 
     def rhs(t: float, y: np.ndarray) -> np.ndarray:
         q, v = layout.q(y), layout.v(y)
+        if mode.near:  # crossing: the stages on the manifold (near a singular position, or redundant rows)
+            q, v = on_manifold(projection, system.drives, t, q, v)
+            y = layout.pack(q, v, layout.works(y))
         ev = system.evaluate(t, q, v)
         cache["t"], cache["y"], cache["ev"] = t, y.copy(), ev
         recorder.evaluations += 1
@@ -158,29 +164,57 @@ def simulate(
         q = projection.positions(q, system.drives, t0)
         v = projection.velocities(q, v, system.drives, t0)
     t, y = t0, layout.pack(q, v, np.zeros(1 + len(elements)))
+    # crossing: the rank watch, and the near-singular mode where the method asked fails (simulation.crossing)
+    watch = BranchWatch(mech, q) if project and layout.euclidean else None
     stepper = Stepper(rhs, t_end, options)
+    mode = BranchMode(watch, system, dynamics, stepper)
     stepper.restart(t, y)
     recorder.record(t, y, cache)
     value = _joint_value(mech, layout)
     while t < t_end - 1e-12 * max(1.0, abs(t_end)):
         if recorder.steps >= MAX_STEPS:
             raise IntegrationFailed(t, f"{MAX_STEPS} steps taken")
-        t1, y1 = stepper.step()
-        events = _events(system.drives, limit_list, latches, value)
-        hit = first_crossing(events, stepper.dense(), t, y, t1, y1) if events else None
-        if hit is not None:
-            t1 = hit[1]
-            y1 = stepper.dense()(t1)
-        q1, v1 = layout.q(y1), layout.v(y1).copy()
-        if project:
+        mode.before(t, layout.q(y), y)
+        for attempt in range(BRANCH_RETRIES + 1):
+            try:
+                t1, y1 = stepper.step()
+            except FALLBACK as err:
+                mode.fallback(err, t, layout.q(y), y)
+                continue
+            events = _events(system.drives, limit_list, latches, value)
+            hit = first_crossing(events, stepper.dense(), t, y, t1, y1) if events else None
+            if hit is not None:
+                t1 = hit[1]
+                y1 = stepper.dense()(t1)
+            q1, v1 = layout.q(y1), layout.v(y1).copy()
+            if not project:
+                break
             q1 = projection.positions(q1, system.drives, t1)
             v1 = projection.velocities(q1, v1, system.drives, t1)
+            try:
+                if watch is not None and not system.drives.all:  # driven joints: their law sets the rates
+                    watch.check(t1, layout.q(y), layout.q(y1), layout.v(y1), q1, v1)
+                break
+            except BranchChanged as err:
+                mode.retry(err, attempt == BRANCH_RETRIES, t, t1, y)
+        else:
+            raise IntegrationFailed(t, f"the step failed {BRANCH_RETRIES + 1} times")
+        if mode.searching and (crossing := watch.passed(stepper.dense(), t, t1, layout.q)) is not None:
+            recorder.event(
+                crossing.t,
+                f"singular:{crossing.joint}",
+                f"passed a singular position on its branch (mobility {crossing.mobility} there, "
+                f"relative singular-value ratio {crossing.ratio:.3g})",
+            )
         if hit is not None:
             v1 = _act(events[hit[0]].name, system, recorder, limit_list, latches, t1, q1, v1, stopped)
         _release(system, recorder, limit_list, t1, q1, v1, stopped)
         t, y = t1, layout.pack(q1, v1, layout.works(y1))
         if t < t_end - 1e-12 * max(1.0, abs(t_end)):
-            stepper.restart(t, y)
+            try:
+                stepper.restart(t, y)
+            except FALLBACK as err:
+                mode.fallback(err, t, q1, y)
         recorder.steps += 1
         recorder.record(t, y, cache)
         if progress is not None:
@@ -194,6 +228,8 @@ def simulate(
         "projection": project,
         "steps": recorder.steps,
         "evaluations": recorder.evaluations,
+        "singular_crossings": len(watch.crossings) if watch is not None else 0,
+        "redundant_rows": watch.redundant if watch is not None else 0,
     }
     return _result(mech, recorder, elements, info, inputs, reactions)
 

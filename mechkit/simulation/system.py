@@ -25,6 +25,7 @@ import pinocchio as pin
 
 from mechkit import core
 from mechkit.forces import ForceElement, ForceState, FrictionLocks, generalized_of_wrenches
+from mechkit.simulation import crossing
 from mechkit.simulation.prescribed import Drives
 
 #: The friction fixed point stops when no friction torque changes by more than this, relative to the
@@ -64,7 +65,8 @@ class MechanismSystem:
         mech (Mechanism): the mechanism (`mechkit.Mechanism`).
         elements: the force elements (its springs among them where wanted: `Mechanism.springs`).
         drives: the driven joints.
-        method: the core's forward-dynamics method ("proximal", "lcaba", "kkt", "nullspace").
+        method: the core's forward-dynamics method ("proximal", "lcaba", "kkt", "nullspace"), or "branch"
+            (`mechkit.simulation.crossing.forward`: states on the manifold, the simulation's near-singular mode).
         baumgarte: (Kp 1/s^2, Kd 1/s) closure stabilisation in the accelerations, or None.
     """
 
@@ -111,6 +113,8 @@ class MechanismSystem:
         return self._driven[names]
 
     def _fd(self, q: np.ndarray, v: np.ndarray, tau: np.ndarray) -> np.ndarray:
+        if self.method == "branch":  # crossing: states on the manifold near a singular position (simulation.crossing)
+            return crossing.forward(self.cm, self.cd, q, v, tau)
         return core.forward_dynamics(self.cm, self.cd, q, v, tau, self.method, **self.settings).a
 
     def _loads(self, state: ForceState, which) -> tuple[np.ndarray, np.ndarray, np.ndarray]:

@@ -3,6 +3,8 @@ one line, the help's examples."""
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import pytest
 
 from mechkit.cli import main
@@ -270,3 +272,32 @@ def test_no_limits_lets_a_joint_pass_the_files_stop(tmp_path, capsys):
         finals.append(_table(out)["q/crank"][-1])
     capsys.readouterr()
     assert finals[0] == pytest.approx(0.7, abs=1e-9) and finals[1] > 1.0
+
+
+FOUR_BARS = str(Path(__file__).resolve().parents[1] / "fixtures" / "iftomm" / "n_four_bar.urdf")
+
+
+def test_v0_sets_one_rate_and_the_loops_give_the_others(capsys):
+    """--v0 crank0=-1 on the IFToMM N four-bar (N = 2): the whole parallelogram moves, and the two singular
+    positions of the first 1.5 s are passed on the branch and printed (without --v0 it would stay at rest,
+    balanced upright)."""
+    assert main(["simulate", FOUR_BARS, "--duration", "1.5", "--v0", "crank0=-1"]) == 0
+    text = capsys.readouterr().out
+    assert text.count("passed a singular position on its branch (mobility 3") == 2, text
+
+
+@pytest.mark.parametrize(
+    "values, needle",
+    [
+        (["crankX=-1"], "argument '--v0': 'crankX' is not a joint"),
+        (["crank0=-1", "crank1=2"], "argument '--v0': the closures do not allow these rates together"),
+        (["crank0"], "argument '--v0': expected JOINT=RATE"),
+    ],
+)
+def test_v0_values_the_loops_refuse_are_named(values, needle, capsys):
+    args = ["simulate", FOUR_BARS, "--duration", "0.1"]
+    for value in values:
+        args += ["--v0", value]
+    assert main(args) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("mechkit: error:") and err.count("\n") == 1 and needle in err, err
