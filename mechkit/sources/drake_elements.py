@@ -41,7 +41,8 @@ def declare_world(root: ET.Element) -> None:
     Args:
         root: the URDF's `<robot>` element; a `<link name="world"/>` is prepended to it if needed.
     """
-    named = {e.get("link") for joint in root.findall("joint") for e in (joint.find("parent"), joint.find("child"))}
+    ends = (joint.find(side) for joint in root.findall("joint") for side in ("parent", "child"))
+    named = {end.get("link") for end in ends if end is not None}  # a missing end: check_tree names it
     if "world" in named and all(link.get("name") != "world" for link in root.findall("link")):
         root.insert(0, ET.Element("link", name="world"))
 
