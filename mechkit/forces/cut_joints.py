@@ -17,7 +17,7 @@ import numpy as np
 import pinocchio as pin
 
 from mechkit.base.exceptions import InvalidParameters
-from mechkit.core import JointSpring
+from mechkit.core import CutRows, JointSpring
 from mechkit.forces.coulomb import SPEED_THRESHOLD, smooth_sign
 from mechkit.forces.element import ForceElement, ForceState, Load, wrench_on_body
 
@@ -32,7 +32,7 @@ class CutJoint:
         InvalidParameters: a cut of another kind.
     """
 
-    def __init__(self, cut):
+    def __init__(self, cut: CutRows):
         self.name, self.kind = cut.closure.name, cut.closure.kind
         if self.kind not in ("revolute", "prismatic"):
             raise InvalidParameters("cut joint", self.name, f"a {self.kind} cut: revolute and prismatic cuts only")
