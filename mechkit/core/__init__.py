@@ -75,7 +75,7 @@ from mechkit.core.rank import (
     passive_verdict,
     singular_error,
 )
-from mechkit.core.records import LOOP_KINDS, ROW_SETS, Actuator, Coupling, JointSpring, LoopClosure
+from mechkit.core.records import LOOP_KINDS, ROW_SETS, Actuator, Coupling, JointSpring, LoopClosure, PointToPoint
 from mechkit.core.results import (
     BatchInverseDynamicsResult,
     ForwardDynamicsResult,
@@ -112,6 +112,7 @@ __all__ = [
     "Loop",
     "LoopClosure",
     "Mobility",
+    "PointToPoint",
     "Structure",
     "accelerations",
     "accelerations_batch",

@@ -17,72 +17,17 @@ damper dissipates -damping L_dot^2, and the law's power law L_dot counts as a so
 from __future__ import annotations
 
 import math
-from collections.abc import Callable, Sequence
-from dataclasses import dataclass
+from collections.abc import Sequence
 
 import numpy as np
 import pinocchio as pin
 
 from mechkit.base.exceptions import InvalidParameters, SingularConfiguration
+from mechkit.core import PointToPoint
 from mechkit.forces.element import ForceElement, ForceState, Load, wrench_on_body
-
-Law = Callable[[float, float, float], float]
-"""(length m, rate m/s, t s) -> force along the line (N, positive pushes the points apart)."""
 
 #: Distance (m) under which the two points count as one and the line of action is undefined (ours).
 COINCIDENT = 1e-12
-
-
-@dataclass(frozen=True)
-class PointToPoint:
-    """A spring, damper and force between two body points (see the module docstring).
-
-    Attributes:
-        name: the element's name.
-        frame_a: the frame (a link, a site, a joint's frame) point a is fixed in.
-        frame_b: the frame point b is fixed in.
-        point_a: (3,) point a in frame_a (m).
-        point_b: (3,) point b in frame_b (m).
-        stiffness: N/m, >= 0.
-        free_length: the spring's length at rest (m, >= 0).
-        damping: N s/m, >= 0.
-        force: a constant force along the line (N, positive pushes apart: a gas spring's).
-        law: a force law (length, rate, t) -> N (positive pushes apart), or None.
-    """
-
-    name: str
-    frame_a: str
-    frame_b: str
-    point_a: tuple[float, float, float] = (0.0, 0.0, 0.0)
-    point_b: tuple[float, float, float] = (0.0, 0.0, 0.0)
-    stiffness: float = 0.0
-    free_length: float = 0.0
-    damping: float = 0.0
-    force: float = 0.0
-    law: Law | None = None
-
-    def __post_init__(self) -> None:
-        """Refuse, naming the element, a value no strut has: non-finite numbers, negative stiffness,
-        damping or length, points not of three numbers, a law that is not callable."""
-        where = f"point-to-point {self.name!r}"
-        for attribute in ("stiffness", "free_length", "damping", "force"):
-            value = getattr(self, attribute)
-            if not isinstance(value, (int, float)) or not math.isfinite(value):
-                raise InvalidParameters(f"{where} {attribute}", value, "must be a finite number")
-            if attribute != "force" and value < 0:
-                raise InvalidParameters(f"{where} {attribute}", value, "must be >= 0")
-        for attribute in ("point_a", "point_b"):
-            p = np.asarray(getattr(self, attribute), dtype=float)
-            if p.shape != (3,) or not np.all(np.isfinite(p)):
-                raise InvalidParameters(
-                    f"{where} {attribute}", getattr(self, attribute), "needs three finite numbers (m)"
-                )
-        if self.law is not None and not callable(self.law):
-            raise InvalidParameters(f"{where} law", self.law, "must be a function (length, rate, t) -> force")
-        if self.law is not None and self.damping:
-            raise InvalidParameters(
-                f"{where} law", self.law, "a law and a damper in one element: give the damper as its own element"
-            )
 
 
 def _anchor(model: pin.Model, frame: str, point, where: str) -> tuple[int, np.ndarray]:

@@ -16,7 +16,7 @@ from __future__ import annotations
 import xml.etree.ElementTree as ET
 
 from mechkit.base.exceptions import InvalidParameters, MalformedDescription
-from mechkit.forces.point_to_point import PointToPoint
+from mechkit.core import PointToPoint
 from mechkit.sources.urdf_checks import number
 
 NAMESPACE = "https://mechkit.dev/loop"  # `mechkit.sources.urdf.LOOP_NAMESPACE` (which imports this module)

@@ -24,7 +24,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from mechkit.base.exceptions import MalformedDescription
-from mechkit.forces.point_to_point import PointToPoint
+from mechkit.core import PointToPoint
 from mechkit.sources.mjcf.tree import object_names
 
 if TYPE_CHECKING:
