@@ -43,9 +43,12 @@ def law_of_samples(law: Any) -> Law:
     derivatives = [(p, p.derivative(), p.derivative(2)) for p in pieces]
 
     def at(time: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        if time <= t[0] or time >= t[-1]:
-            edge = 0 if time <= t[0] else -1
+        if time < t[0] or time > t[-1]:
+            edge = 0 if time < t[0] else -1
             return law.values[edge].copy(), np.zeros(len(pieces)), np.zeros(len(pieces))
+        if time in (t[0], t[-1]):  # the end samples as given (their rates and accelerations, not rest)
+            edge = 0 if time == t[0] else -1
+            return law.values[edge].copy(), law.rates[edge].copy(), law.accelerations[edge].copy()
         return tuple(np.array([float(d[i](time)) for d in derivatives]) for i in range(3))
 
     return at

@@ -75,6 +75,27 @@ def test_prescribed_inputs_are_followed_and_their_work_balances(four_bar):
     assert run.integrator["effort_check"] < 1e-9  # the inverse dynamics of every sample gives the same efforts
 
 
+def test_a_sampled_law_starting_in_motion_starts_at_its_rate(four_bar):
+    """A sampled law whose first sample moves: at the first and last instants the law gives the samples'
+    own rates and accelerations (they were read as rest, and the run started the crank at 0 rad/s: its
+    energy balance then missed the motor's first work), and the simulation starting there balances."""
+
+    class Moving:
+        names = ("crank",)
+        t = np.linspace(0.0, 0.6, 7)
+        values = (0.6 + 0.5 * np.sin(3 * t))[:, None]
+        rates = (1.5 * np.cos(3 * t))[:, None]
+        accelerations = (-4.5 * np.sin(3 * t))[:, None]
+
+    law = simulation.law_of_samples(Moving())
+    for edge in (0, -1):
+        p, r, a = law(Moving.t[edge])
+        assert (p[0], r[0], a[0]) == (Moving.values[edge, 0], Moving.rates[edge, 0], Moving.accelerations[edge, 0])
+    run = four_bar.simulate(0.5, inputs=Moving(), reactions=False)
+    assert run.motion.v[0, four_bar.v_index("crank")] == pytest.approx(1.5, abs=1e-12)
+    assert run.energy_error <= 1e-6 * run.energy_scale and np.ptp(run.supplied) > 0.01
+
+
 @pytest.fixture(scope="module")
 def mech(load_cached):
     return load_cached("ten_bar")
