@@ -35,7 +35,9 @@ PEER_NOTES = """\
   ball constraints at the cuts; the row is (v_next - v) / dt of one step. SAP imposes the closure on
   the next velocity at the current configuration, so one step misses the velocity-product term of
   the closure acceleration (J a = -J'v): its error does not shrink with dt at states with velocity.
-  It exposes no constraint force (no reactions).
+  Its reaction-forces port gives the tree joints' reactions of that step (the cut constraints' own
+  forces it does not report); they stand beside mechkit's rigid reactions and MuJoCo's soft ones in
+  [Rigid reactions beside the engines' soft ones](reactions_vs_engines.md), not in these timing rows.
 - The core's inverse-dynamics rows give every joint's reaction; the numpy methods of four_bar and
   five_bar start from the link motion of the closed form (their times exclude that conversion).
 """
