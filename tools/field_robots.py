@@ -16,7 +16,6 @@ from pathlib import Path
 from mechkit.base.atomic import write_text
 from mechkit.base.exceptions import MechkitError
 from mechkit.bench import field
-from mechkit.loading import load
 from mechkit.report import report
 from mechkit.viz.browser import screenshot
 from mechkit.viz.pages import snapshot
@@ -31,20 +30,31 @@ INTRO = """# Robots from the field
 
 Closed-loop robots as the field publishes them, read by mechkit without editing a file: Gepetto's
 example-parallel-robots (Extended URDF: a URDF and a YAML sidecar), MuJoCo Menagerie (MJCF),
-example-robot-data's Cassie (SDFormat) and the URDF+ authors' example models. The fixtures, with
-their licenses and source READMEs, are in `tests/fixtures/field/` (example-robot-data is a test
-dependency). Each robot is given as `mechkit report` gives it: its numerical DOF, its loops, its idle
-freedoms (a rod spinning about its own axis between two balls), and the motor efforts holding it
-still under gravity and its springs, the motors at home and what they do not drive (springs, idle
-rods) settled; or why they cannot (a floating pelvis, fingers resting on their stops, a pose whose
-passive motion the motors do not determine), and for a file mechkit refuses, why (in one line). The
-load time is that of a warm `mechkit.load` (docs/benchmarks.md, "Loading the field's robots").
+example-robot-data's Cassie (SDFormat), the URDF+ authors' example models and Drake's Strandbeest (a
+xacro: 12 legs, 36 loops closed by `drake:ball_constraint` or `drake:linear_bushing_rpy`, its crossbar
+free as Drake leaves a body no joint holds); then small files of our own (license "ours") closed the way
+other tools close loops: Drake's ball constraint and bushing (URDF, SDFormat), Gazebo's
+`<gazebo><joint>`, SDFormat written joints first, nested or with universal joints, onshape-to-robot's
+closing frames (URDF) and connect equalities by site (MJCF). The fixtures, with their licenses and
+source READMEs, are in `tests/fixtures/field/`, `tests/fixtures/drake/`, `tests/fixtures/closures/` and
+`tests/fixtures/onshape/` (example-robot-data is a test dependency). Each robot is given as `mechkit
+report` gives it: its numerical DOF, its loops, its idle freedoms (a rod spinning about its own axis
+between two balls), and the motor efforts holding it still under gravity and its springs, the motors at
+home and what they do not drive (springs, idle rods) settled; or why they cannot (a floating pelvis,
+fingers resting on their stops, a pose whose passive motion the motors do not determine), and for a file
+mechkit refuses, why (in one line). The load time is that of a warm `mechkit.load` (docs/benchmarks.md,
+"Loading the field's robots").
 
 `tests/sources/test_field_page.py` loads every robot of this page in CI and checks its row;
 `tests/sources/test_field_*.py` check the same reports against independent computations (Pinocchio
-alone, MuJoCo's own functions). Regenerate with `python tools/field_robots.py`. In the snapshots,
-red: actuated joints; dark: passive joints and the bars of bodies whose file draws nothing (the
-field's meshes are not copied); magenta: a missing mesh; yellow spheres: loop cuts.
+alone, MuJoCo's own functions); the Strandbeest's crank torque holding it and the Drake four-bars' are
+checked against Drake's plant of the same file (`tests/sources/test_drake_elements.py`, to 1e-8), the
+onshape-to-robot MJCF against MuJoCo (`tests/sources/test_onshape_closures.py`), the SDFormat files
+against the same linkages built by hand with Pinocchio calls and against Drake's parser
+(`tests/sources/test_sdf.py`, `tests/sources/test_sdf_nested.py`). Regenerate with `python
+tools/field_robots.py`. In the snapshots, red: actuated joints; dark: passive joints and the bars of
+bodies whose file draws nothing (the field's meshes are not copied); magenta: a missing mesh; yellow
+spheres: loop cuts.
 """
 
 
@@ -55,7 +65,8 @@ def slug(label: str) -> str:
 
 def command(robot: field.FieldRobot) -> str:
     """The `mechkit report` command line of a robot (its file as the repository or the environment holds it)."""
-    where = f"tests/fixtures/field/{robot.path}" if robot.root == "fixtures" else f"<example-robot-data>/{robot.path}"
+    folders = {"fixtures": "tests/fixtures/field/", "tests": "tests/fixtures/"}
+    where = folders.get(robot.root, "<example-robot-data>/") + robot.path
     return " ".join(["mechkit report", where, *robot.options()])
 
 
@@ -75,7 +86,7 @@ def main() -> int:
             rows.append(f"| {robot.label} | {source} | - | - | - | refused | - |")
             sections += [*lines, f"Refused: {t.refused}", ""]
             continue
-        mech = load(robot.file(FIXTURES), fix=list(robot.fix) or None)
+        mech = robot.load(FIXTURES)
         r = report(mech)
         held = r["holding"]
         idle = ", ".join(f"{b} {n}" for b, n in r["idle"].items()) or "none"

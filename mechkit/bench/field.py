@@ -1,7 +1,7 @@
 """The field's robots: the files of docs/field_robots.md and the time `mechkit.load` takes on each.
 
-`ROBOTS` lists them (`FieldRobot`): a label, the file (under the repository's `tests/fixtures/field`,
-or in example-robot-data, a test dependency), the bodies `mechkit.load` fixes (a floating pelvis),
+`ROBOTS` lists them (`FieldRobot`): a label, the file (under the repository's `tests/fixtures/field` or
+`tests/fixtures`, or in example-robot-data, a test dependency), the bodies `mechkit.load` fixes (a floating pelvis),
 where the file comes from and its license. `load_times` times `mechkit.load` of each in one process,
 warm (after one untimed load: imports and caches are warm; the reader parses and checks the file, the
 core analyses it and assembles its home every time), the median of `repeats`; a file mechkit refuses
@@ -20,12 +20,18 @@ import numpy as np
 
 from mechkit.base.exceptions import MechkitError
 from mechkit.loading import load
+from mechkit.mechanism import Mechanism
 
 SECTION = "Loading the field's robots"
 GEPETTO = ("https://github.com/Gepetto/example-parallel-robots", "BSD-3-Clause")
 MENAGERIE = "https://github.com/google-deepmind/mujoco_menagerie"
 ERD = ("https://github.com/Gepetto/example-robot-data", "BSD-3-Clause; upstream DAIRLab/cassie-gazebo-sim, ISC")
 URDF_PLUS = ("https://github.com/ROAM-Lab-ND/generalized_rbda", "MIT")
+DRAKE = "https://github.com/RobotLocomotion/drake"
+GAZEBO = "https://github.com/gazebosim/sdformat"
+ONSHAPE = "https://github.com/Rhoban/onshape-to-robot"
+#: The license column of our own files written in another tool's convention.
+OURS = "ours, BSD-3-Clause"
 
 
 @dataclass(frozen=True)
@@ -35,9 +41,10 @@ class FieldRobot:
     Attributes:
         label: its name on the page (unique).
         path: its file, relative to `root`'s folder.
-        root: "fixtures" (the repository's tests/fixtures/field) or "example-robot-data" (its robots
-            folder in this environment).
+        root: "fixtures" (the repository's tests/fixtures/field), "tests" (its tests/fixtures: the
+            closures other tools write) or "example-robot-data" (its robots folder in this environment).
         fix: bodies `mechkit.load` fixes (`fix=`, the command line's --fix).
+        actuated: the joints driven where the file declares no actuator (`actuated=`, --actuated).
         source: the repository the file comes from (URL); license: its license.
     """
 
@@ -47,6 +54,7 @@ class FieldRobot:
     fix: tuple[str, ...] = ()
     source: str = ""
     license: str = ""
+    actuated: tuple[str, ...] = ()
 
     def file(self, fixtures: Path) -> Path:
         """The robot's file.
@@ -57,11 +65,27 @@ class FieldRobot:
         Returns:
             The path of its file (under `fixtures` or example-robot-data's).
         """
-        return (fixtures if self.root == "fixtures" else example_robot_data()) / self.path
+        folders = {"fixtures": fixtures, "tests": fixtures.parent}
+        return (folders[self.root] if self.root in folders else example_robot_data()) / self.path
 
     def options(self) -> list[str]:
-        """Its options on the command line (`--fix BODY` each)."""
-        return [arg for body in self.fix for arg in ("--fix", body)]
+        """Its options on the command line (`--fix BODY` each, `--actuated J1,J2`)."""
+        actuated = ["--actuated", ",".join(self.actuated)] if self.actuated else []
+        return [arg for body in self.fix for arg in ("--fix", body)] + actuated
+
+    def load(self, fixtures: Path) -> Mechanism:
+        """The robot as `mechkit.load` reads it with its options.
+
+        Args:
+            fixtures: the repository's tests/fixtures/field folder.
+
+        Returns:
+            The mechanism.
+
+        Raises:
+            MechkitError: what `mechkit.load` refuses.
+        """
+        return load(self.file(fixtures), fix=list(self.fix) or None, actuated=list(self.actuated) or None)
 
 
 def example_robot_data() -> Path:
@@ -88,6 +112,7 @@ _GEPETTO_ROBOTS = (
     "wl16_like",
 )
 _CASSIE_SDF = "cassie_description/robots/"
+_BEEST = "drake/strandbeest/Strandbeest"
 #: The robots of docs/field_robots.md.
 ROBOTS: tuple[FieldRobot, ...] = (
     *(FieldRobot(r, f"gepetto/{r}/robot.urdf", "fixtures", (), *GEPETTO) for r in _GEPETTO_ROBOTS),
@@ -119,6 +144,53 @@ ROBOTS: tuple[FieldRobot, ...] = (
             "mini_cheetah_leg",
         )
     ),
+    FieldRobot(
+        "drake strandbeest (ball constraints)", f"{_BEEST}Constraints.urdf.xacro", "tests", (), DRAKE, "BSD-3-Clause"
+    ),
+    FieldRobot(
+        "drake strandbeest (ball constraints), crossbar fixed",
+        f"{_BEEST}Constraints.urdf.xacro",
+        "tests",
+        ("crossbar",),
+        DRAKE,
+        "BSD-3-Clause",
+    ),
+    FieldRobot(
+        "drake strandbeest (bushings), crossbar fixed",
+        f"{_BEEST}Bushings.urdf.xacro",
+        "tests",
+        ("crossbar",),
+        DRAKE,
+        "BSD-3-Clause",
+    ),
+    FieldRobot(
+        "drake four-bar (ball constraint, URDF)",
+        "closures/four_bar_drake_ball.urdf",
+        "tests",
+        (),
+        DRAKE,
+        OURS,
+        ("crank",),
+    ),
+    FieldRobot(
+        "drake four-bar (ball constraint, SDFormat)", "closures/four_bar_drake_ball.sdf", "tests", (), DRAKE, OURS
+    ),
+    FieldRobot(
+        "drake four-bar (bushing, URDF)", "closures/four_bar_drake_bushing.urdf", "tests", (), DRAKE, OURS, ("crank",)
+    ),
+    FieldRobot(
+        "gazebo four-bar (gazebo joint)", "closures/four_bar_gazebo_joint.urdf", "tests", (), GAZEBO, OURS, ("crank",)
+    ),
+    *(
+        FieldRobot(f"sdformat {f}", f"sdf/{f}.sdf", "fixtures", (), GAZEBO, OURS, actuated)
+        for f, actuated in (
+            ("four_bar_gearbox", ()),
+            ("four_bar_nested", ("crank_joint",)),
+            ("rssr_universal", ("crank_joint",)),
+        )
+    ),
+    FieldRobot("onshape-to-robot four-bar (URDF)", "onshape/four_bar.urdf", "tests", (), ONSHAPE, OURS, ("crank",)),
+    FieldRobot("onshape-to-robot four-bar (MJCF)", "onshape/four_bar.xml", "tests", (), ONSHAPE, OURS),
 )
 
 
@@ -152,16 +224,15 @@ def load_times(fixtures: Path, repeats: int = 7, robots: tuple[FieldRobot, ...] 
     """
     out = []
     for robot in robots:
-        path, fix = robot.file(fixtures), list(robot.fix) or None
         try:
-            mech = load(path, fix=fix)  # untimed: imports, caches
+            mech = robot.load(fixtures)  # untimed: imports, caches
         except MechkitError as err:
             out.append(LoadTime(robot.label, None, None, None, str(err).replace(f"{fixtures}/", "")))
             continue
         samples = []
         for _ in range(repeats):
             start = time.perf_counter()
-            load(path, fix=fix)
+            robot.load(fixtures)
             samples.append(time.perf_counter() - start)
         out.append(LoadTime(robot.label, mech.model.nv, len(mech.closures), float(np.median(samples))))
     return out

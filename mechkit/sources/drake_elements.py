@@ -10,8 +10,11 @@
   when the model spawns). revolute, prismatic, ball and fixed are read; other types are refused by name.
 
 A link `world` joints name without declaring it is declared (`declare_world`): the implicit ground of
-Drake and Gazebo. Each cut gets two frames, added to the tree as massless links fixed to the bodies
-(`<cut>_a`, `<cut>_b`), so the closure is the same record `<mechkit:loop>` gives (`mechkit.sources.urdf`).
+Drake and Gazebo; with the world a link, every other link without a parent joint floats, as Drake's
+MultibodyPlant leaves a body no joint holds (a `floating` joint from the world, `<link>_root_joint`, at
+the identity: Drake's default free-body pose). Each cut gets two frames, added to the tree as massless
+links fixed to the bodies (`<cut>_a`, `<cut>_b`), so the closure is the same record `<mechkit:loop>`
+gives (`mechkit.sources.urdf`).
 """
 
 from __future__ import annotations
@@ -35,16 +38,34 @@ BUSHING_RATIO = 1e-3
 GAZEBO_KINDS = {"revolute": "revolute", "prismatic": "prismatic", "ball": "spherical", "fixed": "weld"}
 
 
-def declare_world(root: ET.Element) -> None:
-    """Declare the link `world` when joints name it undeclared (Drake and Gazebo take it as the ground).
+def declare_world(root: ET.Element) -> bool:
+    """Declare the link `world` when joints name it undeclared (Drake and Gazebo take it as the ground), and
+    float every other root link from it (Drake's free bodies; see the module docstring).
 
     Args:
-        root: the URDF's `<robot>` element; a `<link name="world"/>` is prepended to it if needed.
+        root: the URDF's `<robot>` element; a `<link name="world"/>` is prepended to it and `floating`
+            joints appended if needed.
+
+    Returns:
+        Whether `root` changed.
     """
-    ends = (joint.find(side) for joint in root.findall("joint") for side in ("parent", "child"))
-    named = {end.get("link") for end in ends if end is not None}  # a missing end: check_tree names it
-    if "world" in named and all(link.get("name") != "world" for link in root.findall("link")):
+    joints = root.findall("joint")
+    ends = [(j.find("parent"), j.find("child")) for j in joints]
+    named = {end.get("link") for pair in ends for end in pair if end is not None}  # missing: check_tree names it
+    links = [link.get("name") for link in root.findall("link")]
+    if "world" not in named and "world" not in links:
+        return False
+    changed = "world" not in links
+    if changed:
         root.insert(0, ET.Element("link", name="world"))
+    children = {child.get("link") for _, child in ends if child is not None}
+    for link in links:
+        if link != "world" and link not in children:
+            joint = ET.SubElement(root, "joint", name=f"{link}_root_joint", type="floating")
+            ET.SubElement(joint, "parent", link="world")
+            ET.SubElement(joint, "child", link=link)
+            changed = True
+    return changed
 
 
 def read_tool_closures(root: ET.Element) -> list[LoopClosure]:

@@ -75,13 +75,13 @@ def describe_urdf(urdf: str, source: Path | None, fmt: str, params: dict[str, st
     where = str(source) if source is not None else "urdf"
     root = parse_xml(urdf, where)
     links = len(root.findall("link"))
-    declare_world(root)  # Drake's and Gazebo's implicit ground and closures (mechkit.sources.drake_elements)
+    grounded = declare_world(root)  # Drake's and Gazebo's ground, free bodies, closures (sources.drake_elements)
     check_tree(root)
     check_inertias(root)
     closures = tuple(parse_loops(root))
     closures += closing_frames(root, closures)  # onshape-to-robot's closing_* frames
     tool_closures = read_tool_closures(root)
-    if tool_closures or len(root.findall("link")) != links:
+    if tool_closures or grounded or len(root.findall("link")) != links:
         closures, urdf = closures + tuple(tool_closures), ET.tostring(root, encoding="unicode")
     joints = moving_joints(root)
     home, guess = parse_home(root), parse_home(root, "guess")

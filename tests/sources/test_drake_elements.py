@@ -226,6 +226,37 @@ def _welded_strandbeest(tmp_path, name):
     return path
 
 
+def test_drake_s_strandbeest_as_written_floats_its_crossbar_as_drake_does(tmp_path):
+    """The file as Drake ships it: the floor welded to `world`, the crossbar held by no joint. Drake floats
+    a body no joint holds; so does mechkit (it refused the second root): as many velocities as Drake's plant,
+    DOF 7 (the crossbar's 6 and the crank); fixing the crossbar gives the welded Strandbeest's crank torque."""
+    pytest.importorskip("pydrake")
+    from pydrake.multibody.parsing import Parser
+    from pydrake.multibody.plant import MultibodyPlant
+
+    from mechkit.sources.xacro_file import render_urdf
+
+    path = tmp_path / "strandbeest.urdf"
+    path.write_text(render_urdf(STRANDBEEST / "StrandbeestConstraints.urdf.xacro", {}))
+    free = mechkit.load(path)
+    plant = MultibodyPlant(0.0)
+    Parser(plant).AddModels(str(path))
+    plant.Finalize()
+    assert free.model.nv == plant.num_velocities() == 79 and free.home_mobility.dof == 7
+    fixed, welded = (
+        mechkit.load(path, fix=["crossbar"]),
+        mechkit.load(_welded_strandbeest(tmp_path, "StrandbeestConstraints.urdf.xacro")),
+    )
+    assert fixed.home_mobility.dof == 1
+    torques = []
+    for m in (fixed, welded):
+        q = m.assemble({"joint_crossbar_crank": 0.4})
+        torques.append(
+            m.inverse_dynamics(q, np.zeros(m.model.nv), np.zeros(m.model.nv)).efforts["joint_crossbar_crank"]
+        )
+    assert abs(torques[0]) > 1e-3 and torques[0] == pytest.approx(torques[1], rel=1e-9)
+
+
 @pytest.mark.parametrize(
     "name, kind", [("StrandbeestConstraints.urdf.xacro", "spherical"), ("StrandbeestBushings.urdf.xacro", "revolute")]
 )
