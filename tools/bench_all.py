@@ -23,7 +23,11 @@ DOCS = ROOT / "docs"
 
 if __name__ == "__main__":
     code = main(["bench", *sys.argv[1:], "--charts", str(DOCS / "figures"), "--markdown", str(DOCS / "benchmarks.md")])
-    rows = [simulation_speed.simulation_speed(mechkit.load(name), 0.1) for name in simulation_speed.SMALL]
+    rows = [
+        simulation_speed.simulation_speed(mechkit.load(name), 0.1, method)
+        for name in simulation_speed.SMALL
+        for method in ("RK45", "RK4")
+    ]
     simulation_speed.write_section(DOCS / "benchmarks.md", rows)
     if code == 0 and "--speed" in sys.argv[1:]:
         from mechkit.bench import field

@@ -272,7 +272,9 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
         choices=("proximal", "lcaba", "kkt", "nullspace"),
         help="the core's forward dynamics (default: proximal, kkt with --friction)",
     )
-    p.add_argument("--method", default="RK45", help="scipy one-step method: RK45 (default), DOP853, RK23, Radau")
+    p.add_argument(
+        "--method", default="RK45", help="one-step method: RK45 (default), DOP853, RK23, Radau; RK4 (with --dt only)"
+    )
     p.add_argument(
         "--friction",
         metavar="MU,RADIUS",

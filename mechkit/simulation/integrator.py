@@ -13,7 +13,8 @@ After every accepted step the caller projects the state onto the constraint mani
 then restarted from the projected state with the step size it had chosen (a Runge-Kutta pair carries
 no other memory; one extra evaluation per step, the first stage at the new state). A fixed step `dt`
 runs the same pair with its error control off (first and largest step dt, an absolute tolerance of 1e300): the
-speed comparison with MuJoCo and the ten-bar's step-size studies use it.
+speed comparison with MuJoCo and the ten-bar's step-size studies use it. The classic RK4
+(`mechkit.simulation.fixed_step`, MuJoCo's RK4) runs at a fixed step only.
 
 Events: after a step from (t0, y0) to (t1, y1), each event function g(t, y) is evaluated at both
 ends; where its sign changes in the event's direction, the crossing is found by Brent's method
@@ -31,6 +32,7 @@ import scipy.integrate
 import scipy.optimize
 
 from mechkit.base.exceptions import InvalidParameters, MechkitError
+from mechkit.simulation.fixed_step import RK4
 
 #: The one-step methods offered (scipy.integrate classes).
 METHODS = {
@@ -38,7 +40,10 @@ METHODS = {
     "DOP853": scipy.integrate.DOP853,
     "RK23": scipy.integrate.RK23,
     "Radau": scipy.integrate.Radau,
+    "RK4": RK4,
 }
+#: Methods without an error estimate: they need a fixed step.
+FIXED_ONLY = ("RK4",)
 #: Default relative and absolute tolerances of the adaptive steps (ours: the energy balance of the
 #: registered mechanisms then holds to about 1e-8 of the energy exchanged).
 RTOL, ATOL = 1e-9, 1e-11
@@ -88,6 +93,8 @@ class Options:
     def __post_init__(self) -> None:
         if self.method not in METHODS:
             raise InvalidParameters("method", self.method, f"expected one of {', '.join(METHODS)}")
+        if self.dt is None and self.method in FIXED_ONLY:
+            raise InvalidParameters("method", self.method, "estimates no error: give a fixed step dt")
         if self.dt is not None and not (self.dt > 0 and math.isfinite(self.dt)):
             raise InvalidParameters("dt", self.dt, "a fixed step must be a positive number of seconds")
         if not (self.rtol > 0 and self.atol > 0 and self.max_step > 0):

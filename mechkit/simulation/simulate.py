@@ -98,7 +98,7 @@ def simulate(
         dt: a fixed step (s); None: adaptive steps to `rtol`, `atol` (`mechkit.simulation.integrator`).
         rtol: the adaptive steps' relative tolerance (scipy's meaning).
         atol: their absolute tolerance (scipy's meaning).
-        method: the scipy one-step method ("RK45", "DOP853", "RK23", "Radau").
+        method: the one-step method ("RK45", "DOP853", "RK23", "Radau"; "RK4" at a fixed step `dt` only).
         max_step: the largest adaptive step (s).
         dynamics: the core's forward-dynamics method ("proximal", "lcaba", "kkt", "nullspace"); None:
             "proximal" (Pinocchio's constraint models), or "kkt" where friction needs the reactions: the
