@@ -352,3 +352,24 @@ def markdown_report(
     if charts:
         lines += ["## Charts", ""] + [f"![{p.stem}](figures/{p.name})" for p in charts if p.suffix == ".png"] + [""]
     return "\n".join(lines)
+
+
+def replace_section(path: str | Path, heading: str, section: str) -> None:
+    """Put a section into a Markdown file: in place of the text under its heading (up to the next "## "),
+    else at the end; the rest of the file is kept.
+
+    Args:
+        path: the Markdown file, rewritten in place (atomically).
+        heading: the section's heading line ("## ...").
+        section: its text, heading first.
+    """
+    from mechkit.base.atomic import write_text
+
+    text = Path(path).read_text()
+    if heading in text:
+        head, _, rest = text.partition(heading)
+        tail = rest.split("\n## ", 1)
+        text = head + section + ("\n## " + tail[1] if len(tail) == 2 else "")
+    else:
+        text = text.rstrip("\n") + "\n\n" + section
+    write_text(path, text)

@@ -18,6 +18,7 @@ from pathlib import Path
 import numpy as np
 
 from mechkit.base.exceptions import MethodUnavailable
+from mechkit.bench.markdown import replace_section
 from mechkit.export.mjcf import to_mjcf
 from mechkit.mechanism import Mechanism
 
@@ -161,14 +162,4 @@ def write_section(path: str | Path, rows: list[SimulationSpeed]) -> None:
         path: the Markdown file, rewritten in place.
         rows: what `simulation_speed` gave, one per mechanism.
     """
-    from mechkit.base.atomic import write_text
-
-    text = Path(path).read_text()
-    section = markdown(rows)
-    if HEADING in text:
-        head, _, rest = text.partition(HEADING)
-        tail = rest.split("\n## ", 1)
-        text = head + section + ("\n## " + tail[1] if len(tail) == 2 else "")
-    else:
-        text = text.rstrip("\n") + "\n\n" + section
-    write_text(path, text)
+    replace_section(path, HEADING, markdown(rows))
