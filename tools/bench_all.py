@@ -20,7 +20,7 @@ from mechkit.bench import simulation_speed
 from mechkit.cli import main
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-import work_precision  # noqa: E402  (tools/work_precision.py, beside this driver)
+import work_precision  # tools/work_precision.py, beside this driver
 
 ROOT = Path(__file__).resolve().parent.parent
 DOCS = ROOT / "docs"
