@@ -8,6 +8,7 @@ from typing import TYPE_CHECKING, Any
 
 from mechkit.base.exceptions import ClosureNotConverged, MechkitError
 from mechkit.cli import option_values
+from mechkit.core import Assembly, refuse_outside
 from mechkit.loading import load
 from mechkit.mechanism import Mechanism
 
@@ -136,10 +137,11 @@ def load_mechanism(args: argparse.Namespace) -> Mechanism:
     Raises:
         InvalidArgument: a malformed --set, --actuated or --lock.
         MechkitError: what `mechkit.load` refuses; a home assembly that does not close names the source.
+        OutsideLimits: the home assembly leaves a joint's limits (unless --no-limits, where the command has it).
     """
     keep = None if getattr(args, "keep", None) is None else option_values.names("--keep", args.keep)
     try:
-        return load(
+        mech = load(
             args.name,
             actuated=actuated(args.actuated),
             lock=locks(getattr(args, "lock", None)),
@@ -151,6 +153,23 @@ def load_mechanism(args: argparse.Namespace) -> Mechanism:
         )
     except ClosureNotConverged as err:
         raise MechkitError(f"{args.name}: its loops do not close at home: {err}") from None
+    if not getattr(args, "no_limits", False):
+        refuse_outside(mech.model, mech.home_assembly, f"{args.name}: the home assembly")
+    return mech
+
+
+def assembly_line(assembly: Assembly, what: str = "the home assembly") -> str:
+    """The line saying which branch an assembly took and whether it stays in the joints' limits.
+
+    Args:
+        assembly: the assembly (`Mechanism.assembly`, `Mechanism.home_assembly`).
+        what: which assembly it is.
+
+    Returns:
+        "assembly: <what>, <branch>; <limits>".
+    """
+    limits = f"outside their limits: {', '.join(assembly.outside)}" if assembly.outside else "within the joint limits"
+    return f"assembly: {what}, {assembly.branch}; {limits}"
 
 
 def add_mesh_path_argument(parser: argparse.ArgumentParser) -> None:

@@ -11,7 +11,7 @@ from typing import TYPE_CHECKING
 from mechkit.base.exceptions import InvalidArgument, MotionFailed
 from mechkit.base.joint_arguments import joint_names
 from mechkit.cli import option_values
-from mechkit.cli.common import add_mechanism_arguments, check_writers, examples, load_mechanism
+from mechkit.cli.common import add_mechanism_arguments, assembly_line, check_writers, examples, load_mechanism
 from mechkit.cli.progress import ProgressBars
 from mechkit.cli.simulate import PLOT_SUFFIXES
 
@@ -104,6 +104,7 @@ def run(args: argparse.Namespace) -> None:
     if len(result.failures) == len(law.t):
         raise MotionFailed(result.failures)
     print(f"{mech.spec.name}: {law.source}, {len(law.t)} samples, t = {law.t[0]:.6g} .. {law.t[-1]:.6g} s")
+    print(f"{assembly_line(mech.home_assembly)}; each sample continued from the previous sample")
     for t, why in result.failures:
         print(f"skipped t = {t:.6g} s: {why}")
     print("peak reactions (world frame; axial/radial along the joint axis):")

@@ -40,9 +40,11 @@ def test_gripper_by_its_actuator_in_range_on_the_home_branch(gripper, opening):
     """At three openings (0.8 the driver's upper limit): every joint in its range, the home's branch
     (continued from it), and MuJoCo's own equality residual at round-off (its equalities are soft at
     solve time, but their residual is geometry: 1e-12 is round-off of 0.1 m links)."""
-    q = gripper.assemble({"fingers_actuator": opening})
-    assert gripper.last_assembly.branch.startswith("the reference's")
-    assert gripper.last_assembly.outside == ()
+    a = gripper.assembly({"fingers_actuator": opening})
+    q = a.q
+    assert a.branch == "continued from the home assembly"
+    assert a.outside == ()
+    assert np.array_equal(gripper.assemble({"fingers_actuator": opening}), q)
     lo, hi = gripper.model.lowerPositionLimit, gripper.model.upperPositionLimit
     assert np.all(q >= lo - 1e-9) and np.all(q <= hi + 1e-9)
     residual, length = _mujoco_equality_residual(gripper, q)
@@ -60,8 +62,9 @@ def test_gripper_motion_keeps_its_branch(gripper):
     than the input between samples (a branch jump moves the coupler by about a radian)."""
     q, step = gripper.home_q, 0.02
     for opening in np.arange(step, 0.8 + 1e-9, step):
-        new = gripper.assemble({"fingers_actuator": opening}, reference=q)
-        assert gripper.last_assembly.branch.startswith("the reference's")
+        a = gripper.assembly({"fingers_actuator": opening}, reference=q)
+        new = a.q
+        assert a.branch == "continued from the reference given"
         assert np.max(np.abs(new - q)) <= step * (1 + 1e-6)
         q = new
     assert _mujoco_equality_residual(gripper, q)[0] < 1e-12
@@ -78,8 +81,9 @@ def test_four_bar_keeps_the_reference_branch_not_the_guess():
     if abs(other[rocker] - home[rocker]) < 1e-3:
         pytest.skip("the guess did not reach the other branch")
     for reference, how in [(r, how) for r in (home, other) for how in ("reference", "guess")]:
-        q = m.assemble({"crank": float(home[m.q_index("crank")]) + 0.3}, **{how: reference})  # a closed guess too
-        assert m.last_assembly.branch.startswith("the reference's")
+        a = m.assembly({"crank": float(home[m.q_index("crank")]) + 0.3}, **{how: reference})  # a closed guess too
+        q = a.q
+        assert a.branch == f"continued from the {'reference given' if how == 'reference' else 'closed guess given'}"
         assert np.linalg.norm(m.closure_residual(q)) < 1e-10
         assert abs(q[rocker] - reference[rocker]) < abs(q[rocker] - (home if reference is other else other)[rocker])
 
@@ -105,7 +109,7 @@ def test_gripper_agrees_with_mujocos_settled_pose(gripper, opening):
     gives the other six joints within MuJoCo's softness: its equalities settle with gaps |efc_pos| of
     ~5e-6 m, an angle error of gap / link length, bounded by 50 * gap (links over 0.02 m; ours); measured
     1.6e-4 rad at 0.1, 7e-5 at 0.45 and 0.75. The couplers sit 1e-4 rad past their stop (MuJoCo's soft
-    limit), which `last_assembly.outside` names."""
+    limit), which the assembly's `outside` names."""
     mujoco = pytest.importorskip("mujoco")
     model = mujoco.MjModel.from_xml_path(str(GRIPPER))
     model.opt.gravity[:] = 0
@@ -118,7 +122,7 @@ def test_gripper_agrees_with_mujocos_settled_pose(gripper, opening):
     settled = np.array([data.qpos[model.joint(n).qposadr[0]] for n in names])
     gap = float(np.max(np.abs(data.efc_pos[data.efc_type == mujoco.mjtConstraint.mjCNSTR_EQUALITY])))
     couplers = {j: settled[names.index(j)] for j in ("right_coupler_joint", "left_coupler_joint")}
-    q = gripper.assemble({"fingers_actuator": float(data.actuator_length[0]), **couplers})
-    assert gripper.last_assembly.branch.startswith("the reference's")
-    assert np.max(np.abs(q - settled)) < 50 * gap
-    assert set(gripper.last_assembly.outside) == {j for j, v in couplers.items() if v > 1e-9}
+    a = gripper.assembly({"fingers_actuator": float(data.actuator_length[0]), **couplers})
+    assert a.branch == "continued from the home assembly"
+    assert np.max(np.abs(a.q - settled)) < 50 * gap
+    assert set(a.outside) == {j for j, v in couplers.items() if v > 1e-9}
