@@ -40,7 +40,8 @@ def _revolutes(model: pin.Model) -> list[tuple[str, int]]:
 
 
 def wrap_into_limits(model: pin.Model, q: np.ndarray) -> tuple[np.ndarray, tuple[str, ...]]:
-    """q with each bounded revolute angle shifted by whole turns into [lower, upper] where a shift does.
+    """q with each bounded revolute angle shifted by whole turns into [lower, upper] where a shift does
+    (a range of zero width, lower = upper, is a URDF's unset limit: no bound, as in Gepetto's files).
 
     Args:
         model: the Pinocchio model (its position limits).
@@ -53,7 +54,7 @@ def wrap_into_limits(model: pin.Model, q: np.ndarray) -> tuple[np.ndarray, tuple
     outside = []
     lo, hi = model.lowerPositionLimit, model.upperPositionLimit
     for name, i in _revolutes(model):
-        if not (-1e10 < lo[i] and hi[i] < 1e10):  # unbounded (inf or a huge stand-in)
+        if not (-1e10 < lo[i] < hi[i] < 1e10):  # unbounded (inf, a huge stand-in, or lower = upper: unset)
             continue
         if lo[i] - LIMIT_TOL <= q[i] <= hi[i] + LIMIT_TOL:
             continue

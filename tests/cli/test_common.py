@@ -103,25 +103,32 @@ def test_the_assembly_line_names_the_reference_and_the_branch(capsys):
     )
 
 
-def test_a_home_branch_outside_the_limits_is_refused_by_name(tmp_path, capsys):
-    """The four-bar's home branch puts the rocker at about 1.53 rad: with the rocker limited to
-    [-0.5, 0.5] (no whole turn brings it in) every command that assembles exits 2 naming the joint, its
-    value (the one the API's assembly gives) and the limits; simulate --no-limits runs and says so."""
+def test_a_branch_outside_the_limits_is_said_and_refused_where_continued(tmp_path, capsys):
+    """The four-bar's home branch puts the rocker at about 1.53 rad; with the rocker limited to
+    [-0.5, 0.5] (no whole turn brings it in): the report runs and its assembly line names the rocker (the
+    home is the file's own pose, Newton from its <mechkit:guess>), while a motion (each sample continued
+    from the previous one) and a pose --at continued from home exit 2 naming the joint, its value and the
+    limits."""
     path = _four_bar_rocker_limited(tmp_path, -0.5, 0.5)
     m = mechkit.load(path)
     assert m.home_assembly.outside == ("rocker",)
     value = float(m.home_q[m.q_index("rocker")])
     assert 1.4 < value < 1.6
-    for command in (["report"], ["motion", "--samples", "4"], ["simulate", "--duration", "0.01"]):
-        assert main([command[0], str(path), *command[1:]]) == 2
-        err = capsys.readouterr().err.strip()
-        assert err == (
-            f"mechkit: error: {path}: the home assembly (Newton from <mechkit:guess>): joint 'rocker' at "
-            f"{value:.6g} is outside its limits [-0.5, 0.5] (the branch leaves them)"
-        )
-    assert main(["simulate", str(path), "--duration", "0.01", "--no-limits"]) == 0
-    assert "assembly: the home assembly, Newton from <mechkit:guess>; outside their limits: rocker" in (
-        capsys.readouterr().out.splitlines()
+    assert main(["report", str(path)]) == 0
+    line = "assembly: the home assembly, Newton from <mechkit:guess>; outside their limits: rocker"
+    assert capsys.readouterr().out.splitlines()[0] == line
+    assert main(["motion", str(path), "--samples", "4"]) == 2
+    err = capsys.readouterr().err.strip()
+    assert err == (
+        f"mechkit: error: {m.spec.name}: the motion at t = 0 s (continued from the previous sample): joint "
+        f"'rocker' at {value:.6g} is outside its limits [-0.5, 0.5] (the branch leaves them)"
+    )
+    at = m.assembly({"crank": 0.7})
+    assert main(["stiffness", str(path), "--body", "rocker_link", "--at", "crank=0.7"]) == 2
+    err = capsys.readouterr().err.strip()
+    assert err == (
+        f"mechkit: error: --at crank=0.7 (continued from the home assembly): joint 'rocker' at "
+        f"{at.q[m.q_index('rocker')]:.6g} is outside its limits [-0.5, 0.5] (the branch leaves them)"
     )
 
 

@@ -99,6 +99,10 @@ def test_wrap_into_limits_shifts_whole_turns_and_names_the_rest(gripper):
     assert back[i] == pytest.approx(q[i], abs=1e-12) and outside == ()
     turned[gripper.q_index("right_driver_joint")] = 1.5  # range [0, 0.8]: no whole turn brings it in
     assert wrap_into_limits(gripper.model, turned)[1] == ("right_driver_joint",)
+    unset = gripper.model.copy()  # lower = upper (a URDF's "0 0", as Gepetto's files write): no bound
+    i = gripper.q_index("right_driver_joint")
+    unset.lowerPositionLimit[i] = unset.upperPositionLimit[i] = 0.0
+    assert wrap_into_limits(unset, turned)[1] == ()
 
 
 @pytest.mark.parametrize("opening", [0.1, 0.45, 0.75])
