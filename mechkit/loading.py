@@ -249,6 +249,7 @@ def from_description(
         gruebler_dof=cm.structure.kutzbach,
         home=_constant(home_values),
         guess=_constant(guess_values) if guess_values else None,
+        pose="the guess given" if guess is not None else desc.pose,
         summary=f"read from the {desc.format} file{where}",
     )
     return Mechanism(spec, params, cm, desc.urdf, desc.springs, desc.source_urdf)

@@ -44,7 +44,8 @@ class Mechanism(MechanismRates):
 
     Attributes:
         model, data: the Pinocchio model of the tree and a data for it (scratch).
-        closures, structure, actuated: as the closure model's. home_q: the home assembly.
+        closures, structure, actuated: as the closure model's. home_q: the home assembly;
+        home_assembly: its record (the branch it took, the joints it leaves outside their limits).
         home_mobility: the mobility at home; independent_rows: its rank (the closure's generic rank).
         idle: body -> idle freedoms at home (`mechkit.core.idle_freedoms`: a rod spinning about its axis).
 
@@ -68,7 +69,8 @@ class Mechanism(MechanismRates):
         self._nq, self._nv = cm.model.nq, cm.model.nv
         self.structure, self.closures, self.actuated = cm.structure, list(cm.closures), cm.actuated
         self.springs = JointSprings(self.model, springs)
-        self.home_q = self.assemble(spec.home(params))
+        self.home_assembly = self.assembly(spec.home(params))
+        self.home_q = self.home_assembly.q
         self.home_mobility = core.mobility(cm, core_data, self.home_q)
         self.independent_rows = self.home_mobility.rank
         self.idle = core.idle_freedoms(

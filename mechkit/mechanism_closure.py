@@ -176,25 +176,59 @@ class MechanismClosure:
         reference: np.ndarray | None = None,
     ) -> np.ndarray:
         """Configuration q (nq,) that closes every loop with the given joints at the given values, on the
-        branch of a reference (`mechkit.core.continuation`), bounded revolute angles wrapped into their limits.
-
-        The branch taken and the joints left outside their limits: `last_assembly` (`core.Assembly`).
+        branch of a reference, bounded revolute angles wrapped into their limits (`assembly`'s q; the
+        branch taken and the joints left outside their limits: `assembly`).
 
         Args:
-            inputs: joint name -> value (rad or m; a ball joint's rotation vector), or values in
-                `actuated` order.
+            inputs: joint or actuator name -> value (rad or m; a ball joint's rotation vector), or values
+                in `actuated` order.
+            guess: full q, or joint name -> value, picking the assembly branch (see `assembly`).
+            tol: closure residual to reach (m for position rows).
+            method: "newton" (minimum-norm Gauss-Newton) or "lm" (Levenberg-Marquardt).
+            max_iter: iteration cap.
+            reference: (nq,) a closed configuration whose branch is kept (see `assembly`).
+
+        Returns:
+            (nq,) the assembled configuration.
+
+        Raises:
+            ClosureNotConverged: no assembly found near the guess.
+        """
+        return self.assembly(inputs, guess, tol=tol, method=method, max_iter=max_iter, reference=reference).q
+
+    def assembly(
+        self,
+        inputs: Inputs,
+        guess: Inputs | np.ndarray | None = None,
+        *,
+        tol: float = core.CLOSURE_TOL,
+        method: str = "newton",
+        max_iter: int = 60,
+        reference: np.ndarray | None = None,
+    ) -> core.Assembly:
+        """The assembly with the given joints at the given values: its q, the branch it took (named by its
+        reference) and the joints on loops it leaves outside their limits (a tree's joint outside its
+        limits is the pose given, not a branch).
+
+        The branch is a reference's, kept by continuation (`mechkit.core.continuation`): `reference`, else
+        the guess when it is a full configuration closing every loop (the previous sample along a motion),
+        else the home assembly when no guess is given. Where there is none, or its branch cannot be
+        followed, Newton from the guess (the spec's: a file's keyframe 'home', qpos0 or `<mechkit:guess>`;
+        else the joints' zero). Bounded revolute angles are then wrapped by whole turns into their limits.
+
+        Args:
+            inputs: joint or actuator name -> value (rad or m; a ball joint's rotation vector), or values
+                in `actuated` order.
             guess: full q, or joint name -> value, picking the assembly branch (default: the spec's
                 guess, else the neutral configuration).
             tol: closure residual to reach (m for position rows).
             method: "newton" (minimum-norm Gauss-Newton) or "lm" (Levenberg-Marquardt).
             max_iter: iteration cap.
-            reference: (nq,) a closed configuration whose branch is kept, by continuation from it (default:
-                the guess when it is a full configuration closing every loop, as the previous sample along
-                a motion; the home assembly when no guess is given). Where the branch cannot be followed,
-                Newton from the guess.
+            reference: (nq,) a closed configuration whose branch is kept.
 
         Returns:
-            (nq,) the assembled configuration.
+            The assembly (`core.Assembly`: q (nq,), iterations, residual, branch, the loops' joints outside
+            their limits by name).
 
         Raises:
             ClosureNotConverged: no assembly found near the guess.
@@ -203,9 +237,12 @@ class MechanismClosure:
         arguments.option("method", method, core.ASSEMBLY_METHODS)
         max_iter = arguments.integer("max_iter", max_iter, minimum=1)
         given = self._values(inputs, self.actuated, "inputs")
-        guess_given = guess
-        if guess is None and self.spec.guess is not None:
-            guess = self.spec.guess(self.params)
+        named = "the reference given" if reference is not None else None
+        start = "the guess given"
+        if guess is None:
+            start = self.spec.pose or ("the spec's guess" if self.spec.guess is not None else "the joints' zero")
+            if self.spec.guess is not None:
+                guess = self.spec.guess(self.params)
         if guess is None or isinstance(guess, Mapping):
             q0 = self.neutral()
             for joint, value in self._values(guess, (), "guess").items():
@@ -213,13 +250,13 @@ class MechanismClosure:
         else:
             q0 = arguments.array("guess", guess, self.model.nq, batch=False)
             if reference is None and np.linalg.norm(self.closure_residual(q0)) <= tol:
-                reference = q0.copy()  # a closed guess (the previous sample): its branch is kept
+                reference, named = q0.copy(), "the closed guess given"  # the previous sample: its branch kept
         for joint, value in given.items():
             core.set_joint_value(self.model, q0, self.joint_id(joint), value)
         split = self.closure_model.split(tuple(given))
         out = None
-        if reference is None and guess_given is None:
-            reference = getattr(self, "home_q", None)  # the file's home, once assembled
+        if reference is None and start != "the guess given" and hasattr(self, "home_q"):
+            reference, named = self.home_q, "the home assembly"
         if reference is not None:
             (reference,) = self._one(q=reference)
             out = core.continue_from(self.closure_model, self.closure_data, reference, q0, split, tol=tol)
@@ -227,14 +264,12 @@ class MechanismClosure:
             out = core.assemble(
                 self.closure_model, self.closure_data, q0, split, tol=tol, max_iter=max_iter, method=method
             )
-            where = "the guess's (Newton from it" + (
-                "; the reference's branch could not be followed)" if reference is not None else ")"
-            )
+            branch = f"Newton from {start}" + (f" ({named}'s branch could not be followed)" if named else "")
         else:
-            where = "the reference's (continued from it)"
+            branch = f"continued from {named}"
         q, outside = core.wrap_into_limits(self.model, out.q)
-        self.last_assembly = core.Assembly(q, out.iterations, out.residual, where, outside)
-        return q
+        on_loops = tuple(j for j in outside if self.joint_id(j) in self.closure_model.on_loops)
+        return core.Assembly(q, out.iterations, out.residual, branch, on_loops)
 
     def solve_closure(
         self,

@@ -113,6 +113,7 @@ def description_of(mech: Mechanism) -> Description:
         couplings=mech.closure_model.couplings,
         springs=mech.springs.springs,
         actuators=mech.closure_model.actuators,
+        pose=mech.spec.pose or ("the spec's guess" if spec.guess is not None else "the joints' zero"),
         format="mechkit",
     )
 

@@ -461,7 +461,6 @@ TESTED_ELSEWHERE = {
     ),
     "mechkit/mechanisms/truss/nodes.py": "node centres along the fold: tests/mechanisms/truss/test_fold.py and "
     "tests/mechanisms/test_deployable_9rr12uru.py",
-    "mechkit/motion/path.py": "the kinematics of every study: tests/motion/test_study.py",
     "mechkit/motion/plot.py": "drawn by `mechkit motion --plot` in tests/cli/test_motion.py",
     "mechkit/second_opinion/instant.py": "a part of every second opinion: tests/second_opinion/test_agreement.py",
     "mechkit/second_opinion/solve.py": "a part of every second opinion: tests/second_opinion/test_agreement.py",

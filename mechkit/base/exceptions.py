@@ -92,6 +92,24 @@ class InconsistentMotion(MechkitError):
         super().__init__(f"no rigid answer: {what} (outside the range by {outside:.3e}, limit {limit:.1e})")
 
 
+class OutsideLimits(MechkitError):
+    """An assembly whose branch leaves a joint's limits (no whole turn brings the angle back in).
+
+    Attributes:
+        joint: the joint's name.
+        value: its value (rad or m).
+        lower, upper: its limits (rad or m).
+        where: which assembly, and how it was reached.
+    """
+
+    def __init__(self, joint: str, value: float, lower: float, upper: float, where: str):
+        self.joint, self.value, self.lower, self.upper, self.where = joint, value, lower, upper, where
+        super().__init__(
+            f"{where}: joint {joint!r} at {value:.6g} is outside its limits [{lower:.6g}, {upper:.6g}] "
+            "(the branch leaves them)"
+        )
+
+
 class MethodUnavailable(MechkitError):
     """A method cannot handle this mechanism (say which and why; another method can).
 

@@ -263,6 +263,8 @@ class MechanismSpec:
         gruebler_dof: the Gruebler-Kutzbach mobility count, compared with the numerical one.
         home: parameters -> inputs (joint name -> rad or m) of the default assembly.
         guess: parameters -> initial guess (joint name -> value) picking the assembly branch.
+        pose: what `guess` is, named by the assembly's branch (a file's "the keyframe 'home'"; default:
+            "the spec's guess").
         summary: one line for `mechkit list` (must equal the registry entry's summary).
         caption: a few words for the gallery (default: the summary).
         scenes: scene name -> function giving assembled poses (`mechkit snapshot --scene`, gallery).
@@ -290,6 +292,7 @@ class MechanismSpec:
     gruebler_dof: int
     home: Callable[[Any], Inputs]
     guess: Callable[[Any], Inputs] | None = None
+    pose: str = ""
     summary: str = ""
     caption: str = ""
     scenes: Mapping[str, SceneFunction] = field(default_factory=dict)

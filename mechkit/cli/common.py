@@ -6,8 +6,11 @@ import argparse
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
+import numpy as np
+
 from mechkit.base.exceptions import ClosureNotConverged, MechkitError
 from mechkit.cli import option_values
+from mechkit.core import Assembly, refuse_outside, wrap_into_limits
 from mechkit.loading import load
 from mechkit.mechanism import Mechanism
 
@@ -139,7 +142,7 @@ def load_mechanism(args: argparse.Namespace) -> Mechanism:
     """
     keep = None if getattr(args, "keep", None) is None else option_values.names("--keep", args.keep)
     try:
-        return load(
+        mech = load(
             args.name,
             actuated=actuated(args.actuated),
             lock=locks(getattr(args, "lock", None)),
@@ -151,6 +154,41 @@ def load_mechanism(args: argparse.Namespace) -> Mechanism:
         )
     except ClosureNotConverged as err:
         raise MechkitError(f"{args.name}: its loops do not close at home: {err}") from None
+    return mech
+
+
+def assembly_line(assembly: Assembly, what: str = "the home assembly") -> str:
+    """The line saying which branch an assembly took and whether it stays in the joints' limits.
+
+    Args:
+        assembly: the assembly (`Mechanism.assembly`, `Mechanism.home_assembly`).
+        what: which assembly it is.
+
+    Returns:
+        "assembly: <what>, <branch>; <limits>".
+    """
+    limits = f"outside their limits: {', '.join(assembly.outside)}" if assembly.outside else "within the joint limits"
+    return f"assembly: {what}, {assembly.branch}; {limits}"
+
+
+def refuse_path_outside(mech: Mechanism, q: np.ndarray, t: np.ndarray, what: str) -> None:
+    """Refuse a path (each sample continued from the previous one) whose branch leaves a loop joint's limits.
+
+    Args:
+        mech: the mechanism.
+        q: (N, nq) the samples (rows of NaN: samples that failed, skipped).
+        t: (N,) their times, s.
+        what: the path, for the message.
+
+    Raises:
+        OutsideLimits: at the first sample with a loop joint outside its limits (no whole turn brings it in).
+    """
+    for qk, tk in zip(q, t):
+        if np.all(np.isfinite(qk)):
+            _, outside = wrap_into_limits(mech.model, qk)
+            on_loops = tuple(j for j in outside if mech.joint_id(j) in mech.closure_model.on_loops)
+            at = Assembly(qk, 0, 0.0, "continued from the previous sample", on_loops)
+            refuse_outside(mech.model, at, f"{what} at t = {tk:.6g} s")
 
 
 def add_mesh_path_argument(parser: argparse.ArgumentParser) -> None:

@@ -11,7 +11,14 @@ from typing import TYPE_CHECKING
 from mechkit.base.exceptions import InvalidArgument, MotionFailed
 from mechkit.base.joint_arguments import joint_names
 from mechkit.cli import option_values
-from mechkit.cli.common import add_mechanism_arguments, check_writers, examples, load_mechanism
+from mechkit.cli.common import (
+    add_mechanism_arguments,
+    assembly_line,
+    check_writers,
+    examples,
+    load_mechanism,
+    refuse_path_outside,
+)
 from mechkit.cli.progress import ProgressBars
 from mechkit.cli.simulate import PLOT_SUFFIXES
 
@@ -73,6 +80,7 @@ def run(args: argparse.Namespace) -> None:
             malformed --joints, or --joints without --plot.
         InvalidParameters: an output that cannot be written or whose library is missing.
         MotionFailed: no sample of the motion succeeded.
+        OutsideLimits: the motion's branch leaves a loop joint's limits (named with its time).
     """
     from mechkit import motion
     from mechkit.motion.plot import write_plot
@@ -103,7 +111,9 @@ def run(args: argparse.Namespace) -> None:
     )
     if len(result.failures) == len(law.t):
         raise MotionFailed(result.failures)
+    refuse_path_outside(mech, result.q, result.t, f"{mech.spec.name}: the motion")
     print(f"{mech.spec.name}: {law.source}, {len(law.t)} samples, t = {law.t[0]:.6g} .. {law.t[-1]:.6g} s")
+    print(f"{assembly_line(mech.home_assembly)}; each sample continued from the previous sample")
     for t, why in result.failures:
         print(f"skipped t = {t:.6g} s: {why}")
     print("peak reactions (world frame; axial/radial along the joint axis):")

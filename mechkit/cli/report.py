@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 
 from mechkit.base.json_text import dumps
-from mechkit.cli.common import add_mechanism_arguments, examples, load_mechanism
+from mechkit.cli.common import add_mechanism_arguments, assembly_line, examples, load_mechanism
 
 
 def run(args: argparse.Namespace) -> None:
@@ -20,8 +20,13 @@ def run(args: argparse.Namespace) -> None:
     from mechkit.base.exceptions import SelfCheckFailed
     from mechkit.report import CHECK_LIMIT, failing_checks, format_report, report
 
-    r = report(load_mechanism(args))
-    print(dumps(r, indent=2) if args.json else format_report(r))
+    mech = load_mechanism(args)
+    r = report(mech)
+    home = mech.home_assembly
+    if args.json:
+        print(dumps({**r, "assembly": {"branch": home.branch, "outside": list(home.outside)}}, indent=2))
+    else:
+        print(f"{assembly_line(home)}\n{format_report(r)}")
     failing = failing_checks(r["checks"])
     if failing:
         raise SelfCheckFailed(r["name"], failing, CHECK_LIMIT)

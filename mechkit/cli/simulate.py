@@ -13,7 +13,7 @@ from mechkit.base.atomic import resolve_output
 from mechkit.base.exceptions import InvalidArgument, InvalidParameters, MethodUnavailable
 from mechkit.base.joint_arguments import joint_names
 from mechkit.cli import option_values
-from mechkit.cli.common import add_mechanism_arguments, check_writers, examples, load_mechanism
+from mechkit.cli.common import add_mechanism_arguments, assembly_line, check_writers, examples, load_mechanism
 from mechkit.cli.progress import ProgressBars
 
 #: Simulations of at least this many simulated seconds show a progress bar (stderr, on a terminal).
@@ -208,6 +208,7 @@ def run(args: argparse.Namespace) -> None:
             raise
         raise MethodUnavailable(err.method, f"{err.why} (on the command line: --dynamics kkt)") from None
     print(f"{mech.spec.name}: {result.motion.source}")
+    print(assembly_line(mech.home_assembly))
     print("\n".join(result.summary()))
     for name in result.motion.effort_names:
         print(effort_line(name, result.motion.effort(name)))

@@ -9,6 +9,7 @@ import numpy as np
 from mechkit.base.json_text import dumps, nulls
 from mechkit.cli import option_values
 from mechkit.cli.common import add_mechanism_arguments, examples, load_mechanism
+from mechkit.core import refuse_outside
 from mechkit.mechanism import Mechanism
 
 DIRECTIONS = ("x", "y", "z", "rx", "ry", "rz")
@@ -28,11 +29,14 @@ def pose(mech: Mechanism, text: str | None) -> np.ndarray:
 
     Raises:
         InvalidArgument: a pair without "=", a value that is not a finite number, a joint given twice.
+        OutsideLimits: the pose's branch leaves a joint's limits.
     """
     if not text:
         return mech.home_q
     given = option_values.named_numbers("--at", text.split(","), "JOINT=VALUE pairs separated by commas", 1)
-    return mech.assemble({joint: values[0] for joint, values in given.items()})
+    at = mech.assembly({joint: values[0] for joint, values in given.items()})
+    refuse_outside(mech.model, at, f"--at {text}")
+    return at.q
 
 
 def report(args: argparse.Namespace) -> dict:

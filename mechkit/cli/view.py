@@ -8,6 +8,7 @@ import time
 from mechkit.cli.common import (
     add_mechanism_arguments,
     add_mesh_path_argument,
+    assembly_line,
     examples,
     load_mechanism,
     mesh_search,
@@ -21,12 +22,13 @@ def run(args: argparse.Namespace) -> None:
         args: the parsed command line.
     """
     try:
-        viewer = _start(args)
+        viewer, home = _start(args)
     except KeyboardInterrupt:
         print("stopped", flush=True)
         return
     try:
         print(f"meshcat viewer of {args.name} at {viewer.url} (Ctrl-C to stop)", flush=True)
+        print(assembly_line(home), flush=True)
         while viewer.running:
             time.sleep(0.2)
         print("the meshcat server stopped", flush=True)
@@ -38,10 +40,11 @@ def run(args: argparse.Namespace) -> None:
 
 def _start(args: argparse.Namespace):
     """Load the mechanism (a registered name or a file) and start a viewer showing it; meshes are looked
-    for beside the file, then in the --mesh-path folders."""
+    for beside the file, then in the --mesh-path folders. Returns the viewer and the home assembly."""
     from mechkit.viz.live import view
 
-    return view(load_mechanism(args), scene=args.scene, meshes=mesh_search(args))
+    mech = load_mechanism(args)
+    return view(mech, scene=args.scene, meshes=mesh_search(args)), mech.home_assembly
 
 
 def add_parser(sub: argparse._SubParsersAction) -> None:

@@ -28,7 +28,7 @@ this package imports those submodules: this face is the contract.
 """
 
 from mechkit.core.assembly import ASSEMBLY_METHODS, Assembly, assemble
-from mechkit.core.continuation import continue_from, wrap_into_limits
+from mechkit.core.continuation import continue_from, refuse_outside, wrap_into_limits
 from mechkit.core.cuts import CutRows
 from mechkit.core.forward import DEFAULTS as FORWARD_DEFAULTS
 from mechkit.core.forward import METHODS as FORWARD_METHODS
@@ -142,6 +142,7 @@ __all__ = [
     "pinocchio_methods_apply",
     "proximal_settings",
     "raw_constraint_dynamics",
+    "refuse_outside",
     "second_order_inconsistency",
     "second_order_velocity",
     "set_joint_value",

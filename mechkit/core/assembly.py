@@ -151,13 +151,14 @@ def from_far(cm: ClosureModel, cd: ClosureData, q0: np.ndarray, split: InputSpli
 @dataclass(frozen=True)
 class Assembly:
     """A solved closure: configuration q (nq,), Newton steps taken, residual norm reached, the branch
-    taken (how it was reached: from the start given, or continued from a reference), and the revolute
-    joints left outside their limits (`mechkit.core.continuation.wrap_into_limits`)."""
+    taken (how it was reached, naming its reference: "Newton from the keyframe 'home'", "continued from
+    the home assembly"), and the revolute joints left outside their limits
+    (`mechkit.core.continuation.wrap_into_limits`)."""
 
     q: np.ndarray
     iterations: int
     residual: float
-    branch: str = "the start's (Newton from the guess)"
+    branch: str = "Newton from the start given"
     outside: tuple[str, ...] = ()
 
 

@@ -1,5 +1,6 @@
-"""Kinematics along a path: per sample, the closure solve from a warm start (the one sequential step),
-then velocities, accelerations and the joint axes of all samples at once.
+"""Kinematics along a path: per sample, the closure solve continued from the previous sample (the one
+sequential step: `mechkit.core.continue_from`, so the path keeps its assembly branch), then velocities,
+accelerations and the joint axes of all samples at once.
 
 The core's functions (`assemble`, `kinematic_pass`, `passive_verdict`, `solve_passive`), called with
 what a path fixes once: the split of given and solved coordinates is the same for every sample, the
@@ -15,7 +16,7 @@ import numpy as np
 import pinocchio as pin
 
 from mechkit import core
-from mechkit.base.exceptions import SingularConfiguration
+from mechkit.base.exceptions import ClosureNotConverged, SingularConfiguration
 from mechkit.history.axes import JointAxes
 from mechkit.mechanism import Mechanism
 
@@ -36,16 +37,18 @@ class PathKinematics:
         self.names = tuple(names)
         self.axes = JointAxes(mech)
 
-    def first_guess(self, values: np.ndarray) -> np.ndarray:
-        """The assembly at the first sample from the mechanism's own guess (its branch).
+    def first_guess(self, values: np.ndarray, guess: np.ndarray | None = None) -> np.ndarray:
+        """The assembly at the first sample: continued from the law's pose when it is closed, else from
+        the mechanism's home (`Mechanism.assembly`).
 
         Args:
             values: the inputs' values at the first sample (k,), rad or m.
+            guess: the law's pose at the first sample (nq,), or None.
 
         Returns:
             The assembled configuration (nq,).
         """
-        return self.mech.assemble(dict(zip(self.names, values)))
+        return self.mech.assemble(dict(zip(self.names, values)), guess)
 
     def predict(self, q: np.ndarray, t: np.ndarray, t_next: float) -> np.ndarray:
         """Warm start at time t_next from the last assembled samples q (k, nq) at times t (k,), latest
@@ -68,11 +71,14 @@ class PathKinematics:
             x += weight * pin.difference(self.model, q[0], q[j])
         return pin.integrate(self.model, q[0], x)
 
-    def assemble(self, guess: np.ndarray, values: np.ndarray, tol: float) -> np.ndarray:
-        """q of one sample, the loops closed from `guess` (its singularity is judged by `singular`).
+    def assemble(self, previous: np.ndarray, guess: np.ndarray, values: np.ndarray, tol: float) -> np.ndarray:
+        """q of one sample on the previous sample's branch: continued from it (`core.continue_from`, steps
+        of at most `core.continuation.MAX_STEP` in the inputs), the solve starting from `guess` where one
+        step suffices (its singularity is judged by `singular`).
 
         Args:
-            guess: a configuration near the sample (nq,).
+            previous: the previous sample's configuration (nq,), closed.
+            guess: a configuration near the sample (nq,): the warm start.
             values: the inputs' values (k,), rad or m.
             tol: the closure tolerance.
 
@@ -80,11 +86,17 @@ class PathKinematics:
             The assembled configuration (nq,).
 
         Raises:
-            ClosureNotConverged: no assembly near the guess.
+            ClosureNotConverged: the previous sample's branch cannot be followed to this one.
         """
-        q0 = np.array(guess, dtype=float)
-        q0[self.input_q] = values
-        return core.assemble(self.closure_model, self.closure_data, q0, self.split, tol=tol, jacobian_at_trials=False).q
+        target = np.array(previous, dtype=float)
+        target[self.input_q] = values
+        out = core.continue_from(
+            self.closure_model, self.closure_data, previous, target, self.split, tol=tol, start=guess
+        )
+        if out is None:
+            residual = float(np.linalg.norm(core.closure_residual(self.closure_model, self.closure_data, target)))
+            raise ClosureNotConverged(residual, tol, 0, "the previous sample's branch cannot be followed to this one")
+        return out.q
 
     def jacobians(self, q: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Closure and joint Jacobians of N assembled samples.

@@ -1,10 +1,12 @@
-"""A motion study: assemble along an input law with warm starts, sample by sample, then velocities,
-accelerations, the efforts of the driven joints and every joint's reaction for all samples at once.
+"""A motion study: assemble along an input law sample by sample, each continued from the previous one
+(its branch kept), then velocities, accelerations, the efforts of the driven joints and every joint's
+reaction for all samples at once.
 
-Warm start of sample i: the law's guess (a scene's pose) when it has one, else the polynomial through
-the last `PREDICTOR_POINTS` assembled configurations extrapolated to t_i (in the tangent space of the
-latest, `pin.difference` / `pin.integrate`; the first sample from the mechanism's own guess). It keeps
-the assembly branch and, on a smooth law, leaves one Newton step (measured in docs/motion.md, "Speed").
+Sample i is continued from the last assembled sample (`PathKinematics.assemble`); its warm start is the
+law's guess (a scene's pose) when it has one, else the polynomial through the last `PREDICTOR_POINTS`
+assembled configurations extrapolated to t_i (in the tangent space of the latest, `pin.difference` /
+`pin.integrate`); the first sample is the mechanism's assembly continued from its home. On a smooth law
+the warm start leaves one Newton step (measured in docs/motion.md, "Speed").
 """
 
 from __future__ import annotations
@@ -30,7 +32,7 @@ Loads = Callable[[Mechanism, np.ndarray, float], Sequence]
 
 def driven_model(mech: Mechanism, names: Sequence[str]) -> core.ClosureModel:
     """The closure model with a generalised force on every actuated joint and every input of the law
-    (a passive input's force is what its spring or damper must supply).
+    (a passive input's force is what its spring or damper must supply); the file's tendon actuators kept.
 
     Args:
         mech: the mechanism.
@@ -40,7 +42,7 @@ def driven_model(mech: Mechanism, names: Sequence[str]) -> core.ClosureModel:
         The closure model so driven.
     """
     driven = tuple(mech.actuated) + tuple(n for n in names if n not in mech.actuated)
-    return mech.closure_model.with_actuation(driven)
+    return mech.closure_model.with_actuation(driven, mech.closure_model.actuators)
 
 
 def inverse_batch(
@@ -132,14 +134,12 @@ def kinematics_along(
         block, error = [], None
         while i < n and len(block) < JUDGED_BLOCK:
             try:
-                if law.guesses is not None:
-                    guess = law.guesses[i]
-                elif done:
-                    last = done[: -PREDICTOR_POINTS - 1 : -1]
-                    guess = path.predict(q[last], law.t[last], law.t[i])
+                if not done:
+                    q[i] = path.first_guess(law.values[i], None if law.guesses is None else law.guesses[i])
                 else:
-                    guess = path.first_guess(law.values[i])
-                q[i] = path.assemble(guess, law.values[i], tol)
+                    last = done[: -PREDICTOR_POINTS - 1 : -1]
+                    guess = law.guesses[i] if law.guesses is not None else path.predict(q[last], law.t[last], law.t[i])
+                    q[i] = path.assemble(q[done[-1]], guess, law.values[i], tol)
             except MechkitError as err:
                 error = (i, err)
                 break

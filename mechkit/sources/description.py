@@ -26,6 +26,7 @@ class Description:
         home: joint -> value of the default assembly's inputs (rad or m; a ball joint's rotation
             vector (3,), a free-flyer's position and rotation vector (6,)).
         guess: joint -> value near which the default assembly is sought (picks the branch).
+        pose: what `guess` is, named by the assembly's branch ("the keyframe 'home'", "qpos0").
         source: the file read; `format`: "urdf", "extended-urdf", "xacro", "mjcf", "sdf", "urdf+".
         params: the xacro arguments and the values used (strings; defaults included), empty for
             other formats.
@@ -55,6 +56,7 @@ class Description:
     actuators: tuple[Actuator, ...] = ()
     ignored_closures: tuple[ClosureElement, ...] = ()
     source_urdf: str | None = None
+    pose: str = "the joints' zero"
 
 
 def read_text(path: Path) -> str:

@@ -107,6 +107,7 @@ def describe_urdf(urdf: str, source: Path | None, fmt: str, params: dict[str, st
         closures,
         couplings=parse_mimics(root),
         springs=springs,
+        pose="<mechkit:guess>" if guess else "the joints' zero",
     )
 
 

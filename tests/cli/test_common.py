@@ -6,6 +6,7 @@ import json
 import subprocess
 import sys
 
+import numpy as np
 import pytest
 from tests_support import FIXTURES, ROOT, SLIDER_CRANK, written
 
@@ -73,3 +74,73 @@ def test_an_unread_closure_is_refused_and_with_the_option_warned_in_one_line():
     warnings = [line for line in out.stderr.splitlines() if line.startswith("mechkit: warning: ")]
     assert out.returncode == 0 and "Traceback" not in out.stderr
     assert len(warnings) == 1 and "left with 3 degree(s) of freedom" in warnings[0], out.stderr
+
+
+def _four_bar_rocker_limited(tmp_path, lower: float, upper: float):
+    """The packaged four-bar with its rocker's limits set to [lower, upper] (rad)."""
+    text = (ROOT / "mechkit" / "urdf" / "four_bar.urdf").read_text()
+    old = '<limit effort="1e6" lower="-25.0" upper="25.0" velocity="1e3"/>'
+    assert text.count(old) == 1
+    path = tmp_path / "four_bar_limited.urdf"
+    path.write_text(text.replace(old, f'<limit effort="1e6" lower="{lower}" upper="{upper}" velocity="1e3"/>'))
+    return path
+
+
+def test_the_assembly_line_names_the_reference_and_the_branch(capsys):
+    """report's first line (its JSON: "assembly") names the home assembly's start (the file's keyframe
+    'home', the URDF's <mechkit:guess>, the spec's guess); motion says each sample continues the previous."""
+    assert main(["report", str(FIXTURES / "tendon_pendulum.xml")]) == 0
+    out = capsys.readouterr().out.splitlines()
+    assert out[0] == "assembly: the home assembly, Newton from the keyframe 'home'; within the joint limits"
+    assert main(["report", str(ROOT / "mechkit" / "urdf" / "four_bar.urdf"), "--json"]) == 0
+    r = json.loads(capsys.readouterr().out)
+    assert r["assembly"] == {"branch": "Newton from <mechkit:guess>", "outside": []}
+    assert main(["motion", "four_bar", "--samples", "4"]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    assert lines[1] == (
+        "assembly: the home assembly, Newton from the spec's guess; within the joint limits; "
+        "each sample continued from the previous sample"
+    )
+
+
+def test_a_branch_outside_the_limits_is_said_and_refused_where_continued(tmp_path, capsys):
+    """The four-bar's home branch puts the rocker at about 1.53 rad; with the rocker limited to
+    [-0.5, 0.5] (no whole turn brings it in): the report runs and its assembly line names the rocker (the
+    home is the file's own pose, Newton from its <mechkit:guess>), while a motion (each sample continued
+    from the previous one) and a pose --at continued from home exit 2 naming the joint, its value and the
+    limits."""
+    path = _four_bar_rocker_limited(tmp_path, -0.5, 0.5)
+    m = mechkit.load(path)
+    assert m.home_assembly.outside == ("rocker",)
+    value = float(m.home_q[m.q_index("rocker")])
+    assert 1.4 < value < 1.6
+    assert main(["report", str(path)]) == 0
+    line = "assembly: the home assembly, Newton from <mechkit:guess>; outside their limits: rocker"
+    assert capsys.readouterr().out.splitlines()[0] == line
+    assert main(["motion", str(path), "--samples", "4"]) == 2
+    err = capsys.readouterr().err.strip()
+    assert err == (
+        f"mechkit: error: {m.spec.name}: the motion at t = 0 s (continued from the previous sample): joint "
+        f"'rocker' at {value:.6g} is outside its limits [-0.5, 0.5] (the branch leaves them)"
+    )
+    at = m.assembly({"crank": 0.7})
+    assert main(["stiffness", str(path), "--body", "rocker_link", "--at", "crank=0.7"]) == 2
+    err = capsys.readouterr().err.strip()
+    assert err == (
+        f"mechkit: error: --at crank=0.7 (continued from the home assembly): joint 'rocker' at "
+        f"{at.q[m.q_index('rocker')]:.6g} is outside its limits [-0.5, 0.5] (the branch leaves them)"
+    )
+
+
+def test_a_rocker_limit_a_whole_turn_away_is_wrapped_not_refused(tmp_path, capsys):
+    """The same rocker limited to [2 pi - 0.5 + 1.5, 2 pi + 2] (its home angle plus a whole turn inside):
+    the angle is wrapped into the range (same placement, same closure) and the report runs."""
+    m0 = mechkit.load("four_bar")
+    home = float(m0.home_q[m0.q_index("rocker")])
+    path = _four_bar_rocker_limited(tmp_path, home + 2 * np.pi - 0.1, home + 2 * np.pi + 0.1)
+    m = mechkit.load(path)
+    assert m.home_assembly.outside == ()
+    assert m.home_q[m.q_index("rocker")] == pytest.approx(home + 2 * np.pi, abs=1e-9)
+    assert np.linalg.norm(m.closure_residual(m.home_q)) < 1e-12
+    assert main(["report", str(path)]) == 0
+    assert capsys.readouterr().out.splitlines()[0].endswith("; within the joint limits")

@@ -103,6 +103,7 @@ def read_mjcf(path: Path) -> Description:
         couplings=couplings,
         springs=springs(mm, tree),
         actuators=actuators,
+        pose="the keyframe 'home'" if key >= 0 else "qpos0",
     )
 
 
