@@ -25,6 +25,9 @@ from mechkit.core.model import ClosureData, ClosureModel, InputSplit
 MAX_STEP = 0.05
 #: Halvings of the largest step before the branch counts as lost (ours: 0.05 / 2^8 = 2e-4 rad or m).
 HALVINGS = 8
+#: Longest continuation followed, in steps of `MAX_STEP` (ours: 100 rad or m; farther, the caller's Newton
+#: from its guess decides: a target 1e300 rad away once looped for ever).
+MAX_STEPS = 2000
 #: How far past a limit an angle still counts as at it (rad; ours: round-off of a solve).
 LIMIT_TOL = 1e-9
 
@@ -110,13 +113,17 @@ def continue_from(
     Returns:
         The assembly (q, total iterations, residual), its revolute angles continuous from q_ref's (each
         step's shifted by whole turns to the nearest of the previous), or None where a step fails to close
-        or flips a cut (the branch cannot be followed there).
+        or flips a cut (the branch cannot be followed there) or the inputs move farther than
+        `MAX_STEPS` steps.
     """
     model = cm.model
     dq = pin.difference(model, q_ref, q_target)
     given = np.zeros(model.nv)
     given[split.input_v] = dq[split.input_v]
-    largest = min(1.0, MAX_STEP / max(np.max(np.abs(given), initial=0.0), 1e-300))  # of the whole change
+    change = float(np.max(np.abs(given), initial=0.0))
+    if not change <= MAX_STEPS * MAX_STEP:  # too far (or not a number): not followed
+        return None
+    largest = min(1.0, MAX_STEP / max(change, 1e-300))  # of the whole change
     done, step = 0.0, largest
     q, iterations, residual = q_ref.copy(), 0, 0.0
     angles = np.array([i for _, i in _revolutes(model)], dtype=int)

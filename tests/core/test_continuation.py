@@ -11,6 +11,7 @@ import numpy as np
 import pytest
 
 import mechkit
+from mechkit.core import continuation
 from mechkit.core.continuation import wrap_into_limits
 
 GRIPPER = Path(__file__).parents[1] / "fixtures" / "field" / "menagerie" / "robotiq_2f85" / "2f85.xml"
@@ -204,3 +205,19 @@ def test_gripper_pad_freedom_is_held_by_its_spring_against_the_coupler_stop(grip
     assert np.linalg.norm(rows @ pad) < 1e-9
     work = float(gripper.passive_forces(q, np.zeros(gripper.model.nv)) @ pad)
     assert work > 1e-2
+
+
+def test_a_target_too_far_to_follow_is_not_followed():
+    """A crank 1e300 rad (or NaN) from home: no continuation of 2e301 steps (it looped for ever), None at
+    once; a target within MAX_STEPS steps is still followed."""
+    m = mechkit.load("four_bar")
+    split = m.closure_model.split(("crank",))
+    for far in (1e300, np.nan, continuation.MAX_STEPS * continuation.MAX_STEP + 1.0):
+        target = m.home_q.copy()
+        target[m.q_index("crank")] += far
+        assert continuation.continue_from(m.closure_model, m.closure_data, m.home_q, target, split, tol=1e-12) is None
+    target = m.home_q.copy()
+    target[m.q_index("crank")] += 2 * np.pi
+    out = continuation.continue_from(m.closure_model, m.closure_data, m.home_q, target, split, tol=1e-12)
+    turned = out.q - target  # a whole crank turn: back home, the coupler having turned once relative to it
+    assert out is not None and np.max(np.abs(turned - 2 * np.pi * np.round(turned / (2 * np.pi)))) < 1e-9
