@@ -127,6 +127,9 @@ ROBOTS: tuple[FieldRobot, ...] = (
         "MIT",
     ),
     FieldRobot("menagerie robotiq 2f85", "menagerie/robotiq_2f85/2f85.xml", "fixtures", (), MENAGERIE, "BSD-2-Clause"),
+    FieldRobot(
+        "menagerie ufactory xarm hand", "menagerie/ufactory_xarm7/hand.xml", "fixtures", (), MENAGERIE, "BSD-3-Clause"
+    ),
     *(
         FieldRobot(f"cassie sdf {f}", _CASSIE_SDF + f"{f}.sdf", "example-robot-data", (), *ERD)
         for f in ("cassie", "cassie_v2", "cassie_reduced", "cassie_simple", "cassie_wo_gearbox_spring")
