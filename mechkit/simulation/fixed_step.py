@@ -15,6 +15,9 @@ no extra evaluation, equal to y1 at theta = 1.
 
 from __future__ import annotations
 
+from collections.abc import Callable
+from typing import Any
+
 import numpy as np
 from scipy.integrate import DenseOutput, OdeSolver
 
@@ -35,7 +38,15 @@ class RK4(OdeSolver):
         ValueError: a step that is not a positive finite number.
     """
 
-    def __init__(self, fun, t0: float, y0: np.ndarray, t_bound: float, max_step: float = np.inf, **extraneous):
+    def __init__(
+        self,
+        fun: Callable[[float, np.ndarray], np.ndarray],
+        t0: float,
+        y0: np.ndarray,
+        t_bound: float,
+        max_step: float = np.inf,
+        **extraneous: Any,
+    ):
         super().__init__(fun, t0, y0, t_bound, vectorized=False)
         if not (0 < max_step < np.inf):
             raise ValueError(f"RK4 needs a fixed step: max_step = {max_step}")
