@@ -13,7 +13,7 @@ plus cut joints:
   `<link>_root_joint` when there are several). A `<static>` model (nothing moves) is refused.
 - a cut joint is a `LoopClosure` between frames `<joint>_a` on its parent link and `<joint>_b` on its
   child link, both at the joint's frame in the file's configuration: revolute / continuous ->
-  revolute, prismatic -> prismatic, ball -> spherical, fixed -> weld, universal -> Hooke.
+  revolute, prismatic -> prismatic, ball -> spherical, fixed -> weld, universal and revolute2 -> Hooke.
 - `gearbox` joints are couplings, not tree edges: theta_2 = -gearbox_ratio theta_1, theta_1 the
   angle of the parent link from `gearbox_reference_body` about `axis`, theta_2 the child link's about
   `axis2`, each the coordinate of the revolute tree joint between that link and the reference body
@@ -25,7 +25,9 @@ Poses: SDFormat before 1.7 places links in the model frame and joints in their c
 is refused); from 1.7, `relative_to` names any link, joint, `<frame>` or `__model__` (links default
 to the model frame, joints to their child, frames to `attached_to`), an axis's `expressed_in` too,
 `degrees` and `rotation_format` are read. A joint's coordinate is 0 in the file's configuration.
-Tree joints: revolute and continuous (one coordinate, an angle), prismatic, ball, universal, fixed
+Tree joints: revolute and continuous (one coordinate, an angle), prismatic, ball, universal and revolute2
+(sdformat.org/spec?ver=1.9&elem=joint: two revolute axes in series, `axis` then `axis2`; read as one
+universal joint, so their axes must be perpendicular: refused by name otherwise), fixed
 (the child's inertia joins the parent's joint). Inertia: `<inertial>` in the link frame, SDFormat's
 defaults where absent (1 kg, unit inertia). Springs: `<dynamics>` `spring_stiffness`,
 `spring_reference`, `damping` of tree joints; a cut joint's damping is not read (no coordinate
@@ -58,6 +60,7 @@ KINDS = {
     "prismatic": ("prismatic", "prismatic"),
     "ball": ("spherical", "spherical"),
     "universal": ("universal", "hooke"),
+    "revolute2": ("universal", "hooke"),
     "fixed": (None, "weld"),
     "gearbox": (None, None),
 }
@@ -213,14 +216,30 @@ class _Reader(SdfFrames):
             add_frame(model, name, carrier[parent][0], at, pin.FrameType.FIXED_JOINT)
             carrier[child] = (carrier[parent][0], at * self.frame(name).actInv(self.frame(child)))
         else:
-            axis = self.axis(joint, "axis", where) if kind != "spherical" else None
-            axis2 = self.axis(joint, "axis2", where) if kind == "universal" else None
+            axis, axis2 = self._axes(joint, kind == "universal", where) if kind != "spherical" else (None, None)
             jid = add_joint(model, name, carrier[parent][0], joint_model(kind, axis, axis2), at)
             carrier[child] = (jid, self.frame(name).actInv(self.frame(child)))
             springs += self._springs(joint, name, kind, where)
             if kind != "universal":
                 guess[name] = 0.0 if kind in ("revolute", "prismatic") else (0.0, 0.0, 0.0)
         add_body(model, child, *carrier[child], self._inertia(child))
+
+    def _axes(self, joint: ET.Element, two: bool, where: str) -> tuple[np.ndarray, np.ndarray | None]:
+        """A joint's `axis` and, for a universal or revolute2 joint (`two`), its `axis2`, perpendicular to it.
+
+        Raises:
+            MalformedDescription: an axis missing or zero, or two axes not perpendicular (Pinocchio's universal
+                joint and mechkit's Hooke cut assume they are).
+        """
+        axis = self.axis(joint, "axis", where)
+        if not two:
+            return axis, None
+        axis2 = self.axis(joint, "axis2", where)
+        if abs(float(axis @ axis2)) > 1e-9:
+            raise MalformedDescription(
+                where, f"axis and axis2 are not perpendicular (cosine {axis @ axis2:.3g}): read as a universal joint"
+            )
+        return axis, axis2
 
     def _dynamics(self, joint: ET.Element, tag: str, where: str) -> tuple[float, float, float]:
         """(stiffness, reference, damping) of an axis's `<dynamics>` (zeros where absent)."""
@@ -245,8 +264,9 @@ class _Reader(SdfFrames):
             raise MalformedDescription(where, "a spring on a cut joint (one closing a loop) is not read")
         for side, link in zip("ab", ends, strict=True):
             add_frame(model, f"{name}_{side}", carrier[link][0], self._in(carrier, link, self.frame(name)))
-        axis = self.axis(joint, "axis", where) if kind in ("revolute", "prismatic", "hooke") else None
-        axis2 = self.axis(joint, "axis2", where) if kind == "hooke" else None
+        axis, axis2 = (
+            self._axes(joint, kind == "hooke", where) if kind != "spherical" and kind != "weld" else (None, None)
+        )
         return LoopClosure(
             name,
             kind,

@@ -174,6 +174,35 @@ def _reorder(values: np.ndarray, source: Description, target: Description) -> np
     return out
 
 
+def test_a_revolute2_joint_is_the_universal_joint_it_names(tmp_path):
+    """SDFormat's revolute2 (two revolute axes in series, `axis` then `axis2`) written for the RSUR-S fixture's
+    universal joint: the same Pinocchio model (placements of every joint at random configurations, to 1e-15)."""
+    path = tmp_path / "revolute2.sdf"
+    path.write_text(OLD.replace('<joint name="B" type="universal">', '<joint name="B" type="revolute2">'))
+    two, universal = read_sdf(path), read_sdf(FIXTURES / "rssr_universal.sdf")
+    assert two.model.nq == universal.model.nq and [c.kind for c in two.closures] == ["spherical"]
+    rng = np.random.default_rng(7)
+    for _ in range(5):
+        q = rng.uniform(-np.pi, np.pi, two.model.nq)
+        placements = []
+        for desc in (two, universal):
+            data = desc.model.createData()
+            pin.forwardKinematics(desc.model, data, q)
+            placements.append(np.array([m.homogeneous for m in data.oMi]))
+        np.testing.assert_allclose(placements[0], placements[1], atol=1e-15)
+
+
+@pytest.mark.parametrize("kind", ["universal", "revolute2"])
+def test_a_two_axis_joint_with_axes_not_perpendicular_is_refused_by_name(tmp_path, kind):
+    """Pinocchio's universal joint (and mechkit's Hooke cut) assume perpendicular axes; Pinocchio takes others
+    in silence."""
+    text = OLD.replace('<joint name="B" type="universal">', f'<joint name="B" type="{kind}">')
+    path = tmp_path / "skew.sdf"
+    path.write_text(text.replace("<axis2><xyz>0 1 0</xyz></axis2>", "<axis2><xyz>0 1 1</xyz></axis2>"))
+    with pytest.raises(MalformedDescription, match="SDF joint 'B'.*not perpendicular"):
+        read_sdf(path)
+
+
 def test_a_universal_joint_cut_chosen_by_parent_guidance_gives_the_same_linkage(tmp_path):
     """The RSUR-S fixture rewritten with the ball joint running rocker -> coupler: the coupler then has
     two parent joints, and `parent_guidance` makes the ball its tree joint, so the universal joint is
