@@ -1,6 +1,6 @@
 """Regenerate docs/benchmarks.md and docs/figures/bench_*.{png,svg}: `mechkit bench` over every mechanism,
 then the simulator against MuJoCo on the small mechanisms (`mechkit.bench.simulation_speed`) and their
-work-precision charts (`tools/work_precision.py`).
+work-precision charts (`mechkit.bench.work_precision`).
 
 Usage: python tools/bench_all.py [--quick] [--speed] [NAME ...]
 (Drake rows appear when `pydrake` is importable: `pip install drake`.) With --speed, the page also gets
@@ -16,11 +16,8 @@ import sys
 from pathlib import Path
 
 import mechkit
-from mechkit.bench import simulation_speed
+from mechkit.bench import simulation_speed, work_precision
 from mechkit.cli import main
-
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-import work_precision  # tools/work_precision.py, beside this driver
 
 ROOT = Path(__file__).resolve().parent.parent
 DOCS = ROOT / "docs"
@@ -33,7 +30,7 @@ if __name__ == "__main__":
         for method in ("RK45", "RK4")
     ]
     simulation_speed.write_section(DOCS / "benchmarks.md", rows)
-    work_precision.main(["four_bar", "five_bar", "ten_bar"])
+    work_precision.write_section(DOCS, work_precision.PROBLEMS)
     if code == 0 and "--speed" in sys.argv[1:]:
         from mechkit.bench import field
 

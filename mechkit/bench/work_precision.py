@@ -17,15 +17,20 @@ from __future__ import annotations
 import time
 from collections.abc import Iterable
 from dataclasses import dataclass
+from pathlib import Path
 from typing import Any
 
 import numpy as np
 
 from mechkit.base.exceptions import MethodUnavailable
-from mechkit.base.plotting import pyplot
+from mechkit.base.plotting import pyplot, save_figure
+from mechkit.bench.markdown import replace_section
 from mechkit.export.mjcf import to_mjcf
+from mechkit.loading import load
 from mechkit.mechanism import Mechanism
 
+#: The mechanisms charted by default.
+PROBLEMS = ("four_bar", "five_bar", "ten_bar")
 #: Simulated time of every run (s; ours: a few swings of the registered linkages).
 DURATION = 1.0
 #: mechkit's settings: (method, rtol) adaptive, (method, dt) fixed.
@@ -251,3 +256,21 @@ def markdown(problems: dict[str, list[Point]], charts: dict[str, str]) -> str:
         lines += [f"### Work-precision: {name}", "", f"![{name} work-precision]({charts[name]})", ""]
         lines += [f"- {v}" for v in verdict] + [""] + table(points) + [""]
     return "\n".join(lines)
+
+
+def write_section(docs: Path, names: Iterable[str]) -> None:
+    """Measure every mechanism named, write its chart docs/figures/work_precision_<name>.png and the section
+    `HEADING` of docs/benchmarks.md (in place of its former text, else at the end).
+
+    Args:
+        docs: the docs folder.
+        names: registered mechanisms (or description files) to measure.
+    """
+    problems, charts = {}, {}
+    for name in names:
+        mech = load(name)
+        q_end = reference(mech)
+        problems[name] = mechkit_points(mech, q_end) + mujoco_points(mech, q_end)
+        charts[name] = f"figures/work_precision_{name}.png"
+        save_figure(figure(name, problems[name]), docs / charts[name])
+    replace_section(docs / "benchmarks.md", HEADING, markdown(problems, charts))
