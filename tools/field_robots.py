@@ -16,6 +16,7 @@ from pathlib import Path
 from mechkit.base.atomic import write_text
 from mechkit.base.exceptions import MechkitError
 from mechkit.bench import field
+from mechkit.cli.common import assembly_line
 from mechkit.report import report
 from mechkit.viz.browser import screenshot
 from mechkit.viz.pages import snapshot
@@ -54,7 +55,10 @@ against the same linkages built by hand with Pinocchio calls and against Drake's
 (`tests/sources/test_sdf.py`, `tests/sources/test_sdf_nested.py`). Regenerate with `python
 tools/field_robots.py`. In the snapshots, red: actuated joints; dark: passive joints and the bars of
 bodies whose file draws nothing (the field's meshes are not copied); magenta: a missing mesh; yellow
-spheres: loop cuts.
+spheres: loop cuts. Each section's assembly line says how the home pose was found and which loop joints it
+leaves outside their limits: for Drake's Strandbeest and three Gepetto robots, Newton from the joints'
+zero lands on another assembly than their limits mean (mechkit names it; it does not yet search inside
+the limits), and their holding efforts are those of that pose.
 """
 
 
@@ -103,6 +107,7 @@ def main() -> int:
             "",
             f"- DOF {r['dof']} (Kutzbach count {r['dof_gruebler']}), nv {r['nv']}; loops: {kinds}",
             f"- idle freedoms: {idle}",
+            f"- {assembly_line(mech.home_assembly)}",
         ]
         if "efforts" in held:
             efforts = ", ".join(f"{a} {u:.6g}" for a, u in held["efforts"].items())
