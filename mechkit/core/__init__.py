@@ -8,7 +8,7 @@ one sample or, when its name ends in `_batch`, a leading sample axis N:
 | quantity | one sample | N samples |
 |---|---|---|
 | closure residual, Jacobian, drift | `closure_residual`, `closure_jacobian`, `closure_drift` | |
-| assembly (loops closed from given joint values) | `assemble`, `continue_from`, `wrap_into_limits` | |
+| assembly (loops closed from given values) | `assemble`, `continue_from`, `wrap_into_limits`, `seek_inside_limits` | |
 | velocities, J v = 0 | `velocities` | `velocities_batch` |
 | accelerations, J a + gamma = 0 | `accelerations` | `accelerations_batch` |
 | mobility, singularity | `mobility`, `passive_condition`, `second_order_inconsistency` | |
@@ -20,7 +20,8 @@ one sample or, when its name ends in `_batch`, a leading sample axis N:
 Inside: `records` (closures, couplings, springs, actuators), `joints` (values of any joint type),
 `cuts` (rows each closure keeps), `coupling_rows` (a coupling's row on joint values), `tree_paths` (the
 columns moving a joint, the cuts in its subtree), `kernel` (the closure-row mathematics), `rank` (the rank
-judge), `assembly` (closing loops, from near or far), `structure` (loops, Kutzbach count, idle freedoms),
+judge), `assembly` (closing loops, from near or far), `inside_limits` (an assembly re-sought inside the
+joints' limits), `structure` (loops, Kutzbach count, idle freedoms),
 `model`, `kinematics`, `passive_solve` (the free coordinates from the given ones), `inverse`, `efforts`
 (its statics solve), `determinacy`, `forward`, `null_space` (the solutions of J a + gamma = 0),
 `pin_constraints` (the one module that speaks Pinocchio's constraint API), `results`. Nothing outside
@@ -33,6 +34,7 @@ from mechkit.core.cuts import CutRows
 from mechkit.core.forward import DEFAULTS as FORWARD_DEFAULTS
 from mechkit.core.forward import METHODS as FORWARD_METHODS
 from mechkit.core.forward import forward_dynamics, forward_dynamics_batch, pinocchio_methods_apply
+from mechkit.core.inside_limits import seek_inside_limits
 from mechkit.core.inverse import (
     DISTRIBUTIONS,
     inverse_dynamics,
@@ -145,6 +147,7 @@ __all__ = [
     "refuse_outside",
     "second_order_inconsistency",
     "second_order_velocity",
+    "seek_inside_limits",
     "set_joint_value",
     "singular_error",
     "solve_passive",
