@@ -68,7 +68,7 @@ class Mechanism(MechanismRates):
         self.model, self.data = cm.model, core_data.pin
         self._nq, self._nv = cm.model.nq, cm.model.nv
         self.structure, self.closures, self.actuated = cm.structure, list(cm.closures), cm.actuated
-        self.springs = JointSprings(self.model, springs)
+        self.springs = JointSprings(self.model, springs, cuts=cm.kernel.cuts)
         self.home_assembly = self.assembly(spec.home(params))
         self.home_q = self.home_assembly.q
         self.home_mobility = core.mobility(cm, core_data, self.home_q)

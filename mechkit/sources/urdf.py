@@ -92,9 +92,12 @@ def describe_urdf(urdf: str, source: Path | None, fmt: str, params: dict[str, st
     name = root.get("name") or (source.name.split(".")[0] if source else "urdf")
     springs = parse_springs(root)
     parse_struts(root, {link.get("name") for link in root.findall("link")})  # refused at load, by name
+    cut_joints = {c.name for c in closures if c.kind in ("revolute", "prismatic")}  # a spring acts on their value
     for spring in springs:
-        if spring.joint not in joints:
-            raise MalformedDescription(f"mechkit:spring {spring.joint!r}", "not a moving joint of the URDF")
+        if spring.joint not in joints and spring.joint not in cut_joints:
+            raise MalformedDescription(
+                f"mechkit:spring {spring.joint!r}", "not a moving joint of the URDF nor a revolute or prismatic loop"
+            )
     return Description(
         name,
         urdf,

@@ -307,3 +307,42 @@ def test_a_lever_mimic_loads_its_leader_by_the_multiplier():
     expected = pin.rnea(reduced, reduced.createData(), found.q[:1], np.zeros(1), np.zeros(1))[0]
     assert expected == pytest.approx(9.81 * (1 + 2.5), rel=1e-12)
     assert found.torques["j1"] == pytest.approx(expected, rel=1e-12)
+
+
+def test_a_spring_on_a_loop_cut_joint_acts_in_the_statics_as_its_potential_says(tmp_path):
+    """The four-bar's URDF with `<mechkit:spring joint="C">` on its loop-cut pin: the crank's holding torque at
+    rest grows, over the file without it, by the spring potential's slope along the closed motion, dV/d crank
+    = k (x_C - ref) dx_C/d crank, x_C the cut's angle and its slope a central difference of assembled poses."""
+    plain = (urdf_dir() / "four_bar.urdf").read_text()
+    spring = '<mechkit:spring joint="C" stiffness="2.0" reference="0.3"/>\n  <mechkit:loop '
+    sprung = mechkit.load(written(tmp_path, plain.replace("<mechkit:loop ", spring, 1), "sprung.urdf"))
+    bare = mechkit.load(written(tmp_path, plain, "bare.urdf"))
+    cut = sprung.closure_model.kernel.cuts[0]
+    assert cut.closure.name == "C"
+    data = sprung.model.createData()
+
+    def angle_c(crank: float) -> float:
+        q = sprung.assemble({"crank": crank})
+        pin.framesForwardKinematics(sprung.model, data, q)
+        R = data.oMf[cut.frame_a].rotation.T @ data.oMf[cut.frame_b].rotation
+        return float(np.arctan2(R[2, 0] - R[0, 2], R[0, 0] + R[2, 2]) * -np.asarray(cut.closure.axis)[1])
+
+    crank, h = 0.7, 1e-5
+    slope = (angle_c(crank + h) - angle_c(crank - h)) / (2 * h)
+    q = sprung.assemble({"crank": crank})
+    zero = np.zeros(sprung.model.nv)
+    held = (
+        sprung.inverse_dynamics(q, zero, zero).efforts["crank"] - bare.inverse_dynamics(q, zero, zero).efforts["crank"]
+    )
+    expected = 2.0 * (angle_c(crank) - 0.3) * slope
+    assert abs(expected) > 0.05  # the spring loads the crank
+    assert held == pytest.approx(expected, rel=1e-7)
+
+
+def test_a_spring_on_a_name_no_joint_or_loop_has_is_refused(tmp_path):
+    plain = (urdf_dir() / "four_bar.urdf").read_text()
+    text = plain.replace(
+        "<mechkit:loop ", '<mechkit:spring joint="E" stiffness="2.0" reference="0"/>\n  <mechkit:loop '
+    )
+    with pytest.raises(MalformedDescription, match="mechkit:spring 'E'.*nor a revolute or prismatic loop"):
+        mechkit.load(written(tmp_path, text))
