@@ -55,9 +55,10 @@ class _Added:
             rate,
         )
 
-    def elements(self, mech) -> list:
+    def elements(self, mech, skip: Sequence[str] = ()) -> list:
         """The force elements: reaction friction on every revolute joint, gravity, springs (loop-cut joints'
-        among them), constant efforts (a source each)."""
+        among them), constant efforts (a source each) on the joints `--torque` names (not those in `skip`:
+        the description's tendon actuators, set by `_with_tendon_forces`)."""
         from mechkit import forces
         from mechkit.core import JointSpring
 
@@ -81,6 +82,8 @@ class _Added:
         if springs:
             out.append(forces.JointSprings(mech.model, springs, "added springs", cuts))
         for joint, (value,) in self.torques.items():
+            if joint in skip:
+                continue
             if joint in cut_names:
                 out.append(forces.CutJointEffort(mech.model, cuts, joint, value, f"torque on {joint}"))
             else:
@@ -109,8 +112,9 @@ def effort_line(name: str, u: Sequence[float]) -> str:
     return f"effort {name}: {min(driven):.4g} .. {max(driven):.4g} (N m or N{part})"
 
 
-def _simulate(mech, args: argparse.Namespace, inputs, torques, added: _Added, source, bars, v0=None):
-    """`simulation.simulate` with what the command line gives (v0: the initial velocities, `_initial_velocity`)."""
+def _simulate(mech, args: argparse.Namespace, inputs, torques, added: _Added, source, file_forces, bars, v0=None):
+    """`simulation.simulate` with what the command line gives (file_forces: the description's force elements;
+    v0: the initial velocities, `_initial_velocity`)."""
     from mechkit import simulation
 
     return simulation.simulate(
@@ -118,7 +122,8 @@ def _simulate(mech, args: argparse.Namespace, inputs, torques, added: _Added, so
         args.duration,
         inputs=inputs,
         torques=torques,
-        forces=simulation.default_forces(mech, source, added.threshold) + added.elements(mech),
+        forces=_with_tendon_forces(mech, file_forces, added.torques)
+        + added.elements(mech, skip=point_to_point_names(file_forces)),
         file_forces=False,
         limits=None if args.no_limits else "file",
         source=source,
@@ -132,6 +137,37 @@ def _simulate(mech, args: argparse.Namespace, inputs, torques, added: _Added, so
         latches=[simulation.Latch(joint, value[0]) for joint, value in added.latches.items()],
         progress=lambda done, total: bars(f"{mech.spec.name} simulate", round(TICKS * done / total), TICKS),
     )
+
+
+def point_to_point_names(elements: Sequence) -> list[str]:
+    """The names of the point-to-point elements among a description's force elements that carry a constant
+    force (an MJCF actuator on a spatial tendon, a `<mechkit:strut force>`), which `--torque` may set.
+
+    Args:
+        elements: the description's force elements (`mechkit.simulation.default_forces`).
+
+    Returns:
+        Their names, in order.
+    """
+    from mechkit.forces import PointToPointForce
+
+    return [e.name for e in elements if isinstance(e, PointToPointForce) and e.element.law is None]
+
+
+def _with_tendon_forces(mech, elements: list, torques: dict[str, list[float]]) -> list:
+    """The description's force elements with the constant force of each point-to-point element `--torque`
+    names replaced by the value given (N along its line, positive lengthens; its spring and damper kept)."""
+    import dataclasses
+
+    from mechkit.forces import PointToPointForce
+
+    settable = set(point_to_point_names(elements))
+    return [
+        PointToPointForce(mech.model, dataclasses.replace(e.element, force=torques[e.name][0]))
+        if e.name in settable and e.name in torques
+        else e
+        for e in elements
+    ]
 
 
 def _initial_velocity(mech, rates: dict[str, list[float]], source):
@@ -175,11 +211,13 @@ def run(args: argparse.Namespace) -> None:
     if args.animate:
         resolve_output(args.animate)
     mech = load_mechanism(args)
+    source = Path(args.name) if Path(args.name).suffix in (".xml", ".mjcf") else None
+    file_forces = simulation.default_forces(mech, source, added.threshold)
     cut_joints = [c.name for c in mech.closure_model.closures if c.kind in ("revolute", "prismatic")]
     for option, given, cuts in (
         ("--latch", added.latches, []),
         ("--spring", added.springs, cut_joints),
-        ("--torque", added.torques, cut_joints),
+        ("--torque", added.torques, cut_joints + point_to_point_names(file_forces)),
     ):
         joint_names(option, list(given), list(mech.model.names[1:]) + cuts, allow_empty=True)
     inputs = torques = None
@@ -199,10 +237,10 @@ def run(args: argparse.Namespace) -> None:
         )
     elif args.torques:
         torques = motion.from_csv(mech, args.torques)
-    source = Path(args.name) if Path(args.name).suffix in (".xml", ".mjcf") else None
     bars = ProgressBars(None if args.duration >= LONG_RUN else False)
     try:
-        result = _simulate(mech, args, inputs, torques, added, source, bars, _initial_velocity(mech, rates, source))
+        v0 = _initial_velocity(mech, rates, source)
+        result = _simulate(mech, args, inputs, torques, added, source, file_forces, bars, v0)
     except MethodUnavailable as err:
         if args.dynamics not in ("proximal", "lcaba"):
             raise
@@ -295,7 +333,9 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
         "--torque",
         action="append",
         metavar="JOINT=VALUE",
-        help="a constant torque or force on a joint, a loop-cut joint included (N m or N; repeatable)",
+        help="a constant torque or force on a joint, a loop-cut joint included (N m or N), or the constant "
+        "force of a point-to-point element (an MJCF spatial tendon or its actuator, a <mechkit:strut>: N along it, "
+        "positive lengthens; replaces the file's, e.g. an actuator's keyframe control; repeatable)",
     )
     p.add_argument("--no-limits", action="store_true", help="ignore the file's joint limits (nothing stops a joint)")
     p.add_argument(

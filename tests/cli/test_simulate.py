@@ -5,6 +5,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 from mechkit.cli import main
@@ -301,3 +302,41 @@ def test_v0_values_the_loops_refuse_are_named(values, needle, capsys):
     assert main(args) == 2
     err = capsys.readouterr().err
     assert err.startswith("mechkit: error:") and err.count("\n") == 1 and needle in err, err
+
+
+def test_torque_sets_a_tendon_actuators_force_as_mujoco_does_with_its_control(tmp_path, capsys):
+    """`--torque winch=-1` on the tendon pendulum (its motor's keyframe force 2 x 1.5 N replaced): the end of a
+    0.5 s run agrees with MuJoCo (RK4, dt 1e-4 s) started from the keyframe with control -0.5 (gear 2) to 1e-7
+    rad, and differs from the keyframe's own run by more than 0.01 rad (the force changed the motion)."""
+    pd = pytest.importorskip("pandas")
+    mujoco = pytest.importorskip("mujoco")
+    from tests_support import FIXTURES
+
+    source = FIXTURES / "tendon_pendulum.xml"
+
+    def mujoco_end(ctrl: float) -> np.ndarray:
+        mm = mujoco.MjModel.from_xml_path(str(source))
+        mm.opt.timestep = 1e-4
+        data = mujoco.MjData(mm)
+        mujoco.mj_resetDataKeyframe(mm, data, 0)
+        data.ctrl[:] = ctrl
+        while data.time < 0.5 - 5e-5:
+            mujoco.mj_step(mm, data)
+        return data.qpos.copy()
+
+    out = tmp_path / "run.csv"
+    argv = ["simulate", str(source), "--duration", "0.5", "--rtol", "1e-10", "-o", str(out), "--torque", "winch=-1"]
+    assert main(argv) == 0
+    table = pd.read_csv(out, comment="#")
+    end = table[["q/shoulder", "q/elbow"]].to_numpy()[-1]
+    assert table["t"].iloc[-1] == pytest.approx(0.5)
+    assert np.max(np.abs(end - mujoco_end(-0.5))) < 1e-7
+    assert np.max(np.abs(end - mujoco_end(1.5))) > 0.01
+
+
+def test_torque_on_a_name_no_joint_or_element_has_is_refused(capsys):
+    from tests_support import FIXTURES
+
+    assert main(["simulate", str(FIXTURES / "tendon_pendulum.xml"), "--duration", "0.1", "--torque", "pulley=1"]) == 2
+    err = capsys.readouterr().err
+    assert "--torque" in err and "pulley" in err and "winch" in err
