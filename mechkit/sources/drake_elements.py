@@ -21,6 +21,7 @@ from __future__ import annotations
 
 import xml.etree.ElementTree as ET
 from collections.abc import Collection
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -87,8 +88,8 @@ def read_tool_closures(root: ET.Element) -> list[LoopClosure]:
         _add_frame(root, f"{name}_a", body_a, p_ap, np.eye(3))
         _add_frame(root, f"{name}_b", body_b, p_bq, np.eye(3))
         out.append(LoopClosure(name, "spherical", f"{name}_a", f"{name}_b", explicit_rows=False))
-    for element in root.findall(f"{{{DRAKE}}}linear_bushing_rpy"):
-        out.append(_bushing(root, element, links))
+    for bushing in bushings(root):
+        out.append(_bushing(root, bushing, links))
     for gazebo in root.findall("gazebo"):
         for element in gazebo.findall("joint"):
             out.append(_gazebo_joint(root, element, links))
@@ -177,45 +178,105 @@ def stiff_directions(torque: np.ndarray, force: np.ndarray) -> tuple[str, np.nda
     return kind, np.eye(3)[np.argmax(free_t)] if kind == "revolute" else None
 
 
-def _bushing(root: ET.Element, element: ET.Element, links: set[str]) -> LoopClosure:
+@dataclass(frozen=True)
+class Bushing:
+    """A `drake:linear_bushing_rpy` (Drake's LinearBushingRollPitchYaw) as written.
+
+    Attributes:
+        name: "bushing_<A>_<C>", the cut's and the force element's name.
+        frame_a: the name of frame A (a URDF `<frame>` or link, an SDFormat frame or link).
+        frame_c: the name of frame C.
+        torque_stiffness: (3,) N m/rad about A's x, y, z (roll, pitch, yaw); torque_damping: N m s/rad.
+        force_stiffness: (3,) N/m along them; force_damping: N s/m.
+    """
+
+    name: str
+    frame_a: str
+    frame_c: str
+    torque_stiffness: np.ndarray
+    torque_damping: np.ndarray
+    force_stiffness: np.ndarray
+    force_damping: np.ndarray
+
+    def cut(self) -> tuple[str, np.ndarray | None]:
+        """The cut it stands for when read rigid (`stiff_directions`).
+
+        Returns:
+            (kind, axis in frame A or None).
+
+        Raises:
+            MalformedDescription: a pattern that is no joint mechkit closes.
+        """
+        kind, axis = stiff_directions(self.torque_stiffness, self.force_stiffness)
+        if not kind:
+            raise MalformedDescription(
+                f"drake:linear_bushing_rpy {self.frame_a!r}-{self.frame_c!r}",
+                f"torque stiffness {self.torque_stiffness.tolist()}, force stiffness "
+                f"{self.force_stiffness.tolist()}: its stiff directions (above {BUSHING_RATIO} of the largest of "
+                "their kind) make no joint mechkit closes (weld, revolute, prismatic, spherical)",
+            )
+        return kind, axis
+
+
+def bushings(parent: ET.Element) -> list[Bushing]:
+    """The `drake:linear_bushing_rpy` children of a URDF `<robot>` (values in attributes `name`, `value`) or
+    an SDFormat `<model>` (values as text), in document order.
+
+    Args:
+        parent: the `<robot>` or `<model>` element.
+
+    Returns:
+        The bushings (frames named, not resolved).
+
+    Raises:
+        MalformedDescription: a missing frame or value, a value that is not three finite numbers, a negative
+            stiffness or damping.
+    """
+    out = []
+    for element in parent.findall(f"{{{DRAKE}}}linear_bushing_rpy"):
+        frames = []
+        for side in "AC":
+            child = element.find(f"{{{DRAKE}}}bushing_frame{side}")
+            name = (child.get("name") or child.text or "").strip() if child is not None else ""
+            if not name:
+                raise MalformedDescription("drake:linear_bushing_rpy", f"missing drake:bushing_frame{side}")
+            frames.append(name)
+        where = f"drake:linear_bushing_rpy {frames[0]!r}-{frames[1]!r}"
+        values = []
+        for kind in ("torque_stiffness", "torque_damping", "force_stiffness", "force_damping"):
+            child = element.find(f"{{{DRAKE}}}bushing_{kind}")
+            if child is None:
+                raise MalformedDescription(where, f"missing drake:bushing_{kind}")
+            values.append(
+                _numbers((child.get("value") or child.text or "").strip(), 3, f"{where} drake:bushing_{kind}")
+            )
+            if np.any(values[-1] < 0):
+                raise MalformedDescription(where, f"a negative {kind.replace('_', ' ')}")
+        out.append(Bushing(f"bushing_{frames[0]}_{frames[1]}", *frames, *values))
+    return out
+
+
+def _bushing(root: ET.Element, bushing: Bushing, links: set[str]) -> LoopClosure:
+    """The rigid cut of a URDF's bushing, its frames added (a `<frame name link xyz rpy>` or a link)."""
     frames = {f.get("name"): f for f in root.findall("frame")}
-    ends, where = [], "drake:linear_bushing_rpy"
-    for side in "AC":
-        child = element.find(f"{{{DRAKE}}}bushing_frame{side}")
-        name = child.get("name") if child is not None else None
+    poses = []
+    for name in (bushing.frame_a, bushing.frame_c):
         if name in frames:
             frame = frames[name]
             xyz, rpy = (_numbers(frame.get(a, "0 0 0"), 3, f"frame {name!r} {a}") for a in ("xyz", "rpy"))
-            ends.append((name, frame.get("link"), _transform(xyz, rpy)))
+            poses.append((frame.get("link"), _transform(xyz, rpy)))
         elif name in links:
-            ends.append((name, name, np.eye(4)))
+            poses.append((name, np.eye(4)))
         else:
-            raise MalformedDescription(where, f"drake:bushing_frame{side} {name!r} is not a frame or link of the URDF")
-        if ends[-1][1] not in links:
-            raise MalformedDescription(where, f"frame {name!r}: link {ends[-1][1]!r} is not a link of the URDF")
-    where = f"drake:linear_bushing_rpy {ends[0][0]!r}-{ends[1][0]!r}"
-    torque, force = (_vec(element, f"bushing_{k}_stiffness", where) for k in ("torque", "force"))
-    if np.any(torque < 0) or np.any(force < 0):
-        raise MalformedDescription(where, "a negative stiffness")
-    kind, axis = stiff_directions(torque, force)
-    if not kind:
-        raise MalformedDescription(
-            where,
-            f"torque stiffness {torque.tolist()}, force stiffness {force.tolist()}: its stiff directions "
-            f"(above {BUSHING_RATIO} of the largest of their kind) make no joint mechkit closes (weld, "
-            "revolute, prismatic, spherical)",
-        )
-    name = f"bushing_{ends[0][0]}_{ends[1][0]}"
-    for side, (_, link, pose) in zip("ab", ends):
-        _add_frame(root, f"{name}_{side}", link, pose[:3, 3], pose[:3, :3])
-    return LoopClosure(name, kind, f"{name}_a", f"{name}_b", axis, explicit_rows=False)
-
-
-def _vec(element: ET.Element, tag: str, where: str) -> np.ndarray:
-    child = element.find(f"{{{DRAKE}}}{tag}")
-    if child is None:
-        raise MalformedDescription(where, f"missing drake:{tag}")
-    return _numbers(child.get("value", ""), 3, f"{where} drake:{tag}")
+            raise MalformedDescription("drake:linear_bushing_rpy", f"frame {name!r} is not a frame or link of the URDF")
+        if poses[-1][0] not in links:
+            raise MalformedDescription(
+                "drake:linear_bushing_rpy", f"frame {name!r}: link {poses[-1][0]!r} is not a link of the URDF"
+            )
+    kind, axis = bushing.cut()
+    for side, (link, pose) in zip("ab", poses):
+        _add_frame(root, f"{bushing.name}_{side}", link, pose[:3, 3], pose[:3, :3])
+    return LoopClosure(bushing.name, kind, f"{bushing.name}_a", f"{bushing.name}_b", axis, explicit_rows=False)
 
 
 def _numbers(text: str, n: int, where: str) -> np.ndarray:

@@ -63,11 +63,11 @@ def test_cli_errors_are_one_line(args, needle, tmp_path):
 def test_an_unread_closure_is_refused_and_with_the_option_warned_in_one_line():
     from tests_support import FIXTURES, refused, run_mechkit
 
-    path = str(FIXTURES / "closures" / "four_bar_drake_bushing.sdf")
+    path = str(FIXTURES / "closures" / "four_bar_drake_distance.sdf")
     refused(
         run_mechkit("report", path),
-        "four_bar_drake_bushing.sdf:",
-        "<drake:linear_bushing_rpy>",
+        "four_bar_drake_distance.sdf:",
+        "<drake:distance_constraint>",
         "--ignore-unknown-closures",
     )
     out = run_mechkit("report", path, "--ignore-unknown-closures")
