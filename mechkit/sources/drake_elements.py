@@ -2,8 +2,10 @@
 
 - `<drake:ball_constraint>` (Drake's URDF extension): point P of body A (`p_AP`, in A's frame, m) and
   point Q of body B (`p_BQ`) kept together: a spherical cut.
-- `<drake:linear_bushing_rpy>` between two frames (Drake's `<frame name link xyz rpy>` or links): read
-  as a rigid cut on its stiff directions, the others left free (`stiff_directions`).
+- `<drake:linear_bushing_rpy>` between two frames (Drake's `<frame name link xyz rpy>` or links; an
+  SDFormat model's too, `bushings`): read as a rigid cut on its stiff directions, the others left free
+  (`stiff_directions`); marked `mechkit:compliant="true"` (`compliant`, `load(bushings="compliant")`) its
+  frames only, the simulator's force element (`mechkit.forces.bushing`) then acting between them.
 - `<gazebo><joint type parent child pose axis>` (the Gazebo tutorials' way to close a URDF loop): an
   SDFormat joint; its frame is `pose` in the child link's frame (SDFormat's default), its axis in that
   frame; the parent side is where that frame is at the URDF's zero configuration (as Gazebo places it
@@ -19,21 +21,27 @@ gives (`mechkit.sources.urdf`).
 
 from __future__ import annotations
 
+import dataclasses
 import xml.etree.ElementTree as ET
 from collections.abc import Collection
 from dataclasses import dataclass
 
 import numpy as np
 
-from mechkit.base.exceptions import MalformedDescription
+from mechkit.base.exceptions import InvalidArgument, MalformedDescription
 from mechkit.core import LoopClosure
 from mechkit.sources.closure_elements import DRAKE
+from mechkit.sources.description import Description
 
 #: A bushing direction is stiff (closed) when its stiffness exceeds this fraction of the largest of its kind
 #: (torques in N m/rad, forces in N/m compared among themselves), else free (ours). Drake's examples stand
 #: a pin for a bushing stiff in five directions and zero (or orders of magnitude softer) in the sixth; a
 #: thousandth keeps any such stand-in a joint and a bushing meant to be compliant everywhere a weld.
 BUSHING_RATIO = 1e-3
+
+#: The attribute that makes a bushing compliant (a force element, `mechkit.forces.bushing`) instead of a cut;
+#: in mechkit's loop namespace (`mechkit.sources.urdf.LOOP_NAMESPACE`).
+COMPLIANT = "{https://mechkit.dev/loop}compliant"
 
 #: SDFormat joint type -> mechkit cut kind.
 GAZEBO_KINDS = {"revolute": "revolute", "prismatic": "prismatic", "ball": "spherical", "fixed": "weld"}
@@ -89,7 +97,9 @@ def read_tool_closures(root: ET.Element) -> list[LoopClosure]:
         _add_frame(root, f"{name}_b", body_b, p_bq, np.eye(3))
         out.append(LoopClosure(name, "spherical", f"{name}_a", f"{name}_b", explicit_rows=False))
     for bushing in bushings(root):
-        out.append(_bushing(root, bushing, links))
+        cut = _bushing(root, bushing, links)
+        if not bushing.compliant:
+            out.append(cut)
     for gazebo in root.findall("gazebo"):
         for element in gazebo.findall("joint"):
             out.append(_gazebo_joint(root, element, links))
@@ -188,6 +198,7 @@ class Bushing:
         frame_c: the name of frame C.
         torque_stiffness: (3,) N m/rad about A's x, y, z (roll, pitch, yaw); torque_damping: N m s/rad.
         force_stiffness: (3,) N/m along them; force_damping: N s/m.
+        compliant: marked `mechkit:compliant="true"` (`compliant`): a force element, not a cut.
     """
 
     name: str
@@ -197,6 +208,7 @@ class Bushing:
     torque_damping: np.ndarray
     force_stiffness: np.ndarray
     force_damping: np.ndarray
+    compliant: bool = False
 
     def cut(self) -> tuple[str, np.ndarray | None]:
         """The cut it stands for when read rigid (`stiff_directions`).
@@ -252,7 +264,8 @@ def bushings(parent: ET.Element) -> list[Bushing]:
             )
             if np.any(values[-1] < 0):
                 raise MalformedDescription(where, f"a negative {kind.replace('_', ' ')}")
-        out.append(Bushing(f"bushing_{frames[0]}_{frames[1]}", *frames, *values))
+        name = f"bushing_{frames[0]}_{frames[1]}"
+        out.append(Bushing(name, *frames, *values, element.get(COMPLIANT) == "true"))
     return out
 
 
@@ -273,10 +286,47 @@ def _bushing(root: ET.Element, bushing: Bushing, links: set[str]) -> LoopClosure
             raise MalformedDescription(
                 "drake:linear_bushing_rpy", f"frame {name!r}: link {poses[-1][0]!r} is not a link of the URDF"
             )
-    kind, axis = bushing.cut()
+    kind, axis = ("weld", None) if bushing.compliant else bushing.cut()
     for side, (link, pose) in zip("ab", poses):
         _add_frame(root, f"{bushing.name}_{side}", link, pose[:3, 3], pose[:3, :3])
     return LoopClosure(bushing.name, kind, f"{bushing.name}_a", f"{bushing.name}_b", axis, explicit_rows=False)
+
+
+def compliant(description: Description) -> Description:
+    """The description with its URDF's bushings compliant: marked `COMPLIANT` in its text (where the
+    simulator's force elements read them, `mechkit.forces.described`), their cuts left open (their frames
+    stay).
+
+    Args:
+        description: a description read with rigid bushings.
+
+    Returns:
+        The description changed (itself where it has no bushing).
+
+    Raises:
+        InvalidArgument: its bushings are not in a URDF text (an SDFormat file's, or a URDF's whose Drake
+            joints made its tree a built model): those are read rigid only.
+    """
+    root = ET.fromstring(description.urdf) if description.urdf else None
+    found = bushings(root) if root is not None else []
+    if not found:
+        source = description.source
+        if source is not None and source.suffix in (".sdf", ".urdf") and "linear_bushing_rpy" in source.read_text():
+            raise InvalidArgument(
+                "bushings",
+                "compliant",
+                f"{source.name}: compliant bushings are read from a URDF or xacro tree of URDF joints; this "
+                f"{description.format} file's are read rigid only",
+            )
+        return description
+    for element in root.iter(f"{{{DRAKE}}}linear_bushing_rpy"):
+        element.set(COMPLIANT, "true")
+    names = {b.name for b in found}
+    return dataclasses.replace(
+        description,
+        urdf=ET.tostring(root, encoding="unicode"),
+        closures=tuple(c for c in description.closures or () if c.name not in names),
+    )
 
 
 def _numbers(text: str, n: int, where: str) -> np.ndarray:

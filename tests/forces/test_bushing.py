@@ -1,0 +1,121 @@
+"""`mechkit.forces.bushing`: the bushing four-bar (tests/fixtures/closures/four_bar_drake_bushing.urdf) loaded
+with `bushings="compliant"` is its open tree plus Drake's bushing law. Its generalised forces (bushing and
+gravity, with velocities) equal those of Drake's plant parsing the same file; its stiffness is the gradient of
+its potential and its damping's power is what its load reports; its equilibrium with the crank held is
+Drake's and differs from the rigid reading by the bushing's compliance."""
+
+from __future__ import annotations
+
+import numpy as np
+import pinocchio as pin
+import pytest
+from tests_support import FIXTURES
+
+import mechkit
+from mechkit import forces, simulation
+from mechkit.base.exceptions import InvalidArgument
+
+FOUR_BAR = FIXTURES / "closures" / "four_bar_drake_bushing.urdf"
+JOINTS = ("crank", "coupler", "rocker")
+
+
+def _compliant():
+    m = mechkit.load(FOUR_BAR, actuated=["crank"], bushings="compliant")
+    (element,) = [e for e in simulation.default_forces(m) if isinstance(e, forces.BushingForce)]
+    return m, element
+
+
+def _generalized(m, element, q, v):
+    """The bushing's generalised forces minus gravity's at (q, v) (N m)."""
+    state = forces.ForceState.at(m.model, m.model.createData(), q, v)
+    load = element.load(state)
+    tau = forces.generalized_of_wrenches(m.model, state.data, load.wrenches)
+    return tau - pin.computeGeneralizedGravity(m.model, state.data, q), load
+
+
+def _drake_plant():
+    from pydrake.multibody.parsing import Parser
+    from pydrake.multibody.plant import MultibodyPlant
+
+    plant = MultibodyPlant(0.0)
+    Parser(plant).AddModels(str(FOUR_BAR))
+    plant.WeldFrames(plant.world_frame(), plant.GetFrameByName("ground"))
+    plant.Finalize()
+    return plant
+
+
+def test_compliant_the_loop_is_open_and_the_bushing_a_force_element():
+    rigid, (m, element) = mechkit.load(FOUR_BAR), _compliant()
+    assert [c.kind for c in rigid.closures] == ["revolute"] and list(m.closures) == []
+    assert m.home_mobility.dof == 3 and element.role == "dissipative"
+
+
+@pytest.mark.parametrize("seed", [0, 1, 2])
+def test_its_generalised_forces_are_drake_s_at_any_state(seed):
+    """At random angles (up to 0.5 rad off the assembly: a deflected bushing, large rotations) and rates."""
+    pytest.importorskip("pydrake")
+    from pydrake.multibody.tree import MultibodyForces
+
+    m, element = _compliant()
+    rng = np.random.default_rng(seed)
+    q0 = mechkit.load(FOUR_BAR, actuated=["crank"]).assemble({"crank": 0.8})
+    q, v = q0 + rng.uniform(-0.5, 0.5, 3), rng.uniform(-2.0, 2.0, 3)
+    ours, _ = _generalized(m, element, q, v)
+    plant = _drake_plant()
+    ctx = plant.CreateDefaultContext()
+    for k, name in enumerate(JOINTS):
+        joint = plant.GetJointByName(name)
+        joint.set_angle(ctx, q[m.model.joints[m.model.getJointId(name)].idx_q])
+        joint.set_angular_rate(ctx, v[m.model.joints[m.model.getJointId(name)].idx_v])
+    applied = MultibodyForces(plant)
+    plant.CalcForceElementsContribution(ctx, applied)
+    theirs = plant.CalcGeneralizedForces(ctx, applied)
+    for name in JOINTS:
+        ours_j = ours[m.model.joints[m.model.getJointId(name)].idx_v]
+        theirs_j = theirs[plant.GetJointByName(name).velocity_start()]
+        assert ours_j == pytest.approx(theirs_j, rel=1e-9, abs=1e-9 * np.abs(theirs).max()), name
+
+
+def test_its_stiffness_is_its_potential_s_gradient_and_its_damping_power_is_reported():
+    m, element = _compliant()
+    rng = np.random.default_rng(3)
+    q = mechkit.load(FOUR_BAR, actuated=["crank"]).assemble({"crank": 0.4}) + rng.uniform(-0.05, 0.05, 3)
+    data = m.model.createData()
+
+    def energy(x):
+        pin.forwardKinematics(m.model, data, x)
+        return element.energy(m.model, data, x) + pin.computePotentialEnergy(m.model, data, x)
+
+    static, _ = _generalized(m, element, q, np.zeros(3))
+    gradient = np.array([(energy(q + 1e-6 * e) - energy(q - 1e-6 * e)) / 2e-6 for e in np.eye(3)])
+    np.testing.assert_allclose(static, -gradient, rtol=1e-6, atol=1e-6 * np.abs(gradient).max())
+    v = rng.uniform(-1.0, 1.0, 3)
+    moving, load = _generalized(m, element, q, v)
+    assert load.power < 0 and load.power == pytest.approx((moving - static) @ v, rel=1e-9)
+
+
+def test_the_compliant_equilibrium_is_drake_s_and_the_rigid_one_to_its_compliance():
+    """Crank held at 1 rad: mechkit's compliant equilibrium (`simulation.equilibrium` with the bushing) has
+    Drake's residual-free generalised forces there, its crank torque is Drake's, and the rigid reading's
+    differs by the bushing's compliance (5.9e-7 relative measured: load / stiffness)."""
+    pytest.importorskip("pydrake")
+    rigid = mechkit.load(FOUR_BAR, actuated=["crank"])
+    q_rigid = rigid.assemble({"crank": 1.0})
+    m, element = _compliant()
+    eq = simulation.equilibrium(m, {"crank": 1.0}, [element], q0=q_rigid, tol=1e-10)
+    assert eq.stable
+    ours = -_generalized(m, element, eq.q, np.zeros(3))[0][m.model.joints[m.model.getJointId("crank")].idx_v]
+    from tests.sources.test_drake_elements import _drake_bushing_holding_torque
+
+    start = [q_rigid[m.model.joints[m.model.getJointId(n)].idx_q] for n in JOINTS[1:]]
+    theirs = _drake_bushing_holding_torque(FOUR_BAR, 1.0, start)
+    held = rigid.inverse_dynamics(q_rigid, np.zeros(3), np.zeros(3)).efforts["crank"]
+    assert ours == pytest.approx(theirs, rel=1e-8)
+    assert 1e-8 < abs(held - ours) / abs(ours) < 1e-5
+
+
+def test_an_sdformat_bushing_cannot_be_compliant_and_the_option_is_checked():
+    with pytest.raises(InvalidArgument, match="bushings.*four_bar_drake_bushing.sdf.*rigid only"):
+        mechkit.load(FIXTURES / "closures" / "four_bar_drake_bushing.sdf", bushings="compliant")
+    with pytest.raises(InvalidArgument, match="bushings"):
+        mechkit.load(FOUR_BAR, bushings="soft")
