@@ -13,7 +13,9 @@ t = N^T tau (in A; q_dot = N w_AC, w_AC expressed in A); A receives -f at Bo and
 pair is tau . q_dot + f_B . d/dt_B [x y z], so the stiffness part has the potential
 (K012 . q^2 + Kxyz . [x y z]^2) / 2 (J) and the damping part dissipates (Drake does not implement this
 potential; it follows from the law). At a pitch within `GIMBAL` of +-pi/2 the law is singular (Drake
-throws there too).
+throws there too), and past it roll and yaw jump by pi (Drake's angles are in (-pi, pi] x [-pi/2, pi/2] x
+(-pi, pi]), so does a stiff roll or yaw's torque: a bushing standing for a pin should leave yaw free, as
+Drake's Strandbeest does, not pitch.
 """
 
 from __future__ import annotations
