@@ -9,7 +9,8 @@
 - `<gazebo><joint type parent child pose axis>` (the Gazebo tutorials' way to close a URDF loop): an
   SDFormat joint; its frame is `pose` in the child link's frame (SDFormat's default), its axis in that
   frame; the parent side is where that frame is at the URDF's zero configuration (as Gazebo places it
-  when the model spawns). revolute, prismatic, ball and fixed are read; other types are refused by name.
+  when the model spawns). revolute, prismatic, ball and fixed are read, universal and revolute2 (`axis` then
+  `axis2`, perpendicular) as a Hooke cut; other types are refused by name.
 
 A link `world` joints name without declaring it is declared (`declare_world`): the implicit ground of
 Drake and Gazebo; with the world a link, every other link without a parent joint floats, as Drake's
@@ -44,7 +45,14 @@ BUSHING_RATIO = 1e-3
 COMPLIANT = "{https://mechkit.dev/loop}compliant"
 
 #: SDFormat joint type -> mechkit cut kind.
-GAZEBO_KINDS = {"revolute": "revolute", "prismatic": "prismatic", "ball": "spherical", "fixed": "weld"}
+GAZEBO_KINDS = {
+    "revolute": "revolute",
+    "prismatic": "prismatic",
+    "ball": "spherical",
+    "fixed": "weld",
+    "universal": "hooke",
+    "revolute2": "hooke",
+}
 
 
 def declare_world(root: ET.Element) -> bool:
@@ -124,15 +132,19 @@ def _gazebo_joint(root: ET.Element, element: ET.Element, links: set[str]) -> Loo
     joint_in_child = _transform(pose[:3], pose[3:])
     world = _zero_poses(root)
     joint_in_parent = np.linalg.solve(world[ends["parent"]], world[ends["child"]] @ joint_in_child)
-    axis = None
-    if kind in ("revolute", "prismatic"):
-        axis = _numbers(element.findtext("axis/xyz") or "", 3, f"{where} axis/xyz")
+    axes = []
+    for tag in ("axis", "axis2")[: {"revolute": 1, "prismatic": 1, "hooke": 2}.get(kind, 0)]:
+        axis = _numbers(element.findtext(f"{tag}/xyz") or "", 3, f"{where} {tag}/xyz")
         if np.linalg.norm(axis) == 0:
-            raise MalformedDescription(where, "axis/xyz is zero")
-        axis = axis / np.linalg.norm(axis)
+            raise MalformedDescription(where, f"{tag}/xyz is zero")
+        axes.append(axis / np.linalg.norm(axis))
+    if len(axes) == 2 and abs(float(axes[0] @ axes[1])) > 1e-9:
+        raise MalformedDescription(where, "axis and axis2 are not perpendicular: a universal joint's must be")
     _add_frame(root, f"{name}_a", ends["parent"], joint_in_parent[:3, 3], joint_in_parent[:3, :3])
     _add_frame(root, f"{name}_b", ends["child"], joint_in_child[:3, 3], joint_in_child[:3, :3])
-    return LoopClosure(name, kind, f"{name}_a", f"{name}_b", axis, explicit_rows=False)
+    if kind == "hooke":  # axis on the parent side, axis2 on the child's (sdformat.org's joint spec)
+        return LoopClosure(name, kind, f"{name}_a", f"{name}_b", None, *axes, explicit_rows=False)
+    return LoopClosure(name, kind, f"{name}_a", f"{name}_b", axes[0] if axes else None, explicit_rows=False)
 
 
 def ball_constraints(parent: ET.Element, links: Collection[str]) -> list[tuple[str, str, np.ndarray, str, np.ndarray]]:

@@ -427,3 +427,29 @@ def test_the_bushing_strandbeest_read_as_pins_agrees_with_drake_to_the_bushings_
         theirs = _drake_compliant_crank_torque(source, angles)
         gaps.append(abs(ours - theirs) / abs(theirs))
     assert gaps[0] < 5e-2 and gaps[1] < gaps[0] / 30, gaps
+
+
+@pytest.mark.parametrize("kind", ["universal", "revolute2"])
+def test_a_gazebo_universal_joint_is_a_hooke_cut_holding_as_the_pin(tmp_path, kind):
+    """four_bar_gazebo_joint.urdf with its pin C a universal (or revolute2) joint, axis2 along the coupler's
+    x: a Hooke cut; the planar loop leaves its second axis no motion, so DOF 1 and the crank torque holding
+    it at 1 rad is the pin's (1e-9). Axes not perpendicular are refused by name."""
+    text = (CLOSURES / "four_bar_gazebo_joint.urdf").read_text()
+    old = '<joint name="C" type="revolute">'
+    path = tmp_path / f"{kind}.urdf"
+    path.write_text(
+        text.replace(old, f'<joint name="C" type="{kind}">').replace(
+            "<axis><xyz>0 -1 0</xyz></axis>", "<axis><xyz>0 -1 0</xyz></axis><axis2><xyz>1 0 0</xyz></axis2>"
+        )
+    )
+    torques = []
+    for source in (path, CLOSURES / "four_bar_gazebo_joint.urdf"):
+        m = mechkit.load(source, actuated=["crank"])
+        assert m.home_mobility.dof == 1
+        q = _assembled(m, 1.0)
+        torques.append(m.inverse_dynamics(q, np.zeros(m.model.nv), np.zeros(m.model.nv)).efforts["crank"])
+    assert [c.kind for c in mechkit.load(path).closures] == ["hooke"]
+    assert abs(torques[0] - torques[1]) <= 1e-9 * abs(torques[1])
+    path.write_text(path.read_text().replace("<axis2><xyz>1 0 0</xyz>", "<axis2><xyz>1 -1 0</xyz>"))
+    with pytest.raises(MalformedDescription, match="gazebo/joint 'C'.*not perpendicular"):
+        mechkit.load(path)
