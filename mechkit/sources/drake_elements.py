@@ -45,14 +45,9 @@ BUSHING_RATIO = 1e-3
 COMPLIANT = "{https://mechkit.dev/loop}compliant"
 
 #: SDFormat joint type -> mechkit cut kind.
-GAZEBO_KINDS = {
-    "revolute": "revolute",
-    "prismatic": "prismatic",
-    "ball": "spherical",
-    "fixed": "weld",
-    "universal": "hooke",
-    "revolute2": "hooke",
-}
+GAZEBO_KINDS = {"revolute": "revolute", "prismatic": "prismatic", "ball": "spherical", "fixed": "weld"}
+GAZEBO_KINDS |= {"universal": "hooke", "revolute2": "hooke"}
+ET.register_namespace("drake", DRAKE)  # the text `compliant` writes keeps Drake's prefix
 
 
 def declare_world(root: ET.Element) -> bool:
@@ -383,7 +378,12 @@ def _zero_poses(root: ET.Element) -> dict[str, np.ndarray]:
 
 
 def _add_frame(root: ET.Element, name: str, body: str, xyz: np.ndarray, rotation: np.ndarray) -> None:
-    """A massless link `name` fixed to `body` at `xyz` (m) with orientation `rotation`, both in body's frame."""
+    """A massless link `name` fixed to `body` at `xyz` (m) with orientation `rotation`, both in body's frame;
+    kept where the text has it already on `body` (mechkit wrote it: a compliant bushing's frames)."""
+    if root.find(f"link[@name='{name}']") is not None:
+        if root.find(f"joint[@name='{name}_fixed']/parent[@link='{body}']") is None:
+            raise MalformedDescription(f"link {name!r}", f"the name of a frame mechkit adds on {body!r}: rename it")
+        return
     pitch = np.arcsin(np.clip(-rotation[2, 0], -1.0, 1.0))
     roll, yaw = np.arctan2(rotation[2, 1], rotation[2, 2]), np.arctan2(rotation[1, 0], rotation[0, 0])
     ET.SubElement(root, "link", name=name)

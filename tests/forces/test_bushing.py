@@ -13,7 +13,7 @@ from tests_support import FIXTURES
 
 import mechkit
 from mechkit import forces, simulation
-from mechkit.base.exceptions import InvalidArgument
+from mechkit.base.exceptions import InvalidArgument, MalformedDescription
 
 FOUR_BAR = FIXTURES / "closures" / "four_bar_drake_bushing.urdf"
 JOINTS = ("crank", "coupler", "rocker")
@@ -186,3 +186,29 @@ def test_a_simulation_balances_the_bushing_s_potential_and_dissipation(tmp_path)
     run = m.simulate(0.1, q0=q0, reactions=False, rtol=1e-9, atol=1e-11)
     assert run.roles == ("dissipative",) and run.dissipated[-1] > 1e-3 * run.energy_scale
     assert run.energy_error <= 1e-7 * run.energy_scale
+
+
+def test_the_compliant_mechanism_s_urdf_reads_back_compliant(tmp_path):
+    """mechkit's URDF of the compliant four-bar (its bushing marked mechkit:compliant, its frames written)
+    loads back as the same open tree with the same bushing forces; a link of a frame's name on another body
+    is refused by name."""
+    from mechkit.export.urdf import to_urdf
+
+    m, element = _compliant()
+    path = tmp_path / "written.urdf"
+    path.write_text(to_urdf(m))
+    again = mechkit.load(path, actuated=["crank"])
+    (other,) = [e for e in simulation.default_forces(again) if isinstance(e, forces.BushingForce)]
+    assert list(again.closures) == [] and again.model.nq == m.model.nq
+    q, v = np.array([0.3, -0.2, 0.5]), np.array([0.4, 1.0, -0.7])
+    np.testing.assert_allclose(_generalized(again, other, q, v)[0], _generalized(m, element, q, v)[0], rtol=1e-12)
+    bad = tmp_path / "clash.urdf"
+    bad.write_text(
+        FOUR_BAR.read_text().replace(
+            "</robot>",
+            '<link name="bushing_pin_frameA_pin_frameC_a"/><joint name="j" type="fixed"><parent link="ground"/>'
+            '<child link="bushing_pin_frameA_pin_frameC_a"/></joint></robot>',
+        )
+    )
+    with pytest.raises(MalformedDescription, match="bushing_pin_frameA_pin_frameC_a.*rename"):
+        mechkit.load(bad)
