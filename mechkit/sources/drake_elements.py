@@ -318,12 +318,13 @@ def compliant(description: Description) -> Description:
     found = bushings(root) if root is not None else []
     if not found:
         source = description.source
-        if source is not None and source.suffix in (".sdf", ".urdf") and "linear_bushing_rpy" in source.read_text():
+        text = source.read_text() if source is not None else ""
+        if "linear_bushing_rpy" in text or any(c.name.startswith("bushing_") for c in description.closures or ()):
             raise InvalidArgument(
                 "bushings",
                 "compliant",
-                f"{source.name}: compliant bushings are read from a URDF or xacro tree of URDF joints; this "
-                f"{description.format} file's are read rigid only",
+                f"{source.name if source else 'the description'}: compliant bushings are read from a URDF or xacro "
+                f"tree of URDF joints; this {description.format} file's are read rigid only",
             )
         return description
     for element in root.iter(f"{{{DRAKE}}}linear_bushing_rpy"):

@@ -114,9 +114,22 @@ def test_the_compliant_equilibrium_is_drake_s_and_the_rigid_one_to_its_complianc
     assert 1e-8 < abs(held - ours) / abs(ours) < 1e-5
 
 
-def test_an_sdformat_bushing_cannot_be_compliant_and_the_option_is_checked():
+def test_an_sdformat_bushing_cannot_be_compliant_and_the_option_is_checked(tmp_path):
+    """Nor a URDF's whose Drake joints make its tree a built model (no URDF text to carry the mark)."""
     with pytest.raises(InvalidArgument, match="bushings.*four_bar_drake_bushing.sdf.*rigid only"):
         mechkit.load(FIXTURES / "closures" / "four_bar_drake_bushing.sdf", bushings="compliant")
+    path = tmp_path / "with_ball.urdf"
+    path.write_text(
+        FOUR_BAR.read_text().replace(
+            "</robot>",
+            '<link name="bob"><inertial><mass value="0.1"/><inertia ixx="1e-4" iyy="1e-4" izz="1e-4" ixy="0" '
+            'ixz="0" iyz="0"/></inertial></link><drake:joint name="ball" type="ball"><parent link="ground"/>'
+            '<child link="bob"/></drake:joint></robot>',
+        )
+    )
+    assert [c.kind for c in mechkit.load(path).closures] == ["revolute"]
+    with pytest.raises(InvalidArgument, match="bushings.*with_ball.urdf.*rigid only"):
+        mechkit.load(path, bushings="compliant")
     with pytest.raises(InvalidArgument, match="bushings"):
         mechkit.load(FOUR_BAR, bushings="soft")
 
