@@ -91,7 +91,7 @@ def load(
             left (default: refused by name).
         bushings: "rigid" (default): a Drake `drake:linear_bushing_rpy` is the cut its stiff directions make;
             "compliant": a URDF's (or xacro's) are force elements (`mechkit.forces.bushing`, applied by the
-            simulator), their loops left open.
+            simulator), their loops left open (not with `lock`, `keep` or `fix`).
         **params: the mechanism's parameters (a name) or xacro arguments (a xacro file);
             `rows="spatial"`, unless the mechanism has a parameter of that name, closes every cut
             with its full rows.
@@ -111,6 +111,8 @@ def load(
     ignore = arguments.flag("ignore_unknown_closures", ignore_unknown_closures)
     if bushings not in ("rigid", "compliant"):
         raise InvalidArgument("bushings", bushings, "expected 'rigid' or 'compliant'")
+    if bushings == "compliant" and (lock or keep is not None or fix):  # a reduced tree's URDF drops the marks
+        raise InvalidArgument("bushings", bushings, "not with lock, keep or fix: weld or fix joints in the file")
     if lock or keep is not None or fix:
         whole = load(
             source,
