@@ -16,6 +16,7 @@ from mechkit.catalog.params import MechanismParams
 from mechkit.catalog.registry import get_spec, names
 from mechkit.mechanism import Mechanism
 from mechkit.reduction import description_of, locked_joints, reduce_description
+from mechkit.sources.drake_elements import compliant
 from mechkit.sources.physical import check_model
 from mechkit.sources.urdf import build_model, parse_loops, parse_springs, parse_xml
 from mechkit.sources.xacro_file import render_urdf
@@ -62,6 +63,7 @@ def load(
     fix: Sequence[str] | None = None,
     freeflyer: bool = False,
     ignore_unknown_closures: bool = False,
+    bushings: str = "rigid",
     **params: Any,
 ) -> Mechanism:
     """Build a mechanism from a registered name or a description file.
@@ -87,6 +89,9 @@ def load(
             read (Drake's constraints and bushings, a Gazebo joint: `mechkit.sources.closure_elements`)
             as its tree without them, with one `IgnoredClosure` warning per element naming the mobility
             left (default: refused by name).
+        bushings: "rigid" (default): a Drake `drake:linear_bushing_rpy` is the cut its stiff directions make;
+            "compliant": a URDF's (or xacro's) are force elements (`mechkit.forces.bushing`, applied by the
+            simulator), their loops left open (not with `lock`, `keep` or `fix`).
         **params: the mechanism's parameters (a name) or xacro arguments (a xacro file);
             `rows="spatial"`, unless the mechanism has a parameter of that name, closes every cut
             with its full rows.
@@ -104,6 +109,10 @@ def load(
         raise InvalidArgument("source", source, "expected a mechanism name or a path")
     freeflyer = arguments.flag("freeflyer", freeflyer)
     ignore = arguments.flag("ignore_unknown_closures", ignore_unknown_closures)
+    if bushings not in ("rigid", "compliant"):
+        raise InvalidArgument("bushings", bushings, "expected 'rigid' or 'compliant'")
+    if bushings == "compliant" and (lock or keep is not None or fix):  # a reduced tree's URDF drops the marks
+        raise InvalidArgument("bushings", bushings, "not with lock, keep or fix: weld or fix joints in the file")
     if lock or keep is not None or fix:
         whole = load(
             source,
@@ -112,6 +121,7 @@ def load(
             guess=guess,
             freeflyer=freeflyer,
             ignore_unknown_closures=ignore,
+            bushings=bushings,
             **params,
         )
         rows = params.get("rows") if "rows" not in {f.name for f in dataclasses.fields(whole.spec.params)} else None
@@ -122,6 +132,7 @@ def load(
         declared = sources.xacro_args(where) if where.name.endswith(".xacro") else {}
         rows = None if "rows" in declared else params.pop("rows", None)
         description = sources.read(where, params, freeflyer=freeflyer, ignore_unknown_closures=ignore)
+        description = compliant(description) if bushings == "compliant" else description
         mechanism = from_description(description, actuated, home, guess, rows)
         for element in description.ignored_closures:
             warnings.warn(

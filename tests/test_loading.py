@@ -67,7 +67,7 @@ def test_paths_that_are_not_files(tmp_path):
         mechkit.load("slider_crank")
 
 
-CLOSURE_FILES = ("four_bar_drake_bushing.sdf",)  # the others are read (tests/sources/test_drake_elements.py)
+CLOSURE_FILES = ("four_bar_drake_distance.sdf",)  # the others are read (tests/sources/test_drake_elements.py)
 
 
 @pytest.mark.parametrize("name", CLOSURE_FILES)

@@ -73,6 +73,13 @@ def add_mechanism_arguments(parser: argparse.ArgumentParser) -> None:
         "bushings, Gazebo joints) as its tree without them, one warning per element (default: refused)",
     )
     parser.add_argument(
+        "--bushings",
+        choices=("rigid", "compliant"),
+        default="rigid",
+        help="Drake bushings as the cuts their stiff directions make (rigid, the default) or as compliant force "
+        "elements the simulator applies (a URDF's or xacro's)",
+    )
+    parser.add_argument(
         "--freeflyer",
         action="store_true",
         help="put an Extended-URDF file's tree on a free-flyer root joint (as Gepetto's loader can)",
@@ -150,6 +157,7 @@ def load_mechanism(args: argparse.Namespace) -> Mechanism:
             fix=getattr(args, "fix", None),
             freeflyer=getattr(args, "freeflyer", False),
             ignore_unknown_closures=getattr(args, "ignore_unknown_closures", False),
+            bushings=getattr(args, "bushings", "rigid"),
             **overrides(args.set),
         )
     except ClosureNotConverged as err:

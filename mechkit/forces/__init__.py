@@ -12,6 +12,7 @@ body wrenches) and its part of the energy balance (a potential, or a dissipated 
 | `Gravity`: another gravity than the model's | `gravity` | conservative |
 | `BodyWrench`: a force through a body point and a moment, functions of time | `wrenches` | source |
 | `PointToPointForce`: spring, damper, force between two body points | `point_to_point` | any |
+| `BushingForce`: Drake's LinearBushingRollPitchYaw between two frames | `bushing` | conservative + dissipative |
 | `CutJointSprings`, `CutJointFriction`, `CutJointEffort`: on loop-cut joints | `cut_joints` | all three |
 
 A description declares springs and dampers as URDF `<mechkit:spring>` and `<dynamics damping>`, MJCF stiffness,
@@ -23,6 +24,7 @@ limits, motor envelopes). `Mechanism` applies its own `JointSprings` in both dyn
 (`mechkit.simulation`) applies any list of elements.
 """
 
+from mechkit.forces.bushing import BushingForce, bushing_forces
 from mechkit.forces.coulomb import SPEED_THRESHOLD, CoulombFriction, smooth_sign
 from mechkit.forces.cut_joints import CutJointEffort, CutJointFriction, CutJointSprings
 from mechkit.forces.described import Described
@@ -46,6 +48,7 @@ __all__ = [
     "ROLES",
     "SPEED_THRESHOLD",
     "BodyWrench",
+    "BushingForce",
     "CoulombFriction",
     "CutJointEffort",
     "CutJointFriction",
@@ -62,6 +65,7 @@ __all__ = [
     "PointToPointForce",
     "ReactionFriction",
     "TorqueMotor",
+    "bushing_forces",
     "envelope",
     "generalized_of_wrenches",
     "point_to_point",

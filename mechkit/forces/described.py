@@ -9,7 +9,8 @@
   actuator's `forcerange` (its stall effort; MJCF has no speed limit), and the spatial tendons between
   two sites with their springs, dampers and actuators (`mechkit.sources.mjcf.spatial_tendons`).
   Stiffness, springref and damping are the reader's joint springs (`Mechanism.springs`).
-- URDF: `<mechkit:strut>` point-to-point springs, dampers and forces (`mechkit.sources.urdf_struts`).
+- URDF: `<mechkit:strut>` point-to-point springs, dampers and forces (`mechkit.sources.urdf_struts`), and
+  Drake bushings loaded compliant (`mechkit.forces.bushing`).
 """
 
 from __future__ import annotations
@@ -23,9 +24,11 @@ import pinocchio as pin
 
 from mechkit.base.exceptions import MalformedDescription, MethodUnavailable
 from mechkit.core import JointSpring
+from mechkit.forces.bushing import bushing_forces
 from mechkit.forces.coulomb import SPEED_THRESHOLD, CoulombFriction
 from mechkit.forces.point_to_point import PointToPoint, point_to_point
 from mechkit.forces.springs import JointSprings
+from mechkit.sources.drake_elements import Bushing, bushings
 
 
 @dataclass(frozen=True)
@@ -38,6 +41,7 @@ class Described:
         limits: joint -> (lower, upper) (rad or m).
         motors: joint or actuator -> (stall effort (N m or N), no-load rate (rad/s or m/s)); inf where none.
         struts: point-to-point springs, dampers and forces (`PointToPoint`).
+        bushings: Drake bushings loaded compliant (`mechkit.forces.bushing`).
     """
 
     dampers: dict[str, float] = field(default_factory=dict)
@@ -45,6 +49,7 @@ class Described:
     limits: dict[str, tuple[float, float]] = field(default_factory=dict)
     motors: dict[str, tuple[float, float]] = field(default_factory=dict)
     struts: list[PointToPoint] = field(default_factory=list)
+    bushings: list[Bushing] = field(default_factory=list)
 
     def elements(self, model: pin.Model, threshold: float = SPEED_THRESHOLD) -> list:
         """The dampers and the friction as force elements.
@@ -55,7 +60,8 @@ class Described:
 
         Returns:
             A `JointSprings` of the dampers, a `CoulombFriction` of the friction, each only where the file
-            declares some, and a `PointToPointForce` per strut (an empty list where it declares none).
+            declares some, a `PointToPointForce` per strut and a `BushingForce` per compliant bushing (an
+            empty list where it declares none).
 
         Raises:
             InvalidParameters: a strut's frame the model does not have, a threshold not > 0.
@@ -67,7 +73,7 @@ class Described:
             )
         if self.friction:
             out.append(CoulombFriction(model, self.friction, threshold))
-        return out + point_to_point(model, self.struts)
+        return out + point_to_point(model, self.struts) + bushing_forces(model, self.bushings)
 
 
 def _float(element: ET.Element, attribute: str, default: float, where: str) -> float:
@@ -98,7 +104,7 @@ def from_urdf(urdf: str, model: pin.Model, actuated: tuple[str, ...] = ()) -> De
     from mechkit.sources.urdf_struts import parse_struts  # here: the URDF reader imports the forces
 
     root = ET.fromstring(urdf)
-    out = Described(struts=list(parse_struts(root)))
+    out = Described(struts=list(parse_struts(root)), bushings=[b for b in bushings(root) if b.compliant])
     for joint in root.findall("joint"):
         name, kind = joint.get("name"), joint.get("type")
         if kind == "fixed" or not model.existJointName(name or ""):

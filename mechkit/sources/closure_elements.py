@@ -4,11 +4,12 @@ silence. The loader refuses a file holding any (`refusal`), or, asked to ignore 
 with the mobility the model is left with (`mechkit.loading`).
 
 `RULES` is the list: an element another tool reads as a loop closure or a coupling (Drake's constraints
-other than the ball constraint, an SDFormat file's bushings, and Drake's joints). The day a reader turns
+other than the ball constraint, an SDFormat file's Drake joints). The day a reader turns
 one into a closure, its rule goes (one change). What mechkit reads itself (`<mechkit:loop>`, `<mimic>`,
 URDF+ `<loop>`/`<coupling>`, the Extended-URDF sidecar, SDFormat's joint graph, MJCF's equalities and
-tendons, whose unknown kinds the MJCF reader refuses by name, Drake's ball constraints, a URDF's Drake
-bushings and Gazebo joints, `mechkit.sources.drake_elements`) is not listed; an element that cannot
+tendons, whose unknown kinds the MJCF reader refuses by name, Drake's ball constraints and bushings, a URDF's
+Gazebo joints, `mechkit.sources.drake_elements`, and its Drake joints,
+`mechkit.sources.drake_joints`) is not listed; an element that cannot
 change the kinematics (Drake's collision properties, Gazebo's materials, plugins) is ignored as before.
 """
 
@@ -46,11 +47,8 @@ RULES = (
         "a Drake constraint, which closes a loop in Drake",
     ),
     Rule(
-        lambda uri, local, parent: uri == DRAKE and "bushing" in local and parent == "model",
-        "a Drake bushing in SDFormat, which Drake's examples use to close loops (a URDF's is read)",
-    ),
-    Rule(
-        lambda uri, local, parent: uri == DRAKE and local == "joint", "a Drake joint, which may close a loop in Drake"
+        lambda uri, local, parent: uri == DRAKE and local == "joint" and parent == "model",
+        "a Drake joint in SDFormat (a URDF's is read: mechkit.sources.drake_joints)",
     ),
 )
 

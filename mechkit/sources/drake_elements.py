@@ -2,12 +2,15 @@
 
 - `<drake:ball_constraint>` (Drake's URDF extension): point P of body A (`p_AP`, in A's frame, m) and
   point Q of body B (`p_BQ`) kept together: a spherical cut.
-- `<drake:linear_bushing_rpy>` between two frames (Drake's `<frame name link xyz rpy>` or links): read
-  as a rigid cut on its stiff directions, the others left free (`stiff_directions`).
+- `<drake:linear_bushing_rpy>` between two frames (Drake's `<frame name link xyz rpy>` or links; an
+  SDFormat model's too, `bushings`): read as a rigid cut on its stiff directions, the others left free
+  (`stiff_directions`); marked `mechkit:compliant="true"` (`compliant`, `load(bushings="compliant")`) its
+  frames only, the simulator's force element (`mechkit.forces.bushing`) then acting between them.
 - `<gazebo><joint type parent child pose axis>` (the Gazebo tutorials' way to close a URDF loop): an
   SDFormat joint; its frame is `pose` in the child link's frame (SDFormat's default), its axis in that
   frame; the parent side is where that frame is at the URDF's zero configuration (as Gazebo places it
-  when the model spawns). revolute, prismatic, ball and fixed are read; other types are refused by name.
+  when the model spawns). revolute, prismatic, ball and fixed are read, universal and revolute2 (`axis` then
+  `axis2`, perpendicular) as a Hooke cut; other types are refused by name.
 
 A link `world` joints name without declaring it is declared (`declare_world`): the implicit ground of
 Drake and Gazebo; with the world a link, every other link without a parent joint floats, as Drake's
@@ -19,14 +22,17 @@ gives (`mechkit.sources.urdf`).
 
 from __future__ import annotations
 
+import dataclasses
 import xml.etree.ElementTree as ET
 from collections.abc import Collection
+from dataclasses import dataclass
 
 import numpy as np
 
-from mechkit.base.exceptions import MalformedDescription
+from mechkit.base.exceptions import InvalidArgument, MalformedDescription
 from mechkit.core import LoopClosure
 from mechkit.sources.closure_elements import DRAKE
+from mechkit.sources.description import Description
 
 #: A bushing direction is stiff (closed) when its stiffness exceeds this fraction of the largest of its kind
 #: (torques in N m/rad, forces in N/m compared among themselves), else free (ours). Drake's examples stand
@@ -34,8 +40,14 @@ from mechkit.sources.closure_elements import DRAKE
 #: thousandth keeps any such stand-in a joint and a bushing meant to be compliant everywhere a weld.
 BUSHING_RATIO = 1e-3
 
+#: The attribute that makes a bushing compliant (a force element, `mechkit.forces.bushing`) instead of a cut;
+#: in mechkit's loop namespace (`mechkit.sources.urdf.LOOP_NAMESPACE`).
+COMPLIANT = "{https://mechkit.dev/loop}compliant"
+
 #: SDFormat joint type -> mechkit cut kind.
 GAZEBO_KINDS = {"revolute": "revolute", "prismatic": "prismatic", "ball": "spherical", "fixed": "weld"}
+GAZEBO_KINDS |= {"universal": "hooke", "revolute2": "hooke"}
+ET.register_namespace("drake", DRAKE)  # the text `compliant` writes keeps Drake's prefix
 
 
 def declare_world(root: ET.Element) -> bool:
@@ -87,8 +99,10 @@ def read_tool_closures(root: ET.Element) -> list[LoopClosure]:
         _add_frame(root, f"{name}_a", body_a, p_ap, np.eye(3))
         _add_frame(root, f"{name}_b", body_b, p_bq, np.eye(3))
         out.append(LoopClosure(name, "spherical", f"{name}_a", f"{name}_b", explicit_rows=False))
-    for element in root.findall(f"{{{DRAKE}}}linear_bushing_rpy"):
-        out.append(_bushing(root, element, links))
+    for bushing in bushings(root):
+        cut = _bushing(root, bushing, links)
+        if not bushing.compliant:
+            out.append(cut)
     for gazebo in root.findall("gazebo"):
         for element in gazebo.findall("joint"):
             out.append(_gazebo_joint(root, element, links))
@@ -113,15 +127,19 @@ def _gazebo_joint(root: ET.Element, element: ET.Element, links: set[str]) -> Loo
     joint_in_child = _transform(pose[:3], pose[3:])
     world = _zero_poses(root)
     joint_in_parent = np.linalg.solve(world[ends["parent"]], world[ends["child"]] @ joint_in_child)
-    axis = None
-    if kind in ("revolute", "prismatic"):
-        axis = _numbers(element.findtext("axis/xyz") or "", 3, f"{where} axis/xyz")
+    axes = []
+    for tag in ("axis", "axis2")[: {"revolute": 1, "prismatic": 1, "hooke": 2}.get(kind, 0)]:
+        axis = _numbers(element.findtext(f"{tag}/xyz") or "", 3, f"{where} {tag}/xyz")
         if np.linalg.norm(axis) == 0:
-            raise MalformedDescription(where, "axis/xyz is zero")
-        axis = axis / np.linalg.norm(axis)
+            raise MalformedDescription(where, f"{tag}/xyz is zero")
+        axes.append(axis / np.linalg.norm(axis))
+    if len(axes) == 2 and abs(float(axes[0] @ axes[1])) > 1e-9:
+        raise MalformedDescription(where, "axis and axis2 are not perpendicular: a universal joint's must be")
     _add_frame(root, f"{name}_a", ends["parent"], joint_in_parent[:3, 3], joint_in_parent[:3, :3])
     _add_frame(root, f"{name}_b", ends["child"], joint_in_child[:3, 3], joint_in_child[:3, :3])
-    return LoopClosure(name, kind, f"{name}_a", f"{name}_b", axis, explicit_rows=False)
+    if kind == "hooke":  # axis on the parent side, axis2 on the child's (sdformat.org's joint spec)
+        return LoopClosure(name, kind, f"{name}_a", f"{name}_b", None, *axes, explicit_rows=False)
+    return LoopClosure(name, kind, f"{name}_a", f"{name}_b", axes[0] if axes else None, explicit_rows=False)
 
 
 def ball_constraints(parent: ET.Element, links: Collection[str]) -> list[tuple[str, str, np.ndarray, str, np.ndarray]]:
@@ -177,45 +195,146 @@ def stiff_directions(torque: np.ndarray, force: np.ndarray) -> tuple[str, np.nda
     return kind, np.eye(3)[np.argmax(free_t)] if kind == "revolute" else None
 
 
-def _bushing(root: ET.Element, element: ET.Element, links: set[str]) -> LoopClosure:
+@dataclass(frozen=True)
+class Bushing:
+    """A `drake:linear_bushing_rpy` (Drake's LinearBushingRollPitchYaw) as written.
+
+    Attributes:
+        name: "bushing_<A>_<C>", the cut's and the force element's name.
+        frame_a: the name of frame A (a URDF `<frame>` or link, an SDFormat frame or link).
+        frame_c: the name of frame C.
+        torque_stiffness: (3,) N m/rad about A's x, y, z (roll, pitch, yaw); torque_damping: N m s/rad.
+        force_stiffness: (3,) N/m along them; force_damping: N s/m.
+        compliant: marked `mechkit:compliant="true"` (`compliant`): a force element, not a cut.
+    """
+
+    name: str
+    frame_a: str
+    frame_c: str
+    torque_stiffness: np.ndarray
+    torque_damping: np.ndarray
+    force_stiffness: np.ndarray
+    force_damping: np.ndarray
+    compliant: bool = False
+
+    def cut(self) -> tuple[str, np.ndarray | None]:
+        """The cut it stands for when read rigid (`stiff_directions`).
+
+        Returns:
+            (kind, axis in frame A or None).
+
+        Raises:
+            MalformedDescription: a pattern that is no joint mechkit closes.
+        """
+        kind, axis = stiff_directions(self.torque_stiffness, self.force_stiffness)
+        if not kind:
+            raise MalformedDescription(
+                f"drake:linear_bushing_rpy {self.frame_a!r}-{self.frame_c!r}",
+                f"torque stiffness {self.torque_stiffness.tolist()}, force stiffness "
+                f"{self.force_stiffness.tolist()}: its stiff directions (above {BUSHING_RATIO} of the largest of "
+                "their kind) make no joint mechkit closes (weld, revolute, prismatic, spherical)",
+            )
+        return kind, axis
+
+
+def bushings(parent: ET.Element) -> list[Bushing]:
+    """The `drake:linear_bushing_rpy` children of a URDF `<robot>` (values in attributes `name`, `value`) or
+    an SDFormat `<model>` (values as text), in document order.
+
+    Args:
+        parent: the `<robot>` or `<model>` element.
+
+    Returns:
+        The bushings (frames named, not resolved).
+
+    Raises:
+        MalformedDescription: a missing frame or value, a value that is not three finite numbers, a negative
+            stiffness or damping.
+    """
+    out = []
+    for element in parent.findall(f"{{{DRAKE}}}linear_bushing_rpy"):
+        frames = []
+        for side in "AC":
+            child = element.find(f"{{{DRAKE}}}bushing_frame{side}")
+            name = (child.get("name") or child.text or "").strip() if child is not None else ""
+            if not name:
+                raise MalformedDescription("drake:linear_bushing_rpy", f"missing drake:bushing_frame{side}")
+            frames.append(name)
+        where = f"drake:linear_bushing_rpy {frames[0]!r}-{frames[1]!r}"
+        values = []
+        for kind in ("torque_stiffness", "torque_damping", "force_stiffness", "force_damping"):
+            child = element.find(f"{{{DRAKE}}}bushing_{kind}")
+            if child is None:
+                raise MalformedDescription(where, f"missing drake:bushing_{kind}")
+            values.append(
+                _numbers((child.get("value") or child.text or "").strip(), 3, f"{where} drake:bushing_{kind}")
+            )
+            if np.any(values[-1] < 0):
+                raise MalformedDescription(where, f"a negative {kind.replace('_', ' ')}")
+        name = f"bushing_{frames[0]}_{frames[1]}"
+        out.append(Bushing(name, *frames, *values, element.get(COMPLIANT) == "true"))
+    return out
+
+
+def _bushing(root: ET.Element, bushing: Bushing, links: set[str]) -> LoopClosure:
+    """The rigid cut of a URDF's bushing, its frames added (a `<frame name link xyz rpy>` or a link)."""
     frames = {f.get("name"): f for f in root.findall("frame")}
-    ends, where = [], "drake:linear_bushing_rpy"
-    for side in "AC":
-        child = element.find(f"{{{DRAKE}}}bushing_frame{side}")
-        name = child.get("name") if child is not None else None
+    poses = []
+    for name in (bushing.frame_a, bushing.frame_c):
         if name in frames:
             frame = frames[name]
             xyz, rpy = (_numbers(frame.get(a, "0 0 0"), 3, f"frame {name!r} {a}") for a in ("xyz", "rpy"))
-            ends.append((name, frame.get("link"), _transform(xyz, rpy)))
+            poses.append((frame.get("link"), _transform(xyz, rpy)))
         elif name in links:
-            ends.append((name, name, np.eye(4)))
+            poses.append((name, np.eye(4)))
         else:
-            raise MalformedDescription(where, f"drake:bushing_frame{side} {name!r} is not a frame or link of the URDF")
-        if ends[-1][1] not in links:
-            raise MalformedDescription(where, f"frame {name!r}: link {ends[-1][1]!r} is not a link of the URDF")
-    where = f"drake:linear_bushing_rpy {ends[0][0]!r}-{ends[1][0]!r}"
-    torque, force = (_vec(element, f"bushing_{k}_stiffness", where) for k in ("torque", "force"))
-    if np.any(torque < 0) or np.any(force < 0):
-        raise MalformedDescription(where, "a negative stiffness")
-    kind, axis = stiff_directions(torque, force)
-    if not kind:
-        raise MalformedDescription(
-            where,
-            f"torque stiffness {torque.tolist()}, force stiffness {force.tolist()}: its stiff directions "
-            f"(above {BUSHING_RATIO} of the largest of their kind) make no joint mechkit closes (weld, "
-            "revolute, prismatic, spherical)",
-        )
-    name = f"bushing_{ends[0][0]}_{ends[1][0]}"
-    for side, (_, link, pose) in zip("ab", ends):
-        _add_frame(root, f"{name}_{side}", link, pose[:3, 3], pose[:3, :3])
-    return LoopClosure(name, kind, f"{name}_a", f"{name}_b", axis, explicit_rows=False)
+            raise MalformedDescription("drake:linear_bushing_rpy", f"frame {name!r} is not a frame or link of the URDF")
+        if poses[-1][0] not in links:
+            raise MalformedDescription(
+                "drake:linear_bushing_rpy", f"frame {name!r}: link {poses[-1][0]!r} is not a link of the URDF"
+            )
+    kind, axis = ("weld", None) if bushing.compliant else bushing.cut()
+    for side, (link, pose) in zip("ab", poses):
+        _add_frame(root, f"{bushing.name}_{side}", link, pose[:3, 3], pose[:3, :3])
+    return LoopClosure(bushing.name, kind, f"{bushing.name}_a", f"{bushing.name}_b", axis, explicit_rows=False)
 
 
-def _vec(element: ET.Element, tag: str, where: str) -> np.ndarray:
-    child = element.find(f"{{{DRAKE}}}{tag}")
-    if child is None:
-        raise MalformedDescription(where, f"missing drake:{tag}")
-    return _numbers(child.get("value", ""), 3, f"{where} drake:{tag}")
+def compliant(description: Description) -> Description:
+    """The description with its URDF's bushings compliant: marked `COMPLIANT` in its text (where the
+    simulator's force elements read them, `mechkit.forces.described`), their cuts left open (their frames
+    stay).
+
+    Args:
+        description: a description read with rigid bushings.
+
+    Returns:
+        The description changed (itself where it has no bushing).
+
+    Raises:
+        InvalidArgument: its bushings are not in a URDF text (an SDFormat file's, or a URDF's whose Drake
+            joints made its tree a built model): those are read rigid only.
+    """
+    root = ET.fromstring(description.urdf) if description.urdf else None
+    found = bushings(root) if root is not None else []
+    if not found:
+        source = description.source
+        text = source.read_text() if source is not None else ""
+        if "linear_bushing_rpy" in text or any(c.name.startswith("bushing_") for c in description.closures or ()):
+            raise InvalidArgument(
+                "bushings",
+                "compliant",
+                f"{source.name if source else 'the description'}: compliant bushings are read from a URDF or xacro "
+                f"tree of URDF joints; this {description.format} file's are read rigid only",
+            )
+        return description
+    for element in root.iter(f"{{{DRAKE}}}linear_bushing_rpy"):
+        element.set(COMPLIANT, "true")
+    names = {b.name for b in found}
+    return dataclasses.replace(
+        description,
+        urdf=ET.tostring(root, encoding="unicode"),
+        closures=tuple(c for c in description.closures or () if c.name not in names),
+    )
 
 
 def _numbers(text: str, n: int, where: str) -> np.ndarray:
@@ -260,7 +379,12 @@ def _zero_poses(root: ET.Element) -> dict[str, np.ndarray]:
 
 
 def _add_frame(root: ET.Element, name: str, body: str, xyz: np.ndarray, rotation: np.ndarray) -> None:
-    """A massless link `name` fixed to `body` at `xyz` (m) with orientation `rotation`, both in body's frame."""
+    """A massless link `name` fixed to `body` at `xyz` (m) with orientation `rotation`, both in body's frame;
+    kept where the text has it already on `body` (mechkit wrote it: a compliant bushing's frames)."""
+    if root.find(f"link[@name='{name}']") is not None:
+        if root.find(f"joint[@name='{name}_fixed']/parent[@link='{body}']") is None:
+            raise MalformedDescription(f"link {name!r}", f"the name of a frame mechkit adds on {body!r}: rename it")
+        return
     pitch = np.arcsin(np.clip(-rotation[2, 0], -1.0, 1.0))
     roll, yaw = np.arctan2(rotation[2, 1], rotation[2, 2]), np.arctan2(rotation[1, 0], rotation[0, 0])
     ET.SubElement(root, "link", name=name)

@@ -48,13 +48,13 @@ import pinocchio as pin
 from mechkit.base.exceptions import MalformedDescription
 from mechkit.core import LoopClosure
 from mechkit.sources.description import Description, read_text
+from mechkit.sources.rebuilt_tree import rebuild
 from mechkit.sources.urdf import LOOP_NAMESPACE, build_model, describe_urdf
 
 SUBSTITUTIONS = ("SPHERICAL", "FIXED", "UJOINT_AB (A, B two of X, Y, Z)")
 #: The free-flyer root joint's name (`freeflyer=True`), as Pinocchio's URDF parser names it.
 ROOT = "root_joint"
 _UJOINT = re.compile(r"UJOINT_([XYZ])([XYZ])")
-_AXES = {"X": pin.JointModelRX, "Y": pin.JointModelRY, "Z": pin.JointModelRZ}
 _REVOLUTES = {"JointModelRX": 0, "JointModelRY": 1, "JointModelRZ": 2}
 
 
@@ -204,7 +204,7 @@ def _substitute(tree: pin.Model, substitutions: dict[str, str], where: str, urdf
     replace = {tree.getJointId(n): pin.JointModelSpherical() for n, k in substitutions.items() if k == "SPHERICAL"}
     split = {tree.getJointId(n): (k[-2], k[-1]) for n, k in substitutions.items() if k.startswith("UJOINT")}
     lock = [tree.getJointId(n) for n, k in substitutions.items() if k == "FIXED"]
-    return _rebuild(tree, replace, split, lock)
+    return rebuild(tree, replace, split, lock)
 
 
 def _spherical_triplets(model: pin.Model) -> tuple[pin.Model, list[tuple[str, str, str]]]:
@@ -234,70 +234,7 @@ def _spherical_triplets(model: pin.Model) -> tuple[pin.Model, list[tuple[str, st
         return model, []
     triplets = [tuple(model.names[k] for k in (j, j + 1, j + 2)) for j in found]
     lock = [k for j in found for k in (j, j + 1)]
-    return _rebuild(model, {j + 2: pin.JointModelSpherical() for j in found}, {}, lock), triplets
-
-
-def _rebuild(
-    model: pin.Model, replace: dict[int, pin.JointModel], split: dict[int, tuple[str, str]], lock: list[int]
-) -> pin.Model:
-    """A copy of `model` with joints replaced (same placement, body and frames), joints split into two
-    revolutes (`<name>_A` at the placement, `<name>_B` on it with the body and frames), then the joints
-    `lock` (ids in `model`) locked at the zero configuration. Kept joints keep their limits."""
-    new = pin.Model()
-    new.name, new.gravity = model.name, model.gravity
-    new.appendBodyToJoint(0, model.inertias[0], pin.SE3.Identity())  # the root link's inertia, as in the URDF model
-    ids = {0: 0}
-    for j in range(1, model.njoints):
-        parent, place, name = ids[model.parents[j]], model.jointPlacements[j], model.names[j]
-        if j in split:
-            first, second = split[j]
-            parent = new.addJoint(parent, _AXES[first](), place, f"{name}_{first}")
-            added = new.addJoint(parent, _AXES[second](), pin.SE3.Identity(), f"{name}_{second}")
-        elif j in replace:
-            added = new.addJoint(parent, replace[j], place, name)
-        else:
-            jm = model.joints[j]
-            q, v = slice(jm.idx_q, jm.idx_q + jm.nq), slice(jm.idx_v, jm.idx_v + jm.nv)
-            added = new.addJoint(
-                parent,
-                jm,
-                place,
-                name,
-                model.lowerEffortLimit[v],
-                model.upperEffortLimit[v],
-                model.lowerVelocityLimit[v],
-                model.upperVelocityLimit[v],
-                model.lowerPositionLimit[q],
-                model.upperPositionLimit[q],
-                model.lowerDryFrictionLimit[v],
-                model.upperDryFrictionLimit[v],
-                model.damping[v],
-            )
-        new.appendBodyToJoint(added, model.inertias[j], pin.SE3.Identity())
-        ids[j] = added
-    frames, parents = {0: 0}, []
-    for f, frame in enumerate(model.frames):
-        if f == 0:
-            continue
-        if (
-            frame.type == pin.FrameType.JOINT
-            and frame.parentJoint in split
-            and frame.name == model.names[frame.parentJoint]
-        ):
-            for axis in split[frame.parentJoint]:  # the joint's frame becomes the two revolutes' frames
-                sub = f"{frame.name}_{axis}"
-                frames[f] = new.addFrame(
-                    pin.Frame(sub, new.getJointId(sub), pin.SE3.Identity(), pin.FrameType.JOINT), False
-                )
-                parents.append((frames[f], frame.parentFrame))
-            continue
-        frames[f] = new.addFrame(
-            pin.Frame(frame.name, ids[frame.parentJoint], frame.placement, frame.type, frame.inertia), False
-        )
-        parents.append((frames[f], frame.parentFrame))
-    for f, parent in parents:  # a reduced model's frames may name a parent frame listed after them
-        new.frames[f].parentFrame = frames[parent]
-    return pin.buildReducedModel(new, [ids[j] for j in lock], pin.neutral(new)) if lock else new
+    return rebuild(model, {j + 2: pin.JointModelSpherical() for j in found}, {}, lock), triplets
 
 
 def _one_freedom(model: pin.Model, joint: str, where: str, urdf: str) -> None:

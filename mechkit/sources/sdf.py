@@ -31,7 +31,8 @@ universal joint, so their axes must be perpendicular: refused by name otherwise)
 (the child's inertia joins the parent's joint). Inertia: `<inertial>` in the link frame, SDFormat's
 defaults where absent (1 kg, unit inertia). Springs: `<dynamics>` `spring_stiffness`,
 `spring_reference`, `damping` of tree joints; a cut joint's damping is not read (no coordinate
-carries it), its stiffness is refused. Limits, friction, plugins and geometry are not read.
+carries it), its stiffness is refused. Limits, friction, plugins and geometry are not read. Drake's
+`drake:ball_constraint` and `drake:linear_bushing_rpy` are cuts, as in a URDF (`mechkit.sources.drake_elements`).
 """
 
 from __future__ import annotations
@@ -46,7 +47,7 @@ import pinocchio as pin
 from mechkit.base.exceptions import MalformedDescription
 from mechkit.core import Coupling, JointSpring, LoopClosure
 from mechkit.sources.description import Description, read_text
-from mechkit.sources.drake_elements import ball_constraints
+from mechkit.sources.drake_elements import ball_constraints, bushings
 from mechkit.sources.physical import check_body
 from mechkit.sources.pinocchio_tree import add_body, add_frame, add_joint, joint_model, tree_urdf
 from mechkit.sources.sdf_frames import MODEL, SdfFrames, boolean, number, sdf_version
@@ -156,6 +157,14 @@ class _Reader(SdfFrames):
                 at = self._in(carrier, link, self.frame(link) * pin.SE3(np.eye(3), p))
                 add_frame(model, f"{cut}_{side}", carrier[link][0], at)
             closures.append(LoopClosure(cut, "spherical", f"{cut}_a", f"{cut}_b", explicit_rows=False))
+        for bushing in bushings(self.element):  # Drake's, read as the URDF's are (sources.drake_elements)
+            kind, axis = bushing.cut()
+            for side, name in (("a", bushing.frame_a), ("b", bushing.frame_c)):
+                link = self.link_of(name, "a bushing frame", f"drake:linear_bushing_rpy {bushing.name!r}")
+                add_frame(model, f"{bushing.name}_{side}", carrier[link][0], self._in(carrier, link, self.frame(name)))
+            closures.append(
+                LoopClosure(bushing.name, kind, f"{bushing.name}_a", f"{bushing.name}_b", axis, explicit_rows=False)
+            )
         couplings = [
             self._gearbox(j, ends[j], tree, ends) for j, joint in joints.items() if joint.get("type") == "gearbox"
         ]

@@ -25,6 +25,7 @@ from mechkit.base.exceptions import MalformedDescription
 from mechkit.core import LOOP_KINDS, ROW_SETS, JointSpring, LoopClosure
 from mechkit.sources.description import Description, read_text
 from mechkit.sources.drake_elements import declare_world, read_tool_closures
+from mechkit.sources.drake_joints import placeholders, with_joints
 from mechkit.sources.onshape_closures import closing_frames
 from mechkit.sources.urdf_checks import check_inertias, check_tree
 from mechkit.sources.urdf_mimics import parse_mimics
@@ -66,7 +67,8 @@ def describe_urdf(urdf: str, source: Path | None, fmt: str, params: dict[str, st
         params: the xacro arguments it was rendered with, if any.
 
     Returns:
-        The description: the tree URDF, its loops, actuators, springs and home.
+        The description: the tree URDF (the built model instead with Drake's joint types), its loops,
+        actuators, springs and home.
 
     Raises:
         MalformedDescription: see `mechkit.sources.urdf_checks`, `mechkit.sources.urdf.parse_loops`,
@@ -74,7 +76,8 @@ def describe_urdf(urdf: str, source: Path | None, fmt: str, params: dict[str, st
     """
     where = str(source) if source is not None else "urdf"
     root = parse_xml(urdf, where)
-    links = len(root.findall("link"))
+    drake_joints = placeholders(root)  # Drake's joint types, put in the built tree (sources.drake_joints)
+    links = 0 if drake_joints else len(root.findall("link"))
     grounded = declare_world(root)  # Drake's and Gazebo's ground, free bodies, closures (sources.drake_elements)
     check_tree(root)
     check_inertias(root)
@@ -100,7 +103,7 @@ def describe_urdf(urdf: str, source: Path | None, fmt: str, params: dict[str, st
             )
     return Description(
         name,
-        urdf,
+        None if drake_joints else urdf,
         transmissions(root, joints),
         home,
         guess,
@@ -111,6 +114,7 @@ def describe_urdf(urdf: str, source: Path | None, fmt: str, params: dict[str, st
         couplings=parse_mimics(root),
         springs=springs,
         pose="<mechkit:guess>" if guess else "the joints' zero",
+        model=with_joints(build_model(urdf), drake_joints) if drake_joints else None,
     )
 
 

@@ -63,11 +63,11 @@ def test_cli_errors_are_one_line(args, needle, tmp_path):
 def test_an_unread_closure_is_refused_and_with_the_option_warned_in_one_line():
     from tests_support import FIXTURES, refused, run_mechkit
 
-    path = str(FIXTURES / "closures" / "four_bar_drake_bushing.sdf")
+    path = str(FIXTURES / "closures" / "four_bar_drake_distance.sdf")
     refused(
         run_mechkit("report", path),
-        "four_bar_drake_bushing.sdf:",
-        "<drake:linear_bushing_rpy>",
+        "four_bar_drake_distance.sdf:",
+        "<drake:distance_constraint>",
         "--ignore-unknown-closures",
     )
     out = run_mechkit("report", path, "--ignore-unknown-closures")
@@ -144,3 +144,13 @@ def test_a_rocker_limit_a_whole_turn_away_is_wrapped_not_refused(tmp_path, capsy
     assert np.linalg.norm(m.closure_residual(m.home_q)) < 1e-12
     assert main(["report", str(path)]) == 0
     assert capsys.readouterr().out.splitlines()[0].endswith("; within the joint limits")
+
+
+def test_bushings_are_rigid_by_default_and_compliant_when_asked():
+    """--bushings compliant leaves the bushing four-bar's loop open (the simulator's force element holds it)."""
+    from tests_support import FIXTURES, run_mechkit
+
+    path = str(FIXTURES / "closures" / "four_bar_drake_bushing.urdf")
+    for extra, dof in (((), 1), (("--bushings", "compliant"), 3)):
+        out = run_mechkit("report", path, *extra)
+        assert out.returncode == 0 and f"DOF numerical {dof}," in out.stdout, out.stderr
