@@ -20,7 +20,7 @@ import pinocchio as pin
 
 from mechkit.base.exceptions import InvalidParameters
 from mechkit.core import efforts, rank
-from mechkit.core.determinacy import determinacy, system
+from mechkit.core.determinacy import determinacy, determinacy_one, system
 from mechkit.core.model import ClosureData, ClosureModel
 from mechkit.core.passive_solve import idle_count
 from mechkit.core.results import BatchInverseDynamicsResult, InverseDynamicsResult
@@ -332,12 +332,14 @@ def _one_sample(
     e, Jrows, W = k.rows(world, Jw, q)
     residual = math.sqrt(e.dot(e))
     na, judged = len(cm.actuated), generic_rank is not None
-    x, regular, cond = None, None, math.nan
+    x, regular, stresses, square, cond = None, None, None, False, math.nan
     if efforts.splits(cm, k.size, distribution):
-        x, regular = efforts.passive_one(cm, cd, Jrows, b, residual)
-    elif na + k.size == cm.nv and not determinacy_test:  # else `efforts.solve`, whose singular values give cond
-        x, rho = efforts.square_one(cm, Jrows, b, judged)
-        regular = judged and rank.certified_regular(rho, rank.squared_norm(Jrows) ** 0.5, residual)
+        x, regular, stresses = efforts.passive_split(cm, cd, Jrows, b, residual)
+    elif na + k.size == cm.nv:  # square: its singular values (cond) are not needed to solve it
+        x, rho = efforts.square_one(cm, Jrows, b, judged or determinacy_test)
+        size = rank.squared_norm(Jrows)
+        regular = judged and rank.certified_regular(rho, size**0.5, residual)
+        square = rho * rho > rank.RANK_TOL**2 * (size + rank.squared_norm(cm.actuation))  # no self-stress
     if judged and regular is None and 0 < cm.unactuated.shape[1] <= k.size:
         block = Jrows[:, cm.passive_v] if cm.passive_v is not None else Jrows @ cm.unactuated  # the same numbers
         regular = rank.certified_regular(*rank.block_bounds(block), residual)
@@ -351,21 +353,32 @@ def _one_sample(
             False,
             None if regular is None else np.array([regular]),
         )
+    A = None
     if x is None:
         x, cond = efforts.solve(cm, system(cm, Jrows[None]), b[None], determinacy_test, distribution)
         x, cond = x[0], float(cond[0])
-    elif determinacy_test:
-        cond = float(efforts.singular(system(cm, Jrows[None]))[2][0])
+    elif determinacy_test:  # the condition number on first read (`InverseDynamicsResult.condition`)
+        A = np.concatenate((cm.actuation.T, Jrows.T), axis=1)
     P = cd.oMi
     origins, cut_points = P[1:, :, 3], k.points(world)
     reactions = k.joint_loads(W, x[na:], origins, cut_points)
     reactions[: P.shape[0] - 1] += tree_wrenches(P, cd.f)
     flags = effort_flags = None
     if determinacy_test:
-        flags, effort_flags = determinacy(cm, cd, cd.used[None], Jw[None], q[None], origins[None], cut_points[None])
-        flags, effort_flags = flags[0], effort_flags[0]
+        if square and cm.spatial:  # [S^T, J_full^T] square and certified regular
+            stresses = np.zeros((na + k.size, 0))
+        flags, effort_flags = determinacy_one(
+            cm,
+            cd,
+            Jw,
+            q,
+            origins,
+            cut_points,
+            stresses if cm.spatial else None,  # the solve's null space is the full rows' one
+            W if cm.spatial else None,
+        )
     return InverseDynamicsResult(
-        cm.joint_names, cm.actuated, x[:na], reactions, cm.supports, x[na:], cond, flags, effort_flags
+        cm.joint_names, cm.actuated, x[:na], reactions, cm.supports, x[na:], cond, flags, effort_flags, A
     )
 
 

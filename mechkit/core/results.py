@@ -14,6 +14,8 @@ from typing import NamedTuple
 
 import numpy as np
 
+from mechkit.core.rank import RANK_TOL
+
 
 @dataclass(frozen=True)
 class Mobility:
@@ -67,7 +69,8 @@ class InverseDynamicsResult:
         actuated: the actuators, in effort order.
         effort_values: (na,) efforts (N m or N); reaction_values: (n_joints, 6) reactions.
         multipliers: (rows,) closure-row multipliers (J^T lambda is the generalised constraint force).
-        condition: condition number of [S, J^T] (nan where it was not computed).
+        condition: condition number of [S, J^T] (nan where it was not computed; with `system`, computed
+            from it on first read).
         support: (n_joints,) True for joints to the ground.
         determinate: (n_joints, 6) or None; efforts_determinate_values: (na,) or None.
     """
@@ -83,11 +86,21 @@ class InverseDynamicsResult:
         condition: float,
         determinate: np.ndarray | None = None,
         efforts_determinate: np.ndarray | None = None,
+        system: np.ndarray | None = None,
     ):
         self.joint_names, self.actuated = joint_names, actuated
         self.effort_values, self.reaction_values, self.support = efforts, reactions, support
-        self.multipliers, self.condition = multipliers, condition
+        self.multipliers, self._condition, self._system = multipliers, condition, system
         self.determinate, self.efforts_determinate_values = determinate, efforts_determinate
+
+    @property
+    def condition(self) -> float:
+        """Condition number s_max / s_rank of [S, J^T] (nan where it was not computed)."""
+        if self._system is not None:  # by its singular values, on first read
+            s = np.linalg.svd(self._system, compute_uv=False)
+            rank = int(np.sum(s > RANK_TOL * max(float(s[0]), 1e-290))) if s.size else 0
+            self._condition, self._system = float(s[0] / s[max(rank, 1) - 1]) if s.size else float("nan"), None
+        return self._condition
 
     @cached_property
     def efforts(self) -> dict[str, float]:
