@@ -214,9 +214,10 @@ def determinacy(
     if stresses is None:
         null = self_stresses(cd, system(cm, full.jacobian(Wf, J, q)))
     else:
-        null = orthonormal(stresses)
-    loads = full.joint_loads(Wf[:, None], null[:, na:].transpose(0, 2, 1), origins[:, None], cut_points[:, None])
-    variation = np.sqrt(np.square(loads).sum(axis=1))
+        null = orthonormal(stresses) if stresses.shape[2] else stresses
+    L = full.load_map(Wf, origins, cut_points)
+    loads = L.reshape(L.shape[0], 6 * L.shape[1], L.shape[3]) @ null[:, na : na + full.cut_size]
+    variation = np.sqrt(np.einsum("nik,nik->ni", loads, loads)).reshape(L.shape[:3])
     effort_variation = np.sqrt(np.square(null[:, :na]).sum(axis=2))
     scale = np.maximum(np.maximum(variation.max(axis=(1, 2)), effort_variation.max(axis=1, initial=0.0)), 1e-300)
     tol = DETERMINACY_TOL * scale

@@ -53,11 +53,33 @@ def passive_solve(
         x (N, na + rows), None where some sample's [S^T, J^T] is not certified of full row rank; and
         (N,) whether each passive block is certified resolvably regular (`passive_one`).
     """
-    out = [passive_split(cm, cd, Jrows[i], b[i], float(residuals[i]))[:2] for i in range(len(Jrows))]
-    regular = np.array([r for _, r in out], dtype=bool)
-    if any(x is None for x, _ in out):
-        return None, regular
-    return np.array([x for x, _ in out]).reshape(len(out), len(cm.actuated) + Jrows.shape[1]), regular
+    return passive_split_batch(cm, cd, Jrows, b, residuals)[:2]
+
+
+def passive_split_batch(
+    cm: ClosureModel, cd: ClosureData, Jrows: np.ndarray, b: np.ndarray, residuals: np.ndarray
+) -> tuple[np.ndarray | None, np.ndarray, np.ndarray | None]:
+    """`passive_solve`, and the null spaces of [S^T, J^T] (`passive_split`).
+
+    Args:
+        cm: the closure model.
+        cd: the closure data (caches the passive block's independent rows).
+        Jrows: (N, rows, nv) closure Jacobians.
+        b: (N, nv) generalised forces the motion needs.
+        residuals: (N,) closure residual norms (for `rank.certified_regular`).
+
+    Returns:
+        x (N, na + rows) and (N, na + rows, rows - k) bases of the null spaces, both None where some
+        sample's [S^T, J^T] is not certified of full row rank; and (N,) whether each passive block is
+        certified resolvably regular.
+    """
+    out = [passive_split(cm, cd, Jrows[i], b[i], float(residuals[i])) for i in range(len(Jrows))]
+    regular = np.array([r for _, r, _ in out], dtype=bool)
+    if any(x is None for x, _, _ in out):
+        return None, regular, None
+    cols = len(cm.actuated) + Jrows.shape[1]
+    null = np.array([z for _, _, z in out]).reshape(len(out), cols, -1 if out else 0)
+    return np.array([x for x, _, _ in out]).reshape(len(out), cols), regular, null
 
 
 def passive_one(
@@ -280,14 +302,17 @@ def full_rank_solution(A: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, np.nda
         x (N, cols); the norm (N,) of the part of b outside the range of A; and (N,) 1 / |R^-1|_F <=
         sigma_min(A) (0 where R is singular).
     """
-    if A.shape[1] > A.shape[2]:  # A = Q R: x = R^-1 Q^T b
-        Q, R = np.linalg.qr(A)
-        c = np.einsum("nij,ni->nj", Q, b)
-        x = np.linalg.solve(R, c[..., None])[..., 0]
-        outside = np.linalg.norm(b - np.einsum("nij,nj->ni", Q, c), axis=1)
-    else:
-        Q, R = np.linalg.qr(A.transpose(0, 2, 1))  # A^T = Q R: x = Q R^-T b, every b reachable
-        x, outside = (Q @ np.linalg.solve(R.transpose(0, 2, 1), b[..., None]))[..., 0], np.zeros(len(A))
+    tall = A.shape[1] > A.shape[2]
+    Q, R = np.linalg.qr(A if tall else A.transpose(0, 2, 1))  # A = Q R: x = R^-1 Q^T b; A^T = Q R: x = Q R^-T b
+    try:
+        if tall:
+            c = np.einsum("nij,ni->nj", Q, b)
+            x = np.linalg.solve(R, c[..., None])[..., 0]
+            outside = np.linalg.norm(b - np.einsum("nij,nj->ni", Q, c), axis=1)
+        else:  # every b reachable
+            x, outside = (Q @ np.linalg.solve(R.transpose(0, 2, 1), b[..., None]))[..., 0], np.zeros(len(A))
+    except np.linalg.LinAlgError:  # an exactly singular R: no solution here, and no bound
+        return np.full((len(A), A.shape[2]), np.nan), np.full(len(A), np.inf), np.zeros(len(A))
     return x, outside, rank.regularity_bounds(R)[0]
 
 

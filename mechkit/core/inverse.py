@@ -221,10 +221,10 @@ def inverse_dynamics_batch(
         world = k.world(G)
         e, Jrows, W = k.rows(world, J, Q)
         residuals = np.linalg.norm(e, axis=-1)
-        x, regular = (
-            efforts.passive_solve(cm, cd, Jrows, b, residuals)
+        x, regular, stresses = (
+            efforts.passive_split_batch(cm, cd, Jrows, b, residuals)
             if efforts.splits(cm, k.size, distribution)
-            else (None, None)
+            else (None, None, None)
         )
         spins = {} if generic_rank is None else _check_regular(cm, Jrows, J, residuals, generic_rank, idle, regular)
         if spins:
@@ -232,18 +232,21 @@ def inverse_dynamics_batch(
             P, J, b, tree = inverse_pass(cm, cd, Q, V, A, [None] * n if fexts is None else fexts)
             if passive is not None:
                 b = b - passive
-        if x is None:
-            x, cond = efforts.solve(cm, system(cm, Jrows), b, determinacy_test, distribution)
-        else:
-            cond = efforts.singular(system(cm, Jrows))[2] if determinacy_test else np.full(n, np.nan)
+        statics = system(cm, Jrows)
+        if x is None:  # the condition numbers on first read (`BatchInverseDynamicsResult.condition`)
+            x = efforts.solve(cm, statics, b, False, distribution)[0]
         origins, cut_points = P[:, 1:, :, 3], k.points(world)
         reactions = k.joint_loads(W, x[:, na:], origins, cut_points)
         reactions[:, : tree.shape[1]] += tree
         flags = effort_flags = None
         if determinacy_test:
-            flags, effort_flags = determinacy(cm, cd, G, J, Q, origins, cut_points)
+            same = cm.spatial and stresses is not None  # the solve's null spaces are the full rows' ones
+            flags, effort_flags = determinacy(
+                cm, cd, G, J, Q, origins, cut_points, stresses if same else None, W if cm.spatial else None
+            )
+    cond, statics = (None, statics) if determinacy_test else (np.full(n, np.nan), None)
     return BatchInverseDynamicsResult(
-        cm.joint_names, cm.actuated, x[:, :na], reactions, cm.supports, x[:, na:], cond, flags, effort_flags
+        cm.joint_names, cm.actuated, x[:, :na], reactions, cm.supports, x[:, na:], cond, flags, effort_flags, statics
     )
 
 
@@ -367,15 +370,9 @@ def _one_sample(
     if determinacy_test:
         if square and cm.spatial:  # [S^T, J_full^T] square and certified regular
             stresses = np.zeros((na + k.size, 0))
+        same = cm.spatial  # the solve's null space is the full rows' one
         flags, effort_flags = determinacy_one(
-            cm,
-            cd,
-            Jw,
-            q,
-            origins,
-            cut_points,
-            stresses if cm.spatial else None,  # the solve's null space is the full rows' one
-            W if cm.spatial else None,
+            cm, cd, Jw, q, origins, cut_points, stresses if same else None, W if same else None
         )
     return InverseDynamicsResult(
         cm.joint_names, cm.actuated, x[:na], reactions, cm.supports, x[na:], cond, flags, effort_flags, A

@@ -14,7 +14,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from mechkit.core.rank import RANK_TOL
+from mechkit.core.rank import ranks, singular_values
 
 
 @dataclass(frozen=True)
@@ -61,6 +61,21 @@ class JointReaction:
     support: bool
 
 
+def condition_numbers(A: np.ndarray) -> np.ndarray:
+    """Condition numbers s_max / s_rank of N matrices, rank by `mechkit.core.rank.ranks`.
+
+    Args:
+        A: (N, m, n) matrices.
+
+    Returns:
+        (N,) the condition numbers (nan for an empty matrix).
+    """
+    if not A.shape[1] or not A.shape[2]:
+        return np.full(len(A), np.nan)
+    s = singular_values(A)
+    return s[:, 0] / s[np.arange(len(s)), np.maximum(ranks(s), 1) - 1]
+
+
 class InverseDynamicsResult:
     """Constrained inverse dynamics of one sample; the dicts are built on first use.
 
@@ -97,9 +112,7 @@ class InverseDynamicsResult:
     def condition(self) -> float:
         """Condition number s_max / s_rank of [S, J^T] (nan where it was not computed)."""
         if self._system is not None:  # by its singular values, on first read
-            s = np.linalg.svd(self._system, compute_uv=False)
-            rank = int(np.sum(s > RANK_TOL * max(float(s[0]), 1e-290))) if s.size else 0
-            self._condition, self._system = float(s[0] / s[max(rank, 1) - 1]) if s.size else float("nan"), None
+            self._condition, self._system = float(condition_numbers(self._system[None])[0]), None
         return self._condition
 
     @cached_property
@@ -124,7 +137,6 @@ class InverseDynamicsResult:
         return dict(zip(self.actuated, self.efforts_determinate_values.tolist()))
 
 
-@dataclass(frozen=True)
 class BatchInverseDynamicsResult:
     """Constrained inverse dynamics of N samples.
 
@@ -135,20 +147,36 @@ class BatchInverseDynamicsResult:
         reactions: (N, n_joints, 6) reactions (see the module docstring).
         support: (n_joints,) True for joints to the ground.
         multipliers: (N, rows) closure-row multipliers.
-        condition: (N,) condition number of [S, J^T] (nan where it was not computed).
+        condition: (N,) condition number of [S, J^T] (nan where it was not computed; with `system`,
+            computed from it on first read).
         determinate: (N, n_joints, 6) components fixed by statics, or None (test not run).
         efforts_determinate: (N, na) efforts fixed by statics, or None (test not run).
     """
 
-    joint_names: tuple[str, ...]
-    actuated: tuple[str, ...]
-    efforts: np.ndarray
-    reactions: np.ndarray
-    support: np.ndarray
-    multipliers: np.ndarray
-    condition: np.ndarray
-    determinate: np.ndarray | None = None
-    efforts_determinate: np.ndarray | None = None
+    def __init__(
+        self,
+        joint_names: tuple[str, ...],
+        actuated: tuple[str, ...],
+        efforts: np.ndarray,
+        reactions: np.ndarray,
+        support: np.ndarray,
+        multipliers: np.ndarray,
+        condition: np.ndarray | None,
+        determinate: np.ndarray | None = None,
+        efforts_determinate: np.ndarray | None = None,
+        system: np.ndarray | None = None,
+    ):
+        self.joint_names, self.actuated = joint_names, actuated
+        self.efforts, self.reactions, self.support, self.multipliers = efforts, reactions, support, multipliers
+        self._condition, self._system = condition, system
+        self.determinate, self.efforts_determinate = determinate, efforts_determinate
+
+    @property
+    def condition(self) -> np.ndarray:
+        """(N,) condition numbers s_max / s_rank of [S, J^T] (nan where they were not computed)."""
+        if self._system is not None:  # by their singular values, on first read
+            self._condition, self._system = condition_numbers(self._system), None
+        return self._condition
 
     def __len__(self) -> int:
         return self.efforts.shape[0]
