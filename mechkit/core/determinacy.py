@@ -255,7 +255,7 @@ def determinacy_one(
     """
     na, full = len(cm.actuated), cm.full_kernel
     if stresses is None:
-        _, Jf, Wf = full.rows(full.stacked_world(cd.stacked_placements()), J, q)
+        _, Jf, Wf = full.rows(full.world(cd.used), J, q)
         A = np.concatenate((cm.actuation.T, Jf.T), axis=1)
         columns = cd.stress_columns
         stresses = None if columns is None else _lu_one(A, *columns)
@@ -287,6 +287,9 @@ def _lu_one(A: np.ndarray, columns: np.ndarray, free: np.ndarray, diagonal: np.n
     Z = np.zeros((cols, cols - nv))
     if cols == nv:
         return Z
-    Z[columns] = -inverse.dot(A[:, free])
+    X = inverse.dot(A[:, free])
     Z[free, diagonal] = 1.0
+    if not X.any():  # the other columns are zero (a planar mechanism's rows out of its plane): Z is orthonormal
+        return Z
+    Z[columns] = -X
     return orthonormal(Z[None])[0]
