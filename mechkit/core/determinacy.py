@@ -92,7 +92,7 @@ def self_stresses(cd: ClosureData, A: np.ndarray) -> np.ndarray:
             columns = np.sort(scipy.linalg.qr(A0, mode="r", pivoting=True)[1][:r])
             cd.stress_columns = columns, np.delete(np.arange(cols), columns), np.arange(cols - nv)
     r0 = cd.stress_rows.size
-    if cd.stress_columns is not None and nv < cols:
+    if cd.stress_columns is not None:
         null, ok = lu_null_spaces(A, cd.stress_columns[0])
     elif n == 1 and nv * cols <= SMALL_SYSTEM or r0 == 0 or r0 == cols:
         return svd_null_spaces(A)
@@ -116,7 +116,7 @@ def lu_null_spaces(A: np.ndarray, columns: np.ndarray) -> tuple[np.ndarray, np.n
     (full row rank, so the null space has exactly cols - nv dimensions: Z spans all of it).
 
     Args:
-        A: (N, nv, cols) matrices, cols > nv.
+        A: (N, nv, cols) matrices, cols >= nv.
         columns: (nv,) the columns of the square block.
 
     Returns:
@@ -141,7 +141,7 @@ def lu_null_spaces(A: np.ndarray, columns: np.ndarray) -> tuple[np.ndarray, np.n
     Z = np.zeros((n, cols, k))
     Z[:, columns] = -(np.where(ok[:, None, None], inverse, 0.0) @ A[:, :, free])
     Z[:, free, np.arange(k)] = 1.0
-    return orthonormal(Z), ok
+    return (orthonormal(Z) if k else Z), ok
 
 
 def orthonormal(Z: np.ndarray) -> np.ndarray:
@@ -215,9 +215,13 @@ def determinacy(
         null = self_stresses(cd, system(cm, full.jacobian(Wf, J, q)))
     else:
         null = orthonormal(stresses) if stresses.shape[2] else stresses
-    L = full.load_map(Wf, origins, cut_points)
-    loads = L.reshape(L.shape[0], 6 * L.shape[1], L.shape[3]) @ null[:, na : na + full.cut_size]
-    variation = np.sqrt(np.einsum("nik,nik->ni", loads, loads)).reshape(L.shape[:3])
+    if 6 * null.shape[2] <= full.cut_size:  # few self-stresses: their loads; else the map of every row's
+        loads = full.joint_loads(Wf[:, None], null[:, na:].transpose(0, 2, 1), origins[:, None], cut_points[:, None])
+        variation = np.sqrt(np.square(loads).sum(axis=1))
+    else:
+        L = full.load_map(Wf, origins, cut_points)
+        loads = L.reshape(L.shape[0], 6 * L.shape[1], L.shape[3]) @ null[:, na : na + full.cut_size]
+        variation = np.sqrt(np.einsum("nik,nik->ni", loads, loads)).reshape(L.shape[:3])
     effort_variation = np.sqrt(np.square(null[:, :na]).sum(axis=2))
     scale = np.maximum(np.maximum(variation.max(axis=(1, 2)), effort_variation.max(axis=1, initial=0.0)), 1e-300)
     tol = DETERMINACY_TOL * scale

@@ -342,7 +342,7 @@ def _one_sample(
         x, rho = efforts.square_one(cm, Jrows, b, judged or determinacy_test)
         size = rank.squared_norm(Jrows)
         regular = judged and rank.certified_regular(rho, size**0.5, residual)
-        square = rho * rho > rank.RANK_TOL**2 * (size + rank.squared_norm(cm.actuation))  # no self-stress
+        square = determinacy_test and rho * rho > rank.RANK_TOL**2 * (size + rank.squared_norm(cm.actuation))
     if judged and regular is None and 0 < cm.unactuated.shape[1] <= k.size:
         block = Jrows[:, cm.passive_v] if cm.passive_v is not None else Jrows @ cm.unactuated  # the same numbers
         regular = rank.certified_regular(*rank.block_bounds(block), residual)
@@ -368,7 +368,7 @@ def _one_sample(
     reactions[: P.shape[0] - 1] += tree_wrenches(P, cd.f)
     flags = effort_flags = None
     if determinacy_test:
-        if square and cm.spatial:  # [S^T, J_full^T] square and certified regular
+        if square and cm.spatial:  # [S^T, J_full^T] square and certified regular: no self-stress
             stresses = np.zeros((na + k.size, 0))
         same = cm.spatial  # the solve's null space is the full rows' one
         flags, effort_flags = determinacy_one(
