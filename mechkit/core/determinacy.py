@@ -139,9 +139,12 @@ def lu_null_spaces(A: np.ndarray, columns: np.ndarray) -> tuple[np.ndarray, np.n
     with np.errstate(over="ignore", invalid="ignore"):
         ok = np.einsum("nij,nij->n", inverse, inverse) * np.einsum("nij,nij->n", A, A) < RANK_TOL**-2
     Z = np.zeros((n, cols, k))
-    Z[:, columns] = -(np.where(ok[:, None, None], inverse, 0.0) @ A[:, :, free])
+    X = np.where(ok[:, None, None], inverse, 0.0) @ A[:, :, free]
     Z[:, free, np.arange(k)] = 1.0
-    return (orthonormal(Z) if k else Z), ok
+    if not X.any():  # zero columns (a planar mechanism's rows out of its plane): Z is orthonormal
+        return Z, ok
+    Z[:, columns] = -X
+    return orthonormal(Z), ok
 
 
 def orthonormal(Z: np.ndarray) -> np.ndarray:
