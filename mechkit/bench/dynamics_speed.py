@@ -336,7 +336,7 @@ def phases(
         out.append(
             Phase(
                 call,
-                "the rest of the core (by difference): solve, certificates, results, glue",
+                "the rest of the core (by difference): solve, certificates, results, glue (determinacy on: the test)",
                 rest * 1e6,
                 rest / total,
             )
