@@ -239,9 +239,8 @@ def phases(
     calls: dict[str, tuple[tuple[str, Callable], Callable | None, list[tuple[str, Callable]]]] = {}
 
     def core_id(det: bool) -> Callable:
-        return lambda _: core.inverse_dynamics(
-            cm, cd, q, v, a, determinacy_test=det, generic_rank=mech.independent_rows
-        )
+        idle, rank = bool(mech.idle), mech.independent_rows  # the arguments Mechanism.inverse_dynamics passes
+        return lambda _: core.inverse_dynamics(cm, cd, q, v, a, determinacy_test=det, generic_rank=rank, idle=idle)
 
     if "one sample of inverse dynamics / raw" in missed:
         lam = mech.inverse_dynamics(q, v, a, determinacy=False).multipliers
@@ -333,14 +332,8 @@ def phases(
         ]
         out += [Phase(call, name, x * 1e6, x / total) for name, x in t.items() if name not in ("whole", "core")]
         rest = max(core_t - named, 0.0)  # by difference: 0 where the steps' noise exceeds it
-        out.append(
-            Phase(
-                call,
-                "the rest of the core (by difference): solve, certificates, results, glue (determinacy on: the test)",
-                rest * 1e6,
-                rest / total,
-            )
-        )
+        what = "the determinacy test" if call == ONE_DET else "solve, certificates, results, glue"
+        out.append(Phase(call, f"the rest of the core (by difference): {what}", rest * 1e6, rest / total))
     return out
 
 
