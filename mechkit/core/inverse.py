@@ -232,7 +232,7 @@ def inverse_dynamics_batch(
             P, J, b, tree = inverse_pass(cm, cd, Q, V, A, [None] * n if fexts is None else fexts)
             if passive is not None:
                 b = b - passive
-        statics = system(cm, Jrows)
+        statics = system(cm, Jrows) if x is None or determinacy_test else None
         if x is None:  # the condition numbers on first read (`BatchInverseDynamicsResult.condition`)
             x = efforts.solve(cm, statics, b, False, distribution)[0]
         origins, cut_points = P[:, 1:, :, 3], k.points(world)
