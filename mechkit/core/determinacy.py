@@ -14,7 +14,7 @@ import scipy.linalg
 import scipy.linalg.lapack
 
 from mechkit.core.model import ClosureData, ClosureModel
-from mechkit.core.rank import RANK_TOL, ranks
+from mechkit.core.rank import RANK_TOL, ranks, squared_norm
 
 #: Relative threshold under which a reaction component's null-space variation counts as zero.
 DETERMINACY_TOL = 1e-8
@@ -63,17 +63,19 @@ def self_stresses(cd: ClosureData, A: np.ndarray) -> np.ndarray:
     """Orthonormal bases of the null spaces of A = [S^T, J_full^T]: the space `svd_null_spaces` gives,
     mostly without an SVD.
 
-    Rows R0 of A, independent at the first sample seen (cached on the data), give by one QR,
-    A[R0]^T = Q R, the null space Q[:, r0:] of A[R0]. It is A's null space exactly when a sample
-    passes two bounds, which also make the SVD's rank decision r0: sigma_r0(A) >= sigma_min(R) >=
+    Where A has full row rank at the first sample seen (the common case: the actuators and the closures
+    hold every coordinate), nv columns independent there (cached on the data) give every sample's null
+    space by one LU of their square block (`lu_null_spaces`). Elsewhere rows R0 of A, independent at the
+    first sample, give by one QR, A[R0]^T = Q R, the null space Q[:, r0:] of A[R0]. It is A's null space exactly when a
+    sample passes two bounds, which also make the SVD's rank decision r0: sigma_r0(A) >= sigma_min(R) >=
     1 / |R^-1|_F > RANK_TOL |A|_F >= RANK_TOL sigma_1(A) (rank at least r0) and, N = Q[:, r0:] being
     orthonormal, sigma_(r0+1)(A) <= |A N|_F <= RANK_TOL |A|_F / sqrt(nv) <= RANK_TOL sigma_1(A) (at
-    most r0). A sample that fails either (a special configuration) gets the SVD, and so does a single
-    small sample (`SMALL_SYSTEM`). Either basis spans the same space, and the determinacy depends only
-    on that space.
+    most r0). A sample that fails (a special configuration: the rank changed) gets the SVD, and so does a
+    single small sample without the LU path (`SMALL_SYSTEM`). Every basis spans the same space, and the
+    determinacy depends only on that space.
 
     Args:
-        cd: the closure data (caches the independent rows R0 in `stress_rows`).
+        cd: the closure data (caches the independent rows R0 in `stress_rows`, the columns in `stress_columns`).
         A: (N, nv, cols) the matrices [S^T, J_full^T].
 
     Returns:
@@ -82,16 +84,90 @@ def self_stresses(cd: ClosureData, A: np.ndarray) -> np.ndarray:
     n, nv, cols = A.shape
     if n == 0:
         return np.zeros((0, cols, 0))
-    if n == 1 and nv * cols <= SMALL_SYSTEM:
-        return svd_null_spaces(A)
     if cd.stress_rows is None:
         A0 = A[0]
         r = int(ranks(np.linalg.svd(A0, compute_uv=False)[None])[0])
         cd.stress_rows = np.sort(scipy.linalg.qr(A0.T, mode="r", pivoting=True)[1][:r])
+        if r == nv:
+            columns = np.sort(scipy.linalg.qr(A0, mode="r", pivoting=True)[1][:r])
+            cd.stress_columns = columns, np.delete(np.arange(cols), columns), np.arange(cols - nv)
     r0 = cd.stress_rows.size
-    if r0 == 0 or r0 == cols:
+    if cd.stress_columns is not None:
+        null, ok = lu_null_spaces(A, cd.stress_columns[0])
+    elif n == 1 and nv * cols <= SMALL_SYSTEM or r0 == 0 or r0 == cols:
         return svd_null_spaces(A)
-    Q, R = np.linalg.qr(A[:, cd.stress_rows].transpose(0, 2, 1), mode="complete")
+    else:
+        null, ok = _qr_null_spaces(A, cd.stress_rows)
+    if ok.all():
+        return null
+    fallback = svd_null_spaces(A[~ok])
+    out = np.zeros((n, cols, max(null.shape[2], fallback.shape[2])))
+    out[ok, :, : null.shape[2]] = null[ok]
+    out[~ok, :, : fallback.shape[2]] = fallback
+    return out
+
+
+def lu_null_spaces(A: np.ndarray, columns: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Null-space bases of N matrices of full row rank from one LU of a square block of each.
+
+    With B = A[:, columns] square (nv columns) and F the other columns, Z = [-B^-1 A_F; I] (columns, then
+    F) spans the null space of A where B is regular; its QR makes it orthonormal. The bound sigma_nv(A) >=
+    sigma_min(B) >= 1 / |B^-1|_F > RANK_TOL |A|_F >= RANK_TOL sigma_1(A) certifies the SVD's rank decision
+    (full row rank, so the null space has exactly cols - nv dimensions: Z spans all of it).
+
+    Args:
+        A: (N, nv, cols) matrices, cols >= nv.
+        columns: (nv,) the columns of the square block.
+
+    Returns:
+        (N, cols, cols - nv) orthonormal bases and (N,) whether each sample is certified (a basis of a
+        sample that is not is meaningless).
+    """
+    n, nv, cols = A.shape
+    free = np.delete(np.arange(cols), columns)
+    k = cols - nv
+    if n == 1:
+        lapack = scipy.linalg.lapack
+        lu, piv, info = lapack.dgetrf(A[0][:, columns])
+        inverse = lapack.dgetri(lu, piv)[0] if info == 0 else np.full((nv, nv), np.nan)
+        inverse = inverse[None]
+    else:
+        try:
+            inverse = np.linalg.inv(A[:, :, columns])
+        except np.linalg.LinAlgError:
+            inverse = np.full((n, nv, nv), np.nan)
+    with np.errstate(over="ignore", invalid="ignore"):
+        ok = np.einsum("nij,nij->n", inverse, inverse) * np.einsum("nij,nij->n", A, A) < RANK_TOL**-2
+    Z = np.zeros((n, cols, k))
+    X = np.where(ok[:, None, None], inverse, 0.0) @ A[:, :, free]
+    Z[:, free, np.arange(k)] = 1.0
+    if not X.any():  # zero columns (a planar mechanism's rows out of its plane): Z is orthonormal
+        return Z, ok
+    Z[:, columns] = -X
+    return orthonormal(Z), ok
+
+
+def orthonormal(Z: np.ndarray) -> np.ndarray:
+    """Orthonormal bases of the spaces N matrices' columns span (each of full column rank).
+
+    Args:
+        Z: (N, cols, k) matrices, k <= cols, each of rank k.
+
+    Returns:
+        (N, cols, k) the Q of their QR (one sample through LAPACK directly).
+    """
+    if len(Z) == 1 and Z.shape[2]:
+        lapack = scipy.linalg.lapack
+        qr, tau, _, _ = lapack.dgeqrf(Z[0])
+        return lapack.dorgqr(qr, tau)[0][None]
+    return np.linalg.qr(Z)[0]
+
+
+def _qr_null_spaces(A: np.ndarray, rows: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The QR path of `self_stresses`: (N, cols, cols - r0) orthonormal bases and (N,) certified."""
+    n, nv, _ = A.shape
+    r0 = rows.size
+    Q, R = np.linalg.qr(A[:, rows].transpose(0, 2, 1), mode="complete")
     null = Q[:, :, r0:]
     size = np.sqrt(np.einsum("nij,nij->n", A, A))
     try:
@@ -101,13 +177,7 @@ def self_stresses(cd: ClosureData, A: np.ndarray) -> np.ndarray:
         )
     except np.linalg.LinAlgError:
         ok = np.zeros(n, dtype=bool)
-    if ok.all():
-        return null
-    fallback = svd_null_spaces(A[~ok])
-    out = np.zeros((n, cols, max(cols - r0, fallback.shape[2])))
-    out[ok, :, : cols - r0] = null[ok]
-    out[~ok, :, : fallback.shape[2]] = fallback
-    return out
+    return null, ok
 
 
 def determinacy(
@@ -118,6 +188,8 @@ def determinacy(
     q: np.ndarray,
     origins: np.ndarray,
     cut_points: np.ndarray,
+    stresses: np.ndarray | None = None,
+    W: np.ndarray | None = None,
 ) -> tuple[np.ndarray, np.ndarray]:
     """Which reaction components and efforts static equilibrium fixes.
 
@@ -129,6 +201,10 @@ def determinacy(
         q: (N, nq) configurations (coupling rows).
         origins: (N, njoints - 1, 3) tree joint origins, in the world frame (m).
         cut_points: (N, ncuts, 3) the cuts' points p_b, in the world frame (m).
+        stresses: where the solve already has them (`ClosureModel.spatial`: the scene's rows are the
+            full rows), (N, na + rows, K) bases of the null spaces of [S^T, J_full^T], each of full column
+            rank and spanning the whole null space (certified by the solve); None: computed here.
+        W: (N, cut_size, 6) the full rows' wrenches where the caller has them, else None.
 
     Returns:
         (N, njoints - 1 + ncuts, 6) True where a reaction component is determinate (tree joints in
@@ -137,11 +213,90 @@ def determinacy(
     """
     na = len(cm.actuated)
     full = cm.full_kernel
-    Wf = full.row_wrenches(G)
-    null = self_stresses(cd, system(cm, full.jacobian(Wf, J, q)))
-    loads = full.joint_loads(Wf[:, None], null[:, na:].transpose(0, 2, 1), origins[:, None], cut_points[:, None])
-    variation = np.sqrt(np.square(loads).sum(axis=1))
+    Wf = full.row_wrenches(G) if W is None else W
+    if stresses is None:
+        null = self_stresses(cd, system(cm, full.jacobian(Wf, J, q)))
+    else:
+        null = orthonormal(stresses) if stresses.shape[2] else stresses
+    if 6 * null.shape[2] <= full.cut_size:  # few self-stresses: their loads; else the map of every row's
+        loads = full.joint_loads(Wf[:, None], null[:, na:].transpose(0, 2, 1), origins[:, None], cut_points[:, None])
+        variation = np.sqrt(np.square(loads).sum(axis=1))
+    else:
+        L = full.load_map(Wf, origins, cut_points)
+        loads = L.reshape(L.shape[0], 6 * L.shape[1], L.shape[3]) @ null[:, na : na + full.cut_size]
+        variation = np.sqrt(np.einsum("nik,nik->ni", loads, loads)).reshape(L.shape[:3])
     effort_variation = np.sqrt(np.square(null[:, :na]).sum(axis=2))
     scale = np.maximum(np.maximum(variation.max(axis=(1, 2)), effort_variation.max(axis=1, initial=0.0)), 1e-300)
     tol = DETERMINACY_TOL * scale
     return variation <= tol[:, None, None], effort_variation <= tol[:, None]
+
+
+def determinacy_one(
+    cm: ClosureModel,
+    cd: ClosureData,
+    J: np.ndarray,
+    q: np.ndarray,
+    origins: np.ndarray,
+    cut_points: np.ndarray,
+    stresses: np.ndarray | None = None,
+    W: np.ndarray | None = None,
+) -> tuple[np.ndarray, np.ndarray]:
+    """One sample of `determinacy` (the same flags), with the joints' placements `cd.used` (filled).
+
+    Where the cached columns of `self_stresses` apply, their LU gives the null space; a sample they do
+    not certify (the rank changed) gets `self_stresses`, its SVD included.
+
+    Args:
+        cm: the closure model.
+        cd: the closure data (its placements `used`, filled; caches as `self_stresses`).
+        J: (6, nv) joint Jacobians (`data.J`, WORLD frame).
+        q: (nq,) configuration (coupling rows).
+        origins: (njoints - 1, 3) tree joint origins, world (m).
+        cut_points: (ncuts, 3) the cuts' points p_b, world (m).
+        stresses: (na + rows, K) a basis of the null space of [S^T, J_full^T] the solve certified, or None
+            (see `determinacy`).
+        W: (cut_size, 6) the full rows' wrenches where the caller has them, else None.
+
+    Returns:
+        (njoints - 1 + ncuts, 6) and (na,) the flags of `determinacy`.
+    """
+    na, full = len(cm.actuated), cm.full_kernel
+    if stresses is None:
+        _, Jf, Wf = full.rows(full.world(cd.used), J, q)
+        A = np.concatenate((cm.actuation.T, Jf.T), axis=1)
+        columns = cd.stress_columns
+        stresses = None if columns is None else _lu_one(A, *columns)
+        null = self_stresses(cd, A[None])[0] if stresses is None else stresses
+    else:
+        Wf = full.row_wrenches(cd.used) if W is None else W
+        null = orthonormal(stresses[None])[0] if stresses.shape[1] else stresses
+    if not null.shape[1]:  # no self-stress: statics fixes everything
+        return np.ones((origins.shape[0] + cut_points.shape[0], 6), dtype=bool), np.ones(na, dtype=bool)
+    loads = full.joint_loads(Wf, null[na:].T, origins, cut_points)
+    variation = np.sqrt(np.einsum("kjc,kjc->jc", loads, loads))
+    effort_variation = np.sqrt(np.einsum("ak,ak->a", null[:na], null[:na]))
+    tol = DETERMINACY_TOL * max(float(variation.max()), float(effort_variation.max(initial=0.0)), 1e-300)
+    return variation <= tol, effort_variation <= tol
+
+
+def _lu_one(A: np.ndarray, columns: np.ndarray, free: np.ndarray, diagonal: np.ndarray) -> np.ndarray | None:
+    """One sample of `lu_null_spaces` on 2-d arrays (`stress_columns`: the square block's columns, the
+    others, their count's range): (cols, cols - nv) an orthonormal basis, None where the bound does not
+    certify it."""
+    lapack = scipy.linalg.lapack
+    nv, cols = A.shape
+    lu, piv, info = lapack.dgetrf(A[:, columns])
+    if info:
+        return None
+    inverse = lapack.dgetri(lu, piv)[0]
+    if not squared_norm(inverse) * squared_norm(A) < RANK_TOL**-2:
+        return None
+    Z = np.zeros((cols, cols - nv))
+    if cols == nv:
+        return Z
+    X = inverse.dot(A[:, free])
+    Z[free, diagonal] = 1.0
+    if not X.any():  # the other columns are zero (a planar mechanism's rows out of its plane): Z is orthonormal
+        return Z
+    Z[columns] = -X
+    return orthonormal(Z[None])[0]

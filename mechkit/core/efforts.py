@@ -53,27 +53,39 @@ def passive_solve(
         x (N, na + rows), None where some sample's [S^T, J^T] is not certified of full row rank; and
         (N,) whether each passive block is certified resolvably regular (`passive_one`).
     """
-    out = [passive_one(cm, cd, Jrows[i], b[i], float(residuals[i])) for i in range(len(Jrows))]
-    regular = np.array([r for _, r in out], dtype=bool)
-    if any(x is None for x, _ in out):
-        return None, regular
-    return np.array([x for x, _ in out]).reshape(len(out), len(cm.actuated) + Jrows.shape[1]), regular
+    return passive_split_batch(cm, cd, Jrows, b, residuals)[:2]
+
+
+def passive_split_batch(
+    cm: ClosureModel, cd: ClosureData, Jrows: np.ndarray, b: np.ndarray, residuals: np.ndarray
+) -> tuple[np.ndarray | None, np.ndarray, np.ndarray | None]:
+    """`passive_solve`, and the null spaces of [S^T, J^T] (`passive_split`).
+
+    Args:
+        cm: the closure model.
+        cd: the closure data (caches the passive block's independent rows).
+        Jrows: (N, rows, nv) closure Jacobians.
+        b: (N, nv) generalised forces the motion needs.
+        residuals: (N,) closure residual norms (for `rank.certified_regular`).
+
+    Returns:
+        x (N, na + rows) and (N, na + rows, rows - k) bases of the null spaces, both None where some
+        sample's [S^T, J^T] is not certified of full row rank; and (N,) whether each passive block is
+        certified resolvably regular.
+    """
+    out = [passive_split(cm, cd, Jrows[i], b[i], float(residuals[i])) for i in range(len(Jrows))]
+    regular = np.array([r for _, r, _ in out], dtype=bool)
+    if any(x is None for x, _, _ in out):
+        return None, regular, None
+    cols = len(cm.actuated) + Jrows.shape[1]
+    null = np.array([z for _, _, z in out]).reshape(len(out), cols, -1 if out else 0)
+    return np.array([x for x, _, _ in out]).reshape(len(out), cols), regular, null
 
 
 def passive_one(
     cm: ClosureModel, cd: ClosureData, J: np.ndarray, b: np.ndarray, residual: float
 ) -> tuple[np.ndarray | None, bool]:
-    """One sample of `passive_solve`.
-
-    With every actuator one joint's motor, [S^T, J^T] x = b splits into B^T lambda = b_p and u = b_a -
-    J_a^T lambda, B = J[:, passive] (rows > columns). Rows s of B forming a regular square block B_s
-    (independent at the first sample, kept on the data) give lambda = lambda_0 + N t: lambda_0 = B_s^-T b_p
-    on s, N = [-B_s^-T B_x^T; I] on (s, the others x), both by the LU's solves (backward stable; the
-    explicit inverse serves the bounds only). |u|^2 + |lambda|^2 is least at (K^T K + N^T N) t =
-    K^T (b_a - J_a^T lambda_0) - N^T lambda_0, K = J_a^T N: the minimum-norm solution. The inverse also
-    bounds sigma_min(B) >= sigma_min(B_s) >= 1 / |B_s^-1|_F, and [S^T, J^T] has the right inverse
-    [[I, -J_a^T Y], [0, Y]], Y = B_s^-T on s: sigma_min >= (na + (1 + |J_a|_F^2) |B_s^-1|_F^2)^(-1/2)
-    against sigma_max <= (na + |J|_F^2)^(1/2), whose ratio above `rank.RANK_TOL` certifies full row rank.
+    """One sample of `passive_solve` (`passive_split` without the null space).
 
     Args:
         cm: the closure model.
@@ -84,7 +96,39 @@ def passive_one(
 
     Returns:
         x (na + rows,), None where [S^T, J^T] is not certified of full row rank; and whether the passive
-        block is certified resolvably regular (`rank.certified_regular`).
+        block is certified resolvably regular.
+    """
+    return passive_split(cm, cd, J, b, residual)[:2]
+
+
+def passive_split(
+    cm: ClosureModel, cd: ClosureData, J: np.ndarray, b: np.ndarray, residual: float
+) -> tuple[np.ndarray | None, bool, np.ndarray | None]:
+    """One sample of `passive_solve`, and the null space of [S^T, J^T] its factorisation gives.
+
+    With every actuator one joint's motor, [S^T, J^T] x = b splits into B^T lambda = b_p and u = b_a -
+    J_a^T lambda, B = J[:, passive] (rows > columns). Rows s of B forming a regular square block B_s
+    (independent at the first sample, kept on the data) give lambda = lambda_0 + N t: lambda_0 = B_s^-T b_p
+    on s, N = [-B_s^-T B_x^T; I] on (s, the others x), both by the LU's solves (backward stable; the
+    explicit inverse serves the bounds only). |u|^2 + |lambda|^2 is least at (K^T K + N^T N) t =
+    K^T (b_a - J_a^T lambda_0) - N^T lambda_0, K = J_a^T N: the minimum-norm solution. The inverse also
+    bounds sigma_min(B) >= sigma_min(B_s) >= 1 / |B_s^-1|_F, and [S^T, J^T] has the right inverse
+    [[I, -J_a^T Y], [0, Y]], Y = B_s^-T on s: sigma_min >= (na + (1 + |J_a|_F^2) |B_s^-1|_F^2)^(-1/2)
+    against sigma_max <= (na + |J|_F^2)^(1/2), whose ratio above `rank.RANK_TOL` certifies full row rank.
+    [S^T, J^T] [u; lambda] = 0 is then lambda = N t, u = -J_a^T N t: [-K; N] spans its null space (the
+    self-stresses), of rows - (nv - na) dimensions.
+
+    Args:
+        cm: the closure model.
+        cd: the closure data (caches the independent rows of B in `split_rows`).
+        J: (rows, nv) closure Jacobian.
+        b: (nv,) generalised force the motion needs.
+        residual: closure residual norm (for `rank.certified_regular`).
+
+    Returns:
+        x (na + rows,), None where [S^T, J^T] is not certified of full row rank; whether the passive
+        block is certified resolvably regular (`rank.certified_regular`); and (na + rows, rows - k) a
+        basis of the null space of [S^T, J^T] (None with x None).
     """
     lapack = scipy.linalg.lapack
     act, free = cm.actuated_v, cm.passive_v
@@ -95,10 +139,10 @@ def passive_one(
         cd.split_rows = rows, np.delete(np.arange(m), rows)
     rows, others = cd.split_rows
     if rows.size != k:
-        return None, False
+        return None, False, None
     lu, piv, info = lapack.dgetrf(B[rows])
     if info:
-        return None, False
+        return None, False, None
     inverse = lapack.dgetri(lu, piv)[0]
     inverse_size, size, actuated_size = rank.squared_norm(inverse), rank.squared_norm(B), rank.squared_norm(Ja)
     regular = bool(rank.certified_regular(inverse_size**-0.5, size**0.5, residual))
@@ -106,7 +150,7 @@ def passive_one(
         not rank.RANK_TOL**2 * (act.size + (1.0 + actuated_size) * inverse_size) * (act.size + size + actuated_size)
         < 1.0
     ):
-        return None, regular
+        return None, regular, None
     lam, N = np.zeros(m), np.zeros((m, m - k))
     solved = lapack.dgetrs(lu, piv, np.column_stack((b[free], -B[others].T)), trans=1)[0]  # B_s^-T [b_p, -B_x^T]
     lam[rows], N[rows] = solved[:, 0], solved[:, 1:]
@@ -115,7 +159,7 @@ def passive_one(
     K = JaT.dot(N)
     t = lapack.dgesv(K.T.dot(K) + N.T.dot(N), K.T.dot(ba - JaT.dot(lam)) - N.T.dot(lam))[2]
     lam += N.dot(t)
-    return np.concatenate([ba - JaT.dot(lam), lam]), regular
+    return np.concatenate([ba - JaT.dot(lam), lam]), regular, np.concatenate([-K, N])
 
 
 def square_one(cm: ClosureModel, J: np.ndarray, b: np.ndarray, bound: bool) -> tuple[np.ndarray | None, float]:
@@ -258,14 +302,17 @@ def full_rank_solution(A: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, np.nda
         x (N, cols); the norm (N,) of the part of b outside the range of A; and (N,) 1 / |R^-1|_F <=
         sigma_min(A) (0 where R is singular).
     """
-    if A.shape[1] > A.shape[2]:  # A = Q R: x = R^-1 Q^T b
-        Q, R = np.linalg.qr(A)
-        c = np.einsum("nij,ni->nj", Q, b)
-        x = np.linalg.solve(R, c[..., None])[..., 0]
-        outside = np.linalg.norm(b - np.einsum("nij,nj->ni", Q, c), axis=1)
-    else:
-        Q, R = np.linalg.qr(A.transpose(0, 2, 1))  # A^T = Q R: x = Q R^-T b, every b reachable
-        x, outside = (Q @ np.linalg.solve(R.transpose(0, 2, 1), b[..., None]))[..., 0], np.zeros(len(A))
+    tall = A.shape[1] > A.shape[2]
+    Q, R = np.linalg.qr(A if tall else A.transpose(0, 2, 1))  # A = Q R: x = R^-1 Q^T b; A^T = Q R: x = Q R^-T b
+    try:
+        if tall:
+            c = np.einsum("nij,ni->nj", Q, b)
+            x = np.linalg.solve(R, c[..., None])[..., 0]
+            outside = np.linalg.norm(b - np.einsum("nij,nj->ni", Q, c), axis=1)
+        else:  # every b reachable
+            x, outside = (Q @ np.linalg.solve(R.transpose(0, 2, 1), b[..., None]))[..., 0], np.zeros(len(A))
+    except np.linalg.LinAlgError:  # an exactly singular R: no solution here, and no bound
+        return np.full((len(A), A.shape[2]), np.nan), np.full(len(A), np.inf), np.zeros(len(A))
     return x, outside, rank.regularity_bounds(R)[0]
 
 

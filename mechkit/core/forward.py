@@ -171,8 +171,11 @@ def _settings(
 def _proximal(cm, cd, q, v, tau, mu, accuracy, max_iter, baumgarte) -> ForwardDynamicsResult:
     """Pinocchio's proximal constraintDynamics; the constraint force J^T lambda from its multipliers."""
     legacy = cd.legacy.get("proximal") or _legacy(cm, cd)
-    legacy.set_baumgarte(baumgarte)
-    settings = _settings(cm, cd, "proximal", mu, accuracy, max_iter)
+    if baumgarte is not None or legacy.stabilised:
+        legacy.set_baumgarte(baumgarte)
+    settings = cd.settings.get(("proximal", mu, accuracy, max_iter, 1.0)) or _settings(
+        cm, cd, "proximal", mu, accuracy, max_iter
+    )
     a = legacy.dynamics(q, v, tau, settings).copy()
     J, rhs = legacy.jacobian(), legacy.rhs()  # rhs = -gamma
     r = J.dot(a)

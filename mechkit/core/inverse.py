@@ -20,7 +20,7 @@ import pinocchio as pin
 
 from mechkit.base.exceptions import InvalidParameters
 from mechkit.core import efforts, rank
-from mechkit.core.determinacy import determinacy, system
+from mechkit.core.determinacy import determinacy, determinacy_one, system
 from mechkit.core.model import ClosureData, ClosureModel
 from mechkit.core.passive_solve import idle_count
 from mechkit.core.results import BatchInverseDynamicsResult, InverseDynamicsResult
@@ -221,10 +221,10 @@ def inverse_dynamics_batch(
         world = k.world(G)
         e, Jrows, W = k.rows(world, J, Q)
         residuals = np.linalg.norm(e, axis=-1)
-        x, regular = (
-            efforts.passive_solve(cm, cd, Jrows, b, residuals)
+        x, regular, stresses = (
+            efforts.passive_split_batch(cm, cd, Jrows, b, residuals)
             if efforts.splits(cm, k.size, distribution)
-            else (None, None)
+            else (None, None, None)
         )
         spins = {} if generic_rank is None else _check_regular(cm, Jrows, J, residuals, generic_rank, idle, regular)
         if spins:
@@ -232,18 +232,21 @@ def inverse_dynamics_batch(
             P, J, b, tree = inverse_pass(cm, cd, Q, V, A, [None] * n if fexts is None else fexts)
             if passive is not None:
                 b = b - passive
-        if x is None:
-            x, cond = efforts.solve(cm, system(cm, Jrows), b, determinacy_test, distribution)
-        else:
-            cond = efforts.singular(system(cm, Jrows))[2] if determinacy_test else np.full(n, np.nan)
+        statics = system(cm, Jrows) if x is None or determinacy_test else None
+        if x is None:  # the condition numbers on first read (`BatchInverseDynamicsResult.condition`)
+            x = efforts.solve(cm, statics, b, False, distribution)[0]
         origins, cut_points = P[:, 1:, :, 3], k.points(world)
         reactions = k.joint_loads(W, x[:, na:], origins, cut_points)
         reactions[:, : tree.shape[1]] += tree
         flags = effort_flags = None
         if determinacy_test:
-            flags, effort_flags = determinacy(cm, cd, G, J, Q, origins, cut_points)
+            same = cm.spatial and stresses is not None  # the solve's null spaces are the full rows' ones
+            flags, effort_flags = determinacy(
+                cm, cd, G, J, Q, origins, cut_points, stresses if same else None, W if cm.spatial else None
+            )
+    cond, statics = (None, statics) if determinacy_test else (np.full(n, np.nan), None)
     return BatchInverseDynamicsResult(
-        cm.joint_names, cm.actuated, x[:, :na], reactions, cm.supports, x[:, na:], cond, flags, effort_flags
+        cm.joint_names, cm.actuated, x[:, :na], reactions, cm.supports, x[:, na:], cond, flags, effort_flags, statics
     )
 
 
@@ -332,12 +335,14 @@ def _one_sample(
     e, Jrows, W = k.rows(world, Jw, q)
     residual = math.sqrt(e.dot(e))
     na, judged = len(cm.actuated), generic_rank is not None
-    x, regular, cond = None, None, math.nan
+    x, regular, stresses, square, cond = None, None, None, False, math.nan
     if efforts.splits(cm, k.size, distribution):
-        x, regular = efforts.passive_one(cm, cd, Jrows, b, residual)
-    elif na + k.size == cm.nv and not determinacy_test:  # else `efforts.solve`, whose singular values give cond
-        x, rho = efforts.square_one(cm, Jrows, b, judged)
-        regular = judged and rank.certified_regular(rho, rank.squared_norm(Jrows) ** 0.5, residual)
+        x, regular, stresses = efforts.passive_split(cm, cd, Jrows, b, residual)
+    elif na + k.size == cm.nv:  # square: its singular values (cond) are not needed to solve it
+        x, rho = efforts.square_one(cm, Jrows, b, judged or determinacy_test)
+        size = rank.squared_norm(Jrows)
+        regular = judged and rank.certified_regular(rho, size**0.5, residual)
+        square = determinacy_test and rho * rho > rank.RANK_TOL**2 * (size + rank.squared_norm(cm.actuation))
     if judged and regular is None and 0 < cm.unactuated.shape[1] <= k.size:
         block = Jrows[:, cm.passive_v] if cm.passive_v is not None else Jrows @ cm.unactuated  # the same numbers
         regular = rank.certified_regular(*rank.block_bounds(block), residual)
@@ -351,21 +356,26 @@ def _one_sample(
             False,
             None if regular is None else np.array([regular]),
         )
+    A = None
     if x is None:
         x, cond = efforts.solve(cm, system(cm, Jrows[None]), b[None], determinacy_test, distribution)
         x, cond = x[0], float(cond[0])
-    elif determinacy_test:
-        cond = float(efforts.singular(system(cm, Jrows[None]))[2][0])
+    elif determinacy_test:  # the condition number on first read (`InverseDynamicsResult.condition`)
+        A = np.concatenate((cm.actuation.T, Jrows.T), axis=1)
     P = cd.oMi
     origins, cut_points = P[1:, :, 3], k.points(world)
     reactions = k.joint_loads(W, x[na:], origins, cut_points)
     reactions[: P.shape[0] - 1] += tree_wrenches(P, cd.f)
     flags = effort_flags = None
     if determinacy_test:
-        flags, effort_flags = determinacy(cm, cd, cd.used[None], Jw[None], q[None], origins[None], cut_points[None])
-        flags, effort_flags = flags[0], effort_flags[0]
+        if square and cm.spatial:  # [S^T, J_full^T] square and certified regular: no self-stress
+            stresses = np.zeros((na + k.size, 0))
+        same = cm.spatial  # the solve's null space is the full rows' one
+        flags, effort_flags = determinacy_one(
+            cm, cd, Jw, q, origins, cut_points, stresses if same else None, W if same else None
+        )
     return InverseDynamicsResult(
-        cm.joint_names, cm.actuated, x[:na], reactions, cm.supports, x[na:], cond, flags, effort_flags
+        cm.joint_names, cm.actuated, x[:na], reactions, cm.supports, x[na:], cond, flags, effort_flags, A
     )
 
 

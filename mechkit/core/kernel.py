@@ -345,3 +345,22 @@ class ClosureKernel:
         outer = points[..., :, :, None] * loads[..., :, None, :3]
         loads += outer.reshape(*outer.shape[:-2], 9) @ MOMENT_SHIFT
         return loads
+
+    def load_map(self, W: np.ndarray, origins: np.ndarray, cut_points: np.ndarray) -> np.ndarray:
+        """`joint_loads` as a matrix: joint_loads(W, lam, ...) = load_map(W, ...) @ lam[:cut_size].
+
+        Args:
+            W: (..., cut_size, 6) row wrenches.
+            origins: (..., njoints - 1, 3) tree joint origins, world (m).
+            cut_points: (..., ncuts, 3) the cuts' points p_b, world (m).
+
+        Returns:
+            (..., njoints - 1 + ncuts, 6, cut_size) what each cut row's unit multiplier transmits through
+            every joint, [f, m about the joint's point], world axes.
+        """
+        L = self._transmission[:, None, :] * np.swapaxes(W, -1, -2)[..., None, :, :]  # about the world origin
+        p = np.concatenate([origins, cut_points], axis=-2)[..., None]
+        f = L[..., :3, :]
+        for k, (a, b) in enumerate(((1, 2), (2, 0), (0, 1))):  # m about p = m about the origin - p x f
+            L[..., 3 + k, :] -= p[..., a, :] * f[..., b, :] - p[..., b, :] * f[..., a, :]
+        return L

@@ -109,6 +109,7 @@ class ClosureModel:
         couplings, actuators: the records it was built from.
         closures: the closures with the rows chosen. kernel: the rows kept (cuts, then couplings).
         full_kernel: every cut's full spatial rows (the physical joints), for the determinacy test.
+        spatial: every cut keeps its full spatial rows (`kernel` and `full_kernel` give the same rows).
         actuated: actuator names. actuation: (na, nv) S, generalised force S^T u of efforts u.
         actuated_v: (na,) velocity indices where every actuator is one joint's motor, else None.
         unactuated: (nv, nv - rank S) orthonormal basis of the motions no actuator drives (the
@@ -155,6 +156,7 @@ class ClosureModel:
         rows = [coupling_row(model, c) for c in self.couplings]
         self.kernel = ClosureKernel(model, cuts, rows)
         self.full_kernel = ClosureKernel(model, [cut_rows(model, c, "spatial") for c in self.closures], rows)
+        self.spatial = all(c.rows == "spatial" for c in self.closures)
         self.actuated = tuple(actuated)
         self.actuation, self.actuated_v = _actuation(model, self.actuated, {a.name: a for a in actuators})
         self.unactuated = _unactuated(model, self.actuation, self.actuated_v)
@@ -252,7 +254,9 @@ class ClosureData:
         used: (n_used, 4, 4) scratch: homogeneous placements of the joints carrying cut frames
             (`used_placements`; a transposed view of a buffer, as `ClosureKernel.world` reads it).
         kkt_rows: the independent rows the KKT solve last used (None before the first).
-        stress_rows: the rows of [S^T, J_full^T] `mechkit.core.determinacy.self_stresses` uses.
+        stress_rows: the rows of [S^T, J_full^T] `mechkit.core.determinacy.self_stresses` uses; stress_columns:
+            nv of its columns, independent at the first sample, where it has full row rank there, the others
+            and their count's range (else None).
         split_rows: the rows of the passive block `mechkit.core.efforts.passive_one` factors, and the others.
         partition: the rows, dependent and independent columns of the closure Jacobian the null-space
             forward dynamics factors (`mechkit.core.forward`).
@@ -283,6 +287,7 @@ class ClosureData:
         self.legacy: dict = {}
         self.settings: dict = {}
         self.stress_rows: np.ndarray | None = None
+        self.stress_columns: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None
         self.split_rows: tuple[np.ndarray, np.ndarray] | None = None
         self.partition: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None
 

@@ -60,6 +60,7 @@ class LegacyConstraints:
         self._rhs, self._lambda = self.data.primal_rhs_contact, self.data.lambda_c  # views of the data's buffers
         self.sizes = [3 if cm.type == pin.ContactType.CONTACT_3D else 6 for cm in self.models]
         self._gains = (0.0, 0.0)
+        self.stabilised = False  # Baumgarte gains set (`set_baumgarte`)
         self.ordered = ordered
         if ordered:
             pin.computeJointMinimalOrdering(model, self.data, self.models)
@@ -75,6 +76,7 @@ class LegacyConstraints:
             for cm in self.models:
                 cm.setBaumgarteCorrectorParameters(pin.BaumgarteCorrectorParameters(*gains))
             self._gains = gains
+            self.stabilised = gains != (0.0, 0.0)
 
     def dynamics(self, q: np.ndarray, v: np.ndarray, tau: np.ndarray, settings: pin.ProximalSettings) -> np.ndarray:
         """Accelerations by `pin.constraintDynamics` (not for a data set up with `ordered`).

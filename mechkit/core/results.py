@@ -14,6 +14,8 @@ from typing import NamedTuple
 
 import numpy as np
 
+from mechkit.core.rank import ranks, singular_values
+
 
 @dataclass(frozen=True)
 class Mobility:
@@ -59,6 +61,21 @@ class JointReaction:
     support: bool
 
 
+def condition_numbers(A: np.ndarray) -> np.ndarray:
+    """Condition numbers s_max / s_rank of N matrices, rank by `mechkit.core.rank.ranks`.
+
+    Args:
+        A: (N, m, n) matrices.
+
+    Returns:
+        (N,) the condition numbers (nan for an empty matrix).
+    """
+    if not A.shape[1] or not A.shape[2]:
+        return np.full(len(A), np.nan)
+    s = singular_values(A)
+    return s[:, 0] / s[np.arange(len(s)), np.maximum(ranks(s), 1) - 1]
+
+
 class InverseDynamicsResult:
     """Constrained inverse dynamics of one sample; the dicts are built on first use.
 
@@ -67,7 +84,8 @@ class InverseDynamicsResult:
         actuated: the actuators, in effort order.
         effort_values: (na,) efforts (N m or N); reaction_values: (n_joints, 6) reactions.
         multipliers: (rows,) closure-row multipliers (J^T lambda is the generalised constraint force).
-        condition: condition number of [S, J^T] (nan where it was not computed).
+        condition: condition number of [S, J^T] (nan where it was not computed; with `system`, computed
+            from it on first read).
         support: (n_joints,) True for joints to the ground.
         determinate: (n_joints, 6) or None; efforts_determinate_values: (na,) or None.
     """
@@ -83,11 +101,19 @@ class InverseDynamicsResult:
         condition: float,
         determinate: np.ndarray | None = None,
         efforts_determinate: np.ndarray | None = None,
+        system: np.ndarray | None = None,
     ):
         self.joint_names, self.actuated = joint_names, actuated
         self.effort_values, self.reaction_values, self.support = efforts, reactions, support
-        self.multipliers, self.condition = multipliers, condition
+        self.multipliers, self._condition, self._system = multipliers, condition, system
         self.determinate, self.efforts_determinate_values = determinate, efforts_determinate
+
+    @property
+    def condition(self) -> float:
+        """Condition number s_max / s_rank of [S, J^T] (nan where it was not computed)."""
+        if self._system is not None:  # by its singular values, on first read
+            self._condition, self._system = float(condition_numbers(self._system[None])[0]), None
+        return self._condition
 
     @cached_property
     def efforts(self) -> dict[str, float]:
@@ -111,7 +137,6 @@ class InverseDynamicsResult:
         return dict(zip(self.actuated, self.efforts_determinate_values.tolist()))
 
 
-@dataclass(frozen=True)
 class BatchInverseDynamicsResult:
     """Constrained inverse dynamics of N samples.
 
@@ -122,20 +147,36 @@ class BatchInverseDynamicsResult:
         reactions: (N, n_joints, 6) reactions (see the module docstring).
         support: (n_joints,) True for joints to the ground.
         multipliers: (N, rows) closure-row multipliers.
-        condition: (N,) condition number of [S, J^T] (nan where it was not computed).
+        condition: (N,) condition number of [S, J^T] (nan where it was not computed; with `system`,
+            computed from it on first read).
         determinate: (N, n_joints, 6) components fixed by statics, or None (test not run).
         efforts_determinate: (N, na) efforts fixed by statics, or None (test not run).
     """
 
-    joint_names: tuple[str, ...]
-    actuated: tuple[str, ...]
-    efforts: np.ndarray
-    reactions: np.ndarray
-    support: np.ndarray
-    multipliers: np.ndarray
-    condition: np.ndarray
-    determinate: np.ndarray | None = None
-    efforts_determinate: np.ndarray | None = None
+    def __init__(
+        self,
+        joint_names: tuple[str, ...],
+        actuated: tuple[str, ...],
+        efforts: np.ndarray,
+        reactions: np.ndarray,
+        support: np.ndarray,
+        multipliers: np.ndarray,
+        condition: np.ndarray | None,
+        determinate: np.ndarray | None = None,
+        efforts_determinate: np.ndarray | None = None,
+        system: np.ndarray | None = None,
+    ):
+        self.joint_names, self.actuated = joint_names, actuated
+        self.efforts, self.reactions, self.support, self.multipliers = efforts, reactions, support, multipliers
+        self._condition, self._system = condition, system
+        self.determinate, self.efforts_determinate = determinate, efforts_determinate
+
+    @property
+    def condition(self) -> np.ndarray:
+        """(N,) condition numbers s_max / s_rank of [S, J^T] (nan where they were not computed)."""
+        if self._system is not None:  # by their singular values, on first read
+            self._condition, self._system = condition_numbers(self._system), None
+        return self._condition
 
     def __len__(self) -> int:
         return self.efforts.shape[0]

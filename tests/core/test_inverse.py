@@ -15,6 +15,7 @@ from mechkit.base.exceptions import InvalidArgument, InvalidParameters, Singular
 from mechkit.bench.sampling import make_samples
 from mechkit.catalog import registry
 from mechkit.core import inverse
+from mechkit.core.determinacy import system
 
 #: Batched and per-sample results agree to this, relative to the largest value of the quantity (or 1).
 TOL = 1e-13
@@ -54,6 +55,15 @@ def test_batch_equals_one_sample_at_a_time(case, determinacy):
         back = out.sample(i)
         assert _close(np.array([r.wrench for r in back.reactions.values()]), wrenches)
         assert [r.support for r in back.reactions.values()] == [r.support for r in one.reactions.values()]
+        if determinacy:  # computed on first read: s_max / s_rank of [S^T, J^T], from its own SVD here
+            pin.computeJointJacobians(m.model, m.closure_data.pin, s.q)
+            G = m.closure_data.used_placements()[None]
+            Jrows = m.closure_model.kernel.evaluate(G, m.closure_data.J[None], s.q[None])[1]
+            sv = np.linalg.svd(system(m.closure_model, Jrows)[0], compute_uv=False)
+            want = sv[0] / sv[int(np.sum(sv > 1e-9 * sv[0])) - 1]
+            assert abs(one.condition - want) <= 1e-9 * want and abs(out.condition[i] - want) <= 1e-9 * want
+        else:
+            assert np.isnan(one.condition) and np.isnan(out.condition[i])
 
 
 def test_batched_shapes_are_checked(load_cached):

@@ -143,3 +143,22 @@ def test_row_wrenches_give_the_closure_jacobian_and_the_residuals(name, load_cac
             assert np.max(np.abs(kernel.jacobian(W, data.J[None], q[None]) - J), initial=0.0) == 0.0
             for c, cut in enumerate(kernel.cuts):
                 np.testing.assert_allclose(kernel.cut_points(G)[0, c], data.oMf[cut.frame_b].translation, atol=1e-14)
+
+
+@pytest.mark.parametrize("name", ["four_bar", "parallel_2t1r", "rocket_gimbal"])
+def test_load_map_is_joint_loads_as_a_matrix(name, load_cached):
+    """`load_map` times any multipliers equals `joint_loads` of them, one sample and batched."""
+    m = load_cached(name)
+    cm, cd = m.closure_model, m.closure_model.create_data()
+    rng = np.random.default_rng(1)
+    for kernel in (cm.kernel, cm.full_kernel):
+        for s in make_samples(m, 2):
+            pin.computeJointJacobians(cm.model, cd.pin, s.q)
+            G = cd.used_placements()
+            W, origins, points = kernel.row_wrenches(G), cd.oMi[1:, :, 3], kernel.cut_points(G)
+            lam = rng.standard_normal((4, kernel.size))
+            want = kernel.joint_loads(W, lam, origins, points)
+            got = np.einsum("jcr,nr->njc", kernel.load_map(W, origins, points), lam[:, : kernel.cut_size])
+            np.testing.assert_allclose(got, want, atol=1e-13 * np.abs(want).max())
+            batched = kernel.load_map(W[None], origins[None], points[None])[0]
+            np.testing.assert_array_equal(batched, kernel.load_map(W, origins, points))
