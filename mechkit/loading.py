@@ -11,6 +11,7 @@ from typing import Any
 from mechkit import actuator_names, core, sources
 from mechkit.base import arguments, joint_arguments
 from mechkit.base.exceptions import IgnoredClosure, InvalidArgument, InvalidParameters, MalformedDescription
+from mechkit.bases.carrier import with_base
 from mechkit.catalog.contract import MechanismSpec
 from mechkit.catalog.params import MechanismParams
 from mechkit.catalog.registry import get_spec, names
@@ -62,6 +63,9 @@ def load(
     fix: Sequence[str] | None = None,
     freeflyer: bool = False,
     ignore_unknown_closures: bool = False,
+    base: str = "fixed",
+    base_inertia: Any = None,
+    gravity: Sequence[float] | None = None,
     **params: Any,
 ) -> Mechanism:
     """Build a mechanism from a registered name or a description file.
@@ -87,6 +91,11 @@ def load(
             read (Drake's constraints and bushings, a Gazebo joint: `mechkit.sources.closure_elements`)
             as its tree without them, with one `IgnoredClosure` warning per element naming the mobility
             left (default: refused by name).
+        base: "fixed" (the ground is the world), "moving" (the ground on six driven root joints that a
+            carrier's motion drives) or "floating" (the ground a free body on a free-flyer): `mechkit.bases`.
+        base_inertia: the base body's added inertia, (mass kg, (Ixx, Iyy, Izz) kg m^2) or a `pin.Inertia`
+            (a floating base needs a mass).
+        gravity: (3,) world gravity (m/s^2; (0, 0, 0) in orbit), or None (the model's).
         **params: the mechanism's parameters (a name) or xacro arguments (a xacro file);
             `rows="spatial"`, unless the mechanism has a parameter of that name, closes every cut
             with its full rows.
@@ -97,13 +106,17 @@ def load(
     Raises:
         InvalidParameters: unknown name or parameter.
         InvalidArgument: `source` neither a name nor a path; `freeflyer` for a source that is not an
-            Extended-URDF file.
+            Extended-URDF file; a bad base, base inertia or gravity.
         MalformedDescription: a bad file.
     """
     if not isinstance(source, (str, Path)):
         raise InvalidArgument("source", source, "expected a mechanism name or a path")
     freeflyer = arguments.flag("freeflyer", freeflyer)
     ignore = arguments.flag("ignore_unknown_closures", ignore_unknown_closures)
+    if base != "fixed" or base_inertia is not None or gravity is not None:
+        kwargs = {"lock": lock, "keep": keep, "fix": fix, "freeflyer": freeflyer, "ignore_unknown_closures": ignore}
+        grounded = load(source, actuated=actuated, home=home, guess=guess, **kwargs, **params)
+        return with_base(grounded, base, base_inertia=base_inertia, gravity=gravity)
     if lock or keep is not None or fix:
         whole = load(
             source,

@@ -1,0 +1,34 @@
+"""A base for every mechanism: fixed, moving (a prescribed carrier motion) or floating (a free bus).
+
+`with_base` puts a mechanism's ground body on root joints of its own (`carrier`); a moving base's
+motion is a `BaseMotion` (`base_motion`), joined to the mechanism's input law by `carried`.
+"""
+
+from mechkit.bases.base_motion import POSE_COLUMNS, BaseMotion, carried, from_callable, from_csv, from_samples
+from mechkit.bases.carrier import (
+    BASE_JOINTS,
+    BASES,
+    CARRIER_FRAME,
+    CARRIER_JOINT,
+    FLOATING_JOINT,
+    base_inertia_of,
+    base_of,
+    with_base,
+)
+
+__all__ = [
+    "BASES",
+    "BASE_JOINTS",
+    "CARRIER_FRAME",
+    "CARRIER_JOINT",
+    "FLOATING_JOINT",
+    "POSE_COLUMNS",
+    "BaseMotion",
+    "base_inertia_of",
+    "base_of",
+    "carried",
+    "from_callable",
+    "from_csv",
+    "from_samples",
+    "with_base",
+]
