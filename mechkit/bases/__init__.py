@@ -1,7 +1,8 @@
 """A base for every mechanism: fixed, moving (a prescribed carrier motion) or floating (a free bus).
 
 `with_base` puts a mechanism's ground body on root joints of its own (`carrier`); a moving base's
-motion is a `BaseMotion` (`base_motion`), joined to the mechanism's input law by `carried`.
+motion is a `BaseMotion` (`base_motion`), joined to the mechanism's input law by `carried`; a floating system's
+momentum along a motion: `momentum`.
 """
 
 from mechkit.bases.base_motion import POSE_COLUMNS, BaseMotion, carried, from_callable, from_csv, from_samples
@@ -15,6 +16,7 @@ from mechkit.bases.carrier import (
     base_of,
     with_base,
 )
+from mechkit.bases.momentum import MomentumHistory, momentum
 
 __all__ = [
     "BASES",
@@ -24,11 +26,13 @@ __all__ = [
     "FLOATING_JOINT",
     "POSE_COLUMNS",
     "BaseMotion",
+    "MomentumHistory",
     "base_inertia_of",
     "base_of",
     "carried",
     "from_callable",
     "from_csv",
     "from_samples",
+    "momentum",
     "with_base",
 ]
