@@ -2,7 +2,7 @@
 
 `with_base` puts a mechanism's ground body on root joints of its own (`carrier`); a moving base's
 motion is a `BaseMotion` (`base_motion`), joined to the mechanism's input law by `carried`; a floating system's
-momentum along a motion: `momentum`.
+momentum along a motion: `momentum`; the inputs holding a body's pose in the world: `hold_pose`.
 """
 
 from mechkit.bases.base_motion import POSE_COLUMNS, BaseMotion, carried, from_callable, from_csv, from_samples
@@ -16,6 +16,7 @@ from mechkit.bases.carrier import (
     base_of,
     with_base,
 )
+from mechkit.bases.holding import Holding, hold_pose
 from mechkit.bases.momentum import MomentumHistory, momentum
 
 __all__ = [
@@ -26,6 +27,7 @@ __all__ = [
     "FLOATING_JOINT",
     "POSE_COLUMNS",
     "BaseMotion",
+    "Holding",
     "MomentumHistory",
     "base_inertia_of",
     "base_of",
@@ -33,6 +35,7 @@ __all__ = [
     "from_callable",
     "from_csv",
     "from_samples",
+    "hold_pose",
     "momentum",
     "with_base",
 ]
