@@ -117,3 +117,22 @@ def test_moving_base_has_six_driven_roots(fixed, moving):
 def test_refusals_name_the_argument(fixed, kwargs, arg):
     with pytest.raises(InvalidArgument, match=arg):
         with_base(fixed, **kwargs)
+
+
+def test_soc_second_opinion_agrees_on_a_moving_base(moving):
+    """The automatic SOC virtual-work solve (an independent method) against constrained RNEA, on a carrier
+    that translates, turns and accelerates in every direction: efforts and every determinate reaction."""
+    from mechkit.second_opinion.agreement import agreement
+    from mechkit.second_opinion.opinion import SecondOpinion
+
+    rng = np.random.default_rng(1)
+    names, states = list(moving.actuated), []
+    for k in range(3):
+        base = dict(zip(BASE_JOINTS, rng.normal(0.0, 0.2, 6)))
+        q = moving.assembly({**base, "r11": 0.9 + 0.05 * k, "r21": 1.0}).q
+        v = moving.velocities(q, np.r_[rng.normal(0.0, 0.5, 6), 0.3, -0.2], names)
+        states.append((q, v, moving.accelerations(q, v, np.r_[rng.normal(0.0, 1.0, 6), 0.5, 0.4], names)))
+    result = agreement(SecondOpinion(moving), states, timing=False)
+    assert result.determinacy_mismatches == []
+    assert result.max_relative_difference < 1e-10
+    assert "effort base_roll" in result.by_quantity  # the carrier's wrench is compared too
