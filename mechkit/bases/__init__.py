@@ -1,8 +1,9 @@
 """A base for every mechanism: fixed, moving (a prescribed carrier motion) or floating (a free bus).
 
 `with_base` puts a mechanism's ground body on root joints of its own (`carrier`); a moving base's
-motion is a `BaseMotion` (`base_motion`), joined to the mechanism's input law by `carried`; a floating system's
-momentum along a motion: `momentum`; the inputs holding a body's pose in the world: `hold_pose`; drives as position servos (`servo`) and the isolation a held body gets from them on a
+motion is a `BaseMotion` (`base_motion`), joined to the mechanism's input law by `carried`; a floating
+system's momentum along a motion: `momentum`; the inputs holding a body's pose in the world:
+`hold_pose`; drives as position servos (`servo`) and the isolation a held body gets from them on a
 tilting carrier (`isolation`).
 """
 
