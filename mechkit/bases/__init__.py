@@ -3,7 +3,7 @@
 `with_base` puts a mechanism's ground body on root joints of its own (`carrier`); a moving base's
 motion is a `BaseMotion` (`base_motion`), joined to the mechanism's input law by `carried`; a floating
 system's momentum along a motion: `momentum`; the inputs holding a body's pose in the world:
-`hold_pose`; drives as position servos (`servo`) and the isolation a held body gets from them on a
+`hold_pose`, along a base motion with its study: `held_motion`; drives as position servos (`servo`) and the isolation a held body gets from them on a
 tilting carrier (`isolation`).
 """
 
@@ -18,6 +18,7 @@ from mechkit.bases.carrier import (
     base_of,
     with_base,
 )
+from mechkit.bases.held_motion import HeldMotion, held_motion
 from mechkit.bases.holding import Holding, hold_pose
 from mechkit.bases.momentum import MomentumHistory, momentum
 
@@ -29,6 +30,7 @@ __all__ = [
     "FLOATING_JOINT",
     "POSE_COLUMNS",
     "BaseMotion",
+    "HeldMotion",
     "Holding",
     "MomentumHistory",
     "base_inertia_of",
@@ -37,6 +39,7 @@ __all__ = [
     "from_callable",
     "from_csv",
     "from_samples",
+    "held_motion",
     "hold_pose",
     "momentum",
     "with_base",
