@@ -3,8 +3,8 @@
 `with_base` puts a mechanism's ground body on root joints of its own (`carrier`); a moving base's
 motion is a `BaseMotion` (`base_motion`), joined to the mechanism's input law by `carried`; a floating
 system's momentum along a motion: `momentum`; the inputs holding a body's pose in the world:
-`hold_pose`, along a base motion with its study: `held_motion`; drives as position servos (`servo`) and the isolation a held body gets from them on a
-tilting carrier (`isolation`).
+`hold_pose`, along a base motion with its study: `held_motion`; drives as position servos (`servo`)
+and the isolation a held body gets from them on a tilting carrier (`isolation`).
 """
 
 from mechkit.bases.base_motion import POSE_COLUMNS, BaseMotion, carried, from_callable, from_csv, from_samples
