@@ -8,7 +8,7 @@ import numpy as np
 from mechkit.catalog.contract import SampledLaw
 from mechkit.mechanism import Mechanism
 from mechkit.mechanisms.ten_bar import dynamics as td
-from mechkit.mechanisms.ten_bar.params import MOTORS, PASSIVE
+from mechkit.mechanisms.ten_bar.params import MOTORS, PASSIVE, motor_law
 
 #: Step (s) of the deployment the scene samples.
 DEPLOY_STEP = 0.02
@@ -70,3 +70,40 @@ def deployment_law(mechanism: Mechanism, samples: int | None = None) -> SampledL
         guesses=poses,
         source="deployment, every step" if frames == every_step else f"deployment, {frames} poses",
     )
+
+
+#: The spacecraft bus the array deploys from (ours: a 100 kg small satellite, principal moments in kg m^2).
+BUS = (100.0, (15.0, 15.0, 12.0))
+
+
+def in_orbit(mechanism: Mechanism, bus: tuple = BUS, rtol: float = 1e-8) -> dict:
+    """The deployment in orbit on a floating bus (no gravity) beside the ground test under 1 g: the same
+    motor laws (`params.motor_law`), the R5 spring, the simulator (`mechkit.bases`).
+
+    Args:
+        mechanism: the ten-bar on its fixed ground.
+        bus: the bus's (mass kg, (Ixx, Iyy, Izz) kg m^2), at the ground body's origin.
+        rtol: the integrator's relative tolerance.
+
+    Returns:
+        "orbit" and "ground": the `SimulationResult`s; "floating": the mechanism on the bus.
+    """
+    from mechkit.bases import with_base
+
+    floating = with_base(mechanism, "floating", base_inertia=bus, gravity=(0.0, 0.0, 0.0))
+
+    def law(t: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        return motor_law(mechanism.params, t)
+
+    runs = {
+        name: m.simulate(
+            mechanism.params.deploy_time,
+            inputs=law,
+            input_names=list(MOTORS),
+            dynamics="kkt",
+            rtol=rtol,
+            atol=rtol * 1e-2,
+        )
+        for name, m in (("orbit", floating), ("ground", mechanism))
+    }
+    return {**runs, "floating": floating}
