@@ -85,8 +85,9 @@ def with_base(
 ) -> Mechanism:
     """The mechanism on a fixed, moving or floating base (see the module's docstring).
 
-    The new mechanism keeps the closures, couplings, springs, actuators, home inputs, guess and scenes
-    (their poses with the base at the world's origin); its root joints sit at the identity at home.
+    The new mechanism keeps the closures, couplings, springs, actuators, home inputs, guess, scenes and
+    motion laws (their poses with the base at the world's origin, each law as sampled on the fixed
+    ground); its root joints sit at the identity at home.
 
     Args:
         mech: the mechanism on its fixed ground.
@@ -139,6 +140,14 @@ def _rebuilt(mech: Mechanism, model: pin.Model, base: str) -> Mechanism:
     def times(scene_time):
         return lambda _m, n: scene_time(mech, n)
 
+    def sampled(law):  # a motion law of the mechanism on its ground, its warm starts with the base at home
+        def sample(_m, n):
+            out = law.sample(mech, n)
+            guesses = None if out.guesses is None else np.hstack([np.tile(pad, (len(out.guesses), 1)), out.guesses])
+            return dataclasses.replace(out, guesses=guesses)
+
+        return dataclasses.replace(law, sample=sample)
+
     new_spec = dataclasses.replace(
         spec,
         actuated=actuated,
@@ -152,7 +161,7 @@ def _rebuilt(mech: Mechanism, model: pin.Model, base: str) -> Mechanism:
         bench_references=(),
         bench_states=None,
         failure_studies=(),
-        motion_laws={},
+        motion_laws={name: sampled(law) for name, law in spec.motion_laws.items()},
         design_metrics=(),
         studies={},
         self_checks=None,

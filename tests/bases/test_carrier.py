@@ -136,3 +136,12 @@ def test_soc_second_opinion_agrees_on_a_moving_base(moving):
     assert result.determinacy_mismatches == []
     assert result.max_relative_difference < 1e-10
     assert "effort base_roll" in result.by_quantity  # the carrier's wrench is compared too
+
+
+def test_scenes_carry_over_with_the_base_at_home(fixed, moving):
+    """The cone scene's poses on the moving base: the base's six coordinates at 0, the loops closed."""
+    poses = moving.spec.scenes["cone"](moving)
+    assert len(poses) == len(fixed.spec.scenes["cone"](fixed))
+    for q in poses[::12]:
+        assert q.shape == (moving.model.nq,) and not q[:6].any()
+        assert np.abs(moving.closure_residual(q)).max() < 1e-10
