@@ -115,3 +115,28 @@ def floating_chart(
     axes[1].legend(fontsize=7, ncol=2)
     axes[0].set_title(title, fontsize=9)
     return save_figure(fig, path)
+
+
+def efforts_chart(runs: dict[str, Any], joints: Sequence[str], path: str | Path, title: str = "") -> Path:
+    """Some joints' efforts along several runs of one motion (a bench beside a flight), one line style per run.
+
+    Args:
+        runs: label -> motion study or simulation history (`mechkit.history.MotionResult`).
+        joints: the joints whose efforts are drawn.
+        path: the file (.png or .svg).
+        title: the chart's title.
+
+    Returns:
+        The path written.
+    """
+    plt = pyplot("effort charts")
+    fig, ax = plt.subplots(figsize=(6.4, 3.6))
+    for style, (label, r) in zip(("-", "--", ":", "-."), runs.items()):
+        for n, joint in enumerate(joints):
+            ax.plot(r.t, r.effort(joint), style, color=f"C{n}", label=f"{joint}, {label}")
+    ax.set_xlabel("t (s)")
+    ax.set_ylabel("effort (N or N m)")
+    ax.grid(True, alpha=0.3)
+    ax.legend(fontsize=7, ncol=2)
+    ax.set_title(title, fontsize=9)
+    return save_figure(fig, path)

@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 from mechkit.bases import base_motion, held_motion, with_base
-from mechkit.bases.chart import floating_chart, held_chart, isolation_chart
+from mechkit.bases.chart import efforts_chart, floating_chart, held_chart, isolation_chart
 from mechkit.bases.isolation import IsolationPoint, servo_theory
 
 PNG = b"\x89PNG"
@@ -24,6 +24,8 @@ def test_held_and_floating_charts(load_cached, tmp_path):
     motion = base_motion.from_callable(lambda t: np.r_[0, 0, 0, 0.1 * np.sin(t), 0, 0], np.linspace(0, 1, 6))
     held = held_motion(moving, motion, "platform", ((0, 0, 1), (0, 0, 1)))
     assert held_chart(held, tmp_path / "held.png").read_bytes()[:4] == PNG
+    path = efforts_chart({"carried": held.study}, ["r11", "r21"], tmp_path / "efforts.png")
+    assert path.read_bytes()[:4] == PNG
     floating = with_base(grounded, "floating", base_inertia=(5.0, (0.1, 0.1, 0.1)), gravity=(0, 0, 0))
     home = grounded.spec.home(grounded.params)
 
