@@ -4,7 +4,8 @@
 motion is a `BaseMotion` (`base_motion`), joined to the mechanism's input law by `carried`; a floating
 system's momentum along a motion: `momentum`; the inputs holding a body's pose in the world:
 `hold_pose`, along a base motion with its study: `held_motion`; drives as position servos (`servo`)
-and the isolation a held body gets from them on a tilting carrier (`isolation`).
+and the isolation a held body gets from them on a tilting carrier (`isolation`); a latch's
+impulses: `latch_up`.
 """
 
 from mechkit.bases.base_motion import POSE_COLUMNS, BaseMotion, carried, from_callable, from_csv, from_samples
@@ -20,6 +21,7 @@ from mechkit.bases.carrier import (
 )
 from mechkit.bases.held_motion import HeldMotion, held_motion
 from mechkit.bases.holding import Holding, hold_pose
+from mechkit.bases.latch_up import LatchUp, latch_up
 from mechkit.bases.momentum import MomentumHistory, momentum
 
 __all__ = [
@@ -32,6 +34,7 @@ __all__ = [
     "BaseMotion",
     "HeldMotion",
     "Holding",
+    "LatchUp",
     "MomentumHistory",
     "base_inertia_of",
     "base_of",
@@ -41,6 +44,7 @@ __all__ = [
     "from_samples",
     "held_motion",
     "hold_pose",
+    "latch_up",
     "momentum",
     "with_base",
 ]
