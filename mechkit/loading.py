@@ -11,6 +11,7 @@ from typing import Any
 from mechkit import actuator_names, core, sources
 from mechkit.base import arguments, joint_arguments
 from mechkit.base.exceptions import IgnoredClosure, InvalidArgument, InvalidParameters, MalformedDescription
+from mechkit.bases.carrier import with_base
 from mechkit.catalog.contract import MechanismSpec
 from mechkit.catalog.params import MechanismParams
 from mechkit.catalog.registry import get_spec, names
@@ -64,6 +65,9 @@ def load(
     freeflyer: bool = False,
     ignore_unknown_closures: bool = False,
     bushings: str = "rigid",
+    base: str = "fixed",
+    base_inertia: Any = None,
+    gravity: Sequence[float] | None = None,
     **params: Any,
 ) -> Mechanism:
     """Build a mechanism from a registered name or a description file.
@@ -92,6 +96,11 @@ def load(
         bushings: "rigid" (default): a Drake `drake:linear_bushing_rpy` is the cut its stiff directions make;
             "compliant": a URDF's (or xacro's) are force elements (`mechkit.forces.bushing`, applied by the
             simulator), their loops left open (not with `lock`, `keep` or `fix`).
+        base: "fixed" (the ground is the world), "moving" (the ground on six driven root joints that a
+            carrier's motion drives) or "floating" (the ground a free body on a free-flyer): `mechkit.bases`.
+        base_inertia: the base body's added inertia, (mass kg, (Ixx, Iyy, Izz) kg m^2) or a `pin.Inertia`
+            (a floating base needs a mass).
+        gravity: (3,) world gravity (m/s^2; (0, 0, 0) in orbit), or None (the model's).
         **params: the mechanism's parameters (a name) or xacro arguments (a xacro file);
             `rows="spatial"`, unless the mechanism has a parameter of that name, closes every cut
             with its full rows.
@@ -102,7 +111,7 @@ def load(
     Raises:
         InvalidParameters: unknown name or parameter.
         InvalidArgument: `source` neither a name nor a path; `freeflyer` for a source that is not an
-            Extended-URDF file.
+            Extended-URDF file; a bad base, base inertia or gravity.
         MalformedDescription: a bad file.
     """
     if not isinstance(source, (str, Path)):
@@ -113,6 +122,11 @@ def load(
         raise InvalidArgument("bushings", bushings, "expected 'rigid' or 'compliant'")
     if bushings == "compliant" and (lock or keep is not None or fix):  # a reduced tree's URDF drops the marks
         raise InvalidArgument("bushings", bushings, "not with lock, keep or fix: weld or fix joints in the file")
+    if base != "fixed" or base_inertia is not None or gravity is not None:
+        kwargs = {"lock": lock, "keep": keep, "fix": fix, "freeflyer": freeflyer, "ignore_unknown_closures": ignore}
+        kwargs["bushings"] = bushings
+        grounded = load(source, actuated=actuated, home=home, guess=guess, **kwargs, **params)
+        return with_base(grounded, base, base_inertia=base_inertia, gravity=gravity)
     if lock or keep is not None or fix:
         whole = load(
             source,

@@ -92,3 +92,15 @@ def test_asked_to_ignore_it_the_tree_loads_with_one_warning_naming_the_mobility_
 def test_the_option_to_ignore_is_a_flag():
     with pytest.raises(InvalidArgument, match="ignore_unknown_closures"):
         mechkit.load("four_bar", ignore_unknown_closures="yes")
+
+
+def test_load_puts_the_mechanism_on_a_base():
+    """`base=` gives the mechanism `mechkit.bases.with_base` gives, on top of locked joints too."""
+    from mechkit.bases import BASE_JOINTS, FLOATING_JOINT
+
+    floating = mechkit.load("four_bar", base="floating", base_inertia=(5.0, (0.1, 0.1, 0.1)), gravity=(0, 0, 0))
+    assert floating.model.names[1] == FLOATING_JOINT and not floating.model.gravity.linear.any()
+    moving = mechkit.load("spherical_2dof", base="moving", lock={"r21": 0.9})
+    assert moving.actuated[:6] == BASE_JOINTS and "r21" not in moving.model.names
+    with pytest.raises(InvalidArgument, match="base"):
+        mechkit.load("four_bar", base="rolling")

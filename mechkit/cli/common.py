@@ -8,7 +8,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from mechkit.base.exceptions import ClosureNotConverged, MechkitError
+from mechkit.base.exceptions import ClosureNotConverged, InvalidArgument, MechkitError
 from mechkit.cli import option_values
 from mechkit.core import Assembly, refuse_outside, wrap_into_limits
 from mechkit.loading import load
@@ -86,6 +86,54 @@ def add_mechanism_arguments(parser: argparse.ArgumentParser) -> None:
     )
 
 
+def add_base_arguments(parser: argparse.ArgumentParser, motion: bool = True) -> None:
+    """`--base`, `--base-inertia` and (with `motion`) `--base-motion` (`mechkit.bases`).
+
+    Args:
+        parser: a command's parser.
+        motion: also take a moving base's motion from a CSV file.
+    """
+    parser.add_argument(
+        "--base",
+        choices=("fixed", "moving", "floating"),
+        default="fixed",
+        help="the ground: fixed (the world), moving (carried by --base-motion) or floating (a free bus)",
+    )
+    parser.add_argument(
+        "--base-inertia", metavar="MASS,IXX,IYY,IZZ", help="the base body's mass (kg) and moments (kg m^2)"
+    )
+    if motion:
+        parser.add_argument(
+            "--base-motion",
+            metavar="BASE.csv",
+            help="a moving base's motion: CSV of t,x,y,z,roll,pitch,yaw (s, m, rad); its times are the run's",
+        )
+
+
+def carried_inputs(mech: Mechanism, args: argparse.Namespace, inputs: Any = None) -> Any:
+    """The input law with a moving base's motion (`--base-motion`) joined to the inputs' law.
+
+    Args:
+        mech: the mechanism (on the base the command line asked).
+        args: the parsed command line.
+        inputs: the inputs' law (`mechkit.motion.InputLaw`) on the base motion's times, or None (held at home).
+
+    Returns:
+        The joined law, or `inputs` when no base motion is given.
+
+    Raises:
+        InvalidArgument: --base-motion without --base moving, or a law on other times.
+    """
+    path = getattr(args, "base_motion", None)
+    if path is None:
+        return inputs
+    if getattr(args, "base", "fixed") != "moving":
+        raise InvalidArgument("--base-motion", path, "moves a base: give --base moving too")
+    from mechkit import bases
+
+    return bases.carried(mech, bases.from_csv(path), inputs)
+
+
 def overrides(pairs: list[str] | None) -> dict[str, str]:
     """`--set` pairs as a dict.
 
@@ -138,7 +186,8 @@ def load_mechanism(args: argparse.Namespace) -> Mechanism:
     """The mechanism the command line names, with its overrides and reductions.
 
     Args:
-        args: the parsed command line (name, --set, --actuated, --lock, --keep, --fix, --freeflyer).
+        args: the parsed command line (name, --set, --actuated, --lock, --keep, --fix, --freeflyer, --base,
+            --base-inertia).
 
     Returns:
         The mechanism.
@@ -158,11 +207,20 @@ def load_mechanism(args: argparse.Namespace) -> Mechanism:
             freeflyer=getattr(args, "freeflyer", False),
             ignore_unknown_closures=getattr(args, "ignore_unknown_closures", False),
             bushings=getattr(args, "bushings", "rigid"),
+            base=getattr(args, "base", "fixed"),
+            base_inertia=_base_inertia(getattr(args, "base_inertia", None)),
             **overrides(args.set),
         )
     except ClosureNotConverged as err:
         raise MechkitError(f"{args.name}: its loops do not close at home: {err}") from None
     return mech
+
+
+def _base_inertia(text: str | None) -> tuple[float, list[float]] | None:
+    if text is None:
+        return None
+    mass, *moments = option_values.numbers("--base-inertia", text, 4, what="MASS,IXX,IYY,IZZ")
+    return mass, moments
 
 
 def assembly_line(assembly: Assembly, what: str = "the home assembly") -> str:

@@ -12,8 +12,10 @@ from mechkit.base.exceptions import InvalidArgument, MotionFailed
 from mechkit.base.joint_arguments import joint_names
 from mechkit.cli import option_values
 from mechkit.cli.common import (
+    add_base_arguments,
     add_mechanism_arguments,
     assembly_line,
+    carried_inputs,
     check_writers,
     examples,
     load_mechanism,
@@ -98,6 +100,8 @@ def run(args: argparse.Namespace) -> None:
     else:
         scene = args.scene or next(iter(mech.spec.scenes), "sweep")
         law = motion.from_scene(mech, scene)
+    if args.base_motion:  # the carrier's motion sets the times: the inputs on them, else held at home
+        law = carried_inputs(mech, args, law if args.inputs else None)
     if args.samples is not None:
         law = motion.resample(law, args.samples)
     check_writers(args.output, args.plot, "motion plots")
@@ -141,6 +145,7 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
         ),
     )
     add_mechanism_arguments(p)
+    add_base_arguments(p)
     source = p.add_mutually_exclusive_group()
     source.add_argument("--scene", help="a scene of the mechanism (default: its first declared scene, else 'sweep')")
     source.add_argument(

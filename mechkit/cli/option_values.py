@@ -166,6 +166,8 @@ TYPED = {
     "keep": "--keep",
     "fix": "--fix",
     "freeflyer": "--freeflyer",
+    "base": "--base",
+    "base_inertia": "--base-inertia",
     "actuated": "--actuated",
     "grid": "--grid",
     "metric": "--metric",

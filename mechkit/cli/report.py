@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 
 from mechkit.base.json_text import dumps
-from mechkit.cli.common import add_mechanism_arguments, assembly_line, examples, load_mechanism
+from mechkit.cli.common import add_base_arguments, add_mechanism_arguments, assembly_line, examples, load_mechanism
 
 
 def run(args: argparse.Namespace) -> None:
@@ -44,5 +44,6 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
         **examples("mechkit report five_bar", "mechkit report four_bar --set coupler=0.3 --json"),
     )
     add_mechanism_arguments(p)
+    add_base_arguments(p, motion=False)
     p.add_argument("--json", action="store_true", help="machine-readable output")
     p.set_defaults(func=run)

@@ -13,7 +13,15 @@ from mechkit.base.atomic import resolve_output
 from mechkit.base.exceptions import InvalidArgument, InvalidParameters, MethodUnavailable
 from mechkit.base.joint_arguments import joint_names
 from mechkit.cli import option_values
-from mechkit.cli.common import add_mechanism_arguments, assembly_line, check_writers, examples, load_mechanism
+from mechkit.cli.common import (
+    add_base_arguments,
+    add_mechanism_arguments,
+    assembly_line,
+    carried_inputs,
+    check_writers,
+    examples,
+    load_mechanism,
+)
 from mechkit.cli.progress import ProgressBars
 
 #: Simulations of at least this many simulated seconds show a progress bar (stderr, on a terminal).
@@ -237,6 +245,11 @@ def run(args: argparse.Namespace) -> None:
         )
     elif args.torques:
         torques = motion.from_csv(mech, args.torques)
+    if args.base == "moving" and (not args.base_motion or torques is not None):
+        raise InvalidArgument(
+            "--base", "moving", "needs --base-motion BASE.csv (the carrier's motion; --torques cannot drive it)"
+        )
+    inputs = carried_inputs(mech, args, inputs)
     bars = ProgressBars(None if args.duration >= LONG_RUN else False)
     try:
         v0 = _initial_velocity(mech, rates, source)
@@ -284,6 +297,7 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
         ),
     )
     add_mechanism_arguments(p)
+    add_base_arguments(p)
     p.add_argument("--duration", type=float, required=True, metavar="T", help="simulated time (s)")
     drive = p.add_mutually_exclusive_group()
     drive.add_argument(

@@ -154,3 +154,22 @@ def test_bushings_are_rigid_by_default_and_compliant_when_asked():
     for extra, dof in (((), 1), (("--bushings", "compliant"), 3)):
         out = run_mechkit("report", path, *extra)
         assert out.returncode == 0 and f"DOF numerical {dof}," in out.stdout, out.stderr
+
+
+def test_base_options_put_the_mechanism_on_a_base(tmp_path, capsys):
+    """--base floating with --base-inertia in a report; --base moving with --base-motion in a motion study:
+    the carrier's efforts at the root joints, the carrier's weight on base_z; a base motion on a fixed
+    base is refused by option."""
+    assert main(["report", "spherical_2dof", "--base", "floating", "--base-inertia", "20,0.5,0.6,0.7", "--json"]) == 0
+    r = json.loads(capsys.readouterr().out)
+    assert r["dof"] == 8 and "floating base" in r["summary"]
+    base = tmp_path / "carrier.csv"
+    base.write_text("t,z,roll\n" + "".join(f"{t:.2f},0,{0.1 * np.sin(t):.9f}\n" for t in np.linspace(0, 1, 11)))
+    out = tmp_path / "m.csv"
+    assert main(["motion", "spherical_2dof", "--base", "moving", "--base-motion", str(base), "-o", str(out)]) == 0
+    assert "base CSV carrier.csv, 11 samples" in capsys.readouterr().out
+    table = mechkit.motion.read_csv(out)
+    weight = float(np.sum([i.mass for i in mechkit.load("spherical_2dof").model.inertias])) * 9.81
+    assert np.abs(table.effort("base_z") - weight).max() < 0.05 * weight  # a slow roll: the weight, nearly
+    assert main(["motion", "spherical_2dof", "--base-motion", str(base)]) == 2
+    assert "--base-motion" in capsys.readouterr().err

@@ -4,6 +4,8 @@ motion law."""
 from __future__ import annotations
 
 import numpy as np
+import pinocchio as pin
+import pytest
 
 from mechkit.mechanisms.ten_bar import geometry as geo
 
@@ -31,3 +33,24 @@ def test_deployment_law_is_the_deployment_scene(mech):
     assert law.names == ("R1", "R3", "R5")
     assert np.array_equal(law.guesses, poses) and np.array_equal(law.t, deployment_times(mech, 11))
     assert np.array_equal(law.values, poses[:, [mech.q_index(j) for j in law.names]])
+
+
+@pytest.mark.slow
+def test_deployment_in_orbit_turns_the_bus_and_keeps_momentum(mech):
+    """A 4 s deployment on a floating bus with no gravity: momentum kept, the bus turned about the plane's
+    normal alone, the motor torques not the ground test's."""
+    import mechkit
+    from mechkit.bases import FLOATING_JOINT, momentum
+    from mechkit.mechanisms.ten_bar.scenes import in_orbit
+
+    quick = mechkit.load("ten_bar", deploy_time=4.0)
+    runs = in_orbit(quick)
+    floating, orbit = runs["floating"], runs["orbit"]
+    drift = momentum(floating, orbit.t, orbit.motion.q, orbit.motion.v).drift()
+    assert drift["relative_linear"] < 1e-8 and drift["com"] < 1e-8
+    k = floating.q_index(FLOATING_JOINT) + 3
+    turn = pin.log3(pin.Quaternion(orbit.motion.q[-1, k : k + 4]).matrix())
+    normal = int(np.argmax(np.abs(turn)))
+    assert abs(turn[normal]) > 1e-2 and np.delete(np.abs(turn), normal).max() < 1e-9
+    ground = np.interp(orbit.t, runs["ground"].t, runs["ground"].motion.effort("R1"))
+    assert np.nanmax(np.abs(orbit.motion.effort("R1") - ground)) > 1.0

@@ -21,7 +21,7 @@ from mechkit.mechanisms.rocket_gimbal.params import RocketGimbalParams, geometry
 if TYPE_CHECKING:
     from mechkit.mechanism import Mechanism
 
-__all__ = ["SwingScene", "swing_scene", "swing_times", "thrust_fext"]
+__all__ = ["AXIAL_ACCELERATION", "SwingScene", "in_flight", "swing_scene", "swing_times", "thrust_fext"]
 
 
 @dataclass(frozen=True)
@@ -121,3 +121,44 @@ def swing_times(mech: Mechanism, poses: int) -> np.ndarray:
         (poses,) times, s.
     """
     return np.linspace(0.0, 1.0 / SwingScene().frequency, poses)
+
+
+#: The vehicle's axial acceleration in flight (ours: 2 g along the rocket's axis, world z at home, a
+#: first stage late in its burn), so that the engine feels 3 g along its axis with gravity.
+AXIAL_ACCELERATION = 2 * 9.81
+
+
+def in_flight(mech: Mechanism, acceleration: float = AXIAL_ACCELERATION, scene: SwingScene | None = None) -> dict:
+    """The swing on a vehicle accelerating along its axis, under thrust, beside the no-thrust bench.
+
+    The flight: the gimbal on a moving base (`mechkit.bases`) whose z accelerates at `acceleration`
+    from rest, the scene's thrust on the engine (`thrust_fext`), gravity as on the ground; the bench:
+    the fixed gimbal under 1 g, no thrust. Both follow the swing scene's inputs (`SPEC.scenes["swing"]`).
+
+    Args:
+        mech: the gimbal on its fixed ground.
+        acceleration: the vehicle's axial acceleration (m/s^2, along world z).
+        scene: the swing and its thrust (default: `SwingScene()`).
+
+    Returns:
+        "bench", "flight": the motion studies (`mechkit.history.MotionResult`); "moving": the gimbal on
+        its moving base.
+    """
+    from mechkit import motion
+    from mechkit.bases import base_motion, carried, with_base
+
+    scene = scene or SwingScene()
+    law = motion.from_scene(mech, "swing")
+    moving = with_base(mech, "moving")
+
+    def vehicle(t: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        axial = np.array([0.0, 0.0, 1.0, 0.0, 0.0, 0.0])
+        return 0.5 * acceleration * t * t * axial, acceleration * t * axial, acceleration * axial
+
+    own = motion.from_arrays(moving, law.t, law.values, law.rates, law.accelerations, names=law.names)
+    flight = carried(moving, base_motion.from_callable(vehicle, law.t, "axial acceleration"), own)
+    return {
+        "bench": motion.study(mech, law),
+        "flight": motion.study(moving, flight, loads=lambda m, q, t: thrust_fext(m, q, scene)),
+        "moving": moving,
+    }

@@ -5,6 +5,7 @@ speed (the paper's Figs. 5-7), as an attitude law with its derivatives and as as
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -13,9 +14,21 @@ from mechkit.base.exceptions import InvalidParameters
 from mechkit.mechanisms.spherical_2dof.joint_state import state
 
 if TYPE_CHECKING:
+    from mechkit.bases import HeldMotion
     from mechkit.mechanism import Mechanism
 
-__all__ = ["CONE_HALF_ANGLE", "CONE_PERIOD", "cone_attitude", "cone_scene", "cone_scene_times", "cone_times"]
+__all__ = [
+    "CONE_HALF_ANGLE",
+    "CONE_PERIOD",
+    "SHIP",
+    "cone_attitude",
+    "cone_scene",
+    "cone_scene_times",
+    "cone_times",
+    "isolation_points",
+    "on_ship",
+    "ship_motion",
+]
 
 #: Cone scene: the paper's "cone angle 30 deg" (錐角) read as the apex angle: half angle 15 deg.
 CONE_HALF_ANGLE = math.radians(15.0)
@@ -94,3 +107,70 @@ def cone_scene_times(mech: Mechanism, poses: int) -> np.ndarray:
         (poses,) times, s.
     """
     return np.linspace(0.0, CONE_PERIOD, poses)
+
+
+#: On a ship (ours: a moderate sea): roll 10 deg over 8 s, pitch 4 deg over 6 s, heave 0.5 m over 7 s,
+#: as (amplitude, period (s)) of x, y, z (m), roll, pitch, yaw (rad).
+SHIP = ((0.0, 1.0), (0.0, 1.0), (0.5, 7.0), (math.radians(10.0), 8.0), (math.radians(4.0), 6.0), (0.0, 1.0))
+#: The platform kept level: its normal (its own z) along the world's z.
+LEVEL = ((0.0, 0.0, 1.0), (0.0, 0.0, 1.0))
+
+
+def ship_motion(t: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The ship's motion `SHIP` at a time: each coordinate a sine of its amplitude and period.
+
+    Args:
+        t: time (s).
+
+    Returns:
+        The carrier's pose (x, y, z, roll, pitch, yaw; m, rad), its rates and accelerations (6,).
+    """
+    amp, w = np.array([a for a, _ in SHIP]), 2 * np.pi / np.array([p for _, p in SHIP])
+    return amp * np.sin(w * t), amp * w * np.cos(w * t), -amp * w * w * np.sin(w * t)
+
+
+def on_ship(mech: Mechanism, duration: float = 24.0, samples: int = 241) -> HeldMotion:
+    """The platform held level on the ship: the motor inputs, torques and every reaction
+    (`mechkit.bases.held_motion`).
+
+    Args:
+        mech: the platform on its fixed ground.
+        duration: s.
+        samples: samples of the motion.
+
+    Returns:
+        The `HeldMotion` (its study's efforts at base_* are the ship's wrench on the platform's base).
+    """
+    from mechkit.bases import base_motion, held_motion, with_base
+
+    moving = with_base(mech, "moving")
+    return held_motion(
+        moving, base_motion.from_callable(ship_motion, np.linspace(0.0, duration, samples)), "platform", LEVEL
+    )
+
+
+def isolation_points(
+    mech: Mechanism,
+    frequencies: Sequence[float],
+    bandwidths: Sequence[float],
+    amplitude: float = math.radians(5.0),
+    rotor_inertia: float = 0.05,
+) -> list:
+    """The isolation chart's points: the carrier rolling at each frequency, the drives position servos of
+    each bandwidth holding the platform level (`mechkit.bases.isolation`).
+
+    Args:
+        mech: the platform on its fixed ground.
+        frequencies: the carrier's roll frequencies (Hz).
+        bandwidths: the servos' bandwidths (Hz).
+        amplitude: the carrier's roll amplitude (rad; ours 5 deg).
+        rotor_inertia: each motor's reflected rotor inertia (kg m^2; ours).
+
+    Returns:
+        The `IsolationPoint`s, bandwidth by bandwidth.
+    """
+    from mechkit.bases.isolation import holding_table, isolation_point, on_carrier
+
+    carried = on_carrier(mech, rotor_inertia)
+    table = holding_table(carried, "platform", LEVEL, amplitude)
+    return [isolation_point(carried, table, amplitude, f, b) for b in bandwidths for f in frequencies]

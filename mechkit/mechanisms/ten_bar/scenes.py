@@ -8,7 +8,7 @@ import numpy as np
 from mechkit.catalog.contract import SampledLaw
 from mechkit.mechanism import Mechanism
 from mechkit.mechanisms.ten_bar import dynamics as td
-from mechkit.mechanisms.ten_bar.params import MOTORS, PASSIVE
+from mechkit.mechanisms.ten_bar.params import MOTORS, PASSIVE, motor_law
 
 #: Step (s) of the deployment the scene samples.
 DEPLOY_STEP = 0.02
@@ -70,3 +70,88 @@ def deployment_law(mechanism: Mechanism, samples: int | None = None) -> SampledL
         guesses=poses,
         source="deployment, every step" if frames == every_step else f"deployment, {frames} poses",
     )
+
+
+#: The spacecraft bus the array deploys from (ours: a 100 kg small satellite, principal moments in kg m^2).
+BUS = (100.0, (15.0, 15.0, 12.0))
+
+
+def in_orbit(mechanism: Mechanism, bus: tuple = BUS, rtol: float = 1e-8) -> dict:
+    """The deployment in orbit on a floating bus (no gravity) beside the ground test under 1 g: the same
+    motor laws (`params.motor_law`), the R5 spring, the simulator (`mechkit.bases`).
+
+    Args:
+        mechanism: the ten-bar on its fixed ground.
+        bus: the bus's (mass kg, (Ixx, Iyy, Izz) kg m^2), at the ground body's origin.
+        rtol: the integrator's relative tolerance.
+
+    Returns:
+        "orbit" and "ground": the `SimulationResult`s; "floating": the mechanism on the bus.
+    """
+    from mechkit.bases import with_base
+
+    floating = with_base(mechanism, "floating", base_inertia=bus, gravity=(0.0, 0.0, 0.0))
+
+    def law(t: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        return motor_law(mechanism.params, t)
+
+    runs = {
+        name: m.simulate(
+            mechanism.params.deploy_time,
+            inputs=law,
+            input_names=list(MOTORS),
+            dynamics="kkt",
+            rtol=rtol,
+            atol=rtol * 1e-2,
+        )
+        for name, m in (("orbit", floating), ("ground", mechanism))
+    }
+    return {**runs, "floating": floating}
+
+
+#: Where a latch catches the spring rocker R5 (ours: reached from below by the rocker's first swing, in
+#: orbit and under 1 g alike).
+LATCH_R5 = -0.08
+
+
+def latch_up_in_orbit(mechanism: Mechanism, bus: tuple = BUS, latch: float = LATCH_R5, rtol: float = 1e-8) -> dict:
+    """The latch-up shock of the rocker R5 in orbit (floating bus, no gravity) and on the ground (1 g).
+
+    Each run simulates to the latch, then the jump the simulator's impact takes there
+    (`mechkit.simulation.events.impact`), and reads its impulses (`mechkit.bases.latch_up`).
+
+    Args:
+        mechanism: the ten-bar on its fixed ground.
+        bus: the bus's (mass kg, (Ixx, Iyy, Izz) kg m^2).
+        latch: R5's latched angle (rad).
+        rtol: the integrator's relative tolerance.
+
+    Returns:
+        "orbit" and "ground": (latch time s, R5's rate at arrival rad/s, `LatchUp`, the simulator's
+        dissipated energy J); "floating": the mechanism on the bus.
+    """
+    from mechkit.bases import with_base
+    from mechkit.bases.latch_up import latch_up
+    from mechkit.simulation import Latch
+    from mechkit.simulation.events import impact
+
+    floating = with_base(mechanism, "floating", base_inertia=bus, gravity=(0.0, 0.0, 0.0))
+
+    def law(t: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        return motor_law(mechanism.params, t)
+
+    options = {"inputs": law, "input_names": list(MOTORS), "dynamics": "kkt", "rtol": rtol, "atol": rtol * 1e-2}
+    out: dict = {"floating": floating}
+    for name, m in (("orbit", floating), ("ground", mechanism)):
+        latched = m.simulate(
+            mechanism.params.deploy_time, latches=[Latch(PASSIVE, latch, +1)], reactions=False, **options
+        )
+        when = next(t for t, what, _ in latched.events if what == f"latch:{PASSIVE}")
+        before = m.simulate(when, reactions=False, **options)
+        q, v = before.motion.q[-1], before.motion.v[-1]
+        drives = np.array([m.v_index(j) for j in MOTORS])
+        cm = m.closure_model
+        jump = impact(cm, cm.create_data(), q, v, drives, law(when)[1], m.v_index(PASSIVE), 0.0)
+        shock = latch_up(m, q, v, jump.v, [*MOTORS, PASSIVE])
+        out[name] = (when, float(v[m.v_index(PASSIVE)]), shock, jump.dissipated)
+    return out

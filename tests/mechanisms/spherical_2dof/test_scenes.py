@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import numpy as np
+import pytest
 
 from mechkit.mechanisms.spherical_2dof.kinematics import platform_normal
 from mechkit.mechanisms.spherical_2dof.scenes import cone_attitude
@@ -16,3 +17,17 @@ def test_cone_scene_derivatives_and_angle():
     np.testing.assert_allclose(phi_d, fd, atol=1e-8)
     fd2 = (cone_attitude(t + h)[1] - cone_attitude(t - h)[1]) / (2 * h)
     np.testing.assert_allclose(phi_dd, fd2, atol=1e-7)
+
+
+def test_held_level_on_the_ship(load_cached):
+    """Two seconds of the ship scene: the platform level at every sample, the ship carrying its weight."""
+    import pinocchio as pin
+
+    from mechkit.mechanisms.spherical_2dof.scenes import on_ship, ship_motion
+
+    mech = load_cached("spherical_2dof")
+    held = on_ship(mech, duration=2.0, samples=11)
+    assert held.tilt.max() < 1e-10
+    weight = pin.computeTotalMass(mech.model) * 9.81
+    heave = ship_motion(held.study.t[-1])[2][2]  # the ship's vertical acceleration at the end
+    assert held.study.effort("base_z")[-1] == pytest.approx(weight * (1 + heave / 9.81), rel=2e-2)
