@@ -122,6 +122,8 @@ def load(
         raise InvalidArgument("bushings", bushings, "expected 'rigid' or 'compliant'")
     if bushings == "compliant" and (lock or keep is not None or fix):  # a reduced tree's URDF drops the marks
         raise InvalidArgument("bushings", bushings, "not with lock, keep or fix: weld or fix joints in the file")
+    if bushings == "compliant" and base != "fixed":  # the based tree is built, without the URDF's marks
+        raise InvalidArgument("bushings", bushings, f"not on a {base} base: the bushing forces would be lost")
     if base != "fixed" or base_inertia is not None or gravity is not None:
         kwargs = {"lock": lock, "keep": keep, "fix": fix, "freeflyer": freeflyer, "ignore_unknown_closures": ignore}
         kwargs["bushings"] = bushings

@@ -134,6 +134,8 @@ def test_an_sdformat_bushing_cannot_be_compliant_and_the_option_is_checked(tmp_p
         mechkit.load(FOUR_BAR, bushings="soft")
     with pytest.raises(InvalidArgument, match="bushings.*not with lock"):  # the reduced tree would drop it
         mechkit.load(FOUR_BAR, bushings="compliant", lock={"crank": 0.5})
+    with pytest.raises(InvalidArgument, match="bushings.*not on a floating base"):  # the based tree would drop it
+        mechkit.load(FOUR_BAR, bushings="compliant", base="floating", base_inertia=(5.0, (0.1, 0.1, 0.1)))
 
 
 def _strandbeest_crank_torques(path):
