@@ -171,11 +171,10 @@ class BranchWatch:
             raise BranchChanged(
                 t, self.joint_of(q - q_step), jump / max(moved, 1e-300), "the closure moved the position"
             )
-        M = pin.crba(self.cm.model, self.cd.pin, q)
-        M = np.triu(M) + np.triu(M, 1).T
+        model, data = self.cm.model, self.cd.pin  # v^T M v as twice Pinocchio's kinetic energy (no mass matrix)
+        kinetic = float(pin.computeKineticEnergy(model, data, q, v_step))
         dv = v - v_step
-        kinetic = float(v_step @ M @ v_step)
-        change = float(dv @ M @ dv) / kinetic if kinetic > 0 else 0.0
+        change = float(pin.computeKineticEnergy(model, data, q, dv)) / kinetic if kinetic > 0 else 0.0
         if change > BRANCH_TOL:
             raise BranchChanged(t, self.joint_of(dv), change, "the velocity left the tangent of the branch")
 
@@ -192,7 +191,9 @@ class BranchWatch:
         Returns:
             True near a singular position.
         """
-        r = self.ratio(q)[0]
+        J = core.closure_jacobian(self.cm, self.cd, q)
+        s = np.linalg.svd(J, compute_uv=False) if self.rank else np.ones(1)  # the values only: `ratio`'s first
+        r = float(s[self.rank - 1] / s[0]) / self.start if self.rank else 1.0
         last, self._last = self._last, (t, r)
         if r < NEAR:
             return True

@@ -70,6 +70,7 @@ def simulate(
     max_step: float = math.inf,
     dynamics: str | None = None,
     baumgarte: tuple[float, float] | None = None,
+    friction_scheme: str = "fixed point",
     project: bool = True,
     limits: str | Sequence[Limit] | None = "file",
     restitution: float = 0.0,
@@ -98,7 +99,8 @@ def simulate(
         dt: a fixed step (s); None: adaptive steps to `rtol`, `atol` (`mechkit.simulation.integrator`).
         rtol: the adaptive steps' relative tolerance (scipy's meaning).
         atol: their absolute tolerance (scipy's meaning).
-        method: the one-step method ("RK45", "DOP853", "RK23", "Radau"; "RK4" at a fixed step `dt` only).
+        method: the one-step method ("RK45", "DOP853", "RK23", "Radau"; "RK4", "SymplecticEuler" and
+            "ImplicitMidpoint" at a fixed step `dt` only: `mechkit.simulation.fixed_step`).
         max_step: the largest adaptive step (s).
         dynamics: the core's forward-dynamics method ("proximal", "lcaba", "kkt", "nullspace"); None:
             "proximal" (Pinocchio's constraint models), or "kkt" where friction needs the reactions: the
@@ -107,6 +109,8 @@ def simulate(
             ones differ by O(closure residual) there, which the inverse dynamics refuses), or where
             Pinocchio's constraint models cannot express a cut or coupling (`core.pinocchio_methods_apply`).
         baumgarte: (Kp 1/s^2, Kd 1/s) closure stabilisation in the accelerations, or None.
+        friction_scheme: friction from the reactions per evaluation, "corrected" or "fixed point"
+            (`mechkit.simulation.system`).
         project: project onto the closures and drives after every step (off: the drift shows).
         limits: "file" (the description's joint limits), a list of `Limit`, or None.
         restitution: the restitution of the description's limits (0: stop and hold; 1: elastic).
@@ -125,7 +129,7 @@ def simulate(
     """
     if not (isinstance(duration, (int, float)) and duration > 0 and math.isfinite(duration)):
         raise InvalidParameters("duration", duration, "must be a positive number of seconds")
-    options = Options(method, rtol, atol, dt, max_step)
+    Options(method, rtol, atol, dt, max_step, npos=0)  # the options checked before anything is built
     drives = prescribed(inputs, input_names)
     elements = (
         (default_forces(mech, source) if file_forces else []) + list(forces) + torque_motors(mech, torques, source)
@@ -136,8 +140,9 @@ def simulate(
     if dynamics is None:
         exact = any(e.needs_reactions for e in elements) or not core.pinocchio_methods_apply(mech.closure_model)
         dynamics = "kkt" if exact else "proximal"
-    system = MechanismSystem(mech, elements, drives, dynamics, baumgarte)
+    system = MechanismSystem(mech, elements, drives, dynamics, baumgarte, friction_scheme)
     layout = StateLayout(mech.model, 1 + len(elements))
+    options = Options(method, rtol, atol, dt, max_step, npos=layout.npos)
     projection = Projection(mech)
     limit_list = file_limits(mech, source, restitution) if limits == "file" else list(limits or ())
     for j in [x.joint for x in limit_list] + [x.joint for x in latches]:
