@@ -42,7 +42,9 @@ LOCAL_STEPS = 8
 POLISH = 4.0
 
 
-def truncated_solve(J: np.ndarray, b: np.ndarray, floor: float = core.RANK_TOL) -> np.ndarray:
+def truncated_solve(
+    J: np.ndarray, b: np.ndarray, floor: float = core.RANK_TOL, svd: tuple[np.ndarray, ...] | None = None
+) -> np.ndarray:
     """The minimum-norm least-squares solution of J x = b, singular values below `floor` times the largest
     dropped (dependent rows, and the directions a singular position adds, left alone).
 
@@ -50,13 +52,14 @@ def truncated_solve(J: np.ndarray, b: np.ndarray, floor: float = core.RANK_TOL) 
         J: (rows, n) the matrix.
         b: (rows,) the right-hand side.
         floor: the relative threshold.
+        svd: J's thin SVD (U, s, Vt) where already known.
 
     Returns:
         (n,) x.
     """
     if not J.size:
         return np.zeros(J.shape[1])
-    U, s, Vt = np.linalg.svd(J, full_matrices=False)
+    U, s, Vt = svd if svd is not None else np.linalg.svd(J, full_matrices=False)
     r = int(np.sum(s > floor * s[0]))
     return Vt[:r].T @ ((U[:, :r].T @ b) / s[:r])
 
@@ -93,6 +96,7 @@ class Projection:
     def __init__(self, mech, tol: float = POSITION_TOL, drift_tol: float = DRIFT_TOL):
         self.mech, self.tol, self.drift_tol = mech, tol, drift_tol
         self._last: tuple[np.ndarray, float, np.ndarray] | None = None
+        self._svd: tuple[np.ndarray, tuple[np.ndarray, ...]] | None = None
         self.cm = mech.closure_model
         self.cd = self.cm.create_data()
         self.model = self.cm.model
@@ -200,8 +204,31 @@ class Projection:
         J = known[2] if known is not None else self.rows(q)[1]
         if J.shape[0]:
             free = split.free_v
-            v[free] -= truncated_solve(J[:, free], J @ v, self.floor)
+            whole = free.size == J.shape[1]  # no driven joint: the SVD is the whole Jacobian's, kept for q
+            svd = self._svd_of(q, J) if whole else None
+            v[free] -= truncated_solve(J[:, free], J @ v, self.floor, svd)
         return v
+
+    def _svd_of(self, q: np.ndarray, J: np.ndarray) -> tuple[np.ndarray, ...]:
+        """The thin SVD of the closure Jacobian J at q (kept for `singular_values`)."""
+        self._svd = (q, np.linalg.svd(J, full_matrices=False))
+        return self._svd[1]
+
+    def singular_values(self, q: np.ndarray) -> np.ndarray:
+        """The closure Jacobian's singular values at q (those of the last velocity projection's SVD where it was
+        made at q).
+
+        Args:
+            q: (nq,) configuration.
+
+        Returns:
+            (min(rows, nv),) the singular values, largest first.
+        """
+        if self._svd is not None and (self._svd[0] is q or np.array_equal(self._svd[0], q)):
+            return self._svd[1][1]
+        known = self._known(q)
+        J = known[2] if known is not None else self.rows(q)[1]
+        return np.linalg.svd(J, compute_uv=False)
 
     def residual(self, q: np.ndarray) -> float:
         """The largest closure residual at a configuration.

@@ -179,7 +179,8 @@ def simulate(
     while t < t_end - 1e-12 * max(1.0, abs(t_end)):
         if recorder.steps >= MAX_STEPS:
             raise IntegrationFailed(t, f"{MAX_STEPS} steps taken")
-        mode.before(t, layout.q(y), y)
+        q = layout.q(y)
+        mode.before(t, q, y, projection.singular_values(q) if watch is not None else None)
         for attempt in range(BRANCH_RETRIES + 1):
             try:
                 t1, y1 = stepper.step()
