@@ -112,8 +112,8 @@ class Projection:
             (rows,) residuals (m for position rows) and (rows, nv) the closure Jacobian.
         """
         G, J, _ = core.kinematic_pass(self.cm, self.cd, q[None])
-        k = self.cm.kernel  # the residual as `core.closure_residual` computes it (the rows' product rounds otherwise)
-        return k.residual(G[0], q), k.evaluate(G[0], J[0], q)[1]
+        e, Jc, _ = self.cm.kernel.evaluate(G[0], J[0], q)  # `core.closure_residual`'s rows to rounding (1e-17 m)
+        return e, Jc
 
     def positions(self, q: np.ndarray, drives: Drives, t: float) -> np.ndarray:
         """A configuration with the driven joints on their law and every loop closed (left as it is where its
