@@ -86,21 +86,53 @@ class Recorder:
         """
         self.events.append((float(t), name, what))
 
+    def keep(self, cache: dict, t: float, y: np.ndarray, ev) -> None:
+        """Keep an evaluation in the cache, with what it was made under (the method and the drives).
+
+        Args:
+            cache: the cache (a dict, written).
+            t: the time (s).
+            y: the integrated vector it was made at.
+            ev (Evaluation): the evaluation.
+        """
+        cache["t"], cache["y"], cache["ev"] = t, y.copy(), ev
+        cache["under"] = (self.system.method, self.system.drives)
+
+    def cached(self, cache: dict, t: float, y: np.ndarray) -> bool:
+        """Whether the cache holds the evaluation at (t, y) under the present method and drives.
+
+        Args:
+            cache: the cache (`keep`).
+            t: the time (s).
+            y: the integrated vector.
+
+        Returns:
+            True where it can be used.
+        """
+        under = cache.get("under")
+        return (
+            cache.get("t") == t
+            and under[0] == self.system.method
+            and under[1] is self.system.drives
+            and np.array_equal(cache["y"], y)
+        )
+
     def record(self, t: float, y: np.ndarray, cache: dict) -> None:
         """Record one sample, with the evaluation the integrator made there (or a new one).
 
         Args:
             t: the time (s).
             y: the integrated vector at t.
-            cache: the integrator's last evaluation ("t", "y", "ev": an `Evaluation`), used when it
-                was made at (t, y).
+            cache: the last evaluation (`keep`), used when it was made at (t, y) under the present method
+                and drives; the sample's own is kept there (a fixed step's first stage).
         """
         s, L = self.system, self.layout
         q, v = L.q(y), L.v(y).copy()
-        if cache.get("t") == t and np.array_equal(cache.get("y"), y):
+        if self.cached(cache, t, y):
             ev = cache["ev"]
         else:
             ev = s.evaluate(t, q, v)
+            self.keep(cache, t, y, ev)
             self.evaluations += 1
         if self._size == len(self._arrays["t"]):
             self._arrays = {k: np.concatenate([x, np.empty_like(x)]) for k, x in self._arrays.items()}

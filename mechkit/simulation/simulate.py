@@ -152,12 +152,15 @@ def simulate(
     stopped: set[str] = set()  # joints held because they stopped at a bound (released when pulled off it)
 
     def rhs(t: float, y: np.ndarray) -> np.ndarray:
+        if recorder.cached(cache, t, y):  # the sample's own evaluation: a step's first stage where it starts
+            ev, q, v = cache["ev"], layout.q(y), layout.v(y)
+            return layout.derivative(y, ev.a, np.concatenate([[float(ev.efforts @ v[system.drive_v])], ev.powers]))
         q, v = layout.q(y), layout.v(y)
         if mode.near:  # crossing: the stages on the manifold (near a singular position, or redundant rows)
             q, v = on_manifold(projection, system.drives, t, q, v)
             y = layout.pack(q, v, layout.works(y))
         ev = system.evaluate(t, q, v)
-        cache["t"], cache["y"], cache["ev"] = t, y.copy(), ev
+        recorder.keep(cache, t, y, ev)
         recorder.evaluations += 1
         drive_power = float(ev.efforts @ v[system.drive_v])
         return layout.derivative(y, ev.a, np.concatenate([[drive_power], ev.powers]))
