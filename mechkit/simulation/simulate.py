@@ -70,7 +70,7 @@ def simulate(
     max_step: float = math.inf,
     dynamics: str | None = None,
     baumgarte: tuple[float, float] | None = None,
-    friction_scheme: str = "fixed point",
+    friction_scheme: str | None = None,
     project: bool = True,
     limits: str | Sequence[Limit] | None = "file",
     restitution: float = 0.0,
@@ -110,7 +110,9 @@ def simulate(
             Pinocchio's constraint models cannot express a cut or coupling (`core.pinocchio_methods_apply`).
         baumgarte: (Kp 1/s^2, Kd 1/s) closure stabilisation in the accelerations, or None.
         friction_scheme: friction from the reactions per evaluation, "corrected" or "fixed point"
-            (`mechkit.simulation.system`).
+            (`mechkit.simulation.system`); None: "corrected" at a fixed step, "fixed point" with adaptive
+            steps (the corrected friction's error, about 1e-6 of the accelerations, is noise to an error
+            control at rtol 1e-9: measured on the ten-bar's deployment, 3.3 times the steps).
         project: project onto the closures and drives after every step (off: the drift shows).
         limits: "file" (the description's joint limits), a list of `Limit`, or None.
         restitution: the restitution of the description's limits (0: stop and hold; 1: elastic).
@@ -140,6 +142,8 @@ def simulate(
     if dynamics is None:
         exact = any(e.needs_reactions for e in elements) or not core.pinocchio_methods_apply(mech.closure_model)
         dynamics = "kkt" if exact else "proximal"
+    if friction_scheme is None:
+        friction_scheme = "fixed point" if dt is None else "corrected"
     system = MechanismSystem(mech, elements, drives, dynamics, baumgarte, friction_scheme)
     layout = StateLayout(mech.model, 1 + len(elements))
     options = Options(method, rtol, atol, dt, max_step, npos=layout.npos)
