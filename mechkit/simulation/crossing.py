@@ -171,10 +171,8 @@ class BranchWatch:
             raise BranchChanged(
                 t, self.joint_of(q - q_step), jump / max(moved, 1e-300), "the closure moved the position"
             )
-        model, data = self.cm.model, self.cd.pin  # v^T M v as twice Pinocchio's kinetic energy (no mass matrix)
-        kinetic = float(pin.computeKineticEnergy(model, data, q, v_step))
-        dv = v - v_step
-        change = float(pin.computeKineticEnergy(model, data, q, dv)) / kinetic if kinetic > 0 else 0.0
+        kinetic, dv = float(pin.computeKineticEnergy(self.cm.model, self.cd.pin, q, v_step)), v - v_step  # no M
+        change = float(pin.computeKineticEnergy(self.cm.model, self.cd.pin, q, dv)) / kinetic if kinetic > 0 else 0.0
         if change > BRANCH_TOL:
             raise BranchChanged(t, self.joint_of(dv), change, "the velocity left the tangent of the branch")
 

@@ -9,7 +9,7 @@ import pinocchio as pin
 from mechkit import core
 from mechkit.simulation.projection import Projection
 from mechkit.simulation.state_layout import StateLayout
-from mechkit.simulation.system import MechanismSystem
+from mechkit.simulation.system import Evaluation, MechanismSystem
 
 #: Samples the recorder's arrays hold at first (doubled whenever they fill).
 CAPACITY = 1024
@@ -86,14 +86,14 @@ class Recorder:
         """
         self.events.append((float(t), name, what))
 
-    def keep(self, cache: dict, t: float, y: np.ndarray, ev) -> None:
+    def keep(self, cache: dict, t: float, y: np.ndarray, ev: Evaluation) -> None:
         """Keep an evaluation in the cache, with what it was made under (the method and the drives).
 
         Args:
             cache: the cache (a dict, written).
             t: the time (s).
             y: the integrated vector it was made at.
-            ev (Evaluation): the evaluation.
+            ev: the evaluation.
         """
         cache["t"], cache["y"], cache["ev"] = t, y.copy(), ev
         cache["under"] = (self.system.method, self.system.drives)
