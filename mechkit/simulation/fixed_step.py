@@ -173,8 +173,8 @@ class ImplicitMidpoint(FixedStep):
         self.jacobians += 1
 
     def _newton(self, t: float, y: np.ndarray, h: float) -> tuple[np.ndarray, np.ndarray] | None:
-        """z and f(t + h/2, z) (the step's slope) by simplified Newton from the last slope's predictor, or None
-        (no contraction)."""
+        """z and the step's slope f(t + h/2, z) by simplified Newton from the last slope's predictor (the slope
+        taken at the iterate before the last increment, which is below `NEWTON_TOL`), or None (no contraction)."""
         z = y + 0.5 * h * self.slope
         last = np.inf
         for _ in range(NEWTON_ITERATIONS):
@@ -184,8 +184,8 @@ class ImplicitMidpoint(FixedStep):
             size = float(np.max(np.abs(dz) / (1.0 + np.abs(z))))
             if not np.isfinite(size) or size > NEWTON_RATE * last:
                 return None
-            if size <= NEWTON_TOL:
-                return z, self.fun(t + 0.5 * h, z)
+            if size <= NEWTON_TOL:  # f at the last iterate but one: off by the Jacobian times this increment
+                return z, f
             last = size
         return None
 
