@@ -326,7 +326,10 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
         help="the core's forward dynamics (default: proximal, kkt with --friction)",
     )
     p.add_argument(
-        "--method", default="RK45", help="one-step method: RK45 (default), DOP853, RK23, Radau; RK4 (with --dt only)"
+        "--method",
+        default="RK45",
+        help="one-step method: RK45 (default), DOP853, RK23, Radau; RK4, SymplecticEuler, ImplicitMidpoint "
+        "(fixed step: with --dt only)",
     )
     p.add_argument(
         "--friction",

@@ -16,13 +16,14 @@ from mechkit.simulation.events import Impact, Latch, Limit, impact
 from mechkit.simulation.friction import FrictionInverse, inverse_dynamics
 from mechkit.simulation.integrator import ATOL, METHODS, RTOL, Event, IntegrationFailed, Options, Stepper, run
 from mechkit.simulation.prescribed import Drives, law_of_samples, prescribed
-from mechkit.simulation.projection import POSITION_TOL, Projection
+from mechkit.simulation.projection import DRIFT_TOL, POSITION_TOL, Projection
 from mechkit.simulation.result import SimulationResult, write_csv, write_parquet
 from mechkit.simulation.simulate import simulate
 from mechkit.simulation.system import Evaluation, MechanismSystem
 
 __all__ = [
     "ATOL",
+    "DRIFT_TOL",
     "METHODS",
     "POSITION_TOL",
     "RTOL",

@@ -171,15 +171,12 @@ class BranchWatch:
             raise BranchChanged(
                 t, self.joint_of(q - q_step), jump / max(moved, 1e-300), "the closure moved the position"
             )
-        M = pin.crba(self.cm.model, self.cd.pin, q)
-        M = np.triu(M) + np.triu(M, 1).T
-        dv = v - v_step
-        kinetic = float(v_step @ M @ v_step)
-        change = float(dv @ M @ dv) / kinetic if kinetic > 0 else 0.0
+        kinetic, dv = float(pin.computeKineticEnergy(self.cm.model, self.cd.pin, q, v_step)), v - v_step  # no M
+        change = float(pin.computeKineticEnergy(self.cm.model, self.cd.pin, q, dv)) / kinetic if kinetic > 0 else 0.0
         if change > BRANCH_TOL:
             raise BranchChanged(t, self.joint_of(dv), change, "the velocity left the tangent of the branch")
 
-    def approaching(self, t: float, q: np.ndarray, h: float | None) -> bool:
+    def approaching(self, t: float, q: np.ndarray, h: float | None, s: np.ndarray | None = None) -> bool:
         """Whether the next step may reach a singular position: a ratio below `NEAR` at q, or one the last
         two steps' trend brings below it within the next step (a step can straddle a singular position
         between two states far from it).
@@ -188,11 +185,14 @@ class BranchWatch:
             t: the time (s).
             q: (nq,) the configuration at the step's start.
             h: the next step's size (s), or None.
+            s: the closure Jacobian's singular values at q where known (`Projection.singular_values`).
 
         Returns:
             True near a singular position.
         """
-        r = self.ratio(q)[0]
+        if s is None and self.rank:  # the values only: `ratio`'s first
+            s = np.linalg.svd(core.closure_jacobian(self.cm, self.cd, q), compute_uv=False)
+        r = float(s[self.rank - 1] / s[0]) / self.start if self.rank else 1.0
         last, self._last = self._last, (t, r)
         if r < NEAR:
             return True
@@ -281,7 +281,7 @@ class BranchMode:
         self.system.method = ("branch" if conditioned else "nullspace") if near else self.dynamics
         self.stepper.restart(t, y)
 
-    def before(self, t: float, q: np.ndarray, y: np.ndarray) -> None:
+    def before(self, t: float, q: np.ndarray, y: np.ndarray, s: np.ndarray | None = None) -> None:
         """At a step's start: whether it may reach a singular position (`searching`: its crossing is then
         looked for), and back to the method asked where the ratio has recovered.
 
@@ -289,10 +289,11 @@ class BranchMode:
             t: the time (s).
             q: (nq,) the configuration.
             y: the integrated vector.
+            s: the closure Jacobian's singular values at q where known.
         """
         if self.watch is None:
             return
-        self.searching = self.watch.approaching(t, q, self.stepper.h)
+        self.searching = self.watch.approaching(t, q, self.stepper.h, s)
         proactive = self.watch.start >= CONDITIONED and (self.searching or self.watch.redundant > 0)
         near = self.stay or proactive
         if near != self.fallen:

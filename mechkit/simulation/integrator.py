@@ -13,8 +13,10 @@ After every accepted step the caller projects the state onto the constraint mani
 then restarted from the projected state with the step size it had chosen (a Runge-Kutta pair carries
 no other memory; one extra evaluation per step, the first stage at the new state). A fixed step `dt`
 runs the same pair with its error control off (first and largest step dt, an absolute tolerance of 1e300): the
-speed comparison with MuJoCo and the ten-bar's step-size studies use it. The classic RK4
-(`mechkit.simulation.fixed_step`, MuJoCo's RK4) runs at a fixed step only.
+speed comparison with MuJoCo and the ten-bar's step-size studies use it. The fixed-step methods
+(`mechkit.simulation.fixed_step`: the classic RK4, MuJoCo's RK4; semi-implicit Euler, MuJoCo's Euler; the
+implicit midpoint rule for stiff problems) run at a fixed step only; they are restarted in place (no
+evaluation, no new solver: a restart at a fixed step costs nothing).
 
 Events: after a step from (t0, y0) to (t1, y1), each event function g(t, y) is evaluated at both
 ends; where its sign changes in the event's direction, the crossing is found by Brent's method
@@ -32,7 +34,7 @@ import scipy.integrate
 import scipy.optimize
 
 from mechkit.base.exceptions import InvalidParameters, MechkitError
-from mechkit.simulation.fixed_step import RK4
+from mechkit.simulation.fixed_step import RK4, FixedStep, ImplicitMidpoint, SymplecticEuler
 
 #: The one-step methods offered (scipy.integrate classes).
 METHODS = {
@@ -41,9 +43,13 @@ METHODS = {
     "RK23": scipy.integrate.RK23,
     "Radau": scipy.integrate.Radau,
     "RK4": RK4,
+    "SymplecticEuler": SymplecticEuler,
+    "ImplicitMidpoint": ImplicitMidpoint,
 }
 #: Methods without an error estimate: they need a fixed step.
-FIXED_ONLY = ("RK4",)
+FIXED_ONLY = ("RK4", "SymplecticEuler", "ImplicitMidpoint")
+#: Methods that need the size of the position part of y (`Options.npos`).
+SECOND_ORDER = ("SymplecticEuler",)
 #: Default relative and absolute tolerances of the adaptive steps (ours: the energy balance of the
 #: registered mechanisms then holds to about 1e-8 of the energy exchanged).
 RTOL, ATOL = 1e-9, 1e-11
@@ -82,6 +88,7 @@ class Options:
         atol: their absolute tolerance (scipy's meaning).
         dt: a fixed step (s), or None for adaptive steps.
         max_step: the largest adaptive step (s).
+        npos: the size of the position part of y, followed by as many velocities (`SECOND_ORDER` methods).
     """
 
     method: str = "RK45"
@@ -89,6 +96,7 @@ class Options:
     atol: float = ATOL
     dt: float | None = None
     max_step: float = math.inf
+    npos: int | None = None
 
     def __post_init__(self) -> None:
         if self.method not in METHODS:
@@ -97,6 +105,8 @@ class Options:
             raise InvalidParameters("method", self.method, "estimates no error: give a fixed step dt")
         if self.dt is not None and not (self.dt > 0 and math.isfinite(self.dt)):
             raise InvalidParameters("dt", self.dt, "a fixed step must be a positive number of seconds")
+        if self.method in SECOND_ORDER and self.npos is None:
+            raise InvalidParameters("method", self.method, "needs the position part of the state (npos)")
         if not (self.rtol > 0 and self.atol > 0 and self.max_step > 0):
             raise InvalidParameters("rtol/atol/max_step", (self.rtol, self.atol, self.max_step), "must be > 0")
 
@@ -139,7 +149,12 @@ class Stepper:
         """
         o, remaining = self.options, self.t_end - t
         first = None if self.h is None else min(self.h, remaining)
-        if o.dt is None:
+        if isinstance(self.solver, FixedStep):
+            self.solver.reset(t, y)
+        elif o.method in FIXED_ONLY:
+            extra = {"npos": o.npos} if o.method in SECOND_ORDER else {}
+            self.solver = METHODS[o.method](self.fun, t, y, self.t_end, max_step=o.dt, **extra)
+        elif o.dt is None:
             self.solver = METHODS[o.method](
                 self.fun, t, y, self.t_end, first_step=first, max_step=o.max_step, rtol=o.rtol, atol=o.atol
             )

@@ -8,6 +8,8 @@ and rates in the projection) and records the efforts that do it.
 
 from __future__ import annotations
 
+import bisect
+import math
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import Any
@@ -23,7 +25,8 @@ Law = Callable[[float], tuple[np.ndarray, np.ndarray, np.ndarray]]
 
 def law_of_samples(law: Any) -> Law:
     """The continuous law through a sampled input law: a piecewise quintic matching values, rates and
-    accelerations at every sample (`scipy.interpolate.BPoly.from_derivatives`).
+    accelerations at every sample (`scipy.interpolate.BPoly.from_derivatives`, joined into one piecewise
+    polynomial of every joint: one evaluation a time for all of them).
 
     Args:
         law: the sampled law (`mechkit.motion.InputLaw`: names, t (N,), values, rates and accelerations
@@ -40,7 +43,10 @@ def law_of_samples(law: Any) -> Law:
         )
         for k in range(len(law.names))
     ]
-    derivatives = [(p, p.derivative(), p.derivative(2)) for p in pieces]
+    joined = scipy.interpolate.BPoly(np.stack([p.c for p in pieces], axis=-1), pieces[0].x)  # every joint at once
+    coefficients = [np.ascontiguousarray(d.c) for d in (joined, joined.derivative(), joined.derivative(2))]
+    breaks = joined.x.tolist()
+    last: list = [None, None]  # the last time asked and its answer (a step asks for it several times)
 
     def at(time: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         if time < t[0] or time > t[-1]:
@@ -49,9 +55,22 @@ def law_of_samples(law: Any) -> Law:
         if time in (t[0], t[-1]):  # the end samples as given (their rates and accelerations, not rest)
             edge = 0 if time == t[0] else -1
             return law.values[edge].copy(), law.rates[edge].copy(), law.accelerations[edge].copy()
-        return tuple(np.array([float(d[i](time)) for d in derivatives]) for i in range(3))
+        if last[0] != time:
+            last[:] = time, tuple(_bernstein(c, breaks, time) for c in coefficients)
+        return tuple(x.copy() for x in last[1])
 
     return at
+
+
+def _bernstein(c: np.ndarray, x: list[float], time: float) -> np.ndarray:
+    """A piecewise polynomial in the Bernstein basis (scipy's `BPoly` coefficients c (degree + 1, pieces, k) on
+    breakpoints x) at one time inside [x[0], x[-1]]: sum_j c_j C(n, j) s^j (1 - s)^(n - j) on its piece (scipy's
+    own call costs about 40 us: most of a step's time on the ten-bar's deployment)."""
+    i = min(max(bisect.bisect_right(x, time) - 1, 0), len(x) - 2)
+    s = (time - x[i]) / (x[i + 1] - x[i])
+    n = len(c) - 1
+    weights = [math.comb(n, j) * s**j * (1.0 - s) ** (n - j) for j in range(n + 1)]
+    return np.dot(weights, c[:, i, :])
 
 
 @dataclass

@@ -9,7 +9,10 @@ import pinocchio as pin
 from mechkit import core
 from mechkit.simulation.projection import Projection
 from mechkit.simulation.state_layout import StateLayout
-from mechkit.simulation.system import MechanismSystem
+from mechkit.simulation.system import Evaluation, MechanismSystem
+
+#: Samples the recorder's arrays hold at first (doubled whenever they fill).
+CAPACITY = 1024
 
 
 class Recorder:
@@ -33,27 +36,26 @@ class Recorder:
         self.events: list[tuple[float, str, str]] = []
         self.steps = self.evaluations = 0
         self._drive_impulses = self._impact_loss = 0.0
-        self._rows: dict[str, list] = {
-            k: []
-            for k in (
-                "t",
-                "q",
-                "v",
-                "a",
-                "efforts",
-                "generalized",
-                "wrenches",
-                "powers",
-                "works",
-                "residual",
-                "kinetic",
-                "gravity",
-                "potentials",
-                "drive_work",
-                "impact_loss",
-                "driven",
-            )
+        model, n = system.model, len(system.elements)
+        widths = {
+            "t": (),
+            "q": (model.nq,),
+            "v": (model.nv,),
+            "a": (model.nv,),
+            "generalized": (model.nv,),
+            "wrenches": (model.njoints, 6),
+            "powers": (n,),
+            "works": (n,),
+            "residual": (),
+            "kinetic": (),
+            "gravity": (),
+            "potentials": (n,),
+            "drive_work": (),
+            "impact_loss": (),
         }
+        self._arrays = {k: np.empty((CAPACITY, *w)) for k, w in widths.items()}  # doubled when full
+        self._size = 0
+        self._efforts: list[tuple[tuple[str, ...], np.ndarray]] = []  # (driven joints, their efforts) per sample
 
     def impulse(self, drive_work: float, dissipated: float) -> None:
         """Add an impact's energies.
@@ -84,69 +86,81 @@ class Recorder:
         """
         self.events.append((float(t), name, what))
 
+    def keep(self, cache: dict, t: float, y: np.ndarray, ev: Evaluation) -> None:
+        """Keep an evaluation in the cache, with what it was made under (the method and the drives).
+
+        Args:
+            cache: the cache (a dict, written).
+            t: the time (s).
+            y: the integrated vector it was made at.
+            ev: the evaluation.
+        """
+        cache["t"], cache["y"], cache["ev"] = t, y.copy(), ev
+        cache["under"] = (self.system.method, self.system.drives)
+
+    def cached(self, cache: dict, t: float, y: np.ndarray) -> bool:
+        """Whether the cache holds the evaluation at (t, y) under the present method and drives.
+
+        Args:
+            cache: the cache (`keep`).
+            t: the time (s).
+            y: the integrated vector.
+
+        Returns:
+            True where it can be used.
+        """
+        under = cache.get("under")
+        return (
+            cache.get("t") == t
+            and under[0] == self.system.method
+            and under[1] is self.system.drives
+            and np.array_equal(cache["y"], y)
+        )
+
     def record(self, t: float, y: np.ndarray, cache: dict) -> None:
         """Record one sample, with the evaluation the integrator made there (or a new one).
 
         Args:
             t: the time (s).
             y: the integrated vector at t.
-            cache: the integrator's last evaluation ("t", "y", "ev": an `Evaluation`), used when it
-                was made at (t, y).
+            cache: the last evaluation (`keep`), used when it was made at (t, y) under the present method
+                and drives; the sample's own is kept there (a fixed step's first stage).
         """
         s, L = self.system, self.layout
         q, v = L.q(y), L.v(y).copy()
-        if cache.get("t") == t and np.array_equal(cache.get("y"), y):
+        if self.cached(cache, t, y):
             ev = cache["ev"]
         else:
             ev = s.evaluate(t, q, v)
+            self.keep(cache, t, y, ev)
             self.evaluations += 1
-        rows = self._rows
-        efforts = np.full(len(self.effort_names), np.nan)
-        for name, u in zip(s.drives.all, ev.efforts):
-            efforts[self.effort_names.index(name)] = u
+        if self._size == len(self._arrays["t"]):
+            self._arrays = {k: np.concatenate([x, np.empty_like(x)]) for k, x in self._arrays.items()}
+        i, out = self._size, self._arrays
         works = L.works(y)
         potentials = s.potentials(q)
-        for key, value in (
-            ("t", t),
-            ("q", q),
-            ("v", v),
-            ("a", ev.a),
-            ("efforts", efforts),
-            ("generalized", ev.generalized),
-            ("wrenches", ev.wrenches),
-            ("powers", ev.powers),
-            ("works", works[1:]),
-            ("residual", self.projection.residual(q)),
-            ("kinetic", s.kinetic(q, v)),
-            ("gravity", potentials[0]),
-            ("potentials", potentials[1:]),
-            ("drive_work", works[0] + self._drive_impulses),
-            ("impact_loss", self._impact_loss),
-            ("driven", s.drives.all),
-        ):
-            rows[key].append(value)
+        out["t"][i], out["q"][i], out["v"][i], out["a"][i] = t, q, v, ev.a
+        out["generalized"][i], out["wrenches"][i], out["powers"][i] = ev.generalized, ev.wrenches, ev.powers
+        out["works"][i], out["residual"][i], out["kinetic"][i] = works[1:], self.projection.residual(q), s.kinetic(q, v)
+        out["gravity"][i], out["potentials"][i] = potentials[0], potentials[1:]
+        out["drive_work"][i], out["impact_loss"][i] = works[0] + self._drive_impulses, self._impact_loss
+        self._efforts.append((s.drives.all, np.array(ev.efforts)))
+        self._size += 1
 
     def arrays(self) -> dict[str, np.ndarray]:
         """The samples as arrays (efforts padded with NaN to every effort column)."""
-        out = {k: np.array(v) for k, v in self._rows.items() if k not in ("efforts", "driven")}
-        width = len(self.effort_names)
-        out["efforts"] = np.array(
-            [np.pad(e, (0, width - len(e)), constant_values=np.nan) for e in self._rows["efforts"]]
-        )
-        out["efforts"] = out["efforts"].reshape(len(out["t"]), width)
-        n = len(out["t"])
-        for key, size in (
-            ("powers", self.system.elements),
-            ("works", self.system.elements),
-            ("potentials", self.system.elements),
-        ):
-            out[key] = out[key].reshape(n, len(size))
+        n = self._size
+        out = {k: x[:n].copy() for k, x in self._arrays.items()}
+        efforts = np.full((n, len(self.effort_names)), np.nan)
+        for i, (names, values) in enumerate(self._efforts):
+            efforts[i, [self.effort_names.index(name) for name in names]] = values
+        out["efforts"] = efforts
         return out
 
     def groups(self) -> dict[tuple[str, ...], np.ndarray]:
         """Driven joints -> the samples driven by exactly those."""
         out: dict[tuple[str, ...], list[int]] = {}
-        for i, names in enumerate(self._rows["driven"]):
+        for i, (names, _) in enumerate(self._efforts):
             out.setdefault(names, []).append(i)
         return {k: np.array(v, dtype=int) for k, v in out.items()}
 

@@ -38,6 +38,30 @@ def test_a_sampled_law_is_its_quintic_between_samples_and_held_outside():
     assert p[0] == pytest.approx(Sampled.values[-1, 0]) and r[0] == 0.0 and a[0] == 0.0
 
 
+class TwoJoints:
+    """Two joints on one sampling: the first as `Sampled`, the second q(t) = 3 t^4 - t^2 (both degree <= 5)."""
+
+    names = ("crank", "rocker")
+    t = Sampled.t
+    values = np.column_stack([Sampled.values[:, 0], 3 * t**4 - t**2])
+    rates = np.column_stack([Sampled.rates[:, 0], 12 * t**3 - 2 * t])
+    accelerations = np.column_stack([Sampled.accelerations[:, 0], 36 * t**2 - 2])
+
+
+def test_a_law_of_several_joints_is_each_joints_polynomial_and_its_answers_are_copies():
+    """Every joint of the law is evaluated at once (one Bernstein polynomial of both): each is its own
+    polynomial; asking twice at one time (the simulator does within a step) gives equal, independent arrays."""
+    law = simulation.law_of_samples(TwoJoints())
+    for t in np.linspace(0.02, 1.48, 11):
+        p, r, a = law(t)
+        assert p[1] == pytest.approx(3 * t**4 - t**2, rel=1e-9, abs=1e-12)
+        assert r[1] == pytest.approx(12 * t**3 - 2 * t, rel=1e-9, abs=1e-12)
+        assert a[1] == pytest.approx(36 * t**2 - 2, rel=1e-9, abs=1e-12)
+        assert p[0] == pytest.approx(t**5 - 2 * t**3 + t, rel=1e-9, abs=1e-12)
+        p[:] = np.nan
+        assert np.isfinite(law(t)[0]).all()
+
+
 def test_drives_give_the_law_then_the_held_joints():
     """Prescribed joints first, held ones after at rest; holding and releasing return new drives."""
     law = lambda t: (np.array([t]), np.array([1.0]), np.array([0.0]))
