@@ -27,7 +27,7 @@ if __name__ == "__main__":
     rows = [
         simulation_speed.simulation_speed(mechkit.load(name), 0.1, method)
         for name in simulation_speed.SMALL
-        for method in ("RK45", "RK4")
+        for method in ("RK45", "RK4", "SymplecticEuler")
     ]
     simulation_speed.write_section(DOCS / "benchmarks.md", rows)
     work_precision.write_section(DOCS, work_precision.PROBLEMS)
