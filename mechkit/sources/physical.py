@@ -20,6 +20,9 @@ from mechkit.base.exceptions import MalformedDescription
 #: Relative slack of the principal-moment tests, of their sum (ours): far above rounding, far below anything
 #: physical.
 INERTIA_RTOL = 1e-12
+#: How far a one-freedom joint's motion axis may be from unit length (ours: rounding of a normalised axis;
+#: an axis of length 1e-300 is left unnormalised by the URDF parser and scales the joint's column by it).
+AXIS_TOL = 1e-9
 
 
 def check_body(where: str, mass: float, inertia: np.ndarray, shown: object) -> np.ndarray:
@@ -98,6 +101,15 @@ def check_model(model: pin.Model) -> None:
     if bad.size:
         joint = next(j for j in range(1, model.njoints) if model.idx_vs[j] <= bad[0] < model.idx_vs[j] + model.nvs[j])
         raise MalformedDescription(f"joint {model.names[joint]!r}", "its axis is not finite")
+    for j in range(1, model.njoints):  # a one-freedom joint's axis of (near) zero length is left unnormalised
+        if model.nvs[j] != 1:
+            continue
+        column = np.asarray(data.J).reshape(6, -1)[:, model.idx_vs[j]]
+        turn, slide = float(np.linalg.norm(column[3:])), float(np.linalg.norm(column[:3]))
+        if not (abs(turn - 1.0) <= AXIS_TOL or (turn <= AXIS_TOL and abs(slide - 1.0) <= AXIS_TOL)):
+            raise MalformedDescription(
+                f"joint {model.names[j]!r}", f"its axis is not a direction (length {max(turn, slide):.3g}, not 1)"
+            )
 
 
 def _body_name(model: pin.Model, joint: int) -> str:

@@ -73,3 +73,20 @@ def test_an_mjcf_axis_of_inf_is_refused_not_a_linalg_traceback(tmp_path):
     assert path.read_text() != text
     with pytest.raises(MalformedDescription, match="not finite"):
         mechkit.load(path)
+
+
+@pytest.mark.parametrize("axis", ["0 -1e-300 0", "0 1e-170 0", "0 0 0"])
+def test_a_joint_axis_of_no_length_is_refused_by_name(tmp_path, axis):
+    """The URDF parser leaves an axis whose squared length underflows unnormalised (its column 1e-300 long):
+    refused by the joint's name, where the determinacy's inverse once overflowed."""
+    text = (
+        '<robot name="r"><link name="a"/><link name="b"><inertial><mass value="1"/><inertia ixx="1" iyy="1" '
+        'izz="1" ixy="0" ixz="0" iyz="0"/></inertial></link><joint name="j" type="revolute"><parent link="a"/>'
+        f'<child link="b"/><axis xyz="{axis}"/><limit effort="1" lower="-1" upper="1" velocity="1"/></joint></robot>'
+    )
+    path = tmp_path / "axis.urdf"
+    path.write_text(text)
+    with pytest.raises(MalformedDescription, match="joint 'j'.*axis is not a direction"):
+        mechkit.load(path)
+    path.write_text(text.replace(f'xyz="{axis}"', 'xyz="0 2 0"'))  # a long axis is normalised: loads
+    assert mechkit.load(path).model.nv == 1
