@@ -126,39 +126,65 @@ class Mechanism:
 
     # ---------------------------------------------------------------- joints by name
     joint_id = _AnsweredBy("naming", JointNaming.joint_id)
+    """[`JointNaming.joint_id`][mechkit.mechanism_naming.JointNaming.joint_id]."""
     q_index = _AnsweredBy("naming", JointNaming.q_index)
+    """[`JointNaming.q_index`][mechkit.mechanism_naming.JointNaming.q_index]."""
     v_index = _AnsweredBy("naming", JointNaming.v_index)
+    """[`JointNaming.v_index`][mechkit.mechanism_naming.JointNaming.v_index]."""
     neutral = _AnsweredBy("naming", JointNaming.neutral)
+    """[`JointNaming.neutral`][mechkit.mechanism_naming.JointNaming.neutral]."""
     joint_values = _AnsweredBy("naming", JointNaming.joint_values)
+    """[`JointNaming.joint_values`][mechkit.mechanism_naming.JointNaming.joint_values]."""
     require_actuators = _AnsweredBy("naming", JointNaming.require_actuators)
+    """[`JointNaming.require_actuators`][mechkit.mechanism_naming.JointNaming.require_actuators]."""
     _one = _AnsweredBy("naming", JointNaming.one)  # state arrays checked, as mechkit.elastic calls them
     _many = _AnsweredBy("naming", JointNaming.many)
 
     # ---------------------------------------------------------------- the closure
     assemble = _AnsweredBy("closure", MechanismClosure.assemble)
+    """[`MechanismClosure.assemble`][mechkit.mechanism_closure.MechanismClosure.assemble]."""
     assembly = _AnsweredBy("closure", MechanismClosure.assembly)
+    """[`MechanismClosure.assembly`][mechkit.mechanism_closure.MechanismClosure.assembly]."""
     solve_closure = _AnsweredBy("closure", MechanismClosure.solve_closure)
+    """[`MechanismClosure.solve_closure`][mechkit.mechanism_closure.MechanismClosure.solve_closure]."""
     closure_residual = _AnsweredBy("closure", MechanismClosure.closure_residual)
+    """[`MechanismClosure.closure_residual`][mechkit.mechanism_closure.MechanismClosure.closure_residual]."""
     closure_jacobian = _AnsweredBy("closure", MechanismClosure.closure_jacobian)
+    """[`MechanismClosure.closure_jacobian`][mechkit.mechanism_closure.MechanismClosure.closure_jacobian]."""
     closure_drift = _AnsweredBy("closure", MechanismClosure.closure_drift)
+    """[`MechanismClosure.closure_drift`][mechkit.mechanism_closure.MechanismClosure.closure_drift]."""
     mobility = _AnsweredBy("closure", MechanismClosure.mobility)
+    """[`MechanismClosure.mobility`][mechkit.mechanism_closure.MechanismClosure.mobility]."""
     singularity = _AnsweredBy("closure", MechanismClosure.singularity)
+    """[`MechanismClosure.singularity`][mechkit.mechanism_closure.MechanismClosure.singularity]."""
 
     # ---------------------------------------------------------------- velocities and accelerations
     velocities = _AnsweredBy("rates", MechanismRates.velocities)
+    """[`MechanismRates.velocities`][mechkit.mechanism_rates.MechanismRates.velocities]."""
     velocities_batch = _AnsweredBy("rates", MechanismRates.velocities_batch)
+    """[`MechanismRates.velocities_batch`][mechkit.mechanism_rates.MechanismRates.velocities_batch]."""
     accelerations = _AnsweredBy("rates", MechanismRates.accelerations)
+    """[`MechanismRates.accelerations`][mechkit.mechanism_rates.MechanismRates.accelerations]."""
     accelerations_batch = _AnsweredBy("rates", MechanismRates.accelerations_batch)
+    """[`MechanismRates.accelerations_batch`][mechkit.mechanism_rates.MechanismRates.accelerations_batch]."""
     second_order_inconsistency = _AnsweredBy("rates", MechanismRates.second_order_inconsistency)
+    """[`MechanismRates.second_order_inconsistency`][mechkit.mechanism_rates.MechanismRates.second_order_inconsistency]."""
     second_order_velocity = _AnsweredBy("rates", MechanismRates.second_order_velocity)
+    """[`MechanismRates.second_order_velocity`][mechkit.mechanism_rates.MechanismRates.second_order_velocity]."""
 
     # ---------------------------------------------------------------- dynamics
     generalized_forces = _AnsweredBy("dynamics", MechanismDynamics.generalized_forces)
+    """[`MechanismDynamics.generalized_forces`][mechkit.mechanism_dynamics.MechanismDynamics.generalized_forces]."""
     passive_forces = _AnsweredBy("dynamics", MechanismDynamics.passive_forces)
+    """[`MechanismDynamics.passive_forces`][mechkit.mechanism_dynamics.MechanismDynamics.passive_forces]."""
     forward_dynamics = _AnsweredBy("dynamics", MechanismDynamics.forward_dynamics)
+    """[`MechanismDynamics.forward_dynamics`][mechkit.mechanism_dynamics.MechanismDynamics.forward_dynamics]."""
     forward_dynamics_batch = _AnsweredBy("dynamics", MechanismDynamics.forward_dynamics_batch)
+    """[`MechanismDynamics.forward_dynamics_batch`][mechkit.mechanism_dynamics.MechanismDynamics.forward_dynamics_batch]."""
     inverse_dynamics = _AnsweredBy("dynamics", MechanismDynamics.inverse_dynamics)
+    """[`MechanismDynamics.inverse_dynamics`][mechkit.mechanism_dynamics.MechanismDynamics.inverse_dynamics]."""
     inverse_dynamics_batch = _AnsweredBy("dynamics", MechanismDynamics.inverse_dynamics_batch)
+    """[`MechanismDynamics.inverse_dynamics_batch`][mechkit.mechanism_dynamics.MechanismDynamics.inverse_dynamics_batch]."""
 
     # ---------------------------------------------------------------- in time
     def simulate(self, duration: float, **options: Any) -> Any:

@@ -1,7 +1,8 @@
 """The public face of `mechkit.Mechanism` as a contract: every public method with its parameters (names,
 kinds, defaults), its constructor, its public attributes and the private helpers the rest of the package
 calls, as they were before `Mechanism` was composed of parts. A name or a parameter that disappears, is
-renamed or changes its default fails here; a new public method must be added to the listing."""
+renamed or changes its default fails here; a new public method must be added to the listing. And the
+facade composed, not stacked: no inheritance, each method its part's own."""
 
 from __future__ import annotations
 
@@ -10,6 +11,10 @@ import inspect
 import pytest
 
 import mechkit
+from mechkit.mechanism_closure import MechanismClosure
+from mechkit.mechanism_dynamics import MechanismDynamics
+from mechkit.mechanism_naming import JointNaming
+from mechkit.mechanism_rates import MechanismRates
 
 FORWARD = "(q, v, tau, method='proximal', *, mu=None, accuracy=None, max_iter=None, baumgarte=None)"
 INVERSE = "(q, v, a, fext=None, determinacy=True, distribution='min_norm', *, allow_singular=False)"
@@ -119,3 +124,21 @@ def test_the_contract_sees_a_parameter_disappear():
 
     assert _parameters(assembly) != "(self, " + METHODS["assembly"][1:]
     assert _parameters(mobility) != "(self, " + METHODS["mobility"][1:]
+
+
+def test_the_mechanism_is_composed_of_parts_not_stacked(m):
+    """No inheritance: the facade and each part derive from object alone, each part is built from what
+    the facade hands it, and a public method read on a mechanism is its part's own bound method (nothing
+    runs between the call and the part)."""
+    parts = {"naming": JointNaming, "closure": MechanismClosure, "rates": MechanismRates, "dynamics": MechanismDynamics}
+    assert mechkit.Mechanism.__mro__ == (mechkit.Mechanism, object)
+    for attribute, cls in parts.items():
+        assert cls.__mro__ == (cls, object) and type(getattr(m, attribute)) is cls
+    answered = 0
+    for name in METHODS:
+        method = getattr(m, name)
+        owner = [a for a in parts if getattr(method, "__self__", None) is getattr(m, a)]
+        if owner:
+            assert method == getattr(getattr(m, owner[0]), name)
+            answered += 1
+    assert answered == len(METHODS) - 2  # all but simulate and equilibrium, which call the simulator
