@@ -49,8 +49,9 @@ class MechanismClosure:
     ):
         self.naming, self.closure_model, self.closure_data = naming, closure_model, closure_data
         self.model, self.spec, self.params = closure_model.model, spec, params
-        self.home_assembly = self._assembly(spec.home(params))  # no home yet: Newton from the guess
-        self.home_q = self.home_assembly.q
+        self._home: np.ndarray | None = None  # the home assembly's branch: none yet, Newton from the guess
+        self.home_assembly = self.assembly(spec.home(params))
+        self.home_q = self._home = self.home_assembly.q
         self.home_mobility = core.mobility(closure_model, closure_data, self.home_q)
         self.independent_rows = self.home_mobility.rank
         self.idle = core.idle_freedoms(
@@ -130,22 +131,6 @@ class MechanismClosure:
         Raises:
             ClosureNotConverged: no assembly found near the guess.
         """
-        return self._assembly(
-            inputs, guess, tol=tol, method=method, max_iter=max_iter, reference=reference, home=self.home_q
-        )
-
-    def _assembly(
-        self,
-        inputs: Inputs,
-        guess: Inputs | np.ndarray | None = None,
-        *,
-        tol: float = core.CLOSURE_TOL,
-        method: str = "newton",
-        max_iter: int = 60,
-        reference: np.ndarray | None = None,
-        home: np.ndarray | None = None,
-    ) -> core.Assembly:
-        """`assembly`, on the branch of `home` where no other reference is given (None: no home yet)."""
         tol = arguments.number("tol", tol, positive=True)
         arguments.option("method", method, core.ASSEMBLY_METHODS)
         max_iter = arguments.integer("max_iter", max_iter, minimum=1)
@@ -168,8 +153,8 @@ class MechanismClosure:
             core.set_joint_value(self.model, q0, self.naming.joint_id(joint), value)
         split = self.closure_model.split(tuple(given))
         out = None
-        if reference is None and start != "the guess given" and home is not None:
-            reference, named = home, "the home assembly"
+        if reference is None and start != "the guess given" and self._home is not None:
+            reference, named = self._home, "the home assembly"
         if reference is not None:
             (reference,) = self.naming.one(q=reference)
             out = core.continue_from(self.closure_model, self.closure_data, reference, q0, split, tol=tol)
