@@ -56,12 +56,8 @@ class _AnsweredBy(Generic[P, R]):
 class Mechanism:
     """A closed-loop mechanism: a Pinocchio tree (any joints), its closures and couplings, its actuators.
 
-    Its methods are its parts' (see the module): `naming` answers joint_id, q_index, v_index, neutral,
-    joint_values and require_actuators; `closure` answers assemble, assembly, solve_closure,
-    closure_residual, closure_jacobian, closure_drift, mobility and singularity; `rates` answers
-    velocities, accelerations (and their `_batch`), second_order_inconsistency and second_order_velocity;
-    `dynamics` answers generalized_forces, passive_forces, forward_dynamics and inverse_dynamics (and
-    their `_batch`); `simulate` and `equilibrium` call the simulator.
+    Each public method is its part's own, named beside it below (`simulate` and `equilibrium` call the
+    simulator); `closure` is the part, `closures` the loops' records.
 
     Args:
         spec: the registry entry (or the one a file reader made).
@@ -103,12 +99,9 @@ class Mechanism:
         self.springs = JointSprings(self.model, springs)
         self.naming = JointNaming(spec.name, cm, urdf)
         self.closure = closure = MechanismClosure(self.naming, cm, cd, spec, params)
-        self.home_assembly, self.home_q, self.home_mobility = (
-            closure.home_assembly,
-            closure.home_q,
-            closure.home_mobility,
-        )
-        self.independent_rows, self.idle = closure.independent_rows, closure.idle
+        self.home_assembly, self.home_q = closure.home_assembly, closure.home_q
+        self.home_mobility, self.independent_rows = closure.home_mobility, closure.independent_rows
+        self.idle = closure.idle
         self.rates = MechanismRates(self.naming, cm, cd)
         self.dynamics = MechanismDynamics(self.naming, cm, cd, self.springs, self.independent_rows, bool(self.idle))
 
