@@ -1,9 +1,8 @@
-"""`MechanismClosure`: a mechanism's joints by name and its closure at one configuration.
+"""`MechanismClosure`: a mechanism's closure: its home assembly, the assembly at given inputs, the
+closure rows' residual, Jacobian and drift, the mobility and the singularity measure.
 
-The base of `mechkit.Mechanism` (which sets the attributes it reads): joint ids, indices and values by
-name, the arguments a user gives checked and converted (joint names, values of any joint type, state
-arrays of one sample or of N), the assembly that closes every loop, the closure rows' residual,
-Jacobian and drift, the mobility and the singularity measure; one core function per quantity.
+It holds the closure model with a data (scratch, shared with the mechanism's other parts) and reads
+joints and arguments by name through a `JointNaming`; one core function per quantity.
 """
 
 from __future__ import annotations
@@ -12,157 +11,56 @@ from collections.abc import Mapping, Sequence
 from typing import Any
 
 import numpy as np
-import pinocchio as pin
 
-from mechkit import actuator_names, core
+from mechkit import core
 from mechkit.base import arguments, joint_arguments
-from mechkit.base.exceptions import InvalidParameters
 from mechkit.catalog.contract import MechanismSpec
 from mechkit.catalog.params import MechanismParams
-
-Inputs = Mapping[str, float | Sequence[float]] | Sequence[float] | np.ndarray
+from mechkit.mechanism_naming import Inputs, JointNaming
 
 
 class MechanismClosure:
-    """Joints by name and the closure of a mechanism; `mechkit.Mechanism` builds it and sets its attributes.
+    """The closure of a mechanism, assembled at home on construction.
+
+    Args:
+        naming: the mechanism's joints by name (`JointNaming`).
+        closure_model: the tree with its closures, couplings and actuation (`mechkit.core.ClosureModel`).
+        closure_data: a data of it (scratch).
+        spec: the registry entry (its home inputs and default assembly guess).
+        params: the parameter values used.
 
     Attributes:
-        spec: the registry entry (its default assembly guess).
-        params: the parameter values used.
-        model: the Pinocchio model of the tree.
-        closure_model: the tree with its closures, couplings and actuation (`mechkit.core.ClosureModel`).
-        closure_data: its scratch data.
-        actuated: the actuators, in effort order.
-        home_mobility: the mobility at the home assembly.
+        home_assembly: the home assembly's record (the branch it took, the loops' joints it leaves outside
+            their limits); home_q: its q (nq,).
+        home_mobility: the mobility at home; independent_rows: its rank (the closure's generic rank).
+        idle: body -> idle freedoms at home (`mechkit.core.idle_freedoms`: a rod spinning about its axis).
+
+    Raises:
+        ClosureNotConverged, SingularConfiguration: the home assembly cannot be found.
     """
 
-    spec: MechanismSpec
-    params: MechanismParams
-    model: pin.Model
-    closure_model: core.ClosureModel
-    closure_data: Any
-    actuated: tuple[str, ...]
-    home_mobility: core.Mobility
-    _nq: int
-    _nv: int
-
-    # ---------------------------------------------------------------- joints by name
-    def joint_id(self, joint: str) -> int:
-        """Pinocchio id of a joint.
-
-        Args:
-            joint: the joint's name.
-
-        Returns:
-            Its id in `model` (1 for the first joint; 0 is the universe).
-
-        Raises:
-            InvalidParameters: no such joint (the message names the joints).
-        """
-        return self.closure_model.joint_id(joint)
-
-    def q_index(self, joint: str) -> int:
-        """Index of a joint's first coordinate in q.
-
-        Args:
-            joint: the joint's name.
-
-        Returns:
-            The index into q (nq,).
-        """
-        return self.model.joints[self.joint_id(joint)].idx_q
-
-    def v_index(self, joint: str) -> int:
-        """Index of a joint's first velocity coordinate in v.
-
-        Args:
-            joint: the joint's name.
-
-        Returns:
-            The index into v, a and tau (nv,).
-        """
-        return self.model.joints[self.joint_id(joint)].idx_v
-
-    def neutral(self) -> np.ndarray:
-        """Pinocchio's neutral configuration (nq,) of the tree (every joint at zero; loops open)."""
-        return pin.neutral(self.model)
-
-    def joint_values(self, q: np.ndarray) -> dict[str, float | np.ndarray]:
-        """Every joint's value at a configuration.
-
-        Args:
-            q: (nq,) the configuration.
-
-        Returns:
-            Joint name -> value (rad or m; a ball joint's rotation vector (3,), see `mechkit.core.joints`).
-        """
-        return core.joint_values(self.model, q)
-
-    def require_actuators(self, what: str) -> None:
-        """Refuse a computation that needs actuators on a mechanism that declares none.
-
-        Args:
-            what: the computation, named in the error.
-
-        Raises:
-            InvalidParameters: the mechanism is unactuated.
-        """
-        if not self.actuated:
-            raise InvalidParameters(
-                "actuated",
-                (),
-                f"{self.spec.name} is unactuated (its file declares no "
-                f"<transmission>, name_mot or MJCF actuator): {what} needs actuators; "
-                "pass actuated=[...] (command line: --actuated J1,J2)",
-            )
-
-    def _values(self, values: Inputs | None, names: Sequence[str], arg: str) -> dict[str, Any]:
-        """Joint values by name (a mapping, or values in the order of `names`), checked."""
-        if values is None:
-            return {}
-        if not isinstance(values, Mapping) and not names:
-            self.require_actuators(f"{arg} given in actuated order")
-        sizes = {n: core.joint_size(self.model, self.joint_id(n)) for n in names if self.model.existJointName(n)}
-        aliases = self._aliases
-        known = actuator_names.known_names(self.closure_model, aliases)
-        if isinstance(values, Mapping):
-            actuator_names.check_known(self.closure_model, arg, values, aliases)
-        return actuator_names.to_joints(
-            self.closure_model, arg, joint_arguments.joint_values(arg, values, names, known, sizes), aliases
+    def __init__(
+        self,
+        naming: JointNaming,
+        closure_model: core.ClosureModel,
+        closure_data: Any,
+        spec: MechanismSpec,
+        params: MechanismParams,
+    ):
+        self.naming, self.closure_model, self.closure_data = naming, closure_model, closure_data
+        self.model, self.spec, self.params = closure_model.model, spec, params
+        self._home: np.ndarray | None = None  # the home assembly's branch: none yet, Newton from the guess
+        self.home_assembly = self.assembly(spec.home(params))
+        self.home_q = self._home = self.home_assembly.q
+        self.home_mobility = core.mobility(closure_model, closure_data, self.home_q)
+        self.independent_rows = self.home_mobility.rank
+        self.idle = core.idle_freedoms(
+            self.model,
+            self.home_q,
+            core.closure_jacobian(closure_model, closure_data, self.home_q),
+            set(closure_model.on_loops),
+            closure_model.rigid_groups,
         )
-
-    def _names(self, inputs: Sequence[str] | None, what: str) -> list[str]:
-        """The given input joints or actuators (default: the actuated ones, which must exist), checked."""
-        if inputs is None:
-            self.require_actuators(what)
-            return list(self.actuated)
-        actuator_names.check_known(self.closure_model, "inputs", inputs, self._aliases)
-        return joint_arguments.joint_names(
-            "inputs", inputs, actuator_names.known_names(self.closure_model, self._aliases)
-        )
-
-    def _joints(self, names: Sequence[str]) -> list[str]:
-        """The joints that input names (joints or actuators, checked) fix."""
-        return actuator_names.to_joint_names(self.closure_model, "inputs", names, self._aliases)
-
-    @property
-    def _aliases(self) -> dict[str, str]:
-        """The URDF's transmission names -> the joints they drive (parsed once)."""
-        if "_transmissions" not in self.__dict__:
-            self._transmissions = actuator_names.transmission_names(getattr(self, "urdf", None))
-        return self._transmissions
-
-    def _one(self, **values: Any) -> list[np.ndarray]:
-        """State arrays of one sample checked by name (q: nq; v, a, tau: nv)."""
-        return arguments.sample(self._sizes, **values)
-
-    def _many(self, **values: Any) -> list[np.ndarray]:
-        """State arrays of N samples checked by name ((N, nq), (N, nv)), one N for all."""
-        return arguments.samples(self._sizes, **values)
-
-    @property
-    def _sizes(self) -> dict[str, int]:
-        return {"q": self._nq, "v": self._nv, "a": self._nv, "tau": self._nv}
 
     # ---------------------------------------------------------------- the closure
     def assemble(
@@ -236,7 +134,7 @@ class MechanismClosure:
         tol = arguments.number("tol", tol, positive=True)
         arguments.option("method", method, core.ASSEMBLY_METHODS)
         max_iter = arguments.integer("max_iter", max_iter, minimum=1)
-        given = self._values(inputs, self.actuated, "inputs")
+        given = self.naming.values(inputs, self.naming.actuated, "inputs")
         named = "the reference given" if reference is not None else None
         start = "the guess given"
         if guess is None:
@@ -244,21 +142,21 @@ class MechanismClosure:
             if self.spec.guess is not None:
                 guess = self.spec.guess(self.params)
         if guess is None or isinstance(guess, Mapping):
-            q0 = self.neutral()
-            for joint, value in self._values(guess, (), "guess").items():
-                core.set_joint_value(self.model, q0, self.joint_id(joint), value)
+            q0 = self.naming.neutral()
+            for joint, value in self.naming.values(guess, (), "guess").items():
+                core.set_joint_value(self.model, q0, self.naming.joint_id(joint), value)
         else:
             q0 = arguments.array("guess", guess, self.model.nq, batch=False)
             if reference is None and np.linalg.norm(self.closure_residual(q0)) <= tol:
                 reference, named = q0.copy(), "the closed guess given"  # the previous sample: its branch kept
         for joint, value in given.items():
-            core.set_joint_value(self.model, q0, self.joint_id(joint), value)
+            core.set_joint_value(self.model, q0, self.naming.joint_id(joint), value)
         split = self.closure_model.split(tuple(given))
         out = None
-        if reference is None and start != "the guess given" and hasattr(self, "home_q"):
-            reference, named = self.home_q, "the home assembly"
+        if reference is None and start != "the guess given" and self._home is not None:
+            reference, named = self._home, "the home assembly"
         if reference is not None:
-            (reference,) = self._one(q=reference)
+            (reference,) = self.naming.one(q=reference)
             out = core.continue_from(self.closure_model, self.closure_data, reference, q0, split, tol=tol)
         if out is None:
             out = core.assemble(
@@ -268,7 +166,7 @@ class MechanismClosure:
         else:
             branch = f"continued from {named}"
         q, outside = core.wrap_into_limits(self.model, out.q)
-        on_loops = tuple(j for j in outside if self.joint_id(j) in self.closure_model.on_loops)
+        on_loops = tuple(j for j in outside if self.naming.joint_id(j) in self.closure_model.on_loops)
         return core.Assembly(q, out.iterations, out.residual, branch, on_loops)
 
     def solve_closure(
@@ -296,7 +194,7 @@ class MechanismClosure:
         Raises:
             ClosureNotConverged: no assembly found near q0.
         """
-        (q0,) = self._one(q=q0)
+        (q0,) = self.naming.one(q=q0)
         arguments.option("method", method, core.ASSEMBLY_METHODS)
         split = self.closure_model.split(
             tuple(joint_arguments.joint_names("fixed", fixed, list(self.model.names[1:]), allow_empty=True))
@@ -321,7 +219,7 @@ class MechanismClosure:
             (rows,) the residuals (m for position rows, dimensionless for alignment rows, rad or m for
             couplings), rows in `cuts` order.
         """
-        return core.closure_residual(self.closure_model, self.closure_data, *self._one(q=q))
+        return core.closure_residual(self.closure_model, self.closure_data, *self.naming.one(q=q))
 
     def closure_jacobian(self, q: np.ndarray) -> np.ndarray:
         """Jacobian of the kept closure rows, J with de/dt = J v.
@@ -332,7 +230,7 @@ class MechanismClosure:
         Returns:
             (rows, nv) J.
         """
-        return core.closure_jacobian(self.closure_model, self.closure_data, *self._one(q=q))
+        return core.closure_jacobian(self.closure_model, self.closure_data, *self.naming.one(q=q))
 
     def closure_drift(self, q: np.ndarray, v: np.ndarray) -> np.ndarray:
         """The closure rows' drift gamma, with d2e/dt2 = J a + gamma.
@@ -344,7 +242,7 @@ class MechanismClosure:
         Returns:
             (rows,) gamma(q, v).
         """
-        return core.closure_drift(self.closure_model, self.closure_data, *self._one(q=q, v=v))
+        return core.closure_drift(self.closure_model, self.closure_data, *self.naming.one(q=q, v=v))
 
     def mobility(self, q: np.ndarray | None = None) -> core.Mobility:
         """Numerical degrees of freedom and redundant constraints, from the rank of the closure Jacobian.
@@ -357,7 +255,7 @@ class MechanismClosure:
         """
         if q is None:
             return self.home_mobility
-        return core.mobility(self.closure_model, self.closure_data, *self._one(q=q))
+        return core.mobility(self.closure_model, self.closure_data, *self.naming.one(q=q))
 
     def singularity(self, q: np.ndarray, inputs: Sequence[str] | None = None) -> float:
         """How close the inputs are to losing control of the motion.
@@ -369,6 +267,8 @@ class MechanismClosure:
         Returns:
             The condition number of the passive block of the closure Jacobian (inf: singular).
         """
-        (q,) = self._one(q=q)
-        split = self.closure_model.split(tuple(self._joints(self._names(inputs, "the singularity measure"))))
+        (q,) = self.naming.one(q=q)
+        split = self.closure_model.split(
+            tuple(self.naming.input_joints(self.naming.input_names(inputs, "the singularity measure")))
+        )
         return core.passive_condition(self.closure_model, self.closure_data, q, split)

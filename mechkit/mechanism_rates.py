@@ -1,44 +1,34 @@
 """`MechanismRates`: a mechanism's velocities and accelerations from its inputs.
 
-Between `MechanismClosure` (joints by name, the closure) and `mechkit.Mechanism` (the dynamics): the
-joint velocities (J v = 0) and accelerations (J a + gamma = 0) that given input rates and
-accelerations determine, one sample or N at once, and the second-order test of a velocity (whether
-it is a motion of the mechanism beyond the first order); one core function per quantity.
+The joint velocities (J v = 0) and accelerations (J a + gamma = 0) that given input rates and
+accelerations determine, one sample or N at once, and the second-order test of a velocity (whether it
+is a motion of the mechanism beyond the first order); one core function per quantity, over the closure
+model and a data it shares with the mechanism's other parts, with joints by name through a `JointNaming`.
 """
 
 from __future__ import annotations
 
 from collections.abc import Sequence
+from typing import Any
 
 import numpy as np
 
-from mechkit import actuator_names, core
-from mechkit.base import arguments, joint_arguments
-from mechkit.mechanism_closure import Inputs, MechanismClosure
+from mechkit import core
+from mechkit.base import arguments
+from mechkit.mechanism_naming import Inputs, JointNaming
 
 
-class MechanismRates(MechanismClosure):
-    """Velocities and accelerations from the inputs; the base of `mechkit.Mechanism`."""
+class MechanismRates:
+    """Velocities and accelerations from the inputs.
 
-    # ---------------------------------------------------------------- inputs given by name
-    def _given(self, values: Inputs, names: Sequence[str], arg: str) -> tuple[core.InputSplit, np.ndarray]:
-        """The split of the given joints and their values (k,) in velocity order."""
-        given = self._values(values, names, arg)
-        split = self.closure_model.split(tuple(given))
-        return split, np.concatenate(
-            [np.atleast_1d(np.asarray(x, dtype=float)) for x in given.values()] or [np.zeros(0)]
-        )
+    Args:
+        naming: the mechanism's joints by name (`JointNaming`).
+        closure_model: the tree with its closures, couplings and actuation (`mechkit.core.ClosureModel`).
+        closure_data: a data of it (scratch).
+    """
 
-    def _given_batch(
-        self, values: Inputs, names: Sequence[str], n: int, arg: str
-    ) -> tuple[core.InputSplit, np.ndarray]:
-        """The split of the given joints and their values (n, k): a mapping joint -> (n,) or an (n, k) array."""
-        sizes = {j: core.joint_size(self.model, self.joint_id(j)) for j in self.model.names[1:]}
-        known = actuator_names.known_names(self.closure_model, self._aliases)
-        keys, given = joint_arguments.sample_inputs(arg, values, names, n, known, sizes)
-        scale = actuator_names.to_joints(self.closure_model, arg, dict.fromkeys(keys, 1.0), self._aliases)  # actuators
-        given = given * np.repeat(list(scale.values()), [sizes[j] for j in scale])
-        return self.closure_model.split(tuple(scale)), given
+    def __init__(self, naming: JointNaming, closure_model: core.ClosureModel, closure_data: Any):
+        self.naming, self.closure_model, self.closure_data = naming, closure_model, closure_data
 
     # ---------------------------------------------------------------- velocities and accelerations
     def velocities(
@@ -62,8 +52,10 @@ class MechanismRates(MechanismClosure):
             InvalidParameters: rates in input order on an unactuated mechanism, an unknown joint.
         """
         allow_singular = arguments.flag("allow_singular", allow_singular)
-        (q,) = self._one(q=q)
-        split, rates = self._given(input_rates, self._names(inputs, "velocities from input rates"), "input_rates")
+        (q,) = self.naming.one(q=q)
+        split, rates = self.naming.given(
+            input_rates, self.naming.input_names(inputs, "velocities from input rates"), "input_rates"
+        )
         return core.velocities(self.closure_model, self.closure_data, q, split, rates, allow_singular=allow_singular)
 
     def velocities_batch(
@@ -82,9 +74,9 @@ class MechanismRates(MechanismClosure):
             (N, nv) the joint velocities.
         """
         allow_singular = arguments.flag("allow_singular", allow_singular)
-        (q,) = self._many(q=q)
-        split, rates = self._given_batch(
-            input_rates, self._names(inputs, "velocities from input rates"), len(q), "input_rates"
+        (q,) = self.naming.many(q=q)
+        split, rates = self.naming.given_batch(
+            input_rates, self.naming.input_names(inputs, "velocities from input rates"), len(q), "input_rates"
         )
         return core.velocities_batch(
             self.closure_model, self.closure_data, q, split, rates, allow_singular=allow_singular
@@ -122,9 +114,9 @@ class MechanismRates(MechanismClosure):
         """
         allow_singular = arguments.flag("allow_singular", allow_singular)
         least_squares = arguments.flag("least_squares", least_squares)
-        q, v = self._one(q=q, v=v)
-        names = self._names(inputs, "accelerations from input accelerations")
-        split, acc = self._given(input_accelerations, names, "input_accelerations")
+        q, v = self.naming.one(q=q, v=v)
+        names = self.naming.input_names(inputs, "accelerations from input accelerations")
+        split, acc = self.naming.given(input_accelerations, names, "input_accelerations")
         return core.accelerations(
             self.closure_model,
             self.closure_data,
@@ -161,9 +153,9 @@ class MechanismRates(MechanismClosure):
         """
         allow_singular = arguments.flag("allow_singular", allow_singular)
         least_squares = arguments.flag("least_squares", least_squares)
-        q, v = self._many(q=q, v=v)
-        names = self._names(inputs, "accelerations from input accelerations")
-        split, acc = self._given_batch(input_accelerations, names, len(q), "input_accelerations")
+        q, v = self.naming.many(q=q, v=v)
+        names = self.naming.input_names(inputs, "accelerations from input accelerations")
+        split, acc = self.naming.given_batch(input_accelerations, names, len(q), "input_accelerations")
         return core.accelerations_batch(
             self.closure_model,
             self.closure_data,
@@ -186,7 +178,7 @@ class MechanismRates(MechanismClosure):
         Returns:
             min over a of max |J a + gamma|: 0 (to rounding) for a motion at second order.
         """
-        return core.second_order_inconsistency(self.closure_model, self.closure_data, *self._one(q=q, v=v))
+        return core.second_order_inconsistency(self.closure_model, self.closure_data, *self.naming.one(q=q, v=v))
 
     def second_order_velocity(self, q: np.ndarray, v: np.ndarray) -> np.ndarray:
         """The velocity near v along which the motion continues at second order.
@@ -201,4 +193,4 @@ class MechanismRates(MechanismClosure):
         Raises:
             InconsistentMotion: no such velocity near v.
         """
-        return core.second_order_velocity(self.closure_model, self.closure_data, *self._one(q=q, v=v))
+        return core.second_order_velocity(self.closure_model, self.closure_data, *self.naming.one(q=q, v=v))

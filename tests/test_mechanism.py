@@ -1,26 +1,23 @@
 """`mechkit.mechanism.Mechanism` through its public methods: the bad-input campaign (every malformed
 argument refused by a named `MechkitError` that names it, before any numerical work; well-formed
 variants give finite results that satisfy the closure; counts in the README, "Bad input"), singularity
-judged against what the closure resolves, forward dynamics at any model scale, the planar linkages
-against their independent closed-form references, and Newton's law of every registered mechanism from
-its support reactions."""
+judged against what the closure resolves, and the planar linkages from assembly to every pin reaction
+against their independent closed-form references (the public face itself: tests/test_mechanism_api.py;
+the dynamics at any scale and Newton's law from the supports: tests/test_mechanism_dynamics.py)."""
 
 from __future__ import annotations
 
 import numpy as np
 import pytest
-from conftest import support_balance_error
 from tests_support import DISTANCES, singular_inputs
 
 import mechkit
 from mechkit.base.exceptions import (
-    ConstraintViolated,
     InvalidArgument,
     InvalidParameters,
     SingularConfiguration,
     UnknownOption,
 )
-from mechkit.catalog.registry import specs
 from mechkit.validation.planar_closed_form import five_bar, four_bar
 from mechkit.validation.planar_newton_euler import newton_euler
 
@@ -311,32 +308,6 @@ def test_calibration_distance_to_the_singular_input_against_condition_number(loa
         assert 3e5 < conds[0] < 2e6
 
 
-@pytest.mark.parametrize("overrides", [{"density": 1e-3}, {"density": 1e30}, "mm", "km"])
-def test_forward_dynamics_scales_with_the_model(overrides, load_cached):
-    base = load_cached("five_bar")
-    lengths = ("ground", "prox1", "dist1", "prox2", "dist2", "width", "thickness")
-    if overrides in ("mm", "km"):
-        k = 1e-3 if overrides == "mm" else 1e3
-        overrides = {n: getattr(base.params, n) * k for n in lengths}
-    m = mechkit.load("five_bar", **overrides)
-    q = m.home_q
-    v = m.velocities(q, [1.0, -0.5])
-    kkt = m.forward_dynamics(q, v, np.zeros(4), "kkt").a
-    prox = m.forward_dynamics(q, v, np.zeros(4)).a
-    J, gamma = m.closure_jacobian(q), m.closure_drift(q, v)
-    assert np.max(np.abs(prox - kkt)) < 1e-9 * np.max(np.abs(kkt))
-    assert np.max(np.abs(J @ kkt + gamma)) < 1e-10 * np.max(np.abs(J)) * np.max(np.abs(kkt))
-
-
-def test_too_light_bodies_and_unconverged_results_are_refused(load_cached):
-    with pytest.raises(InvalidParameters, match="mass of"):
-        mechkit.load("five_bar", density=1e-12)
-    m = load_cached("five_bar")
-    v = m.velocities(m.home_q, [1.0, -0.5])
-    with pytest.raises(ConstraintViolated, match="J a \\+ gamma"):
-        m.forward_dynamics(m.home_q, v, np.zeros(4), mu=1e3, max_iter=1)
-
-
 def test_a_linkage_that_cannot_assemble_is_a_clear_error():
     # crank at pi puts B 0.55 m from D: coupler + rocker (0.28 + 0.22) cannot reach
     m = mechkit.load("four_bar", ground=0.45)
@@ -405,13 +376,3 @@ def test_torques_and_every_pin_reaction_match_newton_euler(name, load_cached):
         for joint, effort in expected.efforts.items():
             worst = max(worst, abs(got.efforts[joint] - effort) / scale)
     assert worst < 1e-9
-
-
-@pytest.mark.parametrize("name", list(specs()))
-def test_supports_carry_weight_and_inertia(name, load_cached):
-    """Newton's second law of the whole mechanism from the support reactions of the constrained RNEA."""
-    m = load_cached(name)
-    q = m.home_q
-    v = np.zeros(m.model.nv)
-    a = m.forward_dynamics(q, v, np.zeros(m.model.nv), "kkt").a  # free motion from rest under gravity
-    assert support_balance_error(m, q, v, a) < 1e-9
