@@ -20,6 +20,7 @@ from __future__ import annotations
 
 import copy
 import time
+import xml.etree.ElementTree as ET
 from dataclasses import dataclass
 from typing import Any
 
@@ -244,7 +245,7 @@ def flyball_reference(model: pin.Model, duration: float, rtol: float = 1e-10) ->
         rtol: Radau's relative tolerance (atol rtol / 100).
 
     Returns:
-        scipy's solution (dense): y[4] is s (m).
+        scipy's solution (dense): y[3] is s (m).
     """
     data = model.createData()
     j = {name: model.getJointId(name) for name in ("s", "rod_left", "rod_right")}
@@ -253,7 +254,7 @@ def flyball_reference(model: pin.Model, duration: float, rtol: float = 1e-10) ->
     stiffness, damping, free = 8e5, 4e4, 0.5
 
     def rhs(_t: float, y: np.ndarray) -> np.ndarray:
-        q, v = y[:5], y[5:]
+        q, v = y[:4], y[4:]
         pin.forwardKinematics(model, data, q, v)
         fext = [pin.Force.Zero() for _ in range(model.njoints)]
         for ja, pa, jb, pb in struts:
@@ -268,23 +269,27 @@ def flyball_reference(model: pin.Model, duration: float, rtol: float = 1e-10) ->
                 local = data.oMi[jt].rotation.T @ f
                 fext[jt] += pin.Force(local, np.cross(p, local))
         acc = pin.aba(model, data, q, v, np.zeros(4), fext)
-        return np.concatenate([[-q[1] * v[0], q[0] * v[0]], v[1:], acc])
+        return np.concatenate([v, acc])
 
-    y0 = np.array([1.0, 0.0, np.pi / 6, np.pi / 6, 0.5, 2 * np.pi, 0.0, 0.0, 0.0])
+    y0 = np.array([0.0, np.pi / 6, np.pi / 6, 0.5, 2 * np.pi, 0.0, 0.0, 0.0])
     return solve_ivp(rhs, (0.0, duration), y0, "Radau", rtol=rtol, atol=rtol / 100, dense_output=True)
 
 
-def mujoco_run(mech: Any, duration: float, v0: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray, float]:
-    """MuJoCo on the exported model (its timestep and RK4) from home at v0 for duration.
+def mujoco_run(
+    mech: Any, duration: float, v0: np.ndarray | None = None, edit: Any = None
+) -> tuple[np.ndarray, np.ndarray, float]:
+    """MuJoCo on the exported model (its timestep and RK4 unless `edit` changes them) from home at v0.
 
     Args:
         mech: the mechanism (`mechkit.Mechanism`); a zero diagonal moment (a thin rod's about its
             axis, a point mass's) becomes `MJ_AXIAL` in the export.
         duration: simulated time (s).
         v0: (nv,) initial joint rates (default rest).
+        edit: a function changing the exported MJCF tree (`xml.etree.ElementTree.Element`) in place, or None.
 
     Returns:
-        (times (k,) s, qpos (k, nq) = Pinocchio's q, CPU time of the mj_step loop in s).
+        (times (k,) s, qpos (k, nq) = Pinocchio's q, NaN from MuJoCo's first instability warning on, CPU time
+        of the mj_step loop in s).
 
     Raises:
         MethodUnavailable: the export refuses the model (a body MuJoCo cannot take).
@@ -297,7 +302,10 @@ def mujoco_run(mech: Any, duration: float, v0: np.ndarray | None = None) -> tupl
         inertia = padded.model.inertias[k]
         moments = inertia.inertia + np.diag((np.diag(inertia.inertia) < MJ_AXIAL) * MJ_AXIAL)
         padded.model.inertias[k] = pin.Inertia(inertia.mass, inertia.lever, moments)
-    model = mujoco.MjModel.from_xml_string(to_mjcf(padded))
+    root = ET.fromstring(to_mjcf(padded))
+    if edit is not None:
+        edit(root)
+    model = mujoco.MjModel.from_xml_string(ET.tostring(root, encoding="unicode"))
     data = mujoco.MjData(model)
     data.qpos[:] = mech.home_q
     if v0 is not None:
@@ -305,10 +313,14 @@ def mujoco_run(mech: Any, duration: float, v0: np.ndarray | None = None) -> tupl
     steps = round(duration / model.opt.timestep)
     qpos = np.empty((steps + 1, model.nq))
     qpos[0] = data.qpos
+    unstable = [mujoco.mjtWarning.mjWARN_BADQPOS, mujoco.mjtWarning.mjWARN_BADQVEL, mujoco.mjtWarning.mjWARN_BADQACC]
     start = time.process_time()
     for k in range(steps):
         mujoco.mj_step(model, data)
         qpos[k + 1] = data.qpos
+        if any(data.warning[w].number for w in unstable):  # MuJoCo resets a diverged state: mark it
+            qpos[k + 1 :] = np.nan
+            break
     return np.arange(steps + 1) * model.opt.timestep, qpos, time.process_time() - start
 
 
