@@ -1,6 +1,6 @@
 """Regenerate the "Measured" section of docs/iftomm_benchmarks.md (`mechkit.bench.iftomm_page.write_page`).
 
-Usage: python tools/iftomm_benchmarks.py [--fast]   (--fast: without N = 40 and Radau)
+Usage: python tools/iftomm_benchmarks.py [--fast]   (--fast: without the N = 40 four-bar)
 """
 
 from __future__ import annotations

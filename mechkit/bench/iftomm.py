@@ -245,16 +245,16 @@ def flyball_reference(model: pin.Model, duration: float, rtol: float = 1e-10) ->
         rtol: Radau's relative tolerance (atol rtol / 100).
 
     Returns:
-        scipy's solution (dense): y[3] is s (m).
+        scipy's solution (dense) of (rod angles, s, the 4 rates): y[2] is s (m); the shaft's angle, cyclic, left out.
     """
     data = model.createData()
     j = {name: model.getJointId(name) for name in ("s", "rod_left", "rod_right")}
     struts = [(j["s"], np.array([side * 0.05, 0, 0]), j[rod], np.array([0.5, 0, 0])) for side, rod in
               ((1, "rod_left"), (-1, "rod_right"))]  # fmt: skip
-    stiffness, damping, free = 8e5, 4e4, 0.5
+    stiffness, damping, free = 8e5, 4e4, 0.5  # N/m, N s/m, m
 
     def rhs(_t: float, y: np.ndarray) -> np.ndarray:
-        q, v = y[:4], y[4:]
+        q, v = np.concatenate([[0.0], y[:3]]), y[3:]  # the shaft's angle is cyclic: left out
         pin.forwardKinematics(model, data, q, v)
         fext = [pin.Force.Zero() for _ in range(model.njoints)]
         for ja, pa, jb, pb in struts:
@@ -269,9 +269,9 @@ def flyball_reference(model: pin.Model, duration: float, rtol: float = 1e-10) ->
                 local = data.oMi[jt].rotation.T @ f
                 fext[jt] += pin.Force(local, np.cross(p, local))
         acc = pin.aba(model, data, q, v, np.zeros(4), fext)
-        return np.concatenate([v, acc])
+        return np.concatenate([v[1:], acc])
 
-    y0 = np.array([0.0, np.pi / 6, np.pi / 6, 0.5, 2 * np.pi, 0.0, 0.0, 0.0])
+    y0 = np.array([np.pi / 6, np.pi / 6, 0.5, 2 * np.pi, 0.0, 0.0, 0.0])
     return solve_ivp(rhs, (0.0, duration), y0, "Radau", rtol=rtol, atol=rtol / 100, dense_output=True)
 
 

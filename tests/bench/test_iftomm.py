@@ -87,7 +87,7 @@ def test_the_flyball_governor_s_pinocchio_reference_and_mechkit_agree():
     run = m.simulate(0.05, v0=v0, rtol=1e-8, limits=None, reactions=False)
     ref = iftomm.flyball_reference(pin.buildModelFromUrdf(str(path)), 0.05)
     s = run.motion.q[:, m.q_index("s")]
-    assert np.max(np.abs(s - ref.sol(run.t)[3])) < 1e-9 and abs(s[-1] - s[0]) > 1e-3
+    assert np.max(np.abs(s - ref.sol(run.t)[2])) < 1e-9 and abs(s[-1] - s[0]) > 1e-3
 
 
 @pytest.mark.slow
@@ -104,12 +104,13 @@ def test_n40_four_bar_passes_its_singular_positions_within_high_precision(tmp_pa
 
 
 @pytest.mark.slow
-def test_the_flyball_governor_meets_high_precision_with_radau():
-    """The library's 10 s with Radau at rtol 1e-6: s within 1e-3 m (high precision) of the reference."""
+def test_the_flyball_governor_meets_high_precision_over_its_ten_seconds():
+    """The library's 10 s with RK45 at rtol 1e-6 (stability-bound, ~1.5e4 steps): s within 1e-6 m of the
+    reference (measured 3.7e-10 m; the high-precision bound 1e-3 m)."""
     from mechkit.bench.iftomm_page import run_flyball
 
-    row = run_flyball(10.0, "Radau", 1e-6)
-    assert row.passed
+    row = run_flyball(10.0, "RK45", 1e-6)
+    assert row.error < 1e-6 and row.passed
 
 
 @pytest.mark.slow
