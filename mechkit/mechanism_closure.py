@@ -112,7 +112,9 @@ class MechanismClosure:
         the guess when it is a full configuration closing every loop (the previous sample along a motion),
         else the home assembly when no guess is given. Where there is none, or its branch cannot be
         followed, Newton from the guess (the spec's: a file's keyframe 'home', qpos0 or `<mechkit:guess>`;
-        else the joints' zero). Bounded revolute angles are then wrapped by whole turns into their limits.
+        else the joints' zero). Bounded revolute angles are then wrapped by whole turns into their limits;
+        where Newton's assembly still leaves loop joints outside them, one inside them is sought
+        (`core.seek_inside_limits`: the file's limits say which assembly it means), else they are named.
 
         Args:
             inputs: joint or actuator name -> value (rad or m; a ball joint's rotation vector), or values
@@ -167,6 +169,12 @@ class MechanismClosure:
             branch = f"continued from {named}"
         q, outside = core.wrap_into_limits(self.model, out.q)
         on_loops = tuple(j for j in outside if self.naming.joint_id(j) in self.closure_model.on_loops)
+        if on_loops and branch.startswith("Newton"):  # the file's assembly is one inside its limits, if any
+            inside = core.seek_inside_limits(self.closure_model, self.closure_data, q, split, tol=tol)
+            if inside is not None:
+                return core.Assembly(
+                    inside.q, out.iterations, inside.residual, f"{branch}, re-sought inside the limits"
+                )
         return core.Assembly(q, out.iterations, out.residual, branch, on_loops)
 
     def solve_closure(

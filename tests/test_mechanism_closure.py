@@ -48,3 +48,19 @@ def test_the_mobility_is_the_jacobians_nullity(four_bar):
     assert m.singularity(m.home_q) == pytest.approx(
         np.linalg.cond(np.delete(m.closure_jacobian(m.home_q), m.v_index("crank"), axis=1))
     )
+
+
+def test_a_home_newton_closes_outside_the_limits_is_re_sought_inside_them():
+    """Gepetto's delta robot: Newton from its joints' zero closes free2_rod1 at -2.78 rad, outside [-pi/2, pi/2]
+    by more than whole turns; the home assembly is the one inside the file's limits, closed, on the same inputs."""
+    import mechkit
+    from tests_support import FIXTURES
+
+    m = mechkit.load(FIXTURES / "field" / "gepetto" / "robot_delta" / "robot.urdf")
+    home = m.home_assembly
+    assert home.outside == () and home.branch.endswith("re-sought inside the limits")
+    assert np.linalg.norm(m.closure_residual(home.q)) <= 1e-12
+    i = m.model.joints[m.joint_id("free2_rod1")].idx_q
+    assert -np.pi / 2 <= home.q[i] <= np.pi / 2
+    for joint, value in m.spec.home(m.params).items():
+        assert m.joint_values(home.q)[joint] == pytest.approx(value, abs=1e-12)
