@@ -5,7 +5,9 @@ falls into; a revolute angle then outside its range by more than whole turns (`w
 the file's intended assembly is another one. `seek_inside_limits` looks for it as a bounded least-squares
 problem: the closure residual over the free coordinates, each bounded one-coordinate joint (revolute or
 prismatic) kept in its [lower, upper] (scipy's trust-region-reflective `least_squares`), stepping on the
-configuration manifold from a base configuration (so ball and free joints take part unbounded). It starts
+configuration manifold from a base configuration (so ball joints take part unbounded; a free body's six
+coordinates stay where Newton put them: its pose is not a branch, and a floating crossbar moved to fit the
+legs' limits would change what gravity does to it). It starts
 from the outside assembly clamped into the limits, then from the limits' midpoints; the exact rows' solve
 then polishes the first start that reaches near closure inside the limits.
 """
@@ -65,7 +67,8 @@ def seek_inside_limits(
         cm: the closure model.
         cd: its data (workspace; left at the solution when one is found).
         q: (nq,) a configuration carrying the given joints' values (e.g. the assembly found outside the limits).
-        split: which joints are given (`ClosureModel.split`); their coordinates are not moved.
+        split: which joints are given (`ClosureModel.split`); their coordinates are not moved, nor a
+            free-flyer's.
         tol: closure residual norm to reach (m for position rows).
 
     Returns:
@@ -73,8 +76,11 @@ def seek_inside_limits(
         where no start leads to one (the caller keeps the assembly it has and names the joints outside).
     """
     model = cm.model
-    bounded = [b for b in _bounded(model) if b[1] in set(split.free_v.tolist())]
-    free = split.free_v
+    floating = {
+        v for j in range(1, model.njoints) if model.nvs[j] == 6 for v in range(model.idx_vs[j], model.idx_vs[j] + 6)
+    }
+    free = np.array([v for v in split.free_v if v not in floating], dtype=int)  # a free body's pose stays put
+    bounded = [b for b in _bounded(model) if b[1] in set(free.tolist())]
     column = {int(v): k for k, v in enumerate(free)}
     for start in _starts(model, q, bounded):
         lower, upper = np.full(free.size, -np.inf), np.full(free.size, np.inf)

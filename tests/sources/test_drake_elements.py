@@ -402,8 +402,11 @@ def _drake_compliant_crank_torque(path, crank_values):
 
 def test_the_bushing_strandbeest_read_as_pins_agrees_with_drake_to_the_bushings_compliance(tmp_path):
     """Read as pins, the welded bushing Strandbeest's crank holding torque at 1 rad differs from Drake's
-    compliant equilibrium by the bushings' compliance (Drake's 2e4 N/m and 2e4 N m/rad: 1.5e-2 relative,
-    measured), and a hundred times stiffer bushings bring Drake about a hundred times closer (1.6e-4)."""
+    compliant equilibrium by the bushings' compliance, and a hundred times stiffer bushings bring Drake about
+    a hundred times closer. On the assembly inside the file's joint limits (`core.seek_inside_limits`) with
+    Drake's 2e4 N/m and 2e4 N m/rad: 0.73 relative, 5.0e-3 stiffer (1/146; on the branch Newton found
+    from the joints' zero, outside the limits: 1.5e-2 and 1.6e-4): the legs sit where the torque is more
+    sensitive to the bushings' deflection, and the gap scales with the compliance."""
     pytest.importorskip("pydrake")
     path = _welded_strandbeest(tmp_path, "StrandbeestBushings.urdf.xacro")
     stiffer = tmp_path / "stiffer.urdf"
@@ -426,7 +429,7 @@ def test_the_bushing_strandbeest_read_as_pins_agrees_with_drake_to_the_bushings_
             angles[name] = value[0] if mj.nq == 1 else np.arctan2(value[1], value[0])
         theirs = _drake_compliant_crank_torque(source, angles)
         gaps.append(abs(ours - theirs) / abs(theirs))
-    assert gaps[0] < 5e-2 and gaps[1] < gaps[0] / 30, gaps
+    assert gaps[0] < 1.0 and gaps[1] < 1e-2 and gaps[1] < gaps[0] / 50, gaps
 
 
 @pytest.mark.parametrize("kind", ["universal", "revolute2"])
