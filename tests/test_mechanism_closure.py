@@ -53,8 +53,9 @@ def test_the_mobility_is_the_jacobians_nullity(four_bar):
 def test_a_home_newton_closes_outside_the_limits_is_re_sought_inside_them():
     """Gepetto's delta robot: Newton from its joints' zero closes free2_rod1 at -2.78 rad, outside [-pi/2, pi/2]
     by more than whole turns; the home assembly is the one inside the file's limits, closed, on the same inputs."""
-    import mechkit
     from tests_support import FIXTURES
+
+    import mechkit
 
     m = mechkit.load(FIXTURES / "field" / "gepetto" / "robot_delta" / "robot.urdf")
     home = m.home_assembly
