@@ -79,11 +79,17 @@ class Drawing:
         g = StaticScene().geometry
         self.size = joint_extent(model, self.data, mechanism.home_q) if size is None else float(size)
         s = self.size
-        if mechanism.urdf is None:  # a reader's tree of joints URDF lacks (ball, free-flyer): no visuals
-            self.visual, placeholders = pin.GeometryModel(), set()
-        else:
-            urdf, placeholders = resolve_meshes(mechanism.urdf, meshes or MeshSearch(), 0.04 * s)
-            self.visual = pin.buildGeomFromUrdfString(model, urdf, pin.GeometryType.VISUAL)
+        self.visual, placeholders = pin.GeometryModel(), set()  # a reader's tree URDF lacks: no visuals
+        source = mechanism.urdf or mechanism.source_urdf  # a built tree (a base, a reduction) keeps its links'
+        if source is not None:
+            urdf, missing = resolve_meshes(source, meshes or MeshSearch(), 0.04 * s)
+            try:
+                self.visual, placeholders = pin.GeometryModel(), missing
+                self.visual = pin.buildGeomFromUrdfString(model, urdf, pin.GeometryType.VISUAL)
+            except (RuntimeError, ValueError):  # the built tree lacks a link the URDF draws: bars only
+                if mechanism.urdf is not None:
+                    raise
+                self.visual, placeholders = pin.GeometryModel(), set()
         self.vdata = self.visual.createData()
         self.parts: list[Part] = []
         self._links: list[tuple[int, np.ndarray]] = []  # (geometry index, 4x4 local transform)
