@@ -39,3 +39,26 @@ def test_one_colour_per_limb_when_the_urdf_gives_none(load_cached):
     )
     # five-bar limbs: prox1 -> dist1 and prox2 -> dist2, cut at C
     assert colours["prox1"] == colours["dist1"] != colours["prox2"] == colours["dist2"]
+
+
+def test_a_mechanism_on_a_base_is_drawn_with_its_links_visuals(load_cached):
+    """The platform on a moving base is a built tree (no URDF text of its own): its links are still drawn from
+    the URDF it was built from, each visual at its link's placement on the carried tree."""
+    from mechkit.bases import with_base
+
+    grounded = load_cached("spherical_2dof")
+    moving = with_base(grounded, "moving")
+    assert moving.urdf is None
+    plain, carried = drawing.Drawing(grounded), drawing.Drawing(moving)
+    names = sorted(p.path for p in carried.parts if p.path.startswith("links/"))
+    assert names and names == sorted(p.path for p in plain.parts if p.path.startswith("links/"))
+    data = moving.model.createData()
+    pin.framesForwardKinematics(moving.model, data, moving.home_q)
+    vdata = carried.visual.createData()
+    pin.updateGeometryPlacements(moving.model, data, carried.visual, vdata)
+    link = moving.model.getFrameId("platform")
+    platform = [k for k, o in enumerate(carried.visual.geometryObjects) if o.parentFrame == link]
+    assert platform
+    for k in platform:  # a visual's placement is its link's times its own origin
+        local = carried.visual.geometryObjects[k].placement
+        assert np.allclose(vdata.oMg[k].homogeneous, (data.oMf[link] * local).homogeneous, atol=1e-12)
