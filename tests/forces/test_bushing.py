@@ -169,8 +169,11 @@ def _strandbeest_crank_torques(path):
 def test_the_compliant_strandbeest_holds_as_drake_s_and_as_the_rigid_one_to_its_compliance(tmp_path):
     """Drake's Strandbeest with its 36 bushings (2e4 N/m, 2e4 N m/rad), crossbar welded, crank held at 1 rad:
     the compliant equilibrium's crank torque is Drake's own compliant equilibrium's (Newton from ours: 1e-12
-    measured); the rigid reading's differs by 1.5e-2 (the bushings deflect up to 2.0 mm under up to 41 N:
-    load / stiffness), and a hundred times stiffer bushings bring both a hundred times closer."""
+    measured); the rigid reading's differs by the bushings' compliance (they deflect up to 2.0 mm under up to
+    41 N: load / stiffness), and a hundred times stiffer bushings bring both about a hundred times closer. On
+    the home assembly inside the file's limits the net torque is small (0.050 N m compliant, 0.086 N m rigid:
+    0.73 relative; 5.0e-3 a hundred times stiffer, 1/146); on the branch Newton found outside the limits
+    the gap was 1.5e-2."""
     pytest.importorskip("pydrake")
     from tests.sources.test_drake_elements import _drake_compliant_crank_torque, _welded_strandbeest
 
@@ -187,7 +190,7 @@ def test_the_compliant_strandbeest_holds_as_drake_s_and_as_the_rigid_one_to_its_
         assert ours == pytest.approx(_drake_compliant_crank_torque(source, angles), rel=1e-9)
         gaps.append(abs(held - ours) / abs(ours))
         deflections.append(deflection)
-    assert 1e-3 < gaps[0] < 5e-2 and gaps[1] < gaps[0] / 30, gaps
+    assert 1e-3 < gaps[0] < 1.0 and gaps[1] < 1e-2 and gaps[1] < gaps[0] / 50, gaps
     assert 1e-3 < deflections[0] < 5e-3 and deflections[1] < deflections[0] / 30, deflections
 
 
