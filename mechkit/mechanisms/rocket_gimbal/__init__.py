@@ -21,7 +21,7 @@ printed numbers), every mass and inertia, the actuator dimensions.
 from __future__ import annotations
 
 from mechkit.catalog.contract import MechanismSpec, MechanismStudy
-from mechkit.mechanisms.rocket_gimbal import bench, checks, figures, studies
+from mechkit.mechanisms.rocket_gimbal import bench, checks, figures, scenes, studies
 from mechkit.mechanisms.rocket_gimbal.design import DESIGN_METRICS
 from mechkit.mechanisms.rocket_gimbal.failure import FAILURE_STUDIES
 from mechkit.mechanisms.rocket_gimbal.params import RocketGimbalParams, geometry
@@ -63,6 +63,12 @@ SPEC = MechanismSpec(
             studies.swing,
             studies.swing_lines,
             figures.swing_figure,
+        ),
+        "flight": MechanismStudy(
+            "the swing on a vehicle accelerating at 2 g under 1.2 MN thrust (mechkit.bases) beside the bench",
+            scenes.flight_study,
+            scenes.flight_lines,
+            scenes.flight_figures,
         ),
     },
     self_checks=checks.self_checks,

@@ -8,6 +8,7 @@ Pinocchio external forces (`thrust_fext`), and one period as assembled poses (`s
 from __future__ import annotations
 
 from dataclasses import dataclass
+from pathlib import Path
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -21,7 +22,17 @@ from mechkit.mechanisms.rocket_gimbal.params import RocketGimbalParams, geometry
 if TYPE_CHECKING:
     from mechkit.mechanism import Mechanism
 
-__all__ = ["AXIAL_ACCELERATION", "SwingScene", "in_flight", "swing_scene", "swing_times", "thrust_fext"]
+__all__ = [
+    "AXIAL_ACCELERATION",
+    "SwingScene",
+    "flight_figures",
+    "flight_lines",
+    "flight_study",
+    "in_flight",
+    "swing_scene",
+    "swing_times",
+    "thrust_fext",
+]
 
 
 @dataclass(frozen=True)
@@ -162,3 +173,50 @@ def in_flight(mech: Mechanism, acceleration: float = AXIAL_ACCELERATION, scene: 
         "flight": motion.study(moving, flight, loads=lambda m, q, t: thrust_fext(m, q, scene)),
         "moving": moving,
     }
+
+
+def flight_study(mech: Mechanism) -> dict:
+    """`in_flight` with the moving gimbal's motion to draw.
+
+    Args:
+        mech: the gimbal on its fixed ground.
+
+    Returns:
+        `in_flight`'s studies and "snapshot": (the gimbal on its moving base, q (N, nq) in flight, figure name).
+    """
+    runs = in_flight(mech)
+    return {**runs, "snapshot": (runs["moving"], runs["flight"].q, "bases_rocket_gimbal_snapshot")}
+
+
+def flight_lines(data: dict) -> list[str]:
+    """The flight study's numbers: each actuator's force range in flight and on the bench.
+
+    Args:
+        data: `flight_study`'s data.
+
+    Returns:
+        One line per actuator.
+    """
+    bench, flight = data["bench"], data["flight"]
+    return [
+        f"{j}: {flight.effort(j).min():.5g} .. {flight.effort(j).max():.5g} N in flight, "
+        f"{bench.effort(j).min():.5g} .. {bench.effort(j).max():.5g} N on the bench"
+        for j in bench.effort_names
+    ]
+
+
+def flight_figures(data: dict, folder: Path) -> list[Path]:
+    """The flight study's chart (`mechkit.bases.chart.efforts_chart`) in `folder`.
+
+    Args:
+        data: `flight_study`'s data.
+        folder: where the PNG goes.
+
+    Returns:
+        The file written.
+    """
+    from mechkit.bases.chart import efforts_chart
+
+    runs = {"bench": data["bench"], "flight": data["flight"]}
+    path = folder / "bases_rocket_gimbal_flight.png"
+    return [efforts_chart(runs, list(data["bench"].effort_names), path, "gimbal in flight")]

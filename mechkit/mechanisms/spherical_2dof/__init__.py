@@ -15,7 +15,7 @@ reading of "cone angle 30 deg") are derived in docs/mechanisms/spherical_2dof.md
 from __future__ import annotations
 
 from mechkit.catalog.contract import MechanismSpec, MechanismStudy
-from mechkit.mechanisms.spherical_2dof import bench, checks, figures, joint_state, studies
+from mechkit.mechanisms.spherical_2dof import bench, checks, figures, joint_state, scenes, studies
 from mechkit.mechanisms.spherical_2dof.params import Spherical2DofParams
 from mechkit.mechanisms.spherical_2dof.scenes import cone_scene, cone_scene_times
 
@@ -48,6 +48,18 @@ SPEC = MechanismSpec(
             studies.basin,
             studies.basin_lines,
             figures.basin_figure,
+        ),
+        "ship": MechanismStudy(
+            "on a ship (mechkit.bases): the inputs holding the platform level, torques, the carrier's force",
+            scenes.ship_study,
+            scenes.ship_lines,
+            scenes.ship_figures,
+        ),
+        "isolation": MechanismStudy(
+            "the isolation chart: residual tilt over carrier tilt against frequency, 1 and 4 Hz servos",
+            scenes.isolation_study,
+            scenes.isolation_lines,
+            scenes.isolation_figures,
         ),
     },
     self_checks=checks.self_checks,

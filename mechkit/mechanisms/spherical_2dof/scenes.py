@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
+from pathlib import Path
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -25,9 +26,15 @@ __all__ = [
     "cone_scene",
     "cone_scene_times",
     "cone_times",
+    "isolation_figures",
+    "isolation_lines",
     "isolation_points",
+    "isolation_study",
     "on_ship",
+    "ship_figures",
+    "ship_lines",
     "ship_motion",
+    "ship_study",
 ]
 
 #: Cone scene: the paper's "cone angle 30 deg" (錐角) read as the apex angle: half angle 15 deg.
@@ -174,3 +181,100 @@ def isolation_points(
     carried = on_carrier(mech, rotor_inertia)
     table = holding_table(carried, "platform", LEVEL, amplitude)
     return [isolation_point(carried, table, amplitude, f, b) for b in bandwidths for f in frequencies]
+
+
+#: The isolation study's carrier roll frequencies and servo bandwidths (Hz; ours).
+ISOLATION_FREQUENCIES, ISOLATION_BANDWIDTHS = (0.1, 0.2, 0.5, 1.0, 2.0, 5.0, 10.0), (1.0, 4.0)
+
+
+def ship_study(mech: Mechanism) -> dict:
+    """The platform held level on the ship (`on_ship`), with the carried mechanism and its motion to draw.
+
+    Args:
+        mech: the platform on its fixed ground.
+
+    Returns:
+        "held": the `HeldMotion`; "snapshot": (the platform on its moving base, q (N, nq), figure name).
+    """
+    from mechkit.bases import with_base
+
+    held = on_ship(mech)
+    return {"held": held, "snapshot": (with_base(mech, "moving"), held.study.q, "bases_spherical_ship_snapshot")}
+
+
+def ship_lines(data: dict) -> list[str]:
+    """The ship study's numbers: the tilt left, the inputs, the motor torques, the carrier's vertical force.
+
+    Args:
+        data: `ship_study`'s data (its "held" is read).
+
+    Returns:
+        The lines.
+    """
+    held, study = data["held"], data["held"].study
+    lines = [f"level to {float(np.max(np.abs(held.tilt))):.2g} rad over {study.t[-1]:g} s ({len(study.t)} samples)"]
+    lines += [
+        f"input {n}: {held.inputs[:, k].min():.4g} .. {held.inputs[:, k].max():.4g} rad"
+        for k, n in enumerate(held.names)
+    ]
+    lines += [f"motor torque {n}: {study.effort(n).min():.4g} .. {study.effort(n).max():.4g} N m" for n in held.names]
+    lines.append(
+        f"carrier's vertical force: {study.effort('base_z').min():.4g} .. {study.effort('base_z').max():.4g} N"
+    )
+    return lines
+
+
+def ship_figures(data: dict, folder: Path) -> list[Path]:
+    """The ship study's chart (`mechkit.bases.chart.held_chart`) in `folder`.
+
+    Args:
+        data: `ship_study`'s data.
+        folder: where the PNG goes.
+
+    Returns:
+        The file written.
+    """
+    from mechkit.bases.chart import held_chart
+
+    return [held_chart(data["held"], folder / "bases_spherical_ship.png", "spherical platform held level on a ship")]
+
+
+def isolation_study(mech: Mechanism) -> list:
+    """`isolation_points` at `ISOLATION_FREQUENCIES` and `ISOLATION_BANDWIDTHS` (14 simulations: minutes).
+
+    Args:
+        mech: the platform on its fixed ground.
+
+    Returns:
+        The `IsolationPoint`s, bandwidth by bandwidth.
+    """
+    return isolation_points(mech, ISOLATION_FREQUENCIES, ISOLATION_BANDWIDTHS)
+
+
+def isolation_lines(points: list) -> list[str]:
+    """One line per point: frequency, bandwidth, the simulated residual tilt ratio and the linear servo's.
+
+    Args:
+        points: `isolation_study`'s points.
+
+    Returns:
+        One line per point.
+    """
+    return [
+        f"{p.frequency:g} Hz, {p.bandwidth:g} Hz servos: {p.ratio:.3g} (linear servo {p.theory:.3g})" for p in points
+    ]
+
+
+def isolation_figures(points: list, folder: Path) -> list[Path]:
+    """The isolation chart (`mechkit.bases.chart.isolation_chart`) in `folder`.
+
+    Args:
+        points: `isolation_study`'s points.
+        folder: where the PNG goes.
+
+    Returns:
+        The file written.
+    """
+    from mechkit.bases.chart import isolation_chart
+
+    return [isolation_chart(points, folder / "bases_spherical_isolation.png", "spherical platform isolation")]

@@ -48,7 +48,7 @@ data) and `figures` (drawn from them).
 from __future__ import annotations
 
 from mechkit.catalog.contract import MechanismSpec, MechanismStudy, MotionLaw
-from mechkit.mechanisms.ten_bar import bench, figures, studies
+from mechkit.mechanisms.ten_bar import bench, figures, scenes, studies
 from mechkit.mechanisms.ten_bar.checks import self_checks
 from mechkit.mechanisms.ten_bar.design import DESIGN_METRICS
 from mechkit.mechanisms.ten_bar.geometry import stowed_pose
@@ -92,6 +92,12 @@ SPEC = MechanismSpec(
             studies.deployment,
             studies.deployment_lines,
             figures.deployment_figures,
+        ),
+        "orbit": MechanismStudy(
+            "the deployment in orbit on a floating 100 kg bus (mechkit.bases) beside the ground test under 1 g",
+            scenes.orbit_study,
+            scenes.orbit_lines,
+            scenes.orbit_figures,
         ),
     },
     self_checks=self_checks,

@@ -3,6 +3,8 @@ input law for motion studies."""
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import numpy as np
 
 from mechkit.catalog.contract import SampledLaw
@@ -155,3 +157,53 @@ def latch_up_in_orbit(mechanism: Mechanism, bus: tuple = BUS, latch: float = LAT
         shock = latch_up(m, q, v, jump.v, [*MOTORS, PASSIVE])
         out[name] = (when, float(v[m.v_index(PASSIVE)]), shock, jump.dissipated)
     return out
+
+
+def orbit_study(mechanism: Mechanism) -> dict:
+    """`in_orbit` with the floating mechanism's motion to draw.
+
+    Args:
+        mechanism: the ten-bar on its fixed ground.
+
+    Returns:
+        `in_orbit`'s runs and "snapshot": (the ten-bar on its bus, q (N, nq) in orbit, figure name).
+    """
+    runs = in_orbit(mechanism)
+    return {**runs, "snapshot": (runs["floating"], runs["orbit"].motion.q, "bases_ten_bar_orbit_snapshot")}
+
+
+def orbit_lines(data: dict) -> list[str]:
+    """The orbit study's numbers: each motor's torque range in orbit and on the ground, the bus's momentum drift.
+
+    Args:
+        data: `orbit_study`'s data.
+
+    Returns:
+        The lines.
+    """
+    from mechkit.bases import momentum
+
+    orbit, ground = data["orbit"], data["ground"]
+    lines = [
+        f"{j}: {orbit.motion.effort(j).min():.4g} .. {orbit.motion.effort(j).max():.4g} N m in orbit, "
+        f"{ground.motion.effort(j).min():.4g} .. {ground.motion.effort(j).max():.4g} N m on the ground"
+        for j in MOTORS
+    ]
+    drift = momentum(data["floating"], orbit.t, orbit.motion.q, orbit.motion.v).drift()
+    return [*lines, f"momentum drift in orbit: {drift}"]
+
+
+def orbit_figures(data: dict, folder: Path) -> list[Path]:
+    """The orbit study's chart (`mechkit.bases.chart.floating_chart`) in `folder`.
+
+    Args:
+        data: `orbit_study`'s data.
+        folder: where the PNG goes.
+
+    Returns:
+        The file written.
+    """
+    from mechkit.bases.chart import floating_chart
+
+    path = folder / "bases_ten_bar_orbit.png"
+    return [floating_chart(data["floating"], data["orbit"], data["ground"], list(MOTORS), path, "ten-bar in orbit")]

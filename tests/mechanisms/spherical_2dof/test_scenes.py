@@ -31,3 +31,15 @@ def test_held_level_on_the_ship(load_cached):
     weight = pin.computeTotalMass(mech.model) * 9.81
     heave = ship_motion(held.study.t[-1])[2][2]  # the ship's vertical acceleration at the end
     assert held.study.effort("base_z")[-1] == pytest.approx(weight * (1 + heave / 9.81), rel=2e-2)
+
+
+def test_the_ship_study_s_lines_say_the_platform_is_level(mech):
+    """The ship study's numbers on a short run (2 s, 11 samples): the tilt left is below 1e-10 rad, and the carrier's
+    vertical force brackets the platform's weight."""
+    from mechkit.mechanisms.spherical_2dof.scenes import on_ship, ship_lines
+
+    lines = ship_lines({"held": on_ship(mech, 2.0, 11)})
+    assert float(lines[0].split()[2]) < 1e-10
+    low, high = (float(x) for x in lines[-1].split(":")[1].split("N")[0].split(".."))
+    weight = sum(i.mass for i in mech.model.inertias) * 9.81
+    assert low <= weight * 1.05 and high >= weight * 0.95
