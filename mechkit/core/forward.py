@@ -197,11 +197,11 @@ def _proximal(cm, cd, q, v, tau, mu, accuracy, max_iter, baumgarte) -> ForwardDy
     )
     a = legacy.dynamics(q, v, tau, settings).copy()
     J, rhs = legacy.jacobian(), legacy.rhs()  # rhs = -gamma
-    r = J.dot(a)
-    r -= rhs
+    r = J.dot(a) - rhs
     if not _settled(r, rhs, J, a):
+        drift = _rows_and_drift(cm, cd, q, v, None)[2]  # mechkit's rows: cd.pin, not the legacy data
         check_acceleration(
-            J, a, -rhs, "forward dynamics (proximal)", lambda: _unconstrained_scale(cm, cd.pin, q, v, tau)
+            J, a, -rhs, "forward dynamics (proximal)", lambda: _unconstrained_scale(cm, cd.pin, q, v, tau), drift
         )
     return ForwardDynamicsResult(a, J.T.dot(legacy.multipliers()), settings.iter)
 
