@@ -55,9 +55,20 @@ ACCELERATION_TOL = 1e-8
 
 
 def check_acceleration(
-    J: np.ndarray, a: np.ndarray, gamma: np.ndarray, what: str, a_scale: Callable[[], float] | None = None
+    J: np.ndarray,
+    a: np.ndarray,
+    gamma: np.ndarray,
+    what: str,
+    a_scale: Callable[[], float] | None = None,
+    drift: float = 0.0,
+    solved: np.ndarray | None = None,
 ) -> None:
     """Refuse accelerations that violate J a + gamma = 0 beyond `ACCELERATION_TOL` relative to the terms.
+
+    Past that, gamma's part outside the range of J (which no acceleration cancels) is judged against
+    `rank.range_limit` (rounding, plus a redundant row's share of the state's drift off the manifold),
+    and the residual against the tolerance on what remains: its part in the range of J, or its value on
+    the independent rows the method solved.
 
     Args:
         J: (rows, nv) the rows the method solved.
@@ -67,10 +78,12 @@ def check_acceleration(
         a_scale: gives the size of the accelerations the loads would cause unconstrained (rad/s^2 or
             m/s^2): where the closures hold the mechanism still, a is rounding and this sets the scale
             (called only when the tests without it fail).
+        drift: the state's closure residual over the rows' lever arm (dimensionless, `rank.range_limit`).
+        solved: indices of the independent rows the method solved exactly (None: judged on every row).
 
     Raises:
         SingularConfiguration: a not finite.
-        InconsistentMotion: gamma leaves the range of J beyond `rank.RANGE_TOL` (no rigid answer).
+        InconsistentMotion: gamma leaves the range of J beyond `rank.range_limit` (no rigid answer).
         ConstraintViolated: max |J a + gamma| above the tolerance.
     """
     rows = J.shape[0]
@@ -83,22 +96,28 @@ def check_acceleration(
         raise SingularConfiguration(float("inf"), f"{what} returned non-finite accelerations")
     if not rows:
         return
-    residual = float(np.abs(r).max())
-    g = float(np.abs(gamma).max())
+    residual, g = float(np.abs(r).max()), float(np.abs(gamma).max())
     if residual <= ACCELERATION_TOL * g:  # below a part of the limit: the rest need not be computed
         return
     c = math.sqrt(float(np.einsum("ij,ij->i", J, J).max()))
     limit = ACCELERATION_TOL * (c * float(np.abs(a).max(initial=0.0)) + g)
     if residual <= limit:
         return
-    delta = rank.inconsistency(J, gamma)
-    if delta > rank.RANGE_TOL * max(g, c * float(np.abs(a).max(initial=0.0))):
+    U, s, _ = np.linalg.svd(J, full_matrices=True)
+    # off the manifold by d a redundant row's singular value rises to O(d sigma_1): not resolved below it
+    U0 = U[:, int(np.sum(s > max(rank.RANK_TOL, drift) * max(s[0], 1e-290))) :]
+    delta, gn = float(np.linalg.norm(U0.T @ gamma)), float(np.linalg.norm(gamma))
+    allowed = rank.range_limit(max(gn, c * float(np.linalg.norm(a))), gn, drift)
+    if delta > allowed:
         raise InconsistentMotion(
             delta,
-            rank.RANGE_TOL * g,
+            allowed,
             f"{what}: the closure drift gamma leaves the range of J "
             "(the velocity moves along a freedom that exists only instantaneously)",
         )
+    residual = float(np.abs(r - U0 @ (U0.T @ r)).max())  # the part in the range of J
+    if solved is not None and U0.shape[1]:
+        residual = min(residual, float(np.abs(r[solved]).max(initial=0.0)))
     if a_scale is not None:
         limit += ACCELERATION_TOL * c * a_scale()
     if not residual <= limit:
@@ -178,11 +197,11 @@ def _proximal(cm, cd, q, v, tau, mu, accuracy, max_iter, baumgarte) -> ForwardDy
     )
     a = legacy.dynamics(q, v, tau, settings).copy()
     J, rhs = legacy.jacobian(), legacy.rhs()  # rhs = -gamma
-    r = J.dot(a)
-    r -= rhs
+    r = J.dot(a) - rhs
     if not _settled(r, rhs, J, a):
+        drift = _rows_and_drift(cm, cd, q, v, None)[2]  # mechkit's rows: cd.pin, not the legacy data
         check_acceleration(
-            J, a, -rhs, "forward dynamics (proximal)", lambda: _unconstrained_scale(cm, cd.pin, q, v, tau)
+            J, a, -rhs, "forward dynamics (proximal)", lambda: _unconstrained_scale(cm, cd.pin, q, v, tau), drift
         )
     return ForwardDynamicsResult(a, J.T.dot(legacy.multipliers()), settings.iter)
 
@@ -210,9 +229,11 @@ def _lcaba(cm, cd, q, v, tau, mu, accuracy, max_iter) -> ForwardDynamicsResult:
 
 def _rows_and_drift(
     cm: ClosureModel, cd: ClosureData, q: np.ndarray, v: np.ndarray, baumgarte: tuple[float, float] | None
-) -> tuple[np.ndarray, np.ndarray]:
+) -> tuple[np.ndarray, np.ndarray, float]:
     """mechkit's closure Jacobian (rows, nv) and drift (rows,) at (q, v), Baumgarte terms added (one
-    Pinocchio pass, read as views: call before any other pass)."""
+    Pinocchio pass, read as views: call before any other pass), and the state's relative distance from
+    the constraint manifold, (max |e| + max |J v| / max |v|) over the rows' lever arm
+    `ClosureModel.row_scale` (for `rank.range_limit`: an integrator's stage lies off the manifold)."""
     pin.computeJointJacobiansTimeVariation(cm.model, cd.pin, q, v)
     k, Jw, G = cm.kernel, cd.J, cd.used_placements()
     world = k.world(G)
@@ -221,7 +242,9 @@ def _rows_and_drift(
     if baumgarte is not None:
         kp, kd = baumgarte
         gamma = gamma + kd * (J @ v) + kp * e
-    return J, gamma
+    v_max = float(np.abs(v).max(initial=0.0))
+    off = float(np.abs(J.dot(v)).max(initial=0.0)) / v_max if v_max > 0 else 0.0
+    return J, gamma, (float(np.abs(e).max(initial=0.0)) + off) / cm.row_scale
 
 
 def _power_of_two(x: float) -> float:
@@ -247,7 +270,7 @@ def _kkt(cm, cd, q, v, tau, baumgarte) -> ForwardDynamicsResult:
     """Dense KKT on independent rows (cached in the data; chosen again where they lose rank),
     equilibrated by powers of two (mass block to a largest diagonal near 1, rows to a largest norm near
     1), so the pivot test is relative to the model's own scale."""
-    J, gamma = _rows_and_drift(cm, cd, q, v, baumgarte)
+    J, gamma, drift = _rows_and_drift(cm, cd, q, v, baumgarte)
     M = _mass_matrix(cm, cd.pin, q)
     M = np.triu(M) + np.triu(M, 1).T
     nle = pin.nonLinearEffects(cm.model, cd.pin, q, v)
@@ -273,7 +296,9 @@ def _kkt(cm, cd, q, v, tau, baumgarte) -> ForwardDynamicsResult:
         )
     x = scipy.linalg.lapack.dgetrs(lu, piv, np.concatenate([d * (tau - nle), -r * gi]))[0]
     a, lam = d * x[:n], r * x[n:]
-    check_acceleration(J, a, gamma, "forward dynamics (KKT)", lambda: float(np.max(np.abs(d * d * (tau - nle)))))
+    check_acceleration(
+        J, a, gamma, "forward dynamics (KKT)", lambda: float(np.max(np.abs(d * d * (tau - nle)))), drift, rows
+    )
     return ForwardDynamicsResult(a, Ji.T @ lam)
 
 
@@ -281,17 +306,18 @@ def _nullspace(cm, cd, q, v, tau, baumgarte) -> ForwardDynamicsResult:
     """The exact solution on the constraint manifold's tangent space, a = a_p + N z, N a basis of the
     null space of J and the reduced mass matrix N^T M N: N from a partition of J where its bounds
     certify the SVD's decisions, else from the SVD (`mechkit.core.null_space`)."""
-    J, gamma = _rows_and_drift(cm, cd, q, v, baumgarte)
+    J, gamma, drift = _rows_and_drift(cm, cd, q, v, baumgarte)
     M = _mass_matrix(cm, cd.pin, q)
     nle = pin.nonLinearEffects(cm.model, cd.pin, q, v)
-    a_p, N = null_space(cd, J, gamma)
+    a_p, N = null_space(cd, J, gamma, drift)
     blas = scipy.linalg.blas
     MN = blas.dsymm(1.0, M, N)
     _, z, info = scipy.linalg.lapack.dposv(N.T.dot(MN), N.T.dot(tau - nle - blas.dsymv(1.0, M, a_p)))
     if info:
         raise SingularConfiguration(float("inf"), "reduced mass matrix N^T M N: a free motion carries no inertia")
     a = a_p + N.dot(z)
-    check_acceleration(J, a, gamma, "forward dynamics (null space)")
+    solved = cd.partition[0] if cd.partition is not None else None
+    check_acceleration(J, a, gamma, "forward dynamics (null space)", drift=drift, solved=solved)
     return ForwardDynamicsResult(a, blas.dsymv(1.0, M, a) + nle - tau)
 
 

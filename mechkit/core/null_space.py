@@ -9,6 +9,8 @@ which refuses a gamma that leaves the range of J.
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 import scipy.linalg
 import scipy.linalg.lapack
@@ -18,26 +20,28 @@ from mechkit.core import rank
 from mechkit.core.model import ClosureData
 
 
-def null_space(cd: ClosureData, J: np.ndarray, gamma: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+def null_space(cd: ClosureData, J: np.ndarray, gamma: np.ndarray, drift: float = 0.0) -> tuple[np.ndarray, np.ndarray]:
     """a_p and N from the partition kept on the data, else a partition chosen again, else the SVD.
 
     Args:
         cd: the closure data (keeps the partition between calls).
         J: (rows, nv) the closure Jacobian.
         gamma: (rows,) the closure drift.
+        drift: the state's closure residual over the rows' lever arm (`rank.range_limit`).
 
     Returns:
         a_p (nv,) with J a_p + gamma = 0, and N (nv, nv - rank J) with J N = 0.
 
     Raises:
-        InconsistentMotion: gamma leaves the range of J beyond `rank.RANGE_TOL`.
+        InconsistentMotion: gamma leaves the range of J beyond `rank.range_limit`.
     """
-    split = partitioned_null_space(cd, J, gamma) or partitioned_null_space(cd, J, gamma, again=True)
-    return split if split is not None else svd_null_space(J, gamma)
+    split = partitioned_null_space(cd, J, gamma, drift=drift)
+    split = split or partitioned_null_space(cd, J, gamma, again=True, drift=drift)
+    return split if split is not None else svd_null_space(J, gamma, drift)
 
 
 def partitioned_null_space(
-    cd: ClosureData, J: np.ndarray, gamma: np.ndarray, again: bool = False
+    cd: ClosureData, J: np.ndarray, gamma: np.ndarray, again: bool = False, drift: float = 0.0
 ) -> tuple[np.ndarray, np.ndarray] | None:
     """a_p and N through one LU of a square block J[R, D], where bounds give the SVD's decisions.
 
@@ -45,13 +49,14 @@ def partitioned_null_space(
     `again` at this one, and kept on the data). The bounds: rank r, as sigma_r(J) >= sigma_min(J[R, D]) >=
     1 / |J[R, D]^-1|_F > `rank.RANK_TOL` |J|_F and, N = [I; -J[R, D]^-1 J[R, I]] spanning nv - r dimensions
     with sigma_min(N) >= 1, sigma_(r+1)(J) <= |J N|_F <= RANK_TOL |J|_F / sqrt(min(rows, nv)) <= RANK_TOL
-    sigma_1(J); and gamma inside the range of J to `rank.RANGE_TOL` (|J a_p + gamma| bounds the part outside).
+    sigma_1(J); and gamma inside the range of J to `rank.range_limit` (|J a_p + gamma| bounds the part outside).
 
     Args:
         cd: the closure data (keeps the partition between calls).
         J: (rows, nv) the closure Jacobian.
         gamma: (rows,) the closure drift.
         again: choose the rows and columns again instead of reusing the data's.
+        drift: the state's closure residual over the rows' lever arm (`rank.range_limit`).
 
     Returns:
         (a_p (nv,), N (nv, nv - r)) with J a_p + gamma = 0 and J N = 0; None where a bound fails (the SVD
@@ -77,31 +82,34 @@ def partitioned_null_space(
         N[dep], a_p[dep] = -X[:, :-1], -X[:, -1]
     if not rank.squared_norm(J.dot(N)) * min(J.shape) <= rank.RANK_TOL**2 * size:
         return None
-    outside = J.dot(a_p) + gamma
-    return (a_p, N) if outside.dot(outside) <= rank.RANGE_TOL**2 * gamma.dot(gamma) else None
+    outside, g = J.dot(a_p) + gamma, float(np.sqrt(gamma.dot(gamma)))
+    return (a_p, N) if math.sqrt(outside.dot(outside)) <= rank.range_limit(g, g, drift) else None
 
 
-def svd_null_space(J: np.ndarray, gamma: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+def svd_null_space(J: np.ndarray, gamma: np.ndarray, drift: float = 0.0) -> tuple[np.ndarray, np.ndarray]:
     """The minimum-norm particular solution of J a = -gamma and an orthonormal basis of the null space of
     J, from its SVD.
 
     Args:
         J: (rows, nv) the closure Jacobian.
         gamma: (rows,) the closure drift.
+        drift: the state's closure residual over the rows' lever arm (`rank.range_limit`).
 
     Returns:
         (a_p (nv,), N (nv, nv - rank J)).
 
     Raises:
-        InconsistentMotion: gamma leaves the range of J beyond `rank.RANGE_TOL`.
+        InconsistentMotion: gamma leaves the range of J beyond `rank.range_limit`.
     """
     U, s, Vt = np.linalg.svd(J, full_matrices=True)
     r = rank.numerical_rank(s)
     outside = float(np.linalg.norm(U[:, r:].T @ gamma)) if J.size else 0.0
-    if outside > rank.RANGE_TOL * max(float(np.linalg.norm(gamma)), 1e-300):
+    g = float(np.linalg.norm(gamma))
+    limit = rank.range_limit(max(g, 1e-300), g, drift)
+    if outside > limit:
         raise InconsistentMotion(
             outside,
-            rank.RANGE_TOL * float(np.linalg.norm(gamma)),
+            limit,
             "forward dynamics (null space): "
             "the closure drift gamma leaves the range of J (the velocity moves along a freedom "
             "that exists only instantaneously)",

@@ -47,7 +47,10 @@ class SimulationResult:
         impact_loss: (N,) energy taken by impacts (J).
         friction_power: (N,) power of the friction elements (W, <= 0).
         events: (t (s), event, what happened) in time order.
-        integrator: how it was integrated (method, tolerances or step, steps, evaluations).
+        integrator: how it was integrated (method, tolerances or step, steps, evaluations, dynamics and
+            "dynamics_note": why the default changed, or "").
+        momentum: on a free-flyer root, the whole system's momentum at each sample
+            (`mechkit.bases.MomentumHistory`: conserved with no gravity and no external force); else None.
     """
 
     motion: MotionResult
@@ -63,6 +66,7 @@ class SimulationResult:
     friction_power: np.ndarray
     events: tuple[tuple[float, str, str], ...] = ()
     integrator: dict = field(default_factory=dict)
+    momentum: Any = None
 
     @property
     def t(self) -> np.ndarray:
@@ -110,7 +114,8 @@ class SimulationResult:
         return float(max(np.ptp(x) for x in terms))
 
     def summary(self) -> list[str]:
-        """Lines for a person: samples, closure residual, the energy balance's terms and drift."""
+        """Lines for a person: samples, closure residual, the energy balance's terms and drift (on a
+        free-flyer root the momentum's drift beside it), the dynamics where the root chose them."""
         T, V = self.kinetic, self.gravity + self.potentials.sum(axis=1)
         info = self.integrator
         lines = [
@@ -129,6 +134,14 @@ class SimulationResult:
                 f"({self.energy_error / max(self.energy_scale, 1e-300):.2g})"
             ),
         ]
+        if self.momentum is not None:
+            d = self.momentum.drift()
+            lines.append(
+                f"momentum drift: linear {d['linear']:.3g} kg m/s ({d['relative_linear']:.2g} of the bodies' "
+                f"{self.momentum.scale:.3g}), angular {d['angular']:.3g} kg m^2/s, centre of mass {d['com']:.3g} m"
+            )
+        if info.get("dynamics_note"):
+            lines.append(f"dynamics: {info['dynamics_note']}")
         lines += [f"t = {t:.6g} s: {name}: {what}" for t, name, what in self.events]
         return lines
 

@@ -25,6 +25,7 @@ from mechkit.history.result import MotionResult, coordinate_names
 from mechkit.simulation.crossing import FALLBACK, BranchChanged, BranchMode, BranchWatch, on_manifold
 from mechkit.simulation.declared import default_forces, file_limits, torque_motors
 from mechkit.simulation.events import REST_RATE, Latch, Limit, impact
+from mechkit.simulation.floating import default_dynamics, run_momentum
 from mechkit.simulation.integrator import (
     ATOL,
     RTOL,
@@ -139,9 +140,8 @@ def simulate(
     names = [e.name for e in elements]
     if len(set(names)) != len(names):
         raise InvalidParameters("forces", names, "every force element needs its own name")
-    if dynamics is None:
-        exact = any(e.needs_reactions for e in elements) or not core.pinocchio_methods_apply(mech.closure_model)
-        dynamics = "kkt" if exact else "proximal"
+    exact = any(e.needs_reactions for e in elements) or not core.pinocchio_methods_apply(mech.closure_model)
+    dynamics, note = default_dynamics(mech.model, exact) if dynamics is None else (dynamics, "")
     if friction_scheme is None:
         friction_scheme = "fixed point" if dt is None else "corrected"
     system = MechanismSystem(mech, elements, drives, dynamics, baumgarte, friction_scheme)
@@ -238,6 +238,7 @@ def simulate(
         "atol": atol,
         "dt": dt,
         "dynamics": dynamics,
+        "dynamics_note": note,
         "projection": project,
         "steps": recorder.steps,
         "evaluations": recorder.evaluations,
@@ -395,4 +396,5 @@ def _result(
         r["powers"][:, friction].sum(axis=1),
         tuple(recorder.events),
         info,
+        run_momentum(mech.model, r["t"], r["q"], r["v"]),
     )

@@ -31,7 +31,7 @@ import numpy as np
 import pinocchio as pin
 
 from mechkit import core
-from mechkit.base.exceptions import InvalidParameters
+from mechkit.base.exceptions import InvalidParameters, SingularConfiguration
 from mechkit.forces import ForceElement, ForceState, FrictionLocks, generalized_of_wrenches
 from mechkit.simulation import crossing
 from mechkit.simulation.prescribed import Drives
@@ -192,7 +192,12 @@ class MechanismSystem:
             return a0, self._no_efforts, None
         if P is None:
             P = np.column_stack([self._fd(q, v, tau + self._unit[k]) - a0 for k in self.drive_v])
-        u = np.linalg.solve(P[self.drive_v], acc - a0[self.drive_v])
+        try:
+            u = np.linalg.solve(P[self.drive_v], acc - a0[self.drive_v])
+        except np.linalg.LinAlgError:  # the drives' response block: a freedom lost, or drives that conflict
+            raise SingularConfiguration(
+                float("inf"), f"the drives {list(self._drives.all)} do not determine the accelerations here"
+            ) from None
         return a0 + P @ u, u, P
 
     def evaluate(self, t: float, q: np.ndarray, v: np.ndarray) -> Evaluation:

@@ -12,6 +12,7 @@ from mechkit.base.exceptions import ConstraintViolated, InconsistentMotion, Inva
 from mechkit.bench.ladder import exact_accelerations
 from mechkit.bench.ladder_model import ladder
 from mechkit.bench.sampling import make_samples
+from mechkit.core import forward
 
 from .no_rigid_answer import inconsistent_state
 
@@ -211,3 +212,55 @@ def test_lcaba_measures_the_closure_error_of_its_final_accelerations(loops, max_
     J = check.jacobian()
     true = np.max(np.abs(J @ a + check.drift(J.shape[0])))
     assert abs(err.value.residual - true) <= 1e-9 * true + 1e-14 * np.max(np.abs(J)) * np.max(np.abs(a))
+
+
+def _redundant_rows(lift):
+    """Three rows on four coordinates, the third the sum of the first two plus `lift` (a redundant row
+    lifted off by a state's drift), the exact solution of the first two, and the third's left null vector."""
+    rng = np.random.default_rng(3)
+    J = rng.standard_normal((3, 4))
+    J[2] = J[0] + J[1] + lift * rng.standard_normal(4)
+    u = np.array([1.0, 1.0, -1.0]) / np.sqrt(3.0)
+    return J, u
+
+
+@pytest.mark.parametrize("solved", [None, np.array([0, 1])])
+def test_a_drifted_state_s_inconsistency_is_allowed_to_its_drift_and_no_further(solved):
+    """gamma's part outside the range of J that no acceleration cancels is allowed to RANGE_TOL times the
+    terms on the manifold (rounding) plus the state's relative drift d times |gamma| off it: a part of
+    0.5 d |gamma| passes with d given (fails with d = 0, the old absolute limit), 20 d |gamma| is refused
+    with it; the accelerations are judged on the rows solved (least squares, or the independent rows)."""
+    d = 1e-6
+    J, u = _redundant_rows(1e-12)
+    gamma0 = J @ np.array([0.3, -0.2, 0.5, 0.1])  # consistent: a = -(0.3, -0.2, 0.5, 0.1)
+    for part, passes in ((0.5, True), (20.0, False)):
+        gamma = gamma0 + part * d * np.linalg.norm(gamma0) * u
+        a = (
+            np.linalg.lstsq(J[:2], -gamma[:2], rcond=None)[0]
+            if solved is not None
+            else np.linalg.pinv(J, rcond=1e-9) @ -gamma
+        )
+        if passes:
+            forward.check_acceleration(J, a, gamma, "test", drift=d, solved=solved)
+            with pytest.raises(InconsistentMotion):
+                forward.check_acceleration(J, a, gamma, "test", solved=solved)
+        else:
+            with pytest.raises(InconsistentMotion):
+                forward.check_acceleration(J, a, gamma, "test", drift=d, solved=solved)
+    a = np.linalg.pinv(J, rcond=1e-9) @ -gamma0 + 1e-6  # a wrong acceleration: refused whatever the drift
+    with pytest.raises(ConstraintViolated):
+        forward.check_acceleration(J, a, gamma0, "test", drift=d, solved=solved)
+
+
+def test_the_drift_lifts_a_redundant_row_s_singular_value_only_to_its_size():
+    """A redundant row lifted by 1e-10 (above RANK_TOL, below the drift 1e-7) is still judged redundant
+    with the drift given: its gamma part d/2 |gamma| passes; without the drift it is a row of its own and
+    its solve is the rows' (here the least squares of two rows misses it: refused)."""
+    d = 1e-7
+    J, u = _redundant_rows(1e-10)
+    gamma0 = J[:2] @ np.array([0.3, -0.2, 0.5, 0.1])
+    gamma = np.concatenate([gamma0, [gamma0.sum()]]) + 0.5 * d * np.linalg.norm(gamma0) * u
+    a = np.linalg.lstsq(J[:2], -gamma[:2], rcond=None)[0]
+    forward.check_acceleration(J, a, gamma, "test", drift=d, solved=np.array([0, 1]))
+    with pytest.raises((ConstraintViolated, InconsistentMotion)):
+        forward.check_acceleration(J, a, gamma, "test", solved=np.array([0, 1]))

@@ -25,7 +25,7 @@ def test_the_partitioned_null_space_is_certified_and_gives_the_svd_numbers(name,
     m = load_cached(name)
     cm, cd = m.closure_model, m.closure_model.create_data()
     for s in make_samples(m, 3):
-        J, gamma = forward._rows_and_drift(cm, cd, s.q, s.v, None)
+        J, gamma, _ = forward._rows_and_drift(cm, cd, s.q, s.v, None)
         split = null_space.partitioned_null_space(cd, J, gamma)
         assert split is not None
         a_p, N = split
@@ -46,7 +46,26 @@ def test_the_partition_leaves_a_state_with_no_rigid_answer_to_the_svd(load_cache
     m = load_cached("deployable_9rr12uru")
     cm, cd = m.closure_model, m.closure_model.create_data()
     q, v, _, _ = inconsistent_state(m)
-    J, gamma = forward._rows_and_drift(cm, cd, q, v, None)
+    J, gamma, _ = forward._rows_and_drift(cm, cd, q, v, None)
     assert null_space.partitioned_null_space(cd, J, gamma) is None
     with pytest.raises(InconsistentMotion):
         null_space.svd_null_space(J, gamma)
+
+
+def test_the_svd_allows_a_drifted_state_s_inconsistency_to_its_drift_and_no_further():
+    """Three rows on four coordinates, the third the sum of the first two: gamma with a part 0.5 d |gamma|
+    along the left null vector passes at drift d (refused at d = 0: on the manifold it is a velocity with
+    no rigid answer), 20 d |gamma| is refused at d; the particular solution solves the consistent part."""
+    rng = np.random.default_rng(3)
+    J = rng.standard_normal((3, 4))
+    J[2] = J[0] + J[1]
+    u = np.array([1.0, 1.0, -1.0]) / np.sqrt(3.0)
+    gamma0, d = J @ np.array([0.3, -0.2, 0.5, 0.1]), 1e-7
+    gamma = gamma0 + 0.5 * d * np.linalg.norm(gamma0) * u
+    a_p, N = null_space.svd_null_space(J, gamma, d)
+    assert N.shape == (4, 2) and np.abs(J @ N).max() < 1e-14
+    np.testing.assert_allclose(J @ a_p + gamma0, 0.0, atol=1e-14)
+    with pytest.raises(InconsistentMotion):
+        null_space.svd_null_space(J, gamma)
+    with pytest.raises(InconsistentMotion):
+        null_space.svd_null_space(J, gamma0 + 20 * d * np.linalg.norm(gamma0) * u, d)
