@@ -323,7 +323,7 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     p.add_argument(
         "--dynamics",
         choices=("proximal", "lcaba", "kkt", "nullspace"),
-        help="the core's forward dynamics (default: proximal, kkt with --friction)",
+        help="the core's forward dynamics (default: proximal; kkt with --friction or on a floating base)",
     )
     p.add_argument(
         "--method",

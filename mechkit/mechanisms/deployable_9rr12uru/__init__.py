@@ -20,7 +20,7 @@ paper's equations, as data) and `figures` (drawn from it).
 from __future__ import annotations
 
 from mechkit.catalog.contract import MechanismSpec, MechanismStudy
-from mechkit.mechanisms.deployable_9rr12uru import figures, studies
+from mechkit.mechanisms.deployable_9rr12uru import figures, orbit, studies
 from mechkit.mechanisms.deployable_9rr12uru.actuation import ACTUATED, home
 from mechkit.mechanisms.deployable_9rr12uru.params import DeployableParams
 from mechkit.mechanisms.truss.bench import FOLD_STEP, fold_states
@@ -49,7 +49,13 @@ SPEC = MechanismSpec(
             studies.fold_study,
             studies.fold_lines,
             figures.fold_figures,
-        )
+        ),
+        "orbit": MechanismStudy(
+            "the 200 s fold in orbit on a floating 100 kg bus (mechkit.bases) beside the ground under 1 g (minutes)",
+            orbit.orbit_study,
+            orbit.orbit_lines,
+            orbit.orbit_figures,
+        ),
     },
     self_checks=fold_checks,
 )

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass
+from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -103,3 +104,53 @@ def fold_in_orbit(mechanism: Mechanism, bus: tuple = BUS, duration: float = 200.
         {**history.drift(), "scale": history.scale},
         peaks,
     )
+
+
+def orbit_study(mechanism: Mechanism) -> dict:
+    """`fold_in_orbit` over the whole fold (the ground run takes minutes), with the floating truss's motion to draw.
+
+    Args:
+        mechanism: `deployable_9rr12uru` on its fixed ground.
+
+    Returns:
+        "fold": the `OrbitFold`; "snapshot": (the truss on its bus, q (N, nq) in orbit, figure name).
+    """
+    fold = fold_in_orbit(mechanism)
+    return {"fold": fold, "snapshot": (fold.floating, fold.orbit.motion.q, "bases_9rr12uru_orbit_snapshot")}
+
+
+def orbit_lines(data: dict) -> list[str]:
+    """The fold's numbers in orbit: the bus's attitude, shift and rate at the end, the momentum drift, the drives.
+
+    Args:
+        data: `orbit_study`'s data.
+
+    Returns:
+        The lines.
+    """
+    fold = data["fold"]
+    lines = [
+        f"bus at the end: turned {fold.attitude:.2g} rad, shifted {fold.displacement:.3g} m, rate {fold.rate:.2g} rad/s",
+        f"momentum drift: {fold.momentum}",
+    ]
+    return lines + [
+        f"{j}: peak {o:.3g} N m in orbit, {g:.3g} N m on the ground" for j, (o, g) in fold.peak_efforts.items()
+    ]
+
+
+def orbit_figures(data: dict, folder: Path) -> list[Path]:
+    """The drives' efforts in orbit beside the ground (`mechkit.bases.chart.efforts_chart`) in `folder`.
+
+    Args:
+        data: `orbit_study`'s data.
+        folder: where the PNG goes.
+
+    Returns:
+        The file written.
+    """
+    from mechkit.bases.chart import efforts_chart
+
+    fold = data["fold"]
+    runs = {"orbit": fold.orbit.motion, "ground, 1 g": fold.ground.motion}
+    path = folder / "bases_9rr12uru_orbit.png"
+    return [efforts_chart(runs, list(fold.peak_efforts), path, "9RR-12URU fold in orbit")]
