@@ -129,10 +129,8 @@ def orbit_lines(data: dict) -> list[str]:
         The lines.
     """
     fold = data["fold"]
-    lines = [
-        f"bus at the end: turned {fold.attitude:.2g} rad, shifted {fold.displacement:.3g} m, rate {fold.rate:.2g} rad/s",
-        f"momentum drift: {fold.momentum}",
-    ]
+    turned = f"turned {fold.attitude:.2g} rad, shifted {fold.displacement:.3g} m, rate {fold.rate:.2g} rad/s"
+    lines = [f"bus at the end: {turned}", f"momentum drift: {fold.momentum}"]
     return lines + [
         f"{j}: peak {o:.3g} N m in orbit, {g:.3g} N m on the ground" for j, (o, g) in fold.peak_efforts.items()
     ]
