@@ -6,7 +6,9 @@ from __future__ import annotations
 import argparse
 import math
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
 
 from mechkit.base.exceptions import InvalidArgument, MotionFailed
 from mechkit.base.joint_arguments import joint_names
@@ -29,6 +31,8 @@ if TYPE_CHECKING:
 
 #: Motions of at least this many samples show a progress bar (`mechkit.cli.progress`: stderr, on a terminal).
 LONG_MOTION = 100
+#: --hold's target: the body's z axis along the world's (level).
+LEVEL = ((0.0, 0.0, 1.0), (0.0, 0.0, 1.0))
 #: Peak-table columns: header, quantity.
 PEAK_COLUMNS = (
     ("|f| N", "force"),
@@ -79,7 +83,7 @@ def run(args: argparse.Namespace) -> None:
 
     Raises:
         InvalidArgument: an output that is neither .parquet nor .csv, a plot of a format not written, a
-            malformed --joints, or --joints without --plot.
+            malformed --joints, or --joints without --plot; --hold without --base moving --base-motion.
         InvalidParameters: an output that cannot be written or whose library is missing.
         MotionFailed: no sample of the motion succeeded.
         OutsideLimits: the motion's branch leaves a loop joint's limits (named with its time).
@@ -95,6 +99,32 @@ def run(args: argparse.Namespace) -> None:
     mech = load_mechanism(args)
     if joints:
         joint_names("--joints", joints, mech.closure_model.joint_names)
+    if args.hold is not None:
+        result, source = _held(mech, args)
+    else:
+        result, source = _studied(mech, args)
+    if len(result.failures) == len(result.t):
+        raise MotionFailed(result.failures)
+    refuse_path_outside(mech, result.q, result.t, f"{mech.spec.name}: the motion")
+    print(f"{mech.spec.name}: {source}, {len(result.t)} samples, t = {result.t[0]:.6g} .. {result.t[-1]:.6g} s")
+    print(f"{assembly_line(mech.home_assembly)}; each sample continued from the previous sample")
+    for t, why in result.failures:
+        print(f"skipped t = {t:.6g} s: {why}")
+    print("peak reactions (world frame; axial/radial along the joint axis):")
+    print("\n".join(format_peaks(result)))
+    if args.output:
+        parquet = Path(args.output).suffix.lower() == ".parquet"  # the suffix was checked in any case
+        writer = motion.write_parquet if parquet else motion.write_csv
+        print(f"wrote {writer(result, args.output)}")
+    if args.plot:
+        print(f"wrote {write_plot(result, args.plot, joints)}")
+
+
+def _studied(mech, args: argparse.Namespace) -> tuple[Any, str]:
+    """The study of the law the command line gives (--inputs, --scene, a --base-motion joined to them) and
+    the law's source."""
+    from mechkit import motion
+
     if args.inputs:
         law = motion.from_csv(mech, args.inputs)
     else:
@@ -113,21 +143,22 @@ def run(args: argparse.Namespace) -> None:
         skip_failures=True,
         progress=lambda done, total: bars(f"{mech.spec.name} motion", done, total),
     )
-    if len(result.failures) == len(law.t):
-        raise MotionFailed(result.failures)
-    refuse_path_outside(mech, result.q, result.t, f"{mech.spec.name}: the motion")
-    print(f"{mech.spec.name}: {law.source}, {len(law.t)} samples, t = {law.t[0]:.6g} .. {law.t[-1]:.6g} s")
-    print(f"{assembly_line(mech.home_assembly)}; each sample continued from the previous sample")
-    for t, why in result.failures:
-        print(f"skipped t = {t:.6g} s: {why}")
-    print("peak reactions (world frame; axial/radial along the joint axis):")
-    print("\n".join(format_peaks(result)))
-    if args.output:
-        parquet = Path(args.output).suffix.lower() == ".parquet"  # the suffix was checked in any case
-        writer = motion.write_parquet if parquet else motion.write_csv
-        print(f"wrote {writer(result, args.output)}")
-    if args.plot:
-        print(f"wrote {write_plot(result, args.plot, joints)}")
+    return result, law.source
+
+
+def _held(mech, args: argparse.Namespace) -> tuple[Any, str]:
+    """--hold: the inputs keeping a body level (its z axis along the world's) along --base-motion, and their
+    study (`mechkit.bases.held_motion`); the source line says the largest tilt left."""
+    from mechkit import bases
+
+    if args.base_motion is None or args.base != "moving":
+        raise InvalidArgument("--hold", args.hold, "holds a body while a base moves: give --base moving --base-motion")
+    if args.inputs or args.scene or args.samples is not None:
+        raise InvalidArgument("--hold", args.hold, "finds the inputs itself: not with --inputs, --scene or --samples")
+    check_writers(args.output, args.plot, "motion plots")
+    held = bases.held_motion(mech, bases.from_csv(args.base_motion), args.hold, LEVEL)
+    tilt = float(np.max(np.abs(held.tilt)))
+    return held.study, f"{args.hold} held level on {args.base_motion} (tilt left <= {tilt:.2g} rad)"
 
 
 def add_parser(sub: argparse._SubParsersAction) -> None:
@@ -152,6 +183,12 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
         "--inputs",
         metavar="LAW.csv",
         help="CSV of t (s) and one column per driven joint (rad or m); optional <joint>_dot, <joint>_ddot",
+    )
+    source.add_argument(
+        "--hold",
+        metavar="BODY",
+        help="with --base moving --base-motion: the inputs that keep BODY level (its z axis vertical) as the "
+        "carrier moves, and their efforts and reactions",
     )
     p.add_argument("--samples", type=int, help="resample the law at N uniform times")
     p.add_argument("-o", "--output", help="write the table: .parquet or .csv")

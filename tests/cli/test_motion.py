@@ -87,3 +87,29 @@ def test_a_missing_library_is_refused_before_the_study(module, args, tmp_path, c
     out, err = capsys.readouterr()
     assert "peak reactions" not in out and err.count("\n") == 1 and "pip install" in err
     assert list(tmp_path.iterdir()) == []
+
+
+def test_hold_keeps_the_platform_level_on_a_rolling_carrier(tmp_path, capsys):
+    """`--hold platform` on the spherical platform carried by a rolling, pitching, heaving base (a CSV of the
+    carrier's pose): the inputs found keep the platform level to 1e-10 rad at every sample, and the carrier's
+    vertical force brackets the mechanism's weight (the heave's accelerations about it)."""
+    import mechkit
+
+    carrier = tmp_path / "carrier.csv"
+    t = np.linspace(0.0, 4.0, 21)
+    rows = [
+        f"{s:.3f},0,0,{0.05 * np.sin(s):.12f},{0.1 * np.sin(0.8 * s):.12f},{0.05 * np.sin(1.1 * s):.12f},0" for s in t
+    ]
+    carrier.write_text("t,x,y,z,roll,pitch,yaw\n" + "\n".join(rows) + "\n")
+    out = tmp_path / "held.csv"
+    argv = ["motion", "spherical_2dof", "--base", "moving", "--base-motion", str(carrier), "--hold", "platform"]
+    assert main([*argv, "-o", str(out)]) == 0
+    first = capsys.readouterr().out.splitlines()[0]
+    assert "platform held level" in first
+    assert float(first.split("tilt left <= ")[1].split(" rad")[0]) < 1e-10
+    result = mechkit.motion.read_csv(out)
+    weight = sum(i.mass for i in mechkit.load("spherical_2dof").model.inertias) * 9.81
+    force = result.effort("base_z")
+    assert force.min() < weight < force.max() and np.abs(force - weight).max() < 0.1 * weight
+    assert main(["motion", "spherical_2dof", "--hold", "platform"]) == 2
+    assert "--hold" in capsys.readouterr().err
