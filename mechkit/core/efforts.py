@@ -115,7 +115,7 @@ def passive_split(
     bounds sigma_min(B) >= sigma_min(B_s) >= 1 / |B_s^-1|_F, and [S^T, J^T] has the right inverse
     [[I, -J_a^T Y], [0, Y]], Y = B_s^-T on s: sigma_min >= (na + (1 + |J_a|_F^2) |B_s^-1|_F^2)^(-1/2)
     against sigma_max <= (na + |J|_F^2)^(1/2), whose ratio above `rank.RANK_TOL` certifies full row rank.
-    [S^T, J^T] [u; lambda] = 0 is then lambda = N t, u = -J_a^T N t: [-K; N] spans its null space (the
+    [S^T, J^T] x = 0, x = (u, lambda), is then lambda = N t, u = -J_a^T N t: [-K; N] spans its null space (the
     self-stresses), of rows - (nv - na) dimensions.
 
     Args:

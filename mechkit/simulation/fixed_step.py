@@ -96,7 +96,15 @@ class FixedStep(OdeSolver):
 class RK4(FixedStep):
     """The classic RK4 at a fixed step (see the module docstring; arguments as `FixedStep`'s)."""
 
-    def __init__(self, fun, t0, y0, t_bound, max_step=np.inf, **extraneous):
+    def __init__(
+        self,
+        fun: Callable[[float, np.ndarray], np.ndarray],
+        t0: float,
+        y0: np.ndarray,
+        t_bound: float,
+        max_step: float = np.inf,
+        **extraneous: Any,
+    ):
         super().__init__(fun, t0, y0, t_bound, max_step)
         self.k = np.empty((4, self.n))
 
@@ -131,7 +139,16 @@ class SymplecticEuler(FixedStep):
         ValueError: no fixed step, or no position part that fits y.
     """
 
-    def __init__(self, fun, t0, y0, t_bound, max_step=np.inf, npos: int | None = None, **extraneous):
+    def __init__(
+        self,
+        fun: Callable[[float, np.ndarray], np.ndarray],
+        t0: float,
+        y0: np.ndarray,
+        t_bound: float,
+        max_step: float = np.inf,
+        npos: int | None = None,
+        **extraneous: Any,
+    ):
         super().__init__(fun, t0, y0, t_bound, max_step)
         if npos is None or not 0 < 2 * npos <= self.n:
             raise ValueError(f"SymplecticEuler needs its position part: npos = {npos} for a state of {self.n}")
@@ -153,7 +170,15 @@ class ImplicitMidpoint(FixedStep):
     """The implicit midpoint rule at a fixed step, simplified Newton on a finite-difference Jacobian (see the
     module docstring; arguments as `FixedStep`'s)."""
 
-    def __init__(self, fun, t0, y0, t_bound, max_step=np.inf, **extraneous):
+    def __init__(
+        self,
+        fun: Callable[[float, np.ndarray], np.ndarray],
+        t0: float,
+        y0: np.ndarray,
+        t_bound: float,
+        max_step: float = np.inf,
+        **extraneous: Any,
+    ):
         super().__init__(fun, t0, y0, t_bound, max_step)
         self.lu: tuple | None = None
         self.lu_h = 0.0
