@@ -182,11 +182,7 @@ def square_one(cm: ClosureModel, J: np.ndarray, b: np.ndarray, bound: bool) -> t
     lu, piv, x, info = lapack.dgesv(np.concatenate((cm.actuation.T, J.T), axis=1), b)
     if info or not (math.isfinite(x.dot(x)) or np.isfinite(x).all()):
         return None, 0.0
-    if not bound:
-        return x, 0.0
-    with np.errstate(over="ignore"):  # an inverse too large to square: no bound (0), the SVD path decides
-        size = rank.squared_norm(lapack.dgetri(lu, piv)[0])
-    return x, (size**-0.5 if math.isfinite(size) else 0.0)
+    return x, (rank.squared_norm(lapack.dgetri(lu, piv)[0]) ** -0.5 if bound else 0.0)  # overflow: 0, the SVD decides
 
 
 def singular(A: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:

@@ -172,7 +172,8 @@ def regularity_bounds(B: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     except np.linalg.LinAlgError:  # a singular block: one at a time
         rho, size = np.array([block_bounds(b) for b in B]).reshape(len(B), 2).T
         return rho, size
-    return np.square(X).sum(axis=(1, 2)) ** -0.5, np.sqrt(np.square(B).sum(axis=(1, 2)))
+    with np.errstate(over="ignore", under="ignore"):  # an inverse too large to square: rho 0, as singular
+        return np.square(X).sum(axis=(1, 2)) ** -0.5, np.sqrt(np.square(B).sum(axis=(1, 2)))
 
 
 def block_bounds(B: np.ndarray) -> tuple[float, float]:
@@ -190,7 +191,7 @@ def block_bounds(B: np.ndarray) -> tuple[float, float]:
         X = None if info else scipy.linalg.lapack.dgetri(lu, piv)[0]
     else:
         X = triangular_inverse(scipy.linalg.lapack.dgeqrf(B if m > k else B.T)[0], min(m, k))
-    return (0.0 if X is None else squared_norm(X) ** -0.5), squared_norm(B) ** 0.5
+    return (0.0 if X is None else squared_norm(X) ** -0.5), squared_norm(B) ** 0.5  # inf ** -0.5 = 0: singular
 
 
 def triangular_inverse(qr: np.ndarray, k: int) -> np.ndarray | None:
@@ -217,10 +218,12 @@ def squared_norm(X: np.ndarray) -> float:
         X: an array of any shape.
 
     Returns:
-        |X|_F^2, the sum of its squared entries.
+        |X|_F^2, the sum of its squared entries (inf where it overflows, whatever the caller's np.errstate:
+        the tests it feeds then fail safe, e.g. an inverse too large certifies nothing).
     """
     flat = X.ravel(order="K")
-    return float(flat.dot(flat))
+    with np.errstate(over="ignore", under="ignore"):
+        return float(flat.dot(flat))
 
 
 def certified_regular(rho: np.ndarray, size: np.ndarray, residual: np.ndarray) -> np.ndarray:

@@ -78,3 +78,16 @@ def test_regularity_bounds_bracket_the_singular_values_and_certify_only_what_the
     _, bad = rank.passive_verdict(s, min(shape), residual)
     assert certified[:4].all() and not certified[4:].any() and not np.any(certified & bad)
     assert rank.block_bounds(B[5])[0] <= 1e-3 * rho[0] and rank.certified_regular(*rank.block_bounds(B[0]), 1e-12)
+
+
+def test_a_block_whose_inverse_cannot_be_squared_counts_as_singular_without_raising():
+    """A block with a singular value of 1e-300 (an MJCF anchor of -1e-300 made one): its inverse's entries square to
+    overflow; under the callers' np.errstate(over="raise") the bounds once raised FloatingPointError. Now rho = 0."""
+    B = np.array([[1.0, 0.0], [0.0, 1e-300]])
+    tall = np.array([[1.0, 0.0], [0.0, 1e-300], [0.0, 0.0]])
+    with np.errstate(all="raise"):
+        for block in (B, tall):
+            rho, size = rank.regularity_bounds(block[None])
+            assert rho[0] == 0.0 and size[0] == pytest.approx(1.0)
+            rho, size = rank.block_bounds(block)
+            assert rho == 0.0 and size == pytest.approx(1.0)
