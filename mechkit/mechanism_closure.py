@@ -160,7 +160,8 @@ class MechanismClosure:
         if reference is not None:
             (reference,) = self.naming.one(q=reference)
             out = core.continue_from(self.closure_model, self.closure_data, reference, q0, split, tol=tol)
-        if out is None:
+        newton = out is None
+        if newton:
             out = core.assemble(
                 self.closure_model, self.closure_data, q0, split, tol=tol, max_iter=max_iter, method=method
             )
@@ -169,7 +170,7 @@ class MechanismClosure:
             branch = f"continued from {named}"
         q, outside = core.wrap_into_limits(self.model, out.q)
         on_loops = tuple(j for j in outside if self.naming.joint_id(j) in self.closure_model.on_loops)
-        if on_loops and branch.startswith("Newton"):  # the file's assembly is one inside its limits, if any
+        if on_loops and newton:  # a continued branch is the reference's; Newton's may not be the file's
             inside = core.seek_inside_limits(self.closure_model, self.closure_data, q, split, tol=tol)
             if inside is not None:
                 return core.Assembly(

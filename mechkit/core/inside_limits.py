@@ -80,7 +80,8 @@ def seek_inside_limits(
         v for j in range(1, model.njoints) if model.nvs[j] == 6 for v in range(model.idx_vs[j], model.idx_vs[j] + 6)
     }
     free = np.array([v for v in split.free_v if v not in floating], dtype=int)  # a free body's pose stays put
-    bounded = [b for b in _bounded(model) if b[1] in set(free.tolist())]
+    movable = set(free.tolist())
+    bounded = [b for b in _bounded(model) if b[1] in movable]
     column = {int(v): k for k, v in enumerate(free)}
     for start in _starts(model, q, bounded):
         lower, upper = np.full(free.size, -np.inf), np.full(free.size, np.inf)
