@@ -30,6 +30,7 @@ OUTPUT_OPTIONS = {
 INPUT_OPTIONS = {
     "inputs": "--inputs",
     "torques": "--torques",
+    "base_motion": "--base-motion",
     "tls_ca": "--tls-ca",
     "tls_cert": "--tls-cert",
     "tls_key": "--tls-key",

@@ -53,6 +53,12 @@ CASES = [
         "--torques",
     ),
     ("simulate four_bar --duration 0.1 --inputs {d}/law.csv --animate {d}/law.csv", "law.csv", "--animate", "--inputs"),
+    (
+        "motion spherical_2dof --base moving --base-motion {d}/law.csv --hold platform -o {d}/law.csv",
+        "law.csv",
+        "-o",
+        "the --base-motion file",
+    ),
     ("modes {d}/four_bar.urdf --animate {d}/four_bar.urdf", "four_bar.urdf", "--animate", "the description"),
     ("sweep {d}/four_bar.urdf --grid crank=0.09:0.11:2 -o {d}/four_bar.urdf", "four_bar.urdf", "-o", "the description"),
     ("bench {d}/four_bar.urdf --quick --markdown {d}/four_bar.urdf", "four_bar.urdf", "--markdown", "the description"),
