@@ -172,6 +172,11 @@ def from_csv(path: str | Path) -> BaseMotion:
         data = np.array([[float(x) for x in row] for row in rows[1:] if row], dtype=float).reshape(-1, len(header))
     except ValueError as err:
         raise MalformedDescription(str(path), f"a value is not a number: {err}") from None
+    if not np.isfinite(data).all():
+        row, column = np.argwhere(~np.isfinite(data))[0]
+        raise MalformedDescription(
+            str(path), f"row {row + 1}, column {header[column]!r}: {data[row, column]} is not finite"
+        )
     col = {h: data[:, k] for k, h in enumerate(header)}
     n = len(data)
 

@@ -52,6 +52,9 @@ def test_csv_spline_derivatives(tmp_path):
     path.write_text("t,x\n0,0\n1,zero\n")
     with pytest.raises(MalformedDescription, match="not a number"):
         base_motion.from_csv(path)
+    path.write_text("t,x,roll\n0,0,0\n1,0,nan\n")
+    with pytest.raises(MalformedDescription, match="row 2, column 'roll': nan is not finite"):
+        base_motion.from_csv(path)
 
 
 def test_carried_law_puts_the_carrier_where_the_law_says(load_cached):
