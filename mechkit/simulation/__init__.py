@@ -7,7 +7,8 @@ onto the closures and drives after every accepted step (`projection`), follows p
 computed-torque motors or applies given torques (`drives`, `mechkit.forces.TorqueMotor`), stops or
 bounces joints at their limits and locks latches (`events`), and records every step with its
 reactions, energies and works (`recorder`, `result`). `equilibrium` finds where gravity, springs and
-held inputs balance; `friction` gives inverse dynamics with joint friction from the reactions.
+held inputs balance and `small_oscillations` the eigenvalues of the motion linearised about it;
+`friction` gives inverse dynamics with joint friction from the reactions.
 """
 
 from mechkit.simulation.declared import default_forces, file_limits, torque_motors
@@ -19,6 +20,7 @@ from mechkit.simulation.prescribed import Drives, law_of_samples, prescribed
 from mechkit.simulation.projection import DRIFT_TOL, POSITION_TOL, Projection
 from mechkit.simulation.result import SimulationResult, write_csv, write_parquet
 from mechkit.simulation.simulate import simulate
+from mechkit.simulation.small_oscillations import SmallOscillations, small_oscillations
 from mechkit.simulation.system import Evaluation, MechanismSystem
 
 __all__ = [
@@ -40,6 +42,7 @@ __all__ = [
     "Options",
     "Projection",
     "SimulationResult",
+    "SmallOscillations",
     "Stepper",
     "default_forces",
     "equilibrium",
@@ -50,6 +53,7 @@ __all__ = [
     "prescribed",
     "run",
     "simulate",
+    "small_oscillations",
     "torque_motors",
     "write_csv",
     "write_parquet",

@@ -26,6 +26,7 @@ from mechkit.base import arguments
 from mechkit.base.exceptions import ClosureNotConverged, InvalidArgument
 from mechkit.base.joint_arguments import joint_values
 from mechkit.forces import ForceElement, ForceState, generalized_of_wrenches
+from mechkit.simulation.declared import default_forces
 from mechkit.simulation.prescribed import Drives
 from mechkit.simulation.projection import Projection
 
@@ -44,12 +45,17 @@ class Equilibrium:
         residual: max |N^T Q| (N m or N) there.
         stiffness: (d,) eigenvalues of the reduced stiffness -K (N m/rad or N/m; all > 0: stable).
         iterations: steps taken.
+        basis: (nv, d) orthonormal basis N of the free motions there (the null space of the closures'
+            and held joints' rows).
+        stiffness_matrix: (d, d) the reduced stiffness -K in that basis (symmetric; N m/rad or N/m).
     """
 
     q: np.ndarray
     residual: float
     stiffness: np.ndarray
     iterations: int
+    basis: np.ndarray
+    stiffness_matrix: np.ndarray
 
     @property
     def stable(self) -> bool:
@@ -70,7 +76,9 @@ def equilibrium(
     Args:
         mech: the mechanism (`mechkit.Mechanism`).
         held: joint -> value (rad or m) of the inputs held still (default: none held).
-        elements: the force elements (default: the mechanism's springs, `Mechanism.springs`).
+        elements: the force elements (default: those its description declares, `default_forces`: the
+            springs, dampers, friction and point-to-point elements of its URDF; an MJCF file's are given
+            here).
         q0: where to start (default: the home assembly).
         tol: the reduced force to reach (N m or N).
         max_iter: steps allowed.
@@ -89,10 +97,7 @@ def equilibrium(
     q0 = mech.home_q if q0 is None else arguments.array("q0", q0, model.nq, batch=False)
     tol = arguments.number("tol", tol, positive=True)
     max_iter = arguments.integer("max_iter", max_iter, minimum=1)
-    elements = list(elements) if elements is not None else ([mech.springs] if mech.springs else [])
-    for k, e in enumerate(elements):
-        if not isinstance(e, ForceElement):
-            raise InvalidArgument(f"elements[{k}]", e, "expected a force element (mechkit.forces)")
+    elements = checked_elements(mech, elements)
     drives = Drives(held=held)
     projection = Projection(mech)
     data = model.createData()
@@ -105,14 +110,7 @@ def equilibrium(
         return scipy.linalg.null_space(G, rcond=core.RANK_TOL)
 
     def force(q: np.ndarray) -> np.ndarray:
-        state = ForceState.at(model, data, q, zero)
-        tau = -pin.computeGeneralizedGravity(model, data, q)
-        for e in elements:
-            load = e.load(state)
-            tau = tau + (load.generalized if load.generalized is not None else 0.0)
-            if load.wrenches is not None:
-                tau = tau + generalized_of_wrenches(model, state.data, load.wrenches)
-        return tau
+        return generalized_force(model, data, elements, q, zero)
 
     def move(q: np.ndarray, N: np.ndarray, z: np.ndarray) -> np.ndarray:
         return projection.positions(pin.integrate(model, q, N @ z), drives, 0.0)
@@ -132,18 +130,65 @@ def equilibrium(
     for it in range(max_iter):
         N = basis(q)
         if N.shape[1] == 0:  # the held joints fix the pose: nothing to balance
-            return Equilibrium(q, 0.0, np.zeros(0), it)
+            return Equilibrium(q, 0.0, np.zeros(0), it, N, np.zeros((0, 0)))
         rho = N.T @ force(q)
         K = stiffness(q, N)
         eig = -np.linalg.eigvalsh(K)
         if np.max(np.abs(rho), initial=0.0) <= tol:
-            return Equilibrium(q, float(np.max(np.abs(rho), initial=0.0)), eig, it)
+            return Equilibrium(q, float(np.max(np.abs(rho), initial=0.0)), eig, it, N, -K)
         step = -np.linalg.solve(K, rho) if np.all(eig > 0) else rho / max(float(np.max(eig)), 1e-12)
         step *= min(1.0, MAX_STEP / max(float(np.max(np.abs(step))), 1e-300))
         q = move(q, N, step)
     raise ClosureNotConverged(
         float(np.max(np.abs(rho))), tol, max_iter, "no static equilibrium found (the reduced force did not vanish)"
     )
+
+
+def checked_elements(mech: Any, elements: Sequence[ForceElement] | None) -> list[ForceElement]:
+    """The force elements acting at rest: those given (checked), or those the description declares.
+
+    Args:
+        mech: the mechanism (`mechkit.Mechanism`).
+        elements: force elements, or None: `default_forces(mech)`.
+
+    Returns:
+        The elements as a list.
+
+    Raises:
+        InvalidArgument: an element not a force element.
+    """
+    if elements is None:
+        return default_forces(mech)
+    out = list(elements)
+    for k, e in enumerate(out):
+        if not isinstance(e, ForceElement):
+            raise InvalidArgument(f"elements[{k}]", e, "expected a force element (mechkit.forces)")
+    return out
+
+
+def generalized_force(
+    model: pin.Model, data: pin.Data, elements: Sequence[ForceElement], q: np.ndarray, v: np.ndarray
+) -> np.ndarray:
+    """The generalised force of the elements minus the gravity torques, Q = tau_elements(q, v) - g(q).
+
+    Args:
+        model: the tree's Pinocchio model.
+        data: its scratch data.
+        elements: the force elements.
+        q: (nq,) the pose.
+        v: (nv,) the velocities (rad/s or m/s).
+
+    Returns:
+        (nv,) Q (N m or N); no Coriolis terms (they are the dynamics').
+    """
+    state = ForceState.at(model, data, q, v)
+    tau = -pin.computeGeneralizedGravity(model, data, q)
+    for e in elements:
+        load = e.load(state)
+        tau = tau + (load.generalized if load.generalized is not None else 0.0)
+        if load.wrenches is not None:
+            tau = tau + generalized_of_wrenches(model, state.data, load.wrenches)
+    return tau
 
 
 def _held(held: Any, mech: Any) -> dict[str, float]:

@@ -102,3 +102,17 @@ def test_malformed_arguments_are_refused_by_name_before_any_work(four_bar, optio
     with pytest.raises(InvalidArgument) as err:
         four_bar.equilibrium(held, **options)
     assert named in str(err.value)
+
+
+def test_the_description_s_struts_act_by_default():
+    """The IFToMM four-bar with a diagonal spring: by default the equilibrium takes the file's
+    `<mechkit:strut>` (the rhombus held up at phi = 2.234 rad); without elements the rhombus hangs
+    straight down (phi = 3 pi / 2)."""
+    from pathlib import Path
+
+    from mechkit import load
+
+    m = load(str(Path(__file__).resolve().parents[1] / "fixtures" / "iftomm" / "spring_four_bar.urdf"))
+    crank = m.q_index("crank")
+    assert m.equilibrium().q[crank] == pytest.approx(2.2343310190, abs=1e-9)
+    assert m.equilibrium(elements=[]).q[crank] == pytest.approx(1.5 * np.pi, abs=1e-9)
