@@ -17,10 +17,13 @@ extends):
   gamma leaves the range of J by the stage's own error, which the ill-conditioned rows amplify; on it
   the accelerations are those of the branch, and the step size no longer collapses.
 - After each step the projection must not change the state beyond the step's own error: a projected
-  position away from the integrated one by more than `JUMP` of the step, or a velocity whose kinetic
-  energy the projection changes by more than `BRANCH_TOL` of it, means the state landed on another
-  branch (its tangent no longer holds the velocity it arrived with). The step is taken again smaller;
-  where that does not help, `BranchChanged` names the time and the joint.
+  position away from the integrated one by more than `JUMP` of the step, or, near a singular position
+  (ratio below `NEAR` at the step's end, or a step that may reach one), a velocity whose kinetic energy
+  the projection changes by more than `BRANCH_TOL` of it, means the state landed on another branch (its
+  tangent no longer holds the velocity it arrived with). The step is taken again smaller; where that
+  does not help, `BranchChanged` names the time and the joint. Away from singular positions the tangent
+  is unique and moves continuously, so the velocity projection's change there is the step's own error
+  (a coarse fixed step's, e.g. semi-implicit Euler's), which the energy balance reports, not a branch.
 - A singular position passed on the branch is an event of the result (`Crossing`): its time (the
   smallest ratio seen), the joint moving most along the freedom that opens there, the mobility there.
 """
@@ -149,7 +152,14 @@ class BranchWatch:
         return self.names[_joint_of_v(self.mech.model, k) - 1]
 
     def check(
-        self, t: float, q0: np.ndarray, q_step: np.ndarray, v_step: np.ndarray, q: np.ndarray, v: np.ndarray
+        self,
+        t: float,
+        q0: np.ndarray,
+        q_step: np.ndarray,
+        v_step: np.ndarray,
+        q: np.ndarray,
+        v: np.ndarray,
+        searching: bool = True,
     ) -> None:
         """Refuse a projection that moved the state off the branch it arrived on.
 
@@ -160,10 +170,12 @@ class BranchWatch:
             v_step: (nv,) the integrated velocity there.
             q: (nq,) the projected configuration.
             v: (nv,) the projected velocity.
+            searching: the step may have reached a singular position (`approaching`); otherwise the
+                kinetic-energy test applies only where the end's ratio is below `NEAR`.
 
         Raises:
-            BranchChanged: a position jump above `JUMP` of the step or a kinetic-energy change above
-                `BRANCH_TOL`.
+            BranchChanged: a position jump above `JUMP` of the step, or near a singular position a
+                kinetic-energy change above `BRANCH_TOL`.
         """
         moved = float(np.linalg.norm(q_step - q0))
         jump = float(np.linalg.norm(q - q_step))
@@ -173,7 +185,7 @@ class BranchWatch:
             )
         kinetic, dv = float(pin.computeKineticEnergy(self.cm.model, self.cd.pin, q, v_step)), v - v_step  # no M
         change = float(pin.computeKineticEnergy(self.cm.model, self.cd.pin, q, dv)) / kinetic if kinetic > 0 else 0.0
-        if change > BRANCH_TOL:
+        if change > BRANCH_TOL and (searching or self.ratio(q)[0] < NEAR):
             raise BranchChanged(t, self.joint_of(dv), change, "the velocity left the tangent of the branch")
 
     def approaching(self, t: float, q: np.ndarray, h: float | None, s: np.ndarray | None = None) -> bool:

@@ -206,7 +206,7 @@ def simulate(
             v1 = projection.velocities(q1, v1, system.drives, t1)
             try:
                 if watch is not None and not system.drives.all:  # driven joints: their law sets the rates
-                    watch.check(t1, layout.q(y), layout.q(y1), layout.v(y1), q1, v1)
+                    watch.check(t1, layout.q(y), layout.q(y1), layout.v(y1), q1, v1, mode.searching)
                 break
             except BranchChanged as err:
                 mode.retry(err, attempt == BRANCH_RETRIES, t, t1, y)
