@@ -22,8 +22,7 @@ extends):
   the projection changes by more than `BRANCH_TOL` of it, means the state landed on another branch (its
   tangent no longer holds the velocity it arrived with). The step is taken again smaller; where that
   does not help, `BranchChanged` names the time and the joint. Away from singular positions the tangent
-  is unique and moves continuously, so the velocity projection's change there is the step's own error
-  (a coarse fixed step's, e.g. semi-implicit Euler's), which the energy balance reports, not a branch.
+  is unique: the velocity projection's change there is the step's own error (the energy balance's).
 - A singular position passed on the branch is an event of the result (`Crossing`): its time (the
   smallest ratio seen), the joint moving most along the freedom that opens there, the mobility there.
 """
@@ -48,10 +47,11 @@ from mechkit.base.exceptions import (
 )
 from mechkit.simulation.integrator import IntegrationFailed
 
+Vec = np.ndarray
 #: Ratio below which a state counts as near a singular position (ours: the stages are projected there).
 NEAR = 1e-2
-#: Largest relative change of the kinetic energy by the velocity projection on the branch (ours: the
-#: integrator's error is far below it; a velocity across the tangent of another branch far above).
+#: Largest relative change of the kinetic energy by the velocity projection near a singular position (ours:
+#: the integrator's error is far below it; a velocity across another branch's tangent far above).
 BRANCH_TOL = 1e-4
 #: Largest position change by the projection, relative to the step's own displacement (ours).
 JUMP = 0.1
@@ -59,12 +59,9 @@ JUMP = 0.1
 LOST = 1e-2
 #: A crossing's ratio is below this fraction of the ratio at both ends of its step (ours).
 DIP = 0.1
-#: Rank threshold of the accelerations on the manifold, relative to the largest singular value (ours: on
-#: the manifold gamma lies in the range of J and its part along a weak direction is resolved, so the
-#: threshold only has to drop a redundant row, whose singular value a state projected to `POSITION_TOL`
-#: leaves near 1e-12 (kept, it turned the stages' rounding into accelerations: the deployable 9RR-12URU's
-#: steps collapsed to 1e-6 s at 1e-13); a stage within 1e-10 of a singular position loses the branch's
-#: own acceleration there, which the step's error control sees).
+#: Rank threshold of the accelerations on the manifold, relative to the largest singular value (ours: gamma is in
+#: J's range there, so it only drops a redundant row, left near 1e-12 by a projection to `POSITION_TOL` (kept, the
+#: 9RR-12URU's steps collapsed at 1e-13); a stage within 1e-10 of a singular position: error control sees it).
 TIGHT = 1e-10
 
 
@@ -151,16 +148,7 @@ class BranchWatch:
         k = int(np.argmax(np.abs(dv)))
         return self.names[_joint_of_v(self.mech.model, k) - 1]
 
-    def check(
-        self,
-        t: float,
-        q0: np.ndarray,
-        q_step: np.ndarray,
-        v_step: np.ndarray,
-        q: np.ndarray,
-        v: np.ndarray,
-        searching: bool = True,
-    ) -> None:
+    def check(self, t: float, q0: Vec, q_step: Vec, v_step: Vec, q: Vec, v: Vec, searching: bool = True) -> None:
         """Refuse a projection that moved the state off the branch it arrived on.
 
         Args:
@@ -174,7 +162,7 @@ class BranchWatch:
                 kinetic-energy test applies only where the end's ratio is below `NEAR`.
 
         Raises:
-            BranchChanged: a position jump above `JUMP` of the step, or near a singular position a
+            BranchChanged: a position jump above `JUMP` of the step, or (near a singular position) a
                 kinetic-energy change above `BRANCH_TOL`.
         """
         moved = float(np.linalg.norm(q_step - q0))
