@@ -1,5 +1,5 @@
 """Work-precision: error against CPU time per simulated second, for mechkit's integrators across
-tolerances and steps and for MuJoCo's across timesteps, on the same free motion.
+tolerances and steps and for MuJoCo's across timesteps and equality settings, on the same free motion.
 
 The motion: the mechanism released at rest at home under gravity for `DURATION` s. The reference: mechkit
 with DOP853 at rtol 1e-13 (`reference`). The error of a run: the largest joint difference (rad or m) from
@@ -8,15 +8,19 @@ its closure error the largest closure residual (m) over the run (MuJoCo's qpos i
 exported model), its cost the process CPU time of the run over the simulated time (MuJoCo: the bare
 `mj_step` loop; mechkit: `Mechanism.simulate` without reactions, warm).
 
-MuJoCo runs the exported MJCF (`mechkit.export.to_mjcf`: its stiff equality settings) with its timestep
-and integrator replaced.
+A `Problem` is a mechanism and MuJoCo's model of it: the exported MJCF of a registered mechanism
+(`mechkit.export.to_mjcf`: its stiff equality settings, or MuJoCo's defaults `MUJOCO_DEFAULT`), or the
+field robot's own file read by both (`mechkit.bench.work_precision_gripper`: the file's settings or the
+export's stiff rule). MuJoCo runs it with its timestep and integrator replaced, contacts and joint limits
+disabled (mechkit runs without limits).
 """
 
 from __future__ import annotations
 
+import tempfile
 import time
-from collections.abc import Iterable
-from dataclasses import dataclass
+from collections.abc import Iterable, Mapping
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
@@ -24,6 +28,7 @@ import numpy as np
 
 from mechkit.base.exceptions import MethodUnavailable
 from mechkit.base.plotting import pyplot, save_figure
+from mechkit.bench import work_precision_gripper as gripper
 from mechkit.bench.markdown import replace_section
 from mechkit.export.mjcf import to_mjcf
 from mechkit.loading import load
@@ -35,9 +40,11 @@ PROBLEMS = ("four_bar", "five_bar", "ten_bar")
 DURATION = 1.0
 #: mechkit's settings: (method, rtol) adaptive, (method, dt) fixed.
 MECHKIT_ADAPTIVE = (
+    ("RK45", 1e-5),
     ("RK45", 1e-6),
     ("RK45", 1e-8),
     ("RK45", 1e-10),
+    ("DOP853", 1e-5),
     ("DOP853", 1e-7),
     ("DOP853", 1e-9),
     ("DOP853", 1e-11),
@@ -45,6 +52,29 @@ MECHKIT_ADAPTIVE = (
 MECHKIT_FIXED = (("RK4", 4e-3), ("RK4", 2e-3), ("RK4", 1e-3), ("RK4", 5e-4))
 #: MuJoCo's integrators and timesteps (s; from its default 0.002 down).
 MUJOCO = (("RK4", "EULER", "IMPLICITFAST"), (2e-3, 1e-3, 5e-4, 2e-4, 1e-4))
+#: MuJoCo's default equality settings (solref, solimp) (its documentation; `mjModel.eq_solref`, `eq_solimp`).
+MUJOCO_DEFAULT = ([0.02, 1.0], [0.9, 0.95, 0.001, 0.5, 2.0])
+
+
+@dataclass(frozen=True)
+class Problem:
+    """A mechanism and MuJoCo's model of it.
+
+    Attributes:
+        name: its name on the page.
+        mech: the mechanism.
+        xml: MuJoCo's MJCF text of it.
+        equality: label -> (solref, solimp) for every equality, or None: as `xml` writes them.
+        options: `Mechanism.simulate`'s options of every mechkit run (e.g. the file's `source`).
+        notes: lines the page states about the model.
+    """
+
+    name: str
+    mech: Mechanism
+    xml: str
+    equality: Mapping[str, Any] = field(default_factory=lambda: {"stiff": None})
+    options: Mapping[str, Any] = field(default_factory=dict)
+    notes: tuple[str, ...] = ()
 
 
 @dataclass(frozen=True)
@@ -66,53 +96,67 @@ class Point:
     cpu: float
 
 
-def reference(mech: Mechanism, duration: float = DURATION) -> np.ndarray:
+def reference(mech: Mechanism, duration: float = DURATION, options: Mapping[str, Any] | None = None) -> np.ndarray:
     """The reference end configuration: DOP853 at rtol 1e-13, atol 1e-14.
 
     Args:
         mech: the mechanism, released at rest at home.
         duration: simulated time (s).
+        options: further options of `Mechanism.simulate` (e.g. `source`).
 
     Returns:
         (nq,) the configuration at the end.
     """
-    return mech.simulate(duration, method="DOP853", rtol=1e-13, atol=1e-14, reactions=False, limits=None).motion.q[-1]
+    options = dict(options or {})
+    run = mech.simulate(duration, method="DOP853", rtol=1e-13, atol=1e-14, reactions=False, limits=None, **options)
+    return run.motion.q[-1]
 
 
-def mechkit_points(mech: Mechanism, q_end: np.ndarray, duration: float = DURATION) -> list[Point]:
+def mechkit_points(
+    mech: Mechanism, q_end: np.ndarray, duration: float = DURATION, options: Mapping[str, Any] | None = None
+) -> list[Point]:
     """mechkit's runs at every setting of `MECHKIT_ADAPTIVE` and `MECHKIT_FIXED`.
 
     Args:
         mech: the mechanism.
         q_end: (nq,) the reference end configuration.
         duration: simulated time (s).
+        options: further options of `Mechanism.simulate` (e.g. `source`).
 
     Returns:
         One point per setting.
     """
     runs = [(m, f"rtol {r:g}", {"rtol": r, "atol": r * 1e-2}) for m, r in MECHKIT_ADAPTIVE]
     runs += [(m, f"dt {dt:g}", {"dt": dt}) for m, dt in MECHKIT_FIXED]
-    out = []
-    mech.simulate(0.01, reactions=False, limits=None)  # warm
-    for method, setting, options in runs:
+    out, common = [], {"reactions": False, "limits": None, **(options or {})}
+    mech.simulate(0.01, **common)  # warm
+    for method, setting, step in runs:
         start = time.process_time()
-        run = mech.simulate(duration, method=method, reactions=False, limits=None, **options)
+        run = mech.simulate(duration, method=method, **common, **step)
         cpu = (time.process_time() - start) / duration
         error = float(np.max(np.abs(run.motion.q[-1] - q_end)))
         out.append(Point("mechkit", method, setting, error, float(run.residual.max()), cpu))
     return out
 
 
-def mujoco_points(mech: Mechanism, q_end: np.ndarray, duration: float = DURATION) -> list[Point]:
-    """MuJoCo's runs of the exported MJCF at every integrator and timestep of `MUJOCO`.
+def mujoco_points(
+    mech: Mechanism,
+    q_end: np.ndarray,
+    duration: float = DURATION,
+    xml: str | None = None,
+    equality: Mapping[str, Any] | None = None,
+) -> list[Point]:
+    """MuJoCo's runs at every equality setting, integrator and timestep of `MUJOCO`.
 
     Args:
-        mech: the mechanism (exportable to MJCF).
+        mech: the mechanism.
         q_end: (nq,) the reference end configuration.
         duration: simulated time (s), a whole number of every timestep.
+        xml: MuJoCo's MJCF text of the mechanism (default: its export).
+        equality: label -> (solref, solimp) or None: as written (default: {"stiff": None}).
 
     Returns:
-        One point per integrator and timestep.
+        One point per setting, integrator and timestep (method "<integrator> <label>").
 
     Raises:
         MethodUnavailable: MuJoCo is not installed, or the mechanism has no MJCF counterpart.
@@ -121,10 +165,10 @@ def mujoco_points(mech: Mechanism, q_end: np.ndarray, duration: float = DURATION
         import mujoco
     except ImportError:
         raise MethodUnavailable("mujoco", "not installed: pip install 'mechkit[peers]'") from None
-    xml, out = to_mjcf(mech), []
-    for integrator in MUJOCO[0]:
+    xml, out = xml or to_mjcf(mech), []
+    for (label, setting), integrator in ((e, i) for e in (equality or {"stiff": None}).items() for i in MUJOCO[0]):
         for dt in MUJOCO[1]:
-            model = mujoco.MjModel.from_xml_string(xml)
+            model = gripper.mujoco_model(xml, setting)
             model.opt.timestep, model.opt.integrator = dt, getattr(mujoco.mjtIntegrator, f"mjINT_{integrator}")
             data = mujoco.MjData(model)
             data.qpos[:] = mech.home_q
@@ -137,7 +181,7 @@ def mujoco_points(mech: Mechanism, q_end: np.ndarray, duration: float = DURATION
             cpu = (time.process_time() - start) / duration
             closure = max(float(np.max(np.abs(mech.closure_residual(q)))) for q in visited[:: max(1, steps // 100)])
             error = float(np.max(np.abs(visited[-1] - q_end)))
-            out.append(Point("MuJoCo", integrator.lower(), f"dt {dt:g}", error, closure, cpu))
+            out.append(Point("MuJoCo", f"{integrator.lower()} {label}", f"dt {dt:g}", error, closure, cpu))
     return out
 
 
@@ -213,12 +257,16 @@ def figure(name: str, points: list[Point]) -> Any:
 HEADING = "## Work-precision"
 
 
-def markdown(problems: dict[str, list[Point]], charts: dict[str, str]) -> str:
-    """The section: per problem its chart, the goal's verdict and the table behind the chart.
+def markdown(
+    problems: dict[str, list[Point]], charts: dict[str, str], notes: Mapping[str, Iterable[str]] | None = None
+) -> str:
+    """The section: per problem its chart, what the page states about its model, the goal's verdict and the
+    table behind the chart.
 
     Args:
         problems: problem name -> its runs.
         charts: problem name -> the chart's path relative to the page.
+        notes: problem name -> lines about its model (default: none).
 
     Returns:
         The section's text, heading first.
@@ -231,13 +279,16 @@ def markdown(problems: dict[str, list[Point]], charts: dict[str, str]) -> str:
             "`python tools/work_precision.py`): the joint error at the end against mechkit's DOP853 at rtol "
             "1e-13, the closure residual over the run, and the process CPU time per simulated second. mechkit: "
             "`Mechanism.simulate` without reactions (adaptive RK45 and DOP853 across tolerances, RK4 across "
-            "steps; projection after every step); MuJoCo: the exported MJCF (stiff equality settings) with its "
-            "RK4, Euler and implicitfast across timesteps, the bare `mj_step` loop. Goal (issue 31): at equal "
+            "steps; projection after every step); MuJoCo: the exported MJCF at the export's stiff equality "
+            "settings (`stiff`) and at MuJoCo's defaults (solref 0.02 s, solimp 0.9 0.95: `default`), contacts and "
+            "joint limits disabled, with its RK4, Euler and implicitfast across timesteps, the bare `mj_step` loop. "
+            "Goal (issue 31): at equal "
             "accuracy, trajectory error <= 1e-6 rad and closure <= 1e-10 m, mechkit's time per simulated second "
             "no more than MuJoCo's. The reference's cross-check is MuJoCo's RK4 at its finest step (the last rk4 row): "
             "it agrees to MuJoCo's own floor, set by its soft closure. Measured in one run on this machine (2 cores, "
-            "other work running). Not charted yet: a field robot (its MJCF export) and the IFToMM problems (their "
-            "thin rods have no MJCF counterpart; their own references are in tests/fixtures/iftomm/README.md)."
+            "other work running). The field robot, the Robotiq 2F-85, is its Menagerie file read by both codes "
+            "(below). Not charted yet: the IFToMM problems (their thin rods have no MJCF counterpart; their own "
+            "references are in tests/fixtures/iftomm/README.md)."
         ),
         "",
     ]
@@ -250,27 +301,82 @@ def markdown(problems: dict[str, list[Point]], charts: dict[str, str]) -> str:
             met = f"{p.method} {p.setting}, {p.cpu:.3g} s/s" if p else "none meets both"
             joint = f"{q.method} {q.setting}, {q.cpu:.3g} s/s" if q else "none"
             verdict.append(f"{code}: cheapest within both bounds {met}; within the joint error alone {joint}")
+        mine, theirs = both.get("mechkit"), both.get("MuJoCo")
+        if mine and theirs:
+            ratio = mine.cpu / theirs.cpu
+            verdict.append(f"within both bounds mechkit takes {ratio:.2f}x MuJoCo's time: {_met(ratio)}")
         mine, theirs = joint_only.get("mechkit"), joint_only.get("MuJoCo")
         if mine and theirs:
             verdict.append(f"within the joint error alone mechkit takes {mine.cpu / theirs.cpu:.1f}x MuJoCo's time")
         lines += [f"### Work-precision: {name}", "", f"![{name} work-precision]({charts[name]})", ""]
+        lines += [f"- {n}" for n in (notes or {}).get(name, ())]
         lines += [f"- {v}" for v in verdict] + [""] + table(points) + [""]
     return "\n".join(lines)
 
 
-def write_section(docs: Path, names: Iterable[str]) -> None:
-    """Measure every mechanism named, write its chart docs/figures/work_precision_<name>.png and the section
-    `HEADING` of docs/benchmarks.md (in place of its former text, else at the end).
+def _met(ratio: float) -> str:
+    return "met (goal <= 1x)" if ratio <= 1.0 else "missed (goal <= 1x)"
+
+
+def exported(name: str) -> Problem:
+    """A registered mechanism and its exported MJCF, at the export's stiff settings and MuJoCo's defaults.
 
     Args:
-        docs: the docs folder.
-        names: registered mechanisms (or description files) to measure.
+        name: a registered mechanism (or a description file).
+
+    Returns:
+        The problem.
     """
-    problems, charts = {}, {}
-    for name in names:
-        mech = load(name)
-        q_end = reference(mech)
-        problems[name] = mechkit_points(mech, q_end) + mujoco_points(mech, q_end)
-        charts[name] = f"figures/work_precision_{name}.png"
-        save_figure(figure(name, problems[name]), docs / charts[name])
-    replace_section(docs / "benchmarks.md", HEADING, markdown(problems, charts))
+    mech = load(name)
+    return Problem(name, mech, to_mjcf(mech), {"stiff": None, "default": MUJOCO_DEFAULT})
+
+
+def field_robot(fixtures: Path, folder: Path) -> Problem:
+    """The Robotiq 2F-85: its Menagerie file without its actuator, read by both codes; MuJoCo at the file's
+    equality settings and the export's stiff rule. Its notes: what was stripped, and the initial
+    accelerations of both codes (`work_precision_gripper.same_model`).
+
+    Args:
+        fixtures: the repository's tests/fixtures/field folder.
+        folder: an existing folder for the stripped copy (it must outlast the runs: they read it).
+
+    Returns:
+        The problem.
+    """
+    path = gripper.stripped_file(fixtures, folder)
+    mech, xml = load(path), path.read_text()
+    check = gripper.same_model(mech, xml)
+    notes = (
+        f"The Menagerie file `{gripper.GRIPPER.as_posix()}` (tests/fixtures/field) read by both: {gripper.STRIPPED}.",
+        (
+            f"Same model, checked before timing: at home at rest the rigid accelerations solved on MuJoCo's own mass "
+            f"matrix, bias, passive forces and constraint Jacobian equal mechkit's to {check['rigid']:.1g} (relative); "
+            f"MuJoCo's soft accelerations differ by {check['stiff']:.1g} (stiff) and {check['file']:.1g} (`file`: "
+            "its own solref 0.005 s, solimp 0.95 0.99), the softness of its closures. The page's rows: MuJoCo at both."
+        ),
+    )
+    equality = {"stiff": gripper.stiff_equality(mech), "file": None}
+    return Problem("robotiq_2f85", mech, xml, equality, {"source": path}, notes)
+
+
+def write_section(docs: Path, names: Iterable[str], field_robots: bool = True) -> None:
+    """Measure every mechanism named (and the field robot), write its chart docs/figures/work_precision_<name>.png
+    and the section `HEADING` of docs/benchmarks.md (in place of its former text, else at the end).
+
+    Args:
+        docs: the docs folder (the repository's: the field robot's file is in its tests/fixtures/field).
+        names: registered mechanisms (or description files) to measure.
+        field_robots: also measure the Robotiq 2F-85 (`field_robot`).
+    """
+    problems, charts, notes = {}, {}, {}
+    with tempfile.TemporaryDirectory() as folder:
+        cases = [exported(name) for name in names]
+        cases += [field_robot(docs.parent / "tests" / "fixtures" / "field", Path(folder))] if field_robots else []
+        for case in cases:
+            q_end = reference(case.mech, options=case.options)
+            problems[case.name] = mechkit_points(case.mech, q_end, options=case.options) + mujoco_points(
+                case.mech, q_end, xml=case.xml, equality=case.equality
+            )
+            charts[case.name], notes[case.name] = f"figures/work_precision_{case.name}.png", case.notes
+            save_figure(figure(case.name, problems[case.name]), docs / charts[case.name])
+    replace_section(docs / "benchmarks.md", HEADING, markdown(problems, charts, notes))
