@@ -36,6 +36,13 @@ STRIPPED = (
     "file writes them (the file has no frictionloss)"
 )
 
+#: The motion, in words.
+MOTION = (
+    "The motion: released at rest at the file's qpos0 (every joint 0: the drivers at the open end of their "
+    "0-0.8 rad range) under gravity and the spring links' preloaded springs (springref 2.62 rad): the damped "
+    "fingers close, the followers swinging past their +-0.87 rad range (limits off)."
+)
+
 
 def stripped_file(fixtures: Path, folder: Path) -> Path:
     """Write the gripper's file without its actuator, its meshes read from the original's folder.
