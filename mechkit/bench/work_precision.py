@@ -39,17 +39,15 @@ PROBLEMS = ("four_bar", "five_bar", "ten_bar")
 #: Simulated time of every run (s; ours: a few swings of the registered linkages).
 DURATION = 1.0
 #: mechkit's settings: (method, rtol) adaptive, (method, dt) fixed.
-MECHKIT_ADAPTIVE = (
-    ("RK45", 1e-5),
-    ("RK45", 1e-6),
-    ("RK45", 1e-8),
-    ("RK45", 1e-10),
-    ("DOP853", 1e-5),
-    ("DOP853", 1e-7),
-    ("DOP853", 1e-9),
-    ("DOP853", 1e-11),
+MECHKIT_ADAPTIVE = tuple(
+    (method, rtol)
+    for method, rtols in (("RK45", (1e-5, 1e-6, 1e-8, 1e-10)), ("DOP853", (1e-5, 1e-7, 1e-9, 1e-11)))
+    for rtol in rtols
 )
 MECHKIT_FIXED = (("RK4", 4e-3), ("RK4", 2e-3), ("RK4", 1e-3), ("RK4", 5e-4))
+#: Same order, same fixed step: mechkit's method -> MuJoCo's (the per-step goal: within `SAME_STEP_GOAL`x).
+SAME_STEP = {"RK4": "rk4"}
+SAME_STEP_GOAL = 3.0
 #: MuJoCo's integrators and timesteps (s; from its default 0.002 down).
 MUJOCO = (("RK4", "EULER", "IMPLICITFAST"), (2e-3, 1e-3, 5e-4, 2e-4, 1e-4))
 #: Evaluations of the dynamics per MuJoCo step (its integrators' stages).
@@ -319,10 +317,26 @@ def markdown(
                 f"within the joint error alone mechkit takes {mine.cpu / theirs.cpu:.1f}x MuJoCo's time: "
                 f"{_per_evaluation(mine)} against {_per_evaluation(theirs)}"
             )
+        verdict += _same_step(points)
         lines += [f"### Work-precision: {name}", "", f"![{name} work-precision]({charts[name]})", ""]
         lines += [f"- {n}" for n in (notes or {}).get(name, ())]
         lines += [f"- {v}" for v in verdict] + [""] + table(points) + [""]
     return "\n".join(lines)
+
+
+def _same_step(points: list[Point]) -> list[str]:
+    out = []
+    for mine, theirs in SAME_STEP.items():
+        pairs = [(p, q) for p in points if p.method == mine for q in points if q.method.split()[0] == theirs]
+        pairs = [(p, q) for p, q in pairs if p.setting == q.setting]
+        if pairs:
+            p, q = pairs[0]
+            ratio, met = p.cpu / q.cpu, "met" if p.cpu <= SAME_STEP_GOAL * q.cpu else "missed"
+            out.append(
+                f"same step and order ({p.setting}): mechkit {mine} takes {ratio:.0f}x MuJoCo's {q.method}: "
+                f"{met} (goal <= {SAME_STEP_GOAL:g}x)"
+            )
+    return out
 
 
 def _per_evaluation(p: Point) -> str:
@@ -345,9 +359,7 @@ def exported(name: str) -> Problem:
 
 
 def field_robot(fixtures: Path, folder: Path) -> Problem:
-    """The Robotiq 2F-85: its Menagerie file without its actuator, read by both codes; MuJoCo at the file's
-    equality settings and the export's stiff rule. Its notes: what was stripped, and the initial
-    accelerations of both codes (`work_precision_gripper.same_model`).
+    """The Robotiq 2F-85 (`work_precision_gripper.case`).
 
     Args:
         fixtures: the repository's tests/fixtures/field folder.
@@ -356,21 +368,7 @@ def field_robot(fixtures: Path, folder: Path) -> Problem:
     Returns:
         The problem.
     """
-    path = gripper.stripped_file(fixtures, folder)
-    mech, xml = load(path), path.read_text()
-    check = gripper.same_model(mech, xml)
-    notes = (
-        f"The Menagerie file `{gripper.GRIPPER.as_posix()}` (tests/fixtures/field) read by both: {gripper.STRIPPED}.",
-        gripper.MOTION,
-        (
-            f"Same model, checked before timing: at home at rest the rigid accelerations solved on MuJoCo's own mass "
-            f"matrix, bias, passive forces and constraint Jacobian equal mechkit's to {check['rigid']:.1g} (relative); "
-            f"MuJoCo's soft accelerations differ by {check['stiff']:.1g} (stiff) and {check['file']:.1g} (`file`: "
-            "its own solref 0.005 s, solimp 0.95 0.99), the softness of its closures. The page's rows: MuJoCo at both."
-        ),
-    )
-    equality = {"stiff": gripper.stiff_equality(mech), "file": None}
-    return Problem("robotiq_2f85", mech, xml, equality, {"source": path}, notes)
+    return Problem("robotiq_2f85", *gripper.case(fixtures, folder))
 
 
 def write_section(docs: Path, names: Iterable[str], field_robots: bool = True) -> None:

@@ -24,6 +24,7 @@ from typing import Any
 import numpy as np
 
 from mechkit.export.mjcf import SOLIMP, SOLREF_DIVISOR, smallest_link_period
+from mechkit.loading import load
 from mechkit.mechanism import Mechanism
 
 #: The Menagerie file, relative to the repository's tests/fixtures/field folder.
@@ -128,3 +129,31 @@ def same_model(mech: Mechanism, xml: str) -> dict[str, float]:
     rigid = np.linalg.lstsq(kkt, rhs, rcond=None)[0][:nv]
     out["rigid"] = float(np.max(np.abs(rigid - ours)) / np.max(np.abs(ours)))
     return out
+
+
+def case(fixtures: Path, folder: Path) -> tuple[Mechanism, str, dict[str, Any], dict[str, Any], tuple[str, ...]]:
+    """The gripper as a work-precision problem: its stripped file read by both codes, MuJoCo at the export's
+    stiff rule and at the file's own settings, and the page's notes (what was stripped, the motion, the
+    `same_model` check).
+
+    Args:
+        fixtures: the repository's tests/fixtures/field folder.
+        folder: an existing folder for the stripped copy (it must outlast the runs: they read it).
+
+    Returns:
+        (mechanism, MJCF text, equality label -> (solref, solimp) or None, `Mechanism.simulate` options, notes).
+    """
+    path = stripped_file(fixtures, folder)
+    mech, xml = load(path), path.read_text()
+    check = same_model(mech, xml)
+    notes = (
+        f"The Menagerie file `{GRIPPER.as_posix()}` (tests/fixtures/field) read by both: {STRIPPED}.",
+        MOTION,
+        (
+            f"Same model, checked before timing: at home at rest the rigid accelerations solved on MuJoCo's own mass "
+            f"matrix, bias, passive forces and constraint Jacobian equal mechkit's to {check['rigid']:.1g} (relative); "
+            f"MuJoCo's soft accelerations differ by {check['stiff']:.1g} (stiff) and {check['file']:.1g} (`file`: "
+            "its own solref 0.005 s, solimp 0.95 0.99), the softness of its closures. The page's rows: MuJoCo at both."
+        ),
+    )
+    return mech, xml, {"stiff": stiff_equality(mech), "file": None}, {"source": path}, notes

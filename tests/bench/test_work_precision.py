@@ -72,4 +72,8 @@ def test_the_verdict_is_each_code_s_cheapest_run_within_both_bounds():
     assert text.startswith(wp.HEADING) and "none meets both" in text and "5.0x MuJoCo's time" in text
     assert "1000 evaluations per simulated s at 50 us each against evaluations not counted" in text
     points.append(wp.Point("MuJoCo", "rk4", "dt 0.0001", 1e-9, 1e-11, 0.04))
-    assert "within both bounds mechkit takes 1.25x MuJoCo's time: missed" in wp.markdown({"x": points}, {"x": "x"})
+    points.append(wp.Point("mechkit", "RK4", "dt 0.001", 1e-5, 1e-16, 0.05))  # same step as MuJoCo's rk4 at 0.01
+    assert "within both bounds mechkit takes 1.25x MuJoCo's time: missed" in (
+        text := wp.markdown({"x": points}, {"x": "x"})
+    )
+    assert "same step and order (dt 0.001): mechkit RK4 takes 5x MuJoCo's rk4: missed (goal <= 3x)" in text
