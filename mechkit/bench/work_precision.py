@@ -30,6 +30,7 @@ from mechkit.base.exceptions import MethodUnavailable
 from mechkit.base.plotting import pyplot, save_figure
 from mechkit.bench import work_precision_gripper as gripper
 from mechkit.bench.markdown import replace_section
+from mechkit.bench.work_precision_energy import mechkit_energy_error, mujoco_energy_error
 from mechkit.export.mjcf import to_mjcf
 from mechkit.loading import load
 from mechkit.mechanism import Mechanism
@@ -88,6 +89,7 @@ class Point:
         cpu: CPU time per simulated second (s/s).
         evaluations: evaluations of the dynamics per simulated second (MuJoCo: steps times its integrator's
             stages; 0: not counted).
+        energy: the energy balance's relative drift (`work_precision_energy`; nan: not measured).
     """
 
     code: str
@@ -97,6 +99,7 @@ class Point:
     closure: float
     cpu: float
     evaluations: float = 0.0
+    energy: float = float("nan")
 
 
 def reference(mech: Mechanism, duration: float = DURATION, options: Mapping[str, Any] | None = None) -> np.ndarray:
@@ -110,9 +113,8 @@ def reference(mech: Mechanism, duration: float = DURATION, options: Mapping[str,
     Returns:
         (nq,) the configuration at the end.
     """
-    options = dict(options or {})
-    run = mech.simulate(duration, method="DOP853", rtol=1e-13, atol=1e-14, reactions=False, limits=None, **options)
-    return run.motion.q[-1]
+    common = {"reactions": False, "limits": None, **(options or {})}
+    return mech.simulate(duration, method="DOP853", rtol=1e-13, atol=1e-14, **common).motion.q[-1]
 
 
 def mechkit_points(
@@ -137,9 +139,9 @@ def mechkit_points(
         start = time.process_time()
         run = mech.simulate(duration, method=method, **common, **step)
         cpu = (time.process_time() - start) / duration
-        error = float(np.max(np.abs(run.motion.q[-1] - q_end)))
-        evaluations = run.integrator["evaluations"] / duration
-        out.append(Point("mechkit", method, setting, error, float(run.residual.max()), cpu, evaluations))
+        error, evaluations = float(np.max(np.abs(run.motion.q[-1] - q_end))), run.integrator["evaluations"] / duration
+        closure, energy = float(run.residual.max()), mechkit_energy_error(run)
+        out.append(Point("mechkit", method, setting, error, closure, cpu, evaluations, energy))
     return out
 
 
@@ -185,8 +187,12 @@ def mujoco_points(
             cpu = (time.process_time() - start) / duration
             closure = max(float(np.max(np.abs(mech.closure_residual(q)))) for q in visited[:: max(1, steps // 100)])
             error = float(np.max(np.abs(visited[-1] - q_end)))
-            evaluations = steps * MUJOCO_STAGES[integrator] / duration
-            out.append(Point("MuJoCo", f"{integrator.lower()} {label}", f"dt {dt:g}", error, closure, cpu, evaluations))
+            evaluations, energy = (
+                steps * MUJOCO_STAGES[integrator] / duration,
+                mujoco_energy_error(model, mech.home_q, steps),
+            )
+            method = f"{integrator.lower()} {label}"
+            out.append(Point("MuJoCo", method, f"dt {dt:g}", error, closure, cpu, evaluations, energy))
     return out
 
 
@@ -218,14 +224,11 @@ def table(points: list[Point]) -> list[str]:
     Returns:
         Its lines.
     """
-    lines = [
-        "| code | method | setting | end error | closure (m) | CPU s per simulated s | evaluations per simulated s |",
-        "|---|---|---|---|---|---|---|",
-    ]
-    lines += [
-        f"| {p.code} | {p.method} | {p.setting} | {p.error:.2g} | {p.closure:.2g} | {p.cpu:.3g} | {p.evaluations:.0f} |"
-        for p in points
-    ]
+    head = ("code", "method", "setting", "end error", "closure (m)", "energy error", "CPU s per simulated s", "evals/s")
+    lines = ["| " + " | ".join(head) + " |", "|---" * len(head) + "|"]
+    for p in points:
+        row = (p.code, p.method, p.setting, f"{p.error:.2g}", f"{p.closure:.2g}", f"{p.energy:.2g}", f"{p.cpu:.3g}")
+        lines.append("| " + " | ".join((*row, f"{p.evaluations:.0f}")) + " |")
     return lines
 
 
@@ -291,7 +294,9 @@ def markdown(
             "Goal (issue 31): at equal accuracy, trajectory error <= 1e-6 rad and closure <= 1e-10 m, mechkit's time "
             "per simulated second no more than MuJoCo's. The reference's cross-check is MuJoCo's RK4 at its finest "
             "step (the last `rk4 stiff` row): it agrees to MuJoCo's own floor, set by its soft closure. Measured in "
-            "one run on this machine (2 cores, other work running). The field robot, the Robotiq 2F-85, is its "
+            "one run on this machine (2 cores, other work running). The energy error: the balance's largest relative "
+            "drift (`mechkit.bench.work_precision_energy`); evals/s: evaluations of the dynamics per simulated second. "
+            "The field robot, the Robotiq 2F-85, is its "
             "Menagerie file read by both codes (below). Not charted yet: the IFToMM problems (their thin rods have no "
             "MJCF counterpart; their own references are in tests/fixtures/iftomm/README.md)."
         ),
