@@ -243,7 +243,7 @@ def figure(name: str, points: list[Point]) -> Any:
     Returns:
         The matplotlib figure.
     """
-    fig, ax = pyplot("work-precision charts").subplots(figsize=(6.4, 4.4))
+    fig, ax = pyplot("work-precision charts").subplots(figsize=(8.4, 4.4))
     for code, method in dict.fromkeys((p.code, p.method) for p in points):
         line = sorted((p for p in points if (p.code, p.method) == (code, method)), key=lambda p: p.cpu)
         ax.loglog(
@@ -257,7 +257,7 @@ def figure(name: str, points: list[Point]) -> Any:
     ax.set_ylabel("joint error at the end (rad)")
     ax.set_title(f"{name}: work-precision, free motion {DURATION:g} s")
     ax.grid(True, which="both", alpha=0.3)
-    ax.legend(fontsize=7)
+    ax.legend(fontsize=7, loc="center left", bbox_to_anchor=(1.01, 0.5))
     fig.tight_layout()
     return fig
 
