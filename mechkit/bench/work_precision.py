@@ -293,12 +293,12 @@ def markdown(
             "joint limits disabled, with its RK4, Euler and implicitfast across timesteps, the bare `mj_step` loop. "
             "Goal (issue 31): at equal accuracy, trajectory error <= 1e-6 rad and closure <= 1e-10 m, mechkit's time "
             "per simulated second no more than MuJoCo's. The reference's cross-check is MuJoCo's RK4 at its finest "
-            "step (the last `rk4 stiff` row): it agrees to MuJoCo's own floor, set by its soft closure. Measured in "
-            "one run on this machine (2 cores, other work running). The energy error: the balance's largest relative "
-            "drift (`mechkit.bench.work_precision_energy`); evals/s: evaluations of the dynamics per simulated second. "
-            "The field robot, the Robotiq 2F-85, is its "
-            "Menagerie file read by both codes (below). Not charted yet: the IFToMM problems (their thin rods have no "
-            "MJCF counterpart; their own references are in tests/fixtures/iftomm/README.md)."
+            "step (the last `rk4 stiff` row): it agrees to MuJoCo's own floor, set by its soft closure (MuJoCo holds "
+            "solref at >= 2 timesteps: the stiff setting acts only at the finer steps). Measured in one run on this "
+            "machine (2 cores, other work running). The energy error: the balance's largest relative drift "
+            "(`mechkit.bench.work_precision_energy`); evals/s: evaluations of the dynamics per simulated second. The "
+            "field robot, the Robotiq 2F-85, is its Menagerie file read by both codes (below). Not charted yet: the "
+            "IFToMM problems (no MJCF counterpart of their thin rods; references: tests/fixtures/iftomm/README.md)."
         ),
         "",
     ]
