@@ -1,7 +1,8 @@
 """Regenerate the "Work-precision" section of docs/benchmarks.md and its charts
-docs/figures/work_precision_<mechanism>.png (`mechkit.bench.work_precision.write_section`).
+docs/figures/work_precision_<mechanism>.png (`mechkit.bench.work_precision.write_section`): the mechanisms
+named (their MJCF export) and the field robot, the Robotiq 2F-85 (its Menagerie file read by both codes).
 
-Usage: python tools/work_precision.py [NAME ...]   (default: `mechkit.bench.work_precision.PROBLEMS`; about a minute)
+Usage: python tools/work_precision.py [NAME ...]   (default: `mechkit.bench.work_precision.PROBLEMS`; under a minute)
 """
 
 from __future__ import annotations
