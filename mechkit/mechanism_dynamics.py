@@ -121,21 +121,13 @@ class MechanismDynamics:
         proximal = method == "proximal"  # a NaN or inf argument gives it non-finite accelerations: named on failure
         if not arguments.plain_state(q, v, tau, self._nq, self._nv, finite=not proximal):
             q, v, tau = self.naming.one(q=q, v=v, tau=tau)
-        settings = (
-            {}
-            if mu is None and accuracy is None and max_iter is None and baumgarte is None
-            else arguments.solver_settings(mu, accuracy, max_iter, baumgarte)
-        )
+        if self.springs.springs:
+            tau = tau + self.springs.forces(q, v)
         try:
-            return core.forward_dynamics(
-                self.closure_model,
-                self.closure_data,
-                q,
-                v,
-                tau + self.springs.forces(q, v) if self.springs else tau,
-                method,
-                **settings,
-            )
+            if mu is None and accuracy is None and max_iter is None and baumgarte is None:
+                return core.forward_dynamics(self.closure_model, self.closure_data, q, v, tau, method)
+            settings = arguments.solver_settings(mu, accuracy, max_iter, baumgarte)
+            return core.forward_dynamics(self.closure_model, self.closure_data, q, v, tau, method, **settings)
         except SingularConfiguration:
             if proximal:
                 self.naming.one(q=q, v=v, tau=tau)

@@ -87,15 +87,14 @@ def check_acceleration(
         ConstraintViolated: max |J a + gamma| above the tolerance.
     """
     rows = J.shape[0]
-    if rows:
-        r = J.dot(a)
-        r += gamma
-        if _settled(r, gamma, J, a):
-            return
+    if rows and _closes(J, a, -gamma):
+        return
     if not np.isfinite(a).all():
         raise SingularConfiguration(float("inf"), f"{what} returned non-finite accelerations")
     if not rows:
         return
+    r = J.dot(a)
+    r += gamma
     residual, g = float(np.abs(r).max()), float(np.abs(gamma).max())
     if residual <= ACCELERATION_TOL * g:  # below a part of the limit: the rest need not be computed
         return
@@ -124,18 +123,17 @@ def check_acceleration(
         raise ConstraintViolated(residual, limit, what)
 
 
-def _settled(r: np.ndarray, gamma: np.ndarray, J: np.ndarray, a: np.ndarray) -> bool:
-    """Whether dots show max |r| <= `ACCELERATION_TOL` (max_i |J_i| max |a| + max |gamma|) for r = J a +
-    gamma (rows,), as |r| <= TOL |gamma| / sqrt(rows) or |r| <= TOL |J|_F |a| / sqrt(rows nv) implies (a
-    NaN or inf fails both): the common case of the check."""
-    try:
-        rr = r.dot(r) * r.size
-        return rr <= _TOL2 * gamma.dot(gamma) or rr * a.size <= _TOL2 * rank.squared_norm(J) * a.dot(a)
-    except FloatingPointError:  # a square under- or overflowing under np.errstate(all="raise"): not shown
-        return False
-
-
-_TOL2 = ACCELERATION_TOL**2
+def _closes(J: np.ndarray, a: np.ndarray, target: np.ndarray) -> bool:
+    """Whether norms show max |J a - target| <= `ACCELERATION_TOL` (max_i |J_i| max |a| + max |target|),
+    as |J a - target| <= TOL |target| / sqrt(rows) or <= TOL |J|_F |a| / sqrt(rows nv) implies (J (rows,
+    nv), a (nv,), target (rows,); a NaN or inf fails both): the common case of the check, in Python floats
+    (a few calls, none of numpy's per-operation costs)."""
+    t = target.tolist()
+    residual = math.dist(J.dot(a).tolist(), t) * math.sqrt(len(t))
+    if residual <= ACCELERATION_TOL * math.hypot(*t) < math.inf:
+        return True
+    bound = ACCELERATION_TOL * math.hypot(*J.ravel().tolist()) * math.hypot(*a.tolist())
+    return residual * math.sqrt(len(a)) <= bound < math.inf
 
 
 def _unconstrained_scale(cm: ClosureModel, data: pin.Data, q: np.ndarray, v: np.ndarray, tau: np.ndarray) -> float:
@@ -188,7 +186,8 @@ def _settings(
 
 
 def _proximal(cm, cd, q, v, tau, mu, accuracy, max_iter, baumgarte) -> ForwardDynamicsResult:
-    """Pinocchio's proximal constraintDynamics; the constraint force J^T lambda from its multipliers."""
+    """Pinocchio's proximal constraintDynamics, checked on the anchors' rows it solved (their Jacobian at
+    the state and the right-hand side -gamma it left); the constraint force J^T lambda from its multipliers."""
     legacy = cd.legacy.get("proximal") or _legacy(cm, cd)
     if baumgarte is not None or legacy.stabilised:
         legacy.set_baumgarte(baumgarte)
@@ -197,13 +196,12 @@ def _proximal(cm, cd, q, v, tau, mu, accuracy, max_iter, baumgarte) -> ForwardDy
     )
     a = legacy.dynamics(q, v, tau, settings).copy()
     J, rhs = legacy.jacobian(), legacy.rhs()  # rhs = -gamma
-    r = J.dot(a) - rhs
-    if not _settled(r, rhs, J, a):
+    if not _closes(J, a, rhs):
         drift = _rows_and_drift(cm, cd, q, v, None)[2]  # mechkit's rows: cd.pin, not the legacy data
         check_acceleration(
             J, a, -rhs, "forward dynamics (proximal)", lambda: _unconstrained_scale(cm, cd.pin, q, v, tau), drift
         )
-    return ForwardDynamicsResult(a, J.T.dot(legacy.multipliers()), settings.iter)
+    return ForwardDynamicsResult(a, None, settings.iter, (J, legacy.multipliers().copy()))
 
 
 def _lcaba(cm, cd, q, v, tau, mu, accuracy, max_iter) -> ForwardDynamicsResult:

@@ -113,7 +113,7 @@ class LegacyConstraints:
     def jacobian(self) -> np.ndarray:
         """(rows, nv) the anchors' constraint Jacobian at the last call's state (fresh after either call)."""
         J = pin.getConstraintsJacobian(self.model, self.data, self.models, self.datas)
-        return J.reshape(-1, self.model.nv)  # Pinocchio gives a vector when rows or nv is 1
+        return J if J.ndim == 2 else J.reshape(-1, self.model.nv)  # Pinocchio gives a vector when rows or nv is 1
 
     def multipliers(self) -> np.ndarray:
         """(rows,) the anchors' multipliers lambda of the last `dynamics` call (M a + nle = tau + J^T lambda)."""
