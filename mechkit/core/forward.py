@@ -194,14 +194,13 @@ def _proximal(cm, cd, q, v, tau, mu, accuracy, max_iter, baumgarte) -> ForwardDy
     settings = cd.settings.get(("proximal", mu, accuracy, max_iter, 1.0)) or _settings(
         cm, cd, "proximal", mu, accuracy, max_iter
     )
-    a = legacy.dynamics(q, v, tau, settings).copy()
-    J, rhs = legacy.jacobian(), legacy.rhs()  # rhs = -gamma
+    a, lam, J, rhs = legacy.dynamics(q, v, tau, settings)  # rhs = -gamma
     if not _closes(J, a, rhs):
         drift = _rows_and_drift(cm, cd, q, v, None)[2]  # mechkit's rows: cd.pin, not the legacy data
         check_acceleration(
             J, a, -rhs, "forward dynamics (proximal)", lambda: _unconstrained_scale(cm, cd.pin, q, v, tau), drift
         )
-    return ForwardDynamicsResult(a, None, settings.iter, (J, legacy.multipliers().copy()))
+    return ForwardDynamicsResult(a, None, settings.iter, (J, lam))
 
 
 def _lcaba(cm, cd, q, v, tau, mu, accuracy, max_iter) -> ForwardDynamicsResult:
