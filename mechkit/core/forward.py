@@ -132,7 +132,7 @@ def _closes(J: np.ndarray, a: np.ndarray, target: np.ndarray) -> bool:
     residual = math.dist(J.dot(a).tolist(), t) * math.sqrt(len(t))
     if residual <= ACCELERATION_TOL * math.hypot(*t) < math.inf:
         return True
-    bound = ACCELERATION_TOL * math.hypot(*J.ravel().tolist()) * math.hypot(*a.tolist())
+    bound = ACCELERATION_TOL * math.sqrt(rank.squared_norm(J)) * math.hypot(*a.tolist())  # inf where it overflows
     return residual * math.sqrt(len(a)) <= bound < math.inf
 
 
@@ -173,10 +173,11 @@ def _settings(
     margin: float = 1.0,
 ):
     """Pinocchio's proximal settings of a method, made once per (method, mu, accuracy, max_iter, margin)
-    (None: `DEFAULTS`): mu in units of the Delassus scale; the accuracy divided by it ("proximal": Pinocchio
-    tests its iterations on the multipliers) or by the rows' lever arm and the step margin ("lcaba": it
-    tests J delta a; see `LCABA_STEP_MARGINS`)."""
+    (None: `DEFAULTS`; the defaults kept under the method's name): mu in units of the Delassus scale; the
+    accuracy divided by it ("proximal": Pinocchio tests its iterations on the multipliers) or by the rows'
+    lever arm and the step margin ("lcaba": it tests J delta a; see `LCABA_STEP_MARGINS`)."""
     key = (method, mu, accuracy, max_iter, margin)
+    key = method if key[1:] == (None, None, None, 1.0) else key
     prox = cd.settings.get(key)
     if prox is None:
         mu, accuracy, max_iter = (d if x is None else x for x, d in zip((mu, accuracy, max_iter), DEFAULTS[method]))
@@ -191,7 +192,7 @@ def _proximal(cm, cd, q, v, tau, mu, accuracy, max_iter, baumgarte) -> ForwardDy
     legacy = cd.legacy.get("proximal") or _legacy(cm, cd)
     if baumgarte is not None or legacy.stabilised:
         legacy.set_baumgarte(baumgarte)
-    settings = cd.settings.get(("proximal", mu, accuracy, max_iter, 1.0)) or _settings(
+    settings = (mu is None and accuracy is None and max_iter is None and cd.settings.get("proximal")) or _settings(
         cm, cd, "proximal", mu, accuracy, max_iter
     )
     a, lam, J, rhs = legacy.dynamics(q, v, tau, settings)  # rhs = -gamma
