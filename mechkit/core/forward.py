@@ -21,6 +21,8 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
+from functools import partial
+from math import dist, hypot, inf, sqrt
 
 import numpy as np
 import pinocchio as pin
@@ -129,11 +131,11 @@ def _closes(J: np.ndarray, a: np.ndarray, target: np.ndarray) -> bool:
     nv), a (nv,), target (rows,); a NaN or inf fails both): the common case of the check, in Python floats
     (a few calls, none of numpy's per-operation costs)."""
     t = target.tolist()
-    residual = math.dist(J.dot(a).tolist(), t) * math.sqrt(len(t))
-    if residual <= ACCELERATION_TOL * math.hypot(*t) < math.inf:
+    residual = dist(J.dot(a).tolist(), t) * sqrt(len(t))
+    if residual <= ACCELERATION_TOL * hypot(*t) < inf:
         return True
-    bound = ACCELERATION_TOL * math.sqrt(rank.squared_norm(J)) * math.hypot(*a.tolist())  # inf where it overflows
-    return residual * math.sqrt(len(a)) <= bound < math.inf
+    bound = ACCELERATION_TOL * sqrt(rank.squared_norm(J)) * hypot(*a.tolist())  # inf where it overflows
+    return residual * sqrt(len(a)) <= bound < inf
 
 
 def _unconstrained_scale(cm: ClosureModel, data: pin.Data, q: np.ndarray, v: np.ndarray, tau: np.ndarray) -> float:
@@ -198,9 +200,8 @@ def _proximal(cm, cd, q, v, tau, mu, accuracy, max_iter, baumgarte) -> ForwardDy
     a, lam, J, rhs = legacy.dynamics(q, v, tau, settings)  # rhs = -gamma
     if not _closes(J, a, rhs):
         drift = _rows_and_drift(cm, cd, q, v, None)[2]  # mechkit's rows: cd.pin, not the legacy data
-        check_acceleration(
-            J, a, -rhs, "forward dynamics (proximal)", lambda: _unconstrained_scale(cm, cd.pin, q, v, tau), drift
-        )
+        scale = partial(_unconstrained_scale, cm, cd.pin, q, v, tau)  # not a lambda: no closure cells in the call
+        check_acceleration(J, a, -rhs, "forward dynamics (proximal)", scale, drift)
     return ForwardDynamicsResult(a, None, settings.iter, (J, lam))
 
 
