@@ -92,8 +92,8 @@ class LegacyConstraints:
 
         Returns:
             (nv,) the accelerations and (rows,) the multipliers lambda (M a + nle = tau + J^T lambda),
-            copies; (rows, nv) the anchors' Jacobian at the state (`jacobian`) and (rows,) -gamma (`rhs`, a
-            view).
+            copies; (rows, nv) the anchors' Jacobian at the state (`jacobian`) and (rows,) -gamma (-
+            Baumgarte terms) of every row, `drift` negated as Pinocchio holds it (a view of its buffer).
         """
         assert not self.ordered, "a data set up for lcaba"
         a = pin.constraintDynamics(self.model, self.data, q, v, tau, self.models, self.datas, settings).copy()
@@ -132,11 +132,6 @@ class LegacyConstraints:
             (rows,) gamma (+ Baumgarte terms).
         """
         return -self._rhs[:rows]
-
-    def rhs(self) -> np.ndarray:
-        """(rows,) -gamma (- Baumgarte terms) of every anchor row: `drift` negated, as Pinocchio holds it
-        (a view of its buffer, sized by `initConstraintDynamics` to the rows)."""
-        return self._rhs
 
     def lcaba_error(self) -> np.ndarray:
         """(rows,) the anchors' acceleration error before lcaba's last step (add J @ `last_step()`)."""
