@@ -96,7 +96,9 @@ class LegacyConstraints:
             Baumgarte terms) of every row, `drift` negated as Pinocchio holds it (a view of its buffer).
         """
         assert not self.ordered, "a data set up for lcaba"
-        a = pin.constraintDynamics(self.model, self.data, q, v, tau, self.models, self.datas, settings).copy()
+        a = pin.constraintDynamics(
+            self.model, self.data, q, v, tau, self.models, self.datas, settings
+        )  # its own array (by value: a test guards it)
         J = pin.getConstraintsJacobian(self.model, self.data, self.models, self.datas)
         return a, self._lambda.copy(), J if J.ndim == 2 else J.reshape(-1, self.model.nv), self._rhs
 
