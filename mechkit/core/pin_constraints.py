@@ -96,9 +96,8 @@ class LegacyConstraints:
             Baumgarte terms) of every row, `drift` negated as Pinocchio holds it (a view of its buffer).
         """
         assert not self.ordered, "a data set up for lcaba"
-        a = pin.constraintDynamics(
-            self.model, self.data, q, v, tau, self.models, self.datas, settings
-        )  # its own array (by value: a test guards it)
+        # the accelerations come by value, an array of their own (not data.ddq: a test guards it)
+        a = pin.constraintDynamics(self.model, self.data, q, v, tau, self.models, self.datas, settings)
         J = pin.getConstraintsJacobian(self.model, self.data, self.models, self.datas)
         return a, self._lambda.copy(), J if J.ndim == 2 else J.reshape(-1, self.model.nv), self._rhs
 
