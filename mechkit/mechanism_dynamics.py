@@ -120,10 +120,12 @@ class MechanismDynamics:
             InconsistentMotion: gamma leaves the range of J (no rigid answer at this state).
             SingularConfiguration: accelerations not unique.
         """
-        arguments.option("method", method, core.FORWARD_METHODS)
+        default = type(method) is str and method == "proximal"
+        if not default:
+            arguments.option("method", method, core.FORWARD_METHODS)
         # "proximal" reads its arguments in Pinocchio alone, which refuses wrong sizes (ValueError) and gives
         # non-finite accelerations for a NaN or inf: float64 vectors go straight to it, named on failure
-        proximal = method == "proximal" and not self.springs.springs
+        proximal = default and not self.springs.springs
         if not (
             (
                 type(q) is _ARRAY

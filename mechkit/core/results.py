@@ -67,6 +67,10 @@ class ForwardDynamicsResult:
             self._force, self._rows = lam.dot(J), None
         return self._force
 
+    def __repr__(self) -> str:
+        force, it = self.constraint_force, self.iterations
+        return f"ForwardDynamicsResult(a={self.a!r}, constraint_force={force!r}, iterations={it})"
+
 
 @dataclass(frozen=True)
 class JointReaction:

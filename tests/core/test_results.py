@@ -49,3 +49,4 @@ def test_forward_result_computes_the_constraint_force_from_its_rows_on_first_rea
     J[:] = 0.0
     assert lazy.constraint_force is first and np.any(first != 0.0)
     assert lazy.iterations == eager.iterations == 3 and lazy.a is a
+    assert repr(lazy) == repr(eager).replace(repr(eager.constraint_force), repr(first))
