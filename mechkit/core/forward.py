@@ -19,10 +19,9 @@ only instantaneously) is refused by every method (`InconsistentMotion`).
 
 from __future__ import annotations
 
-import math
 from collections.abc import Callable
 from functools import partial
-from math import dist, hypot, inf, sqrt
+from math import dist, hypot, inf, isfinite, sqrt
 
 import numpy as np
 import pinocchio as pin
@@ -95,12 +94,11 @@ def check_acceleration(
         raise SingularConfiguration(float("inf"), f"{what} returned non-finite accelerations")
     if not rows:
         return
-    r = J.dot(a)
-    r += gamma
+    r = J.dot(a) + gamma
     residual, g = float(np.abs(r).max()), float(np.abs(gamma).max())
     if residual <= ACCELERATION_TOL * g:  # below a part of the limit: the rest need not be computed
         return
-    c = math.sqrt(float(np.einsum("ij,ij->i", J, J).max()))
+    c = sqrt(float(np.einsum("ij,ij->i", J, J).max()))
     limit = ACCELERATION_TOL * (c * float(np.abs(a).max(initial=0.0)) + g)
     if residual <= limit:
         return
@@ -126,10 +124,9 @@ def check_acceleration(
 
 
 def _closes(J: np.ndarray, a: np.ndarray, target: np.ndarray) -> bool:
-    """Whether norms show max |J a - target| <= `ACCELERATION_TOL` (max_i |J_i| max |a| + max |target|),
-    as |J a - target| <= TOL |target| / sqrt(rows) or <= TOL |J|_F |a| / sqrt(rows nv) implies (J (rows,
-    nv), a (nv,), target (rows,); a NaN or inf fails both): the common case of the check, in Python floats
-    (a few calls, none of numpy's per-operation costs)."""
+    """Whether max |J a - target| <= `ACCELERATION_TOL` (max_i |J_i| max |a| + max |target|) as norms show
+    it, |J a - target| <= TOL |target| / sqrt(rows) or TOL |J|_F |a| / sqrt(rows nv) (J (rows, nv), a (nv,),
+    target (rows,); NaN or inf fails both): the check's common case, in Python floats (no numpy per-op cost)."""
     t = target.tolist()
     residual = dist(J.dot(a).tolist(), t) * sqrt(len(t))
     if residual <= ACCELERATION_TOL * hypot(*t) < inf:
@@ -194,9 +191,8 @@ def _proximal(cm, cd, q, v, tau, mu, accuracy, max_iter, baumgarte) -> ForwardDy
     legacy = cd.legacy.get("proximal") or _legacy(cm, cd)
     if baumgarte is not None or legacy.stabilised:
         legacy.set_baumgarte(baumgarte)
-    settings = (mu is None and accuracy is None and max_iter is None and cd.settings.get("proximal")) or _settings(
-        cm, cd, "proximal", mu, accuracy, max_iter
-    )
+    default = mu is None and accuracy is None and max_iter is None
+    settings = (default and cd.settings.get("proximal")) or _settings(cm, cd, "proximal", mu, accuracy, max_iter)
     a, lam, J, rhs = legacy.dynamics(q, v, tau, settings)  # rhs = -gamma
     if not _closes(J, a, rhs):
         drift = _rows_and_drift(cm, cd, q, v, None)[2]  # mechkit's rows: cd.pin, not the legacy data
@@ -217,7 +213,7 @@ def _lcaba(cm, cd, q, v, tau, mu, accuracy, max_iter) -> ForwardDynamicsResult:
     for margin in LCABA_STEP_MARGINS:
         prox = _settings(cm, cd, "lcaba", mu, accuracy, max_iter, margin)
         a = legacy.loop_constrained_aba(q, v, tau, prox).copy()
-        if not math.isfinite(a @ a):
+        if not isfinite(a @ a):
             raise SingularConfiguration(float("inf"), "pin.lcaba returned non-finite accelerations")
         J = legacy.jacobian()
         residual = float(np.max(np.abs(legacy.lcaba_error() + J @ legacy.last_step()), initial=0.0))
