@@ -20,6 +20,9 @@ from mechkit.base.exceptions import SingularConfiguration
 from mechkit.forces import JointSprings
 from mechkit.mechanism_naming import JointNaming
 
+#: What `MechanismDynamics.forward_dynamics` passes to Pinocchio unconverted: float64 arrays.
+_ARRAY, _FLOAT = np.ndarray, np.dtype(np.float64)
+
 
 class MechanismDynamics:
     """Forward and inverse dynamics of a closed-loop mechanism under its springs and dampers.
@@ -117,27 +120,35 @@ class MechanismDynamics:
             InconsistentMotion: gamma leaves the range of J (no rigid answer at this state).
             SingularConfiguration: accelerations not unique.
         """
-        arguments.option("method", method, core.FORWARD_METHODS)
-        proximal = method == "proximal"  # a NaN or inf argument gives it non-finite accelerations: named on failure
-        if not arguments.plain_state(q, v, tau, self._nq, self._nv, finite=not proximal):
-            q, v, tau = self.naming.one(q=q, v=v, tau=tau)
-        settings = (
-            {}
-            if mu is None and accuracy is None and max_iter is None and baumgarte is None
-            else arguments.solver_settings(mu, accuracy, max_iter, baumgarte)
-        )
-        try:
-            return core.forward_dynamics(
-                self.closure_model,
-                self.closure_data,
-                q,
-                v,
-                tau + self.springs.forces(q, v) if self.springs else tau,
-                method,
-                **settings,
+        default = type(method) is str and method == "proximal"
+        if not default:
+            arguments.option("method", method, core.FORWARD_METHODS)
+        # "proximal" reads its arguments in Pinocchio alone, which refuses wrong sizes (ValueError) and gives
+        # non-finite accelerations for a NaN or inf: float64 vectors go straight to it, named on failure
+        proximal = default and not self.springs.springs
+        if not (
+            (
+                type(q) is _ARRAY
+                and type(v) is _ARRAY
+                and type(tau) is _ARRAY
+                and q.dtype is _FLOAT
+                and v.dtype is _FLOAT
+                and tau.dtype is _FLOAT
+                and q.ndim == v.ndim == tau.ndim == 1
             )
-        except SingularConfiguration:
-            if proximal:
+            if proximal
+            else arguments.plain_state(q, v, tau, self._nq, self._nv, finite=method != "proximal")
+        ):
+            q, v, tau = self.naming.one(q=q, v=v, tau=tau)
+        if self.springs.springs:
+            tau = tau + self.springs.forces(q, v)
+        try:
+            if mu is None and accuracy is None and max_iter is None and baumgarte is None:
+                return core.forward_dynamics(self.closure_model, self.closure_data, q, v, tau, method)
+            settings = arguments.solver_settings(mu, accuracy, max_iter, baumgarte)
+            return core.forward_dynamics(self.closure_model, self.closure_data, q, v, tau, method, **settings)
+        except (SingularConfiguration, ValueError):
+            if method == "proximal":
                 self.naming.one(q=q, v=v, tau=tau)
             raise
 

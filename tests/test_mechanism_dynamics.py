@@ -11,7 +11,9 @@ import scipy.linalg
 from conftest import support_balance_error
 
 import mechkit
-from mechkit.base.exceptions import ConstraintViolated, InvalidParameters
+from mechkit import core
+from mechkit.base.exceptions import ConstraintViolated, InvalidArgument, InvalidParameters
+from mechkit.bench.sampling import make_samples
 from mechkit.catalog.registry import specs
 from mechkit.forces import JointSprings
 from mechkit.mechanism_dynamics import MechanismDynamics
@@ -80,3 +82,23 @@ def test_forward_then_inverse_dynamics_return_the_efforts_given(name, efforts, l
     if m.springs:
         unsprung = _dynamics(m, JointSprings(m.model, ())).forward_dynamics(q, v, tau, "kkt").a
         assert np.max(np.abs(unsprung - a)) > 1e-3 * np.max(np.abs(a))
+
+
+@pytest.mark.parametrize("sprung", [False, True])
+def test_forward_dynamics_converts_or_names_what_is_not_a_float64_vector(sprung, load_cached):
+    """The default method hands float64 vectors to Pinocchio unconverted (their sizes are its check): a
+    list or another dtype gives the converted state's accelerations, a wrong size or a column a refusal
+    naming the argument, with springs (computed before Pinocchio sees the state) or without."""
+    m = load_cached("four_bar")
+    springs = [core.JointSpring(m.model.names[1], 2.0, 0.0, 0.0, 0.1)] if sprung else []
+    dyn = _dynamics(m, JointSprings(m.model, springs))
+    s = make_samples(m, 1)[0]
+    q, v, tau = s.q, s.v, s.tau
+    a = dyn.forward_dynamics(q, v, tau).a
+    for converted in ((q.tolist(), v, tau), (q, v, tau.tolist())):
+        assert np.array_equal(dyn.forward_dynamics(*converted).a, a)
+    single = tau.astype(np.float32)
+    assert np.array_equal(dyn.forward_dynamics(q, v, single).a, dyn.forward_dynamics(q, v, single.astype(float)).a)
+    for name, bad in (("q", (q[:-1], v, tau)), ("v", (q, np.append(v, 0.0), tau)), ("tau", (q, v, tau[:, None]))):
+        with pytest.raises(InvalidArgument, match=f"argument '{name}'"):
+            dyn.forward_dynamics(*bad)

@@ -19,8 +19,9 @@ only instantaneously) is refused by every method (`InconsistentMotion`).
 
 from __future__ import annotations
 
-import math
 from collections.abc import Callable
+from functools import partial
+from math import dist, hypot, inf, isfinite, sqrt
 
 import numpy as np
 import pinocchio as pin
@@ -87,19 +88,17 @@ def check_acceleration(
         ConstraintViolated: max |J a + gamma| above the tolerance.
     """
     rows = J.shape[0]
-    if rows:
-        r = J.dot(a)
-        r += gamma
-        if _settled(r, gamma, J, a):
-            return
+    if rows and _closes(J, a, -gamma):
+        return
     if not np.isfinite(a).all():
         raise SingularConfiguration(float("inf"), f"{what} returned non-finite accelerations")
     if not rows:
         return
+    r = J.dot(a) + gamma
     residual, g = float(np.abs(r).max()), float(np.abs(gamma).max())
     if residual <= ACCELERATION_TOL * g:  # below a part of the limit: the rest need not be computed
         return
-    c = math.sqrt(float(np.einsum("ij,ij->i", J, J).max()))
+    c = sqrt(float(np.einsum("ij,ij->i", J, J).max()))
     limit = ACCELERATION_TOL * (c * float(np.abs(a).max(initial=0.0)) + g)
     if residual <= limit:
         return
@@ -124,18 +123,16 @@ def check_acceleration(
         raise ConstraintViolated(residual, limit, what)
 
 
-def _settled(r: np.ndarray, gamma: np.ndarray, J: np.ndarray, a: np.ndarray) -> bool:
-    """Whether dots show max |r| <= `ACCELERATION_TOL` (max_i |J_i| max |a| + max |gamma|) for r = J a +
-    gamma (rows,), as |r| <= TOL |gamma| / sqrt(rows) or |r| <= TOL |J|_F |a| / sqrt(rows nv) implies (a
-    NaN or inf fails both): the common case of the check."""
-    try:
-        rr = r.dot(r) * r.size
-        return rr <= _TOL2 * gamma.dot(gamma) or rr * a.size <= _TOL2 * rank.squared_norm(J) * a.dot(a)
-    except FloatingPointError:  # a square under- or overflowing under np.errstate(all="raise"): not shown
-        return False
-
-
-_TOL2 = ACCELERATION_TOL**2
+def _closes(J: np.ndarray, a: np.ndarray, target: np.ndarray) -> bool:
+    """Whether max |J a - target| <= `ACCELERATION_TOL` (max_i |J_i| max |a| + max |target|) as norms show
+    it, |J a - target| <= TOL |target| / sqrt(rows) or TOL |J|_F |a| / sqrt(rows nv) (J (rows, nv), a (nv,),
+    target (rows,); NaN or inf fails both): the check's common case, in Python floats (no numpy per-op cost)."""
+    t = target.tolist()
+    residual = dist(J.dot(a).tolist(), t) * sqrt(len(t))
+    if residual <= ACCELERATION_TOL * hypot(*t) < inf:
+        return True
+    bound = ACCELERATION_TOL * sqrt(rank.squared_norm(J)) * hypot(*a.tolist())  # inf where it overflows
+    return residual * sqrt(len(a)) <= bound < inf
 
 
 def _unconstrained_scale(cm: ClosureModel, data: pin.Data, q: np.ndarray, v: np.ndarray, tau: np.ndarray) -> float:
@@ -175,10 +172,11 @@ def _settings(
     margin: float = 1.0,
 ):
     """Pinocchio's proximal settings of a method, made once per (method, mu, accuracy, max_iter, margin)
-    (None: `DEFAULTS`): mu in units of the Delassus scale; the accuracy divided by it ("proximal": Pinocchio
-    tests its iterations on the multipliers) or by the rows' lever arm and the step margin ("lcaba": it
-    tests J delta a; see `LCABA_STEP_MARGINS`)."""
+    (None: `DEFAULTS`; the defaults kept under the method's name): mu in units of the Delassus scale; the
+    accuracy divided by it ("proximal": Pinocchio tests its iterations on the multipliers) or by the rows'
+    lever arm and the step margin ("lcaba": it tests J delta a; see `LCABA_STEP_MARGINS`)."""
     key = (method, mu, accuracy, max_iter, margin)
+    key = method if key[1:] == (None, None, None, 1.0) else key
     prox = cd.settings.get(key)
     if prox is None:
         mu, accuracy, max_iter = (d if x is None else x for x, d in zip((mu, accuracy, max_iter), DEFAULTS[method]))
@@ -188,22 +186,19 @@ def _settings(
 
 
 def _proximal(cm, cd, q, v, tau, mu, accuracy, max_iter, baumgarte) -> ForwardDynamicsResult:
-    """Pinocchio's proximal constraintDynamics; the constraint force J^T lambda from its multipliers."""
+    """Pinocchio's proximal constraintDynamics, checked on the anchors' rows it solved (their Jacobian at
+    the state and the right-hand side -gamma it left); the constraint force J^T lambda from its multipliers."""
     legacy = cd.legacy.get("proximal") or _legacy(cm, cd)
     if baumgarte is not None or legacy.stabilised:
         legacy.set_baumgarte(baumgarte)
-    settings = cd.settings.get(("proximal", mu, accuracy, max_iter, 1.0)) or _settings(
-        cm, cd, "proximal", mu, accuracy, max_iter
-    )
-    a = legacy.dynamics(q, v, tau, settings).copy()
-    J, rhs = legacy.jacobian(), legacy.rhs()  # rhs = -gamma
-    r = J.dot(a) - rhs
-    if not _settled(r, rhs, J, a):
+    default = mu is None and accuracy is None and max_iter is None
+    settings = (default and cd.settings.get("proximal")) or _settings(cm, cd, "proximal", mu, accuracy, max_iter)
+    a, lam, J, rhs = legacy.dynamics(q, v, tau, settings)  # rhs = -gamma
+    if not _closes(J, a, rhs):
         drift = _rows_and_drift(cm, cd, q, v, None)[2]  # mechkit's rows: cd.pin, not the legacy data
-        check_acceleration(
-            J, a, -rhs, "forward dynamics (proximal)", lambda: _unconstrained_scale(cm, cd.pin, q, v, tau), drift
-        )
-    return ForwardDynamicsResult(a, J.T.dot(legacy.multipliers()), settings.iter)
+        scale = partial(_unconstrained_scale, cm, cd.pin, q, v, tau)  # not a lambda: no closure cells in the call
+        check_acceleration(J, a, -rhs, "forward dynamics (proximal)", scale, drift)
+    return ForwardDynamicsResult(a, None, settings.iter, (J, lam))
 
 
 def _lcaba(cm, cd, q, v, tau, mu, accuracy, max_iter) -> ForwardDynamicsResult:
@@ -218,7 +213,7 @@ def _lcaba(cm, cd, q, v, tau, mu, accuracy, max_iter) -> ForwardDynamicsResult:
     for margin in LCABA_STEP_MARGINS:
         prox = _settings(cm, cd, "lcaba", mu, accuracy, max_iter, margin)
         a = legacy.loop_constrained_aba(q, v, tau, prox).copy()
-        if not math.isfinite(a @ a):
+        if not isfinite(a @ a):
             raise SingularConfiguration(float("inf"), "pin.lcaba returned non-finite accelerations")
         J = legacy.jacobian()
         residual = float(np.max(np.abs(legacy.lcaba_error() + J @ legacy.last_step()), initial=0.0))

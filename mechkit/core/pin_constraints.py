@@ -78,8 +78,11 @@ class LegacyConstraints:
             self._gains = gains
             self.stabilised = gains != (0.0, 0.0)
 
-    def dynamics(self, q: np.ndarray, v: np.ndarray, tau: np.ndarray, settings: pin.ProximalSettings) -> np.ndarray:
-        """Accelerations by `pin.constraintDynamics` (not for a data set up with `ordered`).
+    def dynamics(
+        self, q: np.ndarray, v: np.ndarray, tau: np.ndarray, settings: pin.ProximalSettings
+    ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+        """Accelerations by `pin.constraintDynamics` (not for a data set up with `ordered`), with what a check
+        of them and the constraint force need, in one call.
 
         Args:
             q: (nq,) configuration.
@@ -88,10 +91,15 @@ class LegacyConstraints:
             settings: Pinocchio's proximal settings (`proximal_settings`); its outcome is written back.
 
         Returns:
-            (nv,) accelerations: a view of the data's buffer, copy it before the next call.
+            (nv,) the accelerations and (rows,) the multipliers lambda (M a + nle = tau + J^T lambda),
+            copies; (rows, nv) the anchors' Jacobian at the state (`jacobian`) and (rows,) -gamma (-
+            Baumgarte terms) of every row, `drift` negated as Pinocchio holds it (a view of its buffer).
         """
         assert not self.ordered, "a data set up for lcaba"
-        return pin.constraintDynamics(self.model, self.data, q, v, tau, self.models, self.datas, settings)
+        # the accelerations come by value, an array of their own (not data.ddq: a test guards it)
+        a = pin.constraintDynamics(self.model, self.data, q, v, tau, self.models, self.datas, settings)
+        J = pin.getConstraintsJacobian(self.model, self.data, self.models, self.datas)
+        return a, self._lambda.copy(), J if J.ndim == 2 else J.reshape(-1, self.model.nv), self._rhs
 
     def loop_constrained_aba(
         self, q: np.ndarray, v: np.ndarray, tau: np.ndarray, settings: pin.ProximalSettings
@@ -113,11 +121,7 @@ class LegacyConstraints:
     def jacobian(self) -> np.ndarray:
         """(rows, nv) the anchors' constraint Jacobian at the last call's state (fresh after either call)."""
         J = pin.getConstraintsJacobian(self.model, self.data, self.models, self.datas)
-        return J.reshape(-1, self.model.nv)  # Pinocchio gives a vector when rows or nv is 1
-
-    def multipliers(self) -> np.ndarray:
-        """(rows,) the anchors' multipliers lambda of the last `dynamics` call (M a + nle = tau + J^T lambda)."""
-        return self._lambda
+        return J if J.ndim == 2 else J.reshape(-1, self.model.nv)  # Pinocchio gives a vector when rows or nv is 1
 
     def drift(self, rows: int) -> np.ndarray:
         """The anchors' drift at the last `dynamics` call's state.
@@ -129,11 +133,6 @@ class LegacyConstraints:
             (rows,) gamma (+ Baumgarte terms).
         """
         return -self._rhs[:rows]
-
-    def rhs(self) -> np.ndarray:
-        """(rows,) -gamma (- Baumgarte terms) of every anchor row: `drift` negated, as Pinocchio holds it
-        (a view of its buffer, sized by `initConstraintDynamics` to the rows)."""
-        return self._rhs
 
     def lcaba_error(self) -> np.ndarray:
         """(rows,) the anchors' acceleration error before lcaba's last step (add J @ `last_step()`)."""

@@ -10,7 +10,6 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from functools import cached_property
-from typing import NamedTuple
 
 import numpy as np
 
@@ -36,14 +35,41 @@ class Mobility:
     singular_values: np.ndarray
 
 
-class ForwardDynamicsResult(NamedTuple):
+class ForwardDynamicsResult:
     """Accelerations a (nv,) or (N, nv), the generalised constraint force J^T lambda of the same shape,
     and the iterations Pinocchio's proximal solver took ("proximal", "lcaba"; the largest over a batch;
-    0 for the direct methods). Immutable."""
+    0 for the direct methods).
 
-    a: np.ndarray
-    constraint_force: np.ndarray
-    iterations: int = 0
+    Args:
+        a: the accelerations (rad/s^2 or m/s^2).
+        constraint_force: J^T lambda (N m or N), or None with `rows`.
+        iterations: the solver's iterations.
+        rows: (J (rows, nv), lambda (rows,)) from which J^T lambda is computed on first read (instead of
+            `constraint_force`; neither is changed afterwards).
+    """
+
+    __slots__ = ("_force", "_rows", "a", "iterations")
+
+    def __init__(
+        self,
+        a: np.ndarray,
+        constraint_force: np.ndarray | None = None,
+        iterations: int = 0,
+        rows: tuple[np.ndarray, np.ndarray] | None = None,
+    ):
+        self.a, self.iterations, self._force, self._rows = a, iterations, constraint_force, rows
+
+    @property
+    def constraint_force(self) -> np.ndarray:
+        """The generalised constraint force J^T lambda (N m or N)."""
+        if self._force is None:
+            J, lam = self._rows
+            self._force, self._rows = lam.dot(J), None
+        return self._force
+
+    def __repr__(self) -> str:
+        force, it = self.constraint_force, self.iterations
+        return f"ForwardDynamicsResult(a={self.a!r}, constraint_force={force!r}, iterations={it})"
 
 
 @dataclass(frozen=True)

@@ -8,7 +8,7 @@ import pytest
 
 from mechkit import core
 from mechkit.base.arguments import plain_state
-from mechkit.base.exceptions import ConstraintViolated, InconsistentMotion, InvalidArgument
+from mechkit.base.exceptions import ConstraintViolated, InconsistentMotion, InvalidArgument, SingularConfiguration
 from mechkit.bench.ladder import exact_accelerations
 from mechkit.bench.ladder_model import ladder
 from mechkit.bench.sampling import make_samples
@@ -264,3 +264,27 @@ def test_the_drift_lifts_a_redundant_row_s_singular_value_only_to_its_size():
     forward.check_acceleration(J, a, gamma, "test", drift=d, solved=np.array([0, 1]))
     with pytest.raises((ConstraintViolated, InconsistentMotion)):
         forward.check_acceleration(J, a, gamma, "test", solved=np.array([0, 1]))
+
+
+def test_the_fast_check_fails_safe_on_values_that_are_not_finite():
+    """The check's norms in Python floats pass a closed result and fail where the accelerations or the
+    drift are NaN or inf (even inf against inf), sending them to the full check, which refuses them."""
+    rng = np.random.default_rng(1)
+    J, a = rng.standard_normal((3, 5)), rng.standard_normal(5)
+    gamma = -J @ a
+    assert forward._closes(J, a, -gamma)
+    assert not forward._closes(J, a + 1e-6, -gamma)  # a wrong acceleration
+    for bad in (np.nan, np.inf):
+        b = a.copy()
+        b[0] = bad
+        assert not forward._closes(J, b, -gamma)
+        with pytest.raises(SingularConfiguration, match="non-finite"):
+            forward.check_acceleration(J, b, gamma, "test")
+        g = gamma.copy()
+        g[0] = bad
+        assert not forward._closes(J, b, -g) and not forward._closes(J, a, -g)
+    assert forward._closes(np.zeros((0, 5)), a, np.zeros(0))  # no rows: nothing to violate
+    at_rest = np.zeros(3)  # gamma = 0 (no velocity): judged against |J| |a|
+    null = np.linalg.svd(J)[2][3:]  # accelerations J leaves free pass; any other, however small, does not
+    assert forward._closes(J, null.T @ rng.standard_normal(2), at_rest)
+    assert not forward._closes(J, 1e-9 * rng.standard_normal(5), at_rest)

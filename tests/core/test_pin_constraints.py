@@ -70,6 +70,21 @@ def test_one_data_serves_constraint_dynamics_or_lcaba_not_both(load_cached):
         proximal.loop_constrained_aba(s.q, s.v, s.tau, settings)
 
 
+def test_what_dynamics_returns_is_the_caller_s_own(load_cached):
+    """Pinocchio 4.1 returns constraintDynamics' accelerations and the Jacobian by value, and the
+    multipliers are copied from the data's buffer: a later call at another state leaves the first
+    call's arrays unchanged (the proximal wrapper returns them, with no copy of its own)."""
+    m = load_cached("five_bar")
+    legacy = LegacyConstraints(m.model, list(m.cuts))
+    s0, s1 = make_samples(m, 2)
+    settings = core.proximal_settings(1e-12, 1e-9, 20)
+    first = legacy.dynamics(s0.q, s0.v, s0.tau, settings)[:3]
+    kept = [x.copy() for x in first]
+    second = legacy.dynamics(s1.q, s1.v, s1.tau, settings)[:3]
+    for x, y, z in zip(first, kept, second):
+        assert np.array_equal(x, y) and not np.array_equal(x, z) and not np.shares_memory(x, z)
+
+
 PROBE = Path(__file__).with_name("pin_entry_probe.py")
 GROUND_CUT = FIXTURES / "four_bar_ground_cut.urdf"
 
