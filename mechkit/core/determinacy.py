@@ -240,8 +240,10 @@ def determinacy_one(
     cut_points: np.ndarray,
     stresses: np.ndarray | None = None,
     W: np.ndarray | None = None,
+    world: np.ndarray | None = None,
 ) -> tuple[np.ndarray, np.ndarray]:
-    """One sample of `determinacy` (the same flags), with the joints' placements `cd.used` (filled).
+    """One sample of `determinacy` (the same flags), from the full rows' world vectors or the joints'
+    placements `cd.used` (filled).
 
     Where the cached columns of `self_stresses` apply, their LU gives the null space; a sample they do
     not certify (the rank changed) gets `self_stresses`, its SVD included.
@@ -256,19 +258,22 @@ def determinacy_one(
         stresses: (na + rows, K) a basis of the null space of [S^T, J_full^T] the solve certified, or None
             (see `determinacy`).
         W: (cut_size, 6) the full rows' wrenches where the caller has them, else None.
+        world: the full rows' world vectors (`ClosureKernel.world`) where the caller has them, else None.
 
     Returns:
         (njoints - 1 + ncuts, 6) and (na,) the flags of `determinacy`.
     """
     na, full = len(cm.actuated), cm.full_kernel
+    if world is None:
+        world = full.world(cd.used)
     if stresses is None:
-        _, Jf, Wf = full.rows(full.world(cd.used), J, q)
+        _, Jf, Wf = full.rows(world, J, q)
         A = np.concatenate((cm.actuation.T, Jf.T), axis=1)
         columns = cd.stress_columns
         stresses = None if columns is None else _lu_one(A, *columns)
         null = self_stresses(cd, A[None])[0] if stresses is None else stresses
     else:
-        Wf = full.row_wrenches(cd.used) if W is None else W
+        Wf = full.rows(world, J, q)[2] if W is None else W
         null = orthonormal(stresses[None])[0] if stresses.shape[1] else stresses
     if not null.shape[1]:  # no self-stress: statics fixes everything
         return np.ones((origins.shape[0] + cut_points.shape[0], 6), dtype=bool), np.ones(na, dtype=bool)

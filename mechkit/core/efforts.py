@@ -145,7 +145,7 @@ def passive_split(
         return None, False, None
     inverse = lapack.dgetri(lu, piv)[0]
     inverse_size, size, actuated_size = rank.squared_norm(inverse), rank.squared_norm(B), rank.squared_norm(Ja)
-    regular = bool(rank.certified_regular(inverse_size**-0.5, size**0.5, residual))
+    regular = bool(rank.certified_regular(inverse_size**-0.5 if inverse_size else math.inf, size**0.5, residual))
     if (
         not rank.RANK_TOL**2 * (act.size + (1.0 + actuated_size) * inverse_size) * (act.size + size + actuated_size)
         < 1.0
@@ -162,7 +162,7 @@ def passive_split(
     return np.concatenate([ba - JaT.dot(lam), lam]), regular, np.concatenate([-K, N])
 
 
-def square_one(cm: ClosureModel, J: np.ndarray, b: np.ndarray, bound: bool) -> tuple[np.ndarray | None, float]:
+def square_one(A: np.ndarray, b: np.ndarray, bound: bool) -> tuple[np.ndarray | None, float]:
     """One sample of a square system [S^T, J^T] x = b (na + rows = nv): gesv
     (the numbers `square_solution` gives) and, with `bound`, 1 / |A^-1|_F from its LU (getri).
 
@@ -170,8 +170,7 @@ def square_one(cm: ClosureModel, J: np.ndarray, b: np.ndarray, bound: bool) -> t
     (U the orthonormal unactuated basis), so sigma_min(B) >= 1 / |A^-1|_2 >= 1 / |A^-1|_F.
 
     Args:
-        cm: the closure model (its actuation S).
-        J: (rows, nv) closure Jacobian.
+        A: (nv, nv) the matrix [S^T, J^T] (not changed).
         b: (nv,) generalised force the motion needs.
         bound: also compute the bound 1 / |A^-1|_F.
 
@@ -179,10 +178,10 @@ def square_one(cm: ClosureModel, J: np.ndarray, b: np.ndarray, bound: bool) -> t
         x (nv,), None where A is singular or x not finite; the bound (0 without `bound` or where singular).
     """
     lapack = scipy.linalg.lapack
-    lu, piv, x, info = lapack.dgesv(np.concatenate((cm.actuation.T, J.T), axis=1), b)
+    lu, piv, x, info = lapack.dgesv(A, b)
     if info or not (math.isfinite(x.dot(x)) or np.isfinite(x).all()):
         return None, 0.0
-    return x, (rank.squared_norm(lapack.dgetri(lu, piv)[0]) ** -0.5 if bound else 0.0)  # overflow: 0, the SVD decides
+    return x, (rank.inverse_norm(lapack.dgetri(lu, piv)[0]) if bound else 0.0)  # overflow: 0, the SVD decides
 
 
 def singular(A: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:

@@ -21,6 +21,7 @@ import pinocchio as pin
 from mechkit.base.exceptions import InvalidParameters
 from mechkit.core import efforts, rank
 from mechkit.core.determinacy import determinacy, determinacy_one, system
+from mechkit.core.inverse_plan import plan
 from mechkit.core.model import ClosureData, ClosureModel
 from mechkit.core.passive_solve import idle_count
 from mechkit.core.results import BatchInverseDynamicsResult, InverseDynamicsResult
@@ -322,8 +323,12 @@ def _one_sample(
     distribution: str,
     generic_rank: int | None,
 ) -> InverseDynamicsResult:
-    """`inverse_dynamics` without idle spins: the batch's steps on one sample."""
+    """`inverse_dynamics` without idle spins: the batch's steps on one sample, over the data's plan
+    (`mechkit.core.inverse_plan`: the world vectors by one product, buffers reused)."""
     model, data, k = cm.model, cd.pin, cm.kernel
+    p = cd.inverse
+    if p is None or p.cm is not cm:
+        p = plan(cm, cd)
     pin.computeJointJacobians(model, data, q)
     b = (
         pin.rnea(model, data, q, v, a) if fext is None else pin.rnea(model, data, q, v, a, fext)
@@ -331,7 +336,8 @@ def _one_sample(
     if passive is not None:
         b = b - passive
     Jw = cd.J
-    world = k.stacked_world(cd.stacked_placements())
+    p.fill_world()
+    world = p.rows_world
     e, Jrows, W = k.rows(world, Jw, q)
     residual = math.sqrt(e.dot(e))
     na, judged = len(cm.actuated), generic_rank is not None
@@ -339,40 +345,33 @@ def _one_sample(
     if efforts.splits(cm, k.size, distribution):
         x, regular, stresses = efforts.passive_split(cm, cd, Jrows, b, residual)
     elif na + k.size == cm.nv:  # square: its singular values (cond) are not needed to solve it
-        x, rho = efforts.square_one(cm, Jrows, b, judged or determinacy_test)
+        p.statics[:, na:] = Jrows.T
+        x, rho = efforts.square_one(p.statics, b, judged or determinacy_test)
         size = rank.squared_norm(Jrows)
         regular = judged and rank.certified_regular(rho, size**0.5, residual)
-        square = determinacy_test and rho * rho > rank.RANK_TOL**2 * (size + rank.squared_norm(cm.actuation))
+        square = determinacy_test and rho * rho > rank.RANK_TOL**2 * (size + p.actuation_size)
     if judged and regular is None and 0 < cm.unactuated.shape[1] <= k.size:
         block = Jrows[:, cm.passive_v] if cm.passive_v is not None else Jrows @ cm.unactuated  # the same numbers
         regular = rank.certified_regular(*rank.block_bounds(block), residual)
     if judged and not regular:
-        _check_regular(
-            cm,
-            Jrows[None],
-            Jw[None],
-            np.array([residual]),
-            generic_rank,
-            False,
-            None if regular is None else np.array([regular]),
-        )
+        certified = None if regular is None else np.array([regular])
+        _check_regular(cm, Jrows[None], Jw[None], np.array([residual]), generic_rank, False, certified)
     A = None
     if x is None:
         x, cond = efforts.solve(cm, system(cm, Jrows[None]), b[None], determinacy_test, distribution)
         x, cond = x[0], float(cond[0])
     elif determinacy_test:  # the condition number on first read (`InverseDynamicsResult.condition`)
         A = np.concatenate((cm.actuation.T, Jrows.T), axis=1)
-    P = cd.oMi
-    origins, cut_points = P[1:, :, 3], k.points(world)
+    origins, cut_points = p.origins, k.points(world)
     reactions = k.joint_loads(W, x[na:], origins, cut_points)
-    reactions[: P.shape[0] - 1] += tree_wrenches(P, cd.f)
+    reactions[: model.njoints - 1] += (p.forces @ p.rotations_t).reshape(-1, 6)  # `tree_wrenches`
     flags = effort_flags = None
     if determinacy_test:
         if square and cm.spatial:  # [S^T, J_full^T] square and certified regular: no self-stress
             stresses = np.zeros((na + k.size, 0))
         same = cm.spatial  # the solve's null space is the full rows' one
         flags, effort_flags = determinacy_one(
-            cm, cd, Jw, q, origins, cut_points, stresses if same else None, W if same else None
+            cm, cd, Jw, q, origins, cut_points, stresses if same else None, W if same else None, p.full_world
         )
     return InverseDynamicsResult(
         cm.joint_names, cm.actuated, x[:na], reactions, cm.supports, x[na:], cond, flags, effort_flags, A
