@@ -190,13 +190,14 @@ def determinacy(
     cut_points: np.ndarray,
     stresses: np.ndarray | None = None,
     W: np.ndarray | None = None,
+    world: np.ndarray | None = None,
 ) -> tuple[np.ndarray, np.ndarray]:
     """Which reaction components and efforts static equilibrium fixes.
 
     Args:
         cm: the closure model (its full-row kernel `full_kernel` and actuation).
         cd: the closure data (caches the independent rows of `self_stresses`).
-        G: (N, n_used, 4, 4) world placements of the joints carrying cut frames.
+        G: (N, n_used, 4, 4) world placements of the joints carrying cut frames (None with `world`).
         J: (N, 6, nv) joint Jacobians (`data.J`, WORLD frame).
         q: (N, nq) configurations (coupling rows).
         origins: (N, njoints - 1, 3) tree joint origins, in the world frame (m).
@@ -205,6 +206,8 @@ def determinacy(
             full rows), (N, na + rows, K) bases of the null spaces of [S^T, J_full^T], each of full column
             rank and spanning the whole null space (certified by the solve); None: computed here.
         W: (N, cut_size, 6) the full rows' wrenches where the caller has them, else None.
+        world: (N, ...) the full rows' world vectors (`ClosureKernel.world`) where the caller has them (then G
+            may be None), else None.
 
     Returns:
         (N, njoints - 1 + ncuts, 6) True where a reaction component is determinate (tree joints in
@@ -213,9 +216,13 @@ def determinacy(
     """
     na = len(cm.actuated)
     full = cm.full_kernel
-    Wf = full.row_wrenches(G) if W is None else W
+    Jf = None
+    if W is None:
+        _, Jf, Wf = full.rows(full.world(G) if world is None else world, J, q)
+    else:
+        Wf = W
     if stresses is None:
-        null = self_stresses(cd, system(cm, full.jacobian(Wf, J, q)))
+        null = self_stresses(cd, system(cm, full.jacobian(Wf, J, q) if Jf is None else Jf))
     else:
         null = orthonormal(stresses) if stresses.shape[2] else stresses
     if 6 * null.shape[2] <= full.cut_size:  # few self-stresses: their loads; else the map of every row's

@@ -64,35 +64,22 @@ def inverse_pass(
     """
     model, data = cm.model, cd.pin
     n, nj = len(Q), model.njoints
-    P = np.empty((n, nj, 3, 4))
-    J = np.empty((n, 6, model.nv))
+    T = np.empty((n, nj, 4, 3))  # Pinocchio's placements as they lie (`InversePlan.placements`): one copy each
+    Jt = np.empty((n, model.nv, 6))  # data.J transposed: its floats as they lie
     tau = np.empty((n, model.nv))
     f = np.empty((n, nj, 6))
     jacobians, rnea = pin.computeJointJacobians, pin.rnea
+    placements, Jw, forces = plan(cm, cd).placements, cd.J.T, cd.f
     for i in range(n):
         q = Q[i]
         jacobians(model, data, q)
-        J[i] = cd.J
-        P[i] = cd.oMi
+        Jt[i] = Jw
+        T[i] = placements
         tau[i] = rnea(model, data, q, V[i], A[i]) if fexts[i] is None else rnea(model, data, q, V[i], A[i], fexts[i])
-        f[i] = cd.f
+        f[i] = forces
+    P = T.transpose(0, 1, 3, 2)
     with np.errstate(under="ignore"):
-        return P, J, tau, tree_wrenches(P, f)
-
-
-def used_placements(cm: ClosureModel, P: np.ndarray) -> np.ndarray:
-    """Homogeneous placements of the joints carrying cut frames.
-
-    Args:
-        cm: the closure model (its kernel's used joints).
-        P: (N, nj, 3, 4) every joint's placement [R | p] in the world.
-
-    Returns:
-        (N, n_used, 4, 4) the used joints' homogeneous placements in the world.
-    """
-    G = np.zeros(P.shape[:1] + (cm.kernel.joints.size, 4, 4))
-    G[..., :3, :], G[..., 3, 3] = P[:, cm.kernel.joints], 1.0
-    return G
+        return P, Jt.transpose(0, 2, 1), tau, tree_wrenches(P, f)
 
 
 def _check_regular(
@@ -218,8 +205,7 @@ def inverse_dynamics_batch(
         b = b - passive
     k = cm.kernel
     with np.errstate(under="ignore"):  # products of tiny lever arms and forces flush to zero harmlessly
-        G = used_placements(cm, P)
-        world = k.world(G)
+        world, full_world = plan(cm, cd).batch_world(P)
         e, Jrows, W = k.rows(world, J, Q)
         residuals = np.linalg.norm(e, axis=-1)
         x, regular, stresses = (
@@ -243,7 +229,16 @@ def inverse_dynamics_batch(
         if determinacy_test:
             same = cm.spatial and stresses is not None  # the solve's null spaces are the full rows' ones
             flags, effort_flags = determinacy(
-                cm, cd, G, J, Q, origins, cut_points, stresses if same else None, W if cm.spatial else None
+                cm,
+                cd,
+                None,
+                J,
+                Q,
+                origins,
+                cut_points,
+                stresses if same else None,
+                W if cm.spatial else None,
+                full_world,
             )
     cond, statics = (None, statics) if determinacy_test else (np.full(n, np.nan), None)
     return BatchInverseDynamicsResult(

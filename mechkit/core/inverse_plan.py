@@ -25,6 +25,7 @@ class InversePlan:
 
     Attributes:
         cm: the model it was built for (a data used with another model gets a new plan).
+        placements: (njoints, 4, 3) view of every joint's placement transposed, [R^T; p^T] (`ClosureData.oMi`).
         world: (rows' vectors + full rows' vectors, 4) buffer of the world vectors (`ClosureKernel.world`'s);
             rows_world, full_world: its two parts (views).
         origins: (njoints - 1, 3) view of the tree joints' origins in the world (`ClosureData.oMi`).
@@ -38,7 +39,7 @@ class InversePlan:
         self.cm, nj = cm, cm.model.njoints
         oMi = cd.oMi
         # every placement transposed, [R^T; p^T] (4, 3): Pinocchio's floats as they lie (one view, no copy)
-        self._placements = np.lib.stride_tricks.as_strided(oMi, (nj, 4, 3), (oMi.strides[0], 24, 8), writeable=False)
+        self.placements = np.lib.stride_tricks.as_strided(oMi, (nj, 4, 3), (oMi.strides[0], 24, 8), writeable=False)
         kernels = (cm.kernel,) if cm.spatial else (cm.kernel, cm.full_kernel)
         maps = [_joint_map(k, nj) for k in kernels]
         self._map = np.concatenate(maps)
@@ -58,7 +59,23 @@ class InversePlan:
     def fill_world(self) -> None:
         """The world vectors of the rows and full rows (`world`) from the placements Pinocchio holds now."""
         # (4 njoints, 3): a view where the placements lie 12 floats apart (pin 4.1), else a copy
-        np.matmul(self._map, self._placements.reshape(-1, 3), out=self._out)
+        np.matmul(self._map, self.placements.reshape(-1, 3), out=self._out)
+
+    def batch_world(self, P: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """The world vectors of the rows and of the full rows of N samples.
+
+        Args:
+            P: (N, njoints, 3, 4) every joint's placement [R | p], a transposed view of (N, njoints, 4, 3)
+                (`mechkit.core.inverse.inverse_pass`; else copied).
+
+        Returns:
+            (N, rows' vectors, 4) and (N, full rows' vectors, 4), `ClosureKernel.world` of each kernel.
+        """
+        n, rows = len(P), self.rows_world.shape[0]
+        world = np.empty((n, *self.world.shape))
+        world[:, :, 3] = self.world[:, 3]
+        np.matmul(self._map, P.swapaxes(-1, -2).reshape(n, self._map.shape[1], 3), out=world[:, :, :3])
+        return world[:, :rows], world[:, rows - (rows if self.cm.spatial else 0) :]
 
 
 def _joint_map(k, nj: int) -> np.ndarray:
@@ -67,6 +84,21 @@ def _joint_map(k, nj: int) -> np.ndarray:
     out = np.zeros((used.shape[0], nj, 4))
     out[:, k.joints] = used.reshape(used.shape[0], k.joints.size, 4)
     return out.reshape(used.shape[0], 4 * nj)
+
+
+def used_placements(cm: ClosureModel, P: np.ndarray) -> np.ndarray:
+    """Homogeneous placements of the joints carrying cut frames.
+
+    Args:
+        cm: the closure model (its kernel's used joints).
+        P: (N, nj, 3, 4) every joint's placement [R | p] in the world.
+
+    Returns:
+        (N, n_used, 4, 4) the used joints' homogeneous placements in the world.
+    """
+    G = np.zeros(P.shape[:1] + (cm.kernel.joints.size, 4, 4))
+    G[..., :3, :], G[..., 3, 3] = P[:, cm.kernel.joints], 1.0
+    return G
 
 
 def plan(cm: ClosureModel, cd: ClosureData) -> InversePlan:

@@ -9,7 +9,7 @@ import pytest
 from mechkit.bench.sampling import make_samples
 from mechkit.catalog import registry
 from mechkit.core import determinacy as det
-from mechkit.core import inverse
+from mechkit.core import inverse, inverse_plan
 from mechkit.core.rank import RANK_TOL
 
 
@@ -18,7 +18,7 @@ def _arrays(m, samples):
     cm, cd = m.closure_model, m.closure_model.create_data()
     Q, V, A = (np.array([getattr(s, k) for s in samples]) for k in "qva")
     P, J, _, _ = inverse.inverse_pass(cm, cd, Q, V, A, [None] * len(Q))
-    G = inverse.used_placements(cm, P)
+    G = inverse_plan.used_placements(cm, P)
     return cm, cd, G, J, Q, P[:, 1:, :, 3], cm.kernel.cut_points(G)
 
 

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from mechkit.bench.sampling import make_samples
-from mechkit.core import efforts, inverse, rank
+from mechkit.core import efforts, inverse, inverse_plan, rank
 
 
 def _systems(m, count=4, seed=2):
@@ -18,7 +18,7 @@ def _systems(m, count=4, seed=2):
     Q, V, A = (np.array([getattr(s, k) for s in samples]) for k in "qva")
     P, J, b, _ = inverse.inverse_pass(cm, cm.create_data(), Q, V, A, [None] * len(Q))
     b = b if not m.springs else b - m.passive_forces(Q, V)  # the ten-bar's spring
-    e, Jrows, _ = cm.kernel.evaluate(inverse.used_placements(cm, P), J, Q)
+    e, Jrows, _ = cm.kernel.evaluate(inverse_plan.used_placements(cm, P), J, Q)
     return Jrows, inverse.system(cm, Jrows), b, np.linalg.norm(e, axis=-1)
 
 

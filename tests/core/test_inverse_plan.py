@@ -11,7 +11,7 @@ import pytest
 
 from mechkit.bench.sampling import make_samples
 from mechkit.catalog import registry
-from mechkit.core import determinacy, efforts, inverse
+from mechkit.core import determinacy, efforts, inverse, inverse_plan
 from mechkit.core.inverse_plan import plan
 
 TOL = 1e-13
@@ -52,7 +52,7 @@ def _reference(m, s):
     passive = m.passive_forces(s.q, s.v)
     b = b if passive is None else b - passive
     P = cd.oMi.copy()
-    G = inverse.used_placements(cm, P[None])
+    G = inverse_plan.used_placements(cm, P[None])
     _, J, W = cm.kernel.evaluate(G, cd.J[None], s.q[None])
     x = efforts.solve(cm, determinacy.system(cm, J), b[None], True, "min_norm")[0][0]
     na, k = len(cm.actuated), cm.kernel
