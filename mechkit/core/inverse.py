@@ -21,7 +21,7 @@ import pinocchio as pin
 from mechkit.base.exceptions import InvalidParameters
 from mechkit.core import efforts, rank
 from mechkit.core.determinacy import determinacy, determinacy_one, system
-from mechkit.core.inverse_plan import plan
+from mechkit.core.inverse_plan import plan, used_placements
 from mechkit.core.model import ClosureData, ClosureModel
 from mechkit.core.passive_solve import idle_count
 from mechkit.core.results import BatchInverseDynamicsResult, InverseDynamicsResult
@@ -205,7 +205,8 @@ def inverse_dynamics_batch(
         b = b - passive
     k = cm.kernel
     with np.errstate(under="ignore"):  # products of tiny lever arms and forces flush to zero harmlessly
-        world, full_world = plan(cm, cd).batch_world(P)
+        G = used_placements(cm, P)
+        world = k.world(G)
         e, Jrows, W = k.rows(world, J, Q)
         residuals = np.linalg.norm(e, axis=-1)
         x, regular, stresses = (
@@ -229,16 +230,7 @@ def inverse_dynamics_batch(
         if determinacy_test:
             same = cm.spatial and stresses is not None  # the solve's null spaces are the full rows' ones
             flags, effort_flags = determinacy(
-                cm,
-                cd,
-                None,
-                J,
-                Q,
-                origins,
-                cut_points,
-                stresses if same else None,
-                W if cm.spatial else None,
-                full_world,
+                cm, cd, G, J, Q, origins, cut_points, stresses if same else None, W if cm.spatial else None
             )
     cond, statics = (None, statics) if determinacy_test else (np.full(n, np.nan), None)
     return BatchInverseDynamicsResult(
@@ -366,7 +358,16 @@ def _one_sample(
             stresses = np.zeros((na + k.size, 0))
         same = cm.spatial  # the solve's null space is the full rows' one
         flags, effort_flags = determinacy_one(
-            cm, cd, Jw, q, origins, cut_points, stresses if same else None, W if same else None, p.full_world
+            cm,
+            cd,
+            Jw,
+            q,
+            origins,
+            cut_points,
+            stresses if same else None,
+            W if same else None,
+            p.full_world,
+            p.full_statics,
         )
     return InverseDynamicsResult(
         cm.joint_names, cm.actuated, x[:na], reactions, cm.supports, x[na:], cond, flags, effort_flags, A

@@ -31,7 +31,8 @@ class InversePlan:
         origins: (njoints - 1, 3) view of the tree joints' origins in the world (`ClosureData.oMi`).
         rotations_t: (njoints - 1, 3, 3) view of the tree joints' rotations, transposed.
         forces: (njoints - 1, 2, 3) view of the tree joints' wrenches [f, m], local frames (`ClosureData.f`).
-        statics: (nv, na + rows) buffer [S^T, J^T], S^T written once.
+        statics: (nv, na + rows) buffer [S^T, J^T], S^T written once; full_statics: the same of the full rows
+            (None where they are the rows).
         actuation_size: |S|_F^2.
     """
 
@@ -55,27 +56,14 @@ class InversePlan:
         self.statics = np.empty((cm.nv, na + cm.kernel.size))
         self.statics[:, :na] = cm.actuation.T
         self.actuation_size = squared_norm(cm.actuation)
+        self.full_statics = None if cm.spatial else np.empty((cm.nv, na + cm.full_kernel.size))
+        if self.full_statics is not None:
+            self.full_statics[:, :na] = cm.actuation.T
 
     def fill_world(self) -> None:
         """The world vectors of the rows and full rows (`world`) from the placements Pinocchio holds now."""
         # (4 njoints, 3): a view where the placements lie 12 floats apart (pin 4.1), else a copy
         np.matmul(self._map, self.placements.reshape(-1, 3), out=self._out)
-
-    def batch_world(self, P: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """The world vectors of the rows and of the full rows of N samples.
-
-        Args:
-            P: (N, njoints, 3, 4) every joint's placement [R | p], a transposed view of (N, njoints, 4, 3)
-                (`mechkit.core.inverse.inverse_pass`; else copied).
-
-        Returns:
-            (N, rows' vectors, 4) and (N, full rows' vectors, 4), `ClosureKernel.world` of each kernel.
-        """
-        n, rows = len(P), self.rows_world.shape[0]
-        world = np.empty((n, *self.world.shape))
-        world[:, :, 3] = self.world[:, 3]
-        np.matmul(self._map, P.swapaxes(-1, -2).reshape(n, self._map.shape[1], 3), out=world[:, :, :3])
-        return world[:, :rows], world[:, rows - (rows if self.cm.spatial else 0) :]
 
 
 def _joint_map(k, nj: int) -> np.ndarray:

@@ -256,7 +256,7 @@ class ClosureData:
         kkt_rows: the independent rows the KKT solve last used (None before the first).
         stress_rows: the rows of [S^T, J_full^T] `mechkit.core.determinacy.self_stresses` uses; stress_columns:
             nv of its columns, independent at the first sample, where it has full row rank there, the others
-            and their count's range (else None).
+            and the permutation matrix putting them first (else None).
         split_rows: the rows of the passive block `mechkit.core.efforts.passive_one` factors, and the others.
         partition: the rows, dependent and independent columns of the closure Jacobian the null-space
             forward dynamics factors (`mechkit.core.forward`).
