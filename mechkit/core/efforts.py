@@ -301,6 +301,9 @@ def full_rank_solution(A: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, np.nda
         x (N, cols); the norm (N,) of the part of b outside the range of A; and (N,) 1 / |R^-1|_F <=
         sigma_min(A) (0 where R is singular).
     """
+    if len(A) == 1:  # LAPACK directly: a fraction of np.linalg's overhead on one small matrix
+        x, outside, rho = _full_rank_one(A[0], b[0])
+        return x[None], np.array([outside]), np.array([rho])
     tall = A.shape[1] > A.shape[2]
     Q, R = np.linalg.qr(A if tall else A.transpose(0, 2, 1))  # A = Q R: x = R^-1 Q^T b; A^T = Q R: x = Q R^-T b
     try:
@@ -313,6 +316,25 @@ def full_rank_solution(A: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, np.nda
     except np.linalg.LinAlgError:  # an exactly singular R: no solution here, and no bound
         return np.full((len(A), A.shape[2]), np.nan), np.full(len(A), np.inf), np.zeros(len(A))
     return x, outside, rank.regularity_bounds(R)[0]
+
+
+def _full_rank_one(A: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, float, float]:
+    """One sample of `full_rank_solution`: LAPACK geqrf, ormqr, trtrs and trtri on 2-d arrays."""
+    lapack = scipy.linalg.lapack
+    m, n = A.shape
+    k = min(m, n)
+    qr, tau, _, _ = lapack.dgeqrf(A if m > n else A.T)  # A = Q R (tall) or A^T = Q R
+    R, X = qr[:k], rank.triangular_inverse(qr, k)  # trtrs reads R's upper triangle only
+    if X is None:  # an exactly singular R: no solution here, and no bound
+        return np.full(n, np.nan), math.inf, 0.0
+    if m > n:
+        c = lapack.dormqr("L", "T", qr, tau, b[:, None], max(1, m))[0][:, 0]
+        x = lapack.dtrtrs(R, c[:k])[0]
+        return x, float(np.sqrt(c[k:].dot(c[k:]))), rank.inverse_norm(X)
+    y = lapack.dtrtrs(R, b, trans=1)[0]  # R^T y = b
+    z = np.zeros(n)
+    z[:k] = y
+    return lapack.dormqr("L", "N", qr, tau, z[:, None], max(1, n))[0][:, 0], 0.0, rank.inverse_norm(X)
 
 
 def _check_reachable(A: np.ndarray, outside: np.ndarray, b: np.ndarray) -> None:

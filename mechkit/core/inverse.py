@@ -337,7 +337,7 @@ def _one_sample(
         size = rank.squared_norm(Jrows)
         regular = judged and rank.certified_regular(rho, size**0.5, residual)
         square = determinacy_test and rho * rho > rank.RANK_TOL**2 * (size + p.actuation_size)
-    if judged and regular is None and 0 < cm.unactuated.shape[1] <= k.size:
+    if judged and regular is None and cm.unactuated.shape[1]:  # `_check_regular`'s bound, LAPACK directly
         block = Jrows[:, cm.passive_v] if cm.passive_v is not None else Jrows @ cm.unactuated  # the same numbers
         regular = rank.certified_regular(*rank.block_bounds(block), residual)
     if judged and not regular:
