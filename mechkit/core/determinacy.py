@@ -284,11 +284,13 @@ def determinacy_one(
         null = orthonormal(stresses[None])[0] if stresses.shape[1] else stresses
     if not null.shape[1]:  # no self-stress: statics fixes everything
         return np.ones((origins.shape[0] + cut_points.shape[0], 6), dtype=bool), np.ones(na, dtype=bool)
-    loads = full.joint_loads(Wf, null[na:].T, origins, cut_points)
-    variation = np.einsum("kjc,kjc->jc", loads, loads)  # squared, against the squared tolerance
-    effort_variation = np.einsum("ak,ak->a", null[:na], null[:na])
-    tol = DETERMINACY_TOL**2 * max(float(variation.max()), float(effort_variation.max(initial=0.0)), 1e-300)
-    return variation <= tol, effort_variation <= tol
+    K, n = null.shape[1], origins.shape[0] + cut_points.shape[0]
+    changes = np.empty((K, 6 * n + na))  # every component's and effort's change along each self-stress
+    changes[:, : 6 * n] = full.joint_loads(Wf, null[na:].T, origins, cut_points).reshape(K, 6 * n)
+    changes[:, 6 * n :] = null[:na].T
+    variation = np.square(changes).sum(axis=0)  # squared, against the squared tolerance
+    determinate = variation <= DETERMINACY_TOL**2 * max(float(variation.max()), 1e-300)
+    return determinate[: 6 * n].reshape(n, 6), determinate[6 * n :]
 
 
 def _lu_one(A: np.ndarray, columns: np.ndarray, free: np.ndarray, select: np.ndarray) -> np.ndarray | None:

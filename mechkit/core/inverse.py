@@ -329,9 +329,10 @@ def _one_sample(
     residual = math.sqrt(e.dot(e))
     na, judged = len(cm.actuated), generic_rank is not None
     x, regular, stresses, square, cond = None, None, None, False, math.nan
+    square_system = na + k.size == cm.nv  # (not where the split applies: it has more rows)
     if efforts.splits(cm, k.size, distribution):
         x, regular, stresses = efforts.passive_split(cm, cd, Jrows, b, residual)
-    elif na + k.size == cm.nv:  # square: its singular values (cond) are not needed to solve it
+    elif square_system:  # square: its singular values (cond) are not needed to solve it
         p.statics[:, na:] = Jrows.T
         x, rho = efforts.square_one(p.statics, b, judged or determinacy_test)
         size = rank.squared_norm(Jrows)
@@ -348,7 +349,7 @@ def _one_sample(
         x, cond = efforts.solve(cm, system(cm, Jrows[None]), b[None], determinacy_test, distribution)
         x, cond = x[0], float(cond[0])
     elif determinacy_test:  # the condition number on first read (`InverseDynamicsResult.condition`)
-        A = np.concatenate((cm.actuation.T, Jrows.T), axis=1)
+        A = p.statics.copy() if square_system else np.concatenate((cm.actuation.T, Jrows.T), axis=1)
     origins, cut_points = p.origins, k.points(world)
     reactions = k.joint_loads(W, x[na:], origins, cut_points)
     reactions[: model.njoints - 1] += (p.forces @ p.rotations_t).reshape(-1, 6)  # `tree_wrenches`
