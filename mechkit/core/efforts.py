@@ -184,6 +184,24 @@ def square_one(A: np.ndarray, b: np.ndarray, bound: bool) -> tuple[np.ndarray | 
     return x, (rank.inverse_norm(lapack.dgetri(lu, piv)[0]) if bound else 0.0)  # overflow: 0, the SVD decides
 
 
+def square_bounds(A: np.ndarray) -> np.ndarray:
+    """`square_one`'s bound of N square systems: 1 / |A^-1|_F <= sigma_min(A), which also bounds each
+    passive block's smallest singular value.
+
+    Args:
+        A: (N, nv, nv) the matrices [S^T, J^T].
+
+    Returns:
+        (N,) the bounds (0 where some A is singular or its inverse too large to square: no bound).
+    """
+    try:
+        inverse = np.linalg.inv(A)
+    except np.linalg.LinAlgError:
+        return np.zeros(len(A))
+    with np.errstate(over="ignore", under="ignore", divide="ignore"):
+        return np.square(inverse).sum(axis=(1, 2)) ** -0.5  # inf ** -0.5 = 0
+
+
 def singular(A: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Singular values, numerical ranks and condition numbers of N matrices.
 

@@ -209,18 +209,22 @@ def inverse_dynamics_batch(
         world = k.world(G)
         e, Jrows, W = k.rows(world, J, Q)
         residuals = np.linalg.norm(e, axis=-1)
-        x, regular, stresses = (
-            efforts.passive_split_batch(cm, cd, Jrows, b, residuals)
-            if efforts.splits(cm, k.size, distribution)
-            else (None, None, None)
-        )
+        x, regular, stresses, statics, square = None, None, None, None, False
+        if efforts.splits(cm, k.size, distribution):
+            x, regular, stresses = efforts.passive_split_batch(cm, cd, Jrows, b, residuals)
+        elif determinacy_test and na + k.size == cm.nv and n:  # one inverse bounds A and the passive blocks
+            statics = system(cm, Jrows)
+            rho, size = efforts.square_bounds(statics), np.square(Jrows).sum(axis=(1, 2))
+            regular = None if generic_rank is None else rank.certified_regular(rho, np.sqrt(size), residuals)
+            square = bool(np.all(rho * rho > rank.RANK_TOL**2 * (size + np.square(cm.actuation).sum())))
         spins = {} if generic_rank is None else _check_regular(cm, Jrows, J, residuals, generic_rank, idle, regular)
         if spins:
             A = _idle_accelerations(cm, cd, Q, A, b, spins)
             P, J, b, tree = inverse_pass(cm, cd, Q, V, A, [None] * n if fexts is None else fexts)
             if passive is not None:
                 b = b - passive
-        statics = system(cm, Jrows) if x is None or determinacy_test else None
+        if statics is None and (x is None or determinacy_test):
+            statics = system(cm, Jrows)
         if x is None:  # the condition numbers on first read (`BatchInverseDynamicsResult.condition`)
             x = efforts.solve(cm, statics, b, False, distribution)[0]
         origins, cut_points = P[:, 1:, :, 3], k.points(world)
@@ -228,6 +232,8 @@ def inverse_dynamics_batch(
         reactions[:, : tree.shape[1]] += tree
         flags = effort_flags = None
         if determinacy_test:
+            if square and cm.spatial:  # [S^T, J_full^T] square and certified regular: no self-stress
+                stresses = np.zeros((n, na + k.size, 0))
             same = cm.spatial and stresses is not None  # the solve's null spaces are the full rows' ones
             flags, effort_flags = determinacy(
                 cm, cd, G, J, Q, origins, cut_points, stresses if same else None, W if cm.spatial else None
