@@ -350,11 +350,11 @@ def _one_sample(
     if judged and not regular:
         certified = None if regular is None else np.array([regular])
         _check_regular(cm, Jrows[None], Jw[None], np.array([residual]), generic_rank, False, certified)
-    A = None
+    A = None  # with the determinacy test, [S^T, J^T]: the condition number on first read (`InverseDynamicsResult`)
     if x is None:
-        x, cond = efforts.solve(cm, system(cm, Jrows[None]), b[None], determinacy_test, distribution)
-        x, cond = x[0], float(cond[0])
-    elif determinacy_test:  # the condition number on first read (`InverseDynamicsResult.condition`)
+        x, cond = efforts.solve(cm, (statics := system(cm, Jrows[None])), b[None], False, distribution)
+        x, cond, A = x[0], float(cond[0]), statics[0] if determinacy_test and math.isnan(cond[0]) else None
+    elif determinacy_test:
         A = p.statics.copy() if square_system else np.concatenate((cm.actuation.T, Jrows.T), axis=1)
     origins, cut_points = p.origins, k.points(world)
     reactions = k.joint_loads(W, x[na:], origins, cut_points)
