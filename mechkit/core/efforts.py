@@ -348,7 +348,7 @@ def _full_rank_one(A: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, float, flo
     if m > n:
         c = lapack.dormqr("L", "T", qr, tau, b[:, None], max(1, m))[0][:, 0]
         x = lapack.dtrtrs(R, c[:k])[0]
-        return x, float(np.sqrt(c[k:].dot(c[k:]))), rank.inverse_norm(X)
+        return x, rank.squared_norm(c[k:]) ** 0.5, rank.inverse_norm(X)
     y = lapack.dtrtrs(R, b, trans=1)[0]  # R^T y = b
     z = np.zeros(n)
     z[:k] = y
