@@ -22,7 +22,8 @@ Inside: `records` (closures, couplings, springs, actuators), `joints` (values of
 columns moving a joint, the cuts in its subtree), `kernel` (the closure-row mathematics), `rank` (the rank
 judge), `assembly` (closing loops, from near or far), `inside_limits` (an assembly re-sought inside the
 joints' limits), `structure` (loops, Kutzbach count, idle freedoms),
-`model`, `kinematics`, `passive_solve` (the free coordinates from the given ones), `inverse`, `efforts`
+`model`, `kinematics`, `passive_solve` (the free coordinates from the given ones), `inverse` (and `inverse_plan`,
+what one sample builds once), `efforts`
 (its statics solve), `determinacy`, `forward`, `null_space` (the solutions of J a + gamma = 0),
 `pin_constraints` (the one module that speaks Pinocchio's constraint API), `results`. Nothing outside
 this package imports those submodules: this face is the contract.

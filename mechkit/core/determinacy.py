@@ -90,7 +90,8 @@ def self_stresses(cd: ClosureData, A: np.ndarray) -> np.ndarray:
         cd.stress_rows = np.sort(scipy.linalg.qr(A0.T, mode="r", pivoting=True)[1][:r])
         if r == nv:
             columns = np.sort(scipy.linalg.qr(A0, mode="r", pivoting=True)[1][:r])
-            cd.stress_columns = columns, np.delete(np.arange(cols), columns), np.arange(cols - nv)
+            free = np.delete(np.arange(cols), columns)
+            cd.stress_columns = columns, free, np.eye(cols)[:, np.concatenate([columns, free])]
     r0 = cd.stress_rows.size
     if cd.stress_columns is not None:
         null, ok = lu_null_spaces(A, cd.stress_columns[0])
@@ -240,8 +241,11 @@ def determinacy_one(
     cut_points: np.ndarray,
     stresses: np.ndarray | None = None,
     W: np.ndarray | None = None,
+    world: np.ndarray | None = None,
+    statics: np.ndarray | None = None,
 ) -> tuple[np.ndarray, np.ndarray]:
-    """One sample of `determinacy` (the same flags), with the joints' placements `cd.used` (filled).
+    """One sample of `determinacy` (the same flags), from the full rows' world vectors or the joints'
+    placements `cd.used` (filled).
 
     Where the cached columns of `self_stresses` apply, their LU gives the null space; a sample they do
     not certify (the rank changed) gets `self_stresses`, its SVD included.
@@ -256,47 +260,60 @@ def determinacy_one(
         stresses: (na + rows, K) a basis of the null space of [S^T, J_full^T] the solve certified, or None
             (see `determinacy`).
         W: (cut_size, 6) the full rows' wrenches where the caller has them, else None.
+        world: the full rows' world vectors (`ClosureKernel.world`) where the caller has them, else None.
+        statics: (nv, na + full rows) a buffer for [S^T, J_full^T], S^T written (`InversePlan.full_statics`), or None.
 
     Returns:
         (njoints - 1 + ncuts, 6) and (na,) the flags of `determinacy`.
     """
     na, full = len(cm.actuated), cm.full_kernel
+    if world is None:
+        world = full.world(cd.used)
     if stresses is None:
-        _, Jf, Wf = full.rows(full.world(cd.used), J, q)
-        A = np.concatenate((cm.actuation.T, Jf.T), axis=1)
+        _, Jf, Wf = full.rows(world, J, q)
+        if statics is None:
+            A = np.concatenate((cm.actuation.T, Jf.T), axis=1)
+        else:
+            A = statics
+            A[:, na:] = Jf.T
         columns = cd.stress_columns
         stresses = None if columns is None else _lu_one(A, *columns)
         null = self_stresses(cd, A[None])[0] if stresses is None else stresses
     else:
-        Wf = full.row_wrenches(cd.used) if W is None else W
+        Wf = full.rows(world, J, q)[2] if W is None else W
         null = orthonormal(stresses[None])[0] if stresses.shape[1] else stresses
     if not null.shape[1]:  # no self-stress: statics fixes everything
         return np.ones((origins.shape[0] + cut_points.shape[0], 6), dtype=bool), np.ones(na, dtype=bool)
-    loads = full.joint_loads(Wf, null[na:].T, origins, cut_points)
-    variation = np.sqrt(np.einsum("kjc,kjc->jc", loads, loads))
-    effort_variation = np.sqrt(np.einsum("ak,ak->a", null[:na], null[:na]))
-    tol = DETERMINACY_TOL * max(float(variation.max()), float(effort_variation.max(initial=0.0)), 1e-300)
-    return variation <= tol, effort_variation <= tol
+    K, n = null.shape[1], origins.shape[0] + cut_points.shape[0]
+    changes = np.empty((K, 6 * n + na))  # every component's and effort's change along each self-stress
+    changes[:, : 6 * n] = full.joint_loads(Wf, null[na:].T, origins, cut_points).reshape(K, 6 * n)
+    changes[:, 6 * n :] = null[:na].T
+    variation = np.square(changes).sum(axis=0)  # squared, against the squared tolerance
+    determinate = variation <= DETERMINACY_TOL**2 * max(float(variation.max()), 1e-300)
+    return determinate[: 6 * n].reshape(n, 6), determinate[6 * n :]
 
 
-def _lu_one(A: np.ndarray, columns: np.ndarray, free: np.ndarray, diagonal: np.ndarray) -> np.ndarray | None:
+def _lu_one(A: np.ndarray, columns: np.ndarray, free: np.ndarray, select: np.ndarray) -> np.ndarray | None:
     """One sample of `lu_null_spaces` on 2-d arrays (`stress_columns`: the square block's columns, the
-    others, their count's range): (cols, cols - nv) an orthonormal basis, None where the bound does not
-    certify it."""
-    lapack = scipy.linalg.lapack
+    others, the permutation matrix putting them first, so that products stand for the gathers):
+    (cols, cols - nv) an orthonormal basis, None where the bound does not certify it."""
     nv, cols = A.shape
-    lu, piv, info = lapack.dgetrf(A[:, columns])
-    if info:
+    gathered = A.dot(select)  # [A[:, columns], A[:, free]]: each entry times 1, plus zeros
+    inverse = _lu_inverse(gathered[:, :nv])
+    if inverse is None or not squared_norm(inverse) * squared_norm(A) < RANK_TOL**-2:
         return None
-    inverse = lapack.dgetri(lu, piv)[0]
-    if not squared_norm(inverse) * squared_norm(A) < RANK_TOL**-2:
-        return None
-    Z = np.zeros((cols, cols - nv))
     if cols == nv:
-        return Z
-    X = inverse.dot(A[:, free])
-    Z[free, diagonal] = 1.0
+        return np.zeros((cols, 0))
+    X = inverse.dot(gathered[:, nv:])
+    Z = select[:, nv:].copy()  # the unit vectors of the free columns
     if not X.any():  # the other columns are zero (a planar mechanism's rows out of its plane): Z is orthonormal
         return Z
-    Z[columns] = -X
+    Z -= select[:, :nv].dot(X)  # -X on the block's columns
     return orthonormal(Z[None])[0]
+
+
+def _lu_inverse(B: np.ndarray) -> np.ndarray | None:
+    """B^-1 by LAPACK getrf and getri; None where B is exactly singular."""
+    lapack = scipy.linalg.lapack
+    lu, piv, info = lapack.dgetrf(B)
+    return None if info else lapack.dgetri(lu, piv)[0]

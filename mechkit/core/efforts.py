@@ -145,7 +145,7 @@ def passive_split(
         return None, False, None
     inverse = lapack.dgetri(lu, piv)[0]
     inverse_size, size, actuated_size = rank.squared_norm(inverse), rank.squared_norm(B), rank.squared_norm(Ja)
-    regular = bool(rank.certified_regular(inverse_size**-0.5, size**0.5, residual))
+    regular = bool(rank.certified_regular(inverse_size**-0.5 if inverse_size else math.inf, size**0.5, residual))
     if (
         not rank.RANK_TOL**2 * (act.size + (1.0 + actuated_size) * inverse_size) * (act.size + size + actuated_size)
         < 1.0
@@ -162,7 +162,7 @@ def passive_split(
     return np.concatenate([ba - JaT.dot(lam), lam]), regular, np.concatenate([-K, N])
 
 
-def square_one(cm: ClosureModel, J: np.ndarray, b: np.ndarray, bound: bool) -> tuple[np.ndarray | None, float]:
+def square_one(A: np.ndarray, b: np.ndarray, bound: bool) -> tuple[np.ndarray | None, float]:
     """One sample of a square system [S^T, J^T] x = b (na + rows = nv): gesv
     (the numbers `square_solution` gives) and, with `bound`, 1 / |A^-1|_F from its LU (getri).
 
@@ -170,8 +170,7 @@ def square_one(cm: ClosureModel, J: np.ndarray, b: np.ndarray, bound: bool) -> t
     (U the orthonormal unactuated basis), so sigma_min(B) >= 1 / |A^-1|_2 >= 1 / |A^-1|_F.
 
     Args:
-        cm: the closure model (its actuation S).
-        J: (rows, nv) closure Jacobian.
+        A: (nv, nv) the matrix [S^T, J^T] (not changed).
         b: (nv,) generalised force the motion needs.
         bound: also compute the bound 1 / |A^-1|_F.
 
@@ -179,10 +178,28 @@ def square_one(cm: ClosureModel, J: np.ndarray, b: np.ndarray, bound: bool) -> t
         x (nv,), None where A is singular or x not finite; the bound (0 without `bound` or where singular).
     """
     lapack = scipy.linalg.lapack
-    lu, piv, x, info = lapack.dgesv(np.concatenate((cm.actuation.T, J.T), axis=1), b)
+    lu, piv, x, info = lapack.dgesv(A, b)
     if info or not (math.isfinite(x.dot(x)) or np.isfinite(x).all()):
         return None, 0.0
-    return x, (rank.squared_norm(lapack.dgetri(lu, piv)[0]) ** -0.5 if bound else 0.0)  # overflow: 0, the SVD decides
+    return x, (rank.inverse_norm(lapack.dgetri(lu, piv)[0]) if bound else 0.0)  # overflow: 0, the SVD decides
+
+
+def square_bounds(A: np.ndarray) -> np.ndarray:
+    """`square_one`'s bound of N square systems: 1 / |A^-1|_F <= sigma_min(A), which also bounds each
+    passive block's smallest singular value.
+
+    Args:
+        A: (N, nv, nv) the matrices [S^T, J^T].
+
+    Returns:
+        (N,) the bounds (0 where some A is singular or its inverse too large to square: no bound).
+    """
+    try:
+        inverse = np.linalg.inv(A)
+    except np.linalg.LinAlgError:
+        return np.zeros(len(A))
+    with np.errstate(over="ignore", under="ignore", divide="ignore"):
+        return np.square(inverse).sum(axis=(1, 2)) ** -0.5  # inf ** -0.5 = 0
 
 
 def singular(A: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -302,6 +319,9 @@ def full_rank_solution(A: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, np.nda
         x (N, cols); the norm (N,) of the part of b outside the range of A; and (N,) 1 / |R^-1|_F <=
         sigma_min(A) (0 where R is singular).
     """
+    if len(A) == 1:  # LAPACK directly: a fraction of np.linalg's overhead on one small matrix
+        x, outside, rho = _full_rank_one(A[0], b[0])
+        return x[None], np.array([outside]), np.array([rho])
     tall = A.shape[1] > A.shape[2]
     Q, R = np.linalg.qr(A if tall else A.transpose(0, 2, 1))  # A = Q R: x = R^-1 Q^T b; A^T = Q R: x = Q R^-T b
     try:
@@ -314,6 +334,25 @@ def full_rank_solution(A: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, np.nda
     except np.linalg.LinAlgError:  # an exactly singular R: no solution here, and no bound
         return np.full((len(A), A.shape[2]), np.nan), np.full(len(A), np.inf), np.zeros(len(A))
     return x, outside, rank.regularity_bounds(R)[0]
+
+
+def _full_rank_one(A: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, float, float]:
+    """One sample of `full_rank_solution`: LAPACK geqrf, ormqr, trtrs and trtri on 2-d arrays."""
+    lapack = scipy.linalg.lapack
+    m, n = A.shape
+    k = min(m, n)
+    qr, tau, _, _ = lapack.dgeqrf(A if m > n else A.T)  # A = Q R (tall) or A^T = Q R
+    R, X = qr[:k], rank.triangular_inverse(qr, k)  # trtrs reads R's upper triangle only
+    if X is None:  # an exactly singular R: no solution here, and no bound
+        return np.full(n, np.nan), math.inf, 0.0
+    if m > n:
+        c = lapack.dormqr("L", "T", qr, tau, b[:, None], max(1, m))[0][:, 0]
+        x = lapack.dtrtrs(R, c[:k])[0]
+        return x, rank.squared_norm(c[k:]) ** 0.5, rank.inverse_norm(X)
+    y = lapack.dtrtrs(R, b, trans=1)[0]  # R^T y = b
+    z = np.zeros(n)
+    z[:k] = y
+    return lapack.dormqr("L", "N", qr, tau, z[:, None], max(1, n))[0][:, 0], 0.0, rank.inverse_norm(X)
 
 
 def _check_reachable(A: np.ndarray, outside: np.ndarray, b: np.ndarray) -> None:

@@ -21,6 +21,7 @@ import pinocchio as pin
 from mechkit.base.exceptions import InvalidParameters
 from mechkit.core import efforts, rank
 from mechkit.core.determinacy import determinacy, determinacy_one, system
+from mechkit.core.inverse_plan import plan, used_placements
 from mechkit.core.model import ClosureData, ClosureModel
 from mechkit.core.passive_solve import idle_count
 from mechkit.core.results import BatchInverseDynamicsResult, InverseDynamicsResult
@@ -63,35 +64,22 @@ def inverse_pass(
     """
     model, data = cm.model, cd.pin
     n, nj = len(Q), model.njoints
-    P = np.empty((n, nj, 3, 4))
-    J = np.empty((n, 6, model.nv))
+    T = np.empty((n, nj, 4, 3))  # Pinocchio's placements as they lie (`InversePlan.placements`): one copy each
+    Jt = np.empty((n, model.nv, 6))  # data.J transposed: its floats as they lie
     tau = np.empty((n, model.nv))
     f = np.empty((n, nj, 6))
     jacobians, rnea = pin.computeJointJacobians, pin.rnea
+    placements, Jw, forces = plan(cm, cd).placements, cd.J.T, cd.f
     for i in range(n):
         q = Q[i]
         jacobians(model, data, q)
-        J[i] = cd.J
-        P[i] = cd.oMi
+        Jt[i] = Jw
+        T[i] = placements
         tau[i] = rnea(model, data, q, V[i], A[i]) if fexts[i] is None else rnea(model, data, q, V[i], A[i], fexts[i])
-        f[i] = cd.f
+        f[i] = forces
+    P = T.transpose(0, 1, 3, 2)
     with np.errstate(under="ignore"):
-        return P, J, tau, tree_wrenches(P, f)
-
-
-def used_placements(cm: ClosureModel, P: np.ndarray) -> np.ndarray:
-    """Homogeneous placements of the joints carrying cut frames.
-
-    Args:
-        cm: the closure model (its kernel's used joints).
-        P: (N, nj, 3, 4) every joint's placement [R | p] in the world.
-
-    Returns:
-        (N, n_used, 4, 4) the used joints' homogeneous placements in the world.
-    """
-    G = np.zeros(P.shape[:1] + (cm.kernel.joints.size, 4, 4))
-    G[..., :3, :], G[..., 3, 3] = P[:, cm.kernel.joints], 1.0
-    return G
+        return P, Jt.transpose(0, 2, 1), tau, tree_wrenches(P, f)
 
 
 def _check_regular(
@@ -221,18 +209,22 @@ def inverse_dynamics_batch(
         world = k.world(G)
         e, Jrows, W = k.rows(world, J, Q)
         residuals = np.linalg.norm(e, axis=-1)
-        x, regular, stresses = (
-            efforts.passive_split_batch(cm, cd, Jrows, b, residuals)
-            if efforts.splits(cm, k.size, distribution)
-            else (None, None, None)
-        )
+        x, regular, stresses, statics, square = None, None, None, None, False
+        if efforts.splits(cm, k.size, distribution):
+            x, regular, stresses = efforts.passive_split_batch(cm, cd, Jrows, b, residuals)
+        elif determinacy_test and na + k.size == cm.nv and n:  # one inverse bounds A and the passive blocks
+            statics = system(cm, Jrows)
+            rho, size = efforts.square_bounds(statics), np.square(Jrows).sum(axis=(1, 2))
+            regular = None if generic_rank is None else rank.certified_regular(rho, np.sqrt(size), residuals)
+            square = bool(np.all(rho * rho > rank.RANK_TOL**2 * (size + np.square(cm.actuation).sum())))
         spins = {} if generic_rank is None else _check_regular(cm, Jrows, J, residuals, generic_rank, idle, regular)
         if spins:
             A = _idle_accelerations(cm, cd, Q, A, b, spins)
             P, J, b, tree = inverse_pass(cm, cd, Q, V, A, [None] * n if fexts is None else fexts)
             if passive is not None:
                 b = b - passive
-        statics = system(cm, Jrows) if x is None or determinacy_test else None
+        if statics is None and (x is None or determinacy_test):
+            statics = system(cm, Jrows)
         if x is None:  # the condition numbers on first read (`BatchInverseDynamicsResult.condition`)
             x = efforts.solve(cm, statics, b, False, distribution)[0]
         origins, cut_points = P[:, 1:, :, 3], k.points(world)
@@ -240,6 +232,8 @@ def inverse_dynamics_batch(
         reactions[:, : tree.shape[1]] += tree
         flags = effort_flags = None
         if determinacy_test:
+            if square and cm.spatial:  # [S^T, J_full^T] square and certified regular: no self-stress
+                stresses = np.zeros((n, na + k.size, 0))
             same = cm.spatial and stresses is not None  # the solve's null spaces are the full rows' ones
             flags, effort_flags = determinacy(
                 cm, cd, G, J, Q, origins, cut_points, stresses if same else None, W if cm.spatial else None
@@ -322,8 +316,12 @@ def _one_sample(
     distribution: str,
     generic_rank: int | None,
 ) -> InverseDynamicsResult:
-    """`inverse_dynamics` without idle spins: the batch's steps on one sample."""
+    """`inverse_dynamics` without idle spins: the batch's steps on one sample, over the data's plan
+    (`mechkit.core.inverse_plan`: the world vectors by one product, buffers reused)."""
     model, data, k = cm.model, cd.pin, cm.kernel
+    p = cd.inverse
+    if p is None or p.cm is not cm:
+        p = plan(cm, cd)
     pin.computeJointJacobians(model, data, q)
     b = (
         pin.rnea(model, data, q, v, a) if fext is None else pin.rnea(model, data, q, v, a, fext)
@@ -331,48 +329,52 @@ def _one_sample(
     if passive is not None:
         b = b - passive
     Jw = cd.J
-    world = k.stacked_world(cd.stacked_placements())
+    p.fill_world()
+    world = p.rows_world
     e, Jrows, W = k.rows(world, Jw, q)
     residual = math.sqrt(e.dot(e))
     na, judged = len(cm.actuated), generic_rank is not None
     x, regular, stresses, square, cond = None, None, None, False, math.nan
+    square_system = na + k.size == cm.nv  # (not where the split applies: it has more rows)
     if efforts.splits(cm, k.size, distribution):
         x, regular, stresses = efforts.passive_split(cm, cd, Jrows, b, residual)
-    elif na + k.size == cm.nv:  # square: its singular values (cond) are not needed to solve it
-        x, rho = efforts.square_one(cm, Jrows, b, judged or determinacy_test)
+    elif square_system:  # square: its singular values (cond) are not needed to solve it
+        p.statics[:, na:] = Jrows.T
+        x, rho = efforts.square_one(p.statics, b, judged or determinacy_test)
         size = rank.squared_norm(Jrows)
         regular = judged and rank.certified_regular(rho, size**0.5, residual)
-        square = determinacy_test and rho * rho > rank.RANK_TOL**2 * (size + rank.squared_norm(cm.actuation))
-    if judged and regular is None and 0 < cm.unactuated.shape[1] <= k.size:
+        square = determinacy_test and rho * rho > rank.RANK_TOL**2 * (size + p.actuation_size)
+    if judged and regular is None and cm.unactuated.shape[1]:  # `_check_regular`'s bound, LAPACK directly
         block = Jrows[:, cm.passive_v] if cm.passive_v is not None else Jrows @ cm.unactuated  # the same numbers
         regular = rank.certified_regular(*rank.block_bounds(block), residual)
     if judged and not regular:
-        _check_regular(
-            cm,
-            Jrows[None],
-            Jw[None],
-            np.array([residual]),
-            generic_rank,
-            False,
-            None if regular is None else np.array([regular]),
-        )
-    A = None
+        certified = None if regular is None else np.array([regular])
+        _check_regular(cm, Jrows[None], Jw[None], np.array([residual]), generic_rank, False, certified)
+    A = None  # with the determinacy test, [S^T, J^T]: the condition number on first read (`InverseDynamicsResult`)
     if x is None:
-        x, cond = efforts.solve(cm, system(cm, Jrows[None]), b[None], determinacy_test, distribution)
-        x, cond = x[0], float(cond[0])
-    elif determinacy_test:  # the condition number on first read (`InverseDynamicsResult.condition`)
-        A = np.concatenate((cm.actuation.T, Jrows.T), axis=1)
-    P = cd.oMi
-    origins, cut_points = P[1:, :, 3], k.points(world)
+        x, cond = efforts.solve(cm, (statics := system(cm, Jrows[None])), b[None], False, distribution)
+        x, cond, A = x[0], float(cond[0]), statics[0] if determinacy_test and math.isnan(cond[0]) else None
+    elif determinacy_test:
+        A = p.statics.copy() if square_system else np.concatenate((cm.actuation.T, Jrows.T), axis=1)
+    origins, cut_points = p.origins, k.points(world)
     reactions = k.joint_loads(W, x[na:], origins, cut_points)
-    reactions[: P.shape[0] - 1] += tree_wrenches(P, cd.f)
+    reactions[: model.njoints - 1] += (p.forces @ p.rotations_t).reshape(-1, 6)  # `tree_wrenches`
     flags = effort_flags = None
     if determinacy_test:
         if square and cm.spatial:  # [S^T, J_full^T] square and certified regular: no self-stress
             stresses = np.zeros((na + k.size, 0))
         same = cm.spatial  # the solve's null space is the full rows' one
         flags, effort_flags = determinacy_one(
-            cm, cd, Jw, q, origins, cut_points, stresses if same else None, W if same else None
+            cm,
+            cd,
+            Jw,
+            q,
+            origins,
+            cut_points,
+            stresses if same else None,
+            W if same else None,
+            p.full_world,
+            p.full_statics,
         )
     return InverseDynamicsResult(
         cm.joint_names, cm.actuated, x[:na], reactions, cm.supports, x[na:], cond, flags, effort_flags, A

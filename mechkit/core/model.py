@@ -256,10 +256,11 @@ class ClosureData:
         kkt_rows: the independent rows the KKT solve last used (None before the first).
         stress_rows: the rows of [S^T, J_full^T] `mechkit.core.determinacy.self_stresses` uses; stress_columns:
             nv of its columns, independent at the first sample, where it has full row rank there, the others
-            and their count's range (else None).
+            and the permutation matrix putting them first (else None).
         split_rows: the rows of the passive block `mechkit.core.efforts.passive_one` factors, and the others.
         partition: the rows, dependent and independent columns of the closure Jacobian the null-space
             forward dynamics factors (`mechkit.core.forward`).
+        inverse: the maps, views and buffers of one sample of inverse dynamics (`mechkit.core.inverse_plan`).
         settings: Pinocchio proximal settings by (mu, accuracy, max_iter), made on first use.
         legacy: Pinocchio's legacy constraints of the cuts (`mechkit.core.pin_constraints`), by method
             ("proximal", "lcaba": each needs its own Pinocchio data), made on first use.
@@ -290,6 +291,7 @@ class ClosureData:
         self.stress_columns: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None
         self.split_rows: tuple[np.ndarray, np.ndarray] | None = None
         self.partition: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None
+        self.inverse = None  # `mechkit.core.inverse_plan.InversePlan`, made on first use
 
     def used_placements(self) -> np.ndarray:
         """`used` filled from the placements `pin.oMi` holds now (the buffer itself: copy to keep it)."""

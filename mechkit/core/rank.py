@@ -15,9 +15,12 @@ from functools import cache
 
 import numpy as np
 import scipy.linalg
+import scipy.linalg.blas
 import scipy.linalg.lapack
 
 from mechkit.base.exceptions import SingularConfiguration
+
+_nrm2 = scipy.linalg.blas.dnrm2
 
 #: Relative singular-value threshold of every numerical rank decision.
 RANK_TOL = 1e-9
@@ -191,7 +194,7 @@ def block_bounds(B: np.ndarray) -> tuple[float, float]:
         X = None if info else scipy.linalg.lapack.dgetri(lu, piv)[0]
     else:
         X = triangular_inverse(scipy.linalg.lapack.dgeqrf(B if m > k else B.T)[0], min(m, k))
-    return (0.0 if X is None else squared_norm(X) ** -0.5), squared_norm(B) ** 0.5  # inf ** -0.5 = 0: singular
+    return (0.0 if X is None else inverse_norm(X)), squared_norm(B) ** 0.5
 
 
 def triangular_inverse(qr: np.ndarray, k: int) -> np.ndarray | None:
@@ -221,9 +224,10 @@ def squared_norm(X: np.ndarray) -> float:
         |X|_F^2, the sum of its squared entries (inf where it overflows, whatever the caller's np.errstate:
         the tests it feeds then fail safe, e.g. an inverse too large certifies nothing).
     """
-    flat = X.ravel(order="K")
-    with np.errstate(over="ignore", under="ignore"):
-        return float(flat.dot(flat))
+    if not X.size:
+        return 0.0
+    norm = _nrm2(X.ravel(order="K"))  # BLAS, scaled: no floating-point error state to set, none raised
+    return norm * norm  # a Python float: inf where it overflows, 0 where it underflows, silently
 
 
 def certified_regular(rho: np.ndarray, size: np.ndarray, residual: np.ndarray) -> np.ndarray:
@@ -240,6 +244,19 @@ def certified_regular(rho: np.ndarray, size: np.ndarray, residual: np.ndarray) -
         True where rho exceeds both `resolvable_singular_value`(size, residual) and `RANK_TOL` size.
     """
     return (rho > resolvable_singular_value(size, residual)) & (rho > RANK_TOL * size)
+
+
+def inverse_norm(X: np.ndarray) -> float:
+    """1 / |X|_F (X the inverse of a matrix: a lower bound on that matrix's smallest singular value).
+
+    Args:
+        X: an array of any shape.
+
+    Returns:
+        1 / |X|_F: 0 where |X|_F overflows (no bound: the caller's test fails safe), inf where it is 0.
+    """
+    norm = _nrm2(X.ravel(order="K")) if X.size else 0.0
+    return 1.0 / norm if norm else math.inf
 
 
 @cache

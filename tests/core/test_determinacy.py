@@ -9,7 +9,7 @@ import pytest
 from mechkit.bench.sampling import make_samples
 from mechkit.catalog import registry
 from mechkit.core import determinacy as det
-from mechkit.core import inverse
+from mechkit.core import inverse, inverse_plan
 from mechkit.core.rank import RANK_TOL
 
 
@@ -18,7 +18,7 @@ def _arrays(m, samples):
     cm, cd = m.closure_model, m.closure_model.create_data()
     Q, V, A = (np.array([getattr(s, k) for s in samples]) for k in "qva")
     P, J, _, _ = inverse.inverse_pass(cm, cd, Q, V, A, [None] * len(Q))
-    G = inverse.used_placements(cm, P)
+    G = inverse_plan.used_placements(cm, P)
     return cm, cd, G, J, Q, P[:, 1:, :, 3], cm.kernel.cut_points(G)
 
 
@@ -80,14 +80,19 @@ def test_self_stresses_fall_back_to_the_svd_where_the_cached_rows_do_not_certify
         np.testing.assert_allclose(g @ g.T, w @ w.T, atol=1e-10)
 
 
-def _one_sample_flags(m, cd, q):
-    """`determinacy_one` at q, after Pinocchio's pass: the fast path (cached columns) where it certifies."""
+def _one_sample_flags(m, cd, q, planned=False):
+    """`determinacy_one` at q, after Pinocchio's pass: the fast path (cached columns) where it certifies; from
+    the gathered placements, or (`planned`) from the world vectors of the inverse dynamics' plan."""
     import pinocchio as pin
 
     cm = m.closure_model
     pin.computeJointJacobians(cm.model, cd.pin, q)
     G = cd.used_placements()
-    return det.determinacy_one(cm, cd, cd.J, q, cd.oMi[1:, :, 3], cm.kernel.cut_points(G))
+    if not planned:
+        return det.determinacy_one(cm, cd, cd.J, q, cd.oMi[1:, :, 3], cm.kernel.cut_points(G))
+    p = inverse_plan.plan(cm, cd)
+    p.fill_world()
+    return det.determinacy_one(cm, cd, cd.J, q, p.origins, cm.kernel.points(p.rows_world), world=p.full_world)
 
 
 @pytest.mark.parametrize("name", registry.names())
@@ -133,11 +138,13 @@ def _five_bar_fold(m):
     return q
 
 
-def test_a_change_of_rank_along_a_motion_is_caught_by_the_fast_determinacy(load_cached):
+@pytest.mark.parametrize("planned", [False, True])
+def test_a_change_of_rank_along_a_motion_is_caught_by_the_fast_determinacy(load_cached, planned):
     """Along prox1 of the five-bar up to the fold where its distal links are collinear, the one-sample
     determinacy (columns cached at the first, regular, sample) gives the SVD's flags at every sample: at
     the fold the cached block no longer certifies, the null space grows by one (a self-stress along the
-    aligned links) and a component that statics fixed before is no longer fixed."""
+    aligned links) and a component that statics fixed before is no longer fixed. From the gathered
+    placements and from the plan's world vectors (`mechkit.core.inverse_plan`, the inverse dynamics' path)."""
     m = load_cached("five_bar")
     cm, cd = m.closure_model, m.closure_model.create_data()
     fold = _five_bar_fold(m)
@@ -146,7 +153,7 @@ def test_a_change_of_rank_along_a_motion_is_caught_by_the_fast_determinacy(load_
     path = [np.asarray(getattr(q, "q", q), dtype=float) for q in path] + [fold]
     dims, found = [], []
     for q in path:
-        flags, efforts = _one_sample_flags(m, cd, q)
+        flags, efforts = _one_sample_flags(m, cd, q, planned)
         G, J = cd.used_placements()[None].copy(), cd.J[None].copy()
         origins, points = cd.oMi[1:, :, 3][None].copy(), cm.kernel.cut_points(G)
         want, want_efforts = _exact_flags(cm, G, J, q[None], origins, points)
