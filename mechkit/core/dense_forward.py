@@ -1,30 +1,32 @@
-"""The exact forward dynamics of large mechanisms: the null-space solve on the partition of the closure
-Jacobian kept on the data, certified by what its answer satisfies instead of by bounds computed first.
+"""The exact forward dynamics without bounds: the null-space solve on the partition of the closure Jacobian
+kept on the data, certified by what its answer satisfies instead of by bounds computed before the solve.
 
-With rows R of J independent and D |R| columns of them forming a regular square block J[R, D], every
-acceleration satisfying the rows R is a = a_p + N z, N = [I; -J[R, D]^-1 J[R, I]] (the other columns I
-free) and a_p = -J[R, D]^-1 gamma_R, and the dynamics on that set is N^T M N z = N^T (tau - nle - M a_p).
-The answer is exact when it satisfies every row, J a + gamma = 0 to the core's tolerance (the caller's
-check): then it solves M a + nle = tau + J_R^T lambda and J a + gamma = 0, which with N^T M N positive
-definite has one solution in a, whatever the rank of J. So no bound on the rank is needed before the
-solve (`mechkit.core.null_space.partitioned_null_space` computes J[R, D]^-1 for one, which on the
-66-coordinate truss costs as much as the solve); the pivots of J[R, D]'s LU only keep the solve
-accurate (`PIVOT_RATIO`). Where the answer misses a row (a row R does not span: the rank changed, or
-gamma leaves the range of J: no rigid answer), the caller hands the state to the bounded path, which
-decides by its bounds or the SVD and refuses what has no rigid answer.
+With rows R of J independent and columns D forming a regular square block J[R, D], the accelerations
+satisfying the rows R are a = a_p + N z, N = [-J[R, D]^-1 J[R, I]; I] (the other columns I free) and
+a_p = -J[R, D]^-1 gamma_R, and the dynamics on them is N^T M N z = N^T (tau - nle - M a_p). An answer
+that the core's check passes on every row (`mechkit.core.forward.check_acceleration`, as it judges every
+method's) solves M a + nle = tau + J_R^T lambda and J a + gamma = 0, which with N^T M N positive definite
+has one solution in a, whatever the rank of J: no bound on the rank is needed first (the bounded path,
+`mechkit.core.null_space.partitioned_null_space`, computes J[R, D]^-1 for one, which on the 66-coordinate
+truss costs a fifth of the call). The pivots of J[R, D]'s LU only keep the solve accurate (`PIVOT_RATIO`).
+An answer the check refuses (a row missed: the rank changed, or gamma leaves the range of J, no rigid
+answer) is handed to the bounded path, which decides by its bounds or the SVD and refuses as before.
 
-Chosen by size, it has no crossover: measured against the bounded path (min of 9 x 100 calls, the
-bench's states), it is faster on every registered mechanism, from the four-bar (nv = 3: 59 vs 71 us)
-to the 9RR-12URU truss (nv = 66: 162 vs 205 us), with the same accelerations to the last bit (the same
-LU and Cholesky), so the exact method ("nullspace") tries it first at every size.
+Chosen by size, it has no crossover: against the bounded path (min of 9 x 100 calls on the bench's
+states, OPENBLAS_NUM_THREADS=1) it is faster on every registered mechanism, from the four-bar (nv = 3:
+59 vs 71 us) to the 9RR-12URU truss (nv = 66: 162 vs 205 us), with the same accelerations to the last bit
+(the same LU and Cholesky): the exact method ("nullspace") tries it first at every size.
 """
 
 from __future__ import annotations
+
+from collections.abc import Callable
 
 import numpy as np
 import scipy.linalg.blas
 import scipy.linalg.lapack
 
+from mechkit.base.exceptions import ConstraintViolated, InconsistentMotion, SingularConfiguration
 from mechkit.core.model import ClosureData
 
 #: Smallest LU pivot of J[R, D], relative to the largest, that the solve accepts (ours: below it the
@@ -32,8 +34,16 @@ from mechkit.core.model import ClosureData
 PIVOT_RATIO = 1e-10
 
 
-def solve(cd: ClosureData, J: np.ndarray, gamma: np.ndarray, M: np.ndarray, f: np.ndarray) -> np.ndarray | None:
-    """The accelerations a = a_p + N z on the data's partition of J, without bounds (see the module docstring).
+def solve(
+    cd: ClosureData,
+    J: np.ndarray,
+    gamma: np.ndarray,
+    M: np.ndarray,
+    f: np.ndarray,
+    check: Callable[[np.ndarray], None],
+) -> np.ndarray | None:
+    """The accelerations a = a_p + N z on the data's partition of J, without bounds, where `check` passes
+    them (see the module docstring).
 
     Args:
         cd: the closure data; its `partition` (rows R, dependent columns D, independent columns I), as
@@ -42,11 +52,14 @@ def solve(cd: ClosureData, J: np.ndarray, gamma: np.ndarray, M: np.ndarray, f: n
         gamma: (rows,) its drift.
         M: (nv, nv) the mass matrix, its upper triangle read (Pinocchio's crba).
         f: (nv,) tau - nle, the efforts less the bias forces (N m or N).
+        check: judges accelerations (nv,) on every row of J, raising `ConstraintViolated`,
+            `InconsistentMotion` or `SingularConfiguration` where they fail.
 
     Returns:
-        (nv,) accelerations satisfying the rows R exactly (rad/s^2 or m/s^2), to be checked on every row
-        by the caller; None without a partition, where J[R, D]'s pivots fall below `PIVOT_RATIO` or where
-        N^T M N is not positive definite (a free motion without inertia).
+        (nv,) the accelerations (rad/s^2 or m/s^2); None (the bounded path decides) without a partition,
+        where J[R, D]'s pivots fall below `PIVOT_RATIO`, where N^T M N is not positive definite (a free
+        motion without inertia) or where `check` refuses them (a row missed: the rank changed, or no rigid
+        answer).
     """
     if cd.partition is None:
         return None
@@ -63,10 +76,13 @@ def solve(cd: ClosureData, J: np.ndarray, gamma: np.ndarray, M: np.ndarray, f: n
             return None
         X = lapack.dgetrs(lu, piv, np.column_stack((JR[:, ind], gamma[rows])))[0]
         N[dep], a[dep] = -X[:, :-1], -X[:, -1]
-    if not ind.size:
-        return a
-    c, info = lapack.dpotrf(N.T.dot(blas.dsymm(1.0, M, N)))
-    if info:
+    if ind.size:
+        c, info = lapack.dpotrf(N.T.dot(blas.dsymm(1.0, M, N)))
+        if info:
+            return None
+        a += N.dot(lapack.dpotrs(c, N.T.dot(f - blas.dsymv(1.0, M, a)))[0])
+    try:
+        check(a)
+    except (ConstraintViolated, InconsistentMotion, SingularConfiguration):
         return None
-    a += N.dot(lapack.dpotrs(c, N.T.dot(f - blas.dsymv(1.0, M, a)))[0])
     return a

@@ -19,13 +19,22 @@ from .no_rigid_answer import inconsistent_state
 from .test_determinacy import _five_bar_fold
 
 
-def _solve(cm, cd, q, v, tau):
+def _unchecked(a):
+    """A check that passes everything: the solve's own answer."""
+
+
+def _checked(J, gamma):
+    """The core's check on every row of J (what the exact method passes)."""
+    return lambda a: forward.check_acceleration(J, a, gamma, "test")
+
+
+def _solve(cm, cd, q, v, tau, checked=False):
     """The rows, drift and the fast solve's accelerations at a state (the partition chosen there if none)."""
     J, gamma, _ = forward._rows_and_drift(cm, cd, q, v, None)
     if cd.partition is None:
         null_space.partitioned_null_space(cd, J, gamma)
-    M = pin.crba(cm.model, cd.pin, q)
-    return J, gamma, dense_forward.solve(cd, J, gamma, M, tau - pin.nonLinearEffects(cm.model, cd.pin, q, v))
+    M, f = pin.crba(cm.model, cd.pin, q), tau - pin.nonLinearEffects(cm.model, cd.pin, q, v)
+    return J, gamma, dense_forward.solve(cd, J, gamma, M, f, _checked(J, gamma) if checked else _unchecked)
 
 
 @pytest.mark.parametrize("name", ["four_bar", "parallel_2t1r", "deployable_9rr12uru"])
@@ -37,7 +46,7 @@ def test_the_accelerations_are_the_kkt_s_and_the_svd_s_and_close_every_row(name,
     m = load_cached(name)
     cm, cd = m.closure_model, m.closure_model.create_data()
     for s in make_samples(m, 4):
-        J, gamma, a = _solve(cm, cd, s.q, s.v, s.tau)
+        J, gamma, a = _solve(cm, cd, s.q, s.v, s.tau, checked=True)
         assert a is not None
         scale = np.abs(a).max()
         kkt = core.forward_dynamics(cm, cm.create_data(), s.q, s.v, s.tau, "kkt").a
@@ -65,7 +74,7 @@ def test_a_state_with_no_rigid_answer_fails_the_rows_and_is_refused(load_cached)
     rows = cd.partition[0]
     terms = np.abs(J).max() * np.abs(a).max() + np.abs(gamma).max()
     assert np.abs(J[rows] @ a + gamma[rows]).max() <= 1e-10 * terms
-    assert not forward._settled(J @ a + gamma, gamma, J, a)
+    assert _solve(cm, cd, q, v, tau, checked=True)[2] is None
     with pytest.raises(InconsistentMotion):
         core.forward_dynamics(cm, cd, q, v, tau, "nullspace")
 
@@ -82,17 +91,16 @@ def test_a_change_of_rank_is_handed_to_the_bounded_path():
     null_space.partitioned_null_space(cd, J, gamma)
     rows = cd.partition[0]
     assert rows.size == 2
-    a = dense_forward.solve(cd, J, gamma, M, f)
-    assert forward._settled(J @ a + gamma, gamma, J, a)
+    a = dense_forward.solve(cd, J, gamma, M, f, _checked(J, gamma))
+    np.testing.assert_allclose(J @ a + gamma, 0.0, atol=1e-14)
     lifted = J.copy()
     lifted[2] += 1e-3 * rng.standard_normal(4)  # rank 3: the rows R no longer span
-    a = dense_forward.solve(cd, lifted, gamma, M, f)
-    assert np.abs(lifted[rows] @ a + gamma[rows]).max() <= 1e-14 and not forward._settled(
-        lifted @ a + gamma, gamma, lifted, a
-    )
+    a = dense_forward.solve(cd, lifted, gamma, M, f, _unchecked)
+    assert np.abs(lifted[rows] @ a + gamma[rows]).max() <= 1e-14 and np.abs(lifted @ a + gamma).max() > 1e-6
+    assert dense_forward.solve(cd, lifted, gamma, M, f, _checked(lifted, gamma)) is None
     dropped = J.copy()
     dropped[rows[1]] = 2.0 * dropped[rows[0]]  # the rows R of rank 1
-    assert dense_forward.solve(cd, dropped, gamma, M, f) is None
+    assert dense_forward.solve(cd, dropped, gamma, M, f, _unchecked) is None
 
 
 def test_at_the_five_bar_fold_the_answer_is_the_bounded_path_s(load_cached, monkeypatch):
@@ -105,8 +113,7 @@ def test_at_the_five_bar_fold_the_answer_is_the_bounded_path_s(load_cached, monk
     regular = np.asarray(getattr(q := m.assemble({"prox1": 0.5, "prox2": prox2}), "q", q), dtype=float)
     fold, tau, v = _five_bar_fold(m), np.linspace(1.0, -1.0, cm.nv), np.zeros(cm.nv)
     _solve(cm, cd, regular, v, tau)
-    J, gamma, a = _solve(cm, cd, fold, v, tau)
-    assert a is not None and forward._settled(J @ a + gamma, gamma, J, a)
+    assert _solve(cm, cd, fold, v, tau, checked=True)[2] is not None
     with_fast = core.forward_dynamics(cm, cd, fold, v, tau, "nullspace").a
     monkeypatch.setattr(dense_forward, "solve", lambda *args: None)
     bounded = core.forward_dynamics(cm, cm.create_data(), fold, v, tau, "nullspace").a
@@ -119,10 +126,10 @@ def test_declines_a_singular_block_and_a_free_motion_without_inertia():
     J = np.array([[1.0, 0.0, 0.0], [0.0, 1.0, 1.0]])
     cd = SimpleNamespace(partition=(np.array([0, 1]), np.array([0, 1]), np.array([2])))
     gamma, f = np.array([0.5, -1.0]), np.array([1.0, 2.0, 3.0])
-    a = dense_forward.solve(cd, J, gamma, np.eye(3), f)
+    a = dense_forward.solve(cd, J, gamma, np.eye(3), f, _checked(J, gamma))
     np.testing.assert_allclose(J @ a + gamma, 0.0, atol=1e-15)
     np.testing.assert_allclose(a, [-0.5, 0.0, 1.0], atol=1e-15)  # a = f + J^T lambda, lambda = (-1.5, -2)
     singular = np.array([[1.0, 0.0, 0.0], [2.0, 0.0, 1.0]])
-    assert dense_forward.solve(cd, singular, gamma, np.eye(3), f) is None
-    assert dense_forward.solve(cd, J, gamma, np.diag([1.0, 0.0, 0.0]), f) is None
-    assert dense_forward.solve(SimpleNamespace(partition=None), J, gamma, np.eye(3), f) is None
+    assert dense_forward.solve(cd, singular, gamma, np.eye(3), f, _unchecked) is None
+    assert dense_forward.solve(cd, J, gamma, np.diag([1.0, 0.0, 0.0]), f, _unchecked) is None
+    assert dense_forward.solve(SimpleNamespace(partition=None), J, gamma, np.eye(3), f, _unchecked) is None
