@@ -47,10 +47,11 @@ def solve(
 
     Args:
         cd: the closure data; its `partition` (rows R, dependent columns D, independent columns I), as
-            `mechkit.core.null_space.partitioned_null_space` chose it (None: nothing is solved).
+            `mechkit.core.null_space.partitioned_null_space` chose it (None: nothing is solved), and the
+            `dense_plan` made from it on first use.
         J: (rows, nv) the closure Jacobian.
         gamma: (rows,) its drift.
-        M: (nv, nv) the mass matrix, its upper triangle read (Pinocchio's crba).
+        M: (nv, nv) the mass matrix, its upper triangle read (Pinocchio's crba, C order).
         f: (nv,) tau - nle, the efforts less the bias forces (N m or N).
         check: judges accelerations (nv,) on every row of J, raising `ConstraintViolated`,
             `InconsistentMotion` or `SingularConfiguration` where they fail.
@@ -63,26 +64,43 @@ def solve(
     """
     if cd.partition is None:
         return None
-    rows, dep, ind = cd.partition
+    if cd.dense_plan is None or cd.dense_plan[0] is not cd.partition:
+        cd.dense_plan = _plan(cd.partition, *J.shape)
+    _, index, template = cd.dense_plan
     lapack, blas = scipy.linalg.lapack, scipy.linalg.blas
-    nv = J.shape[1]
-    a, N = np.zeros(nv), np.zeros((nv, ind.size))
-    N[ind, np.arange(ind.size)] = 1.0
-    if rows.size:
-        JR = J[rows]
-        lu, piv, info = lapack.dgetrf(JR[:, dep])
+    r, k = index.shape[1], template.shape[1] - 1
+    # [N | a_p] (nv, k + 1): its rows D solve J[R, D] [N_D | a_D] = -[J[R, I] | gamma_R], its rows I are [I | 0]
+    Na = template.copy()
+    if r:
+        gathered = np.concatenate((J.ravel(), gamma)).take(index)  # (nv + 1, r): the block's columns, then the rest
+        lu, piv, info = lapack.dgetrf(gathered[:r].T, overwrite_a=1)
         pivots = np.abs(lu.diagonal())
         if info or not pivots.min() >= PIVOT_RATIO * pivots.max():
             return None
-        X = lapack.dgetrs(lu, piv, np.column_stack((JR[:, ind], gamma[rows])))[0]
-        N[dep], a[dep] = -X[:, :-1], -X[:, -1]
-    if ind.size:
-        c, info = lapack.dpotrf(N.T.dot(blas.dsymm(1.0, M, N)))
+        Na[cd.partition[1]] = lapack.dgetrs(lu, piv, -gathered[r:].T, overwrite_b=1)[0]
+    a = Na[:, k].copy()
+    if k:
+        N = Na[:, :k]
+        MNa = N.T.dot(blas.dsymm(1.0, M.T, Na, lower=1))  # (k, k + 1): N^T M N, then N^T M a_p (M.T: F order)
+        c, info = lapack.dpotrf(MNa[:, :k])
         if info:
             return None
-        a += N.dot(lapack.dpotrs(c, N.T.dot(f - blas.dsymv(1.0, M, a)))[0])
+        a += N.dot(lapack.dpotrs(c, N.T.dot(f) - MNa[:, k])[0])
     try:
         check(a)
     except (ConstraintViolated, InconsistentMotion, SingularConfiguration):
         return None
     return a
+
+
+def _plan(partition: tuple[np.ndarray, np.ndarray, np.ndarray], size: int, nv: int) -> tuple:
+    """(partition, index, template) of `solve` for J of `size` rows and `nv` columns: index (nv + 1, |R|)
+    gathers from [J.ravel(), gamma] the columns D of the rows R, then the columns I, then gamma_R
+    (transposed: each slice's .T in Fortran order); template (nv, |I| + 1) is [N | a_p] with the rows I
+    set, [I | 0], and the rows D zero."""
+    rows, dep, ind = partition
+    columns = np.concatenate((dep, ind))
+    index = np.concatenate((columns[:, None] + nv * rows[None, :], size * nv + rows[None, :]), axis=0)
+    template = np.zeros((nv, ind.size + 1))
+    template[ind, np.arange(ind.size)] = 1.0
+    return partition, index, template

@@ -86,7 +86,7 @@ def test_a_change_of_rank_is_handed_to_the_bounded_path():
     rng = np.random.default_rng(5)
     J = rng.standard_normal((3, 4))
     J[2] = J[0] + J[1]
-    cd = SimpleNamespace(partition=None)
+    cd = SimpleNamespace(partition=None, dense_plan=None)
     gamma, M, f = J @ rng.standard_normal(4), np.diag([1.0, 2.0, 3.0, 4.0]), rng.standard_normal(4)
     null_space.partitioned_null_space(cd, J, gamma)
     rows = cd.partition[0]
@@ -124,7 +124,7 @@ def test_declines_a_singular_block_and_a_free_motion_without_inertia():
     """Synthetic rows: a partition whose square block is singular gives None (the pivots), as does a mass
     matrix with no inertia along the free motion (N^T M N not positive definite); no partition, None."""
     J = np.array([[1.0, 0.0, 0.0], [0.0, 1.0, 1.0]])
-    cd = SimpleNamespace(partition=(np.array([0, 1]), np.array([0, 1]), np.array([2])))
+    cd = SimpleNamespace(partition=(np.array([0, 1]), np.array([0, 1]), np.array([2])), dense_plan=None)
     gamma, f = np.array([0.5, -1.0]), np.array([1.0, 2.0, 3.0])
     a = dense_forward.solve(cd, J, gamma, np.eye(3), f, _checked(J, gamma))
     np.testing.assert_allclose(J @ a + gamma, 0.0, atol=1e-15)
@@ -132,4 +132,7 @@ def test_declines_a_singular_block_and_a_free_motion_without_inertia():
     singular = np.array([[1.0, 0.0, 0.0], [2.0, 0.0, 1.0]])
     assert dense_forward.solve(cd, singular, gamma, np.eye(3), f, _unchecked) is None
     assert dense_forward.solve(cd, J, gamma, np.diag([1.0, 0.0, 0.0]), f, _unchecked) is None
-    assert dense_forward.solve(SimpleNamespace(partition=None), J, gamma, np.eye(3), f, _unchecked) is None
+    assert (
+        dense_forward.solve(SimpleNamespace(partition=None, dense_plan=None), J, gamma, np.eye(3), f, _unchecked)
+        is None
+    )
