@@ -3,14 +3,17 @@ kept on the data, certified by what its answer satisfies instead of by bounds co
 
 With rows R of J independent and columns D forming a regular square block J[R, D], the accelerations
 satisfying the rows R are a = a_p + N z, N = [-J[R, D]^-1 J[R, I]; I] (the other columns I free) and
-a_p = -J[R, D]^-1 gamma_R, and the dynamics on them is N^T M N z = N^T (tau - nle - M a_p). An answer
-that the core's check passes on every row (`mechkit.core.forward.check_acceleration`, as it judges every
-method's) solves M a + nle = tau + J_R^T lambda and J a + gamma = 0, which with N^T M N positive definite
-has one solution in a, whatever the rank of J: no bound on the rank is needed first (the bounded path,
-`mechkit.core.null_space.partitioned_null_space`, computes J[R, D]^-1 for one, which on the 66-coordinate
-truss costs a fifth of the call). The pivots of J[R, D]'s LU only keep the solve accurate (`PIVOT_RATIO`).
-An answer the check refuses (a row missed: the rank changed, or gamma leaves the range of J, no rigid
-answer) is handed to the bounded path, which decides by its bounds or the SVD and refuses as before.
+a_p = -J[R, D]^-1 gamma_R, and the dynamics on them is N^T M N z = N^T (tau - nle - M a_p). The
+bounded path (`mechkit.core.null_space.partitioned_null_space`) proves the rank of the rows R by a bound on
+J[R, D]^-1, which on the 66-coordinate truss costs a fifth of the call; this solve replaces that bound by a
+pivot test on the LU it factors anyway (`PIVOT_RATIO`) and keeps the bounded path's two other tests
+(`mechkit.core.null_space.solutions_hold`: J N = 0, so N spans every solution, and gamma in the range of
+J, so a state with no rigid answer is refused as before), then requires the answer to close every row to
+the core's acceleration tolerance (the strict case of `mechkit.core.forward.check_acceleration`). Such an
+answer solves M a + nle = tau + J_R^T lambda and J a + gamma = 0, which with N^T M N positive definite
+has one solution in a. A state where a test fails (a rank lost or gained, no rigid answer, a state off
+the manifold where a redundant row's drift is not cancelled) is handed to the bounded path, which decides
+by its bounds, its drift allowance or the SVD as before (the fast solve's time then adds to its own).
 
 Chosen by size, it has no crossover: against the bounded path (min of 9 x 100 calls on the bench's
 states, OPENBLAS_NUM_THREADS=1) it is faster on every registered mechanism, from the four-bar (nv = 3:
@@ -20,30 +23,32 @@ states, OPENBLAS_NUM_THREADS=1) it is faster on every registered mechanism, from
 
 from __future__ import annotations
 
-from collections.abc import Callable
-
 import numpy as np
 import scipy.linalg.blas
 import scipy.linalg.lapack
 
-from mechkit.base.exceptions import ConstraintViolated, InconsistentMotion, SingularConfiguration
+from mechkit.core import rank
 from mechkit.core.model import ClosureData
+from mechkit.core.null_space import solutions_hold
 
-#: Smallest LU pivot of J[R, D], relative to the largest, that the solve accepts (ours: below it the
-#: state goes to the bounded path, whose bound decides whether the rows R are still independent).
-PIVOT_RATIO = 1e-10
+#: Smallest LU pivot of J[R, D], relative to the largest, that the solve accepts (ours): three decades above
+#: `rank.RANK_TOL`, where the SVD would judge a rank lost; measured at the bench's states, the pivot ratio is
+#: 20-60 times sigma_min(J[R, D]) / sigma_1(J) (truss 2e-4 vs 4e-6, tetrahedral unit 8e-5 vs 4.5e-6). Below
+#: it the bounded path decides.
+PIVOT_RATIO = 1e-6
 
 
 def solve(
     cd: ClosureData,
     J: np.ndarray,
     gamma: np.ndarray,
+    drift: float,
     M: np.ndarray,
     f: np.ndarray,
-    check: Callable[[np.ndarray], None],
+    tol: float,
 ) -> np.ndarray | None:
-    """The accelerations a = a_p + N z on the data's partition of J, without bounds, where `check` passes
-    them (see the module docstring).
+    """The accelerations a = a_p + N z on the data's partition of J, without bounds, where they close every
+    row to `tol` (see the module docstring).
 
     Args:
         cd: the closure data; its `partition` (rows R, dependent columns D, independent columns I), as
@@ -51,16 +56,17 @@ def solve(
             `dense_plan` made from it on first use.
         J: (rows, nv) the closure Jacobian.
         gamma: (rows,) its drift.
+        drift: the state's closure residual over the rows' lever arm (`mechkit.core.rank.range_limit`).
         M: (nv, nv) the mass matrix, its upper triangle read (Pinocchio's crba, C order).
         f: (nv,) tau - nle, the efforts less the bias forces (N m or N).
-        check: judges accelerations (nv,) on every row of J, raising `ConstraintViolated`,
-            `InconsistentMotion` or `SingularConfiguration` where they fail.
+        tol: the core's acceleration tolerance (`mechkit.core.forward.ACCELERATION_TOL`): every row must
+            close to max |J a + gamma| <= tol (max_i |J_i| max |a| + max |gamma|).
 
     Returns:
         (nv,) the accelerations (rad/s^2 or m/s^2); None (the bounded path decides) without a partition,
         where J[R, D]'s pivots fall below `PIVOT_RATIO`, where N^T M N is not positive definite (a free
-        motion without inertia) or where `check` refuses them (a row missed: the rank changed, or no rigid
-        answer).
+        motion without inertia) or where they do not close every row to `tol` (a row missed: the rank
+        changed, gamma leaves the range of J (no rigid answer), or the state is off the manifold).
     """
     if cd.partition is None:
         return None
@@ -78,19 +84,30 @@ def solve(
         if info or not pivots.min() >= PIVOT_RATIO * pivots.max():
             return None
         Na[cd.partition[1]] = lapack.dgetrs(lu, piv, -gathered[r:].T, overwrite_b=1)[0]
-    a = Na[:, k].copy()
+    a, N = Na[:, k].copy(), Na[:, :k]
+    if not solutions_hold(J, gamma, a, N, drift):
+        return None
     if k:
-        N = Na[:, :k]
         MNa = N.T.dot(blas.dsymm(1.0, M.T, Na, lower=1))  # (k, k + 1): N^T M N, then N^T M a_p (M.T: F order)
         c, info = lapack.dpotrf(MNa[:, :k])
         if info:
             return None
         a += N.dot(lapack.dpotrs(c, N.T.dot(f) - MNa[:, k])[0])
+    return a if _closes(J, a, gamma, tol) else None
+
+
+def _closes(J: np.ndarray, a: np.ndarray, gamma: np.ndarray, tol: float) -> bool:
+    """Whether dots show max |r| <= tol (max_i |J_i| max |a| + max |gamma|), r = J a + gamma, as |r|^2 rows <=
+    tol^2 |gamma|^2 or |r|^2 rows nv <= tol^2 |J|_F^2 |a|^2 implies (a NaN or inf fails both): the strict case
+    of `mechkit.core.forward.check_acceleration`, with no allowance for drift or for rows left unsolved."""
     try:
-        check(a)
-    except (ConstraintViolated, InconsistentMotion, SingularConfiguration):
-        return None
-    return a
+        r = J.dot(a) + gamma
+        rr = float(r.dot(r)) * r.size
+        return rr <= tol * tol * float(gamma.dot(gamma)) or rr * a.size <= tol * tol * rank.squared_norm(J) * float(
+            a.dot(a)
+        )
+    except FloatingPointError:  # inf - inf under np.errstate(all="raise"): not shown
+        return False
 
 
 def _plan(partition: tuple[np.ndarray, np.ndarray, np.ndarray], size: int, nv: int) -> tuple:

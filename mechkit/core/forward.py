@@ -303,21 +303,18 @@ def _kkt(cm, cd, q, v, tau, baumgarte) -> ForwardDynamicsResult:
 
 
 def _nullspace(cm, cd, q, v, tau, baumgarte) -> ForwardDynamicsResult:
-    """The exact solution on the constraint manifold's tangent space, a = a_p + N z, N a basis of the null space of
-    J and the reduced mass matrix N^T M N: first `mechkit.core.dense_forward`'s solve (no bounds; kept where the
-    check passes it), else N from a partition of J whose bounds certify the SVD's decisions, else the SVD."""
-    J, gamma, drift = _rows_and_drift(cm, cd, q, v, baumgarte)
-    M = _mass_matrix(cm, cd.pin, q)
-    nle, blas, what = pin.nonLinearEffects(cm.model, cd.pin, q, v), scipy.linalg.blas, "forward dynamics (null space)"
-    a = dense_forward.solve(cd, J, gamma, M, tau - nle, lambda x: check_acceleration(J, x, gamma, what, drift=drift))
-    if a is not None:
+    """a = a_p + N z, N a basis of the null space of J, N^T M N the reduced mass matrix: `dense_forward`'s solve where
+    it closes every row, else N from a partition of J whose bounds certify the SVD's decisions, else the SVD."""
+    (J, gamma, drift), M = _rows_and_drift(cm, cd, q, v, baumgarte), _mass_matrix(cm, cd.pin, q)  # rows first
+    nle, blas = pin.nonLinearEffects(cm.model, cd.pin, q, v), scipy.linalg.blas
+    if (a := dense_forward.solve(cd, J, gamma, drift, M, tau - nle, ACCELERATION_TOL)) is not None:
         return ForwardDynamicsResult(a, blas.dsymv(1.0, M, a) + nle - tau)
     a_p, N = null_space(cd, J, gamma, drift)
     _, z, info = scipy.linalg.lapack.dposv(N.T.dot(blas.dsymm(1.0, M, N)), N.T.dot(tau - nle - blas.dsymv(1.0, M, a_p)))
     if info:
         raise SingularConfiguration(float("inf"), "reduced mass matrix N^T M N: a free motion carries no inertia")
     a, solved = a_p + N.dot(z), cd.partition[0] if cd.partition is not None else None
-    check_acceleration(J, a, gamma, what, drift=drift, solved=solved)
+    check_acceleration(J, a, gamma, "forward dynamics (null space)", drift=drift, solved=solved)
     return ForwardDynamicsResult(a, blas.dsymv(1.0, M, a) + nle - tau)
 
 
