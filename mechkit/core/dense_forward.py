@@ -15,10 +15,12 @@ has one solution in a. A state where a test fails (a rank lost or gained, no rig
 the manifold where a redundant row's drift is not cancelled) is handed to the bounded path, which decides
 by its bounds, its drift allowance or the SVD as before (the fast solve's time then adds to its own).
 
-Chosen by size, it has no crossover: against the bounded path (min of 9 x 100 calls on the bench's
-states, OPENBLAS_NUM_THREADS=1) it is faster on every registered mechanism, from the four-bar (nv = 3:
-59 vs 71 us) to the 9RR-12URU truss (nv = 66: 162 vs 205 us), with the same accelerations to the last bit
-(the same LU and Cholesky): the exact method ("nullspace") tries it first at every size.
+Chosen by size, it has no crossover: against the bounded path alone (the same states, calls alternated,
+minima, OPENBLAS_NUM_THREADS=1) it is faster on each of the eight registered mechanisms, nv = 3 to 66
+(four-bar 64 vs 77 us, 9RR-12URU truss 237 vs 302 us on a loaded machine; the truss's whole
+`Mechanism.forward_dynamics(..., "nullspace")` 186-194 vs 227-234 us in the bench's runs), with the same
+accelerations to 2e-13 relative (the same LU and Cholesky, operands ordered differently): the exact method
+("nullspace") tries it first at every size.
 """
 
 from __future__ import annotations

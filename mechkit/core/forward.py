@@ -9,7 +9,8 @@ J a + gamma = 0, by four methods with tolerances relative to the model.
 - "nullspace": the exact reference: the accelerations that satisfy every row, a = a_p + N z, with N a
   basis of the null space of J and the reduced mass matrix N^T M N; N from one LU of a square block of
   J where bounds certify the rank and the consistency the SVD would decide (the method for many
-  loops), else from the SVD (`mechkit.core.null_space`).
+  loops), else from the SVD (`mechkit.core.null_space`); first, that LU without the rank bound, its answer
+  kept where it passes the other tests and closes every row (`mechkit.core.dense_forward`).
 
 Every result is checked against J a + gamma = 0 on the rows its method solved: a violation beyond
 `ACCELERATION_TOL` is an error (`ConstraintViolated`), never a return value, and a state whose gamma
