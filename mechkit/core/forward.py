@@ -9,7 +9,8 @@ J a + gamma = 0, by four methods with tolerances relative to the model.
 - "nullspace": the exact reference: the accelerations that satisfy every row, a = a_p + N z, with N a
   basis of the null space of J and the reduced mass matrix N^T M N; N from one LU of a square block of
   J where bounds certify the rank and the consistency the SVD would decide (the method for many
-  loops), else from the SVD (`mechkit.core.null_space`).
+  loops), else from the SVD (`mechkit.core.null_space`); first, that LU without the rank bound, its answer
+  kept where it passes the other tests and closes every row (`mechkit.core.dense_forward`).
 
 Every result is checked against J a + gamma = 0 on the rows its method solved: a violation beyond
 `ACCELERATION_TOL` is an error (`ConstraintViolated`), never a return value, and a state whose gamma
@@ -30,7 +31,7 @@ import scipy.linalg.blas
 import scipy.linalg.lapack
 
 from mechkit.base.exceptions import ConstraintViolated, InconsistentMotion, SingularConfiguration
-from mechkit.core import rank
+from mechkit.core import dense_forward, rank
 from mechkit.core.model import ClosureData, ClosureModel
 from mechkit.core.null_space import null_space
 from mechkit.core.pin_constraints import LegacyConstraints, expresses, proximal_settings
@@ -298,20 +299,17 @@ def _kkt(cm, cd, q, v, tau, baumgarte) -> ForwardDynamicsResult:
 
 
 def _nullspace(cm, cd, q, v, tau, baumgarte) -> ForwardDynamicsResult:
-    """The exact solution on the constraint manifold's tangent space, a = a_p + N z, N a basis of the
-    null space of J and the reduced mass matrix N^T M N: N from a partition of J where its bounds
-    certify the SVD's decisions, else from the SVD (`mechkit.core.null_space`)."""
-    J, gamma, drift = _rows_and_drift(cm, cd, q, v, baumgarte)
-    M = _mass_matrix(cm, cd.pin, q)
-    nle = pin.nonLinearEffects(cm.model, cd.pin, q, v)
+    """a = a_p + N z, N a basis of the null space of J, N^T M N the reduced mass matrix: `dense_forward`'s solve where
+    it closes every row, else N from a partition of J whose bounds certify the SVD's decisions, else the SVD."""
+    (J, gamma, drift), M = _rows_and_drift(cm, cd, q, v, baumgarte), _mass_matrix(cm, cd.pin, q)  # rows first
+    nle, blas = pin.nonLinearEffects(cm.model, cd.pin, q, v), scipy.linalg.blas
+    if (a := dense_forward.solve(cd, J, gamma, drift, M, tau - nle, ACCELERATION_TOL)) is not None:
+        return ForwardDynamicsResult(a, blas.dsymv(1.0, M, a) + nle - tau)
     a_p, N = null_space(cd, J, gamma, drift)
-    blas = scipy.linalg.blas
-    MN = blas.dsymm(1.0, M, N)
-    _, z, info = scipy.linalg.lapack.dposv(N.T.dot(MN), N.T.dot(tau - nle - blas.dsymv(1.0, M, a_p)))
+    _, z, info = scipy.linalg.lapack.dposv(N.T.dot(blas.dsymm(1.0, M, N)), N.T.dot(tau - nle - blas.dsymv(1.0, M, a_p)))
     if info:
         raise SingularConfiguration(float("inf"), "reduced mass matrix N^T M N: a free motion carries no inertia")
-    a = a_p + N.dot(z)
-    solved = cd.partition[0] if cd.partition is not None else None
+    a, solved = a_p + N.dot(z), cd.partition[0] if cd.partition is not None else None
     check_acceleration(J, a, gamma, "forward dynamics (null space)", drift=drift, solved=solved)
     return ForwardDynamicsResult(a, blas.dsymv(1.0, M, a) + nle - tau)
 

@@ -254,6 +254,7 @@ class ClosureData:
         used: (n_used, 4, 4) scratch: homogeneous placements of the joints carrying cut frames
             (`used_placements`; a transposed view of a buffer, as `ClosureKernel.world` reads it).
         kkt_rows: the independent rows the KKT solve last used (None before the first).
+        dense_plan: the gather index and basis template of `mechkit.core.dense_forward` for one `partition`.
         stress_rows: the rows of [S^T, J_full^T] `mechkit.core.determinacy.self_stresses` uses; stress_columns:
             nv of its columns, independent at the first sample, where it has full row rank there, the others
             and the permutation matrix putting them first (else None).
@@ -285,6 +286,7 @@ class ClosureData:
         stacked[:, 3, 3] = 1.0
         self._stacked, self._flat, self.used = stacked[:, :, :3], stacked.reshape(4 * n, 4), stacked.transpose(0, 2, 1)
         self.kkt_rows: np.ndarray | None = None
+        self.dense_plan: tuple | None = None
         self.legacy: dict = {}
         self.settings: dict = {}
         self.stress_rows: np.ndarray | None = None

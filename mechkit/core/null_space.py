@@ -80,10 +80,32 @@ def partitioned_null_space(
             return None
         X = lapack.dgetrs(lu, piv, np.column_stack((JR[:, ind], gamma[rows])))[0]  # the LU's solve: backward stable
         N[dep], a_p[dep] = -X[:, :-1], -X[:, -1]
+    return (a_p, N) if solutions_hold(J, gamma, a_p, N, drift, size) else None
+
+
+def solutions_hold(
+    J: np.ndarray, gamma: np.ndarray, a_p: np.ndarray, N: np.ndarray, drift: float, size: float | None = None
+) -> bool:
+    """The tests of `partitioned_null_space` after its solve: N = [I; -J[R, D]^-1 J[R, I]] (up to the order of
+    the columns) spans all of J's null space where the rows R have rank r, sigma_(r+1)(J) <= |J N|_F <=
+    `rank.RANK_TOL` |J|_F / sqrt(min(rows, nv)); and gamma lies in the range of J to `rank.range_limit`.
+
+    Args:
+        J: (rows, nv) the closure Jacobian.
+        gamma: (rows,) its drift.
+        a_p: (nv,) a particular solution of the rows R.
+        N: (nv, nv - r) its basis, containing an identity block (so sigma_min(N) >= 1).
+        drift: the state's closure residual over the rows' lever arm (`rank.range_limit`).
+        size: |J|_F^2 where the caller has it.
+
+    Returns:
+        Whether both hold (then every solution of J a + gamma = 0 is a_p + N z).
+    """
+    size = rank.squared_norm(J) if size is None else size
     if not rank.squared_norm(J.dot(N)) * min(J.shape) <= rank.RANK_TOL**2 * size:
-        return None
+        return False
     outside, g = J.dot(a_p) + gamma, float(np.sqrt(gamma.dot(gamma)))
-    return (a_p, N) if math.sqrt(outside.dot(outside)) <= rank.range_limit(g, g, drift) else None
+    return math.sqrt(outside.dot(outside)) <= rank.range_limit(g, g, drift)
 
 
 def svd_null_space(J: np.ndarray, gamma: np.ndarray, drift: float = 0.0) -> tuple[np.ndarray, np.ndarray]:
