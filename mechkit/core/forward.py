@@ -196,6 +196,8 @@ def _proximal(cm, cd, q, v, tau, mu, accuracy, max_iter, baumgarte) -> ForwardDy
     settings = (default and cd.settings.get("proximal")) or _settings(cm, cd, "proximal", mu, accuracy, max_iter)
     a, lam, J, rhs = legacy.dynamics(q, v, tau, settings)  # rhs = -gamma
     if not _closes(J, a, rhs):
+        if not isfinite(a @ a):  # a NaN or inf state: refused before the drift is computed from it
+            raise SingularConfiguration(inf, "forward dynamics (proximal) returned non-finite accelerations")
         drift = _rows_and_drift(cm, cd, q, v, None)[2]  # mechkit's rows: cd.pin, not the legacy data
         scale = partial(_unconstrained_scale, cm, cd.pin, q, v, tau)  # not a lambda: no closure cells in the call
         check_acceleration(J, a, -rhs, "forward dynamics (proximal)", scale, drift)
