@@ -133,10 +133,14 @@ class Stepper:
         fun: dy/dt = fun(t, y).
         t_end: the end time (s).
         options: how to step.
+        jacobian: () -> the Jacobian (t, y) -> d fun/dy that "Radau" uses from the next restart on, or None
+            for scipy's differences (`mechkit.simulation.jacobian`); None: always scipy's.
     """
 
-    def __init__(self, fun: Function, t_end: float, options: Options):
-        self.fun, self.t_end, self.options = fun, t_end, options
+    def __init__(
+        self, fun: Function, t_end: float, options: Options, jacobian: Callable[[], Callable | None] | None = None
+    ):
+        self.fun, self.t_end, self.options, self.jacobian = fun, t_end, options, jacobian
         self.solver = None
         self.h: float | None = options.dt
 
@@ -149,6 +153,8 @@ class Stepper:
         """
         o, remaining = self.options, self.t_end - t
         first = None if self.h is None else min(self.h, remaining)
+        jac = self.jacobian() if o.method == "Radau" and self.jacobian is not None else None
+        extra = {"jac": jac} if jac is not None else {}
         if isinstance(self.solver, FixedStep):
             self.solver.reset(t, y)
         elif o.method in FIXED_ONLY:
@@ -156,11 +162,11 @@ class Stepper:
             self.solver = METHODS[o.method](self.fun, t, y, self.t_end, max_step=o.dt, **extra)
         elif o.dt is None:
             self.solver = METHODS[o.method](
-                self.fun, t, y, self.t_end, first_step=first, max_step=o.max_step, rtol=o.rtol, atol=o.atol
+                self.fun, t, y, self.t_end, first_step=first, max_step=o.max_step, rtol=o.rtol, atol=o.atol, **extra
             )
         else:
             self.solver = METHODS[o.method](
-                self.fun, t, y, self.t_end, first_step=first, max_step=o.dt, rtol=1.0, atol=FIXED_ATOL
+                self.fun, t, y, self.t_end, first_step=first, max_step=o.dt, rtol=1.0, atol=FIXED_ATOL, **extra
             )
 
     def step(self) -> tuple[float, np.ndarray]:
