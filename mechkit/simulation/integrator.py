@@ -11,7 +11,13 @@ offered: their history cannot survive the projection after every step.
 
 After every accepted step the caller projects the state onto the constraint manifold; the solver is
 then restarted from the projected state with the step size it had chosen (a Runge-Kutta pair carries
-no other memory; one extra evaluation per step, the first stage at the new state). A fixed step `dt`
+no other memory; one extra evaluation per step, the first stage at the new state). Radau (Radau IIA,
+implicit) carries more: its Jacobian, the LU factors of its Newton matrices, its step controller's history
+and the last step's collocation polynomial, from which it predicts the next step's Newton start. Where it
+restarts at the end of its own step (no event cut the step short), it keeps them and only takes the
+projected state and its derivative, its Jacobian marked stale (re-evaluated where Newton converges
+slowly, as scipy does between steps): a new solver would evaluate a Jacobian at every step and start
+Newton from zero. A fixed step `dt`
 runs the same pair with its error control off (first and largest step dt, an absolute tolerance of 1e300): the
 speed comparison with MuJoCo and the ten-bar's step-size studies use it. The fixed-step methods
 (`mechkit.simulation.fixed_step`: the classic RK4, MuJoCo's RK4; semi-implicit Euler, MuJoCo's Euler; the
@@ -143,6 +149,7 @@ class Stepper:
         self.fun, self.t_end, self.options, self.jacobian = fun, t_end, options, jacobian
         self.solver = None
         self.h: float | None = options.dt
+        self._jac: Callable | None = None
 
     def restart(self, t: float, y: np.ndarray) -> None:
         """Start again from a state with the last step size (the first evaluation of fun is there).
@@ -155,6 +162,12 @@ class Stepper:
         first = None if self.h is None else min(self.h, remaining)
         jac = self.jacobian() if o.method == "Radau" and self.jacobian is not None else None
         extra = {"jac": jac} if jac is not None else {}
+        s = self.solver
+        if isinstance(s, scipy.integrate.Radau) and s.t == t and s.status == "running" and jac == self._jac:
+            s.y, s.f = np.array(y, dtype=float), self.fun(t, y)  # warm: see the module docstring
+            s.current_jac = False
+            return
+        self._jac = jac
         if isinstance(self.solver, FixedStep):
             self.solver.reset(t, y)
         elif o.method in FIXED_ONLY:

@@ -1,9 +1,9 @@
 """The Jacobian of a simulation's first-order system dy/dt = f(t, y), for the implicit Radau IIA.
 
 scipy's Radau estimates the Jacobian by forward differences, one evaluation of the equations of motion
-(a constrained forward dynamics under every force element) per component of y, and re-estimates it at
-every restart of the integrator (after every step here: the projection restarts it). This module builds
-it from Pinocchio's derivatives instead, for y = [q, v, W] (`StateLayout`, q a vector space):
+(a constrained forward dynamics under every force element) per component of y, each time its Newton
+iteration converges slowly (on the stiff flyball governor: 602 times in 696 steps). This module builds it
+from Pinocchio's derivatives instead, for y = [q, v, W] (`StateLayout`, q a vector space):
 
     d/dt q = v,   d/dt v = a(q, v, tau(q, v)),   d/dt W = powers(q, v),
 
@@ -12,11 +12,13 @@ derivatives (the works do not feed back: their columns are 0). A_v and A_tau are
 `computeConstraintDynamicsDerivatives` after `constraintDynamics` on the legacy constraint models
 (`core.LegacyConstraints`, the "proximal" method's); A_q is Pinocchio's too on a tree, but on a loop
 closure Pinocchio 4.1's A_q disagrees with central differences of its own `constraintDynamics`
-(measured: 0.21 of the largest entry on the four-bar, in the columns of the joints that carry a cut's
-side but are not its joints), so there A_q is taken by central differences of the forward dynamics at
+(measured: 0.21 of the largest entry on the four-bar, in the crank's column; the ten-bar's first column
+likewise), so there A_q is taken by central differences of the forward dynamics at
 fixed tau (2 nv solves, no force element evaluated). The force elements' tau(q, v) (generalised forces
-plus J^T of their body wrenches) and powers have no derivative of their own: both are taken by central
-differences of the elements' loads (kinematics only, no dynamics).
+plus J^T of their body wrenches) and powers: the point-to-point springs and dampers without a law
+analytically (`strut_derivatives`: the spring along the line, the force turning with the line, the points'
+Jacobians changing with q, the damper's rate), every other element by central differences of its own
+loads (kinematics only, no dynamics).
 
 Where these do not hold, `SystemJacobian.current` gives None and scipy's own differences are used:
 off a vector space (ball and free joints: y holds a tangent offset), with drives (the computed-torque
@@ -33,7 +35,7 @@ import numpy as np
 import pinocchio as pin
 
 from mechkit import core
-from mechkit.forces import ForceState, generalized_of_wrenches
+from mechkit.forces import ForceState, PointToPointForce, generalized_of_wrenches
 from mechkit.simulation.state_layout import StateLayout
 
 #: Relative step of the central differences of the force elements' loads (ours: truncation ~h^2,
@@ -89,42 +91,52 @@ class SystemJacobian:
             return None
         return self.__call__
 
-    def loads(self, t: float, q: np.ndarray, v: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """The force elements' generalised forces, their body wrenches included, and their powers.
+    def loads(self, t: float, q: np.ndarray, v: np.ndarray, which: list[int]) -> tuple[np.ndarray, np.ndarray]:
+        """Some force elements' generalised forces, their body wrenches included, and their powers.
 
         Args:
             t: the time (s).
             q: (nq,) configuration.
             v: (nv,) velocities.
+            which: the elements (indices into the system's).
 
         Returns:
-            (nv,) tau (N m or N) and (n_elements,) the powers (W).
+            (nv,) tau (N m or N) and (len(which),) the powers (W).
         """
-        system = self.system
-        if not system.elements:
+        if not which:
             return np.zeros(self.model.nv), np.zeros(0)
         state = ForceState.at(self.model, self.data, q, v, t)
-        tau, fext, powers = system._loads(state, system.plain)
+        tau, fext, powers = self.system._loads(state, which)
         if fext.any():
             tau = tau + generalized_of_wrenches(self.model, state.data, fext)
         return tau, powers
 
     def _load_derivatives(self, t: float, q: np.ndarray, v: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """Central differences of `loads` in (q, v): (nv + n_el, nq + nv), tau's rows then the powers'."""
-        nq, nv = self.model.nq, self.model.nv
-        out = np.zeros((nv + len(self.system.elements), nq + nv))
-        if not self.system.elements:
-            return out[:nv], out[nv:]
+        """d tau / d(q, v) (nv, nq + nv) and d powers / d(q, v) (n_elements, nq + nv): the struts' analytic
+        (`strut_derivatives`), the other elements' by central differences of their loads."""
+        nq, nv, elements = self.model.nq, self.model.nv, self.system.elements
+        tau_x, powers_x = np.zeros((nv, nq + nv)), np.zeros((len(elements), nq + nv))
+        struts = [k for k, e in enumerate(elements) if isinstance(e, PointToPointForce) and not e.element.law]
+        if struts:
+            kinematics(self.model, self.data, q, v)
+            for k in struts:
+                tau_k, powers_x[k] = strut_derivatives(self.model, self.data, elements[k], v)
+                tau_x += tau_k
+        others = [k for k in range(len(elements)) if k not in struts]
+        if not others:
+            return tau_x, powers_x
         x = np.concatenate([q, v])
-        for k in range(nq + nv):
-            h = LOAD_STEP * max(1.0, abs(x[k]))
+        for i in range(nq + nv):
+            h = LOAD_STEP * max(1.0, abs(x[i]))
             columns = []
             for sign in (1.0, -1.0):
                 xs = x.copy()
-                xs[k] += sign * h
-                columns.append(np.concatenate(self.loads(t, xs[:nq], xs[nq:])))
-            out[:, k] = (columns[0] - columns[1]) / (2 * h)
-        return out[:nv], out[nv:]
+                xs[i] += sign * h
+                columns.append(np.concatenate(self.loads(t, xs[:nq], xs[nq:], others)))
+            column = (columns[0] - columns[1]) / (2 * h)
+            tau_x[:, i] += column[:nv]
+            powers_x[others, i] = column[nv:]
+        return tau_x, powers_x
 
     def dynamics(self, q: np.ndarray, v: np.ndarray, tau: np.ndarray) -> tuple[np.ndarray, ...]:
         """The constrained forward dynamics' accelerations and their derivatives.
@@ -164,7 +176,7 @@ class SystemJacobian:
         """
         layout, nq, nv = self.layout, self.model.nq, self.model.nv
         q, v = layout.q(y), np.array(layout.v(y))
-        tau, _ = self.loads(t, q, v)
+        tau, _ = self.loads(t, q, v, list(range(len(self.system.elements))))
         tau_x, powers_x = self._load_derivatives(t, q, v)
         _, a_q, a_v, a_tau = self.dynamics(q, v, tau)
         out = np.zeros((y.size, y.size))
@@ -173,3 +185,73 @@ class SystemJacobian:
         out[nq : nq + nv, nq : nq + nv] = a_v + a_tau @ tau_x[:, nq:]
         out[nq + nv + 1 :, : nq + nv] = powers_x  # row nq + nv: the drives' work (no drives here)
         return out
+
+
+def kinematics(model: pin.Model, data: pin.Data, q: np.ndarray, v: np.ndarray) -> None:
+    """What `strut_derivatives` reads: placements, world Jacobians and the velocities' derivatives at (q, v).
+
+    Args:
+        model: the tree's Pinocchio model.
+        data: its data (overwritten).
+        q: (nq,) configuration.
+        v: (nv,) velocities.
+    """
+    pin.computeForwardKinematicsDerivatives(model, data, q, v, np.zeros(model.nv))
+    pin.computeJointJacobians(model, data, q)
+
+
+def _point(model: pin.Model, data: pin.Data, frame: str, local: np.ndarray) -> tuple[np.ndarray, ...]:
+    """A body point's position x (3,), its Jacobian J_p (3, nv), the derivative of its velocity in q (3, nv),
+    and H (nv, nv, 3): d J_p[:, k] / d q_i at [i, k] (world axes; the ground: zeros)."""
+    f = model.frames[model.getFrameId(frame)]
+    joint, r = int(f.parentJoint), f.placement.act(np.asarray(local, dtype=float))
+    nv = model.nv
+    if joint == 0:
+        return r, np.zeros((3, nv)), np.zeros((3, nv)), np.zeros((nv, nv, 3))
+    x = data.oMi[joint].act(r)
+    Jw = pin.getJointJacobian(model, data, joint, pin.WORLD)  # twists about the world origin
+    lin, ang = Jw[:3], Jw[3:]
+    J = lin + np.cross(ang.T, x).T
+    dv_dq = pin.getPointVelocityDerivatives(model, data, joint, pin.SE3(np.eye(3), r), pin.LOCAL_WORLD_ALIGNED)[0]
+    H = np.cross(ang.T[None, :, :], J.T[:, None, :])  # [i, k]: omega_k x J_p[:, i] (x moves with q_i)
+    chain = [model.joints[j].idx_v for j in model.supports[joint][1:]]
+    for a, i in enumerate(chain):  # column k moves with q_i for i before k: d Jw_k / d q_i = ad(Jw_i) Jw_k
+        for k in chain[a + 1 :]:
+            d_lin = np.cross(ang[:, i], lin[:, k]) + np.cross(lin[:, i], ang[:, k])
+            H[i, k] += d_lin + np.cross(np.cross(ang[:, i], ang[:, k]), x)
+    return x, J, dv_dq, H
+
+
+def strut_derivatives(
+    model: pin.Model, data: pin.Data, strut: PointToPointForce, v: np.ndarray
+) -> tuple[np.ndarray, np.ndarray]:
+    """The derivatives of a point-to-point element's generalised force G^T u F and damper power -c L_dot^2 in
+    (q, v), F = -k (L - L0) + F0 - c L_dot (no law), G = J_b - J_a, u the unit vector from a to b.
+
+    Args:
+        model: the tree's Pinocchio model (joints with dq/dt = v).
+        data: its data after `kinematics(q, v)`.
+        strut: the element.
+        v: (nv,) the velocities.
+
+    Returns:
+        (nv, nq + nv) d tau / d(q, v) and (nq + nv,) d power / d(q, v).
+    """
+    e = strut.element
+    xa, Ja, Da, Ha = _point(model, data, e.frame_a, e.point_a)
+    xb, Jb, Db, Hb = _point(model, data, e.frame_b, e.point_b)
+    G, d = Jb - Ja, xb - xa
+    L = float(np.linalg.norm(d))
+    u = d / L
+    d_dot = G @ v
+    rate = float(u @ d_dot)
+    P = (np.eye(3) - np.outer(u, u)) / L
+    du_dq = P @ G
+    rate_q, rate_v = d_dot @ du_dq + u @ (Db - Da), u @ G
+    F = -e.stiffness * (L - e.free_length) + e.force - e.damping * rate
+    F_q, F_v = -e.stiffness * (u @ G) - e.damping * rate_q, -e.damping * rate_v
+    f = F * u
+    tau_q = (Hb - Ha) @ f + G.T @ (du_dq * F + np.outer(u, F_q))
+    tau_v = G.T @ np.outer(u, F_v)
+    power = -2.0 * e.damping * rate * np.concatenate([rate_q, rate_v])
+    return np.hstack([tau_q, tau_v]), power
