@@ -268,7 +268,7 @@ def write_page(docs: Path, slow: bool = True, only: list[str] | None = None) -> 
     if unknown:
         raise InvalidArgument("only", unknown, f"unknown problems; expected some of {', '.join(PROBLEMS)}")
     keys = only if only is not None else [k for k in PROBLEMS if slow or k != "n_four_bar_40"]
-    page = (docs / "iftomm_benchmarks.md").read_text().splitlines() if only is not None else []
+    page = (docs / "iftomm_benchmarks.md").read_text().partition(HEADING)[2].split("\n## ")[0] if only else ""
     measured, lines = [], []
     for key, (start, runs) in PROBLEMS.items():
         if key in keys:
@@ -276,7 +276,7 @@ def write_page(docs: Path, slow: bool = True, only: list[str] | None = None) -> 
             measured += rows
             lines += [_line(r) for r in rows]
         else:
-            lines += [line for line in page if line.startswith(f"| {start}")]
+            lines += [line for line in page.splitlines() if line.startswith(f"| {start}")]
     body = "\n".join([TABLE_HEAD, *lines])
     text = f"{HEADING}\n\n{INTRO}\n\n{body}\n"
     replace_section(docs / "iftomm_benchmarks.md", HEADING, text)

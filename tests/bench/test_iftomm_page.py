@@ -48,7 +48,8 @@ def test_only_some_problems_are_measured_again_and_the_other_rows_kept(tmp_path,
     in the page's order; an unknown problem is refused by name."""
     page = tmp_path / "iftomm_benchmarks.md"
     old = [iftomm.Row(f"{start} old", 1e-7, "ref", 1.0, 10, "m", "p") for start, _ in iftomm_page.PROBLEMS.values()]
-    page.write_text(f"# t\n\n{iftomm_page.HEADING}\n\n{iftomm_page.table(old)}\n\n## After\n\nkept\n")
+    before = "## Problems\n\n| problem |\n|---|\n| simple pendulum, defined |\n| Bricard's, defined |\n\n"
+    page.write_text(f"# t\n\n{before}{iftomm_page.HEADING}\n\n{iftomm_page.table(old)}\n\n## After\n\nkept\n")
     new = [
         iftomm.Row("flyball governor, new A", 2e-3, "ref", 2.0, 20, "m", "p"),
         iftomm.Row("flyball governor, new B", 1e-9, "ref", 3.0, 30, "m", "p"),
@@ -61,6 +62,6 @@ def test_only_some_problems_are_measured_again_and_the_other_rows_kept(tmp_path,
     ]
     assert rows == ["| simple pendulum old", "| N-four-bar N = 2, old", "| Bricard old", "| flyball governor, new A",
                     "| flyball governor, new B", "| N-four-bar N = 40, old"]  # fmt: skip
-    assert "| missed |" in text and text.endswith("## After\n\nkept\n")
+    assert "| missed |" in text and text.endswith("## After\n\nkept\n") and text.count("defined |") == 2
     with pytest.raises(InvalidArgument, match="only"):
         iftomm_page.write_page(tmp_path, only=["flyballs"])
