@@ -17,7 +17,7 @@ import numpy as np
 import pinocchio as pin
 import scipy.special
 
-from mechkit.base.exceptions import MethodUnavailable
+from mechkit.base.exceptions import InvalidArgument, MethodUnavailable
 from mechkit.bench import iftomm
 from mechkit.bench.markdown import replace_section
 from mechkit.core import body_name
@@ -177,13 +177,14 @@ def flyball_tendons(mech: Any, integrator: str, timestep: float) -> Callable[[ET
     return edit
 
 
-def run_flyball(duration: float = 10.0, method: str = "Radau", rtol: float = 1e-6) -> iftomm.Row:
+def run_flyball(duration: float = 10.0, method: str = "Radau", rtol: float = 1e-6, mujoco: bool = True) -> iftomm.Row:
     """The stiff flyball governor, s against Pinocchio's ABA with the springs by scipy's Radau at 1e-10.
 
     Args:
         duration: simulated time (s).
         method: mechkit's integrator.
         rtol: its relative tolerance.
+        mujoco: also run MuJoCo (`MUJOCO_FLYBALL`); else its cell points to the row that did.
 
     Returns:
         Its `Row`.
@@ -194,8 +195,8 @@ def run_flyball(duration: float = 10.0, method: str = "Radau", rtol: float = 1e-
     v0[mech.v_index("shaft")] = 2 * np.pi
     run, cpu = iftomm.timed(mech, duration, v0=v0, method=method, rtol=rtol, limits=None)
     s = run.motion.q[:, mech.q_index("s")]
-    cells = []
-    for integrator, step in MUJOCO_FLYBALL:
+    cells = [] if mujoco else ["as in the RK45 row"]
+    for integrator, step in MUJOCO_FLYBALL if mujoco else ():
         t, q, mj_cpu = iftomm.mujoco_run(mech, duration, v0, flyball_tendons(mech, integrator, step))
         cells.append(
             f"{integrator} {step:g} s: "
@@ -211,6 +212,14 @@ def run_flyball(duration: float = 10.0, method: str = "Radau", rtol: float = 1e-
     )  # fmt: skip
 
 
+def _line(r: iftomm.Row) -> str:
+    """One row of the page's table."""
+    return (
+        f"| {r.problem} | {r.error:.1e} | {r.reference} | {'met' if r.passed else 'missed'} | {r.cpu:.2f} s "
+        f"({r.steps}) | {r.mujoco} | {r.published} |"
+    )
+
+
 def table(rows: list[iftomm.Row]) -> str:
     """The Markdown table of the rows.
 
@@ -220,31 +229,55 @@ def table(rows: list[iftomm.Row]) -> str:
     Returns:
         The table's text.
     """
-    lines = [
-        "| problem and run | error (m) | against | <= 1e-3 | mechkit CPU (steps) | MuJoCo | published |",
-        "|---|---|---|---|---|---|---|",
-    ]
-    for r in rows:
-        lines.append(
-            f"| {r.problem} | {r.error:.1e} | {r.reference} | {'met' if r.passed else 'missed'} | {r.cpu:.2f} s "
-            f"({r.steps}) | {r.mujoco} | {r.published} |"
-        )
-    return "\n".join(lines)
+    return "\n".join([TABLE_HEAD, *(_line(r) for r in rows)])
 
 
-def write_page(docs: Path, slow: bool = True) -> list[iftomm.Row]:
-    """Measure every problem and write the section `HEADING` of docs/iftomm_benchmarks.md.
+TABLE_HEAD = (
+    "| problem and run | error (m) | against | <= 1e-3 | mechkit CPU (steps) | MuJoCo | published |\n"
+    "|---|---|---|---|---|---|---|"
+)
+INTRO = (
+    "This machine (2 cores shared with other work; CPU time of the run; `python tools/iftomm_benchmarks.py`, "
+    "`--only KEY ...` to measure some problems again and keep the other rows):"
+)
+#: The page's problems in its order: key -> (how its rows' first cell starts, the runs measuring it).
+PROBLEMS: dict[str, tuple[str, Callable[[], list[iftomm.Row]]]] = {
+    "pendulum": ("simple pendulum", lambda: [run_pendulum()]),
+    "n_four_bar_2": ("N-four-bar N = 2,", lambda: [run_n_four_bar(2, 10.0)]),
+    "bricard": ("Bricard", lambda: [run_bricard()]),
+    "flyball": ("flyball governor", lambda: [run_flyball(method="RK45"), run_flyball(method="Radau", mujoco=False)]),
+    "n_four_bar_40": ("N-four-bar N = 40,", lambda: [run_n_four_bar(40, 20.0)]),
+}
+
+
+def write_page(docs: Path, slow: bool = True, only: list[str] | None = None) -> list[iftomm.Row]:
+    """Measure the problems and write the section `HEADING` of docs/iftomm_benchmarks.md.
 
     Args:
         docs: the docs folder.
         slow: also the N = 40 four-bar's 20 s (minutes).
+        only: measure these problems only (`PROBLEMS` keys), the page's rows of the others kept as they are.
 
     Returns:
-        The rows written.
+        The rows measured.
+
+    Raises:
+        InvalidArgument: an unknown problem in `only`.
     """
-    rows = [run_pendulum(), run_n_four_bar(2, 10.0), run_bricard(), run_flyball(method="RK45")]
-    if slow:
-        rows.append(run_n_four_bar(40, 20.0))
-    text = f"{HEADING}\n\nThis machine (2 cores shared with other work; CPU time of the run):\n\n{table(rows)}\n"
+    unknown = sorted(set(only or ()) - set(PROBLEMS))
+    if unknown:
+        raise InvalidArgument("only", unknown, f"unknown problems; expected some of {', '.join(PROBLEMS)}")
+    keys = only if only is not None else [k for k in PROBLEMS if slow or k != "n_four_bar_40"]
+    page = (docs / "iftomm_benchmarks.md").read_text().partition(HEADING)[2].split("\n## ")[0] if only else ""
+    measured, lines = [], []
+    for key, (start, runs) in PROBLEMS.items():
+        if key in keys:
+            rows = runs()
+            measured += rows
+            lines += [_line(r) for r in rows]
+        else:
+            lines += [line for line in page.splitlines() if line.startswith(f"| {start}")]
+    body = "\n".join([TABLE_HEAD, *lines])
+    text = f"{HEADING}\n\n{INTRO}\n\n{body}\n"
     replace_section(docs / "iftomm_benchmarks.md", HEADING, text)
-    return rows
+    return measured

@@ -11,7 +11,13 @@ offered: their history cannot survive the projection after every step.
 
 After every accepted step the caller projects the state onto the constraint manifold; the solver is
 then restarted from the projected state with the step size it had chosen (a Runge-Kutta pair carries
-no other memory; one extra evaluation per step, the first stage at the new state). A fixed step `dt`
+no other memory; one extra evaluation per step, the first stage at the new state). Radau (Radau IIA,
+implicit) carries more: its Jacobian, the LU factors of its Newton matrices, its step controller's history
+and the last step's collocation polynomial, from which it predicts the next step's Newton start. Where it
+restarts at the end of its own step (no event cut the step short), it keeps them and only takes the
+projected state and its derivative, its Jacobian marked stale (re-evaluated where Newton converges
+slowly, as scipy does between steps): a new solver would evaluate a Jacobian at every step and start
+Newton from zero. A fixed step `dt`
 runs the same pair with its error control off (first and largest step dt, an absolute tolerance of 1e300): the
 speed comparison with MuJoCo and the ten-bar's step-size studies use it. The fixed-step methods
 (`mechkit.simulation.fixed_step`: the classic RK4, MuJoCo's RK4; semi-implicit Euler, MuJoCo's Euler; the
@@ -133,12 +139,17 @@ class Stepper:
         fun: dy/dt = fun(t, y).
         t_end: the end time (s).
         options: how to step.
+        jacobian: () -> the Jacobian (t, y) -> d fun/dy that "Radau" uses from the next restart on, or None
+            for scipy's differences (`mechkit.simulation.jacobian`); None: always scipy's.
     """
 
-    def __init__(self, fun: Function, t_end: float, options: Options):
-        self.fun, self.t_end, self.options = fun, t_end, options
+    def __init__(
+        self, fun: Function, t_end: float, options: Options, jacobian: Callable[[], Callable | None] | None = None
+    ):
+        self.fun, self.t_end, self.options, self.jacobian = fun, t_end, options, jacobian
         self.solver = None
         self.h: float | None = options.dt
+        self._jac: Callable | None = None
 
     def restart(self, t: float, y: np.ndarray) -> None:
         """Start again from a state with the last step size (the first evaluation of fun is there).
@@ -149,6 +160,14 @@ class Stepper:
         """
         o, remaining = self.options, self.t_end - t
         first = None if self.h is None else min(self.h, remaining)
+        jac = self.jacobian() if o.method == "Radau" and self.jacobian is not None else None
+        extra = {"jac": jac} if jac is not None else {}
+        s = self.solver
+        if isinstance(s, scipy.integrate.Radau) and s.t == t and s.status == "running" and jac == self._jac:
+            s.y, s.f = np.array(y, dtype=float), self.fun(t, y)  # warm: see the module docstring
+            s.current_jac = False
+            return
+        self._jac = jac
         if isinstance(self.solver, FixedStep):
             self.solver.reset(t, y)
         elif o.method in FIXED_ONLY:
@@ -156,11 +175,11 @@ class Stepper:
             self.solver = METHODS[o.method](self.fun, t, y, self.t_end, max_step=o.dt, **extra)
         elif o.dt is None:
             self.solver = METHODS[o.method](
-                self.fun, t, y, self.t_end, first_step=first, max_step=o.max_step, rtol=o.rtol, atol=o.atol
+                self.fun, t, y, self.t_end, first_step=first, max_step=o.max_step, rtol=o.rtol, atol=o.atol, **extra
             )
         else:
             self.solver = METHODS[o.method](
-                self.fun, t, y, self.t_end, first_step=first, max_step=o.dt, rtol=1.0, atol=FIXED_ATOL
+                self.fun, t, y, self.t_end, first_step=first, max_step=o.dt, rtol=1.0, atol=FIXED_ATOL, **extra
             )
 
     def step(self) -> tuple[float, np.ndarray]:

@@ -26,15 +26,8 @@ from mechkit.simulation.crossing import FALLBACK, BranchChanged, BranchMode, Bra
 from mechkit.simulation.declared import default_forces, file_limits, torque_motors
 from mechkit.simulation.events import REST_RATE, Latch, Limit, impact
 from mechkit.simulation.floating import default_dynamics, run_momentum
-from mechkit.simulation.integrator import (
-    ATOL,
-    RTOL,
-    Event,
-    IntegrationFailed,
-    Options,
-    Stepper,
-    first_crossing,
-)
+from mechkit.simulation.integrator import ATOL, RTOL, Event, IntegrationFailed, Options, Stepper, first_crossing
+from mechkit.simulation.jacobian import SystemJacobian
 from mechkit.simulation.prescribed import Drives, prescribed
 from mechkit.simulation.projection import Projection
 from mechkit.simulation.recorder import Recorder
@@ -178,7 +171,8 @@ def simulate(
     t, y = t0, layout.pack(q, v, np.zeros(1 + len(elements)))
     # crossing: the rank watch, and the near-singular mode where the method asked fails (simulation.crossing)
     watch = BranchWatch(mech, q) if project and layout.euclidean else None
-    stepper = Stepper(rhs, t_end, options)
+    jacobian = SystemJacobian(system, layout, lambda: mode.near).current if method == "Radau" else None
+    stepper = Stepper(rhs, t_end, options, jacobian)
     mode = BranchMode(watch, system, dynamics, stepper)
     stepper.restart(t, y)
     recorder.record(t, y, cache)

@@ -77,3 +77,28 @@ def test_a_second_integrator_agrees(four_bar, free):
     other = four_bar.simulate(1.0, method="DOP853", rtol=1e-11, atol=1e-13, reactions=False)
     assert np.max(np.abs(other.motion.q[-1] - free.motion.q[-1])) < 1e-6
     assert other.energy_error <= 1e-8 * other.energy_scale
+
+
+def test_radau_keeps_its_solver_across_restarts_at_its_own_step_s_end():
+    """Radau restarted where its step ended keeps its solver (its Jacobian, factors and step history: fewer
+    Jacobians than steps) and takes the state given; restarted elsewhere (an event's time) it builds a new one."""
+    calls = []
+
+    def jacobian(t, y):
+        calls.append(t)
+        return np.array([[0.0, 1.0], [-1.0, 0.0]])
+
+    stepper = simulation.Stepper(oscillator, 3.0, simulation.Options("Radau", 1e-8, 1e-10), lambda: jacobian)
+    t, y = 0.0, np.array([1.0, 0.0])
+    stepper.restart(t, y)
+    solver, steps = stepper.solver, 0
+    while t < 3.0:
+        t, y = stepper.step()
+        y = y / np.linalg.norm(y)  # a projection onto the oscillator's invariant circle
+        steps += 1
+        if t < 3.0:
+            stepper.restart(t, y)
+            assert stepper.solver is solver and np.array_equal(stepper.solver.y, y)
+    assert abs(y[0] - np.cos(3.0)) < 1e-6 and steps > 5 and len(calls) < steps
+    stepper.restart(1.5, np.array([np.cos(1.5), -np.sin(1.5)]))
+    assert stepper.solver is not solver and stepper.solver.t == 1.5
