@@ -13,7 +13,7 @@ References (scipy's `solve_ivp`, Pinocchio's kinematics and dynamics alone):
 
 The library's criterion: "high precision" is an error <= `HIGH_PRECISION` (m) of the problem's point.
 MuJoCo runs `mechkit.export.to_mjcf` (stiff equalities, its own timestep, RK4); a thin rod's zero moment
-about its own axis is raised to `MJ_AXIAL` there (MuJoCo refuses moments below 1e-15; ours).
+about its own axis and a massless link's mass are raised to `MJ_AXIAL` there (MuJoCo refuses < 1e-15; ours).
 """
 
 from __future__ import annotations
@@ -35,7 +35,7 @@ from mechkit.export.mjcf import to_mjcf
 HIGH_PRECISION = 1e-3
 #: Gravity of every problem (m/s^2).
 G = 9.81
-#: Moment (kg m^2) a thin rod gets about its own axis in MuJoCo's model (ours; MuJoCo needs > 1e-15).
+#: Moment (kg m^2) of a thin rod about its axis and mass (kg) of a massless link in MuJoCo's model (ours; > 1e-15).
 MJ_AXIAL = 1e-9
 #: Step (rad) of the 5-point differences of Bricard's chart (ours: truncation ~h^4, rounding ~1e-15 / h^2).
 CHART_STEP = 1e-3
@@ -282,7 +282,7 @@ def mujoco_run(
 
     Args:
         mech: the mechanism (`mechkit.Mechanism`); a zero diagonal moment (a thin rod's about its
-            axis, a point mass's) becomes `MJ_AXIAL` in the export.
+            axis, a point mass's) and a zero mass become `MJ_AXIAL` in the export.
         duration: simulated time (s).
         v0: (nv,) initial joint rates (default rest).
         edit: a function changing the exported MJCF tree (`xml.etree.ElementTree.Element`) in place, or None.
@@ -301,7 +301,7 @@ def mujoco_run(
     for k in range(1, padded.model.njoints):
         inertia = padded.model.inertias[k]
         moments = inertia.inertia + np.diag((np.diag(inertia.inertia) < MJ_AXIAL) * MJ_AXIAL)
-        padded.model.inertias[k] = pin.Inertia(inertia.mass, inertia.lever, moments)
+        padded.model.inertias[k] = pin.Inertia(max(inertia.mass, MJ_AXIAL), inertia.lever, moments)
     root = ET.fromstring(to_mjcf(padded))
     if edit is not None:
         edit(root)
