@@ -97,11 +97,9 @@ def simulate(
             "ImplicitMidpoint" at a fixed step `dt` only: `mechkit.simulation.fixed_step`).
         max_step: the largest adaptive step (s).
         dynamics: the core's forward-dynamics method ("proximal", "lcaba", "kkt", "nullspace"); None:
-            "proximal" (Pinocchio's constraint models), or "kkt" where friction needs the reactions: the
-            core's inverse dynamics solves on mechkit's closure rows, and only accelerations from the
-            same rows stay consistent with it at the integrator's off-manifold stages (the proximal
-            ones differ by O(closure residual) there, which the inverse dynamics refuses), or where
-            Pinocchio's constraint models cannot express a cut or coupling (`core.pinocchio_methods_apply`).
+            "proximal" (Pinocchio's constraint models; friction reads the reactions from its multipliers,
+            `simulation.anchor_reactions`), or "kkt" where Pinocchio's constraint models cannot express a
+            cut or coupling (`core.pinocchio_methods_apply`).
         baumgarte: (Kp 1/s^2, Kd 1/s) closure stabilisation in the accelerations, or None.
         friction_scheme: friction from the reactions per evaluation, "corrected" or "fixed point"
             (`mechkit.simulation.system`); None: "corrected" at a fixed step, "fixed point" with adaptive
@@ -133,7 +131,7 @@ def simulate(
     names = [e.name for e in elements]
     if len(set(names)) != len(names):
         raise InvalidParameters("forces", names, "every force element needs its own name")
-    exact = any(e.needs_reactions for e in elements) or not core.pinocchio_methods_apply(mech.closure_model)
+    exact = not core.pinocchio_methods_apply(mech.closure_model)
     dynamics, note = default_dynamics(mech.model, exact) if dynamics is None else (dynamics, "")
     if friction_scheme is None:
         friction_scheme = "fixed point" if dt is None else "corrected"

@@ -34,6 +34,7 @@ from mechkit import core
 from mechkit.base.exceptions import InvalidParameters, SingularConfiguration
 from mechkit.forces import ForceElement, ForceState, FrictionLocks, generalized_of_wrenches
 from mechkit.simulation import crossing
+from mechkit.simulation.anchor_reactions import AnchorReactions
 from mechkit.simulation.prescribed import Drives
 
 #: The friction fixed point stops when no friction torque changes by more than this, relative to the
@@ -118,6 +119,8 @@ class MechanismSystem:
             buffer.setflags(write=False)
         self._driven: dict[tuple[str, ...], tuple[core.ClosureModel, core.ClosureData]] = {}
         self._friction_start: tuple[np.ndarray, np.ndarray] | None = None
+        # friction's reactions from the proximal solve's multipliers (`simulation.anchor_reactions`)
+        self._by_anchors, self._anchors = method == "proximal" and bool(self.friction), None
         self.drives = drives
 
     @property
@@ -143,10 +146,17 @@ class MechanismSystem:
             self._driven[names] = (cm, cm.create_data())
         return self._driven[names]
 
-    def _fd(self, q: np.ndarray, v: np.ndarray, tau: np.ndarray) -> np.ndarray:
+    def _fd(self, q: np.ndarray, v: np.ndarray, tau: np.ndarray) -> tuple[np.ndarray, np.ndarray | None]:
+        """Accelerations under tau, and Pinocchio's anchor multipliers (a copy) where friction reads the
+        reactions from them ("proximal"), else None."""
         if self.method == "branch":  # crossing: states on the manifold near a singular position (simulation.crossing)
-            return crossing.forward(self.cm, self.cd, q, v, tau)
-        return core.forward_dynamics(self.cm, self.cd, q, v, tau, self.method, **self.settings).a
+            return crossing.forward(self.cm, self.cd, q, v, tau), None
+        a = core.forward_dynamics(self.cm, self.cd, q, v, tau, self.method, **self.settings).a
+        if not self._by_anchors:
+            return a, None
+        if self._anchors is None:  # the anchors exist after the first proximal call
+            self._anchors = AnchorReactions(self.cm, self.cd.legacy["proximal"])
+        return a, self._anchors.legacy.data.lambda_c.copy()
 
     def _loads(self, state: ForceState, which) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Sum of the generalised forces (nv,) and wrenches (njoints, 6) of elements `which`, and their powers."""
@@ -184,21 +194,26 @@ class MechanismSystem:
         return core.inverse_dynamics(cm, cd, q, v, a, fext, generalized, determinacy_test=False)
 
     def _accelerations(
-        self, q: np.ndarray, v: np.ndarray, tau: np.ndarray, acc: np.ndarray, P: np.ndarray | None
-    ) -> tuple[np.ndarray, np.ndarray, np.ndarray | None]:
-        """Accelerations and drive efforts under tau (the drive columns P computed once per state)."""
-        a0 = self._fd(q, v, tau)
+        self, q: np.ndarray, v: np.ndarray, tau: np.ndarray, acc: np.ndarray, P: tuple | None
+    ) -> tuple[np.ndarray, np.ndarray, tuple | None, np.ndarray | None]:
+        """Accelerations, drive efforts and anchor multipliers (or None) under tau; the drive columns P of the
+        accelerations and of the multipliers are computed once per state (both affine in tau)."""
+        a0, lam0 = self._fd(q, v, tau)
         if not self.drive_v.size:
-            return a0, self._no_efforts, None
+            return a0, self._no_efforts, None, lam0
         if P is None:
-            P = np.column_stack([self._fd(q, v, tau + self._unit[k]) - a0 for k in self.drive_v])
+            columns = [self._fd(q, v, tau + self._unit[k]) for k in self.drive_v]
+            P = (
+                np.column_stack([a - a0 for a, _ in columns]),
+                None if lam0 is None else np.column_stack([lam - lam0 for _, lam in columns]),
+            )
         try:
-            u = np.linalg.solve(P[self.drive_v], acc - a0[self.drive_v])
+            u = np.linalg.solve(P[0][self.drive_v], acc - a0[self.drive_v])
         except np.linalg.LinAlgError:  # the drives' response block: a freedom lost, or drives that conflict
             raise SingularConfiguration(
                 float("inf"), f"the drives {list(self._drives.all)} do not determine the accelerations here"
             ) from None
-        return a0 + P @ u, u, P
+        return a0 + P[0] @ u, u, P, None if lam0 is None else lam0 + P[1] @ u
 
     def evaluate(self, t: float, q: np.ndarray, v: np.ndarray) -> Evaluation:
         """The equations of motion at a state.
@@ -218,13 +233,13 @@ class MechanismSystem:
         """
         acc = self._drives.at(t)[2] if self.drive_v.size else None
         if not self.elements:
-            a, u, _ = self._accelerations(q, v, self._zero_tau, acc, None)
+            a, u, _, _ = self._accelerations(q, v, self._zero_tau, acc, None)
             return Evaluation(a, u, self._zero_tau, self._zero_fext, self._no_powers)
         state = ForceState.at(self.model, self.data, q, v, t)
         tau_p, fext_p, pow_p = self._loads(state, self.plain)
         if not self.friction:
             tau = tau_p + generalized_of_wrenches(self.model, state.data, fext_p) if fext_p.any() else tau_p
-            a, u, _ = self._accelerations(q, v, tau, acc, None)
+            a, u, _, _ = self._accelerations(q, v, tau, acc, None)
             return Evaluation(a, u, tau_p, fext_p, pow_p)
         tau_f, fext_f = self._friction_start or (np.zeros_like(tau_p), np.zeros_like(fext_p))
         P = None
@@ -232,10 +247,13 @@ class MechanismSystem:
         while True:
             generalized, wrenches = tau_p + tau_f, fext_p + fext_f
             tau = generalized + generalized_of_wrenches(self.model, state.data, wrenches)
-            a, u, P = self._accelerations(q, v, tau, acc, P)
+            a, u, P, lam = self._accelerations(q, v, tau, acc, P)
             if iterations and self.scheme == "corrected" and change <= LAG_TOL * scale:
                 break  # the lagged friction corrected once: a from the friction of its own reactions
-            reactions = self.reactions(q, v, a, generalized, wrenches).reaction_values
+            if lam is None:
+                reactions = self.reactions(q, v, a, generalized, wrenches).reaction_values
+            else:  # from the forward solve's own multipliers: one RNEA pass
+                reactions = self._anchors(q, v, a, lam, wrenches)
             state.reactions = reactions
             new_tau, new_fext, pow_f = self._loads(state, self.friction)
             change = max(

@@ -1,0 +1,90 @@
+"""Every joint's reaction from the multipliers of Pinocchio's constrained forward dynamics ("proximal"):
+no inverse dynamics.
+
+`pin.constraintDynamics` solves M a + nle = tau + J^T lambda on its point (3D) and weld (6D) anchors
+(`mechkit.core.pin_constraints`): lambda is each anchor's force in its first frame (LOCAL), acting on
+the first side's body and, opposite, on the second's. A cut joint transmits its anchors' forces (about
+the cut's point, frame_a's origin); a tree joint transmits what one RNEA pass gives with the anchors'
+forces applied to their bodies beside the force elements' wrenches. These are the reactions of the
+state's own accelerations and forces: at an integrator's stage off the closures they are those of
+Pinocchio's rows, where the core's inverse dynamics on mechkit's rows refuses a force outside their
+range. For the components statics leaves undetermined (a planar loop in space: the axial force, the
+bending moment) they are a convention, as the inverse dynamics' least-norm ones are: friction from
+the reactions uses the determined ones (`mechkit.forces.reaction_friction`).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pinocchio as pin
+
+from mechkit.core import tree_wrenches
+
+
+class AnchorReactions:
+    """The reactions of a closure model's joints from the multipliers of its legacy anchors.
+
+    Args:
+        cm (ClosureModel): the closure model (its cuts in `kernel.cuts` order; no coupling rows).
+        legacy (LegacyConstraints): its anchors (`core.forward` keeps them in `ClosureData.legacy["proximal"]`).
+    """
+
+    def __init__(self, cm, legacy):
+        self.model, self.legacy = cm.model, legacy
+        self.data = self.model.createData()
+        self.n_tree = self.model.njoints - 1
+        self.frames_a, self.spans = [], []  # per cut: its frame_a, and its anchors' (model, first multiplier, size)
+        start, anchors = 0, list(zip(legacy.models, legacy.sizes))
+        for cut in cm.kernel.cuts:
+            count = 2 if cut.closure.kind == "revolute" and cut.closure.rows != "planar" else 1
+            span = []
+            for c, size in anchors[:count]:
+                span.append((c, start, size))
+                start += size
+            anchors = anchors[count:]
+            self.frames_a.append(cut.frame_a)
+            self.spans.append(span)
+        self.size = start
+        self._fext = pin.StdVec_Force()
+        for _ in range(self.model.njoints):
+            self._fext.append(pin.Force.Zero())
+
+    def __call__(
+        self, q: np.ndarray, v: np.ndarray, a: np.ndarray, lam: np.ndarray, wrenches: np.ndarray
+    ) -> np.ndarray:
+        """The reactions at a state.
+
+        Args:
+            q: (nq,) configuration.
+            v: (nv,) velocities.
+            a: (nv,) the accelerations the multipliers came with.
+            lam: (rows,) the anchors' multipliers (`pin.Data.lambda_c` after `constraintDynamics`).
+            wrenches: (njoints, 6) the force elements' body wrenches (`fext` convention).
+
+        Returns:
+            (n_tree + n_cuts, 6) [f (N), m (N m) about the joint's point], world axes, in
+            `ClosureModel.joint_names` order.
+        """
+        model, data = self.model, self.data
+        pin.forwardKinematics(model, data, q)
+        pin.updateFramePlacements(model, data)
+        fext = wrenches.copy()
+        cuts = np.zeros((len(self.spans), 6))
+        for i, (frame_a, span) in enumerate(zip(self.frames_a, self.spans)):
+            point = data.oMf[frame_a].translation
+            for c, start, size in span:
+                f = lam[start : start + size]
+                force = pin.Force(f, np.zeros(3)) if size == 3 else pin.Force(f)
+                oMc = data.oMi[c.joint1_id] * c.joint1_placement
+                fext[c.joint1_id] += c.joint1_placement.act(force).vector
+                if c.joint2_id:
+                    fext[c.joint2_id] -= (data.oMi[c.joint2_id].actInv(oMc)).act(force).vector
+                world = oMc.act(force)  # about the world origin
+                cuts[i, :3] += world.linear
+                cuts[i, 3:] += world.angular - np.cross(point, world.linear)
+        for j in range(1, model.njoints):
+            self._fext[j] = pin.Force(fext[j])
+        pin.rnea(model, data, q, v, a, self._fext)
+        placements = np.array([m.homogeneous[:3] for m in data.oMi])
+        forces = np.array([f.vector for f in data.f])
+        return np.concatenate((tree_wrenches(placements, forces), -cuts))

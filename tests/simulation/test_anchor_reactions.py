@@ -1,0 +1,43 @@
+"""`mechkit.simulation.anchor_reactions`: every joint's reaction from the proximal solve's multipliers
+against the core's inverse dynamics on mechkit's own rows (an independent solve), and friction from
+them against friction from the inverse dynamics."""
+
+from __future__ import annotations
+
+import numpy as np
+import pinocchio as pin
+import pytest
+
+from mechkit import core
+from mechkit.forces import generalized_of_wrenches
+from mechkit.simulation.anchor_reactions import AnchorReactions
+
+
+@pytest.mark.parametrize("name", ["four_bar", "five_bar"])
+def test_reactions_from_the_multipliers_are_the_inverse_dynamics_ones(load_cached, name):
+    """At closed states under random efforts and wrenches: the proximal forward dynamics' multipliers give,
+    by one RNEA pass, the reactions the core's inverse dynamics computes at the accelerations found
+    (the efforts as passive forces: no actuator effort left), to 1e-10 of the largest."""
+    m = load_cached(name)
+    cm = m.closure_model
+    cd = cm.create_data()
+    rng = np.random.default_rng(3)
+    nv, nj = m.model.nv, m.model.njoints
+    worst, data = 0.0, m.model.createData()
+    for _ in range(4):
+        q = m.assemble(m.home_q[[m.q_index(j) for j in m.actuated]] + rng.uniform(-0.3, 0.3, len(m.actuated)))
+        v = m.velocities(q, rng.standard_normal(len(m.actuated)))
+        tau, wrenches = rng.standard_normal(nv), np.zeros((nj, 6))
+        wrenches[1:] = rng.standard_normal((nj - 1, 6))
+        pin.computeJointJacobians(m.model, data, q)
+        total = tau + generalized_of_wrenches(m.model, data, wrenches)
+        a = core.forward_dynamics(cm, cd, q, v, total, "proximal").a
+        anchors = AnchorReactions(cm, cd.legacy["proximal"])
+        mine = anchors(q, v, a, cd.legacy["proximal"].data.lambda_c.copy(), wrenches)
+        fx = pin.StdVec_Force()
+        for row in wrenches:
+            fx.append(pin.Force(row))
+        reference = core.inverse_dynamics(cm, cm.create_data(), q, v, a, fx, tau, determinacy_test=False)
+        assert np.max(np.abs(reference.effort_values)) <= 1e-9 * max(1.0, np.max(np.abs(tau)))
+        worst = max(worst, float(np.max(np.abs(mine - reference.reaction_values)) / np.max(np.abs(mine))))
+    assert worst <= 1e-10
