@@ -27,7 +27,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping, Sequence
-from dataclasses import dataclass
+from dataclasses import astuple, dataclass
 
 import numpy as np
 import pinocchio as pin
@@ -103,12 +103,26 @@ class PinFriction:
         Returns:
             T (N m, >= 0).
         """
-        f, m = wrench[:3], wrench[3:]
-        axial = float(f @ axis)
-        radial = float(np.linalg.norm(f - axial * axis))
-        bending = float(np.linalg.norm(m - (m @ axis) * axis))
-        load = self.preload + radial + (0.0 if math.isinf(self.bending_arm) else bending / self.bending_arm)
-        return self.mu * (self.radius * load + self.collar_radius * abs(axial))
+        return float(sizes(np.array([astuple(self)[:5]]), wrench[None], axis[None])[0])
+
+
+def sizes(specs: np.ndarray, wrenches: np.ndarray, axes: np.ndarray) -> np.ndarray:
+    """The friction torques' sizes T of several pins at once (see the module docstring).
+
+    Args:
+        specs: (n, 5) each pin's (mu, radius, bending_arm, collar_radius, preload), as `PinFriction`.
+        wrenches: (n, 6) their reactions [f (N), m (N m)], world axes, about the joint origins.
+        axes: (n, 3) their unit axes (world).
+
+    Returns:
+        (n,) T (N m, >= 0).
+    """
+    f, m = wrenches[:, :3], wrenches[:, 3:]
+    axial = np.einsum("ij,ij->i", f, axes)
+    radial = np.linalg.norm(f - axial[:, None] * axes, axis=1)
+    bending = np.linalg.norm(m - np.einsum("ij,ij->i", m, axes)[:, None] * axes, axis=1)
+    mu, radius, arm, collar, preload = specs.T
+    return mu * (radius * (preload + radial + bending / arm) + collar * np.abs(axial))  # bending / inf = 0
 
 
 class ReactionFriction(ForceElement):
@@ -155,6 +169,13 @@ class ReactionFriction(ForceElement):
                 if cut.closure.kind != "revolute":
                     raise InvalidParameters("friction", joint, f"a {cut.closure.kind} cut: revolute joints only")
                 self._cuts.append((joint, k, spec, cut))
+        self._cut_k = np.array([k for _, k, _, _ in self._cuts], dtype=int)
+        self._cut_specs = np.array([astuple(spec)[:5] for _, _, spec, _ in self._cuts]).reshape(-1, 5)
+        self._cut_rate = np.array([spec.threshold for _, _, spec, _ in self._cuts])
+        self._tree_k = np.array([k for _, k, _, _ in self._tree], dtype=int)  # the tree joints' arrays, for `sizes`
+        self._tree_v = np.array([iv for _, _, _, iv in self._tree], dtype=int)
+        self._tree_specs = np.array([astuple(spec)[:5] for _, _, spec, _ in self._tree]).reshape(-1, 5)
+        self._tree_rate = np.array([spec.threshold for _, _, spec, _ in self._tree])
 
     def load(self, state: ForceState) -> Load:
         """The friction torques at a state and their power.
@@ -172,23 +193,33 @@ class ReactionFriction(ForceElement):
         power = 0.0
         if state.reactions is None:
             return Load(tau, wrenches, 0.0)
-        for _, k, spec, iv in self._tree:
-            axis = data.J.reshape(6, -1)[3:, iv]
-            rate = float(state.v[iv])
-            torque = -spec.torque(state.reactions[k], axis) * float(smooth_sign(rate, spec.threshold))
-            tau[iv] += torque
-            power += torque * rate
-        for _, k, spec, cut in self._cuts:
-            axis = data.oMf[cut.frame_a].rotation @ cut.closure.axis
-            w_a = pin.getFrameVelocity(model, data, cut.frame_a, pin.LOCAL_WORLD_ALIGNED).angular
-            w_b = pin.getFrameVelocity(model, data, cut.frame_b, pin.LOCAL_WORLD_ALIGNED).angular
-            rate = float((w_b - w_a) @ axis)
-            torque = -spec.torque(state.reactions[k], axis) * float(smooth_sign(rate, spec.threshold))
-            for frame, sign in ((cut.frame_b, 1.0), (cut.frame_a, -1.0)):
-                joint = model.frames[frame].parentJoint
-                if joint:
-                    wrenches[joint, 3:] += data.oMi[joint].rotation.T @ (sign * torque * axis)
-            power += torque * rate
+        if self._tree:
+            axes = data.J.reshape(6, -1)[3:, self._tree_v].T
+            rates = state.v[self._tree_v]
+            torques = -sizes(self._tree_specs, state.reactions[self._tree_k], axes) * smooth_sign(
+                rates, self._tree_rate
+            )
+            tau[self._tree_v] += torques  # one freedom per joint: no index repeats
+            power += float(torques @ rates)
+        if self._cuts:
+            axes = np.array([data.oMf[cut.frame_a].rotation @ cut.closure.axis for _, _, _, cut in self._cuts])
+            rates = np.array(
+                [
+                    (
+                        pin.getFrameVelocity(model, data, cut.frame_b, pin.LOCAL_WORLD_ALIGNED).angular
+                        - pin.getFrameVelocity(model, data, cut.frame_a, pin.LOCAL_WORLD_ALIGNED).angular
+                    )
+                    @ axis
+                    for (_, _, _, cut), axis in zip(self._cuts, axes)
+                ]
+            )
+            torques = -sizes(self._cut_specs, state.reactions[self._cut_k], axes) * smooth_sign(rates, self._cut_rate)
+            for (_, _, _, cut), axis, torque in zip(self._cuts, axes, torques):
+                for frame, sign in ((cut.frame_b, 1.0), (cut.frame_a, -1.0)):
+                    joint = model.frames[frame].parentJoint
+                    if joint:
+                        wrenches[joint, 3:] += data.oMi[joint].rotation.T @ (sign * torque * axis)
+            power += float(torques @ rates)
         return Load(tau, wrenches, power)
 
     def torques(self, state: ForceState) -> dict[str, float]:

@@ -71,7 +71,7 @@ class AnchorReactions:
         fext = wrenches.copy()
         cuts = np.zeros((len(self.spans), 6))
         for i, (frame_a, span) in enumerate(zip(self.frames_a, self.spans)):
-            point = data.oMf[frame_a].translation
+            at_point = pin.SE3(np.eye(3), data.oMf[frame_a].translation)
             for c, start, size in span:
                 f = lam[start : start + size]
                 force = pin.Force(f, np.zeros(3)) if size == 3 else pin.Force(f)
@@ -79,9 +79,7 @@ class AnchorReactions:
                 fext[c.joint1_id] += c.joint1_placement.act(force).vector
                 if c.joint2_id:
                     fext[c.joint2_id] -= (data.oMi[c.joint2_id].actInv(oMc)).act(force).vector
-                world = oMc.act(force)  # about the world origin
-                cuts[i, :3] += world.linear
-                cuts[i, 3:] += world.angular - np.cross(point, world.linear)
+                cuts[i] += at_point.actInv(oMc.act(force)).vector  # world axes, about the cut's point
         for j in range(1, model.njoints):
             self._fext[j] = pin.Force(fext[j])
         pin.rnea(model, data, q, v, a, self._fext)
