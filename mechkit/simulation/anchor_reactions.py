@@ -31,9 +31,11 @@ class AnchorReactions:
 
     def __init__(self, cm, legacy):
         self.model, self.legacy = cm.model, legacy
-        self.data = self.model.createData()
+        self.scratch = (
+            cm.create_data()
+        )  # its Pinocchio data for the RNEA pass, with views of its placements and wrenches
         self.n_tree = self.model.njoints - 1
-        self.frames_a, self.spans = [], []  # per cut: its frame_a, and its anchors' (model, first multiplier, size)
+        self.spans = []  # per cut: its anchors' (model, first multiplier, size); the first at the cut's point
         start, anchors = 0, list(zip(legacy.models, legacy.sizes))
         for cut in cm.kernel.cuts:
             count = 2 if cut.closure.kind == "revolute" and cut.closure.rows != "planar" else 1
@@ -42,7 +44,6 @@ class AnchorReactions:
                 span.append((c, start, size))
                 start += size
             anchors = anchors[count:]
-            self.frames_a.append(cut.frame_a)
             self.spans.append(span)
         self.size = start
         self._fext = pin.StdVec_Force()
@@ -50,11 +51,12 @@ class AnchorReactions:
             self._fext.append(pin.Force.Zero())
 
     def __call__(
-        self, q: np.ndarray, v: np.ndarray, a: np.ndarray, lam: np.ndarray, wrenches: np.ndarray
+        self, placed: pin.Data, q: np.ndarray, v: np.ndarray, a: np.ndarray, lam: np.ndarray, wrenches: np.ndarray
     ) -> np.ndarray:
         """The reactions at a state.
 
         Args:
+            placed: a data of the tree with the joint placements at q (`pin.forwardKinematics`).
             q: (nq,) configuration.
             v: (nv,) velocities.
             a: (nv,) the accelerations the multipliers came with.
@@ -65,24 +67,23 @@ class AnchorReactions:
             (n_tree + n_cuts, 6) [f (N), m (N m) about the joint's point], world axes, in
             `ClosureModel.joint_names` order.
         """
-        model, data = self.model, self.data
-        pin.forwardKinematics(model, data, q)
-        pin.updateFramePlacements(model, data)
+        model = self.model
         fext = wrenches.copy()
         cuts = np.zeros((len(self.spans), 6))
-        for i, (frame_a, span) in enumerate(zip(self.frames_a, self.spans)):
-            at_point = pin.SE3(np.eye(3), data.oMf[frame_a].translation)
+        for i, span in enumerate(self.spans):
+            at_point = None
             for c, start, size in span:
                 f = lam[start : start + size]
                 force = pin.Force(f, np.zeros(3)) if size == 3 else pin.Force(f)
-                oMc = data.oMi[c.joint1_id] * c.joint1_placement
+                oMc = placed.oMi[c.joint1_id] * c.joint1_placement
+                if at_point is None:  # the first anchor: at the cut's point
+                    at_point = pin.SE3(np.eye(3), oMc.translation)
                 fext[c.joint1_id] += c.joint1_placement.act(force).vector
                 if c.joint2_id:
-                    fext[c.joint2_id] -= (data.oMi[c.joint2_id].actInv(oMc)).act(force).vector
+                    fext[c.joint2_id] -= placed.oMi[c.joint2_id].actInv(oMc).act(force).vector
                 cuts[i] += at_point.actInv(oMc.act(force)).vector  # world axes, about the cut's point
         for j in range(1, model.njoints):
             self._fext[j] = pin.Force(fext[j])
-        pin.rnea(model, data, q, v, a, self._fext)
-        placements = np.array([m.homogeneous[:3] for m in data.oMi])
-        forces = np.array([f.vector for f in data.f])
-        return np.concatenate((tree_wrenches(placements, forces), -cuts))
+        pin.forwardKinematics(model, self.scratch.pin, q)  # the placements the views read (rnea leaves oMi)
+        pin.rnea(model, self.scratch.pin, q, v, a, self._fext)
+        return np.concatenate((tree_wrenches(self.scratch.oMi, self.scratch.f), -cuts))

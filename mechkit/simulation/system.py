@@ -253,7 +253,7 @@ class MechanismSystem:
             if lam is None:
                 reactions = self.reactions(q, v, a, generalized, wrenches).reaction_values
             else:  # from the forward solve's own multipliers: one RNEA pass
-                reactions = self._anchors(q, v, a, lam, wrenches)
+                reactions = self._anchors(state.data, q, v, a, lam, wrenches)
             state.reactions = reactions
             new_tau, new_fext, pow_f = self._loads(state, self.friction)
             change = max(

@@ -29,11 +29,11 @@ def test_reactions_from_the_multipliers_are_the_inverse_dynamics_ones(load_cache
         v = m.velocities(q, rng.standard_normal(len(m.actuated)))
         tau, wrenches = rng.standard_normal(nv), np.zeros((nj, 6))
         wrenches[1:] = rng.standard_normal((nj - 1, 6))
-        pin.computeJointJacobians(m.model, data, q)
+        pin.computeJointJacobians(m.model, data, q)  # the placements too
         total = tau + generalized_of_wrenches(m.model, data, wrenches)
         a = core.forward_dynamics(cm, cd, q, v, total, "proximal").a
         anchors = AnchorReactions(cm, cd.legacy["proximal"])
-        mine = anchors(q, v, a, cd.legacy["proximal"].data.lambda_c.copy(), wrenches)
+        mine = anchors(data, q, v, a, cd.legacy["proximal"].data.lambda_c.copy(), wrenches)
         fx = pin.StdVec_Force()
         for row in wrenches:
             fx.append(pin.Force(row))
