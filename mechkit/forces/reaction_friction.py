@@ -169,13 +169,37 @@ class ReactionFriction(ForceElement):
                 if cut.closure.kind != "revolute":
                     raise InvalidParameters("friction", joint, f"a {cut.closure.kind} cut: revolute joints only")
                 self._cuts.append((joint, k, spec, cut))
-        self._cut_k = np.array([k for _, k, _, _ in self._cuts], dtype=int)
-        self._cut_specs = np.array([astuple(spec)[:5] for _, _, spec, _ in self._cuts]).reshape(-1, 5)
-        self._cut_rate = np.array([spec.threshold for _, _, spec, _ in self._cuts])
-        self._tree_k = np.array([k for _, k, _, _ in self._tree], dtype=int)  # the tree joints' arrays, for `sizes`
+        pins = self._tree + self._cuts  # one array per quantity, tree joints first, for `sizes`
+        self._k = np.array([k for _, k, _, _ in pins], dtype=int)
+        self._specs = np.array([astuple(spec)[:5] for _, _, spec, _ in pins]).reshape(-1, 5)
+        self._rate = np.array([spec.threshold for _, _, spec, _ in pins])
         self._tree_v = np.array([iv for _, _, _, iv in self._tree], dtype=int)
-        self._tree_specs = np.array([astuple(spec)[:5] for _, _, spec, _ in self._tree]).reshape(-1, 5)
-        self._tree_rate = np.array([spec.threshold for _, _, spec, _ in self._tree])
+        self._at: tuple | None = None  # (state, axes, rates, signs, cut moment map): one state's geometry
+
+    def _geometry(self, state: ForceState) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+        """The pins' world axes (n, 3), rates (n,) and regularised signs (n,), and the map (njoints, 3, n_cuts)
+        from the cut joints' torques to their bodies' moments (`fext`): computed once per state object (its
+        q and v do not change; its reactions do, round after round of the friction's fixed point)."""
+        if self._at is not None and self._at[0] is state:
+            return self._at[1:]
+        model, data = state.model, state.data
+        axes = np.empty((len(self._k), 3))
+        rates = np.empty(len(self._k))
+        n_tree = len(self._tree)
+        axes[:n_tree] = data.J.reshape(6, -1)[3:, self._tree_v].T
+        rates[:n_tree] = state.v[self._tree_v]
+        moments = np.zeros((model.njoints, 3, len(self._cuts)))
+        for i, (_, _, _, cut) in enumerate(self._cuts):
+            axis = axes[n_tree + i] = data.oMf[cut.frame_a].rotation @ cut.closure.axis
+            w_a = pin.getFrameVelocity(model, data, cut.frame_a, pin.LOCAL_WORLD_ALIGNED).angular
+            w_b = pin.getFrameVelocity(model, data, cut.frame_b, pin.LOCAL_WORLD_ALIGNED).angular
+            rates[n_tree + i] = (w_b - w_a) @ axis
+            for frame, sign in ((cut.frame_b, 1.0), (cut.frame_a, -1.0)):
+                joint = model.frames[frame].parentJoint
+                if joint:
+                    moments[joint, :, i] += sign * (data.oMi[joint].rotation.T @ axis)
+        self._at = (state, axes, rates, smooth_sign(rates, self._rate), moments)
+        return self._at[1:]
 
     def load(self, state: ForceState) -> Load:
         """The friction torques at a state and their power.
@@ -187,40 +211,18 @@ class ReactionFriction(ForceElement):
             The `Load`: generalised forces (nv,) at the tree joints, body wrenches (njoints, 6) (`fext`
             convention) of the cut joints' torques, and their power (W, <= 0).
         """
-        model, data = state.model, state.data
+        model = state.model
         tau = np.zeros(model.nv)
         wrenches = np.zeros((model.njoints, 6))
-        power = 0.0
         if state.reactions is None:
             return Load(tau, wrenches, 0.0)
-        if self._tree:
-            axes = data.J.reshape(6, -1)[3:, self._tree_v].T
-            rates = state.v[self._tree_v]
-            torques = -sizes(self._tree_specs, state.reactions[self._tree_k], axes) * smooth_sign(
-                rates, self._tree_rate
-            )
-            tau[self._tree_v] += torques  # one freedom per joint: no index repeats
-            power += float(torques @ rates)
+        axes, rates, signs, moments = self._geometry(state)
+        torques = -sizes(self._specs, state.reactions[self._k], axes) * signs
+        n_tree = len(self._tree)
+        tau[self._tree_v] = torques[:n_tree]  # one freedom per joint: no index repeats
         if self._cuts:
-            axes = np.array([data.oMf[cut.frame_a].rotation @ cut.closure.axis for _, _, _, cut in self._cuts])
-            rates = np.array(
-                [
-                    (
-                        pin.getFrameVelocity(model, data, cut.frame_b, pin.LOCAL_WORLD_ALIGNED).angular
-                        - pin.getFrameVelocity(model, data, cut.frame_a, pin.LOCAL_WORLD_ALIGNED).angular
-                    )
-                    @ axis
-                    for (_, _, _, cut), axis in zip(self._cuts, axes)
-                ]
-            )
-            torques = -sizes(self._cut_specs, state.reactions[self._cut_k], axes) * smooth_sign(rates, self._cut_rate)
-            for (_, _, _, cut), axis, torque in zip(self._cuts, axes, torques):
-                for frame, sign in ((cut.frame_b, 1.0), (cut.frame_a, -1.0)):
-                    joint = model.frames[frame].parentJoint
-                    if joint:
-                        wrenches[joint, 3:] += data.oMi[joint].rotation.T @ (sign * torque * axis)
-            power += float(torques @ rates)
-        return Load(tau, wrenches, power)
+            wrenches[:, 3:] = moments @ torques[n_tree:]
+        return Load(tau, wrenches, float(torques @ rates))
 
     def torques(self, state: ForceState) -> dict[str, float]:
         """The friction torques' sizes at a state with reactions (no sign, no regularisation).
