@@ -25,6 +25,7 @@ At a state (t, q, v):
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -71,6 +72,30 @@ class Evaluation:
     powers: np.ndarray
     reactions: np.ndarray | None = None
     iterations: int = 0
+
+
+def _anderson(x: tuple, g: tuple, last: tuple | None) -> tuple[tuple, tuple]:
+    """One Anderson(1) step of the friction's fixed point x = g(x) (ours: it keeps the fixed point; measured
+    on the ten-bar's deployment: fewer rounds per evaluation, see docs/simulation.md): from the round's
+    x (tau, fext) and g(x), and the last round's residual and g, the next x, g - gamma (g - g_last) with
+    gamma minimising the residuals' combination; g itself on the first round or where that is undefined.
+
+    Returns:
+        (the next (tau, fext), this round's (residual, g) flat, for the next step).
+    """
+    flat_x = np.concatenate([x[0], x[1].ravel()])
+    flat_g = np.concatenate([g[0], g[1].ravel()])
+    residual = flat_g - flat_x
+    nxt = flat_g
+    if last is not None:
+        dr = residual - last[0]
+        den = float(dr @ dr)
+        if den > 0.0:
+            gamma = float(residual @ dr) / den
+            if math.isfinite(gamma):
+                nxt = flat_g - gamma * (flat_g - last[1])
+    n = len(x[0])
+    return (nxt[:n], nxt[n:].reshape(x[1].shape)), (residual, flat_g)
 
 
 class MechanismSystem:
@@ -243,7 +268,7 @@ class MechanismSystem:
             return Evaluation(a, u, tau_p, fext_p, pow_p)
         tau_f, fext_f = self._friction_start or (np.zeros_like(tau_p), np.zeros_like(fext_p))
         P = None
-        iterations, reactions, change, scale = 0, None, np.inf, 1.0
+        iterations, reactions, change, scale, last = 0, None, np.inf, 1.0, None
         while True:
             generalized, wrenches = tau_p + tau_f, fext_p + fext_f
             tau = generalized + generalized_of_wrenches(self.model, state.data, wrenches)
@@ -263,6 +288,8 @@ class MechanismSystem:
             scale = max(
                 float(np.max(np.abs(new_tau), initial=0.0)), float(np.max(np.abs(new_fext), initial=0.0)), 1e-300
             )
+            if self.scheme == "fixed point" and not (change <= FRICTION_TOL * scale or change == 0.0):
+                (new_tau, new_fext), last = _anderson((tau_f, fext_f), (new_tau, new_fext), last)
             tau_f, fext_f = new_tau, new_fext
             iterations += 1
             if self.scheme == "fixed point" and (change <= FRICTION_TOL * scale or change == 0.0):
