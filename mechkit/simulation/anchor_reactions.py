@@ -31,10 +31,8 @@ class AnchorReactions:
 
     def __init__(self, cm, legacy):
         self.model, self.legacy = cm.model, legacy
-        self.scratch = (
-            cm.create_data()
-        )  # its Pinocchio data for the RNEA pass, with views of its placements and wrenches
-        self.n_tree = self.model.njoints - 1
+        self.scratch = cm.create_data()  # the RNEA pass's data, with views of its placements and wrenches
+        nj = self.model.njoints
         self.spans = []  # per cut: its anchors' (model, first multiplier, size); the first at the cut's point
         start, anchors = 0, list(zip(legacy.models, legacy.sizes))
         for cut in cm.kernel.cuts:
@@ -43,20 +41,45 @@ class AnchorReactions:
             for c, size in anchors[:count]:
                 span.append((c, start, size))
                 start += size
-            anchors = anchors[count:]
             self.spans.append(span)
+            anchors = anchors[count:]
         self.size = start
         self._fext = pin.StdVec_Force()
-        for _ in range(self.model.njoints):
+        for _ in range(nj):
             self._fext.append(pin.Force.Zero())
+        self._fext_rows = _stacked_forces(self._fext)
+        #: (nj * 6 + n_cuts * 6, rows): multipliers -> the anchors' body wrenches (`fext`) and the cuts'
+        #: reactions (world axes, about each cut's point), at the state `at` was given.
+        self._map = np.zeros((6 * (nj + len(self.spans)), start))
 
-    def __call__(
-        self, placed: pin.Data, q: np.ndarray, v: np.ndarray, a: np.ndarray, lam: np.ndarray, wrenches: np.ndarray
-    ) -> np.ndarray:
-        """The reactions at a state.
+    def at(self, placed: pin.Data) -> None:
+        """Set the state: the map from multipliers to body wrenches and cut reactions (linear at a q).
 
         Args:
-            placed: a data of the tree with the joint placements at q (`pin.forwardKinematics`).
+            placed: a data of the tree with the joint placements at the state's q (`pin.forwardKinematics`).
+        """
+        nj, out = self.model.njoints, self._map
+        out[:] = 0.0
+        for i, span in enumerate(self.spans):
+            at_point = None
+            for c, start, size in span:
+                columns = slice(start, start + size)
+                oMc = placed.oMi[c.joint1_id] * c.joint1_placement
+                if at_point is None:  # the first anchor: at the cut's point
+                    at_point = pin.SE3(np.eye(3), oMc.translation)
+                j1, j2 = c.joint1_id, c.joint2_id
+                out[6 * j1 : 6 * j1 + 6, columns] += c.joint1_placement.dualAction[:, :size]
+                if j2:
+                    out[6 * j2 : 6 * j2 + 6, columns] -= placed.oMi[j2].actInv(oMc).dualAction[:, :size]
+                row = 6 * (nj + i)  # the cut transmits minus the force its anchors put on frame_a's side
+                out[row : row + 6, columns] -= at_point.actInv(oMc).dualAction[:, :size]
+
+    def __call__(
+        self, q: np.ndarray, v: np.ndarray, a: np.ndarray, lam: np.ndarray, wrenches: np.ndarray
+    ) -> np.ndarray:
+        """The reactions at the state `at` was given.
+
+        Args:
             q: (nq,) configuration.
             v: (nv,) velocities.
             a: (nv,) the accelerations the multipliers came with.
@@ -67,23 +90,22 @@ class AnchorReactions:
             (n_tree + n_cuts, 6) [f (N), m (N m) about the joint's point], world axes, in
             `ClosureModel.joint_names` order.
         """
-        model = self.model
-        fext = wrenches.copy()
-        cuts = np.zeros((len(self.spans), 6))
-        for i, span in enumerate(self.spans):
-            at_point = None
-            for c, start, size in span:
-                f = lam[start : start + size]
-                force = pin.Force(f, np.zeros(3)) if size == 3 else pin.Force(f)
-                oMc = placed.oMi[c.joint1_id] * c.joint1_placement
-                if at_point is None:  # the first anchor: at the cut's point
-                    at_point = pin.SE3(np.eye(3), oMc.translation)
-                fext[c.joint1_id] += c.joint1_placement.act(force).vector
-                if c.joint2_id:
-                    fext[c.joint2_id] -= placed.oMi[c.joint2_id].actInv(oMc).act(force).vector
-                cuts[i] += at_point.actInv(oMc.act(force)).vector  # world axes, about the cut's point
-        for j in range(1, model.njoints):
-            self._fext[j] = pin.Force(fext[j])
+        nj, model = self.model.njoints, self.model
+        loads = (self._map @ lam).reshape(-1, 6)
+        self._fext_rows[:] = wrenches + loads[:nj]
         pin.forwardKinematics(model, self.scratch.pin, q)  # the placements the views read (rnea leaves oMi)
         pin.rnea(model, self.scratch.pin, q, v, a, self._fext)
-        return np.concatenate((tree_wrenches(self.scratch.oMi, self.scratch.f), -cuts))
+        return np.concatenate((tree_wrenches(self.scratch.oMi, self.scratch.f), loads[nj:]))
+
+
+def _stacked_forces(forces: pin.StdVec_Force) -> np.ndarray:
+    """(n, 6) a writable view of a vector of Pinocchio forces (one contiguous buffer in Pinocchio 4.1).
+
+    Raises:
+        RuntimeError: the forces are not one buffer of 6 doubles each.
+    """
+    views = [f.np for f in forces.tolist()]
+    first = views[0].__array_interface__["data"][0]
+    if any(view.__array_interface__["data"][0] != first + 48 * k for k, view in enumerate(views)):
+        raise RuntimeError("pin.StdVec_Force is not one buffer of 6 doubles per force")
+    return np.lib.stride_tricks.as_strided(views[0], shape=(len(views), 6), strides=(48, 8), writeable=True)

@@ -267,7 +267,7 @@ class MechanismSystem:
             a, u, _, _ = self._accelerations(q, v, tau, acc, None)
             return Evaluation(a, u, tau_p, fext_p, pow_p)
         tau_f, fext_f = self._friction_start or (np.zeros_like(tau_p), np.zeros_like(fext_p))
-        P = None
+        P, placed = None, False
         iterations, reactions, change, scale, last = 0, None, np.inf, 1.0, None
         while True:
             generalized, wrenches = tau_p + tau_f, fext_p + fext_f
@@ -278,7 +278,10 @@ class MechanismSystem:
             if lam is None:
                 reactions = self.reactions(q, v, a, generalized, wrenches).reaction_values
             else:  # from the forward solve's own multipliers: one RNEA pass
-                reactions = self._anchors(state.data, q, v, a, lam, wrenches)
+                if not placed:  # the multipliers' map at this q, once per evaluation
+                    self._anchors.at(state.data)
+                    placed = True
+                reactions = self._anchors(q, v, a, lam, wrenches)
             state.reactions = reactions
             new_tau, new_fext, pow_f = self._loads(state, self.friction)
             change = max(
