@@ -10,9 +10,10 @@ At a state (t, q, v):
    P_k = FD(tau + e_k) - a0 (k in D) give the efforts u that realise the law's accelerations:
    P_DD u = a_law - a0_D, a = a0 + P u (computed-torque motors);
 3. with friction from the reactions: steps 1-2 under the previous evaluation's friction (lagged: the
-   integrator's stages are close), every joint's reaction by the core's inverse dynamics at (q, v, a)
-   (the drives as actuators), the friction loads from them, and steps 1-2 once more under that friction
-   (corrected): scheme "corrected", the default, two forward and one inverse dynamics per evaluation.
+   integrator's stages are close), every joint's reaction at (q, v, a): from the proximal solve's
+   multipliers and one RNEA pass (`simulation.anchor_reactions`), or with "kkt" by the core's inverse
+   dynamics (the drives as actuators), the friction loads from them, and steps 1-2 once more under that friction
+   (corrected): scheme "corrected", two forward solves and one reaction pass per evaluation.
    Its friction is one fixed-point iteration from the lagged one: its error against the converged fixed
    point is the iteration's contraction (the friction's sensitivity to its own reactions, mu r times the
    reactions' lever, about 1e-3 for pins of 5 mm) times the correction, which is itself held below
@@ -20,7 +21,8 @@ At a state (t, q, v):
    friction locks, the iteration goes on until it is that small). Measured on the four-bar released with
    friction at every pin (mu 0.2, r 10 mm) over 1 s: see tests/simulation/test_system.py and
    docs/simulation.md. Scheme "fixed point" iterates until the friction changes by less than
-   `FRICTION_TOL` (relative), `FrictionLocks` where it does not settle (both schemes).
+   `FRICTION_TOL` (relative), an Anderson(1) step between rounds (`_anderson`), `FrictionLocks` where it
+   does not settle (both schemes).
 """
 
 from __future__ import annotations
