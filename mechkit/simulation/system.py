@@ -9,7 +9,8 @@ At a state (t, q, v):
    default); with driven joints D (prescribed inputs, held joints), FD is affine in tau, so the columns
    P_k = FD(tau + e_k) - a0 (k in D) give the efforts u that realise the law's accelerations:
    P_DD u = a_law - a0_D, a = a0 + P u (computed-torque motors);
-3. with friction from the reactions: steps 1-2 under the previous evaluation's friction (lagged: the
+3. with friction from the reactions: steps 1-2 under the friction of the previous evaluation's reactions
+   at this state's axes and rates (lagged reactions: the
    integrator's stages are close), every joint's reaction at (q, v, a): from the proximal solve's
    multipliers and one RNEA pass (`simulation.anchor_reactions`), or with "kkt" by the core's inverse
    dynamics (the drives as actuators), the friction loads from them, and steps 1-2 once more under that friction
@@ -145,7 +146,7 @@ class MechanismSystem:
         for buffer in (self._zero_tau, self._zero_fext, self._no_powers, self._no_efforts, self._unit):
             buffer.setflags(write=False)
         self._driven: dict[tuple[str, ...], tuple[core.ClosureModel, core.ClosureData]] = {}
-        self._friction_start: tuple[np.ndarray, np.ndarray] | None = None
+        self._friction_start: np.ndarray | None = None  # the last evaluation's reactions
         # friction's reactions from the proximal solve's multipliers (`simulation.anchor_reactions`)
         self._by_anchors, self._anchors = method == "proximal" and bool(self.friction), None
         self.drives = drives
@@ -268,7 +269,10 @@ class MechanismSystem:
             tau = tau_p + generalized_of_wrenches(self.model, state.data, fext_p) if fext_p.any() else tau_p
             a, u, _, _ = self._accelerations(q, v, tau, acc, None)
             return Evaluation(a, u, tau_p, fext_p, pow_p)
-        tau_f, fext_f = self._friction_start or (np.zeros_like(tau_p), np.zeros_like(fext_p))
+        tau_f, fext_f = np.zeros_like(tau_p), np.zeros_like(fext_p)
+        if self._friction_start is not None:  # the last evaluation's reactions, at this state's axes and rates
+            state.reactions = self._friction_start
+            tau_f, fext_f, _ = self._loads(state, self.friction)
         P, placed = None, False
         iterations, reactions, change, scale, last = 0, None, np.inf, 1.0, None
         while True:
@@ -304,7 +308,7 @@ class MechanismSystem:
                 raise FrictionLocks(change, FRICTION_TOL * scale, iterations, f"t = {t:.6g} s")
             if self.scheme == "corrected" and change <= FRICTION_TOL * scale:
                 break  # converged before the correction: a is already the fixed point's
-        self._friction_start = (tau_f, fext_f)
+        self._friction_start = reactions
         powers = np.empty(len(self.elements))
         powers[self.plain] = pow_p
         powers[self.friction] = pow_f
