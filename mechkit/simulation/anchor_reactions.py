@@ -51,6 +51,11 @@ class AnchorReactions:
         #: (nj * 6 + n_cuts * 6, rows): multipliers -> the anchors' body wrenches (`fext`) and the cuts'
         #: reactions (world axes, about each cut's point), at the state `at` was given.
         self._map = np.zeros((6 * (nj + len(self.spans)), start))
+        self._fixed = np.zeros_like(self._map)  # the first side's part: its anchor is fixed on that body
+        for span in self.spans:
+            for c, first, size in span:
+                j1 = c.joint1_id
+                self._fixed[6 * j1 : 6 * j1 + 6, first : first + size] += c.joint1_placement.dualAction[:, :size]
 
     def at(self, placed: pin.Data) -> None:
         """Set the state: the map from multipliers to body wrenches and cut reactions (linear at a q).
@@ -59,20 +64,19 @@ class AnchorReactions:
             placed: a data of the tree with the joint placements at the state's q (`pin.forwardKinematics`).
         """
         nj, out = self.model.njoints, self._map
-        out[:] = 0.0
+        out[:] = self._fixed
         for i, span in enumerate(self.spans):
-            at_point = None
+            point = None
             for c, start, size in span:
                 columns = slice(start, start + size)
                 oMc = placed.oMi[c.joint1_id] * c.joint1_placement
-                if at_point is None:  # the first anchor: at the cut's point
-                    at_point = pin.SE3(np.eye(3), oMc.translation)
-                j1, j2 = c.joint1_id, c.joint2_id
-                out[6 * j1 : 6 * j1 + 6, columns] += c.joint1_placement.dualAction[:, :size]
-                if j2:
+                if point is None:  # the first anchor: at the cut's point
+                    point = oMc.translation
+                if c.joint2_id:
+                    j2 = c.joint2_id
                     out[6 * j2 : 6 * j2 + 6, columns] -= placed.oMi[j2].actInv(oMc).dualAction[:, :size]
                 row = 6 * (nj + i)  # the cut transmits minus the force its anchors put on frame_a's side
-                out[row : row + 6, columns] -= at_point.actInv(oMc).dualAction[:, :size]
+                out[row : row + 6, columns] -= pin.SE3(oMc.rotation, oMc.translation - point).dualAction[:, :size]
 
     def __call__(
         self, q: np.ndarray, v: np.ndarray, a: np.ndarray, lam: np.ndarray, wrenches: np.ndarray
