@@ -48,6 +48,7 @@ class AnchorReactions:
         for _ in range(nj):
             self._fext.append(pin.Force.Zero())
         self._fext_rows = _stacked_forces(self._fext)
+        self._still = np.zeros(self.model.nv)  # v = a = 0 for `generalized`
         #: (nj * 6 + n_cuts * 6, rows): multipliers -> the anchors' body wrenches (`fext`) and the cuts'
         #: reactions (world axes, about each cut's point), at the state `at` was given.
         self._map = np.zeros((6 * (nj + len(self.spans)), start))
@@ -100,6 +101,23 @@ class AnchorReactions:
         pin.forwardKinematics(model, self.scratch.pin, q)  # the placements the views read (rnea leaves oMi)
         pin.rnea(model, self.scratch.pin, q, v, a, self._fext)
         return np.concatenate((tree_wrenches(self.scratch.oMi, self.scratch.f), loads[nj:]))
+
+    def generalized(self, q: np.ndarray, wrenches: np.ndarray) -> np.ndarray:
+        """Generalised forces J^T f of body wrenches, by two Pinocchio passes: g(q) - rnea(q, 0, 0, f)
+        (`forces.generalized_of_wrenches`'s quantity, without a Jacobian per body).
+
+        Args:
+            q: (nq,) configuration.
+            wrenches: (njoints, 6) body wrenches (`fext` convention; row 0 ignored).
+
+        Returns:
+            (nv,) the generalised forces (N m or N).
+        """
+        self._fext_rows[:] = wrenches
+        self._fext_rows[0] = 0.0
+        data = self.scratch.pin
+        gravity = pin.computeGeneralizedGravity(self.model, data, q).copy()
+        return gravity - pin.rnea(self.model, data, q, self._still, self._still, self._fext)
 
 
 def _stacked_forces(forces: pin.StdVec_Force) -> np.ndarray:

@@ -9,11 +9,11 @@ At a state (t, q, v):
    default); with driven joints D (prescribed inputs, held joints), FD is affine in tau, so the columns
    P_k = FD(tau + e_k) - a0 (k in D) give the efforts u that realise the law's accelerations:
    P_DD u = a_law - a0_D, a = a0 + P u (computed-torque motors);
-3. with friction from the reactions: steps 1-2 under the friction of the previous evaluation's reactions
-   at this state's axes and rates (lagged reactions: the
-   integrator's stages are close), every joint's reaction at (q, v, a): from the proximal solve's
-   multipliers and one RNEA pass (`simulation.anchor_reactions`), or with "kkt" by the core's inverse
-   dynamics (the drives as actuators), the friction loads from them, and steps 1-2 once more under that friction
+3. with friction from the reactions: steps 1-2 under the friction of the previous evaluation's
+   reactions at this state's axes and rates (lagged reactions: the integrator's stages are close),
+   every joint's reaction at (q, v, a): from the proximal solve's multipliers and one RNEA pass
+   (`simulation.anchor_reactions`), or with "kkt" by the core's inverse dynamics (the drives as
+   actuators), the friction loads from them, and steps 1-2 once more under that friction
    (corrected): scheme "corrected", two forward solves and one reaction pass per evaluation.
    Its friction is one fixed-point iteration from the lagged one: its error against the converged fixed
    point is the iteration's contraction (the friction's sensitivity to its own reactions, mu r times the
@@ -277,7 +277,10 @@ class MechanismSystem:
         iterations, reactions, change, scale, last = 0, None, np.inf, 1.0, None
         while True:
             generalized, wrenches = tau_p + tau_f, fext_p + fext_f
-            tau = generalized + generalized_of_wrenches(self.model, state.data, wrenches)
+            if self._anchors is None:
+                tau = generalized + generalized_of_wrenches(self.model, state.data, wrenches)
+            else:  # two Pinocchio passes instead of a Jacobian per body
+                tau = generalized + self._anchors.generalized(q, wrenches)
             a, u, P, lam = self._accelerations(q, v, tau, acc, P)
             if iterations and self.scheme == "corrected" and change <= LAG_TOL * scale:
                 break  # the lagged friction corrected once: a from the friction of its own reactions

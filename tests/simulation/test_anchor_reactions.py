@@ -42,3 +42,22 @@ def test_reactions_from_the_multipliers_are_the_inverse_dynamics_ones(load_cache
         assert np.max(np.abs(reference.effort_values)) <= 1e-9 * max(1.0, np.max(np.abs(tau)))
         worst = max(worst, float(np.max(np.abs(mine - reference.reaction_values)) / np.max(np.abs(mine))))
     assert worst <= 1e-10
+
+
+def test_generalised_forces_of_wrenches_by_two_passes_are_the_jacobians(load_cached):
+    """`AnchorReactions.generalized` (g(q) - rnea(q, 0, 0, f)) against `forces.generalized_of_wrenches`
+    (each body's world Jacobian transposed times its wrench) for random wrenches on every body of the
+    four-bar: equal to 1e-12 of the largest."""
+    m = load_cached("four_bar")
+    cm = m.closure_model
+    cd = cm.create_data()
+    rng = np.random.default_rng(5)
+    q = m.assemble([0.7])
+    core.forward_dynamics(cm, cd, q, np.zeros(m.model.nv), np.zeros(m.model.nv), "proximal")  # the anchors
+    anchors = AnchorReactions(cm, cd.legacy["proximal"])
+    data = m.model.createData()
+    pin.computeJointJacobians(m.model, data, q)
+    wrenches = np.zeros((m.model.njoints, 6))
+    wrenches[1:] = rng.standard_normal((m.model.njoints - 1, 6))
+    expected = generalized_of_wrenches(m.model, data, wrenches)
+    assert np.max(np.abs(anchors.generalized(q, wrenches) - expected)) <= 1e-12 * np.max(np.abs(expected))
