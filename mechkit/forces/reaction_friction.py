@@ -119,8 +119,10 @@ def sizes(specs: np.ndarray, wrenches: np.ndarray, axes: np.ndarray) -> np.ndarr
     """
     f, m = wrenches[:, :3], wrenches[:, 3:]
     axial = np.einsum("ij,ij->i", f, axes)
-    radial = np.linalg.norm(f - axial[:, None] * axes, axis=1)
-    bending = np.linalg.norm(m - np.einsum("ij,ij->i", m, axes)[:, None] * axes, axis=1)
+    radial_f = f - axial[:, None] * axes
+    bending_m = m - np.einsum("ij,ij->i", m, axes)[:, None] * axes
+    radial = np.sqrt(np.einsum("ij,ij->i", radial_f, radial_f))
+    bending = np.sqrt(np.einsum("ij,ij->i", bending_m, bending_m))
     mu, radius, arm, collar, preload = specs.T
     return mu * (radius * (preload + radial + bending / arm) + collar * np.abs(axial))  # bending / inf = 0
 
@@ -174,6 +176,14 @@ class ReactionFriction(ForceElement):
         self._specs = np.array([astuple(spec)[:5] for _, _, spec, _ in pins]).reshape(-1, 5)
         self._rate = np.array([spec.threshold for _, _, spec, _ in pins])
         self._tree_v = np.array([iv for _, _, _, iv in self._tree], dtype=int)
+        self._cut_bodies = [  # per cut: (body joint, sign of the torque on it), the ground left out
+            [
+                (model.frames[f].parentJoint, sign)
+                for f, sign in ((cut.frame_b, 1.0), (cut.frame_a, -1.0))
+                if model.frames[f].parentJoint
+            ]
+            for _, _, _, cut in self._cuts
+        ]
         self._at: tuple | None = None  # (state, axes, rates, signs, cut moment map): one state's geometry
 
     def _geometry(self, state: ForceState) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
@@ -194,10 +204,8 @@ class ReactionFriction(ForceElement):
             w_a = pin.getFrameVelocity(model, data, cut.frame_a, pin.LOCAL_WORLD_ALIGNED).angular
             w_b = pin.getFrameVelocity(model, data, cut.frame_b, pin.LOCAL_WORLD_ALIGNED).angular
             rates[n_tree + i] = (w_b - w_a) @ axis
-            for frame, sign in ((cut.frame_b, 1.0), (cut.frame_a, -1.0)):
-                joint = model.frames[frame].parentJoint
-                if joint:
-                    moments[joint, :, i] += sign * (data.oMi[joint].rotation.T @ axis)
+            for joint, sign in self._cut_bodies[i]:
+                moments[joint, :, i] += sign * (data.oMi[joint].rotation.T @ axis)
         self._at = (state, axes, rates, smooth_sign(rates, self._rate), moments)
         return self._at[1:]
 
