@@ -18,7 +18,26 @@ from __future__ import annotations
 import numpy as np
 import pinocchio as pin
 
-from mechkit.core import tree_wrenches
+from mechkit.core import ClosureModel, tree_wrenches
+
+
+def applies(cm: ClosureModel) -> bool:
+    """Whether the anchors' multipliers give the reactions the core's inverse dynamics gives: every cut a
+    planar revolute or a spherical one (one point anchor, the same rows as mechkit's). Two anchors on a
+    revolute axis (spatial or spherical-rows cuts) and 6D welds regularise a different self-stress: where
+    statics leaves a force undetermined (the spherical 2-dof's, by up to its size) friction from it would
+    differ from the inverse dynamics' least-norm one, so the simulation keeps "kkt" and the inverse dynamics.
+
+    Args:
+        cm: the closure model.
+
+    Returns:
+        True where the reactions from the anchors are the inverse dynamics' ones.
+    """
+    cuts = cm.kernel.cuts
+    return not cm.kernel.couplings and all(
+        c.closure.kind == "spherical" or (c.closure.kind == "revolute" and c.closure.rows == "planar") for c in cuts
+    )
 
 
 class AnchorReactions:

@@ -38,7 +38,7 @@ from mechkit import core
 from mechkit.base.exceptions import InvalidParameters, SingularConfiguration
 from mechkit.forces import ForceElement, ForceState, FrictionLocks, generalized_of_wrenches
 from mechkit.simulation import crossing
-from mechkit.simulation.anchor_reactions import AnchorReactions
+from mechkit.simulation.anchor_reactions import AnchorReactions, applies
 from mechkit.simulation.prescribed import Drives
 
 #: The friction fixed point stops when no friction torque changes by more than this, relative to the
@@ -148,7 +148,8 @@ class MechanismSystem:
         self._driven: dict[tuple[str, ...], tuple[core.ClosureModel, core.ClosureData]] = {}
         self._friction_start: np.ndarray | None = None  # the last evaluation's reactions
         # friction's reactions from the proximal solve's multipliers (`simulation.anchor_reactions`)
-        self._by_anchors, self._anchors = method == "proximal" and bool(self.friction), None
+        self._by_anchors = method == "proximal" and bool(self.friction) and applies(self.cm)
+        self._anchors = None
         self.drives = drives
 
     @property
