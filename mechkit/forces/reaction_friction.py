@@ -27,7 +27,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping, Sequence
-from dataclasses import dataclass
+from dataclasses import astuple, dataclass
 
 import numpy as np
 import pinocchio as pin
@@ -103,12 +103,28 @@ class PinFriction:
         Returns:
             T (N m, >= 0).
         """
-        f, m = wrench[:3], wrench[3:]
-        axial = float(f @ axis)
-        radial = float(np.linalg.norm(f - axial * axis))
-        bending = float(np.linalg.norm(m - (m @ axis) * axis))
-        load = self.preload + radial + (0.0 if math.isinf(self.bending_arm) else bending / self.bending_arm)
-        return self.mu * (self.radius * load + self.collar_radius * abs(axial))
+        return float(sizes(np.array([astuple(self)[:5]]), wrench[None], axis[None])[0])
+
+
+def sizes(specs: np.ndarray, wrenches: np.ndarray, axes: np.ndarray) -> np.ndarray:
+    """The friction torques' sizes T of several pins at once (see the module docstring).
+
+    Args:
+        specs: (n, 5) each pin's (mu, radius, bending_arm, collar_radius, preload), as `PinFriction`.
+        wrenches: (n, 6) their reactions [f (N), m (N m)], world axes, about the joint origins.
+        axes: (n, 3) their unit axes (world).
+
+    Returns:
+        (n,) T (N m, >= 0).
+    """
+    f, m = wrenches[:, :3], wrenches[:, 3:]
+    axial = np.einsum("ij,ij->i", f, axes)
+    radial_f = f - axial[:, None] * axes
+    bending_m = m - np.einsum("ij,ij->i", m, axes)[:, None] * axes
+    radial = np.sqrt(np.einsum("ij,ij->i", radial_f, radial_f))
+    bending = np.sqrt(np.einsum("ij,ij->i", bending_m, bending_m))
+    mu, radius, arm, collar, preload = specs.T
+    return mu * (radius * (preload + radial + bending / arm) + collar * np.abs(axial))  # bending / inf = 0
 
 
 class ReactionFriction(ForceElement):
@@ -155,6 +171,43 @@ class ReactionFriction(ForceElement):
                 if cut.closure.kind != "revolute":
                     raise InvalidParameters("friction", joint, f"a {cut.closure.kind} cut: revolute joints only")
                 self._cuts.append((joint, k, spec, cut))
+        pins = self._tree + self._cuts  # one array per quantity, tree joints first, for `sizes`
+        self._k = np.array([k for _, k, _, _ in pins], dtype=int)
+        self._specs = np.array([astuple(spec)[:5] for _, _, spec, _ in pins]).reshape(-1, 5)
+        self._rate = np.array([spec.threshold for _, _, spec, _ in pins])
+        self._tree_v = np.array([iv for _, _, _, iv in self._tree], dtype=int)
+        self._cut_bodies = [  # per cut: (body joint, sign of the torque on it), the ground left out
+            [
+                (model.frames[f].parentJoint, sign)
+                for f, sign in ((cut.frame_b, 1.0), (cut.frame_a, -1.0))
+                if model.frames[f].parentJoint
+            ]
+            for _, _, _, cut in self._cuts
+        ]
+        self._at: tuple | None = None  # (state, axes, rates, signs, cut moment map): one state's geometry
+
+    def _geometry(self, state: ForceState) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+        """The pins' world axes (n, 3), rates (n,) and regularised signs (n,), and the map (njoints, 3, n_cuts)
+        from the cut joints' torques to their bodies' moments (`fext`): computed once per state object (its
+        q and v do not change; its reactions do, round after round of the friction's fixed point)."""
+        if self._at is not None and self._at[0] is state:
+            return self._at[1:]
+        model, data = state.model, state.data
+        axes = np.empty((len(self._k), 3))
+        rates = np.empty(len(self._k))
+        n_tree = len(self._tree)
+        axes[:n_tree] = data.J.reshape(6, -1)[3:, self._tree_v].T
+        rates[:n_tree] = state.v[self._tree_v]
+        moments = np.zeros((model.njoints, 3, len(self._cuts)))
+        for i, (_, _, _, cut) in enumerate(self._cuts):
+            axis = axes[n_tree + i] = data.oMf[cut.frame_a].rotation @ cut.closure.axis
+            w_a = pin.getFrameVelocity(model, data, cut.frame_a, pin.LOCAL_WORLD_ALIGNED).angular
+            w_b = pin.getFrameVelocity(model, data, cut.frame_b, pin.LOCAL_WORLD_ALIGNED).angular
+            rates[n_tree + i] = (w_b - w_a) @ axis
+            for joint, sign in self._cut_bodies[i]:
+                moments[joint, :, i] += sign * (data.oMi[joint].rotation.T @ axis)
+        self._at = (state, axes, rates, smooth_sign(rates, self._rate), moments)
+        return self._at[1:]
 
     def load(self, state: ForceState) -> Load:
         """The friction torques at a state and their power.
@@ -166,30 +219,18 @@ class ReactionFriction(ForceElement):
             The `Load`: generalised forces (nv,) at the tree joints, body wrenches (njoints, 6) (`fext`
             convention) of the cut joints' torques, and their power (W, <= 0).
         """
-        model, data = state.model, state.data
+        model = state.model
         tau = np.zeros(model.nv)
         wrenches = np.zeros((model.njoints, 6))
-        power = 0.0
         if state.reactions is None:
             return Load(tau, wrenches, 0.0)
-        for _, k, spec, iv in self._tree:
-            axis = data.J.reshape(6, -1)[3:, iv]
-            rate = float(state.v[iv])
-            torque = -spec.torque(state.reactions[k], axis) * float(smooth_sign(rate, spec.threshold))
-            tau[iv] += torque
-            power += torque * rate
-        for _, k, spec, cut in self._cuts:
-            axis = data.oMf[cut.frame_a].rotation @ cut.closure.axis
-            w_a = pin.getFrameVelocity(model, data, cut.frame_a, pin.LOCAL_WORLD_ALIGNED).angular
-            w_b = pin.getFrameVelocity(model, data, cut.frame_b, pin.LOCAL_WORLD_ALIGNED).angular
-            rate = float((w_b - w_a) @ axis)
-            torque = -spec.torque(state.reactions[k], axis) * float(smooth_sign(rate, spec.threshold))
-            for frame, sign in ((cut.frame_b, 1.0), (cut.frame_a, -1.0)):
-                joint = model.frames[frame].parentJoint
-                if joint:
-                    wrenches[joint, 3:] += data.oMi[joint].rotation.T @ (sign * torque * axis)
-            power += torque * rate
-        return Load(tau, wrenches, power)
+        axes, rates, signs, moments = self._geometry(state)
+        torques = -sizes(self._specs, state.reactions[self._k], axes) * signs
+        n_tree = len(self._tree)
+        tau[self._tree_v] = torques[:n_tree]  # one freedom per joint: no index repeats
+        if self._cuts:
+            wrenches[:, 3:] = moments @ torques[n_tree:]
+        return Load(tau, wrenches, float(torques @ rates))
 
     def torques(self, state: ForceState) -> dict[str, float]:
         """The friction torques' sizes at a state with reactions (no sign, no regularisation).

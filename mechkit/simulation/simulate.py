@@ -22,6 +22,7 @@ from mechkit.base.exceptions import InvalidParameters
 from mechkit.forces import ForceElement
 from mechkit.history.axes import JointAxes
 from mechkit.history.result import MotionResult, coordinate_names
+from mechkit.simulation.anchor_reactions import applies as anchors_apply
 from mechkit.simulation.crossing import FALLBACK, BranchChanged, BranchMode, BranchWatch, on_manifold
 from mechkit.simulation.declared import default_forces, file_limits, torque_motors
 from mechkit.simulation.events import REST_RATE, Latch, Limit, impact
@@ -97,11 +98,10 @@ def simulate(
             "ImplicitMidpoint" at a fixed step `dt` only: `mechkit.simulation.fixed_step`).
         max_step: the largest adaptive step (s).
         dynamics: the core's forward-dynamics method ("proximal", "lcaba", "kkt", "nullspace"); None:
-            "proximal" (Pinocchio's constraint models), or "kkt" where friction needs the reactions: the
-            core's inverse dynamics solves on mechkit's closure rows, and only accelerations from the
-            same rows stay consistent with it at the integrator's off-manifold stages (the proximal
-            ones differ by O(closure residual) there, which the inverse dynamics refuses), or where
-            Pinocchio's constraint models cannot express a cut or coupling (`core.pinocchio_methods_apply`).
+            "proximal" (Pinocchio's constraint models; friction reads the reactions from its multipliers
+            where they are the inverse dynamics' ones, `simulation.anchor_reactions.applies`, else "kkt"
+            and the core's inverse dynamics), or "kkt" where Pinocchio's constraint models cannot express
+            a cut or coupling (`core.pinocchio_methods_apply`).
         baumgarte: (Kp 1/s^2, Kd 1/s) closure stabilisation in the accelerations, or None.
         friction_scheme: friction from the reactions per evaluation, "corrected" or "fixed point"
             (`mechkit.simulation.system`); None: "corrected" at a fixed step, "fixed point" with adaptive
@@ -133,7 +133,8 @@ def simulate(
     names = [e.name for e in elements]
     if len(set(names)) != len(names):
         raise InvalidParameters("forces", names, "every force element needs its own name")
-    exact = any(e.needs_reactions for e in elements) or not core.pinocchio_methods_apply(mech.closure_model)
+    exact = any(e.needs_reactions for e in elements) and not anchors_apply(mech.closure_model)
+    exact = exact or not core.pinocchio_methods_apply(mech.closure_model)
     dynamics, note = default_dynamics(mech.model, exact) if dynamics is None else (dynamics, "")
     if friction_scheme is None:
         friction_scheme = "fixed point" if dt is None else "corrected"

@@ -136,3 +136,18 @@ def test_an_unknown_friction_scheme_is_refused_by_name(four_bar):
     with pytest.raises(InvalidParameters) as err:
         simulation.MechanismSystem(four_bar, [], simulation.Drives(), friction_scheme="implicit")
     assert err.value.name == "friction_scheme"
+
+
+def test_friction_from_the_proximal_multipliers_against_the_inverse_dynamics_on_mechkit_rows(four_bar):
+    """Friction from the reactions read off the proximal solve's multipliers (one RNEA pass) and friction
+    from the core's inverse dynamics under "kkt" (an independent solve) reach the same fixed point: the
+    accelerations agree to the proximal solve's accuracy, the reactions to 1e-8 of the largest."""
+    m = four_bar
+    q, v = _moving(m)
+    evs = [
+        simulation.MechanismSystem(m, [friction(m)], simulation.Drives(), method).evaluate(0.0, q, v)
+        for method in ("proximal", "kkt")
+    ]
+    assert np.max(np.abs(evs[0].a - evs[1].a)) <= 1e-8 * np.max(np.abs(evs[1].a))
+    assert np.max(np.abs(evs[0].reactions - evs[1].reactions)) <= 1e-8 * np.max(np.abs(evs[1].reactions))
+    assert np.max(np.abs(evs[0].generalized - evs[1].generalized)) <= 1e-8 * np.max(np.abs(evs[1].generalized))
