@@ -205,8 +205,11 @@ def triangular_inverse(qr: np.ndarray, k: int) -> np.ndarray | None:
         k: the size of R.
 
     Returns:
-        (k, k) R^-1, upper triangular; None where R is singular.
+        (k, k) R^-1, upper triangular; None where R is singular or empty (LAPACK refuses an empty R: it
+        printed "DTRTRI parameter number 5 had an illegal value" and gave the same None).
     """
+    if k == 0:
+        return None
     X, info = scipy.linalg.lapack.dtrtri(qr[:k])
     if info:
         return None

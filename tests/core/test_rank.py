@@ -93,3 +93,12 @@ def test_a_block_whose_inverse_cannot_be_squared_counts_as_singular_without_rais
             rho, size = rank.block_bounds(block)
             assert rho <= 1e-300 * (1 + 1e-12) and size == pytest.approx(1.0)
             assert not rank.certified_regular(rho, size, 1e-12)
+
+
+def test_an_empty_block_gives_no_bound_and_no_lapack_complaint(capfd):
+    """A passive block with no column (a field robot's SDF arm at home) has no R to invert: no bound (rho 0,
+    the SVD decides, as before), and nothing printed by LAPACK (it printed an illegal-value error)."""
+    assert rank.triangular_inverse(np.zeros((3, 0)), 0) is None
+    assert rank.block_bounds(np.zeros((3, 0)))[0] == 0.0
+    printed = capfd.readouterr()
+    assert "illegal value" not in printed.out + printed.err
